@@ -1,0 +1,36 @@
+// Elementary geometry of closed polylines (outlines and seam curves). Closed means the last point
+// joins the first; it is not repeated.
+#pragma once
+
+#include <optional>
+#include <utility>
+
+#include "core/types.h"
+
+namespace dform {
+
+/// Length of the closed polyline through the rows of P (#P by d).
+double closedLength(const Eigen::MatrixXd& P);
+
+/// Cumulative arc length at each vertex of the closed polyline: s[0] = 0, s[i] = length up to row i.
+Eigen::VectorXd cumulativeArcLength(const Eigen::MatrixXd& P);
+
+/// Signed area of a closed planar polygon, positive when counter-clockwise.
+double signedArea(const Points2& P);
+
+/// n points spaced uniformly by arc length along the closed polyline P (#P by d), the first at
+/// arc length `startFraction` * length from P's first point (fraction in [0, 1)).
+Eigen::MatrixXd resampleClosed(const Eigen::MatrixXd& P, int n, double startFraction = 0.0);
+
+/// Arc-length fraction in [0, 1) of the point of closed polyline P nearest to q.
+double nearestArcFraction(const Points2& P, const Eigen::Vector2d& q);
+
+/// The first pair of non-adjacent edges (i, j) of the closed polygon that touch or cross, if any.
+/// Edge i joins row i to row i+1 (mod #P). Runs in O(#P log #P) for typical outlines.
+std::optional<std::pair<int, int>> findSelfIntersection(const Points2& P);
+
+/// Whether the 2D segments [a, b] and [c, d] touch or cross.
+bool segmentsIntersect(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+                       const Eigen::Vector2d& d);
+
+}  // namespace dform

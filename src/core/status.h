@@ -1,0 +1,56 @@
+// Errors from bad user input. A broken invariant is a bug (assert); a solve that does not converge
+// is a result with its summary; everything the user can fix is a Status naming the file and problem.
+#pragma once
+
+#include <string>
+#include <utility>
+
+namespace dform {
+
+/// Error kinds. The CLI maps each to a documented exit code (see README "Exit codes").
+enum class ErrorCode {
+  Ok = 0,
+  Usage,            ///< a bad command line or option value
+  InputUnreadable,  ///< a missing or unreadable file, or one that is not of the expected format
+  InputInvalid,     ///< a readable file whose content cannot be used (open, self-intersecting, ...)
+  SolveFailed,      ///< the solver could not produce a usable result
+  OutputFailed,     ///< an output file could not be written
+  GateFailed,       ///< the result did not pass the quality gate
+  Interrupted,      ///< the run was interrupted by the user
+  Internal,         ///< a bug
+};
+
+class Status {
+ public:
+  Status() = default;
+  Status(ErrorCode code, std::string message) : code_(code), message_(std::move(message)) {}
+
+  static Status ok() { return {}; }
+  bool isOk() const { return code_ == ErrorCode::Ok; }
+  ErrorCode code() const { return code_; }
+  const std::string& message() const { return message_; }
+
+ private:
+  ErrorCode code_ = ErrorCode::Ok;
+  std::string message_;
+};
+
+/// A value or the Status that explains why there is none.
+template <typename T>
+class Result {
+ public:
+  Result(T value) : value_(std::move(value)) {}  // NOLINT: implicit by design
+  Result(Status status) : status_(std::move(status)) {}  // NOLINT: implicit by design
+
+  bool isOk() const { return status_.isOk(); }
+  const Status& status() const { return status_; }
+  const T& value() const& { return value_; }
+  T& value() & { return value_; }
+  T&& value() && { return std::move(value_); }
+
+ private:
+  T value_{};
+  Status status_;
+};
+
+}  // namespace dform

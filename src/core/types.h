@@ -1,0 +1,55 @@
+// Value types shared by every stage of dform. Points are rows; lengths are millimetres at every
+// module boundary (the solver may normalise internally and scales back).
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace dform {
+
+using Points2 = Eigen::Matrix<double, Eigen::Dynamic, 2>;  ///< #P by 2
+using Points3 = Eigen::Matrix<double, Eigen::Dynamic, 3>;  ///< #P by 3
+using Faces = Eigen::Matrix<int, Eigen::Dynamic, 3>;       ///< #F by 3 vertex indices
+
+/// A closed planar outline in mm: #P by 2, counter-clockwise, the first point not repeated at the
+/// end. `source` names where it came from (a file path) for error messages.
+struct Outline2 {
+  Points2 points;
+  std::string source;
+};
+
+/// A closed space curve in mm: #P by 3, the first point not repeated at the end.
+struct Curve3 {
+  Points3 points;
+  std::string source;
+};
+
+/// A triangulated flat domain. V is #V by 2 (mm), F is #F by 3 with counter-clockwise triangles,
+/// `boundary` lists the outer boundary loop's vertex indices in counter-clockwise order.
+struct FlatMesh {
+  Points2 V;
+  Faces F;
+  std::vector<int> boundary;
+};
+
+/// One piece of a D-Form: the flat shape as it is cut and the same triangles bent in 3D.
+/// `flat` is #V by 2, `shape` is #V by 3, both in mm, sharing the faces F (counter-clockwise in
+/// the flat layout, outward-facing in 3D). `seam` lists the boundary vertices in seam order.
+struct Piece {
+  std::string name;
+  Points2 flat;
+  Points3 shape;
+  Faces F;
+  std::vector<int> seam;
+};
+
+/// A solved D-Form: a.seam[i] and b.seam[i] are the two sides of the same seam point. Piece A's
+/// seam runs counter-clockwise around its flat outline, piece B's clockwise, so that both pieces'
+/// faces are outward-facing on the closed 3D surface.
+struct DForm {
+  Piece a;
+  Piece b;
+};
+
+}  // namespace dform

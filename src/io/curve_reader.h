@@ -1,0 +1,22 @@
+// Reading closed 3D seam curves (OBJ polyline, JSON points or closed cubic Bezier) into mm.
+#pragma once
+
+#include <string>
+
+#include "core/status.h"
+#include "core/types.h"
+
+namespace dform {
+
+struct CurveReadOptions {
+  bool forceClosed = false;        ///< treat an open polyline as closed (`--closed`)
+  double flattenTolerance = 0.01;  ///< mm; largest chord deviation when Beziers are flattened
+  double maxCoordinate = 1.0e6;    ///< mm
+};
+
+/// Reads a closed space curve from `path` (.obj or .json), dense, in mm. Problems are Statuses
+/// naming the file: open curve, fewer than 5 distinct points, NaN/infinite/huge coordinates,
+/// repeated consecutive points, self-intersection, faces but no polyline, malformed file.
+Result<Curve3> readCurve(const std::string& path, const CurveReadOptions& options = {});
+
+}  // namespace dform

@@ -1,0 +1,27 @@
+// A solved D-Form on disk: one OBJ per piece and per form (flat and 3D), each holding the seam as
+// an `l` polyline in seam order, so a saved result can be exported or validated again.
+#pragma once
+
+#include <string>
+
+#include "core/status.h"
+#include "core/types.h"
+
+namespace dform {
+
+/// File names inside a result folder.
+struct ModelFileNames {
+  static constexpr const char* aFlat = "piece-a-flat.obj";
+  static constexpr const char* a3d = "piece-a-3d.obj";
+  static constexpr const char* bFlat = "piece-b-flat.obj";
+  static constexpr const char* b3d = "piece-b-3d.obj";
+};
+
+/// Writes the four OBJ files into `dir` (which must exist), each atomically.
+Status writeModel(const std::string& dir, const DForm& model);
+
+/// Reads the four OBJ files back; checks that flat and 3D meshes of a piece agree in faces and
+/// seam and that the two seams have the same length (vertex count).
+Result<DForm> readModel(const std::string& dir);
+
+}  // namespace dform

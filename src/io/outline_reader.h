@@ -1,0 +1,29 @@
+// Reading flat outlines (SVG or a JSON list of 2D points) into millimetres.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/status.h"
+#include "core/types.h"
+
+namespace dform {
+
+struct OutlineReadOptions {
+  double flattenTolerance = 0.01;  ///< mm; largest chord deviation when curves are flattened
+  double maxCoordinate = 1.0e6;    ///< mm; larger coordinates are rejected as unreasonable
+};
+
+/// A flat shape: its outer outline and any holes (each counter-clockwise, dense polylines in mm).
+struct Shape2 {
+  Outline2 outer;
+  std::vector<Outline2> holes;
+};
+
+/// Reads a shape from `path`: SVG (.svg) or a JSON list of points (.json). Every problem is a
+/// Status naming the file: InputUnreadable (missing, unreadable, not SVG/JSON) or InputInvalid
+/// (no closed outline, open path, self-intersecting outline, NaN or huge coordinates, too few
+/// points, several separate outlines).
+Result<Shape2> readShape(const std::string& path, const OutlineReadOptions& options = {});
+
+}  // namespace dform

@@ -1,0 +1,35 @@
+// Quality figures of a D-Form (paper section 6.3 and Table 2), computed from the meshes alone.
+#pragma once
+
+#include "core/types.h"
+
+namespace dform {
+
+struct Metrics {
+  double L_error = 0;       ///< |L3 - L2| / |L2| over all edges of both pieces (fraction)
+  double L_max = 0;         ///< max_i |L3_i - L2_i| / L2_i (fraction)
+  double B_error = 0;       ///< mean distance between seam partners / seam length (fraction)
+  double seam_gap_mm = 0;   ///< largest distance between seam partners (mm)
+  double gauss_max = 0;     ///< largest |angle defect| at interior vertices (radians)
+  double gauss_mean = 0;    ///< mean |angle defect| at interior vertices (radians)
+  int flipped_2d = 0;       ///< flat triangles with non-positive signed area
+  int flipped_3d = 0;       ///< 3D triangles whose normal opposes its neighbours' (see .cpp)
+  int degenerate_2d = 0;    ///< flat triangles with an angle below 1e-3 rad or zero area
+  int degenerate_3d = 0;    ///< 3D triangles with an angle below 1e-3 rad or zero area
+  double seam_length_a_mm = 0;  ///< flat seam length (perimeter) of piece A
+  double seam_length_b_mm = 0;  ///< flat seam length of piece B
+  double seam_length_3d_mm = 0; ///< length of the 3D seam (piece A's side)
+};
+
+/// Figures of `model`. Pure: reads the meshes, never the solver.
+Metrics computeMetrics(const DForm& model);
+
+/// Inverse mode: D_error (paper Eq. 7, fraction) and the largest seam-to-curve distance (mm),
+/// where curve.points.row(i) is the target of a.seam[i] and b.seam[i].
+struct CurveMatch {
+  double D_error = 0;
+  double curve_distance_max_mm = 0;
+};
+CurveMatch computeCurveMatch(const DForm& model, const Curve3& target);
+
+}  // namespace dform
