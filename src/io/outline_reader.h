@@ -20,10 +20,18 @@ struct Shape2 {
   std::vector<Outline2> holes;
 };
 
-/// Reads a shape from `path`: SVG (.svg) or a JSON list of points (.json). Every problem is a
-/// Status naming the file: InputUnreadable (missing, unreadable, not SVG/JSON) or InputInvalid
-/// (no closed outline, open path, self-intersecting outline, NaN or huge coordinates, too few
-/// points, several separate outlines).
+/// Reads a shape from `path`: SVG (.svg) or a JSON list of points (.json); see docs/io.md.
+///
+/// SVG: the root width/height/viewBox give millimetres (mm, cm, in, pt, pc, px at 96 per inch;
+/// unitless = px; no width/height means a user unit is a px). SVG's y axis points down; the
+/// result is in the page frame with y up and the origin at the page's bottom-left corner
+/// (y' = page height - y), so what the designer sees is not mirrored. Curves are flattened to
+/// options.flattenTolerance. Every closed subpath or shape is an outline: exactly one must
+/// enclose all others, which become holes. <defs> content and display:none are ignored.
+///
+/// Every problem is a Status naming the file: InputUnreadable (missing, unreadable, not SVG/JSON)
+/// or InputInvalid (no closed outline, open path, self-intersecting outline, NaN or huge
+/// coordinates, too few points, several separate outlines).
 Result<Shape2> readShape(const std::string& path, const OutlineReadOptions& options = {});
 
 }  // namespace dform

@@ -1,0 +1,48 @@
+// Internal helpers shared by the io readers and writers: whole-file reading with a size limit,
+// number formatting for messages and files, unit names. Not part of the public io API.
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+
+#include "core/status.h"
+
+namespace dform::io_detail {
+
+/// Input files larger than this are refused: no outline or curve needs it, and reading an
+/// arbitrary huge file into memory would be a denial of service.
+constexpr std::size_t kMaxInputBytes = std::size_t(64) << 20;
+
+/// Reads the whole file, or InputUnreadable naming `path` (missing, a folder, unreadable, too big).
+Result<std::string> readInputFile(const std::string& path);
+
+/// Lower-case extension without the dot ("svg"), empty when there is none.
+std::string lowerExtension(const std::string& path);
+
+/// Short human-readable number for messages: "3.2", "0.00012", "1.5e+07".
+std::string fmt(double value);
+
+/// "(x, y)" or "(x, y, z)" with fmt() numbers.
+std::string fmtPoint(const Eigen::Ref<const Eigen::RowVectorXd>& p);
+
+/// Shortest decimal text that reads back to exactly `value` (locale-independent).
+std::string exactDecimal(double value);
+
+/// Parses a whole token as a double, locale-independently (accepts a leading '+').
+std::optional<double> parseDouble(const std::string& token);
+
+/// Millimetres per unit for the unit names accepted in JSON files ("mm", "cm", "in"); nullopt if
+/// the name is unknown.
+std::optional<double> millimetresPerUnit(const std::string& unit);
+
+/// The first coordinate of P (#P by d) that is NaN, infinite or larger than `maxCoordinate` in
+/// magnitude, as (row, column); nullopt if all are fine.
+std::optional<std::pair<Eigen::Index, Eigen::Index>> findBadCoordinate(const Eigen::MatrixXd& P,
+                                                                       double maxCoordinate);
+
+/// Message text for a coordinate found by findBadCoordinate: "is not a number" / "is too large
+/// (...)".
+std::string describeBadCoordinate(double value, double maxCoordinate);
+
+}  // namespace dform::io_detail

@@ -1,0 +1,23 @@
+// Internal: JSON helpers shared by the outline and curve readers (nlohmann-json stays private).
+#pragma once
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/status.h"
+
+namespace dform::io_detail {
+
+/// Parses `text`, or InputUnreadable naming `path` with the parser's one-line reason.
+Result<nlohmann::json> parseJson(const std::string& path, const std::string& text);
+
+/// Millimetres per unit from the object's optional "units" member (mm by default, cm, in).
+Result<double> jsonUnitScale(const std::string& path, const nlohmann::json& doc);
+
+/// A list of `dimension`-number points ([[x, y], ...] or [[x, y, z], ...]) scaled by `scale`, as
+/// #P by dimension rows. `what` names the list in messages ("the outline").
+Result<Eigen::MatrixXd> jsonPointList(const std::string& path, const nlohmann::json& list,
+                                      const std::string& what, int dimension, double scale);
+
+}  // namespace dform::io_detail

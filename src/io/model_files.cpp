@@ -1,0 +1,143 @@
+#include "io/model_files.h"
+
+#include <cassert>
+#include <cmath>
+#include <filesystem>
+
+#include "core/atomic_file.h"
+#include "io/io_util.h"
+#include "io/obj_format.h"
+
+namespace dform {
+namespace {
+
+using io_detail::exactDecimal;
+
+std::string joinPath(const std::string& dir, const char* name) {
+  return (std::filesystem::path(dir) / name).string();
+}
+
+/// One piece's mesh with its seam, as OBJ text. Coordinates are written with the shortest decimal
+/// form that reads back to the same double, so a round trip is exact.
+std::string objText(const Piece& piece, const Eigen::MatrixXd& V, const std::string& layout) {
+  assert(V.cols() == 2 || V.cols() == 3);
+  std::string text = "# dform piece " + piece.name + ", " + layout + " (mm): vertices, faces, seam polyline\n";
+  text.reserve(text.size() + std::size_t(V.rows()) * 60 + std::size_t(piece.F.rows()) * 24);
+  for (Eigen::Index i = 0; i < V.rows(); ++i) {
+    text += "v " + exactDecimal(V(i, 0)) + " " + exactDecimal(V(i, 1)) + " " +
+            (V.cols() == 3 ? exactDecimal(V(i, 2)) : std::string("0")) + "\n";
+  }
+  for (Eigen::Index f = 0; f < piece.F.rows(); ++f)
+    text += "f " + std::to_string(piece.F(f, 0) + 1) + " " + std::to_string(piece.F(f, 1) + 1) + " " +
+            std::to_string(piece.F(f, 2) + 1) + "\n";
+  text += "l";
+  for (int s : piece.seam) text += " " + std::to_string(s + 1);
+  return text + "\n";
+}
+
+/// The single seam polyline and the triangles of one OBJ file, checked for shape.
+struct PieceFile {
+  std::string path;
+  io_detail::ObjData obj;
+  Faces F;
+  std::vector<int> seam;
+};
+
+Result<PieceFile> readPieceFile(const std::string& path) {
+  auto fail = [&](const std::string& what) { return Status{ErrorCode::InputInvalid, path + ": " + what}; };
+  const Result<std::string> text = io_detail::readInputFile(path);
+  if (!text.isOk()) return text.status();
+  Result<io_detail::ObjData> parsed = io_detail::parseObj(path, text.value());
+  if (!parsed.isOk()) return parsed.status();
+  PieceFile file{path, std::move(parsed).value(), {}, {}};
+  const io_detail::ObjData& obj = file.obj;
+  for (std::size_t i = 0; i < obj.vertices.size(); ++i)
+    if (!obj.vertices[i].allFinite())
+      return fail("vertex " + std::to_string(i + 1) + " has a coordinate that is not a finite number");
+  if (obj.faces.empty()) return fail("has no faces");
+  if (obj.lines.size() != 1)
+    return fail("has " + std::to_string(obj.lines.size()) + " seam polylines ('l' elements); expected one");
+  file.F.resize(Eigen::Index(obj.faces.size()), 3);
+  for (std::size_t f = 0; f < obj.faces.size(); ++f) {
+    if (obj.faces[f].indices.size() != 3)
+      return fail("line " + std::to_string(obj.faces[f].lineNumber) + ": face has " +
+                  std::to_string(obj.faces[f].indices.size()) + " vertices; expected a triangle");
+    for (int k = 0; k < 3; ++k) file.F(Eigen::Index(f), k) = obj.faces[f].indices[std::size_t(k)];
+  }
+  file.seam = obj.lines[0].indices;
+  if (file.seam.size() > 1 && file.seam.front() == file.seam.back()) file.seam.pop_back();  // tolerate a closing repeat
+  if (file.seam.size() < 3) return fail("the seam has fewer than 3 vertices");
+  return file;
+}
+
+Result<Piece> readPiece(const std::string& dir, const char* flatName, const char* shapeName, const std::string& name) {
+  const Result<PieceFile> flat = readPieceFile(joinPath(dir, flatName));
+  if (!flat.isOk()) return flat.status();
+  const Result<PieceFile> shape = readPieceFile(joinPath(dir, shapeName));
+  if (!shape.isOk()) return shape.status();
+  const PieceFile& a = flat.value();
+  const PieceFile& b = shape.value();
+  auto mismatch = [&](const std::string& what) {
+    return Status{ErrorCode::InputInvalid, b.path + ": " + what + " than " + a.path};
+  };
+  if (a.obj.vertices.size() != b.obj.vertices.size()) return mismatch("has a different number of vertices");
+  if (a.F != b.F) return mismatch("has different faces");
+  if (a.seam != b.seam) return mismatch("has a different seam");
+
+  Piece piece;
+  piece.name = name;
+  const Eigen::Index n = Eigen::Index(a.obj.vertices.size());
+  piece.flat.resize(n, 2);
+  piece.shape.resize(n, 3);
+  double extent = 1.0;
+  for (Eigen::Index i = 0; i < n; ++i)
+    extent = std::max(extent, a.obj.vertices[std::size_t(i)].head<2>().cwiseAbs().maxCoeff());
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::Vector3d& v = a.obj.vertices[std::size_t(i)];
+    // The flat layout is written with z = 0; allow rounding from other tools, relative to size.
+    if (std::abs(v.z()) > 1e-9 * extent)
+      return Status{ErrorCode::InputInvalid, a.path + ": is not flat (vertex " + std::to_string(i + 1) +
+                                                 " has z = " + io_detail::fmt(v.z()) + ")"};
+    piece.flat.row(i) = v.head<2>().transpose();
+    piece.shape.row(i) = b.obj.vertices[std::size_t(i)].transpose();
+  }
+  piece.F = a.F;
+  piece.seam = a.seam;
+  return piece;
+}
+
+}  // namespace
+
+Status writeModel(const std::string& dir, const DForm& model) {
+  struct Output {
+    const char* name;
+    const Piece& piece;
+    bool flat;
+  };
+  const Output outputs[] = {{ModelFileNames::aFlat, model.a, true},
+                            {ModelFileNames::a3d, model.a, false},
+                            {ModelFileNames::bFlat, model.b, true},
+                            {ModelFileNames::b3d, model.b, false}};
+  for (const Output& out : outputs) {
+    assert(out.piece.flat.rows() == out.piece.shape.rows() && "flat and 3D vertex counts differ");
+    const std::string text = out.flat ? objText(out.piece, out.piece.flat, "flat layout")
+                                      : objText(out.piece, out.piece.shape, "3D shape");
+    const Status written = writeFileAtomically(joinPath(dir, out.name), text);
+    if (!written.isOk()) return written;
+  }
+  return Status::ok();
+}
+
+Result<DForm> readModel(const std::string& dir) {
+  Result<Piece> a = readPiece(dir, ModelFileNames::aFlat, ModelFileNames::a3d, "A");
+  if (!a.isOk()) return a.status();
+  Result<Piece> b = readPiece(dir, ModelFileNames::bFlat, ModelFileNames::b3d, "B");
+  if (!b.isOk()) return b.status();
+  if (a.value().seam.size() != b.value().seam.size())
+    return Status{ErrorCode::InputInvalid,
+                  joinPath(dir, ModelFileNames::bFlat) + ": seam has " + std::to_string(b.value().seam.size()) +
+                      " vertices but piece A's has " + std::to_string(a.value().seam.size())};
+  return DForm{std::move(a).value(), std::move(b).value()};
+}
+
+}  // namespace dform

@@ -1,0 +1,81 @@
+#include "io/obj_format.h"
+
+#include <charconv>
+#include <limits>
+#include <optional>
+#include <sstream>
+
+#include "io/io_util.h"
+
+namespace dform::io_detail {
+namespace {
+
+/// The vertex part of an index token ("7", "-2", "7/3/1", "7//1"); nullopt if it is not a
+/// non-zero integer.
+std::optional<long> vertexIndex(const std::string& token) {
+  const std::string head = token.substr(0, token.find('/'));
+  long value = 0;
+  const char* begin = head.data() + (!head.empty() && head[0] == '+');
+  const auto [end, ec] = std::from_chars(begin, head.data() + head.size(), value);
+  if (ec != std::errc() || end != head.data() + head.size() || value == 0) return std::nullopt;
+  return value;
+}
+
+}  // namespace
+
+Result<ObjData> parseObj(const std::string& path, const std::string& text) {
+  ObjData obj;
+  std::istringstream lines(text);
+  std::string line;
+  int lineNumber = 0;
+  auto malformed = [&](const std::string& what) {
+    return Status{ErrorCode::InputUnreadable, path + ": line " + std::to_string(lineNumber) + ": " + what};
+  };
+  while (std::getline(lines, line)) {
+    ++lineNumber;
+    if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+    std::istringstream tokens(line);
+    std::string keyword, token;
+    if (!(tokens >> keyword)) continue;
+    if (keyword == "v") {
+      Eigen::Vector3d v;
+      int count = 0;
+      while (tokens >> token) {
+        const std::optional<double> value = parseDouble(token);
+        if (!value) return malformed("'" + token + "' is not a number");
+        if (count < 3) v(count) = *value;
+        ++count;
+      }
+      if (count < 3 || count > 4) return malformed("a vertex needs x y z (and optionally w)");
+      obj.vertices.push_back(v);
+    } else if (keyword == "f" || keyword == "l") {
+      ObjElement element;
+      element.lineNumber = lineNumber;
+      while (tokens >> token) {
+        const std::optional<long> index = vertexIndex(token);
+        if (!index) return malformed("'" + token + "' is not a vertex index (they start at 1)");
+        // Negative indices count back from the newest vertex; positive ones are checked below,
+        // once every vertex is known.
+        const long resolved = *index < 0 ? long(obj.vertices.size()) + *index : *index - 1;
+        if (resolved < 0) return malformed("index " + token + " refers to no vertex");
+        if (resolved > std::numeric_limits<int>::max()) return malformed("index " + token + " is too large");
+        element.indices.push_back(int(resolved));
+      }
+      const std::size_t needed = keyword == "f" ? 3 : 2;
+      if (element.indices.size() < needed)
+        return malformed(keyword == "f" ? "a face needs at least 3 vertices" : "a polyline needs at least 2 vertices");
+      (keyword == "f" ? obj.faces : obj.lines).push_back(std::move(element));
+    }
+  }
+  for (const auto* elements : {&obj.faces, &obj.lines})
+    for (const ObjElement& e : *elements)
+      for (int i : e.indices)
+        if (std::size_t(i) >= obj.vertices.size()) {
+          lineNumber = e.lineNumber;
+          return malformed("vertex index " + std::to_string(i + 1) + " is out of range (the file has " +
+                           std::to_string(obj.vertices.size()) + " vertices)");
+        }
+  return obj;
+}
+
+}  // namespace dform::io_detail

@@ -1,0 +1,31 @@
+// Internal: a small Wavefront OBJ reader for what dform exchanges (vertices, faces, polylines),
+// shared by the seam-curve reader and the result-model reader.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "core/status.h"
+
+namespace dform::io_detail {
+
+/// An `f` or `l` element: 0-based vertex indices and the line it was read from.
+struct ObjElement {
+  std::vector<int> indices;
+  int lineNumber = 0;
+};
+
+struct ObjData {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<ObjElement> faces;
+  std::vector<ObjElement> lines;
+};
+
+/// Parses `v`, `f` and `l` statements; other statements (vn, vt, o, g, usemtl, ...) are ignored.
+/// Indices follow the OBJ spec: 1-based, negative ones count back from the last vertex defined
+/// so far, `i/t/n` forms use the vertex index. A malformed statement or an index out of range is
+/// InputUnreadable naming `path` and the line number.
+Result<ObjData> parseObj(const std::string& path, const std::string& text);
+
+}  // namespace dform::io_detail

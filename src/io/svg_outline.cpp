@@ -1,0 +1,574 @@
+// The only translation unit that includes svgpp (expensive to compile). svgpp walks the document,
+// resolves element transforms, lengths and basic shapes into absolute path commands; this file
+// records them per element and flattens them in millimetres once the element's transform is known.
+#include "io/svg_outline.h"
+
+#include <rapidxml_ns/rapidxml_ns.hpp>
+#include <svgpp/policy/xml/rapidxml_ns.hpp>
+#include <svgpp/svgpp.hpp>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <string_view>
+
+#include "io/flatten.h"
+#include "io/io_util.h"
+
+namespace dform::io_detail {
+namespace {
+
+using XmlNode = rapidxml_ns::xml_node<char>;
+using Vec2 = Eigen::Vector2d;
+
+/// Maps user coordinates to page millimetres: p' = linear * p + offset.
+struct Affine {
+  Eigen::Matrix2d linear = Eigen::Matrix2d::Identity();
+  Vec2 offset = Vec2::Zero();
+
+  Vec2 operator()(const Vec2& p) const { return linear * p + offset; }
+  /// The map that applies `inner` first, then this one.
+  Affine then(const Affine& inner) const { return {linear * inner.linear, linear * inner.offset + offset}; }
+};
+
+/// Deeper element nesting is refused before parsing: rapidxml and svgpp recurse per level, and no
+/// drawing needs it.
+constexpr int kMaxElementDepth = 256;
+
+/// Flattened points allowed per document; far beyond any outline, it stops absurd tolerances from
+/// exhausting memory.
+constexpr std::size_t kMaxTotalPoints = 20'000'000;
+
+constexpr double kMillimetresPerPx = 25.4 / 96.0;  // CSS pixel: 96 per inch
+
+/// A problem found during the traversal; the catch site adds the file and element names.
+struct SvgProblem {
+  ErrorCode code;
+  std::string what;
+};
+
+// ---- Root viewport: width/height/viewBox/preserveAspectRatio to a user-to-page-mm map ----------
+
+std::string_view trim(std::string_view s) {
+  const auto first = s.find_first_not_of(" \t\r\n");
+  if (first == std::string_view::npos) return {};
+  return s.substr(first, s.find_last_not_of(" \t\r\n") - first + 1);
+}
+
+std::optional<std::string_view> attributeValue(const XmlNode* node, std::string_view localName) {
+  for (auto* a = node->first_attribute(); a; a = a->next_attribute())
+    if (std::string_view(a->local_name(), a->local_name_size()) == localName)
+      return std::string_view(a->value(), a->value_size());
+  return std::nullopt;
+}
+
+/// A length in mm ("210mm", "8.5in", "300" = px); nullopt when absent, a percentage or unknown.
+std::optional<double> lengthInMillimetres(std::optional<std::string_view> text) {
+  if (!text) return std::nullopt;
+  std::string_view s = trim(*text);
+  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+  double number = 0.0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), number);
+  if (ec != std::errc()) return std::nullopt;
+  const std::string_view unit = trim(std::string_view(end, std::size_t(s.data() + s.size() - end)));
+  static const std::map<std::string_view, double> kMillimetresPer = {
+      {"", kMillimetresPerPx},       {"px", kMillimetresPerPx}, {"mm", 1.0},
+      {"cm", 10.0},                  {"in", 25.4},              {"pt", 25.4 / 72.0},
+      {"pc", 25.4 / 6.0}};
+  const auto it = kMillimetresPer.find(unit);
+  if (it == kMillimetresPer.end() || !std::isfinite(number)) return std::nullopt;
+  return number * it->second;
+}
+
+std::optional<std::array<double, 4>> parseViewBox(std::optional<std::string_view> text) {
+  if (!text) return std::nullopt;
+  std::array<double, 4> box{};
+  const char* p = text->data();
+  const char* end = p + text->size();
+  for (double& value : box) {
+    while (p != end && (*p == ' ' || *p == ',' || *p == '\t' || *p == '\r' || *p == '\n')) ++p;
+    if (p != end && *p == '+') ++p;
+    const auto result = std::from_chars(p, end, value);
+    if (result.ec != std::errc() || !std::isfinite(value)) return std::nullopt;
+    p = result.ptr;
+  }
+  return box;
+}
+
+struct RootViewport {
+  Affine userToPage;                  // user units to page mm, y down (as SVG draws)
+  std::optional<double> pageHeight;   // mm, when the document says how tall it is
+  Vec2 userViewportSize{100.0, 100.0};  // user units, for percentage lengths
+};
+
+/// Implements SVG's viewport rules for the outermost <svg>: a viewBox maps user units onto
+/// width x height (preserveAspectRatio honoured); without width/height a user unit is a px.
+Result<RootViewport> rootViewport(const XmlNode* svg) {
+  const std::optional<double> width = lengthInMillimetres(attributeValue(svg, "width"));
+  const std::optional<double> height = lengthInMillimetres(attributeValue(svg, "height"));
+  const auto viewBoxText = attributeValue(svg, "viewBox");
+  const auto box = parseViewBox(viewBoxText);
+  RootViewport vp;
+  if (viewBoxText && !box) return Status{ErrorCode::InputUnreadable, "has a malformed viewBox"};
+  if (!box) {
+    vp.userToPage.linear *= kMillimetresPerPx;
+    vp.pageHeight = height;
+    if (width && height) vp.userViewportSize = {*width / kMillimetresPerPx, *height / kMillimetresPerPx};
+    return vp;
+  }
+  const double bx = (*box)[0], by = (*box)[1], bw = (*box)[2], bh = (*box)[3];
+  if (!(bw > 0.0 && bh > 0.0))
+    return Status{ErrorCode::InputInvalid, "has a viewBox of zero or negative size"};
+  vp.userViewportSize = {bw, bh};
+  double sx = kMillimetresPerPx, sy = kMillimetresPerPx, dx = 0.0, dy = 0.0;
+  if (width && height) {
+    sx = *width / bw;
+    sy = *height / bh;
+    const std::string_view aspect = trim(attributeValue(svg, "preserveAspectRatio").value_or(""));
+    if (aspect.find("none") == std::string_view::npos) {
+      const double s = aspect.find("slice") != std::string_view::npos ? std::max(sx, sy)
+                                                                      : std::min(sx, sy);
+      auto align = [&](std::string_view minName, std::string_view maxName) {
+        if (aspect.find(minName) != std::string_view::npos) return 0.0;
+        if (aspect.find(maxName) != std::string_view::npos) return 1.0;
+        return 0.5;  // xMidYMid is the default
+      };
+      dx = align("xMin", "xMax") * (*width - s * bw);
+      dy = align("YMin", "YMax") * (*height - s * bh);
+      sx = sy = s;
+    }
+  } else if (width) {
+    sx = sy = *width / bw;  // the missing height follows the viewBox aspect ratio
+  } else if (height) {
+    sx = sy = *height / bh;
+  }
+  vp.userToPage.linear = Eigen::Vector2d(sx, sy).asDiagonal();
+  vp.userToPage.offset = {dx - sx * bx, dy - sy * by};
+  vp.pageHeight = height ? *height : sy * bh;
+  return vp;
+}
+
+/// Nesting depth of elements, skipping comments, CDATA, processing instructions and quoted
+/// attribute values. Conservative: it only has to bound what rapidxml will recurse into.
+int elementDepth(const std::string& text) {
+  int depth = 0, deepest = 0;
+  const std::size_t n = text.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (text[i] != '<') continue;
+    auto skipTo = [&](const char* terminator) {
+      const std::size_t end = text.find(terminator, i);
+      i = end == std::string::npos ? n : end;
+    };
+    if (text.compare(i, 4, "<!--") == 0) { skipTo("-->"); continue; }
+    if (text.compare(i, 9, "<![CDATA[") == 0) { skipTo("]]>"); continue; }
+    if (i + 1 < n && (text[i + 1] == '?' || text[i + 1] == '!')) { skipTo(">"); continue; }
+    if (i + 1 < n && text[i + 1] == '/') { --depth; skipTo(">"); continue; }
+    char quote = 0;  // inside a start tag: find its end outside quoted values
+    std::size_t j = i + 1;
+    for (; j < n; ++j) {
+      if (quote) { if (text[j] == quote) quote = 0; }
+      else if (text[j] == '"' || text[j] == '\'') quote = text[j];
+      else if (text[j] == '>') break;
+    }
+    const bool selfClosing = j < n && text[j - 1] == '/';
+    if (!selfClosing) deepest = std::max(deepest, ++depth);
+    i = j;
+  }
+  return deepest;
+}
+
+// ---- Traversal --------------------------------------------------------------------------------
+
+/// State shared by all element contexts of one document.
+struct Document {
+  svgpp::factory::length::unitless<> lengths;  // 96 px per inch by default, as CSS says
+  double tolerance = 0.01;                     // mm
+  double maxCoordinate = 1e6;                  // mm
+  std::map<std::string, int> elementCounts;    // per element name, for "path 2"
+  std::string currentLabel = "the document";   // element being read, for messages
+  std::vector<ClosedLoop> loops;
+  std::size_t totalPoints = 0;
+};
+
+/// One recorded path command in user coordinates (absolute, no shorthands).
+struct Command {
+  enum Kind { Move, Line, Quadratic, Cubic, Arc, Close } kind;
+  std::array<double, 7> v{};  // operands in SVG order; arc flags as 0/1
+};
+
+bool displayNone(const XmlNode* node) {
+  if (auto display = attributeValue(node, "display"); display && trim(*display) == "none") return true;
+  const std::string_view style = attributeValue(node, "style").value_or("");
+  for (std::size_t start = 0; start < style.size();) {
+    std::size_t end = style.find(';', start);
+    if (end == std::string_view::npos) end = style.size();
+    const std::string_view declaration = style.substr(start, end - start);
+    const std::size_t colon = declaration.find(':');
+    if (colon != std::string_view::npos && trim(declaration.substr(0, colon)) == "display" &&
+        trim(declaration.substr(colon + 1)) == "none")
+      return true;
+    start = end + 1;
+  }
+  return false;
+}
+
+/// The context svgpp calls for every processed element (<svg>, <g>, <a> and the shapes).
+class SvgContext {
+ public:
+  SvgContext(Document& document, const Affine& transform)
+      : document_(&document), transform_(transform) {}
+
+  SvgContext(SvgContext& parent, const XmlNode* element)
+      : document_(parent.document_),
+        transform_(parent.transform_),
+        parentLabel_(document_->currentLabel),
+        hidden_(displayNone(element)) {
+    const std::string name(element->local_name(), element->local_name_size());
+    label_ = name + " " + std::to_string(++document_->elementCounts[name]);
+    if (auto id = attributeValue(element, "id")) {
+      // Messages are one line: no control characters, and a runaway id is cut short.
+      std::string shown(id->substr(0, 60));
+      std::replace_if(shown.begin(), shown.end(), [](char c) { return (unsigned char)c < 0x20; }, ' ');
+      label_ += " (id \"" + shown + (id->size() > 60 ? "...\")" : "\")");
+    }
+    document_->currentLabel = label_;
+    if (name == "svg") throw SvgProblem{ErrorCode::InputInvalid, "is a nested <svg>, which is not supported"};
+  }
+
+  // Length policy: lengths with units become user units.
+  using length_factory_type = svgpp::factory::length::unitless<>;
+  const length_factory_type& length_factory() const { return document_->lengths; }
+
+  // Transform events: the element's own transform, applied before its parents'.
+  void transform_matrix(const boost::array<double, 6>& m) {
+    Affine local;
+    local.linear << m[0], m[2], m[1], m[3];
+    local.offset << m[4], m[5];
+    transform_ = transform_.then(local);
+  }
+
+  // Path events (the path policy makes every command absolute and removes shorthands).
+  void path_move_to(double x, double y, svgpp::tag::coordinate::absolute) {
+    commands_.push_back({Command::Move, {x, y}});
+  }
+  void path_line_to(double x, double y, svgpp::tag::coordinate::absolute) {
+    commands_.push_back({Command::Line, {x, y}});
+  }
+  void path_quadratic_bezier_to(double x1, double y1, double x, double y,
+                                svgpp::tag::coordinate::absolute) {
+    commands_.push_back({Command::Quadratic, {x1, y1, x, y}});
+  }
+  void path_cubic_bezier_to(double x1, double y1, double x2, double y2, double x, double y,
+                            svgpp::tag::coordinate::absolute) {
+    commands_.push_back({Command::Cubic, {x1, y1, x2, y2, x, y}});
+  }
+  void path_elliptical_arc_to(double rx, double ry, double rotation, bool largeArc, bool sweep,
+                              double x, double y, svgpp::tag::coordinate::absolute) {
+    commands_.push_back(
+        {Command::Arc, {rx, ry, rotation, double(largeArc), double(sweep), x, y}});
+  }
+  void path_close_subpath() { commands_.push_back({Command::Close, {}}); }
+  void path_exit() {}
+
+  bool displayed() const { return !hidden_; }
+
+  void on_exit_element() {
+    // The transform is only certain once all attributes are read, so flattening waits till here.
+    if (!hidden_ && !commands_.empty()) flattenCommands();
+    document_->currentLabel = parentLabel_;
+  }
+
+ private:
+  Vec2 toPage(double x, double y) const {
+    const Vec2 p = transform_(Vec2(x, y));
+    for (int k = 0; k < 2; ++k) {
+      if (!(std::abs(p(k)) <= document_->maxCoordinate))
+        throw SvgProblem{ErrorCode::InputInvalid,
+                         "has a coordinate that " + describeBadCoordinate(p(k), document_->maxCoordinate)};
+    }
+    return p;
+  }
+
+  void flattenCommands();
+  void appendArc(const Vec2& fromUser, const Command& c, std::vector<Vec2>& out) const;
+  void finishSubpath(std::vector<Vec2>& points, bool closed, int index, int subpathCount);
+
+  Document* document_;
+  Affine transform_;
+  std::string parentLabel_;
+  std::string label_;
+  bool hidden_ = false;
+  std::vector<Command> commands_;
+};
+
+void SvgContext::flattenCommands() {
+  int subpathCount = 0;
+  for (const Command& c : commands_) subpathCount += c.kind == Command::Move;
+  const double tolerance = document_->tolerance;
+  std::vector<Vec2> points;  // current subpath in page mm
+  Vec2 startUser = Vec2::Zero(), currentUser = Vec2::Zero();
+  int index = 0;
+  bool closed = false;
+  for (const Command& c : commands_) {
+    if (c.kind == Command::Move || c.kind == Command::Close) {
+      if (c.kind == Command::Close) closed = true;
+      finishSubpath(points, closed, index, subpathCount);
+      closed = false;
+      if (c.kind == Command::Move) {
+        startUser = currentUser = {c.v[0], c.v[1]};
+        ++index;
+      } else {
+        currentUser = startUser;  // after Z the pen is back at the subpath's start
+      }
+      continue;
+    }
+    if (points.empty()) points.push_back(toPage(currentUser.x(), currentUser.y()));
+    switch (c.kind) {
+      case Command::Line:
+        points.push_back(toPage(c.v[0], c.v[1]));
+        currentUser = {c.v[0], c.v[1]};
+        break;
+      case Command::Quadratic:
+      case Command::Cubic: {
+        std::vector<Vec2> control = {points.back()};
+        const int operands = c.kind == Command::Quadratic ? 4 : 6;
+        for (int k = 0; k < operands; k += 2) control.push_back(toPage(c.v[k], c.v[k + 1]));
+        if (!appendBezier(control, tolerance, points))
+          throw SvgProblem{ErrorCode::InputInvalid,
+                           "needs more than " + fmt(kMaxStepsPerCurve) +
+                               " points per curve at a flatten tolerance of " + fmt(tolerance) + " mm"};
+        currentUser = {c.v[operands - 2], c.v[operands - 1]};
+        break;
+      }
+      case Command::Arc:
+        appendArc(currentUser, c, points);
+        currentUser = {c.v[5], c.v[6]};
+        break;
+      default:
+        break;
+    }
+    if (points.size() + document_->totalPoints > kMaxTotalPoints)
+      throw SvgProblem{ErrorCode::InputInvalid,
+                       "needs more than " + fmt(double(kMaxTotalPoints)) +
+                           " points at a flatten tolerance of " + fmt(tolerance) + " mm"};
+  }
+  finishSubpath(points, closed, index, subpathCount);
+}
+
+/// Elliptical arc per SVG 1.1 appendix F.6.5 (endpoint to centre parameterisation, radii scaled
+/// up when too small), sampled in equal angle steps chosen for the chord deviation in mm.
+void SvgContext::appendArc(const Vec2& fromUser, const Command& c, std::vector<Vec2>& out) const {
+  const Vec2 toUser(c.v[5], c.v[6]);
+  const Vec2 end = toPage(toUser.x(), toUser.y());
+  double rx = std::abs(c.v[0]), ry = std::abs(c.v[1]);
+  if (fromUser == toUser) return;  // the spec omits such an arc
+  if (rx == 0.0 || ry == 0.0) {    // ... and draws a straight line for a zero radius
+    out.push_back(end);
+    return;
+  }
+  const double phi = c.v[2] * M_PI / 180.0;
+  const bool largeArc = c.v[3] != 0.0, sweep = c.v[4] != 0.0;
+  const Eigen::Matrix2d rotation = Eigen::Rotation2Dd(phi).toRotationMatrix();
+  const Vec2 half = rotation.transpose() * (0.5 * (fromUser - toUser));  // x1', y1'
+  const double lambda = half.x() * half.x() / (rx * rx) + half.y() * half.y() / (ry * ry);
+  if (lambda > 1.0) {
+    rx *= std::sqrt(lambda);
+    ry *= std::sqrt(lambda);
+  }
+  const double rx2 = rx * rx, ry2 = ry * ry;
+  const double num = rx2 * ry2 - rx2 * half.y() * half.y() - ry2 * half.x() * half.x();
+  const double den = rx2 * half.y() * half.y() + ry2 * half.x() * half.x();
+  const double coef = (largeArc == sweep ? -1.0 : 1.0) * std::sqrt(std::max(0.0, num / den));
+  const Vec2 centreRotated(coef * rx * half.y() / ry, -coef * ry * half.x() / rx);
+  const Vec2 centre = rotation * centreRotated + 0.5 * (fromUser + toUser);
+  const double theta1 = std::atan2((half.y() - centreRotated.y()) / ry, (half.x() - centreRotated.x()) / rx);
+  const double theta2 = std::atan2((-half.y() - centreRotated.y()) / ry, (-half.x() - centreRotated.x()) / rx);
+  double delta = theta2 - theta1;
+  if (sweep && delta < 0.0) delta += 2.0 * M_PI;
+  if (!sweep && delta > 0.0) delta -= 2.0 * M_PI;
+
+  // In page mm the arc is C + U cos(t) + V sin(t); |second derivative| <= sqrt(|U|^2 + |V|^2).
+  const Vec2 pageCentre = transform_(centre);
+  const Vec2 u = transform_.linear * rotation * Vec2(rx, 0.0);
+  const Vec2 v = transform_.linear * rotation * Vec2(0.0, ry);
+  if (!pageCentre.allFinite() || !u.allFinite() || !v.allFinite() || !std::isfinite(delta)) {
+    out.push_back(end);  // radii so large that the arc is a straight line in double precision
+    return;
+  }
+  const long steps =
+      stepsForDeviation(std::sqrt(u.squaredNorm() + v.squaredNorm()), std::abs(delta), document_->tolerance);
+  if (steps == 0)
+    throw SvgProblem{ErrorCode::InputInvalid, "has an arc that needs more than " + fmt(kMaxStepsPerCurve) +
+                                                  " points at a flatten tolerance of " +
+                                                  fmt(document_->tolerance) + " mm"};
+  for (long k = 1; k < steps; ++k) {
+    const double t = theta1 + delta * double(k) / double(steps);
+    out.push_back(pageCentre + u * std::cos(t) + v * std::sin(t));
+  }
+  out.push_back(end);  // exactly the commanded end point
+}
+
+void SvgContext::finishSubpath(std::vector<Vec2>& points, bool closed, int index, int subpathCount) {
+  if (points.size() < 2) {  // a lone moveto draws nothing
+    points.clear();
+    return;
+  }
+  const std::string label =
+      label_ + (subpathCount > 1 ? " (subpath " + std::to_string(index) + ")" : "");
+  const double gap = (points.back() - points.front()).norm();
+  // A gap below the flatten tolerance is below the resolution we read at: the designer meant it
+  // closed, and dropping the end point moves the outline less than flattening already does.
+  if (gap <= document_->tolerance) {
+    points.pop_back();
+  } else if (!closed) {
+    document_->currentLabel = label;
+    throw SvgProblem{ErrorCode::InputInvalid,
+                     "is open (its end is " + fmt(gap) + " mm from its start)"};
+  }
+  ClosedLoop loop;
+  loop.points.resize(Eigen::Index(points.size()), 2);
+  for (std::size_t i = 0; i < points.size(); ++i) loop.points.row(Eigen::Index(i)) = points[i].transpose();
+  loop.label = label;
+  document_->totalPoints += points.size();
+  document_->loops.push_back(std::move(loop));
+  points.clear();
+}
+
+// ---- svgpp configuration ------------------------------------------------------------------------
+
+struct ChildContextFactories {
+  template <class ParentContext, class ElementTag>
+  struct apply {
+    using type = svgpp::factory::context::on_stack_with_xml_element<SvgContext>;
+  };
+};
+
+/// Hidden groups (display:none) are not entered.
+struct TraversalControl {
+  template <class Context>
+  static bool proceed_to_element_content(const Context& context) { return context.displayed(); }
+  template <class Context>
+  static bool proceed_to_next_child(const Context&) { return true; }
+  template <class Context, class XMLElement>
+  static bool process_child(const Context&, const XMLElement&) { return true; }
+};
+
+/// Unknown or misplaced elements and attributes (editor metadata, CSS we do not need) are
+/// skipped; values we need but cannot parse stop the reading with a message.
+struct ErrorPolicy {
+  using context_type = SvgContext;
+  template <class Context, class XMLElement, class Name>
+  static bool unknown_element(const Context&, const XMLElement&, const Name&) { return true; }
+  template <class Context, class XMLAttribute, class Name, class Source>
+  static bool unknown_attribute(const Context&, const XMLAttribute&, const Name&, Source) { return true; }
+  template <class Context, class XMLAttribute, class Name, class Namespace, class Source>
+  static bool unknown_attribute(const Context&, const XMLAttribute&, const Name&, Namespace, Source) {
+    return true;
+  }
+  template <class Context>
+  static bool unexpected_attribute(const Context&, svgpp::detail::attribute_id, svgpp::tag::source::attribute) {
+    return true;
+  }
+  template <class Context, class AttributeTag>
+  static bool required_attribute_not_found(const Context&, AttributeTag) { return true; }
+  template <class Context, class XMLElement>
+  static bool unexpected_element(const Context&, const XMLElement&) { return true; }
+  template <class Context, class AttributeTag, class Value>
+  static bool parse_failed(const Context&, AttributeTag, const Value&) {
+    throw SvgProblem{ErrorCode::InputUnreadable,
+                     std::string("has a malformed '") + svgpp::attribute_name<char>::get<AttributeTag>() +
+                         "' attribute"};
+  }
+  template <class Context, class AttributeTag>
+  static bool negative_value(const Context&, AttributeTag) {
+    throw SvgProblem{ErrorCode::InputInvalid, std::string("has a negative '") +
+                                                  svgpp::attribute_name<char>::get<AttributeTag>() +
+                                                  "'"};
+  }
+};
+
+using ProcessedElements = boost::mpl::set<
+    svgpp::tag::element::svg, svgpp::tag::element::g, svgpp::tag::element::a,
+    svgpp::tag::element::path, svgpp::tag::element::rect, svgpp::tag::element::circle,
+    svgpp::tag::element::ellipse, svgpp::tag::element::line, svgpp::tag::element::polyline,
+    svgpp::tag::element::polygon>::type;
+
+using ProcessedAttributes = boost::mpl::insert<svgpp::traits::shapes_attributes_by_element,
+                                               svgpp::tag::attribute::transform>::type;
+
+using DocumentTraversal = svgpp::document_traversal<
+    svgpp::processed_elements<ProcessedElements>,
+    svgpp::processed_attributes<ProcessedAttributes>,
+    svgpp::context_factories<ChildContextFactories>,
+    svgpp::length_policy<svgpp::policy::length::forward_to_method<SvgContext>>,
+    svgpp::document_traversal_control_policy<TraversalControl>,
+    svgpp::error_policy<ErrorPolicy>>;
+
+}  // namespace
+
+Result<std::vector<ClosedLoop>> readSvgLoops(const std::string& path, std::string text,
+                                             const OutlineReadOptions& options) {
+  auto fail = [&](ErrorCode code, const std::string& what) {
+    return Status{code, path + ": " + what};
+  };
+  if (elementDepth(text) > kMaxElementDepth)
+    return fail(ErrorCode::InputUnreadable,
+                "elements are nested more than " + std::to_string(kMaxElementDepth) + " deep");
+
+  // Parse; a root <svg> without the SVG namespace (common in hand-written files) gets it, since
+  // svgpp only reads elements in that namespace.
+  std::vector<char> buffer;
+  rapidxml_ns::xml_document<char> xml;
+  const XmlNode* root = nullptr;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    buffer.assign(text.begin(), text.end());
+    buffer.push_back('\0');
+    try {
+      xml.clear();
+      xml.parse<rapidxml_ns::parse_no_data_nodes>(buffer.data());
+    } catch (const rapidxml_ns::parse_error& e) {
+      const std::size_t offset = std::size_t(e.where<char>() - buffer.data());
+      return fail(ErrorCode::InputUnreadable, std::string("not well-formed XML (") + e.what() +
+                                                  " at byte " + std::to_string(offset) + ")");
+    }
+    root = xml.first_node();
+    while (root && root->type() != rapidxml_ns::node_element) root = root->next_sibling();
+    if (!root || std::string_view(root->local_name(), root->local_name_size()) != "svg")
+      return fail(ErrorCode::InputUnreadable, "not an SVG file (no <svg> root element)");
+    if (root->namespace_uri_size() != 0 || attempt == 1) break;
+    const std::size_t nameEnd = std::size_t(root->name() - buffer.data()) + root->name_size();
+    text.insert(nameEnd, " xmlns=\"http://www.w3.org/2000/svg\"");
+  }
+
+  const Result<RootViewport> viewport = rootViewport(root);
+  if (!viewport.isOk()) return fail(viewport.status().code(), viewport.status().message());
+  // The page frame is y-up (outlines are counter-clockwise in it); flipping about the page
+  // height keeps coordinates positive and what the designer sees unmirrored.
+  Affine flip;
+  flip.linear(1, 1) = -1.0;
+  flip.offset.y() = viewport.value().pageHeight.value_or(0.0);
+
+  Document document;
+  document.tolerance = options.flattenTolerance;
+  document.maxCoordinate = options.maxCoordinate;
+  const Vec2 size = viewport.value().userViewportSize;
+  document.lengths.set_viewport_size(size.x(), size.y());
+  SvgContext rootContext(document, flip.then(viewport.value().userToPage));
+  try {
+    DocumentTraversal::load_document(root, rootContext);
+    rootContext.on_exit_element();
+  } catch (const SvgProblem& problem) {
+    return fail(problem.code, document.currentLabel + " " + problem.what);
+  } catch (const std::exception& e) {
+    return fail(ErrorCode::InputUnreadable, document.currentLabel + ": " + e.what());
+  } catch (...) {  // never let a parser surprise cross the module boundary
+    return fail(ErrorCode::InputUnreadable, document.currentLabel + " could not be read");
+  }
+  return std::move(document.loops);
+}
+
+}  // namespace dform::io_detail

@@ -1,0 +1,108 @@
+// JSON outlines: object and bare-array forms, units, holes, and malformed files.
+#include <gtest/gtest.h>
+
+#include "core/polyline.h"
+#include "io/outline_reader.h"
+#include "test_util.h"
+
+namespace dform {
+namespace {
+
+using test::failsWith;
+
+TEST(JsonOutline, ObjectWithUnitsAndHole) {
+  test::ScratchDir dir;
+  // Drawn clockwise with a repeated closing point; the hole is counter-clockwise already.
+  const std::string path = dir.write("piece.json", R"({
+    "units": "cm",
+    "points": [[0, 0], [0, 5], [10, 5], [10, 0], [0, 0]],
+    "holes": [[[2, 1], [4, 1], [4, 3]]]
+  })");
+  const Result<Shape2> shape = readShape(path);
+  ASSERT_TRUE(shape.isOk()) << shape.status().message();
+  const Points2& P = shape.value().outer.points;
+  EXPECT_EQ(P.rows(), 4);
+  EXPECT_NEAR(closedLength(P), 300.0, 1e-12);
+  EXPECT_NEAR(signedArea(P), 5000.0, 1e-9);  // made counter-clockwise
+  ASSERT_EQ(shape.value().holes.size(), 1u);
+  EXPECT_NEAR(signedArea(shape.value().holes[0].points), 200.0, 1e-9);
+  EXPECT_EQ(shape.value().outer.source, path);
+}
+
+TEST(JsonOutline, BareArrayIsMillimetres) {
+  test::ScratchDir dir;
+  const std::string path = dir.write("bare.json", "[[0,0],[100,0],[100,50],[0,50]]");
+  const Result<Shape2> shape = readShape(path);
+  ASSERT_TRUE(shape.isOk()) << shape.status().message();
+  EXPECT_NEAR(closedLength(shape.value().outer.points), 300.0, 1e-12);
+}
+
+TEST(JsonOutline, InchesAndContentSniffedWithoutExtension) {
+  test::ScratchDir dir;
+  const std::string path = dir.write("outline", R"({"units": "in", "points": [[0,0],[1,0],[1,1],[0,1]]})");
+  const Result<Shape2> shape = readShape(path);
+  ASSERT_TRUE(shape.isOk()) << shape.status().message();
+  EXPECT_NEAR(closedLength(shape.value().outer.points), 4 * 25.4, 1e-12);
+}
+
+TEST(JsonOutline, NotJson) {
+  test::ScratchDir dir;
+  const std::string path = dir.write("bad.json", "{\"points\": [[0,0], [1,");
+  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputUnreadable, path, "not valid JSON"));
+}
+
+TEST(JsonOutline, WrongStructure) {
+  test::ScratchDir dir;
+  const std::string noPoints = dir.write("nopoints.json", R"({"outline": []})");
+  EXPECT_TRUE(failsWith(readShape(noPoints).status(), ErrorCode::InputUnreadable, noPoints, "\"points\""));
+  const std::string triple = dir.write("triple.json", R"({"points": [[0,0],[1,0,0],[1,1]]})");
+  EXPECT_TRUE(failsWith(readShape(triple).status(), ErrorCode::InputUnreadable, triple, "point 2"));
+  const std::string text = dir.write("text.json", R"([[0,0],["1",0],[1,1]])");
+  EXPECT_TRUE(failsWith(readShape(text).status(), ErrorCode::InputUnreadable, text, "point 2"));
+  const std::string holes = dir.write("holes.json", R"({"points": [[0,0],[1,0],[1,1]], "holes": 3})");
+  EXPECT_TRUE(failsWith(readShape(holes).status(), ErrorCode::InputUnreadable, holes, "holes"));
+}
+
+TEST(JsonOutline, UnknownUnits) {
+  test::ScratchDir dir;
+  const std::string path = dir.write("furlong.json", R"({"units": "furlong", "points": [[0,0],[1,0],[1,1]]})");
+  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputUnreadable, path, "units"));
+}
+
+TEST(JsonOutline, HugeNumber) {
+  test::ScratchDir dir;
+  const std::string path = dir.write("huge.json", "[[0,0],[1e9,0],[0,1]]");
+  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path, "the outline has a coordinate that is too large"));
+}
+
+TEST(JsonOutline, SelfIntersecting) {
+  test::ScratchDir dir;
+  const std::string path = dir.write("bowtie.json", "[[0,0],[10,10],[10,0],[0,10]]");
+  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path, "crosses itself near (5, 5) mm"));
+}
+
+TEST(JsonOutline, HoleOutsideIsASecondOutline) {
+  test::ScratchDir dir;
+  const std::string path = dir.write("outside.json", R"({"points": [[0,0],[10,0],[10,10],[0,10]],
+                                                           "holes": [[[20,0],[30,0],[30,10]]]})");
+  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path, "2 separate outlines"));
+}
+
+TEST(JsonOutline, TooFewPoints) {
+  test::ScratchDir dir;
+  const std::string path = dir.write("two.json", "[[0,0],[10,0]]");
+  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path, "fewer than 3 distinct points"));
+}
+
+TEST(JsonOutline, DeeplyNestedJsonDoesNotCrash) {
+  test::ScratchDir dir;
+  const int depth = 200000;
+  const std::string nested = std::string(depth, '[') + std::string(depth, ']');
+  const std::string path = dir.write("deep.json", nested);
+  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputUnreadable, path, "point 1"));
+  const std::string units = dir.write("units.json", R"({"points": [[0,0],[1,0],[1,1]], "units": )" + nested + "}");
+  EXPECT_TRUE(failsWith(readShape(units).status(), ErrorCode::InputUnreadable, units, "units"));
+}
+
+}  // namespace
+}  // namespace dform
