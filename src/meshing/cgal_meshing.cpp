@@ -1,0 +1,186 @@
+// Every use of CGAL in dform: the constrained Delaunay triangulation behind triangulateDomain and
+// the 3D convex hull. Exact predicates, inexact constructions throughout.
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <CGAL/convex_hull_3.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <map>
+#include <string>
+#include <utility>
+
+#include "meshing/cgal_backend.h"
+#include "meshing/convex_hull.h"
+
+namespace dform {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;          // input row
+using Fbi = CGAL::Triangulation_face_base_with_info_2<int, K>;           // nesting level
+using Fb = CGAL::Constrained_triangulation_face_base_2<K, Fbi>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+// Any crossing of constraints, even through a vertex, throws: the caller's loops must be disjoint.
+using Cdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::No_constraint_intersection_tag>;
+
+Status invalid(std::string message) { return {ErrorCode::InputInvalid, std::move(message)}; }
+
+// Level 0 is the unbounded region; crossing a constraint enters the next level.
+void markNestingLevels(Cdt& cdt) {
+  for (auto f : cdt.all_face_handles()) f->info() = -1;
+  std::vector<Cdt::Face_handle> seeds{cdt.infinite_face()};
+  for (int level = 0; !seeds.empty(); ++level) {
+    std::vector<Cdt::Face_handle> across;
+    std::vector<Cdt::Face_handle> stack = std::move(seeds);
+    while (!stack.empty()) {
+      const Cdt::Face_handle f = stack.back();
+      stack.pop_back();
+      if (f->info() != -1) continue;
+      f->info() = level;
+      for (int i = 0; i < 3; ++i) {
+        const Cdt::Face_handle g = f->neighbor(i);
+        if (g->info() != -1) continue;
+        (f->is_constrained(i) ? across : stack).push_back(g);
+      }
+    }
+    seeds = std::move(across);
+  }
+}
+
+}  // namespace
+
+namespace meshing_detail {
+
+Result<Faces> constrainedDelaunay(const Points2& P, const std::vector<Loop>& loops) {
+  const int n = int(P.rows());
+  std::vector<std::pair<K::Point_2, int>> points;
+  points.reserve(n);
+  for (int i = 0; i < n; ++i) points.emplace_back(K::Point_2(P(i, 0), P(i, 1)), i);
+
+  Cdt cdt;
+  cdt.insert(points.begin(), points.end());  // spatially sorted insertion
+  if (int(cdt.number_of_vertices()) != n) return invalid("two points of the domain coincide");
+  std::vector<Cdt::Vertex_handle> vertex(n);
+  for (auto v : cdt.finite_vertex_handles()) vertex[v->info()] = v;
+
+  const char* const kTouching = "the outline and holes cross or touch each other";
+  try {
+    for (const Loop& loop : loops)
+      for (int k = 0; k < loop.count; ++k)
+        cdt.insert_constraint(vertex[loop.first + k], vertex[loop.first + (k + 1) % loop.count]);
+  } catch (const std::exception&) {
+    return invalid(kTouching);
+  }
+  // The guarantee the solver relies on: no loop edge was split, no vertex was added.
+  if (int(cdt.number_of_vertices()) != n) return invalid(kTouching);
+  for (const Loop& loop : loops)
+    for (int k = 0; k < loop.count; ++k)
+      if (!cdt.is_edge(vertex[loop.first + k], vertex[loop.first + (k + 1) % loop.count]))
+        return invalid(kTouching);
+
+  markNestingLevels(cdt);
+  std::vector<std::array<int, 3>> inside;
+  inside.reserve(cdt.number_of_faces());
+  for (auto f : cdt.finite_face_handles())
+    if (f->info() % 2 == 1)
+      inside.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
+  Faces F(Eigen::Index(inside.size()), 3);
+  for (std::size_t t = 0; t < inside.size(); ++t)
+    for (int c = 0; c < 3; ++c) F(Eigen::Index(t), c) = inside[t][c];
+  return F;
+}
+
+}  // namespace meshing_detail
+
+Result<ConvexHull3> convexHull3(const Points3& P) {
+  const Eigen::Index n = P.rows();
+  if (!P.allFinite()) return invalid("the curve has a non-finite coordinate");
+  if (n < 4) return invalid("the curve has fewer than 4 points: its convex hull has no inside");
+
+  std::vector<K::Point_3> points;
+  points.reserve(n);
+  for (Eigen::Index i = 0; i < n; ++i) points.emplace_back(P(i, 0), P(i, 1), P(i, 2));
+
+  // Exactly coplanar input would give CGAL's flat (2D) hull, which has no inside.
+  Eigen::Index second = 1, third, fourth;
+  while (second < n && points[second] == points[0]) ++second;
+  for (third = second + 1; third < n; ++third)
+    if (!CGAL::collinear(points[0], points[second], points[third])) break;
+  for (fourth = third + 1; fourth < n; ++fourth)
+    if (!CGAL::coplanar(points[0], points[second], points[third], points[fourth])) break;
+  const Status planar = invalid("the curve is planar: its convex hull has no inside");
+  if (fourth >= n) return planar;
+
+  std::vector<K::Point_3> hullPoints;
+  std::vector<std::array<int, 3>> hullFaces;
+  try {
+    CGAL::convex_hull_3(points.begin(), points.end(), hullPoints, hullFaces);
+  } catch (const std::exception& e) {  // CGAL precondition failures: a bug, not bad input
+    return Status(ErrorCode::Internal, std::string("convex hull failed: ") + e.what());
+  }
+
+  // Hull vertices are copies of input points, so exact coordinates map them back.
+  std::map<std::array<double, 3>, int> rowOf;
+  for (Eigen::Index i = n - 1; i >= 0; --i) rowOf[{P(i, 0), P(i, 1), P(i, 2)}] = int(i);
+  std::vector<int> inputRow(hullPoints.size());
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (std::size_t h = 0; h < hullPoints.size(); ++h) {
+    const K::Point_3& p = hullPoints[h];
+    inputRow[h] = rowOf.at({p.x(), p.y(), p.z()});
+    centre += Eigen::Vector3d(p.x(), p.y(), p.z());
+  }
+  centre /= double(hullPoints.size());
+
+  ConvexHull3 hull;
+  hull.F.resize(Eigen::Index(hullFaces.size()), 3);
+  double volume = 0.0, area = 0.0;
+  const K::Point_3 inner(centre.x(), centre.y(), centre.z());
+  for (std::size_t f = 0; f < hullFaces.size(); ++f) {
+    std::array<int, 3> t = hullFaces[f];
+    // Outward means the inner point is on the negative side; swap two corners if CGAL disagrees.
+    if (CGAL::orientation(hullPoints[t[0]], hullPoints[t[1]], hullPoints[t[2]], inner) ==
+        CGAL::POSITIVE)
+      std::swap(t[1], t[2]);
+    for (int c = 0; c < 3; ++c) hull.F(Eigen::Index(f), c) = inputRow[t[c]];
+    const Eigen::Vector3d a = P.row(inputRow[t[0]]), b = P.row(inputRow[t[1]]),
+                          c = P.row(inputRow[t[2]]);
+    const Eigen::Vector3d normal = (b - a).cross(c - a);
+    area += 0.5 * normal.norm();
+    volume += normal.dot(a - centre) / 6.0;
+  }
+  const double diagonal = (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm();
+  // Rounding leaves a "planar" curve a sliver of relative thickness ~1e-16; real shapes are far
+  // thicker than 1e-9 of their size.
+  const double flatness = 1e-9 * diagonal;
+  if (!(area > 0.0) || 2.0 * volume / area < flatness) return planar;
+
+  std::vector<bool> isHullRow(std::size_t(n), false);
+  for (int row : inputRow) isHullRow[std::size_t(row)] = true;
+  hull.onHull.resize(std::size_t(n));
+  hull.distanceToHull.assign(std::size_t(n), 0.0);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    hull.onHull[std::size_t(i)] = isHullRow[std::size_t(rowOf.at({P(i, 0), P(i, 1), P(i, 2)}))];
+    if (hull.onHull[std::size_t(i)]) continue;
+    // Inside a convex polytope the distance to the surface is the least distance to a face plane.
+    double nearest = std::numeric_limits<double>::infinity();
+    for (Eigen::Index f = 0; f < hull.F.rows(); ++f) {
+      const Eigen::Vector3d a = P.row(hull.F(f, 0)), b = P.row(hull.F(f, 1)),
+                            c = P.row(hull.F(f, 2));
+      const Eigen::Vector3d normal = (b - a).cross(c - a);
+      const double length = normal.norm();
+      if (length > 0.0) nearest = std::min(nearest, normal.dot(a - Eigen::Vector3d(P.row(i))) / length);
+    }
+    hull.distanceToHull[std::size_t(i)] = std::max(0.0, nearest);
+  }
+  return hull;
+}
+
+}  // namespace dform
