@@ -1,0 +1,105 @@
+#include "validate/cgal_checks.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/box_intersection_d.h>
+#include <CGAL/convex_hull_3.h>
+#include <CGAL/intersections.h>
+
+#include <algorithm>
+#include <array>
+#include <vector>
+
+namespace dform::detail {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using Triangle = Kernel::Triangle_3;
+using Segment = Kernel::Segment_3;
+using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int>;
+
+Point point(const Points3& V, int i) { return Point(V(i, 0), V(i, 1), V(i, 2)); }
+
+// Whether triangles f and g, which share `shared` (1 or 2) vertex indices, overlap beyond them.
+// Same rules as CGAL::Polygon_mesh_processing::does_self_intersect for adjacent faces.
+bool adjacentOverlap(const Points3& V, const Faces& F, int f, int g) {
+  std::array<int, 3> a{F(f, 0), F(f, 1), F(f, 2)}, b{F(g, 0), F(g, 1), F(g, 2)};
+  std::vector<int> common;
+  for (int i : a)
+    if (std::find(b.begin(), b.end(), i) != b.end()) common.push_back(i);
+  if (common.size() == 3) return true;  // the same triangle twice
+  auto others = [&](const std::array<int, 3>& t) {
+    std::vector<int> rest;
+    for (int i : t)
+      if (std::find(common.begin(), common.end(), i) == common.end()) rest.push_back(i);
+    return rest;
+  };
+  const std::vector<int> ra = others(a), rb = others(b);
+  if (common.size() == 2) {
+    // Folded onto each other: coplanar with both free corners on the same side of the edge.
+    const Point p = point(V, common[0]), q = point(V, common[1]);
+    const Point r = point(V, ra[0]), s = point(V, rb[0]);
+    return CGAL::coplanar(p, q, r, s) && CGAL::coplanar_orientation(p, q, r, s) == CGAL::POSITIVE;
+  }
+  // One shared corner: they overlap beyond it exactly when the edge opposite it in one triangle
+  // meets the other triangle.
+  const Triangle ta(point(V, a[0]), point(V, a[1]), point(V, a[2]));
+  const Triangle tb(point(V, b[0]), point(V, b[1]), point(V, b[2]));
+  return CGAL::do_intersect(Segment(point(V, ra[0]), point(V, ra[1])), tb) ||
+         CGAL::do_intersect(Segment(point(V, rb[0]), point(V, rb[1])), ta);
+}
+
+}  // namespace
+
+SelfIntersections findSelfIntersections(const Points3& V, const Faces& F) {
+  SelfIntersections result;
+  std::vector<Box> boxes;
+  boxes.reserve(size_t(F.rows()));
+  for (int f = 0; f < F.rows(); ++f) {
+    const Point p = point(V, F(f, 0)), q = point(V, F(f, 1)), r = point(V, F(f, 2));
+    if (CGAL::collinear(p, q, r)) {  // no plane: the degenerate-triangle check reports it
+      ++result.skippedDegenerate;
+      continue;
+    }
+    boxes.emplace_back(p.bbox() + q.bbox() + r.bbox(), f);
+  }
+  auto report = [&](const Box& x, const Box& y) {
+    const int f = std::min(x.info(), y.info()), g = std::max(x.info(), y.info());
+    bool shares = false;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) shares = shares || F(f, i) == F(g, j);
+    const bool hit =
+        shares ? adjacentOverlap(V, F, f, g)
+               : CGAL::do_intersect(Triangle(point(V, F(f, 0)), point(V, F(f, 1)), point(V, F(f, 2))),
+                                    Triangle(point(V, F(g, 0)), point(V, F(g, 1)), point(V, F(g, 2))));
+    if (!hit) return;
+    if (result.pairs == 0)
+      result.example = "triangles " + std::to_string(f) + " and " + std::to_string(g);
+    ++result.pairs;
+  };
+  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), report);
+  return result;
+}
+
+std::optional<HullMesh> convexHull(const Points3& P) {
+  std::vector<Point> points;
+  points.reserve(size_t(P.rows()));
+  for (int i = 0; i < P.rows(); ++i) points.push_back(point(P, i));
+  if (points.size() < 4) return std::nullopt;
+  std::vector<Point> hullPoints;
+  std::vector<std::array<size_t, 3>> hullFaces;
+  CGAL::convex_hull_3(points.begin(), points.end(), hullPoints, hullFaces);
+  // A solid hull is a closed triangulated sphere (F = 2V - 4); coplanar input comes back as a
+  // triangulated polygon (F = V - 2), collinear input with no face.
+  if (hullPoints.size() < 4 || hullFaces.size() != 2 * hullPoints.size() - 4) return std::nullopt;
+  HullMesh hull;
+  hull.V.resize(Eigen::Index(hullPoints.size()), 3);
+  for (size_t i = 0; i < hullPoints.size(); ++i)
+    hull.V.row(Eigen::Index(i)) << hullPoints[i].x(), hullPoints[i].y(), hullPoints[i].z();
+  hull.F.resize(Eigen::Index(hullFaces.size()), 3);
+  for (size_t i = 0; i < hullFaces.size(); ++i)
+    for (int k = 0; k < 3; ++k) hull.F(Eigen::Index(i), k) = int(hullFaces[i][size_t(k)]);
+  return hull;
+}
+
+}  // namespace dform::detail

@@ -1,0 +1,32 @@
+// Internal to dform_validate: the checks that need CGAL (exact predicates), behind Eigen/std
+// types. cgal_checks.cpp is the module's only CGAL translation unit.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "core/types.h"
+
+namespace dform::detail {
+
+struct SelfIntersections {
+  int pairs = 0;            ///< pairs of triangles that intersect beyond their shared vertices
+  int skippedDegenerate = 0;///< triangles left out because their corners are collinear
+  std::string example;      ///< the first pair found, "triangles i and j", when any
+};
+
+/// Intersecting pairs of triangles of the soup (V, F). Triangles that share vertex indices are
+/// adjacent: they count only when they overlap beyond what they share (two triangles on one edge
+/// folded flat onto each other; two on one corner whose opposite edge pierces the other). Works on
+/// non-manifold soups. Exact predicates.
+SelfIntersections findSelfIntersections(const Points3& V, const Faces& F);
+
+/// Convex hull of the rows of P as a triangle mesh, outward-facing; nullopt when the points are
+/// coplanar (the hull has no inside).
+struct HullMesh {
+  Points3 V;
+  Faces F;
+};
+std::optional<HullMesh> convexHull(const Points3& P);
+
+}  // namespace dform::detail

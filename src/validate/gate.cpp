@@ -1,0 +1,260 @@
+#include "validate/gate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "core/polyline.h"
+#include "validate/cgal_checks.h"
+#include "validate/mesh_measures.h"
+
+namespace dform {
+
+namespace {
+
+using Verdict = CheckResult::Verdict;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string num(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", x);
+  return buf;
+}
+
+// Pass when value <= limit; NaN never passes.
+CheckResult judge(std::string name, double value, double limit, std::string detail) {
+  const Verdict v = value <= limit ? Verdict::Pass : Verdict::Fail;
+  return {std::move(name), value, limit, v, std::move(detail)};
+}
+
+CheckResult notRun(std::string name, double limit, std::string reason) {
+  return {std::move(name), kNaN, limit, Verdict::NotRun, std::move(reason)};
+}
+
+Points2 seamPolygon(const Piece& p) {
+  Points2 P(Eigen::Index(p.seam.size()), 2);
+  for (size_t i = 0; i < p.seam.size(); ++i) P.row(Eigen::Index(i)) = p.flat.row(p.seam[i]);
+  return P;
+}
+
+// Max |angle defect| over both pieces' vertices that neither lie on the boundary (or seam) nor
+// share an edge with one: the paper's "zero Gaussian curvature everywhere except the seam".
+CheckResult gaussCheck(const DForm& model, const GateLimits& limits) {
+  double worst = 0.0;
+  int counted = 0;
+  std::string where;
+  for (const Piece* p : {&model.a, &model.b}) {
+    const detail::EdgeTopology topology = detail::edgeTopology(p->F);
+    const std::vector<bool> onBoundary = detail::boundaryVertices(int(p->shape.rows()), p->seam, topology);
+    std::vector<bool> nearSeam = onBoundary;
+    for (const auto& e : topology.edges)
+      if (onBoundary[e[0]] || onBoundary[e[1]]) nearSeam[e[0]] = nearSeam[e[1]] = true;
+    const Eigen::VectorXd defect = detail::angleDefects(p->shape, p->F);
+    std::vector<bool> used(nearSeam.size(), false);  // vertices of some face
+    for (int f = 0; f < p->F.rows(); ++f)
+      for (int k = 0; k < 3; ++k) used[p->F(f, k)] = true;
+    for (Eigen::Index v = 0; v < defect.size(); ++v) {
+      if (nearSeam[v] || !used[v]) continue;
+      ++counted;
+      if (std::abs(defect(v)) > worst || where.empty()) {
+        worst = std::max(worst, std::abs(defect(v)));
+        where = "piece " + p->name + " vertex " + std::to_string(v);
+      }
+    }
+  }
+  if (counted == 0) return notRun("gauss_max_rad", limits.gauss_max_rad, "no interior vertex away from the seam");
+  return judge("gauss_max_rad", worst, limits.gauss_max_rad,
+               "largest |angle defect| over " + std::to_string(counted) + " vertices away from the seam, at " + where);
+}
+
+CheckResult flatSimpleCheck(const DForm& model) {
+  int bad = 0;
+  std::string detail;
+  for (const Piece* p : {&model.a, &model.b}) {
+    if (p->seam.size() < 3) return notRun("flat_simple", 0, "piece " + p->name + " has no seam outline");
+    std::string problem;
+    if (const auto cross = findSelfIntersection(seamPolygon(*p)))
+      problem = "outline edges " + std::to_string(cross->first) + " and " + std::to_string(cross->second) + " meet";
+    std::string example;
+    if (const int overlaps = detail::countFlatOverlaps(p->flat, p->F, &example); overlaps > 0)
+      problem += (problem.empty() ? "" : "; ") + std::to_string(overlaps) + " overlapping triangle pairs (" + example + ")";
+    if (problem.empty()) continue;
+    ++bad;
+    detail += (detail.empty() ? "" : "; ") + ("piece " + p->name + ": " + problem);
+  }
+  if (bad == 0) detail = "both flat pieces are simple and no two flat triangles overlap";
+  return judge("flat_simple", bad, 0, detail);
+}
+
+// Both pieces as one triangle soup, each seam pair welded into one vertex at its midpoint (the
+// gap itself is judged by seam_gap_mm), so that triangles meeting at the seam are adjacent.
+CheckResult selfIntersectionCheck(const DForm& model) {
+  const Piece& a = model.a;
+  const Piece& b = model.b;
+  const int na = int(a.shape.rows());
+  Points3 V(na + b.shape.rows(), 3);
+  V << a.shape, b.shape;
+  std::vector<int> weld(size_t(V.rows()));
+  for (int i = 0; i < int(V.rows()); ++i) weld[i] = i;
+  for (size_t i = 0; i < a.seam.size(); ++i) {
+    weld[na + b.seam[i]] = a.seam[i];
+    V.row(a.seam[i]) = 0.5 * (a.shape.row(a.seam[i]) + b.shape.row(b.seam[i]));
+  }
+  Faces F(a.F.rows() + b.F.rows(), 3);
+  F << a.F, (b.F.array() + na).unaryExpr([&](int i) { return weld[i]; }).matrix();
+  const detail::SelfIntersections hits = detail::findSelfIntersections(V, F);
+  std::string text = hits.pairs == 0 ? "no two triangles of the closed surface intersect"
+                                     : std::to_string(hits.pairs) + " intersecting triangle pairs, first " + hits.example;
+  if (hits.skippedDegenerate > 0)
+    text += " (" + std::to_string(hits.skippedDegenerate) + " degenerate triangles not tested)";
+  return judge("self_intersection", hits.pairs, 0, text);
+}
+
+// Whether the closed outline turns one way only (collinear runs allowed) and is simple.
+bool isConvexOutline(const Points2& P) {
+  const Eigen::Index n = P.rows();
+  const double orientation = signedArea(P) >= 0.0 ? 1.0 : -1.0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::Vector2d e1 = P.row(i) - P.row((i + n - 1) % n);
+    const Eigen::Vector2d e2 = P.row((i + 1) % n) - P.row(i);
+    // sin(turn) below -1e-9 is a turn the wrong way; above it, straight up to round-off of
+    // points resampled along a straight outline edge.
+    if (orientation * (e1.x() * e2.y() - e1.y() * e2.x()) < -1e-9 * e1.norm() * e2.norm()) return false;
+  }
+  return !findSelfIntersection(P).has_value();
+}
+
+// Distance from p to triangle (a, b, c) (closest point by Voronoi regions, Ericson 5.1.5).
+double pointTriangleDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                             const Eigen::Vector3d& c) {
+  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return ap.norm();
+  const Eigen::Vector3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return bp.norm();
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + d1 / (d1 - d3) * ab)).norm();
+  const Eigen::Vector3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return cp.norm();
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + d2 / (d2 - d6) * ac)).norm();
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
+    return (p - (b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b))).norm();
+  const double denom = 1.0 / (va + vb + vc);
+  return (p - (a + ab * (vb * denom) + ac * (vc * denom))).norm();
+}
+
+// Demaine & Price: a D-Form of two convex pieces is the convex hull of its seam. Measures the
+// largest distance from a 3D vertex to the hull surface of the seam points (both sides).
+CheckResult hullCheck(const DForm& model, const GateLimits& limits) {
+  const char* name = "hull_distance_rel";
+  for (const Piece* p : {&model.a, &model.b})
+    if (p->seam.size() < 3 || !isConvexOutline(seamPolygon(*p)))
+      return notRun(name, limits.hull_distance_rel, "piece " + p->name + " is not convex");
+  const size_t n = model.a.seam.size();
+  Points3 seam(Eigen::Index(2 * n), 3);
+  for (size_t i = 0; i < n; ++i) {
+    seam.row(Eigen::Index(i)) = model.a.shape.row(model.a.seam[i]);
+    seam.row(Eigen::Index(n + i)) = model.b.shape.row(model.b.seam[i]);
+  }
+  const std::optional<detail::HullMesh> hull = detail::convexHull(seam);
+  if (!hull) return notRun(name, limits.hull_distance_rel, "the seam is planar: its hull has no inside");
+  const double diagonal = (seam.colwise().maxCoeff() - seam.colwise().minCoeff()).norm();
+  double worst = 0.0;
+  std::string where;
+  for (const Piece* p : {&model.a, &model.b})
+    for (int v = 0; v < p->shape.rows(); ++v) {
+      double d = std::numeric_limits<double>::infinity();
+      for (int h = 0; h < hull->F.rows(); ++h)
+        d = std::min(d, pointTriangleDistance(p->shape.row(v), hull->V.row(hull->F(h, 0)),
+                                              hull->V.row(hull->F(h, 1)), hull->V.row(hull->F(h, 2))));
+      if (d > worst || where.empty()) {
+        worst = std::max(worst, d);
+        where = "piece " + p->name + " vertex " + std::to_string(v);
+      }
+    }
+  return judge(name, worst / diagonal, limits.hull_distance_rel,
+               "largest distance to the seam's convex hull " + num(worst) + " mm at " + where +
+                   ", seam bounding-box diagonal " + num(diagonal) + " mm");
+}
+
+}  // namespace
+
+const char* verdictName(CheckResult::Verdict verdict) {
+  switch (verdict) {
+    case Verdict::Pass: return "pass";
+    case Verdict::Fail: return "fail";
+    case Verdict::NotRun: return "not run";
+  }
+  return "?";
+}
+
+bool GateReport::passed() const { return failed() == 0; }
+
+int GateReport::failed() const {
+  return int(std::count_if(checks.begin(), checks.end(), [](const CheckResult& c) { return c.verdict == Verdict::Fail; }));
+}
+
+int GateReport::notRun() const {
+  return int(std::count_if(checks.begin(), checks.end(), [](const CheckResult& c) { return c.verdict == Verdict::NotRun; }));
+}
+
+const CheckResult* GateReport::find(const std::string& name) const {
+  for (const CheckResult& c : checks)
+    if (c.name == name) return &c;
+  return nullptr;
+}
+
+GateReport runGate(const DForm& model, const GateLimits& limits, const Curve3* target) {
+  GateReport report;
+  const Metrics& m = report.metrics = computeMetrics(model);
+  auto& checks = report.checks;
+  const size_t pairs = model.a.seam.size();
+
+  checks.push_back(judge("L_error", m.L_error, limits.L_error, "relative edge-length error over both pieces"));
+  checks.push_back(judge("L_max", m.L_max, limits.L_max, "largest relative error of one edge"));
+  if (target) {
+    if (size_t(target->points.rows()) != pairs || pairs == 0) {
+      checks.push_back(notRun("D_error", limits.D_error,
+                              "the target curve has " + std::to_string(target->points.rows()) + " points for " +
+                                  std::to_string(pairs) + " seam pairs"));
+    } else {
+      report.curve = computeCurveMatch(model, *target);
+      checks.push_back(judge("D_error", report.curve->D_error, limits.D_error,
+                             "mean seam-to-curve distance / curve length; largest distance " +
+                                 num(report.curve->curve_distance_max_mm) + " mm"));
+    }
+  } else if (pairs == 0) {
+    checks.push_back(notRun("B_error", limits.B_error, "the model has no seam pairs"));
+  } else {
+    checks.push_back(judge("B_error", m.B_error, limits.B_error, "mean seam-partner distance / 3D seam length"));
+  }
+  if (pairs == 0)
+    checks.push_back(notRun("seam_gap_mm", limits.seam_gap_mm, "the model has no seam pairs"));
+  else
+    checks.push_back(judge("seam_gap_mm", m.seam_gap_mm, limits.seam_gap_mm, "largest seam-partner distance (mm)"));
+  checks.push_back(gaussCheck(model, limits));
+  checks.push_back(judge("flipped", m.flipped_2d + m.flipped_3d, limits.flipped,
+                         std::to_string(m.flipped_2d) + " flipped flat, " + std::to_string(m.flipped_3d) +
+                             " folded-over 3D triangles"));
+  checks.push_back(judge("degenerate", m.degenerate_2d + m.degenerate_3d, limits.degenerate,
+                         std::to_string(m.degenerate_2d) + " flat, " + std::to_string(m.degenerate_3d) +
+                             " 3D degenerate triangles"));
+  checks.push_back(flatSimpleCheck(model));
+  const double longer = std::max(m.seam_length_a_mm, m.seam_length_b_mm);
+  if (longer <= 0.0)
+    checks.push_back(notRun("seam_length_rel", limits.seam_length_rel, "the flat seams have no length"));
+  else
+    checks.push_back(judge("seam_length_rel", std::abs(m.seam_length_a_mm - m.seam_length_b_mm) / longer,
+                           limits.seam_length_rel,
+                           "flat seams " + num(m.seam_length_a_mm) + " mm and " + num(m.seam_length_b_mm) + " mm"));
+  checks.push_back(selfIntersectionCheck(model));
+  checks.push_back(hullCheck(model, limits));
+  return report;
+}
+
+}  // namespace dform

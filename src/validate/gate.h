@@ -1,0 +1,67 @@
+// The quality gate: every check of a solved D-Form against a limit read from a gate file
+// (templates/gates/*.json). Definitions and limits: docs/validation.md.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/status.h"
+#include "core/types.h"
+#include "validate/metrics.h"
+
+namespace dform {
+
+/// Limits of the gate. The defaults are templates/gates/default.json (the paper's figures);
+/// a gate file may leave any field out to keep its default.
+struct GateLimits {
+  std::string name = "default";     ///< the preset's name, for the report
+  double L_error = 0.005;           ///< max L_error (fraction): every Table 1 example is below 0.5%
+  double L_max = 0.03;              ///< max per-edge relative length error (fraction), paper: < 3%
+  double B_error = 1e-6;            ///< max B_error (fraction of the 3D seam length), forward mode
+  double D_error = 1e-6;            ///< max D_error (fraction of the curve length), inverse mode
+  double seam_gap_mm = 0.1;         ///< max distance between seam partners (mm)
+  double gauss_max_rad = 0.05;      ///< max |angle defect| away from the seam (radians)
+  double seam_length_rel = 1e-3;    ///< max |flat seam A - flat seam B| / max of both (fraction)
+  double hull_distance_rel = 0.01;  ///< max distance to the seam's hull / seam bbox diagonal
+  int flipped = 0;                  ///< max flipped triangles (flat and 3D together)
+  int degenerate = 0;               ///< max degenerate triangles (flat and 3D together)
+};
+
+/// Reads a gate file: {"version": 1, "name": ..., "description": ..., "limits": {...}}.
+/// InputUnreadable when the file is missing or not JSON; InputInvalid naming the field when a
+/// field is unknown, of the wrong type, or a limit is negative.
+Result<GateLimits> readGateFile(const std::string& path);
+
+/// The same from the file's text; `source` names it in error messages.
+Result<GateLimits> parseGateJson(const std::string& text, const std::string& source);
+
+struct CheckResult {
+  enum class Verdict { Pass, Fail, NotRun };
+  std::string name;   ///< the check's name, the gate file's field where it has one
+  double value = 0;   ///< the measured figure (NaN when not run)
+  double limit = 0;   ///< the limit it was held to
+  Verdict verdict = Verdict::NotRun;
+  std::string detail; ///< one line: what was measured, where it failed, or why it did not run
+};
+
+const char* verdictName(CheckResult::Verdict verdict);
+
+struct GateReport {
+  std::vector<CheckResult> checks;
+  Metrics metrics;                  ///< the figures the checks were computed from
+  std::optional<CurveMatch> curve;  ///< inverse mode: the seam-to-curve figures
+  /// No check failed. A check that did not run is not a pass: it stays in `checks` with its
+  /// reason for the report, and `notRun()` counts them.
+  bool passed() const;
+  int failed() const;
+  int notRun() const;
+  /// The check of that name, or nullptr.
+  const CheckResult* find(const std::string& name) const;
+};
+
+/// Runs every check on `model`. With a `target` curve (inverse mode, one point per seam pair)
+/// D_error is checked, otherwise B_error. Pure: reads the meshes only.
+GateReport runGate(const DForm& model, const GateLimits& limits, const Curve3* target = nullptr);
+
+}  // namespace dform

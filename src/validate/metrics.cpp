@@ -1,0 +1,101 @@
+#include "validate/metrics.h"
+
+#include <cassert>
+#include <cmath>
+#include <limits>
+
+#include "core/polyline.h"
+#include "validate/mesh_measures.h"
+
+namespace dform {
+
+namespace {
+
+// Adds one piece's edges to the L_error sums and the L_max maximum. Each undirected edge counts
+// once; L is its flat length, Lh its 3D length.
+void addEdgeLengths(const Piece& p, const detail::EdgeTopology& topology, double& sumSqDiff,
+                    double& sumSqFlat, double& maxRel) {
+  for (const auto& e : topology.edges) {
+    const double L = (p.flat.row(e[0]) - p.flat.row(e[1])).norm();
+    const double Lh = (p.shape.row(e[0]) - p.shape.row(e[1])).norm();
+    sumSqDiff += (Lh - L) * (Lh - L);
+    sumSqFlat += L * L;
+    // A zero-length flat edge is reported by the degenerate count; its relative error is
+    // infinite unless the 3D edge is zero too.
+    const double rel = L > 0.0 ? std::abs(Lh - L) / L
+                               : (Lh > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
+    maxRel = std::max(maxRel, rel);
+  }
+}
+
+// Adds one piece's |angle defect| at interior vertices (not on the boundary nor the seam).
+void addDefects(const Piece& p, const detail::EdgeTopology& topology, double& maxAbs,
+                double& sumAbs, int& count) {
+  const Eigen::VectorXd defect = detail::angleDefects(p.shape, p.F);
+  const std::vector<bool> onBoundary = detail::boundaryVertices(int(p.shape.rows()), p.seam, topology);
+  for (Eigen::Index v = 0; v < defect.size(); ++v) {
+    if (onBoundary[size_t(v)]) continue;
+    maxAbs = std::max(maxAbs, std::abs(defect(v)));
+    sumAbs += std::abs(defect(v));
+    ++count;
+  }
+}
+
+}  // namespace
+
+Metrics computeMetrics(const DForm& model) {
+  assert(model.a.seam.size() == model.b.seam.size() && "seam partners come in pairs");
+  Metrics m;
+  double sumSqDiff = 0.0, sumSqFlat = 0.0, sumAbsDefect = 0.0;
+  int interiorCount = 0;
+  for (const Piece* p : {&model.a, &model.b}) {
+    assert(p->flat.rows() == p->shape.rows() && "flat and 3D layouts share their vertices");
+    const detail::EdgeTopology topology = detail::edgeTopology(p->F);
+    addEdgeLengths(*p, topology, sumSqDiff, sumSqFlat, m.L_max);
+    addDefects(*p, topology, m.gauss_max, sumAbsDefect, interiorCount);
+    for (int f = 0; f < p->F.rows(); ++f) m.flipped_2d += detail::isFlippedFlat(p->flat, p->F, f);
+    // Folded over: across an interior edge whose two flat triangles are both counter-clockwise
+    // (flat dihedral 0), the 3D unit normals have a negative dot product (a turn of more than 90
+    // degrees); each triangle counts once. Details in mesh_measures.cpp.
+    m.flipped_3d += detail::countFolded(p->flat, p->shape, p->F, topology);
+    m.degenerate_2d += detail::countDegenerate(detail::lift(p->flat), p->F, topology);
+    m.degenerate_3d += detail::countDegenerate(p->shape, p->F, topology);
+  }
+  m.L_error = sumSqFlat > 0.0 ? std::sqrt(sumSqDiff / sumSqFlat) : 0.0;
+  m.gauss_mean = interiorCount > 0 ? sumAbsDefect / interiorCount : 0.0;
+
+  const std::vector<int>& sa = model.a.seam;
+  const std::vector<int>& sb = model.b.seam;
+  double sumGap = 0.0;
+  for (size_t i = 0; i < sa.size(); ++i) {
+    const double gap = (model.a.shape.row(sa[i]) - model.b.shape.row(sb[i])).norm();
+    sumGap += gap;
+    m.seam_gap_mm = std::max(m.seam_gap_mm, gap);
+  }
+  m.seam_length_a_mm = detail::seamLength(model.a.flat, sa);
+  m.seam_length_b_mm = detail::seamLength(model.b.flat, sb);
+  m.seam_length_3d_mm = detail::seamLength(model.a.shape, sa);
+  if (!sa.empty() && m.seam_length_3d_mm > 0.0)
+    m.B_error = (sumGap / double(sa.size())) / m.seam_length_3d_mm;
+  return m;
+}
+
+CurveMatch computeCurveMatch(const DForm& model, const Curve3& target) {
+  const std::vector<int>& sa = model.a.seam;
+  const std::vector<int>& sb = model.b.seam;
+  assert(sa.size() == sb.size() && size_t(target.points.rows()) == sa.size() &&
+         "the target curve has one point per seam pair");
+  CurveMatch match;
+  double sum = 0.0;  // Eq. 7: both boundaries' distances in one vector of 2n entries
+  for (size_t i = 0; i < sa.size(); ++i) {
+    const double da = (model.a.shape.row(sa[i]) - target.points.row(Eigen::Index(i))).norm();
+    const double db = (model.b.shape.row(sb[i]) - target.points.row(Eigen::Index(i))).norm();
+    sum += da + db;
+    match.curve_distance_max_mm = std::max({match.curve_distance_max_mm, da, db});
+  }
+  const double curveLength = closedLength(target.points);
+  if (!sa.empty() && curveLength > 0.0) match.D_error = (sum / (2.0 * double(sa.size()))) / curveLength;
+  return match;
+}
+
+}  // namespace dform

@@ -1,0 +1,174 @@
+#include "validate/gate.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <set>
+
+#include "models.h"
+
+namespace dform {
+namespace {
+
+using Names = std::set<std::string>;
+using Verdict = CheckResult::Verdict;
+
+Names withVerdict(const GateReport& report, Verdict verdict) {
+  Names names;
+  for (const CheckResult& c : report.checks)
+    if (c.verdict == verdict) names.insert(c.name);
+  return names;
+}
+Names failed(const GateReport& report) { return withVerdict(report, Verdict::Fail); }
+Names notRun(const GateReport& report) { return withVerdict(report, Verdict::NotRun); }
+
+std::string describe(const GateReport& report) {
+  std::string text;
+  for (const CheckResult& c : report.checks)
+    text += c.name + " " + verdictName(c.verdict) + " " + std::to_string(c.value) + " (" + c.detail + ")\n";
+  return text;
+}
+
+const Names kForwardChecks = {"L_error",         "L_max",     "B_error",    "seam_gap_mm",
+                              "gauss_max_rad",   "flipped",   "degenerate", "flat_simple",
+                              "seam_length_rel", "self_intersection", "hull_distance_rel"};
+
+TEST(Gate, ExactConvexDFormPassesEveryCheck) {
+  const GateReport report = runGate(test::tetraDForm(8), GateLimits{});
+  Names names;
+  for (const CheckResult& c : report.checks) names.insert(c.name);
+  EXPECT_EQ(names, kForwardChecks);
+  EXPECT_EQ(report.checks.size(), kForwardChecks.size());
+  EXPECT_EQ(withVerdict(report, Verdict::Pass), kForwardChecks) << describe(report);
+  EXPECT_TRUE(report.passed());
+  EXPECT_LT(report.find("hull_distance_rel")->value, 1e-12);  // the surface is its seam's hull
+}
+
+TEST(Gate, StretchedShapeFailsOnlyLError) {
+  DForm model = test::tetraDForm(8);
+  model.a.shape *= 1.01;
+  model.b.shape *= 1.01;
+  const GateReport report = runGate(model, GateLimits{});
+  // 1% on every edge: L_error (limit 0.5%) fails; L_max (limit 3%) holds; angles, seam, hull and
+  // flat pieces are unchanged by a uniform scaling.
+  EXPECT_EQ(failed(report), Names{"L_error"}) << describe(report);
+  EXPECT_TRUE(notRun(report).empty());
+  EXPECT_NEAR(report.find("L_error")->value, 0.01, 1e-12);
+  EXPECT_FALSE(report.passed());
+}
+
+TEST(Gate, FlatPieceOverlappingItselfFailsOnlyFlatSimple) {
+  // 1.2 turns of a gently rising ribbon: the flat pieces wrap past 360 degrees and overlap, the 3D
+  // ribbon clears itself by 2*pi*1.5 mm a turn.
+  const DForm model = test::ribbonDForm(test::Ribbon{});
+  const GateReport report = runGate(model, GateLimits{});
+  EXPECT_EQ(failed(report), Names{"flat_simple"}) << describe(report);
+  EXPECT_NE(report.find("flat_simple")->detail.find("piece A: outline edges"), std::string::npos);
+  // No vertex is away from the seam and the pieces are not convex: said so, not passed.
+  EXPECT_EQ(notRun(report), (Names{"gauss_max_rad", "hull_distance_rel"}));
+  EXPECT_FALSE(report.find("hull_distance_rel")->detail.empty());
+  EXPECT_TRUE(std::isnan(report.find("gauss_max_rad")->value));
+}
+
+TEST(Gate, OverlappingFlatTrianglesInsideASimpleOutlineFailFlatSimple) {
+  DForm model = test::tetraDForm(8);
+  // Drag one interior flat vertex across two of its neighbours: its triangles flip and overlap
+  // the others while the outline stays simple.
+  Eigen::Index v;
+  (model.a.flat.rowwise() - model.a.flat.colwise().mean()).rowwise().squaredNorm().minCoeff(&v);
+  int f = 0;
+  while (model.a.F(f, 0) != v) ++f;
+  model.a.flat.row(v) += 2.5 * (model.a.flat.row(model.a.F(f, 1)) - model.a.flat.row(v));
+  const GateReport report = runGate(model, GateLimits{});
+  const CheckResult* simple = report.find("flat_simple");
+  EXPECT_EQ(simple->verdict, Verdict::Fail) << describe(report);
+  EXPECT_NE(simple->detail.find("overlapping triangle pairs"), std::string::npos) << simple->detail;
+  EXPECT_EQ(simple->detail.find("outline"), std::string::npos) << simple->detail;
+  EXPECT_EQ(report.find("flipped")->verdict, Verdict::Fail);
+}
+
+TEST(Gate, OpenSeamFailsOnlyBErrorAndSeamGap) {
+  DForm model = test::tetraDForm(8);
+  model.b.shape.col(2).array() += 1.0;
+  const GateReport report = runGate(model, GateLimits{});
+  EXPECT_EQ(failed(report), (Names{"B_error", "seam_gap_mm"})) << describe(report);
+  EXPECT_NEAR(report.find("seam_gap_mm")->value, 1.0, 1e-12);
+}
+
+TEST(Gate, SelfIntersectingShapeFailsOnlySelfIntersection) {
+  // A steep ribbon (a cone-like band: its flat pieces span about 190 degrees, no overlap) whose
+  // outer edge rises while its inner edge falls: the second turn cuts through the first.
+  test::Ribbon ribbon;
+  ribbon.innerLift = 20.0;
+  ribbon.outerRise = 1.0;
+  ribbon.innerRise = -1.0;
+  const GateReport report = runGate(test::ribbonDForm(ribbon), GateLimits{});
+  EXPECT_EQ(failed(report), Names{"self_intersection"}) << describe(report);
+  EXPECT_GT(report.find("self_intersection")->value, 0.0);
+}
+
+TEST(Gate, VertexPushedThroughTheOtherPieceFailsTheHonestSet) {
+  DForm model = test::tetraDForm(8);
+  // Push A's vertex nearest the middle of hinge AC straight up through piece B (the top faces
+  // are at most 20 mm above it): its edges stretch, its ring folds over, and the spike
+  // pierces B.
+  Eigen::Index v;
+  model.a.shape.rowwise().squaredNorm().minCoeff(&v);
+  model.a.shape(v, 2) += 30.0;
+  const GateReport report = runGate(model, GateLimits{});
+  EXPECT_EQ(failed(report), (Names{"L_error", "L_max", "gauss_max_rad", "flipped", "self_intersection",
+                                   "hull_distance_rel"}))
+      << describe(report);
+}
+
+TEST(Gate, InverseModeChecksDErrorInsteadOfBError) {
+  DForm model = test::tetraDForm(8);
+  Curve3 target;
+  target.points.resize(Eigen::Index(model.a.seam.size()), 3);
+  for (size_t i = 0; i < model.a.seam.size(); ++i) target.points.row(Eigen::Index(i)) = model.a.shape.row(model.a.seam[i]);
+  const GateReport exact = runGate(model, GateLimits{}, &target);
+  EXPECT_EQ(exact.find("B_error"), nullptr);
+  ASSERT_NE(exact.find("D_error"), nullptr);
+  EXPECT_TRUE(exact.passed()) << describe(exact);
+  ASSERT_TRUE(exact.curve.has_value());
+
+  target.points.col(0).array() += 1.0;  // the curve moved 1 mm away from both sides
+  const GateReport shifted = runGate(model, GateLimits{}, &target);
+  EXPECT_EQ(failed(shifted), Names{"D_error"}) << describe(shifted);
+  EXPECT_NEAR(shifted.curve->curve_distance_max_mm, 1.0, 1e-12);
+
+  target.points.conservativeResize(target.points.rows() - 1, 3);
+  const GateReport mismatched = runGate(model, GateLimits{}, &target);
+  EXPECT_EQ(mismatched.find("D_error")->verdict, Verdict::NotRun);
+  EXPECT_NE(mismatched.find("D_error")->detail.find("seam pairs"), std::string::npos);
+}
+
+TEST(Gate, HullDistanceOfAVertexPushedOutOfTheHull) {
+  DForm model = test::tetraDForm(8);
+  // Piece A's face A-D-C lies on a hull face; push one of its interior vertices out along the
+  // face's outward normal: its distance to the hull is exactly the push.
+  const Eigen::Vector3d A(-40, 0, -10), D(0, 40, 10), C(40, 0, -10);
+  const Eigen::Vector3d normal = (D - A).cross(C - A).normalized();
+  const Eigen::Vector3d inside = (A + D + C) / 3.0;
+  Eigen::Index v;
+  (model.a.shape.rowwise() - inside.transpose()).rowwise().squaredNorm().minCoeff(&v);
+  const double push = 1.5;
+  model.a.shape.row(v) += push * normal.transpose();
+  const GateReport report = runGate(model, GateLimits{});
+  const double diagonal = Eigen::Vector3d(80, 80, 20).norm();  // the seam's bounding box
+  EXPECT_NEAR(report.find("hull_distance_rel")->value, push / diagonal, 1e-12) << describe(report);
+  EXPECT_EQ(report.find("hull_distance_rel")->verdict, Verdict::Fail);  // 1.2% > 1%
+}
+
+TEST(Gate, FlatDoubleDiscHasNoHullAndTouchesItself) {
+  // Both pieces lie in z = 0 on top of each other: a degenerate D-Form. The closed surface
+  // touches itself everywhere and the planar seam has no hull: the gate must not pass it.
+  const GateReport report = runGate(test::flatDoubleDisc(4, 24, 50.0), GateLimits{});
+  EXPECT_EQ(failed(report), Names{"self_intersection"}) << describe(report);
+  EXPECT_EQ(report.find("hull_distance_rel")->verdict, Verdict::NotRun);
+  EXPECT_NE(report.find("hull_distance_rel")->detail.find("planar"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace dform
