@@ -1,0 +1,127 @@
+// PDF pages and PNG previews of the pattern through Cairo. Cairo draws in points (PDF) or pixels
+// (PNG); the drawing is in mm, so each page is scaled by 72/25.4 or dpi/25.4. Cairo 1.16 drops
+// strokes of width 0, so every width is explicit; PNG previews draw hairlines one pixel wide.
+#include <cairo-pdf.h>
+#include <cairo.h>
+
+#include <memory>
+
+#include "export/internal.h"
+
+namespace dform::fab {
+
+namespace {
+
+constexpr double kMmPerInch = 25.4;
+constexpr double kPointsPerInch = 72.0;
+
+cairo_status_t appendToString(void* closure, const unsigned char* data, unsigned int length) {
+  static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+  return CAIRO_STATUS_SUCCESS;
+}
+
+void setColor(cairo_t* cr, const std::string& hex) {
+  const unsigned long v = std::stoul(hex.substr(1), nullptr, 16);
+  cairo_set_source_rgb(cr, double((v >> 16) & 0xFF) / 255.0, double((v >> 8) & 0xFF) / 255.0,
+                       double(v & 0xFF) / 255.0);
+}
+
+void drawLayer(cairo_t* cr, const Layer& layer, double minWidthMm) {
+  setColor(cr, layer.color);
+  cairo_set_line_width(cr, std::max(layer.widthMm, minWidthMm));
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  for (const Path& p : layer.paths) {
+    cairo_new_path(cr);
+    for (const Polyline& part : p.parts) {
+      if (part.empty()) continue;
+      cairo_move_to(cr, part[0].x(), part[0].y());
+      for (size_t i = 1; i < part.size(); ++i) cairo_line_to(cr, part[i].x(), part[i].y());
+      if (p.closed) cairo_close_path(cr);
+    }
+    if (p.filled) {
+      cairo_fill(cr);
+      continue;
+    }
+    if (p.dashed) {
+      const double dash[2] = {layer.dashMm, layer.dashMm};
+      cairo_set_dash(cr, dash, 2, 0);
+    }
+    cairo_stroke(cr);
+    cairo_set_dash(cr, nullptr, 0, 0);
+  }
+}
+
+// Draws one page; the context is already scaled so that 1 unit = 1 mm.
+void drawPage(cairo_t* cr, const PatternBuild& pattern, const PageView& page, double minWidthMm) {
+  cairo_save(cr);
+  cairo_rectangle(cr, page.clipX0, page.clipY0, page.clipX1 - page.clipX0,
+                  page.clipY1 - page.clipY0);
+  cairo_clip(cr);
+  cairo_translate(cr, -page.origin.x(), -page.origin.y());
+  for (const Layer& layer : pattern.drawing.layers)
+    if (layer.printed) drawLayer(cr, layer, minWidthMm);
+  cairo_restore(cr);
+  for (const Layer& layer : page.overlay) drawLayer(cr, layer, minWidthMm);
+}
+
+Status cairoError(cairo_status_t status, const std::string& what) {
+  return {ErrorCode::OutputFailed, what + ": Cairo failed (" + cairo_status_to_string(status) + ")"};
+}
+
+}  // namespace
+
+Result<std::string> pdfDocument(const PatternBuild& pattern) {
+  std::string bytes;
+  const double k = kPointsPerInch / kMmPerInch;
+  const PageView& first = pattern.pages.front();
+  std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
+      cairo_pdf_surface_create_for_stream(appendToString, &bytes, first.width * k,
+                                          first.height * k),
+      cairo_surface_destroy);
+  cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_TITLE,
+                                 pattern.drawing.title.c_str());
+  cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_SUBJECT,
+                                 pattern.drawing.description.c_str());
+  cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATOR, "dform export");
+  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()),
+                                                        cairo_destroy);
+  for (const PageView& page : pattern.pages) {
+    cairo_pdf_surface_set_size(surface.get(), page.width * k, page.height * k);
+    cairo_save(cr.get());
+    cairo_scale(cr.get(), k, k);
+    drawPage(cr.get(), pattern, page, 0.0);
+    cairo_restore(cr.get());
+    cairo_show_page(cr.get());
+  }
+  cr.reset();
+  cairo_surface_finish(surface.get());
+  if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS)
+    return cairoError(cairo_surface_status(surface.get()), "pattern.pdf");
+  return bytes;
+}
+
+Result<std::string> pngImage(const PatternBuild& pattern, int pageIndex, double dpi) {
+  if (pageIndex < 0 || pageIndex >= int(pattern.pages.size()))
+    return Status{ErrorCode::Usage, "page " + std::to_string(pageIndex + 1) + " does not exist (" +
+                                        std::to_string(pattern.pages.size()) + " pages)"};
+  if (!(dpi >= 10 && dpi <= 1200)) return Status{ErrorCode::Usage, "dpi must be in 10..1200"};
+  const PageView& page = pattern.pages[size_t(pageIndex)];
+  const double k = dpi / kMmPerInch;
+  const int w = int(std::ceil(page.width * k)), h = int(std::ceil(page.height * k));
+  std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
+      cairo_image_surface_create(CAIRO_FORMAT_RGB24, w, h), cairo_surface_destroy);
+  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()),
+                                                        cairo_destroy);
+  cairo_set_source_rgb(cr.get(), 1, 1, 1);
+  cairo_paint(cr.get());
+  cairo_scale(cr.get(), k, k);
+  drawPage(cr.get(), pattern, page, 1.0 / k);  // hairlines: one pixel
+  cr.reset();
+  std::string bytes;
+  const cairo_status_t status = cairo_surface_write_to_png_stream(surface.get(), appendToString, &bytes);
+  if (status != CAIRO_STATUS_SUCCESS) return cairoError(status, "PNG preview");
+  return bytes;
+}
+
+}  // namespace dform::fab

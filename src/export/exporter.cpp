@@ -1,0 +1,79 @@
+// exportAll: every output rendered to memory first, then each file written atomically, so that a
+// failed run leaves no half-written file.
+#include "export/exporter.h"
+
+#include <filesystem>
+
+#include "core/atomic_file.h"
+#include "export/internal.h"
+
+namespace dform {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+Status checkFolder(const std::string& outDir) {
+  std::error_code ec;
+  if (!fs::is_directory(outDir, ec))
+    return {ErrorCode::OutputFailed, outDir + ": the output folder does not exist"};
+  return Status::ok();
+}
+
+}  // namespace
+
+Result<ExportSummary> exportAll(const DForm& model, const ExportOptions& options,
+                                const std::string& outDir) {
+  if (Status s = checkFolder(outDir); !s.isOk()) return s;
+  auto profile = fab::resolveProfile(options);
+  if (!profile.isOk()) return profile.status();
+  auto pattern = fab::buildPattern(model, options, profile.value());
+  if (!pattern.isOk()) return pattern.status();
+  const fab::PatternBuild& pat = pattern.value();
+
+  auto pdf = fab::pdfDocument(pat);
+  if (!pdf.isOk()) return pdf.status();
+  auto gltf = fab::gltfDocument(model, options);
+  if (!gltf.isOk()) return gltf.status();
+  const std::string gltfName = options.gltfBinary ? "dform.glb" : "dform.gltf";
+  const std::vector<std::pair<std::string, std::string>> files = {
+      {"pattern.svg", fab::svgDocument(pat.drawing)},
+      {"pattern.pdf", pdf.value()},
+      {"pattern.json", fab::sidecarJson(pat, options.jobName)},
+      {"dform.stl", fab::stlDocument(model, options.failedGateMark)},
+      {gltfName, gltf.value()},
+  };
+  ExportSummary summary;
+  for (const auto& [name, content] : files) {
+    const std::string path = (fs::path(outDir) / name).string();
+    if (Status s = writeFileAtomically(path, content); !s.isOk()) return s;
+    summary.files.push_back(path);
+  }
+  summary.messages = pat.messages;
+  summary.profile = pat.profile.name;
+  summary.perimeterA = pat.pieces[0].perimeter;
+  summary.perimeterB = pat.pieces[1].perimeter;
+  summary.sheetWidthMm = pat.drawing.width;
+  summary.sheetHeightMm = pat.drawing.height;
+  summary.ticks = int(pat.ticks.size());
+  summary.tabs = int(pat.tabs.size());
+  summary.pages = int(pat.pages.size());
+  summary.triangles = int(model.a.F.rows() + model.b.F.rows());
+  if (summary.pages > 1)
+    summary.messages.push_back("the pattern is tiled across " + std::to_string(summary.pages) +
+                               " pages of pattern.pdf; print at 100% and match the crosses");
+  return summary;
+}
+
+Status renderPatternPng(const DForm& model, const ExportOptions& options,
+                        const std::string& pngPath, double dpi, int page) {
+  auto profile = fab::resolveProfile(options);
+  if (!profile.isOk()) return profile.status();
+  auto pattern = fab::buildPattern(model, options, profile.value());
+  if (!pattern.isOk()) return pattern.status();
+  auto png = fab::pngImage(pattern.value(), page, dpi);
+  if (!png.isOk()) return png.status();
+  return writeFileAtomically(pngPath, png.value());
+}
+
+}  // namespace dform

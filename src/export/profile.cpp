@@ -1,0 +1,225 @@
+// Machine profiles: templates/profiles/<name>.json, read strictly (an unknown or mistyped field is
+// an error naming the file and the field, so that a typo never silently falls back to a default).
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "export/internal.h"
+
+namespace dform {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+Status invalid(const std::string& source, const std::string& what) {
+  return {ErrorCode::InputInvalid, source + ": " + what};
+}
+
+bool isHexColor(const std::string& s) {
+  if (s.size() != 7 || s[0] != '#') return false;
+  return std::all_of(s.begin() + 1, s.end(), [](char c) { return std::isxdigit(uint8_t(c)); });
+}
+
+std::string upper(std::string s) {
+  for (char& c : s) c = char(std::toupper(uint8_t(c)));
+  return s;
+}
+
+// Reads one field into `out` if present; returns a non-ok Status naming the field when mistyped.
+struct FieldReader {
+  const json& j;
+  const std::string& source;
+  Status status;
+
+  const json* get(const char* key) {
+    auto it = j.find(key);
+    return it == j.end() ? nullptr : &*it;
+  }
+  void number(const char* key, double& out, double lo, double hi) {
+    const json* v = get(key);
+    if (!v || !status.isOk()) return;
+    if (!v->is_number()) {
+      status = invalid(source, std::string("field \"") + key + "\" must be a number");
+      return;
+    }
+    const double x = v->get<double>();
+    if (!(x >= lo && x <= hi)) {
+      std::ostringstream msg;
+      msg << "field \"" << key << "\" = " << x << " is out of range [" << lo << ", " << hi << "]";
+      status = invalid(source, msg.str());
+      return;
+    }
+    out = x;
+  }
+  void text(const char* key, std::string& out) {
+    const json* v = get(key);
+    if (!v || !status.isOk()) return;
+    if (!v->is_string()) {
+      status = invalid(source, std::string("field \"") + key + "\" must be a string");
+      return;
+    }
+    out = v->get<std::string>();
+  }
+  void flag(const char* key, bool& out) {
+    const json* v = get(key);
+    if (!v || !status.isOk()) return;
+    if (!v->is_boolean()) {
+      status = invalid(source, std::string("field \"") + key + "\" must be true or false");
+      return;
+    }
+    out = v->get<bool>();
+  }
+  void color(const char* key, std::string& out) {
+    std::string value = out;
+    text(key, value);
+    if (!status.isOk()) return;
+    if (!isHexColor(value)) {
+      status = invalid(source, std::string("field \"") + key + "\" = \"" + value +
+                                   "\" is not a #RRGGBB colour");
+      return;
+    }
+    out = upper(value);
+  }
+  template <typename E>
+  void choice(const char* key, E& out, const std::vector<std::pair<std::string, E>>& options) {
+    const json* v = get(key);
+    if (!v || !status.isOk()) return;
+    std::string allowed;
+    for (const auto& [name, value] : options) {
+      allowed += (allowed.empty() ? "" : ", ") + name;
+      if (v->is_string() && v->get<std::string>() == name) {
+        out = value;
+        return;
+      }
+    }
+    status = invalid(source, std::string("field \"") + key + "\" must be one of " + allowed);
+  }
+};
+
+const char* kKnownFields[] = {"version",        "name",           "description",
+                              "kind",           "cut_color",      "score_color",
+                              "engrave_color",  "cut_width_mm",   "score_width_mm",
+                              "engrave_width_mm", "fold",         "perforation_cut_mm",
+                              "perforation_gap_mm", "dash_mm",    "margin_mm",
+                              "page",           "tile",           "tile_overlap_mm",
+                              "registration",   "calibration_bar", "label_height_mm",
+                              "kerf_mm"};
+
+Result<Profile> parseProfile(const std::string& text, const std::string& source) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::exception& e) {
+    return Status{ErrorCode::InputUnreadable, source + ": not JSON (" + e.what() + ")"};
+  }
+  if (!j.is_object()) return invalid(source, "a profile must be a JSON object");
+  for (const auto& item : j.items()) {
+    const auto& key = item.key();
+    if (std::find(std::begin(kKnownFields), std::end(kKnownFields), key) == std::end(kKnownFields))
+      return invalid(source, "unknown field \"" + key + "\" (see docs/export.md)");
+  }
+  Profile p;
+  p.source = source;
+  FieldReader r{j, source, Status::ok()};
+  double version = 1;
+  r.number("version", version, 1, 1);
+  r.text("name", p.name);
+  r.text("description", p.description);
+  r.choice<ProfileKind>("kind", p.kind,
+                        {{"laser", ProfileKind::Laser},
+                         {"print", ProfileKind::Print},
+                         {"print-and-cut", ProfileKind::PrintAndCut}});
+  r.color("cut_color", p.cutColor);
+  r.color("score_color", p.scoreColor);
+  r.color("engrave_color", p.engraveColor);
+  // Strokes: a laser wants hairlines (shops ask 0.01-0.025 mm; Cairo drops width 0), paper wants
+  // lines a person can follow with scissors; 2 mm is far past either.
+  const double maxWidth = p.kind == ProfileKind::Laser ? 0.1 : 2.0;
+  r.number("cut_width_mm", p.cutWidthMm, 0.001, maxWidth);
+  r.number("score_width_mm", p.scoreWidthMm, 0.001, maxWidth);
+  r.number("engrave_width_mm", p.engraveWidthMm, 0.001, maxWidth);
+  r.choice<FoldStyle>("fold", p.fold,
+                      {{"score", FoldStyle::Score},
+                       {"dashed", FoldStyle::Dashed},
+                       {"perforated", FoldStyle::Perforated}});
+  r.number("perforation_cut_mm", p.perforationCutMm, 0.05, 50);
+  r.number("perforation_gap_mm", p.perforationGapMm, 0.05, 50);
+  r.number("dash_mm", p.dashMm, 0.1, 50);
+  r.number("margin_mm", p.marginMm, 0, 100);
+  r.text("page", p.page);
+  r.flag("tile", p.tile);
+  r.number("tile_overlap_mm", p.tileOverlapMm, 0, 50);
+  r.choice<Registration>("registration", p.registration,
+                         {{"none", Registration::None},
+                          {"silhouette", Registration::Silhouette},
+                          {"cricut", Registration::Cricut}});
+  r.flag("calibration_bar", p.calibrationBar);
+  r.number("label_height_mm", p.labelHeightMm, 0.5, 50);
+  r.number("kerf_mm", p.kerfMm, 0, 5);
+  if (!r.status.isOk()) return r.status;
+  if (!p.page.empty() && p.page != "A4" && p.page != "Letter")
+    return invalid(source, "field \"page\" must be \"A4\", \"Letter\" or absent");
+  if (p.kind == ProfileKind::PrintAndCut && p.page.empty())
+    return invalid(source, "a print-and-cut profile needs \"page\" (A4 or Letter)");
+  if (p.tile && p.page.empty()) return invalid(source, "\"tile\" needs a \"page\"");
+  return p;
+}
+
+}  // namespace
+
+std::vector<std::string> listProfiles(const std::string& templatesDir) {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(fs::path(templatesDir) / "profiles", ec)) {
+    if (entry.path().extension() == ".json") names.push_back(entry.path().stem().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+Result<Profile> loadProfile(const std::string& nameOrPath, const std::string& templatesDir) {
+  std::string path = nameOrPath;
+  const bool looksLikePath = nameOrPath.find('/') != std::string::npos ||
+                             fs::path(nameOrPath).extension() == ".json";
+  if (!looksLikePath) {
+    path = (fs::path(templatesDir) / "profiles" / (nameOrPath + ".json")).string();
+    if (!fs::exists(path)) {
+      std::string known;
+      for (const auto& n : listProfiles(templatesDir)) known += (known.empty() ? "" : ", ") + n;
+      return Status{ErrorCode::Usage,
+                    "unknown profile \"" + nameOrPath + "\" (known: " +
+                        (known.empty() ? "none found in " + templatesDir + "/profiles" : known) +
+                        ")"};
+    }
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Status{ErrorCode::InputUnreadable, path + ": cannot read the profile"};
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  auto profile = parseProfile(buffer.str(), path);
+  if (profile.isOk() && profile.value().name.empty())
+    profile.value().name = fs::path(path).stem().string();
+  return profile;
+}
+
+namespace fab {
+
+Result<Profile> resolveProfile(const ExportOptions& options) {
+  Result<Profile> loaded = options.useProfileOverride
+                               ? Result<Profile>(options.profileOverride)
+                               : loadProfile(options.profile, options.templatesDir);
+  if (!loaded.isOk()) return loaded;
+  Profile p = loaded.value();
+  if (options.kerfMm >= 0) p.kerfMm = options.kerfMm;
+  return p;
+}
+
+}  // namespace fab
+
+}  // namespace dform

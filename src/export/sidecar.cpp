@@ -1,0 +1,74 @@
+// pattern.json: the pattern's geometry in sheet millimetres (y down, the SVG's user units), for
+// tests, the report and anyone who wants to check a cut file without parsing SVG.
+#include <nlohmann/json.hpp>
+
+#include "export/internal.h"
+
+namespace dform::fab {
+
+namespace {
+
+using nlohmann::json;
+
+json point(const Vec2& p) { return json::array({p.x(), p.y()}); }
+
+json polyline(const Polyline& p) {
+  json out = json::array();
+  for (const Vec2& q : p) out.push_back(point(q));
+  return out;
+}
+
+const char* kindName(ProfileKind kind) {
+  switch (kind) {
+    case ProfileKind::Laser: return "laser";
+    case ProfileKind::Print: return "print";
+    case ProfileKind::PrintAndCut: return "print-and-cut";
+  }
+  return "?";
+}
+
+}  // namespace
+
+std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName) {
+  json j;
+  j["version"] = 1;
+  j["job"] = jobName;
+  j["profile"] = pattern.profile.name;
+  j["kind"] = kindName(pattern.profile.kind);
+  j["frame"] = "sheet millimetres, y down (SVG user units)";
+  j["sheet"] = {{"width", pattern.drawing.width}, {"height", pattern.drawing.height}};
+  j["tick_spacing_mm"] = pattern.tickSpacing;
+  j["kerf_mm"] = pattern.profile.kerfMm;
+  json pieces = json::array();
+  for (const PieceInfo& p : pattern.pieces) {
+    json cut = json::array();
+    for (const auto& c : p.cut) cut.push_back(polyline(c));
+    pieces.push_back({{"name", p.name},
+                      {"perimeter_mm", p.perimeter},
+                      {"rotation_deg", p.rotationDeg},
+                      {"outline", polyline(p.outline)},
+                      {"cut", cut}});
+  }
+  j["pieces"] = pieces;
+  json ticks = json::array();
+  for (const TickInfo& t : pattern.ticks)
+    ticks.push_back({{"id", t.id}, {"s", t.s}, {"a", point(t.onA)}, {"b", point(t.onB)}});
+  j["ticks"] = ticks;
+  json tabs = json::array();
+  for (const TabInfo& t : pattern.tabs)
+    tabs.push_back({{"piece", pattern.pieces[size_t(t.piece)].name},
+                    {"s0", t.s0},
+                    {"s1", t.s1},
+                    {"width", t.width},
+                    {"polygon", polyline(t.polygon)},
+                    {"fold", polyline(t.fold)}});
+  j["tabs"] = tabs;
+  json pages = json::array();
+  for (const PageView& p : pattern.pages)
+    pages.push_back({{"width", p.width}, {"height", p.height}, {"origin", point(p.origin)}});
+  j["pages"] = pages;
+  j["messages"] = pattern.messages;
+  return j.dump(1);
+}
+
+}  // namespace dform::fab

@@ -1,0 +1,91 @@
+// The cutting SVG, written by hand: millimetre page (1 user unit = 1 mm), one Inkscape layer per
+// operation, an id on every path, inline hex styles repeated as presentation attributes (VisiCut
+// ignores CSS classes; early LaserGRBL read only style=""). Paths use absolute M/L/Z only.
+#include <cstdio>
+#include <sstream>
+
+#include "export/internal.h"
+
+namespace dform::fab {
+
+namespace {
+
+std::string num(double x) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.4f", x);  // 0.1 um: far below any cutter's resolution
+  std::string s = buf;
+  while (!s.empty() && s.back() == '0') s.pop_back();
+  if (!s.empty() && s.back() == '.') s.pop_back();
+  if (s == "-0") s = "0";
+  return s;
+}
+
+std::string escapeXml(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string pathData(const Path& p) {
+  std::string d;
+  for (const Polyline& part : p.parts) {
+    if (part.empty()) continue;
+    for (size_t i = 0; i < part.size(); ++i) {
+      d += (d.empty() ? "" : " ");
+      d += (i == 0 ? "M " : "L ") + num(part[i].x()) + " " + num(part[i].y());
+    }
+    if (p.closed) d += " Z";
+  }
+  return d;
+}
+
+}  // namespace
+
+std::string svgDocument(const Drawing& drawing) {
+  std::ostringstream s;
+  s << "<?xml version=\"1.0\" encoding=\"UTF-8\" standalone=\"no\"?>\n"
+    << "<svg xmlns=\"http://www.w3.org/2000/svg\"\n"
+    << "     xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\"\n"
+    << "     version=\"1.1\" width=\"" << num(drawing.width) << "mm\" height=\""
+    << num(drawing.height) << "mm\" viewBox=\"0 0 " << num(drawing.width) << " "
+    << num(drawing.height) << "\">\n"
+    << "  <title>" << escapeXml(drawing.title) << "</title>\n"
+    << "  <desc>" << escapeXml(drawing.description) << "</desc>\n";
+  for (const Layer& layer : drawing.layers) {
+    s << "  <g inkscape:groupmode=\"layer\" inkscape:label=\"" << escapeXml(layer.name)
+      << "\" id=\"layer-" << escapeXml(layer.name) << "\">\n";
+    for (const Path& p : layer.paths) {
+      const std::string d = pathData(p);
+      if (d.empty()) continue;
+      std::string style, attributes;
+      if (p.filled) {
+        style = "fill:" + layer.color + ";stroke:none";
+        attributes = "fill=\"" + layer.color + "\" stroke=\"none\"";
+      } else {
+        style = "fill:none;stroke:" + layer.color + ";stroke-width:" + num(layer.widthMm) +
+                ";stroke-linecap:round;stroke-linejoin:round";
+        attributes = "fill=\"none\" stroke=\"" + layer.color + "\" stroke-width=\"" +
+                     num(layer.widthMm) + "\"";
+        if (p.dashed) {
+          style += ";stroke-dasharray:" + num(layer.dashMm) + "," + num(layer.dashMm);
+          attributes += " stroke-dasharray=\"" + num(layer.dashMm) + "," + num(layer.dashMm) + "\"";
+        }
+      }
+      s << "    <path id=\"" << escapeXml(p.id) << "\" style=\"" << style << "\" " << attributes
+        << " d=\"" << d << "\"/>\n";
+    }
+    s << "  </g>\n";
+  }
+  s << "</svg>\n";
+  return s.str();
+}
+
+}  // namespace dform::fab

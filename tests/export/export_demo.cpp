@@ -1,0 +1,93 @@
+// export_demo: writes the synthetic D-Form's pattern for every profile and renders the docs
+// pictures (scripts/render-docs-export), or times exportAll (docs/export.md).
+//   export_demo render OUT_DIR IMAGES_DIR
+//   export_demo bench OUT_DIR [REPEATS]
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "export/exporter.h"
+#include "synthetic.h"
+
+namespace {
+
+int fail(const dform::Status& s) {
+  std::fprintf(stderr, "export_demo: %s\n", s.message().c_str());
+  return 1;
+}
+
+dform::ExportOptions baseOptions() {
+  dform::ExportOptions o;
+  o.templatesDir = DFORM_TEMPLATES_DIR;
+  o.jobName = "demo";
+  return o;
+}
+
+int render(const std::string& outDir, const std::string& imagesDir) {
+  namespace fs = std::filesystem;
+  struct Job {
+    std::string profile, image;
+    double sheetW, sheetH, scale;
+    bool alternate;
+  };
+  const std::vector<Job> jobs = {
+      {"laser", "export-laser", 400, 250, 1.0, false},
+      {"laser-ponoko", "export-laser-ponoko", 400, 250, 1.0, false},
+      {"laser-lightburn", "export-laser-lightburn", 400, 250, 1.0, true},
+      {"laser-card", "export-laser-card", 400, 250, 1.0, false},
+      {"print", "export-print", 0, 0, 1.0, false},
+      {"print", "export-print-tiled", 0, 0, 2.0, false},
+      {"print-and-cut", "export-print-and-cut", 0, 0, 0.6, false},
+      {"print-and-cut-cricut", "export-print-and-cut-cricut", 0, 0, 0.7, false},
+  };
+  for (const Job& job : jobs) {
+    const dform::DForm m = dform::test::ellipseCircleDForm(64, 8, 80 * job.scale, 50 * job.scale, 30 * job.scale);
+    dform::ExportOptions o = baseOptions();
+    o.profile = job.profile;
+    o.alternateTabs = job.alternate;
+    if (job.sheetW > 0) {
+      o.sheetWidthMm = job.sheetW;
+      o.sheetHeightMm = job.sheetH;
+    }
+    const std::string dir = (fs::path(outDir) / job.image).string();
+    fs::create_directories(dir);
+    auto summary = dform::exportAll(m, o, dir);
+    if (!summary.isOk()) return fail(summary.status());
+    const std::string png = (fs::path(imagesDir) / (job.image + ".png")).string();
+    if (auto s = dform::renderPatternPng(m, o, png, 60, 0); !s.isOk()) return fail(s);
+    std::printf("%-22s %d page(s), %d ticks, %d tabs -> %s\n", job.profile.c_str(),
+                summary.value().pages, summary.value().ticks, summary.value().tabs, png.c_str());
+  }
+  return 0;
+}
+
+int bench(const std::string& outDir, int repeats) {
+  const dform::DForm model = dform::test::ellipseCircleDForm(64, 8);
+  dform::ExportOptions o = baseOptions();
+  std::vector<double> ms;
+  for (int i = 0; i < repeats; ++i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    auto summary = dform::exportAll(model, o, outDir);
+    const auto t1 = std::chrono::steady_clock::now();
+    if (!summary.isOk()) return fail(summary.status());
+    ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+  }
+  std::sort(ms.begin(), ms.end());
+  std::printf("exportAll, laser profile, %d triangles, %d repeats: min %.1f ms, median %.1f ms, max %.1f ms\n",
+              int(model.a.F.rows() + model.b.F.rows()), repeats, ms.front(), ms[ms.size() / 2],
+              ms.back());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string mode = argc > 1 ? argv[1] : "";
+  if (mode == "render" && argc == 4) return render(argv[2], argv[3]);
+  if (mode == "bench" && argc >= 3) return bench(argv[2], argc > 3 ? std::stoi(argv[3]) : 21);
+  std::fprintf(stderr, "usage: export_demo render OUT_DIR IMAGES_DIR | export_demo bench OUT_DIR [REPEATS]\n");
+  return 2;
+}

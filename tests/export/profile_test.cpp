@@ -1,0 +1,93 @@
+// Profiles: every shipped template loads; every kind of bad profile file is an error that names
+// the file and the field.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "export/exporter.h"
+#include "test_util.h"
+
+namespace dform::test {
+namespace {
+
+std::string writeProfile(const std::string& name, const std::string& text) {
+  const std::string path = freshDir("profiles-" + name) + "/" + name + ".json";
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(ExportProfile, EveryTemplateLoads) {
+  const auto names = listProfiles(DFORM_TEMPLATES_DIR);
+  for (const char* expected : {"laser", "laser-ponoko", "laser-lightburn", "laser-card", "print",
+                               "print-letter", "print-and-cut", "print-and-cut-cricut"}) {
+    EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected;
+  }
+  for (const auto& name : names) {
+    auto p = loadProfile(name, DFORM_TEMPLATES_DIR);
+    ASSERT_TRUE(p.isOk()) << p.status().message();
+    EXPECT_EQ(p.value().name, name);
+    EXPECT_FALSE(p.value().description.empty()) << name;
+  }
+}
+
+TEST(ExportProfile, ShopColourConventions) {
+  auto laser = loadProfile("laser", DFORM_TEMPLATES_DIR).value();
+  EXPECT_EQ(laser.cutColor, "#FF0000");
+  EXPECT_EQ(laser.scoreColor, "#0000FF");
+  EXPECT_EQ(laser.engraveColor, "#000000");
+  auto ponoko = loadProfile("laser-ponoko", DFORM_TEMPLATES_DIR).value();
+  EXPECT_EQ(ponoko.cutColor, "#0000FF");
+  EXPECT_EQ(ponoko.scoreColor, "#FF0000");
+  EXPECT_DOUBLE_EQ(ponoko.cutWidthMm, 0.01);
+  auto print = loadProfile("print", DFORM_TEMPLATES_DIR).value();
+  EXPECT_EQ(print.kind, ProfileKind::Print);
+  EXPECT_EQ(print.fold, FoldStyle::Dashed);
+  EXPECT_TRUE(print.tile && print.calibrationBar);
+  EXPECT_EQ(loadProfile("print-and-cut", DFORM_TEMPLATES_DIR).value().registration, Registration::Silhouette);
+  EXPECT_EQ(loadProfile("print-and-cut-cricut", DFORM_TEMPLATES_DIR).value().page, "Letter");
+}
+
+TEST(ExportProfile, ProfileByPathAndLowerCaseColour) {
+  const std::string path = writeProfile("mine", R"({"name": "mine", "cut_color": "#00ff00"})");
+  auto p = loadProfile(path, "");
+  ASSERT_TRUE(p.isOk()) << p.status().message();
+  EXPECT_EQ(p.value().cutColor, "#00FF00");
+  EXPECT_EQ(p.value().kind, ProfileKind::Laser);  // defaults for what is left out
+}
+
+TEST(ExportProfile, BadProfilesNameTheFileAndField) {
+  struct Case {
+    const char* name;
+    const char* text;
+    ErrorCode code;
+    const char* mentions;
+  };
+  const Case cases[] = {
+      {"unknown-field", R"({"cut_colour": "#FF0000"})", ErrorCode::InputInvalid, "cut_colour"},
+      {"bad-colour", R"({"cut_color": "red"})", ErrorCode::InputInvalid, "cut_color"},
+      {"bad-type", R"({"margin_mm": "5"})", ErrorCode::InputInvalid, "margin_mm"},
+      {"out-of-range", R"({"cut_width_mm": 0.5})", ErrorCode::InputInvalid, "cut_width_mm"},
+      {"zero-width", R"({"cut_width_mm": 0})", ErrorCode::InputInvalid, "cut_width_mm"},
+      {"bad-kind", R"({"kind": "plasma"})", ErrorCode::InputInvalid, "kind"},
+      {"bad-page", R"({"kind": "print", "page": "A3"})", ErrorCode::InputInvalid, "page"},
+      {"pnc-no-page", R"({"kind": "print-and-cut"})", ErrorCode::InputInvalid, "page"},
+      {"not-json", R"({"kind": )", ErrorCode::InputUnreadable, "not JSON"},
+      {"not-object", R"([1, 2])", ErrorCode::InputInvalid, "object"},
+  };
+  for (const Case& c : cases) {
+    const std::string path = writeProfile(c.name, c.text);
+    auto p = loadProfile(path, "");
+    ASSERT_FALSE(p.isOk()) << c.name;
+    EXPECT_EQ(p.status().code(), c.code) << c.name << ": " << p.status().message();
+    EXPECT_NE(p.status().message().find(path), std::string::npos) << p.status().message();
+    EXPECT_NE(p.status().message().find(c.mentions), std::string::npos) << p.status().message();
+  }
+  auto missing = loadProfile("/nonexistent/profile.json", "");
+  EXPECT_EQ(missing.status().code(), ErrorCode::InputUnreadable);
+  auto unknown = loadProfile("plasma", DFORM_TEMPLATES_DIR);
+  EXPECT_EQ(unknown.status().code(), ErrorCode::Usage);
+  EXPECT_NE(unknown.status().message().find("laser"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace dform::test

@@ -1,0 +1,49 @@
+// Readers for the export tests: our SVG (paths with absolute M/L/Z, in layers), pattern.json,
+// binary STL, and running the command-line checkers (qpdf, pdfinfo, pdftoppm, node).
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace dform::test {
+
+using Vec2 = Eigen::Vector2d;
+using Polyline = std::vector<Vec2>;
+
+struct SvgPath {
+  std::string id, layer, style, fill, stroke;
+  double strokeWidth = 0;
+  std::vector<Polyline> parts;  ///< subpaths in order
+  bool closed = false;
+  bool unknownCommand = false;  ///< d used something other than M, L, Z
+};
+
+struct SvgDoc {
+  std::string width, height, viewBox;   ///< attributes of the root element as written
+  std::vector<std::string> layers;      ///< inkscape:label of each layer, in order
+  std::vector<SvgPath> paths;           ///< in document order
+  const SvgPath* find(const std::string& id) const;
+};
+
+SvgDoc readSvg(const std::string& path);
+std::string readText(const std::string& path);
+
+double length(const Polyline& p, bool closed);
+/// Arc length along the closed polyline `loop` (from its first point) of the point of `loop`
+/// nearest to q, and that distance.
+std::pair<double, double> arcLengthOf(const Polyline& loop, const Vec2& q);
+bool inside(const Polyline& polygon, const Vec2& q);
+/// Where segment [a, b] crosses the closed polyline, if it does (first crossing).
+bool crossing(const Polyline& loop, const Vec2& a, const Vec2& b, Vec2* at);
+
+/// Runs a shell command; returns its exit code, output (stdout and stderr) in *out.
+int run(const std::string& command, std::string* out = nullptr);
+bool haveProgram(const std::string& name);
+
+/// A fresh empty folder under the test's temporary directory.
+std::string freshDir(const std::string& name);
+
+}  // namespace dform::test
