@@ -1,9 +1,12 @@
 #include "core/polyline.h"
 
+#include <vector>
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <numeric>
+#include <vector>
 
 namespace dform {
 
@@ -33,23 +36,46 @@ double signedArea(const Points2& P) {
   return 0.5 * twiceArea;
 }
 
-Eigen::MatrixXd resampleClosed(const Eigen::MatrixXd& P, int n, double startFraction) {
-  assert(P.rows() >= 2 && n >= 1 && "resampleClosed needs a polyline and a positive count");
+Eigen::MatrixXd resampleAtFractions(const Eigen::MatrixXd& P, const std::vector<double>& fractions) {
+  assert(P.rows() >= 2 && "resampleAtFractions needs a polyline");
   const Eigen::Index m = P.rows();
   const Eigen::VectorXd s = cumulativeArcLength(P);
   const double total = s(m - 1) + (P.row(0) - P.row(m - 1)).norm();
-  Eigen::MatrixXd out(n, P.cols());
-  Eigen::Index seg = 0;  // current segment: from row seg to row seg+1 (mod m)
-  for (int k = 0; k < n; ++k) {
-    double target = std::fmod(startFraction + double(k) / n, 1.0) * total;
-    if (k > 0 && target < s(seg)) seg = 0;  // wrapped past the first point
-    while (seg + 1 < m && s(seg + 1) <= target) ++seg;
+  Eigen::MatrixXd out(fractions.size(), P.cols());
+  for (std::size_t k = 0; k < fractions.size(); ++k) {
+    double f = std::fmod(fractions[k], 1.0);
+    if (f < 0.0) f += 1.0;
+    const double target = f * total;
+    // Segment seg runs from row seg to row seg+1 (mod m): the last s(seg) <= target.
+    const Eigen::Index seg =
+        std::max<Eigen::Index>(0, std::upper_bound(s.data(), s.data() + m, target) - s.data() - 1);
     const double segStart = s(seg);
     const double segLength = (seg + 1 < m ? s(seg + 1) : total) - segStart;
-    const double t = segLength > 0.0 ? (target - segStart) / segLength : 0.0;
-    out.row(k) = (1.0 - t) * P.row(seg) + t * P.row((seg + 1) % m);
+    const double t = segLength > 0.0 ? std::clamp((target - segStart) / segLength, 0.0, 1.0) : 0.0;
+    out.row(Eigen::Index(k)) = (1.0 - t) * P.row(seg) + t * P.row((seg + 1) % m);
   }
   return out;
+}
+
+Eigen::MatrixXd resampleClosed(const Eigen::MatrixXd& P, int n, double startFraction) {
+  assert(n >= 1 && "resampleClosed needs a positive count");
+  std::vector<double> fractions(n);
+  for (int k = 0; k < n; ++k) fractions[k] = startFraction + double(k) / n;
+  return resampleAtFractions(P, fractions);
+}
+
+std::vector<double> cornerFractions(const Points2& P, double minTurnRadians) {
+  const Eigen::Index n = P.rows();
+  const Eigen::VectorXd s = cumulativeArcLength(P);
+  const double total = closedLength(P);
+  std::vector<double> corners;
+  for (Eigen::Index i = 0; i < n && total > 0.0; ++i) {
+    const Eigen::Vector2d in = P.row(i) - P.row((i + n - 1) % n);
+    const Eigen::Vector2d out = P.row((i + 1) % n) - P.row(i);
+    const double turn = std::atan2(in.x() * out.y() - in.y() * out.x(), in.dot(out));
+    if (std::abs(turn) >= minTurnRadians) corners.push_back(s(i) / total);
+  }
+  return corners;
 }
 
 double nearestArcFraction(const Points2& P, const Eigen::Vector2d& q) {

@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <utility>
+#include <vector>
 
 #include "core/types.h"
 
@@ -21,6 +22,14 @@ double signedArea(const Points2& P);
 /// n points spaced uniformly by arc length along the closed polyline P (#P by d), the first at
 /// arc length `startFraction` * length from P's first point (fraction in [0, 1)).
 Eigen::MatrixXd resampleClosed(const Eigen::MatrixXd& P, int n, double startFraction = 0.0);
+
+/// The points of the closed polyline P (#P by d) at the given arc-length fractions from P's first
+/// point (taken modulo 1), in the given order.
+Eigen::MatrixXd resampleAtFractions(const Eigen::MatrixXd& P, const std::vector<double>& fractions);
+
+/// Arc-length fractions, ascending, of the vertices of the closed polygon P where it turns by at
+/// least minTurnRadians (either way): its corners.
+std::vector<double> cornerFractions(const Points2& P, double minTurnRadians);
 
 /// Arc-length fraction in [0, 1) of the point of closed polyline P nearest to q.
 double nearestArcFraction(const Points2& P, const Eigen::Vector2d& q);

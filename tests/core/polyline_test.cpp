@@ -51,6 +51,28 @@ TEST(Polyline, ResampledCircleLengthConverges) {
   EXPECT_NEAR(closedLength(R), 100 * 100 * std::sin(M_PI / 100), 1e-3);
 }
 
+TEST(Polyline, ResampleAtFractionsFollowsArcLengthInAnyOrder) {
+  Points2 sq(4, 2);
+  sq << 0, 0, 4, 0, 4, 4, 0, 4;  // perimeter 16
+  const Eigen::MatrixXd Q = resampleAtFractions(sq, {0.5, 0.125, 1.25, -0.0625});
+  EXPECT_NEAR((Q.row(0) - Eigen::RowVector2d(4, 4)).norm(), 0.0, 1e-12);  // arc 8
+  EXPECT_NEAR((Q.row(1) - Eigen::RowVector2d(2, 0)).norm(), 0.0, 1e-12);  // arc 2
+  EXPECT_NEAR((Q.row(2) - Eigen::RowVector2d(4, 0)).norm(), 0.0, 1e-12);  // 1.25 = arc 4
+  EXPECT_NEAR((Q.row(3) - Eigen::RowVector2d(0, 1)).norm(), 0.0, 1e-12);  // arc 15
+}
+
+TEST(Polyline, CornersOfASquareButNotOfACircle) {
+  // A square with extra points along its sides: only the four corners turn.
+  Points2 sq(8, 2);
+  sq << 0, 0, 2, 0, 4, 0, 4, 2, 4, 4, 2, 4, 0, 4, 0, 2;
+  const std::vector<double> corners = cornerFractions(sq, 20.0 * M_PI / 180.0);
+  ASSERT_EQ(corners.size(), 4u);
+  for (int k = 0; k < 4; ++k) EXPECT_NEAR(corners[k], 0.25 * k, 1e-12);
+  EXPECT_TRUE(cornerFractions(circle(360, 10.0), 20.0 * M_PI / 180.0).empty());
+  // A 12-gon turns by 30 degrees at every vertex: all are corners at a 20 degree threshold.
+  EXPECT_EQ(cornerFractions(circle(12, 10.0), 20.0 * M_PI / 180.0).size(), 12u);
+}
+
 TEST(Polyline, NearestArcFraction) {
   Points2 sq(4, 2);
   sq << 0, 0, 10, 0, 10, 10, 0, 10;
