@@ -1,0 +1,83 @@
+// A sparse nonlinear least-squares problem: minimise f(x) = sum_t w_t * ||r_t(x)||^2 over x.
+// The solver knows nothing of D-Forms: callers build residual terms over a flat variable vector.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace dform {
+
+/// Sparsity pattern of a Jacobian in compressed rows: row i's nonzeros are at columns
+/// cols[rowStart[i]] .. cols[rowStart[i+1]-1], in the order their values are written.
+struct JacobianPattern {
+  std::vector<int> rowStart{0};
+  std::vector<int> cols;
+  int rows() const { return int(rowStart.size()) - 1; }
+};
+
+/// A block of residuals whose Jacobian has a fixed sparsity pattern.
+class ResidualTerm {
+ public:
+  virtual ~ResidualTerm() = default;
+  /// The Jacobian's pattern; called once.
+  virtual JacobianPattern pattern() const = 0;
+  /// The number of residuals (= pattern().rows(), without building the pattern).
+  virtual int numResiduals() const = 0;
+  /// Writes the residuals into r (pattern().rows() values) and, if J is not null, the Jacobian
+  /// values in pattern order.
+  virtual void evaluate(const Eigen::VectorXd& x, double* r, double* J) const = 0;
+  /// True when the Jacobian does not depend on x; its normal-matrix part is then assembled once.
+  virtual bool isLinear() const { return false; }
+};
+
+/// Residuals r(x) = M x - b for a constant sparse M (#rows by #variables).
+class LinearResidual : public ResidualTerm {
+ public:
+  LinearResidual(Eigen::SparseMatrix<double, Eigen::RowMajor> M, Eigen::VectorXd b);
+  JacobianPattern pattern() const override;
+  int numResiduals() const override { return int(M_.rows()); }
+  void evaluate(const Eigen::VectorXd& x, double* r, double* J) const override;
+  bool isLinear() const override { return true; }
+
+  const Eigen::SparseMatrix<double, Eigen::RowMajor>& matrix() const { return M_; }
+  const Eigen::VectorXd& target() const { return b_; }
+  /// Moves the target b (same size); the Jacobian is unchanged, so a solver built on the problem
+  /// stays valid. Used for multiplier updates of constraint-like terms.
+  void setTarget(Eigen::VectorXd b);
+
+ private:
+  Eigen::SparseMatrix<double, Eigen::RowMajor> M_;
+  Eigen::VectorXd b_;
+};
+
+/// The objective: named, weighted terms over `numVariables` unknowns.
+class Problem {
+ public:
+  explicit Problem(int numVariables) : numVariables_(numVariables) {}
+
+  /// Adds w * ||r(x)||^2 to the objective. Weights must be non-negative.
+  void addTerm(std::string name, double weight, std::unique_ptr<ResidualTerm> term);
+
+  int numVariables() const { return numVariables_; }
+  int numTerms() const { return int(terms_.size()); }
+  const std::string& termName(int t) const { return terms_[t].name; }
+  double termWeight(int t) const { return terms_[t].weight; }
+  const ResidualTerm& term(int t) const { return *terms_[t].residual; }
+
+  /// Per-term costs w_t * ||r_t(x)||^2 at x.
+  std::vector<double> termCosts(const Eigen::VectorXd& x) const;
+
+ private:
+  struct Entry {
+    std::string name;
+    double weight;
+    std::unique_ptr<ResidualTerm> residual;
+  };
+  int numVariables_;
+  std::vector<Entry> terms_;
+};
+
+}  // namespace dform

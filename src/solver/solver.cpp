@@ -1,0 +1,464 @@
+#include "solver/solver.h"
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <cassert>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+namespace dform {
+
+const char* terminationName(Termination t) {
+  switch (t) {
+    case Termination::Converged: return "converged";
+    case Termination::NoConvergence: return "no_convergence";
+    case Termination::Failure: return "failure";
+    case Termination::UserAbort: return "user_abort";
+  }
+  return "unknown";
+}
+
+bool SolverOptions::isValid(std::string* why) const {
+  auto fail = [&](const char* text) {
+    if (why) *why = text;
+    return false;
+  };
+  if (maxIterations < 0) return fail("maxIterations must be >= 0");
+  if (!(functionTolerance >= 0) || !(gradientTolerance >= 0) || !(parameterTolerance >= 0) ||
+      !(absoluteCostTolerance >= 0))
+    return fail("tolerances must be >= 0");
+  if (!(initialDampingRatio > 0)) return fail("initialDampingRatio must be > 0");
+  if (maxCgIterations < 0) return fail("maxCgIterations must be >= 0");
+  if (!(cgRelativeTolerance > 0 && cgRelativeTolerance < 1))
+    return fail("cgRelativeTolerance must be in (0, 1)");
+  return true;
+}
+
+std::string SolverSummary::briefReport() const {
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "%s after %d iterations (%d factorisations): cost %.6g -> %.6g in %.3f s",
+                terminationName(termination), int(iterations.size()), factorisations, initialCost,
+                finalCost, totalSeconds);
+  return line;
+}
+
+void SolverSummary::append(SolverSummary later) {
+  const int offset = iterations.empty() ? 0 : iterations.back().iteration;
+  for (IterationSummary& it : later.iterations) {
+    it.iteration += offset;
+    it.cumulativeSeconds += totalSeconds;
+    iterations.push_back(std::move(it));
+  }
+  termination = later.termination;
+  message = std::move(later.message);
+  finalCost = later.finalCost;
+  finalTermCosts = std::move(later.finalTermCosts);
+  factorisations += later.factorisations;
+  totalSeconds += later.totalSeconds;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+using SparseLower = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+
+// The stacked, weighted residual vector and Jacobian of a problem, and its normal equations
+// A = J^T J (lower triangle, fixed pattern) and g = J^T r.
+class NormalEquations {
+ public:
+  explicit NormalEquations(const Problem& problem) : problem_(problem) {
+    const int n = problem.numVariables();
+    // Stack the terms' patterns.
+    for (int t = 0; t < problem.numTerms(); ++t) {
+      const JacobianPattern p = problem.term(t).pattern();
+      assert(int(p.rowStart.size()) == problem.term(t).numResiduals() + 1 &&
+             "pattern rows must match numResiduals");
+      Block b;
+      b.firstRow = int(rowStart_.size()) - 1;
+      b.rows = p.rows();
+      b.firstValue = int(cols_.size());
+      b.sqrtWeight = std::sqrt(problem.termWeight(t));
+      b.linear = problem.term(t).isLinear();
+      for (int i = 0; i < p.rows(); ++i) rowStart_.push_back(b.firstValue + p.rowStart[i + 1]);
+      cols_.insert(cols_.end(), p.cols.begin(), p.cols.end());
+      blocks_.push_back(b);
+    }
+    r_.setZero(int(rowStart_.size()) - 1);
+    J_.assign(cols_.size(), 0.0);
+
+    // Pattern of the lower triangle of J^T J: every variable's diagonal plus each row's pairs.
+    std::vector<std::vector<int>> rowsOfColumn(n);
+    for (int c = 0; c < n; ++c) rowsOfColumn[c].push_back(c);
+    forEachPair([&](int hi, int lo) { rowsOfColumn[lo].push_back(hi); });
+    std::vector<int> outer(n + 1, 0);
+    for (int c = 0; c < n; ++c) {
+      auto& rows = rowsOfColumn[c];
+      std::sort(rows.begin(), rows.end());
+      rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+      outer[c + 1] = outer[c] + int(rows.size());
+    }
+    A_.resize(n, n);
+    A_.resizeNonZeros(outer[n]);
+    std::copy(outer.begin(), outer.end(), A_.outerIndexPtr());
+    for (int c = 0; c < n; ++c)
+      std::copy(rowsOfColumn[c].begin(), rowsOfColumn[c].end(), A_.innerIndexPtr() + outer[c]);
+    auto slot = [&](int hi, int lo) {
+      const auto& rows = rowsOfColumn[lo];
+      return outer[lo] + int(std::lower_bound(rows.begin(), rows.end(), hi) - rows.begin());
+    };
+    for (int c = 0; c < n; ++c) diagonalSlots_.push_back(slot(c, c));
+
+    // Linear terms: their J^T J part is assembled once. Nonlinear rows keep their scatter slots.
+    Eigen::VectorXd x0 = Eigen::VectorXd::Zero(n);
+    evaluate(x0, true);
+    constantA_.assign(A_.nonZeros(), 0.0);
+    for (const Block& b : blocks_) {
+      for (int i = b.firstRow; i < b.firstRow + b.rows; ++i) {
+        for (int p = rowStart_[i]; p < rowStart_[i + 1]; ++p) {
+          for (int q = rowStart_[i]; q <= p; ++q) {
+            assert((q == p || cols_[p] != cols_[q]) && "a Jacobian row repeats a column");
+            const int hi = std::max(cols_[p], cols_[q]), lo = std::min(cols_[p], cols_[q]);
+            const int s = slot(hi, lo);
+            if (b.linear) {
+              constantA_[s] += J_[p] * J_[q];
+            } else {
+              pairSlots_.push_back(s);
+            }
+          }
+        }
+      }
+    }
+  }
+
+  int numRows() const { return int(r_.size()); }
+
+  // Weighted residuals (and Jacobian values) at x; returns f = ||r||^2.
+  double evaluate(const Eigen::VectorXd& x, bool withJacobian) {
+    for (std::size_t t = 0; t < blocks_.size(); ++t) {
+      const Block& b = blocks_[t];
+      double* r = r_.data() + b.firstRow;
+      const bool needJ = withJacobian && (!b.linear || !linearJacobianDone_);
+      problem_.term(int(t)).evaluate(x, r, needJ ? J_.data() + b.firstValue : nullptr);
+      for (int i = 0; i < b.rows; ++i) r[i] *= b.sqrtWeight;
+      if (needJ) {
+        const int end = rowStart_[b.firstRow + b.rows];
+        for (int v = b.firstValue; v < end; ++v) J_[v] *= b.sqrtWeight;
+      }
+    }
+    if (withJacobian) linearJacobianDone_ = true;
+    return r_.squaredNorm();
+  }
+
+  // Per-term costs of the last evaluation.
+  std::vector<double> termCosts() const {
+    std::vector<double> costs;
+    for (const Block& b : blocks_) costs.push_back(r_.segment(b.firstRow, b.rows).squaredNorm());
+    return costs;
+  }
+
+  // A = J^T J and g = J^T r from the last evaluation with Jacobian.
+  void assemble() {
+    double* a = A_.valuePtr();
+    std::copy(constantA_.begin(), constantA_.end(), a);
+    std::size_t k = 0;
+    for (const Block& b : blocks_) {
+      if (b.linear) continue;
+      for (int i = b.firstRow; i < b.firstRow + b.rows; ++i)
+        for (int p = rowStart_[i]; p < rowStart_[i + 1]; ++p)
+          for (int q = rowStart_[i]; q <= p; ++q) a[pairSlots_[k++]] += J_[p] * J_[q];
+    }
+    g_.setZero(A_.cols());
+    for (int i = 0; i < numRows(); ++i)
+      for (int p = rowStart_[i]; p < rowStart_[i + 1]; ++p) g_[cols_[p]] += J_[p] * r_[i];
+  }
+
+  const SparseLower& A() const { return A_; }
+  const Eigen::VectorXd& g() const { return g_; }
+  double maxDiagonal() const {
+    double m = 0;
+    for (int s : diagonalSlots_) m = std::max(m, A_.valuePtr()[s]);
+    return m;
+  }
+
+ private:
+  struct Block {
+    int firstRow, rows, firstValue;
+    double sqrtWeight;
+    bool linear;
+  };
+
+  template <typename F>
+  void forEachPair(F f) const {
+    for (int i = 0; i + 1 < int(rowStart_.size()); ++i)
+      for (int p = rowStart_[i]; p < rowStart_[i + 1]; ++p)
+        for (int q = rowStart_[i]; q <= p; ++q)
+          f(std::max(cols_[p], cols_[q]), std::min(cols_[p], cols_[q]));
+  }
+
+  const Problem& problem_;
+  std::vector<Block> blocks_;
+  std::vector<int> rowStart_{0};
+  std::vector<int> cols_;
+  std::vector<double> J_;
+  Eigen::VectorXd r_, g_;
+  SparseLower A_;
+  std::vector<double> constantA_;
+  std::vector<int> pairSlots_;
+  std::vector<int> diagonalSlots_;
+  bool linearJacobianDone_ = false;
+};
+
+// (A + mu I) y for the lower-stored symmetric A.
+Eigen::VectorXd shiftedProduct(const SparseLower& A, double mu, const Eigen::VectorXd& y) {
+  Eigen::VectorXd out = A.selfadjointView<Eigen::Lower>() * y;
+  out += mu * y;
+  return out;
+}
+
+// Solves (A + mu I) dx = -g, reusing `factor` as a preconditioner when it is good enough and
+// refactorising otherwise.
+class StepSolver {
+ public:
+  StepSolver(const SparseLower& pattern, const SolverOptions& options) : options_(options) {
+    factor_.analyzePattern(pattern);
+  }
+
+  bool solve(const SparseLower& A, double mu, const Eigen::VectorXd& g, Eigen::VectorXd& dx,
+             IterationSummary& it) {
+    it.refactorised = false;
+    it.cgIterations = 0;
+    if (haveFactor_ && options_.maxCgIterations > 0 && preconditionedCg(A, mu, g, dx, it))
+      return true;
+    factor_.setShift(mu);
+    const auto start = Clock::now();
+    factor_.factorize(A);
+    factorSeconds_ = secondsSince(start);
+    ++factorisations_;
+    it.refactorised = true;
+    if (factor_.info() != Eigen::Success) return haveFactor_ = false;
+    haveFactor_ = true;
+    dx = -factor_.solve(g);
+    return dx.allFinite();
+  }
+
+  int factorisations() const { return factorisations_; }
+
+ private:
+  bool preconditionedCg(const SparseLower& A, double mu, const Eigen::VectorXd& g,
+                        Eigen::VectorXd& dx, IterationSummary& it) {
+    const auto start = Clock::now();
+    const Eigen::VectorXd b = -g;
+    const double stop = options_.cgRelativeTolerance * b.norm();
+    dx.setZero(b.size());
+    Eigen::VectorXd res = b;
+    Eigen::VectorXd z = factor_.solve(res);
+    Eigen::VectorXd p = z;
+    double rz = res.dot(z);
+    for (int k = 1; k <= options_.maxCgIterations; ++k) {
+      const Eigen::VectorXd Ap = shiftedProduct(A, mu, p);
+      const double pAp = p.dot(Ap);
+      if (!(pAp > 0)) return false;
+      const double alpha = rz / pAp;
+      dx += alpha * p;
+      res -= alpha * Ap;
+      it.cgIterations = k;
+      if (res.norm() <= stop) return dx.allFinite();
+      if (secondsSince(start) > kCgTimeShare * factorSeconds_) return false;
+      z = factor_.solve(res);
+      const double rzNext = res.dot(z);
+      p = z + (rzNext / rz) * p;
+      rz = rzNext;
+    }
+    return false;
+  }
+
+  const SolverOptions& options_;
+  Eigen::CholmodSupernodalLLT<SparseLower, Eigen::Lower> factor_;
+  bool haveFactor_ = false;
+  int factorisations_ = 0;
+  double factorSeconds_ = 0;  ///< wall time of the last numeric factorisation
+  // CG gives up after a quarter of a factorisation's time: a stale preconditioner that needs
+  // longer stays stale for the next steps too, and refactorising serves them all.
+  static constexpr double kCgTimeShare = 0.25;
+};
+
+}  // namespace
+
+struct LeastSquaresSolver::Impl {
+  Impl(const Problem& p, SolverOptions o)
+      : problem(p), options(std::move(o)), normal(p), stepSolver(normal.A(), options) {}
+  const Problem& problem;
+  const SolverOptions options;
+  NormalEquations normal;
+  StepSolver stepSolver;
+  double setupSeconds = 0;
+  double lastDamping = 0;  ///< mu at the end of the previous solve(); a later solve starts there
+};
+
+LeastSquaresSolver::LeastSquaresSolver(const Problem& problem, SolverOptions options) {
+  const auto start = Clock::now();
+  impl_ = std::make_unique<Impl>(problem, std::move(options));
+  impl_->setupSeconds = secondsSince(start);
+}
+
+LeastSquaresSolver::~LeastSquaresSolver() = default;
+
+SolverSummary solve(const Problem& problem, const SolverOptions& options, Eigen::VectorXd& x) {
+  std::string why;
+  if (!options.isValid(&why)) {
+    SolverSummary summary;
+    summary.message = why;
+    return summary;
+  }
+  return LeastSquaresSolver(problem, options).solve(x);
+}
+
+SolverSummary LeastSquaresSolver::solve(Eigen::VectorXd& x) {
+  const Problem& problem = impl_->problem;
+  const SolverOptions& options = impl_->options;
+  NormalEquations& normal = impl_->normal;
+  StepSolver& stepSolver = impl_->stepSolver;
+  const auto start = Clock::now();
+  SolverSummary summary;
+  for (int t = 0; t < problem.numTerms(); ++t) summary.termNames.push_back(problem.termName(t));
+  summary.numVariables = problem.numVariables();
+  if (!options.isValid(&summary.message)) return summary;
+  assert(x.size() == problem.numVariables() && "x has the wrong size");
+  summary.numResiduals = normal.numRows();
+  summary.setupSeconds = impl_->setupSeconds;
+  const int factorisationsBefore = stepSolver.factorisations();
+
+  double cost = normal.evaluate(x, true);
+  summary.initialCost = cost;
+  summary.initialTermCosts = normal.termCosts();
+  summary.finalTermCosts = summary.initialTermCosts;
+  if (!std::isfinite(cost)) {
+    summary.message = "the objective is not finite at the starting point";
+    summary.finalCost = cost;
+    summary.totalSeconds = secondsSince(start);
+    return summary;
+  }
+  normal.assemble();
+  double mu = impl_->lastDamping > 0
+                  ? impl_->lastDamping
+                  : options.initialDampingRatio * std::max(normal.maxDiagonal(), 1.0);
+  const double muFloor = 1e-12 * std::max(normal.maxDiagonal(), 1.0);  // keeps A + mu I definite
+  double nu = 2.0;
+  summary.termination = Termination::NoConvergence;
+  summary.message = "reached the iteration cap";
+
+  // Times and keeps an iteration and reports it; false when the callback asks to stop.
+  auto record = [&](IterationSummary& it, Clock::time_point iterationStart) {
+    it.seconds = secondsSince(iterationStart);
+    it.cumulativeSeconds = secondsSince(start);
+    summary.iterations.push_back(it);
+    if (!options.callback || options.callback(it)) return true;
+    summary.termination = Termination::UserAbort;
+    summary.message = "stopped by the callback";
+    return false;
+  };
+
+  Eigen::VectorXd dx;
+  for (int iteration = 1; iteration <= options.maxIterations; ++iteration) {
+    const auto iterationStart = Clock::now();
+    IterationSummary it;
+    it.iteration = iteration;
+    it.gradientMaxNorm = normal.g().lpNorm<Eigen::Infinity>();
+    if (it.gradientMaxNorm < options.gradientTolerance) {
+      summary.termination = Termination::Converged;
+      summary.message = "gradient below gradientTolerance";
+      break;
+    }
+    it.damping = mu;
+    if (!stepSolver.solve(normal.A(), mu, normal.g(), dx, it)) {
+      // A failed factorisation at tiny damping: more damping makes A + mu I definite.
+      mu *= 10.0;
+      if (mu > 1e12 * std::max(normal.maxDiagonal(), 1.0)) {
+        summary.termination = Termination::Failure;
+        summary.message = "the linear system could not be solved";
+        break;
+      }
+      continue;
+    }
+    it.stepNorm = dx.norm();
+    // Predicted decrease of the model m(dx) = f + 2 g.dx + dx.A.dx.
+    const double predicted =
+        -(2.0 * normal.g().dot(dx) + dx.dot(normal.A().selfadjointView<Eigen::Lower>() * dx));
+    const Eigen::VectorXd xTrial = x + dx;
+    const double trialCost = normal.evaluate(xTrial, false);
+    const double actual = cost - trialCost;
+    const double rho = predicted > 0 ? actual / predicted : -1.0;
+    if (std::isfinite(trialCost) && actual > 0 && rho > 0) {
+      x = xTrial;
+      normal.evaluate(x, true);
+      normal.assemble();
+      it.accepted = true;
+      it.costChange = actual;
+      const double previous = cost;
+      cost = trialCost;
+      mu = std::max(muFloor, mu * std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3)));
+      nu = 2.0;
+      it.cost = cost;
+      it.termCosts = normal.termCosts();
+      const bool smallDecrease = actual < options.functionTolerance * previous;
+      const bool smallStep =
+          it.stepNorm < options.parameterTolerance * (x.norm() + options.parameterTolerance);
+      const bool lowCost = cost < options.absoluteCostTolerance;
+      if (!record(it, iterationStart)) break;
+      if (smallDecrease || smallStep || lowCost) {
+        summary.termination = Termination::Converged;
+        summary.message = smallDecrease ? "relative decrease below functionTolerance"
+                          : smallStep   ? "step below parameterTolerance"
+                                        : "cost below absoluteCostTolerance";
+        break;
+      }
+    } else {
+      mu *= nu;
+      nu *= 2.0;
+      it.cost = cost;
+      if (!record(it, iterationStart)) break;
+      if (!std::isfinite(mu) || mu > 1e20) {
+        summary.termination = Termination::Converged;
+        summary.message = "no step lowers the cost further";
+        break;
+      }
+    }
+  }
+  impl_->lastDamping = std::isfinite(mu) && mu < 1e10 ? mu : 0.0;
+  normal.evaluate(x, false);
+  summary.finalCost = cost;
+  summary.finalTermCosts = normal.termCosts();
+  summary.factorisations = stepSolver.factorisations() - factorisationsBefore;
+  summary.totalSeconds = secondsSince(start);
+  return summary;
+}
+
+int enforceByMultipliers(LeastSquaresSolver& solver, LinearResidual& term, int blockSize,
+                         double tolerance, int maxRounds, Eigen::VectorXd& x,
+                         SolverSummary& summary) {
+  const Eigen::VectorXd target = term.target();
+  auto largestBlock = [&](const Eigen::VectorXd& r) {
+    double largest = 0.0;
+    for (Eigen::Index k = 0; k + blockSize <= r.size(); k += blockSize)
+      largest = std::max(largest, r.segment(k, blockSize).norm());
+    return largest;
+  };
+  int rounds = 0;
+  Eigen::VectorXd residual = term.matrix() * x - target;
+  while (summary.usable() && rounds < maxRounds && largestBlock(residual) > tolerance) {
+    ++rounds;
+    term.setTarget(term.target() - residual);
+    summary.append(solver.solve(x));
+    residual = term.matrix() * x - target;
+  }
+  return rounds;
+}
+
+}  // namespace dform

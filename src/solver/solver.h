@@ -1,0 +1,120 @@
+// Levenberg-Marquardt for sparse nonlinear least squares, in the spirit of Ceres' Solver::Options
+// and Solver::Summary. Each step solves (J^T J + mu I) dx = -J^T r. J^T J is scattered into a
+// pattern fixed at set-up (linear terms are assembled once), CHOLMOD's symbolic analysis is done
+// once, and the last numeric factorisation is reused as the preconditioner of a conjugate-gradient
+// solve on later steps, so that most steps cost a few back-substitutions instead of a refactorisation.
+#pragma once
+
+#include <Eigen/Core>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "solver/problem.h"
+
+namespace dform {
+
+struct IterationSummary {
+  int iteration = 0;
+  double cost = 0;                  ///< f(x) after this iteration
+  std::vector<double> termCosts;    ///< w_t ||r_t||^2 after this iteration, per term
+  double costChange = 0;            ///< f before - f after (0 for a rejected step)
+  double gradientMaxNorm = 0;       ///< max |J^T r| at the start of the iteration
+  double stepNorm = 0;              ///< ||dx|| of the step tried
+  double damping = 0;               ///< mu used for the step
+  bool accepted = false;            ///< whether the step lowered f
+  bool refactorised = false;        ///< whether a numeric factorisation was computed
+  int cgIterations = 0;             ///< preconditioned CG iterations (0 for a direct solve)
+  double seconds = 0;               ///< wall time of this iteration
+  double cumulativeSeconds = 0;     ///< wall time since the solve started
+};
+
+enum class Termination {
+  Converged,     ///< a tolerance below was met
+  NoConvergence, ///< the iteration cap was reached; x holds the best point found
+  Failure,       ///< numerical failure (non-finite values, factorisation failed)
+  UserAbort,     ///< the callback asked to stop; x holds the best point found
+};
+
+const char* terminationName(Termination t);
+
+struct SolverOptions {
+  int maxIterations = 100;
+  /// Converged when (f_old - f_new) < functionTolerance * f_old for an accepted step.
+  double functionTolerance = 1e-6;
+  /// Converged when max |J^T r| < gradientTolerance.
+  double gradientTolerance = 1e-12;
+  /// Converged when ||dx|| < parameterTolerance * (||x|| + parameterTolerance).
+  double parameterTolerance = 1e-10;
+  /// Converged when f < absoluteCostTolerance (the paper's f_min).
+  double absoluteCostTolerance = 0.0;
+  /// Initial mu as a multiple of the largest diagonal entry of J^T J.
+  double initialDampingRatio = 1e-6;
+  /// Reuse the last factorisation as a CG preconditioner while CG converges within this many
+  /// iterations; 0 refactorises every step (plain Levenberg-Marquardt). Within the cap, CG also
+  /// gives up once it has taken a quarter of the last factorisation's time.
+  int maxCgIterations = 50;
+  /// Inexact-Newton forcing term: CG stops when ||A dx + g|| <= cgRelativeTolerance * ||g||.
+  double cgRelativeTolerance = 1e-3;
+  /// Called after every iteration; return false to stop the solve (Termination::UserAbort).
+  std::function<bool(const IterationSummary&)> callback;
+
+  bool isValid(std::string* why) const;
+};
+
+struct SolverSummary {
+  Termination termination = Termination::Failure;
+  std::string message = "solve was not called";
+  std::vector<std::string> termNames;
+  double initialCost = -1;
+  double finalCost = -1;
+  std::vector<double> initialTermCosts;
+  std::vector<double> finalTermCosts;
+  std::vector<IterationSummary> iterations;
+  int numVariables = 0;
+  int numResiduals = 0;
+  int factorisations = 0;
+  double setupSeconds = 0;   ///< pattern analysis and symbolic factorisation
+  double totalSeconds = 0;
+
+  /// Appends a later solve of the same problem (iterations renumbered, times and counts added).
+  void append(SolverSummary later);
+
+  /// Whether x holds a usable result (converged, or stopped early with finite values).
+  bool usable() const { return termination != Termination::Failure; }
+  /// One line: termination, iterations, cost change, time.
+  std::string briefReport() const;
+};
+
+/// A solver bound to one problem. The Jacobian pattern, the normal-matrix pattern and CHOLMOD's
+/// symbolic factorisation are built once, at construction; solve() may be called again, for
+/// example after a LinearResidual's target moved, and reuses all of it.
+class LeastSquaresSolver {
+ public:
+  LeastSquaresSolver(const Problem& problem, SolverOptions options);
+  ~LeastSquaresSolver();
+  LeastSquaresSolver(const LeastSquaresSolver&) = delete;
+  LeastSquaresSolver& operator=(const LeastSquaresSolver&) = delete;
+
+  /// Minimises the objective starting from x (updated in place).
+  SolverSummary solve(Eigen::VectorXd& x);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Drives a LinearResidual term of `solver`'s problem, r = M x - b0, to zero as a constraint by
+/// augmented-Lagrangian rounds: while the largest residual block (blockSize values, e.g. one 3D
+/// point) is above `tolerance`, the term's target moves by the residual (b <- b - (M x - b0)) and
+/// the problem is solved again from x. The weight stays as the caller chose it. Each solve is
+/// appended to `summary`; returns the rounds used. The term's target is left shifted.
+int enforceByMultipliers(LeastSquaresSolver& solver, LinearResidual& term, int blockSize,
+                         double tolerance, int maxRounds, Eigen::VectorXd& x,
+                         SolverSummary& summary);
+
+/// Minimises problem's objective starting from x (updated in place): a one-off LeastSquaresSolver.
+SolverSummary solve(const Problem& problem, const SolverOptions& options, Eigen::VectorXd& x);
+
+}  // namespace dform
