@@ -1,0 +1,258 @@
+#include "forward/forward.h"
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <cassert>
+#include <cmath>
+
+#include "core/polyline.h"
+#include "forward/terms.h"
+
+namespace dform {
+
+namespace {
+
+Points2 seamPoints(const Piece& p) {
+  Points2 S(p.seam.size(), 2);
+  for (std::size_t k = 0; k < p.seam.size(); ++k) S.row(k) = p.flat.row(p.seam[k]);
+  return S;
+}
+
+// Least-squares rotation R (2 by 2) taking the centred rows of Q onto those of P.
+Eigen::Matrix2d procrustesRotation(const Points2& P, const Points2& Q) {
+  double dot = 0.0, cross = 0.0;
+  for (Eigen::Index i = 0; i < P.rows(); ++i) {
+    dot += Q(i, 0) * P(i, 0) + Q(i, 1) * P(i, 1);
+    cross += Q(i, 0) * P(i, 1) - Q(i, 1) * P(i, 0);
+  }
+  const double angle = std::atan2(cross, dot);
+  Eigen::Matrix2d R;
+  R << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
+  return R;
+}
+
+// Solves the Dirichlet problem L f = rhs at interior vertices with f fixed on the seam, using the
+// piece's cotangent Laplacian. Returns #V by cols.
+Eigen::MatrixXd solveDirichlet(const Piece& p, const Eigen::MatrixXd& seamValues,
+                               const Eigen::MatrixXd& rhs) {
+  const int n = int(p.flat.rows());
+  std::vector<int> interiorIndex(n, -1);
+  std::vector<bool> onSeam(n, false);
+  for (int v : p.seam) onSeam[v] = true;
+  int m = 0;
+  for (int i = 0; i < n; ++i)
+    if (!onSeam[i]) interiorIndex[i] = m++;
+  Eigen::MatrixXd f(n, seamValues.cols());
+  for (std::size_t k = 0; k < p.seam.size(); ++k) f.row(p.seam[k]) = seamValues.row(k);
+  if (m == 0) return f;
+
+  const CotangentWeights w = cotangentWeights(p.flat, p.F);
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::MatrixXd b = Eigen::MatrixXd::Zero(m, seamValues.cols());
+  for (int i = 0; i < n; ++i) {
+    if (onSeam[i]) continue;
+    const int r = interiorIndex[i];
+    double diagonal = 0.0;
+    for (const auto& [j, weight] : w.neighbours[i]) {
+      diagonal += weight;
+      if (onSeam[j])
+        b.row(r) += weight * f.row(j);
+      else
+        entries.emplace_back(r, interiorIndex[j], -weight);
+    }
+    entries.emplace_back(r, r, diagonal);
+    b.row(r) += rhs.row(i);
+  }
+  Eigen::SparseMatrix<double> L(m, m);
+  L.setFromTriplets(entries.begin(), entries.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(L);
+  const Eigen::MatrixXd interior = solver.solve(b);
+  for (int i = 0; i < n; ++i)
+    if (!onSeam[i]) f.row(i) = interior.row(interiorIndex[i]);
+  return f;
+}
+
+// Turning angle at each vertex of a closed polygon (positive where a counter-clockwise polygon
+// is convex).
+Eigen::VectorXd turningAngles(const Points2& P) {
+  const int n = int(P.rows());
+  Eigen::VectorXd angle(n);
+  for (int k = 0; k < n; ++k) {
+    const Eigen::Vector2d in = P.row(k) - P.row((k + n - 1) % n);
+    const Eigen::Vector2d out = P.row((k + 1) % n) - P.row(k);
+    angle[k] = std::atan2(in.x() * out.y() - in.y() * out.x(), in.dot(out));
+  }
+  return angle;
+}
+
+}  // namespace
+
+DForm pillowInitialGuess(const Piece& a, const Piece& b) {
+  assert(a.seam.size() == b.seam.size() && "the seams must pair one to one");
+  // The seam outline: A's as drawn and B's turned over (mirrored), best-aligned, averaged.
+  Points2 PA = seamPoints(a), PB = seamPoints(b);
+  PB.col(0) *= -1.0;
+  PB = PB.colwise().reverse().eval();  // counter-clockwise, as A's
+  const Eigen::RowVector2d cA = PA.colwise().mean(), cB = PB.colwise().mean();
+  PA.rowwise() -= cA;
+  PB.rowwise() -= cB;
+  // B's seam order runs clockwise; reversed above, so row k of PB pairs with A's row (n - k) % n.
+  const int n = int(PA.rows());
+  Points2 PBpaired(n, 2);
+  for (int k = 0; k < n; ++k) PBpaired.row(k) = PB.row((n - k) % n);
+  const Eigen::Matrix2d R = procrustesRotation(PA, PBpaired);
+  const Points2 mid = 0.5 * (PA + PBpaired * R.transpose());
+
+  // Where one piece's outline turns more sharply than its partner's, that piece is locally the
+  // narrower one and the other wraps over it, so the seam leaves the mid plane towards it. The
+  // seam's height profile starts as the (smoothed) difference of the two outlines' turning angles;
+  // its amplitude and sign are fitted below.
+  Eigen::VectorXd lift = turningAngles(PA) - turningAngles(PBpaired);
+  for (int pass = 0; pass < 4; ++pass) {
+    Eigen::VectorXd smooth(n);
+    for (int k = 0; k < n; ++k)
+      smooth[k] = 0.25 * lift[(k + n - 1) % n] + 0.5 * lift[k] + 0.25 * lift[(k + 1) % n];
+    lift = smooth;
+  }
+  const double liftScale = lift.cwiseAbs().maxCoeff();
+  if (liftScale > 0) lift /= liftScale;
+
+  DForm model{a, b};
+  Piece* pieces[2] = {&model.a, &model.b};
+  const double meanEdge = closedLength(mid) / double(n);
+  Eigen::MatrixX2d xy[2];
+  Eigen::VectorXd phi[2], seamHeight[2];
+  for (int p = 0; p < 2; ++p) {
+    const Piece& piece = *pieces[p];
+    const int vertices = int(piece.flat.rows());
+    xy[p] = solveDirichlet(piece, mid, Eigen::MatrixXd::Zero(vertices, 2));
+    seamHeight[p] = solveDirichlet(piece, lift, Eigen::MatrixXd::Zero(vertices, 1)).col(0);
+    // A bump: -Laplace(phi) = 1 with phi = 0 on the seam, scaled to a unit maximum.
+    phi[p] = solveDirichlet(piece, Eigen::MatrixXd::Zero(n, 1),
+                            Eigen::MatrixXd::Constant(vertices, 1, meanEdge * meanEdge))
+                 .col(0);
+    const double top = phi[p].cwiseAbs().maxCoeff();
+    if (top > 0) phi[p] /= top;
+  }
+
+  // Per edge: squared flat length, squared xy length of the map, differences of the bump and of
+  // the seam height. The 3D edge is (s dxy, alpha dlift +- h dphi).
+  struct EdgeData {
+    Eigen::VectorXd rest2, xy2, dphi, dlift;
+  } edges[2];
+  for (int p = 0; p < 2; ++p) {
+    const auto E = meshEdges(pieces[p]->F);
+    EdgeData& d = edges[p];
+    d.rest2.resize(E.rows()), d.xy2.resize(E.rows()), d.dphi.resize(E.rows()), d.dlift.resize(E.rows());
+    for (int e = 0; e < E.rows(); ++e) {
+      const int i = E(e, 0), j = E(e, 1);
+      d.rest2[e] = (pieces[p]->flat.row(i) - pieces[p]->flat.row(j)).squaredNorm();
+      d.xy2[e] = (xy[p].row(i) - xy[p].row(j)).squaredNorm();
+      d.dphi[e] = phi[p][i] - phi[p][j];
+      d.dlift[e] = seamHeight[p][i] - seamHeight[p][j];
+    }
+  }
+  // Isometry residual sum_e (|3D edge|^2 - |flat edge|^2)^2 of one piece.
+  auto residual = [](const EdgeData& d, double s, double alpha, double h) {
+    const Eigen::ArrayXd z = alpha * d.dlift.array() + h * d.dphi.array();
+    return (s * s * d.xy2.array() + z * z - d.rest2.array()).square().sum();
+  };
+  // The best height h in [0, hMax] for one piece by golden-section search (the residual is a
+  // quartic in h with one minimum on the heights that matter).
+  const double hMax = closedLength(mid);
+  auto bestHeight = [&](const EdgeData& d, double s, double alpha, double sign) {
+    const double golden = 0.5 * (std::sqrt(5.0) - 1.0);
+    double lo = 0.0, hi = hMax;
+    for (int it = 0; it < 40; ++it) {
+      const double m1 = hi - golden * (hi - lo), m2 = lo + golden * (hi - lo);
+      if (residual(d, s, alpha, sign * m1) < residual(d, s, alpha, sign * m2))
+        hi = m2;
+      else
+        lo = m1;
+    }
+    const double h = 0.5 * (lo + hi);
+    return std::make_pair(residual(d, s, alpha, sign * h), h);
+  };
+
+  double bestCost = std::numeric_limits<double>::infinity(), bestS = 1.0, bestAlpha = 0.0;
+  double bestH[2] = {0.0, 0.0};
+  for (double alphaStep = -4; alphaStep <= 4; ++alphaStep) {
+    const double alpha = alphaStep * 0.05 * hMax;
+    for (double s = 0.40; s <= 1.0 + 1e-9; s += 0.03) {
+      const auto [costA, hA] = bestHeight(edges[0], s, alpha, 1.0);
+      const auto [costB, hB] = bestHeight(edges[1], s, alpha, -1.0);
+      if (costA + costB < bestCost) {
+        bestCost = costA + costB;
+        bestS = s;
+        bestAlpha = alpha;
+        bestH[0] = hA;
+        bestH[1] = hB;
+      }
+    }
+  }
+  for (int p = 0; p < 2; ++p) {
+    Piece& piece = *pieces[p];
+    const double sign = p == 0 ? 1.0 : -1.0;
+    piece.shape.resize(piece.flat.rows(), 3);
+    piece.shape.leftCols<2>() = bestS * xy[p];
+    piece.shape.col(2) = bestAlpha * seamHeight[p] + sign * bestH[p] * phi[p];
+  }
+  return model;
+}
+
+ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions& options) {
+  assert(a.seam.size() == b.seam.size() && a.seam.size() >= 3 && "seams must pair one to one");
+  ForwardResult result;
+  // Internal unit: the mean flat seam edge length, as in the paper (section 4.1).
+  result.unitMm = closedLength(seamPoints(a)) / double(a.seam.size());
+  const double unit = result.unitMm;
+
+  const bool haveShapes = a.shape.rows() == a.flat.rows() && b.shape.rows() == b.flat.rows();
+  DForm start = haveShapes ? DForm{a, b} : pillowInitialGuess(a, b);
+  scaleLengths(start, 1.0 / unit);
+  const VariableLayout layout(int(a.flat.rows()), int(b.flat.rows()));
+  const ForwardWeights& w = options.weights;
+  EdgeLengthPairs edges = meshEdgePairs(layout, a.F, b.F);
+  auto alignment = makeAlignmentTerm(layout, a.seam, b.seam);
+  auto anchor = makeFlatAnchorTerm(layout, start.a.seam, seamPoints(start.a), start.b.seam,
+                                   seamPoints(start.b));
+  auto smooth3d = makeSmoothnessTerm(layout, start.a, start.b, true);
+  auto smooth2d = makeSmoothnessTerm(layout, start.a, start.b, false);
+  auto seam = makeSeamSmoothnessTerm(layout, a.seam, b.seam);
+  Eigen::VectorXd x = packVariables(layout, start.a, start.b);
+
+  weightByFlatLength(edges, x, w.isometry);
+  const auto linear = [](const std::unique_ptr<ResidualTerm>& t) {
+    return static_cast<const LinearResidual*>(t.get());
+  };
+  auto* alignmentTerm = static_cast<LinearResidual*>(alignment.get());
+  result.relaxation = relaxLocalGlobal({{w.alignment, linear(alignment)},
+                                        {w.boundaryFix, linear(anchor)},
+                                        {w.smooth3d, linear(smooth3d)},
+                                        {w.smooth2d, linear(smooth2d)},
+                                        {w.seam, linear(seam)}},
+                                       edges, options.relaxation, x);
+
+  Problem problem(layout.numVariables());
+  problem.addTerm("isometry", w.isometry, makeIsometryTerm(edges));
+  problem.addTerm("alignment", w.alignment, std::move(alignment));
+  problem.addTerm("boundary_fix", w.boundaryFix, std::move(anchor));
+  problem.addTerm("smooth_3d", w.smooth3d, std::move(smooth3d));
+  problem.addTerm("smooth_2d", w.smooth2d, std::move(smooth2d));
+  problem.addTerm("seam", w.seam, std::move(seam));
+  LeastSquaresSolver solver(problem, options.solver);
+  result.summary = solver.solve(x);
+
+  // Close the seam: the alignment as a constraint (multiplier rounds), tolerance relative to the
+  // perimeter, which is #seam in the unit of the mean seam edge.
+  if (w.alignment > 0)
+    result.seamClosingRounds = enforceByMultipliers(
+        solver, *alignmentTerm, 3, options.seamGapTolerance * double(a.seam.size()),
+        options.seamClosingRounds, x, result.summary);
+  result.model = start;
+  unpackVariables(layout, x, result.model.a, result.model.b);
+  scaleLengths(result.model, unit);
+  return result;
+}
+
+}  // namespace dform

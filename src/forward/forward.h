@@ -1,0 +1,52 @@
+// Forward modelling (paper section 4): two triangulated flat pieces in, the D-Form they make out.
+#pragma once
+
+#include "core/types.h"
+#include "forward/local_global.h"
+#include "solver/solver.h"
+
+namespace dform {
+
+/// Term weights of the forward objective (paper Table 1's defaults).
+struct ForwardWeights {
+  double isometry = 1.0;    ///< w_iso, Eq. 1
+  double alignment = 1.0;   ///< w_align, Eq. 2
+  double boundaryFix = 1.0; ///< w_fix, Eq. 3
+  double smooth3d = 0.01;   ///< w_3D, Eq. 4 on the 3D meshes
+  double smooth2d = 1.0;    ///< w_2D, Eq. 4 on the flat meshes
+  double seam = 0.01;       ///< w_seam, Eq. 5
+};
+
+struct ForwardOptions {
+  ForwardWeights weights;
+  /// Local-global relaxation from the pillow guess before Levenberg-Marquardt (cheap steps that
+  /// do most of the shape change); maxIterations = 0 starts LM from the pillow.
+  LocalGlobalOptions relaxation;
+  SolverOptions solver;
+  /// The seam is closed by multiplier updates of the alignment term (augmented Lagrangian) until
+  /// the largest gap between seam partners is below seamGapTolerance times the perimeter, in at
+  /// most this many extra solves. 0 keeps the plain weighted alignment of the paper.
+  int seamClosingRounds = 8;
+  double seamGapTolerance = 5e-7;
+};
+
+struct ForwardResult {
+  DForm model;                    ///< solved pieces in mm
+  LocalGlobalSummary relaxation;  ///< the local-global start
+  SolverSummary summary;          ///< how the LM solve went; costs are in the normalised unit
+  int seamClosingRounds = 0;      ///< multiplier updates used to close the seam
+  double unitMm = 1.0;            ///< the solver's length unit in mm (mean seam edge length)
+};
+
+/// Pillow-shaped starting shape: both pieces mapped harmonically onto the average of their seam
+/// outlines (A as drawn, B turned over) and inflated, A up and B down, by the heights that best
+/// preserve their edge lengths. The seam starts planar and closed. Inputs and output in mm.
+DForm pillowInitialGuess(const Piece& a, const Piece& b);
+
+/// Solves the forward problem. `a` and `b` carry the flat meshes (flat, F) in mm and their seams
+/// (a.seam counter-clockwise, b.seam clockwise, a.seam[i] meeting b.seam[i]). When both carry a
+/// shape (one 3D row per flat vertex, for example a coarser solution transferred), the solve starts
+/// from it; otherwise from pillowInitialGuess.
+ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions& options);
+
+}  // namespace dform

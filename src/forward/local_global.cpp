@@ -1,0 +1,236 @@
+#include "forward/local_global.h"
+
+#include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <cassert>
+#include <chrono>
+#include <algorithm>
+#include <deque>
+#include <memory>
+
+namespace dform {
+
+namespace {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+// Projections of every edge onto a common length: target 3D and flat edge vectors.
+struct Projections {
+  std::vector<Eigen::Vector3d> p;
+  std::vector<Eigen::Vector2d> q;
+};
+
+class LocalGlobal {
+ public:
+  LocalGlobal(const std::vector<std::pair<double, const LinearResidual*>>& quadratic,
+              const EdgeLengthPairs& edges, int n)
+      : quadratic_(quadratic), edges_(edges), stride_(edges.stride) {
+    // K = sum_t w_t M_t^T M_t + sum_e w_e D_e^T D_e + eps I. The eps I (with eps x_prev on the
+    // right) is a proximal term: it fixes the free translation and vanishes at a fixed point.
+    SparseMatrix K(n, n);
+    constantRhs_.setZero(n);
+    for (const auto& [w, term] : quadratic) {
+      const SparseMatrix M = term->matrix();
+      K += w * SparseMatrix(M.transpose() * M);
+      constantRhs_ += w * (M.transpose() * term->target());
+    }
+    std::vector<Eigen::Triplet<double>> entries;
+    for (std::size_t e = 0; e < edges.weight.size(); ++e) {
+      const double w = edges.weight[e];
+      auto addPair = [&](int a, int b, int dims) {
+        for (int c = 0; c < dims; ++c) {
+          entries.emplace_back(a + c, a + c, w);
+          entries.emplace_back(b + c, b + c, w);
+          entries.emplace_back(a + c, b + c, -w);
+          entries.emplace_back(b + c, a + c, -w);
+        }
+      };
+      addPair(edges.x[e][0], edges.x[e][1], 3);
+      addPair(edges.u[e][0], edges.u[e][1], 2);
+    }
+    SparseMatrix edgePart(n, n);
+    edgePart.setFromTriplets(entries.begin(), entries.end());
+    K += edgePart;
+    proximal_ = 1e-8 * K.diagonal().maxCoeff();
+    SparseMatrix identity(n, n);
+    identity.setIdentity();
+    K += proximal_ * identity;
+    splitByCoordinate(K);
+  }
+
+  bool ok() const { return ok_; }
+
+  // Energy at x; fills the projections that minimise it for this x.
+  double energy(const Eigen::VectorXd& x, Projections& proj) const {
+    double total = 0.0;
+    for (const auto& [w, term] : quadratic_)
+      total += w * (term->matrix() * x - term->target()).squaredNorm();
+    const std::size_t m = edges_.weight.size();
+    proj.p.resize(m);
+    proj.q.resize(m);
+    for (std::size_t e = 0; e < m; ++e) {
+      const Eigen::Vector3d d3 = x.segment<3>(edges_.x[e][0]) - x.segment<3>(edges_.x[e][1]);
+      const Eigen::Vector2d d2 = x.segment<2>(edges_.u[e][0]) - x.segment<2>(edges_.u[e][1]);
+      const double l3 = d3.norm(), l2 = d2.norm(), common = 0.5 * (l3 + l2);
+      proj.p[e] = l3 > 0 ? Eigen::Vector3d(d3 * (common / l3)) : d3;
+      proj.q[e] = l2 > 0 ? Eigen::Vector2d(d2 * (common / l2)) : d2;
+      total += 0.5 * edges_.weight[e] * (l3 - l2) * (l3 - l2);
+    }
+    return total;
+  }
+
+  // The global step: the x minimising the energy for fixed projections (plus the proximal term).
+  Eigen::VectorXd global(const Eigen::VectorXd& x, const Projections& proj) const {
+    Eigen::VectorXd rhs = constantRhs_ + proximal_ * x;
+    for (std::size_t e = 0; e < edges_.weight.size(); ++e) {
+      const double w = edges_.weight[e];
+      rhs.segment<3>(edges_.x[e][0]) += w * proj.p[e];
+      rhs.segment<3>(edges_.x[e][1]) -= w * proj.p[e];
+      rhs.segment<2>(edges_.u[e][0]) += w * proj.q[e];
+      rhs.segment<2>(edges_.u[e][1]) -= w * proj.q[e];
+    }
+    // Each coordinate group is solved with its own factor, all its coordinates at once.
+    const int vertices = int(rhs.size()) / stride_;
+    Eigen::Map<const RowMatrix> B(rhs.data(), vertices, stride_);
+    Eigen::VectorXd out(rhs.size());
+    Eigen::Map<RowMatrix> X(out.data(), vertices, stride_);
+    for (const Group& group : groups_) {
+      Eigen::MatrixXd part(vertices, group.coordinates.size());
+      for (std::size_t k = 0; k < group.coordinates.size(); ++k)
+        part.col(k) = B.col(group.coordinates[k]);
+      part = group.factor->solve(part);
+      for (std::size_t k = 0; k < group.coordinates.size(); ++k)
+        X.col(group.coordinates[k]) = part.col(k);
+    }
+    return out;
+  }
+
+ private:
+  const std::vector<std::pair<double, const LinearResidual*>>& quadratic_;
+  const EdgeLengthPairs& edges_;
+  using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  // Coordinates (offsets within a vertex's block) whose rows of K are the same matrix.
+  struct Group {
+    std::vector<int> coordinates;
+    std::unique_ptr<Eigen::SimplicialLLT<SparseMatrix>> factor;
+  };
+
+  // K restricted to coordinate c of every vertex (#vertices square).
+  SparseMatrix coordinateBlock(const SparseMatrix& K, int c) const {
+    std::vector<Eigen::Triplet<double>> entries;
+    for (int j = c; j < K.outerSize(); j += stride_)
+      for (SparseMatrix::InnerIterator it(K, j); it; ++it)
+        if (it.row() % stride_ == c) entries.emplace_back(it.row() / stride_, j / stride_, it.value());
+    SparseMatrix block(K.rows() / stride_, K.cols() / stride_);
+    block.setFromTriplets(entries.begin(), entries.end());
+    return block;
+  }
+
+  // The objective never couples different coordinates (x with y, or u with v), so K is block
+  // diagonal by coordinate; x, y, z share one block and u, v another. Factorising each distinct
+  // block once (#vertices square) is several times cheaper than factorising K.
+  void splitByCoordinate(const SparseMatrix& K) {
+    for (int j = 0; j < K.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(K, j); it; ++it)
+        assert(it.row() % stride_ == j % stride_ && "the objective couples two coordinates");
+    std::vector<SparseMatrix> blocks;
+    ok_ = true;
+    for (int c = 0; c < stride_; ++c) {
+      SparseMatrix block = coordinateBlock(K, c);
+      auto same = std::find_if(blocks.begin(), blocks.end(), [&](const SparseMatrix& other) {
+        return (other - block).norm() == 0.0;
+      });
+      if (same != blocks.end()) {
+        groups_[std::size_t(same - blocks.begin())].coordinates.push_back(c);
+        continue;
+      }
+      Group group{{c}, std::make_unique<Eigen::SimplicialLLT<SparseMatrix>>(block)};
+      ok_ = ok_ && group.factor->info() == Eigen::Success;
+      groups_.push_back(std::move(group));
+      blocks.push_back(std::move(block));
+    }
+  }
+
+  const int stride_;
+  Eigen::VectorXd constantRhs_;
+  double proximal_ = 0;
+  std::vector<Group> groups_;
+  bool ok_ = false;
+};
+
+// Anderson acceleration of the fixed-point map x -> G(x) (type II, least squares on the last
+// `depth` differences of residuals f = G(x) - x).
+class Anderson {
+ public:
+  explicit Anderson(int depth) : depth_(depth) {}
+  void reset() { dG_.clear(), dF_.clear(), havePrevious_ = false; }
+
+  // Records G(x) = g with residual f and returns the accelerated next iterate.
+  Eigen::VectorXd next(const Eigen::VectorXd& g, const Eigen::VectorXd& f) {
+    if (havePrevious_) {
+      dG_.push_back(g - previousG_);
+      dF_.push_back(f - previousF_);
+      if (int(dF_.size()) > depth_) dG_.pop_front(), dF_.pop_front();
+    }
+    previousG_ = g;
+    previousF_ = f;
+    havePrevious_ = true;
+    if (dF_.empty()) return g;
+    const int m = int(dF_.size());
+    Eigen::MatrixXd F(f.size(), m), G(g.size(), m);
+    for (int i = 0; i < m; ++i) F.col(i) = dF_[i], G.col(i) = dG_[i];
+    const Eigen::VectorXd gamma = F.colPivHouseholderQr().solve(f);
+    return g - G * gamma;
+  }
+
+ private:
+  int depth_;
+  std::deque<Eigen::VectorXd> dG_, dF_;
+  Eigen::VectorXd previousG_, previousF_;
+  bool havePrevious_ = false;
+};
+
+}  // namespace
+
+LocalGlobalSummary relaxLocalGlobal(const std::vector<std::pair<double, const LinearResidual*>>& quadratic,
+                                    const EdgeLengthPairs& edges, const LocalGlobalOptions& options,
+                                    Eigen::VectorXd& x) {
+  const auto start = std::chrono::steady_clock::now();
+  assert(edges.x.size() == edges.weight.size() && edges.u.size() == edges.weight.size());
+  LocalGlobalSummary summary;
+  Projections proj;
+  if (options.maxIterations <= 0) return summary;
+  const LocalGlobal lg(quadratic, edges, int(x.size()));
+  double energy = lg.energy(x, proj);
+  summary.initialEnergy = summary.finalEnergy = energy;
+  if (!lg.ok() || !std::isfinite(energy)) return summary;
+
+  Anderson anderson(options.andersonDepth);
+  Projections candidateProj;
+  for (int k = 1; k <= options.maxIterations; ++k) {
+    summary.iterations = k;
+    const Eigen::VectorXd g = lg.global(x, proj);
+    Eigen::VectorXd candidate = options.andersonDepth > 0 ? anderson.next(g, g - x) : g;
+    double candidateEnergy = lg.energy(candidate, candidateProj);
+    // Plain steps never raise the energy; an accelerated one that does is replaced by the plain one.
+    if (!(candidateEnergy <= energy) && options.andersonDepth > 0) {
+      ++summary.andersonRejected;
+      anderson.reset();
+      anderson.next(g, g - x);
+      candidate = g;
+      candidateEnergy = lg.energy(candidate, candidateProj);
+    }
+    const double decrease = energy - candidateEnergy;
+    x = std::move(candidate);
+    std::swap(proj, candidateProj);
+    energy = candidateEnergy;
+    if (decrease < options.relativeTolerance * energy) break;
+  }
+  summary.finalEnergy = energy;
+  summary.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace dform

@@ -1,0 +1,47 @@
+// A fast approximate minimiser of the D-Form objective, used to start Levenberg-Marquardt close to
+// its minimum: local-global iterations (projective dynamics, Bouaziz et al. 2014) with Anderson
+// acceleration (Peng et al. 2018). The isometry term is replaced by its projective form: each
+// edge's 3D and flat vectors are projected onto a common length, then one prefactorised linear
+// solve moves all vertices. Every other term of the objective is quadratic and enters as it is.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <utility>
+#include <vector>
+
+#include "solver/problem.h"
+
+namespace dform {
+
+/// Edges whose 3D length should equal their flat length: offsets of the two ends' 3D positions
+/// (3 values each) and flat positions (2 values each) in the unknown vector, and a weight.
+struct EdgeLengthPairs {
+  std::vector<std::array<int, 2>> x, u;
+  std::vector<double> weight;
+  /// Unknowns per vertex: offsets are vertex * stride + coordinate. No term may couple two
+  /// different coordinates (the local-global step solves each coordinate on its own).
+  int stride = 5;
+};
+
+struct LocalGlobalOptions {
+  int maxIterations = 300;          ///< 0 switches the relaxation off
+  double relativeTolerance = 1e-4;  ///< stop when an iteration lowers the energy by less than this fraction
+  int andersonDepth = 6;            ///< past iterates used by Anderson acceleration (0: plain)
+};
+
+struct LocalGlobalSummary {
+  int iterations = 0;
+  int andersonRejected = 0;  ///< accelerated steps that did not lower the energy and were undone
+  double initialEnergy = 0;
+  double finalEnergy = 0;
+  double seconds = 0;
+};
+
+/// Minimises sum_t w_t ||M_t x - b_t||^2 + sum_e w_e (|x_a - x_b| - |u_a - u_b|)^2 / 2 over x (in
+/// place) by local-global steps. `quadratic` lists the weighted linear terms.
+LocalGlobalSummary relaxLocalGlobal(const std::vector<std::pair<double, const LinearResidual*>>& quadratic,
+                                    const EdgeLengthPairs& edges, const LocalGlobalOptions& options,
+                                    Eigen::VectorXd& x);
+
+}  // namespace dform

@@ -1,0 +1,86 @@
+// The D-Form objective's terms (paper Eq. 1-6) over the unknowns of two pieces. Used by forward
+// and inverse modelling alike.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "core/types.h"
+#include "forward/local_global.h"
+#include "solver/problem.h"
+
+namespace dform {
+
+/// Unknowns of a two-piece D-Form: per vertex [x y z u v] (3D position, flat position); piece A's
+/// vertices first, then piece B's.
+class VariableLayout {
+ public:
+  static constexpr int kPerVertex = 5;
+  VariableLayout(int verticesA, int verticesB) : nA_(verticesA), nB_(verticesB) {}
+  int numVariables() const { return kPerVertex * (nA_ + nB_); }
+  int vertex(int piece, int i) const { return piece == 0 ? i : nA_ + i; }
+  int x(int piece, int i) const { return kPerVertex * vertex(piece, i); }      ///< 3D, 3 values
+  int u(int piece, int i) const { return kPerVertex * vertex(piece, i) + 3; }  ///< flat, 2 values
+  int verticesOf(int piece) const { return piece == 0 ? nA_ : nB_; }
+
+ private:
+  int nA_, nB_;
+};
+
+/// Packs both pieces' shape and flat positions into the unknown vector (and back).
+Eigen::VectorXd packVariables(const VariableLayout& layout, const Piece& a, const Piece& b);
+void unpackVariables(const VariableLayout& layout, const Eigen::VectorXd& x, Piece& a, Piece& b);
+
+/// Undirected edges of a triangle mesh, each once, as #E by 2 (smaller index first).
+Eigen::Matrix<int, Eigen::Dynamic, 2> meshEdges(const Faces& F);
+
+/// Every edge of both pieces as a pair of 3D and flat offsets (weights 1).
+EdgeLengthPairs meshEdgePairs(const VariableLayout& layout, const Faces& FA, const Faces& FB);
+
+/// Weights for the local-global form of the isometry term: near an isometry
+/// w (|x|^2 - |u|^2)^2 ~ 4 l^2 w (|x| - |u|)^2, and the projective form counts (|x| - |u|)^2 / 2,
+/// so edge e gets 8 l_e^2 w_iso with l_e its flat length in x.
+void weightByFlatLength(EdgeLengthPairs& edges, const Eigen::VectorXd& x, double isometryWeight);
+
+/// Multiplies every length of the model (flat and 3D) by `factor`: to and from the solver's unit.
+void scaleLengths(DForm& model, double factor);
+
+/// Isometry (Eq. 1): per edge ij, |x_i - x_j|^2 - |u_i - u_j|^2 (the pairs' weights are ignored).
+std::unique_ptr<ResidualTerm> makeIsometryTerm(const EdgeLengthPairs& edges);
+
+/// Boundary alignment (Eq. 2): x_A(seamA[i]) - x_B(seamB[i]) for every seam pair.
+std::unique_ptr<ResidualTerm> makeAlignmentTerm(const VariableLayout& layout,
+                                                const std::vector<int>& seamA,
+                                                const std::vector<int>& seamB);
+
+/// Boundary fix (Eq. 3): u(piece, i) - target.row(k) for i = vertices[k].
+std::unique_ptr<ResidualTerm> makeFlatAnchorTerm(const VariableLayout& layout,
+                                                 const std::vector<int>& verticesA,
+                                                 const Points2& targetsA,
+                                                 const std::vector<int>& verticesB,
+                                                 const Points2& targetsB);
+
+/// Seam closeness (Eq. 6): x_A(seamA[i]) - c_i and x_B(seamB[i]) - c_i.
+std::unique_ptr<ResidualTerm> makeCurveClosenessTerm(const VariableLayout& layout,
+                                                     const std::vector<int>& seamA,
+                                                     const std::vector<int>& seamB,
+                                                     const Points3& curve);
+
+/// Cotangent weights of a flat mesh: for each vertex, its neighbours and (cot a + cot b) / 2.
+struct CotangentWeights {
+  std::vector<std::vector<std::pair<int, double>>> neighbours;  ///< per vertex
+};
+CotangentWeights cotangentWeights(const Points2& V, const Faces& F);
+
+/// Surface smoothness (Eq. 4): sum_j w_ij (p_j - p_i) at each interior vertex i of both pieces,
+/// on the 3D positions (`threeD`) or the flat ones, with the weights of the flat rest meshes.
+/// Boundary vertices are left out: a piece's boundary is a seam (a crease), not a smooth region.
+std::unique_ptr<ResidualTerm> makeSmoothnessTerm(const VariableLayout& layout, const Piece& a,
+                                                 const Piece& b, bool threeD);
+
+/// Seam smoothness (Eq. 5): x(s[i-1]) + x(s[i+1]) - 2 x(s[i]) along each piece's seam in 3D.
+std::unique_ptr<ResidualTerm> makeSeamSmoothnessTerm(const VariableLayout& layout,
+                                                     const std::vector<int>& seamA,
+                                                     const std::vector<int>& seamB);
+
+}  // namespace dform

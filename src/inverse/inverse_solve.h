@@ -1,0 +1,41 @@
+// Inverse modelling's optimisation (paper 5.2, Eq. 6): from the pre-D-Form start, find flat pieces
+// and their 3D shapes whose seam runs along the target curve, with the flat boundaries free.
+#pragma once
+
+#include "core/types.h"
+#include "forward/local_global.h"
+#include "solver/solver.h"
+
+namespace dform {
+
+/// Term weights of the inverse objective (paper Table 1's defaults for inverse modelling).
+struct InverseWeights {
+  double isometry = 1.0;    ///< w_iso, Eq. 1
+  double closeness = 1.0;   ///< w_close, Eq. 6: seam vertices to the curve
+  double smooth3d = 0.001;  ///< w_3D, Eq. 4 on the 3D meshes
+  double smooth2d = 1.0;    ///< w_2D, Eq. 4 on the flat meshes
+};
+
+struct InverseOptions {
+  InverseWeights weights;
+  LocalGlobalOptions relaxation;
+  SolverOptions solver;
+  /// The seam is held on the curve by multiplier updates of the closeness term until the
+  /// largest seam-to-curve distance is below curveTolerance times the curve's length.
+  int curveClosingRounds = 8;
+  double curveTolerance = 5e-7;
+};
+
+struct InverseResult {
+  DForm model;                    ///< solved pieces in mm
+  LocalGlobalSummary relaxation;  ///< the local-global start
+  SolverSummary summary;          ///< the Levenberg-Marquardt solve (normalised unit)
+  int curveClosingRounds = 0;
+  double unitMm = 1.0;            ///< the solver's length unit in mm (mean curve edge)
+};
+
+/// Optimises from `start` (pieces in mm whose seams a.seam[i], b.seam[i] sit at curve.row(i); for
+/// example InverseInit::model) towards a D-Form on `curve` (#n by 3, mm).
+InverseResult solveInverse(const DForm& start, const Points3& curve, const InverseOptions& options);
+
+}  // namespace dform
