@@ -1,0 +1,66 @@
+// The forward run end to end: two outline files in, a solved and measured D-Form out.
+#pragma once
+
+#include <Eigen/Core>
+#include <atomic>
+#include <functional>
+#include <string>
+
+#include "core/messages.h"
+#include "core/status.h"
+#include "core/types.h"
+#include "forward/forward.h"
+#include "validate/metrics.h"
+
+namespace dform {
+
+/// Where a piece's seam starts: an arc-length fraction from the outline's first point, or the
+/// outline point nearest to a given point (mm, page frame, y up).
+struct StartPoint {
+  bool nearestToPoint = false;
+  double fraction = 0.0;
+  Eigen::Vector2d point = Eigen::Vector2d::Zero();
+};
+
+struct ForwardJob {
+  std::string pieceA, pieceB;  ///< outline files (SVG or JSON points)
+  StartPoint startA, startB;   ///< the starting pair (paper Definition 3)
+  int resolution = 100;        ///< seam vertices per piece
+  bool flip = false;           ///< zip B turned over (its mirror image) instead
+  bool fitPerimeter = false;   ///< scale B uniformly to A's perimeter
+  double perimeterTolerance = 0.005;  ///< largest |pA - pB| / max(pA, pB) accepted as equal
+  double interiorEdgeFactor = 1.0;    ///< interior edge length / seam edge length
+  bool coarseToFine = true;           ///< start from solutions at 1/3, 1/9, ... of the resolution
+  ForwardOptions solve;
+};
+
+/// Seconds spent in each stage.
+struct Timings {
+  double read = 0, mesh = 0, solve = 0, total = 0;
+};
+
+struct ForwardRun {
+  DForm model;
+  Metrics metrics;
+  LocalGlobalSummary relaxation;  ///< the local-global start of the solve
+  SolverSummary summary;          ///< the Levenberg-Marquardt solve
+  int seamClosingRounds = 0;      ///< multiplier updates that closed the seam
+  Timings timings;
+  double perimeterA = 0, perimeterB = 0;  ///< as read, mm
+  double scaleB = 1.0;                    ///< applied by fitPerimeter
+  double startFractionA = 0, startFractionB = 0;  ///< resolved starting pair
+};
+
+/// Hooks for a caller that shows progress or can be interrupted.
+struct RunHooks {
+  std::function<void(const IterationSummary&)> onIteration;
+  const std::atomic<bool>* interrupted = nullptr;  ///< checked between iterations
+};
+
+/// Reads, checks, meshes, solves and measures. Errors name the file and the problem.
+Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const RunHooks& hooks = {});
+
+/// Checks a job's numbers before any work is done (Usage errors).
+Status validateForwardJob(const ForwardJob& job);
+
+}  // namespace dform

@@ -1,0 +1,83 @@
+#include "pipeline/inverse_pipeline.h"
+
+#include <cmath>
+
+#include "core/polyline.h"
+#include "io/curve_reader.h"
+#include "pipeline/run_util.h"
+
+namespace dform {
+
+using detail::Clock;
+using detail::format;
+using detail::secondsSince;
+
+Status validateInverseJob(const InverseJob& job) {
+  auto usage = [](const std::string& text) { return Status(ErrorCode::Usage, text); };
+  if (job.resolution < 8 || job.resolution > 20000)
+    return usage("resolution must be between 8 and 20000 seam vertices, got " +
+                 std::to_string(job.resolution));
+  const InverseWeights& w = job.solve.weights;
+  for (double weight : {w.isometry, w.closeness, w.smooth3d, w.smooth2d})
+    if (!(weight >= 0.0 && std::isfinite(weight))) return usage("weights must be finite and >= 0");
+  std::string why;
+  if (!job.solve.solver.isValid(&why)) return usage("solver options: " + why);
+  return Status::ok();
+}
+
+Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const RunHooks& hooks) {
+  if (Status s = validateInverseJob(job); !s.isOk()) return s;
+  const auto start = Clock::now();
+  InverseRun run;
+
+  CurveReadOptions readOptions;
+  readOptions.forceClosed = job.forceClosed;
+  Result<Curve3> curve = readCurve(job.curve, readOptions);
+  if (!curve.isOk()) return curve.status();
+  run.curveLength = closedLength(curve.value().points);
+  run.target.points = resampleClosed(curve.value().points, job.resolution);
+  run.target.source = job.curve;
+  run.timings.read = secondsSince(start);
+  sink.info(format("curve: %.0f points, length %.3f mm", double(curve.value().points.rows()),
+                   run.curveLength));
+
+  const auto initStart = Clock::now();
+  Result<InverseInit> init = initialiseInverse(run.target, job.init);
+  if (!init.isOk()) return init.status();
+  run.pre = init.value().pre;
+  run.timings.mesh = secondsSince(initStart);
+  sink.info("pre-D-Form: " + run.pre.summary);
+  sink.info("meshed piece A with " + std::to_string(init.value().model.a.flat.rows()) +
+            " vertices, piece B with " + std::to_string(init.value().model.b.flat.rows()));
+
+  const auto solveStart = Clock::now();
+  InverseOptions options = job.solve;
+  bool interrupted = false;
+  detail::connectHooks(options.solver, hooks, interrupted);
+  InverseResult solved = solveInverse(init.value().model, run.target.points, options);
+  run.timings.solve = secondsSince(solveStart);
+  if (interrupted) return Status(ErrorCode::Interrupted, "interrupted during the solve");
+  if (!solved.summary.usable())
+    return Status(ErrorCode::SolveFailed, job.curve + ": the solver failed: " + solved.summary.message);
+  sink.info(format("local-global start: %.0f iterations, energy %.4g -> %.4g",
+                   solved.relaxation.iterations, solved.relaxation.initialEnergy,
+                   solved.relaxation.finalEnergy));
+  sink.info("solve: " + solved.summary.briefReport() + ", " +
+            std::to_string(solved.curveClosingRounds) + " curve-closing round(s)");
+  run.model = std::move(solved.model);
+  run.relaxation = solved.relaxation;
+  run.summary = std::move(solved.summary);
+  run.curveClosingRounds = solved.curveClosingRounds;
+  run.metrics = computeMetrics(run.model);
+  run.curveMatch = computeCurveMatch(run.model, run.target);
+  for (const Piece* p : {&run.model.a, &run.model.b}) {
+    Points2 outline(p->seam.size(), 2);
+    for (std::size_t k = 0; k < p->seam.size(); ++k) outline.row(k) = p->flat.row(p->seam[k]);
+    if (findSelfIntersection(outline))
+      sink.warning("piece " + p->name + "'s flat outline overlaps itself: it cannot be cut from one sheet");
+  }
+  run.timings.total = secondsSince(start);
+  return run;
+}
+
+}  // namespace dform

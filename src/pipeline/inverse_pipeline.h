@@ -1,0 +1,43 @@
+// The inverse run end to end: a 3D seam curve in, the two flat pieces that make it out.
+#pragma once
+
+#include <string>
+
+#include "core/messages.h"
+#include "core/status.h"
+#include "core/types.h"
+#include "inverse/inverse_solve.h"
+#include "inverse/pre_dform.h"
+#include "pipeline/forward_pipeline.h"
+#include "validate/metrics.h"
+
+namespace dform {
+
+struct InverseJob {
+  std::string curve;        ///< seam curve file (OBJ polyline, JSON points or Bezier)
+  bool forceClosed = false; ///< an open OBJ polyline is closed (`--closed`)
+  int resolution = 100;     ///< seam vertices
+  InverseInitOptions init;
+  InverseOptions solve;
+};
+
+struct InverseRun {
+  DForm model;
+  Curve3 target;           ///< the resampled curve the seam follows (mm)
+  Metrics metrics;
+  CurveMatch curveMatch;   ///< D_error and the largest seam-to-curve distance
+  PreDForm pre;            ///< how the start was built (on-hull or not)
+  LocalGlobalSummary relaxation;
+  SolverSummary summary;
+  int curveClosingRounds = 0;
+  double curveLength = 0;  ///< length of the curve as read (mm)
+  Timings timings;
+};
+
+/// Checks a job's numbers before any work is done (Usage errors).
+Status validateInverseJob(const InverseJob& job);
+
+/// Reads, initialises (pre-D-Form), optimises and measures. Errors name the file and the problem.
+Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const RunHooks& hooks = {});
+
+}  // namespace dform
