@@ -128,6 +128,17 @@ Status writeModel(const std::string& dir, const DForm& model) {
   return Status::ok();
 }
 
+Status writeTargetCurve(const std::string& dir, const Curve3& curve) {
+  std::string text = "# dform target seam curve (mm), closed polyline\n";
+  for (Eigen::Index i = 0; i < curve.points.rows(); ++i)
+    text += "v " + exactDecimal(curve.points(i, 0)) + " " + exactDecimal(curve.points(i, 1)) + " " +
+            exactDecimal(curve.points(i, 2)) + "\n";
+  text += "l";
+  for (Eigen::Index i = 0; i < curve.points.rows(); ++i) text += " " + std::to_string(i + 1);
+  text += " 1\n";
+  return writeFileAtomically(joinPath(dir, ModelFileNames::targetCurve), text);
+}
+
 Result<DForm> readModel(const std::string& dir) {
   Result<Piece> a = readPiece(dir, ModelFileNames::aFlat, ModelFileNames::a3d, "A");
   if (!a.isOk()) return a.status();

@@ -15,10 +15,15 @@ struct ModelFileNames {
   static constexpr const char* a3d = "piece-a-3d.obj";
   static constexpr const char* bFlat = "piece-b-flat.obj";
   static constexpr const char* b3d = "piece-b-3d.obj";
+  static constexpr const char* targetCurve = "target-curve.obj";  ///< inverse results only
 };
 
 /// Writes the four OBJ files into `dir` (which must exist), each atomically.
 Status writeModel(const std::string& dir, const DForm& model);
+
+/// Writes an inverse result's target seam curve into `dir` as a closed OBJ polyline (atomically),
+/// so that `dform validate` can measure D_error again; readCurve reads it back.
+Status writeTargetCurve(const std::string& dir, const Curve3& curve);
 
 /// Reads the four OBJ files back; checks that flat and 3D meshes of a piece agree in faces and
 /// seam and that the two seams have the same length (vertex count).
