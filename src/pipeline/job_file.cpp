@@ -1,0 +1,211 @@
+#include "pipeline/job_file.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+namespace dform {
+
+namespace {
+
+using nlohmann::json;
+
+// A problem with one key of the job file, reported as "<file>: <key>: <problem>".
+struct KeyError {
+  std::string key, problem;
+};
+
+void onlyKeys(const json& object, const std::set<std::string>& allowed, const std::string& where) {
+  for (const auto& [key, value] : object.items())
+    if (!allowed.count(key)) throw KeyError{where + key, "unknown key"};
+}
+
+double number(const json& object, const std::string& key, const std::string& where) {
+  const json& v = object.at(key);
+  if (!v.is_number()) throw KeyError{where + key, "must be a number"};
+  const double d = v.get<double>();
+  if (!std::isfinite(d)) throw KeyError{where + key, "must be finite"};
+  return d;
+}
+
+bool flag(const json& object, const std::string& key) {
+  const json& v = object.at(key);
+  if (!v.is_boolean()) throw KeyError{key, "must be true or false"};
+  return v.get<bool>();
+}
+
+std::string path(const json& object, const std::string& key, const std::string& baseDir) {
+  if (!object.contains(key)) throw KeyError{key, "is missing"};
+  const json& v = object.at(key);
+  if (!v.is_string() || v.get<std::string>().empty()) throw KeyError{key, "must be a file name"};
+  const std::filesystem::path p(v.get<std::string>());
+  return (p.is_absolute() ? p : std::filesystem::path(baseDir) / p).lexically_normal().string();
+}
+
+int integer(const json& object, const std::string& key) {
+  const json& v = object.at(key);
+  if (!v.is_number_integer()) throw KeyError{key, "must be a whole number"};
+  return v.get<int>();
+}
+
+// "start_a": 0.25 | {"fraction": 0.25} | {"near": [x, y]}
+StartPoint startPoint(const json& v, const std::string& key) {
+  StartPoint s;
+  if (v.is_number()) {
+    s.fraction = v.get<double>();
+  } else if (v.is_object() && v.size() == 1 && v.contains("fraction") && v["fraction"].is_number()) {
+    s.fraction = v["fraction"].get<double>();
+  } else if (v.is_object() && v.size() == 1 && v.contains("near") && v["near"].is_array() &&
+             v["near"].size() == 2 && v["near"][0].is_number() && v["near"][1].is_number()) {
+    s.nearestToPoint = true;
+    s.point = {v["near"][0].get<double>(), v["near"][1].get<double>()};
+  } else {
+    throw KeyError{key, "must be a fraction, {\"fraction\": f} or {\"near\": [x, y]}"};
+  }
+  return s;
+}
+
+void readSolver(const json& object, SolverOptions& options) {
+  onlyKeys(object, {"max_iterations", "function_tolerance", "gradient_tolerance"}, "solver.");
+  if (object.contains("max_iterations")) options.maxIterations = integer(object, "max_iterations");
+  if (object.contains("function_tolerance"))
+    options.functionTolerance = number(object, "function_tolerance", "solver.");
+  if (object.contains("gradient_tolerance"))
+    options.gradientTolerance = number(object, "gradient_tolerance", "solver.");
+}
+
+template <typename Weights>
+void readWeights(const json& object, const std::vector<std::pair<std::string, double Weights::*>>& names,
+                 Weights& weights) {
+  std::set<std::string> allowed;
+  for (const auto& [name, member] : names) allowed.insert(name);
+  onlyKeys(object, allowed, "weights.");
+  for (const auto& [name, member] : names)
+    if (object.contains(name)) weights.*member = number(object, name, "weights.");
+}
+
+const std::vector<std::pair<std::string, double ForwardWeights::*>> kForwardWeights = {
+    {"isometry", &ForwardWeights::isometry},   {"alignment", &ForwardWeights::alignment},
+    {"boundary_fix", &ForwardWeights::boundaryFix}, {"smooth_3d", &ForwardWeights::smooth3d},
+    {"smooth_2d", &ForwardWeights::smooth2d},  {"seam", &ForwardWeights::seam}};
+const std::vector<std::pair<std::string, double InverseWeights::*>> kInverseWeights = {
+    {"isometry", &InverseWeights::isometry}, {"closeness", &InverseWeights::closeness},
+    {"smooth_3d", &InverseWeights::smooth3d}, {"smooth_2d", &InverseWeights::smooth2d}};
+
+Job parse(const json& root, const std::string& baseDir) {
+  if (!root.is_object()) throw KeyError{"(top level)", "must be a JSON object"};
+  if (!root.contains("mode") || !root["mode"].is_string()) throw KeyError{"mode", "must be \"forward\" or \"inverse\""};
+  const std::string mode = root["mode"].get<std::string>();
+  Job job;
+  if (mode == "forward") {
+    onlyKeys(root, {"mode", "piece_a", "piece_b", "start_a", "start_b", "resolution", "flip",
+                    "fit_perimeter", "perimeter_tolerance", "weights", "solver"}, "");
+    ForwardJob& f = job.forward;
+    f.pieceA = path(root, "piece_a", baseDir);
+    f.pieceB = path(root, "piece_b", baseDir);
+    if (root.contains("start_a")) f.startA = startPoint(root["start_a"], "start_a");
+    if (root.contains("start_b")) f.startB = startPoint(root["start_b"], "start_b");
+    if (root.contains("resolution")) f.resolution = integer(root, "resolution");
+    if (root.contains("flip")) f.flip = flag(root, "flip");
+    if (root.contains("fit_perimeter")) f.fitPerimeter = flag(root, "fit_perimeter");
+    if (root.contains("perimeter_tolerance"))
+      f.perimeterTolerance = number(root, "perimeter_tolerance", "");
+    if (root.contains("weights")) readWeights(root["weights"], kForwardWeights, f.solve.weights);
+    if (root.contains("solver")) readSolver(root["solver"], f.solve.solver);
+  } else if (mode == "inverse") {
+    job.mode = Job::Mode::Inverse;
+    onlyKeys(root, {"mode", "curve", "closed", "resolution", "weights", "solver"}, "");
+    InverseJob& i = job.inverse;
+    i.curve = path(root, "curve", baseDir);
+    if (root.contains("closed")) i.forceClosed = flag(root, "closed");
+    if (root.contains("resolution")) i.resolution = integer(root, "resolution");
+    if (root.contains("weights")) readWeights(root["weights"], kInverseWeights, i.solve.weights);
+    if (root.contains("solver")) readSolver(root["solver"], i.solve.solver);
+  } else {
+    throw KeyError{"mode", "must be \"forward\" or \"inverse\", not \"" + mode + "\""};
+  }
+  return job;
+}
+
+json startJson(const StartPoint& s) {
+  if (s.nearestToPoint) return json{{"near", {s.point.x(), s.point.y()}}};
+  return s.fraction;
+}
+
+json solverJson(const SolverOptions& o) {
+  return {{"max_iterations", o.maxIterations},
+          {"function_tolerance", o.functionTolerance},
+          {"gradient_tolerance", o.gradientTolerance}};
+}
+
+template <typename Weights>
+json weightsJson(const std::vector<std::pair<std::string, double Weights::*>>& names,
+                 const Weights& weights) {
+  json out = json::object();
+  for (const auto& [name, member] : names) out[name] = weights.*member;
+  return out;
+}
+
+}  // namespace
+
+Result<Job> parseJobJson(const std::string& text, const std::string& source,
+                         const std::string& baseDir) {
+  json root;
+  try {
+    root = json::parse(text);
+  } catch (const json::parse_error& e) {
+    return Status(ErrorCode::InputUnreadable, source + ": not valid JSON (" + e.what() + ")");
+  }
+  try {
+    Job job = parse(root, baseDir);
+    const Status valid = job.mode == Job::Mode::Forward ? validateForwardJob(job.forward)
+                                                        : validateInverseJob(job.inverse);
+    if (!valid.isOk()) return Status(ErrorCode::InputInvalid, source + ": " + valid.message());
+    return job;
+  } catch (const KeyError& e) {
+    return Status(ErrorCode::InputInvalid, source + ": " + e.key + ": " + e.problem);
+  } catch (const json::exception& e) {
+    return Status(ErrorCode::InputInvalid, source + ": " + e.what());
+  }
+}
+
+Result<Job> readJobFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Status(ErrorCode::InputUnreadable, path + ": cannot open the job file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  const std::string base = std::filesystem::path(path).parent_path().string();
+  return parseJobJson(text.str(), path, base.empty() ? "." : base);
+}
+
+std::string jobToJson(const Job& job) {
+  json out;
+  if (job.mode == Job::Mode::Forward) {
+    const ForwardJob& f = job.forward;
+    out = {{"mode", "forward"},
+           {"piece_a", std::filesystem::absolute(f.pieceA).string()},
+           {"piece_b", std::filesystem::absolute(f.pieceB).string()},
+           {"start_a", startJson(f.startA)},
+           {"start_b", startJson(f.startB)},
+           {"resolution", f.resolution},
+           {"flip", f.flip},
+           {"fit_perimeter", f.fitPerimeter},
+           {"perimeter_tolerance", f.perimeterTolerance},
+           {"weights", weightsJson(kForwardWeights, f.solve.weights)},
+           {"solver", solverJson(f.solve.solver)}};
+  } else {
+    const InverseJob& i = job.inverse;
+    out = {{"mode", "inverse"},
+           {"curve", std::filesystem::absolute(i.curve).string()},
+           {"closed", i.forceClosed},
+           {"resolution", i.resolution},
+           {"weights", weightsJson(kInverseWeights, i.solve.weights)},
+           {"solver", solverJson(i.solve.solver)}};
+  }
+  return out.dump(2);
+}
+
+}  // namespace dform

@@ -1,0 +1,33 @@
+// Job files: a run's inputs and options as JSON, so that a result can be reproduced exactly
+// (`dform run job.json -o out/`). Schema: docs/cli.md.
+#pragma once
+
+#include <string>
+
+#include "core/status.h"
+#include "pipeline/forward_pipeline.h"
+#include "pipeline/inverse_pipeline.h"
+
+namespace dform {
+
+struct Job {
+  enum class Mode { Forward, Inverse };
+  Mode mode = Mode::Forward;
+  ForwardJob forward;  ///< used when mode is Forward
+  InverseJob inverse;  ///< used when mode is Inverse
+};
+
+/// Reads a job file. Input paths in it are relative to the job file's folder. InputUnreadable
+/// when the file is missing or not JSON; InputInvalid naming the key for a missing, unknown or
+/// mistyped key or a bad value.
+Result<Job> readJobFile(const std::string& path);
+
+/// The same from text; `source` names it in messages and `baseDir` resolves relative paths.
+Result<Job> parseJobJson(const std::string& text, const std::string& source,
+                         const std::string& baseDir);
+
+/// The job as JSON text (absolute input paths), readable by parseJobJson: report.json records it
+/// so that a run can be repeated.
+std::string jobToJson(const Job& job);
+
+}  // namespace dform

@@ -1,0 +1,157 @@
+#include "pipeline/report.h"
+
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.h"
+
+namespace dform {
+
+namespace {
+
+using nlohmann::json;
+
+// JSON has no NaN or infinity: such a figure is written as null.
+json figure(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+json metricsJson(const Metrics& m) {
+  return {{"L_error", figure(m.L_error)},
+          {"L_max", figure(m.L_max)},
+          {"B_error", figure(m.B_error)},
+          {"seam_gap_mm", figure(m.seam_gap_mm)},
+          {"gauss_max", figure(m.gauss_max)},
+          {"gauss_mean", figure(m.gauss_mean)},
+          {"flipped_2d", m.flipped_2d},
+          {"flipped_3d", m.flipped_3d},
+          {"degenerate_2d", m.degenerate_2d},
+          {"degenerate_3d", m.degenerate_3d},
+          {"seam_length_a_mm", figure(m.seam_length_a_mm)},
+          {"seam_length_b_mm", figure(m.seam_length_b_mm)},
+          {"seam_length_3d_mm", figure(m.seam_length_3d_mm)}};
+}
+
+json solverJson(const LocalGlobalSummary& relaxation, const SolverSummary& s) {
+  json iterations = json::array();
+  for (const IterationSummary& it : s.iterations) {
+    json terms = json::object();
+    for (std::size_t t = 0; t < it.termCosts.size() && t < s.termNames.size(); ++t)
+      terms[s.termNames[t]] = figure(it.termCosts[t]);
+    iterations.push_back({{"iteration", it.iteration},
+                          {"cost", figure(it.cost)},
+                          {"term_costs", terms},
+                          {"step_norm", figure(it.stepNorm)},
+                          {"damping", figure(it.damping)},
+                          {"accepted", it.accepted},
+                          {"refactorised", it.refactorised},
+                          {"cg_iterations", it.cgIterations},
+                          {"seconds", figure(it.seconds)}});
+  }
+  json finalTerms = json::object();
+  for (std::size_t t = 0; t < s.finalTermCosts.size() && t < s.termNames.size(); ++t)
+    finalTerms[s.termNames[t]] = figure(s.finalTermCosts[t]);
+  return {{"local_global", {{"iterations", relaxation.iterations},
+                            {"initial_energy", figure(relaxation.initialEnergy)},
+                            {"final_energy", figure(relaxation.finalEnergy)},
+                            {"seconds", figure(relaxation.seconds)}}},
+          {"termination", terminationName(s.termination)},
+          {"message", s.message},
+          {"initial_cost", figure(s.initialCost)},
+          {"final_cost", figure(s.finalCost)},
+          {"final_term_costs", finalTerms},
+          {"factorisations", s.factorisations},
+          {"variables", s.numVariables},
+          {"residuals", s.numResiduals},
+          {"setup_seconds", figure(s.setupSeconds)},
+          {"solve_seconds", figure(s.totalSeconds)},
+          {"iterations", iterations}};
+}
+
+json meshJson(const DForm& model) {
+  return {{"vertices_a", model.a.flat.rows()},
+          {"triangles_a", model.a.F.rows()},
+          {"vertices_b", model.b.flat.rows()},
+          {"triangles_b", model.b.F.rows()},
+          {"seam_vertices", model.a.seam.size()}};
+}
+
+json timingsJson(const Timings& t) {
+  return {{"read", figure(t.read)}, {"mesh", figure(t.mesh)}, {"solve", figure(t.solve)},
+          {"total", figure(t.total)}};
+}
+
+json messagesJson(const std::vector<Message>& messages) {
+  json out = json::array();
+  for (const Message& m : messages) out.push_back({{"level", levelName(m.level)}, {"text", m.text}});
+  return out;
+}
+
+json gateJson(const GateReport* gate) {
+  if (!gate) return nullptr;
+  json checks = json::array();
+  for (const CheckResult& c : gate->checks)
+    checks.push_back({{"name", c.name},
+                      {"value", figure(c.value)},
+                      {"limit", figure(c.limit)},
+                      {"verdict", verdictName(c.verdict)},
+                      {"detail", c.detail}});
+  return {{"passed", gate->passed()}, {"failed", gate->failed()}, {"not_run", gate->notRun()},
+          {"checks", checks}};
+}
+
+json header(const Job& job, const char* mode) {
+  return {{"schema", kReportSchema},
+          {"schema_version", kReportSchemaVersion},
+          {"tool", {{"name", "dform"}, {"version", DFORM_VERSION}}},
+          {"mode", mode},
+          {"job", json::parse(jobToJson(job))}};
+}
+
+Status write(const std::string& dir, const json& report) {
+  return writeFileAtomically((std::filesystem::path(dir) / "report.json").string(),
+                             report.dump(2) + "\n");
+}
+
+}  // namespace
+
+Status writeForwardReport(const std::string& dir, const Job& job, const ForwardRun& run,
+                          const std::vector<Message>& messages, const GateReport* gate) {
+  json report = header(job, "forward");
+  report["inputs"] = {
+      {"piece_a", {{"path", job.forward.pieceA}, {"perimeter_mm", figure(run.perimeterA)}}},
+      {"piece_b", {{"path", job.forward.pieceB}, {"perimeter_mm", figure(run.perimeterB)}}}};
+  report["fit_perimeter_scale"] = figure(run.scaleB);
+  report["start_fraction_a"] = figure(run.startFractionA);
+  report["start_fraction_b"] = figure(run.startFractionB);
+  report["mesh"] = meshJson(run.model);
+  report["solver"] = solverJson(run.relaxation, run.summary);
+  report["solver"]["seam_closing_rounds"] = run.seamClosingRounds;
+  report["metrics"] = metricsJson(run.metrics);
+  report["timings"] = timingsJson(run.timings);
+  report["gate"] = gateJson(gate);
+  report["messages"] = messagesJson(messages);
+  return write(dir, report);
+}
+
+Status writeInverseReport(const std::string& dir, const Job& job, const InverseRun& run,
+                          const std::vector<Message>& messages, const GateReport* gate) {
+  json report = header(job, "inverse");
+  report["inputs"] = {{"curve", {{"path", job.inverse.curve}, {"length_mm", figure(run.curveLength)}}}};
+  report["pre_dform"] = {{"on_hull", run.pre.onHull},
+                         {"is_hull", run.pre.isHull},
+                         {"inside_vertices", run.pre.insideVertices.size()},
+                         {"summary", run.pre.summary}};
+  report["mesh"] = meshJson(run.model);
+  report["solver"] = solverJson(run.relaxation, run.summary);
+  report["solver"]["curve_closing_rounds"] = run.curveClosingRounds;
+  report["metrics"] = metricsJson(run.metrics);
+  report["metrics"]["D_error"] = figure(run.curveMatch.D_error);
+  report["metrics"]["curve_distance_max_mm"] = figure(run.curveMatch.curve_distance_max_mm);
+  report["metrics"]["curve_length_mm"] = figure(run.curveLength);
+  report["timings"] = timingsJson(run.timings);
+  report["gate"] = gateJson(gate);
+  report["messages"] = messagesJson(messages);
+  return write(dir, report);
+}
+
+}  // namespace dform

@@ -1,0 +1,26 @@
+// report.json: what a run read, how it solved, and every figure (schema: docs/report.md).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/messages.h"
+#include "core/status.h"
+#include "pipeline/job_file.h"
+#include "validate/gate.h"
+
+namespace dform {
+
+/// The schema name and version written into every report.
+constexpr const char* kReportSchema = "dform-report";
+constexpr int kReportSchemaVersion = 1;
+
+/// Writes `dir`/report.json (atomically) for a forward run. `gate` may be null (no gate ran).
+Status writeForwardReport(const std::string& dir, const Job& job, const ForwardRun& run,
+                          const std::vector<Message>& messages, const GateReport* gate);
+
+/// The same for an inverse run; its metrics add D_error and curve_distance_max_mm.
+Status writeInverseReport(const std::string& dir, const Job& job, const InverseRun& run,
+                          const std::vector<Message>& messages, const GateReport* gate);
+
+}  // namespace dform
