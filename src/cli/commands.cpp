@@ -1,0 +1,226 @@
+#include "cli/commands.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+#include "cli/terminal.h"
+#include "export/exporter.h"
+#include "io/curve_reader.h"
+#include "io/model_files.h"
+#include "pipeline/report.h"
+#include "validate/gate.h"
+
+namespace dform::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+int fail(const Status& status) {
+  Terminal::error(status.message());
+  return exitCode(status.code());
+}
+
+// "600x400", "600x400mm", "23.6x15.7in" -> millimetres.
+Result<std::pair<double, double>> parseSheet(const std::string& text) {
+  double w = 0, h = 0;
+  char unit[8] = "";
+  const int n = std::sscanf(text.c_str(), "%lfx%lf%7s", &w, &h, unit);
+  const std::string u = unit;
+  const double scale = u.empty() || u == "mm" ? 1.0 : u == "cm" ? 10.0 : u == "in" ? 25.4 : 0.0;
+  if (n < 2 || scale == 0.0 || !(w > 0 && h > 0 && std::isfinite(w) && std::isfinite(h)))
+    return Status(ErrorCode::Usage, "--sheet must look like 600x400mm (units mm, cm or in), got '" + text + "'");
+  return std::make_pair(w * scale, h * scale);
+}
+
+Result<GateLimits> loadGate(const std::string& nameOrPath) {
+  const bool preset = nameOrPath.find('/') == std::string::npos &&
+                      nameOrPath.find(".json") == std::string::npos;
+  return readGateFile(preset ? templatesDir() + "/gates/" + nameOrPath + ".json" : nameOrPath);
+}
+
+// Writes the cutting patterns and previews of `model` into dir.
+Status exportModel(const DForm& model, const OutputOptions& output, bool failedGate,
+                   const std::string& jobName, MessageSink& sink) {
+  ExportOptions options;
+  options.profile = output.profile;
+  options.templatesDir = templatesDir();
+  options.jobName = jobName;
+  options.failedGateMark = failedGate;
+  if (!output.sheet.empty()) {
+    Result<std::pair<double, double>> sheet = parseSheet(output.sheet);
+    if (!sheet.isOk()) return sheet.status();
+    options.sheetWidthMm = sheet.value().first;
+    options.sheetHeightMm = sheet.value().second;
+  }
+  Result<ExportSummary> exported = exportAll(model, options, output.outDir);
+  if (!exported.isOk()) return exported.status();
+  for (const std::string& note : exported.value().messages) sink.info("export: " + note);
+  sink.info("export (" + exported.value().profile + "): " +
+            std::to_string(exported.value().files.size()) + " files");
+  return Status::ok();
+}
+
+void printFigures(const Metrics& m, const CurveMatch* curve, const Timings& t, const std::string& dir) {
+  std::fprintf(stdout, "L_error %.4f %%   L_max %.3f %%   ", 100 * m.L_error, 100 * m.L_max);
+  if (curve)
+    std::fprintf(stdout, "D_error %.2e   curve distance max %.2e mm\n", curve->D_error,
+                 curve->curve_distance_max_mm);
+  else
+    std::fprintf(stdout, "B_error %.2e   seam gap %.2e mm\n", m.B_error, m.seam_gap_mm);
+  std::fprintf(stdout, "gauss_max %.4f rad   flipped %d   degenerate %d   seam lengths %.3f / %.3f mm\n",
+               m.gauss_max, m.flipped_2d + m.flipped_3d, m.degenerate_2d + m.degenerate_3d,
+               m.seam_length_a_mm, m.seam_length_b_mm);
+  std::fprintf(stdout, "solved in %.3f s (read %.3f, mesh %.3f, solve %.3f); results in %s\n",
+               t.total, t.read, t.mesh, t.solve, dir.c_str());
+}
+
+void printGate(const GateReport& gate) {
+  std::fprintf(stdout, "%-20s %12s %12s  %s\n", "check", "value", "limit", "verdict");
+  for (const CheckResult& c : gate.checks)
+    std::fprintf(stdout, "%-20s %12.4g %12.4g  %s%s%s\n", c.name.c_str(), c.value, c.limit,
+                 verdictName(c.verdict), c.verdict == CheckResult::Verdict::Pass ? "" : ": ",
+                 c.verdict == CheckResult::Verdict::Pass ? "" : c.detail.c_str());
+  std::fprintf(stdout, "gate: %s (%d failed, %d not run)\n", gate.passed() ? "PASSED" : "FAILED",
+               gate.failed(), gate.notRun());
+}
+
+}  // namespace
+
+int exitCode(ErrorCode code) {
+  switch (code) {
+    case ErrorCode::Ok: return 0;
+    case ErrorCode::Internal: return 1;
+    case ErrorCode::Usage: return 2;
+    case ErrorCode::InputUnreadable: return 3;
+    case ErrorCode::InputInvalid: return 4;
+    case ErrorCode::SolveFailed: return 5;
+    case ErrorCode::OutputFailed: return 6;
+    case ErrorCode::GateFailed: return 7;
+    case ErrorCode::Interrupted: return 130;
+  }
+  return 1;
+}
+
+std::string templatesDir() {
+  const char* env = std::getenv("DFORM_TEMPLATES");
+  return env && *env ? env : DFORM_TEMPLATES_DIR;
+}
+
+int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>& interrupted) {
+  Terminal terminal(output.quiet);
+  MessageSink sink(terminal.listener());
+  const bool forward = job.mode == Job::Mode::Forward;
+  RunHooks hooks;
+  hooks.interrupted = &interrupted;
+  hooks.onIteration = [&](const IterationSummary& it) {
+    terminal.progress(forward ? "solving" : "solving (inverse)", it);
+  };
+  std::optional<GateLimits> limits;
+  if (!output.gate.empty()) {
+    Result<GateLimits> loaded = loadGate(output.gate);
+    if (!loaded.isOk()) return fail(loaded.status());
+    limits = loaded.value();
+  }
+
+  // Solve first: nothing is written for a run that fails.
+  DForm model;
+  Result<ForwardRun> forwardRun = Status(ErrorCode::Internal, "not run");
+  Result<InverseRun> inverseRun = Status(ErrorCode::Internal, "not run");
+  if (forward) {
+    forwardRun = runForward(job.forward, sink, hooks);
+    terminal.clearProgress();
+    if (!forwardRun.isOk()) return fail(forwardRun.status());
+    model = forwardRun.value().model;
+  } else {
+    inverseRun = runInverse(job.inverse, sink, hooks);
+    terminal.clearProgress();
+    if (!inverseRun.isOk()) return fail(inverseRun.status());
+    model = inverseRun.value().model;
+  }
+  std::optional<GateReport> gate;
+  if (limits) gate = runGate(model, *limits, forward ? nullptr : &inverseRun.value().target);
+
+  std::error_code ec;
+  fs::create_directories(output.outDir, ec);
+  if (ec || !fs::is_directory(output.outDir))
+    return fail(Status(ErrorCode::OutputFailed, output.outDir + ": cannot create the output folder (" +
+                                                    ec.message() + ")"));
+  Status written = writeModel(output.outDir, model);
+  if (written.isOk() && !forward) written = writeTargetCurve(output.outDir, inverseRun.value().target);
+  if (!written.isOk()) return fail(written);
+
+  const bool gateFailed = gate && !gate->passed();
+  if (output.exportFiles && (!gateFailed || output.exportAnyway)) {
+    const std::string name = fs::path(forward ? job.forward.pieceA : job.inverse.curve).stem().string();
+    const Status exported = exportModel(model, output, gateFailed, name, sink);
+    if (!exported.isOk()) {
+      Terminal::error(exported.message());
+      return exitCode(exported.code());
+    }
+  }
+  const GateReport* gateReport = gate ? &*gate : nullptr;
+  const Status reported =
+      forward ? writeForwardReport(output.outDir, job, forwardRun.value(), sink.messages(), gateReport)
+              : writeInverseReport(output.outDir, job, inverseRun.value(), sink.messages(), gateReport);
+  if (!reported.isOk()) return fail(reported);
+
+  if (forward)
+    printFigures(forwardRun.value().metrics, nullptr, forwardRun.value().timings, output.outDir);
+  else
+    printFigures(inverseRun.value().metrics, &inverseRun.value().curveMatch,
+                 inverseRun.value().timings, output.outDir);
+  if (gate) {
+    printGate(*gate);
+    if (gateFailed) {
+      Terminal::error("the result failed the quality gate '" + limits->name + "'" +
+                      (output.exportAnyway ? " (exported anyway, marked FAILED GATE)"
+                                           : "; no cutting files were written"));
+      return exitCode(ErrorCode::GateFailed);
+    }
+  }
+  return 0;
+}
+
+int exportSaved(const std::string& dir, const OutputOptions& output) {
+  Terminal terminal(output.quiet);
+  MessageSink sink(terminal.listener());
+  Result<DForm> model = readModel(dir);
+  if (!model.isOk()) return fail(model.status());
+  OutputOptions here = output;
+  here.outDir = dir;
+  const Status exported = exportModel(model.value(), here, false, fs::path(dir).filename().string(), sink);
+  if (!exported.isOk()) return fail(exported);
+  std::fprintf(stdout, "exported %s into %s\n", output.profile.c_str(), dir.c_str());
+  return 0;
+}
+
+int validateSaved(const std::string& dir, const std::string& gateName) {
+  Result<DForm> model = readModel(dir);
+  if (!model.isOk()) return fail(model.status());
+  Result<GateLimits> limits = loadGate(gateName);
+  if (!limits.isOk()) return fail(limits.status());
+  // An inverse result carries its target curve; its seam is measured against it.
+  std::optional<Curve3> target;
+  const std::string curvePath = (fs::path(dir) / ModelFileNames::targetCurve).string();
+  if (fs::exists(curvePath)) {
+    Result<Curve3> curve = readCurve(curvePath);
+    if (!curve.isOk()) return fail(curve.status());
+    if (std::size_t(curve.value().points.rows()) != model.value().a.seam.size())
+      return fail(Status(ErrorCode::InputInvalid,
+                         curvePath + ": has a different number of points than the seam"));
+    target = curve.value();
+  }
+  const GateReport gate = runGate(model.value(), limits.value(), target ? &*target : nullptr);
+  printGate(gate);
+  return gate.passed() ? 0 : exitCode(ErrorCode::GateFailed);
+}
+
+int listProfiles() {
+  for (const std::string& name : dform::listProfiles(templatesDir())) std::fprintf(stdout, "%s\n", name.c_str());
+  return 0;
+}
+
+}  // namespace dform::cli

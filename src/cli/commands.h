@@ -1,0 +1,34 @@
+// The CLI's subcommands, each returning the process exit code (README "Exit codes").
+#pragma once
+
+#include <atomic>
+#include <string>
+
+#include "core/status.h"
+#include "pipeline/job_file.h"
+
+namespace dform::cli {
+
+/// The documented exit code of an error kind.
+int exitCode(ErrorCode code);
+
+/// What to do with a run's result.
+struct OutputOptions {
+  std::string outDir;
+  bool exportFiles = true;       ///< write the cutting patterns and previews
+  std::string profile = "laser"; ///< export profile name or file
+  std::string sheet;             ///< "WxH" in mm (e.g. 600x400mm); empty: the exporter's default
+  std::string gate;              ///< gate name or file; empty: no gate
+  bool exportAnyway = false;     ///< export even when the gate fails (files marked FAILED GATE)
+  bool quiet = false;
+};
+
+/// The templates folder: $DFORM_TEMPLATES, else the source tree's templates/.
+std::string templatesDir();
+
+int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>& interrupted);
+int exportSaved(const std::string& dir, const OutputOptions& output);
+int validateSaved(const std::string& dir, const std::string& gate);
+int listProfiles();
+
+}  // namespace dform::cli

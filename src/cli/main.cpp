@@ -1,0 +1,194 @@
+// dform: forward and inverse D-Form modelling, export and validation from the command line.
+// Thin: parses options into jobs, calls the pipeline, prints. Exit codes: README "Exit codes".
+#include <CLI/CLI.hpp>
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <exception>
+#include <set>
+#include <string>
+
+#include "cli/commands.h"
+#include "cli/terminal.h"
+#include "core/allocator.h"
+
+namespace {
+
+using namespace dform;
+
+std::atomic<bool> interrupted{false};
+
+extern "C" void onInterrupt(int) { interrupted = true; }
+
+// "--weight isometry=2" -> the named weight of a forward or inverse job.
+Status setWeight(Job& job, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  const std::string name = assignment.substr(0, eq);
+  double value = 0;
+  try {
+    if (eq == std::string::npos) throw std::invalid_argument("no =");
+    std::size_t used = 0;
+    value = std::stod(assignment.substr(eq + 1), &used);
+    if (used != assignment.size() - eq - 1) throw std::invalid_argument("trailing");
+  } catch (const std::exception&) {
+    return Status(ErrorCode::Usage, "--weight must look like name=value, got '" + assignment + "'");
+  }
+  ForwardWeights& f = job.forward.solve.weights;
+  InverseWeights& i = job.inverse.solve.weights;
+  double* target = nullptr;
+  if (job.mode == Job::Mode::Forward) {
+    target = name == "isometry" ? &f.isometry : name == "alignment" ? &f.alignment
+           : name == "boundary_fix" ? &f.boundaryFix : name == "smooth_3d" ? &f.smooth3d
+           : name == "smooth_2d" ? &f.smooth2d : name == "seam" ? &f.seam : nullptr;
+  } else {
+    target = name == "isometry" ? &i.isometry : name == "closeness" ? &i.closeness
+           : name == "smooth_3d" ? &i.smooth3d : name == "smooth_2d" ? &i.smooth2d : nullptr;
+  }
+  if (!target) return Status(ErrorCode::Usage, "--weight: unknown weight '" + name + "'");
+  *target = value;
+  return Status::ok();
+}
+
+// "X,Y" -> a start point nearest to (X, Y) mm.
+bool parsePoint(const std::string& text, StartPoint& start) {
+  double x = 0, y = 0;
+  char rest = 0;
+  if (std::sscanf(text.c_str(), "%lf,%lf%c", &x, &y, &rest) != 2) return false;
+  start.nearestToPoint = true;
+  start.point = {x, y};
+  return true;
+}
+
+void addOutputOptions(CLI::App* command, cli::OutputOptions& out) {
+  command->add_option("-o,--output", out.outDir, "folder for the results (created if missing)")->required();
+  command->add_flag("!--no-export", out.exportFiles, "skip the cutting patterns and 3D previews");
+  command->add_option("--profile", out.profile, "export profile name or .json file (default laser)");
+  command->add_option("--sheet", out.sheet, "material sheet, e.g. 600x400mm");
+  command->add_option("--gate", out.gate, "quality gate: default, strict, lenient or a .json file");
+  command->add_flag("--export-anyway", out.exportAnyway, "export even if the gate fails (marked FAILED GATE)");
+  command->add_flag("-q,--quiet", out.quiet, "print only the figures, warnings and errors");
+}
+
+int usageError(const std::string& message) {
+  cli::Terminal::error(message);
+  return cli::exitCode(ErrorCode::Usage);
+}
+
+int run(int argc, char** argv) {
+  CLI::App app{"dform: design and fabricate D-Forms (forward, inverse, export, validate)"};
+  app.set_version_flag("--version", std::string("dform ") + DFORM_VERSION);
+  app.require_subcommand(1);
+
+  Job forwardJob;
+  cli::OutputOptions forwardOut;
+  std::string startANear, startBNear;
+  std::vector<std::string> forwardWeights;
+  CLI::App* forward = app.add_subcommand("forward", "two flat outlines -> the D-Form they make");
+  forward->add_option("piece_a", forwardJob.forward.pieceA, "outline of piece A (.svg or .json)")->required();
+  forward->add_option("piece_b", forwardJob.forward.pieceB, "outline of piece B (.svg or .json)")->required();
+  forward->add_option("--resolution", forwardJob.forward.resolution, "seam vertices per piece (default 100)");
+  forward->add_option("--start-a", forwardJob.forward.startA.fraction, "start of A's seam: arc-length fraction in [0, 1)");
+  forward->add_option("--start-b", forwardJob.forward.startB.fraction, "start of B's seam: arc-length fraction in [0, 1)");
+  forward->add_option("--start-a-near", startANear, "start of A's seam: the outline point nearest X,Y (mm)");
+  forward->add_option("--start-b-near", startBNear, "start of B's seam: the outline point nearest X,Y (mm)");
+  forward->add_flag("--flip", forwardJob.forward.flip, "zip piece B turned over");
+  forward->add_flag("--fit-perimeter", forwardJob.forward.fitPerimeter, "scale piece B to A's perimeter");
+  forward->add_option("--perimeter-tolerance", forwardJob.forward.perimeterTolerance, "largest relative perimeter difference (default 0.005)");
+  forward->add_option("--weight", forwardWeights, "term weight, e.g. smooth_3d=0.02 (repeatable)");
+  forward->add_option("--max-iterations", forwardJob.forward.solve.solver.maxIterations, "Levenberg-Marquardt iteration cap");
+  addOutputOptions(forward, forwardOut);
+
+  Job inverseJob;
+  inverseJob.mode = Job::Mode::Inverse;
+  cli::OutputOptions inverseOut;
+  std::vector<std::string> inverseWeights;
+  CLI::App* inverse = app.add_subcommand("inverse", "a 3D seam curve -> the two flat pieces that make it");
+  inverse->add_option("curve", inverseJob.inverse.curve, "seam curve (.obj polyline or .json)")->required();
+  inverse->add_option("--resolution", inverseJob.inverse.resolution, "seam vertices (default 100)");
+  inverse->add_flag("--closed", inverseJob.inverse.forceClosed, "close an open OBJ polyline");
+  inverse->add_option("--weight", inverseWeights, "term weight, e.g. smooth_3d=0.005 (repeatable)");
+  inverse->add_option("--max-iterations", inverseJob.inverse.solve.solver.maxIterations, "Levenberg-Marquardt iteration cap");
+  addOutputOptions(inverse, inverseOut);
+
+  std::string jobPath;
+  cli::OutputOptions runOut;
+  CLI::App* runCommand = app.add_subcommand("run", "run a job file (forward or inverse)");
+  runCommand->add_option("job", jobPath, "job file (.json, see docs/cli.md)")->required();
+  addOutputOptions(runCommand, runOut);
+
+  std::string exportDir;
+  cli::OutputOptions exportOut;
+  bool listOnly = false;
+  CLI::App* exportCommand = app.add_subcommand("export", "write cutting patterns and previews of a saved result");
+  exportCommand->add_option("dir", exportDir, "a result folder written by forward, inverse or run");
+  exportCommand->add_option("--profile", exportOut.profile, "export profile name or .json file (default laser)");
+  exportCommand->add_option("--sheet", exportOut.sheet, "material sheet, e.g. 600x400mm");
+  exportCommand->add_flag("--list-profiles", listOnly, "list the profiles and exit");
+  exportCommand->add_flag("-q,--quiet", exportOut.quiet, "print only warnings and errors");
+
+  std::string validateDir, validateGate = "default";
+  CLI::App* validate = app.add_subcommand("validate", "re-check a saved result against a quality gate");
+  validate->add_option("dir", validateDir, "a result folder")->required();
+  validate->add_option("--gate", validateGate, "default, strict, lenient or a .json file");
+
+  const std::set<std::string> commands = {"forward", "inverse", "run", "export", "validate"};
+  if (argc > 1 && argv[1][0] != '-' && !commands.count(argv[1]))
+    return usageError("unknown command '" + std::string(argv[1]) +
+                      "' (commands: forward, inverse, run, export, validate; see dform --help)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    return usageError(e.what());
+  }
+
+  std::signal(SIGINT, onInterrupt);
+  auto usage = [](const Status& s) {
+    cli::Terminal::error(s.message());
+    return cli::exitCode(s.code());
+  };
+  if (*forward) {
+    if (!startANear.empty() && !parsePoint(startANear, forwardJob.forward.startA))
+      return usage(Status(ErrorCode::Usage, "--start-a-near must look like X,Y"));
+    if (!startBNear.empty() && !parsePoint(startBNear, forwardJob.forward.startB))
+      return usage(Status(ErrorCode::Usage, "--start-b-near must look like X,Y"));
+    for (const std::string& w : forwardWeights)
+      if (Status s = setWeight(forwardJob, w); !s.isOk()) return usage(s);
+    if (Status s = validateForwardJob(forwardJob.forward); !s.isOk()) return usage(s);
+    return cli::runJob(forwardJob, forwardOut, interrupted);
+  }
+  if (*inverse) {
+    for (const std::string& w : inverseWeights)
+      if (Status s = setWeight(inverseJob, w); !s.isOk()) return usage(s);
+    if (Status s = validateInverseJob(inverseJob.inverse); !s.isOk()) return usage(s);
+    return cli::runJob(inverseJob, inverseOut, interrupted);
+  }
+  if (*runCommand) {
+    Result<Job> job = readJobFile(jobPath);
+    if (!job.isOk()) return usage(job.status());
+    return cli::runJob(job.value(), runOut, interrupted);
+  }
+  if (*exportCommand) {
+    if (listOnly) return cli::listProfiles();
+    if (exportDir.empty()) return usage(Status(ErrorCode::Usage, "export needs a result folder"));
+    return cli::exportSaved(exportDir, exportOut);
+  }
+  return cli::validateSaved(validateDir, validateGate);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  keepFreedMemory();
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    dform::cli::Terminal::error(std::string("internal error: ") + e.what());
+  } catch (...) {
+    dform::cli::Terminal::error("internal error");
+  }
+  return 1;
+}

@@ -1,0 +1,28 @@
+// What the CLI shows on the terminal: messages, a one-line progress display, errors.
+#pragma once
+
+#include <string>
+
+#include "core/messages.h"
+#include "solver/solver.h"
+
+namespace dform::cli {
+
+/// Prints messages and solver progress to stderr. Progress (an updating line) only when stderr
+/// is a terminal and not quiet; info messages unless quiet; warnings and errors always.
+class Terminal {
+ public:
+  explicit Terminal(bool quiet);
+  MessageSink::Listener listener();
+  void progress(const std::string& stage, const IterationSummary& it);
+  void clearProgress();
+  /// One line "dform: error: ..." on stderr.
+  static void error(const std::string& message);
+
+ private:
+  bool quiet_;
+  bool tty_;
+  bool progressShown_ = false;
+};
+
+}  // namespace dform::cli

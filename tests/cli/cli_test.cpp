@@ -1,0 +1,228 @@
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "io/model_files.h"
+
+namespace dform {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int exitCode = -1;
+  std::string out, err;
+};
+
+// A scratch folder per test, removed at the end.
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / ("dform_cli_" + std::string(info->name()) + "_" + std::to_string(getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(path(name), std::ios::binary) << text;
+    return path(name);
+  }
+  static std::string svg(const std::string& body) {
+    return "<svg xmlns='http://www.w3.org/2000/svg' width='300mm' height='300mm' viewBox='0 0 300 300'>" +
+           body + "</svg>";
+  }
+
+  // Runs dform with `args`, capturing stdout and stderr.
+  Outcome run(const std::string& args) const {
+    const std::string out = path("stdout.txt"), err = path("stderr.txt");
+    const std::string command = std::string(DFORM_EXE) + " " + args + " >" + out + " 2>" + err;
+    const int status = std::system(command.c_str());
+    Outcome o;
+    o.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::ostringstream a, b;
+    a << std::ifstream(out).rdbuf();
+    b << std::ifstream(err).rdbuf();
+    o.out = a.str();
+    o.err = b.str();
+    return o;
+  }
+
+  // The run failed with `code` and said so in one error line, the last, naming `mentions`
+  // (progress messages may come before it).
+  static void expectError(const Outcome& o, int code, const std::string& mentions) {
+    EXPECT_EQ(o.exitCode, code) << o.err;
+    std::size_t errors = 0, at = 0;
+    while ((at = o.err.find("dform: error: ", at)) != std::string::npos) ++errors, ++at;
+    EXPECT_EQ(errors, 1u) << o.err;
+    const std::size_t lastLine = o.err.rfind('\n', o.err.size() - 2);
+    const std::string last = o.err.substr(lastLine == std::string::npos ? 0 : lastLine + 1);
+    EXPECT_EQ(last.rfind("dform: error: ", 0), 0u) << o.err;
+    EXPECT_NE(last.find(mentions), std::string::npos) << o.err;
+  }
+
+  std::string sample(const std::string& name) const {
+    return std::string(DFORM_SAMPLES_DIR) + "/" + name;
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(CliTest, MissingFileIsUnreadable) {
+  const std::string missing = path("nowhere.svg");
+  expectError(run("forward " + missing + " " + sample("forward/circle.svg") + " -o " + path("out")), 3, missing);
+  EXPECT_FALSE(fs::exists(path("out")));
+}
+
+TEST_F(CliTest, NotSvgIsUnreadable) {
+  const std::string junk = write("junk.svg", "this is not an svg file");
+  expectError(run("forward " + junk + " " + sample("forward/circle.svg") + " -o " + path("out")), 3, junk);
+}
+
+TEST_F(CliTest, NoClosedPathIsInvalid) {
+  const std::string open = write("open.svg", svg("<path d='M 10 10 L 100 10 L 100 100'/>"));
+  expectError(run("forward " + open + " " + sample("forward/circle.svg") + " -o " + path("out")), 4, open);
+}
+
+TEST_F(CliTest, SelfIntersectingOutlineIsInvalid) {
+  const std::string bowtie = write("bowtie.svg", svg("<polygon points='10,10 100,100 100,10 10,100'/>"));
+  expectError(run("forward " + bowtie + " " + sample("forward/circle.svg") + " -o " + path("out")), 4, bowtie);
+}
+
+TEST_F(CliTest, PieceWithAHoleIsInvalid) {
+  const std::string ring = write("ring.svg", svg("<path d='M 10 10 H 200 V 200 H 10 Z M 50 50 V 150 H 150 V 50 Z'/>"));
+  const Outcome o = run("forward " + ring + " " + sample("forward/circle.svg") + " -o " + path("out"));
+  expectError(o, 4, ring);
+  EXPECT_NE(o.err.find("hole"), std::string::npos) << o.err;
+}
+
+TEST_F(CliTest, UnequalPerimetersGiveBothInMillimetres) {
+  const Outcome o = run("forward " + sample("forward/circle.svg") + " " + sample("forward/ellipses-a.svg") + " -o " + path("out"));
+  expectError(o, 4, "perimeters differ");
+  EXPECT_NE(o.err.find("799.9"), std::string::npos) << o.err;  // the circle's 800 mm, flattened
+  EXPECT_NE(o.err.find("607.2"), std::string::npos) << o.err;  // the ellipse's 607.28 mm
+  EXPECT_FALSE(fs::exists(path("out")));
+}
+
+TEST_F(CliTest, HugeAndNonFiniteCoordinatesAreInvalid) {
+  const std::string huge = write("huge.json", R"({"points": [[0,0],[1e300,0],[0,10]]})");
+  expectError(run("forward " + huge + " " + sample("forward/circle.svg") + " -o " + path("out")), 4, huge);
+  const std::string inf = write("inf.svg", svg("<rect width='1e999' height='10'/>"));
+  const Outcome o = run("forward " + inf + " " + sample("forward/circle.svg") + " -o " + path("out"));
+  EXPECT_TRUE(o.exitCode == 3 || o.exitCode == 4) << o.err;
+  EXPECT_NE(o.err.find(inf), std::string::npos) << o.err;
+}
+
+TEST_F(CliTest, TooFewPointsIsInvalid) {
+  const std::string two = write("two.json", R"({"points": [[0,0],[10,0]]})");
+  expectError(run("forward " + two + " " + sample("forward/circle.svg") + " -o " + path("out")), 4, two);
+}
+
+TEST_F(CliTest, BadOptionsAreUsageErrors) {
+  const std::string pair = sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  expectError(run("forward " + pair + " -o " + path("out") + " --resolution 2"), 2, "resolution");
+  expectError(run("forward " + pair + " -o " + path("out") + " --start-b 1.5"), 2, "fraction");
+  expectError(run("forward " + pair + " -o " + path("out") + " --weight bogus=1"), 2, "bogus");
+  expectError(run("forward " + pair + " -o " + path("out") + " --resolution many"), 2, "resolution");
+  expectError(run("forward " + pair), 2, "output");
+  expectError(run("frobnicate"), 2, "frobnicate");
+}
+
+TEST_F(CliTest, UnwritableOutputIsAnOutputError) {
+  const std::string file = write("a-file", "x");
+  const std::string pair = sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  expectError(run("forward " + pair + " --resolution 30 -q -o " + file + "/out"), 6, file);
+}
+
+TEST_F(CliTest, ForwardWritesEveryFileAndValidates) {
+  const std::string out = path("out");
+  const Outcome o = run("forward " + sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg") +
+                        " --resolution 40 -q -o " + out);
+  ASSERT_EQ(o.exitCode, 0) << o.err;
+  for (const char* name : {"piece-a-flat.obj", "piece-a-3d.obj", "piece-b-flat.obj", "piece-b-3d.obj",
+                           "report.json", "pattern.svg", "pattern.pdf", "dform.stl", "dform.glb"})
+    EXPECT_TRUE(fs::exists(fs::path(out) / name)) << name;
+  // No temporary file is left behind.
+  for (const auto& entry : fs::directory_iterator(out))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+  const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
+  for (const char* key : {"L_error", "L_max", "B_error", "seam_gap_mm", "gauss_max", "gauss_mean"})
+    EXPECT_TRUE(report["metrics"][key].is_number()) << key;
+  for (const char* key : {"read", "mesh", "solve", "total"})
+    EXPECT_TRUE(report["timings"][key].is_number()) << key;
+  EXPECT_LE(report["metrics"]["L_error"].get<double>(), 0.005);
+  const Outcome v = run("validate " + out);
+  EXPECT_EQ(v.exitCode, 0) << v.out;
+  EXPECT_NE(v.out.find("gate: PASSED"), std::string::npos) << v.out;
+}
+
+TEST_F(CliTest, JobFileReproducesTheRun) {
+  const std::string out = path("out");
+  const std::string job = write("job.json", R"({"mode": "forward", "piece_a": ")" + sample("forward/circle.svg") +
+                                                R"(", "piece_b": ")" + sample("forward/square.svg") +
+                                                R"(", "start_b": 0.125, "resolution": 40})");
+  const Outcome o = run("run " + job + " --no-export -q -o " + out);
+  ASSERT_EQ(o.exitCode, 0) << o.err;
+  EXPECT_FALSE(fs::exists(fs::path(out) / "pattern.svg"));
+  const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
+  EXPECT_EQ(report["job"]["start_b"].get<double>(), 0.125);
+  EXPECT_EQ(report["job"]["resolution"].get<int>(), 40);
+  // The recorded job runs again to the same figures.
+  const std::string again = write("again.json", report["job"].dump());
+  ASSERT_EQ(run("run " + again + " --no-export -q -o " + path("out2")).exitCode, 0);
+  const nlohmann::json second = nlohmann::json::parse(std::ifstream(fs::path(path("out2")) / "report.json"));
+  EXPECT_EQ(report["metrics"]["L_error"], second["metrics"]["L_error"]);
+  EXPECT_EQ(report["metrics"]["B_error"], second["metrics"]["B_error"]);
+}
+
+TEST_F(CliTest, BadJobFilesNameTheKey) {
+  const std::string unknown = write("unknown.json", R"({"mode": "forward", "piece_a": "a.svg", "piece_b": "b.svg", "colour": 3})");
+  expectError(run("run " + unknown + " -o " + path("out")), 4, "colour");
+  const std::string missing = write("missing.json", R"({"mode": "forward", "piece_a": "a.svg"})");
+  expectError(run("run " + missing + " -o " + path("out")), 4, "piece_b");
+  const std::string typed = write("typed.json", R"({"mode": "forward", "piece_a": "a.svg", "piece_b": "b.svg", "resolution": "high"})");
+  expectError(run("run " + typed + " -o " + path("out")), 4, "resolution");
+  const std::string notJson = write("not.json", "{ mode: forward");
+  expectError(run("run " + notJson + " -o " + path("out")), 3, notJson);
+}
+
+TEST_F(CliTest, FitPerimeterScalesPieceB) {
+  const std::string big = write("big.svg", svg("<circle cx='150' cy='150' r='128.5'/>"));  // 0.9 % longer
+  const std::string out = path("out");
+  const Outcome o = run("forward " + sample("forward/circle.svg") + " " + big + " --fit-perimeter --resolution 30 --no-export -q -o " + out);
+  ASSERT_EQ(o.exitCode, 0) << o.err;
+  const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
+  EXPECT_NEAR(report["fit_perimeter_scale"].get<double>(), 127.323954473516 / 128.5, 1e-4);
+  EXPECT_NEAR(report["metrics"]["seam_length_a_mm"].get<double>(), report["metrics"]["seam_length_b_mm"].get<double>(), 0.01);
+}
+
+TEST_F(CliTest, InverseRunAndItsBadInputs) {
+  const std::string out = path("out");
+  const Outcome o = run("inverse " + sample("inverse/tennis-ball.obj") + " --resolution 60 --no-export -q -o " + out);
+  ASSERT_EQ(o.exitCode, 0) << o.err;
+  EXPECT_TRUE(fs::exists(fs::path(out) / ModelFileNames::targetCurve));
+  const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
+  EXPECT_LE(report["metrics"]["D_error"].get<double>(), 1e-6);
+  EXPECT_EQ(run("validate " + out).exitCode, 0);
+
+  const std::string planar = write("planar.obj", "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\nv -5 5 0\nl 1 2 3 4 5 1\n");
+  expectError(run("inverse " + planar + " -o " + path("o2")), 4, planar);
+  const std::string faces = write("faces.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const Outcome f = run("inverse " + faces + " -o " + path("o3"));
+  EXPECT_TRUE(f.exitCode == 3 || f.exitCode == 4) << f.err;
+  EXPECT_NE(f.err.find(faces), std::string::npos);
+  const std::string open = write("open.obj", "v 0 0 0\nv 10 0 1\nv 10 10 0\nv 0 10 1\nv -5 5 2\nl 1 2 3 4 5\n");
+  expectError(run("inverse " + open + " -o " + path("o4")), 4, open);
+}
+
+}  // namespace
+}  // namespace dform
