@@ -226,6 +226,7 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
     return static_cast<const LinearResidual*>(t.get());
   };
   auto* alignmentTerm = static_cast<LinearResidual*>(alignment.get());
+  auto* anchorTerm = static_cast<LinearResidual*>(anchor.get());
   result.relaxation = relaxLocalGlobal({{w.alignment, linear(alignment)},
                                         {w.boundaryFix, linear(anchor)},
                                         {w.smooth3d, linear(smooth3d)},
@@ -243,12 +244,15 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
   LeastSquaresSolver solver(problem, options.solver);
   result.summary = solver.solve(x);
 
-  // Close the seam: the alignment as a constraint (multiplier rounds), tolerance relative to the
-  // perimeter, which is #seam in the unit of the mean seam edge.
-  if (w.alignment > 0)
-    result.seamClosingRounds = enforceByMultipliers(
-        solver, *alignmentTerm, 3, options.seamGapTolerance * double(a.seam.size()),
-        options.seamClosingRounds, x, result.summary);
+  // Close the seam and hold the cut outlines to the drawn ones: alignment and boundary fix as
+  // constraints. Tolerances are relative to the perimeter, #seam in the unit of the mean seam edge.
+  const double perimeter = double(a.seam.size());
+  std::vector<Constraint> constraints;
+  if (w.alignment > 0) constraints.push_back({alignmentTerm, 3, options.seamTolerance * perimeter});
+  if (w.boundaryFix > 0)
+    constraints.push_back({anchorTerm, 2, options.outlineTolerance * perimeter});
+  result.constraintRounds =
+      enforceByMultipliers(solver, constraints, options.constraintRounds, x, result.summary);
   result.model = start;
   unpackVariables(layout, x, result.model.a, result.model.b);
   scaleLengths(result.model, unit);

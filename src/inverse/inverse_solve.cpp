@@ -43,7 +43,7 @@ InverseResult solveInverse(const DForm& start, const Points3& curve, const Inver
   result.summary = solver.solve(x);
   if (w.closeness > 0)
     result.curveClosingRounds = enforceByMultipliers(
-        solver, *closenessTerm, 3, options.curveTolerance * double(curve.rows()),
+        solver, {{closenessTerm, 3, options.curveTolerance * double(curve.rows())}},
         options.curveClosingRounds, x, result.summary);
 
   result.model = scaled;

@@ -197,7 +197,7 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
     ForwardOptions levelOptions = options;
     if (!finest) {
       levelOptions.solver.maxIterations = std::min(options.solver.maxIterations, kCoarseIterations);
-      levelOptions.seamClosingRounds = 0;
+      levelOptions.constraintRounds = 0;
     }
     solved = solveForward(a.value(), b.value(), levelOptions);
     run.timings.solve += secondsSince(solveStart);
@@ -209,10 +209,10 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
               format(" in %.3f s; level solved in %.3f s", solved.relaxation.seconds,
                      secondsSince(solveStart)));
     sink.info("solve: " + solved.summary.briefReport() + ", " +
-              std::to_string(solved.seamClosingRounds) + " seam-closing round(s)");
+              std::to_string(solved.constraintRounds) + " constraint round(s)");
   }
   run.relaxation = solved.relaxation;
-  run.seamClosingRounds = solved.seamClosingRounds;
+  run.constraintRounds = solved.constraintRounds;
   run.model = std::move(solved.model);
   run.summary = std::move(solved.summary);
   run.metrics = computeMetrics(run.model);

@@ -44,7 +44,7 @@ struct ForwardRun {
   Metrics metrics;
   LocalGlobalSummary relaxation;  ///< the local-global start of the solve
   SolverSummary summary;          ///< the Levenberg-Marquardt solve
-  int seamClosingRounds = 0;      ///< multiplier updates that closed the seam
+  int constraintRounds = 0;       ///< multiplier rounds that closed the seam and fixed the outlines
   Timings timings;
   double perimeterA = 0, perimeterB = 0;  ///< as read, mm
   double scaleB = 1.0;                    ///< applied by fitPerimeter

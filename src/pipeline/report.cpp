@@ -125,7 +125,7 @@ Status writeForwardReport(const std::string& dir, const Job& job, const ForwardR
   report["start_fraction_b"] = figure(run.startFractionB);
   report["mesh"] = meshJson(run.model);
   report["solver"] = solverJson(run.relaxation, run.summary);
-  report["solver"]["seam_closing_rounds"] = run.seamClosingRounds;
+  report["solver"]["constraint_rounds"] = run.constraintRounds;
   report["metrics"] = metricsJson(run.metrics);
   report["timings"] = timingsJson(run.timings);
   report["gate"] = gateJson(gate);

@@ -228,6 +228,15 @@ class StepSolver {
  public:
   StepSolver(const SparseLower& pattern, const SolverOptions& options) : options_(options) {
     factor_.analyzePattern(pattern);
+    // CHOLMOD's analysis counts the factorisation's flops and L's nonzeros. One CG iteration
+    // costs two triangular solves with L (2 flops per nonzero each) and a product with A
+    // (4 flops per stored lower nonzero). CG may spend a quarter of a factorisation: a stale
+    // preconditioner that needs longer stays stale for the next steps too, and refactorising
+    // serves them all. Counting flops rather than seconds keeps runs reproducible.
+    const double factorFlops = factor_.cholmod().fl;
+    const double cgFlops = 4.0 * factor_.cholmod().lnz + 4.0 * double(pattern.nonZeros());
+    cgBudget_ = std::clamp(int(0.25 * factorFlops / std::max(cgFlops, 1.0)), 1,
+                           std::max(1, options.maxCgIterations));
   }
 
   bool solve(const SparseLower& A, double mu, const Eigen::VectorXd& g, Eigen::VectorXd& dx,
@@ -237,9 +246,7 @@ class StepSolver {
     if (haveFactor_ && options_.maxCgIterations > 0 && preconditionedCg(A, mu, g, dx, it))
       return true;
     factor_.setShift(mu);
-    const auto start = Clock::now();
     factor_.factorize(A);
-    factorSeconds_ = secondsSince(start);
     ++factorisations_;
     it.refactorised = true;
     if (factor_.info() != Eigen::Success) return haveFactor_ = false;
@@ -253,7 +260,6 @@ class StepSolver {
  private:
   bool preconditionedCg(const SparseLower& A, double mu, const Eigen::VectorXd& g,
                         Eigen::VectorXd& dx, IterationSummary& it) {
-    const auto start = Clock::now();
     const Eigen::VectorXd b = -g;
     const double stop = options_.cgRelativeTolerance * b.norm();
     dx.setZero(b.size());
@@ -261,7 +267,7 @@ class StepSolver {
     Eigen::VectorXd z = factor_.solve(res);
     Eigen::VectorXd p = z;
     double rz = res.dot(z);
-    for (int k = 1; k <= options_.maxCgIterations; ++k) {
+    for (int k = 1; k <= cgBudget_; ++k) {
       const Eigen::VectorXd Ap = shiftedProduct(A, mu, p);
       const double pAp = p.dot(Ap);
       if (!(pAp > 0)) return false;
@@ -270,7 +276,6 @@ class StepSolver {
       res -= alpha * Ap;
       it.cgIterations = k;
       if (res.norm() <= stop) return dx.allFinite();
-      if (secondsSince(start) > kCgTimeShare * factorSeconds_) return false;
       z = factor_.solve(res);
       const double rzNext = res.dot(z);
       p = z + (rzNext / rz) * p;
@@ -283,10 +288,7 @@ class StepSolver {
   Eigen::CholmodSupernodalLLT<SparseLower, Eigen::Lower> factor_;
   bool haveFactor_ = false;
   int factorisations_ = 0;
-  double factorSeconds_ = 0;  ///< wall time of the last numeric factorisation
-  // CG gives up after a quarter of a factorisation's time: a stale preconditioner that needs
-  // longer stays stale for the next steps too, and refactorising serves them all.
-  static constexpr double kCgTimeShare = 0.25;
+  int cgBudget_ = 1;  ///< CG iterations allowed per step before refactorising
 };
 
 }  // namespace
@@ -440,23 +442,28 @@ SolverSummary LeastSquaresSolver::solve(Eigen::VectorXd& x) {
   return summary;
 }
 
-int enforceByMultipliers(LeastSquaresSolver& solver, LinearResidual& term, int blockSize,
-                         double tolerance, int maxRounds, Eigen::VectorXd& x,
-                         SolverSummary& summary) {
-  const Eigen::VectorXd target = term.target();
-  auto largestBlock = [&](const Eigen::VectorXd& r) {
-    double largest = 0.0;
-    for (Eigen::Index k = 0; k + blockSize <= r.size(); k += blockSize)
-      largest = std::max(largest, r.segment(k, blockSize).norm());
-    return largest;
+int enforceByMultipliers(LeastSquaresSolver& solver, const std::vector<Constraint>& constraints,
+                         int maxRounds, Eigen::VectorXd& x, SolverSummary& summary) {
+  std::vector<Eigen::VectorXd> targets;
+  for (const Constraint& c : constraints) targets.push_back(c.term->target());
+  auto met = [](const Constraint& c, const Eigen::VectorXd& r) {
+    for (Eigen::Index k = 0; k + c.blockSize <= r.size(); k += c.blockSize)
+      if (r.segment(k, c.blockSize).norm() > c.tolerance) return false;
+    return true;
   };
   int rounds = 0;
-  Eigen::VectorXd residual = term.matrix() * x - target;
-  while (summary.usable() && rounds < maxRounds && largestBlock(residual) > tolerance) {
+  while (summary.usable() && rounds < maxRounds) {
+    bool allMet = true;
+    for (std::size_t i = 0; i < constraints.size(); ++i) {
+      LinearResidual& term = *constraints[i].term;
+      const Eigen::VectorXd residual = term.matrix() * x - targets[i];
+      if (met(constraints[i], residual)) continue;
+      allMet = false;
+      term.setTarget(term.target() - residual);
+    }
+    if (allMet) break;
     ++rounds;
-    term.setTarget(term.target() - residual);
     summary.append(solver.solve(x));
-    residual = term.matrix() * x - target;
   }
   return rounds;
 }

@@ -53,7 +53,7 @@ struct SolverOptions {
   double initialDampingRatio = 1e-6;
   /// Reuse the last factorisation as a CG preconditioner while CG converges within this many
   /// iterations; 0 refactorises every step (plain Levenberg-Marquardt). Within the cap, CG also
-  /// gives up once it has taken a quarter of the last factorisation's time.
+  /// gives up once it has cost a quarter of a factorisation's flops (CHOLMOD's count).
   int maxCgIterations = 50;
   /// Inexact-Newton forcing term: CG stops when ||A dx + g|| <= cgRelativeTolerance * ||g||.
   double cgRelativeTolerance = 1e-3;
@@ -105,14 +105,20 @@ class LeastSquaresSolver {
   std::unique_ptr<Impl> impl_;
 };
 
-/// Drives a LinearResidual term of `solver`'s problem, r = M x - b0, to zero as a constraint by
-/// augmented-Lagrangian rounds: while the largest residual block (blockSize values, e.g. one 3D
-/// point) is above `tolerance`, the term's target moves by the residual (b <- b - (M x - b0)) and
-/// the problem is solved again from x. The weight stays as the caller chose it. Each solve is
-/// appended to `summary`; returns the rounds used. The term's target is left shifted.
-int enforceByMultipliers(LeastSquaresSolver& solver, LinearResidual& term, int blockSize,
-                         double tolerance, int maxRounds, Eigen::VectorXd& x,
-                         SolverSummary& summary);
+/// A LinearResidual term of a problem, r = M x - b0, to be driven to zero as a constraint: met
+/// when every block of blockSize residuals (e.g. one 3D point) has norm <= tolerance.
+struct Constraint {
+  LinearResidual* term;
+  int blockSize;
+  double tolerance;
+};
+
+/// Augmented-Lagrangian rounds on `solver`'s problem: while a constraint is not met, each unmet
+/// term's target moves by its residual (b <- b - (M x - b0), a multiplier update) and the problem
+/// is solved again from x. The weights stay as the caller chose them. Each solve is appended to
+/// `summary`; returns the rounds used. The terms' targets are left shifted.
+int enforceByMultipliers(LeastSquaresSolver& solver, const std::vector<Constraint>& constraints,
+                         int maxRounds, Eigen::VectorXd& x, SolverSummary& summary);
 
 /// Minimises problem's objective starting from x (updated in place): a one-off LeastSquaresSolver.
 SolverSummary solve(const Problem& problem, const SolverOptions& options, Eigen::VectorXd& x);
