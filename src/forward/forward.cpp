@@ -157,37 +157,47 @@ DForm pillowInitialGuess(const Piece& a, const Piece& b) {
     const Eigen::ArrayXd z = alpha * d.dlift.array() + h * d.dphi.array();
     return (s * s * d.xy2.array() + z * z - d.rest2.array()).square().sum();
   };
-  // The best height h in [0, hMax] for one piece by golden-section search (the residual is a
-  // quartic in h with one minimum on the heights that matter).
+  // Both pieces are inflated by the same height h, A up and B down, so that the start is a
+  // pillow and not one flat piece against one domed one (which a separate fit per piece can
+  // prefer). The residual is a quartic in h with up to two minima: a grid finds the basin,
+  // golden-section search refines it.
+  auto pillowResidual = [&](double s, double alpha, double h) {
+    return residual(edges[0], s, alpha, h) + residual(edges[1], s, alpha, -h);
+  };
   const double hMax = closedLength(mid);
-  auto bestHeight = [&](const EdgeData& d, double s, double alpha, double sign) {
+  auto bestHeight = [&](double s, double alpha) {
+    constexpr int kGrid = 24;
+    double bestH = 0.0, best = pillowResidual(s, alpha, 0.0);
+    for (int g = 1; g <= kGrid; ++g) {
+      const double h = hMax * double(g * g) / double(kGrid * kGrid);  // denser near 0
+      const double value = pillowResidual(s, alpha, h);
+      if (value < best) best = value, bestH = h;
+    }
+    const double step = hMax / double(kGrid);
+    double lo = std::max(0.0, bestH - step), hi = bestH + step;
     const double golden = 0.5 * (std::sqrt(5.0) - 1.0);
-    double lo = 0.0, hi = hMax;
-    for (int it = 0; it < 40; ++it) {
+    for (int it = 0; it < 30; ++it) {
       const double m1 = hi - golden * (hi - lo), m2 = lo + golden * (hi - lo);
-      if (residual(d, s, alpha, sign * m1) < residual(d, s, alpha, sign * m2))
+      if (pillowResidual(s, alpha, m1) < pillowResidual(s, alpha, m2))
         hi = m2;
       else
         lo = m1;
     }
     const double h = 0.5 * (lo + hi);
-    return std::make_pair(residual(d, s, alpha, sign * h), h);
+    const double value = pillowResidual(s, alpha, h);
+    return value < best ? std::make_pair(value, h) : std::make_pair(best, bestH);
   };
 
-  double bestCost = std::numeric_limits<double>::infinity(), bestS = 1.0, bestAlpha = 0.0;
-  double bestH[2] = {0.0, 0.0};
+  // The seam outline shrinks by s <= kMaxShrink: at s = 1 two similar pieces fit best lying
+  // flat on each other, the trivial isometry (a flat double disc) the start must stay away from.
+  constexpr double kMaxShrink = 0.85;
+  double bestCost = std::numeric_limits<double>::infinity(), bestS = kMaxShrink, bestAlpha = 0.0;
+  double bestH = 0.0;
   for (double alphaStep = -4; alphaStep <= 4; ++alphaStep) {
     const double alpha = alphaStep * 0.05 * hMax;
-    for (double s = 0.40; s <= 1.0 + 1e-9; s += 0.03) {
-      const auto [costA, hA] = bestHeight(edges[0], s, alpha, 1.0);
-      const auto [costB, hB] = bestHeight(edges[1], s, alpha, -1.0);
-      if (costA + costB < bestCost) {
-        bestCost = costA + costB;
-        bestS = s;
-        bestAlpha = alpha;
-        bestH[0] = hA;
-        bestH[1] = hB;
-      }
+    for (double s = 0.40; s <= kMaxShrink + 1e-9; s += 0.03) {
+      const auto [cost, h] = bestHeight(s, alpha);
+      if (cost < bestCost) bestCost = cost, bestS = s, bestAlpha = alpha, bestH = h;
     }
   }
   for (int p = 0; p < 2; ++p) {
@@ -195,7 +205,7 @@ DForm pillowInitialGuess(const Piece& a, const Piece& b) {
     const double sign = p == 0 ? 1.0 : -1.0;
     piece.shape.resize(piece.flat.rows(), 3);
     piece.shape.leftCols<2>() = bestS * xy[p];
-    piece.shape.col(2) = bestAlpha * seamHeight[p] + sign * bestH[p] * phi[p];
+    piece.shape.col(2) = bestAlpha * seamHeight[p] + sign * bestH * phi[p];
   }
   return model;
 }

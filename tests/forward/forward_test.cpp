@@ -1,0 +1,135 @@
+// Forward modelling end to end on small inputs: the start, the local-global stage, the solve.
+#include "forward/forward.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <gtest/gtest.h>
+
+#include "forward/terms.h"
+#include "forward/transfer.h"
+#include "test_meshes.h"
+#include "validate/gate.h"
+#include "validate/metrics.h"
+
+namespace dform {
+namespace {
+
+// Two ellipses of (nearly) equal perimeter, 40 seam vertices: a few hundred vertices in all.
+struct EllipsePair {
+  EllipsePair(double startB = 0.0) {
+    const Points2 A = test::ellipse(120, 70), B = test::ellipse(110, 82.305579);
+    a = test::meshedPiece(A, 40, false);
+    b = test::meshedPiece(B, 40, true, startB);
+  }
+  Piece a, b;
+};
+
+TEST(Forward, PillowStartIsClosedAndInflated) {
+  EllipsePair p;
+  const DForm start = pillowInitialGuess(p.a, p.b);
+  for (std::size_t k = 0; k < p.a.seam.size(); ++k)
+    EXPECT_LT((start.a.shape.row(p.a.seam[k]) - start.b.shape.row(p.b.seam[k])).norm(), 1e-9);
+  // A's interior above the seam, B's below.
+  EXPECT_GT(start.a.shape.col(2).maxCoeff(), 1.0);
+  EXPECT_LT(start.b.shape.col(2).minCoeff(), -1.0);
+  EXPECT_EQ(computeMetrics(start).flipped_3d, 0);
+}
+
+TEST(Forward, SolvesTwoEllipsesToThePapersFigures) {
+  EllipsePair p;
+  const ForwardResult r = solveForward(p.a, p.b, ForwardOptions{});
+  ASSERT_TRUE(r.summary.usable()) << r.summary.message;
+  const Metrics m = computeMetrics(r.model);
+  EXPECT_LE(m.L_error, 0.005);
+  EXPECT_LE(m.L_max, 0.03);
+  EXPECT_LE(m.B_error, 1e-6);
+  EXPECT_EQ(m.flipped_2d + m.flipped_3d, 0);
+  EXPECT_EQ(m.degenerate_2d + m.degenerate_3d, 0);
+  // The flat outlines stay where they were drawn (within the outline tolerance).
+  const double perimeter = closedLength(test::ellipse(120, 70));
+  for (std::size_t k = 0; k < p.a.seam.size(); ++k)
+    EXPECT_LT((r.model.a.flat.row(p.a.seam[k]) - p.a.flat.row(p.a.seam[k])).norm(), 3e-4 * perimeter);
+  // Not a flat double disc: the shape has depth comparable to its size.
+  const double depth = r.model.a.shape.col(2).maxCoeff() - r.model.b.shape.col(2).minCoeff();
+  EXPECT_GT(depth, 30.0);
+  // Two convex outlines make the convex hull of their seam (Demaine and Price): every vertex
+  // lies within 1 % of the seam's bounding-box diagonal of that hull.
+  const GateReport gate = runGate(r.model, GateLimits{});
+  const CheckResult* hull = gate.find("hull_distance_rel");
+  ASSERT_NE(hull, nullptr);
+  EXPECT_EQ(hull->verdict, CheckResult::Verdict::Pass) << hull->detail;
+  EXPECT_LT(hull->value, 0.01);
+}
+
+TEST(Forward, ADifferentStartingPairMakesADifferentDFormOfTheSameQuality) {
+  EllipsePair p0(0.0), p1(0.25);
+  const ForwardResult r0 = solveForward(p0.a, p0.b, ForwardOptions{});
+  const ForwardResult r1 = solveForward(p1.a, p1.b, ForwardOptions{});
+  const Metrics m1 = computeMetrics(r1.model);
+  EXPECT_LE(m1.L_error, 0.005);
+  EXPECT_LE(m1.L_max, 0.03);
+  EXPECT_LE(m1.B_error, 1e-6);
+  // Compare rotation-free sizes: the spread of the 3D seam around its centroid.
+  auto extent = [](const Piece& a) {
+    Points3 S(a.seam.size(), 3);
+    for (std::size_t k = 0; k < a.seam.size(); ++k) S.row(k) = a.shape.row(a.seam[k]);
+    const Points3 C = S.rowwise() - S.colwise().mean();
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(C.transpose() * C);
+    return eig.eigenvalues();
+  };
+  EXPECT_GT((extent(r0.model.a) - extent(r1.model.a)).norm(), 0.05 * extent(r0.model.a).norm());
+}
+
+TEST(Forward, IdenticalEllipsesAQuarterTurnApartMakeTheClassicDForm) {
+  // Zipped with the same start, the pair would close flat; a quarter turn on, the pillow start
+  // must leave the flat state (the seam lift) for the solve to find the D-Form.
+  const Points2 E = test::ellipse(120, 70);
+  const Piece a = test::meshedPiece(E, 40, false), b = test::meshedPiece(E, 40, true, 0.25);
+  const ForwardResult r = solveForward(a, b, ForwardOptions{});
+  const Metrics m = computeMetrics(r.model);
+  EXPECT_LE(m.L_error, 0.005);
+  EXPECT_LE(m.L_max, 0.03);
+  EXPECT_EQ(m.flipped_3d, 0);
+  const double depth = r.model.a.shape.col(2).maxCoeff() - r.model.b.shape.col(2).minCoeff();
+  EXPECT_GT(depth, 40.0);
+}
+
+TEST(Forward, LocalGlobalNeverRaisesItsEnergy) {
+  EllipsePair p;
+  ForwardOptions plain, none;
+  none.relaxation.maxIterations = 0;
+  none.solver.maxIterations = 0;
+  none.constraintRounds = 0;
+  plain.solver.maxIterations = 0;
+  plain.constraintRounds = 0;
+  const ForwardResult relaxed = solveForward(p.a, p.b, plain);
+  EXPECT_GT(relaxed.relaxation.iterations, 0);
+  EXPECT_LE(relaxed.relaxation.finalEnergy, relaxed.relaxation.initialEnergy);
+  // The relaxation alone brings the paper's objective down from the pillow start.
+  const ForwardResult start = solveForward(p.a, p.b, none);
+  EXPECT_LT(relaxed.summary.initialCost, 0.5 * start.summary.initialCost);
+}
+
+TEST(Forward, TransferIsExactOnTheSameMeshAndStartsAFinerSolve) {
+  EllipsePair coarse;
+  const ForwardResult r = solveForward(coarse.a, coarse.b, ForwardOptions{});
+  // The same mesh: barycentric transfer gives the vertices back.
+  const Points3 same = transferShape(r.model.a, r.model.a.flat);
+  EXPECT_LT((same - r.model.a.shape).cwiseAbs().maxCoeff(), 1e-9);
+  // A finer mesh of the same outlines started from the coarse solution converges as well.
+  Piece a = test::meshedPiece(test::ellipse(120, 70), 80, false);
+  Piece b = test::meshedPiece(test::ellipse(110, 82.305579), 80, true);
+  a.shape = transferShape(r.model.a, a.flat);
+  b.shape = transferShape(r.model.b, b.flat);
+  for (std::size_t k = 0; k < a.seam.size(); ++k)
+    a.shape.row(a.seam[k]) = b.shape.row(b.seam[k]) =
+        0.5 * (a.shape.row(a.seam[k]) + b.shape.row(b.seam[k]));
+  const ForwardResult fine = solveForward(a, b, ForwardOptions{});
+  const Metrics m = computeMetrics(fine.model);
+  EXPECT_LE(m.L_error, 0.005);
+  EXPECT_LE(m.B_error, 1e-6);
+  EXPECT_LE(fine.summary.factorisations, 3);
+}
+
+}  // namespace
+}  // namespace dform
