@@ -1,0 +1,153 @@
+// Forward runs on the samples: the figures the issue asks for, and the run's options.
+#include <gtest/gtest.h>
+
+#include "core/polyline.h"
+#include "pipeline/forward_pipeline.h"
+#include "validate/gate.h"
+
+namespace dform {
+namespace {
+
+std::string sample(const std::string& name) { return std::string(DFORM_SAMPLES_DIR) + "/forward/" + name; }
+
+ForwardRun runOk(const ForwardJob& job) {
+  MessageSink sink;
+  Result<ForwardRun> run = runForward(job, sink);
+  EXPECT_TRUE(run.isOk()) << run.status().message();
+  return run.isOk() ? std::move(run).value() : ForwardRun{};
+}
+
+ForwardJob job(const std::string& a, const std::string& b, int resolution = 60, double startB = 0.0) {
+  ForwardJob j;
+  j.pieceA = sample(a);
+  j.pieceB = sample(b);
+  j.resolution = resolution;
+  j.startB.fraction = startB;
+  return j;
+}
+
+void expectPapersFigures(const ForwardRun& run, const std::string& what) {
+  const Metrics& m = run.metrics;
+  EXPECT_LE(m.L_error, 0.005) << what;
+  EXPECT_LE(m.L_max, 0.03) << what;
+  EXPECT_LE(m.B_error, 1e-6) << what;
+  EXPECT_EQ(m.flipped_2d + m.flipped_3d, 0) << what;
+  // A D-Form, not a flat double disc: its depth is a good part of its width.
+  const double depth = std::max(run.model.a.shape.col(2).maxCoeff(), run.model.b.shape.col(2).maxCoeff()) -
+                       std::min(run.model.a.shape.col(2).minCoeff(), run.model.b.shape.col(2).minCoeff());
+  const double width = (run.model.a.shape.colwise().maxCoeff() - run.model.a.shape.colwise().minCoeff()).maxCoeff();
+  EXPECT_GT(depth, 0.15 * width) << what;
+}
+
+struct Case {
+  const char* a;
+  const char* b;
+  double startB;
+};
+
+class SampleRuns : public ::testing::TestWithParam<Case> {};
+
+TEST_P(SampleRuns, ReachThePapersFigures) {
+  const Case c = GetParam();
+  const ForwardRun run = runOk(job(c.a, c.b, 60, c.startB));
+  expectPapersFigures(run, std::string(c.a) + " + " + c.b);
+  // Seams pair one to one and the flat outlines keep their drawn perimeters (chords of n = 60).
+  EXPECT_EQ(run.model.a.seam.size(), 60u);
+  EXPECT_NEAR(run.metrics.seam_length_a_mm, run.perimeterA, 2e-3 * run.perimeterA);
+  EXPECT_NEAR(run.metrics.seam_length_b_mm, run.perimeterB, 2e-3 * run.perimeterB);
+  EXPECT_GT(run.timings.total, 0.0);
+  EXPECT_GE(run.timings.total, run.timings.solve);
+}
+
+INSTANTIATE_TEST_SUITE_P(Samples, SampleRuns,
+                         ::testing::Values(Case{"ellipses-a.svg", "ellipses-b.svg", 0.0},
+                                           Case{"ellipses-a.svg", "ellipses-b.svg", 0.25},
+                                           Case{"ellipses-a.svg", "ellipses-a.svg", 0.25},
+                                           Case{"circle.svg", "square.svg", 0.0},
+                                           Case{"circle.svg", "square.svg", 0.125},
+                                           Case{"nonconvex-a.svg", "nonconvex-b.svg", 0.0},
+                                           Case{"nonconvex-a.svg", "nonconvex-b.svg", 0.3}));
+
+TEST(ForwardRun, ConvexPairLiesOnItsSeamsHull) {
+  const ForwardRun run = runOk(job("ellipses-a.svg", "ellipses-b.svg"));
+  const GateReport gate = runGate(run.model, GateLimits{});
+  const CheckResult* hull = gate.find("hull_distance_rel");
+  ASSERT_NE(hull, nullptr);
+  EXPECT_LT(hull->value, 0.01) << hull->detail;
+}
+
+TEST(ForwardRun, SquareCornersStayOnTheCutPattern) {
+  // The starting pair mid-side puts the corners between uniform seam vertices; the layout keeps
+  // them as vertices, so the flat square is not chamfered.
+  const ForwardRun run = runOk(job("circle.svg", "square.svg", 60, 0.125));
+  const Piece& b = run.model.b;
+  for (const Eigen::Vector2d corner : {Eigen::Vector2d(50, 50), Eigen::Vector2d(250, 50),
+                                       Eigen::Vector2d(250, 250), Eigen::Vector2d(50, 250)}) {
+    double nearest = 1e9;
+    for (int v : b.seam) nearest = std::min(nearest, (b.flat.row(v).transpose() - corner).norm());
+    EXPECT_LT(nearest, 0.3) << corner.transpose();
+  }
+}
+
+TEST(ForwardRun, StartNearAPointAndFlip) {
+  ForwardJob near = job("circle.svg", "square.svg");
+  near.startB.nearestToPoint = true;
+  near.startB.point = {150, 50};  // the middle of the square's bottom side
+  const ForwardRun run = runOk(near);
+  EXPECT_NEAR(run.startFractionB, 0.125, 1e-3);  // the rect's outline starts at its top-left corner
+  const Eigen::RowVector2d first = run.model.b.flat.row(run.model.b.seam[0]);
+  EXPECT_LT((first - Eigen::RowVector2d(150, 50)).norm(), 0.3);
+
+  ForwardJob flipped = job("ellipses-a.svg", "ellipses-b.svg");
+  flipped.flip = true;
+  const ForwardRun f = runOk(flipped);
+  expectPapersFigures(f, "flipped");
+  // B is used turned over: its flat pattern is the mirror image, still counter-clockwise.
+  EXPECT_LT(f.model.b.flat.col(0).maxCoeff(), 0.0);
+  EXPECT_GT(signedArea(f.model.b.flat(Eigen::all, std::vector<int>{0, 1}).topRows(60)), 0.0);
+}
+
+TEST(ForwardRun, UnequalPerimetersStopOrFit) {
+  ForwardJob unequal = job("circle.svg", "ellipses-a.svg", 40);
+  MessageSink sink;
+  const Result<ForwardRun> refused = runForward(unequal, sink);
+  ASSERT_FALSE(refused.isOk());
+  EXPECT_EQ(refused.status().code(), ErrorCode::InputInvalid);
+  EXPECT_NE(refused.status().message().find("mm"), std::string::npos);
+  unequal.fitPerimeter = true;
+  const ForwardRun fitted = runOk(unequal);
+  EXPECT_NEAR(fitted.scaleB, fitted.perimeterA / fitted.perimeterB, 1e-12);
+  EXPECT_NEAR(fitted.metrics.seam_length_a_mm, fitted.metrics.seam_length_b_mm, 1e-3 * fitted.perimeterA);
+}
+
+TEST(ForwardRun, RunsAreReproducible) {
+  const ForwardRun one = runOk(job("nonconvex-a.svg", "nonconvex-b.svg", 40));
+  const ForwardRun two = runOk(job("nonconvex-a.svg", "nonconvex-b.svg", 40));
+  EXPECT_EQ(one.metrics.L_error, two.metrics.L_error);
+  EXPECT_EQ(one.model.a.shape, two.model.a.shape);
+}
+
+TEST(ForwardRun, BadJobsAreUsageErrors) {
+  MessageSink sink;
+  ForwardJob bad = job("circle.svg", "square.svg", 4);
+  EXPECT_EQ(runForward(bad, sink).status().code(), ErrorCode::Usage);
+  bad = job("circle.svg", "square.svg");
+  bad.startA.fraction = 1.0;
+  EXPECT_EQ(runForward(bad, sink).status().code(), ErrorCode::Usage);
+  bad = job("circle.svg", "square.svg");
+  bad.solve.weights.isometry = -1;
+  EXPECT_EQ(runForward(bad, sink).status().code(), ErrorCode::Usage);
+}
+
+TEST(ForwardRun, InterruptionStopsTheSolve) {
+  std::atomic<bool> stop{true};
+  RunHooks hooks;
+  hooks.interrupted = &stop;
+  MessageSink sink;
+  const Result<ForwardRun> run = runForward(job("ellipses-a.svg", "ellipses-b.svg", 40), sink, hooks);
+  ASSERT_FALSE(run.isOk());
+  EXPECT_EQ(run.status().code(), ErrorCode::Interrupted);
+}
+
+}  // namespace
+}  // namespace dform

@@ -1,0 +1,74 @@
+// Inverse runs on the samples: the figures the issue asks for, and bad curves.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/polyline.h"
+#include "pipeline/inverse_pipeline.h"
+
+namespace dform {
+namespace {
+
+std::string sample(const std::string& name) { return std::string(DFORM_SAMPLES_DIR) + "/inverse/" + name; }
+
+class InverseSamples : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(InverseSamples, ReachThePapersFigures) {
+  InverseJob job;
+  job.curve = sample(GetParam());
+  job.resolution = 60;
+  MessageSink sink;
+  const Result<InverseRun> result = runInverse(job, sink);
+  ASSERT_TRUE(result.isOk()) << result.status().message();
+  const InverseRun& run = result.value();
+  EXPECT_LE(run.curveMatch.D_error, 1e-6);
+  EXPECT_LE(run.metrics.L_error, 0.005);
+  EXPECT_LE(run.metrics.L_max, 0.03);
+  EXPECT_EQ(run.metrics.flipped_2d + run.metrics.flipped_3d, 0);
+  // Flat outlines: simple polygons whose perimeters match the resampled curve's length.
+  const double curveLength = closedLength(run.target.points);
+  for (const Piece* p : {&run.model.a, &run.model.b}) {
+    Points2 outline(p->seam.size(), 2);
+    for (std::size_t k = 0; k < p->seam.size(); ++k) outline.row(k) = p->flat.row(p->seam[k]);
+    EXPECT_FALSE(findSelfIntersection(outline).has_value()) << p->name;
+    EXPECT_NEAR(closedLength(outline), curveLength, 1e-3 * curveLength) << p->name;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Samples, InverseSamples,
+                         ::testing::Values("tennis-ball.obj", "saddle.obj", "pushed-in.obj", "rotated.json"));
+
+TEST(InverseRun, BadCurvesAreInputErrorsNamingTheFile) {
+  const auto dir = std::filesystem::temp_directory_path() / ("dform_inverse_bad_" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  auto write = [&](const std::string& name, const std::string& text) {
+    std::ofstream((dir / name).string()) << text;
+    return (dir / name).string();
+  };
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"open.obj", "v 0 0 0\nv 10 0 1\nv 10 10 0\nv 0 10 1\nv -5 5 2\nl 1 2 3 4 5\n"},
+      {"few.obj", "v 0 0 0\nv 10 0 1\nv 10 10 0\nl 1 2 3 1\n"},
+      {"nan.json", R"({"points": [[0,0,0],[10,0,1],[10,10,"nan"],[0,10,1],[-5,5,2],[0,0,0]]})"},
+      {"repeated.obj", "v 0 0 0\nv 10 0 1\nv 10 0 1\nv 10 10 0\nv 0 10 1\nv -5 5 2\nl 1 2 3 4 5 6 1\n"},
+      {"crossing.obj", "v 0 0 0\nv 10 10 0\nv 10 0 0\nv 0 10 0\nv 5 5 0\nl 1 2 3 4 1\n"},
+      {"planar.obj", "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\nv -5 5 0\nl 1 2 3 4 5 1\n"},
+      {"faces.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\n"},
+      {"malformed.obj", "v 0 0 zero\nl 1 2\n"},
+  };
+  for (const auto& [name, text] : bad) {
+    InverseJob job;
+    job.curve = write(name, text);
+    MessageSink sink;
+    const Result<InverseRun> run = runInverse(job, sink);
+    ASSERT_FALSE(run.isOk()) << name;
+    const ErrorCode code = run.status().code();
+    EXPECT_TRUE(code == ErrorCode::InputInvalid || code == ErrorCode::InputUnreadable) << name;
+    EXPECT_NE(run.status().message().find(job.curve), std::string::npos) << run.status().message();
+    EXPECT_EQ(run.status().message().find('\n'), std::string::npos) << run.status().message();
+  }
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace dform

@@ -1,0 +1,72 @@
+#include "pipeline/job_file.h"
+
+#include <gtest/gtest.h>
+
+namespace dform {
+namespace {
+
+TEST(JobFile, ForwardJobRoundTrips) {
+  const std::string text = R"({"mode": "forward", "piece_a": "a.svg", "piece_b": "/abs/b.svg",
+    "start_a": {"fraction": 0.1}, "start_b": {"near": [3.5, -2]}, "resolution": 80, "flip": true,
+    "fit_perimeter": true, "perimeter_tolerance": 0.01, "weights": {"smooth_3d": 0.02},
+    "solver": {"max_iterations": 30}})";
+  const Result<Job> job = parseJobJson(text, "job.json", "/base");
+  ASSERT_TRUE(job.isOk()) << job.status().message();
+  const ForwardJob& f = job.value().forward;
+  EXPECT_EQ(f.pieceA, "/base/a.svg");
+  EXPECT_EQ(f.pieceB, "/abs/b.svg");
+  EXPECT_DOUBLE_EQ(f.startA.fraction, 0.1);
+  EXPECT_TRUE(f.startB.nearestToPoint);
+  EXPECT_EQ(f.startB.point, Eigen::Vector2d(3.5, -2));
+  EXPECT_EQ(f.resolution, 80);
+  EXPECT_TRUE(f.flip && f.fitPerimeter);
+  EXPECT_DOUBLE_EQ(f.solve.weights.smooth3d, 0.02);
+  EXPECT_DOUBLE_EQ(f.solve.weights.isometry, 1.0);
+  EXPECT_EQ(f.solve.solver.maxIterations, 30);
+
+  const Result<Job> again = parseJobJson(jobToJson(job.value()), "again.json", "/elsewhere");
+  ASSERT_TRUE(again.isOk()) << again.status().message();
+  EXPECT_EQ(jobToJson(again.value()), jobToJson(job.value()));
+}
+
+TEST(JobFile, InverseJobRoundTrips) {
+  const Result<Job> job = parseJobJson(R"({"mode": "inverse", "curve": "seam.obj", "closed": true,
+    "weights": {"closeness": 2}})", "job.json", "/base");
+  ASSERT_TRUE(job.isOk()) << job.status().message();
+  EXPECT_EQ(job.value().mode, Job::Mode::Inverse);
+  EXPECT_EQ(job.value().inverse.curve, "/base/seam.obj");
+  EXPECT_TRUE(job.value().inverse.forceClosed);
+  EXPECT_DOUBLE_EQ(job.value().inverse.solve.weights.closeness, 2.0);
+  const Result<Job> again = parseJobJson(jobToJson(job.value()), "again.json", "/x");
+  ASSERT_TRUE(again.isOk());
+  EXPECT_EQ(jobToJson(again.value()), jobToJson(job.value()));
+}
+
+TEST(JobFile, EveryMistakeNamesItsKey) {
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {R"({"piece_a": "a.svg", "piece_b": "b.svg"})", "mode"},
+      {R"({"mode": "sideways", "piece_a": "a.svg", "piece_b": "b.svg"})", "mode"},
+      {R"({"mode": "forward", "piece_a": "a.svg"})", "piece_b"},
+      {R"({"mode": "forward", "piece_a": 3, "piece_b": "b.svg"})", "piece_a"},
+      {R"({"mode": "forward", "piece_a": "a.svg", "piece_b": "b.svg", "colour": 1})", "colour"},
+      {R"({"mode": "forward", "piece_a": "a.svg", "piece_b": "b.svg", "resolution": 1.5})", "resolution"},
+      {R"({"mode": "forward", "piece_a": "a.svg", "piece_b": "b.svg", "start_b": {"near": [1]}})", "start_b"},
+      {R"({"mode": "forward", "piece_a": "a.svg", "piece_b": "b.svg", "weights": {"glue": 1}})", "glue"},
+      {R"({"mode": "forward", "piece_a": "a.svg", "piece_b": "b.svg", "flip": "yes"})", "flip"},
+      {R"({"mode": "forward", "piece_a": "a.svg", "piece_b": "b.svg", "resolution": 3})", "resolution"},
+      {R"({"mode": "inverse"})", "curve"},
+  };
+  for (const auto& [text, key] : bad) {
+    const Result<Job> job = parseJobJson(text, "job.json", ".");
+    ASSERT_FALSE(job.isOk()) << text;
+    EXPECT_EQ(job.status().code(), ErrorCode::InputInvalid) << text;
+    EXPECT_NE(job.status().message().find("job.json"), std::string::npos);
+    EXPECT_NE(job.status().message().find(key), std::string::npos) << job.status().message();
+  }
+  const Result<Job> notJson = parseJobJson("{ nope", "job.json", ".");
+  EXPECT_EQ(notJson.status().code(), ErrorCode::InputUnreadable);
+  EXPECT_EQ(readJobFile("/nonexistent/job.json").status().code(), ErrorCode::InputUnreadable);
+}
+
+}  // namespace
+}  // namespace dform
