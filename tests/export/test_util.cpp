@@ -156,8 +156,18 @@ int run(const std::string& command, std::string* out) {
 
 bool haveProgram(const std::string& name) { return run("command -v " + name + " >/dev/null") == 0; }
 
+// This process's scratch root, removed when the test program exits.
+struct ScratchRoot {
+  const fs::path path = fs::temp_directory_path() / ("dform-export-test-" + std::to_string(::getpid()));
+  ~ScratchRoot() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+
 std::string freshDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("dform-export-test-" + std::to_string(::getpid())) / name;
+  static const ScratchRoot root;
+  const fs::path dir = root.path / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir.string();
