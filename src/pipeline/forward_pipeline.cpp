@@ -186,10 +186,13 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
     if (!b.isOk()) return b.status();
     if (level > 0) startFromCoarser(solved.model, a.value(), b.value());
     run.timings.mesh += secondsSince(meshStart);
-    sink.info((finest ? "meshed piece A with " : "coarse level: piece A with ") +
-              std::to_string(a.value().flat.rows()) + " vertices and " +
-              std::to_string(a.value().F.rows()) + " triangles, piece B with " +
-              std::to_string(b.value().flat.rows()) + " and " + std::to_string(b.value().F.rows()));
+    // The finest level is what the user asked for; coarser ones are details for the log.
+    const Level detail = finest ? Level::Info : Level::Debug;
+    sink.emit(detail, (finest ? "meshed piece A with " : "coarse level: piece A with ") +
+                          std::to_string(a.value().flat.rows()) + " vertices and " +
+                          std::to_string(a.value().F.rows()) + " triangles, piece B with " +
+                          std::to_string(b.value().flat.rows()) + " and " +
+                          std::to_string(b.value().F.rows()));
 
     const auto solveStart = Clock::now();
     // A coarse level only has to start the next one well: a few iterations, seam left to the
@@ -204,12 +207,13 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
     if (interrupted) return Status(ErrorCode::Interrupted, "interrupted during the solve");
     if (!solved.summary.usable())
       return Status(ErrorCode::SolveFailed, "the solver failed: " + solved.summary.message);
-    sink.info(format("local-global start: %.0f iterations, energy %.4g -> %.4g", solved.relaxation.iterations,
-                     solved.relaxation.initialEnergy, solved.relaxation.finalEnergy) +
-              format(" in %.3f s; level solved in %.3f s", solved.relaxation.seconds,
-                     secondsSince(solveStart)));
-    sink.info("solve: " + solved.summary.briefReport() + ", " +
-              std::to_string(solved.constraintRounds) + " constraint round(s)");
+    sink.emit(Level::Debug, format("local-global start: %.0f iterations, energy %.4g -> %.4g",
+                                   solved.relaxation.iterations, solved.relaxation.initialEnergy,
+                                   solved.relaxation.finalEnergy) +
+                                format(" in %.3f s; level solved in %.3f s",
+                                       solved.relaxation.seconds, secondsSince(solveStart)));
+    sink.emit(detail, "solve: " + solved.summary.briefReport() + ", " +
+                          std::to_string(solved.constraintRounds) + " constraint round(s)");
   }
   run.relaxation = solved.relaxation;
   run.constraintRounds = solved.constraintRounds;

@@ -59,7 +59,7 @@ Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const Ru
   if (interrupted) return Status(ErrorCode::Interrupted, "interrupted during the solve");
   if (!solved.summary.usable())
     return Status(ErrorCode::SolveFailed, job.curve + ": the solver failed: " + solved.summary.message);
-  sink.info(format("local-global start: %.0f iterations, energy %.4g -> %.4g",
+  sink.emit(Level::Debug, format("local-global start: %.0f iterations, energy %.4g -> %.4g",
                    solved.relaxation.iterations, solved.relaxation.initialEnergy,
                    solved.relaxation.finalEnergy));
   sink.info("solve: " + solved.summary.briefReport() + ", " +
