@@ -152,20 +152,23 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
   if (written.isOk() && !forward) written = writeTargetCurve(output.outDir, inverseRun.value().target);
   if (!written.isOk()) return fail(written);
 
+  // The report is written whatever the export does, so that a failed export (a sheet too
+  // small) still leaves the solved result complete; the export can then be redone alone.
   const bool gateFailed = gate && !gate->passed();
+  Status exported = Status::ok();
   if (output.exportFiles && (!gateFailed || output.exportAnyway)) {
     const std::string name = fs::path(forward ? job.forward.pieceA : job.inverse.curve).stem().string();
-    const Status exported = exportModel(model, output, gateFailed, name, sink);
-    if (!exported.isOk()) {
-      Terminal::error(exported.message());
-      return exitCode(exported.code());
-    }
+    exported = exportModel(model, output, gateFailed, name, sink);
+    if (!exported.isOk())
+      sink.emit(Level::Error, "export: " + exported.message() + " (the result is saved; run `dform export " +
+                                  output.outDir + "` with another --sheet or --profile)");
   }
   const GateReport* gateReport = gate ? &*gate : nullptr;
   const Status reported =
       forward ? writeForwardReport(output.outDir, job, forwardRun.value(), sink.messages(), gateReport)
               : writeInverseReport(output.outDir, job, inverseRun.value(), sink.messages(), gateReport);
   if (!reported.isOk()) return fail(reported);
+  if (!exported.isOk()) return exitCode(exported.code());
 
   if (forward)
     printFigures(forwardRun.value().metrics, nullptr, forwardRun.value().timings, output.outDir);

@@ -12,8 +12,10 @@ MessageSink::Listener Terminal::listener() {
   return [this](const Message& m) {
     if (m.level == Level::Debug || (quiet_ && m.level == Level::Info)) return;
     clearProgress();
-    std::fprintf(stderr, "%s%s\n", m.level == Level::Warning ? "dform: warning: " : "",
-                 m.text.c_str());
+    const char* prefix = m.level == Level::Warning ? "dform: warning: "
+                         : m.level == Level::Error ? "dform: error: "
+                                                   : "";
+    std::fprintf(stderr, "%s%s\n", prefix, m.text.c_str());
   };
 }
 

@@ -165,6 +165,20 @@ TEST_F(CliTest, ForwardWritesEveryFileAndValidates) {
   EXPECT_NE(v.out.find("gate: PASSED"), std::string::npos) << v.out;
 }
 
+TEST_F(CliTest, AFailedExportStillSavesTheResult) {
+  const std::string out = path("out");
+  const Outcome o = run("forward " + sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg") +
+                        " --resolution 30 -q --sheet 100x100mm -o " + out);
+  expectError(o, 2, "does not fit");
+  EXPECT_NE(o.err.find("dform export " + out), std::string::npos) << o.err;
+  EXPECT_TRUE(fs::exists(fs::path(out) / "report.json"));
+  EXPECT_TRUE(fs::exists(fs::path(out) / "piece-b-3d.obj"));
+  EXPECT_FALSE(fs::exists(fs::path(out) / "pattern.svg"));
+  // Redone alone on a larger sheet.
+  EXPECT_EQ(run("export " + out + " --sheet 600x400mm -q").exitCode, 0);
+  EXPECT_TRUE(fs::exists(fs::path(out) / "pattern.svg"));
+}
+
 TEST_F(CliTest, JobFileReproducesTheRun) {
   const std::string out = path("out");
   const std::string job = write("job.json", R"({"mode": "forward", "piece_a": ")" + sample("forward/circle.svg") +
