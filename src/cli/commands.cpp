@@ -218,6 +218,20 @@ int validateSaved(const std::string& dir, const std::string& gateName) {
   }
   const GateReport gate = runGate(model.value(), limits.value(), target ? &*target : nullptr);
   printGate(gate);
+  // The figures are recomputed from the meshes, never taken from the report; a report that
+  // disagrees with its meshes cannot be trusted, and fails.
+  Result<std::vector<std::string>> differences =
+      compareWithReport(dir, gate.metrics, gate.curve ? &*gate.curve : nullptr);
+  if (!differences.isOk()) {
+    std::fprintf(stdout, "report.json: not compared (%s)\n", differences.status().message().c_str());
+  } else if (differences.value().empty()) {
+    std::fprintf(stdout, "report.json: its figures match the meshes\n");
+  } else {
+    for (const std::string& line : differences.value()) std::fprintf(stdout, "report.json differs: %s\n", line.c_str());
+    Terminal::error(dir + "/report.json: " + std::to_string(differences.value().size()) +
+                    " figure(s) differ from the saved meshes");
+    return exitCode(ErrorCode::GateFailed);
+  }
   return gate.passed() ? 0 : exitCode(ErrorCode::GateFailed);
 }
 

@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include <fstream>
+
 #include "core/atomic_file.h"
 
 namespace dform {
@@ -152,6 +154,36 @@ Status writeInverseReport(const std::string& dir, const Job& job, const InverseR
   report["gate"] = gateJson(gate);
   report["messages"] = messagesJson(messages);
   return write(dir, report);
+}
+
+Result<std::vector<std::string>> compareWithReport(const std::string& dir, const Metrics& metrics,
+                                                   const CurveMatch* curve) {
+  const std::string path = (std::filesystem::path(dir) / "report.json").string();
+  std::ifstream in(path);
+  if (!in) return Status(ErrorCode::InputUnreadable, path + ": cannot open the report");
+  json report;
+  try {
+    report = json::parse(in);
+  } catch (const json::exception& e) {
+    return Status(ErrorCode::InputUnreadable, path + ": not valid JSON (" + e.what() + ")");
+  }
+  if (!report.contains("metrics") || !report["metrics"].is_object())
+    return Status(ErrorCode::InputInvalid, path + ": has no metrics");
+  json now = metricsJson(metrics);
+  if (curve) {
+    now["D_error"] = figure(curve->D_error);
+    now["curve_distance_max_mm"] = figure(curve->curve_distance_max_mm);
+  }
+  std::vector<std::string> differences;
+  for (const auto& [key, value] : now.items()) {
+    const json& saved = report["metrics"].contains(key) ? report["metrics"][key] : json(nullptr);
+    const bool bothNumbers = saved.is_number() && value.is_number();
+    const bool same = bothNumbers ? std::abs(saved.get<double>() - value.get<double>()) <=
+                                        1e-9 * std::max(1.0, std::abs(value.get<double>()))
+                                  : saved == value;
+    if (!same) differences.push_back(key + ": report.json says " + saved.dump() + ", the meshes give " + value.dump());
+  }
+  return differences;
 }
 
 }  // namespace dform

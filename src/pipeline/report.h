@@ -23,4 +23,11 @@ Status writeForwardReport(const std::string& dir, const Job& job, const ForwardR
 Status writeInverseReport(const std::string& dir, const Job& job, const InverseRun& run,
                           const std::vector<Message>& messages, const GateReport* gate);
 
+/// Compares the figures recomputed from a saved result's meshes with the `metrics` that
+/// `dir`/report.json recorded. Returns one line per figure that differs (beyond 1e-9 relative;
+/// the OBJ files round-trip exactly), empty when all agree. InputUnreadable/InputInvalid when
+/// report.json is missing or unreadable.
+Result<std::vector<std::string>> compareWithReport(const std::string& dir, const Metrics& metrics,
+                                                   const CurveMatch* curve);
+
 }  // namespace dform

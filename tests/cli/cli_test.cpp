@@ -163,6 +163,14 @@ TEST_F(CliTest, ForwardWritesEveryFileAndValidates) {
   const Outcome v = run("validate " + out);
   EXPECT_EQ(v.exitCode, 0) << v.out;
   EXPECT_NE(v.out.find("gate: PASSED"), std::string::npos) << v.out;
+  EXPECT_NE(v.out.find("match the meshes"), std::string::npos) << v.out;
+  // A report whose figures were edited no longer matches its meshes: validate says which, fails.
+  nlohmann::json edited = report;
+  edited["metrics"]["L_max"] = 0.0001;
+  std::ofstream(fs::path(out) / "report.json") << edited.dump();
+  const Outcome tampered = run("validate " + out);
+  EXPECT_EQ(tampered.exitCode, 7);
+  EXPECT_NE(tampered.out.find("L_max"), std::string::npos) << tampered.out;
 }
 
 TEST_F(CliTest, AFailedExportStillSavesTheResult) {
