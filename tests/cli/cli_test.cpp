@@ -70,6 +70,15 @@ class CliTest : public ::testing::Test {
     EXPECT_NE(last.find(mentions), std::string::npos) << o.err;
   }
 
+  // Validates a JSON file against templates/schema/report.schema.json (python3-jsonschema).
+  int schemaCheck(const std::string& report) const {
+    const std::string command =
+        "python3 -c 'import json, sys, jsonschema; "
+        "jsonschema.validate(json.load(open(sys.argv[1])), json.load(open(sys.argv[2])))' " +
+        report + " " + std::string(DFORM_TEMPLATES_DIR) + "/schema/report.schema.json 2>" + path("schema.txt");
+    return std::system(command.c_str());
+  }
+
   std::string sample(const std::string& name) const {
     return std::string(DFORM_SAMPLES_DIR) + "/" + name;
   }
@@ -160,6 +169,7 @@ TEST_F(CliTest, ForwardWritesEveryFileAndValidates) {
   for (const char* key : {"read", "mesh", "solve", "total"})
     EXPECT_TRUE(report["timings"][key].is_number()) << key;
   EXPECT_LE(report["metrics"]["L_error"].get<double>(), 0.005);
+  EXPECT_EQ(schemaCheck((fs::path(out) / "report.json").string()), 0);
   const Outcome v = run("validate " + out);
   EXPECT_EQ(v.exitCode, 0) << v.out;
   EXPECT_NE(v.out.find("gate: PASSED"), std::string::npos) << v.out;
@@ -171,6 +181,27 @@ TEST_F(CliTest, ForwardWritesEveryFileAndValidates) {
   const Outcome tampered = run("validate " + out);
   EXPECT_EQ(tampered.exitCode, 7);
   EXPECT_NE(tampered.out.find("L_max"), std::string::npos) << tampered.out;
+}
+
+TEST_F(CliTest, ReportsFollowTheirSchema) {
+  const std::string forward = path("forward"), inverse = path("inverse");
+  // With the strict gate the run may pass (0) or fail it (7); either way the report has the checks.
+  const int code = run("forward " + sample("forward/circle.svg") + " " + sample("forward/square.svg") +
+                       " --resolution 30 --gate strict --no-export -q -o " + forward).exitCode;
+  ASSERT_TRUE(code == 0 || code == 7) << code;
+  ASSERT_TRUE(fs::exists(fs::path(forward) / "report.json"));
+  EXPECT_EQ(schemaCheck((fs::path(forward) / "report.json").string()), 0);
+  ASSERT_EQ(run("inverse " + sample("inverse/saddle.obj") + " --resolution 40 --no-export -q -o " + inverse).exitCode, 0);
+  EXPECT_EQ(schemaCheck((fs::path(inverse) / "report.json").string()), 0);
+  // The schema is not a formality: a report missing a figure or with a stray key fails it.
+  nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(inverse) / "report.json"));
+  report["metrics"].erase("L_max");
+  std::ofstream(path("broken.json")) << report.dump();
+  EXPECT_NE(schemaCheck(path("broken.json")), 0);
+  report = nlohmann::json::parse(std::ifstream(fs::path(inverse) / "report.json"));
+  report["surprise"] = 1;
+  std::ofstream(path("stray.json")) << report.dump();
+  EXPECT_NE(schemaCheck(path("stray.json")), 0);
 }
 
 TEST_F(CliTest, AFailedExportStillSavesTheResult) {
