@@ -119,7 +119,7 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
     terminal.progress(forward ? "solving" : "solving (inverse)", it);
   };
   std::optional<GateLimits> limits;
-  if (!output.gate.empty()) {
+  if (output.gate != "none") {
     Result<GateLimits> loaded = loadGate(output.gate);
     if (!loaded.isOk()) return fail(loaded.status());
     limits = loaded.value();

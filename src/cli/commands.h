@@ -18,7 +18,7 @@ struct OutputOptions {
   bool exportFiles = true;       ///< write the cutting patterns and previews
   std::string profile = "laser"; ///< export profile name or file
   std::string sheet;             ///< "WxH" in mm (e.g. 600x400mm); empty: the exporter's default
-  std::string gate;              ///< gate name or file; empty: no gate
+  std::string gate = "default";  ///< gate name or file; "none" skips the gate
   bool exportAnyway = false;     ///< export even when the gate fails (files marked FAILED GATE)
   bool quiet = false;
 };

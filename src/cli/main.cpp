@@ -64,7 +64,7 @@ void addOutputOptions(CLI::App* command, cli::OutputOptions& out) {
   command->add_flag("!--no-export", out.exportFiles, "skip the cutting patterns and 3D previews");
   command->add_option("--profile", out.profile, "export profile name or .json file (default laser)");
   command->add_option("--sheet", out.sheet, "material sheet, e.g. 600x400mm");
-  command->add_option("--gate", out.gate, "quality gate: default, strict, lenient or a .json file");
+  command->add_option("--gate", out.gate, "quality gate: default (the default), strict, lenient, a .json file, or none");
   command->add_flag("--export-anyway", out.exportAnyway, "export even if the gate fails (marked FAILED GATE)");
   command->add_flag("-q,--quiet", out.quiet, "print only the figures, warnings and errors");
 }
