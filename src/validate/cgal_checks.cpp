@@ -85,6 +85,10 @@ std::optional<HullMesh> convexHull(const Points3& P) {
   std::vector<Point> points;
   points.reserve(size_t(P.rows()));
   for (int i = 0; i < P.rows(); ++i) points.push_back(point(P, i));
+  // Equal points (A's and B's seam vertices meet) would come back as separate hull vertices and
+  // break the Euler count below, depending on the hull's random insertion order.
+  std::sort(points.begin(), points.end());
+  points.erase(std::unique(points.begin(), points.end()), points.end());
   if (points.size() < 4) return std::nullopt;
   std::vector<Point> hullPoints;
   std::vector<std::array<size_t, 3>> hullFaces;

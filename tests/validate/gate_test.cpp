@@ -53,7 +53,7 @@ TEST(Gate, StretchedShapeFailsOnlyLError) {
   // 1% on every edge: L_error (limit 0.5%) fails; L_max (limit 3%) holds; angles, seam, hull and
   // flat pieces are unchanged by a uniform scaling.
   EXPECT_EQ(failed(report), Names{"L_error"}) << describe(report);
-  EXPECT_TRUE(notRun(report).empty());
+  EXPECT_TRUE(notRun(report).empty()) << describe(report);
   EXPECT_NEAR(report.find("L_error")->value, 0.01, 1e-12);
   EXPECT_FALSE(report.passed());
 }
