@@ -1,6 +1,9 @@
 // Forward runs on the samples: the figures the issue asks for, and the run's options.
 #include <gtest/gtest.h>
 
+#include <cctype>
+#include <filesystem>
+
 #include "core/polyline.h"
 #include "pipeline/forward_pipeline.h"
 #include "validate/gate.h"
@@ -66,7 +69,16 @@ INSTANTIATE_TEST_SUITE_P(Samples, SampleRuns,
                                            Case{"circle.svg", "square.svg", 0.0},
                                            Case{"circle.svg", "square.svg", 0.125},
                                            Case{"nonconvex-a.svg", "nonconvex-b.svg", 0.0},
-                                           Case{"nonconvex-a.svg", "nonconvex-b.svg", 0.3}));
+                                           Case{"nonconvex-a.svg", "nonconvex-b.svg", 0.3}),
+                         [](const ::testing::TestParamInfo<Case>& info) {
+                           // "circle_square_at_125": the two files and B's starting fraction in 1/1000.
+                           std::string name = std::filesystem::path(info.param.a).stem().string() + "_" +
+                                              std::filesystem::path(info.param.b).stem().string() + "_at_" +
+                                              std::to_string(int(info.param.startB * 1000));
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
 
 TEST(ForwardRun, ConvexPairLiesOnItsSeamsHull) {
   const ForwardRun run = runOk(job("ellipses-a.svg", "ellipses-b.svg"));

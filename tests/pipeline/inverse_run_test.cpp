@@ -1,6 +1,7 @@
 // Inverse runs on the samples: the figures the issue asks for, and bad curves.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 
@@ -37,7 +38,13 @@ TEST_P(InverseSamples, ReachThePapersFigures) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Samples, InverseSamples,
-                         ::testing::Values("tennis-ball.obj", "saddle.obj", "pushed-in.obj", "rotated.json"));
+                         ::testing::Values("tennis-ball.obj", "saddle.obj", "pushed-in.obj", "rotated.json"),
+                         [](const ::testing::TestParamInfo<const char*>& info) {
+                           std::string name = info.param;  // "pushed-in.obj" -> "pushed_in_obj"
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
 
 TEST(InverseRun, BadCurvesAreInputErrorsNamingTheFile) {
   const auto dir = std::filesystem::temp_directory_path() / ("dform_inverse_bad_" + std::to_string(getpid()));
