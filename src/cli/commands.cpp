@@ -31,13 +31,14 @@ Result<std::pair<double, double>> parseSheet(const std::string& text) {
   const std::string u = unit;
   const double scale = u.empty() || u == "mm" ? 1.0 : u == "cm" ? 10.0 : u == "in" ? 25.4 : 0.0;
   if (n < 2 || scale == 0.0 || !(w > 0 && h > 0 && std::isfinite(w) && std::isfinite(h)))
-    return Status(ErrorCode::Usage, "--sheet must look like 600x400mm (units mm, cm or in), got '" + text + "'");
+    return Status(ErrorCode::Usage,
+                  "--sheet must look like 600x400mm (units mm, cm or in), got '" + text + "'");
   return std::make_pair(w * scale, h * scale);
 }
 
 Result<GateLimits> loadGate(const std::string& nameOrPath) {
-  const bool preset = nameOrPath.find('/') == std::string::npos &&
-                      nameOrPath.find(".json") == std::string::npos;
+  const bool preset =
+      nameOrPath.find('/') == std::string::npos && nameOrPath.find(".json") == std::string::npos;
   return readGateFile(preset ? templatesDir() + "/gates/" + nameOrPath + ".json" : nameOrPath);
 }
 
@@ -58,19 +59,21 @@ Status exportModel(const DForm& model, const OutputOptions& output, bool failedG
   Result<ExportSummary> exported = exportAll(model, options, output.outDir);
   if (!exported.isOk()) return exported.status();
   for (const std::string& note : exported.value().messages) sink.info("export: " + note);
-  sink.info("export (" + exported.value().profile + "): " +
-            std::to_string(exported.value().files.size()) + " files");
+  sink.info("export (" + exported.value().profile +
+            "): " + std::to_string(exported.value().files.size()) + " files");
   return Status::ok();
 }
 
-void printFigures(const Metrics& m, const CurveMatch* curve, const Timings& t, const std::string& dir) {
+void printFigures(const Metrics& m, const CurveMatch* curve, const Timings& t,
+                  const std::string& dir) {
   std::fprintf(stdout, "L_error %.4f %%   L_max %.3f %%   ", 100 * m.L_error, 100 * m.L_max);
   if (curve)
     std::fprintf(stdout, "D_error %.2e   curve distance max %.2e mm\n", curve->D_error,
                  curve->curve_distance_max_mm);
   else
     std::fprintf(stdout, "B_error %.2e   seam gap %.2e mm\n", m.B_error, m.seam_gap_mm);
-  std::fprintf(stdout, "gauss_max %.4f rad   flipped %d   degenerate %d   seam lengths %.3f / %.3f mm\n",
+  std::fprintf(stdout,
+               "gauss_max %.4f rad   flipped %d   degenerate %d   seam lengths %.3f / %.3f mm\n",
                m.gauss_max, m.flipped_2d + m.flipped_3d, m.degenerate_2d + m.degenerate_3d,
                m.seam_length_a_mm, m.seam_length_b_mm);
   std::fprintf(stdout, "solved in %.3f s (read %.3f, mesh %.3f, solve %.3f); results in %s\n",
@@ -146,10 +149,11 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
   std::error_code ec;
   fs::create_directories(output.outDir, ec);
   if (ec || !fs::is_directory(output.outDir))
-    return fail(Status(ErrorCode::OutputFailed, output.outDir + ": cannot create the output folder (" +
-                                                    ec.message() + ")"));
+    return fail(Status(ErrorCode::OutputFailed,
+                       output.outDir + ": cannot create the output folder (" + ec.message() + ")"));
   Status written = writeModel(output.outDir, model);
-  if (written.isOk() && !forward) written = writeTargetCurve(output.outDir, inverseRun.value().target);
+  if (written.isOk() && !forward)
+    written = writeTargetCurve(output.outDir, inverseRun.value().target);
   if (!written.isOk()) return fail(written);
 
   // The report is written whatever the export does, so that a failed export (a sheet too
@@ -157,16 +161,19 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
   const bool gateFailed = gate && !gate->passed();
   Status exported = Status::ok();
   if (output.exportFiles && (!gateFailed || output.exportAnyway)) {
-    const std::string name = fs::path(forward ? job.forward.pieceA : job.inverse.curve).stem().string();
+    const std::string name =
+        fs::path(forward ? job.forward.pieceA : job.inverse.curve).stem().string();
     exported = exportModel(model, output, gateFailed, name, sink);
     if (!exported.isOk())
-      sink.emit(Level::Error, "export: " + exported.message() + " (the result is saved; run `dform export " +
-                                  output.outDir + "` with another --sheet or --profile)");
+      sink.emit(Level::Error, "export: " + exported.message() +
+                                  " (the result is saved; run `dform export " + output.outDir +
+                                  "` with another --sheet or --profile)");
   }
   const GateReport* gateReport = gate ? &*gate : nullptr;
   const Status reported =
-      forward ? writeForwardReport(output.outDir, job, forwardRun.value(), sink.messages(), gateReport)
-              : writeInverseReport(output.outDir, job, inverseRun.value(), sink.messages(), gateReport);
+      forward
+          ? writeForwardReport(output.outDir, job, forwardRun.value(), sink.messages(), gateReport)
+          : writeInverseReport(output.outDir, job, inverseRun.value(), sink.messages(), gateReport);
   if (!reported.isOk()) return fail(reported);
   if (!exported.isOk()) return exitCode(exported.code());
 
@@ -194,7 +201,8 @@ int exportSaved(const std::string& dir, const OutputOptions& output) {
   if (!model.isOk()) return fail(model.status());
   OutputOptions here = output;
   here.outDir = dir;
-  const Status exported = exportModel(model.value(), here, false, fs::path(dir).filename().string(), sink);
+  const Status exported =
+      exportModel(model.value(), here, false, fs::path(dir).filename().string(), sink);
   if (!exported.isOk()) return fail(exported);
   std::fprintf(stdout, "exported %s into %s\n", output.profile.c_str(), dir.c_str());
   return 0;
@@ -223,11 +231,13 @@ int validateSaved(const std::string& dir, const std::string& gateName) {
   Result<std::vector<std::string>> differences =
       compareWithReport(dir, gate.metrics, gate.curve ? &*gate.curve : nullptr);
   if (!differences.isOk()) {
-    std::fprintf(stdout, "report.json: not compared (%s)\n", differences.status().message().c_str());
+    std::fprintf(stdout, "report.json: not compared (%s)\n",
+                 differences.status().message().c_str());
   } else if (differences.value().empty()) {
     std::fprintf(stdout, "report.json: its figures match the meshes\n");
   } else {
-    for (const std::string& line : differences.value()) std::fprintf(stdout, "report.json differs: %s\n", line.c_str());
+    for (const std::string& line : differences.value())
+      std::fprintf(stdout, "report.json differs: %s\n", line.c_str());
     Terminal::error(dir + "/report.json: " + std::to_string(differences.value().size()) +
                     " figure(s) differ from the saved meshes");
     return exitCode(ErrorCode::GateFailed);
@@ -236,7 +246,8 @@ int validateSaved(const std::string& dir, const std::string& gateName) {
 }
 
 int listProfiles() {
-  for (const std::string& name : dform::listProfiles(templatesDir())) std::fprintf(stdout, "%s\n", name.c_str());
+  for (const std::string& name : dform::listProfiles(templatesDir()))
+    std::fprintf(stdout, "%s\n", name.c_str());
   return 0;
 }
 

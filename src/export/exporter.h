@@ -36,28 +36,28 @@ enum class Registration {
 /// A machine profile, read from templates/profiles/<name>.json (see docs/export.md). Every field
 /// has a default; a profile file may leave any field out.
 struct Profile {
-  std::string name = "laser";        ///< the profile's name
-  std::string source;                ///< the file it was read from, for messages
-  std::string description;           ///< one line for people
+  std::string name = "laser";  ///< the profile's name
+  std::string source;          ///< the file it was read from, for messages
+  std::string description;     ///< one line for people
   ProfileKind kind = ProfileKind::Laser;
   std::string cutColor = "#FF0000";      ///< cut operation colour, #RRGGBB
   std::string scoreColor = "#0000FF";    ///< score / fold / tick colour, #RRGGBB
   std::string engraveColor = "#000000";  ///< labels colour, #RRGGBB
-  double cutWidthMm = 0.025;         ///< stroke width of cut lines (mm)
-  double scoreWidthMm = 0.025;       ///< stroke width of score lines and ticks (mm)
-  double engraveWidthMm = 0.025;     ///< stroke width of single-stroke labels (mm)
+  double cutWidthMm = 0.025;             ///< stroke width of cut lines (mm)
+  double scoreWidthMm = 0.025;           ///< stroke width of score lines and ticks (mm)
+  double engraveWidthMm = 0.025;         ///< stroke width of single-stroke labels (mm)
   FoldStyle fold = FoldStyle::Score;
-  double perforationCutMm = 1.0;     ///< perforated fold: length of each cut (mm)
-  double perforationGapMm = 1.0;     ///< perforated fold: length of each bridge (mm)
-  double dashMm = 3.0;               ///< dashed fold: dash and gap length (mm)
-  double marginMm = 5.0;             ///< clear margin at the sheet/page edges and between pieces (mm)
-  std::string page;                  ///< "" = the sheet from ExportOptions; "A4" or "Letter"
-  bool tile = false;                 ///< page profiles: tile a pattern larger than a page
-  double tileOverlapMm = 10.0;       ///< overlap between neighbouring tiles (mm)
+  double perforationCutMm = 1.0;  ///< perforated fold: length of each cut (mm)
+  double perforationGapMm = 1.0;  ///< perforated fold: length of each bridge (mm)
+  double dashMm = 3.0;            ///< dashed fold: dash and gap length (mm)
+  double marginMm = 5.0;          ///< clear margin at the sheet/page edges and between pieces (mm)
+  std::string page;               ///< "" = the sheet from ExportOptions; "A4" or "Letter"
+  bool tile = false;              ///< page profiles: tile a pattern larger than a page
+  double tileOverlapMm = 10.0;    ///< overlap between neighbouring tiles (mm)
   Registration registration = Registration::None;
-  bool calibrationBar = false;       ///< draw a 50 mm calibration bar with "print at 100%"
-  double labelHeightMm = 3.0;        ///< cap height of tick numbers (mm); piece names are 3x
-  double kerfMm = 0.0;               ///< outward offset of the closed cut path (mm, half the kerf)
+  bool calibrationBar = false;  ///< draw a 50 mm calibration bar with "print at 100%"
+  double labelHeightMm = 3.0;   ///< cap height of tick numbers (mm); piece names are 3x
+  double kerfMm = 0.0;          ///< outward offset of the closed cut path (mm, half the kerf)
 };
 
 /// Reads a profile: `nameOrPath` is a profile name (looked up as
@@ -70,38 +70,38 @@ Result<Profile> loadProfile(const std::string& nameOrPath, const std::string& te
 std::vector<std::string> listProfiles(const std::string& templatesDir);
 
 struct ExportOptions {
-  std::string profile = "laser";   ///< profile name or path to a profile .json
-  std::string templatesDir;        ///< folder holding profiles/ (the CLI passes the install path)
-  Profile profileOverride;         ///< used instead of loading when useProfileOverride is set
-  bool useProfileOverride = false; ///< use profileOverride (tests, callers that built one)
-  double sheetWidthMm = 600;       ///< material sheet width (mm); page profiles use their page
-  double sheetHeightMm = 400;      ///< material sheet height (mm)
-  double tickSpacingMm = 20;       ///< seam arc length between numbered ticks (mm)
-  double tabWidthMm = 6;           ///< glue tab width (mm); 0 = no tabs
-  double tabAngleDeg = 45;         ///< angle of the tab ends against the fold line (degrees)
-  double tabMaxTurnDeg = 25;       ///< max turning of the seam along one tab (degrees)
-  double tabMaxLengthMm = 40;      ///< max length of one tab along the seam (mm)
-  double tabGapMm = 1.5;           ///< gap between neighbouring tabs along the seam (mm)
-  bool alternateTabs = false;      ///< tabs alternate between A and B (default: all on A)
-  double kerfMm = -1;              ///< outward cut-path offset (mm); negative = the profile's
-  std::string jobName = "dform";   ///< printed in the title line and file metadata
-  bool failedGateMark = false;     ///< print a visible "FAILED GATE" mark on every output
-  std::vector<double> curvatureA;  ///< optional per-vertex Gaussian curvature of A (1/mm^2)
-  std::vector<double> curvatureB;  ///< optional per-vertex Gaussian curvature of B (1/mm^2)
-  bool gltfBinary = true;          ///< dform.glb (true) or dform.gltf with embedded buffer
+  std::string profile = "laser";    ///< profile name or path to a profile .json
+  std::string templatesDir;         ///< folder holding profiles/ (the CLI passes the install path)
+  Profile profileOverride;          ///< used instead of loading when useProfileOverride is set
+  bool useProfileOverride = false;  ///< use profileOverride (tests, callers that built one)
+  double sheetWidthMm = 600;        ///< material sheet width (mm); page profiles use their page
+  double sheetHeightMm = 400;       ///< material sheet height (mm)
+  double tickSpacingMm = 20;        ///< seam arc length between numbered ticks (mm)
+  double tabWidthMm = 6;            ///< glue tab width (mm); 0 = no tabs
+  double tabAngleDeg = 45;          ///< angle of the tab ends against the fold line (degrees)
+  double tabMaxTurnDeg = 25;        ///< max turning of the seam along one tab (degrees)
+  double tabMaxLengthMm = 40;       ///< max length of one tab along the seam (mm)
+  double tabGapMm = 1.5;            ///< gap between neighbouring tabs along the seam (mm)
+  bool alternateTabs = false;       ///< tabs alternate between A and B (default: all on A)
+  double kerfMm = -1;               ///< outward cut-path offset (mm); negative = the profile's
+  std::string jobName = "dform";    ///< printed in the title line and file metadata
+  bool failedGateMark = false;      ///< print a visible "FAILED GATE" mark on every output
+  std::vector<double> curvatureA;   ///< optional per-vertex Gaussian curvature of A (1/mm^2)
+  std::vector<double> curvatureB;   ///< optional per-vertex Gaussian curvature of B (1/mm^2)
+  bool gltfBinary = true;           ///< dform.glb (true) or dform.gltf with embedded buffer
   std::string fontPath = "/usr/share/hershey-fonts/futural.jhf";  ///< Hershey single-stroke font
 };
 
 struct ExportSummary {
-  std::vector<std::string> files;     ///< every file written, full paths
-  std::vector<std::string> messages;  ///< notes for the user (dropped tabs, perimeter mismatch)
-  std::string profile;                ///< the profile's name
+  std::vector<std::string> files;         ///< every file written, full paths
+  std::vector<std::string> messages;      ///< notes for the user (dropped tabs, perimeter mismatch)
+  std::string profile;                    ///< the profile's name
   double perimeterA = 0, perimeterB = 0;  ///< flat seam lengths (mm)
   double sheetWidthMm = 0, sheetHeightMm = 0;  ///< the pattern canvas (mm)
-  int ticks = 0;                      ///< tick pairs
-  int tabs = 0;                       ///< glue tabs on both pieces
-  int pages = 0;                      ///< PDF pages (more than 1 when tiled)
-  int triangles = 0;                  ///< triangles in the STL (both pieces)
+  int ticks = 0;                               ///< tick pairs
+  int tabs = 0;                                ///< glue tabs on both pieces
+  int pages = 0;                               ///< PDF pages (more than 1 when tiled)
+  int triangles = 0;                           ///< triangles in the STL (both pieces)
 };
 
 /// Writes into `outDir` (which must exist): pattern.svg, pattern.pdf (one page per tile),

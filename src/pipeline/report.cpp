@@ -2,9 +2,8 @@
 
 #include <cmath>
 #include <filesystem>
-#include <nlohmann/json.hpp>
-
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
 
@@ -52,10 +51,11 @@ json solverJson(const LocalGlobalSummary& relaxation, const SolverSummary& s) {
   json finalTerms = json::object();
   for (std::size_t t = 0; t < s.finalTermCosts.size() && t < s.termNames.size(); ++t)
     finalTerms[s.termNames[t]] = figure(s.finalTermCosts[t]);
-  return {{"local_global", {{"iterations", relaxation.iterations},
-                            {"initial_energy", figure(relaxation.initialEnergy)},
-                            {"final_energy", figure(relaxation.finalEnergy)},
-                            {"seconds", figure(relaxation.seconds)}}},
+  return {{"local_global",
+           {{"iterations", relaxation.iterations},
+            {"initial_energy", figure(relaxation.initialEnergy)},
+            {"final_energy", figure(relaxation.finalEnergy)},
+            {"seconds", figure(relaxation.seconds)}}},
           {"termination", terminationName(s.termination)},
           {"message", s.message},
           {"initial_cost", figure(s.initialCost)},
@@ -78,13 +78,16 @@ json meshJson(const DForm& model) {
 }
 
 json timingsJson(const Timings& t) {
-  return {{"read", figure(t.read)}, {"mesh", figure(t.mesh)}, {"solve", figure(t.solve)},
+  return {{"read", figure(t.read)},
+          {"mesh", figure(t.mesh)},
+          {"solve", figure(t.solve)},
           {"total", figure(t.total)}};
 }
 
 json messagesJson(const std::vector<Message>& messages) {
   json out = json::array();
-  for (const Message& m : messages) out.push_back({{"level", levelName(m.level)}, {"text", m.text}});
+  for (const Message& m : messages)
+    out.push_back({{"level", levelName(m.level)}, {"text", m.text}});
   return out;
 }
 
@@ -97,7 +100,9 @@ json gateJson(const GateReport* gate) {
                       {"limit", figure(c.limit)},
                       {"verdict", verdictName(c.verdict)},
                       {"detail", c.detail}});
-  return {{"passed", gate->passed()}, {"failed", gate->failed()}, {"not_run", gate->notRun()},
+  return {{"passed", gate->passed()},
+          {"failed", gate->failed()},
+          {"not_run", gate->notRun()},
           {"checks", checks}};
 }
 
@@ -138,7 +143,8 @@ Status writeForwardReport(const std::string& dir, const Job& job, const ForwardR
 Status writeInverseReport(const std::string& dir, const Job& job, const InverseRun& run,
                           const std::vector<Message>& messages, const GateReport* gate) {
   json report = header(job, "inverse");
-  report["inputs"] = {{"curve", {{"path", job.inverse.curve}, {"length_mm", figure(run.curveLength)}}}};
+  report["inputs"] = {
+      {"curve", {{"path", job.inverse.curve}, {"length_mm", figure(run.curveLength)}}}};
   report["pre_dform"] = {{"on_hull", run.pre.onHull},
                          {"is_hull", run.pre.isHull},
                          {"inside_vertices", run.pre.insideVertices.size()},
@@ -181,7 +187,9 @@ Result<std::vector<std::string>> compareWithReport(const std::string& dir, const
     const bool same = bothNumbers ? std::abs(saved.get<double>() - value.get<double>()) <=
                                         1e-9 * std::max(1.0, std::abs(value.get<double>()))
                                   : saved == value;
-    if (!same) differences.push_back(key + ": report.json says " + saved.dump() + ", the meshes give " + value.dump());
+    if (!same)
+      differences.push_back(key + ": report.json says " + saved.dump() + ", the meshes give " +
+                            value.dump());
   }
   return differences;
 }

@@ -46,7 +46,8 @@ CheckResult gaussCheck(const DForm& model, const GateLimits& limits) {
   std::string where;
   for (const Piece* p : {&model.a, &model.b}) {
     const detail::EdgeTopology topology = detail::edgeTopology(p->F);
-    const std::vector<bool> onBoundary = detail::boundaryVertices(int(p->shape.rows()), p->seam, topology);
+    const std::vector<bool> onBoundary =
+        detail::boundaryVertices(int(p->shape.rows()), p->seam, topology);
     std::vector<bool> nearSeam = onBoundary;
     for (const auto& e : topology.edges)
       if (onBoundary[e[0]] || onBoundary[e[1]]) nearSeam[e[0]] = nearSeam[e[1]] = true;
@@ -63,22 +64,27 @@ CheckResult gaussCheck(const DForm& model, const GateLimits& limits) {
       }
     }
   }
-  if (counted == 0) return notRun("gauss_max_rad", limits.gauss_max_rad, "no interior vertex away from the seam");
+  if (counted == 0)
+    return notRun("gauss_max_rad", limits.gauss_max_rad, "no interior vertex away from the seam");
   return judge("gauss_max_rad", worst, limits.gauss_max_rad,
-               "largest |angle defect| over " + std::to_string(counted) + " vertices away from the seam, at " + where);
+               "largest |angle defect| over " + std::to_string(counted) +
+                   " vertices away from the seam, at " + where);
 }
 
 CheckResult flatSimpleCheck(const DForm& model) {
   int bad = 0;
   std::string detail;
   for (const Piece* p : {&model.a, &model.b}) {
-    if (p->seam.size() < 3) return notRun("flat_simple", 0, "piece " + p->name + " has no seam outline");
+    if (p->seam.size() < 3)
+      return notRun("flat_simple", 0, "piece " + p->name + " has no seam outline");
     std::string problem;
     if (const auto cross = findSelfIntersection(seamPolygon(*p)))
-      problem = "outline edges " + std::to_string(cross->first) + " and " + std::to_string(cross->second) + " meet";
+      problem = "outline edges " + std::to_string(cross->first) + " and " +
+                std::to_string(cross->second) + " meet";
     std::string example;
     if (const int overlaps = detail::countFlatOverlaps(p->flat, p->F, &example); overlaps > 0)
-      problem += (problem.empty() ? "" : "; ") + std::to_string(overlaps) + " overlapping triangle pairs (" + example + ")";
+      problem += (problem.empty() ? "" : "; ") + std::to_string(overlaps) +
+                 " overlapping triangle pairs (" + example + ")";
     if (problem.empty()) continue;
     ++bad;
     detail += (detail.empty() ? "" : "; ") + ("piece " + p->name + ": " + problem);
@@ -105,7 +111,8 @@ CheckResult selfIntersectionCheck(const DForm& model) {
   F << a.F, (b.F.array() + na).unaryExpr([&](int i) { return weld[i]; }).matrix();
   const detail::SelfIntersections hits = detail::findSelfIntersections(V, F);
   std::string text = hits.pairs == 0 ? "no two triangles of the closed surface intersect"
-                                     : std::to_string(hits.pairs) + " intersecting triangle pairs, first " + hits.example;
+                                     : std::to_string(hits.pairs) +
+                                           " intersecting triangle pairs, first " + hits.example;
   if (hits.skippedDegenerate > 0)
     text += " (" + std::to_string(hits.skippedDegenerate) + " degenerate triangles not tested)";
   return judge("self_intersection", hits.pairs, 0, text);
@@ -120,14 +127,15 @@ bool isConvexOutline(const Points2& P) {
     const Eigen::Vector2d e2 = P.row((i + 1) % n) - P.row(i);
     // sin(turn) below -1e-9 is a turn the wrong way; above it, straight up to round-off of
     // points resampled along a straight outline edge.
-    if (orientation * (e1.x() * e2.y() - e1.y() * e2.x()) < -1e-9 * e1.norm() * e2.norm()) return false;
+    if (orientation * (e1.x() * e2.y() - e1.y() * e2.x()) < -1e-9 * e1.norm() * e2.norm())
+      return false;
   }
   return !findSelfIntersection(P).has_value();
 }
 
 // Distance from p to triangle (a, b, c) (closest point by Voronoi regions, Ericson 5.1.5).
-double pointTriangleDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                             const Eigen::Vector3d& c) {
+double pointTriangleDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                             const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
   const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
   const double d1 = ab.dot(ap), d2 = ac.dot(ap);
   if (d1 <= 0 && d2 <= 0) return ap.norm();
@@ -162,7 +170,8 @@ CheckResult hullCheck(const DForm& model, const GateLimits& limits) {
     seam.row(Eigen::Index(n + i)) = model.b.shape.row(model.b.seam[i]);
   }
   const std::optional<detail::HullMesh> hull = detail::convexHull(seam);
-  if (!hull) return notRun(name, limits.hull_distance_rel, "the seam is planar: its hull has no inside");
+  if (!hull)
+    return notRun(name, limits.hull_distance_rel, "the seam is planar: its hull has no inside");
   const double diagonal = (seam.colwise().maxCoeff() - seam.colwise().minCoeff()).norm();
   double worst = 0.0;
   std::string where;
@@ -170,8 +179,9 @@ CheckResult hullCheck(const DForm& model, const GateLimits& limits) {
     for (int v = 0; v < p->shape.rows(); ++v) {
       double d = std::numeric_limits<double>::infinity();
       for (int h = 0; h < hull->F.rows(); ++h)
-        d = std::min(d, pointTriangleDistance(p->shape.row(v), hull->V.row(hull->F(h, 0)),
-                                              hull->V.row(hull->F(h, 1)), hull->V.row(hull->F(h, 2))));
+        d = std::min(d,
+                     pointTriangleDistance(p->shape.row(v), hull->V.row(hull->F(h, 0)),
+                                           hull->V.row(hull->F(h, 1)), hull->V.row(hull->F(h, 2))));
       if (d > worst || where.empty()) {
         worst = std::max(worst, d);
         where = "piece " + p->name + " vertex " + std::to_string(v);
@@ -196,11 +206,13 @@ const char* verdictName(CheckResult::Verdict verdict) {
 bool GateReport::passed() const { return failed() == 0; }
 
 int GateReport::failed() const {
-  return int(std::count_if(checks.begin(), checks.end(), [](const CheckResult& c) { return c.verdict == Verdict::Fail; }));
+  return int(std::count_if(checks.begin(), checks.end(),
+                           [](const CheckResult& c) { return c.verdict == Verdict::Fail; }));
 }
 
 int GateReport::notRun() const {
-  return int(std::count_if(checks.begin(), checks.end(), [](const CheckResult& c) { return c.verdict == Verdict::NotRun; }));
+  return int(std::count_if(checks.begin(), checks.end(),
+                           [](const CheckResult& c) { return c.verdict == Verdict::NotRun; }));
 }
 
 const CheckResult* GateReport::find(const std::string& name) const {
@@ -215,13 +227,14 @@ GateReport runGate(const DForm& model, const GateLimits& limits, const Curve3* t
   auto& checks = report.checks;
   const size_t pairs = model.a.seam.size();
 
-  checks.push_back(judge("L_error", m.L_error, limits.L_error, "relative edge-length error over both pieces"));
+  checks.push_back(
+      judge("L_error", m.L_error, limits.L_error, "relative edge-length error over both pieces"));
   checks.push_back(judge("L_max", m.L_max, limits.L_max, "largest relative error of one edge"));
   if (target) {
     if (size_t(target->points.rows()) != pairs || pairs == 0) {
       checks.push_back(notRun("D_error", limits.D_error,
-                              "the target curve has " + std::to_string(target->points.rows()) + " points for " +
-                                  std::to_string(pairs) + " seam pairs"));
+                              "the target curve has " + std::to_string(target->points.rows()) +
+                                  " points for " + std::to_string(pairs) + " seam pairs"));
     } else {
       report.curve = computeCurveMatch(model, *target);
       checks.push_back(judge("D_error", report.curve->D_error, limits.D_error,
@@ -231,27 +244,31 @@ GateReport runGate(const DForm& model, const GateLimits& limits, const Curve3* t
   } else if (pairs == 0) {
     checks.push_back(notRun("B_error", limits.B_error, "the model has no seam pairs"));
   } else {
-    checks.push_back(judge("B_error", m.B_error, limits.B_error, "mean seam-partner distance / 3D seam length"));
+    checks.push_back(
+        judge("B_error", m.B_error, limits.B_error, "mean seam-partner distance / 3D seam length"));
   }
   if (pairs == 0)
     checks.push_back(notRun("seam_gap_mm", limits.seam_gap_mm, "the model has no seam pairs"));
   else
-    checks.push_back(judge("seam_gap_mm", m.seam_gap_mm, limits.seam_gap_mm, "largest seam-partner distance (mm)"));
+    checks.push_back(judge("seam_gap_mm", m.seam_gap_mm, limits.seam_gap_mm,
+                           "largest seam-partner distance (mm)"));
   checks.push_back(gaussCheck(model, limits));
   checks.push_back(judge("flipped", m.flipped_2d + m.flipped_3d, limits.flipped,
-                         std::to_string(m.flipped_2d) + " flipped flat, " + std::to_string(m.flipped_3d) +
-                             " folded-over 3D triangles"));
+                         std::to_string(m.flipped_2d) + " flipped flat, " +
+                             std::to_string(m.flipped_3d) + " folded-over 3D triangles"));
   checks.push_back(judge("degenerate", m.degenerate_2d + m.degenerate_3d, limits.degenerate,
-                         std::to_string(m.degenerate_2d) + " flat, " + std::to_string(m.degenerate_3d) +
-                             " 3D degenerate triangles"));
+                         std::to_string(m.degenerate_2d) + " flat, " +
+                             std::to_string(m.degenerate_3d) + " 3D degenerate triangles"));
   checks.push_back(flatSimpleCheck(model));
   const double longer = std::max(m.seam_length_a_mm, m.seam_length_b_mm);
   if (longer <= 0.0)
-    checks.push_back(notRun("seam_length_rel", limits.seam_length_rel, "the flat seams have no length"));
+    checks.push_back(
+        notRun("seam_length_rel", limits.seam_length_rel, "the flat seams have no length"));
   else
-    checks.push_back(judge("seam_length_rel", std::abs(m.seam_length_a_mm - m.seam_length_b_mm) / longer,
-                           limits.seam_length_rel,
-                           "flat seams " + num(m.seam_length_a_mm) + " mm and " + num(m.seam_length_b_mm) + " mm"));
+    checks.push_back(judge(
+        "seam_length_rel", std::abs(m.seam_length_a_mm - m.seam_length_b_mm) / longer,
+        limits.seam_length_rel,
+        "flat seams " + num(m.seam_length_a_mm) + " mm and " + num(m.seam_length_b_mm) + " mm"));
   checks.push_back(selfIntersectionCheck(model));
   checks.push_back(hullCheck(model, limits));
   return report;

@@ -38,11 +38,11 @@ Result<GateLimits> parseGateJson(const std::string& text, const std::string& sou
 
 struct CheckResult {
   enum class Verdict { Pass, Fail, NotRun };
-  std::string name;   ///< the check's name, the gate file's field where it has one
-  double value = 0;   ///< the measured figure (NaN when not run)
-  double limit = 0;   ///< the limit it was held to
+  std::string name;  ///< the check's name, the gate file's field where it has one
+  double value = 0;  ///< the measured figure (NaN when not run)
+  double limit = 0;  ///< the limit it was held to
   Verdict verdict = Verdict::NotRun;
-  std::string detail; ///< one line: what was measured, where it failed, or why it did not run
+  std::string detail;  ///< one line: what was measured, where it failed, or why it did not run
 };
 
 const char* verdictName(CheckResult::Verdict verdict);

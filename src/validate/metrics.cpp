@@ -22,8 +22,8 @@ void addEdgeLengths(const Piece& p, const detail::EdgeTopology& topology, double
     sumSqFlat += L * L;
     // A zero-length flat edge is reported by the degenerate count; its relative error is
     // infinite unless the 3D edge is zero too.
-    const double rel = L > 0.0 ? std::abs(Lh - L) / L
-                               : (Lh > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
+    const double rel =
+        L > 0.0 ? std::abs(Lh - L) / L : (Lh > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
     maxRel = std::max(maxRel, rel);
   }
 }
@@ -32,7 +32,8 @@ void addEdgeLengths(const Piece& p, const detail::EdgeTopology& topology, double
 void addDefects(const Piece& p, const detail::EdgeTopology& topology, double& maxAbs,
                 double& sumAbs, int& count) {
   const Eigen::VectorXd defect = detail::angleDefects(p.shape, p.F);
-  const std::vector<bool> onBoundary = detail::boundaryVertices(int(p.shape.rows()), p.seam, topology);
+  const std::vector<bool> onBoundary =
+      detail::boundaryVertices(int(p.shape.rows()), p.seam, topology);
   for (Eigen::Index v = 0; v < defect.size(); ++v) {
     if (onBoundary[size_t(v)]) continue;
     maxAbs = std::max(maxAbs, std::abs(defect(v)));
@@ -94,7 +95,8 @@ CurveMatch computeCurveMatch(const DForm& model, const Curve3& target) {
     match.curve_distance_max_mm = std::max({match.curve_distance_max_mm, da, db});
   }
   const double curveLength = closedLength(target.points);
-  if (!sa.empty() && curveLength > 0.0) match.D_error = (sum / (2.0 * double(sa.size()))) / curveLength;
+  if (!sa.empty() && curveLength > 0.0)
+    match.D_error = (sum / (2.0 * double(sa.size()))) / curveLength;
   return match;
 }
 
