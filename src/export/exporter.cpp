@@ -22,9 +22,7 @@ Status checkFolder(const std::string& outDir) {
 
 }  // namespace
 
-Result<ExportSummary> exportAll(const DForm& model, const ExportOptions& options,
-                                const std::string& outDir) {
-  if (Status s = checkFolder(outDir); !s.isOk()) return s;
+Result<PreparedExport> prepareExport(const DForm& model, const ExportOptions& options) {
   auto profile = fab::resolveProfile(options);
   if (!profile.isOk()) return profile.status();
   auto pattern = fab::buildPattern(model, options, profile.value());
@@ -35,20 +33,16 @@ Result<ExportSummary> exportAll(const DForm& model, const ExportOptions& options
   if (!pdf.isOk()) return pdf.status();
   auto gltf = fab::gltfDocument(model, options);
   if (!gltf.isOk()) return gltf.status();
-  const std::string gltfName = options.gltfBinary ? "dform.glb" : "dform.gltf";
-  const std::vector<std::pair<std::string, std::string>> files = {
+  PreparedExport prepared;
+  prepared.files = {
       {"pattern.svg", fab::svgDocument(pat.drawing)},
       {"pattern.pdf", pdf.value()},
       {"pattern.json", fab::sidecarJson(pat, options.jobName)},
       {"dform.stl", fab::stlDocument(model, options.failedGateMark)},
-      {gltfName, gltf.value()},
+      {options.gltfBinary ? "dform.glb" : "dform.gltf", gltf.value()},
   };
-  ExportSummary summary;
-  for (const auto& [name, content] : files) {
-    const std::string path = (fs::path(outDir) / name).string();
-    if (Status s = writeFileAtomically(path, content); !s.isOk()) return s;
-    summary.files.push_back(path);
-  }
+  prepared.layout = fab::checkLayout(pat);
+  ExportSummary& summary = prepared.summary;
   summary.messages = pat.messages;
   summary.profile = pat.profile.name;
   summary.perimeterA = pat.pieces[0].perimeter;
@@ -62,7 +56,30 @@ Result<ExportSummary> exportAll(const DForm& model, const ExportOptions& options
   if (summary.pages > 1)
     summary.messages.push_back("the pattern is tiled across " + std::to_string(summary.pages) +
                                " pages of pattern.pdf; print at 100% and match the crosses");
+  return prepared;
+}
+
+Result<ExportSummary> writeExport(const PreparedExport& prepared, const std::string& outDir) {
+  if (Status s = checkFolder(outDir); !s.isOk()) return s;
+  ExportSummary summary = prepared.summary;
+  for (const auto& [name, content] : prepared.files) {
+    const std::string path = (fs::path(outDir) / name).string();
+    if (Status s = writeFileAtomically(path, content); !s.isOk()) return s;
+    summary.files.push_back(path);
+  }
   return summary;
+}
+
+std::vector<std::string> exportFileNames() {
+  return {"pattern.svg", "pattern.pdf", "pattern.json", "dform.stl", "dform.glb", "dform.gltf"};
+}
+
+Result<ExportSummary> exportAll(const DForm& model, const ExportOptions& options,
+                                const std::string& outDir) {
+  if (Status s = checkFolder(outDir); !s.isOk()) return s;
+  Result<PreparedExport> prepared = prepareExport(model, options);
+  if (!prepared.isOk()) return prepared.status();
+  return writeExport(prepared.value(), outDir);
 }
 
 Status renderPatternPng(const DForm& model, const ExportOptions& options,

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/status.h"
@@ -104,11 +105,44 @@ struct ExportSummary {
   int triangles = 0;                           ///< triangles in the STL (both pieces)
 };
 
-/// Writes into `outDir` (which must exist): pattern.svg, pattern.pdf (one page per tile),
-/// pattern.json (sidecar: outlines, ticks, tabs in sheet mm), dform.stl and dform.glb (or
-/// dform.gltf). Each file is written atomically. Usage for a bad option or a sheet too small
-/// (the message gives the size needed), InputInvalid for a model that cannot be exported,
-/// OutputFailed for an unwritable folder, and loadProfile's codes.
+/// What the layout check measured on the laid-out pattern (the fabrication part of the quality
+/// gate): every count is 0 on a pattern fit to cut.
+struct LayoutFindings {
+  int outsideSheet = 0;       ///< drawn paths with a point off the sheet
+  int overlappingTabs = 0;    ///< pairs of glue tabs sharing area
+  int tabsOverPieces = 0;     ///< (tab, piece) pairs sharing area
+  int overlappingPieces = 0;  ///< 1 when the two pieces' cut paths share area
+  int labelsOutside = 0;      ///< labels not wholly inside their piece's outline
+  int overlappingLabels = 0;  ///< pairs of labels whose footprints (convex hulls) share area
+  std::string example;        ///< the first problem found, in words; empty when none
+  int problems() const {
+    return outsideSheet + overlappingTabs + tabsOverPieces + overlappingPieces + labelsOutside +
+           overlappingLabels;
+  }
+};
+
+/// Every output rendered in memory, not yet written, with the layout check of its pattern.
+struct PreparedExport {
+  std::vector<std::pair<std::string, std::string>> files;  ///< file name -> content
+  ExportSummary summary;                                   ///< `files` still empty
+  LayoutFindings layout;
+};
+
+/// Lays out and renders everything exportAll writes, and checks the layout. The same errors as
+/// exportAll except the folder's.
+Result<PreparedExport> prepareExport(const DForm& model, const ExportOptions& options);
+
+/// Writes a prepared export into `outDir` (which must exist), each file atomically.
+Result<ExportSummary> writeExport(const PreparedExport& prepared, const std::string& outDir);
+
+/// The names of every file an export may write (for removing a previous run's).
+std::vector<std::string> exportFileNames();
+
+/// prepareExport then writeExport. Writes into `outDir` (which must exist): pattern.svg,
+/// pattern.pdf (one page per tile), pattern.json (sidecar: outlines, ticks, tabs in sheet mm),
+/// dform.stl and dform.glb (or dform.gltf). Each file is written atomically. Usage for a bad option
+/// or a sheet too small (the message gives the size needed), InputInvalid for a model that cannot
+/// be exported, OutputFailed for an unwritable folder, and loadProfile's codes.
 Result<ExportSummary> exportAll(const DForm& model, const ExportOptions& options,
                                 const std::string& outDir);
 

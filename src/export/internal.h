@@ -117,6 +117,9 @@ std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName)
 std::string stlDocument(const DForm& model, bool failedGate);
 Result<std::string> gltfDocument(const DForm& model, const ExportOptions& options);
 
+/// Measures the built pattern: paths off the sheet, overlapping tabs, pieces and labels.
+LayoutFindings checkLayout(const PatternBuild& pattern);
+
 /// Checks the indices and sizes of both pieces; InputInvalid naming the problem.
 Status checkModel(const DForm& model);
 

@@ -6,21 +6,15 @@
 #include <cstdio>
 #include <sstream>
 
-#include <polyclipping/clipper.hpp>
-
 #include "core/polyline.h"
 #include "export/internal.h"
+#include "export/plane_geometry.h"
 
 namespace dform::fab {
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-// Clipper works on integers: 1e4 units per mm resolves 0.1 um, far below any tolerance here.
-constexpr double kClipScale = 1e4;
-// Overlap that counts as real: rounding to Clipper's grid (<= 0.05 um) along a 40 mm tab edge
-// leaves slivers of ~2e-6 mm^2; 0.01 mm^2 (a 0.1 x 0.1 mm square) is invisible on any material.
-constexpr double kOverlapTolMm2 = 0.01;
 constexpr double kA4W = 210.0, kA4H = 297.0;
 constexpr double kLetterW = 215.9, kLetterH = 279.4;
 // Cricut Print Then Cut: 6.75 x 9.25 in (the long-standing safe maximum on Letter).
@@ -33,34 +27,6 @@ constexpr double kTickOut = 1.5;     // tick length outside the outline (mm)
 constexpr double kTickIn = 3.0;      // tick length inside the outline (mm)
 constexpr double kStartTickIn = 6.0; // the start tick is longer (mm)
 
-ClipperLib::Path toClip(const Polyline& p) {
-  ClipperLib::Path out;
-  out.reserve(p.size());
-  for (const Vec2& q : p)
-    out.emplace_back(ClipperLib::cInt(std::llround(q.x() * kClipScale)),
-                     ClipperLib::cInt(std::llround(q.y() * kClipScale)));
-  if (!ClipperLib::Orientation(out)) ClipperLib::ReversePath(out);
-  return out;
-}
-
-Polyline fromClip(const ClipperLib::Path& p) {
-  Polyline out;
-  out.reserve(p.size());
-  for (const auto& q : p) out.emplace_back(double(q.X) / kClipScale, double(q.Y) / kClipScale);
-  return out;
-}
-
-double overlapArea(const Polyline& a, const Polyline& b) {
-  ClipperLib::Clipper c;
-  c.AddPath(toClip(a), ClipperLib::ptSubject, true);
-  c.AddPath(toClip(b), ClipperLib::ptClip, true);
-  ClipperLib::Paths result;
-  c.Execute(ClipperLib::ctIntersection, result, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-  double area = 0;
-  for (const auto& p : result) area += std::abs(ClipperLib::Area(p));
-  return area / (kClipScale * kClipScale);
-}
-
 Points2 toPoints(const Polyline& p) {
   Points2 P(Eigen::Index(p.size()), 2);
   for (size_t i = 0; i < p.size(); ++i) P.row(Eigen::Index(i)) = p[i].transpose();
@@ -72,31 +38,6 @@ double polylineLength(const Polyline& p, bool closed) {
   for (size_t i = 0; i + 1 < p.size(); ++i) len += (p[i + 1] - p[i]).norm();
   if (closed && p.size() > 1) len += (p.front() - p.back()).norm();
   return len;
-}
-
-bool insidePolygon(const Polyline& poly, const Vec2& q) {
-  bool inside = false;
-  for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-    const Vec2& a = poly[i];
-    const Vec2& b = poly[j];
-    if ((a.y() > q.y()) != (b.y() > q.y()) &&
-        q.x() < (b.x() - a.x()) * (q.y() - a.y()) / (b.y() - a.y()) + a.x())
-      inside = !inside;
-  }
-  return inside;
-}
-
-double distanceToClosed(const Polyline& poly, const Vec2& q) {
-  double best = 1e300;
-  for (size_t i = 0; i < poly.size(); ++i) {
-    const Vec2& a = poly[i];
-    const Vec2& b = poly[(i + 1) % poly.size()];
-    const Vec2 ab = b - a;
-    const double len2 = ab.squaredNorm();
-    const double t = len2 > 0 ? std::clamp((q - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-    best = std::min(best, (a + t * ab - q).norm());
-  }
-  return best;
 }
 
 std::string formatMm(double x, int decimals = 1) {

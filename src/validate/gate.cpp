@@ -22,16 +22,6 @@ std::string num(double x) {
   return buf;
 }
 
-// Pass when value <= limit; NaN never passes.
-CheckResult judge(std::string name, double value, double limit, std::string detail) {
-  const Verdict v = value <= limit ? Verdict::Pass : Verdict::Fail;
-  return {std::move(name), value, limit, v, std::move(detail)};
-}
-
-CheckResult notRun(std::string name, double limit, std::string reason) {
-  return {std::move(name), kNaN, limit, Verdict::NotRun, std::move(reason)};
-}
-
 Points2 seamPolygon(const Piece& p) {
   Points2 P(Eigen::Index(p.seam.size()), 2);
   for (size_t i = 0; i < p.seam.size(); ++i) P.row(Eigen::Index(i)) = p.flat.row(p.seam[i]);
@@ -65,10 +55,11 @@ CheckResult gaussCheck(const DForm& model, const GateLimits& limits) {
     }
   }
   if (counted == 0)
-    return notRun("gauss_max_rad", limits.gauss_max_rad, "no interior vertex away from the seam");
-  return judge("gauss_max_rad", worst, limits.gauss_max_rad,
-               "largest |angle defect| over " + std::to_string(counted) +
-                   " vertices away from the seam, at " + where);
+    return notRunCheck("gauss_max_rad", limits.gauss_max_rad,
+                       "no interior vertex away from the seam");
+  return judgeCheck("gauss_max_rad", worst, limits.gauss_max_rad,
+                    "largest |angle defect| over " + std::to_string(counted) +
+                        " vertices away from the seam, at " + where);
 }
 
 CheckResult flatSimpleCheck(const DForm& model) {
@@ -76,7 +67,7 @@ CheckResult flatSimpleCheck(const DForm& model) {
   std::string detail;
   for (const Piece* p : {&model.a, &model.b}) {
     if (p->seam.size() < 3)
-      return notRun("flat_simple", 0, "piece " + p->name + " has no seam outline");
+      return notRunCheck("flat_simple", 0, "piece " + p->name + " has no seam outline");
     std::string problem;
     if (const auto cross = findSelfIntersection(seamPolygon(*p)))
       problem = "outline edges " + std::to_string(cross->first) + " and " +
@@ -90,7 +81,7 @@ CheckResult flatSimpleCheck(const DForm& model) {
     detail += (detail.empty() ? "" : "; ") + ("piece " + p->name + ": " + problem);
   }
   if (bad == 0) detail = "both flat pieces are simple and no two flat triangles overlap";
-  return judge("flat_simple", bad, 0, detail);
+  return judgeCheck("flat_simple", bad, 0, detail);
 }
 
 // Both pieces as one triangle soup, each seam pair welded into one vertex at its midpoint (the
@@ -115,7 +106,7 @@ CheckResult selfIntersectionCheck(const DForm& model) {
                                            " intersecting triangle pairs, first " + hits.example;
   if (hits.skippedDegenerate > 0)
     text += " (" + std::to_string(hits.skippedDegenerate) + " degenerate triangles not tested)";
-  return judge("self_intersection", hits.pairs, 0, text);
+  return judgeCheck("self_intersection", hits.pairs, 0, text);
 }
 
 // Whether the closed outline turns one way only (collinear runs allowed) and is simple.
@@ -162,7 +153,7 @@ CheckResult hullCheck(const DForm& model, const GateLimits& limits) {
   const char* name = "hull_distance_rel";
   for (const Piece* p : {&model.a, &model.b})
     if (p->seam.size() < 3 || !isConvexOutline(seamPolygon(*p)))
-      return notRun(name, limits.hull_distance_rel, "piece " + p->name + " is not convex");
+      return notRunCheck(name, limits.hull_distance_rel, "piece " + p->name + " is not convex");
   const size_t n = model.a.seam.size();
   Points3 seam(Eigen::Index(2 * n), 3);
   for (size_t i = 0; i < n; ++i) {
@@ -171,7 +162,8 @@ CheckResult hullCheck(const DForm& model, const GateLimits& limits) {
   }
   const std::optional<detail::HullMesh> hull = detail::convexHull(seam);
   if (!hull)
-    return notRun(name, limits.hull_distance_rel, "the seam is planar: its hull has no inside");
+    return notRunCheck(name, limits.hull_distance_rel,
+                       "the seam is planar: its hull has no inside");
   const double diagonal = (seam.colwise().maxCoeff() - seam.colwise().minCoeff()).norm();
   double worst = 0.0;
   std::string where;
@@ -187,12 +179,21 @@ CheckResult hullCheck(const DForm& model, const GateLimits& limits) {
         where = "piece " + p->name + " vertex " + std::to_string(v);
       }
     }
-  return judge(name, worst / diagonal, limits.hull_distance_rel,
-               "largest distance to the seam's convex hull " + num(worst) + " mm at " + where +
-                   ", seam bounding-box diagonal " + num(diagonal) + " mm");
+  return judgeCheck(name, worst / diagonal, limits.hull_distance_rel,
+                    "largest distance to the seam's convex hull " + num(worst) + " mm at " + where +
+                        ", seam bounding-box diagonal " + num(diagonal) + " mm");
 }
 
 }  // namespace
+
+CheckResult judgeCheck(std::string name, double value, double limit, std::string detail) {
+  const Verdict v = value <= limit ? Verdict::Pass : Verdict::Fail;
+  return {std::move(name), value, limit, v, std::move(detail)};
+}
+
+CheckResult notRunCheck(std::string name, double limit, std::string reason) {
+  return {std::move(name), kNaN, limit, Verdict::NotRun, std::move(reason)};
+}
 
 const char* verdictName(CheckResult::Verdict verdict) {
   switch (verdict) {
@@ -227,45 +228,46 @@ GateReport runGate(const DForm& model, const GateLimits& limits, const Curve3* t
   auto& checks = report.checks;
   const size_t pairs = model.a.seam.size();
 
+  checks.push_back(judgeCheck("L_error", m.L_error, limits.L_error,
+                              "relative edge-length error over both pieces"));
   checks.push_back(
-      judge("L_error", m.L_error, limits.L_error, "relative edge-length error over both pieces"));
-  checks.push_back(judge("L_max", m.L_max, limits.L_max, "largest relative error of one edge"));
+      judgeCheck("L_max", m.L_max, limits.L_max, "largest relative error of one edge"));
   if (target) {
     if (size_t(target->points.rows()) != pairs || pairs == 0) {
-      checks.push_back(notRun("D_error", limits.D_error,
-                              "the target curve has " + std::to_string(target->points.rows()) +
-                                  " points for " + std::to_string(pairs) + " seam pairs"));
+      checks.push_back(notRunCheck("D_error", limits.D_error,
+                                   "the target curve has " + std::to_string(target->points.rows()) +
+                                       " points for " + std::to_string(pairs) + " seam pairs"));
     } else {
       report.curve = computeCurveMatch(model, *target);
-      checks.push_back(judge("D_error", report.curve->D_error, limits.D_error,
-                             "mean seam-to-curve distance / curve length; largest distance " +
-                                 num(report.curve->curve_distance_max_mm) + " mm"));
+      checks.push_back(judgeCheck("D_error", report.curve->D_error, limits.D_error,
+                                  "mean seam-to-curve distance / curve length; largest distance " +
+                                      num(report.curve->curve_distance_max_mm) + " mm"));
     }
   } else if (pairs == 0) {
-    checks.push_back(notRun("B_error", limits.B_error, "the model has no seam pairs"));
+    checks.push_back(notRunCheck("B_error", limits.B_error, "the model has no seam pairs"));
   } else {
-    checks.push_back(
-        judge("B_error", m.B_error, limits.B_error, "mean seam-partner distance / 3D seam length"));
+    checks.push_back(judgeCheck("B_error", m.B_error, limits.B_error,
+                                "mean seam-partner distance / 3D seam length"));
   }
   if (pairs == 0)
-    checks.push_back(notRun("seam_gap_mm", limits.seam_gap_mm, "the model has no seam pairs"));
+    checks.push_back(notRunCheck("seam_gap_mm", limits.seam_gap_mm, "the model has no seam pairs"));
   else
-    checks.push_back(judge("seam_gap_mm", m.seam_gap_mm, limits.seam_gap_mm,
-                           "largest seam-partner distance (mm)"));
+    checks.push_back(judgeCheck("seam_gap_mm", m.seam_gap_mm, limits.seam_gap_mm,
+                                "largest seam-partner distance (mm)"));
   checks.push_back(gaussCheck(model, limits));
-  checks.push_back(judge("flipped", m.flipped_2d + m.flipped_3d, limits.flipped,
-                         std::to_string(m.flipped_2d) + " flipped flat, " +
-                             std::to_string(m.flipped_3d) + " folded-over 3D triangles"));
-  checks.push_back(judge("degenerate", m.degenerate_2d + m.degenerate_3d, limits.degenerate,
-                         std::to_string(m.degenerate_2d) + " flat, " +
-                             std::to_string(m.degenerate_3d) + " 3D degenerate triangles"));
+  checks.push_back(judgeCheck("flipped", m.flipped_2d + m.flipped_3d, limits.flipped,
+                              std::to_string(m.flipped_2d) + " flipped flat, " +
+                                  std::to_string(m.flipped_3d) + " folded-over 3D triangles"));
+  checks.push_back(judgeCheck("degenerate", m.degenerate_2d + m.degenerate_3d, limits.degenerate,
+                              std::to_string(m.degenerate_2d) + " flat, " +
+                                  std::to_string(m.degenerate_3d) + " 3D degenerate triangles"));
   checks.push_back(flatSimpleCheck(model));
   const double longer = std::max(m.seam_length_a_mm, m.seam_length_b_mm);
   if (longer <= 0.0)
     checks.push_back(
-        notRun("seam_length_rel", limits.seam_length_rel, "the flat seams have no length"));
+        notRunCheck("seam_length_rel", limits.seam_length_rel, "the flat seams have no length"));
   else
-    checks.push_back(judge(
+    checks.push_back(judgeCheck(
         "seam_length_rel", std::abs(m.seam_length_a_mm - m.seam_length_b_mm) / longer,
         limits.seam_length_rel,
         "flat seams " + num(m.seam_length_a_mm) + " mm and " + num(m.seam_length_b_mm) + " mm"));

@@ -47,6 +47,13 @@ struct CheckResult {
 
 const char* verdictName(CheckResult::Verdict verdict);
 
+/// A check judged like the gate's own: it passes when value <= limit, and NaN never passes. For
+/// checks measured outside runGate too (the exporter's pattern layout).
+CheckResult judgeCheck(std::string name, double value, double limit, std::string detail);
+
+/// A check that could not run, with the reason; it is not a pass.
+CheckResult notRunCheck(std::string name, double limit, std::string reason);
+
 struct GateReport {
   std::vector<CheckResult> checks;
   Metrics metrics;                  ///< the figures the checks were computed from
