@@ -10,6 +10,7 @@
 #include "io/curve_reader.h"
 #include "io/model_files.h"
 #include "pipeline/report.h"
+#include "report/html_report.h"
 #include "validate/gate.h"
 
 namespace dform::cli {
@@ -42,9 +43,9 @@ Result<GateLimits> loadGate(const std::string& nameOrPath) {
   return readGateFile(preset ? templatesDir() + "/gates/" + nameOrPath + ".json" : nameOrPath);
 }
 
-// Writes the cutting patterns and previews of `model` into dir.
-Status exportModel(const DForm& model, const OutputOptions& output, bool failedGate,
-                   const std::string& jobName, MessageSink& sink) {
+// Lays out and renders the cutting patterns and previews of `model`, not yet written.
+Result<PreparedExport> prepare(const DForm& model, const OutputOptions& output, bool failedGate,
+                               const std::string& jobName) {
   ExportOptions options;
   options.profile = output.profile;
   options.templatesDir = templatesDir();
@@ -56,12 +57,37 @@ Status exportModel(const DForm& model, const OutputOptions& output, bool failedG
     options.sheetWidthMm = sheet.value().first;
     options.sheetHeightMm = sheet.value().second;
   }
-  Result<ExportSummary> exported = exportAll(model, options, output.outDir);
-  if (!exported.isOk()) return exported.status();
-  for (const std::string& note : exported.value().messages) sink.info("export: " + note);
-  sink.info("export (" + exported.value().profile +
-            "): " + std::to_string(exported.value().files.size()) + " files");
+  return prepareExport(model, options);
+}
+
+// The gate's fabrication check: the laid-out pattern fits the sheet and nothing on it overlaps.
+CheckResult layoutCheck(const LayoutFindings& f) {
+  const std::string detail =
+      f.problems() == 0 ? "every path on the sheet; tabs, pieces and labels clear of each other"
+                        : std::to_string(f.outsideSheet) + " off the sheet, " +
+                              std::to_string(f.overlappingTabs) + " overlapping tab pairs, " +
+                              std::to_string(f.tabsOverPieces) + " tabs over a piece, " +
+                              std::to_string(f.overlappingPieces) + " overlapping pieces, " +
+                              std::to_string(f.labelsOutside) + " labels outside their piece, " +
+                              std::to_string(f.overlappingLabels) +
+                              " overlapping label pairs; first: " + f.example;
+  return judgeCheck("pattern_layout", f.problems(), 0, detail);
+}
+
+// Writes a prepared export and says what it wrote.
+Status writePrepared(const PreparedExport& prepared, const std::string& dir, MessageSink& sink) {
+  Result<ExportSummary> written = writeExport(prepared, dir);
+  if (!written.isOk()) return written.status();
+  for (const std::string& note : written.value().messages) sink.info("export: " + note);
+  sink.info("export (" + written.value().profile +
+            "): " + std::to_string(written.value().files.size()) + " files");
   return Status::ok();
+}
+
+// A previous run's cutting files would not match this result: removed before it is written.
+void removeOldExports(const std::string& dir) {
+  std::error_code ec;
+  for (const std::string& name : exportFileNames()) fs::remove(fs::path(dir) / name, ec);
 }
 
 void printFigures(const Metrics& m, const CurveMatch* curve, const Timings& t,
@@ -156,18 +182,38 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
     written = writeTargetCurve(output.outDir, inverseRun.value().target);
   if (!written.isOk()) return fail(written);
 
-  // The report is written whatever the export does, so that a failed export (a sheet too
-  // small) still leaves the solved result complete; the export can then be redone alone.
-  const bool gateFailed = gate && !gate->passed();
-  Status exported = Status::ok();
-  if (output.exportFiles && (!gateFailed || output.exportAnyway)) {
-    const std::string name =
-        fs::path(forward ? job.forward.pieceA : job.inverse.curve).stem().string();
-    exported = exportModel(model, output, gateFailed, name, sink);
-    if (!exported.isOk())
-      sink.emit(Level::Error, "export: " + exported.message() +
+  // The pattern's layout is the gate's last check, so it is laid out before the verdict; the
+  // report is written whatever the export does, so that a failed export (a sheet too small)
+  // still leaves the solved result complete and the export can be redone alone.
+  const std::string name =
+      fs::path(forward ? job.forward.pieceA : job.inverse.curve).stem().string();
+  Result<PreparedExport> prepared = Status(ErrorCode::Internal, "no export");
+  if (output.exportFiles) {
+    prepared = prepare(model, output, gate && !gate->passed(), name);
+    if (prepared.isOk() && gate) {
+      const bool passedBefore = gate->passed();
+      gate->checks.push_back(layoutCheck(prepared.value().layout));
+      // Failed on its layout alone: lay it out again with the FAILED GATE mark.
+      if (passedBefore && !gate->passed()) prepared = prepare(model, output, true, name);
+    } else if (!prepared.isOk()) {
+      if (gate)
+        gate->checks.push_back(
+            notRunCheck("pattern_layout", 0, "the export failed: " + prepared.status().message()));
+      sink.emit(Level::Error, "export: " + prepared.status().message() +
                                   " (the result is saved; run `dform export " + output.outDir +
                                   "` with another --sheet or --profile)");
+    }
+    if (prepared.isOk() && !gate && prepared.value().layout.problems() > 0)
+      sink.warning("export: " + layoutCheck(prepared.value().layout).detail);
+  } else if (gate) {
+    gate->checks.push_back(notRunCheck("pattern_layout", 0, "no export (--no-export)"));
+  }
+  const bool gateFailed = gate && !gate->passed();
+  removeOldExports(output.outDir);
+  Status exported = prepared.isOk() || !output.exportFiles ? Status::ok() : prepared.status();
+  if (prepared.isOk() && (!gateFailed || output.exportAnyway)) {
+    exported = writePrepared(prepared.value(), output.outDir, sink);
+    if (!exported.isOk()) sink.emit(Level::Error, "export: " + exported.message());
   }
   const GateReport* gateReport = gate ? &*gate : nullptr;
   const Status reported =
@@ -175,6 +221,8 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
           ? writeForwardReport(output.outDir, job, forwardRun.value(), sink.messages(), gateReport)
           : writeInverseReport(output.outDir, job, inverseRun.value(), sink.messages(), gateReport);
   if (!reported.isOk()) return fail(reported);
+  if (Status html = writeReportHtml(output.outDir, model, templatesDir()); !html.isOk())
+    return fail(html);
   if (!exported.isOk()) return exitCode(exported.code());
 
   if (forward)
@@ -199,11 +247,39 @@ int exportSaved(const std::string& dir, const OutputOptions& output) {
   MessageSink sink(terminal.listener());
   Result<DForm> model = readModel(dir);
   if (!model.isOk()) return fail(model.status());
-  OutputOptions here = output;
-  here.outDir = dir;
-  const Status exported =
-      exportModel(model.value(), here, false, fs::path(dir).filename().string(), sink);
-  if (!exported.isOk()) return fail(exported);
+  // A result that failed its gate is exported only on purpose, and marked.
+  const bool hasReport = fs::exists(fs::path(dir) / "report.json");
+  bool failedGate = false;
+  if (hasReport) {
+    Result<std::optional<bool>> verdict = savedGateVerdict(dir);
+    if (!verdict.isOk()) return fail(verdict.status());
+    failedGate = verdict.value() == false;
+  }
+  if (failedGate && !output.exportAnyway) {
+    Terminal::error(dir +
+                    "/report.json: the result failed its quality gate; nothing exported "
+                    "(--export-anyway exports it marked FAILED GATE)");
+    return exitCode(ErrorCode::GateFailed);
+  }
+  const std::string jobName = fs::path(dir).filename().string();
+  Result<PreparedExport> prepared = prepare(model.value(), output, failedGate, jobName);
+  if (!prepared.isOk()) return fail(prepared.status());
+  const LayoutFindings& layout = prepared.value().layout;
+  if (layout.problems() > 0) {
+    if (!output.exportAnyway) {
+      Terminal::error(dir + ": the pattern does not lay out cleanly (" +
+                      layoutCheck(layout).detail +
+                      "); nothing exported (--export-anyway exports it marked FAILED GATE)");
+      return exitCode(ErrorCode::GateFailed);
+    }
+    if (!failedGate) prepared = prepare(model.value(), output, true, jobName);
+    if (!prepared.isOk()) return fail(prepared.status());
+  }
+  removeOldExports(dir);
+  if (Status s = writePrepared(prepared.value(), dir, sink); !s.isOk()) return fail(s);
+  // The report page shows the pattern: redrawn with the new one.
+  if (hasReport)
+    if (Status s = writeReportHtml(dir, model.value(), templatesDir()); !s.isOk()) return fail(s);
   std::fprintf(stdout, "exported %s into %s\n", output.profile.c_str(), dir.c_str());
   return 0;
 }
@@ -224,7 +300,9 @@ int validateSaved(const std::string& dir, const std::string& gateName) {
                          curvePath + ": has a different number of points than the seam"));
     target = curve.value();
   }
-  const GateReport gate = runGate(model.value(), limits.value(), target ? &*target : nullptr);
+  GateReport gate = runGate(model.value(), limits.value(), target ? &*target : nullptr);
+  gate.checks.push_back(notRunCheck(
+      "pattern_layout", 0, "validate re-checks the meshes; `dform export` checks the layout"));
   printGate(gate);
   // The figures are recomputed from the meshes, never taken from the report; a report that
   // disagrees with its meshes cannot be trusted, and fails.

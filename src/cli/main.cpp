@@ -123,6 +123,8 @@ int run(int argc, char** argv) {
   exportCommand->add_option("dir", exportDir, "a result folder written by forward, inverse or run");
   exportCommand->add_option("--profile", exportOut.profile, "export profile name or .json file (default laser)");
   exportCommand->add_option("--sheet", exportOut.sheet, "material sheet, e.g. 600x400mm");
+  exportCommand->add_flag("--export-anyway", exportOut.exportAnyway,
+                          "export a result that failed its gate, or a pattern that does not lay out cleanly (marked FAILED GATE)");
   exportCommand->add_flag("--list-profiles", listOnly, "list the profiles and exit");
   exportCommand->add_flag("-q,--quiet", exportOut.quiet, "print only warnings and errors");
 

@@ -162,17 +162,37 @@ Status writeInverseReport(const std::string& dir, const Job& job, const InverseR
   return write(dir, report);
 }
 
-Result<std::vector<std::string>> compareWithReport(const std::string& dir, const Metrics& metrics,
-                                                   const CurveMatch* curve) {
+namespace {
+
+Result<json> readReport(const std::string& dir) {
   const std::string path = (std::filesystem::path(dir) / "report.json").string();
   std::ifstream in(path);
   if (!in) return Status(ErrorCode::InputUnreadable, path + ": cannot open the report");
-  json report;
   try {
-    report = json::parse(in);
+    return json::parse(in);
   } catch (const json::exception& e) {
     return Status(ErrorCode::InputUnreadable, path + ": not valid JSON (" + e.what() + ")");
   }
+}
+
+}  // namespace
+
+Result<std::optional<bool>> savedGateVerdict(const std::string& dir) {
+  Result<json> report = readReport(dir);
+  if (!report.isOk()) return report.status();
+  const json& gate = report.value().contains("gate") ? report.value()["gate"] : json(nullptr);
+  if (gate.is_null()) return std::optional<bool>();
+  if (!gate.is_object() || !gate.contains("passed") || !gate["passed"].is_boolean())
+    return Status(ErrorCode::InputInvalid, dir + "/report.json: its gate has no verdict");
+  return std::optional<bool>(gate["passed"].get<bool>());
+}
+
+Result<std::vector<std::string>> compareWithReport(const std::string& dir, const Metrics& metrics,
+                                                   const CurveMatch* curve) {
+  const std::string path = (std::filesystem::path(dir) / "report.json").string();
+  Result<json> read = readReport(dir);
+  if (!read.isOk()) return read.status();
+  const json& report = read.value();
   if (!report.contains("metrics") || !report["metrics"].is_object())
     return Status(ErrorCode::InputInvalid, path + ": has no metrics");
   json now = metricsJson(metrics);

@@ -1,6 +1,7 @@
 // report.json: what a run read, how it solved, and every figure (schema: docs/report.md).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,5 +30,10 @@ Status writeInverseReport(const std::string& dir, const Job& job, const InverseR
 /// report.json is missing or unreadable.
 Result<std::vector<std::string>> compareWithReport(const std::string& dir, const Metrics& metrics,
                                                    const CurveMatch* curve);
+
+/// The gate verdict `dir`/report.json recorded: passed or not, or nullopt when the run had no
+/// gate. InputUnreadable when report.json is missing or not JSON, InputInvalid when its gate
+/// has no verdict.
+Result<std::optional<bool>> savedGateVerdict(const std::string& dir);
 
 }  // namespace dform

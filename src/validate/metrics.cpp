@@ -28,21 +28,35 @@ void addEdgeLengths(const Piece& p, const detail::EdgeTopology& topology, double
   }
 }
 
-// Adds one piece's |angle defect| at interior vertices (not on the boundary nor the seam).
-void addDefects(const Piece& p, const detail::EdgeTopology& topology, double& maxAbs,
-                double& sumAbs, int& count) {
-  const Eigen::VectorXd defect = detail::angleDefects(p.shape, p.F);
+// Angle defect per vertex of a piece's 3D shape; NaN on the boundary and the seam, where the
+// sheet may turn and the defect is not curvature.
+Eigen::VectorXd interiorDefects(const Piece& p, const detail::EdgeTopology& topology) {
+  Eigen::VectorXd defect = detail::angleDefects(p.shape, p.F);
   const std::vector<bool> onBoundary =
       detail::boundaryVertices(int(p.shape.rows()), p.seam, topology);
-  for (Eigen::Index v = 0; v < defect.size(); ++v) {
-    if (onBoundary[size_t(v)]) continue;
-    maxAbs = std::max(maxAbs, std::abs(defect(v)));
-    sumAbs += std::abs(defect(v));
+  for (Eigen::Index v = 0; v < defect.size(); ++v)
+    if (onBoundary[size_t(v)]) defect(v) = std::numeric_limits<double>::quiet_NaN();
+  return defect;
+}
+
+// Adds one piece's |angle defect| at interior vertices.
+void addDefects(const Piece& p, const detail::EdgeTopology& topology, double& maxAbs,
+                double& sumAbs, int& count) {
+  for (double d : interiorDefects(p, topology)) {
+    if (std::isnan(d)) continue;
+    maxAbs = std::max(maxAbs, std::abs(d));
+    sumAbs += std::abs(d);
     ++count;
   }
 }
 
 }  // namespace
+
+Eigen::VectorXd curvatureMap(const Piece& piece) {
+  return interiorDefects(piece, detail::edgeTopology(piece.F)).unaryExpr([](double d) {
+    return std::isnan(d) ? 0.0 : d;
+  });
+}
 
 Metrics computeMetrics(const DForm& model) {
   assert(model.a.seam.size() == model.b.seam.size() && "seam partners come in pairs");

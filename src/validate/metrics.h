@@ -24,6 +24,10 @@ struct Metrics {
 /// Figures of `model`. Pure: reads the meshes, never the solver.
 Metrics computeMetrics(const DForm& model);
 
+/// The discrete Gaussian curvature of a piece's 3D shape: per vertex, its angle defect
+/// (radians) at interior vertices and 0 on the seam and boundary, where the sheet may turn.
+Eigen::VectorXd curvatureMap(const Piece& piece);
+
 /// Inverse mode: D_error (paper Eq. 7, fraction) and the largest seam-to-curve distance (mm),
 /// where curve.points.row(i) is the target of a.seam[i] and b.seam[i].
 struct CurveMatch {

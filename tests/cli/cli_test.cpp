@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <sstream>
 #include <string>
 
@@ -85,6 +86,26 @@ class CliTest : public ::testing::Test {
 
   fs::path dir_;
 };
+
+// report.html opens offline: nothing is fetched (no script, no src/href, no CSS url) and every
+// picture is inline SVG. Returns the page.
+std::string expectSelfContainedReport(const std::string& dir, const nlohmann::json& report) {
+  std::ifstream in(fs::path(dir) / "report.html");
+  EXPECT_TRUE(in.good()) << dir << "/report.html";
+  std::ostringstream text;
+  text << in.rdbuf();
+  const std::string html = text.str();
+  // The only addresses allowed are XML namespace names (SVG, Inkscape), which are never fetched.
+  const std::string rest = std::regex_replace(html, std::regex(R"(xmlns(:\w+)?=["'][^"']*["'])"), "");
+  for (const char* remote : {"<script", "src=", "href=", "url(", "@import", "http://", "https://"})
+    EXPECT_EQ(rest.find(remote), std::string::npos) << remote;
+  std::size_t svgs = 0;
+  for (std::size_t at = 0; (at = html.find("<svg", at)) != std::string::npos; ++at) ++svgs;
+  EXPECT_GE(svgs, 7u) << "4 views, 2 curvature maps and the convergence plot";
+  for (const auto& check : report["gate"]["checks"])
+    EXPECT_NE(html.find(">" + check["name"].get<std::string>() + "<"), std::string::npos) << check["name"];
+  return html;
+}
 
 TEST_F(CliTest, MissingFileIsUnreadable) {
   const std::string missing = path("nowhere.svg");
@@ -170,6 +191,9 @@ TEST_F(CliTest, ForwardWritesEveryFileAndValidates) {
     EXPECT_TRUE(report["timings"][key].is_number()) << key;
   EXPECT_LE(report["metrics"]["L_error"].get<double>(), 0.005);
   EXPECT_EQ(schemaCheck((fs::path(out) / "report.json").string()), 0);
+  const std::string html = expectSelfContainedReport(out, report);
+  EXPECT_NE(html.find("PASSED"), std::string::npos);
+  EXPECT_NE(html.find("id=\"A-cut\""), std::string::npos) << "the flat pattern, inline";
   const Outcome v = run("validate " + out);
   EXPECT_EQ(v.exitCode, 0) << v.out;
   EXPECT_NE(v.out.find("gate: PASSED"), std::string::npos) << v.out;
@@ -181,6 +205,50 @@ TEST_F(CliTest, ForwardWritesEveryFileAndValidates) {
   const Outcome tampered = run("validate " + out);
   EXPECT_EQ(tampered.exitCode, 7);
   EXPECT_NE(tampered.out.find("L_max"), std::string::npos) << tampered.out;
+}
+
+TEST_F(CliTest, AFailedGateKeepsTheReportAndReleasesNothing) {
+  const std::string out = path("out");
+  const std::string pieces = sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  ASSERT_EQ(run("forward " + pieces + " --resolution 30 -q -o " + out).exitCode, 0);
+  ASSERT_TRUE(fs::exists(fs::path(out) / "pattern.svg"));
+  // Run again into the same folder against a gate no solve can pass (L_error <= 1e-9).
+  const std::string tight =
+      write("tight.json", R"({"version": 1, "name": "tight", "limits": {"L_error": 1e-9}})");
+  const Outcome failed = run("forward " + pieces + " --resolution 30 -q --gate " + tight + " -o " + out);
+  expectError(failed, 7, "no cutting files");
+  EXPECT_NE(failed.out.find("gate: FAILED"), std::string::npos) << failed.out;
+  for (const char* name : {"pattern.svg", "pattern.pdf", "pattern.json", "dform.stl", "dform.glb"})
+    EXPECT_FALSE(fs::exists(fs::path(out) / name)) << name << ": the previous run's file must not stay";
+  const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
+  EXPECT_FALSE(report["gate"]["passed"].get<bool>());
+  EXPECT_EQ(schemaCheck((fs::path(out) / "report.json").string()), 0);
+  const std::string html = expectSelfContainedReport(out, report);
+  EXPECT_NE(html.find("FAILED GATE"), std::string::npos);
+  EXPECT_NE(html.find("<tr class=\"fail\"><td>L_error</td>"), std::string::npos);
+
+  // The saved result is not exported by accident; on purpose it is, marked, and the page shows it.
+  EXPECT_EQ(run("export " + out + " -q").exitCode, 7);
+  EXPECT_FALSE(fs::exists(fs::path(out) / "pattern.svg"));
+  ASSERT_EQ(run("export " + out + " --export-anyway -q").exitCode, 0);
+  std::ostringstream svg;
+  svg << std::ifstream(fs::path(out) / "pattern.svg").rdbuf();
+  EXPECT_NE(svg.str().find("FAILED GATE"), std::string::npos);
+  std::ostringstream page;
+  page << std::ifstream(fs::path(out) / "report.html").rdbuf();
+  EXPECT_NE(page.str().find("id=\"A-cut\""), std::string::npos) << "the report shows the new pattern";
+
+  // --export-anyway on the run itself: every cutting file written and marked, still exit 7.
+  const std::string anyway = path("anyway");
+  const Outcome marked =
+      run("forward " + pieces + " --resolution 30 -q --gate " + tight + " --export-anyway -o " + anyway);
+  EXPECT_EQ(marked.exitCode, 7) << marked.err;
+  std::ostringstream stl;
+  stl << std::ifstream(fs::path(anyway) / "dform.stl", std::ios::binary).rdbuf();
+  EXPECT_NE(stl.str().substr(0, 80).find("FAILED GATE"), std::string::npos) << "the STL header says so";
+  const nlohmann::json markedReport = nlohmann::json::parse(std::ifstream(fs::path(anyway) / "report.json"));
+  EXPECT_EQ(markedReport["gate"]["checks"].back()["name"], "pattern_layout");
+  EXPECT_EQ(markedReport["gate"]["checks"].back()["verdict"], "pass");
 }
 
 TEST_F(CliTest, ReportsFollowTheirSchema) {
@@ -265,6 +333,9 @@ TEST_F(CliTest, InverseRunAndItsBadInputs) {
   EXPECT_TRUE(fs::exists(fs::path(out) / ModelFileNames::targetCurve));
   const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
   EXPECT_LE(report["metrics"]["D_error"].get<double>(), 1e-6);
+  const std::string html = expectSelfContainedReport(out, report);
+  EXPECT_NE(html.find("No pattern was exported"), std::string::npos) << "--no-export says so";
+  EXPECT_NE(html.find(">D_error<"), std::string::npos);
   EXPECT_EQ(run("validate " + out).exitCode, 0);
 
   const std::string planar = write("planar.obj", "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\nv -5 5 0\nl 1 2 3 4 5 1\n");

@@ -93,7 +93,7 @@ TEST(ForwardRun, SquareCornersStayOnTheCutPattern) {
   // them as vertices, so the flat square is not chamfered.
   const ForwardRun run = runOk(job("circle.svg", "square.svg", 60, 0.125));
   const Piece& b = run.model.b;
-  for (const Eigen::Vector2d corner : {Eigen::Vector2d(50, 50), Eigen::Vector2d(250, 50),
+  for (const Eigen::Vector2d& corner : {Eigen::Vector2d(50, 50), Eigen::Vector2d(250, 50),
                                        Eigen::Vector2d(250, 250), Eigen::Vector2d(50, 250)}) {
     double nearest = 1e9;
     for (int v : b.seam) nearest = std::min(nearest, (b.flat.row(v).transpose() - corner).norm());

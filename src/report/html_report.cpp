@@ -1,0 +1,191 @@
+#include "report/html_report.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <kainjow/mustache.hpp>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "core/atomic_file.h"
+#include "report/convergence_plot.h"
+#include "report/views.h"
+
+namespace dform {
+
+namespace {
+
+namespace fs = std::filesystem;
+using kainjow::mustache::data;
+using nlohmann::json;
+
+Result<std::string> readText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Status(ErrorCode::InputUnreadable, path + ": cannot open");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string show(const json& v) {
+  if (v.is_number_float()) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.4g", v.get<double>());
+    return text;
+  }
+  return v.is_string() ? v.get<std::string>() : v.dump();
+}
+
+// {key, value} rows of a JSON object, for a two-column table.
+data keyValueRows(const json& object) {
+  data rows{data::type::list};
+  for (const auto& [key, value] : object.items()) {
+    data row;
+    row.set("key", key);
+    row.set("value", show(value));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// Objective per term and in total against the iteration, from report.json's solver history
+// (iteration 0 is the total before the first step).
+std::vector<PlotSeries> convergenceSeries(const json& solver) {
+  std::vector<PlotSeries> series{{"total", {{0.0, solver.value("initial_cost", 0.0)}}}};
+  for (const json& it : solver["iterations"]) {
+    const double x = it["iteration"].get<double>();
+    series[0].points.emplace_back(x, it["cost"].get<double>());
+    for (const auto& [term, value] : it["term_costs"].items()) {
+      auto s = std::find_if(series.begin(), series.end(),
+                            [&](const PlotSeries& p) { return p.name == term; });
+      if (s == series.end()) s = series.insert(series.end(), PlotSeries{term, {}});
+      s->points.emplace_back(x, value.get<double>());
+    }
+  }
+  return series;
+}
+
+// The pattern as inline SVG: the file minus its XML declaration.
+std::string inlineSvg(const std::string& svg) {
+  const auto start = svg.find("<svg");
+  return start == std::string::npos ? std::string() : svg.substr(start);
+}
+
+}  // namespace
+
+Status writeReportHtml(const std::string& dir, const DForm& model,
+                       const std::string& templatesDir) {
+  const Result<std::string> reportText = readText((fs::path(dir) / "report.json").string());
+  if (!reportText.isOk()) return reportText.status();
+  const Result<std::string> templateText = readText(templatesDir + "/report/report.html.mustache");
+  if (!templateText.isOk()) return templateText.status();
+  json report;
+  try {
+    report = json::parse(reportText.value());
+  } catch (const json::exception& e) {
+    return Status(ErrorCode::InputUnreadable,
+                  dir + "/report.json: not valid JSON (" + e.what() + ")");
+  }
+
+  data page;
+  const std::string mode = report.value("mode", "forward");
+  const json& job = report["job"];
+  page.set("title", mode == "forward"
+                        ? fs::path(job.value("piece_a", "")).filename().string() + " + " +
+                              fs::path(job.value("piece_b", "")).filename().string()
+                        : fs::path(job.value("curve", "")).filename().string());
+  page.set("mode", mode);
+  page.set("version", show(report["tool"]["version"]));
+  page.set("schema_version", show(report["schema_version"]));
+
+  data checks{data::type::list};
+  const json& gate = report["gate"];
+  if (gate.is_object()) {
+    const bool passed = gate["passed"].get<bool>();
+    page.set("verdict", passed ? "PASSED" : "FAILED GATE");
+    page.set("verdict_class", passed ? "passed" : "failed");
+    page.set("verdict_note", std::to_string(gate["failed"].get<int>()) + " failed, " +
+                                 std::to_string(gate["not_run"].get<int>()) + " not run");
+    for (const json& c : gate["checks"]) {
+      data row;
+      row.set("name", show(c["name"]));
+      row.set("value", show(c["value"]));
+      row.set("limit", show(c["limit"]));
+      row.set("verdict", show(c["verdict"]));
+      row.set("detail", show(c["detail"]));
+      row.set("row_class", c["verdict"] == "fail"      ? "fail"
+                           : c["verdict"] == "not run" ? "notrun"
+                                                       : "");
+      checks.push_back(row);
+    }
+  } else {
+    page.set("verdict", "NO GATE");
+    page.set("verdict_class", "none");
+    page.set("verdict_note", "the run was made with --gate none");
+  }
+  page.set("checks", checks);
+
+  page.set("metrics", keyValueRows(report["metrics"]));
+
+  data views{data::type::list};
+  for (const auto& [azimuth, elevation, caption] :
+       std::vector<std::tuple<double, double, std::string>>{{30, 25, "from the front, above"},
+                                                            {120, 10, "from the side"},
+                                                            {-60, -30, "from below"},
+                                                            {0, 89, "from the top"}}) {
+    View view;
+    view.azimuthDeg = azimuth;
+    view.elevationDeg = elevation;
+    view.widthPx = 280;
+    data item;
+    item.set("svg", shapeSvg(model, view));
+    item.set("caption", caption);
+    views.push_back(item);
+  }
+  page.set("views", views);
+  View curvatureView;
+  curvatureView.curvature = true;
+  curvatureView.widthPx = 420;
+  page.set("curvature_3d", shapeSvg(model, curvatureView));
+  page.set("curvature_flat", flatCurvatureSvg(model, 520));
+  char scale[32];
+  std::snprintf(scale, sizeof scale, "%.3g", curvatureScale(model));
+  page.set("curvature_scale", scale);
+
+  const Result<std::string> pattern = readText((fs::path(dir) / "pattern.svg").string());
+  page.set("has_pattern",
+           pattern.isOk() ? data(data::type::bool_true) : data(data::type::bool_false));
+  page.set("pattern_svg", pattern.isOk() ? inlineSvg(pattern.value()) : std::string());
+
+  const json& solver = report["solver"];
+  page.set("termination", show(solver["termination"]));
+  page.set("solver_message", show(solver["message"]));
+  page.set("iterations", std::to_string(solver["iterations"].size()));
+  page.set("factorisations", show(solver["factorisations"]));
+  page.set("convergence_plot", convergencePlotSvg(convergenceSeries(solver), 640, 300));
+  const json& relaxation = solver["local_global"];
+  page.set("relaxation", std::to_string(relaxation["iterations"].get<int>()) +
+                             " local-global iterations, energy " +
+                             show(relaxation["initial_energy"]) + " to " +
+                             show(relaxation["final_energy"]));
+  page.set("timings", keyValueRows(report["timings"]));
+  page.set("job", job.dump(2));
+  data messages{data::type::list};
+  for (const json& m : report["messages"]) {
+    if (m["level"] == "debug") continue;
+    data row;
+    row.set("level", show(m["level"]));
+    row.set("text", show(m["text"]));
+    messages.push_back(row);
+  }
+  page.set("messages", messages);
+
+  kainjow::mustache::mustache tmpl{templateText.value()};
+  if (!tmpl.is_valid())
+    return Status(ErrorCode::Internal,
+                  templatesDir + "/report/report.html.mustache: " + tmpl.error_message());
+  return writeFileAtomically((fs::path(dir) / "report.html").string(), tmpl.render(page));
+}
+
+}  // namespace dform

@@ -1,0 +1,150 @@
+#include "report/views.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "report/svg_text.h"
+#include "validate/metrics.h"
+
+namespace dform {
+
+namespace {
+
+using svg::hexColour;
+using svg::number;
+
+// Blue (negative) - white (0) - red (positive), saturating at |t| = 1.
+std::string divergingColour(double t) {
+  t = std::clamp(t, -1.0, 1.0);
+  return t >= 0 ? hexColour(1.0, 1.0 - 0.8 * t, 1.0 - 0.8 * t)
+                : hexColour(1.0 + 0.8 * t, 1.0 + 0.8 * t, 1.0);
+}
+
+struct Polygon {
+  double depth;
+  std::string points, fill;
+};
+
+}  // namespace
+
+double curvatureScale(const DForm& model) {
+  double top = 0.0;
+  for (const Piece* p : {&model.a, &model.b})
+    top = std::max(top, curvatureMap(*p).cwiseAbs().maxCoeff());
+  // Never below 1e-3 rad (a 20th of the default gate's limit): on an exactly developable shape
+  // the defects are rounding noise, which must stay white rather than be stretched to full colour.
+  return std::max(top, 1e-3);
+}
+
+std::string shapeSvg(const DForm& model, const View& view) {
+  // Model z is up; the camera turns about it by the azimuth, then tilts by the elevation.
+  const double az = view.azimuthDeg * M_PI / 180.0, el = view.elevationDeg * M_PI / 180.0;
+  const Eigen::Matrix3d R = (Eigen::AngleAxisd(el, Eigen::Vector3d::UnitX()) *
+                             Eigen::AngleAxisd(-az, Eigen::Vector3d::UnitZ()))
+                                .toRotationMatrix();
+  // Screen: x right, y up = rotated (x, z); depth = rotated y (away from the viewer).
+  auto toScreen = [&](const Eigen::Vector3d& p) {
+    const Eigen::Vector3d q = R * p;
+    return Eigen::Vector3d(q.x(), q.z(), q.y());
+  };
+  Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+  for (const Piece* p : {&model.a, &model.b})
+    for (Eigen::Index i = 0; i < p->shape.rows(); ++i) {
+      const Eigen::Vector3d s = toScreen(p->shape.row(i).transpose());
+      lo = lo.cwiseMin(s.head<2>());
+      hi = hi.cwiseMax(s.head<2>());
+    }
+  const double margin = 8.0;
+  const double scale = (view.widthPx - 2 * margin) / std::max(hi.x() - lo.x(), 1e-9);
+  const double height = (hi.y() - lo.y()) * scale + 2 * margin;
+  auto pixel = [&](const Eigen::Vector3d& s) {
+    return Eigen::Vector2d(margin + (s.x() - lo.x()) * scale,
+                           height - margin - (s.y() - lo.y()) * scale);
+  };
+  const Eigen::Vector3d light = Eigen::Vector3d(-0.4, 0.5, 1.0).normalized();  // screen frame
+  const double kScale = curvatureScale(model);
+
+  std::vector<Polygon> polygons;
+  for (int piece = 0; piece < 2; ++piece) {
+    const Piece& p = piece == 0 ? model.a : model.b;
+    const Eigen::VectorXd K = view.curvature ? curvatureMap(p) : Eigen::VectorXd();
+    for (Eigen::Index f = 0; f < p.F.rows(); ++f) {
+      Eigen::Vector3d s[3];
+      for (int k = 0; k < 3; ++k) s[k] = toScreen(p.shape.row(p.F(f, k)).transpose());
+      const Eigen::Vector3d n = (s[1] - s[0]).cross(s[2] - s[0]).normalized();
+      std::string points;
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector2d q = pixel(s[k]);
+        points += number(q.x()) + "," + number(q.y()) + (k < 2 ? " " : "");
+      }
+      std::string fill;
+      if (view.curvature) {
+        const double k = (K(p.F(f, 0)) + K(p.F(f, 1)) + K(p.F(f, 2))) / 3.0;
+        fill = divergingColour(k / kScale);
+      } else {
+        const double shade = 0.35 + 0.65 * std::abs(n.dot(light));
+        fill = piece == 0 ? hexColour(0.98 * shade, 0.72 * shade, 0.45 * shade)
+                          : hexColour(0.50 * shade, 0.70 * shade, 0.95 * shade);
+      }
+      polygons.push_back({(s[0].z() + s[1].z() + s[2].z()) / 3.0, points, fill});
+    }
+  }
+  // Painter's algorithm: far (large depth) first.
+  std::sort(polygons.begin(), polygons.end(),
+            [](const Polygon& a, const Polygon& b) { return a.depth > b.depth; });
+  std::string svg = svg::open(view.widthPx, height);
+  for (const Polygon& poly : polygons)
+    svg += "<polygon points='" + poly.points + "' fill='" + poly.fill + "' stroke='" + poly.fill +
+           "' stroke-width='0.4'/>";
+  // The seam, on top: it is the ridge where the two pieces meet.
+  std::string seam;
+  for (int v : model.a.seam) {
+    const Eigen::Vector2d q = pixel(toScreen(model.a.shape.row(v).transpose()));
+    seam += number(q.x()) + "," + number(q.y()) + " ";
+  }
+  svg += "<polygon points='" + seam +
+         "' fill='none' stroke='#c2185b' stroke-width='1.2' stroke-opacity='0.8'/>";
+  return svg + "</svg>";
+}
+
+std::string flatCurvatureSvg(const DForm& model, double widthPx) {
+  // Lay A and B side by side with a gap of a tenth of the larger piece.
+  Eigen::RowVector2d loA = model.a.flat.colwise().minCoeff(),
+                     hiA = model.a.flat.colwise().maxCoeff();
+  Eigen::RowVector2d loB = model.b.flat.colwise().minCoeff(),
+                     hiB = model.b.flat.colwise().maxCoeff();
+  const double gap = 0.1 * std::max((hiA - loA).maxCoeff(), (hiB - loB).maxCoeff());
+  const double totalW = (hiA.x() - loA.x()) + gap + (hiB.x() - loB.x());
+  const double totalH = std::max(hiA.y() - loA.y(), hiB.y() - loB.y());
+  const double margin = 8.0;
+  const double scale = (widthPx - 2 * margin) / std::max(totalW, 1e-9);
+  const double height = totalH * scale + 2 * margin;
+  const double kScale = curvatureScale(model);
+  std::string svg = svg::open(widthPx, height);
+  for (int piece = 0; piece < 2; ++piece) {
+    const Piece& p = piece == 0 ? model.a : model.b;
+    const Eigen::RowVector2d origin = piece == 0 ? loA : loB;
+    const double offset = piece == 0 ? 0.0 : (hiA.x() - loA.x()) + gap;
+    auto pixel = [&](Eigen::Index v) {
+      const Eigen::RowVector2d q = p.flat.row(v) - origin;
+      return number(margin + (q.x() + offset) * scale) + "," +
+             number(height - margin - q.y() * scale);
+    };
+    const Eigen::VectorXd K = curvatureMap(p);
+    for (Eigen::Index f = 0; f < p.F.rows(); ++f) {
+      const double k = (K(p.F(f, 0)) + K(p.F(f, 1)) + K(p.F(f, 2))) / 3.0;
+      const std::string fill = divergingColour(k / kScale);
+      svg += "<polygon points='" + pixel(p.F(f, 0)) + " " + pixel(p.F(f, 1)) + " " +
+             pixel(p.F(f, 2)) + "' fill='" + fill + "' stroke='" + fill + "' stroke-width='0.4'/>";
+    }
+    std::string seam;
+    for (int v : p.seam) seam += pixel(v) + " ";
+    svg += "<polygon points='" + seam + "' fill='none' stroke='#333' stroke-width='1'/>";
+  }
+  return svg + "</svg>";
+}
+
+}  // namespace dform

@@ -1,0 +1,29 @@
+// Pictures of a D-Form drawn by dform itself, as SVG: the 3D shape from a viewpoint (shaded, or
+// coloured by Gaussian curvature) and the flat pieces coloured by curvature. For report.html.
+#pragma once
+
+#include <string>
+
+#include "core/types.h"
+
+namespace dform {
+
+struct View {
+  double azimuthDeg = 30;    ///< rotation about the vertical (model z) axis
+  double elevationDeg = 25;  ///< tilt towards the viewer
+  double widthPx = 360;      ///< the picture's width; the height follows the shape
+  bool curvature = false;    ///< colour by angle defect instead of shading
+};
+
+/// The closed 3D shape (both pieces) in orthographic projection, painter's order, Lambert shading
+/// (A warm, B cool) or a blue-white-red curvature scale; the seam drawn on top.
+std::string shapeSvg(const DForm& model, const View& view);
+
+/// Both flat pieces side by side at the same scale, coloured by their 3D curvature, seam outlined.
+std::string flatCurvatureSvg(const DForm& model, double widthPx);
+
+/// The curvature scale used by both (radians of angle defect at full colour): the largest
+/// |angle defect| away from the seam, and at least 1e-3 rad.
+double curvatureScale(const DForm& model);
+
+}  // namespace dform

@@ -1,0 +1,153 @@
+// report.html's pictures, read back as numbers: the 3D view's projection and scale, the
+// curvature colours, and the convergence plot's log axis.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <regex>
+#include <set>
+
+#include "models.h"
+#include "report/convergence_plot.h"
+#include "report/views.h"
+#include "validate/metrics.h"
+
+namespace dform {
+namespace {
+
+using Point = std::pair<double, double>;
+
+// The "x,y x,y ..." lists of every <tag points='...'> in `svg`, in order.
+std::vector<std::vector<Point>> pointLists(const std::string& svg, const std::string& tag) {
+  std::vector<std::vector<Point>> lists;
+  const std::regex element("<" + tag + " points='([^']*)'");
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), element);
+       it != std::sregex_iterator(); ++it) {
+    std::vector<Point> points;
+    const std::string text = (*it)[1];
+    const std::regex pair("(-?[0-9.]+),(-?[0-9.]+)");
+    for (auto p = std::sregex_iterator(text.begin(), text.end(), pair); p != std::sregex_iterator();
+         ++p)
+      points.emplace_back(std::stod((*p)[1]), std::stod((*p)[2]));
+    lists.push_back(points);
+  }
+  return lists;
+}
+
+std::vector<std::string> fills(const std::string& svg) {
+  std::vector<std::string> out;
+  const std::regex fill("<polygon points='[^']*' fill='(#[0-9a-f]{6})'");
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), fill); it != std::sregex_iterator();
+       ++it)
+    out.push_back((*it)[1]);
+  return out;
+}
+
+TEST(ReportViews, ShapeFromAboveIsTheSeamAtScale) {
+  // A flat disc of radius 50 seen from straight above: the seam is a circle whose diameter is
+  // the picture's width less its two 8 px margins, centred; one polygon per triangle and the seam.
+  const DForm disc = test::flatDoubleDisc(6, 48, 50.0);
+  View view;
+  view.elevationDeg = 90;
+  view.azimuthDeg = 37;  // turning about the vertical changes nothing seen from above
+  view.widthPx = 300;
+  const std::string svg = shapeSvg(disc, view);
+  const auto polygons = pointLists(svg, "polygon");
+  ASSERT_EQ(polygons.size(), std::size_t(disc.a.F.rows() + disc.b.F.rows() + 1));
+  const std::vector<Point>& seam = polygons.back();
+  ASSERT_EQ(seam.size(), disc.a.seam.size());
+  for (const Point& p : seam)
+    EXPECT_NEAR(std::hypot(p.first - 150.0, p.second - 150.0), 150.0 - 8.0,
+                0.2);  // rounding: 0.1 px
+  EXPECT_NE(svg.find("viewBox='0 0 300.0 300.0'"), std::string::npos);
+}
+
+TEST(ReportViews, EveryPointIsInsideThePicture) {
+  const DForm tetra = test::tetraDForm(6);
+  for (double azimuth : {0.0, 30.0, 120.0, -60.0})
+    for (double elevation : {-30.0, 10.0, 25.0, 89.0}) {
+      View view;
+      view.azimuthDeg = azimuth;
+      view.elevationDeg = elevation;
+      view.widthPx = 280;
+      const std::string svg = shapeSvg(tetra, view);
+      std::smatch size;
+      ASSERT_TRUE(std::regex_search(svg, size, std::regex("height='([0-9.]+)'")));
+      const double height = std::stod(size[1]);
+      for (const auto& polygon : pointLists(svg, "polygon"))
+        for (const Point& p : polygon) {
+          EXPECT_GE(p.first, 7.9);
+          EXPECT_LE(p.first, 280 - 7.9);
+          EXPECT_GE(p.second, 7.9);
+          EXPECT_LE(p.second, height - 7.9);
+        }
+    }
+}
+
+TEST(ReportViews, CurvatureIsWhiteWhereTheSheetIsFlatAndColouredAtABump) {
+  // The tetrahedral D-Form is exactly developable (defects of rounding size): every triangle white.
+  DForm tetra = test::tetraDForm(6);
+  for (const std::string& fill : fills(flatCurvatureSvg(tetra, 400))) EXPECT_EQ(fill, "#ffffff");
+  View curvature;
+  curvature.curvature = true;
+  for (const std::string& fill : fills(shapeSvg(tetra, curvature))) EXPECT_EQ(fill, "#ffffff");
+
+  // A bump: one interior vertex of A pushed out. Only triangles touching it or its neighbours
+  // (whose angles it changes) are coloured, and the scale is the largest |defect|.
+  Eigen::Index v;
+  (tetra.a.flat.rowwise() - tetra.a.flat.colwise().mean()).rowwise().squaredNorm().minCoeff(&v);
+  tetra.a.shape(v, 2) -= 3.0;
+  const Eigen::VectorXd K = curvatureMap(tetra.a);
+  ASSERT_GT(K.cwiseAbs().maxCoeff(), 1e-3);
+  EXPECT_DOUBLE_EQ(curvatureScale(tetra), K.cwiseAbs().maxCoeff());
+  std::set<int> near{int(v)};
+  for (Eigen::Index f = 0; f < tetra.a.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (tetra.a.F(f, k) == v)
+        for (int j = 0; j < 3; ++j) near.insert(tetra.a.F(f, j));
+  const std::vector<std::string> flat = fills(flatCurvatureSvg(tetra, 400));
+  ASSERT_EQ(flat.size(), std::size_t(tetra.a.F.rows() + tetra.b.F.rows()));
+  int coloured = 0;
+  for (Eigen::Index f = 0; f < tetra.a.F.rows(); ++f) {
+    bool touches = false;
+    for (int k = 0; k < 3; ++k) touches = touches || near.count(tetra.a.F(f, k));
+    if (flat[std::size_t(f)] != "#ffffff") {
+      ++coloured;
+      EXPECT_TRUE(touches) << "triangle " << f;
+    }
+  }
+  EXPECT_GT(coloured, 0);
+  for (std::size_t f = std::size_t(tetra.a.F.rows()); f < flat.size(); ++f)
+    EXPECT_EQ(flat[f], "#ffffff");
+}
+
+TEST(ReportPlot, DecadesAreEvenlySpacedAndZerosAreLeftOut) {
+  // The total falls a decade per iteration; a term that is 0 at first has no point there.
+  const std::vector<PlotSeries> series = {{"total", {{0, 1.0}, {1, 0.1}, {2, 0.01}, {3, 0.001}}},
+                                          {"seam", {{1, 0.0}, {2, 1e-3}, {3, 1e-4}}}};
+  const std::string svg = convergencePlotSvg(series, 600, 300);
+  const auto lines = pointLists(svg, "polyline");
+  ASSERT_EQ(lines.size(), 2u);
+  const std::vector<Point>& total = lines[0];
+  ASSERT_EQ(total.size(), 4u);
+  const double decade = total[0].second - total[1].second;  // pixels per decade (y grows down)
+  EXPECT_LT(decade, 0);
+  for (std::size_t i = 1; i + 1 < total.size(); ++i) {
+    EXPECT_NEAR(total[i].second - total[i + 1].second, decade, 0.15);
+    EXPECT_NEAR(total[i + 1].first - total[i].first, total[1].first - total[0].first, 0.15);
+  }
+  EXPECT_EQ(lines[1].size(), 2u);
+  EXPECT_NEAR(lines[1][0].second, total[3].second, 0.15);  // 1e-3 on both lines
+  EXPECT_NEAR(lines[1][0].first, total[2].first, 0.15);    // at iteration 2
+  // One grid label per decade from 1e-4 to 1e0, and both names in the legend.
+  for (const char* label : {">1e-4<", ">1e-3<", ">1e-2<", ">1e-1<", ">1e0<", ">total<", ">seam<"})
+    EXPECT_NE(svg.find(label), std::string::npos) << label;
+}
+
+TEST(ReportPlot, NothingPositiveSaysSo) {
+  const std::string svg = convergencePlotSvg({{"total", {{0, 0.0}}}}, 600, 300);
+  EXPECT_NE(svg.find("no positive objective"), std::string::npos);
+  EXPECT_EQ(svg.find("<polyline"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace dform
