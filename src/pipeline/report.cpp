@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
+#include "core/file_hash.h"
 
 namespace dform {
 
@@ -30,6 +31,15 @@ json metricsJson(const Metrics& m) {
           {"seam_length_a_mm", figure(m.seam_length_a_mm)},
           {"seam_length_b_mm", figure(m.seam_length_b_mm)},
           {"seam_length_3d_mm", figure(m.seam_length_3d_mm)}};
+}
+
+// An input file: its path, the SHA-256 of its bytes (null when it can no longer be read) and
+// one measured size.
+json inputJson(const std::string& path, const char* sizeKey, double size) {
+  const Result<std::string> hash = sha256OfFile(path);
+  return {{"path", path},
+          {"sha256", hash.isOk() ? json(hash.value()) : json(nullptr)},
+          {sizeKey, figure(size)}};
 }
 
 json solverJson(const LocalGlobalSummary& relaxation, const SolverSummary& s) {
@@ -124,9 +134,8 @@ Status write(const std::string& dir, const json& report) {
 Status writeForwardReport(const std::string& dir, const Job& job, const ForwardRun& run,
                           const std::vector<Message>& messages, const GateReport* gate) {
   json report = header(job, "forward");
-  report["inputs"] = {
-      {"piece_a", {{"path", job.forward.pieceA}, {"perimeter_mm", figure(run.perimeterA)}}},
-      {"piece_b", {{"path", job.forward.pieceB}, {"perimeter_mm", figure(run.perimeterB)}}}};
+  report["inputs"] = {{"piece_a", inputJson(job.forward.pieceA, "perimeter_mm", run.perimeterA)},
+                      {"piece_b", inputJson(job.forward.pieceB, "perimeter_mm", run.perimeterB)}};
   report["fit_perimeter_scale"] = figure(run.scaleB);
   report["start_fraction_a"] = figure(run.startFractionA);
   report["start_fraction_b"] = figure(run.startFractionB);
@@ -143,8 +152,7 @@ Status writeForwardReport(const std::string& dir, const Job& job, const ForwardR
 Status writeInverseReport(const std::string& dir, const Job& job, const InverseRun& run,
                           const std::vector<Message>& messages, const GateReport* gate) {
   json report = header(job, "inverse");
-  report["inputs"] = {
-      {"curve", {{"path", job.inverse.curve}, {"length_mm", figure(run.curveLength)}}}};
+  report["inputs"] = {{"curve", inputJson(job.inverse.curve, "length_mm", run.curveLength)}};
   report["pre_dform"] = {{"on_hull", run.pre.onHull},
                          {"is_hull", run.pre.isHull},
                          {"inside_vertices", run.pre.insideVertices.size()},

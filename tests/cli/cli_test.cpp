@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "core/file_hash.h"
 #include "io/model_files.h"
 
 namespace dform {
@@ -296,6 +297,9 @@ TEST_F(CliTest, JobFileReproducesTheRun) {
   EXPECT_FALSE(fs::exists(fs::path(out) / "pattern.svg"));
   const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
   EXPECT_EQ(report["job"]["start_b"].get<double>(), 0.125);
+  // The inputs are named by content too: a result can be traced to the exact files.
+  EXPECT_EQ(report["inputs"]["piece_a"]["sha256"], sha256OfFile(sample("forward/circle.svg")).value());
+  EXPECT_EQ(report["inputs"]["piece_b"]["sha256"], sha256OfFile(sample("forward/square.svg")).value());
   EXPECT_EQ(report["job"]["resolution"].get<int>(), 40);
   // The recorded job runs again to the same figures.
   const std::string again = write("again.json", report["job"].dump());
