@@ -208,6 +208,32 @@ TEST_F(CliTest, ForwardWritesEveryFileAndValidates) {
   EXPECT_NE(tampered.out.find("L_max"), std::string::npos) << tampered.out;
 }
 
+TEST_F(CliTest, ProgressOnlyOnATerminalAndNotWhenQuiet) {
+  const std::string args = "forward " + sample("forward/ellipses-a.svg") + " " +
+                           sample("forward/ellipses-b.svg") + " --resolution 30 --no-export";
+  // util-linux `script` runs the command on a pseudo-terminal and copies what it shows.
+  auto onTerminal = [&](const std::string& more, const std::string& out) {
+    const std::string command = "script -qec '" + std::string(DFORM_EXE) + " " + args + more + " -o " +
+                                path(out) + "' /dev/null > " + path(out + ".txt") + " 2>&1";
+    EXPECT_EQ(std::system(command.c_str()), 0) << command;
+    std::ostringstream text;
+    text << std::ifstream(path(out + ".txt")).rdbuf();
+    return text.str();
+  };
+  const std::string shown = onTerminal("", "tty");
+  EXPECT_NE(shown.find("solving: iteration 1, cost "), std::string::npos) << shown;
+  EXPECT_NE(shown.find("\r\033[K"), std::string::npos) << "redrawn in place";
+  const std::string quiet = onTerminal(" -q", "tty-quiet");
+  EXPECT_EQ(quiet.find("solving: iteration"), std::string::npos) << quiet;
+  EXPECT_NE(quiet.find("gate: PASSED"), std::string::npos) << "the verdict is still printed";
+  // Not a terminal (a batch job's log): no progress at all.
+  const Outcome piped = run(args + " -o " + path("piped"));
+  EXPECT_EQ(piped.exitCode, 0) << piped.err;
+  EXPECT_EQ(piped.err.find("solving: iteration"), std::string::npos) << piped.err;
+  EXPECT_NE(piped.err.find("solve: converged"), std::string::npos) << "the stages are still logged";
+  EXPECT_EQ(piped.err.find('\r'), std::string::npos);
+}
+
 TEST_F(CliTest, AFailedGateKeepsTheReportAndReleasesNothing) {
   const std::string out = path("out");
   const std::string pieces = sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
