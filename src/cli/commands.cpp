@@ -40,7 +40,12 @@ Result<std::pair<double, double>> parseSheet(const std::string& text) {
 Result<GateLimits> loadGate(const std::string& nameOrPath) {
   const bool preset =
       nameOrPath.find('/') == std::string::npos && nameOrPath.find(".json") == std::string::npos;
-  return readGateFile(preset ? templatesDir() + "/gates/" + nameOrPath + ".json" : nameOrPath);
+  if (preset) return readGateFile(templatesDir() + "/gates/" + nameOrPath + ".json");
+  // "gates/strict.json" as the docs write it: a path relative to templates/ when not one here.
+  const std::string inTemplates = templatesDir() + "/" + nameOrPath;
+  if (!fs::exists(nameOrPath) && fs::path(nameOrPath).is_relative() && fs::exists(inTemplates))
+    return readGateFile(inTemplates);
+  return readGateFile(nameOrPath);
 }
 
 // Lays out and renders the cutting patterns and previews of `model`, not yet written.
@@ -112,8 +117,8 @@ void printGate(const GateReport& gate) {
     std::fprintf(stdout, "%-20s %12.4g %12.4g  %s%s%s\n", c.name.c_str(), c.value, c.limit,
                  verdictName(c.verdict), c.verdict == CheckResult::Verdict::Pass ? "" : ": ",
                  c.verdict == CheckResult::Verdict::Pass ? "" : c.detail.c_str());
-  std::fprintf(stdout, "gate: %s (%d failed, %d not run)\n", gate.passed() ? "PASSED" : "FAILED",
-               gate.failed(), gate.notRun());
+  std::fprintf(stdout, "gate: %s (%s: %d failed, %d not run)\n", gate.passed() ? "PASSED" : "FAILED",
+               gate.name.c_str(), gate.failed(), gate.notRun());
 }
 
 }  // namespace

@@ -110,7 +110,8 @@ json gateJson(const GateReport* gate) {
                       {"limit", figure(c.limit)},
                       {"verdict", verdictName(c.verdict)},
                       {"detail", c.detail}});
-  return {{"passed", gate->passed()},
+  return {{"name", gate->name},
+          {"passed", gate->passed()},
           {"failed", gate->failed()},
           {"not_run", gate->notRun()},
           {"checks", checks}};

@@ -105,7 +105,7 @@ Status writeReportHtml(const std::string& dir, const DForm& model,
     const bool passed = gate["passed"].get<bool>();
     page.set("verdict", passed ? "PASSED" : "FAILED GATE");
     page.set("verdict_class", passed ? "passed" : "failed");
-    page.set("verdict_note", std::to_string(gate["failed"].get<int>()) + " failed, " +
+    page.set("verdict_note", "gate '" + show(gate["name"]) + "': " + std::to_string(gate["failed"].get<int>()) + " failed, " +
                                  std::to_string(gate["not_run"].get<int>()) + " not run");
     for (const json& c : gate["checks"]) {
       data row;

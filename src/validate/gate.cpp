@@ -224,6 +224,7 @@ const CheckResult* GateReport::find(const std::string& name) const {
 
 GateReport runGate(const DForm& model, const GateLimits& limits, const Curve3* target) {
   GateReport report;
+  report.name = limits.name;
   const Metrics& m = report.metrics = computeMetrics(model);
   auto& checks = report.checks;
   const size_t pairs = model.a.seam.size();

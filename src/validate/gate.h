@@ -55,6 +55,7 @@ CheckResult judgeCheck(std::string name, double value, double limit, std::string
 CheckResult notRunCheck(std::string name, double limit, std::string reason);
 
 struct GateReport {
+  std::string name;  ///< the gate's name (GateLimits::name)
   std::vector<CheckResult> checks;
   Metrics metrics;                  ///< the figures the checks were computed from
   std::optional<CurveMatch> curve;  ///< inverse mode: the seam-to-curve figures

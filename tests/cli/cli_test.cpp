@@ -244,7 +244,7 @@ TEST_F(CliTest, AFailedGateKeepsTheReportAndReleasesNothing) {
       write("tight.json", R"({"version": 1, "name": "tight", "limits": {"L_error": 1e-9}})");
   const Outcome failed = run("forward " + pieces + " --resolution 30 -q --gate " + tight + " -o " + out);
   expectError(failed, 7, "no cutting files");
-  EXPECT_NE(failed.out.find("gate: FAILED"), std::string::npos) << failed.out;
+  EXPECT_NE(failed.out.find("gate: FAILED (tight: "), std::string::npos) << failed.out;
   for (const char* name : {"pattern.svg", "pattern.pdf", "pattern.json", "dform.stl", "dform.glb"})
     EXPECT_FALSE(fs::exists(fs::path(out) / name)) << name << ": the previous run's file must not stay";
   const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
@@ -286,6 +286,10 @@ TEST_F(CliTest, ReportsFollowTheirSchema) {
   ASSERT_TRUE(code == 0 || code == 7) << code;
   ASSERT_TRUE(fs::exists(fs::path(forward) / "report.json"));
   EXPECT_EQ(schemaCheck((fs::path(forward) / "report.json").string()), 0);
+  // The preset by its path under templates/, as the docs write it: the same gate.
+  const nlohmann::json byName = nlohmann::json::parse(std::ifstream(fs::path(forward) / "report.json"));
+  EXPECT_EQ(run("validate " + forward + " --gate gates/strict.json").exitCode, code);
+  EXPECT_EQ(byName["gate"]["name"], "strict");
   ASSERT_EQ(run("inverse " + sample("inverse/saddle.obj") + " --resolution 40 --no-export -q -o " + inverse).exitCode, 0);
   EXPECT_EQ(schemaCheck((fs::path(inverse) / "report.json").string()), 0);
   // The schema is not a formality: a report missing a figure or with a stray key fails it.
