@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "solver/threads.h"
+
 namespace dform {
 
 const char* terminationName(Termination t) {
@@ -227,6 +229,7 @@ Eigen::VectorXd shiftedProduct(const SparseLower& A, double mu, const Eigen::Vec
 class StepSolver {
  public:
   StepSolver(const SparseLower& pattern, const SolverOptions& options) : options_(options) {
+    limitLinearAlgebraThreads();
     factor_.analyzePattern(pattern);
     // CHOLMOD's analysis counts the factorisation's flops and L's nonzeros. One CG iteration
     // costs two triangular solves with L (2 flops per nonzero each) and a product with A
