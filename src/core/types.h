@@ -35,13 +35,22 @@ struct FlatMesh {
 
 /// One piece of a D-Form: the flat shape as it is cut and the same triangles bent in 3D.
 /// `flat` is #V by 2, `shape` is #V by 3, both in mm, sharing the faces F (counter-clockwise in
-/// the flat layout, outward-facing in 3D). `seam` lists the boundary vertices in seam order.
+/// the flat layout, outward-facing in 3D). `seam` lists the joined boundary loop's vertices in
+/// seam order: the outer outline of a classic D-Form piece, or a hole's loop for the anti and
+/// demi variants (paper section 6.4).
 struct Piece {
   std::string name;
   Points2 flat;
   Points3 shape;
   Faces F;
   std::vector<int> seam;
+  /// Boundary loops that are cut but not joined (the outer outline of an annulus-like piece whose
+  /// hole is the seam, or a hole that is not joined), each with the piece on its left:
+  /// counter-clockwise around an outer outline, clockwise around a hole.
+  std::vector<std::vector<int>> freeBoundaries;
+  /// Crease lines the designer drew: open polylines of vertex indices along mesh edges, each from
+  /// boundary to boundary. The sheet may fold sharply along them.
+  std::vector<std::vector<int>> creases;
 };
 
 /// A solved D-Form: a.seam[i] and b.seam[i] are the two sides of the same seam point. Piece A's
