@@ -1,7 +1,5 @@
 #include "core/polyline.h"
 
-#include <vector>
-
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -64,6 +62,28 @@ Eigen::MatrixXd resampleClosed(const Eigen::MatrixXd& P, int n, double startFrac
   return resampleAtFractions(P, fractions);
 }
 
+double openLength(const Eigen::MatrixXd& P) {
+  return P.rows() < 2 ? 0.0 : cumulativeArcLength(P)(P.rows() - 1);
+}
+
+Eigen::MatrixXd resampleOpen(const Eigen::MatrixXd& P, int segments) {
+  assert(P.rows() >= 2 && segments >= 1 && "resampleOpen needs a polyline and a segment count");
+  const Eigen::VectorXd s = cumulativeArcLength(P);
+  const double total = s(P.rows() - 1);
+  Eigen::MatrixXd out(segments + 1, P.cols());
+  Eigen::Index seg = 0;
+  for (int k = 0; k <= segments; ++k) {
+    const double target = total * double(k) / segments;
+    while (seg + 2 < P.rows() && s(seg + 1) <= target) ++seg;
+    const double length = s(seg + 1) - s(seg);
+    const double t = length > 0.0 ? std::clamp((target - s(seg)) / length, 0.0, 1.0) : 0.0;
+    out.row(k) = (1.0 - t) * P.row(seg) + t * P.row(seg + 1);
+  }
+  out.row(0) = P.row(0);  // exactly, not up to rounding
+  out.row(segments) = P.row(P.rows() - 1);
+  return out;
+}
+
 std::vector<double> cornerFractions(const Points2& P, double minTurnRadians) {
   const Eigen::Index n = P.rows();
   const Eigen::VectorXd s = cumulativeArcLength(P);
@@ -121,27 +141,63 @@ bool segmentsIntersect(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const
          (d3 == 0 && onSegment(a, b, c)) || (d4 == 0 && onSegment(a, b, d));
 }
 
-std::optional<std::pair<int, int>> findSelfIntersection(const Points2& P) {
+std::optional<std::pair<int, int>> findSelfIntersection(const Points2& P, bool closed) {
   const int n = int(P.rows());
-  if (n < 4) return std::nullopt;
+  const int edges = closed ? n : n - 1;
+  if (edges < 3) return std::nullopt;
   // Sweep over x: sort edges by their left end and compare only edges whose x-ranges overlap.
-  std::vector<int> order(n);
+  std::vector<int> order(edges);
   std::iota(order.begin(), order.end(), 0);
   auto minX = [&](int e) { return std::min(P(e, 0), P((e + 1) % n, 0)); };
   auto maxX = [&](int e) { return std::max(P(e, 0), P((e + 1) % n, 0)); };
   std::sort(order.begin(), order.end(), [&](int a, int b) { return minX(a) < minX(b); });
-  for (int oi = 0; oi < n; ++oi) {
+  for (int oi = 0; oi < edges; ++oi) {
     const int e = order[oi];
     const double reach = maxX(e);
-    for (int oj = oi + 1; oj < n && minX(order[oj]) <= reach; ++oj) {
+    for (int oj = oi + 1; oj < edges && minX(order[oj]) <= reach; ++oj) {
       const int f = order[oj];
       const int gap = std::abs(e - f);
-      if (gap == 1 || gap == n - 1) continue;  // neighbours share a vertex by construction
+      // Neighbours share a vertex by construction (the first and last edge only when closed).
+      if (gap == 1 || (closed && gap == n - 1)) continue;
       if (segmentsIntersect(P.row(e), P.row((e + 1) % n), P.row(f), P.row((f + 1) % n)))
         return std::make_pair(std::min(e, f), std::max(e, f));
     }
   }
   return std::nullopt;
+}
+
+Eigen::Vector2d segmentsMeetingPoint(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                                     const Eigen::Vector2d& c, const Eigen::Vector2d& d) {
+  const Eigen::Vector2d r = b - a, s = d - c;
+  const double denom = r.x() * s.y() - r.y() * s.x();
+  if (denom != 0.0) {
+    const double t = ((c - a).x() * s.y() - (c - a).y() * s.x()) / denom;
+    if (t >= 0.0 && t <= 1.0) return a + t * r;
+  }
+  // Parallel (collinear overlap) or touching: an end of one lying on the other.
+  for (const Eigen::Vector2d& p : {a, b})
+    if (segmentsIntersect(p, p, c, d)) return p;
+  for (const Eigen::Vector2d& p : {c, d})
+    if (segmentsIntersect(p, p, a, b)) return p;
+  return a;
+}
+
+double distanceToSegment(const Eigen::Vector2d& q, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double length2 = ab.squaredNorm();
+  const double t = length2 > 0.0 ? std::clamp((q - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+  return (a + t * ab - q).norm();
+}
+
+bool insidePolygon(const Points2& P, const Eigen::Vector2d& q) {
+  bool inside = false;
+  for (Eigen::Index i = 0, j = P.rows() - 1; i < P.rows(); j = i++) {
+    const double yi = P(i, 1), yj = P(j, 1);
+    if ((yi > q.y()) != (yj > q.y()) &&
+        q.x() < P(j, 0) + (q.y() - yj) * (P(i, 0) - P(j, 0)) / (yi - yj))
+      inside = !inside;
+  }
+  return inside;
 }
 
 }  // namespace dform

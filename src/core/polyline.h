@@ -1,5 +1,5 @@
-// Elementary geometry of closed polylines (outlines and seam curves). Closed means the last point
-// joins the first; it is not repeated.
+// Elementary geometry of polylines: closed ones (outlines and seam curves), where the last point
+// joins the first and is not repeated, and open ones (crease lines).
 #pragma once
 
 #include <optional>
@@ -27,6 +27,13 @@ Eigen::MatrixXd resampleClosed(const Eigen::MatrixXd& P, int n, double startFrac
 /// point (taken modulo 1), in the given order.
 Eigen::MatrixXd resampleAtFractions(const Eigen::MatrixXd& P, const std::vector<double>& fractions);
 
+/// Length of the open polyline through the rows of P (#P by d).
+double openLength(const Eigen::MatrixXd& P);
+
+/// segments + 1 points spaced uniformly by arc length along the open polyline P (#P by d, at
+/// least 2 rows), from its first row to its last (both kept exactly).
+Eigen::MatrixXd resampleOpen(const Eigen::MatrixXd& P, int segments);
+
 /// Arc-length fractions, ascending, of the vertices of the closed polygon P where it turns by at
 /// least minTurnRadians (either way): its corners.
 std::vector<double> cornerFractions(const Points2& P, double minTurnRadians);
@@ -34,12 +41,25 @@ std::vector<double> cornerFractions(const Points2& P, double minTurnRadians);
 /// Arc-length fraction in [0, 1) of the point of closed polyline P nearest to q.
 double nearestArcFraction(const Points2& P, const Eigen::Vector2d& q);
 
-/// The first pair of non-adjacent edges (i, j) of the closed polygon that touch or cross, if any.
-/// Edge i joins row i to row i+1 (mod #P). Runs in O(#P log #P) for typical outlines.
-std::optional<std::pair<int, int>> findSelfIntersection(const Points2& P);
+/// The first pair of non-adjacent edges (i, j) of the polyline that touch or cross, if any. Edge
+/// i joins row i to row i+1, modulo #P when `closed` (a polygon); an open polyline has #P - 1
+/// edges. Runs in O(#P log #P) for typical outlines.
+std::optional<std::pair<int, int>> findSelfIntersection(const Points2& P, bool closed = true);
 
 /// Whether the 2D segments [a, b] and [c, d] touch or cross.
 bool segmentsIntersect(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
                        const Eigen::Vector2d& d);
+
+/// Where segments [a, b] and [c, d], known to touch or cross, meet (an end point of one lying on
+/// the other where they overlap or only touch).
+Eigen::Vector2d segmentsMeetingPoint(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                                     const Eigen::Vector2d& c, const Eigen::Vector2d& d);
+
+/// Distance from q to the segment [a, b].
+double distanceToSegment(const Eigen::Vector2d& q, const Eigen::Vector2d& a, const Eigen::Vector2d& b);
+
+/// Whether q lies inside the closed polygon P (even-odd rule). Meant for points off P's edges;
+/// for a point on an edge the answer is either.
+bool insidePolygon(const Points2& P, const Eigen::Vector2d& q);
 
 }  // namespace dform

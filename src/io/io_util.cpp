@@ -1,5 +1,7 @@
 #include "io/io_util.h"
 
+#include <vector>
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -49,6 +51,18 @@ std::string lowerExtension(const std::string& path) {
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return char(std::tolower(c)); });
   return ext;
+}
+
+Eigen::Matrix<double, Eigen::Dynamic, 2> dropRepeatedPoints(const Eigen::Matrix<double, Eigen::Dynamic, 2>& P,
+                                                            bool closed) {
+  std::vector<Eigen::Index> keep;
+  for (Eigen::Index i = 0; i < P.rows(); ++i)
+    if (keep.empty() || (P.row(i) - P.row(keep.back())).norm() > kSamePointMm) keep.push_back(i);
+  while (closed && keep.size() > 1 && (P.row(keep.back()) - P.row(keep.front())).norm() <= kSamePointMm)
+    keep.pop_back();
+  Eigen::Matrix<double, Eigen::Dynamic, 2> out(Eigen::Index(keep.size()), 2);
+  for (std::size_t k = 0; k < keep.size(); ++k) out.row(Eigen::Index(k)) = P.row(keep[k]);
+  return out;
 }
 
 std::string fmt(double value) {

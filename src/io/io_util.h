@@ -14,6 +14,15 @@ namespace dform::io_detail {
 /// arbitrary huge file into memory would be a denial of service.
 constexpr std::size_t kMaxInputBytes = std::size_t(64) << 20;
 
+/// Consecutive points closer than this (mm) are one point: a nanometre is far below any cutting
+/// precision and far above double rounding of coordinates up to the readers' coordinate limit.
+constexpr double kSamePointMm = 1e-9;
+
+/// P (#P by 2) without points within kSamePointMm of the previous one (and, when `closed`, without
+/// last points that repeat the first).
+Eigen::Matrix<double, Eigen::Dynamic, 2> dropRepeatedPoints(const Eigen::Matrix<double, Eigen::Dynamic, 2>& P,
+                                                            bool closed);
+
 /// Reads the whole file, or InputUnreadable naming `path` (missing, a folder, unreadable, too big).
 Result<std::string> readInputFile(const std::string& path);
 

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "core/polyline.h"
+#include "io/crease_lines.h"
 #include "io/io_util.h"
 #include "io/json_util.h"
 #include "io/svg_outline.h"
@@ -13,13 +14,9 @@
 namespace dform {
 namespace {
 
-using io_detail::ClosedLoop;
+using io_detail::DrawnLine;
 using io_detail::fmt;
 using io_detail::fmtPoint;
-
-/// Consecutive points closer than this are one point: a nanometre is far below any cutting
-/// precision and far above double rounding of coordinates up to maxCoordinate.
-constexpr double kSamePointMm = 1e-9;
 
 /// An outline whose area is below this fraction of its squared diagonal, or whose points spread
 /// across their main direction by less than sqrt(this) of their spread along it, is a line drawn
@@ -31,22 +28,6 @@ constexpr double kZeroAreaFraction = 1e-12;
 constexpr std::size_t kMaxLoops = 10000;
 
 using Vec2 = Eigen::Vector2d;
-
-/// Where segments [a, b] and [c, d], known to touch or cross, meet (an end point if they touch).
-Vec2 meetingPoint(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
-  const Vec2 r = b - a, s = d - c;
-  const double denom = r.x() * s.y() - r.y() * s.x();
-  if (denom != 0.0) {
-    const double t = ((c - a).x() * s.y() - (c - a).y() * s.x()) / denom;
-    if (t >= 0.0 && t <= 1.0) return a + t * r;
-  }
-  // Parallel (collinear overlap) or touching: report an end of one lying on the other.
-  for (const Vec2& p : {a, b})
-    if (segmentsIntersect(p, p, c, d)) return p;
-  for (const Vec2& p : {c, d})
-    if (segmentsIntersect(p, p, a, b)) return p;
-  return a;
-}
 
 struct Box {
   Vec2 lo, hi;
@@ -73,39 +54,21 @@ std::optional<Vec2> findCrossing(const Points2& A, const Points2& B) {
       if (edges[m].P == edges[k].P) continue;
       const auto [a, b] = ends(edges[k]);
       const auto [c, d] = ends(edges[m]);
-      if (segmentsIntersect(a, b, c, d)) return meetingPoint(a, b, c, d);
+      if (segmentsIntersect(a, b, c, d)) return segmentsMeetingPoint(a, b, c, d);
     }
   return std::nullopt;
 }
 
-/// Even-odd ray casting; only used for points known not to lie on the polygon's boundary.
-bool insidePolygon(const Vec2& q, const Points2& P) {
-  bool inside = false;
-  for (Eigen::Index i = 0, j = P.rows() - 1; i < P.rows(); j = i++) {
-    const double yi = P(i, 1), yj = P(j, 1);
-    if ((yi > q.y()) != (yj > q.y()) && q.x() < (P(j, 0) - P(i, 0)) * (q.y() - yi) / (yj - yi) + P(i, 0))
-      inside = !inside;
-  }
-  return inside;
-}
-
 /// Cleans one loop (range check, duplicates removed) and checks it is a simple polygon of
 /// positive area; returns it counter-clockwise.
-Result<Points2> cleanLoop(const std::string& path, const ClosedLoop& loop, const OutlineReadOptions& options) {
+Result<Points2> cleanLoop(const std::string& path, const DrawnLine& loop, const OutlineReadOptions& options) {
   auto fail = [&](const std::string& what) {
     return Status{ErrorCode::InputInvalid, path + ": " + loop.label + " " + what};
   };
   if (const auto bad = io_detail::findBadCoordinate(loop.points, options.maxCoordinate))
     return fail("has a coordinate that " +
                 io_detail::describeBadCoordinate(loop.points(bad->first, bad->second), options.maxCoordinate));
-  std::vector<Eigen::Index> keep;
-  for (Eigen::Index i = 0; i < loop.points.rows(); ++i)
-    if (keep.empty() || (loop.points.row(i) - loop.points.row(keep.back())).norm() > kSamePointMm)
-      keep.push_back(i);
-  while (keep.size() > 1 && (loop.points.row(keep.back()) - loop.points.row(keep.front())).norm() <= kSamePointMm)
-    keep.pop_back();
-  Points2 P(Eigen::Index(keep.size()), 2);
-  for (std::size_t k = 0; k < keep.size(); ++k) P.row(Eigen::Index(k)) = loop.points.row(keep[k]);
+  Points2 P = io_detail::dropRepeatedPoints(loop.points, true);
   if (P.rows() < 3) return fail("has fewer than 3 distinct points");
   // Collinear points first (their edges overlap, which is not what "crossing" should mean):
   // the spread across the principal direction is nil.
@@ -116,7 +79,7 @@ Result<Points2> cleanLoop(const std::string& path, const ClosedLoop& loop, const
   if (const auto hit = findSelfIntersection(P)) {
     const auto [e, f] = *hit;
     const Eigen::Index n = P.rows();
-    const Vec2 where = meetingPoint(P.row(e), P.row((e + 1) % n), P.row(f), P.row((f + 1) % n));
+    const Vec2 where = segmentsMeetingPoint(P.row(e), P.row((e + 1) % n), P.row(f), P.row((f + 1) % n));
     return fail("crosses itself near " + fmtPoint(where.transpose()) + " mm");
   }
   const double diagonal = (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm();
@@ -128,14 +91,14 @@ Result<Points2> cleanLoop(const std::string& path, const ClosedLoop& loop, const
 
 /// Turns closed loops into one piece: the outermost loop is the outline, loops directly inside it
 /// are holes; loops side by side, crossing, or islands inside holes are errors.
-Result<Shape2> assembleShape(const std::string& path, const std::vector<ClosedLoop>& loops,
+Result<Shape2> assembleShape(const std::string& path, const std::vector<DrawnLine>& loops,
                              const OutlineReadOptions& options) {
   if (loops.empty()) return Status{ErrorCode::InputInvalid, path + ": no closed outline found"};
   if (loops.size() > kMaxLoops)
     return Status{ErrorCode::InputInvalid, path + ": " + std::to_string(loops.size()) +
                                                " closed outlines; expected one piece"};
   std::vector<Points2> clean;
-  for (const ClosedLoop& loop : loops) {
+  for (const DrawnLine& loop : loops) {
     Result<Points2> P = cleanLoop(path, loop, options);
     if (!P.isOk()) return P.status();
     clean.push_back(std::move(P).value());
@@ -162,7 +125,7 @@ Result<Shape2> assembleShape(const std::string& path, const std::vector<ClosedLo
       if (const auto where = findCrossing(clean[i], clean[j]))
         return Status{ErrorCode::InputInvalid, path + ": " + loops[i].label + " and " + loops[j].label +
                                                    " touch or cross near " + fmtPoint(where->transpose()) + " mm"};
-      if (insidePolygon(clean[i].row(0).transpose(), clean[j])) depth[i] = depth[j] + 1;
+      if (insidePolygon(clean[j], clean[i].row(0).transpose())) depth[i] = depth[j] + 1;
     }
     pieces += depth[i] % 2 == 0;
   }
@@ -182,18 +145,26 @@ Result<Shape2> assembleShape(const std::string& path, const std::vector<ClosedLo
 
 // ---- JSON -------------------------------------------------------------------------------------
 
-/// Reads a JSON outline list scaled to mm; a repeated closing point is dropped.
-Result<Points2> jsonLoop(const std::string& path, const nlohmann::json& list, const std::string& what,
+/// Reads a JSON list of 2D points scaled to mm, as an open line.
+Result<Points2> jsonLine(const std::string& path, const nlohmann::json& list, const std::string& what,
                          double scale) {
   Result<Eigen::MatrixXd> rows = io_detail::jsonPointList(path, list, what, 2, scale);
   if (!rows.isOk()) return rows.status();
-  Points2 P = rows.value();
-  if (P.rows() > 1 && P.row(0) == P.row(P.rows() - 1)) P.conservativeResize(P.rows() - 1, 2);
+  return Points2(rows.value());
+}
+
+/// Reads a JSON outline list scaled to mm; a repeated closing point is dropped.
+Result<Points2> jsonLoop(const std::string& path, const nlohmann::json& list, const std::string& what,
+                         double scale) {
+  Result<Points2> P = jsonLine(path, list, what, scale);
+  if (P.isOk() && P.value().rows() > 1 && P.value().row(0) == P.value().row(P.value().rows() - 1))
+    P.value().conservativeResize(P.value().rows() - 1, 2);
   return P;
 }
 
-/// {"points": [[x, y], ...], "units": "mm", "holes": [[[x, y], ...], ...]} or a bare point list.
-Result<std::vector<ClosedLoop>> readJsonLoops(const std::string& path, const std::string& text) {
+/// {"points": [[x, y], ...], "units": "mm", "holes": [[[x, y], ...], ...],
+///  "creases": [[[x, y], ...], ...]} or a bare point list.
+Result<io_detail::Drawing> readJsonDrawing(const std::string& path, const std::string& text) {
   const Result<nlohmann::json> parsed = io_detail::parseJson(path, text);
   if (!parsed.isOk()) return parsed.status();
   const nlohmann::json& doc = parsed.value();
@@ -201,21 +172,25 @@ Result<std::vector<ClosedLoop>> readJsonLoops(const std::string& path, const std
     return Status{ErrorCode::InputUnreadable, path + ": JSON object has no \"points\" list"};
   const Result<double> scale = io_detail::jsonUnitScale(path, doc);
   if (!scale.isOk()) return scale.status();
-  std::vector<std::pair<const nlohmann::json*, std::string>> lists = {
-      {doc.is_object() ? &doc["points"] : &doc, "the outline"}};
-  if (doc.is_object() && doc.contains("holes")) {
-    const nlohmann::json& holes = doc["holes"];
-    if (!holes.is_array())
-      return Status{ErrorCode::InputUnreadable, path + ": \"holes\" is not a list of point lists"};
-    for (std::size_t h = 0; h < holes.size(); ++h) lists.emplace_back(&holes[h], "hole " + std::to_string(h + 1));
+  io_detail::Drawing drawing;
+  Result<Points2> outline = jsonLoop(path, doc.is_object() ? doc["points"] : doc, "the outline", scale.value());
+  if (!outline.isOk()) return outline.status();
+  drawing.loops.push_back({std::move(outline).value(), "the outline"});
+  for (const char* key : {"holes", "creases"}) {
+    if (!doc.is_object() || !doc.contains(key)) continue;
+    const nlohmann::json& lists = doc[key];
+    if (!lists.is_array())
+      return Status{ErrorCode::InputUnreadable, path + ": \"" + key + "\" is not a list of point lists"};
+    const bool holes = std::string(key) == "holes";
+    for (std::size_t k = 0; k < lists.size(); ++k) {
+      const std::string name = (holes ? "hole " : "crease ") + std::to_string(k + 1);
+      Result<Points2> P = holes ? jsonLoop(path, lists[k], name, scale.value())
+                                : jsonLine(path, lists[k], name, scale.value());
+      if (!P.isOk()) return P.status();
+      (holes ? drawing.loops : drawing.creases).push_back({std::move(P).value(), name});
+    }
   }
-  std::vector<ClosedLoop> loops;
-  for (const auto& [list, name] : lists) {
-    Result<Points2> P = jsonLoop(path, *list, name, scale.value());
-    if (!P.isOk()) return P.status();
-    loops.push_back({std::move(P).value(), name});
-  }
-  return loops;
+  return drawing;
 }
 
 }  // namespace
@@ -232,11 +207,15 @@ Result<Shape2> readShape(const std::string& path, const OutlineReadOptions& opti
     ext = c == '<' ? "svg" : (c == '{' || c == '[') ? "json" : "";
   }
   if (ext.empty()) return Status{ErrorCode::InputUnreadable, path + ": not an SVG or JSON file"};
-  Result<std::vector<ClosedLoop>> loops = ext == "svg"
-                                              ? io_detail::readSvgLoops(path, std::move(text).value(), options)
-                                              : readJsonLoops(path, text.value());
-  if (!loops.isOk()) return loops.status();
-  return assembleShape(path, loops.value(), options);
+  Result<io_detail::Drawing> drawing = ext == "svg"
+                                           ? io_detail::readSvgDrawing(path, std::move(text).value(), options)
+                                           : readJsonDrawing(path, text.value());
+  if (!drawing.isOk()) return drawing.status();
+  Result<Shape2> shape = assembleShape(path, drawing.value().loops, options);
+  if (!shape.isOk()) return shape;
+  if (Status s = io_detail::fitCreases(path, drawing.value().creases, options, shape.value()); !s.isOk())
+    return s;
+  return shape;
 }
 
 }  // namespace dform

@@ -14,10 +14,19 @@ struct OutlineReadOptions {
   double maxCoordinate = 1.0e6;    ///< mm; larger coordinates are rejected as unreasonable
 };
 
-/// A flat shape: its outer outline and any holes (each counter-clockwise, dense polylines in mm).
+/// A crease line drawn inside a piece: an open polyline (#P by 2, mm) whose two ends lie on the
+/// piece's boundary (its outline or a hole). `label` names it in messages ("path 3").
+struct CreaseLine {
+  Points2 points;
+  std::string label;
+};
+
+/// A flat shape: its outer outline and any holes (each counter-clockwise, dense polylines in mm),
+/// and the crease lines drawn on it.
 struct Shape2 {
   Outline2 outer;
   std::vector<Outline2> holes;
+  std::vector<CreaseLine> creases;
 };
 
 /// Reads a shape from `path`: SVG (.svg) or a JSON list of points (.json); see docs/io.md.
@@ -27,11 +36,14 @@ struct Shape2 {
 /// result is in the page frame with y up and the origin at the page's bottom-left corner
 /// (y' = page height - y), so what the designer sees is not mirrored. Curves are flattened to
 /// options.flattenTolerance. Every closed subpath or shape is an outline: exactly one must
-/// enclose all others, which become holes. <defs> content and display:none are ignored.
+/// enclose all others, which become holes. <defs> content and display:none are ignored. Lines
+/// marked as creases (class "crease", or inside a layer or group labelled "crease"/"creases"; in
+/// JSON a "creases" list) are clipped to the piece and must run from boundary to boundary.
 ///
 /// Every problem is a Status naming the file: InputUnreadable (missing, unreadable, not SVG/JSON)
 /// or InputInvalid (no closed outline, open path, self-intersecting outline, NaN or huge
-/// coordinates, too few points, several separate outlines).
+/// coordinates, too few points, several separate outlines, a crease that does not run from
+/// boundary to boundary or crosses another).
 Result<Shape2> readShape(const std::string& path, const OutlineReadOptions& options = {});
 
 }  // namespace dform

@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <map>
@@ -190,7 +191,7 @@ struct Document {
   double maxCoordinate = 1e6;                  // mm
   std::map<std::string, int> elementCounts;    // per element name, for "path 2"
   std::string currentLabel = "the document";   // element being read, for messages
-  std::vector<ClosedLoop> loops;
+  Drawing drawing;
   std::size_t totalPoints = 0;
 };
 
@@ -216,6 +217,29 @@ bool displayNone(const XmlNode* node) {
   return false;
 }
 
+bool equalsIgnoringCase(std::string_view a, std::string_view b) {
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+           return std::tolower((unsigned char)x) == std::tolower((unsigned char)y);
+         });
+}
+
+/// Whether an element marks itself and its content as crease lines: "crease" among its classes,
+/// or a layer or group labelled "crease" or "creases" (Inkscape's inkscape:label, or the id).
+bool marksCreases(const XmlNode* node) {
+  const std::string_view classes = attributeValue(node, "class").value_or("");
+  for (std::size_t start = 0; start < classes.size();) {
+    std::size_t end = classes.find_first_of(" \t\r\n", start);
+    if (end == std::string_view::npos) end = classes.size();
+    if (equalsIgnoringCase(classes.substr(start, end - start), "crease")) return true;
+    start = end + 1;
+  }
+  for (const char* name : {"label", "id"}) {
+    const std::string_view value = trim(attributeValue(node, name).value_or(""));
+    if (equalsIgnoringCase(value, "crease") || equalsIgnoringCase(value, "creases")) return true;
+  }
+  return false;
+}
+
 /// The context svgpp calls for every processed element (<svg>, <g>, <a> and the shapes).
 class SvgContext {
  public:
@@ -226,7 +250,8 @@ class SvgContext {
       : document_(parent.document_),
         transform_(parent.transform_),
         parentLabel_(document_->currentLabel),
-        hidden_(displayNone(element)) {
+        hidden_(displayNone(element)),
+        crease_(parent.crease_ || marksCreases(element)) {
     const std::string name(element->local_name(), element->local_name_size());
     label_ = name + " " + std::to_string(++document_->elementCounts[name]);
     if (auto id = attributeValue(element, "id")) {
@@ -302,6 +327,7 @@ class SvgContext {
   std::string parentLabel_;
   std::string label_;
   bool hidden_ = false;
+  bool crease_ = false;  // the element draws crease lines, not outlines
   std::vector<Command> commands_;
 };
 
@@ -422,19 +448,25 @@ void SvgContext::finishSubpath(std::vector<Vec2>& points, bool closed, int index
   const double gap = (points.back() - points.front()).norm();
   // A gap below the flatten tolerance is below the resolution we read at: the designer meant it
   // closed, and dropping the end point moves the outline less than flattening already does.
-  if (gap <= document_->tolerance) {
+  const bool closedLoop = closed || gap <= document_->tolerance;
+  if (crease_ && closedLoop) {
+    document_->currentLabel = label;
+    throw SvgProblem{ErrorCode::InputInvalid,
+                     "is a closed crease line (its ends meet); a crease runs from boundary to boundary"};
+  }
+  if (!crease_ && gap <= document_->tolerance) {
     points.pop_back();
-  } else if (!closed) {
+  } else if (!crease_ && !closed) {
     document_->currentLabel = label;
     throw SvgProblem{ErrorCode::InputInvalid,
                      "is open (its end is " + fmt(gap) + " mm from its start)"};
   }
-  ClosedLoop loop;
-  loop.points.resize(Eigen::Index(points.size()), 2);
-  for (std::size_t i = 0; i < points.size(); ++i) loop.points.row(Eigen::Index(i)) = points[i].transpose();
-  loop.label = label;
+  DrawnLine line;
+  line.points.resize(Eigen::Index(points.size()), 2);
+  for (std::size_t i = 0; i < points.size(); ++i) line.points.row(Eigen::Index(i)) = points[i].transpose();
+  line.label = label;
   document_->totalPoints += points.size();
-  document_->loops.push_back(std::move(loop));
+  (crease_ ? document_->drawing.creases : document_->drawing.loops).push_back(std::move(line));
   points.clear();
 }
 
@@ -510,8 +542,8 @@ using DocumentTraversal = svgpp::document_traversal<
 
 }  // namespace
 
-Result<std::vector<ClosedLoop>> readSvgLoops(const std::string& path, std::string text,
-                                             const OutlineReadOptions& options) {
+Result<Drawing> readSvgDrawing(const std::string& path, std::string text,
+                               const OutlineReadOptions& options) {
   auto fail = [&](ErrorCode code, const std::string& what) {
     return Status{code, path + ": " + what};
   };
@@ -568,7 +600,7 @@ Result<std::vector<ClosedLoop>> readSvgLoops(const std::string& path, std::strin
   } catch (...) {  // never let a parser surprise cross the module boundary
     return fail(ErrorCode::InputUnreadable, document.currentLabel + " could not be read");
   }
-  return std::move(document.loops);
+  return std::move(document.drawing);
 }
 
 }  // namespace dform::io_detail

@@ -11,17 +11,24 @@
 
 namespace dform::io_detail {
 
-/// One closed outline found in a file, before shape assembly: mm in the y-up page frame, either
-/// orientation, the closing point not repeated. `label` names it in messages ("path 2").
-struct ClosedLoop {
+/// One polyline found in a file, before shape assembly: mm in the y-up page frame. `label` names
+/// it in messages ("path 2").
+struct DrawnLine {
   Points2 points;
   std::string label;
 };
 
+/// What a file draws: closed outlines (either orientation, the closing point not repeated) and
+/// open crease lines (marked as described in docs/io.md).
+struct Drawing {
+  std::vector<DrawnLine> loops;
+  std::vector<DrawnLine> creases;
+};
+
 /// Every closed subpath and closed basic shape of the SVG document `text` (read from `path`),
-/// flattened to options.flattenTolerance. Open subpaths, malformed XML and out-of-range
-/// coordinates are Statuses naming `path`.
-Result<std::vector<ClosedLoop>> readSvgLoops(const std::string& path, std::string text,
-                                             const OutlineReadOptions& options);
+/// and every crease line, flattened to options.flattenTolerance. Open subpaths that are not
+/// creases, closed creases, malformed XML and out-of-range coordinates are Statuses naming `path`.
+Result<Drawing> readSvgDrawing(const std::string& path, std::string text,
+                               const OutlineReadOptions& options);
 
 }  // namespace dform::io_detail

@@ -44,25 +44,6 @@ Status checkLoop(const Points2& P, const std::string& name) {
   return Status::ok();
 }
 
-// Even-odd rule; q is assumed off the polygon's edges (callers check crossings separately).
-bool insidePolygon(const Points2& P, const Eigen::Vector2d& q) {
-  bool inside = false;
-  for (Eigen::Index i = 0, j = P.rows() - 1; i < P.rows(); j = i++) {
-    const double yi = P(i, 1), yj = P(j, 1);
-    if ((yi > q.y()) != (yj > q.y()) &&
-        q.x() < P(j, 0) + (q.y() - yj) * (P(i, 0) - P(j, 0)) / (yi - yj))
-      inside = !inside;
-  }
-  return inside;
-}
-
-double distanceToSegment(const Eigen::Vector2d& q, const Eigen::Vector2d& a,
-                         const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double t = std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-  return (a + t * ab - q).norm();
-}
-
 // Loop edges bucketed in square cells of side h, so that "is q within r <= 0.6 h of an edge"
 // looks at the 3 by 3 cells around q only.
 class EdgeGrid {
@@ -254,10 +235,10 @@ Result<FlatMesh> triangulateDomain(const Points2& boundary, const std::vector<Po
     const std::string name = "hole " + std::to_string(k);
     if (Status s = checkLoop(holes[k], name); !s.isOk()) return s;
     // Crossings are found by the triangulation; here only whole loops in the wrong place.
-    if (!insidePolygon(boundary, holes[k].row(0)))
+    if (!insidePolygon(boundary, holes[k].row(0).transpose()))
       return invalid(name + " is not wholly inside the outline");
     for (std::size_t other = 0; other < holes.size(); ++other)
-      if (other != k && insidePolygon(holes[other], holes[k].row(0)))
+      if (other != k && insidePolygon(holes[other], holes[k].row(0).transpose()))
         return invalid(name + " overlaps hole " + std::to_string(other));
     area -= std::abs(signedArea(holes[k]));
   }

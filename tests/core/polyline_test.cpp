@@ -44,6 +44,23 @@ TEST(Polyline, ResampleStartsAtFraction) {
   EXPECT_NEAR(R(1, 1), 10.0, 1e-12);
 }
 
+TEST(Polyline, ResampleOpenIsUniformAndKeepsBothEnds) {
+  Points2 bend(3, 2);
+  bend << 0, 0, 6, 0, 6, 4;  // an L of length 10
+  EXPECT_DOUBLE_EQ(openLength(bend), 10.0);
+  const Eigen::MatrixXd R = resampleOpen(bend, 5);
+  ASSERT_EQ(R.rows(), 6);
+  EXPECT_EQ(Eigen::RowVector2d(R.row(0)), Eigen::RowVector2d(0, 0));
+  EXPECT_EQ(Eigen::RowVector2d(R.row(5)), Eigen::RowVector2d(6, 4));
+  // Points at arc length 2, 4, 6 (the corner), 8 lie on the L.
+  EXPECT_NEAR((R.row(1) - Eigen::RowVector2d(2, 0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((R.row(3) - Eigen::RowVector2d(6, 0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((R.row(4) - Eigen::RowVector2d(6, 2)).norm(), 0.0, 1e-12);
+  const Eigen::MatrixXd one = resampleOpen(bend, 1);
+  EXPECT_EQ(one.rows(), 2);
+  EXPECT_NEAR(openLength(one), std::sqrt(52.0), 1e-12);
+}
+
 TEST(Polyline, ResampledCircleLengthConverges) {
   const Points2 dense = circle(20000, 50.0);
   const Eigen::MatrixXd R = resampleClosed(dense, 100);
