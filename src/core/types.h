@@ -26,11 +26,13 @@ struct Curve3 {
 };
 
 /// A triangulated flat domain. V is #V by 2 (mm), F is #F by 3 with counter-clockwise triangles,
-/// `boundary` lists the outer boundary loop's vertex indices in counter-clockwise order.
+/// `boundary` lists the outer boundary loop's vertex indices in counter-clockwise order, `lines`
+/// the vertex indices of each interior constraint line (a crease), end to end along mesh edges.
 struct FlatMesh {
   Points2 V;
   Faces F;
   std::vector<int> boundary;
+  std::vector<std::vector<int>> lines;
 };
 
 /// One piece of a D-Form: the flat shape as it is cut and the same triangles bent in 3D.

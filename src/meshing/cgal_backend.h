@@ -16,10 +16,13 @@ struct Loop {
   int count = 0;
 };
 
-/// Constrained Delaunay triangulation of all rows of P (#P by 2) with every loop edge as a
-/// constraint. Returns the counter-clockwise triangles (indices into P) that lie inside an odd
-/// number of loops, or InputInvalid when points coincide or loops cross or touch (a constraint
-/// edge would be split), so every loop edge is a triangle edge in the result.
-Result<Faces> constrainedDelaunay(const Points2& P, const std::vector<Loop>& loops);
+/// Constrained Delaunay triangulation of all rows of P (#P by 2) with every loop edge and every
+/// edge of the open `chains` (row indices, consecutive pairs joined) as a constraint. Returns the
+/// counter-clockwise triangles (indices into P) that lie inside an odd number of loops (chains
+/// do not bound regions), or InputInvalid when points coincide or constraints cross or touch away
+/// from a shared end (a constraint edge would be split), so every constraint edge is a triangle
+/// edge in the result.
+Result<Faces> constrainedDelaunay(const Points2& P, const std::vector<Loop>& loops,
+                                  const std::vector<std::vector<int>>& chains = {});
 
 }  // namespace dform::meshing_detail

@@ -33,8 +33,10 @@ using Cdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::No_constrai
 
 Status invalid(std::string message) { return {ErrorCode::InputInvalid, std::move(message)}; }
 
-// Level 0 is the unbounded region; crossing a constraint enters the next level.
-void markNestingLevels(Cdt& cdt) {
+// Level 0 is the unbounded region; crossing a loop's edge enters the next level (`isChainEdge`
+// tells the constrained edges that do not bound a region).
+template <typename IsChainEdge>
+void markNestingLevels(Cdt& cdt, IsChainEdge isChainEdge) {
   for (auto f : cdt.all_face_handles()) f->info() = -1;
   std::vector<Cdt::Face_handle> seeds{cdt.infinite_face()};
   for (int level = 0; !seeds.empty(); ++level) {
@@ -48,7 +50,9 @@ void markNestingLevels(Cdt& cdt) {
       for (int i = 0; i < 3; ++i) {
         const Cdt::Face_handle g = f->neighbor(i);
         if (g->info() != -1) continue;
-        (f->is_constrained(i) ? across : stack).push_back(g);
+        const bool bounds = f->is_constrained(i) && !isChainEdge(f->vertex(Cdt::cw(i))->info(),
+                                                                  f->vertex(Cdt::ccw(i))->info());
+        (bounds ? across : stack).push_back(g);
       }
     }
     seeds = std::move(across);
@@ -59,7 +63,8 @@ void markNestingLevels(Cdt& cdt) {
 
 namespace meshing_detail {
 
-Result<Faces> constrainedDelaunay(const Points2& P, const std::vector<Loop>& loops) {
+Result<Faces> constrainedDelaunay(const Points2& P, const std::vector<Loop>& loops,
+                                  const std::vector<std::vector<int>>& chains) {
   const int n = int(P.rows());
   std::vector<std::pair<K::Point_2, int>> points;
   points.reserve(n);
@@ -71,22 +76,40 @@ Result<Faces> constrainedDelaunay(const Points2& P, const std::vector<Loop>& loo
   std::vector<Cdt::Vertex_handle> vertex(n);
   for (auto v : cdt.finite_vertex_handles()) vertex[v->info()] = v;
 
-  const char* const kTouching = "the outline and holes cross or touch each other";
+  std::vector<std::pair<int, int>> edges;  // every constraint, loops' first
+  for (const Loop& loop : loops)
+    for (int k = 0; k < loop.count; ++k) edges.emplace_back(loop.first + k, loop.first + (k + 1) % loop.count);
+  const std::size_t loopEdges = edges.size();
+  for (const std::vector<int>& chain : chains)
+    for (std::size_t k = 0; k + 1 < chain.size(); ++k) edges.emplace_back(chain[k], chain[k + 1]);
+  std::vector<std::pair<int, int>> chainEdges;
+  for (std::size_t e = loopEdges; e < edges.size(); ++e)
+    chainEdges.emplace_back(std::min(edges[e].first, edges[e].second), std::max(edges[e].first, edges[e].second));
+  std::sort(chainEdges.begin(), chainEdges.end());
+
+  const char* const kTouching =
+      chains.empty() ? "the outline and holes cross or touch each other"
+                     : "the outline, holes and crease lines cross or touch each other";
   try {
-    for (const Loop& loop : loops)
-      for (int k = 0; k < loop.count; ++k)
-        cdt.insert_constraint(vertex[loop.first + k], vertex[loop.first + (k + 1) % loop.count]);
+    for (const auto& [a, b] : edges) cdt.insert_constraint(vertex[a], vertex[b]);
   } catch (const std::exception&) {
     return invalid(kTouching);
   }
-  // The guarantee the solver relies on: no loop edge was split, no vertex was added.
+  // The guarantee the solver relies on: no constraint edge was split, no vertex was added.
   if (int(cdt.number_of_vertices()) != n) return invalid(kTouching);
-  for (const Loop& loop : loops)
-    for (int k = 0; k < loop.count; ++k)
-      if (!cdt.is_edge(vertex[loop.first + k], vertex[loop.first + (k + 1) % loop.count]))
-        return invalid(kTouching);
+  for (const auto& [a, b] : edges)
+    if (!cdt.is_edge(vertex[a], vertex[b])) return invalid(kTouching);
 
-  markNestingLevels(cdt);
+  markNestingLevels(cdt, [&](int a, int b) {
+    return std::binary_search(chainEdges.begin(), chainEdges.end(), std::make_pair(std::min(a, b), std::max(a, b)));
+  });
+  for (std::size_t e = loopEdges; e < edges.size(); ++e) {  // a chain runs inside the domain
+    Cdt::Face_handle face;
+    int i = 0;
+    cdt.is_edge(vertex[edges[e].first], vertex[edges[e].second], face, i);
+    if (face->info() % 2 == 0 || face->neighbor(i)->info() % 2 == 0)
+      return invalid("a crease line leaves the piece");
+  }
   std::vector<std::array<int, 3>> inside;
   inside.reserve(cdt.number_of_faces());
   for (auto f : cdt.finite_face_handles())

@@ -44,29 +44,26 @@ Status checkLoop(const Points2& P, const std::string& name) {
   return Status::ok();
 }
 
-// Loop edges bucketed in square cells of side h, so that "is q within r <= 0.6 h of an edge"
-// looks at the 3 by 3 cells around q only.
+// Constraint edges bucketed in square cells of side h, so that "is q within r <= 0.6 h of an
+// edge" looks at the 3 by 3 cells around q only.
 class EdgeGrid {
  public:
-  EdgeGrid(const Points2& P, const std::vector<Loop>& loops, double h) : P_(P), h_(h) {
+  EdgeGrid(const Points2& P, const std::vector<std::pair<int, int>>& edges, double h) : P_(P), h_(h) {
     lo_ = P.colwise().minCoeff().transpose();
     nx_ = int(std::floor((P.col(0).maxCoeff() - lo_.x()) / h)) + 1;
     ny_ = int(std::floor((P.col(1).maxCoeff() - lo_.y()) / h)) + 1;
     cells_.resize(std::size_t(nx_) * ny_);
-    for (const Loop& loop : loops)
-      for (int k = 0; k < loop.count; ++k) {
-        const int a = loop.first + k, b = loop.first + (k + 1) % loop.count;
-        edges_.push_back({a, b});
-        // Samples h/2 apart lie within h/4 of every point of the edge: with r <= 0.6 h, an edge
-        // near q has a sample within 0.85 h, so in one of the 3 by 3 cells around q.
-        const Eigen::Vector2d pa = P.row(a), pb = P.row(b);
-        const int steps = int(std::ceil((pb - pa).norm() / (0.5 * h))) + 1;
-        for (int s = 0; s <= steps; ++s) {
-          std::vector<int>& cell = cells_[index(pa + (pb - pa) * (double(s) / steps))];
-          if (cell.empty() || cell.back() != int(edges_.size()) - 1)
-            cell.push_back(int(edges_.size()) - 1);
-        }
+    for (const auto& [a, b] : edges) {
+      edges_.push_back({a, b});
+      // Samples h/2 apart lie within h/4 of every point of the edge: with r <= 0.6 h, an edge
+      // near q has a sample within 0.85 h, so in one of the 3 by 3 cells around q.
+      const Eigen::Vector2d pa = P.row(a), pb = P.row(b);
+      const int steps = int(std::ceil((pb - pa).norm() / (0.5 * h))) + 1;
+      for (int s = 0; s <= steps; ++s) {
+        std::vector<int>& cell = cells_[index(pa + (pb - pa) * (double(s) / steps))];
+        if (cell.empty() || cell.back() != int(edges_.size()) - 1) cell.push_back(int(edges_.size()) - 1);
       }
+    }
   }
 
   bool near(const Eigen::Vector2d& q, double r) const {
@@ -100,9 +97,9 @@ class EdgeGrid {
 };
 
 // Points of a hexagonal lattice of spacing h inside the domain (even-odd over all loops) and at
-// least kClearance * h from every loop edge.
+// least kClearance * h from every constraint edge (loops' and interior lines').
 std::vector<Eigen::Vector2d> latticePoints(const Points2& P, const std::vector<Loop>& loops,
-                                           double h) {
+                                           const std::vector<std::pair<int, int>>& constraintEdges, double h) {
   const double rowStep = h * std::sqrt(3.0) / 2.0;
   const double x0 = P.col(0).minCoeff(), y0 = P.col(1).minCoeff();
   const int rows = int(std::floor((P.col(1).maxCoeff() - y0) / rowStep)) + 1;
@@ -121,7 +118,7 @@ std::vector<Eigen::Vector2d> latticePoints(const Points2& P, const std::vector<L
           crossings[std::size_t(j)].push_back(a.x() + (y - a.y()) * (b.x() - a.x()) / (b.y() - a.y()));
       }
     }
-  const EdgeGrid grid(P, loops, h);
+  const EdgeGrid grid(P, constraintEdges, h);
   std::vector<Eigen::Vector2d> points;
   for (int j = 0; j < rows; ++j) {
     std::vector<double>& xs = crossings[std::size_t(j)];
@@ -220,7 +217,7 @@ double minInteriorAngle(const Points2& V, const Faces& F, int fixedCount) {
 }  // namespace
 
 Result<FlatMesh> triangulateDomain(const Points2& boundary, const std::vector<Points2>& holes,
-                                   const TriangulateOptions& options) {
+                                   const TriangulateOptions& options, const std::vector<InteriorLine>& lines) {
   const double h = options.targetEdgeLength;
   if (!std::isfinite(h) || h <= 0.0)
     return Status(ErrorCode::Usage, "the target edge length must be positive");
@@ -246,30 +243,50 @@ Result<FlatMesh> triangulateDomain(const Points2& boundary, const std::vector<Po
     return invalid("the target edge length is too small for the domain (over " +
                    std::to_string(long(kMaxInteriorPoints)) + " points)");
 
-  // Fixed points first, in the order the contract promises: outline, then each hole.
+  // Fixed points first, in the order the contract promises: outline, each hole, each line.
   std::vector<Loop> loops{{0, int(boundary.rows())}};
   int fixedCount = int(boundary.rows());
   for (const Points2& hole : holes) {
     loops.push_back({fixedCount, int(hole.rows())});
     fixedCount += int(hole.rows());
   }
+  const int loopPoints = fixedCount;
+  std::vector<std::pair<int, int>> constraintEdges;
+  for (const Loop& loop : loops)
+    for (int k = 0; k < loop.count; ++k)
+      constraintEdges.emplace_back(loop.first + k, loop.first + (k + 1) % loop.count);
+  std::vector<std::vector<int>> chains;
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    const InteriorLine& line = lines[k];
+    if (line.from < 0 || line.from >= loopPoints || line.to < 0 || line.to >= loopPoints ||
+        line.interior.cols() != 2 || !line.interior.allFinite() || (line.from == line.to && line.interior.rows() == 0))
+      return invalid("crease line " + std::to_string(k) + " does not join two boundary points");
+    std::vector<int> chain{line.from};
+    for (Eigen::Index i = 0; i < line.interior.rows(); ++i) chain.push_back(fixedCount++);
+    chain.push_back(line.to);
+    for (std::size_t i = 0; i + 1 < chain.size(); ++i) constraintEdges.emplace_back(chain[i], chain[i + 1]);
+    chains.push_back(std::move(chain));
+  }
   Points2 fixed(fixedCount, 2);
   fixed.topRows(boundary.rows()) = boundary;
   for (std::size_t k = 0; k < holes.size(); ++k)
     fixed.middleRows(loops[k + 1].first, holes[k].rows()) = holes[k];
+  for (std::size_t k = 0; k < lines.size(); ++k)
+    if (lines[k].interior.rows() > 0)
+      fixed.middleRows(chains[k][1], lines[k].interior.rows()) = lines[k].interior;
 
-  const std::vector<Eigen::Vector2d> interior = latticePoints(fixed, loops, h);
+  const std::vector<Eigen::Vector2d> interior = latticePoints(fixed, loops, constraintEdges, h);
   FlatMesh mesh;
   mesh.V.resize(fixedCount + Eigen::Index(interior.size()), 2);
   mesh.V.topRows(fixedCount) = fixed;
   for (std::size_t i = 0; i < interior.size(); ++i)
     mesh.V.row(fixedCount + Eigen::Index(i)) = interior[i];
 
-  Result<Faces> faces = meshing_detail::constrainedDelaunay(mesh.V, loops);
+  Result<Faces> faces = meshing_detail::constrainedDelaunay(mesh.V, loops, chains);
   if (!faces.isOk()) return faces.status();
   for (int round = 0; round < kMaxSmoothingRounds && mesh.V.rows() > fixedCount; ++round) {
     const double moved = smoothInterior(mesh.V, faces.value(), fixedCount);
-    faces = meshing_detail::constrainedDelaunay(mesh.V, loops);
+    faces = meshing_detail::constrainedDelaunay(mesh.V, loops, chains);
     // Smoothing keeps points strictly inside the domain, so this cannot fail.
     assert(faces.isOk() && "smoothing moved a point onto the boundary");
     if (!faces.isOk()) return Status(ErrorCode::Internal, faces.status().message());
@@ -280,6 +297,7 @@ Result<FlatMesh> triangulateDomain(const Points2& boundary, const std::vector<Po
   mesh.F = std::move(faces.value());
   mesh.boundary.resize(std::size_t(boundary.rows()));
   for (Eigen::Index i = 0; i < boundary.rows(); ++i) mesh.boundary[std::size_t(i)] = int(i);
+  mesh.lines = std::move(chains);
   return mesh;
 }
 

@@ -13,12 +13,25 @@ struct TriangulateOptions {
   double minAngleDegrees = 25.0;  ///< smallest triangle angle to aim for (boundary corners aside)
 };
 
+/// An open constraint line inside the domain (a crease) from one fixed point to another: `from`
+/// and `to` index the fixed points (the outline's rows first, then each hole's in turn) and
+/// `interior` holds the line's points in between, in order (#I by 2, possibly none).
+struct InteriorLine {
+  int from = 0;
+  int to = 0;
+  Points2 interior;
+};
+
 /// Constrained Delaunay triangulation with refinement of the polygon `boundary` (#B by 2,
-/// counter-clockwise, simple) and optional holes (each a simple polygon inside it). The result's
-/// first #B vertices are exactly the boundary points in order (no boundary edge is split), then
-/// each hole's points in order, then interior vertices. FlatMesh::boundary = 0..#B-1. Triangles
-/// are counter-clockwise. Returns InputInvalid if the domain cannot be meshed.
+/// counter-clockwise, simple), optional holes (each a simple polygon inside it) and optional
+/// interior lines. The result's first #B vertices are exactly the boundary points in order (no
+/// boundary edge is split), then each hole's points in order, then each line's interior points,
+/// then the other interior vertices. FlatMesh::boundary = 0..#B-1; FlatMesh::lines lists each
+/// line's vertices from `from` to `to`, every consecutive pair a mesh edge. Triangles are
+/// counter-clockwise. Returns InputInvalid if the domain cannot be meshed (a line that crosses the
+/// boundary, a hole or another line away from its ends, or leaves the domain).
 Result<FlatMesh> triangulateDomain(const Points2& boundary, const std::vector<Points2>& holes,
-                                   const TriangulateOptions& options);
+                                   const TriangulateOptions& options,
+                                   const std::vector<InteriorLine>& lines = {});
 
 }  // namespace dform

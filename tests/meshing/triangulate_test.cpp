@@ -52,15 +52,6 @@ double minAngleDegrees(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const
   return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
 }
 
-bool insidePolygon(const Points2& P, const Eigen::Vector2d& q) {
-  bool inside = false;
-  for (Eigen::Index i = 0, j = P.rows() - 1; i < P.rows(); j = i++)
-    if ((P(i, 1) > q.y()) != (P(j, 1) > q.y()) &&
-        q.x() < P(j, 0) + (q.y() - P(j, 1)) * (P(i, 0) - P(j, 0)) / (P(i, 1) - P(j, 1)))
-      inside = !inside;
-  return inside;
-}
-
 struct MeshStats {
   double minAngleAll = 180.0;       // every triangle
   double minAngleInterior = 180.0;  // triangles with no outline or hole vertex
@@ -346,6 +337,70 @@ TEST(TriangulateDomain, RejectsBadInput) {
   expectInvalid(square, {}, ErrorCode::Usage, "edge length", 0.0);
   expectInvalid(square, {}, ErrorCode::Usage, "edge length", NAN);
   expectInvalid(square, {}, ErrorCode::InputInvalid, "too small", 1e-5);
+}
+
+// A 10 x 10 square with 80 boundary points (row 20k is corner k) and creases between the given
+// boundary rows, each with interior points every h along it.
+struct CreasedSquare {
+  Points2 outline = resampleTo(polygon({{0, 0}, {10, 0}, {10, 10}, {0, 10}}), 0.5);
+  std::vector<InteriorLine> lines;
+  void addCrease(int from, int to, double h = 0.5) {
+    Points2 ends(2, 2);
+    ends << outline.row(from), outline.row(to);
+    const int segments = std::max(1, int(std::lround((ends.row(1) - ends.row(0)).norm() / h)));
+    const Eigen::MatrixXd points = resampleOpen(ends, segments);
+    lines.push_back({from, to, points.middleRows(1, segments - 1)});
+  }
+};
+
+TEST(TriangulateDomain, CreaseLinesAreMeshEdgesWithTrianglesOnBothSides) {
+  CreasedSquare c;
+  c.addCrease(0, 40);         // the diagonal, 27 points along it
+  c.addCrease(40, 70);        // (10, 10) to (0, 5): shares a corner with the diagonal
+  c.addCrease(10, 30, 10.0);  // a single edge cutting off the corner (10, 0)
+  TriangulateOptions options;
+  options.targetEdgeLength = 0.5;
+  const Result<FlatMesh> result = triangulateDomain(c.outline, {}, options, c.lines);
+  ASSERT_TRUE(result.isOk()) << result.status().message();
+  const FlatMesh& mesh = result.value();
+  checkMesh(mesh, c.outline, {});  // creases change neither the domain nor its topology
+  ASSERT_EQ(mesh.lines.size(), c.lines.size());
+  std::map<std::pair<int, int>, int> directed;
+  for (Eigen::Index t = 0; t < mesh.F.rows(); ++t)
+    for (int k = 0; k < 3; ++k) ++directed[{mesh.F(t, k), mesh.F(t, (k + 1) % 3)}];
+  int next = int(c.outline.rows());  // interior crease points follow the outline, in order
+  for (std::size_t k = 0; k < c.lines.size(); ++k) {
+    const std::vector<int>& line = mesh.lines[k];
+    ASSERT_EQ(line.size(), std::size_t(c.lines[k].interior.rows()) + 2);
+    EXPECT_EQ(line.front(), c.lines[k].from);
+    EXPECT_EQ(line.back(), c.lines[k].to);
+    for (std::size_t i = 1; i + 1 < line.size(); ++i) {
+      EXPECT_EQ(line[i], next++);
+      EXPECT_TRUE(Eigen::RowVector2d(mesh.V.row(line[i])) == c.lines[k].interior.row(Eigen::Index(i) - 1));
+    }
+    for (std::size_t i = 0; i + 1 < line.size(); ++i)  // a triangle on each side of every edge
+      EXPECT_TRUE(directed.count({line[i], line[i + 1]}) && directed.count({line[i + 1], line[i]}))
+          << "crease " << k << " edge " << i;
+  }
+}
+
+TEST(TriangulateDomain, RejectsCreasesThatDoNotStayInside) {
+  TriangulateOptions options;
+  options.targetEdgeLength = 0.5;
+  auto expectBad = [&](const Points2& outline, const std::vector<Points2>& holes, const InteriorLine& line,
+                       const std::string& words) {
+    const Result<FlatMesh> result = triangulateDomain(outline, holes, options, {line});
+    ASSERT_FALSE(result.isOk()) << words;
+    EXPECT_EQ(result.status().code(), ErrorCode::InputInvalid);
+    EXPECT_NE(result.status().message().find(words), std::string::npos) << result.status().message();
+  };
+  CreasedSquare c;
+  c.addCrease(10, 50);  // (5, 0) to (5, 10) across the hole below
+  expectBad(c.outline, {resampleTo(circle(1.5, 5.0, 5.0), 0.5)}, c.lines[0], "crease lines cross or touch");
+  expectBad(c.outline, {}, {0, 80, {}}, "does not join two boundary points");
+  expectBad(c.outline, {}, {3, 3, {}}, "does not join two boundary points");
+  // In the L shape the chord from (10, 4) to (4, 10) runs outside it, touching it at its ends only.
+  expectBad(lShape(), {}, {2, 4, {}}, "leaves the piece");
 }
 
 }  // namespace
