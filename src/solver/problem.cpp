@@ -1,8 +1,20 @@
 #include "solver/problem.h"
 
 #include <cassert>
+#include <vector>
 
 namespace dform {
+
+void ResidualTerm::secondDirectionalDerivative(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                                               double* rvv) const {
+  constexpr double h = 0.1;  // a step of 0.1 v: a central difference, O(h^2) off for quartic terms
+  const int m = numResiduals();
+  std::vector<double> plus(m), minus(m), centre(m);
+  evaluate(x + h * v, plus.data(), nullptr);
+  evaluate(x - h * v, minus.data(), nullptr);
+  evaluate(x, centre.data(), nullptr);
+  for (int i = 0; i < m; ++i) rvv[i] = (plus[i] - 2.0 * centre[i] + minus[i]) / (h * h);
+}
 
 LinearResidual::LinearResidual(Eigen::SparseMatrix<double, Eigen::RowMajor> M, Eigen::VectorXd b)
     : M_(std::move(M)), b_(std::move(b)) {

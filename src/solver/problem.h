@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <Eigen/SparseCore>
 #include <memory>
 #include <string>
@@ -31,6 +32,12 @@ class ResidualTerm {
   virtual void evaluate(const Eigen::VectorXd& x, double* r, double* J) const = 0;
   /// True when the Jacobian does not depend on x; its normal-matrix part is then assembled once.
   virtual bool isLinear() const { return false; }
+  /// Writes the second directional derivative of the residuals along v, r''(x)[v, v], into rvv
+  /// (numResiduals() values): the curvature that geodesic acceleration corrects for. The default
+  /// is the central difference (r(x + h v) - 2 r(x) + r(x - h v)) / h^2 with h = 0.1, exact for
+  /// residuals that are at most quadratic; terms override it with the exact value.
+  virtual void secondDirectionalDerivative(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                                           double* rvv) const;
 };
 
 /// Residuals r(x) = M x - b for a constant sparse M (#rows by #variables).
@@ -41,6 +48,9 @@ class LinearResidual : public ResidualTerm {
   int numResiduals() const override { return int(M_.rows()); }
   void evaluate(const Eigen::VectorXd& x, double* r, double* J) const override;
   bool isLinear() const override { return true; }
+  void secondDirectionalDerivative(const Eigen::VectorXd&, const Eigen::VectorXd&, double* rvv) const override {
+    std::fill(rvv, rvv + M_.rows(), 0.0);
+  }
 
   const Eigen::SparseMatrix<double, Eigen::RowMajor>& matrix() const { return M_; }
   const Eigen::VectorXd& target() const { return b_; }

@@ -35,6 +35,7 @@ bool SolverOptions::isValid(std::string* why) const {
   if (maxCgIterations < 0) return fail("maxCgIterations must be >= 0");
   if (!(cgRelativeTolerance > 0 && cgRelativeTolerance < 1))
     return fail("cgRelativeTolerance must be in (0, 1)");
+  if (!(maxAccelerationRatio > 0)) return fail("maxAccelerationRatio must be > 0");
   return true;
 }
 
@@ -181,6 +182,22 @@ class NormalEquations {
       for (int p = rowStart_[i]; p < rowStart_[i + 1]; ++p) g_[cols_[p]] += J_[p] * r_[i];
   }
 
+  // J^T r''[v, v] at the point of the last evaluation with Jacobian, x.
+  Eigen::VectorXd curvatureGradient(const Eigen::VectorXd& x, const Eigen::VectorXd& v) {
+    rvv_.setZero(r_.size());
+    for (std::size_t t = 0; t < blocks_.size(); ++t) {
+      const Block& b = blocks_[t];
+      if (b.linear) continue;
+      double* rvv = rvv_.data() + b.firstRow;
+      problem_.term(int(t)).secondDirectionalDerivative(x, v, rvv);
+      for (int i = 0; i < b.rows; ++i) rvv[i] *= b.sqrtWeight;
+    }
+    Eigen::VectorXd out = Eigen::VectorXd::Zero(A_.cols());
+    for (int i = 0; i < numRows(); ++i)
+      for (int p = rowStart_[i]; p < rowStart_[i + 1]; ++p) out[cols_[p]] += J_[p] * rvv_[i];
+    return out;
+  }
+
   const SparseLower& A() const { return A_; }
   const Eigen::VectorXd& g() const { return g_; }
   double maxDiagonal() const {
@@ -209,7 +226,7 @@ class NormalEquations {
   std::vector<int> rowStart_{0};
   std::vector<int> cols_;
   std::vector<double> J_;
-  Eigen::VectorXd r_, g_;
+  Eigen::VectorXd r_, g_, rvv_;
   SparseLower A_;
   std::vector<double> constantA_;
   std::vector<int> pairSlots_;
@@ -256,6 +273,19 @@ class StepSolver {
     haveFactor_ = true;
     dx = -factor_.solve(g);
     return dx.allFinite();
+  }
+
+  // Solves (A + mu I) y = -g again, for the same A and mu as the last solve(): a back-substitution
+  // when that solve refactorised, else preconditioned CG within the same budget.
+  bool solveAgain(const SparseLower& A, double mu, const Eigen::VectorXd& g, Eigen::VectorXd& y,
+                  const IterationSummary& last) {
+    if (!haveFactor_) return false;
+    if (last.refactorised) {
+      y = -factor_.solve(g);
+      return y.allFinite();
+    }
+    IterationSummary scratch;
+    return preconditionedCg(A, mu, g, y, scratch);
   }
 
   int factorisations() const { return factorisations_; }
@@ -370,7 +400,7 @@ SolverSummary LeastSquaresSolver::solve(Eigen::VectorXd& x) {
     return false;
   };
 
-  Eigen::VectorXd dx;
+  Eigen::VectorXd dx, acceleration;
   for (int iteration = 1; iteration <= options.maxIterations; ++iteration) {
     const auto iterationStart = Clock::now();
     IterationSummary it;
@@ -396,7 +426,20 @@ SolverSummary LeastSquaresSolver::solve(Eigen::VectorXd& x) {
     // Predicted decrease of the model m(dx) = f + 2 g.dx + dx.A.dx.
     const double predicted =
         -(2.0 * normal.g().dot(dx) + dx.dot(normal.A().selfadjointView<Eigen::Lower>() * dx));
-    const Eigen::VectorXd xTrial = x + dx;
+    Eigen::VectorXd step = dx;
+    if (options.geodesicAcceleration &&
+        stepSolver.solveAgain(normal.A(), mu, normal.curvatureGradient(x, dx), acceleration, it)) {
+      it.acceleration = 2.0 * acceleration.norm() / std::max(it.stepNorm, 1e-300);
+      if (it.acceleration > options.maxAccelerationRatio) {  // the valley bends too much for it
+        mu *= nu;
+        nu *= 2.0;
+        it.cost = cost;
+        if (!record(it, iterationStart)) break;
+        continue;
+      }
+      step += 0.5 * acceleration;
+    }
+    const Eigen::VectorXd xTrial = x + step;
     const double trialCost = normal.evaluate(xTrial, false);
     const double actual = cost - trialCost;
     const double rho = predicted > 0 ? actual / predicted : -1.0;

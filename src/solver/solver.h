@@ -26,6 +26,7 @@ struct IterationSummary {
   bool accepted = false;            ///< whether the step lowered f
   bool refactorised = false;        ///< whether a numeric factorisation was computed
   int cgIterations = 0;             ///< preconditioned CG iterations (0 for a direct solve)
+  double acceleration = 0;          ///< 2 |a| / |v| of the geodesic acceleration (0 when off)
   double seconds = 0;               ///< wall time of this iteration
   double cumulativeSeconds = 0;     ///< wall time since the solve started
 };
@@ -57,6 +58,12 @@ struct SolverOptions {
   int maxCgIterations = 50;
   /// Inexact-Newton forcing term: CG stops when ||A dx + g|| <= cgRelativeTolerance * ||g||.
   double cgRelativeTolerance = 1e-3;
+  /// Geodesic acceleration (Transtrum and Sethna, 2012): each step v gets the second-order
+  /// correction a/2, a = -(J^T J + mu I)^-1 J^T r''[v, v], so that it follows a curved valley of
+  /// the objective instead of leaving it (bending a sheet isometrically is such a valley). A step
+  /// whose correction is large, 2 |a| / |v| > maxAccelerationRatio, is rejected as too long.
+  bool geodesicAcceleration = true;
+  double maxAccelerationRatio = 0.75;
   /// Called after every iteration; return false to stop the solve (Termination::UserAbort).
   std::function<bool(const IterationSummary&)> callback;
 
