@@ -12,10 +12,25 @@ namespace dform {
 
 namespace {
 
-Points2 seamPoints(const Piece& p) {
-  Points2 S(p.seam.size(), 2);
-  for (std::size_t k = 0; k < p.seam.size(); ++k) S.row(k) = p.flat.row(p.seam[k]);
+Points2 flatRows(const Piece& p, const std::vector<int>& vertices) {
+  Points2 S(vertices.size(), 2);
+  for (std::size_t k = 0; k < vertices.size(); ++k) S.row(k) = p.flat.row(vertices[k]);
   return S;
+}
+
+Points2 seamPoints(const Piece& p) { return flatRows(p, p.seam); }
+
+// The vertices of every line that is cut or folded: the seam, then the free boundaries and
+// creases (each vertex once). Their flat positions are the pattern the designer drew.
+std::vector<int> drawnVertices(const Piece& p) {
+  std::vector<int> vertices = p.seam;
+  std::vector<bool> taken(p.flat.rows(), false);
+  for (int v : vertices) taken[v] = true;
+  for (const auto* lines : {&p.freeBoundaries, &p.creases})
+    for (const std::vector<int>& line : *lines)
+      for (int v : line)
+        if (!taken[v]) taken[v] = true, vertices.push_back(v);
+  return vertices;
 }
 
 // Least-squares rotation R (2 by 2) taking the centred rows of Q onto those of P.
@@ -89,19 +104,23 @@ Eigen::VectorXd turningAngles(const Points2& P) {
 
 DForm pillowInitialGuess(const Piece& a, const Piece& b) {
   assert(a.seam.size() == b.seam.size() && "the seams must pair one to one");
-  // The seam outline: A's as drawn and B's turned over (mirrored), best-aligned, averaged.
+  // The seam outline: A's as drawn and B's best-aligned to it, averaged. B is turned over (its
+  // x mirrored) when its seam runs round the other way from A's in the plane: a classic D-Form
+  // (two outlines joined) or an anti D-Form (two holes); a demi D-Form's pieces keep their sides.
   Points2 PA = seamPoints(a), PB = seamPoints(b);
-  PB.col(0) *= -1.0;
-  PB = PB.colwise().reverse().eval();  // counter-clockwise, as A's
+  const bool turnedOver = (signedArea(PA) > 0.0) != (signedArea(PB) > 0.0);
+  const Eigen::Matrix2d mirror = Eigen::Vector2d(turnedOver ? -1.0 : 1.0, 1.0).asDiagonal();
+  PB = PB * mirror;
   const Eigen::RowVector2d cA = PA.colwise().mean(), cB = PB.colwise().mean();
   PA.rowwise() -= cA;
   PB.rowwise() -= cB;
-  // B's seam order runs clockwise; reversed above, so row k of PB pairs with A's row (n - k) % n.
   const int n = int(PA.rows());
-  Points2 PBpaired(n, 2);
-  for (int k = 0; k < n; ++k) PBpaired.row(k) = PB.row((n - k) % n);
-  const Eigen::Matrix2d R = procrustesRotation(PA, PBpaired);
-  const Points2 mid = 0.5 * (PA + PBpaired * R.transpose());
+  const Eigen::Matrix2d R = procrustesRotation(PA, PB);
+  const Points2 PBpaired = PB * R.transpose();
+  const Points2 mid = 0.5 * (PA + PBpaired);
+  // Each piece's rigid placement in the frame of `mid` (x as a row: x * linear + offset).
+  const Eigen::Matrix2d linear[2] = {Eigen::Matrix2d::Identity(), mirror * R.transpose()};
+  const Eigen::RowVector2d offset[2] = {-cA, -cB * R.transpose()};
 
   // Where one piece's outline turns more sharply than its partner's, that piece is locally the
   // narrower one and the other wraps over it, so the seam leaves the mid plane towards it. The
@@ -125,7 +144,14 @@ DForm pillowInitialGuess(const Piece& a, const Piece& b) {
   for (int p = 0; p < 2; ++p) {
     const Piece& piece = *pieces[p];
     const int vertices = int(piece.flat.rows());
-    xy[p] = solveDirichlet(piece, mid, Eigen::MatrixXd::Zero(vertices, 2));
+    // The rigid placement plus the harmonic extension of the seam's move onto `mid`: free
+    // boundaries follow the piece instead of collapsing onto the seam (a harmonic map of the
+    // whole piece would), and a disc piece gets the harmonic map of `mid` all the same, since
+    // the cotangent Laplacian reproduces the rigid part exactly.
+    const Points2 placed = (piece.flat * linear[p]).rowwise() + offset[p];
+    Points2 move(n, 2);
+    for (int k = 0; k < n; ++k) move.row(k) = mid.row(k) - placed.row(piece.seam[k]);
+    xy[p] = placed + solveDirichlet(piece, move, Eigen::MatrixXd::Zero(vertices, 2));
     seamHeight[p] = solveDirichlet(piece, lift, Eigen::MatrixXd::Zero(vertices, 1)).col(0);
     // A bump: -Laplace(phi) = 1 with phi = 0 on the seam, scaled to a unit maximum.
     phi[p] = solveDirichlet(piece, Eigen::MatrixXd::Zero(n, 1),
@@ -220,12 +246,14 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
   const bool haveShapes = a.shape.rows() == a.flat.rows() && b.shape.rows() == b.flat.rows();
   DForm start = haveShapes ? DForm{a, b} : pillowInitialGuess(a, b);
   scaleLengths(start, 1.0 / unit);
-  const VariableLayout layout(int(a.flat.rows()), int(b.flat.rows()));
   const ForwardWeights& w = options.weights;
+  // The seam is closed exactly (shared 3D unknowns) whenever the alignment term is on at all.
+  const VariableLayout layout = w.alignment > 0
+                                    ? VariableLayout(int(a.flat.rows()), int(b.flat.rows()), a.seam, b.seam)
+                                    : VariableLayout(int(a.flat.rows()), int(b.flat.rows()));
   EdgeLengthPairs edges = meshEdgePairs(layout, a.F, b.F);
-  auto alignment = makeAlignmentTerm(layout, a.seam, b.seam);
-  auto anchor = makeFlatAnchorTerm(layout, start.a.seam, seamPoints(start.a), start.b.seam,
-                                   seamPoints(start.b));
+  const std::vector<int> drawnA = drawnVertices(start.a), drawnB = drawnVertices(start.b);
+  auto anchor = makeFlatAnchorTerm(layout, drawnA, flatRows(start.a, drawnA), drawnB, flatRows(start.b, drawnB));
   auto smooth3d = makeSmoothnessTerm(layout, start.a, start.b, true);
   auto smooth2d = makeSmoothnessTerm(layout, start.a, start.b, false);
   auto seam = makeSeamSmoothnessTerm(layout, a.seam, b.seam);
@@ -235,10 +263,8 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
   const auto linear = [](const std::unique_ptr<ResidualTerm>& t) {
     return static_cast<const LinearResidual*>(t.get());
   };
-  auto* alignmentTerm = static_cast<LinearResidual*>(alignment.get());
   auto* anchorTerm = static_cast<LinearResidual*>(anchor.get());
-  result.relaxation = relaxLocalGlobal({{w.alignment, linear(alignment)},
-                                        {w.boundaryFix, linear(anchor)},
+  result.relaxation = relaxLocalGlobal({{w.boundaryFix, linear(anchor)},
                                         {w.smooth3d, linear(smooth3d)},
                                         {w.smooth2d, linear(smooth2d)},
                                         {w.seam, linear(seam)}},
@@ -246,7 +272,6 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
 
   Problem problem(layout.numVariables());
   problem.addTerm("isometry", w.isometry, makeIsometryTerm(edges));
-  problem.addTerm("alignment", w.alignment, std::move(alignment));
   problem.addTerm("boundary_fix", w.boundaryFix, std::move(anchor));
   problem.addTerm("smooth_3d", w.smooth3d, std::move(smooth3d));
   problem.addTerm("smooth_2d", w.smooth2d, std::move(smooth2d));
@@ -254,11 +279,10 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
   LeastSquaresSolver solver(problem, options.solver);
   result.summary = solver.solve(x);
 
-  // Close the seam and hold the cut outlines to the drawn ones: alignment and boundary fix as
-  // constraints. Tolerances are relative to the perimeter, #seam in the unit of the mean seam edge.
+  // Hold the cut outlines to the drawn ones: the boundary fix as a constraint. The tolerance is
+  // relative to the perimeter, #seam in the unit of the mean seam edge.
   const double perimeter = double(a.seam.size());
   std::vector<Constraint> constraints;
-  if (w.alignment > 0) constraints.push_back({alignmentTerm, 3, options.seamTolerance * perimeter});
   if (w.boundaryFix > 0)
     constraints.push_back({anchorTerm, 2, options.outlineTolerance * perimeter});
   result.constraintRounds =

@@ -10,7 +10,7 @@ namespace dform {
 /// Term weights of the forward objective (paper Table 1's defaults).
 struct ForwardWeights {
   double isometry = 1.0;    ///< w_iso, Eq. 1
-  double alignment = 1.0;   ///< w_align, Eq. 2
+  double alignment = 1.0;   ///< w_align, Eq. 2: any positive weight closes the seam exactly (see VariableLayout)
   double boundaryFix = 1.0; ///< w_fix, Eq. 3
   double smooth3d = 0.01;   ///< w_3D, Eq. 4 on the 3D meshes
   double smooth2d = 1.0;    ///< w_2D, Eq. 4 on the flat meshes
@@ -23,15 +23,14 @@ struct ForwardOptions {
   /// do most of the shape change); maxIterations = 0 starts LM from the pillow.
   LocalGlobalOptions relaxation;
   SolverOptions solver;
-  /// The seam is closed and the flat outlines held to the drawn ones by multiplier updates of
-  /// the alignment and boundary-fix terms (augmented Lagrangian), in at most constraintRounds
-  /// extra solves, until every seam gap is below seamTolerance and every flat seam vertex lies
-  /// within outlineTolerance of its drawn position, both relative to the perimeter. 0 rounds keeps
-  /// the paper's soft terms. The outline tolerance is looser (0.24 mm on an 800 mm outline,
-  /// about a laser's kerf): where a square's corner meets a smooth partner the real D-Form
-  /// creases (paper section 7), and pinning the corner tighter folds triangles there instead.
+  /// The flat outlines (and every other drawn line) are held to the drawn ones by multiplier
+  /// updates of the boundary-fix term (augmented Lagrangian), in at most constraintRounds extra
+  /// solves, until every drawn vertex lies within outlineTolerance of its drawn position, relative
+  /// to the perimeter. 0 rounds keeps the paper's soft term. The tolerance is loose (0.24 mm on an
+  /// 800 mm outline, about a laser's kerf): where a square's corner meets a smooth partner the
+  /// real D-Form creases (paper section 7), and pinning the corner tighter folds triangles there
+  /// instead.
   int constraintRounds = 8;
-  double seamTolerance = 5e-7;
   double outlineTolerance = 3e-4;
 };
 

@@ -58,6 +58,13 @@ class IsometryResidual : public ResidualTerm {
     return p;
   }
 
+  // The residual is a quadratic form in x, so along v it curves by 2 (|dv_x|^2 - |dv_u|^2).
+  void secondDirectionalDerivative(const Eigen::VectorXd&, const Eigen::VectorXd& v, double* rvv) const override {
+    for (std::size_t e = 0; e < x_.size(); ++e)
+      rvv[e] = 2.0 * ((v.segment<3>(x_[e][0]) - v.segment<3>(x_[e][1])).squaredNorm() -
+                      (v.segment<2>(u_[e][0]) - v.segment<2>(u_[e][1])).squaredNorm());
+  }
+
   void evaluate(const Eigen::VectorXd& x, double* r, double* J) const override {
     for (std::size_t e = 0; e < x_.size(); ++e) {
       const Eigen::Vector3d d = x.segment<3>(x_[e][0]) - x.segment<3>(x_[e][1]);
@@ -99,10 +106,19 @@ void addLaplacianRows(const CotangentWeights& w, const std::vector<bool>& onBoun
 
 }  // namespace
 
+VariableLayout::VariableLayout(int verticesA, int verticesB, const std::vector<int>& seamA,
+                               const std::vector<int>& seamB)
+    : nA_(verticesA), nB_(verticesB), sharedWithA_(std::size_t(verticesB), -1) {
+  assert(seamA.size() == seamB.size() && "seams must pair one to one");
+  for (std::size_t k = 0; k < seamB.size(); ++k) sharedWithA_[std::size_t(seamB[k])] = seamA[k];
+}
+
 Eigen::VectorXd packVariables(const VariableLayout& layout, const Piece& a, const Piece& b) {
-  Eigen::VectorXd x(layout.numVariables());
+  // Unused slots (a shared seam's own 3D ones) are zero; B is written first so that A's 3D
+  // positions stand where the two share.
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(layout.numVariables());
   const Piece* pieces[2] = {&a, &b};
-  for (int p = 0; p < 2; ++p)
+  for (int p = 1; p >= 0; --p)
     for (int i = 0; i < layout.verticesOf(p); ++i) {
       x.segment<3>(layout.x(p, i)) = pieces[p]->shape.row(i).transpose();
       x.segment<2>(layout.u(p, i)) = pieces[p]->flat.row(i).transpose();
@@ -167,20 +183,6 @@ void scaleLengths(DForm& model, double factor) {
 
 std::unique_ptr<ResidualTerm> makeIsometryTerm(const EdgeLengthPairs& edges) {
   return std::make_unique<IsometryResidual>(edges.x, edges.u);
-}
-
-std::unique_ptr<ResidualTerm> makeAlignmentTerm(const VariableLayout& layout,
-                                                const std::vector<int>& seamA,
-                                                const std::vector<int>& seamB) {
-  assert(seamA.size() == seamB.size() && "seams must pair one to one");
-  std::vector<Triplet> entries;
-  int row = 0;
-  for (std::size_t k = 0; k < seamA.size(); ++k)
-    for (int c = 0; c < 3; ++c, ++row) {
-      entries.emplace_back(row, layout.x(0, seamA[k]) + c, 1.0);
-      entries.emplace_back(row, layout.x(1, seamB[k]) + c, -1.0);
-    }
-  return linearTerm(row, layout.numVariables(), entries, Eigen::VectorXd::Zero(row));
 }
 
 std::unique_ptr<ResidualTerm> makeFlatAnchorTerm(const VariableLayout& layout,
@@ -256,8 +258,11 @@ std::unique_ptr<ResidualTerm> makeSmoothnessTerm(const VariableLayout& layout, c
     std::vector<int> offsets(layout.verticesOf(p));
     for (int i = 0; i < layout.verticesOf(p); ++i)
       offsets[i] = threeD ? layout.x(p, i) : layout.u(p, i);
-    addLaplacianRows(w, boundaryMask(layout.verticesOf(p), pieces[p]->F), offsets, threeD ? 3 : 2,
-                     row, entries);
+    // Creases are left out like the boundary: the sheet may fold there.
+    std::vector<bool> skip = boundaryMask(layout.verticesOf(p), pieces[p]->F);
+    for (const std::vector<int>& crease : pieces[p]->creases)
+      for (int v : crease) skip[v] = true;
+    addLaplacianRows(w, skip, offsets, threeD ? 3 : 2, row, entries);
   }
   return linearTerm(row, layout.numVariables(), entries, Eigen::VectorXd::Zero(row));
 }

@@ -12,22 +12,32 @@
 namespace dform {
 
 /// Unknowns of a two-piece D-Form: per vertex [x y z u v] (3D position, flat position); piece A's
-/// vertices first, then piece B's.
+/// vertices first, then piece B's. With a shared seam, B's seam vertex seamB[k] has no 3D position
+/// of its own: it is A's seamA[k], so the seam is closed exactly, by construction (the limit of the
+/// paper's alignment term, Eq. 2, as its weight grows; section 6.6). Its own three slots stay in
+/// the vector, unused, so that every vertex keeps the [x y z u v] stride.
 class VariableLayout {
  public:
   static constexpr int kPerVertex = 5;
   VariableLayout(int verticesA, int verticesB) : nA_(verticesA), nB_(verticesB) {}
+  VariableLayout(int verticesA, int verticesB, const std::vector<int>& seamA, const std::vector<int>& seamB);
   int numVariables() const { return kPerVertex * (nA_ + nB_); }
   int vertex(int piece, int i) const { return piece == 0 ? i : nA_ + i; }
-  int x(int piece, int i) const { return kPerVertex * vertex(piece, i); }      ///< 3D, 3 values
+  int x(int piece, int i) const {  ///< 3D, 3 values
+    return piece == 1 && !sharedWithA_.empty() && sharedWithA_[i] >= 0 ? x(0, sharedWithA_[i])
+                                                                       : kPerVertex * vertex(piece, i);
+  }
   int u(int piece, int i) const { return kPerVertex * vertex(piece, i) + 3; }  ///< flat, 2 values
   int verticesOf(int piece) const { return piece == 0 ? nA_ : nB_; }
+  bool sharesSeam() const { return !sharedWithA_.empty(); }
 
  private:
   int nA_, nB_;
+  std::vector<int> sharedWithA_;  ///< per B vertex: the A vertex whose 3D position it has, or -1
 };
 
-/// Packs both pieces' shape and flat positions into the unknown vector (and back).
+/// Packs both pieces' shape and flat positions into the unknown vector (and back). A shared seam
+/// takes A's 3D positions.
 Eigen::VectorXd packVariables(const VariableLayout& layout, const Piece& a, const Piece& b);
 void unpackVariables(const VariableLayout& layout, const Eigen::VectorXd& x, Piece& a, Piece& b);
 
@@ -47,11 +57,6 @@ void scaleLengths(DForm& model, double factor);
 
 /// Isometry (Eq. 1): per edge ij, |x_i - x_j|^2 - |u_i - u_j|^2 (the pairs' weights are ignored).
 std::unique_ptr<ResidualTerm> makeIsometryTerm(const EdgeLengthPairs& edges);
-
-/// Boundary alignment (Eq. 2): x_A(seamA[i]) - x_B(seamB[i]) for every seam pair.
-std::unique_ptr<ResidualTerm> makeAlignmentTerm(const VariableLayout& layout,
-                                                const std::vector<int>& seamA,
-                                                const std::vector<int>& seamB);
 
 /// Boundary fix (Eq. 3): u(piece, i) - target.row(k) for i = vertices[k].
 std::unique_ptr<ResidualTerm> makeFlatAnchorTerm(const VariableLayout& layout,
@@ -74,7 +79,8 @@ CotangentWeights cotangentWeights(const Points2& V, const Faces& F);
 
 /// Surface smoothness (Eq. 4): sum_j w_ij (p_j - p_i) at each interior vertex i of both pieces,
 /// on the 3D positions (`threeD`) or the flat ones, with the weights of the flat rest meshes.
-/// Boundary vertices are left out: a piece's boundary is a seam (a crease), not a smooth region.
+/// Boundary and crease vertices are left out: a piece's boundary is a seam or a free edge, and a
+/// crease a fold, not a smooth region.
 std::unique_ptr<ResidualTerm> makeSmoothnessTerm(const VariableLayout& layout, const Piece& a,
                                                  const Piece& b, bool threeD);
 

@@ -18,7 +18,9 @@ InverseResult solveInverse(const DForm& start, const Points3& curve, const Inver
   scaleLengths(scaled, 1.0 / unit);
   const Points3 target = curve / unit;
 
-  const VariableLayout layout(int(scaled.a.flat.rows()), int(scaled.b.flat.rows()));
+  // Both sides of the seam are one curve in 3D: shared unknowns, as in forward modelling.
+  const VariableLayout layout(int(scaled.a.flat.rows()), int(scaled.b.flat.rows()), scaled.a.seam,
+                              scaled.b.seam);
   const InverseWeights& w = options.weights;
   EdgeLengthPairs edges = meshEdgePairs(layout, scaled.a.F, scaled.b.F);
   auto closeness = makeCurveClosenessTerm(layout, scaled.a.seam, scaled.b.seam, target);
