@@ -81,7 +81,7 @@ int run(int argc, char** argv) {
 
   Job forwardJob;
   cli::OutputOptions forwardOut;
-  std::string startANear, startBNear;
+  std::string startANear, startBNear, join;
   std::vector<std::string> forwardWeights;
   CLI::App* forward = app.add_subcommand("forward", "two flat outlines -> the D-Form they make");
   forward->add_option("piece_a", forwardJob.forward.pieceA, "outline of piece A (.svg or .json)")->required();
@@ -91,6 +91,8 @@ int run(int argc, char** argv) {
   forward->add_option("--start-b", forwardJob.forward.startB.fraction, "start of B's seam: arc-length fraction in [0, 1)");
   forward->add_option("--start-a-near", startANear, "start of A's seam: the outline point nearest X,Y (mm)");
   forward->add_option("--start-b-near", startBNear, "start of B's seam: the outline point nearest X,Y (mm)");
+  forward->add_option("--join", join, "boundaries zipped, A's then B's: outer,outer (default), inner,inner "
+                                      "(anti D-Form) or outer,inner (demi D-Form)");
   forward->add_flag("--flip", forwardJob.forward.flip, "zip piece B turned over");
   forward->add_flag("--fit-perimeter", forwardJob.forward.fitPerimeter, "scale piece B to A's perimeter");
   forward->add_option("--perimeter-tolerance", forwardJob.forward.perimeterTolerance, "largest relative perimeter difference (default 0.005)");
@@ -157,6 +159,8 @@ int run(int argc, char** argv) {
       return usage(Status(ErrorCode::Usage, "--start-a-near must look like X,Y"));
     if (!startBNear.empty() && !parsePoint(startBNear, forwardJob.forward.startB))
       return usage(Status(ErrorCode::Usage, "--start-b-near must look like X,Y"));
+    if (!join.empty() && !parseJoin(join, forwardJob.forward.joinA, forwardJob.forward.joinB))
+      return usage(Status(ErrorCode::Usage, "--join must be outer,outer, inner,inner, outer,inner or inner,outer"));
     for (const std::string& w : forwardWeights)
       if (Status s = setWeight(forwardJob, w); !s.isOk()) return usage(s);
     if (Status s = validateForwardJob(forwardJob.forward); !s.isOk()) return usage(s);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <optional>
 
 #include "core/polyline.h"
 #include "forward/transfer.h"
@@ -23,45 +25,110 @@ Eigen::Vector2d pointAtFraction(const Points2& P, double t) {
   return resampleClosed(P, 1, t).row(0).transpose();
 }
 
-// Piece B turned over: mirrored in x, reordered counter-clockwise. `start` follows the mirror.
-void mirror(Points2& P, StartPoint& start) {
-  const Eigen::Vector2d startPoint = start.nearestToPoint ? start.point : pointAtFraction(P, start.fraction);
-  P.col(0) *= -1.0;
-  P = P.colwise().reverse().eval();
-  start.nearestToPoint = true;
-  start.point = Eigen::Vector2d(-startPoint.x(), startPoint.y());
-}
-
 double resolveFraction(const Points2& P, const StartPoint& start) {
   return start.nearestToPoint ? nearestArcFraction(P, start.point) : start.fraction;
 }
 
-Result<Outline2> readDisc(const std::string& path) {
-  Result<Shape2> shape = readShape(path);
-  if (!shape.isOk()) return shape.status();
-  if (!shape.value().holes.empty())
-    return Status(ErrorCode::InputInvalid,
-                  path + ": the outline has " + std::to_string(shape.value().holes.size()) +
-                      " hole(s); a D-Form piece must be a disc without holes");
-  return shape.value().outer;
+// A piece as drawn, in mm: the boundary that is joined, the outline left free when the joined
+// boundary is a hole, and the creases. Loops are counter-clockwise as read.
+struct DrawnPiece {
+  Points2 joined;
+  std::optional<Points2> freeOutline;
+  std::vector<Points2> creases;
+};
+
+// Reads a piece and picks its joined boundary: a disc joins its outline, an annulus-like piece
+// (one hole) its hole. Says what it found, since the join decides what the D-Form is.
+Result<DrawnPiece> readPiece(const std::string& path, JoinedBoundary join, const std::string& name,
+                             MessageSink& sink) {
+  Result<Shape2> read = readShape(path);
+  if (!read.isOk()) return read.status();
+  Shape2& shape = read.value();
+  const std::size_t holes = shape.holes.size();
+  std::string found =
+      "piece " + name + " (" + path + "): outline " + format("%.3f mm", closedLength(shape.outer.points));
+  for (const Outline2& hole : shape.holes) found += format(", hole %.3f mm", closedLength(hole.points));
+  if (!shape.creases.empty()) found += ", " + std::to_string(shape.creases.size()) + " crease(s)";
+  DrawnPiece piece;
+  for (CreaseLine& crease : shape.creases) piece.creases.push_back(std::move(crease.points));
+  if (join == JoinedBoundary::Outer) {
+    if (holes != 0)
+      return Status(ErrorCode::InputInvalid,
+                    path + ": the outline has " + std::to_string(holes) +
+                        " hole(s); a classic D-Form piece must be a disc without holes (to zip a "
+                        "hole, as in anti and demi D-Forms, choose it with --join, e.g. --join inner,inner)");
+    piece.joined = std::move(shape.outer.points);
+    sink.info(found + "; joining its outline");
+  } else {
+    if (holes != 1)
+      return Status(ErrorCode::InputInvalid,
+                    path + ": --join inner needs a piece with exactly one hole, and this one has " +
+                        std::to_string(holes));
+    piece.joined = std::move(shape.holes[0].points);
+    piece.freeOutline = std::move(shape.outer.points);
+    sink.info(found + "; joining its hole, its outline stays free");
+  }
+  return piece;
 }
 
-// A piece meshed from its resampled seam (#n by 2, counter-clockwise). Piece A's seam runs
-// counter-clockwise (0, 1, ..., n-1); piece B's clockwise (0, n-1, ..., 1) so that the pieces
-// close into an outward-facing surface.
-Result<Piece> meshPiece(const Points2& seam, bool clockwiseSeam, const std::string& name,
-                        const std::string& source, double edgeLength) {
-  TriangulateOptions options;
-  options.targetEdgeLength = edgeLength;
-  Result<FlatMesh> mesh = triangulateDomain(seam, {}, options);
-  if (!mesh.isOk()) return Status(mesh.status().code(), source + ": " + mesh.status().message());
-  Piece piece;
-  piece.name = name;
-  piece.flat = mesh.value().V;
-  piece.F = mesh.value().F;
-  const int n = int(seam.rows());
-  for (int i = 0; i < n; ++i) piece.seam.push_back(clockwiseSeam ? (n - i) % n : i);
-  return piece;
+// Applies the row map f to every line of the piece.
+template <typename F>
+void mapPiece(DrawnPiece& piece, F f) {
+  piece.joined = f(piece.joined);
+  if (piece.freeOutline) piece.freeOutline = f(*piece.freeOutline);
+  for (Points2& crease : piece.creases) crease = f(crease);
+}
+
+// Piece B turned over: mirrored in x, loops reordered counter-clockwise. `start` follows the mirror.
+void mirror(DrawnPiece& piece, StartPoint& start) {
+  const Eigen::Vector2d startPoint =
+      start.nearestToPoint ? start.point : pointAtFraction(piece.joined, start.fraction);
+  mapPiece(piece, [](const Points2& P) { return Points2(P * Eigen::Vector2d(-1.0, 1.0).asDiagonal()); });
+  piece.joined = piece.joined.colwise().reverse().eval();
+  if (piece.freeOutline) piece.freeOutline = piece.freeOutline->colwise().reverse().eval();
+  start.nearestToPoint = true;
+  start.point = Eigen::Vector2d(-startPoint.x(), startPoint.y());
+}
+
+// The closed loop P (counter-clockwise) sampled at `fractions` (ascending from 0, as from
+// seamFractions) measured from `start` in `direction` (+1 counter-clockwise, -1 clockwise). Rows
+// come out counter-clockwise; order[k] is the row of the k-th sample.
+struct LoopSamples {
+  Points2 rows;
+  std::vector<int> order;
+};
+LoopSamples sampleLoop(const Points2& P, const std::vector<double>& fractions, double start, int direction) {
+  const int n = int(fractions.size());
+  std::vector<double> at(n);
+  LoopSamples samples;
+  samples.order.resize(n);
+  for (int k = 0; k < n; ++k) {
+    const int row = direction > 0 ? k : (n - k) % n;
+    at[row] = start + direction * fractions[k];
+    samples.order[k] = row;
+  }
+  samples.rows = resampleAtFractions(P, at);
+  return samples;
+}
+
+// Loop fraction c as a fraction of the way from `start` in `direction`.
+double fractionFrom(double c, double start, int direction) {
+  return std::fmod(direction * (c - start) + 2.0, 1.0);
+}
+
+// The crease's ends as rows of the sampled boundary `fixed`, and its points in between, about
+// `edge` apart. At the finest level its ends are sample points (see the corners passed to
+// seamFractions); a coarse level takes the nearest ones.
+InteriorLine creaseLine(const Points2& crease, const Points2& fixed, double edge) {
+  auto nearestRow = [&](const Eigen::RowVector2d& q) {
+    Eigen::Index row = 0;
+    (fixed.rowwise() - q).rowwise().squaredNorm().minCoeff(&row);
+    return int(row);
+  };
+  const int segments = std::max(1, int(std::lround(openLength(crease) / edge)));
+  const Eigen::MatrixXd points = resampleOpen(crease, segments);
+  return {nearestRow(crease.row(0)), nearestRow(crease.row(crease.rows() - 1)),
+          points.middleRows(1, segments - 1)};
 }
 
 // Starts a and b from the coarser solution: barycentric transfer, then each seam pair at the mean
@@ -76,6 +143,22 @@ void startFromCoarser(const DForm& coarse, Piece& a, Piece& b) {
 }
 
 }  // namespace
+
+const char* joinedBoundaryName(JoinedBoundary boundary) {
+  return boundary == JoinedBoundary::Outer ? "outer" : "inner";
+}
+
+bool parseJoin(const std::string& text, JoinedBoundary& a, JoinedBoundary& b) {
+  const std::size_t comma = text.find(',');
+  if (comma == std::string::npos) return false;
+  JoinedBoundary* targets[2] = {&a, &b};
+  const std::string names[2] = {text.substr(0, comma), text.substr(comma + 1)};
+  for (int p = 0; p < 2; ++p) {
+    if (names[p] != "outer" && names[p] != "inner") return false;
+    *targets[p] = names[p] == "outer" ? JoinedBoundary::Outer : JoinedBoundary::Inner;
+  }
+  return true;
+}
 
 Status validateForwardJob(const ForwardJob& job) {
   auto usage = [](const std::string& text) { return Status(ErrorCode::Usage, text); };
@@ -104,30 +187,33 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
   const auto start = Clock::now();
   ForwardRun run;
 
-  Result<Outline2> outlineA = readDisc(job.pieceA);
-  if (!outlineA.isOk()) return outlineA.status();
-  Result<Outline2> outlineB = readDisc(job.pieceB);
-  if (!outlineB.isOk()) return outlineB.status();
-  Points2 A = outlineA.value().points, B = outlineB.value().points;
-  run.perimeterA = closedLength(A);
-  run.perimeterB = closedLength(B);
+  Result<DrawnPiece> drawnA = readPiece(job.pieceA, job.joinA, "A", sink);
+  if (!drawnA.isOk()) return drawnA.status();
+  Result<DrawnPiece> drawnB = readPiece(job.pieceB, job.joinB, "B", sink);
+  if (!drawnB.isOk()) return drawnB.status();
+  DrawnPiece& A = drawnA.value();
+  DrawnPiece& B = drawnB.value();
+  run.perimeterA = closedLength(A.joined);
+  run.perimeterB = closedLength(B.joined);
   const double mismatch =
       std::abs(run.perimeterA - run.perimeterB) / std::max(run.perimeterA, run.perimeterB);
+  const bool classic = job.joinA == JoinedBoundary::Outer && job.joinB == JoinedBoundary::Outer;
+  const std::string lengths = classic ? "the perimeters" : "the joined boundaries' lengths";
   if (mismatch > job.perimeterTolerance) {
     if (!job.fitPerimeter)
       return Status(ErrorCode::InputInvalid,
-                    job.pieceA + " and " + job.pieceB + ": the perimeters differ" +
+                    job.pieceA + " and " + job.pieceB + ": " + lengths + " differ" +
                         format(" (%.3f mm and %.3f mm, %.2f%%", run.perimeterA, run.perimeterB,
                                100.0 * mismatch) +
-                        format(" > %.2f%%); a D-Form needs equal perimeters (--fit-perimeter "
+                        format(" > %.2f%%); a D-Form needs equal lengths (--fit-perimeter "
                                "scales piece B to match)",
                                100.0 * job.perimeterTolerance));
   }
   if (job.fitPerimeter) {
     run.scaleB = run.perimeterA / run.perimeterB;
-    const Eigen::RowVector2d centre = B.colwise().mean();
-    B = ((B.rowwise() - centre) * run.scaleB).rowwise() + centre;
-    sink.info(format("piece B scaled by %.6f to match piece A's perimeter (%.3f mm)", run.scaleB,
+    const Eigen::RowVector2d centre = B.joined.colwise().mean();
+    mapPiece(B, [&](const Points2& P) { return Points2(((P.rowwise() - centre) * run.scaleB).rowwise() + centre); });
+    sink.info(format("piece B scaled by %.6f to match piece A's joined length (%.3f mm)", run.scaleB,
                      run.perimeterA));
   }
   StartPoint startB = job.startB;
@@ -135,9 +221,15 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
     mirror(B, startB);
     sink.info("piece B is zipped turned over (--flip): its flat pattern is mirrored");
   }
-  run.startFractionA = resolveFraction(A, job.startA);
-  run.startFractionB = resolveFraction(B, startB);
+  run.startFractionA = resolveFraction(A.joined, job.startA);
+  run.startFractionB = resolveFraction(B.joined, startB);
   run.timings.read = secondsSince(start);
+
+  // Each seam runs so that the zipped pieces are consistently oriented: A's the way A's triangles
+  // run along it (counter-clockwise round an outline, clockwise round a hole), B's the other way
+  // round from B's triangles (so B is turned over unless exactly one of the two joins a hole).
+  const int directionA = job.joinA == JoinedBoundary::Outer ? 1 : -1;
+  const int directionB = job.joinB == JoinedBoundary::Outer ? -1 : 1;
 
   // Coarse to fine: the job is solved first with a third of the seam vertices (recursively, down
   // to kCoarsestSeam), and each level starts from the coarser solution carried over by
@@ -154,12 +246,28 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
     levels.push_back(levels.back() / kLevelRatio);
   std::reverse(levels.begin(), levels.end());
 
-  // Corners of both outlines as seam fractions from the starting pair.
-  std::vector<double> seamCorners;
-  for (double c : cornerFractions(A, kCornerTurn))
-    seamCorners.push_back(std::fmod(c - run.startFractionA + 1.0, 1.0));
-  for (double c : cornerFractions(B, kCornerTurn))
-    seamCorners.push_back(std::fmod(run.startFractionB - c + 1.0, 1.0));
+  // Points every level must sample: corners of both joined boundaries and the crease ends on
+  // them (as seam fractions from the starting pair), and corners and crease ends on each free
+  // outline (as fractions of that outline).
+  std::vector<double> seamCorners, freeCorners[2];
+  const DrawnPiece* drawn[2] = {&A, &B};
+  const double startFraction[2] = {run.startFractionA, run.startFractionB};
+  const int direction[2] = {directionA, directionB};
+  for (int p = 0; p < 2; ++p) {
+    const DrawnPiece& piece = *drawn[p];
+    for (double c : cornerFractions(piece.joined, kCornerTurn))
+      seamCorners.push_back(fractionFrom(c, startFraction[p], direction[p]));
+    if (piece.freeOutline) freeCorners[p] = cornerFractions(*piece.freeOutline, kCornerTurn);
+    for (const Points2& crease : piece.creases)
+      for (const Eigen::Index end : {Eigen::Index(0), crease.rows() - 1}) {
+        const Eigen::Vector2d q = crease.row(end);
+        const double onJoined = nearestArcFraction(piece.joined, q);
+        if ((pointAtFraction(piece.joined, onJoined) - q).norm() < 1e-6)
+          seamCorners.push_back(fractionFrom(onJoined, startFraction[p], direction[p]));
+        else if (piece.freeOutline)
+          freeCorners[p].push_back(nearestArcFraction(*piece.freeOutline, q));
+      }
+  }
 
   ForwardOptions options = job.solve;
   bool interrupted = false;
@@ -169,30 +277,55 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
     const int n = levels[level];
     const bool finest = level + 1 == levels.size();
     const auto meshStart = Clock::now();
-    // Seam vertex k sits at fraction startA + t_k on A (counter-clockwise) and startB - t_k on B
-    // (clockwise); B's counter-clockwise row j is its seam vertex (n - j) % n.
     const std::vector<double> t = seamFractions(n, seamCorners);
-    std::vector<double> onA(n), onB(n);
-    for (int k = 0; k < n; ++k) {
-      onA[k] = run.startFractionA + t[k];
-      onB[(n - k) % n] = run.startFractionB - t[k];
-    }
-    const Points2 seamA = resampleAtFractions(A, onA);
-    const Points2 seamB = resampleAtFractions(B, onB);
     const double seamEdge = run.perimeterA / n;
-    Result<Piece> a = meshPiece(seamA, false, "A", job.pieceA, job.interiorEdgeFactor * seamEdge);
-    if (!a.isOk()) return a.status();
-    Result<Piece> b = meshPiece(seamB, true, "B", job.pieceB, job.interiorEdgeFactor * seamEdge);
-    if (!b.isOk()) return b.status();
-    if (level > 0) startFromCoarser(solved.model, a.value(), b.value());
+    Piece pieces[2];
+    for (int p = 0; p < 2; ++p) {
+      const DrawnPiece& piece = *drawn[p];
+      const std::string& path = p == 0 ? job.pieceA : job.pieceB;
+      const LoopSamples seam = sampleLoop(piece.joined, t, startFraction[p], direction[p]);
+      // The mesher's fixed points: the outline, then the hole. The joined boundary is the outline
+      // of a disc and the hole of an annulus-like piece, whose outline is sampled about as
+      // densely as the seam.
+      Points2 outline = seam.rows;
+      std::vector<Points2> holes;
+      int seamFirstRow = 0;
+      if (piece.freeOutline) {
+        const int m = std::max(3, int(std::lround(closedLength(*piece.freeOutline) / seamEdge)));
+        outline = sampleLoop(*piece.freeOutline, seamFractions(m, freeCorners[p]), 0.0, 1).rows;
+        holes.push_back(seam.rows);
+        seamFirstRow = int(outline.rows());
+      }
+      Points2 fixed(outline.rows() + seam.rows.rows() * Eigen::Index(piece.freeOutline.has_value()), 2);
+      fixed.topRows(outline.rows()) = outline;
+      if (piece.freeOutline) fixed.bottomRows(seam.rows.rows()) = seam.rows;
+      std::vector<InteriorLine> creases;
+      for (const Points2& crease : piece.creases) creases.push_back(creaseLine(crease, fixed, seamEdge));
+
+      TriangulateOptions meshOptions;
+      meshOptions.targetEdgeLength = job.interiorEdgeFactor * seamEdge;
+      Result<FlatMesh> mesh = triangulateDomain(outline, holes, meshOptions, creases);
+      if (!mesh.isOk()) return Status(mesh.status().code(), path + ": " + mesh.status().message());
+      Piece& out = pieces[p];
+      out.name = p == 0 ? "A" : "B";
+      out.flat = std::move(mesh.value().V);
+      out.F = std::move(mesh.value().F);
+      for (int row : seam.order) out.seam.push_back(seamFirstRow + row);
+      if (piece.freeOutline) {
+        out.freeBoundaries.emplace_back(seamFirstRow);
+        std::iota(out.freeBoundaries[0].begin(), out.freeBoundaries[0].end(), 0);
+      }
+      out.creases = std::move(mesh.value().lines);
+    }
+    if (level > 0) startFromCoarser(solved.model, pieces[0], pieces[1]);
     run.timings.mesh += secondsSince(meshStart);
     // The finest level is what the user asked for; coarser ones are details for the log.
     const Level detail = finest ? Level::Info : Level::Debug;
     sink.emit(detail, (finest ? "meshed piece A with " : "coarse level: piece A with ") +
-                          std::to_string(a.value().flat.rows()) + " vertices and " +
-                          std::to_string(a.value().F.rows()) + " triangles, piece B with " +
-                          std::to_string(b.value().flat.rows()) + " and " +
-                          std::to_string(b.value().F.rows()));
+                          std::to_string(pieces[0].flat.rows()) + " vertices and " +
+                          std::to_string(pieces[0].F.rows()) + " triangles, piece B with " +
+                          std::to_string(pieces[1].flat.rows()) + " and " +
+                          std::to_string(pieces[1].F.rows()));
 
     const auto solveStart = Clock::now();
     // A coarse level only has to start the next one well: a few iterations, seam left to the
@@ -202,7 +335,7 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
       levelOptions.solver.maxIterations = std::min(options.solver.maxIterations, kCoarseIterations);
       levelOptions.constraintRounds = 0;
     }
-    solved = solveForward(a.value(), b.value(), levelOptions);
+    solved = solveForward(pieces[0], pieces[1], levelOptions);
     run.timings.solve += secondsSince(solveStart);
     if (interrupted) return Status(ErrorCode::Interrupted, "interrupted during the solve");
     if (!solved.summary.usable())

@@ -22,9 +22,21 @@ struct StartPoint {
   Eigen::Vector2d point = Eigen::Vector2d::Zero();
 };
 
+/// Which boundary of a piece is zipped (paper section 6.4): its outline, as in a classic D-Form,
+/// or its one hole. Two holes make an anti D-Form, an outline and a hole a demi D-Form; the other
+/// boundary of an annulus-like piece stays free.
+enum class JoinedBoundary { Outer, Inner };
+
+const char* joinedBoundaryName(JoinedBoundary boundary);  ///< "outer" or "inner"
+
+/// Reads "outer,inner" (A's joined boundary, then B's; "outer" or "inner" each) into the job;
+/// false when the text is not of that form.
+bool parseJoin(const std::string& text, JoinedBoundary& a, JoinedBoundary& b);
+
 struct ForwardJob {
   std::string pieceA, pieceB;  ///< outline files (SVG or JSON points)
-  StartPoint startA, startB;   ///< the starting pair (paper Definition 3)
+  JoinedBoundary joinA = JoinedBoundary::Outer, joinB = JoinedBoundary::Outer;
+  StartPoint startA, startB;   ///< the starting pair (paper Definition 3), on the joined boundaries
   int resolution = 100;        ///< seam vertices per piece
   bool flip = false;           ///< zip B turned over (its mirror image) instead
   bool fitPerimeter = false;   ///< scale B uniformly to A's perimeter
@@ -46,7 +58,7 @@ struct ForwardRun {
   SolverSummary summary;          ///< the Levenberg-Marquardt solve
   int constraintRounds = 0;       ///< multiplier rounds that closed the seam and fixed the outlines
   Timings timings;
-  double perimeterA = 0, perimeterB = 0;  ///< as read, mm
+  double perimeterA = 0, perimeterB = 0;  ///< the joined boundaries' lengths as read, mm
   double scaleB = 1.0;                    ///< applied by fitPerimeter
   double startFractionA = 0, startFractionB = 0;  ///< resolved starting pair
 };

@@ -101,11 +101,14 @@ Job parse(const json& root, const std::string& baseDir) {
   const std::string mode = root["mode"].get<std::string>();
   Job job;
   if (mode == "forward") {
-    onlyKeys(root, {"mode", "piece_a", "piece_b", "start_a", "start_b", "resolution", "flip",
+    onlyKeys(root, {"mode", "piece_a", "piece_b", "join", "start_a", "start_b", "resolution", "flip",
                     "fit_perimeter", "perimeter_tolerance", "weights", "solver"}, "");
     ForwardJob& f = job.forward;
     f.pieceA = path(root, "piece_a", baseDir);
     f.pieceB = path(root, "piece_b", baseDir);
+    if (root.contains("join") &&
+        !(root["join"].is_string() && parseJoin(root["join"].get<std::string>(), f.joinA, f.joinB)))
+      throw KeyError{"join", "must be \"outer,outer\", \"inner,inner\", \"outer,inner\" or \"inner,outer\""};
     if (root.contains("start_a")) f.startA = startPoint(root["start_a"], "start_a");
     if (root.contains("start_b")) f.startB = startPoint(root["start_b"], "start_b");
     if (root.contains("resolution")) f.resolution = integer(root, "resolution");
@@ -188,6 +191,7 @@ std::string jobToJson(const Job& job) {
     out = {{"mode", "forward"},
            {"piece_a", std::filesystem::absolute(f.pieceA).string()},
            {"piece_b", std::filesystem::absolute(f.pieceB).string()},
+           {"join", std::string(joinedBoundaryName(f.joinA)) + "," + joinedBoundaryName(f.joinB)},
            {"start_a", startJson(f.startA)},
            {"start_b", startJson(f.startB)},
            {"resolution", f.resolution},
