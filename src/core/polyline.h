@@ -13,7 +13,8 @@ namespace dform {
 /// Length of the closed polyline through the rows of P (#P by d).
 double closedLength(const Eigen::MatrixXd& P);
 
-/// Cumulative arc length at each vertex of the closed polyline: s[0] = 0, s[i] = length up to row i.
+/// Cumulative arc length at each vertex of the closed polyline: s[0] = 0, s[i] = length up to row
+/// i.
 Eigen::VectorXd cumulativeArcLength(const Eigen::MatrixXd& P);
 
 /// Signed area of a closed planar polygon, positive when counter-clockwise.
@@ -37,6 +38,13 @@ double nearestArcFraction(const Points2& P, const Eigen::Vector2d& q);
 /// The first pair of non-adjacent edges (i, j) of the closed polygon that touch or cross, if any.
 /// Edge i joins row i to row i+1 (mod #P). Runs in O(#P log #P) for typical outlines.
 std::optional<std::pair<int, int>> findSelfIntersection(const Points2& P);
+
+/// The first pair of edges (i of P, j of Q) of two closed polygons that touch or cross, if any.
+std::optional<std::pair<int, int>> findCrossing(const Points2& P, const Points2& Q);
+
+/// Whether q lies inside the closed polygon P (even-odd rule; a point on an edge may go either
+/// way).
+bool insideClosed(const Points2& P, const Eigen::Vector2d& q);
 
 /// Whether the 2D segments [a, b] and [c, d] touch or cross.
 bool segmentsIntersect(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,

@@ -52,15 +52,6 @@ double minAngleDegrees(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const
   return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
 }
 
-bool insidePolygon(const Points2& P, const Eigen::Vector2d& q) {
-  bool inside = false;
-  for (Eigen::Index i = 0, j = P.rows() - 1; i < P.rows(); j = i++)
-    if ((P(i, 1) > q.y()) != (P(j, 1) > q.y()) &&
-        q.x() < P(j, 0) + (q.y() - P(j, 1)) * (P(i, 0) - P(j, 0)) / (P(i, 1) - P(j, 1)))
-      inside = !inside;
-  return inside;
-}
-
 struct MeshStats {
   double minAngleAll = 180.0;       // every triangle
   double minAngleInterior = 180.0;  // triangles with no outline or hole vertex
@@ -99,9 +90,9 @@ MeshStats checkMesh(const FlatMesh& mesh, const Points2& boundary,
     EXPECT_GT(twice, 0.0) << "triangle " << t << " is not counter-clockwise";
     area += 0.5 * twice;
     const Eigen::Vector2d centroid = (a + b + c) / 3.0;
-    EXPECT_TRUE(insidePolygon(boundary, centroid)) << "triangle " << t << " outside the outline";
+    EXPECT_TRUE(insideClosed(boundary, centroid)) << "triangle " << t << " outside the outline";
     for (const Points2& hole : holes)
-      EXPECT_FALSE(insidePolygon(hole, centroid)) << "triangle " << t << " inside a hole";
+      EXPECT_FALSE(insideClosed(hole, centroid)) << "triangle " << t << " inside a hole";
     const double angle = minAngleDegrees(a, b, c);
     stats.minAngleAll = std::min(stats.minAngleAll, angle);
     if (mesh.F.row(t).minCoeff() >= fixedCount)
