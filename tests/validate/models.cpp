@@ -270,6 +270,42 @@ DForm annulusDForm(double R, double r, int sides, double edge, double slopeDeg) 
   return model;
 }
 
+DForm demiDForm(double R, double r, int sides, double edge, double height, double slopeDeg) {
+  TriangulateOptions options;
+  options.targetEdgeLength = edge;
+  const Result<FlatMesh> disc = triangulateDomain(regularPolygon(sides, r, false), {}, options);
+  const Result<FlatMesh> ring =
+      triangulateDomain(regularPolygon(sides, R, false), {regularPolygon(sides, r, true)}, options);
+  assert(disc.isOk() && ring.isOk() && "the disc and the annulus mesh");
+  DForm model;
+  Piece& a = model.a;
+  a.name = "A";
+  a.flat = disc.value().V;
+  a.F = disc.value().F;
+  a.shape.resize(a.flat.rows(), 3);
+  for (Eigen::Index v = 0; v < a.flat.rows(); ++v) {
+    const double rho = a.flat.row(v).norm() / r;
+    a.shape.row(v) << a.flat(v, 0), a.flat(v, 1), height * (1 - rho * rho);
+  }
+  a.seam = disc.value().boundary;
+  Piece& b = model.b;
+  b.name = "B";
+  b.flat = ring.value().V;
+  b.F = ring.value().F;
+  b.shape.resize(b.flat.rows(), 3);
+  const double slope = slopeDeg * M_PI / 180.0;
+  for (Eigen::Index v = 0; v < b.flat.rows(); ++v) {
+    const double rho = b.flat.row(v).norm(), t = std::atan2(b.flat(v, 1), b.flat(v, 0));
+    const double radius = r + (rho - r) * std::cos(slope);
+    b.shape.row(v) << radius * std::cos(t), radius * std::sin(t), -(rho - r) * std::sin(slope);
+  }
+  // The hole was given clockwise: hole vertex j sits at angle -2 pi j / sides, A's seam vertex i
+  // at 2 pi i / sides.
+  for (int i = 0; i < sides; ++i) b.seam.push_back(sides + (sides - i) % sides);
+  b.freeBoundaries = {ring.value().boundary};
+  return model;
+}
+
 Piece foldedSquare(int k, double size, const std::vector<GridCrease>& creases,
                    const std::string& name) {
   Piece piece;

@@ -61,6 +61,14 @@ DForm creasedTetraDForm(int k, double size = 40.0, double h = 0.25);
 DForm annulusDForm(double R = 50, double r = 20, int sides = 48, double edge = 6,
                    double slopeDeg = 5);
 
+/// A demi D-Form: a disc A of radius r (a `sides`-gon) whose outline is zipped to the hole of an
+/// annulus B (outer radius R), both meshed by triangulateDomain with edges of about `edge` mm.
+/// A bulges up as the cap z = height (1 - rho^2 / r^2); B, not mirrored, falls away from the seam
+/// as the cone of annulusDForm turned down. A's seam is its outline (counter-clockwise), B's the
+/// hole loop at the same points; B's outer loop is a free boundary.
+DForm demiDForm(double R = 45, double r = 25, int sides = 48, double edge = 6, double height = 12,
+                double slopeDeg = 10);
+
 /// A square of side `size` mm, a k by k grid whose cells are split along their (1, 1) diagonal,
 /// folded exactly along straight creases. Crease c runs along mesh edges from grid point
 /// (i0, j0) to (i1, j1), both on the boundary, in a direction (0, 1), (1, 0) or (1, 1); the part of
