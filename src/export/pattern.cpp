@@ -859,9 +859,16 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
       return labels;
     };
     auto clashes = [&](const std::vector<Path>& labels) {
-      for (const Path& label : labels)
-        for (const Polyline& other : taken)
-          if (overlapArea(convexHull(label.parts), other) > 0.0) return true;
+      for (const Path& label : labels) {
+        const Polyline hull = convexHull(label.parts);
+        const Box box = boxOf({hull}, Eigen::Matrix2d::Identity());
+        for (const Polyline& other : taken) {
+          const Box near = boxOf({other}, Eigen::Matrix2d::Identity());
+          const bool apart = near.lo.x() > box.hi.x() || box.lo.x() > near.hi.x() ||
+                             near.lo.y() > box.hi.y() || box.lo.y() > near.hi.y();
+          if (!apart && overlapArea(hull, other) > 0.0) return true;
+        }
+      }
       return false;
     };
     std::vector<Path> names = nameLabels({});
