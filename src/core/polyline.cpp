@@ -34,7 +34,8 @@ double signedArea(const Points2& P) {
   return 0.5 * twiceArea;
 }
 
-Eigen::MatrixXd resampleAtFractions(const Eigen::MatrixXd& P, const std::vector<double>& fractions) {
+Eigen::MatrixXd resampleAtFractions(const Eigen::MatrixXd& P,
+                                    const std::vector<double>& fractions) {
   assert(P.rows() >= 2 && "resampleAtFractions needs a polyline");
   const Eigen::Index m = P.rows();
   const Eigen::VectorXd s = cumulativeArcLength(P);
@@ -141,29 +142,64 @@ bool segmentsIntersect(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const
          (d3 == 0 && onSegment(a, b, c)) || (d4 == 0 && onSegment(a, b, d));
 }
 
+namespace {
+
+// The x-range of edge e of the closed polygon P (edge e joins row e to row e+1).
+std::pair<double, double> edgeRangeX(const Points2& P, int e) {
+  const double x0 = P(e, 0), x1 = P((e + 1) % P.rows(), 0);
+  return {std::min(x0, x1), std::max(x0, x1)};
+}
+
+// Sweep over x: visits each pair of items whose x-ranges overlap, in sweep order, until `visit`
+// returns true.
+template <class Visit>
+void sweepOverlapping(const std::vector<std::pair<double, double>>& ranges, Visit visit) {
+  std::vector<int> order(ranges.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(),
+            [&](int a, int b) { return ranges[a].first < ranges[b].first; });
+  for (size_t oi = 0; oi < order.size(); ++oi)
+    for (size_t oj = oi + 1;
+         oj < order.size() && ranges[order[oj]].first <= ranges[order[oi]].second; ++oj)
+      if (visit(order[oi], order[oj])) return;
+}
+
+}  // namespace
+
 std::optional<std::pair<int, int>> findSelfIntersection(const Points2& P, bool closed) {
   const int n = int(P.rows());
   const int edges = closed ? n : n - 1;
   if (edges < 3) return std::nullopt;
-  // Sweep over x: sort edges by their left end and compare only edges whose x-ranges overlap.
-  std::vector<int> order(edges);
-  std::iota(order.begin(), order.end(), 0);
-  auto minX = [&](int e) { return std::min(P(e, 0), P((e + 1) % n, 0)); };
-  auto maxX = [&](int e) { return std::max(P(e, 0), P((e + 1) % n, 0)); };
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return minX(a) < minX(b); });
-  for (int oi = 0; oi < edges; ++oi) {
-    const int e = order[oi];
-    const double reach = maxX(e);
-    for (int oj = oi + 1; oj < edges && minX(order[oj]) <= reach; ++oj) {
-      const int f = order[oj];
-      const int gap = std::abs(e - f);
-      // Neighbours share a vertex by construction (the first and last edge only when closed).
-      if (gap == 1 || (closed && gap == n - 1)) continue;
-      if (segmentsIntersect(P.row(e), P.row((e + 1) % n), P.row(f), P.row((f + 1) % n)))
-        return std::make_pair(std::min(e, f), std::max(e, f));
-    }
-  }
-  return std::nullopt;
+  std::vector<std::pair<double, double>> ranges;
+  for (int e = 0; e < edges; ++e) ranges.push_back(edgeRangeX(P, e));
+  std::optional<std::pair<int, int>> found;
+  sweepOverlapping(ranges, [&](int e, int f) {
+    const int gap = std::abs(e - f);
+    // Neighbours share a vertex by construction (the first and last edge only when closed).
+    if (gap == 1 || (closed && gap == n - 1)) return false;
+    if (!segmentsIntersect(P.row(e), P.row((e + 1) % n), P.row(f), P.row((f + 1) % n)))
+      return false;
+    found = std::make_pair(std::min(e, f), std::max(e, f));
+    return true;
+  });
+  return found;
+}
+
+std::optional<std::pair<int, int>> findCrossing(const Points2& P, const Points2& Q) {
+  const int n = int(P.rows()), m = int(Q.rows());
+  std::vector<std::pair<double, double>> ranges;  // P's edges, then Q's
+  for (int e = 0; e < n; ++e) ranges.push_back(edgeRangeX(P, e));
+  for (int e = 0; e < m; ++e) ranges.push_back(edgeRangeX(Q, e));
+  std::optional<std::pair<int, int>> found;
+  sweepOverlapping(ranges, [&](int e, int f) {
+    if ((e < n) == (f < n)) return false;  // two edges of the same polygon
+    const int i = std::min(e, f), j = std::max(e, f) - n;
+    if (!segmentsIntersect(P.row(i), P.row((i + 1) % n), Q.row(j), Q.row((j + 1) % m)))
+      return false;
+    found = std::make_pair(i, j);
+    return true;
+  });
+  return found;
 }
 
 Eigen::Vector2d segmentsMeetingPoint(const Eigen::Vector2d& a, const Eigen::Vector2d& b,

@@ -13,7 +13,8 @@ namespace dform {
 /// Length of the closed polyline through the rows of P (#P by d).
 double closedLength(const Eigen::MatrixXd& P);
 
-/// Cumulative arc length at each vertex of the closed polyline: s[0] = 0, s[i] = length up to row i.
+/// Cumulative arc length at each vertex of the closed polyline: s[0] = 0, s[i] = length up to row
+/// i.
 Eigen::VectorXd cumulativeArcLength(const Eigen::MatrixXd& P);
 
 /// Signed area of a closed planar polygon, positive when counter-clockwise.
@@ -45,6 +46,9 @@ double nearestArcFraction(const Points2& P, const Eigen::Vector2d& q);
 /// i joins row i to row i+1, modulo #P when `closed` (a polygon); an open polyline has #P - 1
 /// edges. Runs in O(#P log #P) for typical outlines.
 std::optional<std::pair<int, int>> findSelfIntersection(const Points2& P, bool closed = true);
+
+/// The first pair of edges (i of P, j of Q) of two closed polygons that touch or cross, if any.
+std::optional<std::pair<int, int>> findCrossing(const Points2& P, const Points2& Q);
 
 /// Whether the 2D segments [a, b] and [c, d] touch or cross.
 bool segmentsIntersect(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,

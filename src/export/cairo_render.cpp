@@ -5,6 +5,7 @@
 #include <cairo.h>
 
 #include <memory>
+#include <vector>
 
 #include "export/internal.h"
 
@@ -44,8 +45,9 @@ void drawLayer(cairo_t* cr, const Layer& layer, double minWidthMm) {
       continue;
     }
     if (p.dashed) {
-      const double dash[2] = {layer.dashMm, layer.dashMm};
-      cairo_set_dash(cr, dash, 2, 0);
+      const std::vector<double> dash =
+          p.dash.empty() ? std::vector<double>{layer.dashMm, layer.dashMm} : p.dash;
+      cairo_set_dash(cr, dash.data(), int(dash.size()), 0);
     }
     cairo_stroke(cr);
     cairo_set_dash(cr, nullptr, 0, 0);
@@ -66,7 +68,8 @@ void drawPage(cairo_t* cr, const PatternBuild& pattern, const PageView& page, do
 }
 
 Status cairoError(cairo_status_t status, const std::string& what) {
-  return {ErrorCode::OutputFailed, what + ": Cairo failed (" + cairo_status_to_string(status) + ")"};
+  return {ErrorCode::OutputFailed,
+          what + ": Cairo failed (" + cairo_status_to_string(status) + ")"};
 }
 
 }  // namespace
@@ -84,8 +87,7 @@ Result<std::string> pdfDocument(const PatternBuild& pattern) {
   cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_SUBJECT,
                                  pattern.drawing.description.c_str());
   cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATOR, "dform export");
-  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()),
-                                                        cairo_destroy);
+  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()), cairo_destroy);
   for (const PageView& page : pattern.pages) {
     cairo_pdf_surface_set_size(surface.get(), page.width * k, page.height * k);
     cairo_save(cr.get());
@@ -111,15 +113,15 @@ Result<std::string> pngImage(const PatternBuild& pattern, int pageIndex, double 
   const int w = int(std::ceil(page.width * k)), h = int(std::ceil(page.height * k));
   std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
       cairo_image_surface_create(CAIRO_FORMAT_RGB24, w, h), cairo_surface_destroy);
-  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()),
-                                                        cairo_destroy);
+  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()), cairo_destroy);
   cairo_set_source_rgb(cr.get(), 1, 1, 1);
   cairo_paint(cr.get());
   cairo_scale(cr.get(), k, k);
   drawPage(cr.get(), pattern, page, 1.0 / k);  // hairlines: one pixel
   cr.reset();
   std::string bytes;
-  const cairo_status_t status = cairo_surface_write_to_png_stream(surface.get(), appendToString, &bytes);
+  const cairo_status_t status =
+      cairo_surface_write_to_png_stream(surface.get(), appendToString, &bytes);
   if (status != CAIRO_STATUS_SUCCESS) return cairoError(status, "PNG preview");
   return bytes;
 }

@@ -51,6 +51,7 @@ Result<PreparedExport> prepareExport(const DForm& model, const ExportOptions& op
   summary.sheetHeightMm = pat.drawing.height;
   summary.ticks = int(pat.ticks.size());
   summary.tabs = int(pat.tabs.size());
+  summary.creases = int(pat.pieces[0].creases.size() + pat.pieces[1].creases.size());
   summary.pages = int(pat.pages.size());
   summary.triangles = int(model.a.F.rows() + model.b.F.rows());
   if (summary.pages > 1)

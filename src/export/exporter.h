@@ -101,6 +101,7 @@ struct ExportSummary {
   double sheetWidthMm = 0, sheetHeightMm = 0;  ///< the pattern canvas (mm)
   int ticks = 0;                               ///< tick pairs
   int tabs = 0;                                ///< glue tabs on both pieces
+  int creases = 0;                             ///< crease fold lines on both pieces
   int pages = 0;                               ///< PDF pages (more than 1 when tiled)
   int triangles = 0;                           ///< triangles in the STL (both pieces)
 };

@@ -8,6 +8,7 @@
 #include "core/status.h"
 #include "core/types.h"
 #include "export/exporter.h"
+#include "validate/metrics.h"
 
 namespace dform::fab {
 
@@ -18,18 +19,19 @@ using Polyline = std::vector<Vec2>;
 struct Path {
   std::string id;
   std::vector<Polyline> parts;
-  bool closed = false;  ///< every part is a closed loop
-  bool filled = false;  ///< filled with the layer colour, no stroke (registration square)
-  bool dashed = false;  ///< drawn with the layer's dash pattern
+  bool closed = false;       ///< every part is a closed loop
+  bool filled = false;       ///< filled with the layer colour, no stroke (registration square)
+  bool dashed = false;       ///< drawn with the layer's dash pattern, or with `dash` when it is set
+  std::vector<double> dash;  ///< dashed: on/off lengths (mm) instead of the layer's (a fold style)
 };
 
 /// An Inkscape layer: one operation, one colour, one stroke width.
 struct Layer {
-  std::string name;       ///< "Cut", "Score", "Engrave", "Print", "Regmarks", ...
-  std::string color;      ///< #RRGGBB
-  double widthMm = 0.025; ///< stroke width (mm)
-  double dashMm = 3.0;    ///< dash and gap length for dashed paths (mm)
-  bool printed = true;    ///< drawn in the PDF and PNG (a print-and-cut Cut layer is not)
+  std::string name;        ///< "Cut", "Score", "Engrave", "Print", "Regmarks", ...
+  std::string color;       ///< #RRGGBB
+  double widthMm = 0.025;  ///< stroke width (mm)
+  double dashMm = 3.0;     ///< dash and gap length for dashed paths (mm)
+  bool printed = true;     ///< drawn in the PDF and PNG (a print-and-cut Cut layer is not)
   std::vector<Path> paths;
 };
 
@@ -46,13 +48,13 @@ struct PageView {
   double width = 0, height = 0;  ///< page size (mm)
   Vec2 origin{0, 0};             ///< canvas point drawn at the page's (0, 0)
   double clipX0 = 0, clipY0 = 0, clipX1 = 0, clipY1 = 0;  ///< page area the canvas shows (mm)
-  std::vector<Layer> overlay;    ///< drawn in page coordinates, unclipped
+  std::vector<Layer> overlay;                             ///< drawn in page coordinates, unclipped
 };
 
 struct TickInfo {
   int id = 0;
-  double s = 0;    ///< seam arc length from seam[0] (mm)
-  Vec2 onA, onB;   ///< where the tick crosses each piece's outline (sheet mm)
+  double s = 0;   ///< seam arc length from seam[0] (mm)
+  Vec2 onA, onB;  ///< where the tick crosses each piece's outline (sheet mm)
 };
 
 struct TabInfo {
@@ -63,12 +65,25 @@ struct TabInfo {
   Polyline fold;          ///< the fold line (sheet mm), on the piece outline
 };
 
+/// A crease drawn on the pattern as a fold line.
+struct CreaseInfo {
+  std::string id;   ///< "A-crease-1-mountain"
+  CreaseFold fold;  ///< direction and angle from the solved shape
+  Polyline line;    ///< the crease (sheet mm), boundary to boundary
+};
+
 struct PieceInfo {
   std::string name;
-  Polyline outline;            ///< seam polyline in seam order from seam[0] (sheet mm)
-  std::vector<Polyline> cut;   ///< closed cut paths (outline with tabs, kerf applied)
-  double perimeter = 0;        ///< flat seam length (mm)
-  double rotationDeg = 0;      ///< rotation applied on the sheet (after flipping y)
+  Polyline outline;  ///< seam polyline in seam order from seam[0] (sheet mm)
+  /// Every boundary loop (sheet mm), the outer outline first: the piece's material by the
+  /// even-odd rule. Just the seam for a classic piece.
+  std::vector<Polyline> boundaries;
+  bool seamIsHole = false;         ///< the seam is a hole's loop (anti and demi D-Forms)
+  std::vector<Polyline> cut;       ///< closed outer cut paths (outline with tabs, kerf applied)
+  std::vector<Polyline> holeCuts;  ///< closed cut paths of the holes (cut before the outer ones)
+  std::vector<CreaseInfo> creases;
+  double perimeter = 0;    ///< flat seam length (mm)
+  double rotationDeg = 0;  ///< rotation applied on the sheet (after flipping y)
 };
 
 struct PatternBuild {

@@ -1,7 +1,7 @@
 // The fabrication part of the quality gate, measured on the laid-out pattern rather than trusted
 // from its construction: everything on the sheet, glue tabs clear of each other and of both
-// pieces, the pieces clear of each other, labels inside their piece and clear of each other.
-#include <algorithm>
+// pieces, the pieces clear of each other, labels inside their piece and clear of each other. A
+// piece is its material: the outline minus its holes.
 #include <string>
 
 #include "export/internal.h"
@@ -20,32 +20,6 @@ bool endsWith(const std::string& s, const std::string& tail) {
 bool isLabel(const Path& p) {
   return endsWith(p.id, "-label") || endsWith(p.id, "-name") || endsWith(p.id, "-failed-gate") ||
          p.id == "title" || p.id == "note";
-}
-
-// The convex hull of a label's stroke points (Andrew's monotone chain), counter-clockwise: the
-// footprint two labels must not share.
-Polyline footprint(const Path& label) {
-  Polyline pts;
-  for (const Polyline& part : label.parts) pts.insert(pts.end(), part.begin(), part.end());
-  std::sort(pts.begin(), pts.end(), [](const Vec2& a, const Vec2& b) {
-    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-  });
-  if (pts.size() < 3) return pts;
-  auto cross = [](const Vec2& o, const Vec2& a, const Vec2& b) {
-    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
-  };
-  Polyline hull(2 * pts.size());
-  size_t k = 0;
-  for (size_t i = 0; i < pts.size(); ++i) {
-    while (k >= 2 && cross(hull[k - 2], hull[k - 1], pts[i]) <= 0) --k;
-    hull[k++] = pts[i];
-  }
-  for (size_t i = pts.size() - 1, lower = k + 1; i-- > 0;) {
-    while (k >= lower && cross(hull[k - 2], hull[k - 1], pts[i]) <= 0) --k;
-    hull[k++] = pts[i];
-  }
-  hull.resize(k - 1);
-  return hull;
 }
 
 // The piece a path belongs to, from its id ("A-tick-07-label" -> A), or -1.
@@ -91,28 +65,35 @@ LayoutFindings checkLayout(const PatternBuild& pattern) {
         note(f,
              "glue tabs " + std::to_string(i + 1) + " and " + std::to_string(j + 1) + " overlap");
       }
-    // Its own piece (it is attached along the fold line, which shares no area) and the other one.
+    // Its own piece (it is attached along the fold line, which shares no area; a tab on a hole's
+    // seam lies in the hole) and the other one.
     for (size_t p = 0; p < pieces.size(); ++p)
-      if (overlapArea(tabs[i].polygon, pieces[p].outline) > kOverlapTolMm2) {
+      if (overlapArea({tabs[i].polygon}, pieces[p].boundaries) > kOverlapTolMm2) {
         ++f.tabsOverPieces;
         note(f, "glue tab " + std::to_string(i + 1) + " overlaps piece " + pieces[p].name);
       }
   }
-  if (pieces.size() == 2 && !pieces[0].cut.empty() && !pieces[1].cut.empty() &&
-      overlapArea(pieces[0].cut.front(), pieces[1].cut.front()) > kOverlapTolMm2) {
+  // Each piece's cut region: its outer cut paths and its holes' (even-odd).
+  auto cutRegion = [](const PieceInfo& piece) {
+    std::vector<Polyline> region = piece.cut;
+    region.insert(region.end(), piece.holeCuts.begin(), piece.holeCuts.end());
+    return region;
+  };
+  if (pieces.size() == 2 &&
+      overlapArea(cutRegion(pieces[0]), cutRegion(pieces[1])) > kOverlapTolMm2) {
     f.overlappingPieces = 1;
     note(f, "the cut paths of " + pieces[0].name + " and " + pieces[1].name + " overlap");
   }
 
   std::vector<Polyline> hulls;
   for (const Path* label : labels) {
-    hulls.push_back(footprint(*label));
+    hulls.push_back(convexHull(label->parts));  // the footprint two labels must not share
     // A piece's labels lie inside it; the sheet's own (title, calibration bar) only on the sheet.
     const int p = pieceOf(*label, pieces);
     if (p < 0) continue;
     bool inside = true;
     for (const Polyline& part : label->parts)
-      for (const Vec2& q : part) inside = inside && insidePolygon(pieces[size_t(p)].outline, q);
+      for (const Vec2& q : part) inside = inside && insideRegion(pieces[size_t(p)].boundaries, q);
     if (!inside) {
       ++f.labelsOutside;
       note(f, "label " + label->id + " is not inside its piece");

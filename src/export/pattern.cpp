@@ -1,11 +1,14 @@
 // The flat pattern: seam ticks at equal arc length on both pieces, glue tabs, cut paths (outline
-// with tabs merged, kerf offset), placement on the sheet, single-stroke labels and the pages.
-// Geometry is computed in each piece's flat frame (mm, y up), then mapped to the sheet (y down).
+// with tabs merged, holes, kerf offset), crease fold lines, placement on the sheet, single-stroke
+// labels and the pages. Geometry is computed in each piece's flat frame (mm, y up), then mapped to
+// the sheet (y down). A piece's seam may be its outer outline or a hole's loop (anti and demi
+// D-Forms): ticks and tabs go along the seam only, on the side away from the material.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 
+#include "core/piece_loops.h"
 #include "core/polyline.h"
 #include "export/internal.h"
 #include "export/plane_geometry.h"
@@ -23,9 +26,9 @@ constexpr double kCricutW = 6.75 * 25.4, kCricutH = 9.25 * 25.4;
 // 20 mm kept clear of artwork around them.
 constexpr double kRegInset = 10.0, kRegSquare = 5.0, kRegArm = 20.0, kRegLine = 0.3,
                  kRegClear = 20.0;
-constexpr double kTickOut = 1.5;     // tick length outside the outline (mm)
-constexpr double kTickIn = 3.0;      // tick length inside the outline (mm)
-constexpr double kStartTickIn = 6.0; // the start tick is longer (mm)
+constexpr double kTickOut = 1.5;      // tick length outside the outline (mm)
+constexpr double kTickIn = 3.0;       // tick length inside the outline (mm)
+constexpr double kStartTickIn = 6.0;  // the start tick is longer (mm)
 
 Points2 toPoints(const Polyline& p) {
   Points2 P(Eigen::Index(p.size()), 2);
@@ -46,20 +49,34 @@ std::string formatMm(double x, int decimals = 1) {
   return buf;
 }
 
+// The rows of `flat` listed by `loop`, as a polyline.
+Polyline flatPolyline(const Points2& flat, const std::vector<int>& loop) {
+  Polyline P;
+  for (int v : loop) P.emplace_back(flat(v, 0), flat(v, 1));
+  return P;
+}
+
+// The closed polygon turned counter-clockwise (ccw) or clockwise.
+Polyline oriented(const Polyline& P, bool ccw) {
+  return (signedArea(toPoints(P)) >= 0) == ccw ? P : Polyline(P.rbegin(), P.rend());
+}
+
 // A piece's seam as a closed polyline in its flat frame, parameterised by arc length.
 struct Seam {
   Polyline P;
   std::vector<double> cum;         // cum[i] = arc length at vertex i; cum[n] = L
   std::vector<double> turnPrefix;  // sum of |turning angle| at vertices 0..i-1
   double L = 0;
-  double orient = 1;               // +1 counter-clockwise, -1 clockwise
+  double orient = 1;  // +1 counter-clockwise, -1 clockwise
+  bool hole = false;  // the seam is a hole's loop: the material lies outside it
 
   int n() const { return int(P.size()); }
 
-  explicit Seam(const Piece& piece) {
-    for (int v : piece.seam) P.emplace_back(piece.flat(v, 0), piece.flat(v, 1));
+  explicit Seam(const Piece& piece)
+      : P(flatPolyline(piece.flat, piece.seam)), hole(seamIsHole(piece)) {
     cum.assign(P.size() + 1, 0.0);
-    for (int i = 0; i < n(); ++i) cum[size_t(i) + 1] = cum[size_t(i)] + (P[next(i)] - P[size_t(i)]).norm();
+    for (int i = 0; i < n(); ++i)
+      cum[size_t(i) + 1] = cum[size_t(i)] + (P[next(i)] - P[size_t(i)]).norm();
     L = cum.back();
     orient = signedArea(toPoints(P)) >= 0 ? 1.0 : -1.0;
     turnPrefix.assign(P.size() + 1, 0.0);
@@ -79,9 +96,10 @@ struct Seam {
     }
     return Vec2(1, 0);
   }
+  // Unit normal of segment i away from the material: out of the piece, or into its hole.
   Vec2 outward(int i) const {
     const Vec2 t = dir(i);
-    return orient > 0 ? Vec2(t.y(), -t.x()) : Vec2(-t.y(), t.x());
+    return orient * (hole ? -1 : 1) > 0 ? Vec2(t.y(), -t.x()) : Vec2(-t.y(), t.x());
   }
   // Offset direction at vertex i for an offset curve at constant distance (mitre, capped at 2x).
   Vec2 miter(int i) const {
@@ -151,10 +169,20 @@ FlatTab makeTab(const Seam& seam, int piece, double s0, double s1, double width,
   return tab;
 }
 
-bool tabIsClean(const FlatTab& tab, const Polyline& pieceOutline,
+// A piece's material in its flat frame: every boundary loop, the outer outline first (even-odd).
+std::vector<Polyline> materialLoops(const Piece& piece) {
+  const std::vector<std::vector<int>> loops = boundaryLoops(piece);
+  const size_t outer = size_t(outerLoopIndex(piece));
+  std::vector<Polyline> material{flatPolyline(piece.flat, loops[outer])};
+  for (size_t k = 0; k < loops.size(); ++k)
+    if (k != outer) material.push_back(flatPolyline(piece.flat, loops[k]));
+  return material;
+}
+
+bool tabIsClean(const FlatTab& tab, const std::vector<Polyline>& material,
                 const std::vector<FlatTab>& accepted) {
   if (findSelfIntersection(toPoints(tab.polygon))) return false;
-  if (overlapArea(tab.polygon, pieceOutline) > kOverlapTolMm2) return false;
+  if (overlapArea({tab.polygon}, material) > kOverlapTolMm2) return false;
   for (const FlatTab& other : accepted) {
     if (other.piece == tab.piece && overlapArea(tab.polygon, other.polygon) > kOverlapTolMm2)
       return false;
@@ -165,7 +193,8 @@ bool tabIsClean(const FlatTab& tab, const Polyline& pieceOutline,
 // Splits the seam into tab intervals no longer than maxLen whose seam turns by at most maxTurn on
 // either piece, then builds each tab; a tab that would overlap its piece or a neighbour is made
 // narrower, then split, then left out (with a message).
-std::vector<FlatTab> makeTabs(const Seam seams[2], const ExportOptions& o, double L,
+std::vector<FlatTab> makeTabs(const Seam seams[2], const std::vector<Polyline> material[2],
+                              const ExportOptions& o, double L,
                               std::vector<std::string>& messages) {
   std::vector<FlatTab> tabs;
   if (o.tabWidthMm <= 0) return tabs;
@@ -194,13 +223,13 @@ std::vector<FlatTab> makeTabs(const Seam seams[2], const ExportOptions& o, doubl
     const Seam& seam = seams[piece];
     const auto [s0, s1] = intervals[k];
     FlatTab tab = makeTab(seam, piece, s0, s1, o.tabWidthMm, angle);
-    if (tabIsClean(tab, seam.P, tabs)) {
+    if (tabIsClean(tab, material[piece], tabs)) {
       tabs.push_back(tab);
       continue;
     }
     const double narrow = 0.5 * o.tabWidthMm;
     tab = makeTab(seam, piece, s0, s1, narrow, angle);
-    if (tabIsClean(tab, seam.P, tabs)) {
+    if (tabIsClean(tab, material[piece], tabs)) {
       tabs.push_back(tab);
       continue;
     }
@@ -209,7 +238,7 @@ std::vector<FlatTab> makeTabs(const Seam seams[2], const ExportOptions& o, doubl
     for (const auto& [a, b] : {std::pair{s0, mid - halfGap}, std::pair{mid + halfGap, s1}}) {
       if (b - a < 2 * narrow / std::tan(angle) + 1.0) continue;
       FlatTab half = makeTab(seam, piece, a, b, narrow, angle);
-      if (tabIsClean(half, seam.P, tabs)) {
+      if (tabIsClean(half, material[piece], tabs)) {
         tabs.push_back(half);
         any = true;
       }
@@ -224,18 +253,32 @@ std::vector<FlatTab> makeTabs(const Seam seams[2], const ExportOptions& o, doubl
   return tabs;
 }
 
-// The closed cut paths of one piece (flat frame): outline and tabs merged, offset by the kerf.
-std::vector<Polyline> cutPaths(const Seam& seam, const std::vector<FlatTab>& tabs, int piece,
-                               double kerf) {
-  // The outline gets the tabs' fold ends as vertices, computed exactly as the tabs' own, so that
+struct CutPaths {
+  std::vector<Polyline> outer;  // counter-clockwise in the flat frame
+  std::vector<Polyline> holes;  // clockwise
+};
+
+// The closed cut paths of one piece (flat frame): its outline, holes and tabs merged, offset by
+// the kerf (outward from the material: the outline grows and the holes shrink). `freeLoops` are
+// its free boundaries; `outer` is outerLoopIndex (0 the seam, k free loop k - 1).
+CutPaths cutPaths(const Seam& seam, const std::vector<Polyline>& freeLoops, int outer,
+                  const std::vector<FlatTab>& tabs, int piece, double kerf) {
+  // The seam gets the tabs' fold ends as vertices, computed exactly as the tabs' own, so that
   // piece and tabs share their edges to the last bit and the union leaves no slivers.
   std::vector<double> ends;
   for (const FlatTab& t : tabs)
     if (t.piece == piece) ends.insert(ends.end(), {t.s0, t.s1});
-  if (ends.empty() && kerf <= 0)
-    return {seam.orient > 0 ? seam.P : Polyline(seam.P.rbegin(), seam.P.rend())};
+  std::vector<Polyline> loops{seam.P};
+  loops.insert(loops.end(), freeLoops.begin(), freeLoops.end());
+  CutPaths out;
+  if (ends.empty() && kerf <= 0) {
+    for (size_t k = 0; k < loops.size(); ++k)
+      (int(k) == outer ? out.outer : out.holes).push_back(oriented(loops[k], int(k) == outer));
+    return out;
+  }
   std::sort(ends.begin(), ends.end());
-  Polyline outline;
+  Polyline& outline = loops[0];
+  outline.clear();
   size_t e = 0;
   for (int i = 0; i < seam.n(); ++i) {
     for (; e < ends.size() && ends[e] <= seam.cum[size_t(i)]; ++e)
@@ -243,7 +286,13 @@ std::vector<Polyline> cutPaths(const Seam& seam, const std::vector<FlatTab>& tab
     outline.push_back(seam.P[size_t(i)]);
   }
   for (; e < ends.size(); ++e) outline.push_back(seam.at(ends[e]));
-  ClipperLib::Paths shapes{toClip(outline)};
+  // Non-zero winding: the outline counter-clockwise, holes clockwise, tabs (in a hole too)
+  // counter-clockwise.
+  ClipperLib::Paths shapes;
+  for (size_t k = 0; k < loops.size(); ++k) {
+    shapes.push_back(toClip(loops[k]));
+    if (int(k) != outer) ClipperLib::ReversePath(shapes.back());
+  }
   for (const FlatTab& t : tabs)
     if (t.piece == piece) shapes.push_back(toClip(t.polygon));
   ClipperLib::Paths merged;
@@ -258,8 +307,8 @@ std::vector<Polyline> cutPaths(const Seam& seam, const std::vector<FlatTab>& tab
     offset.Execute(grown, kerf * kClipScale);
     merged = grown;
   }
-  std::vector<Polyline> out;
-  for (const auto& p : merged) out.push_back(fromClip(p));
+  for (const auto& p : merged)
+    (ClipperLib::Orientation(p) ? out.outer : out.holes).push_back(fromClip(p));
   return out;
 }
 
@@ -376,10 +425,14 @@ std::string tickLabel(int k) {
   std::string turned;
   for (auto it = s.rbegin(); it != s.rend(); ++it) {
     const char c = *it;
-    if (c == '6') turned += '9';
-    else if (c == '9') turned += '6';
-    else if (c == '0' || c == '1' || c == '8') turned += c;
-    else return s;
+    if (c == '6')
+      turned += '9';
+    else if (c == '9')
+      turned += '6';
+    else if (c == '0' || c == '1' || c == '8')
+      turned += c;
+    else
+      return s;
   }
   return turned != s ? s + "." : s;
 }
@@ -391,31 +444,49 @@ Vec2 readable(Vec2 t) {
   return t;
 }
 
-// Whether a text box centred at c (half-extents along d and its normal) sits inside the outline
-// with `clear` mm to spare.
-bool boxInside(const Polyline& outline, const Vec2& c, const Vec2& d, double halfW, double halfH,
-               double clear) {
+// Whether a text box centred at c (half-extents along d and its normal) sits inside the piece's
+// material (`region`, even-odd) with `clear` mm to spare: its corners and long sides' midpoints
+// inside and clear of every loop, no loop vertex (a small hole) inside it, and no crease (`lines`)
+// through it.
+bool boxFits(const std::vector<Polyline>& region, const std::vector<Polyline>& lines, const Vec2& c,
+             const Vec2& d, double halfW, double halfH, double clear) {
   const Vec2 n(-d.y(), d.x());
   for (double a : {-1.0, 0.0, 1.0})
     for (double b : {-1.0, 1.0}) {
       const Vec2 q = c + a * halfW * d + b * halfH * n;
-      if (!insidePolygon(outline, q) || distanceToClosed(outline, q) < clear) return false;
+      if (!insideRegion(region, q) || distanceToPolylines(region, q, true) < clear) return false;
     }
+  const Polyline box = {c - halfW * d - halfH * n, c + halfW * d - halfH * n,
+                        c + halfW * d + halfH * n, c - halfW * d + halfH * n};
+  for (const std::vector<Polyline>* set : {&region, &lines})
+    for (const Polyline& line : *set)
+      for (const Vec2& q : line)
+        if (insidePolygon(box, q)) return false;
+  for (const Polyline& line : lines)
+    for (size_t i = 0; i + 1 < line.size(); ++i)
+      for (size_t k = 0; k < box.size(); ++k)
+        if (segmentsIntersect(line[i], line[i + 1], box[k], box[(k + 1) % box.size()]))
+          return false;
   return true;
 }
 
-// The interior point farthest from the outline (grid search) and that distance.
-std::pair<Vec2, double> roomiestPoint(const Polyline& outline) {
+// The point of the material farthest from its loops, from the creases (`lines`) and from the
+// labels already placed (`labels`, closed footprints) (grid search), and that distance.
+std::pair<Vec2, double> roomiestPoint(const std::vector<Polyline>& region,
+                                      const std::vector<Polyline>& lines,
+                                      const std::vector<Polyline>& labels) {
   Box b;
-  for (const Vec2& q : outline) b.add(q);
+  for (const Vec2& q : region.front()) b.add(q);
   const int steps = 40;
   Vec2 best = 0.5 * (b.lo + b.hi);
   double bestD = -1;
   for (int i = 1; i < steps; ++i)
     for (int j = 1; j < steps; ++j) {
       const Vec2 q(b.lo.x() + b.w() * i / steps, b.lo.y() + b.h() * j / steps);
-      if (!insidePolygon(outline, q)) continue;
-      const double d = distanceToClosed(outline, q);
+      if (!insideRegion(region, q) || insideRegion(labels, q)) continue;
+      const double d =
+          std::min({distanceToPolylines(region, q, true), distanceToPolylines(lines, q, false),
+                    distanceToPolylines(labels, q, true)});
       if (d > bestD) {
         bestD = d;
         best = q;
@@ -432,6 +503,25 @@ Path textPath(const StrokeFont& font, std::string id, const std::string& text, c
   return p;
 }
 
+// The point at arc length s along the open polyline, and the unit direction of the segment it is
+// on.
+Vec2 pointAlong(const Polyline& line, double s, Vec2* tangent = nullptr) {
+  double acc = 0;
+  Vec2 dir(1, 0);
+  for (size_t i = 0; i + 1 < line.size(); ++i) {
+    const double seg = (line[i + 1] - line[i]).norm();
+    if (seg <= 0) continue;
+    dir = (line[i + 1] - line[i]) / seg;
+    if (acc + seg >= s) {
+      if (tangent) *tangent = dir;
+      return line[i] + (s - acc) * dir;
+    }
+    acc += seg;
+  }
+  if (tangent) *tangent = dir;
+  return line.back();
+}
+
 // Splits an open polyline into dashes `on` mm long separated by `off`, centred so that both
 // ends are bridges (the tab stays attached at its ends).
 std::vector<Polyline> perforate(const Polyline& line, double on, double off) {
@@ -440,27 +530,25 @@ std::vector<Polyline> perforate(const Polyline& line, double on, double off) {
   const int count = int(std::floor((len - off) / (on + off)));
   if (count < 1) return dashes;
   const double start = 0.5 * (len - (count * (on + off) - off));
-  auto pointAt = [&](double s) {
-    double acc = 0;
-    for (size_t i = 0; i + 1 < line.size(); ++i) {
-      const double seg = (line[i + 1] - line[i]).norm();
-      if (acc + seg >= s && seg > 0) return Vec2(line[i] + (s - acc) / seg * (line[i + 1] - line[i]));
-      acc += seg;
-    }
-    return line.back();
-  };
   for (int k = 0; k < count; ++k) {
     const double a = start + k * (on + off), b = a + on;
-    Polyline dash{pointAt(a)};
+    Polyline dash{pointAlong(line, a)};
     double acc = 0;
     for (size_t i = 0; i + 1 < line.size(); ++i) {
       acc += (line[i + 1] - line[i]).norm();
       if (acc > a && acc < b) dash.push_back(line[i + 1]);
     }
-    dash.push_back(pointAt(b));
+    dash.push_back(pointAlong(line, b));
     dashes.push_back(dash);
   }
   return dashes;
+}
+
+// How a printed crease is dashed (on, off, ... in mm), after the origami diagram convention
+// (Yoshizawa-Randlett): a valley is dashed, a mountain dash-dot.
+std::vector<double> creaseDash(FoldDirection direction, double dash) {
+  if (direction == FoldDirection::Valley) return {dash, dash};
+  return {dash, 0.5 * dash, dash / 6.0, 0.5 * dash};
 }
 
 Path cross(const std::string& id, const Vec2& c, double r) {
@@ -479,9 +567,21 @@ Status checkModel(const DForm& model) {
       return {ErrorCode::InputInvalid, "piece " + name + ": the seam has fewer than 3 points"};
     if (p->shape.rows() != p->flat.rows())
       return {ErrorCode::InputInvalid, "piece " + name + ": flat and 3D vertex counts differ"};
-    for (int v : p->seam)
-      if (v < 0 || v >= p->flat.rows())
-        return {ErrorCode::InputInvalid, "piece " + name + ": a seam index is out of range"};
+    auto inRange = [&](const std::vector<int>& line) {
+      return std::all_of(line.begin(), line.end(),
+                         [&](int v) { return v >= 0 && v < p->flat.rows(); });
+    };
+    if (!inRange(p->seam))
+      return {ErrorCode::InputInvalid, "piece " + name + ": a seam index is out of range"};
+    for (const auto& loop : p->freeBoundaries)
+      if (loop.size() < 3 || !inRange(loop))
+        return {
+            ErrorCode::InputInvalid,
+            "piece " + name + ": a free boundary has fewer than 3 points or an index out of range"};
+    for (const auto& crease : p->creases)
+      if (crease.size() < 2 || !inRange(crease))
+        return {ErrorCode::InputInvalid,
+                "piece " + name + ": a crease has fewer than 2 points or an index out of range"};
     if (p->F.size() > 0 && (p->F.minCoeff() < 0 || p->F.maxCoeff() >= p->flat.rows()))
       return {ErrorCode::InputInvalid, "piece " + name + ": a face index is out of range"};
     if (!p->flat.allFinite() || !p->shape.allFinite())
@@ -535,9 +635,19 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
     tickS.push_back(s);
   }
 
-  const std::vector<FlatTab> tabs = makeTabs(seams, o, L, out.messages);
-  std::vector<Polyline> cuts[2];
-  for (int p = 0; p < 2; ++p) cuts[p] = cutPaths(seams[p], tabs, p, profile.kerfMm);
+  const Piece* piece[2] = {&model.a, &model.b};
+  const std::vector<Polyline> material[2] = {materialLoops(model.a), materialLoops(model.b)};
+  const std::vector<FlatTab> tabs = makeTabs(seams, material, o, L, out.messages);
+  std::vector<Polyline> cuts[2], holeCuts[2];
+  for (int p = 0; p < 2; ++p) {
+    std::vector<Polyline> freeLoops;
+    for (const auto& loop : piece[p]->freeBoundaries)
+      freeLoops.push_back(flatPolyline(piece[p]->flat, loop));
+    CutPaths c = cutPaths(seams[p], freeLoops, outerLoopIndex(*piece[p]), tabs, p, profile.kerfMm);
+    cuts[p] = std::move(c.outer);
+    holeCuts[p] = std::move(c.holes);
+  }
+  const bool creased = !model.a.creases.empty() || !model.b.creases.empty();
 
   // --- Sheet, page and the region where the pieces go -----------------------------------------
   const double m = profile.marginMm;
@@ -545,7 +655,7 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
   const double lineH = 1.7 * textH;
   const double barH = profile.calibrationBar ? 9.0 : 0.0;
   const double failH = o.failedGateMark ? 2.0 * lineH : 0.0;
-  const double titleH = 2 * lineH + barH + failH;
+  const double titleH = (creased ? 3 : 2) * lineH + barH + failH;  // a legend line for creases
   double pageW = o.sheetWidthMm, pageH = o.sheetHeightMm;
   if (profile.page == "A4") {
     pageW = kA4W;
@@ -620,15 +730,16 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
   }
   if (!chosen) {
     const Rect r = artRegion(pageW, pageH);
-    const double needW = smallest->w + (pageW - r.w()), needH = smallest->h + titleH + (pageH - r.h());
+    const double needW = smallest->w + (pageW - r.w()),
+                 needH = smallest->h + titleH + (pageH - r.h());
     std::string what = profile.page.empty() ? "sheet" : profile.page + " page's cutting area";
     return Status{ErrorCode::Usage,
                   "the pattern does not fit the " + what + ": it needs at least " +
-                      formatMm(needW) + " x " + formatMm(needH) + " mm (" +
-                      formatMm(smallest->w) + " x " + formatMm(smallest->h) +
+                      formatMm(needW) + " x " + formatMm(needH) + " mm (" + formatMm(smallest->w) +
+                      " x " + formatMm(smallest->h) +
                       " mm of pieces and tabs, plus margins and the title line); the " +
-                      (profile.page.empty() ? "sheet" : "page") + " is " + formatMm(pageW) +
-                      " x " + formatMm(pageH) + " mm"};
+                      (profile.page.empty() ? "sheet" : "page") + " is " + formatMm(pageW) + " x " +
+                      formatMm(pageH) + " mm"};
   }
   const Rect region = artRegion(canvasW, canvasH);
   Placement place[2];
@@ -636,7 +747,8 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
     place[p].M = flipRotate(chosen->rot[p]);
     Vec2 corner(region.x0, region.y0);
     if (p == 1) {
-      corner += chosen->vertical ? Vec2(0, chosen->box[0].h() + m) : Vec2(chosen->box[0].w() + m, 0);
+      corner +=
+          chosen->vertical ? Vec2(0, chosen->box[0].h() + m) : Vec2(chosen->box[0].w() + m, 0);
     }
     place[p].t = corner - chosen->box[p].lo;
   }
@@ -646,7 +758,16 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
     PieceInfo info;
     info.name = names[p];
     info.outline = place[p].map(seams[p].P);
+    for (const auto& loop : material[p]) info.boundaries.push_back(place[p].map(loop));
+    info.seamIsHole = seams[p].hole;
     for (const auto& c : cuts[p]) info.cut.push_back(place[p].map(c));
+    for (const auto& c : holeCuts[p]) info.holeCuts.push_back(place[p].map(c));
+    const std::vector<CreaseFold> folds = creaseFolds(*piece[p]);
+    for (size_t k = 0; k < folds.size(); ++k)
+      info.creases.push_back({info.name + "-crease-" + std::to_string(k + 1) + "-" +
+                                  foldDirectionName(folds[k].direction),
+                              folds[k],
+                              place[p].map(flatPolyline(piece[p]->flat, piece[p]->creases[k]))});
     info.perimeter = seams[p].L;
     info.rotationDeg = chosen->rot[p];
     out.pieces.push_back(info);
@@ -678,11 +799,13 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
                             "; true scale, 1 user unit = 1 mm; seam length " + perimeterText +
                             " mm; ticks every " + formatMm(o.tickSpacingMm) + " mm" +
                             (o.failedGateMark ? "; FAILED GATE: not for fabrication" : "");
-  int skippedLabels = 0;
+  int skippedLabels = 0, skippedCreaseLabels = 0;
   for (int p = 0; p < 2; ++p) {
     const PieceInfo& info = out.pieces[size_t(p)];
     const std::string& nm = info.name;
     const Seam& seam = seams[p];
+    std::vector<Polyline> creaseLines;  // labels keep off them
+    for (const CreaseInfo& crease : info.creases) creaseLines.push_back(crease.line);
     // Tick marks across the outline and their numbers inside the piece.
     for (const TickInfo& t : out.ticks) {
       int seg = 0;
@@ -708,29 +831,104 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
       for (int attempt = 0; attempt < 3 && !placed; ++attempt) {
         const double depth = in + 1.0 + (t.id == 0 ? 1.5 : 0.0) + halfH + attempt * h;
         const Vec2 center = c - depth * nOut;
-        if (!boxInside(info.outline, center, d, halfW, halfH, 0.3)) continue;
-        b.engrave().paths.push_back(
-            textPath(font, tick.id + "-label", label, center, d, h));
+        if (!boxFits(info.boundaries, creaseLines, center, d, halfW, halfH, 0.3)) continue;
+        b.engrave().paths.push_back(textPath(font, tick.id + "-label", label, center, d, h));
         placed = true;
       }
       if (!placed) ++skippedLabels;
     }
-    // Piece name (and the failed-gate mark) at the roomiest point inside the piece.
-    const auto [centre, room] = roomiestPoint(info.outline);
-    double nameH = std::min(3 * profile.labelHeightMm, 0.9 * room);
-    Vec2 nameAt = centre;
-    if (o.failedGateMark) nameAt.y() -= 0.6 * nameH;
-    if (nameH >= 1.0) b.engrave().paths.push_back(textPath(font, nm + "-name", nm, nameAt, {1, 0}, nameH));
-    if (o.failedGateMark) {
-      const std::string mark = "FAILED GATE";
-      double h = std::min(1.5 * profile.labelHeightMm, 1.6 * room / std::max(1.0, font.width(mark, 1.0)));
-      b.engrave().paths.push_back(
-          textPath(font, nm + "-failed-gate", mark, centre + Vec2(0, 0.6 * nameH + 0.6 * h), {1, 0}, h));
+    // Piece name (and the failed-gate mark) at the roomiest point inside the piece, clear of the
+    // creases; and of the tick numbers where the roomiest point is near them (a ring-shaped piece).
+    std::vector<Polyline> taken;  // footprints of the piece's labels so far
+    for (const Path& path : b.engrave().paths)
+      if (path.id.rfind(nm + "-", 0) == 0) taken.push_back(convexHull(path.parts));
+    auto nameLabels = [&](const std::vector<Polyline>& avoid) {
+      const auto [centre, room] = roomiestPoint(info.boundaries, creaseLines, avoid);
+      std::vector<Path> labels;
+      const double nameH = std::min(3 * profile.labelHeightMm, 0.9 * room);
+      Vec2 nameAt = centre;
+      if (o.failedGateMark) nameAt.y() -= 0.6 * nameH;
+      if (nameH >= 1.0) labels.push_back(textPath(font, nm + "-name", nm, nameAt, {1, 0}, nameH));
+      if (o.failedGateMark) {
+        const std::string mark = "FAILED GATE";
+        const double h = std::min(1.5 * profile.labelHeightMm,
+                                  1.6 * room / std::max(1.0, font.width(mark, 1.0)));
+        labels.push_back(textPath(font, nm + "-failed-gate", mark,
+                                  centre + Vec2(0, 0.6 * nameH + 0.6 * h), {1, 0}, h));
+      }
+      return labels;
+    };
+    auto clashes = [&](const std::vector<Path>& labels) {
+      for (const Path& label : labels) {
+        const Polyline hull = convexHull(label.parts);
+        const Box box = boxOf({hull}, Eigen::Matrix2d::Identity());
+        for (const Polyline& other : taken) {
+          const Box near = boxOf({other}, Eigen::Matrix2d::Identity());
+          const bool apart = near.lo.x() > box.hi.x() || box.lo.x() > near.hi.x() ||
+                             near.lo.y() > box.hi.y() || box.lo.y() > near.hi.y();
+          if (!apart && overlapArea(hull, other) > 0.0) return true;
+        }
+      }
+      return false;
+    };
+    std::vector<Path> names = nameLabels({});
+    if (clashes(names)) names = nameLabels(taken);
+    for (Path& label : names) {
+      taken.push_back(convexHull(label.parts));
+      b.engrave().paths.push_back(std::move(label));
+    }
+    // A small M or V beside each crease, where one fits clear of the piece's other labels.
+    for (const CreaseInfo& crease : info.creases) {
+      const std::string letter = crease.fold.direction == FoldDirection::Mountain ? "M" : "V";
+      const double h = profile.labelHeightMm, halfW = 0.5 * font.width(letter, h), halfH = 0.5 * h;
+      const double length = polylineLength(crease.line, false);
+      bool placed = false;
+      for (double f : {0.5, 0.3, 0.7, 0.15, 0.85})
+        for (double side : {1.0, -1.0}) {
+          Vec2 t;
+          const Vec2 q = pointAlong(crease.line, f * length, &t);
+          const Vec2 center = q + side * (halfH + 1.0) * Vec2(-t.y(), t.x());
+          const Vec2 d = readable(t);
+          if (placed || !boxFits(info.boundaries, creaseLines, center, d, halfW, halfH, 0.3))
+            continue;
+          const Vec2 n(-d.y(), d.x()), grow(halfW + 0.5, halfH + 0.5);  // 0.5 mm clear of others
+          const Polyline box = {
+              center - grow.x() * d - grow.y() * n, center + grow.x() * d - grow.y() * n,
+              center + grow.x() * d + grow.y() * n, center - grow.x() * d + grow.y() * n};
+          if (std::any_of(taken.begin(), taken.end(),
+                          [&](const Polyline& other) { return overlapArea(box, other) > 0.0; }))
+            continue;
+          Path label = textPath(font, crease.id + "-label", letter, center, d, h);
+          taken.push_back(convexHull(label.parts));
+          b.engrave().paths.push_back(std::move(label));
+          placed = true;
+        }
+      skippedCreaseLabels += !placed;
     }
   }
   if (skippedLabels > 0)
     out.messages.push_back(std::to_string(skippedLabels) +
                            " tick number(s) left out where the piece is too narrow for them");
+  if (skippedCreaseLabels > 0)
+    out.messages.push_back(std::to_string(skippedCreaseLabels) +
+                           " crease M/V label(s) left out where there is no room; the crease ids "
+                           "in pattern.svg and pattern.json name the fold");
+
+  // Crease fold lines: the profile's fold style, dashed by the fold's direction.
+  for (const PieceInfo& info : out.pieces)
+    for (const CreaseInfo& crease : info.creases) {
+      Path line;
+      line.id = crease.id;
+      if (profile.fold == FoldStyle::Perforated) {
+        line.parts = perforate(crease.line, profile.perforationCutMm, profile.perforationGapMm);
+        if (!line.parts.empty()) b.cut().paths.push_back(line);
+        continue;
+      }
+      line.parts = {crease.line};
+      line.dashed = profile.fold == FoldStyle::Dashed;
+      if (line.dashed) line.dash = creaseDash(crease.fold.direction, profile.dashMm);
+      b.score().paths.push_back(line);
+    }
 
   // Fold lines and perforations; then the cut paths (inner cuts before outer ones).
   int tabIndex[2] = {0, 0};
@@ -749,21 +947,24 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
       b.score().paths.push_back(fold);
     }
   }
-  for (int p = 0; p < 2; ++p) {
-    const auto& cutList = out.pieces[size_t(p)].cut;
-    for (size_t k = 0; k < cutList.size(); ++k) {
-      Path cut;
-      cut.id = names[p] + "-cut" + (k == 0 ? "" : "-" + std::to_string(k + 1));
-      cut.parts = {cutList[k]};
-      cut.closed = true;
-      b.cut().paths.push_back(cut);
-      if (profile.kind == ProfileKind::PrintAndCut) {  // the printed outline the cutter follows
-        Path printed = cut;
-        printed.id = names[p] + "-outline" + (k == 0 ? "" : "-" + std::to_string(k + 1));
-        b.engrave().paths.push_back(printed);
+  for (bool holes : {true, false})  // every hole before any outer cut: inner cuts first
+    for (int p = 0; p < 2; ++p) {
+      const auto& cutList = holes ? out.pieces[size_t(p)].holeCuts : out.pieces[size_t(p)].cut;
+      for (size_t k = 0; k < cutList.size(); ++k) {
+        const std::string suffix =
+            holes ? "-hole-" + std::to_string(k + 1) : (k == 0 ? "" : "-" + std::to_string(k + 1));
+        Path cut;
+        cut.id = names[p] + "-cut" + suffix;
+        cut.parts = {cutList[k]};
+        cut.closed = true;
+        b.cut().paths.push_back(cut);
+        if (profile.kind == ProfileKind::PrintAndCut) {  // the printed outline the cutter follows
+          Path printed = cut;
+          printed.id = names[p] + "-outline" + suffix;
+          b.engrave().paths.push_back(printed);
+        }
       }
     }
-  }
 
   // Title lines (and the calibration bar) at the bottom of the region.
   {
@@ -777,10 +978,21 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
       y += lineH * h / textH;
     };
     if (o.failedGateMark) line("failed-gate", "FAILED GATE - NOT FOR FABRICATION", 2 * textH);
-    line("title", o.jobName + " - D-Form " + names[0] + " + " + names[1] + " - 1:1, mm - seam " +
-                      perimeterText + " mm - " + profile.name, textH);
-    line("note", "tick 0 = start, arrow = zip direction; ticks every " +
-                     formatMm(o.tickSpacingMm, 0) + " mm; glue equal numbers together", textH);
+    line("title",
+         o.jobName + " - D-Form " + names[0] + " + " + names[1] + " - 1:1, mm - seam " +
+             perimeterText + " mm - " + profile.name,
+         textH);
+    line("note",
+         "tick 0 = start, arrow = zip direction; ticks every " + formatMm(o.tickSpacingMm, 0) +
+             " mm; glue equal numbers together",
+         textH);
+    if (creased)
+      line("crease-legend-label",
+           profile.fold == FoldStyle::Dashed
+               ? "creases seen from this side (the outside): M = mountain (dash-dot), V = valley "
+                 "(dashed)"
+               : "creases seen from this side (the outside): M = mountain, V = valley",
+           textH);
     if (profile.calibrationBar) {
       const double yb = y + 4.0;
       Path bar;
@@ -809,11 +1021,13 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
     b.regmarks().paths.push_back(square);
     Path tr;
     tr.id = "regmark-top-right";
-    tr.parts = {{Vec2(canvasW - a - kRegArm, a), Vec2(canvasW - a, a), Vec2(canvasW - a, a + kRegArm)}};
+    tr.parts = {
+        {Vec2(canvasW - a - kRegArm, a), Vec2(canvasW - a, a), Vec2(canvasW - a, a + kRegArm)}};
     b.regmarks().paths.push_back(tr);
     Path bl;
     bl.id = "regmark-bottom-left";
-    bl.parts = {{Vec2(a, canvasH - a - kRegArm), Vec2(a, canvasH - a), Vec2(a + kRegArm, canvasH - a)}};
+    bl.parts = {
+        {Vec2(a, canvasH - a - kRegArm), Vec2(a, canvasH - a), Vec2(a + kRegArm, canvasH - a)}};
     b.regmarks().paths.push_back(bl);
   }
   out.drawing = std::move(b.drawing());
@@ -877,8 +1091,8 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
                                  " mm, match the crosses - print at 100%";
         const double hh = std::min(3.0, cw / std::max(1.0, font.width(head, 1.0)));
         furniture.paths.push_back(textPath(font, "tile-header", head,
-                                           Vec2(pm + 0.5 * font.width(head, hh), pm + 3.0),
-                                           {1, 0}, hh));
+                                           Vec2(pm + 0.5 * font.width(head, hh), pm + 3.0), {1, 0},
+                                           hh));
         Path bar;
         bar.id = "tile-calibration-bar";
         const double yb = pm + 9.0;
@@ -891,9 +1105,9 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
                                            {1, 0}, 2.5));
         if (o.failedGateMark) {
           const std::string mark = "FAILED GATE";
-          furniture.paths.push_back(textPath(font, "tile-failed-gate", mark,
-                                             Vec2(pageW - pm - 0.5 * font.width(mark, 4.0), pm + 8.0),
-                                             {1, 0}, 4.0));
+          furniture.paths.push_back(
+              textPath(font, "tile-failed-gate", mark,
+                       Vec2(pageW - pm - 0.5 * font.width(mark, 4.0), pm + 8.0), {1, 0}, 4.0));
         }
         page.overlay.push_back(furniture);
         out.pages.push_back(page);

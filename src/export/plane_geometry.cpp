@@ -22,15 +22,19 @@ Polyline fromClip(const ClipperLib::Path& p) {
   return out;
 }
 
-double overlapArea(const Polyline& a, const Polyline& b) {
+double overlapArea(const std::vector<Polyline>& a, const std::vector<Polyline>& b) {
   ClipperLib::Clipper c;
-  c.AddPath(toClip(a), ClipperLib::ptSubject, true);
-  c.AddPath(toClip(b), ClipperLib::ptClip, true);
+  for (const Polyline& p : a) c.AddPath(toClip(p), ClipperLib::ptSubject, true);
+  for (const Polyline& p : b) c.AddPath(toClip(p), ClipperLib::ptClip, true);
   ClipperLib::Paths result;
-  c.Execute(ClipperLib::ctIntersection, result, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-  double area = 0;
-  for (const auto& p : result) area += std::abs(ClipperLib::Area(p));
-  return area / (kClipScale * kClipScale);
+  c.Execute(ClipperLib::ctIntersection, result, ClipperLib::pftEvenOdd, ClipperLib::pftEvenOdd);
+  double area = 0;  // holes come back clockwise, with negative area
+  for (const auto& p : result) area += ClipperLib::Area(p);
+  return std::max(area, 0.0) / (kClipScale * kClipScale);
+}
+
+double overlapArea(const Polyline& a, const Polyline& b) {
+  return overlapArea(std::vector<Polyline>{a}, std::vector<Polyline>{b});
 }
 
 bool insidePolygon(const Polyline& poly, const Vec2& q) {
@@ -45,17 +49,48 @@ bool insidePolygon(const Polyline& poly, const Vec2& q) {
   return inside;
 }
 
-double distanceToClosed(const Polyline& poly, const Vec2& q) {
+bool insideRegion(const std::vector<Polyline>& loops, const Vec2& q) {
+  bool inside = false;
+  for (const Polyline& loop : loops) inside = inside != insidePolygon(loop, q);
+  return inside;
+}
+
+double distanceToPolylines(const std::vector<Polyline>& lines, const Vec2& q, bool closed) {
   double best = 1e300;
-  for (size_t i = 0; i < poly.size(); ++i) {
-    const Vec2& a = poly[i];
-    const Vec2& b = poly[(i + 1) % poly.size()];
-    const Vec2 ab = b - a;
-    const double len2 = ab.squaredNorm();
-    const double t = len2 > 0 ? std::clamp((q - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-    best = std::min(best, (a + t * ab - q).norm());
-  }
+  for (const Polyline& line : lines)
+    for (size_t i = 0; i + (closed ? 0 : 1) < line.size(); ++i) {
+      const Vec2& a = line[i];
+      const Vec2& b = line[(i + 1) % line.size()];
+      const Vec2 ab = b - a;
+      const double len2 = ab.squaredNorm();
+      const double t = len2 > 0 ? std::clamp((q - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+      best = std::min(best, (a + t * ab - q).norm());
+    }
   return best;
+}
+
+Polyline convexHull(const std::vector<Polyline>& parts) {
+  Polyline pts;
+  for (const Polyline& part : parts) pts.insert(pts.end(), part.begin(), part.end());
+  std::sort(pts.begin(), pts.end(), [](const Vec2& a, const Vec2& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  if (pts.size() < 3) return pts;
+  auto cross = [](const Vec2& o, const Vec2& a, const Vec2& b) {
+    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+  };
+  Polyline hull(2 * pts.size());
+  size_t k = 0;
+  for (size_t i = 0; i < pts.size(); ++i) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], pts[i]) <= 0) --k;
+    hull[k++] = pts[i];
+  }
+  for (size_t i = pts.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && cross(hull[k - 2], hull[k - 1], pts[i]) <= 0) --k;
+    hull[k++] = pts[i];
+  }
+  hull.resize(k - 1);
+  return hull;
 }
 
 }  // namespace dform::fab

@@ -40,14 +40,30 @@ std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName)
   j["tick_spacing_mm"] = pattern.tickSpacing;
   j["kerf_mm"] = pattern.profile.kerfMm;
   json pieces = json::array();
+  auto polylines = [](const std::vector<Polyline>& lines) {
+    json out = json::array();
+    for (const Polyline& line : lines) out.push_back(polyline(line));
+    return out;
+  };
   for (const PieceInfo& p : pattern.pieces) {
-    json cut = json::array();
-    for (const auto& c : p.cut) cut.push_back(polyline(c));
+    json creases = json::array();
+    for (const CreaseInfo& c : p.creases)
+      creases.push_back({{"id", c.id},
+                         {"direction", foldDirectionName(c.fold.direction)},
+                         {"angle_deg", c.fold.angleDeg},
+                         {"min_angle_deg", c.fold.minAngleDeg},
+                         {"max_angle_deg", c.fold.maxAngleDeg},
+                         {"length_mm", c.fold.lengthMm},
+                         {"line", polyline(c.line)}});
     pieces.push_back({{"name", p.name},
                       {"perimeter_mm", p.perimeter},
                       {"rotation_deg", p.rotationDeg},
                       {"outline", polyline(p.outline)},
-                      {"cut", cut}});
+                      {"seam_is_hole", p.seamIsHole},
+                      {"boundaries", polylines(p.boundaries)},
+                      {"cut", polylines(p.cut)},
+                      {"hole_cuts", polylines(p.holeCuts)},
+                      {"creases", creases}});
   }
   j["pieces"] = pieces;
   json ticks = json::array();

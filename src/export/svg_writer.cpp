@@ -75,8 +75,12 @@ std::string svgDocument(const Drawing& drawing) {
         attributes = "fill=\"none\" stroke=\"" + layer.color + "\" stroke-width=\"" +
                      num(layer.widthMm) + "\"";
         if (p.dashed) {
-          style += ";stroke-dasharray:" + num(layer.dashMm) + "," + num(layer.dashMm);
-          attributes += " stroke-dasharray=\"" + num(layer.dashMm) + "," + num(layer.dashMm) + "\"";
+          const std::vector<double> pattern =
+              p.dash.empty() ? std::vector<double>{layer.dashMm, layer.dashMm} : p.dash;
+          std::string dashes;
+          for (double length : pattern) dashes += (dashes.empty() ? "" : ",") + num(length);
+          style += ";stroke-dasharray:" + dashes;
+          attributes += " stroke-dasharray=\"" + dashes + "\"";
         }
       }
       s << "    <path id=\"" << escapeXml(p.id) << "\" style=\"" << style << "\" " << attributes

@@ -1,5 +1,6 @@
 // A solved D-Form on disk: one OBJ per piece and per form (flat and 3D), each holding the seam as
-// an `l` polyline in seam order, so a saved result can be exported or validated again.
+// an `l` polyline in seam order (group `seam`), then the free boundary loops (group `boundary`)
+// and the creases (group `crease`), so a saved result can be exported or validated again.
 #pragma once
 
 #include <string>
@@ -25,8 +26,11 @@ Status writeModel(const std::string& dir, const DForm& model);
 /// so that `dform validate` can measure D_error again; readCurve reads it back.
 Status writeTargetCurve(const std::string& dir, const Curve3& curve);
 
-/// Reads the four OBJ files back; checks that flat and 3D meshes of a piece agree in faces and
-/// seam and that the two seams have the same length (vertex count).
+/// Reads the four OBJ files back; checks that flat and 3D meshes of a piece agree in faces, seam,
+/// free boundaries and creases, that each free boundary is a boundary loop of the mesh with the
+/// piece on its left, that each crease runs along interior mesh edges from boundary to boundary,
+/// and that the two seams have the same length (vertex count). An old file with one ungrouped
+/// `l` reads as a seam with no free boundaries or creases.
 Result<DForm> readModel(const std::string& dir);
 
 }  // namespace dform

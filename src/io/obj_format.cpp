@@ -28,8 +28,10 @@ Result<ObjData> parseObj(const std::string& path, const std::string& text) {
   std::istringstream lines(text);
   std::string line;
   int lineNumber = 0;
+  std::string group;
   auto malformed = [&](const std::string& what) {
-    return Status{ErrorCode::InputUnreadable, path + ": line " + std::to_string(lineNumber) + ": " + what};
+    return Status{ErrorCode::InputUnreadable,
+                  path + ": line " + std::to_string(lineNumber) + ": " + what};
   };
   while (std::getline(lines, line)) {
     ++lineNumber;
@@ -37,7 +39,9 @@ Result<ObjData> parseObj(const std::string& path, const std::string& text) {
     std::istringstream tokens(line);
     std::string keyword, token;
     if (!(tokens >> keyword)) continue;
-    if (keyword == "v") {
+    if (keyword == "g") {
+      if (!(tokens >> group)) group.clear();
+    } else if (keyword == "v") {
       Eigen::Vector3d v;
       int count = 0;
       while (tokens >> token) {
@@ -51,6 +55,7 @@ Result<ObjData> parseObj(const std::string& path, const std::string& text) {
     } else if (keyword == "f" || keyword == "l") {
       ObjElement element;
       element.lineNumber = lineNumber;
+      element.group = group;
       while (tokens >> token) {
         const std::optional<long> index = vertexIndex(token);
         if (!index) return malformed("'" + token + "' is not a vertex index (they start at 1)");
@@ -58,12 +63,14 @@ Result<ObjData> parseObj(const std::string& path, const std::string& text) {
         // once every vertex is known.
         const long resolved = *index < 0 ? long(obj.vertices.size()) + *index : *index - 1;
         if (resolved < 0) return malformed("index " + token + " refers to no vertex");
-        if (resolved > std::numeric_limits<int>::max()) return malformed("index " + token + " is too large");
+        if (resolved > std::numeric_limits<int>::max())
+          return malformed("index " + token + " is too large");
         element.indices.push_back(int(resolved));
       }
       const std::size_t needed = keyword == "f" ? 3 : 2;
       if (element.indices.size() < needed)
-        return malformed(keyword == "f" ? "a face needs at least 3 vertices" : "a polyline needs at least 2 vertices");
+        return malformed(keyword == "f" ? "a face needs at least 3 vertices"
+                                        : "a polyline needs at least 2 vertices");
       (keyword == "f" ? obj.faces : obj.lines).push_back(std::move(element));
     }
   }
@@ -72,8 +79,9 @@ Result<ObjData> parseObj(const std::string& path, const std::string& text) {
       for (int i : e.indices)
         if (std::size_t(i) >= obj.vertices.size()) {
           lineNumber = e.lineNumber;
-          return malformed("vertex index " + std::to_string(i + 1) + " is out of range (the file has " +
-                           std::to_string(obj.vertices.size()) + " vertices)");
+          return malformed("vertex index " + std::to_string(i + 1) +
+                           " is out of range (the file has " + std::to_string(obj.vertices.size()) +
+                           " vertices)");
         }
   return obj;
 }

@@ -10,10 +10,12 @@
 
 namespace dform::io_detail {
 
-/// An `f` or `l` element: 0-based vertex indices and the line it was read from.
+/// An `f` or `l` element: 0-based vertex indices, the line it was read from and the group it is
+/// in (the first name of the last `g` statement before it; "" before any, or after a bare `g`).
 struct ObjElement {
   std::vector<int> indices;
   int lineNumber = 0;
+  std::string group;
 };
 
 struct ObjData {
@@ -22,7 +24,7 @@ struct ObjData {
   std::vector<ObjElement> lines;
 };
 
-/// Parses `v`, `f` and `l` statements; other statements (vn, vt, o, g, usemtl, ...) are ignored.
+/// Parses `v`, `f`, `l` and `g` statements; other statements (vn, vt, o, usemtl, ...) are ignored.
 /// Indices follow the OBJ spec: 1-based, negative ones count back from the last vertex defined
 /// so far, `i/t/n` forms use the vertex index. A malformed statement or an index out of range is
 /// InputUnreadable naming `path` and the line number.

@@ -11,6 +11,7 @@
 #include "core/atomic_file.h"
 #include "report/convergence_plot.h"
 #include "report/views.h"
+#include "validate/metrics.h"
 
 namespace dform {
 
@@ -66,6 +67,30 @@ std::vector<PlotSeries> convergenceSeries(const json& solver) {
   return series;
 }
 
+// One row per crease of either piece: its fold from the solved shape (validate's creaseFolds).
+data creaseRows(const DForm& model) {
+  auto fixed = [](double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f", v);
+    return std::string(text);
+  };
+  data rows{data::type::list};
+  for (const Piece* p : {&model.a, &model.b}) {
+    const std::vector<CreaseFold> folds = creaseFolds(*p);
+    for (size_t k = 0; k < folds.size(); ++k) {
+      data row;
+      row.set("piece", p->name);
+      row.set("number", std::to_string(k + 1));
+      row.set("direction", foldDirectionName(folds[k].direction));
+      row.set("angle", fixed(folds[k].angleDeg));
+      row.set("range", fixed(folds[k].minAngleDeg) + " to " + fixed(folds[k].maxAngleDeg));
+      row.set("length", fixed(folds[k].lengthMm));
+      rows.push_back(row);
+    }
+  }
+  return rows;
+}
+
 // The pattern as inline SVG: the file minus its XML declaration.
 std::string inlineSvg(const std::string& svg) {
   const auto start = svg.find("<svg");
@@ -105,7 +130,8 @@ Status writeReportHtml(const std::string& dir, const DForm& model,
     const bool passed = gate["passed"].get<bool>();
     page.set("verdict", passed ? "PASSED" : "FAILED GATE");
     page.set("verdict_class", passed ? "passed" : "failed");
-    page.set("verdict_note", "gate '" + show(gate["name"]) + "': " + std::to_string(gate["failed"].get<int>()) + " failed, " +
+    page.set("verdict_note", "gate '" + show(gate["name"]) +
+                                 "': " + std::to_string(gate["failed"].get<int>()) + " failed, " +
                                  std::to_string(gate["not_run"].get<int>()) + " not run");
     for (const json& c : gate["checks"]) {
       data row;
@@ -152,6 +178,10 @@ Status writeReportHtml(const std::string& dir, const DForm& model,
   char scale[32];
   std::snprintf(scale, sizeof scale, "%.3g", curvatureScale(model));
   page.set("curvature_scale", scale);
+  page.set("creases", creaseRows(model));
+  page.set("has_creases", model.a.creases.empty() && model.b.creases.empty()
+                              ? data(data::type::bool_false)
+                              : data(data::type::bool_true));
 
   const Result<std::string> pattern = readText((fs::path(dir) / "pattern.svg").string());
   page.set("has_pattern",

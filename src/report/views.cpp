@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "core/piece_loops.h"
 #include "report/svg_text.h"
 #include "validate/metrics.h"
 
@@ -27,6 +28,24 @@ struct Polygon {
   double depth;
   std::string points, fill;
 };
+
+// A piece's creases as SVG polylines through `pixel(v)` ("x,y"), styled by their fold as on the
+// printed pattern: a valley dashed, a mountain dash-dot, each in its own colour.
+template <class Pixel>
+std::string creaseLines(const Piece& piece, Pixel pixel) {
+  const std::vector<CreaseFold> folds = creaseFolds(piece);
+  std::string svg;
+  for (size_t k = 0; k < folds.size(); ++k) {
+    const bool mountain = folds[k].direction == FoldDirection::Mountain;
+    std::string points;
+    for (int v : piece.creases[k]) points += pixel(v) + " ";
+    svg += "<polyline points='" + points + "' fill='none' class='crease " +
+           foldDirectionName(folds[k].direction) + "' stroke='" +
+           (mountain ? "#b03a2e" : "#1f5fa8") + "' stroke-width='1.4' stroke-dasharray='" +
+           (mountain ? "6,3,1.5,3" : "4,3") + "'/>";
+  }
+  return svg;
+}
 
 }  // namespace
 
@@ -107,6 +126,11 @@ std::string shapeSvg(const DForm& model, const View& view) {
   }
   svg += "<polygon points='" + seam +
          "' fill='none' stroke='#c2185b' stroke-width='1.2' stroke-opacity='0.8'/>";
+  for (const Piece* p : {&model.a, &model.b})  // the creases, on top like the seam
+    svg += creaseLines(*p, [&](int v) {
+      const Eigen::Vector2d q = pixel(toScreen(p->shape.row(v).transpose()));
+      return number(q.x()) + "," + number(q.y());
+    });
   return svg + "</svg>";
 }
 
@@ -140,9 +164,14 @@ std::string flatCurvatureSvg(const DForm& model, double widthPx) {
       svg += "<polygon points='" + pixel(p.F(f, 0)) + " " + pixel(p.F(f, 1)) + " " +
              pixel(p.F(f, 2)) + "' fill='" + fill + "' stroke='" + fill + "' stroke-width='0.4'/>";
     }
-    std::string seam;
-    for (int v : p.seam) seam += pixel(v) + " ";
-    svg += "<polygon points='" + seam + "' fill='none' stroke='#333' stroke-width='1'/>";
+    // Every boundary loop outlined (the seam, the free outlines and holes; a hole has no
+    // triangles, so it stays empty), then the creases.
+    for (const std::vector<int>& loop : boundaryLoops(p)) {
+      std::string outline;
+      for (int v : loop) outline += pixel(v) + " ";
+      svg += "<polygon points='" + outline + "' fill='none' stroke='#333' stroke-width='1'/>";
+    }
+    svg += creaseLines(p, [&](int v) { return pixel(v); });
   }
   return svg + "</svg>";
 }

@@ -16,10 +16,12 @@ struct View {
 };
 
 /// The closed 3D shape (both pieces) in orthographic projection, painter's order, Lambert shading
-/// (A warm, B cool) or a blue-white-red curvature scale; the seam drawn on top.
+/// (A warm, B cool) or a blue-white-red curvature scale; the seam and the creases (class 'crease
+/// mountain' dash-dot, 'crease valley' dashed) drawn on top.
 std::string shapeSvg(const DForm& model, const View& view);
 
-/// Both flat pieces side by side at the same scale, coloured by their 3D curvature, seam outlined.
+/// Both flat pieces side by side at the same scale, coloured by their 3D curvature, every boundary
+/// loop outlined (holes stay empty), the creases drawn as in shapeSvg.
 std::string flatCurvatureSvg(const DForm& model, double widthPx);
 
 /// The curvature scale used by both (radians of angle defect at full colour): the largest

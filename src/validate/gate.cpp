@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "core/piece_loops.h"
 #include "core/polyline.h"
 #include "validate/cgal_checks.h"
 #include "validate/mesh_measures.h"
@@ -22,22 +23,17 @@ std::string num(double x) {
   return buf;
 }
 
-Points2 seamPolygon(const Piece& p) {
-  Points2 P(Eigen::Index(p.seam.size()), 2);
-  for (size_t i = 0; i < p.seam.size(); ++i) P.row(Eigen::Index(i)) = p.flat.row(p.seam[i]);
-  return P;
-}
-
-// Max |angle defect| over both pieces' vertices that neither lie on the boundary (or seam) nor
-// share an edge with one: the paper's "zero Gaussian curvature everywhere except the seam".
+// Max |angle defect| over both pieces' vertices that neither lie on the boundary, the seam or a
+// crease nor share an edge with one: the paper's "zero Gaussian curvature everywhere except the
+// seam", and the issue's "away from seam and creases".
 CheckResult gaussCheck(const DForm& model, const GateLimits& limits) {
+  const bool creased = isVariant(model.a) || isVariant(model.b);
   double worst = 0.0;
   int counted = 0;
   std::string where;
   for (const Piece* p : {&model.a, &model.b}) {
     const detail::EdgeTopology topology = detail::edgeTopology(p->F);
-    const std::vector<bool> onBoundary =
-        detail::boundaryVertices(int(p->shape.rows()), p->seam, topology);
+    const std::vector<bool> onBoundary = detail::boundaryOrCreaseVertices(*p, topology);
     std::vector<bool> nearSeam = onBoundary;
     for (const auto& e : topology.edges)
       if (onBoundary[e[0]] || onBoundary[e[1]]) nearSeam[e[0]] = nearSeam[e[1]] = true;
@@ -56,10 +52,47 @@ CheckResult gaussCheck(const DForm& model, const GateLimits& limits) {
   }
   if (counted == 0)
     return notRunCheck("gauss_max_rad", limits.gauss_max_rad,
-                       "no interior vertex away from the seam");
+                       "no interior vertex away from the seam" +
+                           std::string(creased ? ", the boundary and the creases" : ""));
   return judgeCheck("gauss_max_rad", worst, limits.gauss_max_rad,
                     "largest |angle defect| over " + std::to_string(counted) +
-                        " vertices away from the seam, at " + where);
+                        " vertices away from the seam" +
+                        (creased ? ", the boundary and the creases" : "") + ", at " + where);
+}
+
+// What is wrong with a piece's flat boundary loops (empty when nothing): a loop that crosses or
+// touches itself, two loops that meet, a hole outside the outer outline or inside another hole.
+std::string loopProblems(const Piece& p) {
+  const std::vector<std::vector<int>> loops = boundaryLoops(p);
+  std::vector<Points2> points;
+  for (const auto& loop : loops) points.push_back(loopPoints(p.flat, loop));
+  // A classic piece keeps the old wording: its seam is its outline.
+  auto name = [&](size_t k) {
+    if (k == 0) return std::string(loops.size() == 1 ? "outline" : "seam loop");
+    return "free boundary " + std::to_string(k);
+  };
+  std::string problem;
+  auto add = [&](const std::string& what) { problem += (problem.empty() ? "" : "; ") + what; };
+  for (size_t k = 0; k < loops.size(); ++k)
+    if (const auto cross = findSelfIntersection(points[k]))
+      add(name(k) + " edges " + std::to_string(cross->first) + " and " +
+          std::to_string(cross->second) + " meet");
+  for (size_t k = 0; k < loops.size(); ++k)
+    for (size_t l = k + 1; l < loops.size(); ++l)
+      if (const auto meet = findCrossing(points[k], points[l]))
+        add(name(k) + " edge " + std::to_string(meet->first) + " and " + name(l) + " edge " +
+            std::to_string(meet->second) + " meet");
+  if (!problem.empty()) return problem;  // nesting is only defined for loops that do not meet
+  const size_t outer = size_t(outerLoopIndex(p));
+  for (size_t k = 0; k < loops.size(); ++k) {
+    if (k == outer) continue;
+    const Eigen::Vector2d q = points[k].row(0).transpose();
+    if (!insidePolygon(points[outer], q)) add(name(k) + " lies outside the outer outline");
+    for (size_t l = 0; l < loops.size(); ++l)
+      if (l != k && l != outer && insidePolygon(points[l], q))
+        add(name(k) + " lies inside " + name(l));
+  }
+  return problem;
 }
 
 CheckResult flatSimpleCheck(const DForm& model) {
@@ -68,10 +101,7 @@ CheckResult flatSimpleCheck(const DForm& model) {
   for (const Piece* p : {&model.a, &model.b}) {
     if (p->seam.size() < 3)
       return notRunCheck("flat_simple", 0, "piece " + p->name + " has no seam outline");
-    std::string problem;
-    if (const auto cross = findSelfIntersection(seamPolygon(*p)))
-      problem = "outline edges " + std::to_string(cross->first) + " and " +
-                std::to_string(cross->second) + " meet";
+    std::string problem = loopProblems(*p);
     std::string example;
     if (const int overlaps = detail::countFlatOverlaps(p->flat, p->F, &example); overlaps > 0)
       problem += (problem.empty() ? "" : "; ") + std::to_string(overlaps) +
@@ -80,7 +110,11 @@ CheckResult flatSimpleCheck(const DForm& model) {
     ++bad;
     detail += (detail.empty() ? "" : "; ") + ("piece " + p->name + ": " + problem);
   }
-  if (bad == 0) detail = "both flat pieces are simple and no two flat triangles overlap";
+  if (bad == 0)
+    detail = isVariant(model.a) || isVariant(model.b)
+                 ? "both flat pieces are simple (holes inside their outer outline, no loops "
+                   "meeting) and no two flat triangles overlap"
+                 : "both flat pieces are simple and no two flat triangles overlap";
   return judgeCheck("flat_simple", bad, 0, detail);
 }
 
@@ -151,9 +185,20 @@ double pointTriangleDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
 // largest distance from a 3D vertex to the hull surface of the seam points (both sides).
 CheckResult hullCheck(const DForm& model, const GateLimits& limits) {
   const char* name = "hull_distance_rel";
-  for (const Piece* p : {&model.a, &model.b})
-    if (p->seam.size() < 3 || !isConvexOutline(seamPolygon(*p)))
+  for (const Piece* p : {&model.a, &model.b}) {
+    if (!p->freeBoundaries.empty())
+      return notRunCheck(name, limits.hull_distance_rel,
+                         "piece " + p->name +
+                             " has a free boundary (an anti or demi D-Form): the convex-hull "
+                             "property holds for two convex discs zipped along their outlines");
+    if (!p->creases.empty())
+      return notRunCheck(name, limits.hull_distance_rel,
+                         "piece " + p->name +
+                             " has creases: the convex-hull property holds for crease-free "
+                             "convex pieces only");
+    if (p->seam.size() < 3 || !isConvexOutline(loopPoints(p->flat, p->seam)))
       return notRunCheck(name, limits.hull_distance_rel, "piece " + p->name + " is not convex");
+  }
   const size_t n = model.a.seam.size();
   Points3 seam(Eigen::Index(2 * n), 3);
   for (size_t i = 0; i < n; ++i) {

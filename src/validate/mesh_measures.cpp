@@ -1,11 +1,10 @@
 #include "validate/mesh_measures.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <tuple>
-
-#include <Eigen/Geometry>
 
 namespace dform::detail {
 namespace {
@@ -45,13 +44,29 @@ EdgeTopology edgeTopology(const Faces& F) {
   return t;
 }
 
-std::vector<bool> boundaryVertices(int vertexCount, const std::vector<int>& seam,
-                                   const EdgeTopology& topology) {
-  std::vector<bool> onBoundary(size_t(vertexCount), false);
+int edgeIndex(const EdgeTopology& topology, int i, int j) {
+  const std::array<int, 2> key{std::min(i, j), std::max(i, j)};
+  const auto it = std::lower_bound(topology.edges.begin(), topology.edges.end(), key);
+  return it != topology.edges.end() && *it == key ? int(it - topology.edges.begin()) : -1;
+}
+
+std::vector<bool> boundaryOrCreaseVertices(const Piece& piece, const EdgeTopology& topology) {
+  std::vector<bool> marked(size_t(piece.shape.rows()), false);
   for (size_t e = 0; e < topology.edges.size(); ++e)
-    if (topology.faces[e][1] < 0) onBoundary[topology.edges[e][0]] = onBoundary[topology.edges[e][1]] = true;
-  for (int v : seam) onBoundary[v] = true;
-  return onBoundary;
+    if (topology.faces[e][1] < 0)
+      marked[topology.edges[e][0]] = marked[topology.edges[e][1]] = true;
+  for (int v : piece.seam) marked[v] = true;
+  for (const std::vector<int>& crease : piece.creases)
+    for (int v : crease) marked[v] = true;
+  return marked;
+}
+
+std::vector<bool> creaseEdges(const Piece& piece, const EdgeTopology& topology) {
+  std::vector<bool> onCrease(topology.edges.size(), false);
+  for (const std::vector<int>& crease : piece.creases)
+    for (size_t k = 0; k + 1 < crease.size(); ++k)
+      if (const int e = edgeIndex(topology, crease[k], crease[k + 1]); e >= 0) onCrease[e] = true;
+  return onCrease;
 }
 
 double cornerAngle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
@@ -91,7 +106,8 @@ int countDegenerate(const Points3& V, const Faces& F, const EdgeTopology& topolo
   for (int f = 0; f < F.rows(); ++f) {
     const Eigen::Vector3d a = row3(V, F(f, 0)), b = row3(V, F(f, 1)), c = row3(V, F(f, 2));
     const double area = 0.5 * (b - a).cross(c - a).norm();
-    const double smallest = std::min({cornerAngle(a, b, c), cornerAngle(b, c, a), cornerAngle(c, a, b)});
+    const double smallest =
+        std::min({cornerAngle(a, b, c), cornerAngle(b, c, a), cornerAngle(c, a, b)});
     if (smallest < kMinAngle || area < minArea || !std::isfinite(area)) ++count;
   }
   return count;
@@ -102,18 +118,19 @@ int countDegenerate(const Points3& V, const Faces& F, const EdgeTopology& topolo
 // two 3D triangles have a negative dot product, i.e. the surface turns by more than 90 degrees
 // between neighbouring triangles. A smooth developable surface meshed at any reasonable density
 // never does; a solver that folds a sheet onto itself does. Each triangle counts once, however many
-// of its edges are folded.
+// of its edges are folded. A crease (a hinge edge) may fold by any angle: the designer drew it.
 int countFolded(const Points2& flat, const Points3& shape, const Faces& F,
-                const EdgeTopology& topology) {
+                const EdgeTopology& topology, const std::vector<bool>& hinge) {
   std::vector<Eigen::Vector3d> normal(size_t(F.rows()));
   for (int f = 0; f < F.rows(); ++f) {
-    const Eigen::Vector3d a = row3(shape, F(f, 0)), b = row3(shape, F(f, 1)), c = row3(shape, F(f, 2));
+    const Eigen::Vector3d a = row3(shape, F(f, 0)), b = row3(shape, F(f, 1)),
+                          c = row3(shape, F(f, 2));
     normal[f] = (b - a).cross(c - a);
   }
   std::vector<bool> folded(size_t(F.rows()), false);
   for (size_t e = 0; e < topology.edges.size(); ++e) {
     const auto [f, g] = topology.faces[e];
-    if (g < 0 || isFlippedFlat(flat, F, f) || isFlippedFlat(flat, F, g)) continue;
+    if (g < 0 || hinge[e] || isFlippedFlat(flat, F, f) || isFlippedFlat(flat, F, g)) continue;
     if (normal[f].dot(normal[g]) < 0.0) folded[f] = folded[g] = true;
   }
   return int(std::count(folded.begin(), folded.end(), true));
@@ -173,7 +190,8 @@ int countFlatOverlaps(const Points2& P, const Faces& F, std::string* example) {
       if (lo[g].y() >= hi[f].y() || lo[f].y() >= hi[g].y()) continue;
       if (!overlap(f, g)) continue;
       if (count == 0 && example)
-        *example = "triangles " + std::to_string(std::min(f, g)) + " and " + std::to_string(std::max(f, g));
+        *example = "triangles " + std::to_string(std::min(f, g)) + " and " +
+                   std::to_string(std::max(f, g));
       ++count;
     }
   }

@@ -18,9 +18,15 @@ struct EdgeTopology {
 };
 EdgeTopology edgeTopology(const Faces& F);
 
-/// Per vertex: on a boundary edge of F or listed in `seam`.
-std::vector<bool> boundaryVertices(int vertexCount, const std::vector<int>& seam,
-                                   const EdgeTopology& topology);
+/// Index into topology.edges of the edge joining i and j, or -1 when there is none.
+int edgeIndex(const EdgeTopology& topology, int i, int j);
+
+/// Per vertex of the piece: on a boundary edge of its faces, on its seam or on one of its creases
+/// (the places where the sheet may turn, so the angle defect there is not curvature).
+std::vector<bool> boundaryOrCreaseVertices(const Piece& piece, const EdgeTopology& topology);
+
+/// Per edge of topology.edges: whether it lies along one of the piece's creases.
+std::vector<bool> creaseEdges(const Piece& piece, const EdgeTopology& topology);
 
 /// Angle at corner `a` of triangle (a, b, c), in [0, pi]; 0 when an edge at `a` has zero length.
 double cornerAngle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
@@ -38,9 +44,10 @@ bool isFlippedFlat(const Points2& P, const Faces& F, int f);
 /// of V)^2 (see the reasons in mesh_measures.cpp).
 int countDegenerate(const Points3& V, const Faces& F, const EdgeTopology& topology);
 
-/// 3D triangles folded back over a neighbour (see the definition in mesh_measures.cpp).
+/// 3D triangles folded back over a neighbour (see the definition in mesh_measures.cpp). Edges
+/// with `hinge[e]` set (creases) may fold sharply and are not looked at.
 int countFolded(const Points2& flat, const Points3& shape, const Faces& F,
-                const EdgeTopology& topology);
+                const EdgeTopology& topology, const std::vector<bool>& hinge);
 
 /// Pairs of flat triangles whose interiors overlap (touching along an edge or at a corner is no
 /// overlap). `example` receives the first pair found as "f1 and f2" when any.

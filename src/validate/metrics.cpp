@@ -1,5 +1,6 @@
 #include "validate/metrics.h"
 
+#include <Eigen/Geometry>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -28,12 +29,11 @@ void addEdgeLengths(const Piece& p, const detail::EdgeTopology& topology, double
   }
 }
 
-// Angle defect per vertex of a piece's 3D shape; NaN on the boundary and the seam, where the
-// sheet may turn and the defect is not curvature.
+// Angle defect per vertex of a piece's 3D shape; NaN on the boundary, the seam and the creases,
+// where the sheet may turn and the defect is not curvature.
 Eigen::VectorXd interiorDefects(const Piece& p, const detail::EdgeTopology& topology) {
   Eigen::VectorXd defect = detail::angleDefects(p.shape, p.F);
-  const std::vector<bool> onBoundary =
-      detail::boundaryVertices(int(p.shape.rows()), p.seam, topology);
+  const std::vector<bool> onBoundary = detail::boundaryOrCreaseVertices(p, topology);
   for (Eigen::Index v = 0; v < defect.size(); ++v)
     if (onBoundary[size_t(v)]) defect(v) = std::numeric_limits<double>::quiet_NaN();
   return defect;
@@ -58,6 +58,56 @@ Eigen::VectorXd curvatureMap(const Piece& piece) {
   });
 }
 
+const char* foldDirectionName(FoldDirection direction) {
+  return direction == FoldDirection::Mountain ? "mountain" : "valley";
+}
+
+std::vector<CreaseFold> creaseFolds(const Piece& piece) {
+  const detail::EdgeTopology topology = detail::edgeTopology(piece.F);
+  auto corner = [&](int v) -> Eigen::Vector3d { return piece.shape.row(v).transpose(); };
+  auto unitNormal = [&](int f) {
+    const Eigen::Vector3d a = corner(piece.F(f, 0));
+    return Eigen::Vector3d(
+        (corner(piece.F(f, 1)) - a).cross(corner(piece.F(f, 2)) - a).normalized());
+  };
+  // Whether face f runs from u to v (then it lies on the edge's left in the flat layout).
+  auto runs = [&](int f, int u, int v) {
+    for (int k = 0; k < 3; ++k)
+      if (piece.F(f, k) == u && piece.F(f, (k + 1) % 3) == v) return true;
+    return false;
+  };
+  std::vector<CreaseFold> folds;
+  for (const std::vector<int>& crease : piece.creases) {
+    CreaseFold fold;
+    double weighted = 0.0, weight = 0.0;
+    bool first = true;
+    for (size_t k = 0; k + 1 < crease.size(); ++k) {
+      const int u = crease[k], v = crease[k + 1];
+      const double length = (piece.flat.row(u) - piece.flat.row(v)).norm();
+      fold.lengthMm += length;
+      const int e = detail::edgeIndex(topology, u, v);
+      if (e < 0 || topology.faces[size_t(e)][1] < 0) continue;
+      auto [f, g] = topology.faces[size_t(e)];
+      if (!runs(f, u, v)) std::swap(f, g);
+      // With f on the left of u -> v, the fold is convex seen from the faces' outward side (a
+      // mountain) when g's normal turns about u -> v the positive way from f's.
+      const Eigen::Vector3d nf = unitNormal(f), ng = unitNormal(g);
+      const Eigen::Vector3d along = (corner(v) - corner(u)).normalized();
+      const double angle = std::atan2(nf.cross(ng).dot(along), nf.dot(ng)) * 180.0 / M_PI;
+      fold.minAngleDeg = first ? angle : std::min(fold.minAngleDeg, angle);
+      fold.maxAngleDeg = first ? angle : std::max(fold.maxAngleDeg, angle);
+      first = false;
+      weighted += length * angle;
+      weight += length;
+    }
+    const double mean = weight > 0.0 ? weighted / weight : 0.0;
+    fold.direction = mean >= 0.0 ? FoldDirection::Mountain : FoldDirection::Valley;
+    fold.angleDeg = std::abs(mean);
+    folds.push_back(fold);
+  }
+  return folds;
+}
+
 Metrics computeMetrics(const DForm& model) {
   assert(model.a.seam.size() == model.b.seam.size() && "seam partners come in pairs");
   Metrics m;
@@ -71,8 +121,10 @@ Metrics computeMetrics(const DForm& model) {
     for (int f = 0; f < p->F.rows(); ++f) m.flipped_2d += detail::isFlippedFlat(p->flat, p->F, f);
     // Folded over: across an interior edge whose two flat triangles are both counter-clockwise
     // (flat dihedral 0), the 3D unit normals have a negative dot product (a turn of more than 90
-    // degrees); each triangle counts once. Details in mesh_measures.cpp.
-    m.flipped_3d += detail::countFolded(p->flat, p->shape, p->F, topology);
+    // degrees); each triangle counts once. Crease edges may fold sharply and are not looked at.
+    // Details in mesh_measures.cpp.
+    m.flipped_3d +=
+        detail::countFolded(p->flat, p->shape, p->F, topology, detail::creaseEdges(*p, topology));
     m.degenerate_2d += detail::countDegenerate(detail::lift(p->flat), p->F, topology);
     m.degenerate_3d += detail::countDegenerate(p->shape, p->F, topology);
   }

@@ -1,32 +1,59 @@
 // Quality figures of a D-Form (paper section 6.3 and Table 2), computed from the meshes alone.
 #pragma once
 
+#include <vector>
+
 #include "core/types.h"
 
 namespace dform {
 
 struct Metrics {
-  double L_error = 0;       ///< |L3 - L2| / |L2| over all edges of both pieces (fraction)
-  double L_max = 0;         ///< max_i |L3_i - L2_i| / L2_i (fraction)
-  double B_error = 0;       ///< mean distance between seam partners / seam length (fraction)
-  double seam_gap_mm = 0;   ///< largest distance between seam partners (mm)
-  double gauss_max = 0;     ///< largest |angle defect| at interior vertices (radians)
-  double gauss_mean = 0;    ///< mean |angle defect| at interior vertices (radians)
-  int flipped_2d = 0;       ///< flat triangles with non-positive signed area
-  int flipped_3d = 0;       ///< 3D triangles whose normal opposes its neighbours' (see .cpp)
-  int degenerate_2d = 0;    ///< flat triangles with an angle below 1e-3 rad or zero area
-  int degenerate_3d = 0;    ///< 3D triangles with an angle below 1e-3 rad or zero area
-  double seam_length_a_mm = 0;  ///< flat seam length (perimeter) of piece A
-  double seam_length_b_mm = 0;  ///< flat seam length of piece B
-  double seam_length_3d_mm = 0; ///< length of the 3D seam (piece A's side)
+  double L_error = 0;            ///< |L3 - L2| / |L2| over all edges of both pieces (fraction)
+  double L_max = 0;              ///< max_i |L3_i - L2_i| / L2_i (fraction)
+  double B_error = 0;            ///< mean distance between seam partners / seam length (fraction)
+  double seam_gap_mm = 0;        ///< largest distance between seam partners (mm)
+  double gauss_max = 0;          ///< largest |angle defect| at interior vertices (radians)
+  double gauss_mean = 0;         ///< mean |angle defect| at interior vertices (radians)
+  int flipped_2d = 0;            ///< flat triangles with non-positive signed area
+  int flipped_3d = 0;            ///< 3D triangles whose normal opposes its neighbours' (see .cpp)
+  int degenerate_2d = 0;         ///< flat triangles with an angle below 1e-3 rad or zero area
+  int degenerate_3d = 0;         ///< 3D triangles with an angle below 1e-3 rad or zero area
+  double seam_length_a_mm = 0;   ///< flat seam length (perimeter) of piece A
+  double seam_length_b_mm = 0;   ///< flat seam length of piece B
+  double seam_length_3d_mm = 0;  ///< length of the 3D seam (piece A's side)
 };
 
 /// Figures of `model`. Pure: reads the meshes, never the solver.
 Metrics computeMetrics(const DForm& model);
 
 /// The discrete Gaussian curvature of a piece's 3D shape: per vertex, its angle defect
-/// (radians) at interior vertices and 0 on the seam and boundary, where the sheet may turn.
+/// (radians) at interior vertices and 0 on the seam, the boundary and the creases, where the sheet
+/// may turn.
 Eigen::VectorXd curvatureMap(const Piece& piece);
+
+/// How a crease folds, seen from the side of the flat pattern that faces up on the sheet (faces
+/// counter-clockwise), which becomes the outside of the D-Form (faces outward-facing in 3D).
+enum class FoldDirection {
+  Mountain,  ///< the crease is a ridge towards the viewer: a convex edge seen from outside
+  Valley,    ///< a groove away from the viewer: a concave edge seen from outside
+};
+
+/// "mountain" or "valley".
+const char* foldDirectionName(FoldDirection direction);
+
+/// One crease's fold. The signed fold angle of a crease edge is the angle between the 3D normals
+/// of its two triangles, positive for a mountain and negative for a valley.
+struct CreaseFold {
+  FoldDirection direction = FoldDirection::Mountain;  ///< the sign of the mean signed angle
+  double angleDeg = 0;     ///< |length-weighted mean of the signed fold angle| (degrees; 0 = flat)
+  double minAngleDeg = 0;  ///< smallest signed fold angle of its edges (degrees)
+  double maxAngleDeg = 0;  ///< largest signed fold angle of its edges (degrees)
+  double lengthMm = 0;     ///< flat length of the crease (mm)
+};
+
+/// The fold of each of piece.creases, in order, from the 3D shape. Edges of a crease that are not
+/// interior mesh edges (which readModel and the mesher never produce) count for nothing.
+std::vector<CreaseFold> creaseFolds(const Piece& piece);
 
 /// Inverse mode: D_error (paper Eq. 7, fraction) and the largest seam-to-curve distance (mm),
 /// where curve.points.row(i) is the target of a.seam[i] and b.seam[i].

@@ -114,5 +114,33 @@ TEST(Polyline, TouchingVertexCountsAsIntersection) {
   EXPECT_TRUE(findSelfIntersection(P).has_value());
 }
 
+// The axis-parallel square [x0, x0 + side] x [y0, y0 + side], counter-clockwise.
+Points2 square(double x0, double y0, double side) {
+  Points2 P(4, 2);
+  P << x0, y0, x0 + side, y0, x0 + side, y0 + side, x0, y0 + side;
+  return P;
+}
+
+TEST(Polyline, CrossingOfTwoPolygonsNamesOneEdgeOfEach) {
+  const Points2 outer = square(0, 0, 10);
+  EXPECT_FALSE(findCrossing(outer, square(3, 3, 4)).has_value());   // nested
+  EXPECT_FALSE(findCrossing(outer, square(20, 0, 4)).has_value());  // apart
+  // Overlapping the right edge (edge 1 of the outer square): its edges 0 and 2 cross it.
+  const auto crossing = findCrossing(outer, square(8, 3, 4));
+  ASSERT_TRUE(crossing.has_value());
+  EXPECT_EQ(crossing->first, 1);
+  EXPECT_TRUE(crossing->second == 0 || crossing->second == 2) << crossing->second;
+  EXPECT_TRUE(findCrossing(outer, square(10, 2, 3)).has_value());  // touching counts
+}
+
+TEST(Polyline, InsideClosedByTheEvenOddRule) {
+  const Points2 P = square(0, 0, 10);
+  EXPECT_TRUE(insidePolygon(P, {5, 5}));
+  EXPECT_FALSE(insidePolygon(P, {15, 5}));
+  EXPECT_FALSE(insidePolygon(P, {5, -1}));
+  Points2 clockwise = P.colwise().reverse();
+  EXPECT_TRUE(insidePolygon(clockwise, {1, 9}));
+}
+
 }  // namespace
 }  // namespace dform

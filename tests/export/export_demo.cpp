@@ -1,5 +1,6 @@
-// export_demo: writes the synthetic D-Form's pattern for every profile and renders the docs
-// pictures (scripts/render-docs-export), or times exportAll (docs/export.md).
+// export_demo: writes the synthetic D-Form's pattern for every profile, and the variants' (an anti
+// D-Form, a demi D-Form, creased pieces), and renders the docs pictures
+// (scripts/render-docs-export), or times exportAll (docs/export.md).
 //   export_demo render OUT_DIR IMAGES_DIR
 //   export_demo bench OUT_DIR [REPEATS]
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "export/exporter.h"
+#include "models.h"
 #include "synthetic.h"
 
 namespace {
@@ -28,10 +30,12 @@ dform::ExportOptions baseOptions() {
 
 int render(const std::string& outDir, const std::string& imagesDir) {
   namespace fs = std::filesystem;
+  enum class Model { Ellipses, Anti, Demi, Creased };
   struct Job {
     std::string profile, image;
     double sheetW, sheetH, scale;
     bool alternate;
+    Model model = Model::Ellipses;
   };
   const std::vector<Job> jobs = {
       {"laser", "export-laser", 400, 250, 1.0, false},
@@ -42,9 +46,26 @@ int render(const std::string& outDir, const std::string& imagesDir) {
       {"print", "export-print-tiled", 0, 0, 2.0, false},
       {"print-and-cut", "export-print-and-cut", 0, 0, 0.6, false},
       {"print-and-cut-cricut", "export-print-and-cut-cricut", 0, 0, 0.7, false},
+      {"laser", "export-laser-anti", 300, 180, 1.0, false, Model::Anti},
+      {"laser", "export-laser-demi", 300, 180, 1.0, true, Model::Demi},
+      {"print", "export-print-creases", 0, 0, 1.0, false, Model::Creased},
+  };
+  auto model = [](const Job& job) {
+    namespace t = dform::test;
+    switch (job.model) {
+      case Model::Anti: return t::annulusDForm(60, 25, 64, 6);
+      case Model::Demi: return t::demiDForm(60, 30, 64, 6);
+      case Model::Creased: {
+        const dform::Piece a =
+            t::foldedSquare(12, 84.0, {{4, 0, 4, 12, 40.0}, {6, 0, 12, 6, -60.0}});
+        return dform::DForm{a, t::mirroredCopy(a, "B")};
+      }
+      case Model::Ellipses: break;
+    }
+    return t::ellipseCircleDForm(64, 8, 80 * job.scale, 50 * job.scale, 30 * job.scale);
   };
   for (const Job& job : jobs) {
-    const dform::DForm m = dform::test::ellipseCircleDForm(64, 8, 80 * job.scale, 50 * job.scale, 30 * job.scale);
+    const dform::DForm m = model(job);
     dform::ExportOptions o = baseOptions();
     o.profile = job.profile;
     o.alternateTabs = job.alternate;
@@ -58,8 +79,9 @@ int render(const std::string& outDir, const std::string& imagesDir) {
     if (!summary.isOk()) return fail(summary.status());
     const std::string png = (fs::path(imagesDir) / (job.image + ".png")).string();
     if (auto s = dform::renderPatternPng(m, o, png, 60, 0); !s.isOk()) return fail(s);
-    std::printf("%-22s %d page(s), %d ticks, %d tabs -> %s\n", job.profile.c_str(),
-                summary.value().pages, summary.value().ticks, summary.value().tabs, png.c_str());
+    std::printf("%-22s %d page(s), %d ticks, %d tabs, %d creases -> %s\n", job.profile.c_str(),
+                summary.value().pages, summary.value().ticks, summary.value().tabs,
+                summary.value().creases, png.c_str());
   }
   return 0;
 }
@@ -76,9 +98,10 @@ int bench(const std::string& outDir, int repeats) {
     ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
   }
   std::sort(ms.begin(), ms.end());
-  std::printf("exportAll, laser profile, %d triangles, %d repeats: min %.1f ms, median %.1f ms, max %.1f ms\n",
-              int(model.a.F.rows() + model.b.F.rows()), repeats, ms.front(), ms[ms.size() / 2],
-              ms.back());
+  std::printf(
+      "exportAll, laser profile, %d triangles, %d repeats: min %.1f ms, median %.1f ms, max %.1f "
+      "ms\n",
+      int(model.a.F.rows() + model.b.F.rows()), repeats, ms.front(), ms[ms.size() / 2], ms.back());
   return 0;
 }
 
@@ -88,6 +111,8 @@ int main(int argc, char** argv) {
   const std::string mode = argc > 1 ? argv[1] : "";
   if (mode == "render" && argc == 4) return render(argv[2], argv[3]);
   if (mode == "bench" && argc >= 3) return bench(argv[2], argc > 3 ? std::stoi(argv[3]) : 21);
-  std::fprintf(stderr, "usage: export_demo render OUT_DIR IMAGES_DIR | export_demo bench OUT_DIR [REPEATS]\n");
+  std::fprintf(
+      stderr,
+      "usage: export_demo render OUT_DIR IMAGES_DIR | export_demo bench OUT_DIR [REPEATS]\n");
   return 2;
 }

@@ -1,16 +1,14 @@
 // The flat pattern, read back from the written files: SVG scale and layers, perimeters, tick
 // correspondence, tabs, colours and strokes, PDF pages and their rendering, errors.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <set>
-
-#include <unistd.h>
-
 #include <nlohmann/json.hpp>
 #include <polyclipping/clipper.hpp>
+#include <set>
 
 #include "core/polyline.h"
 #include "export/exporter.h"
@@ -26,48 +24,18 @@ using nlohmann::json;
 // The bar: printed or cut dimensions within 0.1 mm of the solved ones.
 constexpr double kMmTol = 0.1;
 
-ExportOptions options(const std::string& profile = "laser") {
-  ExportOptions o;
-  o.profile = profile;
-  o.templatesDir = DFORM_TEMPLATES_DIR;
-  o.jobName = "test-job";
-  return o;
-}
-
-struct Exported {
-  std::string dir;
-  ExportSummary summary;
-  SvgDoc svg;
-  json sidecar;
-};
-
-Exported exportTo(const std::string& name, const DForm& model, const ExportOptions& o) {
-  Exported e;
-  e.dir = freshDir(name);
-  auto result = exportAll(model, o, e.dir);
-  EXPECT_TRUE(result.isOk()) << result.status().message();
-  if (!result.isOk()) return e;
-  e.summary = result.value();
-  e.svg = readSvg(e.dir + "/pattern.svg");
-  e.sidecar = json::parse(readText(e.dir + "/pattern.json"));
-  return e;
-}
-
-Polyline toPolyline(const json& j) {
-  Polyline p;
-  for (const auto& q : j) p.emplace_back(q[0].get<double>(), q[1].get<double>());
-  return p;
-}
-
 double solvedPerimeter(const Piece& piece) {
   Points2 P(Eigen::Index(piece.seam.size()), 2);
-  for (size_t i = 0; i < piece.seam.size(); ++i) P.row(Eigen::Index(i)) = piece.flat.row(piece.seam[i]);
+  for (size_t i = 0; i < piece.seam.size(); ++i)
+    P.row(Eigen::Index(i)) = piece.flat.row(piece.seam[i]);
   return closedLength(P);
 }
 
 ClipperLib::Path clip(const Polyline& p) {
   ClipperLib::Path out;
-  for (const Vec2& q : p) out.emplace_back(ClipperLib::cInt(std::llround(q.x() * 1e4)), ClipperLib::cInt(std::llround(q.y() * 1e4)));
+  for (const Vec2& q : p)
+    out.emplace_back(ClipperLib::cInt(std::llround(q.x() * 1e4)),
+                     ClipperLib::cInt(std::llround(q.y() * 1e4)));
   return out;
 }
 
@@ -115,8 +83,8 @@ TEST(ExportPattern, SvgIsTrueScaleInMillimetresWithLayersAndIds) {
   EXPECT_DOUBLE_EQ(parseMm(e.svg.height), 400);
   EXPECT_EQ(e.svg.viewBox, "0 0 600 400");  // 1 user unit = 1 mm
   EXPECT_EQ(e.svg.layers, (std::vector<std::string>{"Engrave", "Score", "Cut"}));
-  for (const char* id : {"A-cut", "B-cut", "A-tick-00", "A-tick-07", "B-tick-07", "A-name", "B-name",
-                         "A-fold-01", "A-tick-07-label", "title"})
+  for (const char* id : {"A-cut", "B-cut", "A-tick-00", "A-tick-07", "B-tick-07", "A-name",
+                         "B-name", "A-fold-01", "A-tick-07-label", "title"})
     EXPECT_NE(e.svg.find(id), nullptr) << id;
   for (const auto& p : e.svg.paths) {
     EXPECT_FALSE(p.unknownCommand) << p.id;
@@ -125,7 +93,8 @@ TEST(ExportPattern, SvgIsTrueScaleInMillimetresWithLayersAndIds) {
         EXPECT_TRUE(q.x() >= 0 && q.x() <= 600 && q.y() >= 0 && q.y() <= 400) << p.id;
       }
   }
-  for (const std::string f : {"pattern.svg", "pattern.pdf", "pattern.json", "dform.stl", "dform.glb"})
+  for (const std::string f :
+       {"pattern.svg", "pattern.pdf", "pattern.json", "dform.stl", "dform.glb"})
     EXPECT_TRUE(fs::exists(e.dir + "/" + f)) << f;
 }
 
@@ -241,7 +210,8 @@ TEST(ExportPattern, TabsOverlapNeitherEachOtherNorTheirPiece) {
     o.alternateTabs = alternate;
     const Exported e = exportTo(alternate ? "tabs-alt" : "tabs", model, o);
     std::vector<Polyline> tabs[2];
-    for (const auto& t : e.sidecar["tabs"]) tabs[t["piece"] == "A" ? 0 : 1].push_back(toPolyline(t["polygon"]));
+    for (const auto& t : e.sidecar["tabs"])
+      tabs[t["piece"] == "A" ? 0 : 1].push_back(toPolyline(t["polygon"]));
     EXPECT_GT(tabs[0].size(), 5u);
     if (alternate) {
       EXPECT_GT(tabs[1].size(), 5u);
@@ -253,7 +223,9 @@ TEST(ExportPattern, TabsOverlapNeitherEachOtherNorTheirPiece) {
       const Polyline outline = toPolyline(e.sidecar["pieces"][p]["outline"]);
       for (size_t i = 0; i < tabs[p].size(); ++i) {
         const auto selfHit = findSelfIntersection(points(tabs[p][i]));
-        EXPECT_FALSE(selfHit) << "tab " << i << " of piece " << p << " crosses itself at edges " << (selfHit ? selfHit->first : -1) << ", " << (selfHit ? selfHit->second : -1) << " of " << tabs[p][i].size();
+        EXPECT_FALSE(selfHit) << "tab " << i << " of piece " << p << " crosses itself at edges "
+                              << (selfHit ? selfHit->first : -1) << ", "
+                              << (selfHit ? selfHit->second : -1) << " of " << tabs[p][i].size();
         EXPECT_LT(overlap(tabs[p][i], outline), 0.01) << "tab " << i << " overlaps its piece";
         for (size_t j = i + 1; j < tabs[p].size(); ++j)
           EXPECT_LT(overlap(tabs[p][i], tabs[p][j]), 0.01) << "tabs " << i << ", " << j;
@@ -266,7 +238,13 @@ TEST(ExportPattern, TabsOverlapNeitherEachOtherNorTheirPiece) {
       EXPECT_TRUE(c->closed);
       EXPECT_EQ(c->parts.size(), 1u);
       const auto hit = findSelfIntersection(points(c->parts[0]));
-      EXPECT_FALSE(hit) << c->id << " edges " << (hit ? hit->first : -1) << " " << (hit ? hit->second : -1) << " of " << c->parts[0].size() << ": " << (hit ? points(c->parts[0]).middleRows(hit->first, 2) : Points2()) << " | " << (hit ? points(c->parts[0]).middleRows(std::min<int>(hit->second, int(c->parts[0].size()) - 2), 2) : Points2());
+      EXPECT_FALSE(hit)
+          << c->id << " edges " << (hit ? hit->first : -1) << " " << (hit ? hit->second : -1)
+          << " of " << c->parts[0].size() << ": "
+          << (hit ? points(c->parts[0]).middleRows(hit->first, 2) : Points2()) << " | "
+          << (hit ? points(c->parts[0])
+                        .middleRows(std::min<int>(hit->second, int(c->parts[0].size()) - 2), 2)
+                  : Points2());
     }
     EXPECT_LT(overlap(cut[0]->parts[0], cut[1]->parts[0]), 1e-9);
   }
@@ -360,7 +338,10 @@ TEST(ExportPattern, PrintedPdfRendersAtTrueScale) {
   ASSERT_EQ(e.summary.pages, 1);
   std::string out;
   // 254 dpi: 10 pixels per mm.
-  ASSERT_EQ(run("pdftoppm -r 254 -gray -f 1 -l 1 '" + e.dir + "/pattern.pdf' '" + e.dir + "/scale'", &out), 0) << out;
+  ASSERT_EQ(run("pdftoppm -r 254 -gray -f 1 -l 1 '" + e.dir + "/pattern.pdf' '" + e.dir + "/scale'",
+                &out),
+            0)
+      << out;
   const Gray g = readPgm(e.dir + "/scale-1.pgm");
   EXPECT_NEAR(g.w, 2100, 1);  // A4 portrait
   EXPECT_NEAR(g.h, 2970, 1);
@@ -500,8 +481,10 @@ TEST(ExportPattern, SheetTooSmallSaysWhatSizeIsNeeded) {
   auto result = exportAll(model, o, dir);
   ASSERT_FALSE(result.isOk());
   EXPECT_EQ(result.status().code(), ErrorCode::Usage);
-  EXPECT_NE(result.status().message().find("needs at least"), std::string::npos) << result.status().message();
-  EXPECT_NE(result.status().message().find("150.0 x 100.0 mm"), std::string::npos) << result.status().message();
+  EXPECT_NE(result.status().message().find("needs at least"), std::string::npos)
+      << result.status().message();
+  EXPECT_NE(result.status().message().find("150.0 x 100.0 mm"), std::string::npos)
+      << result.status().message();
   EXPECT_TRUE(fs::is_empty(dir)) << "nothing written";
 }
 
@@ -546,7 +529,8 @@ TEST(ExportPattern, BadOptionsAreUsageErrors) {
   o.profile = "no-such-profile";
   auto r = exportAll(model, o, dir);
   EXPECT_EQ(r.status().code(), ErrorCode::Usage);
-  EXPECT_NE(r.status().message().find("laser-ponoko"), std::string::npos) << "lists the known profiles";
+  EXPECT_NE(r.status().message().find("laser-ponoko"), std::string::npos)
+      << "lists the known profiles";
   o = options();
   o.fontPath = "/nonexistent/futural.jhf";
   r = exportAll(model, o, dir);
@@ -586,7 +570,8 @@ TEST(ExportPattern, PngPreviewHasThePageSizeInPixels) {
   };
   EXPECT_EQ(be32(16), 420u);  // IHDR width: 210 mm
   EXPECT_EQ(be32(20), 594u);  // IHDR height: 297 mm
-  EXPECT_EQ(renderPatternPng(model, options("print"), dir + "/q.png", 96, 5).code(), ErrorCode::Usage);
+  EXPECT_EQ(renderPatternPng(model, options("print"), dir + "/q.png", 96, 5).code(),
+            ErrorCode::Usage);
 }
 
 }  // namespace

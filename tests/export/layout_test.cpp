@@ -6,28 +6,15 @@
 
 #include "export/exporter.h"
 #include "export/internal.h"
+#include "models.h"
 #include "synthetic.h"
+#include "test_util.h"
 
 namespace dform::test {
 namespace {
 
 using fab::Polyline;
 using fab::Vec2;
-
-ExportOptions options(const std::string& profile) {
-  ExportOptions o;
-  o.profile = profile;
-  o.templatesDir = DFORM_TEMPLATES_DIR;
-  return o;
-}
-
-fab::PatternBuild build(const DForm& model, const ExportOptions& o) {
-  auto profile = fab::resolveProfile(o);
-  EXPECT_TRUE(profile.isOk()) << profile.status().message();
-  auto pattern = fab::buildPattern(model, o, profile.value());
-  EXPECT_TRUE(pattern.isOk()) << pattern.status().message();
-  return pattern.value();
-}
 
 fab::Path* findPath(fab::PatternBuild& p, const std::string& id) {
   for (fab::Layer& layer : p.drawing.layers)
@@ -112,6 +99,34 @@ TEST(ExportLayout, EachPlantedDefectIsCountedByItsOwnFigure) {
     EXPECT_EQ(f.problems(), 1) << plant.what << ": " << f.example;
     EXPECT_NE(f.example.find(plant.example), std::string::npos) << plant.what << ": " << f.example;
   }
+}
+
+TEST(ExportLayout, AHoleIsOutsideItsPiece) {
+  // An anti D-Form: its tabs lie in the holes, which is no overlap with the pieces; a label or a
+  // tab moved across the hole's edge is.
+  const fab::PatternBuild clean = build(annulusDForm(), options("laser"));
+  ASSERT_EQ(fab::checkLayout(clean).problems(), 0) << fab::checkLayout(clean).example;
+  ASSERT_FALSE(clean.tabs.empty());
+  ASSERT_EQ(clean.pieces[0].boundaries.size(), 2u);
+  const Vec2 holeCentre = centroid(clean.pieces[0].boundaries[1]);
+
+  fab::PatternBuild labelInHole = clean;
+  fab::Path* label = findPath(labelInHole, "A-tick-02-label");
+  ASSERT_NE(label, nullptr);
+  for (Polyline& part : label->parts) translate(part, holeCentre - centroid(label->parts[0]));
+  const LayoutFindings f = fab::checkLayout(labelInHole);
+  EXPECT_EQ(f.labelsOutside, 1) << f.example;
+  EXPECT_EQ(f.problems(), 1) << f.example;
+
+  fab::PatternBuild tabInRing = clean;
+  fab::TabInfo& tab = tabInRing.tabs[0];
+  ASSERT_EQ(tab.piece, 0);
+  // Out of the hole by twice its width, across the seam into the ring.
+  const Vec2 outward = (centroid(tab.fold) - holeCentre).normalized();
+  translate(tab.polygon, 2 * tab.width * outward);
+  const LayoutFindings g = fab::checkLayout(tabInRing);
+  EXPECT_EQ(g.tabsOverPieces, 1) << g.example;
+  EXPECT_EQ(g.problems(), 1) << g.example;
 }
 
 }  // namespace

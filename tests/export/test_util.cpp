@@ -1,5 +1,9 @@
 #include "test_util.h"
 
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
 #include <cstdio>
@@ -7,9 +11,6 @@
 #include <fstream>
 #include <regex>
 #include <sstream>
-
-#include <sys/wait.h>
-#include <unistd.h>
 
 namespace dform::test {
 
@@ -47,7 +48,8 @@ SvgDoc readSvg(const std::string& path) {
   SvgDoc doc;
   const std::regex element("<(svg|g|path)\\s[^>]*>");
   std::string layer;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), element); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), element);
+       it != std::sregex_iterator(); ++it) {
     const std::string e = it->str();
     const std::string tag = (*it)[1].str();
     if (tag == "svg") {
@@ -92,6 +94,40 @@ SvgDoc readSvg(const std::string& path) {
   return doc;
 }
 
+ExportOptions options(const std::string& profile) {
+  ExportOptions o;
+  o.profile = profile;
+  o.templatesDir = DFORM_TEMPLATES_DIR;
+  o.jobName = "test-job";
+  return o;
+}
+
+Exported exportTo(const std::string& name, const DForm& model, const ExportOptions& o) {
+  Exported e;
+  e.dir = freshDir(name);
+  auto result = exportAll(model, o, e.dir);
+  EXPECT_TRUE(result.isOk()) << result.status().message();
+  if (!result.isOk()) return e;
+  e.summary = result.value();
+  e.svg = readSvg(e.dir + "/pattern.svg");
+  e.sidecar = nlohmann::json::parse(readText(e.dir + "/pattern.json"));
+  return e;
+}
+
+fab::PatternBuild build(const DForm& model, const ExportOptions& o) {
+  auto profile = fab::resolveProfile(o);
+  EXPECT_TRUE(profile.isOk()) << profile.status().message();
+  auto pattern = fab::buildPattern(model, o, profile.value());
+  EXPECT_TRUE(pattern.isOk()) << pattern.status().message();
+  return pattern.isOk() ? pattern.value() : fab::PatternBuild{};
+}
+
+Polyline toPolyline(const nlohmann::json& j) {
+  Polyline p;
+  for (const auto& q : j) p.emplace_back(q[0].get<double>(), q[1].get<double>());
+  return p;
+}
+
 double length(const Polyline& p, bool closed) {
   double len = 0;
   for (size_t i = 0; i + 1 < p.size(); ++i) len += (p[i + 1] - p[i]).norm();
@@ -104,7 +140,8 @@ std::pair<double, double> arcLengthOf(const Polyline& loop, const Vec2& q) {
   for (size_t i = 0; i < loop.size(); ++i) {
     const Vec2 a = loop[i], b = loop[(i + 1) % loop.size()];
     const Vec2 ab = b - a;
-    const double t = ab.squaredNorm() > 0 ? std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+    const double t =
+        ab.squaredNorm() > 0 ? std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
     const double dist = (a + t * ab - q).norm();
     if (dist < best) {
       best = dist;
@@ -119,7 +156,8 @@ bool inside(const Polyline& poly, const Vec2& q) {
   bool in = false;
   for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
     if ((poly[i].y() > q.y()) != (poly[j].y() > q.y()) &&
-        q.x() < (poly[j].x() - poly[i].x()) * (q.y() - poly[i].y()) / (poly[j].y() - poly[i].y()) + poly[i].x())
+        q.x() < (poly[j].x() - poly[i].x()) * (q.y() - poly[i].y()) / (poly[j].y() - poly[i].y()) +
+                    poly[i].x())
       in = !in;
   }
   return in;
@@ -158,7 +196,8 @@ bool haveProgram(const std::string& name) { return run("command -v " + name + " 
 
 // This process's scratch root, removed when the test program exits.
 struct ScratchRoot {
-  const fs::path path = fs::temp_directory_path() / ("dform-export-test-" + std::to_string(::getpid()));
+  const fs::path path =
+      fs::temp_directory_path() / ("dform-export-test-" + std::to_string(::getpid()));
   ~ScratchRoot() {
     std::error_code ec;
     fs::remove_all(path, ec);

@@ -1,12 +1,16 @@
-// Readers for the export tests: our SVG (paths with absolute M/L/Z, in layers), pattern.json,
-// binary STL, and running the command-line checkers (qpdf, pdfinfo, pdftoppm, node).
+// Helpers for the export tests: their options, an export read back, a built pattern; readers for
+// our SVG (paths with absolute M/L/Z, in layers), pattern.json, binary STL; and running the
+// command-line checkers (qpdf, pdfinfo, pdftoppm, node).
 #pragma once
 
+#include <Eigen/Core>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include <Eigen/Core>
+#include "export/exporter.h"
+#include "export/internal.h"
 
 namespace dform::test {
 
@@ -22,14 +26,33 @@ struct SvgPath {
 };
 
 struct SvgDoc {
-  std::string width, height, viewBox;   ///< attributes of the root element as written
-  std::vector<std::string> layers;      ///< inkscape:label of each layer, in order
-  std::vector<SvgPath> paths;           ///< in document order
+  std::string width, height, viewBox;  ///< attributes of the root element as written
+  std::vector<std::string> layers;     ///< inkscape:label of each layer, in order
+  std::vector<SvgPath> paths;          ///< in document order
   const SvgPath* find(const std::string& id) const;
 };
 
 SvgDoc readSvg(const std::string& path);
 std::string readText(const std::string& path);
+
+/// Options for `profile` with the source tree's templates and the job name "test-job".
+ExportOptions options(const std::string& profile = "laser");
+
+/// What exportAll wrote into a fresh folder `name`, read back (empty when it failed, which the
+/// test is told).
+struct Exported {
+  std::string dir;
+  ExportSummary summary;
+  SvgDoc svg;
+  nlohmann::json sidecar;
+};
+Exported exportTo(const std::string& name, const DForm& model, const ExportOptions& o);
+
+/// The pattern laid out for `model`, no file written (the test is told when it fails).
+fab::PatternBuild build(const DForm& model, const ExportOptions& o);
+
+/// A polyline of pattern.json, [[x, y], ...].
+Polyline toPolyline(const nlohmann::json& j);
 
 double length(const Polyline& p, bool closed);
 /// Arc length along the closed polyline `loop` (from its first point) of the point of `loop`

@@ -1,13 +1,18 @@
 // report.html's pictures, read back as numbers: the 3D view's projection and scale, the
 // curvature colours, and the convergence plot's log axis.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <regex>
 #include <set>
 
 #include "models.h"
 #include "report/convergence_plot.h"
+#include "report/html_report.h"
 #include "report/views.h"
 #include "validate/metrics.h"
 
@@ -118,6 +123,120 @@ TEST(ReportViews, CurvatureIsWhiteWhereTheSheetIsFlatAndColouredAtABump) {
   EXPECT_GT(coloured, 0);
   for (std::size_t f = std::size_t(tetra.a.F.rows()); f < flat.size(); ++f)
     EXPECT_EQ(flat[f], "#ffffff");
+}
+
+// Whether q lies inside the triangle (a, b, c), either orientation.
+bool inTriangle(const Point& q, const Point& a, const Point& b, const Point& c) {
+  auto side = [&](const Point& u, const Point& v) {
+    return (v.first - u.first) * (q.second - u.second) -
+           (v.second - u.second) * (q.first - u.first);
+  };
+  const double s1 = side(a, b), s2 = side(b, c), s3 = side(c, a);
+  return (s1 >= 0 && s2 >= 0 && s3 >= 0) || (s1 <= 0 && s2 <= 0 && s3 <= 0);
+}
+
+// The `points` of every element carrying this attribute text (e.g. "class='crease mountain'").
+std::vector<std::vector<Point>> pointListsWith(const std::string& svg, const std::string& tag,
+                                               const std::string& attribute) {
+  std::vector<std::vector<Point>> lists;
+  const std::regex element("<" + tag + " [^>]*" + attribute + "[^>]*>");
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), element);
+       it != std::sregex_iterator(); ++it)
+    for (const auto& list : pointLists(it->str(), tag)) lists.push_back(list);
+  return lists;
+}
+
+TEST(ReportViews, FlatPiecesShowTheirHolesEmptyAndOutlined) {
+  // An anti D-Form: each annulus's hole is outlined and no triangle covers its centre.
+  const DForm anti = test::annulusDForm();
+  const std::string svg = flatCurvatureSvg(anti, 500);
+  const auto outlines = pointListsWith(svg, "polygon", "fill='none'");
+  ASSERT_EQ(outlines.size(), 4u);  // per piece: the seam (the hole) and the free outline
+  for (int p = 0; p < 2; ++p) {
+    const std::vector<Point>& hole = outlines[size_t(2 * p)];
+    const std::vector<Point>& outer = outlines[size_t(2 * p + 1)];
+    ASSERT_EQ(hole.size(), anti.a.seam.size());
+    ASSERT_EQ(outer.size(), anti.a.freeBoundaries[0].size());
+    Point centre{0, 0};
+    for (const Point& q : hole)
+      centre = {centre.first + q.first / hole.size(), centre.second + q.second / hole.size()};
+    const auto triangles = pointLists(svg, "polygon");
+    int covering = 0, total = 0;
+    for (const auto& t : triangles)
+      if (t.size() == 3) {
+        ++total;
+        covering += inTriangle(centre, t[0], t[1], t[2]);
+      }
+    EXPECT_EQ(total, int(anti.a.F.rows() + anti.b.F.rows()));
+    EXPECT_EQ(covering, 0) << "piece " << p;
+  }
+}
+
+TEST(ReportViews, CreasesAreDrawnByTheirFoldAndTheSurfaceStaysWhite) {
+  for (double h : {0.25, -0.25}) {
+    const DForm model = test::creasedTetraDForm(6, 40.0, h);
+    const std::string fold = h > 0 ? "class='crease mountain'" : "class='crease valley'";
+    const std::string flat = flatCurvatureSvg(model, 500);
+    for (const std::string& fill : fills(flat)) EXPECT_EQ(fill, "#ffffff");
+    const auto lines = pointListsWith(flat, "polyline", fold);
+    ASSERT_EQ(lines.size(), 2u) << fold;  // one hinge per piece
+    // Each runs between two corners of its piece's outline (the seam polygon drawn before it).
+    const auto outlines = pointListsWith(flat, "polygon", "fill='none'");
+    for (int p = 0; p < 2; ++p) {
+      EXPECT_EQ(lines[size_t(p)].size(), 7u);
+      for (const Point& end : {lines[size_t(p)].front(), lines[size_t(p)].back()}) {
+        double nearest = 1e9;
+        for (const Point& q : outlines[size_t(p)])
+          nearest = std::min(nearest, std::hypot(q.first - end.first, q.second - end.second));
+        EXPECT_LT(nearest, 0.11);  // the same pixel, up to the printed tenth
+      }
+    }
+    View curvature;
+    curvature.curvature = true;
+    const std::string shape = shapeSvg(model, curvature);
+    EXPECT_EQ(pointListsWith(shape, "polyline", fold).size(), 2u);
+    for (const std::string& fill : fills(shape)) EXPECT_EQ(fill, "#ffffff");
+  }
+  // A classic D-Form has no crease lines.
+  EXPECT_EQ(flatCurvatureSvg(test::tetraDForm(6), 400).find("crease"), std::string::npos);
+}
+
+// report.html for `model` from a minimal report.json, written into a fresh folder.
+std::string reportHtml(const DForm& model, const std::string& name) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() /
+      ("dform-report-test-" + name + "-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "report.json")
+      << R"({"mode": "forward", "job": {"piece_a": "a.svg", "piece_b": "b.svg"},
+             "tool": {"version": "test"}, "schema_version": 1, "gate": null,
+             "metrics": {"L_error": 0.001}, "timings": {"total": 1.0}, "messages": [],
+             "solver": {"initial_cost": 1.0, "iterations": [], "termination": "converged",
+                        "message": "", "factorisations": 0,
+                        "local_global": {"iterations": 0, "initial_energy": 1.0, "final_energy": 1.0}}})";
+  const Status written = writeReportHtml(dir.string(), model, DFORM_TEMPLATES_DIR);
+  EXPECT_TRUE(written.isOk()) << written.message();
+  std::ifstream in(dir / "report.html");
+  const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::filesystem::remove_all(dir);
+  return html;
+}
+
+TEST(ReportHtml, ListsEachCreaseWithItsFold) {
+  // The disphenoid's hinges, drawn as creases, fold by acos(0.6) = 53.1 degrees: mountains.
+  const std::string html = reportHtml(test::creasedTetraDForm(6, 40.0, 0.25), "creased");
+  ASSERT_NE(html.find("<h2>Creases</h2>"), std::string::npos);
+  for (const char* piece : {"A", "B"})
+    EXPECT_NE(
+        html.find(std::string("<tr><td>") + piece +
+                  "</td><td class=\"num\">1</td><td>mountain</td><td class=\"num\">53.1</td>"),
+        std::string::npos)
+        << piece;
+  EXPECT_NE(html.find("53.1 to 53.1"), std::string::npos);
+  EXPECT_NE(html.find("class='crease mountain'"), std::string::npos);  // in the pictures
+  const std::string classic = reportHtml(test::tetraDForm(6), "classic");
+  EXPECT_EQ(classic.find("<h2>Creases</h2>"), std::string::npos);
+  EXPECT_EQ(classic.find("crease"), std::string::npos);
 }
 
 TEST(ReportPlot, DecadesAreEvenlySpacedAndZerosAreLeftOut) {

@@ -26,13 +26,15 @@ Names notRun(const GateReport& report) { return withVerdict(report, Verdict::Not
 std::string describe(const GateReport& report) {
   std::string text;
   for (const CheckResult& c : report.checks)
-    text += c.name + " " + verdictName(c.verdict) + " " + std::to_string(c.value) + " (" + c.detail + ")\n";
+    text += c.name + " " + verdictName(c.verdict) + " " + std::to_string(c.value) + " (" +
+            c.detail + ")\n";
   return text;
 }
 
-const Names kForwardChecks = {"L_error",         "L_max",     "B_error",    "seam_gap_mm",
-                              "gauss_max_rad",   "flipped",   "degenerate", "flat_simple",
-                              "seam_length_rel", "self_intersection", "hull_distance_rel"};
+const Names kForwardChecks = {
+    "L_error",          "L_max",      "B_error",     "seam_gap_mm",     "gauss_max_rad",
+    "flipped",          "degenerate", "flat_simple", "seam_length_rel", "self_intersection",
+    "hull_distance_rel"};
 
 TEST(Gate, ExactConvexDFormPassesEveryCheck) {
   const GateReport report = runGate(test::tetraDForm(8), GateLimits{});
@@ -117,8 +119,8 @@ TEST(Gate, VertexPushedThroughTheOtherPieceFailsTheHonestSet) {
   model.a.shape.rowwise().squaredNorm().minCoeff(&v);
   model.a.shape(v, 2) += 30.0;
   const GateReport report = runGate(model, GateLimits{});
-  EXPECT_EQ(failed(report), (Names{"L_error", "L_max", "gauss_max_rad", "flipped", "self_intersection",
-                                   "hull_distance_rel"}))
+  EXPECT_EQ(failed(report), (Names{"L_error", "L_max", "gauss_max_rad", "flipped",
+                                   "self_intersection", "hull_distance_rel"}))
       << describe(report);
 }
 
@@ -126,7 +128,8 @@ TEST(Gate, InverseModeChecksDErrorInsteadOfBError) {
   DForm model = test::tetraDForm(8);
   Curve3 target;
   target.points.resize(Eigen::Index(model.a.seam.size()), 3);
-  for (size_t i = 0; i < model.a.seam.size(); ++i) target.points.row(Eigen::Index(i)) = model.a.shape.row(model.a.seam[i]);
+  for (size_t i = 0; i < model.a.seam.size(); ++i)
+    target.points.row(Eigen::Index(i)) = model.a.shape.row(model.a.seam[i]);
   const GateReport exact = runGate(model, GateLimits{}, &target);
   EXPECT_EQ(exact.find("B_error"), nullptr);
   ASSERT_NE(exact.find("D_error"), nullptr);
@@ -168,6 +171,72 @@ TEST(Gate, FlatDoubleDiscHasNoHullAndTouchesItself) {
   EXPECT_EQ(failed(report), Names{"self_intersection"}) << describe(report);
   EXPECT_EQ(report.find("hull_distance_rel")->verdict, Verdict::NotRun);
   EXPECT_NE(report.find("hull_distance_rel")->detail.find("planar"), std::string::npos);
+}
+
+TEST(Gate, ExactCreasedDFormPassesWithItsHingesFoldedSharply) {
+  // The hinges fold by 117 degrees: a fold-over without creases, a drawn fold with them.
+  const GateReport plain = runGate(test::tetraDForm(8, 40.0, 0.7), GateLimits{});
+  EXPECT_EQ(plain.find("flipped")->verdict, Verdict::Fail);
+  const GateReport report = runGate(test::creasedTetraDForm(8, 40.0, 0.7), GateLimits{});
+  EXPECT_TRUE(failed(report).empty()) << describe(report);
+  EXPECT_EQ(notRun(report), Names{"hull_distance_rel"}) << describe(report);
+  EXPECT_NE(report.find("hull_distance_rel")->detail.find("creases"), std::string::npos);
+  EXPECT_NE(report.find("gauss_max_rad")->detail.find("creases"), std::string::npos);
+}
+
+TEST(Gate, AntiDFormPassesAndHullIsNotRun) {
+  const GateReport report = runGate(test::annulusDForm(), GateLimits{});
+  EXPECT_TRUE(failed(report).empty()) << describe(report);
+  EXPECT_EQ(notRun(report), Names{"hull_distance_rel"}) << describe(report);
+  EXPECT_NE(report.find("hull_distance_rel")->detail.find("free boundary"), std::string::npos);
+  EXPECT_NE(report.find("flat_simple")->detail.find("holes inside"), std::string::npos);
+  EXPECT_EQ(report.find("self_intersection")->value, 0.0);
+  EXPECT_LT(report.find("seam_gap_mm")->value, 1e-12);
+}
+
+TEST(Gate, HoleMeetingTheOutlineFailsFlatSimple) {
+  DForm model = test::annulusDForm();
+  // Drag a hole vertex of A out across the outer outline (radius 20 -> 60).
+  const int v = model.a.seam[5];
+  model.a.flat.row(v) *= 3.0;
+  const GateReport report = runGate(model, GateLimits{});
+  const CheckResult* simple = report.find("flat_simple");
+  EXPECT_EQ(simple->verdict, Verdict::Fail) << describe(report);
+  EXPECT_NE(simple->detail.find("piece A: seam loop edge"), std::string::npos) << simple->detail;
+  EXPECT_NE(simple->detail.find("free boundary 1 edge"), std::string::npos) << simple->detail;
+}
+
+TEST(Gate, LoopsOutsideTheOutlineOrInsideAHoleFailFlatSimple) {
+  DForm model = test::annulusDForm();
+  Piece& a = model.a;
+  // Two small triangles of unused vertices listed as free boundaries: one beyond the outer
+  // outline (R = 50), one inside the hole (r = 20).
+  const Eigen::Index n = a.flat.rows();
+  a.flat.conservativeResize(n + 6, 2);
+  a.shape.conservativeResize(n + 6, 3);
+  a.flat.bottomRows(6) << 80, 0, 82, 0, 80, 2, 0, 0, 2, 0, 0, 2;
+  a.shape.bottomRows(6).setZero();
+  a.freeBoundaries.push_back({int(n), int(n) + 1, int(n) + 2});
+  a.freeBoundaries.push_back({int(n) + 3, int(n) + 4, int(n) + 5});
+  const GateReport report = runGate(model, GateLimits{});
+  const CheckResult* simple = report.find("flat_simple");
+  EXPECT_EQ(simple->verdict, Verdict::Fail);
+  EXPECT_NE(simple->detail.find("free boundary 2 lies outside the outer outline"),
+            std::string::npos)
+      << simple->detail;
+  EXPECT_NE(simple->detail.find("free boundary 3 lies inside seam loop"), std::string::npos)
+      << simple->detail;
+  EXPECT_EQ(simple->detail.find("free boundary 1 lies"), std::string::npos) << simple->detail;
+}
+
+TEST(Gate, AntiDFormPiercingItselfFailsSelfIntersection) {
+  DForm model = test::annulusDForm();
+  // B hangs below z = 0 and A rises above it; lift an interior vertex of B through A.
+  Eigen::Index v = 0;
+  (model.b.flat.rowwise().norm().array() - 35.0).abs().minCoeff(&v);
+  model.b.shape(v, 2) = 10.0;
+  const GateReport report = runGate(model, GateLimits{});
+  EXPECT_EQ(report.find("self_intersection")->verdict, Verdict::Fail) << describe(report);
 }
 
 }  // namespace

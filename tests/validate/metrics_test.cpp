@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "core/polyline.h"
 #include "models.h"
@@ -13,7 +14,8 @@ namespace {
 
 double seam3dLength(const DForm& model) {
   Points3 P(Eigen::Index(model.a.seam.size()), 3);
-  for (size_t i = 0; i < model.a.seam.size(); ++i) P.row(Eigen::Index(i)) = model.a.shape.row(model.a.seam[i]);
+  for (size_t i = 0; i < model.a.seam.size(); ++i)
+    P.row(Eigen::Index(i)) = model.a.shape.row(model.a.seam[i]);
   return closedLength(P);
 }
 
@@ -117,7 +119,8 @@ TEST(Metrics, CurveMatchForAKnownShift) {
   Curve3 target;
   target.points.resize(Eigen::Index(model.a.seam.size()), 3);
   for (size_t i = 0; i < model.a.seam.size(); ++i)
-    target.points.row(Eigen::Index(i)) = model.a.shape.row(model.a.seam[i]) + Eigen::RowVector3d(0, 0, delta);
+    target.points.row(Eigen::Index(i)) =
+        model.a.shape.row(model.a.seam[i]) + Eigen::RowVector3d(0, 0, delta);
   model.b.shape.col(2).array() += 2 * delta;  // B above the curve by delta, A below by delta
   const CurveMatch match = computeCurveMatch(model, target);
   EXPECT_NEAR(match.D_error, delta / closedLength(target.points), 1e-15);
@@ -148,7 +151,9 @@ TEST(Metrics, HingeFoldedBeyondNinetyDegreesIsFoldedOver) {
 
 TEST(Metrics, CollapsedEdgeGivesDegenerateTriangles) {
   DForm model = test::tetraDForm(6);
-  auto onSeam = [&](int i) { return std::find(model.a.seam.begin(), model.a.seam.end(), i) != model.a.seam.end(); };
+  auto onSeam = [&](int i) {
+    return std::find(model.a.seam.begin(), model.a.seam.end(), i) != model.a.seam.end();
+  };
   int f = 0;
   while (onSeam(model.a.F(f, 0)) || onSeam(model.a.F(f, 1))) ++f;  // an interior edge
   const int v = model.a.F(f, 0), w = model.a.F(f, 1);
@@ -157,6 +162,103 @@ TEST(Metrics, CollapsedEdgeGivesDegenerateTriangles) {
   const Metrics m = computeMetrics(model);
   EXPECT_EQ(m.degenerate_2d, 2);  // the two triangles on edge v-w
   EXPECT_EQ(m.degenerate_3d, 2);
+}
+
+// The fold angle of a tetraDForm hinge: the angle between the normals of its two faces.
+double hingeFoldDeg(double h) {
+  return std::acos((1 - 4 * h * h) / (1 + 4 * h * h)) * 180.0 / M_PI;
+}
+
+TEST(Metrics, ExactFoldsGiveTheirAngleAndDirection) {
+  // Two parallel creases folding a step (30 degrees up, then 50 back down) and a diagonal one.
+  const Piece step = test::foldedSquare(12, 60.0, {{4, 0, 4, 12, 30.0}, {8, 0, 8, 12, -50.0}});
+  const std::vector<CreaseFold> folds = creaseFolds(step);
+  ASSERT_EQ(folds.size(), 2u);
+  EXPECT_EQ(folds[0].direction, FoldDirection::Mountain);
+  EXPECT_NEAR(folds[0].angleDeg, 30.0, 1e-9);
+  EXPECT_EQ(folds[1].direction, FoldDirection::Valley);
+  EXPECT_NEAR(folds[1].angleDeg, 50.0, 1e-9);
+  EXPECT_NEAR(folds[1].minAngleDeg, -50.0, 1e-9);  // a rigid fold: every edge folds alike
+  EXPECT_NEAR(folds[1].maxAngleDeg, -50.0, 1e-9);
+  EXPECT_NEAR(folds[0].lengthMm, 60.0, 1e-9);
+  EXPECT_STREQ(foldDirectionName(folds[0].direction), "mountain");
+  EXPECT_STREQ(foldDirectionName(folds[1].direction), "valley");
+
+  for (double angle : {120.0, -75.0}) {
+    const Piece diagonal = test::foldedSquare(10, 50.0, {{0, 0, 10, 10, angle}});
+    const CreaseFold fold = creaseFolds(diagonal).at(0);
+    EXPECT_EQ(fold.direction, angle > 0 ? FoldDirection::Mountain : FoldDirection::Valley) << angle;
+    EXPECT_NEAR(fold.angleDeg, std::abs(angle), 1e-9) << angle;
+    EXPECT_NEAR(fold.lengthMm, 50.0 * std::sqrt(2.0), 1e-9);
+  }
+}
+
+TEST(Metrics, CreaseAnglesFollowTheOutsideOfTheDForm) {
+  // A convex disphenoid with outward faces: both hinges are mountains seen from outside. With
+  // h < 0 the faces point in, so the same hinges are valleys seen from the faces' side.
+  for (double h : {0.25, -0.25}) {
+    const DForm model = test::creasedTetraDForm(6, 40.0, h);
+    for (const Piece* p : {&model.a, &model.b}) {
+      ASSERT_EQ(p->creases.at(0).size(), 7u);  // the hinge runs along k + 1 vertices
+      const CreaseFold fold = creaseFolds(*p).at(0);
+      EXPECT_EQ(fold.direction, h > 0 ? FoldDirection::Mountain : FoldDirection::Valley) << h;
+      EXPECT_NEAR(fold.angleDeg, hingeFoldDeg(h), 1e-9) << h;
+      EXPECT_NEAR(fold.lengthMm, 80.0, 1e-9);
+    }
+  }
+}
+
+TEST(Metrics, ASharpCreaseIsNoFoldOver) {
+  // The hinges fold by 117 degrees: folded over without creases, a drawn fold with them.
+  const Metrics creased = computeMetrics(test::creasedTetraDForm(5, 40.0, 0.7));
+  EXPECT_EQ(creased.flipped_3d, 0);
+  EXPECT_LT(creased.L_error, 1e-12);
+
+  Piece square = test::foldedSquare(8, 40.0, {{4, 0, 4, 8, 150.0}});
+  DForm model{square, test::mirroredCopy(square, "B")};
+  EXPECT_EQ(computeMetrics(model).flipped_3d, 0);
+  model.a.creases.clear();  // the same fold, not drawn: k triangles on each side of it per piece
+  EXPECT_EQ(computeMetrics(model).flipped_3d, 2 * 8);
+}
+
+TEST(Metrics, ACreaseThroughAVertexTakesItsDefectOutOfTheFigures) {
+  // A pyramid's apex has the only defect; a crease drawn through it leaves no interior vertex.
+  const int n = 8;
+  Piece a;
+  a.name = "A";
+  a.shape.resize(n + 1, 3);
+  a.flat.resize(n + 1, 2);
+  a.shape.row(0) << 0, 0, 9.0;
+  a.flat.row(0) << 0, 0;
+  a.F.resize(n, 3);
+  for (int j = 0; j < n; ++j) {
+    const double t = 2 * M_PI * j / n;
+    a.shape.row(1 + j) << 20 * std::cos(t), 20 * std::sin(t), 0;
+    a.flat.row(1 + j) << 20 * std::cos(t), 20 * std::sin(t);
+    a.F.row(j) << 0, 1 + j, 1 + (j + 1) % n;
+    a.seam.push_back(1 + j);
+  }
+  DForm model{a, test::mirroredCopy(a, "B")};
+  EXPECT_GT(computeMetrics(model).gauss_max, 0.1);
+  EXPECT_GT(curvatureMap(model.a)(0), 0.1);
+  for (Piece* p : {&model.a, &model.b}) p->creases = {{1, 0, 1 + n / 2}};
+  const Metrics m = computeMetrics(model);
+  EXPECT_EQ(m.gauss_max, 0.0);
+  EXPECT_EQ(m.gauss_mean, 0.0);
+  EXPECT_EQ(curvatureMap(model.a)(0), 0.0);
+}
+
+TEST(Metrics, AntiDFormIsMeasuredOverEveryEdgeAndAlongItsHoles) {
+  const DForm model = test::annulusDForm();
+  const Metrics m = computeMetrics(model);
+  // Piece A's cone keeps radial lengths and shortens circles by (rho - r)(1 - cos 5 deg) / rho,
+  // at most 30 * 0.0038 / 50 at the outer edge.
+  EXPECT_GT(m.L_max, 1e-4);
+  EXPECT_LT(m.L_max, 30.0 * (1 - std::cos(5 * M_PI / 180)) / 50.0 + 1e-9);
+  EXPECT_LT(m.seam_gap_mm, 1e-12);  // both sides of the hole at z = 0 up to round-off
+  EXPECT_NEAR(m.seam_length_a_mm, 48 * 2 * 20.0 * std::sin(M_PI / 48), 1e-9);  // the hole's polygon
+  EXPECT_NEAR(m.seam_length_b_mm, m.seam_length_a_mm, 1e-9);
+  EXPECT_EQ(m.flipped_2d + m.flipped_3d, 0);
 }
 
 }  // namespace

@@ -1,10 +1,13 @@
 #include "models.h"
 
+#include <Eigen/Geometry>
 #include <cassert>
 #include <cmath>
 #include <map>
 #include <tuple>
 #include <vector>
+
+#include "meshing/triangulate.h"
 
 namespace dform::test {
 
@@ -15,7 +18,8 @@ struct VertexPool {
   std::map<std::tuple<long long, long long, long long>, int> index;
   std::vector<Eigen::Vector3d> points;
   int add(const Eigen::Vector3d& p) {
-    const auto key = std::make_tuple(std::llround(p.x() * 1e9), std::llround(p.y() * 1e9), std::llround(p.z() * 1e9));
+    const auto key = std::make_tuple(std::llround(p.x() * 1e9), std::llround(p.y() * 1e9),
+                                     std::llround(p.z() * 1e9));
     const auto [it, inserted] = index.emplace(key, int(points.size()));
     if (inserted) points.push_back(p);
     return it->second;
@@ -30,7 +34,9 @@ struct VertexPool {
 // Splits the triangles (p, q, r) into k*k triangles of the same orientation.
 void subdivide(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r, int k,
                VertexPool& pool, std::vector<Eigen::Vector3i>& faces) {
-  auto at = [&](int i, int j) { return pool.add(p + (q - p) * double(i) / k + (r - p) * double(j) / k); };
+  auto at = [&](int i, int j) {
+    return pool.add(p + (q - p) * double(i) / k + (r - p) * double(j) / k);
+  };
   for (int i = 0; i < k; ++i)
     for (int j = 0; i + j < k; ++j) {
       faces.emplace_back(at(i, j), at(i + 1, j), at(i, j + 1));
@@ -66,7 +72,8 @@ Piece developPiece(const Points3& shape, const Faces& F, const std::string& name
     const double duv = (pv - pu).norm(), duw = dist(u, w), dvw = dist(v, w);
     const Eigen::Vector2d e = (pv - pu) / duv, left(-e.y(), e.x());
     const double x = (duw * duw - dvw * dvw + duv * duv) / (2 * duv);
-    piece.flat.row(w) = (pu + x * e + std::sqrt(std::max(0.0, duw * duw - x * x)) * left).transpose();
+    piece.flat.row(w) =
+        (pu + x * e + std::sqrt(std::max(0.0, duw * duw - x * x)) * left).transpose();
     placed[w] = true;
   };
   placed[F(0, 0)] = placed[F(0, 1)] = true;
@@ -119,7 +126,8 @@ DForm tetraDForm(int k, double size, double h) {
   model.a = piece(A, D, C, B, "A");
   model.b = piece(B, C, D, A, "B");
   model.b.seam.clear();
-  for (int v : model.a.seam) model.b.seam.push_back(nearestRow(model.b.shape, model.a.shape.row(v)));
+  for (int v : model.a.seam)
+    model.b.seam.push_back(nearestRow(model.b.shape, model.a.shape.row(v)));
   return model;
 }
 
@@ -129,7 +137,8 @@ DForm ribbonDForm(const Ribbon& r) {
   for (int i = 0; i <= m; ++i) {
     const double t = 2 * M_PI * r.turns * i / m;
     V.row(i) << r.outerR * std::cos(t), r.outerR * std::sin(t), r.outerRise * t;
-    V.row(m + 1 + i) << r.innerR * std::cos(t), r.innerR * std::sin(t), r.innerLift + r.innerRise * t;
+    V.row(m + 1 + i) << r.innerR * std::cos(t), r.innerR * std::sin(t),
+        r.innerLift + r.innerRise * t;
   }
   std::vector<Eigen::Vector3i> fa, fb;
   for (int i = 0; i < m; ++i) {
@@ -193,6 +202,155 @@ DForm rolledCylinder(int columns, int rows, double r, double height) {
   model.a.flat = P;  // the rectangle itself: the development up to a rigid motion
   model.b = mirroredCopy(model.a, "B");
   return model;
+}
+
+std::vector<int> verticesOnSegment(const Piece& piece, const Eigen::Vector3d& p,
+                                   const Eigen::Vector3d& q) {
+  std::vector<std::pair<double, int>> along;
+  const Eigen::Vector3d d = (q - p).normalized();
+  for (int v = 0; v < piece.shape.rows(); ++v) {
+    const Eigen::Vector3d x = piece.shape.row(v).transpose() - p;
+    const double t = x.dot(d);
+    if ((x - t * d).norm() < 1e-9 && t > -1e-9 && t < (q - p).norm() + 1e-9)
+      along.emplace_back(t, v);
+  }
+  std::sort(along.begin(), along.end());
+  std::vector<int> line;
+  for (const auto& [t, v] : along) line.push_back(v);
+  return line;
+}
+
+DForm creasedTetraDForm(int k, double size, double h) {
+  DForm model = tetraDForm(k, size, h);
+  const Eigen::Vector3d A = size * Eigen::Vector3d(-1, 0, -h), B = size * Eigen::Vector3d(0, -1, h);
+  const Eigen::Vector3d C = size * Eigen::Vector3d(1, 0, -h), D = size * Eigen::Vector3d(0, 1, h);
+  model.a.creases = {verticesOnSegment(model.a, A, C)};
+  model.b.creases = {verticesOnSegment(model.b, B, D)};
+  return model;
+}
+
+namespace {
+
+Points2 regularPolygon(int sides, double radius, bool clockwise) {
+  Points2 P(sides, 2);
+  for (int i = 0; i < sides; ++i) {
+    const double t = (clockwise ? -2 : 2) * M_PI * i / sides;
+    P.row(i) << radius * std::cos(t), radius * std::sin(t);
+  }
+  return P;
+}
+
+}  // namespace
+
+DForm annulusDForm(double R, double r, int sides, double edge, double slopeDeg) {
+  TriangulateOptions options;
+  options.targetEdgeLength = edge;
+  const Result<FlatMesh> mesh =
+      triangulateDomain(regularPolygon(sides, R, false), {regularPolygon(sides, r, true)}, options);
+  assert(mesh.isOk() && "the annulus meshes");
+  const FlatMesh& m = mesh.value();
+  const double slope = slopeDeg * M_PI / 180.0;
+  DForm model;
+  Piece& a = model.a;
+  a.name = "A";
+  a.flat = m.V;
+  a.F = m.F;
+  a.shape.resize(m.V.rows(), 3);
+  for (Eigen::Index v = 0; v < m.V.rows(); ++v) {
+    const double rho = m.V.row(v).norm(), t = std::atan2(m.V(v, 1), m.V(v, 0));
+    const double radius = r + (rho - r) * std::cos(slope);
+    a.shape.row(v) << radius * std::cos(t), radius * std::sin(t), (rho - r) * std::sin(slope);
+  }
+  a.freeBoundaries = {m.boundary};
+  for (int i = 0; i < sides; ++i) a.seam.push_back(sides + i);  // the hole, after the outline
+  Piece& b = model.b;
+  b = mirroredCopy(a, "B");
+  b.shape.col(2) *= -1.0;
+  b.freeBoundaries = {std::vector<int>(m.boundary.rbegin(), m.boundary.rend())};
+  return model;
+}
+
+DForm demiDForm(double R, double r, int sides, double edge, double height, double slopeDeg) {
+  TriangulateOptions options;
+  options.targetEdgeLength = edge;
+  const Result<FlatMesh> disc = triangulateDomain(regularPolygon(sides, r, false), {}, options);
+  const Result<FlatMesh> ring =
+      triangulateDomain(regularPolygon(sides, R, false), {regularPolygon(sides, r, true)}, options);
+  assert(disc.isOk() && ring.isOk() && "the disc and the annulus mesh");
+  DForm model;
+  Piece& a = model.a;
+  a.name = "A";
+  a.flat = disc.value().V;
+  a.F = disc.value().F;
+  a.shape.resize(a.flat.rows(), 3);
+  for (Eigen::Index v = 0; v < a.flat.rows(); ++v) {
+    const double rho = a.flat.row(v).norm() / r;
+    a.shape.row(v) << a.flat(v, 0), a.flat(v, 1), height * (1 - rho * rho);
+  }
+  a.seam = disc.value().boundary;
+  Piece& b = model.b;
+  b.name = "B";
+  b.flat = ring.value().V;
+  b.F = ring.value().F;
+  b.shape.resize(b.flat.rows(), 3);
+  const double slope = slopeDeg * M_PI / 180.0;
+  for (Eigen::Index v = 0; v < b.flat.rows(); ++v) {
+    const double rho = b.flat.row(v).norm(), t = std::atan2(b.flat(v, 1), b.flat(v, 0));
+    const double radius = r + (rho - r) * std::cos(slope);
+    b.shape.row(v) << radius * std::cos(t), radius * std::sin(t), -(rho - r) * std::sin(slope);
+  }
+  // The hole was given clockwise: hole vertex j sits at angle -2 pi j / sides, A's seam vertex i
+  // at 2 pi i / sides.
+  for (int i = 0; i < sides; ++i) b.seam.push_back(sides + (sides - i) % sides);
+  b.freeBoundaries = {ring.value().boundary};
+  return model;
+}
+
+Piece foldedSquare(int k, double size, const std::vector<GridCrease>& creases,
+                   const std::string& name) {
+  Piece piece;
+  piece.name = name;
+  auto id = [&](int i, int j) { return j * (k + 1) + i; };
+  piece.flat.resize((k + 1) * (k + 1), 2);
+  for (int j = 0; j <= k; ++j)
+    for (int i = 0; i <= k; ++i) piece.flat.row(id(i, j)) << size * i / k, size * j / k;
+  std::vector<Eigen::Vector3i> faces;
+  for (int j = 0; j < k; ++j)
+    for (int i = 0; i < k; ++i) {
+      faces.emplace_back(id(i, j), id(i + 1, j), id(i + 1, j + 1));
+      faces.emplace_back(id(i, j), id(i + 1, j + 1), id(i, j + 1));
+    }
+  piece.F = toFaces(faces);
+  piece.shape = Points3::Zero(piece.flat.rows(), 3);
+  piece.shape.leftCols<2>() = piece.flat;
+  for (int i = 0; i < k; ++i) piece.seam.push_back(id(i, 0));
+  for (int j = 0; j < k; ++j) piece.seam.push_back(id(k, j));
+  for (int i = k; i > 0; --i) piece.seam.push_back(id(i, k));
+  for (int j = k; j > 0; --j) piece.seam.push_back(id(0, j));
+  for (const GridCrease& c : creases) {
+    const int steps = std::max(std::abs(c.i1 - c.i0), std::abs(c.j1 - c.j0));
+    std::vector<int> line;
+    for (int s = 0; s <= steps; ++s)
+      line.push_back(id(c.i0 + (c.i1 - c.i0) / steps * s, c.j0 + (c.j1 - c.j0) / steps * s));
+    piece.creases.push_back(line);
+  }
+  // The last crease first: each turn carries the creases right of it along.
+  for (size_t c = creases.size(); c-- > 0;) {
+    const std::vector<int>& line = piece.creases[c];
+    const Eigen::Vector2d p0 = piece.flat.row(line.front()),
+                          d = piece.flat.row(line.back()) - p0.transpose();
+    const Eigen::Vector3d origin = piece.shape.row(line.front());
+    const Eigen::Vector3d axis = (piece.shape.row(line.back()).transpose() - origin).normalized();
+    const Eigen::Matrix3d turn =
+        Eigen::AngleAxisd(creases[c].angleDeg * M_PI / 180.0, axis).toRotationMatrix();
+    for (Eigen::Index v = 0; v < piece.flat.rows(); ++v) {
+      const Eigen::Vector2d q = piece.flat.row(v).transpose() - p0;
+      if (d.x() * q.y() - d.y() * q.x() < -1e-9 * size * size)  // strictly right of the crease
+        piece.shape.row(v) =
+            (origin + turn * (piece.shape.row(v).transpose() - origin)).transpose();
+    }
+  }
+  return piece;
 }
 
 }  // namespace dform::test
