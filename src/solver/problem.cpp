@@ -44,6 +44,14 @@ void Problem::addTerm(std::string name, double weight, std::unique_ptr<ResidualT
   terms_.push_back({std::move(name), weight, std::move(term)});
 }
 
+void Problem::holdConstant(const std::vector<int>& variables) {
+  if (constant_.empty()) constant_.assign(std::size_t(numVariables_), false);
+  for (int v : variables) {
+    assert(v >= 0 && v < numVariables_ && "holdConstant: no such unknown");
+    constant_[std::size_t(v)] = true;
+  }
+}
+
 std::vector<double> Problem::termCosts(const Eigen::VectorXd& x) const {
   std::vector<double> costs;
   std::vector<double> r;

@@ -80,6 +80,11 @@ class Problem {
   /// Per-term costs w_t * ||r_t(x)||^2 at x.
   std::vector<double> termCosts(const Eigen::VectorXd& x) const;
 
+  /// Holds these unknowns at their starting values: the solver never moves them (in the spirit of
+  /// Ceres' SetParameterBlockConstant). Terms may still read them.
+  void holdConstant(const std::vector<int>& variables);
+  const std::vector<bool>& constantMask() const { return constant_; }  ///< empty when none are
+
  private:
   struct Entry {
     std::string name;
@@ -88,6 +93,7 @@ class Problem {
   };
   int numVariables_;
   std::vector<Entry> terms_;
+  std::vector<bool> constant_;
 };
 
 }  // namespace dform

@@ -76,7 +76,7 @@ using SparseLower = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 // A = J^T J (lower triangle, fixed pattern) and g = J^T r.
 class NormalEquations {
  public:
-  explicit NormalEquations(const Problem& problem) : problem_(problem) {
+  explicit NormalEquations(const Problem& problem) : problem_(problem), constant_(problem.constantMask()) {
     const int n = problem.numVariables();
     // Stack the terms' patterns.
     for (int t = 0; t < problem.numTerms(); ++t) {
@@ -153,6 +153,10 @@ class NormalEquations {
       if (needJ) {
         const int end = rowStart_[b.firstRow + b.rows];
         for (int v = b.firstValue; v < end; ++v) J_[v] *= b.sqrtWeight;
+        // A constant unknown has no column: A + mu I then keeps it where it is (dx = 0).
+        if (!constant_.empty())
+          for (int v = b.firstValue; v < end; ++v)
+            if (constant_[std::size_t(cols_[v])]) J_[v] = 0.0;
       }
     }
     if (withJacobian) linearJacobianDone_ = true;
@@ -222,6 +226,7 @@ class NormalEquations {
   }
 
   const Problem& problem_;
+  const std::vector<bool>& constant_;
   std::vector<Block> blocks_;
   std::vector<int> rowStart_{0};
   std::vector<int> cols_;

@@ -143,6 +143,28 @@ TEST(Solver, GeodesicAccelerationFollowsACurvedValley) {
   EXPECT_LT(iterations[1], iterations[0]);
 }
 
+TEST(Solver, HeldUnknownsNeverMoveAndTheRestReachTheirConstrainedMinimum) {
+  // |x - target|^2 with x[1] and x[3] held: those keep their start, the others reach the target.
+  const int n = 5;
+  RowSparse M(n, n);
+  M.setIdentity();
+  const Eigen::VectorXd target = Eigen::VectorXd::LinSpaced(n, 1.0, 5.0);
+  Problem problem(n);
+  problem.addTerm("fit", 1.0, std::make_unique<LinearResidual>(M, target));
+  problem.addTerm("curve", 1.0, std::make_unique<Rosenbrock>(3.0));  // couples x[0] and x[1]
+  problem.holdConstant({1, 3});
+  Eigen::VectorXd x = Eigen::VectorXd::Constant(n, -2.0);
+  SolverOptions options;
+  options.functionTolerance = 1e-15;
+  const SolverSummary summary = solve(problem, options, x);
+  ASSERT_TRUE(summary.usable()) << summary.message;
+  EXPECT_EQ(x[1], -2.0);
+  EXPECT_EQ(x[3], -2.0);
+  EXPECT_NEAR(x[2], 3.0, 1e-4);
+  EXPECT_NEAR(x[4], 5.0, 1e-4);
+  EXPECT_GT(std::abs(x[0] + 2.0), 0.1);  // x[0] moved, towards its own minimum with x[1] held
+}
+
 TEST(Solver, SummaryIsConsistent) {
   std::mt19937 rng(3);
   Problem problem(2);
