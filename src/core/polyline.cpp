@@ -85,6 +85,49 @@ Eigen::MatrixXd resampleOpen(const Eigen::MatrixXd& P, int segments) {
   return out;
 }
 
+Eigen::VectorXd turningAngles(const Eigen::MatrixXd& P) {
+  const Eigen::Index n = P.rows();
+  Eigen::VectorXd turn = Eigen::VectorXd::Zero(n);
+  for (Eigen::Index k = 0; k < n && n >= 3; ++k) {
+    const Eigen::VectorXd in = (P.row(k) - P.row((k + n - 1) % n)).transpose();
+    const Eigen::VectorXd out = (P.row((k + 1) % n) - P.row(k)).transpose();
+    const double lengths = in.norm() * out.norm();
+    if (lengths > 0.0) turn[k] = std::acos(std::clamp(in.dot(out) / lengths, -1.0, 1.0));
+  }
+  return turn;
+}
+
+std::vector<bool> sampledCorners(const Eigen::MatrixXd& P) {
+  const Eigen::Index n = P.rows();
+  const Eigen::VectorXd turn = turningAngles(P);
+  std::vector<bool> corner(std::size_t(n), false);
+  for (Eigen::Index k = 0; k < n; ++k)
+    corner[std::size_t(k)] = turn[k] >= kCornerTurnRadians &&
+                             turn[k] >= 2.0 * std::max(turn[(k + n - 1) % n], turn[(k + 1) % n]);
+  return corner;
+}
+
+Eigen::MatrixXd compensateChordLoss(const Eigen::MatrixXd& P) {
+  const Eigen::Index n = P.rows();
+  Eigen::MatrixXd out = P;
+  const Eigen::VectorXd turn = turningAngles(P);
+  const std::vector<bool> corner = sampledCorners(P);
+  for (Eigen::Index k = 0; k < n && n >= 3; ++k) {
+    const Eigen::VectorXd a = (P.row((k + n - 1) % n) - P.row(k)).transpose();
+    const Eigen::VectorXd b = (P.row((k + 1) % n) - P.row(k)).transpose();
+    if (corner[std::size_t(k)] || a.norm() == 0.0 || b.norm() == 0.0) continue;
+    // Circumscribed circle of the three points: kappa = 2 sin(turn) / |a - b|; the centre lies
+    // along the bisector a/|a| + b/|b|.
+    const double la = a.norm(), lb = b.norm();
+    const double kappa = 2.0 * std::sin(turn[k]) / (a - b).norm();
+    const Eigen::VectorXd towardCentre = a / la + b / lb;
+    if (kappa == 0.0 || towardCentre.norm() == 0.0) continue;
+    const double h = 0.5 * (la + lb);
+    out.row(k) -= (kappa * h * h / 24.0) * towardCentre.normalized().transpose();
+  }
+  return out;
+}
+
 std::vector<double> cornerFractions(const Points2& P, double minTurnRadians) {
   const Eigen::Index n = P.rows();
   const Eigen::VectorXd s = cumulativeArcLength(P);

@@ -35,6 +35,26 @@ double openLength(const Eigen::MatrixXd& P);
 /// least 2 rows), from its first row to its last (both kept exactly).
 Eigen::MatrixXd resampleOpen(const Eigen::MatrixXd& P, int segments);
 
+/// A flattened smooth curve turns by a fraction of a degree per point; a drawn corner by much
+/// more. 20 degrees separates the two for any outline a designer draws.
+constexpr double kCornerTurnRadians = 20.0 * 3.14159265358979323846 / 180.0;
+
+/// The turning angle (radians, in [0, pi]) of the closed polygon P (#P by d) at each vertex.
+Eigen::VectorXd turningAngles(const Eigen::MatrixXd& P);
+
+/// Which vertices of the closed polygon P (#P by d), sampled along a drawn line, are its corners:
+/// a turn of kCornerTurnRadians or more that is at least twice each neighbour's. A coarse sampling
+/// of a tight smooth bend turns as much at neighbouring vertices; a drawn corner stands alone.
+std::vector<bool> sampledCorners(const Eigen::MatrixXd& P);
+
+/// The closed polygon P (#P by d, sampled along a smooth curve with corners) with each vertex
+/// moved away from its centre of curvature by kappa h^2 / 24, where kappa is the curvature of the
+/// circle through it and its two neighbours and h the mean length of its two edges. A polygon
+/// inscribed in a curve falls short of the curve's length by about kappa^2 h^3 / 24 per edge;
+/// moved so, it straddles the curve and matches its length to O(h^4) (exactly, for a circle
+/// sampled evenly). Corners (sampledCorners) stay where they are.
+Eigen::MatrixXd compensateChordLoss(const Eigen::MatrixXd& P);
+
 /// Arc-length fractions, ascending, of the vertices of the closed polygon P where it turns by at
 /// least minTurnRadians (either way): its corners.
 std::vector<double> cornerFractions(const Points2& P, double minTurnRadians);

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace dform {
@@ -59,6 +60,40 @@ TEST(Polyline, ResampleOpenIsUniformAndKeepsBothEnds) {
   const Eigen::MatrixXd one = resampleOpen(bend, 1);
   EXPECT_EQ(one.rows(), 2);
   EXPECT_NEAR(openLength(one), std::sqrt(52.0), 1e-12);
+}
+
+TEST(Polyline, ChordLossCompensationKeepsACurvesLengthAndItsCorners) {
+  // An evenly sampled circle straddled by the compensated polygon has exactly its length to
+  // O(h^4): 2 pi R (1 + (pi/n)^2 / 6) sin(pi/n) / (pi/n) - 2 pi R.
+  for (int n : {24, 100}) {
+    const Eigen::MatrixXd R = resampleClosed(circle(20000, 50.0), n);
+    const double inscribed = closedLength(R), compensated = closedLength(compensateChordLoss(R));
+    const double exact = 2 * M_PI * 50.0;
+    EXPECT_GT(exact - inscribed, 1e-4 * exact * 100.0 / n / n * 10);  // the loss is real ...
+    EXPECT_LT(std::abs(compensated - exact), 0.03 * (exact - inscribed)) << n;  // ... and gone
+  }
+  // A square's corners are corners: they stay, and its straight sides need nothing.
+  Points2 sq(4, 2);
+  sq << 0, 0, 10, 0, 10, 10, 0, 10;
+  const Eigen::MatrixXd dense = resampleClosed(sq, 40);
+  EXPECT_TRUE(compensateChordLoss(dense).isApprox(dense, 1e-15));
+  // The same in 3D: a tilted circle keeps its length.
+  Eigen::MatrixXd tilted(60, 3);
+  for (int i = 0; i < 60; ++i) {
+    const double t = 2 * M_PI * i / 60;
+    tilted.row(i) << 30 * std::cos(t), 30 * std::sin(t) * 0.6, 30 * std::sin(t) * 0.8;
+  }
+  EXPECT_NEAR(closedLength(compensateChordLoss(tilted)), 2 * M_PI * 30, 2e-3);
+}
+
+TEST(Polyline, SampledCornersAreIsolatedTurnsNotTightBends) {
+  Points2 sq(4, 2);
+  sq << 0, 0, 10, 0, 10, 10, 0, 10;
+  const std::vector<bool> corners = sampledCorners(resampleClosed(sq, 40));
+  for (int i = 0; i < 40; ++i) EXPECT_EQ(corners[std::size_t(i)], i % 10 == 0) << i;
+  // A 12-gon turns 30 degrees at every vertex: a coarse circle, not twelve corners.
+  const std::vector<bool> coarse = sampledCorners(resampleClosed(circle(20000, 50.0), 12));
+  EXPECT_EQ(std::count(coarse.begin(), coarse.end(), true), 0);
 }
 
 TEST(Polyline, ResampledCircleLengthConverges) {
