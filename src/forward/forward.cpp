@@ -4,6 +4,7 @@
 #include <Eigen/SparseCore>
 #include <cassert>
 #include <cmath>
+#include <tuple>
 
 #include "core/polyline.h"
 #include "forward/terms.h"
@@ -19,6 +20,30 @@ Points2 flatRows(const Piece& p, const std::vector<int>& vertices) {
 }
 
 Points2 seamPoints(const Piece& p) { return flatRows(p, p.seam); }
+
+// Seam positions (k of a.seam[k] and b.seam[k]) whose flat vertices may move a little from where
+// they were drawn: each corner of either seam outline (sampledCorners) and
+// its two seam neighbours, unless a drawn crease ends at the corner. Where a corner meets a
+// smooth partner the real D-Form creases (paper section 7): a drawn crease takes that fold;
+// otherwise the corner needs room to form it, and pinned there, the triangles fold over instead
+// (measured on the circle and the square: the corner and its two neighbours move most).
+std::vector<bool> seamCornerRoom(const Piece& a, const Piece& b) {
+  const int n = int(a.seam.size());
+  std::vector<bool> corner(n, false), creaseEnd(n, false), room(n, false);
+  for (const Piece* p : {&a, &b}) {
+    const std::vector<bool> corners = sampledCorners(seamPoints(*p));
+    for (int k = 0; k < n; ++k) corner[k] = corner[k] || corners[k];
+    std::vector<int> position(p->flat.rows(), -1);
+    for (int k = 0; k < n; ++k) position[p->seam[k]] = k;
+    for (const std::vector<int>& crease : p->creases)
+      for (int end : {crease.front(), crease.back()})
+        if (position[end] >= 0) creaseEnd[position[end]] = true;
+  }
+  for (int k = 0; k < n; ++k)
+    if (corner[k] && !creaseEnd[k])
+      for (int j : {k - 1, k, k + 1}) room[(j + n) % n] = true;
+  return room;
+}
 
 // The vertices of every line that is cut or folded: the seam, then the free boundaries and
 // creases (each vertex once). Their flat positions are the pattern the designer drew.
@@ -89,7 +114,7 @@ Eigen::MatrixXd solveDirichlet(const Piece& p, const Eigen::MatrixXd& seamValues
 
 // Turning angle at each vertex of a closed polygon (positive where a counter-clockwise polygon
 // is convex).
-Eigen::VectorXd turningAngles(const Points2& P) {
+Eigen::VectorXd signedTurningAngles(const Points2& P) {
   const int n = int(P.rows());
   Eigen::VectorXd angle(n);
   for (int k = 0; k < n; ++k) {
@@ -126,7 +151,7 @@ DForm pillowInitialGuess(const Piece& a, const Piece& b) {
   // narrower one and the other wraps over it, so the seam leaves the mid plane towards it. The
   // seam's height profile starts as the (smoothed) difference of the two outlines' turning angles;
   // its amplitude and sign are fitted below.
-  Eigen::VectorXd lift = turningAngles(PA) - turningAngles(PBpaired);
+  Eigen::VectorXd lift = signedTurningAngles(PA) - signedTurningAngles(PBpaired);
   for (int pass = 0; pass < 4; ++pass) {
     Eigen::VectorXd smooth(n);
     for (int k = 0; k < n; ++k)
@@ -252,23 +277,40 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
                                     ? VariableLayout(int(a.flat.rows()), int(b.flat.rows()), a.seam, b.seam)
                                     : VariableLayout(int(a.flat.rows()), int(b.flat.rows()));
   EdgeLengthPairs edges = meshEdgePairs(layout, a.F, b.F);
+  // Drawn lines stay where they were drawn: held exactly, except at seam corners, which only the
+  // boundary-fix term holds (to outlineTolerance, by multiplier rounds below).
   const std::vector<int> drawnA = drawnVertices(start.a), drawnB = drawnVertices(start.b);
-  auto anchor = makeFlatAnchorTerm(layout, drawnA, flatRows(start.a, drawnA), drawnB, flatRows(start.b, drawnB));
+  const std::vector<bool> room = seamCornerRoom(start.a, start.b);
+  std::vector<int> movableA, movableB, held;
+  for (const auto& [p, drawn, movable] : {std::tuple{0, &drawnA, &movableA}, std::tuple{1, &drawnB, &movableB}})
+    for (std::size_t k = 0; k < drawn->size(); ++k) {
+      const int v = (*drawn)[k];
+      if (w.boundaryFix > 0 && !(k < room.size() && room[k])) {  // drawn lists start with the seam
+        held.push_back(layout.u(p, v));
+        held.push_back(layout.u(p, v) + 1);
+      } else {
+        movable->push_back(v);
+      }
+    }
+  auto anchorAll = makeFlatAnchorTerm(layout, drawnA, flatRows(start.a, drawnA), drawnB, flatRows(start.b, drawnB));
+  auto anchor = makeFlatAnchorTerm(layout, movableA, flatRows(start.a, movableA), movableB, flatRows(start.b, movableB));
   auto smooth3d = makeSmoothnessTerm(layout, start.a, start.b, true);
   auto smooth2d = makeSmoothnessTerm(layout, start.a, start.b, false);
   auto seam = makeSeamSmoothnessTerm(layout, a.seam, b.seam);
   Eigen::VectorXd x = packVariables(layout, start.a, start.b);
+  const Eigen::VectorXd drawnX = x;
 
   weightByFlatLength(edges, x, w.isometry);
   const auto linear = [](const std::unique_ptr<ResidualTerm>& t) {
     return static_cast<const LinearResidual*>(t.get());
   };
   auto* anchorTerm = static_cast<LinearResidual*>(anchor.get());
-  result.relaxation = relaxLocalGlobal({{w.boundaryFix, linear(anchor)},
+  result.relaxation = relaxLocalGlobal({{w.boundaryFix, linear(anchorAll)},
                                         {w.smooth3d, linear(smooth3d)},
                                         {w.smooth2d, linear(smooth2d)},
                                         {w.seam, linear(seam)}},
                                        edges, options.relaxation, x);
+  for (int v : held) x[v] = drawnX[v];  // the relaxation only held them softly
 
   Problem problem(layout.numVariables());
   problem.addTerm("isometry", w.isometry, makeIsometryTerm(edges));
@@ -276,14 +318,15 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
   problem.addTerm("smooth_3d", w.smooth3d, std::move(smooth3d));
   problem.addTerm("smooth_2d", w.smooth2d, std::move(smooth2d));
   problem.addTerm("seam", w.seam, std::move(seam));
+  problem.holdConstant(held);
   LeastSquaresSolver solver(problem, options.solver);
   result.summary = solver.solve(x);
 
-  // Hold the cut outlines to the drawn ones: the boundary fix as a constraint. The tolerance is
+  // Hold the seam corners near the drawn ones: the boundary fix as a constraint. The tolerance is
   // relative to the perimeter, #seam in the unit of the mean seam edge.
   const double perimeter = double(a.seam.size());
   std::vector<Constraint> constraints;
-  if (w.boundaryFix > 0)
+  if (w.boundaryFix > 0 && anchorTerm->numResiduals() > 0)
     constraints.push_back({anchorTerm, 2, options.outlineTolerance * perimeter});
   result.constraintRounds =
       enforceByMultipliers(solver, constraints, options.constraintRounds, x, result.summary);

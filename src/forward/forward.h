@@ -23,13 +23,12 @@ struct ForwardOptions {
   /// do most of the shape change); maxIterations = 0 starts LM from the pillow.
   LocalGlobalOptions relaxation;
   SolverOptions solver;
-  /// The flat outlines (and every other drawn line) are held to the drawn ones by multiplier
-  /// updates of the boundary-fix term (augmented Lagrangian), in at most constraintRounds extra
-  /// solves, until every drawn vertex lies within outlineTolerance of its drawn position, relative
-  /// to the perimeter. 0 rounds keeps the paper's soft term. The tolerance is loose (0.24 mm on an
-  /// 800 mm outline, about a laser's kerf): where a square's corner meets a smooth partner the
-  /// real D-Form creases (paper section 7), and pinning the corner tighter folds triangles there
-  /// instead.
+  /// Every drawn line (the seam, free boundaries, creases) keeps its flat position exactly, but
+  /// for the seam's corners: there, the real D-Form creases (paper section 7) and the corner needs
+  /// a little room, so only the boundary-fix term holds it, tightened by multiplier updates
+  /// (augmented Lagrangian) in at most constraintRounds extra solves until each such vertex lies
+  /// within outlineTolerance of its drawn position, relative to the perimeter: 0.12 mm on a 400 mm
+  /// outline, about a laser's kerf. 0 rounds keeps the paper's soft term there.
   int constraintRounds = 8;
   double outlineTolerance = 3e-4;
 };

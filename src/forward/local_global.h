@@ -25,8 +25,11 @@ struct EdgeLengthPairs {
 };
 
 struct LocalGlobalOptions {
-  int maxIterations = 300;          ///< 0 switches the relaxation off
-  double relativeTolerance = 1e-4;  ///< stop when an iteration lowers the energy by less than this fraction
+  /// 0 switches the relaxation off. Its steps cost a few back-substitutions each, so it may run
+  /// long: a large shape change (an anti D-Form's brims swinging out) is far cheaper here than in
+  /// Levenberg-Marquardt, whose steps the change's curvature keeps short.
+  int maxIterations = 2000;
+  double relativeTolerance = 1e-6;  ///< stop when an iteration lowers the energy by less than this fraction
   int andersonDepth = 6;            ///< past iterates used by Anderson acceleration (0: plain)
 };
 

@@ -107,7 +107,9 @@ LoopSamples sampleLoop(const Points2& P, const std::vector<double>& fractions, d
     at[row] = start + direction * fractions[k];
     samples.order[k] = row;
   }
-  samples.rows = resampleAtFractions(P, at);
+  // Inscribed, the samples would fall short of the drawn length by the chord loss, more on a
+  // curved outline than on a straight one, and the seam could then not be isometric to both.
+  samples.rows = compensateChordLoss(resampleAtFractions(P, at));
   return samples;
 }
 
@@ -146,6 +148,12 @@ void startFromCoarser(const DForm& coarse, Piece& a, Piece& b) {
 
 const char* joinedBoundaryName(JoinedBoundary boundary) {
   return boundary == JoinedBoundary::Outer ? "outer" : "inner";
+}
+
+ForwardWeights defaultWeights(JoinedBoundary a, JoinedBoundary b) {
+  ForwardWeights weights;
+  if (a == JoinedBoundary::Inner || b == JoinedBoundary::Inner) weights.smooth3d = 0.001;
+  return weights;
 }
 
 bool parseJoin(const std::string& text, JoinedBoundary& a, JoinedBoundary& b) {
@@ -238,9 +246,6 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
   constexpr int kCoarsestSeam = 24;
   constexpr int kLevelRatio = 3;
   constexpr int kCoarseIterations = 30;
-  // A flattened smooth curve turns by a fraction of a degree per point; a drawn corner by much
-  // more. 20 degrees separates the two for any outline a designer draws.
-  const double kCornerTurn = 20.0 * M_PI / 180.0;
   std::vector<int> levels{job.resolution};
   while (job.coarseToFine && levels.back() / kLevelRatio >= kCoarsestSeam)
     levels.push_back(levels.back() / kLevelRatio);
@@ -255,9 +260,9 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
   const int direction[2] = {directionA, directionB};
   for (int p = 0; p < 2; ++p) {
     const DrawnPiece& piece = *drawn[p];
-    for (double c : cornerFractions(piece.joined, kCornerTurn))
+    for (double c : cornerFractions(piece.joined, kCornerTurnRadians))
       seamCorners.push_back(fractionFrom(c, startFraction[p], direction[p]));
-    if (piece.freeOutline) freeCorners[p] = cornerFractions(*piece.freeOutline, kCornerTurn);
+    if (piece.freeOutline) freeCorners[p] = cornerFractions(*piece.freeOutline, kCornerTurnRadians);
     for (const Points2& crease : piece.creases)
       for (const Eigen::Index end : {Eigen::Index(0), crease.rows() - 1}) {
         const Eigen::Vector2d q = crease.row(end);
