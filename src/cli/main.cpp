@@ -161,6 +161,7 @@ int run(int argc, char** argv) {
       return usage(Status(ErrorCode::Usage, "--start-b-near must look like X,Y"));
     if (!join.empty() && !parseJoin(join, forwardJob.forward.joinA, forwardJob.forward.joinB))
       return usage(Status(ErrorCode::Usage, "--join must be outer,outer, inner,inner, outer,inner or inner,outer"));
+    forwardJob.forward.solve.weights = defaultWeights(forwardJob.forward.joinA, forwardJob.forward.joinB);
     for (const std::string& w : forwardWeights)
       if (Status s = setWeight(forwardJob, w); !s.isOk()) return usage(s);
     if (Status s = validateForwardJob(forwardJob.forward); !s.isOk()) return usage(s);

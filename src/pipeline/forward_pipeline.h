@@ -29,6 +29,11 @@ enum class JoinedBoundary { Outer, Inner };
 
 const char* joinedBoundaryName(JoinedBoundary boundary);  ///< "outer" or "inner"
 
+/// The term weights a job starts from: paper Table 1's for a classic D-Form; for anti and demi
+/// D-Forms (a hole joined) the 3D smoothness weight is 0.001, Table 1's inverse-mode value. At
+/// 0.01 their free brims stay stiff enough to strain the seam past the 3% bar (docs/variants.md).
+ForwardWeights defaultWeights(JoinedBoundary a, JoinedBoundary b);
+
 /// Reads "outer,inner" (A's joined boundary, then B's; "outer" or "inner" each) into the job;
 /// false when the text is not of that form.
 bool parseJoin(const std::string& text, JoinedBoundary& a, JoinedBoundary& b);

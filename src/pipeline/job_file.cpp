@@ -109,6 +109,7 @@ Job parse(const json& root, const std::string& baseDir) {
     if (root.contains("join") &&
         !(root["join"].is_string() && parseJoin(root["join"].get<std::string>(), f.joinA, f.joinB)))
       throw KeyError{"join", "must be \"outer,outer\", \"inner,inner\", \"outer,inner\" or \"inner,outer\""};
+    f.solve.weights = defaultWeights(f.joinA, f.joinB);
     if (root.contains("start_a")) f.startA = startPoint(root["start_a"], "start_a");
     if (root.contains("start_b")) f.startB = startPoint(root["start_b"], "start_b");
     if (root.contains("resolution")) f.resolution = integer(root, "resolution");

@@ -117,6 +117,24 @@ json gateJson(const GateReport* gate) {
           {"checks", checks}};
 }
 
+// Each crease's fold as solved: the piece, its number there (from 1), mountain or valley as seen
+// from the pattern's printed side (the D-Form's outside), angles in degrees, flat length in mm.
+json creasesJson(const DForm& model) {
+  json out = json::array();
+  for (const Piece* piece : {&model.a, &model.b}) {
+    const std::vector<CreaseFold> folds = creaseFolds(*piece);
+    for (std::size_t k = 0; k < folds.size(); ++k)
+      out.push_back({{"piece", piece->name},
+                     {"crease", k + 1},
+                     {"fold", foldDirectionName(folds[k].direction)},
+                     {"angle_deg", figure(folds[k].angleDeg)},
+                     {"min_angle_deg", figure(folds[k].minAngleDeg)},
+                     {"max_angle_deg", figure(folds[k].maxAngleDeg)},
+                     {"length_mm", figure(folds[k].lengthMm)}});
+  }
+  return out;
+}
+
 json header(const Job& job, const char* mode) {
   return {{"schema", kReportSchema},
           {"schema_version", kReportSchemaVersion},
@@ -144,6 +162,7 @@ Status writeForwardReport(const std::string& dir, const Job& job, const ForwardR
   report["solver"] = solverJson(run.relaxation, run.summary);
   report["solver"]["constraint_rounds"] = run.constraintRounds;
   report["metrics"] = metricsJson(run.metrics);
+  report["creases"] = creasesJson(run.model);
   report["timings"] = timingsJson(run.timings);
   report["gate"] = gateJson(gate);
   report["messages"] = messagesJson(messages);

@@ -2,6 +2,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -321,7 +322,7 @@ TEST_F(CliTest, JobFileReproducesTheRun) {
   const std::string out = path("out");
   const std::string job = write("job.json", R"({"mode": "forward", "piece_a": ")" + sample("forward/circle.svg") +
                                                 R"(", "piece_b": ")" + sample("forward/square.svg") +
-                                                R"(", "start_b": 0.125, "resolution": 40})");
+                                                R"(", "start_b": 0.125, "resolution": 60})");
   const Outcome o = run("run " + job + " --no-export -q -o " + out);
   ASSERT_EQ(o.exitCode, 0) << o.err;
   EXPECT_FALSE(fs::exists(fs::path(out) / "pattern.svg"));
@@ -330,7 +331,7 @@ TEST_F(CliTest, JobFileReproducesTheRun) {
   // The inputs are named by content too: a result can be traced to the exact files.
   EXPECT_EQ(report["inputs"]["piece_a"]["sha256"], sha256OfFile(sample("forward/circle.svg")).value());
   EXPECT_EQ(report["inputs"]["piece_b"]["sha256"], sha256OfFile(sample("forward/square.svg")).value());
-  EXPECT_EQ(report["job"]["resolution"].get<int>(), 40);
+  EXPECT_EQ(report["job"]["resolution"].get<int>(), 60);
   // The recorded job runs again to the same figures.
   const std::string again = write("again.json", report["job"].dump());
   ASSERT_EQ(run("run " + again + " --no-export -q -o " + path("out2")).exitCode, 0);
@@ -351,13 +352,21 @@ TEST_F(CliTest, BadJobFilesNameTheKey) {
 }
 
 TEST_F(CliTest, FitPerimeterScalesPieceB) {
-  const std::string big = write("big.svg", svg("<circle cx='150' cy='150' r='128.5'/>"));  // 0.9 % longer
+  // An ellipse about 0.9 % longer than the 800 mm circle (a circle zipped to a scaled copy of
+  // itself would close flat: two congruent discs make no D-Form).
+  const std::string big = write("big.svg", svg("<ellipse cx='150' cy='150' rx='130' ry='127'/>"));
+  double perimeter = 0.0;
+  for (int k = 0; k < 100000; ++k) {
+    const double t0 = 2 * M_PI * k / 100000, t1 = 2 * M_PI * (k + 1) / 100000;
+    perimeter += std::hypot(130 * (std::cos(t1) - std::cos(t0)), 127 * (std::sin(t1) - std::sin(t0)));
+  }
   const std::string out = path("out");
   const Outcome o = run("forward " + sample("forward/circle.svg") + " " + big + " --fit-perimeter --resolution 30 --no-export -q -o " + out);
   ASSERT_EQ(o.exitCode, 0) << o.err;
   const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
-  EXPECT_NEAR(report["fit_perimeter_scale"].get<double>(), 127.323954473516 / 128.5, 1e-4);
-  EXPECT_NEAR(report["metrics"]["seam_length_a_mm"].get<double>(), report["metrics"]["seam_length_b_mm"].get<double>(), 0.01);
+  EXPECT_NEAR(report["fit_perimeter_scale"].get<double>(), 800.0 / perimeter, 1e-4);
+  // Both flat seams then measure 800 mm, to 1e-4 of it (a tenth of the default gate's limit).
+  EXPECT_NEAR(report["metrics"]["seam_length_a_mm"].get<double>(), report["metrics"]["seam_length_b_mm"].get<double>(), 0.08);
 }
 
 TEST_F(CliTest, InverseRunAndItsBadInputs) {

@@ -1,8 +1,11 @@
-// The forward-mode samples: every pair reads as one outline each, with equal perimeters (a
-// D-Form zips two pieces of equal perimeter), and the "nonconvex" ones really are non-convex.
+// The forward-mode samples: every pair reads as one piece each whose joined boundaries (outlines,
+// or holes for the anti and demi D-Forms) have equal lengths (a D-Form zips two boundaries of
+// equal length), the "nonconvex" ones really are non-convex, and the Squaricle disc has its four
+// creases.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <set>
 
@@ -14,21 +17,30 @@ namespace {
 
 const std::string kSamples = std::string(DFORM_SAMPLES_DIR) + "/forward/";
 
-const std::pair<const char*, const char*> kPairs[] = {
-    {"ellipses-a.svg", "ellipses-b.svg"},
-    {"circle.svg", "square.svg"},
-    {"nonconvex-a.svg", "nonconvex-b.svg"},
+// Each piece with the boundary its job zips: its outline, or its one hole.
+struct Joined {
+  const char* file;
+  bool hole;
+};
+const std::pair<Joined, Joined> kPairs[] = {
+    {{"ellipses-a.svg", false}, {"ellipses-b.svg", false}},
+    {{"circle.svg", false}, {"square.svg", false}},
+    {{"nonconvex-a.svg", false}, {"nonconvex-b.svg", false}},
+    {{"anti-a.svg", true}, {"anti-b.svg", true}},
+    {{"demi-disc.svg", false}, {"demi-ring.svg", true}},
+    {{"squaricle-disc.svg", false}, {"squaricle-square.svg", false}},
 };
 
-double perimeterOf(const std::string& name, double tolerance) {
+double perimeterOf(const Joined& piece, double tolerance) {
   OutlineReadOptions options;
   options.flattenTolerance = tolerance;
-  const Result<Shape2> shape = readShape(kSamples + name, options);
+  const Result<Shape2> shape = readShape(kSamples + piece.file, options);
   EXPECT_TRUE(shape.isOk()) << shape.status().message();
   if (!shape.isOk()) return 0.0;
-  EXPECT_TRUE(shape.value().holes.empty()) << name;
-  EXPECT_GT(signedArea(shape.value().outer.points), 0.0) << name;
-  return closedLength(shape.value().outer.points);
+  EXPECT_EQ(shape.value().holes.size(), piece.hole ? 1u : 0u) << piece.file;
+  const Points2& joined = piece.hole ? shape.value().holes[0].points : shape.value().outer.points;
+  EXPECT_GT(signedArea(joined), 0.0) << piece.file;
+  return closedLength(joined);
 }
 
 /// Area of the convex hull (monotone chain).
@@ -59,16 +71,16 @@ TEST(Samples, PairsHaveEqualPerimeters) {
     // At the default tolerance, as the pipeline reads them.
     const double pa = perimeterOf(a, OutlineReadOptions{}.flattenTolerance);
     const double pb = perimeterOf(b, OutlineReadOptions{}.flattenTolerance);
-    EXPECT_NEAR(pa / pb, 1.0, 1e-3) << a << " " << pa << " vs " << b << " " << pb;
+    EXPECT_NEAR(pa / pb, 1.0, 1e-3) << a.file << " " << pa << " vs " << b.file << " " << pb;
     // Finely flattened, the designed sizes agree far better (chord deficit <= 2 pi x tolerance).
     const double fineA = perimeterOf(a, 1e-4), fineB = perimeterOf(b, 1e-4);
-    EXPECT_NEAR(fineA / fineB, 1.0, 1e-5) << a << " " << fineA << " vs " << b << " " << fineB;
+    EXPECT_NEAR(fineA / fineB, 1.0, 1e-5) << a.file << " " << fineA << " vs " << b.file << " " << fineB;
   }
 }
 
 TEST(Samples, EveryForwardSampleIsInAPair) {
   std::set<std::string> paired;
-  for (const auto& [a, b] : kPairs) paired.insert({a, b});
+  for (const auto& [a, b] : kPairs) paired.insert({a.file, b.file});
   for (const auto& entry : std::filesystem::directory_iterator(kSamples))
     if (entry.path().extension() == ".svg") {
       EXPECT_TRUE(paired.count(entry.path().filename().string())) << entry.path();
@@ -81,6 +93,20 @@ TEST(Samples, NonConvexSamplesAreNonConvex) {
     ASSERT_TRUE(shape.isOk()) << shape.status().message();
     const Points2& P = shape.value().outer.points;
     EXPECT_GT(hullArea(P), 1.002 * signedArea(P)) << name;
+  }
+}
+
+TEST(Samples, SquaricleDiscHasFourCreasesJoiningItsQuarterPoints) {
+  const Result<Shape2> shape = readShape(kSamples + "squaricle-disc.svg");
+  ASSERT_TRUE(shape.isOk()) << shape.status().message();
+  ASSERT_EQ(shape.value().creases.size(), 4u);
+  const double radius = 200.0 / M_PI;
+  for (const CreaseLine& crease : shape.value().creases) {
+    // A quarter chord, its ends on the circle as flattened (within the flatten tolerance of it).
+    const double tolerance = OutlineReadOptions{}.flattenTolerance;
+    EXPECT_NEAR(openLength(crease.points), radius * std::sqrt(2.0), 2 * tolerance) << crease.label;
+    for (const Eigen::Index end : {Eigen::Index(0), crease.points.rows() - 1})
+      EXPECT_NEAR((crease.points.row(end) - Eigen::RowVector2d(80, 80)).norm(), radius, tolerance) << crease.label;
   }
 }
 
