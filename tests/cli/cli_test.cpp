@@ -369,6 +369,29 @@ TEST_F(CliTest, FitPerimeterScalesPieceB) {
   EXPECT_NEAR(report["metrics"]["seam_length_a_mm"].get<double>(), report["metrics"]["seam_length_b_mm"].get<double>(), 0.08);
 }
 
+TEST_F(CliTest, AntiDFormFromTheCommandLineCutsItsHolesAndValidatesAgain) {
+  const std::string out = path("anti");
+  const Outcome o = run("forward " + sample("forward/anti-a.svg") + " " + sample("forward/anti-b.svg") +
+                        " --join inner,inner --resolution 30 -o " + out);
+  ASSERT_EQ(o.exitCode, 0) << o.err;
+  EXPECT_NE((o.out + o.err).find("joining its hole, its outline stays free"), std::string::npos) << o.err;
+  std::ifstream svgFile(fs::path(out) / "pattern.svg");
+  const std::string pattern((std::istreambuf_iterator<char>(svgFile)), std::istreambuf_iterator<char>());
+  EXPECT_NE(pattern.find("id=\"A-cut-hole-1\""), std::string::npos);
+  EXPECT_NE(pattern.find("id=\"B-cut-hole-1\""), std::string::npos);
+  const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
+  EXPECT_EQ(report["job"]["join"], "inner,inner");
+  EXPECT_EQ(report["job"]["weights"]["smooth_3d"].get<double>(), 0.001);  // the variants' default
+  // The saved model reads back with its free outlines, and its figures agree with the report.
+  const Outcome check = run("validate " + out);
+  EXPECT_EQ(check.exitCode, 0) << check.out << check.err;
+  EXPECT_NE(check.out.find("its figures match the meshes"), std::string::npos) << check.out;
+
+  expectError(run("forward " + sample("forward/anti-a.svg") + " " + sample("forward/anti-b.svg") +
+                  " --join holes -o " + path("bad")),
+              2, "--join must be");
+}
+
 TEST_F(CliTest, InverseRunAndItsBadInputs) {
   const std::string out = path("out");
   const Outcome o = run("inverse " + sample("inverse/tennis-ball.obj") + " --resolution 60 --no-export -q -o " + out);
