@@ -27,8 +27,9 @@ TEST_P(InverseSamples, ReachThePapersFigures) {
   EXPECT_LE(run.metrics.L_error, 0.005);
   EXPECT_LE(run.metrics.L_max, 0.03);
   EXPECT_EQ(run.metrics.flipped_2d + run.metrics.flipped_3d, 0);
-  // Flat outlines: simple polygons whose perimeters match the resampled curve's length.
-  const double curveLength = closedLength(run.target.points);
+  // Flat outlines: simple polygons whose perimeters match the length of the curve as read (not
+  // only of its resampled polygon) within 0.1 %, issue 3's bar, even at 60 points.
+  const double curveLength = run.curveLength;
   for (const Piece* p : {&run.model.a, &run.model.b}) {
     Points2 outline(p->seam.size(), 2);
     for (std::size_t k = 0; k < p->seam.size(); ++k) outline.row(k) = p->flat.row(p->seam[k]);
