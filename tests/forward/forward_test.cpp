@@ -5,6 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include <random>
+
 #include "forward/terms.h"
 #include "forward/transfer.h"
 #include "test_meshes.h"
@@ -129,6 +133,38 @@ TEST(Forward, TransferIsExactOnTheSameMeshAndStartsAFinerSolve) {
   EXPECT_LE(m.L_error, 0.005);
   EXPECT_LE(m.B_error, 1e-6);
   EXPECT_LE(fine.summary.factorisations, 3);
+}
+
+TEST(Forward, TransferInterpolatesInsideAndTakesTheNearestTriangleOutside) {
+  // A piece whose 3D shape is a known linear map of its flat layout: any point inside must get
+  // exactly that map (piecewise-linear interpolation reproduces linear functions), whichever
+  // cells of the search grid it falls in.
+  Piece source = test::meshedPiece(test::ellipse(120, 70), 40, false);
+  Eigen::Matrix<double, 2, 3> map;
+  map << 0.3, -1.2, 2.0, 0.7, 0.4, -0.5;
+  source.shape = source.flat * map;
+  source.shape.col(2).array() += 5.0;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> t(0.0, 2.0 * M_PI), r(0.0, 0.95);
+  Points2 inside(2000, 2), outside(200, 2);
+  for (Eigen::Index i = 0; i < inside.rows(); ++i) {
+    const double angle = t(rng), radius = std::sqrt(r(rng));  // uniform in the ellipse
+    inside.row(i) << 120 * radius * std::cos(angle), 70 * radius * std::sin(angle);
+  }
+  Points3 expected = inside * map;
+  expected.col(2).array() += 5.0;
+  EXPECT_LT((transferShape(source, inside) - expected).cwiseAbs().maxCoeff(), 1e-9);
+  // Just outside (a finer seam bulging past the coarse one): clamped onto a boundary triangle
+  // near the point, so within a triangle's size of the map's value there.
+  for (Eigen::Index i = 0; i < outside.rows(); ++i) {
+    const double angle = t(rng);
+    outside.row(i) << 121.0 * std::cos(angle), 71.0 * std::sin(angle);
+  }
+  const Points3 clamped = transferShape(source, outside);
+  Points3 onMap = outside * map;
+  onMap.col(2).array() += 5.0;
+  const double edge = 2.0 * M_PI * 100.0 / 40.0;  // about the mean seam edge
+  EXPECT_LT((clamped - onMap).rowwise().norm().maxCoeff(), 3.0 * edge);
 }
 
 }  // namespace
