@@ -319,17 +319,20 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
   problem.addTerm("smooth_2d", w.smooth2d, std::move(smooth2d));
   problem.addTerm("seam", w.seam, std::move(seam));
   problem.holdConstant(held);
-  LeastSquaresSolver solver(problem, options.solver);
-  result.summary = solver.solve(x);
-
-  // Hold the seam corners near the drawn ones: the boundary fix as a constraint. The tolerance is
-  // relative to the perimeter, #seam in the unit of the mean seam edge.
-  const double perimeter = double(a.seam.size());
-  std::vector<Constraint> constraints;
-  if (w.boundaryFix > 0 && anchorTerm->numResiduals() > 0)
-    constraints.push_back({anchorTerm, 2, options.outlineTolerance * perimeter});
-  result.constraintRounds =
-      enforceByMultipliers(solver, constraints, options.constraintRounds, x, result.summary);
+  if (options.solver.maxIterations == 0) {  // the relaxation is the result
+    result.summary = summaryWithoutSteps(problem, x);
+  } else {
+    LeastSquaresSolver solver(problem, options.solver);
+    result.summary = solver.solve(x);
+    // Hold the seam corners near the drawn ones: the boundary fix as a constraint. The tolerance
+    // is relative to the perimeter, #seam in the unit of the mean seam edge.
+    const double perimeter = double(a.seam.size());
+    std::vector<Constraint> constraints;
+    if (w.boundaryFix > 0 && anchorTerm->numResiduals() > 0)
+      constraints.push_back({anchorTerm, 2, options.outlineTolerance * perimeter});
+    result.constraintRounds =
+        enforceByMultipliers(solver, constraints, options.constraintRounds, x, result.summary);
+  }
   result.model = start;
   unpackVariables(layout, x, result.model.a, result.model.b);
   scaleLengths(result.model, unit);

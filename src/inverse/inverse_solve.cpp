@@ -41,12 +41,16 @@ InverseResult solveInverse(const DForm& start, const Points3& curve, const Inver
   problem.addTerm("closeness", w.closeness, std::move(closeness));
   problem.addTerm("smooth_3d", w.smooth3d, std::move(smooth3d));
   problem.addTerm("smooth_2d", w.smooth2d, std::move(smooth2d));
-  LeastSquaresSolver solver(problem, options.solver);
-  result.summary = solver.solve(x);
-  if (w.closeness > 0)
-    result.curveClosingRounds = enforceByMultipliers(
-        solver, {{closenessTerm, 3, options.curveTolerance * double(curve.rows())}},
-        options.curveClosingRounds, x, result.summary);
+  if (options.solver.maxIterations == 0) {  // the relaxation is the result
+    result.summary = summaryWithoutSteps(problem, x);
+  } else {
+    LeastSquaresSolver solver(problem, options.solver);
+    result.summary = solver.solve(x);
+    if (w.closeness > 0)
+      result.curveClosingRounds = enforceByMultipliers(
+          solver, {{closenessTerm, 3, options.curveTolerance * double(curve.rows())}},
+          options.curveClosingRounds, x, result.summary);
+  }
 
   result.model = scaled;
   unpackVariables(layout, x, result.model.a, result.model.b);

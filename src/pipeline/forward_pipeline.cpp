@@ -340,6 +340,8 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
       levelOptions.solver.maxIterations = std::min(options.solver.maxIterations, kCoarseIterations);
       levelOptions.constraintRounds = 0;
     }
+    detail::relaxOnlyIfLarge(pieces[0].flat.rows() + pieces[1].flat.rows(), levelOptions.solver,
+                             levelOptions.relaxation);
     solved = solveForward(pieces[0], pieces[1], levelOptions);
     run.timings.solve += secondsSince(solveStart);
     if (interrupted) return Status(ErrorCode::Interrupted, "interrupted during the solve");

@@ -54,6 +54,8 @@ Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const Ru
 
   const auto solveStart = Clock::now();
   InverseOptions options = job.solve;
+  detail::relaxOnlyIfLarge(init.value().model.a.flat.rows() + init.value().model.b.flat.rows(), options.solver,
+                           options.relaxation);
   bool interrupted = false;
   detail::connectHooks(options.solver, hooks, interrupted);
   InverseResult solved = solveInverse(init.value().model, run.target.points, options);

@@ -22,6 +22,22 @@ inline std::string format(const char* pattern, double a, double b = 0, double c 
   return text;
 }
 
+/// Above this many vertices (both pieces) a problem is solved by the local-global relaxation
+/// alone: there one factorisation of J^T J costs seconds and hundreds of MB (measured: a forward
+/// level of 19k vertices took 14 s of CPU and 690 MB with Levenberg-Marquardt, 50k vertices 10 s
+/// and 430 MB without), while the relaxation's steps scale almost linearly (docs/benchmarks.md,
+/// "Scale"). It then stops at the plateau where an iteration lowers the energy by less than 1e-4
+/// of it: what is left is the smooth shape drifting, not the fit (L_error 0.013 % at 97k vertices).
+constexpr int kDirectSolveVertices = 10000;
+constexpr double kRelaxationOnlyTolerance = 1e-4;
+
+/// Applies the rule above to a problem of `vertices` vertices.
+inline void relaxOnlyIfLarge(long vertices, SolverOptions& solver, LocalGlobalOptions& relaxation) {
+  if (vertices <= kDirectSolveVertices) return;
+  solver.maxIterations = 0;
+  relaxation.relativeTolerance = kRelaxationOnlyTolerance;
+}
+
 /// Routes the solver's iterations to the run's hooks; `interrupted` turns true when the caller
 /// asked the run to stop (the solver then ends with UserAbort).
 inline void connectHooks(SolverOptions& options, const RunHooks& hooks, bool& interrupted) {

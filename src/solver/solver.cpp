@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 
 #include "solver/threads.h"
 
@@ -350,6 +351,20 @@ LeastSquaresSolver::LeastSquaresSolver(const Problem& problem, SolverOptions opt
 
 LeastSquaresSolver::~LeastSquaresSolver() = default;
 
+SolverSummary summaryWithoutSteps(const Problem& problem, const Eigen::VectorXd& x) {
+  SolverSummary summary;
+  for (int t = 0; t < problem.numTerms(); ++t) summary.termNames.push_back(problem.termName(t));
+  summary.numVariables = problem.numVariables();
+  for (int t = 0; t < problem.numTerms(); ++t) summary.numResiduals += problem.term(t).numResiduals();
+  summary.initialTermCosts = summary.finalTermCosts = problem.termCosts(x);
+  summary.initialCost = summary.finalCost =
+      std::accumulate(summary.finalTermCosts.begin(), summary.finalTermCosts.end(), 0.0);
+  summary.termination = std::isfinite(summary.finalCost) ? Termination::NoConvergence : Termination::Failure;
+  summary.message = std::isfinite(summary.finalCost) ? "the iteration cap is 0: no step was taken"
+                                                     : "the objective is not finite at the starting point";
+  return summary;
+}
+
 SolverSummary solve(const Problem& problem, const SolverOptions& options, Eigen::VectorXd& x) {
   std::string why;
   if (!options.isValid(&why)) {
@@ -357,6 +372,7 @@ SolverSummary solve(const Problem& problem, const SolverOptions& options, Eigen:
     summary.message = why;
     return summary;
   }
+  if (options.maxIterations == 0) return summaryWithoutSteps(problem, x);
   return LeastSquaresSolver(problem, options).solve(x);
 }
 

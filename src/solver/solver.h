@@ -127,6 +127,11 @@ struct Constraint {
 int enforceByMultipliers(LeastSquaresSolver& solver, const std::vector<Constraint>& constraints,
                          int maxRounds, Eigen::VectorXd& x, SolverSummary& summary);
 
+/// The summary of a solve that takes no step (maxIterations = 0), made without setting up the
+/// linear algebra, which a large problem would pay for in time and memory for nothing: the
+/// objective and its terms at x, and Termination::NoConvergence with the reason.
+SolverSummary summaryWithoutSteps(const Problem& problem, const Eigen::VectorXd& x);
+
 /// Minimises problem's objective starting from x (updated in place): a one-off LeastSquaresSolver.
 SolverSummary solve(const Problem& problem, const SolverOptions& options, Eigen::VectorXd& x);
 
