@@ -292,25 +292,23 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
         movable->push_back(v);
       }
     }
-  auto anchorAll = makeFlatAnchorTerm(layout, drawnA, flatRows(start.a, drawnA), drawnB, flatRows(start.b, drawnB));
   auto anchor = makeFlatAnchorTerm(layout, movableA, flatRows(start.a, movableA), movableB, flatRows(start.b, movableB));
   auto smooth3d = makeSmoothnessTerm(layout, start.a, start.b, true);
   auto smooth2d = makeSmoothnessTerm(layout, start.a, start.b, false);
   auto seam = makeSeamSmoothnessTerm(layout, a.seam, b.seam);
   Eigen::VectorXd x = packVariables(layout, start.a, start.b);
-  const Eigen::VectorXd drawnX = x;
 
   weightByFlatLength(edges, x, w.isometry);
   const auto linear = [](const std::unique_ptr<ResidualTerm>& t) {
     return static_cast<const LinearResidual*>(t.get());
   };
   auto* anchorTerm = static_cast<LinearResidual*>(anchor.get());
-  result.relaxation = relaxLocalGlobal({{w.boundaryFix, linear(anchorAll)},
-                                        {w.smooth3d, linear(smooth3d)},
-                                        {w.smooth2d, linear(smooth2d)},
-                                        {w.seam, linear(seam)}},
-                                       edges, options.relaxation, x);
-  for (int v : held) x[v] = drawnX[v];  // the relaxation only held them softly
+  const LocalGlobalRelaxation relaxation({{w.boundaryFix, linear(anchor)},
+                                          {w.smooth3d, linear(smooth3d)},
+                                          {w.smooth2d, linear(smooth2d)},
+                                          {w.seam, linear(seam)}},
+                                         edges, x, held);
+  result.relaxation = relaxation.relax(options.relaxation, x);
 
   Problem problem(layout.numVariables());
   problem.addTerm("isometry", w.isometry, makeIsometryTerm(edges));
@@ -319,19 +317,29 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
   problem.addTerm("smooth_2d", w.smooth2d, std::move(smooth2d));
   problem.addTerm("seam", w.seam, std::move(seam));
   problem.holdConstant(held);
-  if (options.solver.maxIterations == 0) {  // the relaxation is the result
+  // Hold the seam corners near the drawn ones: the boundary fix as a constraint. The tolerance is
+  // relative to the perimeter, #seam in the unit of the mean seam edge.
+  const double perimeter = double(a.seam.size());
+  std::vector<Constraint> constraints;
+  if (w.boundaryFix > 0 && anchorTerm->numResiduals() > 0)
+    constraints.push_back({anchorTerm, 2, options.outlineTolerance * perimeter});
+  if (options.solver.maxIterations == 0) {  // the relaxation is the result, its rounds too
+    result.constraintRounds = enforceByMultipliers(
+        [&](Eigen::VectorXd& y) {
+          result.relaxation.append(relaxation.relax(options.relaxation, y));
+          return true;
+        },
+        constraints, options.constraintRounds, x);
     result.summary = summaryWithoutSteps(problem, x);
   } else {
     LeastSquaresSolver solver(problem, options.solver);
     result.summary = solver.solve(x);
-    // Hold the seam corners near the drawn ones: the boundary fix as a constraint. The tolerance
-    // is relative to the perimeter, #seam in the unit of the mean seam edge.
-    const double perimeter = double(a.seam.size());
-    std::vector<Constraint> constraints;
-    if (w.boundaryFix > 0 && anchorTerm->numResiduals() > 0)
-      constraints.push_back({anchorTerm, 2, options.outlineTolerance * perimeter});
-    result.constraintRounds =
-        enforceByMultipliers(solver, constraints, options.constraintRounds, x, result.summary);
+    result.constraintRounds = enforceByMultipliers(
+        [&](Eigen::VectorXd& y) {
+          result.summary.append(solver.solve(y));
+          return result.summary.usable();
+        },
+        constraints, options.constraintRounds, x);
   }
   result.model = start;
   unpackVariables(layout, x, result.model.a, result.model.b);

@@ -4,6 +4,7 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 #include <cassert>
+#include <cmath>
 #include <chrono>
 #include <algorithm>
 #include <deque>
@@ -26,16 +27,15 @@ struct Projections {
 class LocalGlobal {
  public:
   LocalGlobal(const std::vector<std::pair<double, const LinearResidual*>>& quadratic,
-              const EdgeLengthPairs& edges, int n)
+              const EdgeLengthPairs& edges, const Eigen::VectorXd& x0, const std::vector<int>& held)
       : quadratic_(quadratic), edges_(edges), stride_(edges.stride) {
+    const int n = int(x0.size());
     // K = sum_t w_t M_t^T M_t + sum_e w_e D_e^T D_e + eps I. The eps I (with eps x_prev on the
     // right) is a proximal term: it fixes the free translation and vanishes at a fixed point.
     SparseMatrix K(n, n);
-    constantRhs_.setZero(n);
     for (const auto& [w, term] : quadratic) {
       const SparseMatrix M = term->matrix();
       K += w * SparseMatrix(M.transpose() * M);
-      constantRhs_ += w * (M.transpose() * term->target());
     }
     std::vector<Eigen::Triplet<double>> entries;
     for (std::size_t e = 0; e < edges.weight.size(); ++e) {
@@ -58,6 +58,22 @@ class LocalGlobal {
     SparseMatrix identity(n, n);
     identity.setIdentity();
     K += proximal_ * identity;
+    // Held unknowns: their rows become x_i = x0_i and their couplings move to the right side.
+    held_.assign(std::size_t(n), false);
+    for (int i : held) held_[std::size_t(i)] = true;
+    heldRhs_ = Eigen::VectorXd::Zero(n);
+    heldValue_ = x0;
+    if (!held.empty()) {
+      std::vector<Eigen::Triplet<double>> kept;
+      for (int c = 0; c < K.outerSize(); ++c)
+        for (SparseMatrix::InnerIterator it(K, c); it; ++it) {
+          const bool heldRow = held_[std::size_t(it.row())], heldCol = held_[std::size_t(c)];
+          if (heldCol && !heldRow) heldRhs_[it.row()] -= it.value() * x0[c];
+          if (!heldRow && !heldCol) kept.emplace_back(it.row(), c, it.value());
+        }
+      for (int i : held) kept.emplace_back(i, i, 1.0);
+      K.setFromTriplets(kept.begin(), kept.end());
+    }
     splitByCoordinate(K);
   }
 
@@ -82,9 +98,17 @@ class LocalGlobal {
     return total;
   }
 
-  // The global step: the x minimising the energy for fixed projections (plus the proximal term).
-  Eigen::VectorXd global(const Eigen::VectorXd& x, const Projections& proj) const {
-    Eigen::VectorXd rhs = constantRhs_ + proximal_ * x;
+  // sum_t w_t M_t^T b_t, read from the terms' current targets.
+  Eigen::VectorXd targetRhs() const {
+    Eigen::VectorXd rhs = heldRhs_;
+    for (const auto& [w, term] : quadratic_) rhs += w * (term->matrix().transpose() * term->target());
+    return rhs;
+  }
+
+  // The global step: the x minimising the energy for fixed projections (plus the proximal term);
+  // `constant` is targetRhs().
+  Eigen::VectorXd global(const Eigen::VectorXd& x, const Projections& proj, const Eigen::VectorXd& constant) const {
+    Eigen::VectorXd rhs = constant + proximal_ * x;
     for (std::size_t e = 0; e < edges_.weight.size(); ++e) {
       const double w = edges_.weight[e];
       rhs.segment<3>(edges_.x[e][0]) += w * proj.p[e];
@@ -92,6 +116,8 @@ class LocalGlobal {
       rhs.segment<2>(edges_.u[e][0]) += w * proj.q[e];
       rhs.segment<2>(edges_.u[e][1]) -= w * proj.q[e];
     }
+    for (std::size_t i = 0; i < held_.size(); ++i)
+      if (held_[i]) rhs[Eigen::Index(i)] = heldValue_[Eigen::Index(i)];
     // Each coordinate group is solved with its own factor, all its coordinates at once.
     const int vertices = int(rhs.size()) / stride_;
     Eigen::Map<const RowMatrix> B(rhs.data(), vertices, stride_);
@@ -158,7 +184,8 @@ class LocalGlobal {
   }
 
   const int stride_;
-  Eigen::VectorXd constantRhs_;
+  std::vector<bool> held_;
+  Eigen::VectorXd heldRhs_, heldValue_;
   double proximal_ = 0;
   std::vector<Group> groups_;
   bool ok_ = false;
@@ -198,24 +225,39 @@ class Anderson {
 
 }  // namespace
 
-LocalGlobalSummary relaxLocalGlobal(const std::vector<std::pair<double, const LinearResidual*>>& quadratic,
-                                    const EdgeLengthPairs& edges, const LocalGlobalOptions& options,
-                                    Eigen::VectorXd& x) {
-  const auto start = std::chrono::steady_clock::now();
+struct LocalGlobalRelaxation::Impl {
+  std::vector<std::pair<double, const LinearResidual*>> quadratic;
+  LocalGlobal lg;
+  Impl(std::vector<std::pair<double, const LinearResidual*>> q, const EdgeLengthPairs& edges,
+       const Eigen::VectorXd& x0, const std::vector<int>& held)
+      : quadratic(std::move(q)), lg(quadratic, edges, x0, held) {}
+};
+
+LocalGlobalRelaxation::LocalGlobalRelaxation(std::vector<std::pair<double, const LinearResidual*>> quadratic,
+                                             const EdgeLengthPairs& edges, const Eigen::VectorXd& x0,
+                                             const std::vector<int>& held) {
   assert(edges.x.size() == edges.weight.size() && edges.u.size() == edges.weight.size());
+  impl_ = std::make_unique<Impl>(std::move(quadratic), edges, x0, held);
+}
+
+LocalGlobalRelaxation::~LocalGlobalRelaxation() = default;
+
+LocalGlobalSummary LocalGlobalRelaxation::relax(const LocalGlobalOptions& options, Eigen::VectorXd& x) const {
+  const auto start = std::chrono::steady_clock::now();
+  const LocalGlobal& lg = impl_->lg;
   LocalGlobalSummary summary;
   Projections proj;
   if (options.maxIterations <= 0) return summary;
-  const LocalGlobal lg(quadratic, edges, int(x.size()));
   double energy = lg.energy(x, proj);
   summary.initialEnergy = summary.finalEnergy = energy;
   if (!lg.ok() || !std::isfinite(energy)) return summary;
+  const Eigen::VectorXd constant = lg.targetRhs();
 
   Anderson anderson(options.andersonDepth);
   Projections candidateProj;
   for (int k = 1; k <= options.maxIterations; ++k) {
     summary.iterations = k;
-    const Eigen::VectorXd g = lg.global(x, proj);
+    const Eigen::VectorXd g = lg.global(x, proj, constant);
     Eigen::VectorXd candidate = options.andersonDepth > 0 ? anderson.next(g, g - x) : g;
     double candidateEnergy = lg.energy(candidate, candidateProj);
     // Plain steps never raise the energy; an accelerated one that does is replaced by the plain one.

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -39,12 +40,37 @@ struct LocalGlobalSummary {
   double initialEnergy = 0;
   double finalEnergy = 0;
   double seconds = 0;
+
+  /// Appends a later relaxation of the same problem (after a multiplier update, say).
+  void append(const LocalGlobalSummary& later) {
+    iterations += later.iterations;
+    andersonRejected += later.andersonRejected;
+    finalEnergy = later.finalEnergy;
+    seconds += later.seconds;
+  }
 };
 
-/// Minimises sum_t w_t ||M_t x - b_t||^2 + sum_e w_e (|x_a - x_b| - |u_a - u_b|)^2 / 2 over x (in
-/// place) by local-global steps. `quadratic` lists the weighted linear terms.
-LocalGlobalSummary relaxLocalGlobal(const std::vector<std::pair<double, const LinearResidual*>>& quadratic,
-                                    const EdgeLengthPairs& edges, const LocalGlobalOptions& options,
-                                    Eigen::VectorXd& x);
+/// Minimises sum_t w_t ||M_t x - b_t||^2 + sum_e w_e (|x_a - x_b| - |u_a - u_b|)^2 / 2 over x by
+/// local-global steps. `quadratic` lists the weighted linear terms. The linear system (one
+/// factorisation per coordinate group) is set up once, at construction; relax() reads the terms'
+/// targets b_t afresh, so it may be called again after a multiplier update moved one, and reuses
+/// the factorisations. The terms and edges must outlive the object.
+class LocalGlobalRelaxation {
+ public:
+  /// `held` lists unknowns kept at their values in x0 (rows of the system replaced by x_i = x0_i);
+  /// held unknowns of one coordinate group must belong to the same vertices (e.g. u and v both).
+  LocalGlobalRelaxation(std::vector<std::pair<double, const LinearResidual*>> quadratic,
+                        const EdgeLengthPairs& edges, const Eigen::VectorXd& x0, const std::vector<int>& held = {});
+  ~LocalGlobalRelaxation();
+  LocalGlobalRelaxation(const LocalGlobalRelaxation&) = delete;
+  LocalGlobalRelaxation& operator=(const LocalGlobalRelaxation&) = delete;
+
+  /// Relaxes x in place; summary.iterations is 0 when the system could not be factorised.
+  LocalGlobalSummary relax(const LocalGlobalOptions& options, Eigen::VectorXd& x) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace dform

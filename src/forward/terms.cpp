@@ -205,24 +205,6 @@ std::unique_ptr<ResidualTerm> makeFlatAnchorTerm(const VariableLayout& layout,
                     Eigen::Map<Eigen::VectorXd>(b.data(), Eigen::Index(b.size())));
 }
 
-std::unique_ptr<ResidualTerm> makeCurveClosenessTerm(const VariableLayout& layout,
-                                                     const std::vector<int>& seamA,
-                                                     const std::vector<int>& seamB,
-                                                     const Points3& curve) {
-  std::vector<Triplet> entries;
-  std::vector<double> b;
-  int row = 0;
-  const std::vector<int>* seams[2] = {&seamA, &seamB};
-  for (int p = 0; p < 2; ++p)
-    for (std::size_t k = 0; k < seams[p]->size(); ++k)
-      for (int c = 0; c < 3; ++c, ++row) {
-        entries.emplace_back(row, layout.x(p, (*seams[p])[k]) + c, 1.0);
-        b.push_back(curve(k, c));
-      }
-  return linearTerm(row, layout.numVariables(), entries,
-                    Eigen::Map<Eigen::VectorXd>(b.data(), Eigen::Index(b.size())));
-}
-
 CotangentWeights cotangentWeights(const Points2& V, const Faces& F) {
   CotangentWeights w;
   w.neighbours.resize(V.rows());

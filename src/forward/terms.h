@@ -65,12 +65,6 @@ std::unique_ptr<ResidualTerm> makeFlatAnchorTerm(const VariableLayout& layout,
                                                  const std::vector<int>& verticesB,
                                                  const Points2& targetsB);
 
-/// Seam closeness (Eq. 6): x_A(seamA[i]) - c_i and x_B(seamB[i]) - c_i.
-std::unique_ptr<ResidualTerm> makeCurveClosenessTerm(const VariableLayout& layout,
-                                                     const std::vector<int>& seamA,
-                                                     const std::vector<int>& seamB,
-                                                     const Points3& curve);
-
 /// Cotangent weights of a flat mesh: for each vertex, its neighbours and (cot a + cot b) / 2.
 struct CotangentWeights {
   std::vector<std::vector<std::pair<int, double>>> neighbours;  ///< per vertex

@@ -23,34 +23,32 @@ InverseResult solveInverse(const DForm& start, const Points3& curve, const Inver
                               scaled.b.seam);
   const InverseWeights& w = options.weights;
   EdgeLengthPairs edges = meshEdgePairs(layout, scaled.a.F, scaled.b.F);
-  auto closeness = makeCurveClosenessTerm(layout, scaled.a.seam, scaled.b.seam, target);
   auto smooth3d = makeSmoothnessTerm(layout, scaled.a, scaled.b, true);
   auto smooth2d = makeSmoothnessTerm(layout, scaled.a, scaled.b, false);
   Eigen::VectorXd x = packVariables(layout, scaled.a, scaled.b);
+  // The seam lies on the curve: the closeness term (Eq. 6) as an exact constraint, the limit of
+  // its penalty (the paper's section 6.6 suggests it): its 3D unknowns are held at the curve.
+  std::vector<int> held;
+  if (w.closeness > 0)
+    for (std::size_t k = 0; k < scaled.a.seam.size(); ++k)
+      for (int c = 0; c < 3; ++c) {
+        const int v = layout.x(0, scaled.a.seam[k]) + c;  // B's side shares it
+        x[v] = target(Eigen::Index(k), c);
+        held.push_back(v);
+      }
 
   weightByFlatLength(edges, x, w.isometry);
-  auto* closenessTerm = static_cast<LinearResidual*>(closeness.get());
-  result.relaxation = relaxLocalGlobal(
-      {{w.closeness, closenessTerm},
-       {w.smooth3d, static_cast<const LinearResidual*>(smooth3d.get())},
-       {w.smooth2d, static_cast<const LinearResidual*>(smooth2d.get())}},
-      edges, options.relaxation, x);
+  const LocalGlobalRelaxation relaxation({{w.smooth3d, static_cast<const LinearResidual*>(smooth3d.get())},
+                                          {w.smooth2d, static_cast<const LinearResidual*>(smooth2d.get())}},
+                                         edges, x, held);
+  result.relaxation = relaxation.relax(options.relaxation, x);
 
   Problem problem(layout.numVariables());
   problem.addTerm("isometry", w.isometry, makeIsometryTerm(edges));
-  problem.addTerm("closeness", w.closeness, std::move(closeness));
   problem.addTerm("smooth_3d", w.smooth3d, std::move(smooth3d));
   problem.addTerm("smooth_2d", w.smooth2d, std::move(smooth2d));
-  if (options.solver.maxIterations == 0) {  // the relaxation is the result
-    result.summary = summaryWithoutSteps(problem, x);
-  } else {
-    LeastSquaresSolver solver(problem, options.solver);
-    result.summary = solver.solve(x);
-    if (w.closeness > 0)
-      result.curveClosingRounds = enforceByMultipliers(
-          solver, {{closenessTerm, 3, options.curveTolerance * double(curve.rows())}},
-          options.curveClosingRounds, x, result.summary);
-  }
+  problem.holdConstant(held);
+  result.summary = solve(problem, options.solver, x);  // no step at all when the cap is 0
 
   result.model = scaled;
   unpackVariables(layout, x, result.model.a, result.model.b);

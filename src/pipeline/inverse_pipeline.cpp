@@ -66,12 +66,10 @@ Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const Ru
   sink.emit(Level::Debug, format("local-global start: %.0f iterations, energy %.4g -> %.4g",
                    solved.relaxation.iterations, solved.relaxation.initialEnergy,
                    solved.relaxation.finalEnergy));
-  sink.info("solve: " + solved.summary.briefReport() + ", " +
-            std::to_string(solved.curveClosingRounds) + " curve-closing round(s)");
+  sink.info("solve: " + solved.summary.briefReport());
   run.model = std::move(solved.model);
   run.relaxation = solved.relaxation;
   run.summary = std::move(solved.summary);
-  run.curveClosingRounds = solved.curveClosingRounds;
   run.metrics = computeMetrics(run.model);
   run.curveMatch = computeCurveMatch(run.model, run.target);
   for (const Piece* p : {&run.model.a, &run.model.b}) {

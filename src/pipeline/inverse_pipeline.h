@@ -29,7 +29,6 @@ struct InverseRun {
   PreDForm pre;            ///< how the start was built (on-hull or not)
   LocalGlobalSummary relaxation;
   SolverSummary summary;
-  int curveClosingRounds = 0;
   double curveLength = 0;  ///< length of the curve as read (mm)
   Timings timings;
 };

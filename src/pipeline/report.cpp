@@ -179,7 +179,6 @@ Status writeInverseReport(const std::string& dir, const Job& job, const InverseR
                          {"summary", run.pre.summary}};
   report["mesh"] = meshJson(run.model);
   report["solver"] = solverJson(run.relaxation, run.summary);
-  report["solver"]["curve_closing_rounds"] = run.curveClosingRounds;
   report["metrics"] = metricsJson(run.metrics);
   report["metrics"]["D_error"] = figure(run.curveMatch.D_error);
   report["metrics"]["curve_distance_max_mm"] = figure(run.curveMatch.curve_distance_max_mm);

@@ -509,8 +509,8 @@ SolverSummary LeastSquaresSolver::solve(Eigen::VectorXd& x) {
   return summary;
 }
 
-int enforceByMultipliers(LeastSquaresSolver& solver, const std::vector<Constraint>& constraints,
-                         int maxRounds, Eigen::VectorXd& x, SolverSummary& summary) {
+int enforceByMultipliers(const std::function<bool(Eigen::VectorXd&)>& resolve,
+                         const std::vector<Constraint>& constraints, int maxRounds, Eigen::VectorXd& x) {
   std::vector<Eigen::VectorXd> targets;
   for (const Constraint& c : constraints) targets.push_back(c.term->target());
   auto met = [](const Constraint& c, const Eigen::VectorXd& r) {
@@ -519,7 +519,7 @@ int enforceByMultipliers(LeastSquaresSolver& solver, const std::vector<Constrain
     return true;
   };
   int rounds = 0;
-  while (summary.usable() && rounds < maxRounds) {
+  while (rounds < maxRounds) {
     bool allMet = true;
     for (std::size_t i = 0; i < constraints.size(); ++i) {
       LinearResidual& term = *constraints[i].term;
@@ -530,7 +530,7 @@ int enforceByMultipliers(LeastSquaresSolver& solver, const std::vector<Constrain
     }
     if (allMet) break;
     ++rounds;
-    summary.append(solver.solve(x));
+    if (!resolve(x)) break;
   }
   return rounds;
 }

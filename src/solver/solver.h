@@ -120,12 +120,13 @@ struct Constraint {
   double tolerance;
 };
 
-/// Augmented-Lagrangian rounds on `solver`'s problem: while a constraint is not met, each unmet
-/// term's target moves by its residual (b <- b - (M x - b0), a multiplier update) and the problem
-/// is solved again from x. The weights stay as the caller chose them. Each solve is appended to
-/// `summary`; returns the rounds used. The terms' targets are left shifted.
-int enforceByMultipliers(LeastSquaresSolver& solver, const std::vector<Constraint>& constraints,
-                         int maxRounds, Eigen::VectorXd& x, SolverSummary& summary);
+/// Augmented-Lagrangian rounds: while a constraint is not met, each unmet term's target moves by
+/// its residual (b <- b - (M x - b0), a multiplier update) and `resolve` solves the problem again
+/// from x (Levenberg-Marquardt, or any solver of the same objective); it returns false to stop the
+/// rounds (a failed solve). The weights stay as the caller chose them. Returns the rounds used;
+/// the terms' targets are left shifted.
+int enforceByMultipliers(const std::function<bool(Eigen::VectorXd&)>& resolve,
+                         const std::vector<Constraint>& constraints, int maxRounds, Eigen::VectorXd& x);
 
 /// The summary of a solve that takes no step (maxIterations = 0), made without setting up the
 /// linear algebra, which a large problem would pay for in time and memory for nothing: the

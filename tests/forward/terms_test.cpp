@@ -31,12 +31,10 @@ TEST(Terms, EveryJacobianMatchesFiniteDifferences) {
   std::normal_distribution<double> noise(0.0, 1.0);
   Eigen::VectorXd x(m.layout.numVariables());
   for (Eigen::Index i = 0; i < x.size(); ++i) x[i] = noise(rng);
-  Points3 curve = Points3::Random(16, 3);
   Points2 targetsA = Points2::Random(16, 2), targetsB = Points2::Random(16, 2);
 
   expectExactJacobian(*makeIsometryTerm(meshEdgePairs(m.layout, m.a.F, m.b.F)), x, "isometry");
   expectExactJacobian(*makeFlatAnchorTerm(m.layout, m.a.seam, targetsA, m.b.seam, targetsB), x, "boundary fix");
-  expectExactJacobian(*makeCurveClosenessTerm(m.layout, m.a.seam, m.b.seam, curve), x, "closeness");
   expectExactJacobian(*makeSmoothnessTerm(m.layout, m.a, m.b, true), x, "smooth 3D");
   expectExactJacobian(*makeSmoothnessTerm(m.layout, m.a, m.b, false), x, "smooth 2D");
   expectExactJacobian(*makeSeamSmoothnessTerm(m.layout, m.a.seam, m.b.seam), x, "seam");

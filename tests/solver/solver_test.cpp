@@ -259,8 +259,14 @@ TEST(Solver, MultiplierRoundsMeetAConstraintWithoutRaisingItsWeight) {
   Eigen::VectorXd x = Eigen::VectorXd::Zero(2);
   SolverSummary summary = solver.solve(x);
   EXPECT_NEAR(x[0] + x[1], 1.0, 1e-6);  // soft: (1 + 2) / 3
-  const int rounds = enforceByMultipliers(solver, {{constraint, 1, 1e-7}}, 50, x, summary);
+  const int rounds = enforceByMultipliers(
+      [&](Eigen::VectorXd& y) {
+        summary.append(solver.solve(y));
+        return summary.usable();
+      },
+      {{constraint, 1, 1e-7}}, 50, x);
   EXPECT_GT(rounds, 0);
+  EXPECT_GT(summary.iterations.size(), 1u);  // the rounds' solves are in the summary
   EXPECT_LT(std::abs(x[0] + x[1]), 1e-7);
   EXPECT_NEAR(x[0], -0.5, 1e-6);
   EXPECT_NEAR(x[1], 0.5, 1e-6);
