@@ -9,6 +9,7 @@
 #include "forward/transfer.h"
 #include "io/outline_reader.h"
 #include "meshing/triangulate.h"
+#include "pipeline/resources.h"
 #include "pipeline/run_util.h"
 #include "pipeline/seam_layout.h"
 
@@ -232,6 +233,18 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
   run.startFractionA = resolveFraction(A.joined, job.startA);
   run.startFractionB = resolveFraction(B.joined, startB);
   run.timings.read = secondsSince(start);
+
+  // The finest mesh: interior points on a hexagonal lattice of spacing h, 2 / (sqrt(3) h^2) per
+  // unit area, plus the boundary samples.
+  const double h = job.interiorEdgeFactor * run.perimeterA / job.resolution;
+  double area = 0.0;
+  for (const DrawnPiece* piece : {&A, &B})
+    area += piece->freeOutline ? std::abs(signedArea(*piece->freeOutline)) - std::abs(signedArea(piece->joined))
+                               : std::abs(signedArea(piece->joined));
+  if (Status fits = checkMemory(2.0 * area / (std::sqrt(3.0) * h * h) + 2.0 * job.resolution, 0.0,
+                                job.resolution, job.pieceA + " and " + job.pieceB + ": the run");
+      !fits.isOk())
+    return fits;
 
   // Each seam runs so that the zipped pieces are consistently oriented: A's the way A's triangles
   // run along it (counter-clockwise round an outline, clockwise round a hole), B's the other way

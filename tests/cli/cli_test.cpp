@@ -392,6 +392,18 @@ TEST_F(CliTest, AntiDFormFromTheCommandLineCutsItsHolesAndValidatesAgain) {
               2, "--join must be");
 }
 
+TEST_F(CliTest, ARunTooLargeForTheMachineStopsAtOnceSayingWhatFits) {
+  // About 69 million vertices: hundreds of GB, far beyond any machine this runs on. The run
+  // must refuse before meshing (so at once), as a usage error naming the resolution that fits.
+  const Outcome forward = run("forward " + sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg") +
+                              " --resolution 20000 -o " + path("huge"));
+  expectError(forward, 2, "GB of memory");
+  EXPECT_NE(forward.err.find("a resolution of "), std::string::npos) << forward.err;
+  EXPECT_FALSE(fs::exists(fs::path(path("huge")) / "report.json"));
+  expectError(run("inverse " + sample("inverse/saddle.obj") + " --resolution 2001 -o " + path("huge3")), 2,
+              "between 8 and 2000");
+}
+
 TEST_F(CliTest, InverseRunAndItsBadInputs) {
   const std::string out = path("out");
   const Outcome o = run("inverse " + sample("inverse/tennis-ball.obj") + " --resolution 60 --no-export -q -o " + out);
