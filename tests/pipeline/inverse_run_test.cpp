@@ -1,6 +1,8 @@
 // Inverse runs on the samples: the figures the issue asks for, and bad curves.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cctype>
 #include <filesystem>
 #include <fstream>
@@ -46,6 +48,37 @@ INSTANTIATE_TEST_SUITE_P(Samples, InverseSamples,
                              if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
                            return name;
                          });
+
+TEST(InverseRun, ALongCurveIsSolvedCoarseToFineAndMeetsTheSameBars) {
+  // 250 points: the pre-D-Form is built on 83 of them, the result refined to 250.
+  InverseJob job;
+  job.curve = sample("saddle.obj");
+  job.resolution = 250;
+  MessageSink sink;
+  const Result<InverseRun> result = runInverse(job, sink);
+  ASSERT_TRUE(result.isOk()) << result.status().message();
+  const InverseRun& run = result.value();
+  EXPECT_EQ(run.model.a.seam.size(), 250u);
+  EXPECT_EQ(run.target.points.rows(), 250);
+  EXPECT_TRUE(std::any_of(sink.messages().begin(), sink.messages().end(), [](const Message& m) {
+    return m.text.rfind("coarse level: piece A with ", 0) == 0;
+  }));
+  EXPECT_LE(run.curveMatch.D_error, 1e-6);
+  EXPECT_LE(run.metrics.L_error, 0.005);
+  EXPECT_LE(run.metrics.L_max, 0.03);
+  EXPECT_EQ(run.metrics.flipped_2d + run.metrics.flipped_3d, 0);
+  for (const Piece* p : {&run.model.a, &run.model.b}) {
+    Points2 outline(p->seam.size(), 2);
+    for (std::size_t k = 0; k < p->seam.size(); ++k) outline.row(k) = p->flat.row(p->seam[k]);
+    EXPECT_FALSE(findSelfIntersection(outline).has_value()) << p->name;
+    EXPECT_NEAR(closedLength(outline), run.curveLength, 1e-3 * run.curveLength) << p->name;
+    // The seam lies on the finest level's curve points, to the rounding of the solver's unit.
+    double off = 0.0;
+    for (std::size_t k = 0; k < p->seam.size(); ++k)
+      off = std::max(off, (p->shape.row(p->seam[k]) - run.target.points.row(Eigen::Index(k))).norm());
+    EXPECT_LT(off, 1e-9) << p->name;
+  }
+}
 
 TEST(InverseRun, BadCurvesAreInputErrorsNamingTheFile) {
   const auto dir = std::filesystem::temp_directory_path() / ("dform_inverse_bad_" + std::to_string(getpid()));
