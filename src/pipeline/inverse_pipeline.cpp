@@ -19,10 +19,8 @@ using detail::secondsSince;
 
 Status validateInverseJob(const InverseJob& job) {
   auto usage = [](const std::string& text) { return Status(ErrorCode::Usage, text); };
-  // The pre-D-Form's search is cubic in the curve's points: 1000 took 25 s here, so 2000 take
-  // about 4 minutes; beyond that a run would look hung.
-  if (job.resolution < 8 || job.resolution > 2000)
-    return usage("resolution must be between 8 and 2000 curve points, got " +
+  if (job.resolution < 8 || job.resolution > 20000)
+    return usage("resolution must be between 8 and 20000 curve points, got " +
                  std::to_string(job.resolution));
   const InverseWeights& w = job.solve.weights;
   for (double weight : {w.isometry, w.closeness, w.smooth3d, w.smooth2d})

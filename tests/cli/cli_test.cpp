@@ -400,8 +400,10 @@ TEST_F(CliTest, ARunTooLargeForTheMachineStopsAtOnceSayingWhatFits) {
   expectError(forward, 2, "GB of memory");
   EXPECT_NE(forward.err.find("a resolution of "), std::string::npos) << forward.err;
   EXPECT_FALSE(fs::exists(fs::path(path("huge")) / "report.json"));
-  expectError(run("inverse " + sample("inverse/saddle.obj") + " --resolution 2001 -o " + path("huge3")), 2,
-              "between 8 and 2000");
+  expectError(run("inverse " + sample("inverse/saddle.obj") + " --resolution 20000 -o " + path("huge2")), 2,
+              "GB of memory");
+  expectError(run("inverse " + sample("inverse/saddle.obj") + " --resolution 20001 -o " + path("huge3")), 2,
+              "between 8 and 20000");
 }
 
 TEST_F(CliTest, InverseRunAndItsBadInputs) {
