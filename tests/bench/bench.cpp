@@ -3,6 +3,7 @@
 // figures, as a Markdown table for docs/benchmarks.md. Method and machine: docs/benchmarks.md.
 //
 //   dform_bench [--repeats N] [--smoke]
+//   dform_bench --scale [--repeats N] [--plot FILE.svg]   (scale.cpp)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -15,6 +16,7 @@
 #include "export/exporter.h"
 #include "pipeline/forward_pipeline.h"
 #include "pipeline/inverse_pipeline.h"
+#include "scale.h"
 
 namespace {
 
@@ -41,18 +43,24 @@ std::string sample(const char* name) { return std::string(DFORM_SAMPLES_DIR) + "
 int main(int argc, char** argv) {
   keepFreedMemory();  // as build/dform does
   int repeats = 7;
-  bool smoke = false;
+  bool smoke = false, scale = false;
+  std::string plot;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--smoke")) {
       smoke = true;
       repeats = 1;
+    } else if (!std::strcmp(argv[i], "--scale")) {
+      scale = true;
+    } else if (!std::strcmp(argv[i], "--plot") && i + 1 < argc) {
+      plot = argv[++i];
     } else if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc) {
       repeats = std::max(1, std::atoi(argv[++i]));
     } else {
-      std::fprintf(stderr, "usage: dform_bench [--repeats N] [--smoke]\n");
+      std::fprintf(stderr, "usage: dform_bench [--repeats N] [--smoke] | --scale [--repeats N] [--plot FILE.svg]\n");
       return 2;
     }
   }
+  if (scale) return runScale(repeats, plot);
   std::vector<Case> cases = {
       {"ellipses", "ellipses-a.svg", "ellipses-b.svg", 50, 0.0},
       {"ellipses", "ellipses-a.svg", "ellipses-b.svg", 75, 0.0},
