@@ -710,20 +710,30 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
   auto fitsSomeWay = [&](const Vec2& size) {
     return fits(size, pageW, pageH) || (mayTurnPage && fits(size, pageH, pageW));
   };
-  // `what` (of extent `size`: `contents`) does not fit: the message gives the size needed.
-  auto tooLarge = [&](const std::string& what, const Vec2& size, const std::string& contents) {
+  // `what` (`contents`) fits the sheet in none of the arrangements tried, of extents `sizes`:
+  // the message gives the sheet size needed by the arrangement that needs the least enlargement.
+  auto tooLarge = [&](const std::string& what, const std::vector<Vec2>& sizes,
+                      const std::string& contents) {
     const Box r = artRegion(pageW, pageH);
-    const double needW = size.x() + (pageW - r.w()), needH = size.y() + titleH + (pageH - r.h());
+    Vec2 need = Vec2::Zero(), size = Vec2::Zero();
+    double least = std::numeric_limits<double>::infinity();
+    for (const Vec2& candidate : sizes) {
+      const Vec2 n(candidate.x() + (pageW - r.w()), candidate.y() + titleH + (pageH - r.h()));
+      if (std::max(n.x() / pageW, n.y() / pageH) < least) {
+        least = std::max(n.x() / pageW, n.y() / pageH);
+        need = n;
+        size = candidate;
+      }
+    }
     const std::string area = profile.page.empty() ? "sheet" : profile.page + " page's cutting area";
     return Status{ErrorCode::Usage, what + " does not fit the " + area + ": it needs at least " +
-                                        formatMm(needW) + " x " + formatMm(needH) + " mm (" +
+                                        formatMm(need.x()) + " x " + formatMm(need.y()) + " mm (" +
                                         formatMm(size.x()) + " x " + formatMm(size.y()) +
                                         " mm of " + contents +
                                         ", plus margins and the title line); the " +
                                         (profile.page.empty() ? "sheet" : "page") + " is " +
                                         formatMm(pageW) + " x " + formatMm(pageH) + " mm"};
   };
-  auto larger = [](const Vec2& a, const Vec2& b) { return a.maxCoeff() > b.maxCoeff(); };
   // Tiling: the columns and rows of pages that show pieces of extent `size` with the margins and
   // title lines; neighbouring windows overlap by tileOverlapMm.
   const double tileW = pageW - 2 * kTileMargin, tileH = pageH - 2 * kTileMargin - kTileHeader;
@@ -753,25 +763,19 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
       bare[p].push_back(extentAt({material[p].front()}, deg));
   if (profile.kind == ProfileKind::PrintAndCut) {  // each piece may get a page of its own
     for (int p = 0; p < 2; ++p) {
-      Vec2 smallest = Vec2::Constant(1e300);
-      bool any = false;
-      for (const Box& b : bare[p]) {
-        any = any || fits(Vec2(b.w(), b.h()), pageW, pageH);
-        if (larger(smallest, Vec2(b.w(), b.h()))) smallest = Vec2(b.w(), b.h());
-      }
-      if (!any) return tooLarge("piece " + names[p], smallest, "the piece");
+      std::vector<Vec2> sizes;
+      for (const Box& b : bare[p]) sizes.emplace_back(b.w(), b.h());
+      if (std::none_of(sizes.begin(), sizes.end(),
+                       [&](const Vec2& size) { return fits(size, pageW, pageH); }))
+        return tooLarge("piece " + names[p], sizes, "the piece");
     }
   } else if (!profile.tile) {
-    Vec2 smallest = Vec2::Constant(1e300);
-    bool any = false;
+    std::vector<Vec2> sizes;
     for (const Box& a : bare[0])
       for (const Box& b : bare[1])
-        for (bool vertical : {false, true}) {
-          const Vec2 size = arranged(a, b, vertical, m);
-          any = any || fitsSomeWay(size);
-          if (larger(smallest, size)) smallest = size;
-        }
-    if (!any) return tooLarge("the pattern", smallest, "pieces");
+        for (bool vertical : {false, true}) sizes.push_back(arranged(a, b, vertical, m));
+    if (std::none_of(sizes.begin(), sizes.end(), fitsSomeWay))
+      return tooLarge("the pattern", sizes, "pieces");
   } else {
     long fewest = std::numeric_limits<long>::max();
     for (const Box& a : bare[0])
@@ -850,12 +854,11 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
     chosen = pick(pageH, pageW);
     landscape = chosen != nullptr;
   }
-  const Choice* smallest = &choices[0];
-  for (const Choice& c : choices)
-    if (larger(smallest->size, c.size)) smallest = &c;
   double canvasW = landscape ? pageH : pageW, canvasH = landscape ? pageW : pageH;
-  if (!chosen && profile.tile) {
-    chosen = smallest;
+  if (!chosen && profile.tile) {  // the arrangement of the smallest largest side
+    chosen = &choices[0];
+    for (const Choice& c : choices)
+      if (c.size.maxCoeff() < chosen->size.maxCoeff()) chosen = &c;
     tiled = true;
     canvasW = chosen->size.x() + 2 * m;
     canvasH = chosen->size.y() + titleH + 2 * m;
@@ -888,11 +891,9 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
             (!best || c.box[p].w() * c.box[p].h() < best->box[p].w() * best->box[p].h() - 1e-9))
           best = &c;
       if (!best) {
-        Vec2 least = Vec2::Constant(1e300);
-        for (const Choice& c : choices)
-          if (larger(least, Vec2(c.box[p].w(), c.box[p].h())))
-            least = Vec2(c.box[p].w(), c.box[p].h());
-        return tooLarge("piece " + names[p], least, "the piece and its tabs");
+        std::vector<Vec2> sizes;
+        for (const Choice& c : choices) sizes.emplace_back(c.box[p].w(), c.box[p].h());
+        return tooLarge("piece " + names[p], sizes, "the piece and its tabs");
       }
       rot[p] = best->rot[p];
       box[p] = best->box[p];
@@ -904,7 +905,9 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
         "the pieces do not fit one " + profile.page +
         " page together: each is on its own page, with its own registration marks");
   } else {
-    return tooLarge("the pattern", smallest->size, "pieces and tabs");
+    std::vector<Vec2> sizes;
+    for (const Choice& c : choices) sizes.push_back(c.size);
+    return tooLarge("the pattern", sizes, "pieces and tabs");
   }
   Placement place[2];
   for (int p = 0; p < 2; ++p) {
