@@ -2,7 +2,9 @@
 // `repeats` times and prints the median of each stage's wall time, the vertex count and the
 // figures, as a Markdown table for docs/benchmarks.md. Method and machine: docs/benchmarks.md.
 //
-//   dform_bench [--repeats N] [--smoke]
+//   dform_bench [--repeats N] [--smoke] [--export]
+//
+// --export times only the export: each forward case is solved once and exported N times.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -36,20 +38,72 @@ double median(std::vector<double> v) {
 
 std::string sample(const char* name) { return std::string(DFORM_SAMPLES_DIR) + "/forward/" + name; }
 
+// Wall time (s) of exportAll with the laser profile on a sheet large enough for every case (all
+// five files written into `dir`), or a negative time when the export fails (said on stderr).
+double timeExport(const DForm& model, const std::filesystem::path& dir) {
+  ExportOptions options;
+  options.templatesDir = DFORM_TEMPLATES_DIR;
+  options.sheetWidthMm = options.sheetHeightMm = 2000;
+  const auto start = std::chrono::steady_clock::now();
+  Result<ExportSummary> exported = exportAll(model, options, dir.string());
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (exported.isOk()) return seconds;
+  std::fprintf(stderr, "dform_bench: export: %s\n", exported.status().message().c_str());
+  return -1;
+}
+
+Result<ForwardRun> solveCase(const Case& c) {
+  ForwardJob job;
+  job.pieceA = sample(c.a);
+  job.pieceB = sample(c.b);
+  job.resolution = c.resolution;
+  job.startB.fraction = c.startB;
+  MessageSink sink;
+  return runForward(job, sink);
+}
+
+// The export alone: each case solved once, then exported `repeats` times.
+int benchExport(const std::vector<Case>& cases, int repeats, const std::filesystem::path& dir) {
+  std::printf("| case | seam n | triangles | export ms, median | min | max |\n");
+  std::printf("|---|---|---|---|---|---|\n");
+  for (const Case& c : cases) {
+    Result<ForwardRun> run = solveCase(c);
+    if (!run.isOk()) {
+      std::fprintf(stderr, "dform_bench: %s\n", run.status().message().c_str());
+      return 1;
+    }
+    const DForm& model = run.value().model;
+    std::vector<double> ms;
+    for (int r = 0; r < repeats; ++r) {
+      const double seconds = timeExport(model, dir);
+      if (seconds < 0) return 1;
+      ms.push_back(1000 * seconds);
+    }
+    std::printf("| %s | %d | %ld | %.1f | %.1f | %.1f |\n", c.name, c.resolution,
+                long(model.a.F.rows() + model.b.F.rows()), median(ms),
+                *std::min_element(ms.begin(), ms.end()), *std::max_element(ms.begin(), ms.end()));
+    std::fflush(stdout);
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   keepFreedMemory();  // as build/dform does
   int repeats = 7;
-  bool smoke = false;
+  bool smoke = false, exportOnly = false;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--smoke")) {
       smoke = true;
       repeats = 1;
+    } else if (!std::strcmp(argv[i], "--export")) {
+      exportOnly = true;
     } else if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc) {
       repeats = std::max(1, std::atoi(argv[++i]));
     } else {
-      std::fprintf(stderr, "usage: dform_bench [--repeats N] [--smoke]\n");
+      std::fprintf(stderr, "usage: dform_bench [--repeats N] [--smoke] [--export]\n");
       return 2;
     }
   }
@@ -67,47 +121,36 @@ int main(int argc, char** argv) {
   };
   if (smoke) cases = {{"ellipses", "ellipses-a.svg", "ellipses-b.svg", 30, 0.0}};
 
+  const auto exportDir = std::filesystem::temp_directory_path() / "dform-bench-export";
+  std::filesystem::create_directories(exportDir);
+  if (exportOnly) {
+    const int status = benchExport(cases, repeats, exportDir);
+    std::filesystem::remove_all(exportDir);
+    return status;
+  }
   std::printf("| case | seam n | vertices | mesh s | solve s | run s | export s | LM iters | "
               "factorisations | L_error %% | L_max %% | B_error |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-  const auto exportDir = std::filesystem::temp_directory_path() / "dform-bench-export";
-  std::filesystem::create_directories(exportDir);
   for (const Case& c : cases) {
-    ForwardJob job;
-    job.pieceA = sample(c.a);
-    job.pieceB = sample(c.b);
-    job.resolution = c.resolution;
-    job.startB.fraction = c.startB;
-    std::vector<double> mesh, solve, total, exportSeconds;
+    std::vector<double> mesh, solveSeconds, total, exportSeconds;
     ForwardRun last;
     for (int r = 0; r < repeats; ++r) {
-      MessageSink sink;
-      Result<ForwardRun> run = runForward(job, sink);
+      Result<ForwardRun> run = solveCase(c);
       if (!run.isOk()) {
         std::fprintf(stderr, "dform_bench: %s\n", run.status().message().c_str());
         return 1;
       }
       last = std::move(run).value();
       mesh.push_back(last.timings.mesh);
-      solve.push_back(last.timings.solve);
+      solveSeconds.push_back(last.timings.solve);
       total.push_back(last.timings.total);
-
-      ExportOptions options;
-      options.templatesDir = DFORM_TEMPLATES_DIR;
-      options.sheetWidthMm = options.sheetHeightMm = 2000;
-      const auto start = std::chrono::steady_clock::now();
-      Result<ExportSummary> exported = exportAll(last.model, options, exportDir.string());
-      exportSeconds.push_back(
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-      if (!exported.isOk()) {
-        std::fprintf(stderr, "dform_bench: export: %s\n", exported.status().message().c_str());
-        return 1;
-      }
+      exportSeconds.push_back(timeExport(last.model, exportDir));
+      if (exportSeconds.back() < 0) return 1;
     }
     const Metrics& m = last.metrics;
     std::printf("| %s | %d | %ld | %.3f | %.3f | %.3f | %.3f | %zu | %d | %.3f | %.3f | %.1e |\n",
                 c.name, c.resolution, long(last.model.a.flat.rows() + last.model.b.flat.rows()),
-                median(mesh), median(solve), median(total), median(exportSeconds),
+                median(mesh), median(solveSeconds), median(total), median(exportSeconds),
                 last.summary.iterations.size(), last.summary.factorisations, 100 * m.L_error,
                 100 * m.L_max, m.B_error);
     std::fflush(stdout);
