@@ -4,17 +4,22 @@
 //
 //   dform_bench [--repeats N] [--smoke] [--export]
 //
-// --export times only the export: each forward case is solved once and exported N times.
+// --export times only the export: each forward case is solved once and exported N times; then a
+// long seam, two flat 2.5 m squares (a 10 m seam, synthetic: tests/validate/models.h).
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "core/allocator.h"
 #include "export/exporter.h"
+#include "models.h"
 #include "pipeline/forward_pipeline.h"
 #include "pipeline/inverse_pipeline.h"
 
@@ -38,19 +43,28 @@ double median(std::vector<double> v) {
 
 std::string sample(const char* name) { return std::string(DFORM_SAMPLES_DIR) + "/forward/" + name; }
 
-// Wall time (s) of exportAll with the laser profile on a sheet large enough for every case (all
-// five files written into `dir`), or a negative time when the export fails (said on stderr).
-double timeExport(const DForm& model, const std::filesystem::path& dir) {
+// Wall and CPU time (s) of one exportAll with the laser profile on a sheet large enough for every
+// case (all five files written into `dir`); negative times when the export fails (said on
+// stderr). The export runs on one thread, so on a shared machine its CPU time is what its wall
+// time would be without the neighbours' load.
+struct ExportTime {
+  double wall = -1, cpu = -1;
+};
+ExportTime timeExport(const DForm& model, const std::filesystem::path& dir, double sheetW = 2000,
+                      double sheetH = 2000) {
   ExportOptions options;
   options.templatesDir = DFORM_TEMPLATES_DIR;
-  options.sheetWidthMm = options.sheetHeightMm = 2000;
+  options.sheetWidthMm = sheetW;
+  options.sheetHeightMm = sheetH;
   const auto start = std::chrono::steady_clock::now();
+  const std::clock_t cpuStart = std::clock();
   Result<ExportSummary> exported = exportAll(model, options, dir.string());
-  const double seconds =
+  const double cpu = double(std::clock() - cpuStart) / CLOCKS_PER_SEC;
+  const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (exported.isOk()) return seconds;
+  if (exported.isOk()) return {wall, cpu};
   std::fprintf(stderr, "dform_bench: export: %s\n", exported.status().message().c_str());
-  return -1;
+  return {};
 }
 
 Result<ForwardRun> solveCase(const Case& c) {
@@ -63,29 +77,43 @@ Result<ForwardRun> solveCase(const Case& c) {
   return runForward(job, sink);
 }
 
-// The export alone: each case solved once, then exported `repeats` times.
+// Times `repeats` exports of `model` and prints its row; false when an export fails.
+bool exportRow(const std::string& name, const std::string& seam, const DForm& model, int repeats,
+               const std::filesystem::path& dir, double sheetW = 2000, double sheetH = 2000) {
+  std::vector<double> ms, cpuMs;
+  for (int r = 0; r < repeats; ++r) {
+    const ExportTime t = timeExport(model, dir, sheetW, sheetH);
+    if (t.wall < 0) return false;
+    ms.push_back(1000 * t.wall);
+    cpuMs.push_back(1000 * t.cpu);
+  }
+  std::printf("| %s | %s | %ld | %.1f | %.1f | %.1f | %.1f |\n", name.c_str(), seam.c_str(),
+              long(model.a.F.rows() + model.b.F.rows()), median(ms),
+              *std::min_element(ms.begin(), ms.end()), *std::max_element(ms.begin(), ms.end()),
+              median(cpuMs));
+  std::fflush(stdout);
+  return true;
+}
+
+// The export alone: each case solved once, then exported `repeats` times; then the long seam.
 int benchExport(const std::vector<Case>& cases, int repeats, const std::filesystem::path& dir) {
-  std::printf("| case | seam n | triangles | export ms, median | min | max |\n");
-  std::printf("|---|---|---|---|---|---|\n");
+  std::printf("| case | seam n | triangles | export ms, median | min | max | CPU ms, median |\n");
+  std::printf("|---|---|---|---|---|---|---|\n");
   for (const Case& c : cases) {
     Result<ForwardRun> run = solveCase(c);
     if (!run.isOk()) {
       std::fprintf(stderr, "dform_bench: %s\n", run.status().message().c_str());
       return 1;
     }
-    const DForm& model = run.value().model;
-    std::vector<double> ms;
-    for (int r = 0; r < repeats; ++r) {
-      const double seconds = timeExport(model, dir);
-      if (seconds < 0) return 1;
-      ms.push_back(1000 * seconds);
-    }
-    std::printf("| %s | %d | %ld | %.1f | %.1f | %.1f |\n", c.name, c.resolution,
-                long(model.a.F.rows() + model.b.F.rows()), median(ms),
-                *std::min_element(ms.begin(), ms.end()), *std::max_element(ms.begin(), ms.end()));
-    std::fflush(stdout);
+    if (!exportRow(c.name, std::to_string(c.resolution), run.value().model, repeats, dir)) return 1;
   }
-  return 0;
+  const double side = 2500;
+  const Piece square = test::foldedSquare(50, side, {}, "A");
+  const DForm longSeam{square, test::mirroredCopy(square, "B")};
+  return exportRow("10 m seam: two 2.5 m squares", "200", longSeam, repeats, dir, 2 * side + 300,
+                   side + 200)
+             ? 0
+             : 1;
 }
 
 }  // namespace
@@ -121,7 +149,9 @@ int main(int argc, char** argv) {
   };
   if (smoke) cases = {{"ellipses", "ellipses-a.svg", "ellipses-b.svg", 30, 0.0}};
 
-  const auto exportDir = std::filesystem::temp_directory_path() / "dform-bench-export";
+  // Per process: benches of other checkouts on the same machine use the temporary folder too.
+  const auto exportDir =
+      std::filesystem::temp_directory_path() / ("dform-bench-export-" + std::to_string(::getpid()));
   std::filesystem::create_directories(exportDir);
   if (exportOnly) {
     const int status = benchExport(cases, repeats, exportDir);
@@ -144,7 +174,7 @@ int main(int argc, char** argv) {
       mesh.push_back(last.timings.mesh);
       solveSeconds.push_back(last.timings.solve);
       total.push_back(last.timings.total);
-      exportSeconds.push_back(timeExport(last.model, exportDir));
+      exportSeconds.push_back(timeExport(last.model, exportDir).wall);
       if (exportSeconds.back() < 0) return 1;
     }
     const Metrics& m = last.metrics;
