@@ -135,6 +135,14 @@ void removeOldExports(const std::string& dir) {
   for (const std::string& name : exportFileNames()) fs::remove(fs::path(dir) / name, ec);
 }
 
+// Writes the cutting files; when one cannot be written, none is left (a partial set could be
+// taken for the whole).
+Status writeCuttingFiles(const PreparedExport& prepared, const std::string& dir) {
+  const Status written = writeExport(prepared, dir).status();
+  if (!written.isOk()) removeOldExports(dir);
+  return written;
+}
+
 void printFigures(const Metrics& m, const CurveMatch* curve, const Timings& t,
                   const std::string& dir) {
   std::fprintf(stdout, "L_error %.4f %%   L_max %.3f %%   ", 100 * m.L_error, 100 * m.L_max);
@@ -271,9 +279,8 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
   if (Status reported = writeReport(); !reported.isOk()) return fail(reported);
   Status exported = prepared.isOk() || !output.exportFiles ? Status::ok() : prepared.status();
   if (release) {
-    exported = writeExport(prepared.value(), output.outDir).status();
-    if (!exported.isOk()) {  // no partial set of cutting files; the report says why
-      removeOldExports(output.outDir);
+    exported = writeCuttingFiles(prepared.value(), output.outDir);
+    if (!exported.isOk()) {  // the report says why there are no cutting files
       sink.emit(Level::Error, "export: " + exported.message());
       if (Status reported = writeReport(); !reported.isOk()) return fail(reported);
     }
@@ -336,7 +343,7 @@ int exportSaved(const std::string& dir, const OutputOptions& output) {
   }
   removeOldExports(dir);
   noteExport(prepared.value(), sink);
-  if (Status s = writeExport(prepared.value(), dir).status(); !s.isOk()) return fail(s);
+  if (Status s = writeCuttingFiles(prepared.value(), dir); !s.isOk()) return fail(s);
   // The report page shows the pattern: redrawn with the new one.
   if (hasReport)
     if (Status s = writeReportHtml(dir, model.value(), templatesDir()); !s.isOk()) return fail(s);

@@ -360,6 +360,18 @@ TEST_F(CliTest, AReportThatCannotBeWrittenReleasesNoCuttingFile) {
   expectError(o, 6, "report.json");
   for (const char* name : {"pattern.svg", "pattern.pdf", "pattern.json", "dform.stl", "dform.glb"})
     EXPECT_FALSE(fs::exists(fs::path(out) / name)) << name;
+
+  // A cutting file that cannot be written (pattern.pdf, the second): none is left, and the report
+  // says why.
+  const std::string second = path("second");
+  fs::create_directories(fs::path(second) / "pattern.pdf" / "blocked");
+  const Outcome p = run("forward " + sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg") +
+                        " --resolution 30 -q -o " + second);
+  EXPECT_EQ(p.exitCode, 6) << p.err;
+  for (const char* name : {"pattern.svg", "pattern.json", "dform.stl", "dform.glb"})
+    EXPECT_FALSE(fs::exists(fs::path(second) / name)) << name;
+  const std::string report = readFile(fs::path(second) / "report.json");
+  EXPECT_NE(report.find("export: " + second + "/pattern.pdf"), std::string::npos) << report;
 }
 
 TEST_F(CliTest, ReportsFollowTheirSchema) {
