@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "cli/terminal.h"
 #include "export/exporter.h"
@@ -12,6 +14,7 @@
 #include "pipeline/report.h"
 #include "report/html_report.h"
 #include "validate/gate.h"
+#include "validate/metrics.h"
 
 namespace dform::cli {
 
@@ -48,21 +51,61 @@ Result<GateLimits> loadGate(const std::string& nameOrPath) {
   return readGateFile(nameOrPath);
 }
 
-// Lays out and renders the cutting patterns and previews of `model`, not yet written.
-Result<PreparedExport> prepare(const DForm& model, const OutputOptions& output, bool failedGate,
-                               const std::string& jobName) {
+// The export options the command line asks for, checked before anything is solved: Usage with a
+// one-line message for a bad value.
+Result<ExportOptions> exportOptions(const OutputOptions& output) {
   ExportOptions options;
   options.profile = output.profile;
   options.templatesDir = templatesDir();
-  options.jobName = jobName;
-  options.failedGateMark = failedGate;
   if (!output.sheet.empty()) {
     Result<std::pair<double, double>> sheet = parseSheet(output.sheet);
     if (!sheet.isOk()) return sheet.status();
     options.sheetWidthMm = sheet.value().first;
     options.sheetHeightMm = sheet.value().second;
   }
+  if (output.tabWidthMm) options.tabWidthMm = *output.tabWidthMm;
+  if (output.tickSpacingMm) options.tickSpacingMm = *output.tickSpacingMm;
+  if (!output.tabs.empty()) {
+    options.tabSide = tabSideNamed(output.tabs);
+    if (!options.tabSide)
+      return Status(ErrorCode::Usage,
+                    "--tabs must be a, b, alternate or none, got '" + output.tabs + "'");
+  }
+  options.gltfBinary = !output.gltfText;
+  if (Status s = checkExportOptions(options); !s.isOk()) return s;
+  return options;
+}
+
+// Lays out and renders the cutting patterns and previews of `model`, not yet written. The glTF
+// preview carries the curvature map the report shows (COLOR_0).
+Result<PreparedExport> prepare(const DForm& model, ExportOptions options, bool failedGate,
+                               const std::string& jobName) {
+  options.jobName = jobName;
+  options.failedGateMark = failedGate;
+  const Eigen::VectorXd curvature[2] = {curvatureMap(model.a), curvatureMap(model.b)};
+  options.curvatureA.assign(curvature[0].data(), curvature[0].data() + curvature[0].size());
+  options.curvatureB.assign(curvature[1].data(), curvature[1].data() + curvature[1].size());
   return prepareExport(model, options);
+}
+
+// A run's job name: its first input's file name.
+std::string jobName(const Job& job) {
+  return fs::path(job.mode == Job::Mode::Forward ? job.forward.pieceA : job.inverse.curve)
+      .stem()
+      .string();
+}
+
+// A saved result's job name, from the job its report.json records; the folder's name when there is
+// no readable job.
+std::string savedJobName(const std::string& dir) {
+  const fs::path path = fs::path(dir) / "report.json";
+  std::ifstream in(path);
+  const nlohmann::json report = nlohmann::json::parse(in, nullptr, false);
+  if (report.is_object() && report.contains("job")) {
+    Result<Job> job = parseJobJson(report["job"].dump(), path.string(), dir);
+    if (job.isOk()) return jobName(job.value());
+  }
+  return fs::path(dir).filename().string();
 }
 
 // The gate's fabrication check: the laid-out pattern fits the sheet and nothing on it overlaps.
@@ -79,20 +122,25 @@ CheckResult layoutCheck(const LayoutFindings& f) {
   return judgeCheck("pattern_layout", f.problems(), 0, detail);
 }
 
-// Writes a prepared export and says what it wrote.
-Status writePrepared(const PreparedExport& prepared, const std::string& dir, MessageSink& sink) {
-  Result<ExportSummary> written = writeExport(prepared, dir);
-  if (!written.isOk()) return written.status();
-  for (const std::string& note : written.value().messages) sink.info("export: " + note);
-  sink.info("export (" + written.value().profile +
-            "): " + std::to_string(written.value().files.size()) + " files");
-  return Status::ok();
+// Says what a prepared export holds, before it is written (so that the report has it).
+void noteExport(const PreparedExport& prepared, MessageSink& sink) {
+  for (const std::string& note : prepared.summary.messages) sink.info("export: " + note);
+  sink.info("export (" + prepared.summary.profile + "): " + std::to_string(prepared.files.size()) +
+            " files");
 }
 
 // A previous run's cutting files would not match this result: removed before it is written.
 void removeOldExports(const std::string& dir) {
   std::error_code ec;
   for (const std::string& name : exportFileNames()) fs::remove(fs::path(dir) / name, ec);
+}
+
+// Writes the cutting files; when one cannot be written, none is left (a partial set could be
+// taken for the whole).
+Status writeCuttingFiles(const PreparedExport& prepared, const std::string& dir) {
+  const Status written = writeExport(prepared, dir).status();
+  if (!written.isOk()) removeOldExports(dir);
+  return written;
 }
 
 void printFigures(const Metrics& m, const CurveMatch* curve, const Timings& t,
@@ -158,6 +206,8 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
     if (!loaded.isOk()) return fail(loaded.status());
     limits = loaded.value();
   }
+  const Result<ExportOptions> exporting = exportOptions(output);
+  if (!exporting.isOk()) return fail(exporting.status());
 
   // Solve first: nothing is written for a run that fails.
   DForm model;
@@ -190,16 +240,15 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
   // The pattern's layout is the gate's last check, so it is laid out before the verdict; the
   // report is written whatever the export does, so that a failed export (a sheet too small)
   // still leaves the solved result complete and the export can be redone alone.
-  const std::string name =
-      fs::path(forward ? job.forward.pieceA : job.inverse.curve).stem().string();
+  const std::string name = jobName(job);
   Result<PreparedExport> prepared = Status(ErrorCode::Internal, "no export");
   if (output.exportFiles) {
-    prepared = prepare(model, output, gate && !gate->passed(), name);
+    prepared = prepare(model, exporting.value(), gate && !gate->passed(), name);
     if (prepared.isOk() && gate) {
       const bool passedBefore = gate->passed();
       gate->checks.push_back(layoutCheck(prepared.value().layout));
       // Failed on its layout alone: lay it out again with the FAILED GATE mark.
-      if (passedBefore && !gate->passed()) prepared = prepare(model, output, true, name);
+      if (passedBefore && !gate->passed()) prepared = prepare(model, exporting.value(), true, name);
     } else if (!prepared.isOk()) {
       if (gate)
         gate->checks.push_back(
@@ -215,17 +264,27 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
   }
   const bool gateFailed = gate && !gate->passed();
   removeOldExports(output.outDir);
-  Status exported = prepared.isOk() || !output.exportFiles ? Status::ok() : prepared.status();
-  if (prepared.isOk() && (!gateFailed || output.exportAnyway)) {
-    exported = writePrepared(prepared.value(), output.outDir, sink);
-    if (!exported.isOk()) sink.emit(Level::Error, "export: " + exported.message());
-  }
+  // The verdict goes on record before any cutting file is released: report.json (the gate's
+  // verdict, measured on the export prepared in memory) is written first, and a run whose report
+  // cannot be written leaves no cutting file behind.
+  const bool release = prepared.isOk() && (!gateFailed || output.exportAnyway);
+  if (release) noteExport(prepared.value(), sink);
   const GateReport* gateReport = gate ? &*gate : nullptr;
-  const Status reported =
-      forward
-          ? writeForwardReport(output.outDir, job, forwardRun.value(), sink.messages(), gateReport)
-          : writeInverseReport(output.outDir, job, inverseRun.value(), sink.messages(), gateReport);
-  if (!reported.isOk()) return fail(reported);
+  auto writeReport = [&] {
+    return forward ? writeForwardReport(output.outDir, job, forwardRun.value(), sink.messages(),
+                                        gateReport)
+                   : writeInverseReport(output.outDir, job, inverseRun.value(), sink.messages(),
+                                        gateReport);
+  };
+  if (Status reported = writeReport(); !reported.isOk()) return fail(reported);
+  Status exported = prepared.isOk() || !output.exportFiles ? Status::ok() : prepared.status();
+  if (release) {
+    exported = writeCuttingFiles(prepared.value(), output.outDir);
+    if (!exported.isOk()) {  // the report says why there are no cutting files
+      sink.emit(Level::Error, "export: " + exported.message());
+      if (Status reported = writeReport(); !reported.isOk()) return fail(reported);
+    }
+  }
   if (Status html = writeReportHtml(output.outDir, model, templatesDir()); !html.isOk())
     return fail(html);
   if (!exported.isOk()) return exitCode(exported.code());
@@ -250,6 +309,8 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
 int exportSaved(const std::string& dir, const OutputOptions& output) {
   Terminal terminal(output.quiet);
   MessageSink sink(terminal.listener());
+  const Result<ExportOptions> exporting = exportOptions(output);
+  if (!exporting.isOk()) return fail(exporting.status());
   Result<DForm> model = readModel(dir);
   if (!model.isOk()) return fail(model.status());
   // A result that failed its gate is exported only on purpose, and marked.
@@ -266,8 +327,8 @@ int exportSaved(const std::string& dir, const OutputOptions& output) {
                     "(--export-anyway exports it marked FAILED GATE)");
     return exitCode(ErrorCode::GateFailed);
   }
-  const std::string jobName = fs::path(dir).filename().string();
-  Result<PreparedExport> prepared = prepare(model.value(), output, failedGate, jobName);
+  const std::string name = savedJobName(dir);
+  Result<PreparedExport> prepared = prepare(model.value(), exporting.value(), failedGate, name);
   if (!prepared.isOk()) return fail(prepared.status());
   const LayoutFindings& layout = prepared.value().layout;
   if (layout.problems() > 0) {
@@ -277,11 +338,12 @@ int exportSaved(const std::string& dir, const OutputOptions& output) {
                       "); nothing exported (--export-anyway exports it marked FAILED GATE)");
       return exitCode(ErrorCode::GateFailed);
     }
-    if (!failedGate) prepared = prepare(model.value(), output, true, jobName);
+    if (!failedGate) prepared = prepare(model.value(), exporting.value(), true, name);
     if (!prepared.isOk()) return fail(prepared.status());
   }
   removeOldExports(dir);
-  if (Status s = writePrepared(prepared.value(), dir, sink); !s.isOk()) return fail(s);
+  noteExport(prepared.value(), sink);
+  if (Status s = writeCuttingFiles(prepared.value(), dir); !s.isOk()) return fail(s);
   // The report page shows the pattern: redrawn with the new one.
   if (hasReport)
     if (Status s = writeReportHtml(dir, model.value(), templatesDir()); !s.isOk()) return fail(s);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <atomic>
+#include <optional>
 #include <string>
 
 #include "core/status.h"
@@ -18,6 +19,10 @@ struct OutputOptions {
   bool exportFiles = true;       ///< write the cutting patterns and previews
   std::string profile = "laser"; ///< export profile name or file
   std::string sheet;             ///< "WxH" in mm (e.g. 600x400mm); empty: the exporter's default
+  std::optional<double> tabWidthMm;     ///< --tab-width (mm; 0 = no tabs); unset: the default
+  std::string tabs;                     ///< --tabs a|b|alternate|none; empty: the profile's
+  std::optional<double> tickSpacingMm;  ///< --tick-spacing (mm); unset: the default
+  bool gltfText = false;                ///< --gltf: dform.gltf (text) instead of dform.glb
   std::string gate = "default";  ///< gate name or file; "none" skips the gate
   bool exportAnyway = false;     ///< export even when the gate fails (files marked FAILED GATE)
   bool quiet = false;

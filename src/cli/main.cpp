@@ -59,11 +59,20 @@ bool parsePoint(const std::string& text, StartPoint& start) {
   return true;
 }
 
+// The options of the cutting patterns and previews (forward, inverse, run and export).
+void addExportOptions(CLI::App* command, cli::OutputOptions& out) {
+  command->add_option("--profile", out.profile, "export profile name or .json file (default laser)");
+  command->add_option("--sheet", out.sheet, "material sheet, e.g. 600x400mm");
+  command->add_option("--tab-width", out.tabWidthMm, "glue tab width in mm, 0 for none (default 6)");
+  command->add_option("--tabs", out.tabs, "which piece gets the glue tabs: a, b, alternate or none (default: the profile's)");
+  command->add_option("--tick-spacing", out.tickSpacingMm, "seam length between numbered ticks in mm (default 20)");
+  command->add_flag("--gltf", out.gltfText, "write the 3D preview as text dform.gltf instead of dform.glb");
+}
+
 void addOutputOptions(CLI::App* command, cli::OutputOptions& out) {
   command->add_option("-o,--output", out.outDir, "folder for the results (created if missing)")->required();
   command->add_flag("!--no-export", out.exportFiles, "skip the cutting patterns and 3D previews");
-  command->add_option("--profile", out.profile, "export profile name or .json file (default laser)");
-  command->add_option("--sheet", out.sheet, "material sheet, e.g. 600x400mm");
+  addExportOptions(command, out);
   command->add_option("--gate", out.gate, "quality gate: default (the default), strict, lenient, a .json file, or none");
   command->add_flag("--export-anyway", out.exportAnyway, "export even if the gate fails (marked FAILED GATE)");
   command->add_flag("-q,--quiet", out.quiet, "print only the figures, warnings and errors");
@@ -123,8 +132,7 @@ int run(int argc, char** argv) {
   bool listOnly = false;
   CLI::App* exportCommand = app.add_subcommand("export", "write cutting patterns and previews of a saved result");
   exportCommand->add_option("dir", exportDir, "a result folder written by forward, inverse or run");
-  exportCommand->add_option("--profile", exportOut.profile, "export profile name or .json file (default laser)");
-  exportCommand->add_option("--sheet", exportOut.sheet, "material sheet, e.g. 600x400mm");
+  addExportOptions(exportCommand, exportOut);
   exportCommand->add_flag("--export-anyway", exportOut.exportAnyway,
                           "export a result that failed its gate, or a pattern that does not lay out cleanly (marked FAILED GATE)");
   exportCommand->add_flag("--list-profiles", listOnly, "list the profiles and exit");

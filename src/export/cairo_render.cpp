@@ -27,12 +27,16 @@ void setColor(cairo_t* cr, const std::string& hex) {
                        double(v & 0xFF) / 255.0);
 }
 
-void drawLayer(cairo_t* cr, const Layer& layer, double minWidthMm) {
+// Draws the layer's paths that meet `visible` (all of them when it is null): a tile or a piece's
+// page leaves out what it does not show, so that a document of many pages stays the size of the
+// drawing rather than pages times it.
+void drawLayer(cairo_t* cr, const Layer& layer, double minWidthMm, const Box* visible = nullptr) {
   setColor(cr, layer.color);
   cairo_set_line_width(cr, std::max(layer.widthMm, minWidthMm));
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
   for (const Path& p : layer.paths) {
+    if (visible && !visible->overlaps(boxOf(p.parts))) continue;
     cairo_new_path(cr);
     for (const Polyline& part : p.parts) {
       if (part.empty()) continue;
@@ -61,8 +65,15 @@ void drawPage(cairo_t* cr, const PatternBuild& pattern, const PageView& page, do
                   page.clipY1 - page.clipY0);
   cairo_clip(cr);
   cairo_translate(cr, -page.origin.x(), -page.origin.y());
+  // The window of the canvas the page shows, widened by the widest stroke (round caps).
+  double halfStroke = minWidthMm;
   for (const Layer& layer : pattern.drawing.layers)
-    if (layer.printed) drawLayer(cr, layer, minWidthMm);
+    halfStroke = std::max(halfStroke, layer.widthMm);
+  const Box visible =
+      Box::spanning(page.origin + Vec2(page.clipX0, page.clipY0) - Vec2::Constant(halfStroke),
+                    page.origin + Vec2(page.clipX1, page.clipY1) + Vec2::Constant(halfStroke));
+  for (const Layer& layer : pattern.drawing.layers)
+    if (layer.printed) drawLayer(cr, layer, minWidthMm, &visible);
   cairo_restore(cr);
   for (const Layer& layer : page.overlay) drawLayer(cr, layer, minWidthMm);
 }

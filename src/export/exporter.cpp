@@ -22,6 +22,18 @@ Status checkFolder(const std::string& outDir) {
 
 }  // namespace
 
+Status checkExportOptions(const ExportOptions& o) {
+  if (!(o.tickSpacingMm >= 1.0))
+    return Status{ErrorCode::Usage, "tick spacing must be at least 1 mm"};
+  if (!(o.tabWidthMm >= 0 && o.tabWidthMm <= 50))
+    return Status{ErrorCode::Usage, "tab width must be between 0 and 50 mm"};
+  if (!(o.tabAngleDeg >= 15 && o.tabAngleDeg <= 90))
+    return Status{ErrorCode::Usage, "tab angle must be between 15 and 90 degrees"};
+  if (!(o.tabGapMm >= 0) || !(o.tabMaxLengthMm > 0) || !(o.tabMaxTurnDeg > 0))
+    return Status{ErrorCode::Usage, "tab gap, length and turn limits must be positive"};
+  return Status::ok();
+}
+
 Result<PreparedExport> prepareExport(const DForm& model, const ExportOptions& options) {
   auto profile = fab::resolveProfile(options);
   if (!profile.isOk()) return profile.status();
@@ -54,9 +66,6 @@ Result<PreparedExport> prepareExport(const DForm& model, const ExportOptions& op
   summary.creases = int(pat.pieces[0].creases.size() + pat.pieces[1].creases.size());
   summary.pages = int(pat.pages.size());
   summary.triangles = int(model.a.F.rows() + model.b.F.rows());
-  if (summary.pages > 1)
-    summary.messages.push_back("the pattern is tiled across " + std::to_string(summary.pages) +
-                               " pages of pattern.pdf; print at 100% and match the crosses");
   return prepared;
 }
 

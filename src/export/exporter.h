@@ -4,6 +4,7 @@
 // What each file holds, the profiles and the error codes: docs/export.md.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -34,6 +35,20 @@ enum class Registration {
   Cricut,      ///< no marks (Design Space adds its own); artwork within the 6.75 x 9.25 in area
 };
 
+/// Which piece gets the glue tabs.
+enum class TabSide {
+  A,          ///< every tab on piece A
+  B,          ///< every tab on piece B
+  Alternate,  ///< tabs alternate between A and B along the seam
+  None,       ///< no tabs: the pieces are glued edge to edge (or taped)
+};
+
+/// The side's name in profiles and on the command line: "a", "b", "alternate", "none".
+const char* tabSideName(TabSide side);
+
+/// The side called `name` (as tabSideName writes it), or nullopt.
+std::optional<TabSide> tabSideNamed(const std::string& name);
+
 /// A machine profile, read from templates/profiles/<name>.json (see docs/export.md). Every field
 /// has a default; a profile file may leave any field out.
 struct Profile {
@@ -59,6 +74,7 @@ struct Profile {
   bool calibrationBar = false;  ///< draw a 50 mm calibration bar with "print at 100%"
   double labelHeightMm = 3.0;   ///< cap height of tick numbers (mm); piece names are 3x
   double kerfMm = 0.0;          ///< outward offset of the closed cut path (mm, half the kerf)
+  TabSide tabs = TabSide::A;    ///< which piece gets the glue tabs
 };
 
 /// Reads a profile: `nameOrPath` is a profile name (looked up as
@@ -83,15 +99,22 @@ struct ExportOptions {
   double tabMaxTurnDeg = 25;        ///< max turning of the seam along one tab (degrees)
   double tabMaxLengthMm = 40;       ///< max length of one tab along the seam (mm)
   double tabGapMm = 1.5;            ///< gap between neighbouring tabs along the seam (mm)
-  bool alternateTabs = false;       ///< tabs alternate between A and B (default: all on A)
+  std::optional<TabSide> tabSide;   ///< which piece gets the glue tabs; unset: the profile's
   double kerfMm = -1;               ///< outward cut-path offset (mm); negative = the profile's
   std::string jobName = "dform";    ///< printed in the title line and file metadata
   bool failedGateMark = false;      ///< print a visible "FAILED GATE" mark on every output
-  std::vector<double> curvatureA;   ///< optional per-vertex Gaussian curvature of A (1/mm^2)
-  std::vector<double> curvatureB;   ///< optional per-vertex Gaussian curvature of B (1/mm^2)
+  /// Optional per-vertex Gaussian curvature of A for the glTF's COLOR_0, in any unit (the map is
+  /// scaled by its 95th percentile), e.g. validate's curvatureMap (angle defect, radians).
+  std::vector<double> curvatureA;
+  std::vector<double> curvatureB;   ///< the same for B
   bool gltfBinary = true;           ///< dform.glb (true) or dform.gltf with embedded buffer
   std::string fontPath = "/usr/share/hershey-fonts/futural.jhf";  ///< Hershey single-stroke font
 };
+
+/// Checks the option values that do not depend on the model or the profile (tick spacing, tab
+/// width, angle, gap and limits): Usage with a one-line message naming the value otherwise. Every
+/// export checks them; a caller may check them before it has a model.
+Status checkExportOptions(const ExportOptions& options);
 
 struct ExportSummary {
   std::vector<std::string> files;         ///< every file written, full paths
@@ -102,7 +125,7 @@ struct ExportSummary {
   int ticks = 0;                               ///< tick pairs
   int tabs = 0;                                ///< glue tabs on both pieces
   int creases = 0;                             ///< crease fold lines on both pieces
-  int pages = 0;                               ///< PDF pages (more than 1 when tiled)
+  int pages = 0;  ///< PDF pages (more than 1 when tiled or one piece per page)
   int triangles = 0;                           ///< triangles in the STL (both pieces)
 };
 
@@ -140,10 +163,10 @@ Result<ExportSummary> writeExport(const PreparedExport& prepared, const std::str
 std::vector<std::string> exportFileNames();
 
 /// prepareExport then writeExport. Writes into `outDir` (which must exist): pattern.svg,
-/// pattern.pdf (one page per tile), pattern.json (sidecar: outlines, ticks, tabs in sheet mm),
-/// dform.stl and dform.glb (or dform.gltf). Each file is written atomically. Usage for a bad option
-/// or a sheet too small (the message gives the size needed), InputInvalid for a model that cannot
-/// be exported, OutputFailed for an unwritable folder, and loadProfile's codes.
+/// pattern.pdf (one page per tile, or per piece), pattern.json (sidecar: outlines, ticks, tabs in
+/// sheet mm), dform.stl and dform.glb (or dform.gltf). Each file is written atomically. Usage for a
+/// bad option or a sheet too small (the message gives the size needed), InputInvalid for a model
+/// that cannot be exported, OutputFailed for an unwritable folder, and loadProfile's codes.
 Result<ExportSummary> exportAll(const DForm& model, const ExportOptions& options,
                                 const std::string& outDir);
 

@@ -15,6 +15,41 @@ namespace dform::fab {
 using Vec2 = Eigen::Vector2d;
 using Polyline = std::vector<Vec2>;
 
+/// An axis-aligned box (mm); empty until a point is added.
+struct Box {
+  Vec2 lo{1e300, 1e300}, hi{-1e300, -1e300};
+  static Box spanning(const Vec2& lo, const Vec2& hi) {
+    Box b;
+    b.lo = lo;
+    b.hi = hi;
+    return b;
+  }
+  void add(const Vec2& p) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  void add(const Polyline& line) {
+    for (const Vec2& p : line) add(p);
+  }
+  double w() const { return hi.x() - lo.x(); }
+  double h() const { return hi.y() - lo.y(); }
+  /// Whether the closed boxes share a point: two shapes whose boxes do not cannot share area.
+  bool overlaps(const Box& o) const {
+    return lo.x() <= o.hi.x() && o.lo.x() <= hi.x() && lo.y() <= o.hi.y() && o.lo.y() <= hi.y();
+  }
+  /// Whether `o` lies inside this box, with `eps` mm to spare for rounding.
+  bool contains(const Box& o, double eps) const {
+    return o.lo.x() >= lo.x() - eps && o.lo.y() >= lo.y() - eps && o.hi.x() <= hi.x() + eps &&
+           o.hi.y() <= hi.y() + eps;
+  }
+};
+
+inline Box boxOf(const std::vector<Polyline>& parts) {
+  Box b;
+  for (const Polyline& part : parts) b.add(part);
+  return b;
+}
+
 /// One drawn object: one or more polylines under one id (a label is one path of many strokes).
 struct Path {
   std::string id;
@@ -51,15 +86,18 @@ struct PageView {
   std::vector<Layer> overlay;                             ///< drawn in page coordinates, unclipped
 };
 
+/// A tick pair. Both ticks mark one point of the 3D seam: the same seam pair index i and fraction
+/// along the edge i..i+1 on both pieces, found from A's arc length `s`.
 struct TickInfo {
   int id = 0;
-  double s = 0;   ///< seam arc length from seam[0] (mm)
+  double s = 0;   ///< arc length along A's seam from seam[0] (mm): the seam parameter
+  double sB = 0;  ///< arc length along B's seam of the same seam point (mm)
   Vec2 onA, onB;  ///< where the tick crosses each piece's outline (sheet mm)
 };
 
 struct TabInfo {
   int piece = 0;          ///< 0 = A, 1 = B
-  double s0 = 0, s1 = 0;  ///< seam arc length of the fold line's ends (mm)
+  double s0 = 0, s1 = 0;  ///< seam parameter (A's arc length, mm) of the fold line's ends
   double width = 0;       ///< tab width (mm)
   Polyline polygon;       ///< the tab (sheet mm), fold line first
   Polyline fold;          ///< the fold line (sheet mm), on the piece outline
@@ -89,12 +127,23 @@ struct PieceInfo {
 struct PatternBuild {
   Profile profile;
   Drawing drawing;
+  /// The sheets or pages the pattern is laid out on (canvas mm): one, or one per piece when a
+  /// print-and-cut pattern puts each piece on its own page. Every path lies inside one of them.
+  std::vector<Box> sheets;
   std::vector<PageView> pages;
   std::vector<PieceInfo> pieces;
   std::vector<TickInfo> ticks;
   std::vector<TabInfo> tabs;
   std::vector<std::string> messages;
   double tickSpacing = 0;
+  bool failedGate = false;  ///< exported after a failed quality gate (--export-anyway)
+};
+
+/// The work of a build, counted so that tests can bound it without timing it.
+struct BuildWork {
+  long ticks = 0;          ///< ticks placed
+  long tabCandidates = 0;  ///< tab polygons built and checked (narrowed and split ones too)
+  long pairTests = 0;      ///< shape pairs compared (tab-tab, tab-piece, label-label)
 };
 
 /// A Hershey single-stroke font (.jhf), glyphs for ASCII 32..126.
@@ -121,8 +170,9 @@ class StrokeFont {
 Result<Profile> resolveProfile(const ExportOptions& options);
 
 /// Lays out the pattern: ticks, tabs, cut paths, placement on the sheet, labels, pages.
+/// `work`, when given, counts the work done (also when the build fails).
 Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& options,
-                                  const Profile& profile);
+                                  const Profile& profile, BuildWork* work = nullptr);
 
 std::string svgDocument(const Drawing& drawing);
 Result<std::string> pdfDocument(const PatternBuild& pattern);
@@ -132,8 +182,9 @@ std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName)
 std::string stlDocument(const DForm& model, bool failedGate);
 Result<std::string> gltfDocument(const DForm& model, const ExportOptions& options);
 
-/// Measures the built pattern: paths off the sheet, overlapping tabs, pieces and labels.
-LayoutFindings checkLayout(const PatternBuild& pattern);
+/// Measures the built pattern: paths off the sheet, overlapping tabs, pieces and labels. `work`,
+/// when given, counts the shape pairs compared.
+LayoutFindings checkLayout(const PatternBuild& pattern, BuildWork* work = nullptr);
 
 /// Checks the indices and sizes of both pieces; InputInvalid naming the problem.
 Status checkModel(const DForm& model);

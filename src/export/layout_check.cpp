@@ -1,7 +1,11 @@
 // The fabrication part of the quality gate, measured on the laid-out pattern rather than trusted
 // from its construction: everything on the sheet, glue tabs clear of each other and of both
 // pieces, the pieces clear of each other, labels inside their piece and clear of each other. A
-// piece is its material: the outline minus its holes.
+// piece is its material: the outline minus its holes. Shapes are compared pairwise only where
+// their boxes meet (a grid of boxes finds those pairs), so the check costs about as much as the
+// pattern has shapes.
+#include <algorithm>
+#include <cctype>
 #include <string>
 
 #include "export/internal.h"
@@ -15,11 +19,21 @@ bool endsWith(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
+// The id without a "-page-N" suffix (a later page's copy of the sheet furniture).
+std::string withoutPage(const std::string& id) {
+  const size_t at = id.rfind("-page-");
+  if (at == std::string::npos || at + 6 == id.size()) return id;
+  for (size_t i = at + 6; i < id.size(); ++i)
+    if (!std::isdigit(static_cast<unsigned char>(id[i]))) return id;
+  return id.substr(0, at);
+}
+
 // Labels are the engraved or printed texts: tick numbers, piece names, the failed-gate mark, and
-// the sheet's title, note and calibration label.
+// the sheet's title, note and calibration label (on every page).
 bool isLabel(const Path& p) {
-  return endsWith(p.id, "-label") || endsWith(p.id, "-name") || endsWith(p.id, "-failed-gate") ||
-         p.id == "title" || p.id == "note";
+  const std::string id = withoutPage(p.id);
+  return endsWith(id, "-label") || endsWith(id, "-name") || endsWith(id, "-failed-gate") ||
+         id == "title" || id == "note";
 }
 
 // The piece a path belongs to, from its id ("A-tick-07-label" -> A), or -1.
@@ -33,22 +47,42 @@ void note(LayoutFindings& f, const std::string& what) {
   if (f.example.empty()) f.example = what;
 }
 
+// A grid cell about the size of the shapes filed: their mean box size.
+double cellFor(const std::vector<Box>& boxes) {
+  double sum = 0;
+  for (const Box& b : boxes) sum += std::max(b.w(), b.h());
+  return boxes.empty() ? 1.0 : std::max(sum / double(boxes.size()), 1.0);
+}
+
+// The pairs (i, j), i < j, of `boxes` that meet.
+std::vector<std::pair<int, int>> meetingPairs(const std::vector<Box>& boxes) {
+  BoxIndex index(cellFor(boxes));
+  for (size_t i = 0; i < boxes.size(); ++i) index.insert(int(i), boxes[i]);
+  std::vector<std::pair<int, int>> pairs;
+  for (size_t i = 0; i < boxes.size(); ++i)
+    for (int j : index.overlapping(boxes[i]))
+      if (j > int(i)) pairs.emplace_back(int(i), j);
+  return pairs;
+}
+
 }  // namespace
 
-LayoutFindings checkLayout(const PatternBuild& pattern) {
+LayoutFindings checkLayout(const PatternBuild& pattern, BuildWork* workOut) {
+  BuildWork unused;
+  BuildWork& work = workOut ? *workOut : unused;
   LayoutFindings f;
   const Drawing& d = pattern.drawing;
-  // Off the sheet by more than rounding (1e-6 mm on coordinates of at most a few metres).
+  // Off its sheet (or page) by more than rounding (1e-6 mm on coordinates of at most a few
+  // metres). A pattern with a page per piece has a sheet per page, and a path on none of them (or
+  // across two) is off.
   const double eps = 1e-6;
   std::vector<const Path*> labels;
   for (const Layer& layer : d.layers)
     for (const Path& path : layer.paths) {
-      bool outside = false;
-      for (const Polyline& part : path.parts)
-        for (const Vec2& q : part)
-          outside = outside || q.x() < -eps || q.y() < -eps || q.x() > d.width + eps ||
-                    q.y() > d.height + eps;
-      if (outside) {
+      const Box box = boxOf(path.parts);
+      const bool onASheet = std::any_of(pattern.sheets.begin(), pattern.sheets.end(),
+                                        [&](const Box& sheet) { return sheet.contains(box, eps); });
+      if (!onASheet) {
         ++f.outsideSheet;
         note(f, path.id + " runs off the " + std::to_string(int(d.width)) + " x " +
                     std::to_string(int(d.height)) + " mm sheet");
@@ -58,20 +92,27 @@ LayoutFindings checkLayout(const PatternBuild& pattern) {
 
   const std::vector<PieceInfo>& pieces = pattern.pieces;
   const std::vector<TabInfo>& tabs = pattern.tabs;
-  for (size_t i = 0; i < tabs.size(); ++i) {
-    for (size_t j = i + 1; j < tabs.size(); ++j)
-      if (overlapArea(tabs[i].polygon, tabs[j].polygon) > kOverlapTolMm2) {
-        ++f.overlappingTabs;
-        note(f,
-             "glue tabs " + std::to_string(i + 1) + " and " + std::to_string(j + 1) + " overlap");
-      }
-    // Its own piece (it is attached along the fold line, which shares no area; a tab on a hole's
-    // seam lies in the hole) and the other one.
-    for (size_t p = 0; p < pieces.size(); ++p)
+  std::vector<Box> tabBoxes;
+  for (const TabInfo& t : tabs) tabBoxes.push_back(boxOf({t.polygon}));
+  for (const auto& [i, j] : meetingPairs(tabBoxes)) {
+    ++work.pairTests;
+    if (overlapArea(tabs[size_t(i)].polygon, tabs[size_t(j)].polygon) > kOverlapTolMm2) {
+      ++f.overlappingTabs;
+      note(f, "glue tabs " + std::to_string(i + 1) + " and " + std::to_string(j + 1) + " overlap");
+    }
+  }
+  // Each tab against its own piece (it is attached along the fold line, which shares no area; a
+  // tab on a hole's seam lies in the hole) and the other one.
+  for (size_t p = 0; p < pieces.size(); ++p) {
+    const Box pieceBox = boxOf(pieces[p].boundaries);
+    for (size_t i = 0; i < tabs.size(); ++i) {
+      if (!tabBoxes[i].overlaps(pieceBox)) continue;
+      ++work.pairTests;
       if (overlapArea({tabs[i].polygon}, pieces[p].boundaries) > kOverlapTolMm2) {
         ++f.tabsOverPieces;
         note(f, "glue tab " + std::to_string(i + 1) + " overlaps piece " + pieces[p].name);
       }
+    }
   }
   // Each piece's cut region: its outer cut paths and its holes' (even-odd).
   auto cutRegion = [](const PieceInfo& piece) {
@@ -86,8 +127,10 @@ LayoutFindings checkLayout(const PatternBuild& pattern) {
   }
 
   std::vector<Polyline> hulls;
+  std::vector<Box> hullBoxes;
   for (const Path* label : labels) {
     hulls.push_back(convexHull(label->parts));  // the footprint two labels must not share
+    hullBoxes.push_back(boxOf({hulls.back()}));
     // A piece's labels lie inside it; the sheet's own (title, calibration bar) only on the sheet.
     const int p = pieceOf(*label, pieces);
     if (p < 0) continue;
@@ -99,13 +142,16 @@ LayoutFindings checkLayout(const PatternBuild& pattern) {
       note(f, "label " + label->id + " is not inside its piece");
     }
   }
-  for (size_t i = 0; i < hulls.size(); ++i)
-    for (size_t j = i + 1; j < hulls.size(); ++j)
-      if (hulls[i].size() >= 3 && hulls[j].size() >= 3 &&
-          overlapArea(hulls[i], hulls[j]) > kOverlapTolMm2) {
-        ++f.overlappingLabels;
-        note(f, "labels " + labels[i]->id + " and " + labels[j]->id + " overlap");
-      }
+  for (const auto& [i, j] : meetingPairs(hullBoxes)) {
+    const Polyline& a = hulls[size_t(i)];
+    const Polyline& b = hulls[size_t(j)];
+    if (a.size() < 3 || b.size() < 3) continue;
+    ++work.pairTests;
+    if (overlapArea(a, b) > kOverlapTolMm2) {
+      ++f.overlappingLabels;
+      note(f, "labels " + labels[size_t(i)]->id + " and " + labels[size_t(j)]->id + " overlap");
+    }
+  }
   return f;
 }
 

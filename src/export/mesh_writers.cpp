@@ -239,7 +239,8 @@ Result<std::string> gltfDocument(const DForm& model, const ExportOptions& o) {
   extras["job"] = tinygltf::Value(o.jobName);
   extras["units"] = tinygltf::Value(std::string("metres (model in mm / 1000), +Y up"));
   extras["failedGate"] = tinygltf::Value(o.failedGateMark);
-  if (colored) extras["curvatureColourScale_per_mm2"] = tinygltf::Value(scale);
+  // |curvature| that maps to full red or blue, in the unit of the values given.
+  if (colored) extras["curvatureColourScale"] = tinygltf::Value(scale);
   m.asset.extras = tinygltf::Value(extras);
   tinygltf::Scene scene;
   scene.name = o.jobName + tag;

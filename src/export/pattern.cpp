@@ -1,11 +1,12 @@
-// The flat pattern: seam ticks at equal arc length on both pieces, glue tabs, cut paths (outline
-// with tabs merged, holes, kerf offset), crease fold lines, placement on the sheet, single-stroke
-// labels and the pages. Geometry is computed in each piece's flat frame (mm, y up), then mapped to
+// The flat pattern: seam ticks at matching seam points on both pieces, glue tabs, cut paths
+// (outline with tabs merged, holes, kerf offset), crease fold lines, placement on the sheet (or a
+// page per piece), single-stroke labels and the pages. Geometry is computed in each piece's flat frame (mm, y up), then mapped to
 // the sheet (y down). A piece's seam may be its outer outline or a hole's loop (anti and demi
 // D-Forms): ticks and tabs go along the seam only, on the side away from the material.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 
 #include "core/piece_loops.h"
@@ -29,6 +30,11 @@ constexpr double kRegInset = 10.0, kRegSquare = 5.0, kRegArm = 20.0, kRegLine = 
 constexpr double kTickOut = 1.5;      // tick length outside the outline (mm)
 constexpr double kTickIn = 3.0;       // tick length inside the outline (mm)
 constexpr double kStartTickIn = 6.0;  // the start tick is longer (mm)
+// Tiles: each page shows a window of the pattern inside a 10 mm margin, under a 12 mm header.
+constexpr double kTileMargin = 10.0, kTileHeader = 12.0;
+// More pages than this is no print job anyone assembles by hand (500 A4 pages are 31 m^2 of
+// paper): such a pattern is refused before it is drawn, as one too large for its sheet is.
+constexpr long kMaxTiles = 500;
 
 Points2 toPoints(const Polyline& p) {
   Points2 P(Eigen::Index(p.size()), 2);
@@ -146,26 +152,46 @@ struct Seam {
   }
 };
 
+// The arc length along `to` of the seam point at arc length s along `from`: the same seam pair
+// index i and fraction along the edge i..i+1, so the same point of the 3D seam (a.seam[i] and
+// b.seam[i] share one 3D position). The two flat seams may differ slightly in length; points at
+// equal arc lengths would drift apart by up to that difference.
+double matchingArc(const Seam& from, const Seam& to, double s) {
+  const int i = from.segmentAt(s);
+  const size_t k = size_t(i);
+  const double len = from.cum[k + 1] - from.cum[k];
+  const double f = len > 0 ? std::clamp((s - from.cum[k]) / len, 0.0, 1.0) : 0.0;
+  return to.cum[k] + f * (to.cum[k + 1] - to.cum[k]);
+}
+
 struct FlatTab {
   int piece = 0;
-  double s0 = 0, s1 = 0, width = 0;
+  double s0 = 0, s1 = 0;      // seam parameter (A's arc length) of the fold line's ends
+  double own0 = 0, own1 = 0;  // the same along the tab's own piece's seam
+  double width = 0;
   Polyline polygon;  // flat frame, fold line first
   Polyline fold;
+  Box box;  // of the polygon
 };
 
-// The tab on `seam` over [s0, s1]: the fold line, then the outer edge (offset by `width`, inset
-// at both ends by width / tan(angle)) back to the start.
-FlatTab makeTab(const Seam& seam, int piece, double s0, double s1, double width, double angleRad) {
+// The tab on piece `piece` over the seam parameters [s0, s1]: the fold line, then the outer edge
+// (offset by `width`, inset at both ends by width / tan(angle)) back to the start.
+FlatTab makeTab(const Seam seams[2], int piece, double s0, double s1, double width,
+                double angleRad) {
+  const Seam& seam = seams[piece];
   FlatTab tab;
   tab.piece = piece;
   tab.s0 = s0;
   tab.s1 = s1;
+  tab.own0 = piece == 0 ? s0 : matchingArc(seams[0], seam, s0);
+  tab.own1 = piece == 0 ? s1 : matchingArc(seams[0], seam, s1);
   tab.width = width;
-  tab.fold = seam.sub(s0, s1);
+  tab.fold = seam.sub(tab.own0, tab.own1);
   const double inset = width / std::tan(angleRad);
-  Polyline outer = seam.sub(s0 + inset, s1 - inset, width);
+  Polyline outer = seam.sub(tab.own0 + inset, tab.own1 - inset, width);
   tab.polygon = tab.fold;
   tab.polygon.insert(tab.polygon.end(), outer.rbegin(), outer.rend());
+  tab.box = boxOf({tab.polygon});
   return tab;
 }
 
@@ -179,25 +205,43 @@ std::vector<Polyline> materialLoops(const Piece& piece) {
   return material;
 }
 
-bool tabIsClean(const FlatTab& tab, const std::vector<Polyline>& material,
-                const std::vector<FlatTab>& accepted) {
-  if (findSelfIntersection(toPoints(tab.polygon))) return false;
-  if (overlapArea({tab.polygon}, material) > kOverlapTolMm2) return false;
-  for (const FlatTab& other : accepted) {
-    if (other.piece == tab.piece && overlapArea(tab.polygon, other.polygon) > kOverlapTolMm2)
-      return false;
+// The tabs accepted so far, with a grid of their boxes per piece: a new tab is compared only with
+// the tabs whose boxes meet its own (tabs whose boxes do not meet share no area), so the cost
+// grows with the tab count, not with its square.
+class TabSet {
+ public:
+  explicit TabSet(double cell) : index_{BoxIndex(cell), BoxIndex(cell)} {}
+  const std::vector<FlatTab>& tabs() const { return tabs_; }
+  void add(const FlatTab& tab) {
+    index_[tab.piece].insert(int(tabs_.size()), tab.box);
+    tabs_.push_back(tab);
   }
-  return true;
-}
+  // A simple polygon sharing no area with its piece's material nor with its piece's other tabs.
+  bool isClean(const FlatTab& tab, const std::vector<Polyline>& material, BuildWork& work) const {
+    ++work.tabCandidates;
+    if (findSelfIntersection(toPoints(tab.polygon))) return false;
+    ++work.pairTests;
+    if (overlapArea({tab.polygon}, material) > kOverlapTolMm2) return false;
+    for (int k : index_[tab.piece].overlapping(tab.box)) {
+      ++work.pairTests;
+      if (overlapArea(tab.polygon, tabs_[size_t(k)].polygon) > kOverlapTolMm2) return false;
+    }
+    return true;
+  }
+
+ private:
+  BoxIndex index_[2];
+  std::vector<FlatTab> tabs_;
+};
 
 // Splits the seam into tab intervals no longer than maxLen whose seam turns by at most maxTurn on
-// either piece, then builds each tab; a tab that would overlap its piece or a neighbour is made
-// narrower, then split, then left out (with a message).
+// either piece, then builds each tab on the side's piece; a tab that would overlap its piece or a
+// neighbour is made narrower, then split, then left out (with a message). Intervals are in the
+// seam parameter (A's arc length, up to A's seam length L).
 std::vector<FlatTab> makeTabs(const Seam seams[2], const std::vector<Polyline> material[2],
-                              const ExportOptions& o, double L,
-                              std::vector<std::string>& messages) {
-  std::vector<FlatTab> tabs;
-  if (o.tabWidthMm <= 0) return tabs;
+                              const ExportOptions& o, TabSide side, double L,
+                              std::vector<std::string>& messages, BuildWork& work) {
+  if (o.tabWidthMm <= 0 || side == TabSide::None) return {};
   const double angle = o.tabAngleDeg * kPi / 180.0;
   const double inset = o.tabWidthMm / std::tan(angle);
   const double minLen = 2 * inset + 1.0;  // the outer edge keeps at least 1 mm
@@ -205,41 +249,43 @@ std::vector<FlatTab> makeTabs(const Seam seams[2], const std::vector<Polyline> m
   const double maxTurn = o.tabMaxTurnDeg * kPi / 180.0;
   const double step = std::min(1.0, L / 1000);  // growth step along the seam (mm)
   const double sEnd = L - 0.5 * o.tabGapMm;
+  auto onB = [&](double s) { return matchingArc(seams[0], seams[1], s); };
   std::vector<std::pair<double, double>> intervals;
   for (double s = 0.5 * o.tabGapMm; s + minLen <= sEnd;) {
     double e = s + minLen;
     for (;;) {
       const double next = std::min(e + step, sEnd);
       if (next <= e || next - s > maxLen) break;
-      if (std::max(seams[0].turning(s, next), seams[1].turning(s, next)) > maxTurn) break;
+      if (std::max(seams[0].turning(s, next), seams[1].turning(onB(s), onB(next))) > maxTurn) break;
       e = next;
     }
     intervals.emplace_back(s, e);
     s = e + o.tabGapMm;
   }
+  // A cell about one tab long: a tab's box meets the boxes of a few neighbours only.
+  TabSet accepted(maxLen + 2 * o.tabWidthMm);
   int dropped = 0;
   for (size_t k = 0; k < intervals.size(); ++k) {
-    const int piece = o.alternateTabs ? int(k % 2) : 0;
-    const Seam& seam = seams[piece];
+    const int piece = side == TabSide::Alternate ? int(k % 2) : side == TabSide::B ? 1 : 0;
     const auto [s0, s1] = intervals[k];
-    FlatTab tab = makeTab(seam, piece, s0, s1, o.tabWidthMm, angle);
-    if (tabIsClean(tab, material[piece], tabs)) {
-      tabs.push_back(tab);
+    FlatTab tab = makeTab(seams, piece, s0, s1, o.tabWidthMm, angle);
+    if (accepted.isClean(tab, material[piece], work)) {
+      accepted.add(tab);
       continue;
     }
     const double narrow = 0.5 * o.tabWidthMm;
-    tab = makeTab(seam, piece, s0, s1, narrow, angle);
-    if (tabIsClean(tab, material[piece], tabs)) {
-      tabs.push_back(tab);
+    tab = makeTab(seams, piece, s0, s1, narrow, angle);
+    if (accepted.isClean(tab, material[piece], work)) {
+      accepted.add(tab);
       continue;
     }
     const double mid = 0.5 * (s0 + s1), halfGap = 0.5 * o.tabGapMm;
     bool any = false;
     for (const auto& [a, b] : {std::pair{s0, mid - halfGap}, std::pair{mid + halfGap, s1}}) {
       if (b - a < 2 * narrow / std::tan(angle) + 1.0) continue;
-      FlatTab half = makeTab(seam, piece, a, b, narrow, angle);
-      if (tabIsClean(half, material[piece], tabs)) {
-        tabs.push_back(half);
+      FlatTab half = makeTab(seams, piece, a, b, narrow, angle);
+      if (accepted.isClean(half, material[piece], work)) {
+        accepted.add(half);
         any = true;
       }
     }
@@ -250,7 +296,7 @@ std::vector<FlatTab> makeTabs(const Seam seams[2], const std::vector<Polyline> m
                        " glue tab(s) left out where the seam is too tightly curved for a " +
                        formatMm(o.tabWidthMm) + " mm tab; glue those stretches edge to edge");
   }
-  return tabs;
+  return accepted.tabs();
 }
 
 struct CutPaths {
@@ -267,7 +313,7 @@ CutPaths cutPaths(const Seam& seam, const std::vector<Polyline>& freeLoops, int 
   // piece and tabs share their edges to the last bit and the union leaves no slivers.
   std::vector<double> ends;
   for (const FlatTab& t : tabs)
-    if (t.piece == piece) ends.insert(ends.end(), {t.s0, t.s1});
+    if (t.piece == piece) ends.insert(ends.end(), {t.own0, t.own1});
   std::vector<Polyline> loops{seam.P};
   loops.insert(loops.end(), freeLoops.begin(), freeLoops.end());
   CutPaths out;
@@ -333,16 +379,6 @@ Eigen::Matrix2d flipRotate(double deg) {
   return R * Eigen::Vector2d(1, -1).asDiagonal();
 }
 
-struct Box {
-  Vec2 lo{1e300, 1e300}, hi{-1e300, -1e300};
-  void add(const Vec2& p) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  double w() const { return hi.x() - lo.x(); }
-  double h() const { return hi.y() - lo.y(); }
-};
-
 Box boxOf(const std::vector<Polyline>& paths, const Eigen::Matrix2d& M) {
   Box b;
   for (const auto& p : paths)
@@ -350,10 +386,14 @@ Box boxOf(const std::vector<Polyline>& paths, const Eigen::Matrix2d& M) {
   return b;
 }
 
-// The rotation (degrees, in 2-degree steps) that gives the cut paths the smallest bounding box.
+// The layout turns pieces in steps of this many degrees; 90 is a multiple, so a piece's turn plus
+// a quarter turn is a step too.
+constexpr int kTurnStepDeg = 2;
+
+// The rotation (degrees, in kTurnStepDeg steps) that gives the cut paths the smallest bounding box.
 double bestRotation(const std::vector<Polyline>& cut) {
   double best = 0, bestArea = 1e300;
-  for (int deg = 0; deg < 180; deg += 2) {
+  for (int deg = 0; deg < 180; deg += kTurnStepDeg) {
     const Box b = boxOf(cut, flipRotate(deg));
     if (b.w() * b.h() < bestArea - 1e-9) {
       bestArea = b.w() * b.h();
@@ -363,11 +403,26 @@ double bestRotation(const std::vector<Polyline>& cut) {
   return best;
 }
 
-struct Rect {
-  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-  double w() const { return x1 - x0; }
-  double h() const { return y1 - y0; }
-};
+// A piece's extent on the sheet turned by `deg`: the box of its paths grown by the ticks, which
+// stick out of the outline by kTickOut.
+Box extentAt(const std::vector<Polyline>& paths, double deg) {
+  Box b = boxOf(paths, flipRotate(deg));
+  b.lo -= Vec2::Constant(kTickOut);
+  b.hi += Vec2::Constant(kTickOut);
+  return b;
+}
+
+// Two pieces' extents side by side or stacked, `gap` apart: the arrangement's width and height.
+Vec2 arranged(const Box& a, const Box& b, bool vertical, double gap) {
+  return vertical ? Vec2(std::max(a.w(), b.w()), a.h() + gap + b.h())
+                  : Vec2(a.w() + gap + b.w(), std::max(a.h(), b.h()));
+}
+
+// The id of a page's copy of the sheet furniture (title lines, registration marks): the first
+// page keeps the plain id.
+std::string onPage(const std::string& id, size_t page) {
+  return page == 0 ? id : id + "-page-" + std::to_string(page + 1);
+}
 
 // Builds the drawing's layers and routes each operation to its layer for the profile's kind.
 class DrawingBuilder {
@@ -595,16 +650,11 @@ Status checkModel(const DForm& model) {
 }
 
 Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
-                                  const Profile& profile) {
+                                  const Profile& profile, BuildWork* workOut) {
+  BuildWork unused;
+  BuildWork& work = workOut ? *workOut : unused;
   if (Status s = checkModel(model); !s.isOk()) return s;
-  if (!(o.tickSpacingMm >= 1.0))
-    return Status{ErrorCode::Usage, "tick spacing must be at least 1 mm"};
-  if (!(o.tabWidthMm >= 0 && o.tabWidthMm <= 50))
-    return Status{ErrorCode::Usage, "tab width must be between 0 and 50 mm"};
-  if (!(o.tabAngleDeg >= 15 && o.tabAngleDeg <= 90))
-    return Status{ErrorCode::Usage, "tab angle must be between 15 and 90 degrees"};
-  if (!(o.tabGapMm >= 0) || !(o.tabMaxLengthMm > 0) || !(o.tabMaxTurnDeg > 0))
-    return Status{ErrorCode::Usage, "tab gap, length and turn limits must be positive"};
+  if (Status s = checkExportOptions(o); !s.isOk()) return s;
   if (profile.page.empty() && !(o.sheetWidthMm > 0 && o.sheetHeightMm > 0))
     return Status{ErrorCode::Usage, "the sheet size must be positive (e.g. 600x400mm)"};
   auto fontResult = StrokeFont::load(o.fontPath);
@@ -614,39 +664,12 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
   PatternBuild out;
   out.profile = profile;
   out.tickSpacing = o.tickSpacingMm;
+  out.failedGate = o.failedGateMark;
   const Seam seams[2] = {Seam(model.a), Seam(model.b)};
   const std::string names[2] = {model.a.name.empty() ? "A" : model.a.name,
                                 model.b.name.empty() ? "B" : model.b.name};
-  // Seam lengths agree to the gate's tolerance on a solved model; warn where a fabricator would
-  // see it (0.1 mm is the accuracy the ticks are held to).
-  if (std::abs(seams[0].L - seams[1].L) > 0.1) {
-    out.messages.push_back("the seams differ in length by " +
-                           formatMm(std::abs(seams[0].L - seams[1].L), 2) +
-                           " mm; the last ticks will not meet exactly");
-  }
-  const double L = std::min(seams[0].L, seams[1].L);
-
-  // Ticks: every spacing mm from the seam start; a last tick closer than half a spacing to the
-  // start would crowd tick 0 and its arrow, so it is left out.
-  std::vector<double> tickS;
-  for (int k = 0; k * o.tickSpacingMm < L; ++k) {
-    const double s = k * o.tickSpacingMm;
-    if (k > 0 && L - s < 0.5 * o.tickSpacingMm) break;
-    tickS.push_back(s);
-  }
-
   const Piece* piece[2] = {&model.a, &model.b};
   const std::vector<Polyline> material[2] = {materialLoops(model.a), materialLoops(model.b)};
-  const std::vector<FlatTab> tabs = makeTabs(seams, material, o, L, out.messages);
-  std::vector<Polyline> cuts[2], holeCuts[2];
-  for (int p = 0; p < 2; ++p) {
-    std::vector<Polyline> freeLoops;
-    for (const auto& loop : piece[p]->freeBoundaries)
-      freeLoops.push_back(flatPolyline(piece[p]->flat, loop));
-    CutPaths c = cutPaths(seams[p], freeLoops, outerLoopIndex(*piece[p]), tabs, p, profile.kerfMm);
-    cuts[p] = std::move(c.outer);
-    holeCuts[p] = std::move(c.holes);
-  }
   const bool creased = !model.a.creases.empty() || !model.b.creases.empty();
 
   // --- Sheet, page and the region where the pieces go -----------------------------------------
@@ -664,16 +687,139 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
     pageW = kLetterW;
     pageH = kLetterH;
   }
-  auto artRegion = [&](double W, double H) {
-    Rect r{m, m, W - m, H - m};
-    if (profile.registration == Registration::Silhouette) {
-      const double inset = kRegInset + kRegSquare + kRegClear;  // clear of the square's far edge
-      r = {inset, inset, W - inset, H - inset};
-    } else if (profile.registration == Registration::Cricut) {
-      r = {0.5 * (W - kCricutW), 0.5 * (H - kCricutH), 0.5 * (W + kCricutW), 0.5 * (H + kCricutH)};
+  // The area of a W x H sheet or page (its top-left corner at `at`) that the pieces and the title
+  // lines may use.
+  auto artRegion = [&](double W, double H, const Vec2& at = Vec2::Zero()) {
+    double inset = m;
+    if (profile.registration == Registration::Silhouette)
+      inset = kRegInset + kRegSquare + kRegClear;  // clear of the square's far edge
+    Box r = Box::spanning(at + Vec2(inset, inset), at + Vec2(W - inset, H - inset));
+    if (profile.registration == Registration::Cricut) {
+      const Vec2 half(0.5 * kCricutW, 0.5 * kCricutH), centre = at + 0.5 * Vec2(W, H);
+      r = Box::spanning(centre - half, centre + half);
     }
     return r;
   };
+  // Whether pieces (and tabs) of extent `size` fit a W x H sheet with the title lines below them.
+  auto fits = [&](const Vec2& size, double W, double H) {
+    const Box r = artRegion(W, H);
+    return size.x() <= r.w() + 1e-9 && size.y() + titleH <= r.h() + 1e-9 && r.w() > 0;
+  };
+  // Only a print profile's page may turn to landscape; a print-and-cut page keeps its marks.
+  const bool mayTurnPage = profile.kind == ProfileKind::Print && !profile.page.empty();
+  auto fitsSomeWay = [&](const Vec2& size) {
+    return fits(size, pageW, pageH) || (mayTurnPage && fits(size, pageH, pageW));
+  };
+  // `what` (`contents`) fits the sheet in none of the arrangements tried, of extents `sizes`:
+  // the message gives the sheet size needed by the arrangement that needs the least enlargement.
+  auto tooLarge = [&](const std::string& what, const std::vector<Vec2>& sizes,
+                      const std::string& contents) {
+    const Box r = artRegion(pageW, pageH);
+    Vec2 need = Vec2::Zero(), size = Vec2::Zero();
+    double least = std::numeric_limits<double>::infinity();
+    for (const Vec2& candidate : sizes) {
+      const Vec2 n(candidate.x() + (pageW - r.w()), candidate.y() + titleH + (pageH - r.h()));
+      if (std::max(n.x() / pageW, n.y() / pageH) < least) {
+        least = std::max(n.x() / pageW, n.y() / pageH);
+        need = n;
+        size = candidate;
+      }
+    }
+    const std::string area = profile.page.empty() ? "sheet" : profile.page + " page's cutting area";
+    return Status{ErrorCode::Usage, what + " does not fit the " + area + ": it needs at least " +
+                                        formatMm(need.x()) + " x " + formatMm(need.y()) + " mm (" +
+                                        formatMm(size.x()) + " x " + formatMm(size.y()) +
+                                        " mm of " + contents +
+                                        ", plus margins and the title line); the " +
+                                        (profile.page.empty() ? "sheet" : "page") + " is " +
+                                        formatMm(pageW) + " x " + formatMm(pageH) + " mm"};
+  };
+  // Tiling: the columns and rows of pages that show pieces of extent `size` with the margins and
+  // title lines; neighbouring windows overlap by tileOverlapMm.
+  const double tileW = pageW - 2 * kTileMargin, tileH = pageH - 2 * kTileMargin - kTileHeader;
+  const double overlap = profile.tileOverlapMm;
+  auto tileGrid = [&](const Vec2& size) {
+    auto count = [&](double length, double window) {
+      return std::max(1L, long(std::ceil((length - overlap) / (window - overlap) - 1e-9)));
+    };
+    return std::pair<long, long>(count(size.x() + 2 * m, tileW),
+                                 count(size.y() + titleH + 2 * m, tileH));
+  };
+  auto tooManyTiles = [&](long tiles) {
+    return Status{ErrorCode::Usage, "the pattern needs at least " + std::to_string(tiles) + " " +
+                                        profile.page + " pages when tiled, more than the " +
+                                        std::to_string(kMaxTiles) +
+                                        " a print profile makes; use a sheet profile"};
+  };
+
+  // --- Fit first: before any tick or tab is made ---------------------------------------------
+  // A piece's cut path contains its outer outline (tabs and kerf only add to it), so at every turn
+  // the layout may choose (2-degree steps; a half turn gives the same box) the outline's extent
+  // bounds the cut path's from below. When not even the bare outlines fit, neither will the
+  // pattern: say so now, at a cost independent of the seam's length in ticks and tabs.
+  std::vector<Box> bare[2];
+  for (int p = 0; p < 2; ++p)
+    for (int deg = 0; deg < 180; deg += kTurnStepDeg)
+      bare[p].push_back(extentAt({material[p].front()}, deg));
+  if (profile.kind == ProfileKind::PrintAndCut) {  // each piece may get a page of its own
+    for (int p = 0; p < 2; ++p) {
+      std::vector<Vec2> sizes;
+      for (const Box& b : bare[p]) sizes.emplace_back(b.w(), b.h());
+      if (std::none_of(sizes.begin(), sizes.end(),
+                       [&](const Vec2& size) { return fits(size, pageW, pageH); }))
+        return tooLarge("piece " + names[p], sizes, "the piece");
+    }
+  } else if (!profile.tile) {
+    std::vector<Vec2> sizes;
+    for (const Box& a : bare[0])
+      for (const Box& b : bare[1])
+        for (bool vertical : {false, true}) sizes.push_back(arranged(a, b, vertical, m));
+    if (std::none_of(sizes.begin(), sizes.end(), fitsSomeWay))
+      return tooLarge("the pattern", sizes, "pieces");
+  } else {
+    long fewest = std::numeric_limits<long>::max();
+    for (const Box& a : bare[0])
+      for (const Box& b : bare[1])
+        for (bool vertical : {false, true}) {
+          const auto [nx, ny] = tileGrid(arranged(a, b, vertical, m));
+          fewest = std::min(fewest, nx * ny);
+        }
+    if (fewest > kMaxTiles) return tooManyTiles(fewest);
+  }
+
+  // Seam lengths agree to the gate's tolerance on a solved model; ticks and tabs mark matching
+  // seam points on both pieces whatever the difference, which a fabricator sees as a slightly
+  // different tick spacing on B (0.1 mm is the accuracy the ticks are held to).
+  if (std::abs(seams[0].L - seams[1].L) > 0.1) {
+    out.messages.push_back("the seams differ in length by " +
+                           formatMm(std::abs(seams[0].L - seams[1].L), 2) +
+                           " mm; partner ticks mark the same seam point, so B's tick spacing "
+                           "differs slightly from A's");
+  }
+  // Everything along the seam is placed by the seam parameter: A's arc length.
+  const double L = seams[0].L;
+
+  // Ticks: every spacing mm from the seam start; a last tick closer than half a spacing to the
+  // start would crowd tick 0 and its arrow, so it is left out.
+  std::vector<double> tickS;
+  for (int k = 0; k * o.tickSpacingMm < L; ++k) {
+    const double s = k * o.tickSpacingMm;
+    if (k > 0 && L - s < 0.5 * o.tickSpacingMm) break;
+    tickS.push_back(s);
+    ++work.ticks;
+  }
+
+  const std::vector<FlatTab> tabs =
+      makeTabs(seams, material, o, profile.tabs, L, out.messages, work);
+  std::vector<Polyline> cuts[2], holeCuts[2];
+  for (int p = 0; p < 2; ++p) {
+    std::vector<Polyline> freeLoops;
+    for (const auto& loop : piece[p]->freeBoundaries)
+      freeLoops.push_back(flatPolyline(piece[p]->flat, loop));
+    CutPaths c = cutPaths(seams[p], freeLoops, outerLoopIndex(*piece[p]), tabs, p, profile.kerfMm);
+    cuts[p] = std::move(c.outer);
+    holeCuts[p] = std::move(c.holes);
+  }
 
   // --- Orientation and arrangement -------------------------------------------------------------
   double baseRot[2];
@@ -681,7 +827,7 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
   struct Choice {
     double rot[2];
     bool vertical;
-    double w, h;
+    Vec2 size;
     Box box[2];
   };
   std::vector<Choice> choices;
@@ -692,65 +838,81 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
         c.rot[0] = baseRot[0] + 90 * ra;
         c.rot[1] = baseRot[1] + 90 * rb;
         c.vertical = v == 1;
-        for (int p = 0; p < 2; ++p) {  // ticks stick out of the outline by kTickOut
-          c.box[p] = boxOf(cuts[p], flipRotate(c.rot[p]));
-          c.box[p].lo -= Vec2::Constant(kTickOut);
-          c.box[p].hi += Vec2::Constant(kTickOut);
-        }
-        c.w = c.vertical ? std::max(c.box[0].w(), c.box[1].w()) : c.box[0].w() + m + c.box[1].w();
-        c.h = c.vertical ? c.box[0].h() + m + c.box[1].h() : std::max(c.box[0].h(), c.box[1].h());
+        for (int p = 0; p < 2; ++p) c.box[p] = extentAt(cuts[p], c.rot[p]);
+        c.size = arranged(c.box[0], c.box[1], c.vertical, m);
         choices.push_back(c);
       }
-  auto fits = [&](const Choice& c, double W, double H) {
-    const Rect r = artRegion(W, H);
-    return c.w <= r.w() + 1e-9 && c.h + titleH <= r.h() + 1e-9 && r.w() > 0;
-  };
-  const Choice* chosen = nullptr;
-  bool landscape = false, tiled = false;
   auto pick = [&](double W, double H) -> const Choice* {
     const Choice* best = nullptr;
     for (const Choice& c : choices)
-      if (fits(c, W, H) && (!best || c.w * c.h < best->w * best->h - 1e-9)) best = &c;
+      if (fits(c.size, W, H) && (!best || c.size.prod() < best->size.prod() - 1e-9)) best = &c;
     return best;
   };
-  chosen = pick(pageW, pageH);
-  if (!chosen && profile.kind == ProfileKind::Print && !profile.page.empty()) {
+  const Choice* chosen = pick(pageW, pageH);
+  bool landscape = false, tiled = false, piecePerPage = false;
+  if (!chosen && mayTurnPage) {
     chosen = pick(pageH, pageW);
     landscape = chosen != nullptr;
   }
-  const Choice* smallest = &choices[0];
-  for (const Choice& c : choices)
-    if (std::max(c.w, c.h) < std::max(smallest->w, smallest->h)) smallest = &c;
   double canvasW = landscape ? pageH : pageW, canvasH = landscape ? pageW : pageH;
-  if (!chosen && profile.tile) {
-    chosen = smallest;
+  if (!chosen && profile.tile) {  // the arrangement of the smallest largest side
+    chosen = &choices[0];
+    for (const Choice& c : choices)
+      if (c.size.maxCoeff() < chosen->size.maxCoeff()) chosen = &c;
     tiled = true;
-    canvasW = chosen->w + 2 * m;
-    canvasH = chosen->h + titleH + 2 * m;
+    canvasW = chosen->size.x() + 2 * m;
+    canvasH = chosen->size.y() + titleH + 2 * m;
+    const auto [nx, ny] = tileGrid(chosen->size);
+    if (nx * ny > kMaxTiles) return tooManyTiles(nx * ny);
   }
-  if (!chosen) {
-    const Rect r = artRegion(pageW, pageH);
-    const double needW = smallest->w + (pageW - r.w()),
-                 needH = smallest->h + titleH + (pageH - r.h());
-    std::string what = profile.page.empty() ? "sheet" : profile.page + " page's cutting area";
-    return Status{ErrorCode::Usage,
-                  "the pattern does not fit the " + what + ": it needs at least " +
-                      formatMm(needW) + " x " + formatMm(needH) + " mm (" + formatMm(smallest->w) +
-                      " x " + formatMm(smallest->h) +
-                      " mm of pieces and tabs, plus margins and the title line); the " +
-                      (profile.page.empty() ? "sheet" : "page") + " is " + formatMm(pageW) + " x " +
-                      formatMm(pageH) + " mm"};
+  // Where each piece goes: its turn, its extent, and the top-left corner of that extent.
+  double rot[2];
+  Box box[2];
+  Vec2 corner[2];
+  if (chosen) {
+    const Box region = artRegion(canvasW, canvasH);
+    out.sheets.push_back(Box::spanning(Vec2::Zero(), Vec2(canvasW, canvasH)));
+    for (int p = 0; p < 2; ++p) {
+      rot[p] = chosen->rot[p];
+      box[p] = chosen->box[p];
+    }
+    corner[0] = region.lo;
+    corner[1] = region.lo + (chosen->vertical ? Vec2(0, box[0].h() + m) : Vec2(box[0].w() + m, 0));
+  } else if (profile.kind == ProfileKind::PrintAndCut) {
+    // Print-and-cut cannot tile (the cutter reads one page's marks): each piece on its own page,
+    // side by side on the canvas, each page with its own marks and title lines.
+    piecePerPage = true;
+    canvasW = 2 * pageW;
+    canvasH = pageH;
+    for (int p = 0; p < 2; ++p) {
+      const Choice* best = nullptr;
+      for (const Choice& c : choices)  // the rotations tried for this piece: its two in `choices`
+        if (fits(Vec2(c.box[p].w(), c.box[p].h()), pageW, pageH) &&
+            (!best || c.box[p].w() * c.box[p].h() < best->box[p].w() * best->box[p].h() - 1e-9))
+          best = &c;
+      if (!best) {
+        std::vector<Vec2> sizes;
+        for (const Choice& c : choices) sizes.emplace_back(c.box[p].w(), c.box[p].h());
+        return tooLarge("piece " + names[p], sizes, "the piece and its tabs");
+      }
+      rot[p] = best->rot[p];
+      box[p] = best->box[p];
+      const Vec2 at(p * pageW, 0);
+      out.sheets.push_back(Box::spanning(at, at + Vec2(pageW, pageH)));
+      corner[p] = artRegion(pageW, pageH, at).lo;
+    }
+    out.messages.push_back(
+        "the pieces do not fit one " + profile.page +
+        " page together: each is on its own page, with its own registration marks");
+  } else {
+    std::vector<Vec2> sizes;
+    for (const Choice& c : choices) sizes.push_back(c.size);
+    return tooLarge("the pattern", sizes, "pieces and tabs");
   }
-  const Rect region = artRegion(canvasW, canvasH);
   Placement place[2];
   for (int p = 0; p < 2; ++p) {
-    place[p].M = flipRotate(chosen->rot[p]);
-    Vec2 corner(region.x0, region.y0);
-    if (p == 1) {
-      corner +=
-          chosen->vertical ? Vec2(0, chosen->box[0].h() + m) : Vec2(chosen->box[0].w() + m, 0);
-    }
-    place[p].t = corner - chosen->box[p].lo;
+    place[p].M = flipRotate(rot[p]);
+    place[p].t = corner[p] - box[p].lo;
   }
 
   // --- Pieces, ticks, tabs in sheet coordinates ------------------------------------------------
@@ -769,15 +931,16 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
                               folds[k],
                               place[p].map(flatPolyline(piece[p]->flat, piece[p]->creases[k]))});
     info.perimeter = seams[p].L;
-    info.rotationDeg = chosen->rot[p];
+    info.rotationDeg = rot[p];
     out.pieces.push_back(info);
   }
   for (size_t k = 0; k < tickS.size(); ++k) {
     TickInfo t;
     t.id = int(k);
     t.s = tickS[k];
+    t.sB = matchingArc(seams[0], seams[1], t.s);
     t.onA = place[0].point(seams[0].at(t.s));
-    t.onB = place[1].point(seams[1].at(t.s));
+    t.onB = place[1].point(seams[1].at(t.sB));
     out.ticks.push_back(t);
   }
   for (const FlatTab& t : tabs) {
@@ -809,7 +972,7 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
     // Tick marks across the outline and their numbers inside the piece.
     for (const TickInfo& t : out.ticks) {
       int seg = 0;
-      seam.at(t.s, &seg);
+      seam.at(p == 0 ? t.s : t.sB, &seg);
       const Vec2 c = p == 0 ? t.onA : t.onB;
       const Vec2 nOut = place[p].vector(seam.outward(seg)).normalized();
       const Vec2 tan = place[p].vector(seam.dir(seg)).normalized();
@@ -859,17 +1022,9 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
       return labels;
     };
     auto clashes = [&](const std::vector<Path>& labels) {
-      for (const Path& label : labels) {
-        const Polyline hull = convexHull(label.parts);
-        const Box box = boxOf({hull}, Eigen::Matrix2d::Identity());
-        for (const Polyline& other : taken) {
-          const Box near = boxOf({other}, Eigen::Matrix2d::Identity());
-          const bool apart = near.lo.x() > box.hi.x() || box.lo.x() > near.hi.x() ||
-                             near.lo.y() > box.hi.y() || box.lo.y() > near.hi.y();
-          if (!apart && overlapArea(hull, other) > 0.0) return true;
-        }
-      }
-      return false;
+      return std::any_of(labels.begin(), labels.end(), [&](const Path& label) {
+        return overlapsAny(convexHull(label.parts), taken, 0.0);
+      });
     };
     std::vector<Path> names = nameLabels({});
     if (clashes(names)) names = nameLabels(taken);
@@ -895,9 +1050,7 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
           const Polyline box = {
               center - grow.x() * d - grow.y() * n, center + grow.x() * d - grow.y() * n,
               center + grow.x() * d + grow.y() * n, center - grow.x() * d + grow.y() * n};
-          if (std::any_of(taken.begin(), taken.end(),
-                          [&](const Polyline& other) { return overlapArea(box, other) > 0.0; }))
-            continue;
+          if (overlapsAny(box, taken, 0.0)) continue;
           Path label = textPath(font, crease.id + "-label", letter, center, d, h);
           taken.push_back(convexHull(label.parts));
           b.engrave().paths.push_back(std::move(label));
@@ -966,20 +1119,27 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
       }
     }
 
-  // Title lines (and the calibration bar) at the bottom of the region.
-  {
-    double y = region.y1 - titleH;
-    const double x0 = region.x0, width = region.w();
+  // Title lines (and the calibration bar) at the bottom of each sheet's region, and the
+  // registration marks in each sheet's corners.
+  for (size_t k = 0; k < out.sheets.size(); ++k) {
+    const Box& sheet = out.sheets[k];
+    const Box region = artRegion(sheet.w(), sheet.h(), sheet.lo);
+    double y = region.hi.y() - titleH;
+    const double x0 = region.lo.x(), width = region.w();
     auto line = [&](const std::string& id, const std::string& text, double h) {
       const double w = font.width(text, h);
       if (w > width) h *= width / w;
       const Vec2 c(x0 + 0.5 * std::min(w, width), y + 0.5 * lineH * h / textH);
-      b.engrave().paths.push_back(textPath(font, id, text, c, {1, 0}, h));
+      b.engrave().paths.push_back(textPath(font, onPage(id, k), text, c, {1, 0}, h));
       y += lineH * h / textH;
     };
+    const std::string pageNote = piecePerPage
+                                     ? " - page " + std::to_string(k + 1) + " of " +
+                                           std::to_string(out.sheets.size()) + ": piece " + names[k]
+                                     : "";
     if (o.failedGateMark) line("failed-gate", "FAILED GATE - NOT FOR FABRICATION", 2 * textH);
     line("title",
-         o.jobName + " - D-Form " + names[0] + " + " + names[1] + " - 1:1, mm - seam " +
+         o.jobName + " - D-Form " + names[0] + " + " + names[1] + pageNote + " - 1:1, mm - seam " +
              perimeterText + " mm - " + profile.name,
          textH);
     line("note",
@@ -996,57 +1156,56 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
     if (profile.calibrationBar) {
       const double yb = y + 4.0;
       Path bar;
-      bar.id = "calibration-bar";
+      bar.id = onPage("calibration-bar", k);
       bar.parts.push_back({Vec2(x0, yb), Vec2(x0 + 50, yb)});
-      for (int k = 0; k <= 5; ++k) {
-        const double tickLen = (k == 0 || k == 5) ? 3.0 : 1.5;
-        bar.parts.push_back({Vec2(x0 + 10 * k, yb - tickLen), Vec2(x0 + 10 * k, yb)});
+      for (int j = 0; j <= 5; ++j) {
+        const double tickLen = (j == 0 || j == 5) ? 3.0 : 1.5;
+        bar.parts.push_back({Vec2(x0 + 10 * j, yb - tickLen), Vec2(x0 + 10 * j, yb)});
       }
       b.engrave().paths.push_back(bar);
       const std::string text = "50 mm - print at 100% (actual size)";
-      b.engrave().paths.push_back(textPath(font, "calibration-label", text,
+      b.engrave().paths.push_back(textPath(font, onPage("calibration-label", k), text,
                                            Vec2(x0 + 54 + 0.5 * font.width(text, textH), yb - 1.5),
                                            {1, 0}, textH));
     }
-  }
-
-  // Registration marks.
-  if (profile.registration == Registration::Silhouette) {
-    Path square;
-    square.id = "regmark-square";
-    square.filled = true;
-    square.closed = true;
-    const double a = kRegInset, s = kRegSquare;
-    square.parts = {{Vec2(a, a), Vec2(a + s, a), Vec2(a + s, a + s), Vec2(a, a + s)}};
-    b.regmarks().paths.push_back(square);
-    Path tr;
-    tr.id = "regmark-top-right";
-    tr.parts = {
-        {Vec2(canvasW - a - kRegArm, a), Vec2(canvasW - a, a), Vec2(canvasW - a, a + kRegArm)}};
-    b.regmarks().paths.push_back(tr);
-    Path bl;
-    bl.id = "regmark-bottom-left";
-    bl.parts = {
-        {Vec2(a, canvasH - a - kRegArm), Vec2(a, canvasH - a), Vec2(a + kRegArm, canvasH - a)}};
-    b.regmarks().paths.push_back(bl);
+    if (profile.registration == Registration::Silhouette) {
+      const double a = kRegInset, s = kRegSquare;
+      const Vec2 lo = sheet.lo + Vec2(a, a), hi = sheet.hi - Vec2(a, a);
+      Path square;
+      square.id = onPage("regmark-square", k);
+      square.filled = true;
+      square.closed = true;
+      square.parts = {{lo, lo + Vec2(s, 0), lo + Vec2(s, s), lo + Vec2(0, s)}};
+      b.regmarks().paths.push_back(square);
+      Path tr;
+      tr.id = onPage("regmark-top-right", k);
+      tr.parts = {
+          {Vec2(hi.x() - kRegArm, lo.y()), Vec2(hi.x(), lo.y()), Vec2(hi.x(), lo.y() + kRegArm)}};
+      b.regmarks().paths.push_back(tr);
+      Path bl;
+      bl.id = onPage("regmark-bottom-left", k);
+      bl.parts = {
+          {Vec2(lo.x(), hi.y() - kRegArm), Vec2(lo.x(), hi.y()), Vec2(lo.x() + kRegArm, hi.y())}};
+      b.regmarks().paths.push_back(bl);
+    }
   }
   out.drawing = std::move(b.drawing());
 
   // --- Pages -------------------------------------------------------------------------------------
   if (!tiled) {
-    PageView page;
-    page.width = canvasW;
-    page.height = canvasH;
-    page.clipX1 = canvasW;
-    page.clipY1 = canvasH;
-    out.pages.push_back(page);
+    for (const Box& sheet : out.sheets) {  // the whole sheet, or each piece's page
+      PageView page;
+      page.width = sheet.w();
+      page.height = sheet.h();
+      page.origin = sheet.lo;
+      page.clipX1 = sheet.w();
+      page.clipY1 = sheet.h();
+      out.pages.push_back(page);
+    }
   } else {
-    // Tiles: each page shows a window of the canvas inside a 10 mm margin, under an 8 mm header;
-    // neighbours overlap by tileOverlapMm, with alignment crosses in the middle of each overlap.
-    const double pm = 10.0, header = 12.0, ov = profile.tileOverlapMm;
-    const double cw = pageW - 2 * pm, ch = pageH - 2 * pm - header;
-    const int nx = std::max(1, int(std::ceil((canvasW - ov) / (cw - ov) - 1e-9)));
-    const int ny = std::max(1, int(std::ceil((canvasH - ov) / (ch - ov) - 1e-9)));
+    // Tiles, with alignment crosses in the middle of each overlap.
+    const double pm = kTileMargin, header = kTileHeader, ov = overlap, cw = tileW, ch = tileH;
+    const auto [nx, ny] = tileGrid(chosen->size);
     std::vector<Vec2> marks;
     for (int i = 1; i < nx; ++i)
       for (int j = 0; j <= 2 * ny; ++j)
@@ -1112,6 +1271,8 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
         page.overlay.push_back(furniture);
         out.pages.push_back(page);
       }
+    out.messages.push_back("the pattern is tiled across " + std::to_string(out.pages.size()) +
+                           " pages of pattern.pdf; print at 100% and match the crosses");
   }
   return out;
 }

@@ -69,6 +69,56 @@ double distanceToPolylines(const std::vector<Polyline>& lines, const Vec2& q, bo
   return best;
 }
 
+bool overlapsAny(const Polyline& shape, const std::vector<Polyline>& others, double tol) {
+  const Box box = boxOf({shape});
+  return std::any_of(others.begin(), others.end(), [&](const Polyline& other) {
+    return box.overlaps(boxOf({other})) && overlapArea(shape, other) > tol;
+  });
+}
+
+BoxIndex::Span BoxIndex::span(const Box& box) const {
+  auto at = [&](double x) { return long(std::floor(x / cell_)); };
+  return {at(box.lo.x()), at(box.lo.y()), at(box.hi.x()), at(box.hi.y())};
+}
+
+namespace {
+long long cellKey(long x, long y) { return (static_cast<long long>(x) << 32) ^ (y & 0xffffffffLL); }
+}  // namespace
+
+void BoxIndex::insert(int id, const Box& box) {
+  if (boxes_.size() <= size_t(id)) boxes_.resize(size_t(id) + 1);
+  boxes_[size_t(id)] = box;
+  const Span s = span(box);
+  if (s.x1 - s.x0 >= kMaxCellsPerAxis || s.y1 - s.y0 >= kMaxCellsPerAxis) {
+    large_.push_back(id);
+    return;
+  }
+  for (long x = s.x0; x <= s.x1; ++x)
+    for (long y = s.y0; y <= s.y1; ++y) cells_[cellKey(x, y)].push_back(id);
+}
+
+std::vector<int> BoxIndex::overlapping(const Box& box) const {
+  std::vector<int> found = large_;
+  const Span s = span(box);
+  // A query larger than the grid would visit many empty cells: every filed box is a candidate.
+  if (s.x1 - s.x0 >= kMaxCellsPerAxis || s.y1 - s.y0 >= kMaxCellsPerAxis) {
+    found.clear();
+    for (size_t id = 0; id < boxes_.size(); ++id) found.push_back(int(id));
+  } else {
+    for (long x = s.x0; x <= s.x1; ++x)
+      for (long y = s.y0; y <= s.y1; ++y) {
+        const auto it = cells_.find(cellKey(x, y));
+        if (it != cells_.end()) found.insert(found.end(), it->second.begin(), it->second.end());
+      }
+  }
+  std::sort(found.begin(), found.end());
+  found.erase(std::unique(found.begin(), found.end()), found.end());
+  found.erase(std::remove_if(found.begin(), found.end(),
+                             [&](int id) { return !boxes_[size_t(id)].overlaps(box); }),
+              found.end());
+  return found;
+}
+
 Polyline convexHull(const std::vector<Polyline>& parts) {
   Polyline pts;
   for (const Polyline& part : parts) pts.insert(pts.end(), part.begin(), part.end());

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <polyclipping/clipper.hpp>
+#include <unordered_map>
 
 #include "export/internal.h"
 
@@ -33,6 +34,34 @@ bool insideRegion(const std::vector<Polyline>& loops, const Vec2& q);
 
 /// Distance from q to the nearest edge of the polylines, closed (`closed`) or open.
 double distanceToPolylines(const std::vector<Polyline>& lines, const Vec2& q, bool closed);
+
+/// Whether `shape` shares more than `tol` mm^2 with one of `others`; Clipper runs only for the
+/// others whose box meets the shape's.
+bool overlapsAny(const Polyline& shape, const std::vector<Polyline>& others, double tol);
+
+/// Boxes filed on a uniform grid of square cells, so that the boxes that may meet a given one are
+/// found among its neighbours rather than among all of them. Complete: boxes that share a point
+/// share a cell (or one of them is too large for the grid and is always a candidate).
+class BoxIndex {
+ public:
+  /// `cell` (mm): about the size of the boxes filed, so that each covers few cells.
+  explicit BoxIndex(double cell) : cell_(cell) {}
+  void insert(int id, const Box& box);
+  /// The ids of the filed boxes that share a point with `box`, ascending, each once.
+  std::vector<int> overlapping(const Box& box) const;
+
+ private:
+  // A box spanning more cells than this per axis is kept aside (a sheet-wide title line).
+  static constexpr long kMaxCellsPerAxis = 64;
+  struct Span {
+    long x0, y0, x1, y1;
+  };
+  Span span(const Box& box) const;
+  double cell_;
+  std::vector<Box> boxes_;  // by id
+  std::vector<int> large_;  // ids of boxes kept aside
+  std::unordered_map<long long, std::vector<int>> cells_;
+};
 
 /// The convex hull of the points of `parts`, counter-clockwise (Andrew's monotone chain).
 Polyline convexHull(const std::vector<Polyline>& parts);

@@ -102,6 +102,8 @@ struct FieldReader {
   }
 };
 
+constexpr TabSide kTabSides[] = {TabSide::A, TabSide::B, TabSide::Alternate, TabSide::None};
+
 const char* kKnownFields[] = {"version",        "name",           "description",
                               "kind",           "cut_color",      "score_color",
                               "engrave_color",  "cut_width_mm",   "score_width_mm",
@@ -109,7 +111,7 @@ const char* kKnownFields[] = {"version",        "name",           "description",
                               "perforation_gap_mm", "dash_mm",    "margin_mm",
                               "page",           "tile",           "tile_overlap_mm",
                               "registration",   "calibration_bar", "label_height_mm",
-                              "kerf_mm"};
+                              "kerf_mm",        "tabs"};
 
 Result<Profile> parseProfile(const std::string& text, const std::string& source) {
   json j;
@@ -162,6 +164,9 @@ Result<Profile> parseProfile(const std::string& text, const std::string& source)
   r.flag("calibration_bar", p.calibrationBar);
   r.number("label_height_mm", p.labelHeightMm, 0.5, 50);
   r.number("kerf_mm", p.kerfMm, 0, 5);
+  std::vector<std::pair<std::string, TabSide>> sides;
+  for (TabSide side : kTabSides) sides.emplace_back(tabSideName(side), side);
+  r.choice<TabSide>("tabs", p.tabs, sides);
   if (!r.status.isOk()) return r.status;
   if (!p.page.empty() && p.page != "A4" && p.page != "Letter")
     return invalid(source, "field \"page\" must be \"A4\", \"Letter\" or absent");
@@ -172,6 +177,22 @@ Result<Profile> parseProfile(const std::string& text, const std::string& source)
 }
 
 }  // namespace
+
+const char* tabSideName(TabSide side) {
+  switch (side) {
+    case TabSide::A: return "a";
+    case TabSide::B: return "b";
+    case TabSide::Alternate: return "alternate";
+    case TabSide::None: return "none";
+  }
+  return "?";
+}
+
+std::optional<TabSide> tabSideNamed(const std::string& name) {
+  for (TabSide side : kTabSides)
+    if (name == tabSideName(side)) return side;
+  return std::nullopt;
+}
 
 std::vector<std::string> listProfiles(const std::string& templatesDir) {
   std::vector<std::string> names;
@@ -217,6 +238,7 @@ Result<Profile> resolveProfile(const ExportOptions& options) {
   if (!loaded.isOk()) return loaded;
   Profile p = loaded.value();
   if (options.kerfMm >= 0) p.kerfMm = options.kerfMm;
+  if (options.tabSide) p.tabs = *options.tabSide;
   return p;
 }
 

@@ -39,6 +39,9 @@ std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName)
   j["sheet"] = {{"width", pattern.drawing.width}, {"height", pattern.drawing.height}};
   j["tick_spacing_mm"] = pattern.tickSpacing;
   j["kerf_mm"] = pattern.profile.kerfMm;
+  j["tabs_on"] = tabSideName(pattern.profile.tabs);
+  // Exported after a failed quality gate (--export-anyway): not for fabrication.
+  j["failed_gate"] = pattern.failedGate;
   json pieces = json::array();
   auto polylines = [](const std::vector<Polyline>& lines) {
     json out = json::array();
@@ -68,7 +71,8 @@ std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName)
   j["pieces"] = pieces;
   json ticks = json::array();
   for (const TickInfo& t : pattern.ticks)
-    ticks.push_back({{"id", t.id}, {"s", t.s}, {"a", point(t.onA)}, {"b", point(t.onB)}});
+    ticks.push_back(
+        {{"id", t.id}, {"s", t.s}, {"s_b", t.sB}, {"a", point(t.onA)}, {"b", point(t.onB)}});
   j["ticks"] = ticks;
   json tabs = json::array();
   for (const TabInfo& t : pattern.tabs)

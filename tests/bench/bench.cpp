@@ -2,18 +2,25 @@
 // `repeats` times and prints the median of each stage's wall time, the vertex count and the
 // figures, as a Markdown table for docs/benchmarks.md. Method and machine: docs/benchmarks.md.
 //
-//   dform_bench [--repeats N] [--smoke]
+//   dform_bench [--repeats N] [--smoke] [--export]
 //   dform_bench --scale [--repeats N] [--plot FILE.svg]   (scale.cpp)
+//
+// --export times only the export: each forward case is solved once and exported N times; then a
+// long seam, two flat 2.5 m squares (a 10 m seam, synthetic: tests/validate/models.h).
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "core/allocator.h"
 #include "export/exporter.h"
+#include "models.h"
 #include "pipeline/forward_pipeline.h"
 #include "pipeline/inverse_pipeline.h"
 #include "scale.h"
@@ -38,17 +45,92 @@ double median(std::vector<double> v) {
 
 std::string sample(const char* name) { return std::string(DFORM_SAMPLES_DIR) + "/forward/" + name; }
 
+// Wall and CPU time (s) of one exportAll with the laser profile on a sheet large enough for every
+// case (all five files written into `dir`); negative times when the export fails (said on
+// stderr). The export runs on one thread, so on a shared machine its CPU time is what its wall
+// time would be without the neighbours' load.
+struct ExportTime {
+  double wall = -1, cpu = -1;
+};
+ExportTime timeExport(const DForm& model, const std::filesystem::path& dir, double sheetW = 2000,
+                      double sheetH = 2000) {
+  ExportOptions options;
+  options.templatesDir = DFORM_TEMPLATES_DIR;
+  options.sheetWidthMm = sheetW;
+  options.sheetHeightMm = sheetH;
+  const auto start = std::chrono::steady_clock::now();
+  const std::clock_t cpuStart = std::clock();
+  Result<ExportSummary> exported = exportAll(model, options, dir.string());
+  const double cpu = double(std::clock() - cpuStart) / CLOCKS_PER_SEC;
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (exported.isOk()) return {wall, cpu};
+  std::fprintf(stderr, "dform_bench: export: %s\n", exported.status().message().c_str());
+  return {};
+}
+
+Result<ForwardRun> solveCase(const Case& c) {
+  ForwardJob job;
+  job.pieceA = sample(c.a);
+  job.pieceB = sample(c.b);
+  job.resolution = c.resolution;
+  job.startB.fraction = c.startB;
+  MessageSink sink;
+  return runForward(job, sink);
+}
+
+// Times `repeats` exports of `model` and prints its row; false when an export fails.
+bool exportRow(const std::string& name, const std::string& seam, const DForm& model, int repeats,
+               const std::filesystem::path& dir, double sheetW = 2000, double sheetH = 2000) {
+  std::vector<double> ms, cpuMs;
+  for (int r = 0; r < repeats; ++r) {
+    const ExportTime t = timeExport(model, dir, sheetW, sheetH);
+    if (t.wall < 0) return false;
+    ms.push_back(1000 * t.wall);
+    cpuMs.push_back(1000 * t.cpu);
+  }
+  std::printf("| %s | %s | %ld | %.1f | %.1f | %.1f | %.1f |\n", name.c_str(), seam.c_str(),
+              long(model.a.F.rows() + model.b.F.rows()), median(ms),
+              *std::min_element(ms.begin(), ms.end()), *std::max_element(ms.begin(), ms.end()),
+              median(cpuMs));
+  std::fflush(stdout);
+  return true;
+}
+
+// The export alone: each case solved once, then exported `repeats` times; then the long seam.
+int benchExport(const std::vector<Case>& cases, int repeats, const std::filesystem::path& dir) {
+  std::printf("| case | seam n | triangles | export ms, median | min | max | CPU ms, median |\n");
+  std::printf("|---|---|---|---|---|---|---|\n");
+  for (const Case& c : cases) {
+    Result<ForwardRun> run = solveCase(c);
+    if (!run.isOk()) {
+      std::fprintf(stderr, "dform_bench: %s\n", run.status().message().c_str());
+      return 1;
+    }
+    if (!exportRow(c.name, std::to_string(c.resolution), run.value().model, repeats, dir)) return 1;
+  }
+  const double side = 2500;
+  const Piece square = test::foldedSquare(50, side, {}, "A");
+  const DForm longSeam{square, test::mirroredCopy(square, "B")};
+  return exportRow("10 m seam: two 2.5 m squares", "200", longSeam, repeats, dir, 2 * side + 300,
+                   side + 200)
+             ? 0
+             : 1;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   keepFreedMemory();  // as build/dform does
   int repeats = 7;
-  bool smoke = false, scale = false;
+  bool smoke = false, exportOnly = false, scale = false;
   std::string plot;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--smoke")) {
       smoke = true;
       repeats = 1;
+    } else if (!std::strcmp(argv[i], "--export")) {
+      exportOnly = true;
     } else if (!std::strcmp(argv[i], "--scale")) {
       scale = true;
     } else if (!std::strcmp(argv[i], "--plot") && i + 1 < argc) {
@@ -56,7 +138,7 @@ int main(int argc, char** argv) {
     } else if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc) {
       repeats = std::max(1, std::atoi(argv[++i]));
     } else {
-      std::fprintf(stderr, "usage: dform_bench [--repeats N] [--smoke] | --scale [--repeats N] [--plot FILE.svg]\n");
+      std::fprintf(stderr, "usage: dform_bench [--repeats N] [--smoke] [--export] | --scale [--repeats N] [--plot FILE.svg]\n");
       return 2;
     }
   }
@@ -75,47 +157,38 @@ int main(int argc, char** argv) {
   };
   if (smoke) cases = {{"ellipses", "ellipses-a.svg", "ellipses-b.svg", 30, 0.0}};
 
+  // Per process: benches of other checkouts on the same machine use the temporary folder too.
+  const auto exportDir =
+      std::filesystem::temp_directory_path() / ("dform-bench-export-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(exportDir);
+  if (exportOnly) {
+    const int status = benchExport(cases, repeats, exportDir);
+    std::filesystem::remove_all(exportDir);
+    return status;
+  }
   std::printf("| case | seam n | vertices | mesh s | solve s | run s | export s | LM iters | "
               "factorisations | L_error %% | L_max %% | B_error |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-  const auto exportDir = std::filesystem::temp_directory_path() / "dform-bench-export";
-  std::filesystem::create_directories(exportDir);
   for (const Case& c : cases) {
-    ForwardJob job;
-    job.pieceA = sample(c.a);
-    job.pieceB = sample(c.b);
-    job.resolution = c.resolution;
-    job.startB.fraction = c.startB;
-    std::vector<double> mesh, solve, total, exportSeconds;
+    std::vector<double> mesh, solveSeconds, total, exportSeconds;
     ForwardRun last;
     for (int r = 0; r < repeats; ++r) {
-      MessageSink sink;
-      Result<ForwardRun> run = runForward(job, sink);
+      Result<ForwardRun> run = solveCase(c);
       if (!run.isOk()) {
         std::fprintf(stderr, "dform_bench: %s\n", run.status().message().c_str());
         return 1;
       }
       last = std::move(run).value();
       mesh.push_back(last.timings.mesh);
-      solve.push_back(last.timings.solve);
+      solveSeconds.push_back(last.timings.solve);
       total.push_back(last.timings.total);
-
-      ExportOptions options;
-      options.templatesDir = DFORM_TEMPLATES_DIR;
-      options.sheetWidthMm = options.sheetHeightMm = 2000;
-      const auto start = std::chrono::steady_clock::now();
-      Result<ExportSummary> exported = exportAll(last.model, options, exportDir.string());
-      exportSeconds.push_back(
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-      if (!exported.isOk()) {
-        std::fprintf(stderr, "dform_bench: export: %s\n", exported.status().message().c_str());
-        return 1;
-      }
+      exportSeconds.push_back(timeExport(last.model, exportDir).wall);
+      if (exportSeconds.back() < 0) return 1;
     }
     const Metrics& m = last.metrics;
     std::printf("| %s | %d | %ld | %.3f | %.3f | %.3f | %.3f | %zu | %d | %.3f | %.3f | %.1e |\n",
                 c.name, c.resolution, long(last.model.a.flat.rows() + last.model.b.flat.rows()),
-                median(mesh), median(solve), median(total), median(exportSeconds),
+                median(mesh), median(solveSeconds), median(total), median(exportSeconds),
                 last.summary.iterations.size(), last.summary.factorisations, 100 * m.L_error,
                 100 * m.L_max, m.B_error);
     std::fflush(stdout);

@@ -89,6 +89,12 @@ class CliTest : public ::testing::Test {
   fs::path dir_;
 };
 
+std::string readFile(const fs::path& file) {
+  std::ostringstream text;
+  text << std::ifstream(file, std::ios::binary).rdbuf();
+  return text.str();
+}
+
 // report.html opens offline: nothing is fetched (no script, no src/href, no CSS url) and every
 // picture is inline SVG. Returns the page.
 std::string expectSelfContainedReport(const std::string& dir, const nlohmann::json& report) {
@@ -193,6 +199,11 @@ TEST_F(CliTest, ForwardWritesEveryFileAndValidates) {
     EXPECT_TRUE(report["timings"][key].is_number()) << key;
   EXPECT_LE(report["metrics"]["L_error"].get<double>(), 0.005);
   EXPECT_EQ(schemaCheck((fs::path(out) / "report.json").string()), 0);
+  // The glTF preview carries the curvature map by default; the pattern is fit to cut.
+  EXPECT_NE(readFile(fs::path(out) / "dform.glb").find("\"COLOR_0\""), std::string::npos);
+  const nlohmann::json pattern = nlohmann::json::parse(std::ifstream(fs::path(out) / "pattern.json"));
+  EXPECT_FALSE(pattern["failed_gate"].get<bool>());
+  EXPECT_EQ(pattern["job"], "ellipses-a");
   const std::string html = expectSelfContainedReport(out, report);
   EXPECT_NE(html.find("PASSED"), std::string::npos);
   EXPECT_NE(html.find("id=\"A-cut\""), std::string::npos) << "the flat pattern, inline";
@@ -262,6 +273,9 @@ TEST_F(CliTest, AFailedGateKeepsTheReportAndReleasesNothing) {
   std::ostringstream svg;
   svg << std::ifstream(fs::path(out) / "pattern.svg").rdbuf();
   EXPECT_NE(svg.str().find("FAILED GATE"), std::string::npos);
+  const nlohmann::json reexported = nlohmann::json::parse(std::ifstream(fs::path(out) / "pattern.json"));
+  EXPECT_TRUE(reexported["failed_gate"].get<bool>());
+  EXPECT_EQ(reexported["job"], "ellipses-a") << "the job's name, not the folder's";
   std::ostringstream page;
   page << std::ifstream(fs::path(out) / "report.html").rdbuf();
   EXPECT_NE(page.str().find("id=\"A-cut\""), std::string::npos) << "the report shows the new pattern";
@@ -277,6 +291,87 @@ TEST_F(CliTest, AFailedGateKeepsTheReportAndReleasesNothing) {
   const nlohmann::json markedReport = nlohmann::json::parse(std::ifstream(fs::path(anyway) / "report.json"));
   EXPECT_EQ(markedReport["gate"]["checks"].back()["name"], "pattern_layout");
   EXPECT_EQ(markedReport["gate"]["checks"].back()["verdict"], "pass");
+  const nlohmann::json markedPattern = nlohmann::json::parse(std::ifstream(fs::path(anyway) / "pattern.json"));
+  EXPECT_TRUE(markedPattern["failed_gate"].get<bool>());
+}
+
+TEST_F(CliTest, ExportOptionsOnTheCommandLine) {
+  const std::string pieces = sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  const std::string out = path("out");
+  const Outcome o = run("forward " + pieces + " --resolution 30 -q --tabs alternate --tab-width 8" +
+                        " --tick-spacing 25 --gltf -o " + out);
+  ASSERT_EQ(o.exitCode, 0) << o.err;
+  const nlohmann::json pattern = nlohmann::json::parse(std::ifstream(fs::path(out) / "pattern.json"));
+  EXPECT_EQ(pattern["tabs_on"], "alternate");
+  EXPECT_EQ(pattern["tick_spacing_mm"].get<double>(), 25.0);
+  int onB = 0;
+  for (const auto& tab : pattern["tabs"]) {
+    onB += tab["piece"] == "B";
+    EXPECT_LE(tab["width"].get<double>(), 8.0);
+  }
+  EXPECT_GT(onB, 3) << "tabs on B too";
+  EXPECT_EQ(pattern["tabs"][0]["width"].get<double>(), 8.0);
+  EXPECT_NEAR(pattern["ticks"][1]["s"].get<double>(), 25.0, 1e-9);
+  // A text glTF instead of the binary one, with the curvature colours.
+  EXPECT_FALSE(fs::exists(fs::path(out) / "dform.glb"));
+  const nlohmann::json gltf = nlohmann::json::parse(std::ifstream(fs::path(out) / "dform.gltf"));
+  EXPECT_TRUE(gltf["meshes"][0]["primitives"][0]["attributes"].contains("COLOR_0"));
+  // Re-exported without tabs, as a .glb again.
+  ASSERT_EQ(run("export " + out + " --tabs none -q").exitCode, 0);
+  const nlohmann::json bare = nlohmann::json::parse(std::ifstream(fs::path(out) / "pattern.json"));
+  EXPECT_TRUE(bare["tabs"].empty());
+  EXPECT_TRUE(fs::exists(fs::path(out) / "dform.glb"));
+  EXPECT_FALSE(fs::exists(fs::path(out) / "dform.gltf")) << "the previous preview is replaced";
+
+  // Bad values are usage errors, found before anything is solved or written.
+  const std::string bad = path("bad");
+  expectError(run("forward " + pieces + " --tabs both -o " + bad), 2, "--tabs must be a, b, alternate or none");
+  expectError(run("forward " + pieces + " --tab-width 60 -o " + bad), 2, "tab width");
+  expectError(run("forward " + pieces + " --tab-width wide -o " + bad), 2, "--tab-width");
+  expectError(run("forward " + pieces + " --tick-spacing 0.5 -o " + bad), 2, "tick spacing");
+  expectError(run("run " + sample("forward/ellipse-twin.json") + " --tick-spacing -3 -o " + bad), 2,
+              "tick spacing");
+  EXPECT_FALSE(fs::exists(bad));
+  expectError(run("export " + out + " --tabs left"), 2, "--tabs");
+}
+
+TEST_F(CliTest, PrintAndCutPutsEachPieceOnItsOwnPage) {
+  // A 160 x 100 mm ellipse and a circle of its perimeter (413.8 mm): each fits an A4 page's
+  // registration area, the two together do not.
+  const std::string a = write("a.svg", svg("<ellipse cx='150' cy='150' rx='80' ry='50'/>"));
+  const std::string b = write("b.svg", svg("<circle cx='150' cy='150' r='65.86'/>"));
+  const std::string out = path("out");
+  const Outcome o = run("forward " + a + " " + b + " --resolution 30 -q --profile print-and-cut -o " + out);
+  ASSERT_EQ(o.exitCode, 0) << o.err;
+  const nlohmann::json pattern = nlohmann::json::parse(std::ifstream(fs::path(out) / "pattern.json"));
+  ASSERT_EQ(pattern["pages"].size(), 2u);
+  EXPECT_EQ(pattern["pages"][1]["origin"][0].get<double>(), 210.0);
+  const std::string svgText = readFile(fs::path(out) / "pattern.svg");
+  EXPECT_NE(svgText.find("id=\"regmark-square-page-2\""), std::string::npos);
+}
+
+TEST_F(CliTest, AReportThatCannotBeWrittenReleasesNoCuttingFile) {
+  // report.json cannot be put in place (a folder holds its name): the run fails before any
+  // cutting file is written.
+  const std::string out = path("out");
+  fs::create_directories(fs::path(out) / "report.json" / "blocked");
+  const Outcome o = run("forward " + sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg") +
+                        " --resolution 30 -q -o " + out);
+  expectError(o, 6, "report.json");
+  for (const char* name : {"pattern.svg", "pattern.pdf", "pattern.json", "dform.stl", "dform.glb"})
+    EXPECT_FALSE(fs::exists(fs::path(out) / name)) << name;
+
+  // A cutting file that cannot be written (pattern.pdf, the second): none is left, and the report
+  // says why.
+  const std::string second = path("second");
+  fs::create_directories(fs::path(second) / "pattern.pdf" / "blocked");
+  const Outcome p = run("forward " + sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg") +
+                        " --resolution 30 -q -o " + second);
+  EXPECT_EQ(p.exitCode, 6) << p.err;
+  for (const char* name : {"pattern.svg", "pattern.json", "dform.stl", "dform.glb"})
+    EXPECT_FALSE(fs::exists(fs::path(second) / name)) << name;
+  const std::string report = readFile(fs::path(second) / "report.json");
+  EXPECT_NE(report.find("export: " + second + "/pattern.pdf"), std::string::npos) << report;
 }
 
 TEST_F(CliTest, ReportsFollowTheirSchema) {

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,21 +35,21 @@ int render(const std::string& outDir, const std::string& imagesDir) {
   struct Job {
     std::string profile, image;
     double sheetW, sheetH, scale;
-    bool alternate;
+    std::optional<dform::TabSide> tabs;  // unset: the profile's
     Model model = Model::Ellipses;
   };
   const std::vector<Job> jobs = {
-      {"laser", "export-laser", 400, 250, 1.0, false},
-      {"laser-ponoko", "export-laser-ponoko", 400, 250, 1.0, false},
-      {"laser-lightburn", "export-laser-lightburn", 400, 250, 1.0, true},
-      {"laser-card", "export-laser-card", 400, 250, 1.0, false},
-      {"print", "export-print", 0, 0, 1.0, false},
-      {"print", "export-print-tiled", 0, 0, 2.0, false},
-      {"print-and-cut", "export-print-and-cut", 0, 0, 0.6, false},
-      {"print-and-cut-cricut", "export-print-and-cut-cricut", 0, 0, 0.7, false},
-      {"laser", "export-laser-anti", 300, 180, 1.0, false, Model::Anti},
-      {"laser", "export-laser-demi", 300, 180, 1.0, true, Model::Demi},
-      {"print", "export-print-creases", 0, 0, 1.0, false, Model::Creased},
+      {"laser", "export-laser", 400, 250, 1.0, {}},
+      {"laser-ponoko", "export-laser-ponoko", 400, 250, 1.0, {}},
+      {"laser-lightburn", "export-laser-lightburn", 400, 250, 1.0, {}},
+      {"laser-card", "export-laser-card", 400, 250, 1.0, {}},
+      {"print", "export-print", 0, 0, 1.0, {}},
+      {"print", "export-print-tiled", 0, 0, 2.0, {}},
+      {"print-and-cut", "export-print-and-cut", 0, 0, 0.6, {}},
+      {"print-and-cut-cricut", "export-print-and-cut-cricut", 0, 0, 0.7, {}},
+      {"laser", "export-laser-anti", 300, 180, 1.0, {}, Model::Anti},
+      {"laser", "export-laser-demi", 300, 180, 1.0, dform::TabSide::Alternate, Model::Demi},
+      {"print", "export-print-creases", 0, 0, 1.0, {}, Model::Creased},
   };
   auto model = [](const Job& job) {
     namespace t = dform::test;
@@ -68,7 +69,7 @@ int render(const std::string& outDir, const std::string& imagesDir) {
     const dform::DForm m = model(job);
     dform::ExportOptions o = baseOptions();
     o.profile = job.profile;
-    o.alternateTabs = job.alternate;
+    o.tabSide = job.tabs;
     if (job.sheetW > 0) {
       o.sheetWidthMm = job.sheetW;
       o.sheetHeightMm = job.sheetH;

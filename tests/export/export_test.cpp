@@ -96,6 +96,7 @@ TEST(ExportPattern, SvgIsTrueScaleInMillimetresWithLayersAndIds) {
   for (const std::string f :
        {"pattern.svg", "pattern.pdf", "pattern.json", "dform.stl", "dform.glb"})
     EXPECT_TRUE(fs::exists(e.dir + "/" + f)) << f;
+  EXPECT_FALSE(e.sidecar["failed_gate"].get<bool>()) << "fit for fabrication";
 }
 
 TEST(ExportPattern, LaserUsesOnlyTheThreeOperationColoursAndHairlines) {
@@ -185,6 +186,73 @@ TEST(ExportPattern, MatchingTicksSitAtTheSameSeamArcLength) {
   EXPECT_EQ(checked, int(e.sidecar["ticks"].size()));
 }
 
+// The synthetic D-Form with B's flat seam stretched by `stretch` (relative) and its points slid
+// along the circle by up to `slide` mm, unevenly: two flat seams of slightly different lengths and
+// partitions, as a solve may leave them (the gate allows 0.1 %), on the same 3D seam.
+DForm unevenSeams(double stretch, double slide) {
+  DForm d = ellipseCircleDForm();
+  for (int v : d.b.seam) {
+    const Vec2 p = d.b.flat.row(v).transpose();
+    const double r = p.norm(), angle = std::atan2(p.y(), p.x());
+    const double phi = angle + slide / r * std::sin(3 * angle);
+    d.b.flat.row(v) << (1 + stretch) * r * std::cos(phi), (1 + stretch) * r * std::sin(phi);
+  }
+  return d;
+}
+
+// The 3D seam point at the sheet point q of a piece's seam outline (pattern.json's, in the order
+// of piece.seam): the nearest outline segment i..i+1 and the fraction along it, interpolated
+// between the 3D points of seam[i] and seam[i + 1]. Also returns the distance from q to the
+// outline.
+std::pair<Eigen::Vector3d, double> seamPoint3d(const Piece& piece, const Polyline& outline,
+                                               const Vec2& q) {
+  double best = 1e300;
+  Eigen::Vector3d at = Eigen::Vector3d::Zero();
+  const size_t n = outline.size();
+  for (size_t i = 0; i < n; ++i) {
+    const Vec2 a = outline[i], ab = outline[(i + 1) % n] - a;
+    const double f = std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+    const double dist = (a + f * ab - q).norm();
+    if (dist < best) {
+      best = dist;
+      at = (1 - f) * piece.shape.row(piece.seam[i]).transpose() +
+           f * piece.shape.row(piece.seam[(i + 1) % n]).transpose();
+    }
+  }
+  return {at, best};
+}
+
+TEST(ExportPattern, PartnerTicksMarkTheSamePointOfThe3DSeam) {
+  struct Case {
+    double stretch, slide;
+    double arcTol;  // partners' flat arc lengths agree within this (mm)
+  };
+  // A's seam is 410 mm long. Seams 0.1 % apart (0.4 mm): partners differ in arc length by at
+  // most that difference. Seams 0.005 % apart with points slid by 0.03 mm: within the issue's
+  // 0.1 mm.
+  for (const Case& c : {Case{1e-3, 0.0, 0.45}, Case{5e-5, 0.03, 0.1}}) {
+    const DForm model = unevenSeams(c.stretch, c.slide);
+    const Exported e = exportTo("partners", model, options());
+    const Polyline outline[2] = {toPolyline(e.sidecar["pieces"][0]["outline"]),
+                                 toPolyline(e.sidecar["pieces"][1]["outline"])};
+    const double LA = length(outline[0], true), LB = length(outline[1], true);
+    EXPECT_NEAR(LB / LA - 1, c.stretch, 1e-5);
+    ASSERT_GT(e.sidecar["ticks"].size(), 15u);
+    for (const auto& tick : e.sidecar["ticks"]) {
+      const Vec2 onA = toPolyline(json::array({tick["a"]}))[0];
+      const Vec2 onB = toPolyline(json::array({tick["b"]}))[0];
+      const auto [pA, dA] = seamPoint3d(model.a, outline[0], onA);
+      const auto [pB, dB] = seamPoint3d(model.b, outline[1], onB);
+      EXPECT_LT(std::max(dA, dB), 1e-6) << "tick " << tick["id"] << " is on its outline";
+      EXPECT_LT((pA - pB).norm(), 1e-6) << "tick " << tick["id"];
+      const double sA = arcLengthOf(outline[0], onA).first, sB = arcLengthOf(outline[1], onB).first;
+      EXPECT_NEAR(sA, tick["s"].get<double>(), 1e-6);
+      EXPECT_NEAR(sB, tick["s_b"].get<double>(), 1e-6);
+      EXPECT_LE(std::abs(sA - sB), c.arcTol) << "tick " << tick["id"];
+    }
+  }
+}
+
 TEST(ExportPattern, LabelsAreInsideTheirPieceAndReadable) {
   const DForm model = ellipseCircleDForm();
   const Exported e = exportTo("labels", model, options());
@@ -205,19 +273,22 @@ TEST(ExportPattern, LabelsAreInsideTheirPieceAndReadable) {
 
 TEST(ExportPattern, TabsOverlapNeitherEachOtherNorTheirPiece) {
   const DForm model = ellipseCircleDForm(64, 8, 90, 35);  // a flatter ellipse: tighter curves
-  for (bool alternate : {false, true}) {
+  for (TabSide side : {TabSide::A, TabSide::B, TabSide::Alternate}) {
     ExportOptions o = options();
-    o.alternateTabs = alternate;
-    const Exported e = exportTo(alternate ? "tabs-alt" : "tabs", model, o);
+    o.tabSide = side;
+    const Exported e = exportTo(std::string("tabs-") + tabSideName(side), model, o);
+    EXPECT_EQ(e.sidecar["tabs_on"], tabSideName(side));
     std::vector<Polyline> tabs[2];
     for (const auto& t : e.sidecar["tabs"])
       tabs[t["piece"] == "A" ? 0 : 1].push_back(toPolyline(t["polygon"]));
-    EXPECT_GT(tabs[0].size(), 5u);
-    if (alternate) {
+    if (side == TabSide::Alternate) {
+      EXPECT_GT(tabs[0].size(), 5u);
       EXPECT_GT(tabs[1].size(), 5u);
       EXPECT_LE(std::abs(int(tabs[0].size()) - int(tabs[1].size())), 1);
     } else {
-      EXPECT_TRUE(tabs[1].empty()) << "by default all tabs are on A";
+      const int on = side == TabSide::A ? 0 : 1;
+      EXPECT_GT(tabs[on].size(), 5u);
+      EXPECT_TRUE(tabs[1 - on].empty()) << "every tab on " << tabSideName(side);
     }
     for (int p = 0; p < 2; ++p) {
       const Polyline outline = toPolyline(e.sidecar["pieces"][p]["outline"]);
@@ -432,6 +503,79 @@ TEST(ExportPattern, PrintAndCutHasSilhouetteMarksAndSeparateLayers) {
   }
 }
 
+TEST(ExportPattern, PrintAndCutGivesEachPieceItsOwnPageWhenTheyDoNotFitOne) {
+  // A 160 x 100 mm ellipse and a 131 mm circle, tabs on A: each fits the registration area of an
+  // A4 (140 x 227 mm) or Letter page, not both together.
+  const DForm model = ellipseCircleDForm();
+  struct Case {
+    const char* profile;
+    double W, H;  // the page (mm)
+    Vec2 lo, hi;  // the registration (print-then-cut) area on it
+  };
+  const double cw = 6.75 * 25.4, ch = 9.25 * 25.4;
+  const Case cases[] = {
+      {"print-and-cut", 210, 297, Vec2(35, 35), Vec2(175, 262)},
+      {"print-and-cut-cricut", 215.9, 279.4, Vec2((215.9 - cw) / 2, (279.4 - ch) / 2),
+       Vec2((215.9 + cw) / 2, (279.4 + ch) / 2)}};
+  for (const Case& c : cases) {
+    const Exported e = exportTo(std::string("pnc-pages-") + c.profile, model, options(c.profile));
+    ASSERT_EQ(e.summary.pages, 2) << c.profile;
+    ASSERT_EQ(e.sidecar["pages"].size(), 2u);
+    for (int k = 0; k < 2; ++k) {
+      const auto& page = e.sidecar["pages"][k];
+      EXPECT_DOUBLE_EQ(page["width"].get<double>(), c.W);
+      EXPECT_DOUBLE_EQ(page["height"].get<double>(), c.H);
+      EXPECT_DOUBLE_EQ(page["origin"][0].get<double>(), k * c.W) << "pages side by side";
+      EXPECT_DOUBLE_EQ(page["origin"][1].get<double>(), 0);
+      const std::string suffix = k == 0 ? "" : "-page-2";
+      EXPECT_NE(e.svg.find("title" + suffix), nullptr) << c.profile << " page " << k + 1;
+      if (std::string(c.profile) == "print-and-cut") {
+        for (const char* mark : {"regmark-square", "regmark-top-right", "regmark-bottom-left"})
+          EXPECT_NE(e.svg.find(mark + suffix), nullptr) << mark << suffix;
+      }
+    }
+    // Every path lies on one page; its artwork inside that page's registration area, the marks
+    // at the page's corners.
+    int pieceOnPage[2] = {-1, -1};
+    for (const auto& p : e.svg.paths) {
+      const int k = p.parts[0][0].x() < c.W ? 0 : 1;
+      const Vec2 origin(k * c.W, 0);
+      const bool mark = p.layer == "Regmarks";
+      const Vec2 lo = origin + (mark ? Vec2(0, 0) : c.lo),
+                 hi = origin + (mark ? Vec2(c.W, c.H) : c.hi);
+      for (const auto& part : p.parts)
+        for (const Vec2& q : part) {
+          EXPECT_TRUE(q.x() >= lo.x() - 1e-9 && q.x() <= hi.x() + 1e-9) << p.id << " x " << q.x();
+          EXPECT_TRUE(q.y() >= lo.y() - 1e-9 && q.y() <= hi.y() + 1e-9) << p.id << " y " << q.y();
+        }
+      if (p.id == "A-cut") pieceOnPage[0] = k;
+      if (p.id == "B-cut") pieceOnPage[1] = k;
+    }
+    EXPECT_EQ(pieceOnPage[0], 0);
+    EXPECT_EQ(pieceOnPage[1], 1);
+    const fab::PatternBuild pattern = build(model, options(c.profile));
+    EXPECT_EQ(fab::checkLayout(pattern).problems(), 0) << fab::checkLayout(pattern).example;
+    if (haveProgram("pdfinfo")) {
+      std::string out;
+      ASSERT_EQ(run("pdfinfo '" + e.dir + "/pattern.pdf'", &out), 0) << out;
+      EXPECT_EQ(pdfPages(out), 2) << out;
+      EXPECT_NEAR(pdfPageSize(out).first, c.W * 72 / 25.4, 0.01) << out;
+    }
+  }
+  // A piece that does not fit a page even alone is refused, with the size it needs: here the
+  // circle with the tabs on it (131 + 2 x 6 mm, ticks and the 35 mm borders: over 210 mm).
+  ExportOptions o = options("print-and-cut");
+  o.tabSide = TabSide::B;
+  auto refused = exportAll(model, o, freshDir("pnc-refused"));
+  ASSERT_FALSE(refused.isOk());
+  EXPECT_EQ(refused.status().code(), ErrorCode::Usage);
+  const std::string& message = refused.status().message();
+  EXPECT_EQ(message.rfind("piece B does not fit the A4 page's cutting area: it needs at least", 0),
+            0u)
+      << message;
+  EXPECT_GT(std::stod(message.substr(message.find("at least") + 9)), 210.0) << message;
+}
+
 TEST(ExportPattern, CricutArtworkStaysInThePrintThenCutArea) {
   const DForm model = ellipseCircleDForm(64, 8, 56, 35, 20);
   const Exported e = exportTo("cricut", model, options("print-and-cut-cricut"));
@@ -525,6 +669,17 @@ TEST(ExportPattern, BadOptionsAreUsageErrors) {
   o = options();
   o.tabWidthMm = -1;
   EXPECT_EQ(exportAll(model, o, dir).status().code(), ErrorCode::Usage);
+  // The same values are refused without a model, as a caller checks them first.
+  for (double width : {-1.0, 50.5, std::nan("")}) {
+    o.tabWidthMm = width;
+    const Status s = checkExportOptions(o);
+    EXPECT_EQ(s.code(), ErrorCode::Usage) << width;
+    EXPECT_NE(s.message().find("tab width"), std::string::npos) << s.message();
+  }
+  o = options();
+  o.tickSpacingMm = 0.5;
+  EXPECT_NE(checkExportOptions(o).message().find("tick spacing"), std::string::npos);
+  EXPECT_TRUE(checkExportOptions(options()).isOk());
   o = options();
   o.profile = "no-such-profile";
   auto r = exportAll(model, o, dir);
@@ -550,6 +705,7 @@ TEST(ExportPattern, FailedGateIsMarkedOnEveryOutput) {
   EXPECT_NE(e.svg.find("failed-gate"), nullptr);
   EXPECT_NE(e.svg.find("A-failed-gate"), nullptr);
   EXPECT_NE(e.svg.find("B-failed-gate"), nullptr);
+  EXPECT_TRUE(e.sidecar["failed_gate"].get<bool>());
   EXPECT_NE(readText(e.dir + "/pattern.svg").find("FAILED GATE"), std::string::npos);  // <desc>
   EXPECT_NE(readText(e.dir + "/dform.stl").substr(0, 80).find("FAILED GATE"), std::string::npos);
   EXPECT_NE(readText(e.dir + "/dform.glb").find("FAILED GATE"), std::string::npos);

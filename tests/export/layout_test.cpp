@@ -36,13 +36,13 @@ Vec2 centroid(const Polyline& line) {
 TEST(ExportLayout, TheExportersPatternsLayOutCleanly) {
   const DForm model = ellipseCircleDForm(64, 8, 90, 35);  // tight curves: many short tabs
   for (const char* profile : {"laser", "laser-card", "print", "print-letter"})
-    for (bool alternate : {false, true}) {
+    for (TabSide side : {TabSide::A, TabSide::B, TabSide::Alternate}) {
       ExportOptions o = options(profile);
-      o.alternateTabs = alternate;
+      o.tabSide = side;
       Result<PreparedExport> prepared = prepareExport(model, o);
       ASSERT_TRUE(prepared.isOk()) << prepared.status().message();
       const LayoutFindings& f = prepared.value().layout;
-      EXPECT_EQ(f.problems(), 0) << profile << (alternate ? " alternating: " : ": ") << f.example;
+      EXPECT_EQ(f.problems(), 0) << profile << " tabs " << tabSideName(side) << ": " << f.example;
       EXPECT_TRUE(f.example.empty());
     }
 }

@@ -1,16 +1,16 @@
 // 3D previews read back: binary STL (count, size, bounding box, outward normals) and glTF
 // (tinygltf load: meshes, units, +Y up; the Khronos validator when node has it).
 #include <gtest/gtest.h>
-
-#include <cstring>
-#include <filesystem>
+#include <tiny_gltf.h>
 
 #include <Eigen/Geometry>
-#include <tiny_gltf.h>
+#include <cstring>
+#include <filesystem>
 
 #include "export/exporter.h"
 #include "synthetic.h"
 #include "test_util.h"
+#include "validate/metrics.h"
 
 namespace dform::test {
 namespace {
@@ -110,11 +110,17 @@ void validate(const std::string& file, int triangles) {
   EXPECT_NE(out.find("\"totalTriangleCount\": " + std::to_string(triangles)), std::string::npos) << out;
 }
 
+// The curvature colours the command line exports: validate's curvature map of each piece.
+void colourByCurvatureMap(const DForm& model, ExportOptions& o) {
+  const Eigen::VectorXd a = curvatureMap(model.a), b = curvatureMap(model.b);
+  o.curvatureA.assign(a.data(), a.data() + a.size());
+  o.curvatureB.assign(b.data(), b.data() + b.size());
+}
+
 TEST(ExportMesh, GlbPassesTheKhronosValidator) {
   const DForm model = ellipseCircleDForm();
   ExportOptions o = options();
-  o.curvatureA = fakeCurvature(model.a);
-  o.curvatureB = fakeCurvature(model.b);
+  colourByCurvatureMap(model, o);
   validate(exportModel("validate-glb", model, o) + "/dform.glb", int(2 * model.a.F.rows()));
 }
 
@@ -122,6 +128,7 @@ TEST(ExportMesh, TextGltfPassesTheKhronosValidator) {
   ExportOptions o = options();
   o.gltfBinary = false;
   const DForm model = ellipseCircleDForm();
+  colourByCurvatureMap(model, o);
   validate(exportModel("validate-gltf", model, o) + "/dform.gltf", int(2 * model.a.F.rows()));
 }
 

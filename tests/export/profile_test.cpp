@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "export/exporter.h"
+#include "synthetic.h"
 #include "test_util.h"
 
 namespace dform::test {
@@ -55,6 +56,31 @@ TEST(ExportProfile, ProfileByPathAndLowerCaseColour) {
   EXPECT_EQ(p.value().kind, ProfileKind::Laser);  // defaults for what is left out
 }
 
+TEST(ExportProfile, TheTabSideIsAProfileFieldThatAnOptionOverrides) {
+  EXPECT_EQ(loadProfile("laser", DFORM_TEMPLATES_DIR).value().tabs, TabSide::A);
+  EXPECT_EQ(loadProfile("laser-lightburn", DFORM_TEMPLATES_DIR).value().tabs, TabSide::Alternate);
+  for (TabSide side : {TabSide::A, TabSide::B, TabSide::Alternate, TabSide::None}) {
+    const std::string name = tabSideName(side);
+    EXPECT_EQ(tabSideNamed(name), side) << name;
+    auto p = loadProfile(writeProfile("tabs-" + name, R"({"tabs": ")" + name + R"("})"), "");
+    ASSERT_TRUE(p.isOk()) << p.status().message();
+    EXPECT_EQ(p.value().tabs, side) << name;
+  }
+  EXPECT_FALSE(tabSideNamed("both"));
+  // As shipped, laser-lightburn alternates: tabs on both pieces, by turns along the seam.
+  const DForm model = ellipseCircleDForm();
+  ExportOptions o = options("laser-lightburn");
+  const fab::PatternBuild shipped = build(model, o);
+  int perPiece[2] = {0, 0};
+  for (size_t k = 0; k < shipped.tabs.size(); ++k) ++perPiece[shipped.tabs[k].piece];
+  for (size_t k = 1; k < shipped.tabs.size(); ++k)
+    EXPECT_NE(shipped.tabs[k].piece, shipped.tabs[k - 1].piece) << "tab " << k;
+  EXPECT_GT(perPiece[0], 5);
+  EXPECT_GT(perPiece[1], 5);
+  o.tabSide = TabSide::None;  // the option wins over the profile
+  EXPECT_TRUE(build(model, o).tabs.empty());
+}
+
 TEST(ExportProfile, BadProfilesNameTheFileAndField) {
   struct Case {
     const char* name;
@@ -71,6 +97,7 @@ TEST(ExportProfile, BadProfilesNameTheFileAndField) {
       {"bad-kind", R"({"kind": "plasma"})", ErrorCode::InputInvalid, "kind"},
       {"bad-page", R"({"kind": "print", "page": "A3"})", ErrorCode::InputInvalid, "page"},
       {"pnc-no-page", R"({"kind": "print-and-cut"})", ErrorCode::InputInvalid, "page"},
+      {"bad-tabs", R"({"tabs": "both"})", ErrorCode::InputInvalid, "tabs"},
       {"not-json", R"({"kind": )", ErrorCode::InputUnreadable, "not JSON"},
       {"not-object", R"([1, 2])", ErrorCode::InputInvalid, "object"},
   };

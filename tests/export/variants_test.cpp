@@ -118,7 +118,7 @@ TEST(ExportVariants, TicksAndTabsFollowTheSeamIntoTheHole) {
 TEST(ExportVariants, DemiDFormTabsPointOutOfTheDiscAndIntoTheAnnulusHole) {
   const DForm model = demiDForm();
   ExportOptions o = options();
-  o.alternateTabs = true;
+  o.tabSide = TabSide::Alternate;
   const fab::PatternBuild pattern = build(model, o);
   EXPECT_FALSE(pattern.pieces[0].seamIsHole);
   EXPECT_TRUE(pattern.pieces[1].seamIsHole);
