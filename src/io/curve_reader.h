@@ -19,4 +19,9 @@ struct CurveReadOptions {
 /// repeated consecutive points, self-intersection, faces but no polyline, malformed file.
 Result<Curve3> readCurve(const std::string& path, const CurveReadOptions& options = {});
 
+/// The same from the file's text; `source` names it in messages and its extension (.obj or
+/// .json) gives the format.
+Result<Curve3> parseCurve(const std::string& text, const std::string& source,
+                          const CurveReadOptions& options = {});
+
 }  // namespace dform

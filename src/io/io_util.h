@@ -1,21 +1,12 @@
-// Internal helpers shared by the io readers and writers: whole-file reading with a size limit,
-// number formatting for messages and files, unit names. Not part of the public io API.
+// Internal helpers shared by the io readers and writers: number formatting for messages and files,
+// unit names. Not part of the public io API.
 #pragma once
 
 #include <Eigen/Core>
 #include <optional>
 #include <string>
 
-#include "core/status.h"
-
 namespace dform::io_detail {
-
-/// Input files larger than this are refused: no outline or curve needs it, and reading an
-/// arbitrary huge file into memory would be a denial of service.
-constexpr std::size_t kMaxInputBytes = std::size_t(64) << 20;
-
-/// Reads the whole file, or InputUnreadable naming `path` (missing, a folder, unreadable, too big).
-Result<std::string> readInputFile(const std::string& path);
 
 /// Lower-case extension without the dot ("svg"), empty when there is none.
 std::string lowerExtension(const std::string& path);

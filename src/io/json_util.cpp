@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/message_text.h"
 #include "io/io_util.h"
 
 namespace dform::io_detail {
@@ -10,12 +11,8 @@ Result<nlohmann::json> parseJson(const std::string& path, const std::string& tex
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {
-    std::string reason = e.what();
-    // Drop the "[json.exception.parse_error.101] " tag; keep the message on one line.
-    if (const auto close = reason.find("] "); reason.rfind("[json.", 0) == 0 && close != std::string::npos)
-      reason.erase(0, close + 2);
-    std::replace(reason.begin(), reason.end(), '\n', ' ');
-    return Status{ErrorCode::InputUnreadable, path + ": not valid JSON (" + reason + ")"};
+    return Status{ErrorCode::InputUnreadable,
+                  path + ": not valid JSON (" + parserReason(e.what()) + ")"};
   }
 }
 
@@ -27,8 +24,7 @@ Result<double> jsonUnitScale(const std::string& path, const nlohmann::json& doc)
   if (!scale)
     return Status{ErrorCode::InputUnreadable,
                   path + ": \"units\" must be \"mm\", \"cm\" or \"in\" (found " +
-                      // dump() recurses: only show scalars, never a deeply nested value
-                      (units.is_primitive() ? units.dump() : std::string("a ") + units.type_name()) + ")"};
+                      describeJsonValue(units) + ")"};
   return *scale;
 }
 
@@ -36,16 +32,20 @@ Result<Eigen::MatrixXd> jsonPointList(const std::string& path, const nlohmann::j
                                       const std::string& what, int dimension, double scale) {
   const std::string shape = dimension == 2 ? "[x, y]" : "[x, y, z]";
   if (!list.is_array())
-    return Status{ErrorCode::InputUnreadable, path + ": " + what + " is not a list of " + shape + " points"};
+    return Status{ErrorCode::InputUnreadable,
+                  path + ": " + what + " is not a list of " + shape + " points"};
   Eigen::MatrixXd P(Eigen::Index(list.size()), dimension);
   for (std::size_t i = 0; i < list.size(); ++i) {
     const nlohmann::json& p = list[i];
-    const bool ok = p.is_array() && p.size() == std::size_t(dimension) &&
-                    std::all_of(p.begin(), p.end(), [](const nlohmann::json& v) { return v.is_number(); });
+    const bool ok =
+        p.is_array() && p.size() == std::size_t(dimension) &&
+        std::all_of(p.begin(), p.end(), [](const nlohmann::json& v) { return v.is_number(); });
     if (!ok)
-      return Status{ErrorCode::InputUnreadable, path + ": " + what + " point " + std::to_string(i + 1) +
-                                                    " is not " + shape + " with numbers"};
-    for (int k = 0; k < dimension; ++k) P(Eigen::Index(i), k) = scale * p[std::size_t(k)].get<double>();
+      return Status{ErrorCode::InputUnreadable, path + ": " + what + " point " +
+                                                    std::to_string(i + 1) + " is not " + shape +
+                                                    " with numbers"};
+    for (int k = 0; k < dimension; ++k)
+      P(Eigen::Index(i), k) = scale * p[std::size_t(k)].get<double>();
   }
   return P;
 }

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "core/atomic_file.h"
+#include "core/input_file.h"
 #include "io/io_util.h"
 #include "io/obj_format.h"
 
@@ -21,15 +22,16 @@ std::string joinPath(const std::string& dir, const char* name) {
 /// form that reads back to the same double, so a round trip is exact.
 std::string objText(const Piece& piece, const Eigen::MatrixXd& V, const std::string& layout) {
   assert(V.cols() == 2 || V.cols() == 3);
-  std::string text = "# dform piece " + piece.name + ", " + layout + " (mm): vertices, faces, seam polyline\n";
+  std::string text =
+      "# dform piece " + piece.name + ", " + layout + " (mm): vertices, faces, seam polyline\n";
   text.reserve(text.size() + std::size_t(V.rows()) * 60 + std::size_t(piece.F.rows()) * 24);
   for (Eigen::Index i = 0; i < V.rows(); ++i) {
     text += "v " + exactDecimal(V(i, 0)) + " " + exactDecimal(V(i, 1)) + " " +
             (V.cols() == 3 ? exactDecimal(V(i, 2)) : std::string("0")) + "\n";
   }
   for (Eigen::Index f = 0; f < piece.F.rows(); ++f)
-    text += "f " + std::to_string(piece.F(f, 0) + 1) + " " + std::to_string(piece.F(f, 1) + 1) + " " +
-            std::to_string(piece.F(f, 2) + 1) + "\n";
+    text += "f " + std::to_string(piece.F(f, 0) + 1) + " " + std::to_string(piece.F(f, 1) + 1) +
+            " " + std::to_string(piece.F(f, 2) + 1) + "\n";
   text += "l";
   for (int s : piece.seam) text += " " + std::to_string(s + 1);
   return text + "\n";
@@ -44,8 +46,10 @@ struct PieceFile {
 };
 
 Result<PieceFile> readPieceFile(const std::string& path) {
-  auto fail = [&](const std::string& what) { return Status{ErrorCode::InputInvalid, path + ": " + what}; };
-  const Result<std::string> text = io_detail::readInputFile(path);
+  auto fail = [&](const std::string& what) {
+    return Status{ErrorCode::InputInvalid, path + ": " + what};
+  };
+  const Result<std::string> text = readInputFile(path);
   if (!text.isOk()) return text.status();
   Result<io_detail::ObjData> parsed = io_detail::parseObj(path, text.value());
   if (!parsed.isOk()) return parsed.status();
@@ -53,10 +57,12 @@ Result<PieceFile> readPieceFile(const std::string& path) {
   const io_detail::ObjData& obj = file.obj;
   for (std::size_t i = 0; i < obj.vertices.size(); ++i)
     if (!obj.vertices[i].allFinite())
-      return fail("vertex " + std::to_string(i + 1) + " has a coordinate that is not a finite number");
+      return fail("vertex " + std::to_string(i + 1) +
+                  " has a coordinate that is not a finite number");
   if (obj.faces.empty()) return fail("has no faces");
   if (obj.lines.size() != 1)
-    return fail("has " + std::to_string(obj.lines.size()) + " seam polylines ('l' elements); expected one");
+    return fail("has " + std::to_string(obj.lines.size()) +
+                " seam polylines ('l' elements); expected one");
   file.F.resize(Eigen::Index(obj.faces.size()), 3);
   for (std::size_t f = 0; f < obj.faces.size(); ++f) {
     if (obj.faces[f].indices.size() != 3)
@@ -65,12 +71,14 @@ Result<PieceFile> readPieceFile(const std::string& path) {
     for (int k = 0; k < 3; ++k) file.F(Eigen::Index(f), k) = obj.faces[f].indices[std::size_t(k)];
   }
   file.seam = obj.lines[0].indices;
-  if (file.seam.size() > 1 && file.seam.front() == file.seam.back()) file.seam.pop_back();  // tolerate a closing repeat
+  if (file.seam.size() > 1 && file.seam.front() == file.seam.back())
+    file.seam.pop_back();  // tolerate a closing repeat
   if (file.seam.size() < 3) return fail("the seam has fewer than 3 vertices");
   return file;
 }
 
-Result<Piece> readPiece(const std::string& dir, const char* flatName, const char* shapeName, const std::string& name) {
+Result<Piece> readPiece(const std::string& dir, const char* flatName, const char* shapeName,
+                        const std::string& name) {
   const Result<PieceFile> flat = readPieceFile(joinPath(dir, flatName));
   if (!flat.isOk()) return flat.status();
   const Result<PieceFile> shape = readPieceFile(joinPath(dir, shapeName));
@@ -80,7 +88,8 @@ Result<Piece> readPiece(const std::string& dir, const char* flatName, const char
   auto mismatch = [&](const std::string& what) {
     return Status{ErrorCode::InputInvalid, b.path + ": " + what + " than " + a.path};
   };
-  if (a.obj.vertices.size() != b.obj.vertices.size()) return mismatch("has a different number of vertices");
+  if (a.obj.vertices.size() != b.obj.vertices.size())
+    return mismatch("has a different number of vertices");
   if (a.F != b.F) return mismatch("has different faces");
   if (a.seam != b.seam) return mismatch("has a different seam");
 
@@ -96,7 +105,8 @@ Result<Piece> readPiece(const std::string& dir, const char* flatName, const char
     const Eigen::Vector3d& v = a.obj.vertices[std::size_t(i)];
     // The flat layout is written with z = 0; allow rounding from other tools, relative to size.
     if (std::abs(v.z()) > 1e-9 * extent)
-      return Status{ErrorCode::InputInvalid, a.path + ": is not flat (vertex " + std::to_string(i + 1) +
+      return Status{ErrorCode::InputInvalid, a.path + ": is not flat (vertex " +
+                                                 std::to_string(i + 1) +
                                                  " has z = " + io_detail::fmt(v.z()) + ")"};
     piece.flat.row(i) = v.head<2>().transpose();
     piece.shape.row(i) = b.obj.vertices[std::size_t(i)].transpose();
@@ -145,9 +155,10 @@ Result<DForm> readModel(const std::string& dir) {
   Result<Piece> b = readPiece(dir, ModelFileNames::bFlat, ModelFileNames::b3d, "B");
   if (!b.isOk()) return b.status();
   if (a.value().seam.size() != b.value().seam.size())
-    return Status{ErrorCode::InputInvalid,
-                  joinPath(dir, ModelFileNames::bFlat) + ": seam has " + std::to_string(b.value().seam.size()) +
-                      " vertices but piece A's has " + std::to_string(a.value().seam.size())};
+    return Status{ErrorCode::InputInvalid, joinPath(dir, ModelFileNames::bFlat) + ": seam has " +
+                                               std::to_string(b.value().seam.size()) +
+                                               " vertices but piece A's has " +
+                                               std::to_string(a.value().seam.size())};
   return DForm{std::move(a).value(), std::move(b).value()};
 }
 

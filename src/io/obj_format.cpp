@@ -5,6 +5,7 @@
 #include <optional>
 #include <sstream>
 
+#include "core/message_text.h"
 #include "io/io_util.h"
 
 namespace dform::io_detail {
@@ -29,7 +30,8 @@ Result<ObjData> parseObj(const std::string& path, const std::string& text) {
   std::string line;
   int lineNumber = 0;
   auto malformed = [&](const std::string& what) {
-    return Status{ErrorCode::InputUnreadable, path + ": line " + std::to_string(lineNumber) + ": " + what};
+    return Status{ErrorCode::InputUnreadable,
+                  path + ": line " + std::to_string(lineNumber) + ": " + what};
   };
   while (std::getline(lines, line)) {
     ++lineNumber;
@@ -42,7 +44,7 @@ Result<ObjData> parseObj(const std::string& path, const std::string& text) {
       int count = 0;
       while (tokens >> token) {
         const std::optional<double> value = parseDouble(token);
-        if (!value) return malformed("'" + token + "' is not a number");
+        if (!value) return malformed("'" + printable(token) + "' is not a number");
         if (count < 3) v(count) = *value;
         ++count;
       }
@@ -53,17 +55,20 @@ Result<ObjData> parseObj(const std::string& path, const std::string& text) {
       element.lineNumber = lineNumber;
       while (tokens >> token) {
         const std::optional<long> index = vertexIndex(token);
-        if (!index) return malformed("'" + token + "' is not a vertex index (they start at 1)");
+        if (!index)
+          return malformed("'" + printable(token) + "' is not a vertex index (they start at 1)");
         // Negative indices count back from the newest vertex; positive ones are checked below,
         // once every vertex is known.
         const long resolved = *index < 0 ? long(obj.vertices.size()) + *index : *index - 1;
-        if (resolved < 0) return malformed("index " + token + " refers to no vertex");
-        if (resolved > std::numeric_limits<int>::max()) return malformed("index " + token + " is too large");
+        if (resolved < 0) return malformed("index " + printable(token) + " refers to no vertex");
+        if (resolved > std::numeric_limits<int>::max())
+          return malformed("index " + printable(token) + " is too large");
         element.indices.push_back(int(resolved));
       }
       const std::size_t needed = keyword == "f" ? 3 : 2;
       if (element.indices.size() < needed)
-        return malformed(keyword == "f" ? "a face needs at least 3 vertices" : "a polyline needs at least 2 vertices");
+        return malformed(keyword == "f" ? "a face needs at least 3 vertices"
+                                        : "a polyline needs at least 2 vertices");
       (keyword == "f" ? obj.faces : obj.lines).push_back(std::move(element));
     }
   }
@@ -72,8 +77,9 @@ Result<ObjData> parseObj(const std::string& path, const std::string& text) {
       for (int i : e.indices)
         if (std::size_t(i) >= obj.vertices.size()) {
           lineNumber = e.lineNumber;
-          return malformed("vertex index " + std::to_string(i + 1) + " is out of range (the file has " +
-                           std::to_string(obj.vertices.size()) + " vertices)");
+          return malformed("vertex index " + std::to_string(i + 1) +
+                           " is out of range (the file has " + std::to_string(obj.vertices.size()) +
+                           " vertices)");
         }
   return obj;
 }

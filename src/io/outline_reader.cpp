@@ -5,6 +5,7 @@
 #include <cmath>
 #include <optional>
 
+#include "core/input_file.h"
 #include "core/polyline.h"
 #include "io/io_util.h"
 #include "io/json_util.h"
@@ -50,21 +51,30 @@ Vec2 meetingPoint(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
 
 struct Box {
   Vec2 lo, hi;
-  bool overlaps(const Box& o) const { return (lo.array() <= o.hi.array()).all() && (o.lo.array() <= hi.array()).all(); }
+  bool overlaps(const Box& o) const {
+    return (lo.array() <= o.hi.array()).all() && (o.lo.array() <= hi.array()).all();
+  }
 };
 
-Box boundingBox(const Points2& P) { return {P.colwise().minCoeff().transpose(), P.colwise().maxCoeff().transpose()}; }
+Box boundingBox(const Points2& P) {
+  return {P.colwise().minCoeff().transpose(), P.colwise().maxCoeff().transpose()};
+}
 
 /// Where two closed polylines touch or cross, if they do. Sweep over x as in findSelfIntersection.
 std::optional<Vec2> findCrossing(const Points2& A, const Points2& B) {
-  struct Edge { const Points2* P; Eigen::Index i; double minX, maxX; };
+  struct Edge {
+    const Points2* P;
+    Eigen::Index i;
+    double minX, maxX;
+  };
   std::vector<Edge> edges;
   for (const Points2* P : {&A, &B})
     for (Eigen::Index i = 0; i < P->rows(); ++i) {
       const double x0 = (*P)(i, 0), x1 = (*P)((i + 1) % P->rows(), 0);
       edges.push_back({P, i, std::min(x0, x1), std::max(x0, x1)});
     }
-  std::sort(edges.begin(), edges.end(), [](const Edge& e, const Edge& f) { return e.minX < f.minX; });
+  std::sort(edges.begin(), edges.end(),
+            [](const Edge& e, const Edge& f) { return e.minX < f.minX; });
   auto ends = [](const Edge& e) {
     return std::make_pair(Vec2(e.P->row(e.i)), Vec2(e.P->row((e.i + 1) % e.P->rows())));
   };
@@ -83,7 +93,8 @@ bool insidePolygon(const Vec2& q, const Points2& P) {
   bool inside = false;
   for (Eigen::Index i = 0, j = P.rows() - 1; i < P.rows(); j = i++) {
     const double yi = P(i, 1), yj = P(j, 1);
-    if ((yi > q.y()) != (yj > q.y()) && q.x() < (P(j, 0) - P(i, 0)) * (q.y() - yi) / (yj - yi) + P(i, 0))
+    if ((yi > q.y()) != (yj > q.y()) &&
+        q.x() < (P(j, 0) - P(i, 0)) * (q.y() - yi) / (yj - yi) + P(i, 0))
       inside = !inside;
   }
   return inside;
@@ -91,18 +102,21 @@ bool insidePolygon(const Vec2& q, const Points2& P) {
 
 /// Cleans one loop (range check, duplicates removed) and checks it is a simple polygon of
 /// positive area; returns it counter-clockwise.
-Result<Points2> cleanLoop(const std::string& path, const ClosedLoop& loop, const OutlineReadOptions& options) {
+Result<Points2> cleanLoop(const std::string& path, const ClosedLoop& loop,
+                          const OutlineReadOptions& options) {
   auto fail = [&](const std::string& what) {
     return Status{ErrorCode::InputInvalid, path + ": " + loop.label + " " + what};
   };
   if (const auto bad = io_detail::findBadCoordinate(loop.points, options.maxCoordinate))
     return fail("has a coordinate that " +
-                io_detail::describeBadCoordinate(loop.points(bad->first, bad->second), options.maxCoordinate));
+                io_detail::describeBadCoordinate(loop.points(bad->first, bad->second),
+                                                 options.maxCoordinate));
   std::vector<Eigen::Index> keep;
   for (Eigen::Index i = 0; i < loop.points.rows(); ++i)
     if (keep.empty() || (loop.points.row(i) - loop.points.row(keep.back())).norm() > kSamePointMm)
       keep.push_back(i);
-  while (keep.size() > 1 && (loop.points.row(keep.back()) - loop.points.row(keep.front())).norm() <= kSamePointMm)
+  while (keep.size() > 1 &&
+         (loop.points.row(keep.back()) - loop.points.row(keep.front())).norm() <= kSamePointMm)
     keep.pop_back();
   Points2 P(Eigen::Index(keep.size()), 2);
   for (std::size_t k = 0; k < keep.size(); ++k) P.row(Eigen::Index(k)) = loop.points.row(keep[k]);
@@ -148,7 +162,8 @@ Result<Shape2> assembleShape(const std::string& path, const std::vector<ClosedLo
   }
   std::vector<std::size_t> order(clean.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return areas[a] > areas[b]; });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return areas[a] > areas[b]; });
 
   // Depth of each loop in the containment tree; larger loops come first, so the last container
   // found is the innermost one.
@@ -160,8 +175,9 @@ Result<Shape2> assembleShape(const std::string& path, const std::vector<ClosedLo
       const std::size_t j = order[m];
       if (!boxes[i].overlaps(boxes[j])) continue;
       if (const auto where = findCrossing(clean[i], clean[j]))
-        return Status{ErrorCode::InputInvalid, path + ": " + loops[i].label + " and " + loops[j].label +
-                                                   " touch or cross near " + fmtPoint(where->transpose()) + " mm"};
+        return Status{ErrorCode::InputInvalid, path + ": " + loops[i].label + " and " +
+                                                   loops[j].label + " touch or cross near " +
+                                                   fmtPoint(where->transpose()) + " mm"};
       if (insidePolygon(clean[i].row(0).transpose(), clean[j])) depth[i] = depth[j] + 1;
     }
     pieces += depth[i] % 2 == 0;
@@ -183,8 +199,8 @@ Result<Shape2> assembleShape(const std::string& path, const std::vector<ClosedLo
 // ---- JSON -------------------------------------------------------------------------------------
 
 /// Reads a JSON outline list scaled to mm; a repeated closing point is dropped.
-Result<Points2> jsonLoop(const std::string& path, const nlohmann::json& list, const std::string& what,
-                         double scale) {
+Result<Points2> jsonLoop(const std::string& path, const nlohmann::json& list,
+                         const std::string& what, double scale) {
   Result<Eigen::MatrixXd> rows = io_detail::jsonPointList(path, list, what, 2, scale);
   if (!rows.isOk()) return rows.status();
   Points2 P = rows.value();
@@ -207,7 +223,8 @@ Result<std::vector<ClosedLoop>> readJsonLoops(const std::string& path, const std
     const nlohmann::json& holes = doc["holes"];
     if (!holes.is_array())
       return Status{ErrorCode::InputUnreadable, path + ": \"holes\" is not a list of point lists"};
-    for (std::size_t h = 0; h < holes.size(); ++h) lists.emplace_back(&holes[h], "hole " + std::to_string(h + 1));
+    for (std::size_t h = 0; h < holes.size(); ++h)
+      lists.emplace_back(&holes[h], "hole " + std::to_string(h + 1));
   }
   std::vector<ClosedLoop> loops;
   for (const auto& [list, name] : lists) {
@@ -220,23 +237,29 @@ Result<std::vector<ClosedLoop>> readJsonLoops(const std::string& path, const std
 
 }  // namespace
 
-Result<Shape2> readShape(const std::string& path, const OutlineReadOptions& options) {
+Result<Shape2> parseShape(std::string text, const std::string& source,
+                          const OutlineReadOptions& options) {
   if (!(options.flattenTolerance > 0.0) || !(options.maxCoordinate > 0.0))
-    return Status{ErrorCode::Usage, path + ": the flatten tolerance and coordinate limit must be positive"};
-  Result<std::string> text = io_detail::readInputFile(path);
-  if (!text.isOk()) return text.status();
-  std::string ext = io_detail::lowerExtension(path);
+    return Status{ErrorCode::Usage,
+                  source + ": the flatten tolerance and coordinate limit must be positive"};
+  std::string ext = io_detail::lowerExtension(source);
   if (ext != "svg" && ext != "json") {  // sniff the content of files without a known extension
-    const auto first = text.value().find_first_not_of(" \t\r\n\xef\xbb\xbf");
-    const char c = first == std::string::npos ? '\0' : text.value()[first];
+    const auto first = text.find_first_not_of(" \t\r\n\xef\xbb\xbf");
+    const char c = first == std::string::npos ? '\0' : text[first];
     ext = c == '<' ? "svg" : (c == '{' || c == '[') ? "json" : "";
   }
-  if (ext.empty()) return Status{ErrorCode::InputUnreadable, path + ": not an SVG or JSON file"};
-  Result<std::vector<ClosedLoop>> loops = ext == "svg"
-                                              ? io_detail::readSvgLoops(path, std::move(text).value(), options)
-                                              : readJsonLoops(path, text.value());
+  if (ext.empty()) return Status{ErrorCode::InputUnreadable, source + ": not an SVG or JSON file"};
+  Result<std::vector<ClosedLoop>> loops =
+      ext == "svg" ? io_detail::readSvgLoops(source, std::move(text), options)
+                   : readJsonLoops(source, text);
   if (!loops.isOk()) return loops.status();
-  return assembleShape(path, loops.value(), options);
+  return assembleShape(source, loops.value(), options);
+}
+
+Result<Shape2> readShape(const std::string& path, const OutlineReadOptions& options) {
+  Result<std::string> text = readInputFile(path);
+  if (!text.isOk()) return text.status();
+  return parseShape(std::move(text).value(), path, options);
 }
 
 }  // namespace dform

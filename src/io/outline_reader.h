@@ -34,4 +34,9 @@ struct Shape2 {
 /// coordinates, too few points, several separate outlines).
 Result<Shape2> readShape(const std::string& path, const OutlineReadOptions& options = {});
 
+/// The same from the file's text: `source` names it in messages, and its extension (or else the
+/// first character of `text`) says whether it is SVG or JSON.
+Result<Shape2> parseShape(std::string text, const std::string& source,
+                          const OutlineReadOptions& options = {});
+
 }  // namespace dform
