@@ -106,6 +106,8 @@ Status validateCurve(const std::string& path, const Points3& P, const CurveReadO
   auto fail = [&](const std::string& what) {
     return Status{ErrorCode::InputInvalid, path + ": " + what};
   };
+  if (std::size_t(P.rows()) > options.maxPoints)
+    return io_detail::tooManyPoints(path, "the curve has", options.maxPoints);
   if (const auto bad = io_detail::findBadCoordinate(P, options.maxCoordinate))
     return fail(
         pointName(bad->first) + " has a coordinate that " +
@@ -142,7 +144,7 @@ Status closeCurve(const std::string& path, Points3& P, bool closedByIndex,
 
 Result<Curve3> readObjCurve(const std::string& path, const std::string& text,
                             const CurveReadOptions& options) {
-  const Result<io_detail::ObjData> parsed = io_detail::parseObj(path, text);
+  const Result<io_detail::ObjData> parsed = io_detail::parseObj(path, text, options.maxPoints);
   if (!parsed.isOk()) return parsed.status();
   const io_detail::ObjData& obj = parsed.value();
   if (obj.lines.empty())
@@ -192,6 +194,9 @@ Result<Points3> flattenClosedBezier(const std::string& path, const Eigen::Matrix
       return fail("Bezier segment " + std::to_string(s + 1) + " needs more than " +
                   fmt(io_detail::kMaxStepsPerCurve) + " points at a flatten tolerance of " +
                   fmt(options.flattenTolerance) + " mm");
+    // The first and last points are the same until the last one is dropped below.
+    if (points.size() > options.maxPoints + 1)
+      return io_detail::tooManyPoints(path, "the flattened curve has", options.maxPoints);
   }
   points.pop_back();  // the last segment returns to p0
   Points3 P(Eigen::Index(points.size()), 3);
@@ -201,7 +206,7 @@ Result<Points3> flattenClosedBezier(const std::string& path, const Eigen::Matrix
 
 Result<Curve3> readJsonCurve(const std::string& path, const std::string& text,
                              const CurveReadOptions& options) {
-  const Result<nlohmann::json> parsed = io_detail::parseJson(path, text);
+  const Result<nlohmann::json> parsed = io_detail::parseJson(path, text, options.maxPoints);
   if (!parsed.isOk()) return parsed.status();
   const nlohmann::json& doc = parsed.value();
   const Result<double> scale = io_detail::jsonUnitScale(path, doc);

@@ -12,6 +12,10 @@ struct CurveReadOptions {
   bool forceClosed = false;        ///< treat an open polyline as closed (`--closed`)
   double flattenTolerance = 0.01;  ///< mm; largest chord deviation when Beziers are flattened
   double maxCoordinate = 1.0e6;    ///< mm
+  /// Points of the curve (after flattening a Bezier); a file with more is refused as soon as
+  /// that is known. The seam is resampled to --resolution points anyway, and reading stays
+  /// under a second and a few hundred MB (docs/io.md, "Limits").
+  std::size_t maxPoints = 1'000'000;
 };
 
 /// Reads a closed space curve from `path` (.obj or .json), dense, in mm. Problems are Statuses

@@ -29,6 +29,11 @@ std::string fmtPoint(const Eigen::Ref<const Eigen::RowVectorXd>& p) {
   return text + ")";
 }
 
+Status tooManyPoints(const std::string& path, const std::string& what, std::size_t limit) {
+  return {ErrorCode::InputInvalid,
+          path + ": " + what + " more than " + std::to_string(limit) + " points (the limit)"};
+}
+
 std::string exactDecimal(double value) {
   char buffer[32];
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);

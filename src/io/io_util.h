@@ -6,6 +6,8 @@
 #include <optional>
 #include <string>
 
+#include "core/status.h"
+
 namespace dform::io_detail {
 
 /// Lower-case extension without the dot ("svg"), empty when there is none.
@@ -16,6 +18,10 @@ std::string fmt(double value);
 
 /// "(x, y)" or "(x, y, z)" with fmt() numbers.
 std::string fmtPoint(const Eigen::Ref<const Eigen::RowVectorXd>& p);
+
+/// InputInvalid for a file over its point limit (OutlineReadOptions::maxPoints,
+/// CurveReadOptions::maxPoints): "<path>: <what> more than <limit> points (the limit)".
+Status tooManyPoints(const std::string& path, const std::string& what, std::size_t limit);
 
 /// Shortest decimal text that reads back to exactly `value` (locale-independent).
 std::string exactDecimal(double value);

@@ -1,18 +1,32 @@
 #include "io/json_util.h"
 
 #include <algorithm>
+#include <string>
 
 #include "core/message_text.h"
 #include "io/io_util.h"
 
 namespace dform::io_detail {
 
-Result<nlohmann::json> parseJson(const std::string& path, const std::string& text) {
+Result<nlohmann::json> parseJson(const std::string& path, const std::string& text,
+                                 std::size_t maxPoints) {
+  // A point is at most 4 values (its list and 3 numbers); the rest of a document is a handful.
+  const std::size_t maxValues = 4 * maxPoints + 1024;
+  struct TooManyValues {};
+  std::size_t values = 0;
+  const auto count = [&](int, nlohmann::json::parse_event_t event, nlohmann::json&) {
+    if (event != nlohmann::json::parse_event_t::key && ++values > maxValues) throw TooManyValues{};
+    return true;
+  };
   try {
-    return nlohmann::json::parse(text);
+    return nlohmann::json::parse(text, count);
   } catch (const nlohmann::json::exception& e) {
     return Status{ErrorCode::InputUnreadable,
                   path + ": not valid JSON (" + parserReason(e.what()) + ")"};
+  } catch (const TooManyValues&) {
+    return Status{ErrorCode::InputInvalid, path + ": more JSON values than " +
+                                               std::to_string(maxPoints) +
+                                               " points (the limit) can have"};
   }
 }
 

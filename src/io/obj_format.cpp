@@ -24,7 +24,8 @@ std::optional<long> vertexIndex(const std::string& token) {
 
 }  // namespace
 
-Result<ObjData> parseObj(const std::string& path, const std::string& text) {
+Result<ObjData> parseObj(const std::string& path, const std::string& text,
+                         std::size_t maxVertices) {
   ObjData obj;
   std::istringstream lines(text);
   std::string line;
@@ -32,6 +33,11 @@ Result<ObjData> parseObj(const std::string& path, const std::string& text) {
   auto malformed = [&](const std::string& what) {
     return Status{ErrorCode::InputUnreadable,
                   path + ": line " + std::to_string(lineNumber) + ": " + what};
+  };
+  auto tooMany = [&](const std::string& what) {
+    return Status{ErrorCode::InputInvalid, path + ": line " + std::to_string(lineNumber) +
+                                               ": more than " + std::to_string(maxVertices) + " " +
+                                               what + " (the limit)"};
   };
   while (std::getline(lines, line)) {
     ++lineNumber;
@@ -49,6 +55,7 @@ Result<ObjData> parseObj(const std::string& path, const std::string& text) {
         ++count;
       }
       if (count < 3 || count > 4) return malformed("a vertex needs x y z (and optionally w)");
+      if (obj.vertices.size() == maxVertices) return tooMany("vertices");
       obj.vertices.push_back(v);
     } else if (keyword == "f" || keyword == "l") {
       ObjElement element;
@@ -63,6 +70,7 @@ Result<ObjData> parseObj(const std::string& path, const std::string& text) {
         if (resolved < 0) return malformed("index " + printable(token) + " refers to no vertex");
         if (resolved > std::numeric_limits<int>::max())
           return malformed("index " + printable(token) + " is too large");
+        if (element.indices.size() > maxVertices) return tooMany("points in one element");
         element.indices.push_back(int(resolved));
       }
       const std::size_t needed = keyword == "f" ? 3 : 2;

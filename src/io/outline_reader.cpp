@@ -209,8 +209,9 @@ Result<Points2> jsonLoop(const std::string& path, const nlohmann::json& list,
 }
 
 /// {"points": [[x, y], ...], "units": "mm", "holes": [[[x, y], ...], ...]} or a bare point list.
-Result<std::vector<ClosedLoop>> readJsonLoops(const std::string& path, const std::string& text) {
-  const Result<nlohmann::json> parsed = io_detail::parseJson(path, text);
+Result<std::vector<ClosedLoop>> readJsonLoops(const std::string& path, const std::string& text,
+                                              std::size_t maxPoints) {
+  const Result<nlohmann::json> parsed = io_detail::parseJson(path, text, maxPoints);
   if (!parsed.isOk()) return parsed.status();
   const nlohmann::json& doc = parsed.value();
   if (doc.is_object() && !doc.contains("points"))
@@ -227,9 +228,12 @@ Result<std::vector<ClosedLoop>> readJsonLoops(const std::string& path, const std
       lists.emplace_back(&holes[h], "hole " + std::to_string(h + 1));
   }
   std::vector<ClosedLoop> loops;
+  std::size_t points = 0;
   for (const auto& [list, name] : lists) {
     Result<Points2> P = jsonLoop(path, *list, name, scale.value());
     if (!P.isOk()) return P.status();
+    points += std::size_t(P.value().rows());
+    if (points > maxPoints) return io_detail::tooManyPoints(path, "the outlines have", maxPoints);
     loops.push_back({std::move(P).value(), name});
   }
   return loops;
@@ -251,7 +255,7 @@ Result<Shape2> parseShape(std::string text, const std::string& source,
   if (ext.empty()) return Status{ErrorCode::InputUnreadable, source + ": not an SVG or JSON file"};
   Result<std::vector<ClosedLoop>> loops =
       ext == "svg" ? io_detail::readSvgLoops(source, std::move(text), options)
-                   : readJsonLoops(source, text);
+                   : readJsonLoops(source, text, options.maxPoints);
   if (!loops.isOk()) return loops.status();
   return assembleShape(source, loops.value(), options);
 }

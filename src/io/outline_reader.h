@@ -12,6 +12,10 @@ namespace dform {
 struct OutlineReadOptions {
   double flattenTolerance = 0.01;  ///< mm; largest chord deviation when curves are flattened
   double maxCoordinate = 1.0e6;    ///< mm; larger coordinates are rejected as unreasonable
+  /// Points in all outlines of a file together, after flattening; a file with more is refused as
+  /// soon as that is known. No drawn piece needs as many, and reading stays under a second and
+  /// a few hundred MB (docs/io.md, "Limits").
+  std::size_t maxPoints = 1'000'000;
 };
 
 /// A flat shape: its outer outline and any holes (each counter-clockwise, dense polylines in mm).

@@ -41,10 +41,6 @@ struct Affine {
 /// drawing needs it.
 constexpr int kMaxElementDepth = 256;
 
-/// Flattened points allowed per document; far beyond any outline, it stops absurd tolerances from
-/// exhausting memory.
-constexpr std::size_t kMaxTotalPoints = 20'000'000;
-
 constexpr double kMillimetresPerPx = 25.4 / 96.0;  // CSS pixel: 96 per inch
 
 /// A problem found during the traversal; the catch site adds the file and element names.
@@ -206,10 +202,21 @@ struct Document {
   svgpp::factory::length::unitless<> lengths;  // 96 px per inch by default, as CSS says
   double tolerance = 0.01;                     // mm
   double maxCoordinate = 1e6;                  // mm
+  std::size_t maxPoints = 0;                   // OutlineReadOptions::maxPoints
   std::map<std::string, int> elementCounts;    // per element name, for "path 2"
   std::string currentLabel = "the document";   // element being read, for messages
   std::vector<ClosedLoop> loops;
   std::size_t totalPoints = 0;
+
+  /// Stops the reading when the document needs more than maxPoints points: every path command
+  /// draws at least one, so `pending` counts the commands and points not yet stored in `loops`.
+  void checkPoints(std::size_t pending) const {
+    if (totalPoints + pending > maxPoints)
+      throw SvgProblem{ErrorCode::InputInvalid,
+                       "brings the outlines to more than " + std::to_string(maxPoints) +
+                           " points (the limit) at a flatten tolerance of " + fmt(tolerance) +
+                           " mm"};
+  }
 };
 
 /// One recorded path command in user coordinates (absolute, no shorthands).
@@ -276,25 +283,38 @@ class SvgContext {
 
   // Path events (the path policy makes every command absolute and removes shorthands).
   void path_move_to(double x, double y, svgpp::tag::coordinate::absolute) {
-    commands_.push_back({Command::Move, {x, y}});
+    record({Command::Move, {x, y}});
   }
   void path_line_to(double x, double y, svgpp::tag::coordinate::absolute) {
-    commands_.push_back({Command::Line, {x, y}});
+    record({Command::Line, {x, y}});
   }
   void path_quadratic_bezier_to(double x1, double y1, double x, double y,
                                 svgpp::tag::coordinate::absolute) {
-    commands_.push_back({Command::Quadratic, {x1, y1, x, y}});
+    record({Command::Quadratic, {x1, y1, x, y}});
   }
   void path_cubic_bezier_to(double x1, double y1, double x2, double y2, double x, double y,
                             svgpp::tag::coordinate::absolute) {
-    commands_.push_back({Command::Cubic, {x1, y1, x2, y2, x, y}});
+    record({Command::Cubic, {x1, y1, x2, y2, x, y}});
   }
   void path_elliptical_arc_to(double rx, double ry, double rotation, bool largeArc, bool sweep,
                               double x, double y, svgpp::tag::coordinate::absolute) {
-    commands_.push_back({Command::Arc, {rx, ry, rotation, double(largeArc), double(sweep), x, y}});
+    record({Command::Arc, {rx, ry, rotation, double(largeArc), double(sweep), x, y}});
   }
-  void path_close_subpath() { commands_.push_back({Command::Close, {}}); }
+  void path_close_subpath() { record({Command::Close, {}}); }
   void path_exit() {}
+
+  /// Keeps a path command for flattening. An element with too many is refused as it is read,
+  /// before they take memory: every drawing command adds at least one point to the outline, and
+  /// moveto and closepath commands, which draw nothing, may not outnumber the point limit either.
+  void record(const Command& command) {
+    commands_.push_back(command);
+    if (command.kind != Command::Move && command.kind != Command::Close)
+      document_->checkPoints(++drawingCommands_);
+    else if (commands_.size() - drawingCommands_ > document_->maxPoints)
+      throw SvgProblem{ErrorCode::InputInvalid, "has more than " +
+                                                    std::to_string(document_->maxPoints) +
+                                                    " moveto and closepath commands (the limit)"};
+  }
 
   bool displayed() const { return !hidden_; }
 
@@ -326,6 +346,7 @@ class SvgContext {
   std::string label_;
   bool hidden_ = false;
   std::vector<Command> commands_;
+  std::size_t drawingCommands_ = 0;  // commands_ other than Move and Close
 };
 
 void SvgContext::flattenCommands() {
@@ -374,10 +395,7 @@ void SvgContext::flattenCommands() {
         break;
       default: break;
     }
-    if (points.size() + document_->totalPoints > kMaxTotalPoints)
-      throw SvgProblem{ErrorCode::InputInvalid, "needs more than " + fmt(double(kMaxTotalPoints)) +
-                                                    " points at a flatten tolerance of " +
-                                                    fmt(tolerance) + " mm"};
+    document_->checkPoints(points.size());
   }
   finishSubpath(points, closed, index, subpathCount);
 }
@@ -597,6 +615,7 @@ Result<std::vector<ClosedLoop>> readSvgLoops(const std::string& path, std::strin
   Document document;
   document.tolerance = options.flattenTolerance;
   document.maxCoordinate = options.maxCoordinate;
+  document.maxPoints = options.maxPoints;
   const Vec2 size = viewport.value().userViewportSize;
   document.lengths.set_viewport_size(size.x(), size.y());
   SvgContext rootContext(document, flip.then(viewport.value().userToPage));
