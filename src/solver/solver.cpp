@@ -455,7 +455,7 @@ int enforceByMultipliers(LeastSquaresSolver& solver, const std::vector<Constrain
     return true;
   };
   int rounds = 0;
-  while (summary.usable() && rounds < maxRounds) {
+  while (summary.usable() && summary.termination != Termination::UserAbort && rounds < maxRounds) {
     bool allMet = true;
     for (std::size_t i = 0; i < constraints.size(); ++i) {
       LinearResidual& term = *constraints[i].term;

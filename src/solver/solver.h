@@ -2,7 +2,8 @@
 // and Solver::Summary. Each step solves (J^T J + mu I) dx = -J^T r. J^T J is scattered into a
 // pattern fixed at set-up (linear terms are assembled once), CHOLMOD's symbolic analysis is done
 // once, and the last numeric factorisation is reused as the preconditioner of a conjugate-gradient
-// solve on later steps, so that most steps cost a few back-substitutions instead of a refactorisation.
+// solve on later steps, so that most steps cost a few back-substitutions instead of a
+// refactorisation.
 #pragma once
 
 #include <Eigen/Core>
@@ -17,24 +18,24 @@ namespace dform {
 
 struct IterationSummary {
   int iteration = 0;
-  double cost = 0;                  ///< f(x) after this iteration
-  std::vector<double> termCosts;    ///< w_t ||r_t||^2 after this iteration, per term
-  double costChange = 0;            ///< f before - f after (0 for a rejected step)
-  double gradientMaxNorm = 0;       ///< max |J^T r| at the start of the iteration
-  double stepNorm = 0;              ///< ||dx|| of the step tried
-  double damping = 0;               ///< mu used for the step
-  bool accepted = false;            ///< whether the step lowered f
-  bool refactorised = false;        ///< whether a numeric factorisation was computed
-  int cgIterations = 0;             ///< preconditioned CG iterations (0 for a direct solve)
-  double seconds = 0;               ///< wall time of this iteration
-  double cumulativeSeconds = 0;     ///< wall time since the solve started
+  double cost = 0;                ///< f(x) after this iteration
+  std::vector<double> termCosts;  ///< w_t ||r_t||^2 after this iteration, per term
+  double costChange = 0;          ///< f before - f after (0 for a rejected step)
+  double gradientMaxNorm = 0;     ///< max |J^T r| at the start of the iteration
+  double stepNorm = 0;            ///< ||dx|| of the step tried
+  double damping = 0;             ///< mu used for the step
+  bool accepted = false;          ///< whether the step lowered f
+  bool refactorised = false;      ///< whether a numeric factorisation was computed
+  int cgIterations = 0;           ///< preconditioned CG iterations (0 for a direct solve)
+  double seconds = 0;             ///< wall time of this iteration
+  double cumulativeSeconds = 0;   ///< wall time since the solve started
 };
 
 enum class Termination {
-  Converged,     ///< a tolerance below was met
-  NoConvergence, ///< the iteration cap was reached; x holds the best point found
-  Failure,       ///< numerical failure (non-finite values, factorisation failed)
-  UserAbort,     ///< the callback asked to stop; x holds the best point found
+  Converged,      ///< a tolerance below was met
+  NoConvergence,  ///< the iteration cap was reached; x holds the best point found
+  Failure,        ///< numerical failure (non-finite values, factorisation failed)
+  UserAbort,      ///< the callback asked to stop; x holds the best point found
 };
 
 const char* terminationName(Termination t);
@@ -75,7 +76,7 @@ struct SolverSummary {
   int numVariables = 0;
   int numResiduals = 0;
   int factorisations = 0;
-  double setupSeconds = 0;   ///< pattern analysis and symbolic factorisation
+  double setupSeconds = 0;  ///< pattern analysis and symbolic factorisation
   double totalSeconds = 0;
 
   /// Appends a later solve of the same problem (iterations renumbered, times and counts added).
@@ -116,7 +117,8 @@ struct Constraint {
 /// Augmented-Lagrangian rounds on `solver`'s problem: while a constraint is not met, each unmet
 /// term's target moves by its residual (b <- b - (M x - b0), a multiplier update) and the problem
 /// is solved again from x. The weights stay as the caller chose them. Each solve is appended to
-/// `summary`; returns the rounds used. The terms' targets are left shifted.
+/// `summary`; returns the rounds used. The terms' targets are left shifted. No round starts once
+/// `summary` failed or the callback stopped a solve (UserAbort: a Ctrl-C ends the run at once).
 int enforceByMultipliers(LeastSquaresSolver& solver, const std::vector<Constraint>& constraints,
                          int maxRounds, Eigen::VectorXd& x, SolverSummary& summary);
 

@@ -2,13 +2,17 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "core/file_hash.h"
 #include "io/model_files.h"
@@ -412,6 +416,60 @@ TEST_F(CliTest, OversizedInputsStopEarlyWithOneLine) {
   expectError(run("forward " + pair + " --gate " + path("gate.json") + " -o " + path("out")), 3,
               "too large");
   EXPECT_FALSE(fs::exists(path("out")));
+}
+
+// The files of a folder and their bytes.
+std::map<std::string, std::string> folderContents(const std::string& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    std::ostringstream bytes;
+    bytes << std::ifstream(entry.path(), std::ios::binary).rdbuf();
+    files[entry.path().filename().string()] = bytes.str();
+  }
+  return files;
+}
+
+TEST_F(CliTest, InterruptedRunExitsWithoutTouchingTheOutputFolder) {
+  const std::string pair =
+      sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  const std::string out = path("out");
+  // The folder holds an earlier complete result, which an interrupted run must leave as it is.
+  ASSERT_EQ(run("forward " + pair + " --resolution 30 -q -o " + out).exitCode, 0);
+  const std::map<std::string, std::string> before = folderContents(out);
+  ASSERT_GE(before.size(), 9u);
+
+  for (const int signal : {SIGINT, SIGTERM}) {
+    SCOPED_TRACE(signal == SIGINT ? "SIGINT" : "SIGTERM");
+    // A run long enough to be caught solving (seconds), its stderr in a file we watch.
+    const std::string err = path("interrupted.txt");
+    const pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+      const std::string command = "exec " + std::string(DFORM_EXE) + " forward " + pair +
+                                  " --resolution 250 -o " + out + " >/dev/null 2>" + err;
+      execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    // The finest level is meshed, then solved: the signal comes while it solves.
+    std::string log;
+    for (int waited = 0; log.find("meshed piece A with") == std::string::npos; ++waited) {
+      ASSERT_LT(waited, 12000) << "no solve started within 10 minutes: " << log;
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      std::ostringstream text;
+      text << std::ifstream(err).rdbuf();
+      log = text.str();
+    }
+    ASSERT_EQ(kill(pid, signal), 0);
+    int status = 0;
+    ASSERT_EQ(waitpid(pid, &status, 0), pid);
+    ASSERT_TRUE(WIFEXITED(status)) << "ended by the signal instead of stopping cleanly";
+    EXPECT_EQ(WEXITSTATUS(status), signal == SIGINT ? 130 : 143);
+    std::ostringstream text;
+    text << std::ifstream(err).rdbuf();
+    EXPECT_NE(text.str().find("dform: error: interrupted"), std::string::npos) << text.str();
+    // Nothing written, nothing half-written, no temporary file: the earlier result, unchanged.
+    EXPECT_TRUE(folderContents(out) == before);
+  }
 }
 
 TEST_F(CliTest, FitPerimeterScalesPieceB) {

@@ -100,7 +100,9 @@ TEST(Solver, SummaryIsConsistent) {
   std::mt19937 rng(3);
   Problem problem(2);
   problem.addTerm("fit", 2.0, exponentialData(1.5, 0.4));
-  problem.addTerm("prior", 0.1, std::make_unique<LinearResidual>(randomSparse(2, 2, 1.0, rng), Eigen::Vector2d(1, 1)));
+  problem.addTerm(
+      "prior", 0.1,
+      std::make_unique<LinearResidual>(randomSparse(2, 2, 1.0, rng), Eigen::Vector2d(1, 1)));
   Eigen::VectorXd x(2);
   x << 0.5, -0.5;
   const SolverSummary summary = solve(problem, SolverOptions{}, x);
@@ -173,28 +175,52 @@ TEST(Solver, PreconditionedStepsReachTheSameMinimumAsRefactorising) {
   EXPECT_LE(summary.factorisations, int(summary.iterations.size()));
 }
 
+/// |x - (1, 2)|^2 + |x0 + x1 - 0|^2, with the second term's residual for constraint rounds.
+struct PullWithSum {
+  Problem problem{2};
+  LinearResidual* sum = nullptr;
+  PullWithSum() {
+    RowSparse I(2, 2);
+    I.setIdentity();
+    RowSparse S(1, 2);
+    S.insert(0, 0) = 1.0;
+    S.insert(0, 1) = 1.0;
+    problem.addTerm("pull", 1.0, std::make_unique<LinearResidual>(I, Eigen::Vector2d(1, 2)));
+    auto term = std::make_unique<LinearResidual>(S, Eigen::VectorXd::Zero(1));
+    sum = term.get();
+    problem.addTerm("sum", 1.0, std::move(term));
+  }
+};
+
 TEST(Solver, MultiplierRoundsMeetAConstraintWithoutRaisingItsWeight) {
-  // Minimise |x - (1, 2)|^2 + |x0 + x1 - 0|^2: the soft minimum misses x0 + x1 = 0, the
-  // constraint rounds meet it to the tolerance and land on the constrained minimum (-0.5, 0.5).
-  Problem problem(2);
-  RowSparse I(2, 2);
-  I.setIdentity();
-  RowSparse S(1, 2);
-  S.insert(0, 0) = 1.0;
-  S.insert(0, 1) = 1.0;
-  problem.addTerm("pull", 1.0, std::make_unique<LinearResidual>(I, Eigen::Vector2d(1, 2)));
-  auto sum = std::make_unique<LinearResidual>(S, Eigen::VectorXd::Zero(1));
-  LinearResidual* constraint = sum.get();
-  problem.addTerm("sum", 1.0, std::move(sum));
-  LeastSquaresSolver solver(problem, SolverOptions{});
+  // The soft minimum misses x0 + x1 = 0, the constraint rounds meet it to the tolerance and land
+  // on the constrained minimum (-0.5, 0.5).
+  PullWithSum pull;
+  LeastSquaresSolver solver(pull.problem, SolverOptions{});
   Eigen::VectorXd x = Eigen::VectorXd::Zero(2);
   SolverSummary summary = solver.solve(x);
   EXPECT_NEAR(x[0] + x[1], 1.0, 1e-6);  // soft: (1 + 2) / 3
-  const int rounds = enforceByMultipliers(solver, {{constraint, 1, 1e-7}}, 50, x, summary);
+  const int rounds = enforceByMultipliers(solver, {{pull.sum, 1, 1e-7}}, 50, x, summary);
   EXPECT_GT(rounds, 0);
   EXPECT_LT(std::abs(x[0] + x[1]), 1e-7);
   EXPECT_NEAR(x[0], -0.5, 1e-6);
   EXPECT_NEAR(x[1], 0.5, 1e-6);
+}
+
+TEST(Solver, NoMultiplierRoundAfterTheCallbackStoppedTheSolve) {
+  // A Ctrl-C stops the solve through the callback: the constraint rounds must not start solves
+  // of their own (each would take an iteration, seconds on a large mesh, before stopping).
+  PullWithSum pull;
+  SolverOptions options;
+  int calls = 0;
+  options.callback = [&](const IterationSummary&) { return ++calls < 1; };
+  LeastSquaresSolver solver(pull.problem, options);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(2);
+  SolverSummary summary = solver.solve(x);
+  ASSERT_EQ(summary.termination, Termination::UserAbort);
+  EXPECT_EQ(enforceByMultipliers(solver, {{pull.sum, 1, 1e-7}}, 50, x, summary), 0);
+  EXPECT_EQ(calls, 1);
+  EXPECT_EQ(summary.termination, Termination::UserAbort);
 }
 
 TEST(GradientCheck, AcceptsACorrectJacobianAndCatchesAWrongOne) {
