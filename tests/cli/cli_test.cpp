@@ -472,6 +472,30 @@ TEST_F(CliTest, InterruptedRunExitsWithoutTouchingTheOutputFolder) {
   }
 }
 
+TEST_F(CliTest, TheSameJobGivesBitIdenticalResultsInSeparateProcesses) {
+  // Twice each, in separate processes: every figure of report.json and every coordinate of the
+  // meshes must be the same to the last bit (no uninitialised value, no reduction whose order
+  // changes from run to run, e.g. with the threads of the linear algebra).
+  for (const std::string& job : {"run " + sample("forward/ellipses-quarter-turn.json"),
+                                 "inverse " + sample("inverse/saddle.obj") + " --resolution 60"}) {
+    SCOPED_TRACE(job);
+    std::map<std::string, std::string> meshes[2];
+    nlohmann::json metrics[2];
+    for (int k = 0; k < 2; ++k) {
+      const std::string out = path("out" + std::to_string(k));
+      ASSERT_EQ(run(job + " --no-export -q -o " + out).exitCode, 0);
+      metrics[k] = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"))["metrics"];
+      for (const auto& [name, bytes] : folderContents(out))
+        if (fs::path(name).extension() == ".obj") meshes[k][name] = bytes;
+      fs::remove_all(out);
+    }
+    EXPECT_GE(metrics[0].size(), 10u);
+    EXPECT_EQ(metrics[0], metrics[1]) << metrics[0].dump() << "\n" << metrics[1].dump();
+    EXPECT_GE(meshes[0].size(), 4u);
+    EXPECT_TRUE(meshes[0] == meshes[1]) << "the meshes differ";
+  }
+}
+
 TEST_F(CliTest, FitPerimeterScalesPieceB) {
   const std::string big =
       write("big.svg", svg("<circle cx='150' cy='150' r='128.5'/>"));  // 0.9 % longer
