@@ -1,7 +1,9 @@
 #include "pipeline/job_file.h"
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -49,6 +51,12 @@ std::string path(const json& object, const std::string& key, const std::string& 
 int integer(const json& object, const std::string& key) {
   const json& v = object.at(key);
   if (!v.is_number_integer()) throw KeyError{key, "must be a whole number"};
+  // get<int>() would wrap a larger number silently (4294967396 became a resolution of 100).
+  const bool fits = v.is_number_unsigned()
+                        ? v.get<std::uint64_t>() <= std::uint64_t(std::numeric_limits<int>::max())
+                        : v.get<std::int64_t>() >= std::numeric_limits<int>::min() &&
+                              v.get<std::int64_t>() <= std::numeric_limits<int>::max();
+  if (!fits) throw KeyError{key, "is out of range (" + describeJsonValue(v) + ")"};
   return v.get<int>();
 }
 

@@ -64,6 +64,10 @@ TEST(JobFile, EveryMistakeNamesItsKey) {
       {R"({"mode": "forward", "piece_a": "a.svg", "piece_b": "b.svg", "resolution": 3})",
        "resolution"},
       {R"({"mode": "inverse"})", "curve"},
+      // Past int: once read as 100, a valid resolution, by wrapping round.
+      {R"({"mode": "inverse", "curve": "c.obj", "resolution": 4294967396})", "resolution"},
+      {R"({"mode": "inverse", "curve": "c.obj", "solver": {"max_iterations": -4294967296}})",
+       "max_iterations"},
   };
   for (const auto& [text, key] : bad) {
     const Result<Job> job = parseJobJson(text, "job.json", ".");
