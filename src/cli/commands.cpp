@@ -1,6 +1,7 @@
 #include "cli/commands.h"
 
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -21,6 +22,25 @@ namespace dform::cli {
 namespace {
 
 namespace fs = std::filesystem;
+
+// Holds SIGINT and SIGTERM back for its lifetime; one that came meanwhile is delivered when it
+// ends (a first one sets the run's flag, a second one ends the program: see main.cpp).
+class StopSignalsHeld {
+ public:
+  StopSignalsHeld() {
+    sigset_t stop;
+    sigemptyset(&stop);
+    sigaddset(&stop, SIGINT);
+    sigaddset(&stop, SIGTERM);
+    sigprocmask(SIG_BLOCK, &stop, &previous_);
+  }
+  ~StopSignalsHeld() { sigprocmask(SIG_SETMASK, &previous_, nullptr); }
+  StopSignalsHeld(const StopSignalsHeld&) = delete;
+  StopSignalsHeld& operator=(const StopSignalsHeld&) = delete;
+
+ private:
+  sigset_t previous_;
+};
 
 int fail(const Status& status) {
   Terminal::error(status.message());
@@ -165,8 +185,9 @@ void printGate(const GateReport& gate) {
     std::fprintf(stdout, "%-20s %12.4g %12.4g  %s%s%s\n", c.name.c_str(), c.value, c.limit,
                  verdictName(c.verdict), c.verdict == CheckResult::Verdict::Pass ? "" : ": ",
                  c.verdict == CheckResult::Verdict::Pass ? "" : c.detail.c_str());
-  std::fprintf(stdout, "gate: %s (%s: %d failed, %d not run)\n", gate.passed() ? "PASSED" : "FAILED",
-               gate.name.c_str(), gate.failed(), gate.notRun());
+  std::fprintf(stdout, "gate: %s (%s: %d failed, %d not run)\n",
+               gate.passed() ? "PASSED" : "FAILED", gate.name.c_str(), gate.failed(),
+               gate.notRun());
 }
 
 }  // namespace
@@ -197,8 +218,8 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
   const bool forward = job.mode == Job::Mode::Forward;
   RunHooks hooks;
   hooks.interrupted = &interrupted;
-  hooks.onIteration = [&](const IterationSummary& it) {
-    terminal.progress(forward ? "solving" : "solving (inverse)", it);
+  hooks.onIteration = [&](const char* stage, const IterationSummary& it) {
+    terminal.progress(forward ? stage : std::string(stage) + " (inverse)", it);
   };
   std::optional<GateLimits> limits;
   if (output.gate != "none") {
@@ -227,16 +248,6 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
   std::optional<GateReport> gate;
   if (limits) gate = runGate(model, *limits, forward ? nullptr : &inverseRun.value().target);
 
-  std::error_code ec;
-  fs::create_directories(output.outDir, ec);
-  if (ec || !fs::is_directory(output.outDir))
-    return fail(Status(ErrorCode::OutputFailed,
-                       output.outDir + ": cannot create the output folder (" + ec.message() + ")"));
-  Status written = writeModel(output.outDir, model);
-  if (written.isOk() && !forward)
-    written = writeTargetCurve(output.outDir, inverseRun.value().target);
-  if (!written.isOk()) return fail(written);
-
   // The pattern's layout is the gate's last check, so it is laid out before the verdict; the
   // report is written whatever the export does, so that a failed export (a sheet too small)
   // still leaves the solved result complete and the export can be redone alone.
@@ -263,30 +274,51 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
     gate->checks.push_back(notRunCheck("pattern_layout", 0, "no export (--no-export)"));
   }
   const bool gateFailed = gate && !gate->passed();
-  removeOldExports(output.outDir);
-  // The verdict goes on record before any cutting file is released: report.json (the gate's
-  // verdict, measured on the export prepared in memory) is written first, and a run whose report
-  // cannot be written leaves no cutting file behind.
-  const bool release = prepared.isOk() && (!gateFailed || output.exportAnyway);
-  if (release) noteExport(prepared.value(), sink);
-  const GateReport* gateReport = gate ? &*gate : nullptr;
-  auto writeReport = [&] {
-    return forward ? writeForwardReport(output.outDir, job, forwardRun.value(), sink.messages(),
-                                        gateReport)
-                   : writeInverseReport(output.outDir, job, inverseRun.value(), sink.messages(),
-                                        gateReport);
-  };
-  if (Status reported = writeReport(); !reported.isOk()) return fail(reported);
+
+  // Everything is computed; a Ctrl-C that came meanwhile leaves the output folder as it was.
+  if (interrupted) return fail(Status(ErrorCode::Interrupted, "interrupted; nothing was written"));
   Status exported = prepared.isOk() || !output.exportFiles ? Status::ok() : prepared.status();
-  if (release) {
-    exported = writeCuttingFiles(prepared.value(), output.outDir);
-    if (!exported.isOk()) {  // the report says why there are no cutting files
-      sink.emit(Level::Error, "export: " + exported.message());
-      if (Status reported = writeReport(); !reported.isOk()) return fail(reported);
+  {
+    // The results are written as one set: a Ctrl-C now waits until the last file is in place,
+    // so the folder never holds new meshes beside an old report (each file is atomic anyway).
+    const StopSignalsHeld held;
+    std::error_code ec;
+    fs::create_directories(output.outDir, ec);
+    if (ec || !fs::is_directory(output.outDir))
+      return fail(
+          Status(ErrorCode::OutputFailed,
+                 output.outDir + ": cannot create the output folder (" + ec.message() + ")"));
+    Status written = writeModel(output.outDir, model);
+    if (written.isOk() && !forward)
+      written = writeTargetCurve(output.outDir, inverseRun.value().target);
+    if (!written.isOk()) return fail(written);
+    removeOldExports(output.outDir);
+    // The verdict goes on record before any cutting file is released: report.json (the gate's
+    // verdict, measured on the export prepared in memory) is written first, and a run whose
+    // report cannot be written leaves no cutting file behind.
+    const bool release = prepared.isOk() && (!gateFailed || output.exportAnyway);
+    if (release) noteExport(prepared.value(), sink);
+    const GateReport* gateReport = gate ? &*gate : nullptr;
+    auto writeReport = [&] {
+      return forward ? writeForwardReport(output.outDir, job, forwardRun.value(), sink.messages(),
+                                          gateReport)
+                     : writeInverseReport(output.outDir, job, inverseRun.value(), sink.messages(),
+                                          gateReport);
+    };
+    if (Status reported = writeReport(); !reported.isOk()) return fail(reported);
+    if (release) {
+      exported = writeCuttingFiles(prepared.value(), output.outDir);
+      if (!exported.isOk()) {  // the report says why there are no cutting files
+        sink.emit(Level::Error, "export: " + exported.message());
+        if (Status reported = writeReport(); !reported.isOk()) return fail(reported);
+      }
     }
+    if (Status html = writeReportHtml(output.outDir, model, templatesDir()); !html.isOk())
+      return fail(html);
   }
-  if (Status html = writeReportHtml(output.outDir, model, templatesDir()); !html.isOk())
-    return fail(html);
+  if (interrupted)
+    return fail(Status(ErrorCode::Interrupted, "interrupted; the results in " + output.outDir +
+                                                   " were written completely"));
   if (!exported.isOk()) return exitCode(exported.code());
 
   if (forward)

@@ -17,8 +17,16 @@ namespace {
 using namespace dform;
 
 std::atomic<bool> interrupted{false};
+volatile std::sig_atomic_t stopSignal = 0;
 
-extern "C" void onInterrupt(int) { interrupted = true; }
+// Ctrl-C (SIGINT) or a batch system's SIGTERM: the run stops at the next solver iteration and
+// writes nothing (README "Exit codes"). A second one ends the program at once: the handler
+// gives the signal back its default action.
+extern "C" void onStopSignal(int signal) {
+  stopSignal = signal;
+  interrupted = true;
+  std::signal(signal, SIG_DFL);
+}
 
 // "--weight isometry=2" -> the named weight of a forward or inverse job.
 Status setWeight(Job& job, const std::string& assignment) {
@@ -37,12 +45,19 @@ Status setWeight(Job& job, const std::string& assignment) {
   InverseWeights& i = job.inverse.solve.weights;
   double* target = nullptr;
   if (job.mode == Job::Mode::Forward) {
-    target = name == "isometry" ? &f.isometry : name == "alignment" ? &f.alignment
-           : name == "boundary_fix" ? &f.boundaryFix : name == "smooth_3d" ? &f.smooth3d
-           : name == "smooth_2d" ? &f.smooth2d : name == "seam" ? &f.seam : nullptr;
+    target = name == "isometry"       ? &f.isometry
+             : name == "alignment"    ? &f.alignment
+             : name == "boundary_fix" ? &f.boundaryFix
+             : name == "smooth_3d"    ? &f.smooth3d
+             : name == "smooth_2d"    ? &f.smooth2d
+             : name == "seam"         ? &f.seam
+                                      : nullptr;
   } else {
-    target = name == "isometry" ? &i.isometry : name == "closeness" ? &i.closeness
-           : name == "smooth_3d" ? &i.smooth3d : name == "smooth_2d" ? &i.smooth2d : nullptr;
+    target = name == "isometry"    ? &i.isometry
+             : name == "closeness" ? &i.closeness
+             : name == "smooth_3d" ? &i.smooth3d
+             : name == "smooth_2d" ? &i.smooth2d
+                                   : nullptr;
   }
   if (!target) return Status(ErrorCode::Usage, "--weight: unknown weight '" + name + "'");
   *target = value;
@@ -70,7 +85,8 @@ void addExportOptions(CLI::App* command, cli::OutputOptions& out) {
 }
 
 void addOutputOptions(CLI::App* command, cli::OutputOptions& out) {
-  command->add_option("-o,--output", out.outDir, "folder for the results (created if missing)")->required();
+  command->add_option("-o,--output", out.outDir, "folder for the results (created if missing)")
+      ->required();
   command->add_flag("!--no-export", out.exportFiles, "skip the cutting patterns and 3D previews");
   addExportOptions(command, out);
   command->add_option("--gate", out.gate, "quality gate: default (the default), strict, lenient, a .json file, or none");
@@ -103,22 +119,28 @@ int run(int argc, char** argv) {
   forward->add_option("--join", join, "boundaries zipped, A's then B's: outer,outer (default), inner,inner "
                                       "(anti D-Form) or outer,inner (demi D-Form)");
   forward->add_flag("--flip", forwardJob.forward.flip, "zip piece B turned over");
-  forward->add_flag("--fit-perimeter", forwardJob.forward.fitPerimeter, "scale piece B to A's perimeter");
-  forward->add_option("--perimeter-tolerance", forwardJob.forward.perimeterTolerance, "largest relative perimeter difference (default 0.005)");
+  forward->add_flag("--fit-perimeter", forwardJob.forward.fitPerimeter,
+                    "scale piece B to A's perimeter");
+  forward->add_option("--perimeter-tolerance", forwardJob.forward.perimeterTolerance,
+                      "largest relative perimeter difference (default 0.005)");
   forward->add_option("--weight", forwardWeights, "term weight, e.g. smooth_3d=0.02 (repeatable)");
-  forward->add_option("--max-iterations", forwardJob.forward.solve.solver.maxIterations, "Levenberg-Marquardt iteration cap");
+  forward->add_option("--max-iterations", forwardJob.forward.solve.solver.maxIterations,
+                      "Levenberg-Marquardt iteration cap");
   addOutputOptions(forward, forwardOut);
 
   Job inverseJob;
   inverseJob.mode = Job::Mode::Inverse;
   cli::OutputOptions inverseOut;
   std::vector<std::string> inverseWeights;
-  CLI::App* inverse = app.add_subcommand("inverse", "a 3D seam curve -> the two flat pieces that make it");
-  inverse->add_option("curve", inverseJob.inverse.curve, "seam curve (.obj polyline or .json)")->required();
+  CLI::App* inverse =
+      app.add_subcommand("inverse", "a 3D seam curve -> the two flat pieces that make it");
+  inverse->add_option("curve", inverseJob.inverse.curve, "seam curve (.obj polyline or .json)")
+      ->required();
   inverse->add_option("--resolution", inverseJob.inverse.resolution, "seam vertices (default 100)");
   inverse->add_flag("--closed", inverseJob.inverse.forceClosed, "close an open OBJ polyline");
   inverse->add_option("--weight", inverseWeights, "term weight, e.g. smooth_3d=0.005 (repeatable)");
-  inverse->add_option("--max-iterations", inverseJob.inverse.solve.solver.maxIterations, "Levenberg-Marquardt iteration cap");
+  inverse->add_option("--max-iterations", inverseJob.inverse.solve.solver.maxIterations,
+                      "Levenberg-Marquardt iteration cap");
   addOutputOptions(inverse, inverseOut);
 
   std::string jobPath;
@@ -130,16 +152,19 @@ int run(int argc, char** argv) {
   std::string exportDir;
   cli::OutputOptions exportOut;
   bool listOnly = false;
-  CLI::App* exportCommand = app.add_subcommand("export", "write cutting patterns and previews of a saved result");
+  CLI::App* exportCommand =
+      app.add_subcommand("export", "write cutting patterns and previews of a saved result");
   exportCommand->add_option("dir", exportDir, "a result folder written by forward, inverse or run");
   addExportOptions(exportCommand, exportOut);
   exportCommand->add_flag("--export-anyway", exportOut.exportAnyway,
-                          "export a result that failed its gate, or a pattern that does not lay out cleanly (marked FAILED GATE)");
+                          "export a result that failed its gate, or a pattern that does not lay "
+                          "out cleanly (marked FAILED GATE)");
   exportCommand->add_flag("--list-profiles", listOnly, "list the profiles and exit");
   exportCommand->add_flag("-q,--quiet", exportOut.quiet, "print only warnings and errors");
 
   std::string validateDir, validateGate = "default";
-  CLI::App* validate = app.add_subcommand("validate", "re-check a saved result against a quality gate");
+  CLI::App* validate =
+      app.add_subcommand("validate", "re-check a saved result against a quality gate");
   validate->add_option("dir", validateDir, "a result folder")->required();
   validate->add_option("--gate", validateGate, "default, strict, lenient or a .json file");
 
@@ -157,7 +182,8 @@ int run(int argc, char** argv) {
     return usageError(e.what());
   }
 
-  std::signal(SIGINT, onInterrupt);
+  std::signal(SIGINT, onStopSignal);
+  std::signal(SIGTERM, onStopSignal);
   auto usage = [](const Status& s) {
     cli::Terminal::error(s.message());
     return cli::exitCode(s.code());
@@ -199,7 +225,10 @@ int run(int argc, char** argv) {
 int main(int argc, char** argv) {
   keepFreedMemory();
   try {
-    return run(argc, argv);
+    const int code = run(argc, argv);
+    // Interrupted: 130 for Ctrl-C, 143 for SIGTERM, as a shell reports a process they ended.
+    const int interruptedCode = dform::cli::exitCode(dform::ErrorCode::Interrupted);
+    return code == interruptedCode && stopSignal ? 128 + stopSignal : code;
   } catch (const std::exception& e) {
     dform::cli::Terminal::error(std::string("internal error: ") + e.what());
   } catch (...) {

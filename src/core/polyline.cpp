@@ -175,8 +175,18 @@ bool onSegment(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::
 
 }  // namespace
 
-bool segmentsIntersect(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
-                       const Eigen::Vector2d& d) {
+bool segmentsIntersect(const Eigen::Vector2d& a0, const Eigen::Vector2d& b0,
+                       const Eigen::Vector2d& c0, const Eigen::Vector2d& d0) {
+  // Each segment's ends in lexicographic order: where rounding decides a near-touch, the answer
+  // must not depend on the direction the segments are walked, or a polygon and its reverse
+  // (an outline before and after it is made counter-clockwise) would disagree.
+  auto lexLess = [](const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
+    return p.x() < q.x() || (p.x() == q.x() && p.y() < q.y());
+  };
+  const Eigen::Vector2d& a = lexLess(b0, a0) ? b0 : a0;
+  const Eigen::Vector2d& b = lexLess(b0, a0) ? a0 : b0;
+  const Eigen::Vector2d& c = lexLess(d0, c0) ? d0 : c0;
+  const Eigen::Vector2d& d = lexLess(d0, c0) ? c0 : d0;
   const double d1 = cross(c, d, a), d2 = cross(c, d, b);
   const double d3 = cross(a, b, c), d4 = cross(a, b, d);
   if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0)))

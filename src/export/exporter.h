@@ -83,6 +83,10 @@ struct Profile {
 /// JSON, InputInvalid naming the file and field when a field is unknown, mistyped or out of range.
 Result<Profile> loadProfile(const std::string& nameOrPath, const std::string& templatesDir);
 
+/// A profile from the text of its file; `source` names it in messages. The same codes as
+/// loadProfile, except that an empty name stays empty (loadProfile names it after the file).
+Result<Profile> parseProfileJson(const std::string& text, const std::string& source);
+
 /// The profile names found in `<templatesDir>/profiles/`, sorted.
 std::vector<std::string> listProfiles(const std::string& templatesDir);
 

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
-#include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
-#include <nlohmann/json.hpp>
-
+#include "core/input_file.h"
+#include "core/message_text.h"
 #include "export/internal.h"
 
 namespace dform {
@@ -80,7 +80,7 @@ struct FieldReader {
     text(key, value);
     if (!status.isOk()) return;
     if (!isHexColor(value)) {
-      status = invalid(source, std::string("field \"") + key + "\" = \"" + value +
+      status = invalid(source, std::string("field \"") + key + "\" = \"" + printable(value) +
                                    "\" is not a #RRGGBB colour");
       return;
     }
@@ -113,18 +113,21 @@ const char* kKnownFields[] = {"version",        "name",           "description",
                               "registration",   "calibration_bar", "label_height_mm",
                               "kerf_mm",        "tabs"};
 
-Result<Profile> parseProfile(const std::string& text, const std::string& source) {
+}  // namespace
+
+Result<Profile> parseProfileJson(const std::string& text, const std::string& source) {
   json j;
   try {
     j = json::parse(text);
   } catch (const json::exception& e) {
-    return Status{ErrorCode::InputUnreadable, source + ": not JSON (" + e.what() + ")"};
+    return Status{ErrorCode::InputUnreadable,
+                  source + ": not JSON (" + parserReason(e.what()) + ")"};
   }
   if (!j.is_object()) return invalid(source, "a profile must be a JSON object");
   for (const auto& item : j.items()) {
     const auto& key = item.key();
     if (std::find(std::begin(kKnownFields), std::end(kKnownFields), key) == std::end(kKnownFields))
-      return invalid(source, "unknown field \"" + key + "\" (see docs/export.md)");
+      return invalid(source, "unknown field \"" + printable(key) + "\" (see docs/export.md)");
   }
   Profile p;
   p.source = source;
@@ -176,8 +179,6 @@ Result<Profile> parseProfile(const std::string& text, const std::string& source)
   return p;
 }
 
-}  // namespace
-
 const char* tabSideName(TabSide side) {
   switch (side) {
     case TabSide::A: return "a";
@@ -206,8 +207,8 @@ std::vector<std::string> listProfiles(const std::string& templatesDir) {
 
 Result<Profile> loadProfile(const std::string& nameOrPath, const std::string& templatesDir) {
   std::string path = nameOrPath;
-  const bool looksLikePath = nameOrPath.find('/') != std::string::npos ||
-                             fs::path(nameOrPath).extension() == ".json";
+  const bool looksLikePath =
+      nameOrPath.find('/') != std::string::npos || fs::path(nameOrPath).extension() == ".json";
   if (!looksLikePath) {
     path = (fs::path(templatesDir) / "profiles" / (nameOrPath + ".json")).string();
     if (!fs::exists(path)) {
@@ -219,11 +220,9 @@ Result<Profile> loadProfile(const std::string& nameOrPath, const std::string& te
                         ")"};
     }
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Status{ErrorCode::InputUnreadable, path + ": cannot read the profile"};
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  auto profile = parseProfile(buffer.str(), path);
+  const Result<std::string> text = readInputFile(path, kMaxSettingsBytes);
+  if (!text.isOk()) return text.status();
+  Result<Profile> profile = parseProfileJson(text.value(), path);
   if (profile.isOk() && profile.value().name.empty())
     profile.value().name = fs::path(path).stem().string();
   return profile;

@@ -323,23 +323,27 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
   std::vector<Constraint> constraints;
   if (w.boundaryFix > 0 && anchorTerm->numResiduals() > 0)
     constraints.push_back({anchorTerm, 2, options.outlineTolerance * perimeter});
-  if (options.solver.maxIterations == 0) {  // the relaxation is the result, its rounds too
+  if (result.relaxation.stopped) {  // a Ctrl-C: no further solve
+    result.summary = summaryWithoutSteps(problem, x);
+    result.summary.termination = Termination::UserAbort;
+  } else if (options.solver.maxIterations == 0) {  // the relaxation is the result, its rounds too
     result.constraintRounds = enforceByMultipliers(
         [&](Eigen::VectorXd& y) {
           result.relaxation.append(relaxation.relax(options.relaxation, y));
-          return true;
+          return !result.relaxation.stopped;
         },
         constraints, options.constraintRounds, x);
     result.summary = summaryWithoutSteps(problem, x);
   } else {
     LeastSquaresSolver solver(problem, options.solver);
     result.summary = solver.solve(x);
-    result.constraintRounds = enforceByMultipliers(
-        [&](Eigen::VectorXd& y) {
-          result.summary.append(solver.solve(y));
-          return result.summary.usable();
-        },
-        constraints, options.constraintRounds, x);
+    if (result.summary.canContinue())
+      result.constraintRounds = enforceByMultipliers(
+          [&](Eigen::VectorXd& y) {
+            result.summary.append(solver.solve(y));
+            return result.summary.canContinue();
+          },
+          constraints, options.constraintRounds, x);
   }
   result.model = start;
   unpackVariables(layout, x, result.model.a, result.model.b);

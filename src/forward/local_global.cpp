@@ -272,6 +272,18 @@ LocalGlobalSummary LocalGlobalRelaxation::relax(const LocalGlobalOptions& option
     x = std::move(candidate);
     std::swap(proj, candidateProj);
     energy = candidateEnergy;
+    if (options.callback) {
+      IterationSummary it;
+      it.iteration = k;
+      it.cost = energy;
+      it.costChange = decrease;
+      it.accepted = true;
+      it.cumulativeSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (!options.callback(it)) {
+        summary.stopped = true;
+        break;
+      }
+    }
     if (decrease < options.relativeTolerance * energy) break;
   }
   summary.finalEnergy = energy;

@@ -7,11 +7,13 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <functional>
 #include <memory>
 #include <utility>
 #include <vector>
 
 #include "solver/problem.h"
+#include "solver/solver.h"
 
 namespace dform {
 
@@ -32,6 +34,9 @@ struct LocalGlobalOptions {
   int maxIterations = 2000;
   double relativeTolerance = 1e-6;  ///< stop when an iteration lowers the energy by less than this fraction
   int andersonDepth = 6;            ///< past iterates used by Anderson acceleration (0: plain)
+  /// Called after every iteration (iteration, cost = energy, costChange, cumulativeSeconds set);
+  /// return false to stop the relaxation (a Ctrl-C, say).
+  std::function<bool(const IterationSummary&)> callback;
 };
 
 struct LocalGlobalSummary {
@@ -40,6 +45,7 @@ struct LocalGlobalSummary {
   double initialEnergy = 0;
   double finalEnergy = 0;
   double seconds = 0;
+  bool stopped = false;  ///< the callback asked to stop
 
   /// Appends a later relaxation of the same problem (after a multiplier update, say).
   void append(const LocalGlobalSummary& later) {
@@ -47,6 +53,7 @@ struct LocalGlobalSummary {
     andersonRejected += later.andersonRejected;
     finalEnergy = later.finalEnergy;
     seconds += later.seconds;
+    stopped = stopped || later.stopped;
   }
 };
 

@@ -48,7 +48,12 @@ InverseResult solveInverse(const DForm& start, const Points3& curve, const Inver
   problem.addTerm("smooth_3d", w.smooth3d, std::move(smooth3d));
   problem.addTerm("smooth_2d", w.smooth2d, std::move(smooth2d));
   problem.holdConstant(held);
-  result.summary = solve(problem, options.solver, x);  // no step at all when the cap is 0
+  if (result.relaxation.stopped) {  // a Ctrl-C: no further solve
+    result.summary = summaryWithoutSteps(problem, x);
+    result.summary.termination = Termination::UserAbort;
+  } else {
+    result.summary = solve(problem, options.solver, x);  // no step at all when the cap is 0
+  }
 
   result.model = scaled;
   unpackVariables(layout, x, result.model.a, result.model.b);

@@ -8,42 +8,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
-#include <system_error>
 
 namespace dform::io_detail {
-
-Result<std::string> readInputFile(const std::string& path) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const fs::file_status status = fs::status(path, ec);
-  if (ec || !fs::exists(status)) return Status{ErrorCode::InputUnreadable, path + ": no such file"};
-  if (fs::is_directory(status))
-    return Status{ErrorCode::InputUnreadable, path + ": is a folder, not a file"};
-  const std::uintmax_t size = fs::file_size(path, ec);
-  if (!ec && size > kMaxInputBytes) {
-    return Status{ErrorCode::InputUnreadable,
-                  path + ": file is too large (" + std::to_string(size >> 20) +
-                      " MiB; the limit is " + std::to_string(kMaxInputBytes >> 20) + " MiB)"};
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Status{ErrorCode::InputUnreadable, path + ": cannot be opened for reading"};
-  std::string text;
-  // Read at most one byte past the limit so a file that grows (or a pipe) cannot exhaust memory.
-  text.reserve(ec ? 0 : std::size_t(size));
-  char buffer[1 << 16];
-  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
-    text.append(buffer, std::size_t(in.gcount()));
-    if (text.size() > kMaxInputBytes) {
-      return Status{ErrorCode::InputUnreadable,
-                    path + ": file is too large (the limit is " +
-                        std::to_string(kMaxInputBytes >> 20) + " MiB)"};
-    }
-  }
-  if (in.bad()) return Status{ErrorCode::InputUnreadable, path + ": read error"};
-  return text;
-}
 
 std::string lowerExtension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -75,6 +41,11 @@ std::string fmtPoint(const Eigen::Ref<const Eigen::RowVectorXd>& p) {
   std::string text = "(";
   for (Eigen::Index i = 0; i < p.size(); ++i) text += (i ? ", " : "") + fmt(p(i));
   return text + ")";
+}
+
+Status tooManyPoints(const std::string& path, const std::string& what, std::size_t limit) {
+  return {ErrorCode::InputInvalid,
+          path + ": " + what + " more than " + std::to_string(limit) + " points (the limit)"};
 }
 
 std::string exactDecimal(double value) {

@@ -1,5 +1,5 @@
-// Internal helpers shared by the io readers and writers: whole-file reading with a size limit,
-// number formatting for messages and files, unit names. Not part of the public io API.
+// Internal helpers shared by the io readers and writers: number formatting for messages and files,
+// unit names. Not part of the public io API.
 #pragma once
 
 #include <Eigen/Core>
@@ -10,10 +10,6 @@
 
 namespace dform::io_detail {
 
-/// Input files larger than this are refused: no outline or curve needs it, and reading an
-/// arbitrary huge file into memory would be a denial of service.
-constexpr std::size_t kMaxInputBytes = std::size_t(64) << 20;
-
 /// Consecutive points closer than this (mm) are one point: a nanometre is far below any cutting
 /// precision and far above double rounding of coordinates up to the readers' coordinate limit.
 constexpr double kSamePointMm = 1e-9;
@@ -22,10 +18,6 @@ constexpr double kSamePointMm = 1e-9;
 /// last points that repeat the first).
 Eigen::Matrix<double, Eigen::Dynamic, 2> dropRepeatedPoints(const Eigen::Matrix<double, Eigen::Dynamic, 2>& P,
                                                             bool closed);
-
-/// Reads the whole file, or InputUnreadable naming `path` (missing, a folder, unreadable, too big).
-Result<std::string> readInputFile(const std::string& path);
-
 /// Lower-case extension without the dot ("svg"), empty when there is none.
 std::string lowerExtension(const std::string& path);
 
@@ -34,6 +26,10 @@ std::string fmt(double value);
 
 /// "(x, y)" or "(x, y, z)" with fmt() numbers.
 std::string fmtPoint(const Eigen::Ref<const Eigen::RowVectorXd>& p);
+
+/// InputInvalid for a file over its point limit (OutlineReadOptions::maxPoints,
+/// CurveReadOptions::maxPoints): "<path>: <what> more than <limit> points (the limit)".
+Status tooManyPoints(const std::string& path, const std::string& what, std::size_t limit);
 
 /// Shortest decimal text that reads back to exactly `value` (locale-independent).
 std::string exactDecimal(double value);

@@ -1,21 +1,32 @@
 #include "io/json_util.h"
 
 #include <algorithm>
+#include <string>
 
+#include "core/message_text.h"
 #include "io/io_util.h"
 
 namespace dform::io_detail {
 
-Result<nlohmann::json> parseJson(const std::string& path, const std::string& text) {
+Result<nlohmann::json> parseJson(const std::string& path, const std::string& text,
+                                 std::size_t maxPoints) {
+  // A point is at most 4 values (its list and 3 numbers); the rest of a document is a handful.
+  const std::size_t maxValues = 4 * maxPoints + 1024;
+  struct TooManyValues {};
+  std::size_t values = 0;
+  const auto count = [&](int, nlohmann::json::parse_event_t event, nlohmann::json&) {
+    if (event != nlohmann::json::parse_event_t::key && ++values > maxValues) throw TooManyValues{};
+    return true;
+  };
   try {
-    return nlohmann::json::parse(text);
+    return nlohmann::json::parse(text, count);
   } catch (const nlohmann::json::exception& e) {
-    std::string reason = e.what();
-    // Drop the "[json.exception.parse_error.101] " tag; keep the message on one line.
-    if (const auto close = reason.find("] "); reason.rfind("[json.", 0) == 0 && close != std::string::npos)
-      reason.erase(0, close + 2);
-    std::replace(reason.begin(), reason.end(), '\n', ' ');
-    return Status{ErrorCode::InputUnreadable, path + ": not valid JSON (" + reason + ")"};
+    return Status{ErrorCode::InputUnreadable,
+                  path + ": not valid JSON (" + parserReason(e.what()) + ")"};
+  } catch (const TooManyValues&) {
+    return Status{ErrorCode::InputInvalid, path + ": more JSON values than " +
+                                               std::to_string(maxPoints) +
+                                               " points (the limit) can have"};
   }
 }
 
@@ -27,8 +38,7 @@ Result<double> jsonUnitScale(const std::string& path, const nlohmann::json& doc)
   if (!scale)
     return Status{ErrorCode::InputUnreadable,
                   path + ": \"units\" must be \"mm\", \"cm\" or \"in\" (found " +
-                      // dump() recurses: only show scalars, never a deeply nested value
-                      (units.is_primitive() ? units.dump() : std::string("a ") + units.type_name()) + ")"};
+                      describeJsonValue(units) + ")"};
   return *scale;
 }
 
@@ -36,16 +46,20 @@ Result<Eigen::MatrixXd> jsonPointList(const std::string& path, const nlohmann::j
                                       const std::string& what, int dimension, double scale) {
   const std::string shape = dimension == 2 ? "[x, y]" : "[x, y, z]";
   if (!list.is_array())
-    return Status{ErrorCode::InputUnreadable, path + ": " + what + " is not a list of " + shape + " points"};
+    return Status{ErrorCode::InputUnreadable,
+                  path + ": " + what + " is not a list of " + shape + " points"};
   Eigen::MatrixXd P(Eigen::Index(list.size()), dimension);
   for (std::size_t i = 0; i < list.size(); ++i) {
     const nlohmann::json& p = list[i];
-    const bool ok = p.is_array() && p.size() == std::size_t(dimension) &&
-                    std::all_of(p.begin(), p.end(), [](const nlohmann::json& v) { return v.is_number(); });
+    const bool ok =
+        p.is_array() && p.size() == std::size_t(dimension) &&
+        std::all_of(p.begin(), p.end(), [](const nlohmann::json& v) { return v.is_number(); });
     if (!ok)
-      return Status{ErrorCode::InputUnreadable, path + ": " + what + " point " + std::to_string(i + 1) +
-                                                    " is not " + shape + " with numbers"};
-    for (int k = 0; k < dimension; ++k) P(Eigen::Index(i), k) = scale * p[std::size_t(k)].get<double>();
+      return Status{ErrorCode::InputUnreadable, path + ": " + what + " point " +
+                                                    std::to_string(i + 1) + " is not " + shape +
+                                                    " with numbers"};
+    for (int k = 0; k < dimension; ++k)
+      P(Eigen::Index(i), k) = scale * p[std::size_t(k)].get<double>();
   }
   return P;
 }

@@ -9,8 +9,12 @@
 
 namespace dform::io_detail {
 
-/// Parses `text`, or InputUnreadable naming `path` with the parser's one-line reason.
-Result<nlohmann::json> parseJson(const std::string& path, const std::string& text);
+/// Parses `text` holding at most `maxPoints` points, or InputUnreadable naming `path` with the
+/// parser's one-line reason. The document is refused (InputInvalid) as soon as it has more values
+/// than that many points can have: its tree would take gigabytes long before the points are
+/// counted (a megabyte of "[]," is 350 000 arrays).
+Result<nlohmann::json> parseJson(const std::string& path, const std::string& text,
+                                 std::size_t maxPoints);
 
 /// Millimetres per unit from the object's optional "units" member (mm by default, cm, in).
 Result<double> jsonUnitScale(const std::string& path, const nlohmann::json& doc);

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/atomic_file.h"
+#include "core/input_file.h"
 #include "io/io_util.h"
 #include "io/obj_format.h"
 
@@ -70,7 +71,7 @@ Result<PieceFile> readPieceFile(const std::string& path) {
   auto fail = [&](const std::string& what) {
     return Status{ErrorCode::InputInvalid, path + ": " + what};
   };
-  const Result<std::string> text = io_detail::readInputFile(path);
+  const Result<std::string> text = readInputFile(path);
   if (!text.isOk()) return text.status();
   Result<io_detail::ObjData> parsed = io_detail::parseObj(path, text.value());
   if (!parsed.isOk()) return parsed.status();

@@ -5,6 +5,7 @@
 #include <optional>
 #include <sstream>
 
+#include "core/message_text.h"
 #include "io/io_util.h"
 
 namespace dform::io_detail {
@@ -23,7 +24,8 @@ std::optional<long> vertexIndex(const std::string& token) {
 
 }  // namespace
 
-Result<ObjData> parseObj(const std::string& path, const std::string& text) {
+Result<ObjData> parseObj(const std::string& path, const std::string& text,
+                         std::size_t maxVertices) {
   ObjData obj;
   std::istringstream lines(text);
   std::string line;
@@ -32,6 +34,11 @@ Result<ObjData> parseObj(const std::string& path, const std::string& text) {
   auto malformed = [&](const std::string& what) {
     return Status{ErrorCode::InputUnreadable,
                   path + ": line " + std::to_string(lineNumber) + ": " + what};
+  };
+  auto tooMany = [&](const std::string& what) {
+    return Status{ErrorCode::InputInvalid, path + ": line " + std::to_string(lineNumber) +
+                                               ": more than " + std::to_string(maxVertices) + " " +
+                                               what + " (the limit)"};
   };
   while (std::getline(lines, line)) {
     ++lineNumber;
@@ -46,11 +53,12 @@ Result<ObjData> parseObj(const std::string& path, const std::string& text) {
       int count = 0;
       while (tokens >> token) {
         const std::optional<double> value = parseDouble(token);
-        if (!value) return malformed("'" + token + "' is not a number");
+        if (!value) return malformed("'" + printable(token) + "' is not a number");
         if (count < 3) v(count) = *value;
         ++count;
       }
       if (count < 3 || count > 4) return malformed("a vertex needs x y z (and optionally w)");
+      if (obj.vertices.size() == maxVertices) return tooMany("vertices");
       obj.vertices.push_back(v);
     } else if (keyword == "f" || keyword == "l") {
       ObjElement element;
@@ -58,13 +66,15 @@ Result<ObjData> parseObj(const std::string& path, const std::string& text) {
       element.group = group;
       while (tokens >> token) {
         const std::optional<long> index = vertexIndex(token);
-        if (!index) return malformed("'" + token + "' is not a vertex index (they start at 1)");
+        if (!index)
+          return malformed("'" + printable(token) + "' is not a vertex index (they start at 1)");
         // Negative indices count back from the newest vertex; positive ones are checked below,
         // once every vertex is known.
         const long resolved = *index < 0 ? long(obj.vertices.size()) + *index : *index - 1;
-        if (resolved < 0) return malformed("index " + token + " refers to no vertex");
+        if (resolved < 0) return malformed("index " + printable(token) + " refers to no vertex");
         if (resolved > std::numeric_limits<int>::max())
-          return malformed("index " + token + " is too large");
+          return malformed("index " + printable(token) + " is too large");
+        if (element.indices.size() > maxVertices) return tooMany("points in one element");
         element.indices.push_back(int(resolved));
       }
       const std::size_t needed = keyword == "f" ? 3 : 2;

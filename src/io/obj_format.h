@@ -27,7 +27,10 @@ struct ObjData {
 /// Parses `v`, `f`, `l` and `g` statements; other statements (vn, vt, o, usemtl, ...) are ignored.
 /// Indices follow the OBJ spec: 1-based, negative ones count back from the last vertex defined
 /// so far, `i/t/n` forms use the vertex index. A malformed statement or an index out of range is
-/// InputUnreadable naming `path` and the line number.
-Result<ObjData> parseObj(const std::string& path, const std::string& text);
+/// InputUnreadable naming `path` and the line number. More than `maxVertices` vertices, or an
+/// element with more than maxVertices + 1 indices (a closed polyline repeats its first), is
+/// InputInvalid, reported at the line where the limit is passed.
+Result<ObjData> parseObj(const std::string& path, const std::string& text,
+                         std::size_t maxVertices = std::size_t(-1));
 
 }  // namespace dform::io_detail

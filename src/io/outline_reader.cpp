@@ -5,6 +5,7 @@
 #include <cmath>
 #include <optional>
 
+#include "core/input_file.h"
 #include "core/polyline.h"
 #include "io/crease_lines.h"
 #include "io/io_util.h"
@@ -31,21 +32,30 @@ using Vec2 = Eigen::Vector2d;
 
 struct Box {
   Vec2 lo, hi;
-  bool overlaps(const Box& o) const { return (lo.array() <= o.hi.array()).all() && (o.lo.array() <= hi.array()).all(); }
+  bool overlaps(const Box& o) const {
+    return (lo.array() <= o.hi.array()).all() && (o.lo.array() <= hi.array()).all();
+  }
 };
 
-Box boundingBox(const Points2& P) { return {P.colwise().minCoeff().transpose(), P.colwise().maxCoeff().transpose()}; }
+Box boundingBox(const Points2& P) {
+  return {P.colwise().minCoeff().transpose(), P.colwise().maxCoeff().transpose()};
+}
 
 /// Where two closed polylines touch or cross, if they do. Sweep over x as in findSelfIntersection.
 std::optional<Vec2> findCrossing(const Points2& A, const Points2& B) {
-  struct Edge { const Points2* P; Eigen::Index i; double minX, maxX; };
+  struct Edge {
+    const Points2* P;
+    Eigen::Index i;
+    double minX, maxX;
+  };
   std::vector<Edge> edges;
   for (const Points2* P : {&A, &B})
     for (Eigen::Index i = 0; i < P->rows(); ++i) {
       const double x0 = (*P)(i, 0), x1 = (*P)((i + 1) % P->rows(), 0);
       edges.push_back({P, i, std::min(x0, x1), std::max(x0, x1)});
     }
-  std::sort(edges.begin(), edges.end(), [](const Edge& e, const Edge& f) { return e.minX < f.minX; });
+  std::sort(edges.begin(), edges.end(),
+            [](const Edge& e, const Edge& f) { return e.minX < f.minX; });
   auto ends = [](const Edge& e) {
     return std::make_pair(Vec2(e.P->row(e.i)), Vec2(e.P->row((e.i + 1) % e.P->rows())));
   };
@@ -111,7 +121,8 @@ Result<Shape2> assembleShape(const std::string& path, const std::vector<DrawnLin
   }
   std::vector<std::size_t> order(clean.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return areas[a] > areas[b]; });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return areas[a] > areas[b]; });
 
   // Depth of each loop in the containment tree; larger loops come first, so the last container
   // found is the innermost one.
@@ -164,8 +175,9 @@ Result<Points2> jsonLoop(const std::string& path, const nlohmann::json& list, co
 
 /// {"points": [[x, y], ...], "units": "mm", "holes": [[[x, y], ...], ...],
 ///  "creases": [[[x, y], ...], ...]} or a bare point list.
-Result<io_detail::Drawing> readJsonDrawing(const std::string& path, const std::string& text) {
-  const Result<nlohmann::json> parsed = io_detail::parseJson(path, text);
+Result<io_detail::Drawing> readJsonDrawing(const std::string& path, const std::string& text,
+                                           std::size_t maxPoints) {
+  const Result<nlohmann::json> parsed = io_detail::parseJson(path, text, maxPoints);
   if (!parsed.isOk()) return parsed.status();
   const nlohmann::json& doc = parsed.value();
   if (doc.is_object() && !doc.contains("points"))
@@ -175,6 +187,7 @@ Result<io_detail::Drawing> readJsonDrawing(const std::string& path, const std::s
   io_detail::Drawing drawing;
   Result<Points2> outline = jsonLoop(path, doc.is_object() ? doc["points"] : doc, "the outline", scale.value());
   if (!outline.isOk()) return outline.status();
+  std::size_t points = std::size_t(outline.value().rows());
   drawing.loops.push_back({std::move(outline).value(), "the outline"});
   for (const char* key : {"holes", "creases"}) {
     if (!doc.is_object() || !doc.contains(key)) continue;
@@ -187,6 +200,8 @@ Result<io_detail::Drawing> readJsonDrawing(const std::string& path, const std::s
       Result<Points2> P = holes ? jsonLoop(path, lists[k], name, scale.value())
                                 : jsonLine(path, lists[k], name, scale.value());
       if (!P.isOk()) return P.status();
+      points += std::size_t(P.value().rows());
+      if (points > maxPoints) return io_detail::tooManyPoints(path, "the outlines have", maxPoints);
       (holes ? drawing.loops : drawing.creases).push_back({std::move(P).value(), name});
     }
   }
@@ -195,27 +210,33 @@ Result<io_detail::Drawing> readJsonDrawing(const std::string& path, const std::s
 
 }  // namespace
 
-Result<Shape2> readShape(const std::string& path, const OutlineReadOptions& options) {
+Result<Shape2> parseShape(std::string text, const std::string& source,
+                          const OutlineReadOptions& options) {
   if (!(options.flattenTolerance > 0.0) || !(options.maxCoordinate > 0.0))
-    return Status{ErrorCode::Usage, path + ": the flatten tolerance and coordinate limit must be positive"};
-  Result<std::string> text = io_detail::readInputFile(path);
-  if (!text.isOk()) return text.status();
-  std::string ext = io_detail::lowerExtension(path);
+    return Status{ErrorCode::Usage,
+                  source + ": the flatten tolerance and coordinate limit must be positive"};
+  std::string ext = io_detail::lowerExtension(source);
   if (ext != "svg" && ext != "json") {  // sniff the content of files without a known extension
-    const auto first = text.value().find_first_not_of(" \t\r\n\xef\xbb\xbf");
-    const char c = first == std::string::npos ? '\0' : text.value()[first];
+    const auto first = text.find_first_not_of(" \t\r\n\xef\xbb\xbf");
+    const char c = first == std::string::npos ? '\0' : text[first];
     ext = c == '<' ? "svg" : (c == '{' || c == '[') ? "json" : "";
   }
-  if (ext.empty()) return Status{ErrorCode::InputUnreadable, path + ": not an SVG or JSON file"};
-  Result<io_detail::Drawing> drawing = ext == "svg"
-                                           ? io_detail::readSvgDrawing(path, std::move(text).value(), options)
-                                           : readJsonDrawing(path, text.value());
+  if (ext.empty()) return Status{ErrorCode::InputUnreadable, source + ": not an SVG or JSON file"};
+  Result<io_detail::Drawing> drawing =
+      ext == "svg" ? io_detail::readSvgDrawing(source, std::move(text), options)
+                   : readJsonDrawing(source, text, options.maxPoints);
   if (!drawing.isOk()) return drawing.status();
-  Result<Shape2> shape = assembleShape(path, drawing.value().loops, options);
+  Result<Shape2> shape = assembleShape(source, drawing.value().loops, options);
   if (!shape.isOk()) return shape;
-  if (Status s = io_detail::fitCreases(path, drawing.value().creases, options, shape.value()); !s.isOk())
+  if (Status s = io_detail::fitCreases(source, drawing.value().creases, options, shape.value()); !s.isOk())
     return s;
   return shape;
+}
+
+Result<Shape2> readShape(const std::string& path, const OutlineReadOptions& options) {
+  Result<std::string> text = readInputFile(path);
+  if (!text.isOk()) return text.status();
+  return parseShape(std::move(text).value(), path, options);
 }
 
 }  // namespace dform

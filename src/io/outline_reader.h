@@ -12,6 +12,10 @@ namespace dform {
 struct OutlineReadOptions {
   double flattenTolerance = 0.01;  ///< mm; largest chord deviation when curves are flattened
   double maxCoordinate = 1.0e6;    ///< mm; larger coordinates are rejected as unreasonable
+  /// Points in all outlines of a file together, after flattening; a file with more is refused as
+  /// soon as that is known. No drawn piece needs as many, and reading stays under a second and
+  /// a few hundred MB (docs/io.md, "Limits").
+  std::size_t maxPoints = 1'000'000;
 };
 
 /// A crease line drawn inside a piece: an open polyline (#P by 2, mm) whose two ends lie on the
@@ -45,5 +49,10 @@ struct Shape2 {
 /// coordinates, too few points, several separate outlines, a crease that does not run from
 /// boundary to boundary or crosses another).
 Result<Shape2> readShape(const std::string& path, const OutlineReadOptions& options = {});
+
+/// The same from the file's text: `source` names it in messages, and its extension (or else the
+/// first character of `text`) says whether it is SVG or JSON.
+Result<Shape2> parseShape(std::string text, const std::string& source,
+                          const OutlineReadOptions& options = {});
 
 }  // namespace dform

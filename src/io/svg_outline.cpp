@@ -3,10 +3,6 @@
 // records them per element and flattens them in millimetres once the element's transform is known.
 #include "io/svg_outline.h"
 
-#include <rapidxml_ns/rapidxml_ns.hpp>
-#include <svgpp/policy/xml/rapidxml_ns.hpp>
-#include <svgpp/svgpp.hpp>
-
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
@@ -15,8 +11,12 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <rapidxml_ns/rapidxml_ns.hpp>
 #include <string_view>
+#include <svgpp/policy/xml/rapidxml_ns.hpp>
+#include <svgpp/svgpp.hpp>
 
+#include "core/message_text.h"
 #include "io/flatten.h"
 #include "io/io_util.h"
 
@@ -33,16 +33,14 @@ struct Affine {
 
   Vec2 operator()(const Vec2& p) const { return linear * p + offset; }
   /// The map that applies `inner` first, then this one.
-  Affine then(const Affine& inner) const { return {linear * inner.linear, linear * inner.offset + offset}; }
+  Affine then(const Affine& inner) const {
+    return {linear * inner.linear, linear * inner.offset + offset};
+  }
 };
 
 /// Deeper element nesting is refused before parsing: rapidxml and svgpp recurse per level, and no
 /// drawing needs it.
 constexpr int kMaxElementDepth = 256;
-
-/// Flattened points allowed per document; far beyond any outline, it stops absurd tolerances from
-/// exhausting memory.
-constexpr std::size_t kMaxTotalPoints = 20'000'000;
 
 constexpr double kMillimetresPerPx = 25.4 / 96.0;  // CSS pixel: 96 per inch
 
@@ -77,9 +75,8 @@ std::optional<double> lengthInMillimetres(std::optional<std::string_view> text) 
   if (ec != std::errc()) return std::nullopt;
   const std::string_view unit = trim(std::string_view(end, std::size_t(s.data() + s.size() - end)));
   static const std::map<std::string_view, double> kMillimetresPer = {
-      {"", kMillimetresPerPx},       {"px", kMillimetresPerPx}, {"mm", 1.0},
-      {"cm", 10.0},                  {"in", 25.4},              {"pt", 25.4 / 72.0},
-      {"pc", 25.4 / 6.0}};
+      {"", kMillimetresPerPx}, {"px", kMillimetresPerPx}, {"mm", 1.0}, {"cm", 10.0}, {"in", 25.4},
+      {"pt", 25.4 / 72.0},     {"pc", 25.4 / 6.0}};
   const auto it = kMillimetresPer.find(unit);
   if (it == kMillimetresPer.end() || !std::isfinite(number)) return std::nullopt;
   return number * it->second;
@@ -101,8 +98,8 @@ std::optional<std::array<double, 4>> parseViewBox(std::optional<std::string_view
 }
 
 struct RootViewport {
-  Affine userToPage;                  // user units to page mm, y down (as SVG draws)
-  std::optional<double> pageHeight;   // mm, when the document says how tall it is
+  Affine userToPage;                    // user units to page mm, y down (as SVG draws)
+  std::optional<double> pageHeight;     // mm, when the document says how tall it is
   Vec2 userViewportSize{100.0, 100.0};  // user units, for percentage lengths
 };
 
@@ -118,7 +115,8 @@ Result<RootViewport> rootViewport(const XmlNode* svg) {
   if (!box) {
     vp.userToPage.linear *= kMillimetresPerPx;
     vp.pageHeight = height;
-    if (width && height) vp.userViewportSize = {*width / kMillimetresPerPx, *height / kMillimetresPerPx};
+    if (width && height)
+      vp.userViewportSize = {*width / kMillimetresPerPx, *height / kMillimetresPerPx};
     return vp;
   }
   const double bx = (*box)[0], by = (*box)[1], bw = (*box)[2], bh = (*box)[3];
@@ -131,8 +129,8 @@ Result<RootViewport> rootViewport(const XmlNode* svg) {
     sy = *height / bh;
     const std::string_view aspect = trim(attributeValue(svg, "preserveAspectRatio").value_or(""));
     if (aspect.find("none") == std::string_view::npos) {
-      const double s = aspect.find("slice") != std::string_view::npos ? std::max(sx, sy)
-                                                                      : std::min(sx, sy);
+      const double s =
+          aspect.find("slice") != std::string_view::npos ? std::max(sx, sy) : std::min(sx, sy);
       auto align = [&](std::string_view minName, std::string_view maxName) {
         if (aspect.find(minName) != std::string_view::npos) return 0.0;
         if (aspect.find(maxName) != std::string_view::npos) return 1.0;
@@ -164,16 +162,32 @@ int elementDepth(const std::string& text) {
       const std::size_t end = text.find(terminator, i);
       i = end == std::string::npos ? n : end;
     };
-    if (text.compare(i, 4, "<!--") == 0) { skipTo("-->"); continue; }
-    if (text.compare(i, 9, "<![CDATA[") == 0) { skipTo("]]>"); continue; }
-    if (i + 1 < n && (text[i + 1] == '?' || text[i + 1] == '!')) { skipTo(">"); continue; }
-    if (i + 1 < n && text[i + 1] == '/') { --depth; skipTo(">"); continue; }
+    if (text.compare(i, 4, "<!--") == 0) {
+      skipTo("-->");
+      continue;
+    }
+    if (text.compare(i, 9, "<![CDATA[") == 0) {
+      skipTo("]]>");
+      continue;
+    }
+    if (i + 1 < n && (text[i + 1] == '?' || text[i + 1] == '!')) {
+      skipTo(">");
+      continue;
+    }
+    if (i + 1 < n && text[i + 1] == '/') {
+      --depth;
+      skipTo(">");
+      continue;
+    }
     char quote = 0;  // inside a start tag: find its end outside quoted values
     std::size_t j = i + 1;
     for (; j < n; ++j) {
-      if (quote) { if (text[j] == quote) quote = 0; }
-      else if (text[j] == '"' || text[j] == '\'') quote = text[j];
-      else if (text[j] == '>') break;
+      if (quote) {
+        if (text[j] == quote) quote = 0;
+      } else if (text[j] == '"' || text[j] == '\'')
+        quote = text[j];
+      else if (text[j] == '>')
+        break;
     }
     const bool selfClosing = j < n && text[j - 1] == '/';
     if (!selfClosing) deepest = std::max(deepest, ++depth);
@@ -189,10 +203,21 @@ struct Document {
   svgpp::factory::length::unitless<> lengths;  // 96 px per inch by default, as CSS says
   double tolerance = 0.01;                     // mm
   double maxCoordinate = 1e6;                  // mm
+  std::size_t maxPoints = 0;                   // OutlineReadOptions::maxPoints
   std::map<std::string, int> elementCounts;    // per element name, for "path 2"
   std::string currentLabel = "the document";   // element being read, for messages
   Drawing drawing;
   std::size_t totalPoints = 0;
+
+  /// Stops the reading when the document needs more than maxPoints points: every path command
+  /// draws at least one, so `pending` counts the commands and points not yet stored in `loops`.
+  void checkPoints(std::size_t pending) const {
+    if (totalPoints + pending > maxPoints)
+      throw SvgProblem{ErrorCode::InputInvalid,
+                       "brings the outlines to more than " + std::to_string(maxPoints) +
+                           " points (the limit) at a flatten tolerance of " + fmt(tolerance) +
+                           " mm"};
+  }
 };
 
 /// One recorded path command in user coordinates (absolute, no shorthands).
@@ -202,7 +227,8 @@ struct Command {
 };
 
 bool displayNone(const XmlNode* node) {
-  if (auto display = attributeValue(node, "display"); display && trim(*display) == "none") return true;
+  if (auto display = attributeValue(node, "display"); display && trim(*display) == "none")
+    return true;
   const std::string_view style = attributeValue(node, "style").value_or("");
   for (std::size_t start = 0; start < style.size();) {
     std::size_t end = style.find(';', start);
@@ -255,13 +281,17 @@ class SvgContext {
     const std::string name(element->local_name(), element->local_name_size());
     label_ = name + " " + std::to_string(++document_->elementCounts[name]);
     if (auto id = attributeValue(element, "id")) {
-      // Messages are one line: no control characters, and a runaway id is cut short.
-      std::string shown(id->substr(0, 60));
-      std::replace_if(shown.begin(), shown.end(), [](char c) { return (unsigned char)c < 0x20; }, ' ');
-      label_ += " (id \"" + shown + (id->size() > 60 ? "...\")" : "\")");
+      // XML reads a line break or tab in an attribute value as a space (attribute-value
+      // normalisation); printable() then keeps any other control character off the line.
+      std::string shown(*id);
+      std::replace_if(
+          shown.begin(), shown.end(), [](char c) { return c == '\n' || c == '\r' || c == '\t'; },
+          ' ');
+      label_ += " (id \"" + printable(shown) + "\")";
     }
     document_->currentLabel = label_;
-    if (name == "svg") throw SvgProblem{ErrorCode::InputInvalid, "is a nested <svg>, which is not supported"};
+    if (name == "svg")
+      throw SvgProblem{ErrorCode::InputInvalid, "is a nested <svg>, which is not supported"};
   }
 
   // Length policy: lengths with units become user units.
@@ -278,26 +308,38 @@ class SvgContext {
 
   // Path events (the path policy makes every command absolute and removes shorthands).
   void path_move_to(double x, double y, svgpp::tag::coordinate::absolute) {
-    commands_.push_back({Command::Move, {x, y}});
+    record({Command::Move, {x, y}});
   }
   void path_line_to(double x, double y, svgpp::tag::coordinate::absolute) {
-    commands_.push_back({Command::Line, {x, y}});
+    record({Command::Line, {x, y}});
   }
   void path_quadratic_bezier_to(double x1, double y1, double x, double y,
                                 svgpp::tag::coordinate::absolute) {
-    commands_.push_back({Command::Quadratic, {x1, y1, x, y}});
+    record({Command::Quadratic, {x1, y1, x, y}});
   }
   void path_cubic_bezier_to(double x1, double y1, double x2, double y2, double x, double y,
                             svgpp::tag::coordinate::absolute) {
-    commands_.push_back({Command::Cubic, {x1, y1, x2, y2, x, y}});
+    record({Command::Cubic, {x1, y1, x2, y2, x, y}});
   }
   void path_elliptical_arc_to(double rx, double ry, double rotation, bool largeArc, bool sweep,
                               double x, double y, svgpp::tag::coordinate::absolute) {
-    commands_.push_back(
-        {Command::Arc, {rx, ry, rotation, double(largeArc), double(sweep), x, y}});
+    record({Command::Arc, {rx, ry, rotation, double(largeArc), double(sweep), x, y}});
   }
-  void path_close_subpath() { commands_.push_back({Command::Close, {}}); }
+  void path_close_subpath() { record({Command::Close, {}}); }
   void path_exit() {}
+
+  /// Keeps a path command for flattening. An element with too many is refused as it is read,
+  /// before they take memory: every drawing command adds at least one point to the outline, and
+  /// moveto and closepath commands, which draw nothing, may not outnumber the point limit either.
+  void record(const Command& command) {
+    commands_.push_back(command);
+    if (command.kind != Command::Move && command.kind != Command::Close)
+      document_->checkPoints(++drawingCommands_);
+    else if (commands_.size() - drawingCommands_ > document_->maxPoints)
+      throw SvgProblem{ErrorCode::InputInvalid, "has more than " +
+                                                    std::to_string(document_->maxPoints) +
+                                                    " moveto and closepath commands (the limit)"};
+  }
 
   bool displayed() const { return !hidden_; }
 
@@ -312,8 +354,9 @@ class SvgContext {
     const Vec2 p = transform_(Vec2(x, y));
     for (int k = 0; k < 2; ++k) {
       if (!(std::abs(p(k)) <= document_->maxCoordinate))
-        throw SvgProblem{ErrorCode::InputInvalid,
-                         "has a coordinate that " + describeBadCoordinate(p(k), document_->maxCoordinate)};
+        throw SvgProblem{
+            ErrorCode::InputInvalid,
+            "has a coordinate that " + describeBadCoordinate(p(k), document_->maxCoordinate)};
     }
     return p;
   }
@@ -329,6 +372,7 @@ class SvgContext {
   bool hidden_ = false;
   bool crease_ = false;  // the element draws crease lines, not outlines
   std::vector<Command> commands_;
+  std::size_t drawingCommands_ = 0;  // commands_ other than Move and Close
 };
 
 void SvgContext::flattenCommands() {
@@ -366,7 +410,8 @@ void SvgContext::flattenCommands() {
         if (!appendBezier(control, tolerance, points))
           throw SvgProblem{ErrorCode::InputInvalid,
                            "needs more than " + fmt(kMaxStepsPerCurve) +
-                               " points per curve at a flatten tolerance of " + fmt(tolerance) + " mm"};
+                               " points per curve at a flatten tolerance of " + fmt(tolerance) +
+                               " mm"};
         currentUser = {c.v[operands - 2], c.v[operands - 1]};
         break;
       }
@@ -374,13 +419,9 @@ void SvgContext::flattenCommands() {
         appendArc(currentUser, c, points);
         currentUser = {c.v[5], c.v[6]};
         break;
-      default:
-        break;
+      default: break;
     }
-    if (points.size() + document_->totalPoints > kMaxTotalPoints)
-      throw SvgProblem{ErrorCode::InputInvalid,
-                       "needs more than " + fmt(double(kMaxTotalPoints)) +
-                           " points at a flatten tolerance of " + fmt(tolerance) + " mm"};
+    document_->checkPoints(points.size());
   }
   finishSubpath(points, closed, index, subpathCount);
 }
@@ -411,8 +452,10 @@ void SvgContext::appendArc(const Vec2& fromUser, const Command& c, std::vector<V
   const double coef = (largeArc == sweep ? -1.0 : 1.0) * std::sqrt(std::max(0.0, num / den));
   const Vec2 centreRotated(coef * rx * half.y() / ry, -coef * ry * half.x() / rx);
   const Vec2 centre = rotation * centreRotated + 0.5 * (fromUser + toUser);
-  const double theta1 = std::atan2((half.y() - centreRotated.y()) / ry, (half.x() - centreRotated.x()) / rx);
-  const double theta2 = std::atan2((-half.y() - centreRotated.y()) / ry, (-half.x() - centreRotated.x()) / rx);
+  const double theta1 =
+      std::atan2((half.y() - centreRotated.y()) / ry, (half.x() - centreRotated.x()) / rx);
+  const double theta2 =
+      std::atan2((-half.y() - centreRotated.y()) / ry, (-half.x() - centreRotated.x()) / rx);
   double delta = theta2 - theta1;
   if (sweep && delta < 0.0) delta += 2.0 * M_PI;
   if (!sweep && delta > 0.0) delta -= 2.0 * M_PI;
@@ -425,12 +468,12 @@ void SvgContext::appendArc(const Vec2& fromUser, const Command& c, std::vector<V
     out.push_back(end);  // radii so large that the arc is a straight line in double precision
     return;
   }
-  const long steps =
-      stepsForDeviation(std::sqrt(u.squaredNorm() + v.squaredNorm()), std::abs(delta), document_->tolerance);
+  const long steps = stepsForDeviation(std::sqrt(u.squaredNorm() + v.squaredNorm()),
+                                       std::abs(delta), document_->tolerance);
   if (steps == 0)
-    throw SvgProblem{ErrorCode::InputInvalid, "has an arc that needs more than " + fmt(kMaxStepsPerCurve) +
-                                                  " points at a flatten tolerance of " +
-                                                  fmt(document_->tolerance) + " mm"};
+    throw SvgProblem{ErrorCode::InputInvalid,
+                     "has an arc that needs more than " + fmt(kMaxStepsPerCurve) +
+                         " points at a flatten tolerance of " + fmt(document_->tolerance) + " mm"};
   for (long k = 1; k < steps; ++k) {
     const double t = theta1 + delta * double(k) / double(steps);
     out.push_back(pageCentre + u * std::cos(t) + v * std::sin(t));
@@ -438,7 +481,8 @@ void SvgContext::appendArc(const Vec2& fromUser, const Command& c, std::vector<V
   out.push_back(end);  // exactly the commanded end point
 }
 
-void SvgContext::finishSubpath(std::vector<Vec2>& points, bool closed, int index, int subpathCount) {
+void SvgContext::finishSubpath(std::vector<Vec2>& points, bool closed, int index,
+                               int subpathCount) {
   if (points.size() < 2) {  // a lone moveto draws nothing
     points.clear();
     return;
@@ -482,11 +526,17 @@ struct ChildContextFactories {
 /// Hidden groups (display:none) are not entered.
 struct TraversalControl {
   template <class Context>
-  static bool proceed_to_element_content(const Context& context) { return context.displayed(); }
+  static bool proceed_to_element_content(const Context& context) {
+    return context.displayed();
+  }
   template <class Context>
-  static bool proceed_to_next_child(const Context&) { return true; }
+  static bool proceed_to_next_child(const Context&) {
+    return true;
+  }
   template <class Context, class XMLElement>
-  static bool process_child(const Context&, const XMLElement&) { return true; }
+  static bool process_child(const Context&, const XMLElement&) {
+    return true;
+  }
 };
 
 /// Unknown or misplaced elements and attributes (editor metadata, CSS we do not need) are
@@ -494,51 +544,60 @@ struct TraversalControl {
 struct ErrorPolicy {
   using context_type = SvgContext;
   template <class Context, class XMLElement, class Name>
-  static bool unknown_element(const Context&, const XMLElement&, const Name&) { return true; }
+  static bool unknown_element(const Context&, const XMLElement&, const Name&) {
+    return true;
+  }
   template <class Context, class XMLAttribute, class Name, class Source>
-  static bool unknown_attribute(const Context&, const XMLAttribute&, const Name&, Source) { return true; }
+  static bool unknown_attribute(const Context&, const XMLAttribute&, const Name&, Source) {
+    return true;
+  }
   template <class Context, class XMLAttribute, class Name, class Namespace, class Source>
-  static bool unknown_attribute(const Context&, const XMLAttribute&, const Name&, Namespace, Source) {
+  static bool unknown_attribute(const Context&, const XMLAttribute&, const Name&, Namespace,
+                                Source) {
     return true;
   }
   template <class Context>
-  static bool unexpected_attribute(const Context&, svgpp::detail::attribute_id, svgpp::tag::source::attribute) {
+  static bool unexpected_attribute(const Context&, svgpp::detail::attribute_id,
+                                   svgpp::tag::source::attribute) {
     return true;
   }
   template <class Context, class AttributeTag>
-  static bool required_attribute_not_found(const Context&, AttributeTag) { return true; }
+  static bool required_attribute_not_found(const Context&, AttributeTag) {
+    return true;
+  }
   template <class Context, class XMLElement>
-  static bool unexpected_element(const Context&, const XMLElement&) { return true; }
+  static bool unexpected_element(const Context&, const XMLElement&) {
+    return true;
+  }
   template <class Context, class AttributeTag, class Value>
   static bool parse_failed(const Context&, AttributeTag, const Value&) {
     throw SvgProblem{ErrorCode::InputUnreadable,
-                     std::string("has a malformed '") + svgpp::attribute_name<char>::get<AttributeTag>() +
-                         "' attribute"};
+                     std::string("has a malformed '") +
+                         svgpp::attribute_name<char>::get<AttributeTag>() + "' attribute"};
   }
   template <class Context, class AttributeTag>
   static bool negative_value(const Context&, AttributeTag) {
-    throw SvgProblem{ErrorCode::InputInvalid, std::string("has a negative '") +
-                                                  svgpp::attribute_name<char>::get<AttributeTag>() +
-                                                  "'"};
+    throw SvgProblem{
+        ErrorCode::InputInvalid,
+        std::string("has a negative '") + svgpp::attribute_name<char>::get<AttributeTag>() + "'"};
   }
 };
 
-using ProcessedElements = boost::mpl::set<
-    svgpp::tag::element::svg, svgpp::tag::element::g, svgpp::tag::element::a,
-    svgpp::tag::element::path, svgpp::tag::element::rect, svgpp::tag::element::circle,
-    svgpp::tag::element::ellipse, svgpp::tag::element::line, svgpp::tag::element::polyline,
-    svgpp::tag::element::polygon>::type;
+using ProcessedElements =
+    boost::mpl::set<svgpp::tag::element::svg, svgpp::tag::element::g, svgpp::tag::element::a,
+                    svgpp::tag::element::path, svgpp::tag::element::rect,
+                    svgpp::tag::element::circle, svgpp::tag::element::ellipse,
+                    svgpp::tag::element::line, svgpp::tag::element::polyline,
+                    svgpp::tag::element::polygon>::type;
 
 using ProcessedAttributes = boost::mpl::insert<svgpp::traits::shapes_attributes_by_element,
                                                svgpp::tag::attribute::transform>::type;
 
 using DocumentTraversal = svgpp::document_traversal<
-    svgpp::processed_elements<ProcessedElements>,
-    svgpp::processed_attributes<ProcessedAttributes>,
+    svgpp::processed_elements<ProcessedElements>, svgpp::processed_attributes<ProcessedAttributes>,
     svgpp::context_factories<ChildContextFactories>,
     svgpp::length_policy<svgpp::policy::length::forward_to_method<SvgContext>>,
-    svgpp::document_traversal_control_policy<TraversalControl>,
-    svgpp::error_policy<ErrorPolicy>>;
+    svgpp::document_traversal_control_policy<TraversalControl>, svgpp::error_policy<ErrorPolicy>>;
 
 }  // namespace
 
@@ -587,6 +646,7 @@ Result<Drawing> readSvgDrawing(const std::string& path, std::string text,
   Document document;
   document.tolerance = options.flattenTolerance;
   document.maxCoordinate = options.maxCoordinate;
+  document.maxPoints = options.maxPoints;
   const Vec2 size = viewport.value().userViewportSize;
   document.lengths.set_viewport_size(size.x(), size.y());
   SvgContext rootContext(document, flip.then(viewport.value().userToPage));
@@ -596,7 +656,8 @@ Result<Drawing> readSvgDrawing(const std::string& path, std::string text,
   } catch (const SvgProblem& problem) {
     return fail(problem.code, document.currentLabel + " " + problem.what);
   } catch (const std::exception& e) {
-    return fail(ErrorCode::InputUnreadable, document.currentLabel + ": " + e.what());
+    return fail(ErrorCode::InputUnreadable,
+                document.currentLabel + ": " + printable(e.what(), 200));
   } catch (...) {  // never let a parser surprise cross the module boundary
     return fail(ErrorCode::InputUnreadable, document.currentLabel + " could not be read");
   }

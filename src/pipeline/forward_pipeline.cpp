@@ -289,7 +289,7 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
 
   ForwardOptions options = job.solve;
   bool interrupted = false;
-  detail::connectHooks(options.solver, hooks, interrupted);
+  detail::connectHooks(options.relaxation, options.solver, hooks, interrupted);
   ForwardResult solved;
   for (std::size_t level = 0; level < levels.size(); ++level) {
     const int n = levels[level];

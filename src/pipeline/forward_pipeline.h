@@ -70,7 +70,8 @@ struct ForwardRun {
 
 /// Hooks for a caller that shows progress or can be interrupted.
 struct RunHooks {
-  std::function<void(const IterationSummary&)> onIteration;
+  /// Each iteration of a stage ("relaxing": local-global steps, "solving": Levenberg-Marquardt).
+  std::function<void(const char* stage, const IterationSummary&)> onIteration;
   const std::atomic<bool>* interrupted = nullptr;  ///< checked between iterations
 };
 

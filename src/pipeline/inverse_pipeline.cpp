@@ -114,7 +114,7 @@ Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const Ru
 
   InverseOptions options = job.solve;
   bool interrupted = false;
-  detail::connectHooks(options.solver, hooks, interrupted);
+  detail::connectHooks(options.relaxation, options.solver, hooks, interrupted);
   InverseResult solved;
   for (std::size_t level = 0; level < levels.size(); ++level) {
     const bool finest = level + 1 == levels.size();

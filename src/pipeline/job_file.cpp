@@ -1,11 +1,14 @@
 #include "pipeline/job_file.h"
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
-#include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <sstream>
+
+#include "core/input_file.h"
+#include "core/message_text.h"
 
 namespace dform {
 
@@ -20,7 +23,7 @@ struct KeyError {
 
 void onlyKeys(const json& object, const std::set<std::string>& allowed, const std::string& where) {
   for (const auto& [key, value] : object.items())
-    if (!allowed.count(key)) throw KeyError{where + key, "unknown key"};
+    if (!allowed.count(key)) throw KeyError{where + printable(key), "unknown key"};
 }
 
 double number(const json& object, const std::string& key, const std::string& where) {
@@ -48,6 +51,12 @@ std::string path(const json& object, const std::string& key, const std::string& 
 int integer(const json& object, const std::string& key) {
   const json& v = object.at(key);
   if (!v.is_number_integer()) throw KeyError{key, "must be a whole number"};
+  // get<int>() would wrap a larger number silently (4294967396 became a resolution of 100).
+  const bool fits = v.is_number_unsigned()
+                        ? v.get<std::uint64_t>() <= std::uint64_t(std::numeric_limits<int>::max())
+                        : v.get<std::int64_t>() >= std::numeric_limits<int>::min() &&
+                              v.get<std::int64_t>() <= std::numeric_limits<int>::max();
+  if (!fits) throw KeyError{key, "is out of range (" + describeJsonValue(v) + ")"};
   return v.get<int>();
 }
 
@@ -56,7 +65,8 @@ StartPoint startPoint(const json& v, const std::string& key) {
   StartPoint s;
   if (v.is_number()) {
     s.fraction = v.get<double>();
-  } else if (v.is_object() && v.size() == 1 && v.contains("fraction") && v["fraction"].is_number()) {
+  } else if (v.is_object() && v.size() == 1 && v.contains("fraction") &&
+             v["fraction"].is_number()) {
     s.fraction = v["fraction"].get<double>();
   } else if (v.is_object() && v.size() == 1 && v.contains("near") && v["near"].is_array() &&
              v["near"].size() == 2 && v["near"][0].is_number() && v["near"][1].is_number()) {
@@ -78,7 +88,8 @@ void readSolver(const json& object, SolverOptions& options) {
 }
 
 template <typename Weights>
-void readWeights(const json& object, const std::vector<std::pair<std::string, double Weights::*>>& names,
+void readWeights(const json& object,
+                 const std::vector<std::pair<std::string, double Weights::*>>& names,
                  Weights& weights) {
   std::set<std::string> allowed;
   for (const auto& [name, member] : names) allowed.insert(name);
@@ -88,16 +99,19 @@ void readWeights(const json& object, const std::vector<std::pair<std::string, do
 }
 
 const std::vector<std::pair<std::string, double ForwardWeights::*>> kForwardWeights = {
-    {"isometry", &ForwardWeights::isometry},   {"alignment", &ForwardWeights::alignment},
+    {"isometry", &ForwardWeights::isometry},        {"alignment", &ForwardWeights::alignment},
     {"boundary_fix", &ForwardWeights::boundaryFix}, {"smooth_3d", &ForwardWeights::smooth3d},
-    {"smooth_2d", &ForwardWeights::smooth2d},  {"seam", &ForwardWeights::seam}};
+    {"smooth_2d", &ForwardWeights::smooth2d},       {"seam", &ForwardWeights::seam}};
 const std::vector<std::pair<std::string, double InverseWeights::*>> kInverseWeights = {
-    {"isometry", &InverseWeights::isometry}, {"closeness", &InverseWeights::closeness},
-    {"smooth_3d", &InverseWeights::smooth3d}, {"smooth_2d", &InverseWeights::smooth2d}};
+    {"isometry", &InverseWeights::isometry},
+    {"closeness", &InverseWeights::closeness},
+    {"smooth_3d", &InverseWeights::smooth3d},
+    {"smooth_2d", &InverseWeights::smooth2d}};
 
 Job parse(const json& root, const std::string& baseDir) {
   if (!root.is_object()) throw KeyError{"(top level)", "must be a JSON object"};
-  if (!root.contains("mode") || !root["mode"].is_string()) throw KeyError{"mode", "must be \"forward\" or \"inverse\""};
+  if (!root.contains("mode") || !root["mode"].is_string())
+    throw KeyError{"mode", "must be \"forward\" or \"inverse\""};
   const std::string mode = root["mode"].get<std::string>();
   Job job;
   if (mode == "forward") {
@@ -129,7 +143,7 @@ Job parse(const json& root, const std::string& baseDir) {
     if (root.contains("weights")) readWeights(root["weights"], kInverseWeights, i.solve.weights);
     if (root.contains("solver")) readSolver(root["solver"], i.solve.solver);
   } else {
-    throw KeyError{"mode", "must be \"forward\" or \"inverse\", not \"" + mode + "\""};
+    throw KeyError{"mode", "must be \"forward\" or \"inverse\", not \"" + printable(mode) + "\""};
   }
   return job;
 }
@@ -160,8 +174,9 @@ Result<Job> parseJobJson(const std::string& text, const std::string& source,
   json root;
   try {
     root = json::parse(text);
-  } catch (const json::parse_error& e) {
-    return Status(ErrorCode::InputUnreadable, source + ": not valid JSON (" + e.what() + ")");
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for 1e999
+    return Status(ErrorCode::InputUnreadable,
+                  source + ": not valid JSON (" + parserReason(e.what()) + ")");
   }
   try {
     Job job = parse(root, baseDir);
@@ -172,17 +187,15 @@ Result<Job> parseJobJson(const std::string& text, const std::string& source,
   } catch (const KeyError& e) {
     return Status(ErrorCode::InputInvalid, source + ": " + e.key + ": " + e.problem);
   } catch (const json::exception& e) {
-    return Status(ErrorCode::InputInvalid, source + ": " + e.what());
+    return Status(ErrorCode::InputInvalid, source + ": " + parserReason(e.what()));
   }
 }
 
 Result<Job> readJobFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Status(ErrorCode::InputUnreadable, path + ": cannot open the job file");
-  std::ostringstream text;
-  text << in.rdbuf();
+  const Result<std::string> text = readInputFile(path, kMaxSettingsBytes);
+  if (!text.isOk()) return text.status();
   const std::string base = std::filesystem::path(path).parent_path().string();
-  return parseJobJson(text.str(), path, base.empty() ? "." : base);
+  return parseJobJson(text.value(), path, base.empty() ? "." : base);
 }
 
 std::string jobToJson(const Job& job) {

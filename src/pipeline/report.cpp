@@ -2,11 +2,12 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
 #include "core/file_hash.h"
+#include "core/input_file.h"
+#include "core/message_text.h"
 
 namespace dform {
 
@@ -193,12 +194,13 @@ namespace {
 
 Result<json> readReport(const std::string& dir) {
   const std::string path = (std::filesystem::path(dir) / "report.json").string();
-  std::ifstream in(path);
-  if (!in) return Status(ErrorCode::InputUnreadable, path + ": cannot open the report");
+  const Result<std::string> text = readInputFile(path);
+  if (!text.isOk()) return text.status();
   try {
-    return json::parse(in);
+    return json::parse(text.value());
   } catch (const json::exception& e) {
-    return Status(ErrorCode::InputUnreadable, path + ": not valid JSON (" + e.what() + ")");
+    return Status(ErrorCode::InputUnreadable,
+                  path + ": not valid JSON (" + parserReason(e.what()) + ")");
   }
 }
 
@@ -235,8 +237,8 @@ Result<std::vector<std::string>> compareWithReport(const std::string& dir, const
                                         1e-9 * std::max(1.0, std::abs(value.get<double>()))
                                   : saved == value;
     if (!same)
-      differences.push_back(key + ": report.json says " + saved.dump() + ", the meshes give " +
-                            value.dump());
+      differences.push_back(key + ": report.json says " + describeJsonValue(saved) +
+                            ", the meshes give " + describeJsonValue(value));
   }
   return differences;
 }

@@ -44,14 +44,20 @@ inline void relaxOnlyIfLarge(long vertices, SolverOptions& solver, LocalGlobalOp
   relaxation.relativeTolerance = kRefinedRelaxationTolerance;
 }
 
-/// Routes the solver's iterations to the run's hooks; `interrupted` turns true when the caller
-/// asked the run to stop (the solver then ends with UserAbort).
-inline void connectHooks(SolverOptions& options, const RunHooks& hooks, bool& interrupted) {
-  options.callback = [&hooks, &interrupted](const IterationSummary& it) {
-    if (hooks.onIteration) hooks.onIteration(it);
-    interrupted = hooks.interrupted && hooks.interrupted->load();
-    return !interrupted;
+/// Routes the relaxation's and the solver's iterations to the run's hooks; `interrupted` turns
+/// true when the caller asked the run to stop (the relaxation then stops, the solver ends with
+/// UserAbort).
+inline void connectHooks(LocalGlobalOptions& relaxation, SolverOptions& solver, const RunHooks& hooks,
+                         bool& interrupted) {
+  auto callback = [&hooks, &interrupted](const char* stage) {
+    return [&hooks, &interrupted, stage](const IterationSummary& it) {
+      if (hooks.onIteration) hooks.onIteration(stage, it);
+      interrupted = hooks.interrupted && hooks.interrupted->load();
+      return !interrupted;
+    };
   };
+  relaxation.callback = callback("relaxing");
+  solver.callback = callback("solving");
 }
 
 }  // namespace dform::detail

@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <kainjow/mustache.hpp>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "core/atomic_file.h"
+#include "core/input_file.h"
+#include "core/message_text.h"
 #include "report/convergence_plot.h"
 #include "report/views.h"
 #include "validate/metrics.h"
@@ -20,14 +20,6 @@ namespace {
 namespace fs = std::filesystem;
 using kainjow::mustache::data;
 using nlohmann::json;
-
-Result<std::string> readText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Status(ErrorCode::InputUnreadable, path + ": cannot open");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 std::string show(const json& v) {
   if (v.is_number_float()) {
@@ -57,11 +49,13 @@ std::vector<PlotSeries> convergenceSeries(const json& solver) {
   for (const json& it : solver["iterations"]) {
     const double x = it["iteration"].get<double>();
     series[0].points.emplace_back(x, it["cost"].get<double>());
-    for (const auto& [term, value] : it["term_costs"].items()) {
+    for (const auto& item : it["term_costs"].items()) {
+      // Not a structured binding: C++17 lambdas cannot capture those (clang refuses).
+      const std::string& term = item.key();
       auto s = std::find_if(series.begin(), series.end(),
                             [&](const PlotSeries& p) { return p.name == term; });
       if (s == series.end()) s = series.insert(series.end(), PlotSeries{term, {}});
-      s->points.emplace_back(x, value.get<double>());
+      s->points.emplace_back(x, item.value().get<double>());
     }
   }
   return series;
@@ -101,16 +95,17 @@ std::string inlineSvg(const std::string& svg) {
 
 Status writeReportHtml(const std::string& dir, const DForm& model,
                        const std::string& templatesDir) {
-  const Result<std::string> reportText = readText((fs::path(dir) / "report.json").string());
+  const Result<std::string> reportText = readInputFile((fs::path(dir) / "report.json").string());
   if (!reportText.isOk()) return reportText.status();
-  const Result<std::string> templateText = readText(templatesDir + "/report/report.html.mustache");
+  const Result<std::string> templateText =
+      readInputFile(templatesDir + "/report/report.html.mustache");
   if (!templateText.isOk()) return templateText.status();
   json report;
   try {
     report = json::parse(reportText.value());
   } catch (const json::exception& e) {
     return Status(ErrorCode::InputUnreadable,
-                  dir + "/report.json: not valid JSON (" + e.what() + ")");
+                  dir + "/report.json: not valid JSON (" + parserReason(e.what()) + ")");
   }
 
   data page;
@@ -183,7 +178,7 @@ Status writeReportHtml(const std::string& dir, const DForm& model,
                               ? data(data::type::bool_false)
                               : data(data::type::bool_true));
 
-  const Result<std::string> pattern = readText((fs::path(dir) / "pattern.svg").string());
+  const Result<std::string> pattern = readInputFile((fs::path(dir) / "pattern.svg").string());
   page.set("has_pattern",
            pattern.isOk() ? data(data::type::bool_true) : data(data::type::bool_false));
   page.set("pattern_svg", pattern.isOk() ? inlineSvg(pattern.value()) : std::string());

@@ -2,7 +2,8 @@
 // and Solver::Summary. Each step solves (J^T J + mu I) dx = -J^T r. J^T J is scattered into a
 // pattern fixed at set-up (linear terms are assembled once), CHOLMOD's symbolic analysis is done
 // once, and the last numeric factorisation is reused as the preconditioner of a conjugate-gradient
-// solve on later steps, so that most steps cost a few back-substitutions instead of a refactorisation.
+// solve on later steps, so that most steps cost a few back-substitutions instead of a
+// refactorisation.
 #pragma once
 
 #include <Eigen/Core>
@@ -32,10 +33,10 @@ struct IterationSummary {
 };
 
 enum class Termination {
-  Converged,     ///< a tolerance below was met
-  NoConvergence, ///< the iteration cap was reached; x holds the best point found
-  Failure,       ///< numerical failure (non-finite values, factorisation failed)
-  UserAbort,     ///< the callback asked to stop; x holds the best point found
+  Converged,      ///< a tolerance below was met
+  NoConvergence,  ///< the iteration cap was reached; x holds the best point found
+  Failure,        ///< numerical failure (non-finite values, factorisation failed)
+  UserAbort,      ///< the callback asked to stop; x holds the best point found
 };
 
 const char* terminationName(Termination t);
@@ -82,7 +83,7 @@ struct SolverSummary {
   int numVariables = 0;
   int numResiduals = 0;
   int factorisations = 0;
-  double setupSeconds = 0;   ///< pattern analysis and symbolic factorisation
+  double setupSeconds = 0;  ///< pattern analysis and symbolic factorisation
   double totalSeconds = 0;
 
   /// Appends a later solve of the same problem (iterations renumbered, times and counts added).
@@ -90,6 +91,9 @@ struct SolverSummary {
 
   /// Whether x holds a usable result (converged, or stopped early with finite values).
   bool usable() const { return termination != Termination::Failure; }
+  /// Whether a further solve from x makes sense: usable, and not stopped by the callback (a
+  /// Ctrl-C ends the run at once; another solve would take an iteration, seconds on a large mesh).
+  bool canContinue() const { return usable() && termination != Termination::UserAbort; }
   /// One line: termination, iterations, cost change, time.
   std::string briefReport() const;
 };

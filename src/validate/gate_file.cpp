@@ -1,12 +1,11 @@
 // Gate files: {"version": 1, "name": "...", "description": "...", "limits": {...}}. Every limit
 // may be left out to keep its default (GateLimits); nothing unknown is accepted, so that a typo
 // never silently keeps a default.
+#include <cmath>
 #include <nlohmann/json.hpp>
 
-#include <cmath>
-#include <fstream>
-#include <sstream>
-
+#include "core/input_file.h"
+#include "core/message_text.h"
 #include "validate/gate.h"
 
 namespace dform {
@@ -25,8 +24,9 @@ Result<GateLimits> parseGateJson(const std::string& text, const std::string& sou
   json doc;
   try {
     doc = json::parse(text);
-  } catch (const json::parse_error& e) {
-    return Status(ErrorCode::InputUnreadable, source + ": not JSON (" + std::string(e.what()) + ")");
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for 1e999
+    return Status(ErrorCode::InputUnreadable,
+                  source + ": not JSON (" + parserReason(e.what()) + ")");
   }
   if (!doc.is_object()) return invalid(source, "a gate file is a JSON object");
 
@@ -35,17 +35,21 @@ Result<GateLimits> parseGateJson(const std::string& text, const std::string& sou
   for (const auto& [key, value] : doc.items()) {
     if (key == "version") {
       if (!value.is_number_integer() || value.get<long long>() != 1)
-        return invalid(source, "version must be 1 (got " + value.dump() + ")");
+        return invalid(source, "version must be 1 (got " + describeJsonValue(value) + ")");
       sawVersion = true;
     } else if (key == "name") {
-      if (!value.is_string()) return invalid(source, "name must be a string (got " + value.dump() + ")");
+      if (!value.is_string())
+        return invalid(source, "name must be a string (got " + describeJsonValue(value) + ")");
       limits.name = value.get<std::string>();
     } else if (key == "description") {
-      if (!value.is_string()) return invalid(source, "description must be a string (got " + value.dump() + ")");
+      if (!value.is_string())
+        return invalid(source,
+                       "description must be a string (got " + describeJsonValue(value) + ")");
     } else if (key == "limits") {
-      if (!value.is_object()) return invalid(source, "limits must be an object (got " + value.dump() + ")");
+      if (!value.is_object())
+        return invalid(source, "limits must be an object (got " + describeJsonValue(value) + ")");
     } else {
-      return invalid(source, "unknown field '" + key + "'");
+      return invalid(source, "unknown field '" + printable(key) + "'");
     }
   }
   if (!sawVersion) return invalid(source, "missing field 'version' (1)");
@@ -55,10 +59,14 @@ Result<GateLimits> parseGateJson(const std::string& text, const std::string& sou
     double* field;
   };
   const Real reals[] = {
-      {"L_error", &limits.L_error},         {"L_max", &limits.L_max},
-      {"B_error", &limits.B_error},         {"D_error", &limits.D_error},
-      {"seam_gap_mm", &limits.seam_gap_mm}, {"gauss_max_rad", &limits.gauss_max_rad},
-      {"seam_length_rel", &limits.seam_length_rel}, {"hull_distance_rel", &limits.hull_distance_rel},
+      {"L_error", &limits.L_error},
+      {"L_max", &limits.L_max},
+      {"B_error", &limits.B_error},
+      {"D_error", &limits.D_error},
+      {"seam_gap_mm", &limits.seam_gap_mm},
+      {"gauss_max_rad", &limits.gauss_max_rad},
+      {"seam_length_rel", &limits.seam_length_rel},
+      {"hull_distance_rel", &limits.hull_distance_rel},
   };
   struct Count {
     const char* key;
@@ -68,26 +76,29 @@ Result<GateLimits> parseGateJson(const std::string& text, const std::string& sou
 
   if (!doc.contains("limits")) return limits;
   for (const auto& [key, value] : doc["limits"].items()) {
-    const std::string where = "limits." + key;
+    const std::string where = "limits." + printable(key);
     bool known = false;
     for (const Real& r : reals) {
       if (key != r.key) continue;
       known = true;
       if (!value.is_number())
-        return invalid(source, where + " must be a number (got " + value.dump() + ")");
+        return invalid(source, where + " must be a number (got " + describeJsonValue(value) + ")");
       const double x = value.get<double>();
       if (!(x >= 0.0) || !std::isfinite(x))
-        return invalid(source, where + " must be a finite non-negative number (got " + value.dump() + ")");
+        return invalid(source, where + " must be a finite non-negative number (got " +
+                                   describeJsonValue(value) + ")");
       *r.field = x;
     }
     for (const Count& c : counts) {
       if (key != c.key) continue;
       known = true;
       if (!value.is_number_integer())
-        return invalid(source, where + " must be a whole number (got " + value.dump() + ")");
+        return invalid(source,
+                       where + " must be a whole number (got " + describeJsonValue(value) + ")");
       const long long x = value.get<long long>();
       if (x < 0 || x > 1000000000)
-        return invalid(source, where + " must be a non-negative count (got " + value.dump() + ")");
+        return invalid(
+            source, where + " must be a non-negative count (got " + describeJsonValue(value) + ")");
       *c.field = int(x);
     }
     if (!known) return invalid(source, "unknown field '" + where + "'");
@@ -96,12 +107,9 @@ Result<GateLimits> parseGateJson(const std::string& text, const std::string& sou
 }
 
 Result<GateLimits> readGateFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Status(ErrorCode::InputUnreadable, path + ": cannot open the gate file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) return Status(ErrorCode::InputUnreadable, path + ": cannot read the gate file");
-  return parseGateJson(text.str(), path);
+  const Result<std::string> text = readInputFile(path, kMaxSettingsBytes);
+  if (!text.isOk()) return text.status();
+  return parseGateJson(text.value(), path);
 }
 
 }  // namespace dform

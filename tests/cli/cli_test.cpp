@@ -3,13 +3,17 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "core/file_hash.h"
 #include "io/model_files.h"
@@ -29,7 +33,8 @@ class CliTest : public ::testing::Test {
  protected:
   void SetUp() override {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("dform_cli_" + std::string(info->name()) + "_" + std::to_string(getpid()));
+    dir_ = fs::temp_directory_path() /
+           ("dform_cli_" + std::string(info->name()) + "_" + std::to_string(getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -41,7 +46,8 @@ class CliTest : public ::testing::Test {
     return path(name);
   }
   static std::string svg(const std::string& body) {
-    return "<svg xmlns='http://www.w3.org/2000/svg' width='300mm' height='300mm' viewBox='0 0 300 300'>" +
+    return "<svg xmlns='http://www.w3.org/2000/svg' width='300mm' height='300mm' viewBox='0 0 300 "
+           "300'>" +
            body + "</svg>";
   }
 
@@ -78,7 +84,8 @@ class CliTest : public ::testing::Test {
     const std::string command =
         "python3 -c 'import json, sys, jsonschema; "
         "jsonschema.validate(json.load(open(sys.argv[1])), json.load(open(sys.argv[2])))' " +
-        report + " " + std::string(DFORM_TEMPLATES_DIR) + "/schema/report.schema.json 2>" + path("schema.txt");
+        report + " " + std::string(DFORM_TEMPLATES_DIR) + "/schema/report.schema.json 2>" +
+        path("schema.txt");
     return std::system(command.c_str());
   }
 
@@ -104,47 +111,57 @@ std::string expectSelfContainedReport(const std::string& dir, const nlohmann::js
   text << in.rdbuf();
   const std::string html = text.str();
   // The only addresses allowed are XML namespace names (SVG, Inkscape), which are never fetched.
-  const std::string rest = std::regex_replace(html, std::regex(R"(xmlns(:\w+)?=["'][^"']*["'])"), "");
+  const std::string rest =
+      std::regex_replace(html, std::regex(R"(xmlns(:\w+)?=["'][^"']*["'])"), "");
   for (const char* remote : {"<script", "src=", "href=", "url(", "@import", "http://", "https://"})
     EXPECT_EQ(rest.find(remote), std::string::npos) << remote;
   std::size_t svgs = 0;
   for (std::size_t at = 0; (at = html.find("<svg", at)) != std::string::npos; ++at) ++svgs;
   EXPECT_GE(svgs, 7u) << "4 views, 2 curvature maps and the convergence plot";
   for (const auto& check : report["gate"]["checks"])
-    EXPECT_NE(html.find(">" + check["name"].get<std::string>() + "<"), std::string::npos) << check["name"];
+    EXPECT_NE(html.find(">" + check["name"].get<std::string>() + "<"), std::string::npos)
+        << check["name"];
   return html;
 }
 
 TEST_F(CliTest, MissingFileIsUnreadable) {
   const std::string missing = path("nowhere.svg");
-  expectError(run("forward " + missing + " " + sample("forward/circle.svg") + " -o " + path("out")), 3, missing);
+  expectError(run("forward " + missing + " " + sample("forward/circle.svg") + " -o " + path("out")),
+              3, missing);
   EXPECT_FALSE(fs::exists(path("out")));
 }
 
 TEST_F(CliTest, NotSvgIsUnreadable) {
   const std::string junk = write("junk.svg", "this is not an svg file");
-  expectError(run("forward " + junk + " " + sample("forward/circle.svg") + " -o " + path("out")), 3, junk);
+  expectError(run("forward " + junk + " " + sample("forward/circle.svg") + " -o " + path("out")), 3,
+              junk);
 }
 
 TEST_F(CliTest, NoClosedPathIsInvalid) {
   const std::string open = write("open.svg", svg("<path d='M 10 10 L 100 10 L 100 100'/>"));
-  expectError(run("forward " + open + " " + sample("forward/circle.svg") + " -o " + path("out")), 4, open);
+  expectError(run("forward " + open + " " + sample("forward/circle.svg") + " -o " + path("out")), 4,
+              open);
 }
 
 TEST_F(CliTest, SelfIntersectingOutlineIsInvalid) {
-  const std::string bowtie = write("bowtie.svg", svg("<polygon points='10,10 100,100 100,10 10,100'/>"));
-  expectError(run("forward " + bowtie + " " + sample("forward/circle.svg") + " -o " + path("out")), 4, bowtie);
+  const std::string bowtie =
+      write("bowtie.svg", svg("<polygon points='10,10 100,100 100,10 10,100'/>"));
+  expectError(run("forward " + bowtie + " " + sample("forward/circle.svg") + " -o " + path("out")),
+              4, bowtie);
 }
 
 TEST_F(CliTest, PieceWithAHoleIsInvalid) {
-  const std::string ring = write("ring.svg", svg("<path d='M 10 10 H 200 V 200 H 10 Z M 50 50 V 150 H 150 V 50 Z'/>"));
-  const Outcome o = run("forward " + ring + " " + sample("forward/circle.svg") + " -o " + path("out"));
+  const std::string ring =
+      write("ring.svg", svg("<path d='M 10 10 H 200 V 200 H 10 Z M 50 50 V 150 H 150 V 50 Z'/>"));
+  const Outcome o =
+      run("forward " + ring + " " + sample("forward/circle.svg") + " -o " + path("out"));
   expectError(o, 4, ring);
   EXPECT_NE(o.err.find("hole"), std::string::npos) << o.err;
 }
 
 TEST_F(CliTest, UnequalPerimetersGiveBothInMillimetres) {
-  const Outcome o = run("forward " + sample("forward/circle.svg") + " " + sample("forward/ellipses-a.svg") + " -o " + path("out"));
+  const Outcome o = run("forward " + sample("forward/circle.svg") + " " +
+                        sample("forward/ellipses-a.svg") + " -o " + path("out"));
   expectError(o, 4, "perimeters differ");
   EXPECT_NE(o.err.find("799.9"), std::string::npos) << o.err;  // the circle's 800 mm, flattened
   EXPECT_NE(o.err.find("607.2"), std::string::npos) << o.err;  // the ellipse's 607.28 mm
@@ -153,41 +170,48 @@ TEST_F(CliTest, UnequalPerimetersGiveBothInMillimetres) {
 
 TEST_F(CliTest, HugeAndNonFiniteCoordinatesAreInvalid) {
   const std::string huge = write("huge.json", R"({"points": [[0,0],[1e300,0],[0,10]]})");
-  expectError(run("forward " + huge + " " + sample("forward/circle.svg") + " -o " + path("out")), 4, huge);
+  expectError(run("forward " + huge + " " + sample("forward/circle.svg") + " -o " + path("out")), 4,
+              huge);
   const std::string inf = write("inf.svg", svg("<rect width='1e999' height='10'/>"));
-  const Outcome o = run("forward " + inf + " " + sample("forward/circle.svg") + " -o " + path("out"));
+  const Outcome o =
+      run("forward " + inf + " " + sample("forward/circle.svg") + " -o " + path("out"));
   EXPECT_TRUE(o.exitCode == 3 || o.exitCode == 4) << o.err;
   EXPECT_NE(o.err.find(inf), std::string::npos) << o.err;
 }
 
 TEST_F(CliTest, TooFewPointsIsInvalid) {
   const std::string two = write("two.json", R"({"points": [[0,0],[10,0]]})");
-  expectError(run("forward " + two + " " + sample("forward/circle.svg") + " -o " + path("out")), 4, two);
+  expectError(run("forward " + two + " " + sample("forward/circle.svg") + " -o " + path("out")), 4,
+              two);
 }
 
 TEST_F(CliTest, BadOptionsAreUsageErrors) {
-  const std::string pair = sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  const std::string pair =
+      sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
   expectError(run("forward " + pair + " -o " + path("out") + " --resolution 2"), 2, "resolution");
   expectError(run("forward " + pair + " -o " + path("out") + " --start-b 1.5"), 2, "fraction");
   expectError(run("forward " + pair + " -o " + path("out") + " --weight bogus=1"), 2, "bogus");
-  expectError(run("forward " + pair + " -o " + path("out") + " --resolution many"), 2, "resolution");
+  expectError(run("forward " + pair + " -o " + path("out") + " --resolution many"), 2,
+              "resolution");
   expectError(run("forward " + pair), 2, "output");
   expectError(run("frobnicate"), 2, "frobnicate");
 }
 
 TEST_F(CliTest, UnwritableOutputIsAnOutputError) {
   const std::string file = write("a-file", "x");
-  const std::string pair = sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  const std::string pair =
+      sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
   expectError(run("forward " + pair + " --resolution 30 -q -o " + file + "/out"), 6, file);
 }
 
 TEST_F(CliTest, ForwardWritesEveryFileAndValidates) {
   const std::string out = path("out");
-  const Outcome o = run("forward " + sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg") +
-                        " --resolution 40 -q -o " + out);
+  const Outcome o = run("forward " + sample("forward/ellipses-a.svg") + " " +
+                        sample("forward/ellipses-b.svg") + " --resolution 40 -q -o " + out);
   ASSERT_EQ(o.exitCode, 0) << o.err;
-  for (const char* name : {"piece-a-flat.obj", "piece-a-3d.obj", "piece-b-flat.obj", "piece-b-3d.obj",
-                           "report.json", "pattern.svg", "pattern.pdf", "dform.stl", "dform.glb"})
+  for (const char* name :
+       {"piece-a-flat.obj", "piece-a-3d.obj", "piece-b-flat.obj", "piece-b-3d.obj", "report.json",
+        "pattern.svg", "pattern.pdf", "dform.stl", "dform.glb"})
     EXPECT_TRUE(fs::exists(fs::path(out) / name)) << name;
   // No temporary file is left behind.
   for (const auto& entry : fs::directory_iterator(out))
@@ -225,8 +249,9 @@ TEST_F(CliTest, ProgressOnlyOnATerminalAndNotWhenQuiet) {
                            sample("forward/ellipses-b.svg") + " --resolution 30 --no-export";
   // util-linux `script` runs the command on a pseudo-terminal and copies what it shows.
   auto onTerminal = [&](const std::string& more, const std::string& out) {
-    const std::string command = "script -qec '" + std::string(DFORM_EXE) + " " + args + more + " -o " +
-                                path(out) + "' /dev/null > " + path(out + ".txt") + " 2>&1";
+    const std::string command = "script -qec '" + std::string(DFORM_EXE) + " " + args + more +
+                                " -o " + path(out) + "' /dev/null > " + path(out + ".txt") +
+                                " 2>&1";
     EXPECT_EQ(std::system(command.c_str()), 0) << command;
     std::ostringstream text;
     text << std::ifstream(path(out + ".txt")).rdbuf();
@@ -248,17 +273,20 @@ TEST_F(CliTest, ProgressOnlyOnATerminalAndNotWhenQuiet) {
 
 TEST_F(CliTest, AFailedGateKeepsTheReportAndReleasesNothing) {
   const std::string out = path("out");
-  const std::string pieces = sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  const std::string pieces =
+      sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
   ASSERT_EQ(run("forward " + pieces + " --resolution 30 -q -o " + out).exitCode, 0);
   ASSERT_TRUE(fs::exists(fs::path(out) / "pattern.svg"));
   // Run again into the same folder against a gate no solve can pass (L_error <= 1e-9).
   const std::string tight =
       write("tight.json", R"({"version": 1, "name": "tight", "limits": {"L_error": 1e-9}})");
-  const Outcome failed = run("forward " + pieces + " --resolution 30 -q --gate " + tight + " -o " + out);
+  const Outcome failed =
+      run("forward " + pieces + " --resolution 30 -q --gate " + tight + " -o " + out);
   expectError(failed, 7, "no cutting files");
   EXPECT_NE(failed.out.find("gate: FAILED (tight: "), std::string::npos) << failed.out;
   for (const char* name : {"pattern.svg", "pattern.pdf", "pattern.json", "dform.stl", "dform.glb"})
-    EXPECT_FALSE(fs::exists(fs::path(out) / name)) << name << ": the previous run's file must not stay";
+    EXPECT_FALSE(fs::exists(fs::path(out) / name))
+        << name << ": the previous run's file must not stay";
   const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
   EXPECT_FALSE(report["gate"]["passed"].get<bool>());
   EXPECT_EQ(schemaCheck((fs::path(out) / "report.json").string()), 0);
@@ -278,17 +306,20 @@ TEST_F(CliTest, AFailedGateKeepsTheReportAndReleasesNothing) {
   EXPECT_EQ(reexported["job"], "ellipses-a") << "the job's name, not the folder's";
   std::ostringstream page;
   page << std::ifstream(fs::path(out) / "report.html").rdbuf();
-  EXPECT_NE(page.str().find("id=\"A-cut\""), std::string::npos) << "the report shows the new pattern";
+  EXPECT_NE(page.str().find("id=\"A-cut\""), std::string::npos)
+      << "the report shows the new pattern";
 
   // --export-anyway on the run itself: every cutting file written and marked, still exit 7.
   const std::string anyway = path("anyway");
-  const Outcome marked =
-      run("forward " + pieces + " --resolution 30 -q --gate " + tight + " --export-anyway -o " + anyway);
+  const Outcome marked = run("forward " + pieces + " --resolution 30 -q --gate " + tight +
+                             " --export-anyway -o " + anyway);
   EXPECT_EQ(marked.exitCode, 7) << marked.err;
   std::ostringstream stl;
   stl << std::ifstream(fs::path(anyway) / "dform.stl", std::ios::binary).rdbuf();
-  EXPECT_NE(stl.str().substr(0, 80).find("FAILED GATE"), std::string::npos) << "the STL header says so";
-  const nlohmann::json markedReport = nlohmann::json::parse(std::ifstream(fs::path(anyway) / "report.json"));
+  EXPECT_NE(stl.str().substr(0, 80).find("FAILED GATE"), std::string::npos)
+      << "the STL header says so";
+  const nlohmann::json markedReport =
+      nlohmann::json::parse(std::ifstream(fs::path(anyway) / "report.json"));
   EXPECT_EQ(markedReport["gate"]["checks"].back()["name"], "pattern_layout");
   EXPECT_EQ(markedReport["gate"]["checks"].back()["verdict"], "pass");
   const nlohmann::json markedPattern = nlohmann::json::parse(std::ifstream(fs::path(anyway) / "pattern.json"));
@@ -377,16 +408,22 @@ TEST_F(CliTest, AReportThatCannotBeWrittenReleasesNoCuttingFile) {
 TEST_F(CliTest, ReportsFollowTheirSchema) {
   const std::string forward = path("forward"), inverse = path("inverse");
   // With the strict gate the run may pass (0) or fail it (7); either way the report has the checks.
-  const int code = run("forward " + sample("forward/circle.svg") + " " + sample("forward/square.svg") +
-                       " --resolution 30 --gate strict --no-export -q -o " + forward).exitCode;
+  const int code =
+      run("forward " + sample("forward/circle.svg") + " " + sample("forward/square.svg") +
+          " --resolution 30 --gate strict --no-export -q -o " + forward)
+          .exitCode;
   ASSERT_TRUE(code == 0 || code == 7) << code;
   ASSERT_TRUE(fs::exists(fs::path(forward) / "report.json"));
   EXPECT_EQ(schemaCheck((fs::path(forward) / "report.json").string()), 0);
   // The preset by its path under templates/, as the docs write it: the same gate.
-  const nlohmann::json byName = nlohmann::json::parse(std::ifstream(fs::path(forward) / "report.json"));
+  const nlohmann::json byName =
+      nlohmann::json::parse(std::ifstream(fs::path(forward) / "report.json"));
   EXPECT_EQ(run("validate " + forward + " --gate gates/strict.json").exitCode, code);
   EXPECT_EQ(byName["gate"]["name"], "strict");
-  ASSERT_EQ(run("inverse " + sample("inverse/saddle.obj") + " --resolution 40 --no-export -q -o " + inverse).exitCode, 0);
+  ASSERT_EQ(run("inverse " + sample("inverse/saddle.obj") + " --resolution 40 --no-export -q -o " +
+                inverse)
+                .exitCode,
+            0);
   EXPECT_EQ(schemaCheck((fs::path(inverse) / "report.json").string()), 0);
   // The schema is not a formality: a report missing a figure or with a stray key fails it.
   nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(inverse) / "report.json"));
@@ -401,8 +438,9 @@ TEST_F(CliTest, ReportsFollowTheirSchema) {
 
 TEST_F(CliTest, AFailedExportStillSavesTheResult) {
   const std::string out = path("out");
-  const Outcome o = run("forward " + sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg") +
-                        " --resolution 30 -q --sheet 100x100mm -o " + out);
+  const Outcome o =
+      run("forward " + sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg") +
+          " --resolution 30 -q --sheet 100x100mm -o " + out);
   expectError(o, 2, "does not fit");
   EXPECT_NE(o.err.find("dform export " + out), std::string::npos) << o.err;
   EXPECT_TRUE(fs::exists(fs::path(out) / "report.json"));
@@ -430,20 +468,125 @@ TEST_F(CliTest, JobFileReproducesTheRun) {
   // The recorded job runs again to the same figures.
   const std::string again = write("again.json", report["job"].dump());
   ASSERT_EQ(run("run " + again + " --no-export -q -o " + path("out2")).exitCode, 0);
-  const nlohmann::json second = nlohmann::json::parse(std::ifstream(fs::path(path("out2")) / "report.json"));
+  const nlohmann::json second =
+      nlohmann::json::parse(std::ifstream(fs::path(path("out2")) / "report.json"));
   EXPECT_EQ(report["metrics"]["L_error"], second["metrics"]["L_error"]);
   EXPECT_EQ(report["metrics"]["B_error"], second["metrics"]["B_error"]);
 }
 
 TEST_F(CliTest, BadJobFilesNameTheKey) {
-  const std::string unknown = write("unknown.json", R"({"mode": "forward", "piece_a": "a.svg", "piece_b": "b.svg", "colour": 3})");
+  const std::string unknown =
+      write("unknown.json",
+            R"({"mode": "forward", "piece_a": "a.svg", "piece_b": "b.svg", "colour": 3})");
   expectError(run("run " + unknown + " -o " + path("out")), 4, "colour");
   const std::string missing = write("missing.json", R"({"mode": "forward", "piece_a": "a.svg"})");
   expectError(run("run " + missing + " -o " + path("out")), 4, "piece_b");
-  const std::string typed = write("typed.json", R"({"mode": "forward", "piece_a": "a.svg", "piece_b": "b.svg", "resolution": "high"})");
+  const std::string typed =
+      write("typed.json",
+            R"({"mode": "forward", "piece_a": "a.svg", "piece_b": "b.svg", "resolution": "high"})");
   expectError(run("run " + typed + " -o " + path("out")), 4, "resolution");
   const std::string notJson = write("not.json", "{ mode: forward");
   expectError(run("run " + notJson + " -o " + path("out")), 3, notJson);
+}
+
+TEST_F(CliTest, OversizedInputsStopEarlyWithOneLine) {
+  // A seam curve of 1.2 million points, past the million the reader takes: refused at the vertex
+  // past the limit, never solved.
+  std::string vertices;
+  for (int i = 0; i < 1'200'000; ++i) vertices += "v 1 2 3\n";
+  const std::string curve = write("dense.obj", vertices + "l 1 2 3 1\n");
+  expectError(run("inverse " + curve + " -o " + path("out")), 4,
+              "line 1000001: more than 1000000 vertices (the limit)");
+  EXPECT_FALSE(fs::exists(path("out")));
+  // Job and gate files over a megabyte are refused unread.
+  for (const char* name : {"job.json", "gate.json"}) {
+    write(name, "");
+    fs::resize_file(path(name), (std::uintmax_t(1) << 20) + 1);  // sparse: nothing is written
+  }
+  expectError(run("run " + path("job.json") + " -o " + path("out")), 3, "too large");
+  const std::string pair =
+      sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  expectError(run("forward " + pair + " --gate " + path("gate.json") + " -o " + path("out")), 3,
+              "too large");
+  EXPECT_FALSE(fs::exists(path("out")));
+}
+
+// The files of a folder and their bytes.
+std::map<std::string, std::string> folderContents(const std::string& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    std::ostringstream bytes;
+    bytes << std::ifstream(entry.path(), std::ios::binary).rdbuf();
+    files[entry.path().filename().string()] = bytes.str();
+  }
+  return files;
+}
+
+TEST_F(CliTest, InterruptedRunExitsWithoutTouchingTheOutputFolder) {
+  const std::string pair =
+      sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  const std::string out = path("out");
+  // The folder holds an earlier complete result, which an interrupted run must leave as it is.
+  ASSERT_EQ(run("forward " + pair + " --resolution 30 -q -o " + out).exitCode, 0);
+  const std::map<std::string, std::string> before = folderContents(out);
+  ASSERT_GE(before.size(), 9u);
+
+  for (const int signal : {SIGINT, SIGTERM}) {
+    SCOPED_TRACE(signal == SIGINT ? "SIGINT" : "SIGTERM");
+    // A run long enough to be caught solving (seconds), its stderr in a file we watch.
+    const std::string err = path("interrupted.txt");
+    const pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+      const std::string command = "exec " + std::string(DFORM_EXE) + " forward " + pair +
+                                  " --resolution 250 -o " + out + " >/dev/null 2>" + err;
+      execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    // The finest level is meshed, then solved: the signal comes while it solves.
+    std::string log;
+    for (int waited = 0; log.find("meshed piece A with") == std::string::npos; ++waited) {
+      ASSERT_LT(waited, 12000) << "no solve started within 10 minutes: " << log;
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      std::ostringstream text;
+      text << std::ifstream(err).rdbuf();
+      log = text.str();
+    }
+    ASSERT_EQ(kill(pid, signal), 0);
+    int status = 0;
+    ASSERT_EQ(waitpid(pid, &status, 0), pid);
+    ASSERT_TRUE(WIFEXITED(status)) << "ended by the signal instead of stopping cleanly";
+    EXPECT_EQ(WEXITSTATUS(status), signal == SIGINT ? 130 : 143);
+    std::ostringstream text;
+    text << std::ifstream(err).rdbuf();
+    EXPECT_NE(text.str().find("dform: error: interrupted"), std::string::npos) << text.str();
+    // Nothing written, nothing half-written, no temporary file: the earlier result, unchanged.
+    EXPECT_TRUE(folderContents(out) == before);
+  }
+}
+
+TEST_F(CliTest, TheSameJobGivesBitIdenticalResultsInSeparateProcesses) {
+  // Twice each, in separate processes: every figure of report.json and every coordinate of the
+  // meshes must be the same to the last bit (no uninitialised value, no reduction whose order
+  // changes from run to run, e.g. with the threads of the linear algebra).
+  for (const std::string& job : {"run " + sample("forward/ellipses-quarter-turn.json"),
+                                 "inverse " + sample("inverse/saddle.obj") + " --resolution 60"}) {
+    SCOPED_TRACE(job);
+    std::map<std::string, std::string> meshes[2];
+    nlohmann::json metrics[2];
+    for (int k = 0; k < 2; ++k) {
+      const std::string out = path("out" + std::to_string(k));
+      ASSERT_EQ(run(job + " --no-export -q -o " + out).exitCode, 0);
+      metrics[k] = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"))["metrics"];
+      for (const auto& [name, bytes] : folderContents(out))
+        if (fs::path(name).extension() == ".obj") meshes[k][name] = bytes;
+      fs::remove_all(out);
+    }
+    EXPECT_GE(metrics[0].size(), 10u);
+    EXPECT_EQ(metrics[0], metrics[1]) << metrics[0].dump() << "\n" << metrics[1].dump();
+    EXPECT_GE(meshes[0].size(), 4u);
+    EXPECT_TRUE(meshes[0] == meshes[1]) << "the meshes differ";
+  }
 }
 
 TEST_F(CliTest, FitPerimeterScalesPieceB) {
@@ -503,7 +646,8 @@ TEST_F(CliTest, ARunTooLargeForTheMachineStopsAtOnceSayingWhatFits) {
 
 TEST_F(CliTest, InverseRunAndItsBadInputs) {
   const std::string out = path("out");
-  const Outcome o = run("inverse " + sample("inverse/tennis-ball.obj") + " --resolution 60 --no-export -q -o " + out);
+  const Outcome o = run("inverse " + sample("inverse/tennis-ball.obj") +
+                        " --resolution 60 --no-export -q -o " + out);
   ASSERT_EQ(o.exitCode, 0) << o.err;
   EXPECT_TRUE(fs::exists(fs::path(out) / ModelFileNames::targetCurve));
   const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
@@ -513,13 +657,15 @@ TEST_F(CliTest, InverseRunAndItsBadInputs) {
   EXPECT_NE(html.find(">D_error<"), std::string::npos);
   EXPECT_EQ(run("validate " + out).exitCode, 0);
 
-  const std::string planar = write("planar.obj", "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\nv -5 5 0\nl 1 2 3 4 5 1\n");
+  const std::string planar =
+      write("planar.obj", "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\nv -5 5 0\nl 1 2 3 4 5 1\n");
   expectError(run("inverse " + planar + " -o " + path("o2")), 4, planar);
   const std::string faces = write("faces.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   const Outcome f = run("inverse " + faces + " -o " + path("o3"));
   EXPECT_TRUE(f.exitCode == 3 || f.exitCode == 4) << f.err;
   EXPECT_NE(f.err.find(faces), std::string::npos);
-  const std::string open = write("open.obj", "v 0 0 0\nv 10 0 1\nv 10 10 0\nv 0 10 1\nv -5 5 2\nl 1 2 3 4 5\n");
+  const std::string open =
+      write("open.obj", "v 0 0 0\nv 10 0 1\nv 10 10 0\nv 0 10 1\nv -5 5 2\nl 1 2 3 4 5\n");
   expectError(run("inverse " + open + " -o " + path("o4")), 4, open);
 }
 

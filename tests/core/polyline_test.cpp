@@ -177,5 +177,21 @@ TEST(Polyline, InsideClosedByTheEvenOddRule) {
   EXPECT_TRUE(insidePolygon(clockwise, {1, 9}));
 }
 
+TEST(Polyline, NearTouchIsJudgedTheSameWhicheverWayTheSegmentsRun) {
+  // From the SVG fuzz target: a vertex within rounding of another edge. Walked one way the edges
+  // touched, walked the other they did not, so an outline passed the reader's check and crossed
+  // itself once made counter-clockwise.
+  const Eigen::Vector2d a(969.46283726682464, -149.92536010247301);
+  const Eigen::Vector2d b(971.03560331969709, -158.20987566250454);
+  const Eigen::Vector2d c(6489.7289345088511, -1629.0762028633792);
+  const Eigen::Vector2d d(356.09993757326623, 14.424733537627674);
+  const bool touch = segmentsIntersect(a, b, c, d);
+  EXPECT_EQ(segmentsIntersect(b, a, c, d), touch);
+  EXPECT_EQ(segmentsIntersect(a, b, d, c), touch);
+  EXPECT_EQ(segmentsIntersect(b, a, d, c), touch);
+  EXPECT_EQ(segmentsIntersect(c, d, a, b), touch);
+  EXPECT_EQ(segmentsIntersect(d, c, b, a), touch);
+}
+
 }  // namespace
 }  // namespace dform

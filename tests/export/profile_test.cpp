@@ -2,6 +2,7 @@
 // the file and the field.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 
 #include "export/exporter.h"
@@ -44,7 +45,8 @@ TEST(ExportProfile, ShopColourConventions) {
   EXPECT_EQ(print.kind, ProfileKind::Print);
   EXPECT_EQ(print.fold, FoldStyle::Dashed);
   EXPECT_TRUE(print.tile && print.calibrationBar);
-  EXPECT_EQ(loadProfile("print-and-cut", DFORM_TEMPLATES_DIR).value().registration, Registration::Silhouette);
+  EXPECT_EQ(loadProfile("print-and-cut", DFORM_TEMPLATES_DIR).value().registration,
+            Registration::Silhouette);
   EXPECT_EQ(loadProfile("print-and-cut-cricut", DFORM_TEMPLATES_DIR).value().page, "Letter");
 }
 
@@ -111,6 +113,12 @@ TEST(ExportProfile, BadProfilesNameTheFileAndField) {
   }
   auto missing = loadProfile("/nonexistent/profile.json", "");
   EXPECT_EQ(missing.status().code(), ErrorCode::InputUnreadable);
+  const std::string huge = writeProfile("huge", "");
+  std::filesystem::resize_file(huge, (std::uintmax_t(1) << 20) + 1);  // sparse: nothing is written
+  auto big = loadProfile(huge, "");
+  EXPECT_EQ(big.status().code(), ErrorCode::InputUnreadable);
+  EXPECT_EQ(big.status().message().rfind(huge + ": file is too large", 0), 0u)
+      << big.status().message();
   auto unknown = loadProfile("plasma", DFORM_TEMPLATES_DIR);
   EXPECT_EQ(unknown.status().code(), ErrorCode::Usage);
   EXPECT_NE(unknown.status().message().find("laser"), std::string::npos);

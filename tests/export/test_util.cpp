@@ -6,10 +6,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <sstream>
 
 namespace dform::test {
@@ -30,28 +30,49 @@ std::string readText(const std::string& path) {
 }
 
 namespace {
+
+// Plain string scanning, not std::regex: libstdc++'s regex executor recurses once per character
+// it matches, and a pattern's long path data overflowed the stack under AddressSanitizer.
+
+// The value of attribute `name` in the start tag `element`, "" when it has none.
 std::string attribute(const std::string& element, const std::string& name) {
-  const std::regex re("\\s" + name + "=\"([^\"]*)\"");
-  std::smatch m;
-  return std::regex_search(element, m, re) ? m[1].str() : std::string();
+  const std::string key = name + "=\"";
+  for (std::size_t at = element.find(key); at != std::string::npos;
+       at = element.find(key, at + 1)) {
+    if (at == 0 || !std::isspace(static_cast<unsigned char>(element[at - 1]))) continue;
+    const std::size_t start = at + key.size(), end = element.find('"', start);
+    return end == std::string::npos ? std::string() : element.substr(start, end - start);
+  }
+  return std::string();
 }
 
+// The value of `key` in a CSS declaration list "a:1;b:2", "" when it has none.
 std::string styleValue(const std::string& style, const std::string& key) {
-  const std::regex re("(^|;)" + key + ":([^;]*)");
-  std::smatch m;
-  return std::regex_search(style, m, re) ? m[2].str() : std::string();
+  std::istringstream declarations(style);
+  std::string declaration;
+  while (std::getline(declarations, declaration, ';'))
+    if (declaration.rfind(key + ":", 0) == 0) return declaration.substr(key.size() + 1);
+  return std::string();
 }
+
 }  // namespace
 
 SvgDoc readSvg(const std::string& path) {
   const std::string text = readText(path);
   SvgDoc doc;
-  const std::regex element("<(svg|g|path)\\s[^>]*>");
   std::string layer;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), element);
-       it != std::sregex_iterator(); ++it) {
-    const std::string e = it->str();
-    const std::string tag = (*it)[1].str();
+  // Every <svg ...>, <g ...> and <path ...> start tag, in order.
+  for (std::size_t at = text.find('<'); at != std::string::npos; at = text.find('<', at + 1)) {
+    std::size_t nameEnd = at + 1;
+    while (nameEnd < text.size() && std::isalpha(static_cast<unsigned char>(text[nameEnd])))
+      ++nameEnd;
+    const std::string tag = text.substr(at + 1, nameEnd - at - 1);
+    if ((tag != "svg" && tag != "g" && tag != "path") || nameEnd == text.size() ||
+        !std::isspace(static_cast<unsigned char>(text[nameEnd])))
+      continue;
+    const std::size_t close = text.find('>', nameEnd);
+    if (close == std::string::npos) break;
+    const std::string e = text.substr(at, close - at + 1);
     if (tag == "svg") {
       doc.width = attribute(e, "width");
       doc.height = attribute(e, "height");

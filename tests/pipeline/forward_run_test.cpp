@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <cctype>
+#include <string>
+#include <vector>
 #include <filesystem>
 
 #include "core/polyline.h"
@@ -155,10 +157,15 @@ TEST(ForwardRun, InterruptionStopsTheSolve) {
   std::atomic<bool> stop{true};
   RunHooks hooks;
   hooks.interrupted = &stop;
+  // The relaxation sees the stop after its first step, and nothing runs after it: neither more
+  // relaxation, nor Levenberg-Marquardt, nor the multiplier rounds.
+  std::vector<std::string> stages;
+  hooks.onIteration = [&](const char* stage, const IterationSummary&) { stages.push_back(stage); };
   MessageSink sink;
   const Result<ForwardRun> run = runForward(job("ellipses-a.svg", "ellipses-b.svg", 40), sink, hooks);
   ASSERT_FALSE(run.isOk());
   EXPECT_EQ(run.status().code(), ErrorCode::Interrupted);
+  EXPECT_EQ(stages, std::vector<std::string>{"relaxing"});
 }
 
 }  // namespace

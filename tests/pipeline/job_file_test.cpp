@@ -1,6 +1,10 @@
 #include "pipeline/job_file.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 
 namespace dform {
 namespace {
@@ -31,7 +35,8 @@ TEST(JobFile, ForwardJobRoundTrips) {
 
 TEST(JobFile, InverseJobRoundTrips) {
   const Result<Job> job = parseJobJson(R"({"mode": "inverse", "curve": "seam.obj", "closed": true,
-    "weights": {"closeness": 2}})", "job.json", "/base");
+    "weights": {"closeness": 2}})",
+                                       "job.json", "/base");
   ASSERT_TRUE(job.isOk()) << job.status().message();
   EXPECT_EQ(job.value().mode, Job::Mode::Inverse);
   EXPECT_EQ(job.value().inverse.curve, "/base/seam.obj");
@@ -49,12 +54,20 @@ TEST(JobFile, EveryMistakeNamesItsKey) {
       {R"({"mode": "forward", "piece_a": "a.svg"})", "piece_b"},
       {R"({"mode": "forward", "piece_a": 3, "piece_b": "b.svg"})", "piece_a"},
       {R"({"mode": "forward", "piece_a": "a.svg", "piece_b": "b.svg", "colour": 1})", "colour"},
-      {R"({"mode": "forward", "piece_a": "a.svg", "piece_b": "b.svg", "resolution": 1.5})", "resolution"},
-      {R"({"mode": "forward", "piece_a": "a.svg", "piece_b": "b.svg", "start_b": {"near": [1]}})", "start_b"},
-      {R"({"mode": "forward", "piece_a": "a.svg", "piece_b": "b.svg", "weights": {"glue": 1}})", "glue"},
+      {R"({"mode": "forward", "piece_a": "a.svg", "piece_b": "b.svg", "resolution": 1.5})",
+       "resolution"},
+      {R"({"mode": "forward", "piece_a": "a.svg", "piece_b": "b.svg", "start_b": {"near": [1]}})",
+       "start_b"},
+      {R"({"mode": "forward", "piece_a": "a.svg", "piece_b": "b.svg", "weights": {"glue": 1}})",
+       "glue"},
       {R"({"mode": "forward", "piece_a": "a.svg", "piece_b": "b.svg", "flip": "yes"})", "flip"},
-      {R"({"mode": "forward", "piece_a": "a.svg", "piece_b": "b.svg", "resolution": 3})", "resolution"},
+      {R"({"mode": "forward", "piece_a": "a.svg", "piece_b": "b.svg", "resolution": 3})",
+       "resolution"},
       {R"({"mode": "inverse"})", "curve"},
+      // Past int: once read as 100, a valid resolution, by wrapping round.
+      {R"({"mode": "inverse", "curve": "c.obj", "resolution": 4294967396})", "resolution"},
+      {R"({"mode": "inverse", "curve": "c.obj", "solver": {"max_iterations": -4294967296}})",
+       "max_iterations"},
   };
   for (const auto& [text, key] : bad) {
     const Result<Job> job = parseJobJson(text, "job.json", ".");
@@ -66,6 +79,17 @@ TEST(JobFile, EveryMistakeNamesItsKey) {
   const Result<Job> notJson = parseJobJson("{ nope", "job.json", ".");
   EXPECT_EQ(notJson.status().code(), ErrorCode::InputUnreadable);
   EXPECT_EQ(readJobFile("/nonexistent/job.json").status().code(), ErrorCode::InputUnreadable);
+}
+
+TEST(JobFile, AFileOverOneMebibyteIsRefusedUnread) {
+  const std::string path = testing::TempDir() + "huge-job-" + std::to_string(::getpid()) + ".json";
+  std::ofstream(path) << "";
+  std::filesystem::resize_file(path, (std::uintmax_t(1) << 20) + 1);  // sparse: nothing is written
+  const Result<Job> job = readJobFile(path);
+  EXPECT_EQ(job.status().code(), ErrorCode::InputUnreadable);
+  EXPECT_EQ(job.status().message().rfind(path + ": file is too large", 0), 0u)
+      << job.status().message();
+  std::filesystem::remove(path);
 }
 
 }  // namespace

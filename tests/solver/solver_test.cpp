@@ -169,7 +169,9 @@ TEST(Solver, SummaryIsConsistent) {
   std::mt19937 rng(3);
   Problem problem(2);
   problem.addTerm("fit", 2.0, exponentialData(1.5, 0.4));
-  problem.addTerm("prior", 0.1, std::make_unique<LinearResidual>(randomSparse(2, 2, 1.0, rng), Eigen::Vector2d(1, 1)));
+  problem.addTerm(
+      "prior", 0.1,
+      std::make_unique<LinearResidual>(randomSparse(2, 2, 1.0, rng), Eigen::Vector2d(1, 1)));
   Eigen::VectorXd x(2);
   x << 0.5, -0.5;
   const SolverSummary summary = solve(problem, SolverOptions{}, x);
@@ -242,29 +244,37 @@ TEST(Solver, PreconditionedStepsReachTheSameMinimumAsRefactorising) {
   EXPECT_LE(summary.factorisations, int(summary.iterations.size()));
 }
 
+/// |x - (1, 2)|^2 + |x0 + x1 - 0|^2, with the second term's residual for constraint rounds.
+struct PullWithSum {
+  Problem problem{2};
+  LinearResidual* sum = nullptr;
+  PullWithSum() {
+    RowSparse I(2, 2);
+    I.setIdentity();
+    RowSparse S(1, 2);
+    S.insert(0, 0) = 1.0;
+    S.insert(0, 1) = 1.0;
+    problem.addTerm("pull", 1.0, std::make_unique<LinearResidual>(I, Eigen::Vector2d(1, 2)));
+    auto term = std::make_unique<LinearResidual>(S, Eigen::VectorXd::Zero(1));
+    sum = term.get();
+    problem.addTerm("sum", 1.0, std::move(term));
+  }
+};
+
 TEST(Solver, MultiplierRoundsMeetAConstraintWithoutRaisingItsWeight) {
-  // Minimise |x - (1, 2)|^2 + |x0 + x1 - 0|^2: the soft minimum misses x0 + x1 = 0, the
-  // constraint rounds meet it to the tolerance and land on the constrained minimum (-0.5, 0.5).
-  Problem problem(2);
-  RowSparse I(2, 2);
-  I.setIdentity();
-  RowSparse S(1, 2);
-  S.insert(0, 0) = 1.0;
-  S.insert(0, 1) = 1.0;
-  problem.addTerm("pull", 1.0, std::make_unique<LinearResidual>(I, Eigen::Vector2d(1, 2)));
-  auto sum = std::make_unique<LinearResidual>(S, Eigen::VectorXd::Zero(1));
-  LinearResidual* constraint = sum.get();
-  problem.addTerm("sum", 1.0, std::move(sum));
-  LeastSquaresSolver solver(problem, SolverOptions{});
+  // The soft minimum misses x0 + x1 = 0, the constraint rounds meet it to the tolerance and land
+  // on the constrained minimum (-0.5, 0.5).
+  PullWithSum pull;
+  LeastSquaresSolver solver(pull.problem, SolverOptions{});
   Eigen::VectorXd x = Eigen::VectorXd::Zero(2);
   SolverSummary summary = solver.solve(x);
   EXPECT_NEAR(x[0] + x[1], 1.0, 1e-6);  // soft: (1 + 2) / 3
   const int rounds = enforceByMultipliers(
       [&](Eigen::VectorXd& y) {
         summary.append(solver.solve(y));
-        return summary.usable();
+        return summary.canContinue();
       },
-      {{constraint, 1, 1e-7}}, 50, x);
+      {{pull.sum, 1, 1e-7}}, 50, x);
   EXPECT_GT(rounds, 0);
   EXPECT_GT(summary.iterations.size(), 1u);  // the rounds' solves are in the summary
   EXPECT_LT(std::abs(x[0] + x[1]), 1e-7);
@@ -272,17 +282,30 @@ TEST(Solver, MultiplierRoundsMeetAConstraintWithoutRaisingItsWeight) {
   EXPECT_NEAR(x[1], 0.5, 1e-6);
 }
 
-TEST(GradientCheck, AcceptsACorrectJacobianAndCatchesAWrongOne) {
-  auto term = exponentialData(2.0, -0.7);
-  Eigen::VectorXd x(2);
-  x << 1.3, 0.2;
-  const JacobianCheck good = checkJacobian(*term, x);
-  EXPECT_LT(good.maxRelativeError, 1e-6);
-  EXPECT_TRUE(good.outsidePatternIsZero);
-  term->bug_ = true;
-  const JacobianCheck bad = checkJacobian(*term, x);
-  EXPECT_GT(bad.maxAbsoluteError, 0.05);
-  EXPECT_EQ(bad.worstColumn, 1);
+TEST(Solver, AStopFromTheCallbackEndsTheMultiplierRounds) {
+  // A Ctrl-C stops a solve through the callback: the constraint rounds must not go on with solves
+  // of their own (each would take an iteration, seconds on a large mesh, before stopping).
+  PullWithSum pull;
+  SolverOptions options;
+  bool stop = false;
+  int calls = 0;
+  options.callback = [&](const IterationSummary&) { return ++calls, !stop; };
+  LeastSquaresSolver solver(pull.problem, options);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(2);
+  SolverSummary summary = solver.solve(x);
+  ASSERT_TRUE(summary.canContinue());
+  stop = true;  // the Ctrl-C comes during the first round's solve
+  calls = 0;
+  const int rounds = enforceByMultipliers(
+      [&](Eigen::VectorXd& y) {
+        summary.append(solver.solve(y));
+        return summary.canContinue();
+      },
+      {{pull.sum, 1, 1e-7}}, 50, x);
+  EXPECT_EQ(rounds, 1);
+  EXPECT_EQ(calls, 1);
+  EXPECT_EQ(summary.termination, Termination::UserAbort);
+  EXPECT_FALSE(summary.canContinue());
 }
 
 }  // namespace

@@ -10,12 +10,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string preset(const std::string& name) { return std::string(DFORM_TEMPLATES_DIR) + "/gates/" + name + ".json"; }
+std::string preset(const std::string& name) {
+  return std::string(DFORM_TEMPLATES_DIR) + "/gates/" + name + ".json";
+}
 
 // Every limit of a gate, in one list so that the comparisons below cover each field.
 std::vector<double> fields(const GateLimits& g) {
-  return {g.L_error, g.L_max, g.B_error, g.D_error, g.seam_gap_mm, g.gauss_max_rad, g.seam_length_rel,
-          g.hull_distance_rel, double(g.flipped), double(g.degenerate)};
+  return {g.L_error,         g.L_max,
+          g.B_error,         g.D_error,
+          g.seam_gap_mm,     g.gauss_max_rad,
+          g.seam_length_rel, g.hull_distance_rel,
+          double(g.flipped), double(g.degenerate)};
 }
 
 TEST(GateFile, PresetsReadAndAreOrdered) {
@@ -30,7 +35,8 @@ TEST(GateFile, PresetsReadAndAreOrdered) {
   EXPECT_EQ(lenient.value().name, "lenient");
   // The built-in defaults are the default preset.
   EXPECT_EQ(fields(def.value()), fields(GateLimits{}));
-  const std::vector<double> s = fields(strict.value()), d = fields(def.value()), l = fields(lenient.value());
+  const std::vector<double> s = fields(strict.value()), d = fields(def.value()),
+                            l = fields(lenient.value());
   for (size_t i = 0; i < d.size(); ++i) {
     EXPECT_LE(s[i], d[i]) << "field " << i;
     EXPECT_LE(d[i], l[i]) << "field " << i;
@@ -52,7 +58,8 @@ TEST(GateFile, EveryPresetFileInTheTemplatesFolderReads) {
 }
 
 TEST(GateFile, LeftOutLimitsKeepTheirDefaults) {
-  const Result<GateLimits> gate = parseGateJson(R"({"version": 1, "limits": {"L_error": 0.02, "flipped": 3}})", "g.json");
+  const Result<GateLimits> gate =
+      parseGateJson(R"({"version": 1, "limits": {"L_error": 0.02, "flipped": 3}})", "g.json");
   ASSERT_TRUE(gate.isOk()) << gate.status().message();
   EXPECT_EQ(gate.value().L_error, 0.02);
   EXPECT_EQ(gate.value().flipped, 3);
@@ -70,16 +77,23 @@ TEST(GateFile, EveryBadFieldIsNamed) {
   const BadGate cases[] = {
       {R"({"version": 1, "colour": "red"})", ErrorCode::InputInvalid, "'colour'"},
       {R"({"version": 1, "limits": {"L_eror": 0.1}})", ErrorCode::InputInvalid, "'limits.L_eror'"},
-      {R"({"version": 1, "limits": {"L_error": "0.1"}})", ErrorCode::InputInvalid, "limits.L_error"},
+      {R"({"version": 1, "limits": {"L_error": "0.1"}})", ErrorCode::InputInvalid,
+       "limits.L_error"},
       {R"({"version": 1, "limits": {"L_max": -0.1}})", ErrorCode::InputInvalid, "limits.L_max"},
-      {R"({"version": 1, "limits": {"seam_gap_mm": null}})", ErrorCode::InputInvalid, "limits.seam_gap_mm"},
-      {R"({"version": 1, "limits": {"gauss_max_rad": true}})", ErrorCode::InputInvalid, "limits.gauss_max_rad"},
-      {R"({"version": 1, "limits": {"B_error": -1e-9}})", ErrorCode::InputInvalid, "limits.B_error"},
+      {R"({"version": 1, "limits": {"seam_gap_mm": null}})", ErrorCode::InputInvalid,
+       "limits.seam_gap_mm"},
+      {R"({"version": 1, "limits": {"gauss_max_rad": true}})", ErrorCode::InputInvalid,
+       "limits.gauss_max_rad"},
+      {R"({"version": 1, "limits": {"B_error": -1e-9}})", ErrorCode::InputInvalid,
+       "limits.B_error"},
       {R"({"version": 1, "limits": {"D_error": [1]}})", ErrorCode::InputInvalid, "limits.D_error"},
-      {R"({"version": 1, "limits": {"seam_length_rel": -1}})", ErrorCode::InputInvalid, "limits.seam_length_rel"},
-      {R"({"version": 1, "limits": {"hull_distance_rel": {}}})", ErrorCode::InputInvalid, "limits.hull_distance_rel"},
+      {R"({"version": 1, "limits": {"seam_length_rel": -1}})", ErrorCode::InputInvalid,
+       "limits.seam_length_rel"},
+      {R"({"version": 1, "limits": {"hull_distance_rel": {}}})", ErrorCode::InputInvalid,
+       "limits.hull_distance_rel"},
       {R"({"version": 1, "limits": {"flipped": 1.5}})", ErrorCode::InputInvalid, "limits.flipped"},
-      {R"({"version": 1, "limits": {"degenerate": -1}})", ErrorCode::InputInvalid, "limits.degenerate"},
+      {R"({"version": 1, "limits": {"degenerate": -1}})", ErrorCode::InputInvalid,
+       "limits.degenerate"},
       {R"({"version": 1, "limits": [0.1]})", ErrorCode::InputInvalid, "limits"},
       {R"({"version": 2})", ErrorCode::InputInvalid, "version"},
       {R"({"version": "1"})", ErrorCode::InputInvalid, "version"},
@@ -101,7 +115,9 @@ TEST(GateFile, EveryBadFieldIsNamed) {
 }
 
 TEST(GateFile, FileErrorsNameThePath) {
-  const fs::path dir = fs::temp_directory_path() / ("dform_gate_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  const fs::path dir =
+      fs::temp_directory_path() /
+      ("dform_gate_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
   fs::create_directories(dir);
   const std::string missing = (dir / "missing.json").string();
   const Result<GateLimits> none = readGateFile(missing);
@@ -112,7 +128,16 @@ TEST(GateFile, FileErrorsNameThePath) {
   std::ofstream(negative) << R"({"version": 1, "limits": {"L_error": -0.5}})";
   const Result<GateLimits> bad = readGateFile(negative);
   EXPECT_EQ(bad.status().code(), ErrorCode::InputInvalid);
-  EXPECT_EQ(bad.status().message().rfind(negative + ": limits.L_error", 0), 0u) << bad.status().message();
+  EXPECT_EQ(bad.status().message().rfind(negative + ": limits.L_error", 0), 0u)
+      << bad.status().message();
+
+  const std::string huge = (dir / "huge.json").string();
+  std::ofstream(huge) << "";
+  fs::resize_file(huge, (std::uintmax_t(1) << 20) + 1);  // sparse: nothing is written
+  const Result<GateLimits> big = readGateFile(huge);
+  EXPECT_EQ(big.status().code(), ErrorCode::InputUnreadable);
+  EXPECT_EQ(big.status().message().rfind(huge + ": file is too large", 0), 0u)
+      << big.status().message();
   fs::remove_all(dir);
 }
 

@@ -1,0 +1,59 @@
+#include "core/input_file.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace dform {
+namespace {
+
+namespace fs = std::filesystem;
+
+class InputFile : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("dform_input_file_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+TEST_F(InputFile, ReadsTheWholeFile) {
+  const std::string path = (dir_ / "a.txt").string();
+  std::ofstream(path, std::ios::binary) << std::string(100000, 'x') << "end";
+  const Result<std::string> text = readInputFile(path);
+  ASSERT_TRUE(text.isOk()) << text.status().message();
+  EXPECT_EQ(text.value().size(), 100003u);
+  EXPECT_EQ(text.value().substr(100000), "end");
+}
+
+TEST_F(InputFile, RefusesAFileOverTheLimitWithoutReadingIt) {
+  const std::string path = (dir_ / "big.json").string();
+  std::ofstream(path, std::ios::binary) << "";
+  fs::resize_file(path, kMaxSettingsBytes + 1);  // sparse: nothing is written
+  const Result<std::string> text = readInputFile(path, kMaxSettingsBytes);
+  EXPECT_EQ(text.status().code(), ErrorCode::InputUnreadable);
+  EXPECT_EQ(text.status().message(), path + ": file is too large (1 MiB; the limit is 1 MiB)");
+  EXPECT_TRUE(readInputFile(path).isOk()) << "under the default limit";
+}
+
+TEST_F(InputFile, StopsAnEndlessStreamAtTheLimit) {
+  // A character device reports no size; it is read until the limit, then refused.
+  const Result<std::string> text = readInputFile("/dev/zero", kMaxSettingsBytes);
+  EXPECT_EQ(text.status().code(), ErrorCode::InputUnreadable);
+  EXPECT_NE(text.status().message().find("/dev/zero: file is too large"), std::string::npos)
+      << text.status().message();
+}
+
+TEST_F(InputFile, MissingFileAndFolderAreUnreadable) {
+  const std::string missing = (dir_ / "none.svg").string();
+  EXPECT_EQ(readInputFile(missing).status().message(), missing + ": no such file");
+  EXPECT_EQ(readInputFile(dir_.string()).status().message(),
+            dir_.string() + ": is a folder, not a file");
+}
+
+}  // namespace
+}  // namespace dform

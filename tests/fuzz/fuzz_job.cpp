@@ -1,0 +1,22 @@
+// Fuzzes the job-file reader. A job it accepts must be valid and survive the trip through
+// report.json unchanged (jobToJson, then read again), since that is how a run is repeated.
+#include "fuzz_check.h"
+#include "pipeline/job_file.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const unsigned char* data, std::size_t size) {
+  using namespace dform;
+  const Result<Job> job = fuzz::parseChecked(
+      data, size, "job.json", [](const std::string& text, const std::string& source) {
+        return parseJobJson(text, source, "/base");
+      });
+  if (!job.isOk()) return 0;
+  const Job& j = job.value();
+  const Status valid =
+      j.mode == Job::Mode::Forward ? validateForwardJob(j.forward) : validateInverseJob(j.inverse);
+  fuzz::require(valid.isOk(), "an accepted job is invalid", valid.message());
+  const std::string saved = jobToJson(j);
+  const Result<Job> again = parseJobJson(saved, "again.json", "/elsewhere");
+  fuzz::require(again.isOk(), "a saved job does not read back", again.status().message());
+  fuzz::require(jobToJson(again.value()) == saved, "a saved job reads back different", saved);
+  return 0;
+}

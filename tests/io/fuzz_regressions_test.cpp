@@ -1,0 +1,47 @@
+// Inputs that once crashed the io fuzz targets (tests/fuzz/regressions/): each now gives a proper
+// Status. What each one found is in docs/hardening.md.
+#include "fuzz/regressions.h"
+#include "io/curve_reader.h"
+#include "io/outline_reader.h"
+
+namespace dform {
+namespace {
+
+using test::Regression;
+
+Status readShapeText(const std::string& text, const std::string& source) {
+  return parseShape(text, source).status();
+}
+
+Status readCurveText(const std::string& text, const std::string& source) {
+  return parseCurve(text, source).status();
+}
+
+TEST(FuzzRegressions, Svg) {
+  test::checkRegressions("svg", {{"near-touch-depends-on-direction.svg", ErrorCode::Ok, ""}},
+                         readShapeText);
+}
+
+TEST(FuzzRegressions, OutlineJson) {
+  test::checkRegressions(
+      "outline_json",
+      {{"control-character-in-parse-error.json", ErrorCode::InputUnreadable, "not valid JSON"}},
+      readShapeText);
+}
+
+TEST(FuzzRegressions, CurveObj) {
+  test::checkRegressions(
+      "curve_obj",
+      {{"control-character-in-token.obj", ErrorCode::InputUnreadable, "is not a number"}},
+      readCurveText);
+}
+
+TEST(FuzzRegressions, CurveJson) {
+  test::checkRegressions(
+      "curve_json",
+      {{"control-character-in-parse-error.json", ErrorCode::InputUnreadable, "not valid JSON"}},
+      readCurveText);
+}
+
+}  // namespace
+}  // namespace dform

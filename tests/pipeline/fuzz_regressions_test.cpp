@@ -1,0 +1,20 @@
+// Inputs that once crashed the job-file fuzz target (tests/fuzz/regressions/job/): each now gives
+// a proper Status. What each one found is in docs/hardening.md.
+#include "fuzz/regressions.h"
+#include "pipeline/job_file.h"
+
+namespace dform {
+namespace {
+
+TEST(FuzzRegressions, JobFile) {
+  test::checkRegressions(
+      "job",
+      {{"del-character-in-parse-error.json", ErrorCode::InputUnreadable, "not valid JSON"},
+       {"number-overflow.json", ErrorCode::InputUnreadable, "number overflow"}},
+      [](const std::string& text, const std::string& source) {
+        return parseJobJson(text, source, "/base").status();
+      });
+}
+
+}  // namespace
+}  // namespace dform

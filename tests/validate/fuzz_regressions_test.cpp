@@ -1,0 +1,20 @@
+// Inputs that once crashed the gate-file fuzz target (tests/fuzz/regressions/gate/): each now
+// gives a proper Status. What each one found is in docs/hardening.md.
+#include "fuzz/regressions.h"
+#include "validate/gate.h"
+
+namespace dform {
+namespace {
+
+TEST(FuzzRegressions, GateFile) {
+  test::checkRegressions(
+      "gate",
+      {{"control-character-in-parse-error.json", ErrorCode::InputUnreadable, "not JSON"},
+       {"number-overflow.json", ErrorCode::InputUnreadable, "number overflow"}},
+      [](const std::string& text, const std::string& source) {
+        return parseGateJson(text, source).status();
+      });
+}
+
+}  // namespace
+}  // namespace dform
