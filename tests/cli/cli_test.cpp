@@ -302,6 +302,33 @@ TEST_F(CliTest, ReportsFollowTheirSchema) {
   report["surprise"] = 1;
   std::ofstream(path("stray.json")) << report.dump();
   EXPECT_NE(schemaCheck(path("stray.json")), 0);
+
+  // Each mode has its own required parts: a report missing one, or carrying the other mode's,
+  // or claiming the other mode, fails.
+  const nlohmann::json saved[2] = {
+      nlohmann::json::parse(std::ifstream(fs::path(forward) / "report.json")),
+      nlohmann::json::parse(std::ifstream(fs::path(inverse) / "report.json"))};
+  auto failsWhen = [&](int which, const std::string& what, auto change) {
+    nlohmann::json edited = saved[which];
+    change(edited);
+    std::ofstream(path("edited.json")) << edited.dump();
+    EXPECT_NE(schemaCheck(path("edited.json")), 0) << what;
+  };
+  using J = nlohmann::json;
+  failsWhen(1, "inverse without D_error", [](J& r) { r["metrics"].erase("D_error"); });
+  failsWhen(1, "inverse without curve_distance_max_mm", [](J& r) { r["metrics"].erase("curve_distance_max_mm"); });
+  failsWhen(1, "inverse without curve_length_mm", [](J& r) { r["metrics"].erase("curve_length_mm"); });
+  failsWhen(1, "inverse without pre_dform", [](J& r) { r.erase("pre_dform"); });
+  failsWhen(1, "inverse with empty inputs", [](J& r) { r["inputs"] = J::object(); });
+  failsWhen(1, "inverse claiming forward", [](J& r) { r["mode"] = "forward"; });
+  failsWhen(1, "inverse with a forward job", [&](J& r) { r["job"] = saved[0]["job"]; });
+  failsWhen(0, "forward without B_error", [](J& r) { r["metrics"].erase("B_error"); });
+  failsWhen(0, "forward without piece_b", [](J& r) { r["inputs"].erase("piece_b"); });
+  failsWhen(0, "forward with empty inputs", [](J& r) { r["inputs"] = J::object(); });
+  failsWhen(0, "forward with a curve input", [&](J& r) { r["inputs"]["curve"] = saved[1]["inputs"]["curve"]; });
+  failsWhen(0, "forward with D_error", [](J& r) { r["metrics"]["D_error"] = 0.0; });
+  failsWhen(0, "forward claiming inverse", [](J& r) { r["mode"] = "inverse"; });
+  failsWhen(0, "forward with a pre-D-Form", [&](J& r) { r["pre_dform"] = saved[1]["pre_dform"]; });
 }
 
 TEST_F(CliTest, AFailedExportStillSavesTheResult) {
