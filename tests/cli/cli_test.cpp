@@ -2,6 +2,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -330,6 +332,43 @@ TEST_F(CliTest, ReportsFollowTheirSchema) {
   failsWhen(0, "forward claiming inverse", [](J& r) { r["mode"] = "inverse"; });
   failsWhen(0, "forward with a pre-D-Form", [&](J& r) { r["pre_dform"] = saved[1]["pre_dform"]; });
 }
+
+// Every shipped sample, as shipped (its job file's options, or an inverse curve's defaults).
+std::vector<std::string> shippedSamples() {
+  std::vector<std::string> samples;
+  for (const char* folder : {"forward", "inverse"})
+    for (const auto& entry : fs::directory_iterator(std::string(DFORM_SAMPLES_DIR) + "/" + folder)) {
+      const std::string ext = entry.path().extension().string();
+      if (ext == ".json" || (ext == ".obj" && std::string(folder) == "inverse"))
+        samples.push_back(std::string(folder) + "/" + entry.path().filename().string());
+    }
+  std::sort(samples.begin(), samples.end());
+  return samples;
+}
+
+class SampleUnderStrictGate : public CliTest, public ::testing::WithParamInterface<std::string> {};
+
+// The strict preset is set from the samples' figures with a margin (docs/validation.md): every
+// sample passes it, and the gate that ran is the strict one.
+TEST_P(SampleUnderStrictGate, Passes) {
+  const std::string file = sample(GetParam());
+  const bool forward = GetParam().rfind("forward/", 0) == 0;
+  const std::string out = path("out");
+  const Outcome o = run(std::string(forward ? "run " : "inverse ") + file +
+                        " --gate strict --no-export -q -o " + out);
+  EXPECT_EQ(o.exitCode, 0) << o.out << o.err;
+  const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
+  EXPECT_EQ(report["gate"]["name"], "strict");
+  EXPECT_TRUE(report["gate"]["passed"].get<bool>()) << report["gate"].dump(1);
+}
+
+INSTANTIATE_TEST_SUITE_P(Shipped, SampleUnderStrictGate, ::testing::ValuesIn(shippedSamples()),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                           std::string name = info.param.substr(0, info.param.rfind('.'));
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
 
 TEST_F(CliTest, AFailedExportStillSavesTheResult) {
   const std::string out = path("out");
