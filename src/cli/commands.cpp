@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <set>
 
 #include "cli/terminal.h"
 #include "export/exporter.h"
@@ -40,7 +41,21 @@ Result<std::pair<double, double>> parseSheet(const std::string& text) {
 Result<GateLimits> loadGate(const std::string& nameOrPath) {
   const bool preset =
       nameOrPath.find('/') == std::string::npos && nameOrPath.find(".json") == std::string::npos;
-  if (preset) return readGateFile(templatesDir() + "/gates/" + nameOrPath + ".json");
+  if (preset) {
+    // A preset name that is not one is a usage mistake (2), as an unknown export profile is; a
+    // gate file that cannot be read is unreadable input (3).
+    const fs::path file = fs::path(templatesDir()) / "gates" / (nameOrPath + ".json");
+    if (!fs::exists(file)) {
+      std::set<std::string> names;
+      for (const auto& entry : fs::directory_iterator(file.parent_path()))
+        if (entry.path().extension() == ".json") names.insert(entry.path().stem().string());
+      std::string known;
+      for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
+      return Status(ErrorCode::Usage, "--gate: unknown gate \"" + nameOrPath + "\" (known: " +
+                                          known + ", or a gate .json file)");
+    }
+    return readGateFile(file.string());
+  }
   // "gates/strict.json" as the docs write it: a path relative to templates/ when not one here.
   const std::string inTemplates = templatesDir() + "/" + nameOrPath;
   if (!fs::exists(nameOrPath) && fs::path(nameOrPath).is_relative() && fs::exists(inTemplates))
