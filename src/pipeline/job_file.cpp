@@ -177,6 +177,9 @@ Result<Job> parseJobJson(const std::string& text, const std::string& source,
 }
 
 Result<Job> readJobFile(const std::string& path) {
+  // A folder opens as an empty stream on Linux and would read as broken JSON.
+  if (std::filesystem::is_directory(path))
+    return Status(ErrorCode::InputUnreadable, path + ": is a folder, not a job file");
   std::ifstream in(path, std::ios::binary);
   if (!in) return Status(ErrorCode::InputUnreadable, path + ": cannot open the job file");
   std::ostringstream text;

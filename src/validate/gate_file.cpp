@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -96,6 +97,9 @@ Result<GateLimits> parseGateJson(const std::string& text, const std::string& sou
 }
 
 Result<GateLimits> readGateFile(const std::string& path) {
+  // A folder opens as an empty stream on Linux and would read as broken JSON.
+  if (std::filesystem::is_directory(path))
+    return Status(ErrorCode::InputUnreadable, path + ": is a folder, not a gate file");
   std::ifstream in(path, std::ios::binary);
   if (!in) return Status(ErrorCode::InputUnreadable, path + ": cannot open the gate file");
   std::ostringstream text;

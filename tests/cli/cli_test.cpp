@@ -117,6 +117,44 @@ TEST_F(CliTest, MissingFileIsUnreadable) {
   EXPECT_FALSE(fs::exists(path("out")));
 }
 
+// Inputs that cannot be read whoever runs the tests (root reads any file, so permissions prove
+// nothing): a folder, a path through a regular file, a symbolic-link loop. Each exits 3 naming
+// the path and saying what it is.
+TEST_F(CliTest, UnreadableInputsEvenForRoot) {
+  const std::string circle = sample("forward/circle.svg");
+  fs::create_directory(path("folder.svg"));
+  expectError(run("forward " + path("folder.svg") + " " + circle + " -o " + path("out")), 3,
+              path("folder.svg") + ": is a folder");
+  const std::string file = write("a-file", "x");
+  expectError(run("forward " + file + "/inner.svg " + circle + " -o " + path("out")), 3, file + "/inner.svg");
+  fs::create_symlink(path("loop-b.svg"), path("loop-a.svg"));
+  fs::create_symlink(path("loop-a.svg"), path("loop-b.svg"));
+  expectError(run("forward " + path("loop-a.svg") + " " + circle + " -o " + path("out")), 3,
+              path("loop-a.svg") + ": cannot be read (Too many levels of symbolic links)");
+  fs::create_directory(path("folder.obj"));
+  expectError(run("inverse " + path("folder.obj") + " -o " + path("out")), 3, path("folder.obj") + ": is a folder");
+  fs::create_directory(path("job.json"));
+  expectError(run("run " + path("job.json") + " -o " + path("out")), 3, path("job.json") + ": is a folder");
+  fs::create_directory(path("gate.json"));
+  expectError(run("forward " + circle + " " + circle + " -o " + path("out") + " --gate " + path("gate.json")), 3,
+              path("gate.json") + ": is a folder");
+  EXPECT_FALSE(fs::exists(path("out"))) << "nothing is written for input that cannot be read";
+}
+
+// Outputs that cannot be put in place whoever runs the tests: a result file's name taken by a
+// folder that is not empty (no rename replaces it, not even root's). Exit 6, naming the file.
+TEST_F(CliTest, OutputsThatCannotBePutInPlaceEvenForRoot) {
+  const std::string pair = sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  const std::string out = path("out");
+  fs::create_directories(fs::path(out) / "report.json" / "keep");
+  expectError(run("forward " + pair + " --resolution 30 --no-export -q -o " + out), 6, out + "/report.json");
+  // A saved result exported where pattern.svg's name is taken.
+  const std::string saved = path("saved");
+  ASSERT_EQ(run("forward " + pair + " --resolution 30 --no-export -q -o " + saved).exitCode, 0);
+  fs::create_directories(fs::path(saved) / "pattern.svg" / "keep");
+  expectError(run("export " + saved + " -q"), 6, saved + "/pattern.svg");
+}
+
 TEST_F(CliTest, NotSvgIsUnreadable) {
   const std::string junk = write("junk.svg", "this is not an svg file");
   expectError(run("forward " + junk + " " + sample("forward/circle.svg") + " -o " + path("out")), 3, junk);
