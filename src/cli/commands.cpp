@@ -1,5 +1,6 @@
 #include "cli/commands.h"
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -19,6 +20,11 @@ namespace dform::cli {
 namespace {
 
 namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
 
 int fail(const Status& status) {
   Terminal::error(status.message());
@@ -159,6 +165,8 @@ std::string templatesDir() {
 }
 
 int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>& interrupted) {
+  CommandTimings timings;
+  timings.start = Clock::now();
   Terminal terminal(output.quiet);
   MessageSink sink(terminal.listener());
   const bool forward = job.mode == Job::Mode::Forward;
@@ -190,17 +198,23 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
     model = inverseRun.value().model;
   }
   std::optional<GateReport> gate;
-  if (limits) gate = runGate(model, *limits, forward ? nullptr : &inverseRun.value().target);
+  if (limits) {
+    const auto gateStart = Clock::now();
+    gate = runGate(model, *limits, forward ? nullptr : &inverseRun.value().target);
+    timings.gate = secondsSince(gateStart);
+  }
 
   std::error_code ec;
   fs::create_directories(output.outDir, ec);
   if (ec || !fs::is_directory(output.outDir))
     return fail(Status(ErrorCode::OutputFailed,
                        output.outDir + ": cannot create the output folder (" + ec.message() + ")"));
+  const auto writeStart = Clock::now();
   Status written = writeModel(output.outDir, model);
   if (written.isOk() && !forward)
     written = writeTargetCurve(output.outDir, inverseRun.value().target);
   if (!written.isOk()) return fail(written);
+  timings.write = secondsSince(writeStart);
 
   // The pattern's layout is the gate's last check, so it is laid out before the verdict; the
   // report is written whatever the export does, so that a failed export (a sheet too small)
@@ -208,6 +222,7 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
   const std::string name =
       fs::path(forward ? job.forward.pieceA : job.inverse.curve).stem().string();
   Result<PreparedExport> prepared = Status(ErrorCode::Internal, "no export");
+  const auto exportStart = Clock::now();
   if (output.exportFiles) {
     prepared = prepare(model, output, gate && !gate->passed(), name);
     if (prepared.isOk() && gate) {
@@ -235,11 +250,13 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
     exported = writePrepared(prepared.value(), output.outDir, sink);
     if (!exported.isOk()) sink.emit(Level::Error, "export: " + exported.message());
   }
+  if (output.exportFiles) timings.exportFiles = secondsSince(exportStart);
   const GateReport* gateReport = gate ? &*gate : nullptr;
   const Status reported =
-      forward
-          ? writeForwardReport(output.outDir, job, forwardRun.value(), sink.messages(), gateReport)
-          : writeInverseReport(output.outDir, job, inverseRun.value(), sink.messages(), gateReport);
+      forward ? writeForwardReport(output.outDir, job, forwardRun.value(), sink.messages(),
+                                   gateReport, timings)
+              : writeInverseReport(output.outDir, job, inverseRun.value(), sink.messages(),
+                                   gateReport, timings);
   if (!reported.isOk()) return fail(reported);
   if (Status html = writeReportHtml(output.outDir, model, templatesDir()); !html.isOk())
     return fail(html);

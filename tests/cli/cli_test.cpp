@@ -244,8 +244,16 @@ TEST_F(CliTest, ForwardWritesEveryFileAndValidates) {
   const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
   for (const char* key : {"L_error", "L_max", "B_error", "seam_gap_mm", "gauss_max", "gauss_mean"})
     EXPECT_TRUE(report["metrics"][key].is_number()) << key;
-  for (const char* key : {"read", "mesh", "solve", "total"})
-    EXPECT_TRUE(report["timings"][key].is_number()) << key;
+  // Every stage of the command is timed, and the stages are disjoint parts of its total.
+  const nlohmann::json& t = report["timings"];
+  double stages = 0;
+  for (const char* key : {"run", "gate", "write", "export", "report"}) {
+    EXPECT_TRUE(t[key].is_number()) << key;
+    EXPECT_GE(t[key].get<double>(), 0.0) << key;
+    stages += t[key].get<double>();
+  }
+  EXPECT_GE(t["run"].get<double>(), t["read"].get<double>() + t["mesh"].get<double>() + t["solve"].get<double>());
+  EXPECT_GE(t["total"].get<double>(), stages) << t.dump();
   EXPECT_LE(report["metrics"]["L_error"].get<double>(), 0.005);
   EXPECT_EQ(schemaCheck((fs::path(out) / "report.json").string()), 0);
   const std::string html = expectSelfContainedReport(out, report);
@@ -446,6 +454,7 @@ TEST_F(CliTest, JobFileReproducesTheRun) {
   ASSERT_EQ(o.exitCode, 0) << o.err;
   EXPECT_FALSE(fs::exists(fs::path(out) / "pattern.svg"));
   const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
+  EXPECT_TRUE(report["timings"]["export"].is_null()) << "nothing exported, nothing timed";
   EXPECT_EQ(report["job"]["start_b"].get<double>(), 0.125);
   // The inputs are named by content too: a result can be traced to the exact files.
   EXPECT_EQ(report["inputs"]["piece_a"]["sha256"], sha256OfFile(sample("forward/circle.svg")).value());
