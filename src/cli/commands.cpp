@@ -1,5 +1,6 @@
 #include "cli/commands.h"
 
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -7,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "cli/terminal.h"
 #include "export/exporter.h"
@@ -22,6 +24,11 @@ namespace dform::cli {
 namespace {
 
 namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
 
 // Holds SIGINT and SIGTERM back for its lifetime; one that came meanwhile is delivered when it
 // ends (a first one sets the run's flag, a second one ends the program: see main.cpp).
@@ -63,7 +70,21 @@ Result<std::pair<double, double>> parseSheet(const std::string& text) {
 Result<GateLimits> loadGate(const std::string& nameOrPath) {
   const bool preset =
       nameOrPath.find('/') == std::string::npos && nameOrPath.find(".json") == std::string::npos;
-  if (preset) return readGateFile(templatesDir() + "/gates/" + nameOrPath + ".json");
+  if (preset) {
+    // A preset name that is not one is a usage mistake (2), as an unknown export profile is; a
+    // gate file that cannot be read is unreadable input (3).
+    const fs::path file = fs::path(templatesDir()) / "gates" / (nameOrPath + ".json");
+    if (!fs::exists(file)) {
+      std::set<std::string> names;
+      for (const auto& entry : fs::directory_iterator(file.parent_path()))
+        if (entry.path().extension() == ".json") names.insert(entry.path().stem().string());
+      std::string known;
+      for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
+      return Status(ErrorCode::Usage, "--gate: unknown gate \"" + nameOrPath + "\" (known: " +
+                                          known + ", or a gate .json file)");
+    }
+    return readGateFile(file.string());
+  }
   // "gates/strict.json" as the docs write it: a path relative to templates/ when not one here.
   const std::string inTemplates = templatesDir() + "/" + nameOrPath;
   if (!fs::exists(nameOrPath) && fs::path(nameOrPath).is_relative() && fs::exists(inTemplates))
@@ -213,6 +234,8 @@ std::string templatesDir() {
 }
 
 int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>& interrupted) {
+  CommandTimings timings;
+  timings.start = Clock::now();
   Terminal terminal(output.quiet);
   MessageSink sink(terminal.listener());
   const bool forward = job.mode == Job::Mode::Forward;
@@ -246,13 +269,18 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
     model = inverseRun.value().model;
   }
   std::optional<GateReport> gate;
-  if (limits) gate = runGate(model, *limits, forward ? nullptr : &inverseRun.value().target);
+  if (limits) {
+    const auto gateStart = Clock::now();
+    gate = runGate(model, *limits, forward ? nullptr : &inverseRun.value().target);
+    timings.gate = secondsSince(gateStart);
+  }
 
   // The pattern's layout is the gate's last check, so it is laid out before the verdict; the
   // report is written whatever the export does, so that a failed export (a sheet too small)
   // still leaves the solved result complete and the export can be redone alone.
   const std::string name = jobName(job);
   Result<PreparedExport> prepared = Status(ErrorCode::Internal, "no export");
+  const auto exportStart = Clock::now();
   if (output.exportFiles) {
     prepared = prepare(model, exporting.value(), gate && !gate->passed(), name);
     if (prepared.isOk() && gate) {
@@ -273,6 +301,7 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
   } else if (gate) {
     gate->checks.push_back(notRunCheck("pattern_layout", 0, "no export (--no-export)"));
   }
+  if (output.exportFiles) timings.exportFiles = secondsSince(exportStart);
   const bool gateFailed = gate && !gate->passed();
 
   // Everything is computed; a Ctrl-C that came meanwhile leaves the output folder as it was.
@@ -288,10 +317,12 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
       return fail(
           Status(ErrorCode::OutputFailed,
                  output.outDir + ": cannot create the output folder (" + ec.message() + ")"));
+    const auto writeStart = Clock::now();
     Status written = writeModel(output.outDir, model);
     if (written.isOk() && !forward)
       written = writeTargetCurve(output.outDir, inverseRun.value().target);
     if (!written.isOk()) return fail(written);
+    timings.write = secondsSince(writeStart);
     removeOldExports(output.outDir);
     // The verdict goes on record before any cutting file is released: report.json (the gate's
     // verdict, measured on the export prepared in memory) is written first, and a run whose
@@ -301,9 +332,9 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
     const GateReport* gateReport = gate ? &*gate : nullptr;
     auto writeReport = [&] {
       return forward ? writeForwardReport(output.outDir, job, forwardRun.value(), sink.messages(),
-                                          gateReport)
+                                          gateReport, timings)
                      : writeInverseReport(output.outDir, job, inverseRun.value(), sink.messages(),
-                                          gateReport);
+                                          gateReport, timings);
     };
     if (Status reported = writeReport(); !reported.isOk()) return fail(reported);
     if (release) {

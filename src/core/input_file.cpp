@@ -19,7 +19,11 @@ Result<std::string> readInputFile(const std::string& path, std::size_t maxBytes)
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
-  if (ec || !fs::exists(status)) return Status{ErrorCode::InputUnreadable, path + ": no such file"};
+  // A missing file (or a path through a regular file) is only not found; anything else (a
+  // symbolic-link loop, a folder that may not be searched) is said as the system says it.
+  if (ec && ec != std::errc::no_such_file_or_directory && ec != std::errc::not_a_directory)
+    return Status{ErrorCode::InputUnreadable, path + ": cannot be read (" + ec.message() + ")"};
+  if (!fs::exists(status)) return Status{ErrorCode::InputUnreadable, path + ": no such file"};
   if (fs::is_directory(status))
     return Status{ErrorCode::InputUnreadable, path + ": is a folder, not a file"};
   const std::string limit = "the limit is " + sizeText(maxBytes);

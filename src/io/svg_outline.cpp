@@ -9,6 +9,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <map>
 #include <optional>
 #include <rapidxml_ns/rapidxml_ns.hpp>
@@ -97,6 +98,26 @@ std::optional<std::array<double, 4>> parseViewBox(std::optional<std::string_view
   return box;
 }
 
+/// The first number in an attribute's text that reads as NaN or infinite ("NaN", "inf", or too
+/// large for a double, like "1e999", with or without a unit), if any. SVG's number grammar refuses them, but they are a
+/// non-finite coordinate (bad content), not a misspelt one (an unreadable file).
+std::optional<std::string> nonFiniteNumber(const std::string& text) {
+  std::size_t at = 0;
+  while (at < text.size()) {
+    const std::size_t start = text.find_first_not_of(" \t\r\n,()", at);
+    if (start == std::string::npos) break;
+    at = std::min(text.find_first_of(" \t\r\n,()", start), text.size());
+    const std::string token = text.substr(start, at - start);
+    char* end = nullptr;
+    const double value = std::strtod(token.c_str(), &end);
+    // A unit may follow ("1e999mm").
+    const bool unitOnly = std::all_of(static_cast<const char*>(end), token.c_str() + token.size(),
+                                      [](char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '%'; });
+    if (end != token.c_str() && unitOnly && !std::isfinite(value)) return token;
+  }
+  return std::nullopt;
+}
+
 struct RootViewport {
   Affine userToPage;                    // user units to page mm, y down (as SVG draws)
   std::optional<double> pageHeight;     // mm, when the document says how tall it is
@@ -106,6 +127,11 @@ struct RootViewport {
 /// Implements SVG's viewport rules for the outermost <svg>: a viewBox maps user units onto
 /// width x height (preserveAspectRatio honoured); without width/height a user unit is a px.
 Result<RootViewport> rootViewport(const XmlNode* svg) {
+  for (const char* name : {"width", "height", "viewBox"})
+    if (const auto text = attributeValue(svg, name))
+      if (const auto token = nonFiniteNumber(std::string(*text)))
+        return Status{ErrorCode::InputInvalid, "has a non-finite number '" + *token + "' in its '" +
+                                                   name + "' attribute"};
   const std::optional<double> width = lengthInMillimetres(attributeValue(svg, "width"));
   const std::optional<double> height = lengthInMillimetres(attributeValue(svg, "height"));
   const auto viewBoxText = attributeValue(svg, "viewBox");
@@ -570,10 +596,12 @@ struct ErrorPolicy {
     return true;
   }
   template <class Context, class AttributeTag, class Value>
-  static bool parse_failed(const Context&, AttributeTag, const Value&) {
-    throw SvgProblem{ErrorCode::InputUnreadable,
-                     std::string("has a malformed '") +
-                         svgpp::attribute_name<char>::get<AttributeTag>() + "' attribute"};
+  static bool parse_failed(const Context&, AttributeTag, const Value& value) {
+    const std::string name = svgpp::attribute_name<char>::get<AttributeTag>();
+    if (const auto token = nonFiniteNumber(std::string(boost::begin(value), boost::end(value))))
+      throw SvgProblem{ErrorCode::InputInvalid,
+                       "has a non-finite number '" + *token + "' in its '" + name + "' attribute"};
+    throw SvgProblem{ErrorCode::InputUnreadable, "has a malformed '" + name + "' attribute"};
   }
   template <class Context, class AttributeTag>
   static bool negative_value(const Context&, AttributeTag) {

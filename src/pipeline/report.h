@@ -1,6 +1,8 @@
 // report.json: what a run read, how it solved, and every figure (schema: docs/report.md).
 #pragma once
 
+#include <chrono>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,13 +18,27 @@ namespace dform {
 constexpr const char* kReportSchema = "dform-report";
 constexpr int kReportSchemaVersion = 1;
 
+/// The command's stages around the pipeline's run, for report.json's timings (seconds).
+struct CommandTimings {
+  std::chrono::steady_clock::time_point start;  ///< when the command began
+  double gate = std::numeric_limits<double>::quiet_NaN();  ///< running the gate; NaN: no gate
+  double write = 0;  ///< writing the meshes (and an inverse run's target curve)
+  /// laying out and rendering the cutting files in memory (they are written after report.json,
+  /// so that the verdict is on record first); NaN: no export
+  double exportFiles = std::numeric_limits<double>::quiet_NaN();
+};
+
 /// Writes `dir`/report.json (atomically) for a forward run. `gate` may be null (no gate ran).
+/// Its timings add the command's stages, the making of report.json itself, and the total from
+/// `command.start` to the moment report.json is made.
 Status writeForwardReport(const std::string& dir, const Job& job, const ForwardRun& run,
-                          const std::vector<Message>& messages, const GateReport* gate);
+                          const std::vector<Message>& messages, const GateReport* gate,
+                          const CommandTimings& command);
 
 /// The same for an inverse run; its metrics add D_error and curve_distance_max_mm.
 Status writeInverseReport(const std::string& dir, const Job& job, const InverseRun& run,
-                          const std::vector<Message>& messages, const GateReport* gate);
+                          const std::vector<Message>& messages, const GateReport* gate,
+                          const CommandTimings& command);
 
 /// Compares the figures recomputed from a saved result's meshes with the `metrics` that
 /// `dir`/report.json recorded. Returns one line per figure that differs (beyond 1e-9 relative;

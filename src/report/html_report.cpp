@@ -22,6 +22,7 @@ using kainjow::mustache::data;
 using nlohmann::json;
 
 std::string show(const json& v) {
+  if (v.is_null()) return "\u2014";  // not a finite number, or a stage that did not run
   if (v.is_number_float()) {
     char text[32];
     std::snprintf(text, sizeof text, "%.4g", v.get<double>());

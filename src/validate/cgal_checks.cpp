@@ -2,11 +2,16 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/box_intersection_d.h>
+#include <CGAL/convex_hull_2.h>
+#include <CGAL/Convex_hull_traits_adapter_2.h>
+#include <CGAL/property_map.h>
 #include <CGAL/convex_hull_3.h>
 #include <CGAL/intersections.h>
 
 #include <algorithm>
 #include <array>
+#include <iterator>
+#include <numeric>
 #include <vector>
 
 namespace dform::detail {
@@ -104,6 +109,19 @@ std::optional<HullMesh> convexHull(const Points3& P) {
   for (size_t i = 0; i < hullFaces.size(); ++i)
     for (int k = 0; k < 3; ++k) hull.F(Eigen::Index(i), k) = int(hullFaces[i][size_t(k)]);
   return hull;
+}
+
+std::vector<int> convexHull2(const Points2& P) {
+  std::vector<Kernel::Point_2> points;
+  points.reserve(size_t(P.rows()));
+  for (int i = 0; i < P.rows(); ++i) points.emplace_back(P(i, 0), P(i, 1));
+  std::vector<std::size_t> indices(points.size()), corners;
+  std::iota(indices.begin(), indices.end(), std::size_t(0));
+  using Traits =
+      CGAL::Convex_hull_traits_adapter_2<Kernel, CGAL::Pointer_property_map<Kernel::Point_2>::type>;
+  CGAL::convex_hull_2(indices.begin(), indices.end(), std::back_inserter(corners),
+                      Traits(CGAL::make_property_map(points)));
+  return std::vector<int>(corners.begin(), corners.end());
 }
 
 }  // namespace dform::detail

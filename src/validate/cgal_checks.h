@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/types.h"
 
@@ -28,5 +29,9 @@ struct HullMesh {
   Faces F;
 };
 std::optional<HullMesh> convexHull(const Points3& P);
+
+/// Indices of the rows of P that are corners of their convex hull, counter-clockwise (points on a
+/// hull edge between two corners are not corners). Exact predicates.
+std::vector<int> convexHull2(const Points2& P);
 
 }  // namespace dform::detail

@@ -143,19 +143,48 @@ CheckResult selfIntersectionCheck(const DForm& model) {
   return judgeCheck("self_intersection", hits.pairs, 0, text);
 }
 
-// Whether the closed outline turns one way only (collinear runs allowed) and is simple.
-bool isConvexOutline(const Points2& P) {
-  const Eigen::Index n = P.rows();
-  const double orientation = signedArea(P) >= 0.0 ? 1.0 : -1.0;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const Eigen::Vector2d e1 = P.row(i) - P.row((i + n - 1) % n);
-    const Eigen::Vector2d e2 = P.row((i + 1) % n) - P.row(i);
-    // sin(turn) below -1e-9 is a turn the wrong way; above it, straight up to round-off of
-    // points resampled along a straight outline edge.
-    if (orientation * (e1.x() * e2.y() - e1.y() * e2.x()) < -1e-9 * e1.norm() * e2.norm())
-      return false;
+// How far the solve may leave a seam corner from where it was drawn, as a fraction of the seam's
+// length: ForwardOptions::outlineTolerance, the tolerance its constraint rounds meet (validate
+// reads meshes only and does not depend on forward).
+constexpr double kSeamCornerSlack = 3e-4;
+
+struct Convexity {
+  double pocketMm = 0;  ///< the deepest pocket: a vertex's distance from the hull edge spanning it
+  double toleranceMm = 0;  ///< the deepest pocket sampling and solving can make on a convex outline
+};
+
+// How far the closed flat seam S (simple, either orientation) departs from convex, and how far it
+// may. A convex drawn outline reaches the solved flat seam moved by at most
+//   delta = max(kSeamCornerSlack * L, max_i kappa_i h_i^2 / 24)     (L the seam's length):
+// a corner and its two seam neighbours are held only to within kSeamCornerSlack * L of where they
+// were drawn; every other seam vertex is held exactly at its sample, which compensateChordLoss
+// moved off the drawn curve by kappa h^2 / 24 (kappa the curvature of the circle through it and
+// its neighbours, h its mean edge length), the move measured here by applying it to S. So every
+// vertex lies within delta of a convex curve, the hull of the vertices within delta of that curve
+// (hulls are 1-Lipschitz in the Hausdorff distance), and a vertex within 2 delta of the hull edge
+// spanning it. A deeper pocket was drawn so. The hull's corners come in S's order along S, since S
+// is simple, so each run of other vertices lies between the two corners of one hull edge.
+Convexity flatConvexity(const Points2& S) {
+  Convexity c;
+  const int n = int(S.rows());
+  const Eigen::VectorXd chordLossMoves = (compensateChordLoss(S) - S).rowwise().norm();
+  c.toleranceMm = 2.0 * std::max(kSeamCornerSlack * closedLength(S), chordLossMoves.maxCoeff());
+  const std::vector<int> corners = detail::convexHull2(S);
+  if (corners.size() < 3) {  // collinear: no inside, nothing is convex
+    c.pocketMm = std::numeric_limits<double>::infinity();
+    return c;
   }
-  return !findSelfIntersection(P).has_value();
+  std::vector<bool> isCorner(size_t(n), false);
+  for (int k : corners) isCorner[size_t(k)] = true;
+  int last = corners.front();
+  for (int step = 1; step <= n; ++step) {
+    const int i = (corners.front() + step) % n;
+    if (!isCorner[size_t(i)]) continue;
+    for (int j = (last + 1) % n; j != i; j = (j + 1) % n)
+      c.pocketMm = std::max(c.pocketMm, distanceToSegment(S.row(j), S.row(last), S.row(i)));
+    last = i;
+  }
+  return c;
 }
 
 // Distance from p to triangle (a, b, c) (closest point by Voronoi regions, Ericson 5.1.5).
@@ -181,10 +210,70 @@ double pointTriangleDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
   return (p - (a + ab * (vb * denom) + ac * (vc * denom))).norm();
 }
 
+struct HullDistance {
+  double worstMm = 0;     ///< the largest distance from a 3D vertex to the hull's surface
+  double diagonalMm = 0;  ///< the diagonal of the seam points' bounding box
+  std::string where;      ///< the vertex, "piece A vertex 12"
+};
+
+// The largest distance from a 3D vertex of either piece to the surface of the convex hull of the
+// seam points (both sides); nullopt when the seam is planar (its hull has no inside).
+std::optional<HullDistance> distanceToSeamHull(const DForm& model) {
+  const size_t n = model.a.seam.size();
+  Points3 seam(Eigen::Index(2 * n), 3);
+  for (size_t i = 0; i < n; ++i) {
+    seam.row(Eigen::Index(i)) = model.a.shape.row(model.a.seam[i]);
+    seam.row(Eigen::Index(n + i)) = model.b.shape.row(model.b.seam[i]);
+  }
+  const std::optional<detail::HullMesh> hull = detail::convexHull(seam);
+  if (!hull) return std::nullopt;
+  HullDistance result;
+  result.diagonalMm = (seam.colwise().maxCoeff() - seam.colwise().minCoeff()).norm();
+  for (const Piece* p : {&model.a, &model.b})
+    for (int v = 0; v < p->shape.rows(); ++v) {
+      double d = std::numeric_limits<double>::infinity();
+      for (int h = 0; h < hull->F.rows(); ++h)
+        d = std::min(d,
+                     pointTriangleDistance(p->shape.row(v), hull->V.row(hull->F(h, 0)),
+                                           hull->V.row(hull->F(h, 1)), hull->V.row(hull->F(h, 2))));
+      if (d > result.worstMm || result.where.empty()) {
+        result.worstMm = std::max(result.worstMm, d);
+        result.where = "piece " + p->name + " vertex " + std::to_string(v);
+      }
+    }
+  return result;
+}
+
+// The seam pairs where a corner of one flat seam meets a point where the other was drawn smooth,
+// as "piece B's corners at seam pairs 12, 37 meet smooth points of piece A" (empty when none).
+// There the 3D seam kinks where one piece's outline is smooth, which a developable sheet can do
+// only by folding: the real D-Form creases from that point into the smooth piece (paper section
+// 7 and Fig. 14a, the Squaricle) and is its seam's hull with those creases as edges, while a model
+// without creases bends over them (Fig. 14b) and cannot be the hull. Corners meeting corners force
+// no crease (each sheet kinks at its own corner): those are judged.
+std::string cornersMeetingSmoothPoints(const DForm& model) {
+  const std::vector<bool> corner[2] = {sampledCorners(loopPoints(model.a.flat, model.a.seam)),
+                                       sampledCorners(loopPoints(model.b.flat, model.b.seam))};
+  const Piece* pieces[2] = {&model.a, &model.b};
+  std::string text;
+  for (int p = 0; p < 2; ++p) {
+    std::string pairs;
+    for (size_t i = 0; i < corner[p].size(); ++i)
+      if (corner[p][i] && !corner[1 - p][i])
+        pairs += (pairs.empty() ? "" : ", ") + std::to_string(i);
+    if (!pairs.empty())
+      text += (text.empty() ? "" : "; ") +
+              ("piece " + pieces[p]->name + "'s corners at seam pairs " + pairs +
+               " meet smooth points of piece " + pieces[1 - p]->name);
+  }
+  return text;
+}
+
 // Demaine & Price: a D-Form of two convex pieces is the convex hull of its seam. Measures the
 // largest distance from a 3D vertex to the hull surface of the seam points (both sides).
 CheckResult hullCheck(const DForm& model, const GateLimits& limits) {
   const char* name = "hull_distance_rel";
+  std::string convexity;
   for (const Piece* p : {&model.a, &model.b}) {
     if (!p->freeBoundaries.empty())
       return notRunCheck(name, limits.hull_distance_rel,
@@ -196,37 +285,38 @@ CheckResult hullCheck(const DForm& model, const GateLimits& limits) {
                          "piece " + p->name +
                              " has creases: the convex-hull property holds for crease-free "
                              "convex pieces only");
-    if (p->seam.size() < 3 || !isConvexOutline(loopPoints(p->flat, p->seam)))
-      return notRunCheck(name, limits.hull_distance_rel, "piece " + p->name + " is not convex");
+    if (p->seam.size() < 3)
+      return notRunCheck(name, limits.hull_distance_rel,
+                         "piece " + p->name + " has fewer than 3 seam vertices");
+    const Points2 seam = loopPoints(p->flat, p->seam);
+    if (findSelfIntersection(seam))
+      return notRunCheck(name, limits.hull_distance_rel,
+                         "piece " + p->name + " is not convex: its flat seam is not simple");
+    const Convexity c = flatConvexity(seam);
+    if (c.pocketMm > c.toleranceMm)
+      return notRunCheck(name, limits.hull_distance_rel,
+                         "piece " + p->name + " is not convex: its flat seam has a pocket " +
+                             num(c.pocketMm) + " mm deep, more than the " + num(c.toleranceMm) +
+                             " mm a convex outline may gain from its sampling and from the "
+                             "solve's tolerance at corners");
+    convexity += (convexity.empty() ? "" : ", ") + num(c.pocketMm) + " mm (" + p->name + ")";
   }
-  const size_t n = model.a.seam.size();
-  Points3 seam(Eigen::Index(2 * n), 3);
-  for (size_t i = 0; i < n; ++i) {
-    seam.row(Eigen::Index(i)) = model.a.shape.row(model.a.seam[i]);
-    seam.row(Eigen::Index(n + i)) = model.b.shape.row(model.b.seam[i]);
-  }
-  const std::optional<detail::HullMesh> hull = detail::convexHull(seam);
-  if (!hull)
+  const std::optional<HullDistance> d = distanceToSeamHull(model);
+  if (!d)
     return notRunCheck(name, limits.hull_distance_rel,
                        "the seam is planar: its hull has no inside");
-  const double diagonal = (seam.colwise().maxCoeff() - seam.colwise().minCoeff()).norm();
-  double worst = 0.0;
-  std::string where;
-  for (const Piece* p : {&model.a, &model.b})
-    for (int v = 0; v < p->shape.rows(); ++v) {
-      double d = std::numeric_limits<double>::infinity();
-      for (int h = 0; h < hull->F.rows(); ++h)
-        d = std::min(d,
-                     pointTriangleDistance(p->shape.row(v), hull->V.row(hull->F(h, 0)),
-                                           hull->V.row(hull->F(h, 1)), hull->V.row(hull->F(h, 2))));
-      if (d > worst || where.empty()) {
-        worst = std::max(worst, d);
-        where = "piece " + p->name + " vertex " + std::to_string(v);
-      }
-    }
-  return judgeCheck(name, worst / diagonal, limits.hull_distance_rel,
-                    "largest distance to the seam's convex hull " + num(worst) + " mm at " + where +
-                        ", seam bounding-box diagonal " + num(diagonal) + " mm");
+  const std::string measured = "largest distance to the seam's convex hull " + num(d->worstMm) +
+                               " mm (" + num(d->worstMm / d->diagonalMm) + " of the seam's " +
+                               num(d->diagonalMm) + " mm bounding-box diagonal) at " + d->where;
+  if (const std::string unmatched = cornersMeetingSmoothPoints(model); !unmatched.empty())
+    return notRunCheck(name, limits.hull_distance_rel,
+                       unmatched +
+                           ": the real D-Form creases from there and is its seam's hull with "
+                           "those creases as edges; this model has none and bends instead, so it "
+                           "cannot be the hull (" +
+                           measured + "); draw the creases to model them");
+  return judgeCheck(name, d->worstMm / d->diagonalMm, limits.hull_distance_rel,
+                    measured + "; both pieces convex (deepest flat-seam pocket " + convexity + ")");
 }
 
 }  // namespace

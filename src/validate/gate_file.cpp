@@ -6,6 +6,11 @@
 
 #include "core/input_file.h"
 #include "core/message_text.h"
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
 #include "validate/gate.h"
 
 namespace dform {

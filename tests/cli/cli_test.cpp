@@ -2,6 +2,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <chrono>
 #include <csignal>
@@ -131,6 +133,44 @@ TEST_F(CliTest, MissingFileIsUnreadable) {
   EXPECT_FALSE(fs::exists(path("out")));
 }
 
+// Inputs that cannot be read whoever runs the tests (root reads any file, so permissions prove
+// nothing): a folder, a path through a regular file, a symbolic-link loop. Each exits 3 naming
+// the path and saying what it is.
+TEST_F(CliTest, UnreadableInputsEvenForRoot) {
+  const std::string circle = sample("forward/circle.svg");
+  fs::create_directory(path("folder.svg"));
+  expectError(run("forward " + path("folder.svg") + " " + circle + " -o " + path("out")), 3,
+              path("folder.svg") + ": is a folder");
+  const std::string file = write("a-file", "x");
+  expectError(run("forward " + file + "/inner.svg " + circle + " -o " + path("out")), 3, file + "/inner.svg");
+  fs::create_symlink(path("loop-b.svg"), path("loop-a.svg"));
+  fs::create_symlink(path("loop-a.svg"), path("loop-b.svg"));
+  expectError(run("forward " + path("loop-a.svg") + " " + circle + " -o " + path("out")), 3,
+              path("loop-a.svg") + ": cannot be read (Too many levels of symbolic links)");
+  fs::create_directory(path("folder.obj"));
+  expectError(run("inverse " + path("folder.obj") + " -o " + path("out")), 3, path("folder.obj") + ": is a folder");
+  fs::create_directory(path("job.json"));
+  expectError(run("run " + path("job.json") + " -o " + path("out")), 3, path("job.json") + ": is a folder");
+  fs::create_directory(path("gate.json"));
+  expectError(run("forward " + circle + " " + circle + " -o " + path("out") + " --gate " + path("gate.json")), 3,
+              path("gate.json") + ": is a folder");
+  EXPECT_FALSE(fs::exists(path("out"))) << "nothing is written for input that cannot be read";
+}
+
+// Outputs that cannot be put in place whoever runs the tests: a result file's name taken by a
+// folder that is not empty (no rename replaces it, not even root's). Exit 6, naming the file.
+TEST_F(CliTest, OutputsThatCannotBePutInPlaceEvenForRoot) {
+  const std::string pair = sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  const std::string out = path("out");
+  fs::create_directories(fs::path(out) / "report.json" / "keep");
+  expectError(run("forward " + pair + " --resolution 30 --no-export -q -o " + out), 6, out + "/report.json");
+  // A saved result exported where pattern.svg's name is taken.
+  const std::string saved = path("saved");
+  ASSERT_EQ(run("forward " + pair + " --resolution 30 --no-export -q -o " + saved).exitCode, 0);
+  fs::create_directories(fs::path(saved) / "pattern.svg" / "keep");
+  expectError(run("export " + saved + " -q"), 6, saved + "/pattern.svg");
+}
+
 TEST_F(CliTest, NotSvgIsUnreadable) {
   const std::string junk = write("junk.svg", "this is not an svg file");
   expectError(run("forward " + junk + " " + sample("forward/circle.svg") + " -o " + path("out")), 3,
@@ -173,10 +213,15 @@ TEST_F(CliTest, HugeAndNonFiniteCoordinatesAreInvalid) {
   expectError(run("forward " + huge + " " + sample("forward/circle.svg") + " -o " + path("out")), 4,
               huge);
   const std::string inf = write("inf.svg", svg("<rect width='1e999' height='10'/>"));
-  const Outcome o =
-      run("forward " + inf + " " + sample("forward/circle.svg") + " -o " + path("out"));
-  EXPECT_TRUE(o.exitCode == 3 || o.exitCode == 4) << o.err;
-  EXPECT_NE(o.err.find(inf), std::string::npos) << o.err;
+  expectError(run("forward " + inf + " " + sample("forward/circle.svg") + " -o " + path("out")), 4, inf);
+  // NaN is bad content (4), as the README says; a number that is not one is an unreadable file (3).
+  const std::string nan = write("nan.svg", svg("<polygon points='10,10 NaN,100 100,10'/>"));
+  expectError(run("forward " + nan + " " + sample("forward/circle.svg") + " -o " + path("out")), 4, "non-finite number 'NaN'");
+  const std::string word = write("word.svg", svg("<polygon points='10,10 ten,100 100,10'/>"));
+  expectError(run("forward " + word + " " + sample("forward/circle.svg") + " -o " + path("out")), 3, "malformed 'points'");
+  const std::string objNan = write("nan.obj", "v nan 0 0\nv 10 0 1\nv 10 10 0\nv 0 10 1\nv -5 5 2\nl 1 2 3 4 5 1\n");
+  expectError(run("inverse " + objNan + " -o " + path("out")), 4, objNan);
+  EXPECT_FALSE(fs::exists(path("out")));
 }
 
 TEST_F(CliTest, TooFewPointsIsInvalid) {
@@ -195,6 +240,15 @@ TEST_F(CliTest, BadOptionsAreUsageErrors) {
               "resolution");
   expectError(run("forward " + pair), 2, "output");
   expectError(run("frobnicate"), 2, "frobnicate");
+  // An unknown gate preset is a usage mistake like an unknown export profile, found before any
+  // work; a gate file that cannot be read is unreadable input.
+  const Outcome gate = run("forward " + pair + " -o " + path("out") + " --gate bogus");
+  expectError(gate, 2, "unknown gate \"bogus\" (known: default, lenient, strict");
+  EXPECT_FALSE(fs::exists(path("out")));
+  expectError(run("forward " + pair + " -o " + path("out") + " --gate " + path("missing.json")), 3, path("missing.json"));
+  expectError(run("forward " + pair + " -o " + path("out") + " --resolution 20 -q --profile bogus"), 2,
+              "unknown profile \"bogus\"");
+  expectError(run("validate " + path("out") + " --gate bogus"), 2, "unknown gate");
 }
 
 TEST_F(CliTest, UnwritableOutputIsAnOutputError) {
@@ -219,8 +273,16 @@ TEST_F(CliTest, ForwardWritesEveryFileAndValidates) {
   const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
   for (const char* key : {"L_error", "L_max", "B_error", "seam_gap_mm", "gauss_max", "gauss_mean"})
     EXPECT_TRUE(report["metrics"][key].is_number()) << key;
-  for (const char* key : {"read", "mesh", "solve", "total"})
-    EXPECT_TRUE(report["timings"][key].is_number()) << key;
+  // Every stage of the command is timed, and the stages are disjoint parts of its total.
+  const nlohmann::json& t = report["timings"];
+  double stages = 0;
+  for (const char* key : {"run", "gate", "write", "export", "report"}) {
+    EXPECT_TRUE(t[key].is_number()) << key;
+    EXPECT_GE(t[key].get<double>(), 0.0) << key;
+    stages += t[key].get<double>();
+  }
+  EXPECT_GE(t["run"].get<double>(), t["read"].get<double>() + t["mesh"].get<double>() + t["solve"].get<double>());
+  EXPECT_GE(t["total"].get<double>(), stages) << t.dump();
   EXPECT_LE(report["metrics"]["L_error"].get<double>(), 0.005);
   EXPECT_EQ(schemaCheck((fs::path(out) / "report.json").string()), 0);
   // The glTF preview carries the curvature map by default; the pattern is fit to cut.
@@ -434,7 +496,71 @@ TEST_F(CliTest, ReportsFollowTheirSchema) {
   report["surprise"] = 1;
   std::ofstream(path("stray.json")) << report.dump();
   EXPECT_NE(schemaCheck(path("stray.json")), 0);
+
+  // Each mode has its own required parts: a report missing one, or carrying the other mode's,
+  // or claiming the other mode, fails.
+  const nlohmann::json saved[2] = {
+      nlohmann::json::parse(std::ifstream(fs::path(forward) / "report.json")),
+      nlohmann::json::parse(std::ifstream(fs::path(inverse) / "report.json"))};
+  auto failsWhen = [&](int which, const std::string& what, auto change) {
+    nlohmann::json edited = saved[which];
+    change(edited);
+    std::ofstream(path("edited.json")) << edited.dump();
+    EXPECT_NE(schemaCheck(path("edited.json")), 0) << what;
+  };
+  using J = nlohmann::json;
+  failsWhen(1, "inverse without D_error", [](J& r) { r["metrics"].erase("D_error"); });
+  failsWhen(1, "inverse without curve_distance_max_mm", [](J& r) { r["metrics"].erase("curve_distance_max_mm"); });
+  failsWhen(1, "inverse without curve_length_mm", [](J& r) { r["metrics"].erase("curve_length_mm"); });
+  failsWhen(1, "inverse without pre_dform", [](J& r) { r.erase("pre_dform"); });
+  failsWhen(1, "inverse with empty inputs", [](J& r) { r["inputs"] = J::object(); });
+  failsWhen(1, "inverse claiming forward", [](J& r) { r["mode"] = "forward"; });
+  failsWhen(1, "inverse with a forward job", [&](J& r) { r["job"] = saved[0]["job"]; });
+  failsWhen(0, "forward without B_error", [](J& r) { r["metrics"].erase("B_error"); });
+  failsWhen(0, "forward without piece_b", [](J& r) { r["inputs"].erase("piece_b"); });
+  failsWhen(0, "forward with empty inputs", [](J& r) { r["inputs"] = J::object(); });
+  failsWhen(0, "forward with a curve input", [&](J& r) { r["inputs"]["curve"] = saved[1]["inputs"]["curve"]; });
+  failsWhen(0, "forward with D_error", [](J& r) { r["metrics"]["D_error"] = 0.0; });
+  failsWhen(0, "forward claiming inverse", [](J& r) { r["mode"] = "inverse"; });
+  failsWhen(0, "forward with a pre-D-Form", [&](J& r) { r["pre_dform"] = saved[1]["pre_dform"]; });
 }
+
+// Every shipped sample, as shipped (its job file's options, or an inverse curve's defaults).
+std::vector<std::string> shippedSamples() {
+  std::vector<std::string> samples;
+  for (const char* folder : {"forward", "inverse"})
+    for (const auto& entry : fs::directory_iterator(std::string(DFORM_SAMPLES_DIR) + "/" + folder)) {
+      const std::string ext = entry.path().extension().string();
+      if (ext == ".json" || (ext == ".obj" && std::string(folder) == "inverse"))
+        samples.push_back(std::string(folder) + "/" + entry.path().filename().string());
+    }
+  std::sort(samples.begin(), samples.end());
+  return samples;
+}
+
+class SampleUnderStrictGate : public CliTest, public ::testing::WithParamInterface<std::string> {};
+
+// The strict preset is set from the samples' figures with a margin (docs/validation.md): every
+// sample passes it, and the gate that ran is the strict one.
+TEST_P(SampleUnderStrictGate, Passes) {
+  const std::string file = sample(GetParam());
+  const bool forward = GetParam().rfind("forward/", 0) == 0;
+  const std::string out = path("out");
+  const Outcome o = run(std::string(forward ? "run " : "inverse ") + file +
+                        " --gate strict --no-export -q -o " + out);
+  EXPECT_EQ(o.exitCode, 0) << o.out << o.err;
+  const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
+  EXPECT_EQ(report["gate"]["name"], "strict");
+  EXPECT_TRUE(report["gate"]["passed"].get<bool>()) << report["gate"].dump(1);
+}
+
+INSTANTIATE_TEST_SUITE_P(Shipped, SampleUnderStrictGate, ::testing::ValuesIn(shippedSamples()),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                           std::string name = info.param.substr(0, info.param.rfind('.'));
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
 
 TEST_F(CliTest, AFailedExportStillSavesTheResult) {
   const std::string out = path("out");
@@ -460,6 +586,7 @@ TEST_F(CliTest, JobFileReproducesTheRun) {
   ASSERT_EQ(o.exitCode, 0) << o.err;
   EXPECT_FALSE(fs::exists(fs::path(out) / "pattern.svg"));
   const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
+  EXPECT_TRUE(report["timings"]["export"].is_null()) << "nothing exported, nothing timed";
   EXPECT_EQ(report["job"]["start_b"].get<double>(), 0.125);
   // The inputs are named by content too: a result can be traced to the exact files.
   EXPECT_EQ(report["inputs"]["piece_a"]["sha256"], sha256OfFile(sample("forward/circle.svg")).value());

@@ -125,6 +125,28 @@ TEST(OutlineErrors, InfiniteCoordinate) {
   EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path, "infinite"));
 }
 
+TEST(OutlineErrors, NonFiniteNumbersInAttributesAreInvalidNotUnreadable) {
+  // SVG's number grammar has no NaN or infinity, but such a value is a coordinate that is not
+  // finite (bad content, README exit 4), not a misspelt one (an unreadable file, exit 3).
+  test::ScratchDir dir;
+  const std::pair<std::string, std::string> cases[] = {
+      {svg("<polygon points='10,10 NaN,100 100,10'/>"), "polygon 1 has a non-finite number 'NaN' in its 'points'"},
+      {svg("<rect x='inf' y='10' width='100' height='100'/>"), "'inf' in its 'x'"},
+      {svg("<path d='M 10 10 L 1e999 100 L 100 10 Z'/>"), "'1e999' in its 'd'"},
+      {svg("<circle cx='100' cy='100' r='-nan'/>"), "'-nan' in its 'r'"},
+      {svg("<rect width='100' height='100' transform='translate(NaN 0)'/>"), "in its 'transform'"},
+      {"<svg xmlns='http://www.w3.org/2000/svg' width='NaNmm' height='200mm'><rect width='9' height='9'/></svg>",
+       "'NaNmm' in its 'width'"},
+      {"<svg xmlns='http://www.w3.org/2000/svg' viewBox='0 0 inf 200'><rect width='9' height='9'/></svg>",
+       "'inf' in its 'viewBox'"}};
+  for (const auto& [text, says] : cases) {
+    const std::string path = dir.write("nonfinite.svg", text);
+    EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path, says)) << text;
+  }
+  const std::string misspelt = dir.write("misspelt.svg", svg("<polygon points='10,10 abc,100 100,10'/>"));
+  EXPECT_TRUE(failsWith(readShape(misspelt).status(), ErrorCode::InputUnreadable, misspelt, "malformed 'points'"));
+}
+
 TEST(OutlineErrors, HugeCoordinate) {
   test::ScratchDir dir;
   const std::string path = dir.write("huge.svg", svg("<rect width='2e7' height='10'/>"));

@@ -1,10 +1,14 @@
 // Forward runs on the samples: the figures the issue asks for, and the run's options.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cctype>
 #include <string>
 #include <vector>
+#include <cmath>
 #include <filesystem>
+#include <fstream>
 
 #include "core/polyline.h"
 #include "pipeline/forward_pipeline.h"
@@ -87,7 +91,74 @@ TEST(ForwardRun, ConvexPairLiesOnItsSeamsHull) {
   const GateReport gate = runGate(run.model, GateLimits{});
   const CheckResult* hull = gate.find("hull_distance_rel");
   ASSERT_NE(hull, nullptr);
+  EXPECT_EQ(hull->verdict, CheckResult::Verdict::Pass) << hull->detail;
   EXPECT_LT(hull->value, 0.01) << hull->detail;
+}
+
+// A closed polygon as a JSON outline file in the test's scratch folder (mm).
+std::string polygonFile(const std::string& name, const std::vector<Eigen::Vector2d>& corners) {
+  const auto path = std::filesystem::temp_directory_path() /
+                    (name + "-" + std::to_string(::getpid()) + ".json");
+  std::ofstream out(path);
+  out << "{\"points\": [";
+  for (size_t i = 0; i < corners.size(); ++i)
+    out << (i ? ", " : "") << "[" << corners[i].x() << ", " << corners[i].y() << "]";
+  out << "]}";
+  return path.string();
+}
+
+// A regular polygon of `sides` sides and perimeter `perimeter` mm, one corner at the top.
+std::vector<Eigen::Vector2d> regularPolygon(int sides, double perimeter) {
+  const double radius = perimeter / sides / (2 * std::sin(M_PI / sides));
+  std::vector<Eigen::Vector2d> corners;
+  for (int i = 0; i < sides; ++i) {
+    const double t = M_PI / 2 + 2 * M_PI * i / sides;
+    corners.emplace_back(150 + radius * std::cos(t), 150 + radius * std::sin(t));
+  }
+  return corners;
+}
+
+// The hull check of a convex pair, with both flat seams judged convex (never "not convex").
+CheckResult hullOfConvexPair(const ForwardJob& j) {
+  const ForwardRun run = runOk(j);
+  const CheckResult hull = *runGate(run.model, GateLimits{}).find("hull_distance_rel");
+  EXPECT_EQ(hull.detail.find("not convex"), std::string::npos) << hull.detail;
+  return hull;
+}
+
+TEST(ForwardRun, CornersMeetingSmoothPointsMustCreaseSoTheHullIsNotJudged) {
+  // Circle and square (paper Fig. 14): each square corner meets a smooth point of the circle,
+  // where the real D-Form creases (the Squaricle); this crease-free model bends over the creases
+  // and is not its seam's hull. The check says why, with the distance it measured.
+  const CheckResult square = hullOfConvexPair(job("circle.svg", "square.svg", 60, 0.125));
+  EXPECT_EQ(square.verdict, CheckResult::Verdict::NotRun);
+  EXPECT_NE(square.detail.find("piece B's corners at seam pairs "), std::string::npos) << square.detail;
+  EXPECT_NE(square.detail.find("meet smooth points of piece A"), std::string::npos) << square.detail;
+  EXPECT_NE(square.detail.find("largest distance to the seam's convex hull"), std::string::npos)
+      << square.detail;
+
+  // A regular pentagon of the circle's 800 mm: five corners, each named.
+  ForwardJob pentagon = job("circle.svg", "circle.svg", 60);
+  pentagon.pieceA = polygonFile("pentagon", regularPolygon(5, 800));
+  const CheckResult five = hullOfConvexPair(pentagon);
+  std::filesystem::remove(pentagon.pieceA);
+  EXPECT_EQ(five.verdict, CheckResult::Verdict::NotRun);
+  EXPECT_NE(five.detail.find("piece A's corners at seam pairs 0, 12, 24, 36, 48 meet smooth "
+                             "points of piece B"),
+            std::string::npos)
+      << five.detail;
+}
+
+TEST(ForwardRun, PolygonsWhoseCornersMeetAreJudged) {
+  // A square and a 75-degree rhombus with the same 200 mm sides, zipped corner to corner: no
+  // corner meets a smooth point, so the check runs on the polygon pair.
+  ForwardJob polygons = job("square.svg", "square.svg", 60);
+  const double c = std::cos(M_PI * 75 / 180) * 200, s = std::sin(M_PI * 75 / 180) * 200;
+  polygons.pieceB = polygonFile("rhombus", {{0, 0}, {200, 0}, {200 + c, s}, {c, s}});
+  const CheckResult hull = hullOfConvexPair(polygons);
+  std::filesystem::remove(polygons.pieceB);
+  EXPECT_NE(hull.verdict, CheckResult::Verdict::NotRun) << hull.detail;
+  EXPECT_TRUE(std::isfinite(hull.value)) << hull.detail;
 }
 
 TEST(ForwardRun, SquareCornersStayOnTheCutPattern) {

@@ -164,6 +164,36 @@ TEST(Gate, HullDistanceOfAVertexPushedOutOfTheHull) {
   EXPECT_EQ(report.find("hull_distance_rel")->verdict, Verdict::Fail);  // 1.2% > 1%
 }
 
+TEST(Gate, ConvexityIsJudgedWithinWhatSamplingAndSolvingMayMove) {
+  // The solve may leave a seam corner up to 3e-4 of the perimeter L from where it was drawn, so a
+  // convex outline may come back with a pocket up to 2 * 3e-4 * L deep (the disphenoid's straight
+  // sides add no chord-loss move). Push the middle vertex of A's first flat side inward.
+  const DForm exact = test::tetraDForm(8);
+  const Piece& a = exact.a;
+  const Eigen::Vector2d p0 = a.flat.row(a.seam[0]), p1 = a.flat.row(a.seam[8]);
+  const Eigen::Vector2d inward = Eigen::Vector2d(-(p1 - p0).y(), (p1 - p0).x()).normalized();
+  double perimeter = 0.0;
+  for (size_t i = 0; i < a.seam.size(); ++i)
+    perimeter += (a.flat.row(a.seam[i]) - a.flat.row(a.seam[(i + 1) % a.seam.size()])).norm();
+  const double tolerance = 2 * 3e-4 * perimeter;
+  auto pushed = [&](double depth) {
+    DForm model = exact;
+    model.a.flat.row(model.a.seam[4]) += depth * inward.transpose();
+    return *runGate(model, GateLimits{}).find("hull_distance_rel");
+  };
+  // A pocket of a millionth of a millimetre turns the wrong way by far more than sin = 1e-9, yet
+  // is sampling noise: judged convex, the check runs.
+  for (const double depth : {1e-6, 0.9 * tolerance}) {
+    const CheckResult shallow = pushed(depth);
+    EXPECT_NE(shallow.verdict, Verdict::NotRun) << depth << ": " << shallow.detail;
+  }
+  const CheckResult deep = pushed(1.1 * tolerance);
+  EXPECT_EQ(deep.verdict, Verdict::NotRun);
+  EXPECT_NE(deep.detail.find("piece A is not convex: its flat seam has a pocket"),
+            std::string::npos)
+      << deep.detail;
+}
+
 TEST(Gate, FlatDoubleDiscHasNoHullAndTouchesItself) {
   // Both pieces lie in z = 0 on top of each other: a degenerate D-Form. The closed surface
   // touches itself everywhere and the planar seam has no hull: the gate must not pass it.
