@@ -22,7 +22,7 @@ struct GateLimits {
   double D_error = 1e-6;            ///< max D_error (fraction of the curve length), inverse mode
   double seam_gap_mm = 0.1;         ///< max distance between seam partners (mm)
   double gauss_max_rad = 0.05;      ///< max |angle defect| away from the seam (radians)
-  double seam_length_rel = 1e-3;    ///< max |flat seam A - flat seam B| / max of both (fraction)
+  double seam_length_rel = 2e-3;    ///< max |flat seam A - flat seam B| / max of both (fraction)
   double hull_distance_rel = 0.01;  ///< max distance to the seam's hull / seam bbox diagonal
   int flipped = 0;                  ///< max flipped triangles (flat and 3D together)
   int degenerate = 0;               ///< max degenerate triangles (flat and 3D together)
