@@ -82,7 +82,12 @@ BoxIndex::Span BoxIndex::span(const Box& box) const {
 }
 
 namespace {
-long long cellKey(long x, long y) { return (static_cast<long long>(x) << 32) ^ (y & 0xffffffffLL); }
+// x in the high 32 bits, y in the low ones; shifted as unsigned, since shifting a negative
+// signed value is undefined behaviour (cells left of or below the origin have negative indices).
+long long cellKey(long x, long y) {
+  return static_cast<long long>((static_cast<unsigned long long>(x) << 32) ^
+                                (static_cast<unsigned long long>(y) & 0xffffffffULL));
+}
 }  // namespace
 
 void BoxIndex::insert(int id, const Box& box) {

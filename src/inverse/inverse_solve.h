@@ -21,7 +21,12 @@ struct InverseOptions {
   /// The pre-D-Form start is isometric already (its pieces are unfolded exactly): the relaxation
   /// only smooths it, and stops once an iteration lowers the energy by less than 1e-4 of it (at
   /// 1e-6 a tennis-ball seam at 300 points ran 712 steps to lower it by a tenth).
-  LocalGlobalOptions relaxation{300, 1e-4};
+  LocalGlobalOptions relaxation = [] {
+    LocalGlobalOptions o;
+    o.maxIterations = 300;
+    o.relativeTolerance = 1e-4;
+    return o;
+  }();
   /// Levenberg-Marquardt after the relaxation, on Eq. 6 with its exact quartic isometry term. Off
   /// by default (maxIterations = 0): from the pre-D-Form start the relaxation meets every figure,
   /// and LM's steps cost far more than they give. Measured on the pushed-in curve: relaxation

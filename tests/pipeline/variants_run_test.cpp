@@ -151,7 +151,8 @@ TEST(Variants, CreasedSquaricleFoldsSharplyAlongItsCreases) {
     EXPECT_GT(fold.angleDeg, 30.0);
     EXPECT_NEAR(fold.lengthMm, radius * std::sqrt(2.0), 2.0 * straddle(400.0 / 60, radius));
   }
-  const CheckResult* developable = runGate(run.model, GateLimits{}).find("gauss_max_rad");
+  const GateReport gate = runGate(run.model, GateLimits{});
+  const CheckResult* developable = gate.find("gauss_max_rad");
   ASSERT_NE(developable, nullptr);
   EXPECT_EQ(developable->verdict, CheckResult::Verdict::Pass) << developable->detail;
 }
