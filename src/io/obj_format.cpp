@@ -1,6 +1,7 @@
 #include "io/obj_format.h"
 
 #include <charconv>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -89,7 +90,7 @@ Result<ObjData> parseObj(const std::string& path, const std::string& text,
       for (int i : e.indices)
         if (std::size_t(i) >= obj.vertices.size()) {
           lineNumber = e.lineNumber;
-          return malformed("vertex index " + std::to_string(i + 1) +
+          return malformed("vertex index " + std::to_string(std::int64_t(i) + 1) +
                            " is out of range (the file has " + std::to_string(obj.vertices.size()) +
                            " vertices)");
         }

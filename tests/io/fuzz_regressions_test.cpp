@@ -32,7 +32,8 @@ TEST(FuzzRegressions, OutlineJson) {
 TEST(FuzzRegressions, CurveObj) {
   test::checkRegressions(
       "curve_obj",
-      {{"control-character-in-token.obj", ErrorCode::InputUnreadable, "is not a number"}},
+      {{"control-character-in-token.obj", ErrorCode::InputUnreadable, "is not a number"},
+       {"index-past-int-in-message.obj", ErrorCode::InputUnreadable, "vertex index 2147483648 is out of range"}},
       readCurveText);
 }
 
