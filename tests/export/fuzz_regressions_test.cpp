@@ -7,12 +7,12 @@ namespace dform {
 namespace {
 
 TEST(FuzzRegressions, ProfileFile) {
-  test::checkRegressions(
+  EXPECT_TRUE(test::regressionsHold(
       "profile",
       {{"control-character-in-unknown-field.json", ErrorCode::InputInvalid, "unknown field"}},
       [](const std::string& text, const std::string& source) {
         return parseProfileJson(text, source).status();
-      });
+      }));
 }
 
 }  // namespace

@@ -27,9 +27,11 @@ struct Regression {
 };
 
 /// Reads every input of `target` with `read(text, source)` (source is the file's path) and checks
-/// the outcome against `expected`: the code, and for an error a message that is one line without
-/// control characters, starts with the source and mentions the expected words.
-inline void checkRegressions(
+/// the outcome against `expected`: every file in the folder is listed, each gives the code, and
+/// for an error a message that is one line without control characters, starts with the source
+/// and mentions the expected words. Fails listing every input that does not, so that a test says
+/// EXPECT_TRUE(regressionsHold(...)) and shows them all.
+inline ::testing::AssertionResult regressionsHold(
     const std::string& target, const std::vector<Regression>& expected,
     const std::function<Status(const std::string&, const std::string&)>& read) {
   namespace fs = std::filesystem;
@@ -41,25 +43,31 @@ inline void checkRegressions(
   std::vector<std::string> listed;
   for (const Regression& r : expected) listed.push_back(r.file);
   std::sort(listed.begin(), listed.end());
-  EXPECT_EQ(files, listed) << "every file in " << dir << " needs its expected outcome here";
 
+  std::ostringstream problems;
+  if (files != listed) problems << "\n" << dir.string() << ": every file needs its expected outcome in the test";
   for (const Regression& r : expected) {
     const std::string source = (dir / r.file).string();
-    SCOPED_TRACE(source);
     std::ifstream in(source, std::ios::binary);
-    ASSERT_TRUE(in.good());
+    if (!in.good()) {
+      problems << "\n" << source << ": cannot be read";
+      continue;
+    }
     std::ostringstream text;
     text << in.rdbuf();
     const Status status = read(text.str(), source);
-    EXPECT_EQ(status.code(), r.code) << status.message();
-    if (status.isOk()) continue;
     const std::string& m = status.message();
-    EXPECT_EQ(m.rfind(source + ": ", 0), 0u) << m;
-    EXPECT_NE(m.find(r.mentions), std::string::npos) << m;
-    EXPECT_TRUE(std::none_of(m.begin(), m.end(), [](char c) {
-      return ((unsigned char)c < 0x20 && c != '\t') || c == 0x7f;
-    })) << m;
+    if (status.code() != r.code) problems << "\n" << source << ": wrong code: " << m;
+    if (status.isOk()) continue;
+    if (m.rfind(source + ": ", 0) != 0) problems << "\n" << source << ": does not start the message: " << m;
+    if (m.find(r.mentions) == std::string::npos)
+      problems << "\n" << source << ": message does not mention \"" << r.mentions << "\": " << m;
+    if (std::any_of(m.begin(), m.end(),
+                    [](char c) { return ((unsigned char)c < 0x20 && c != '\t') || c == 0x7f; }))
+      problems << "\n" << source << ": message has a control character: " << m;
   }
+  if (problems.str().empty()) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "regressions of " << target << ":" << problems.str();
 }
 
 }  // namespace dform::test

@@ -7,8 +7,6 @@
 namespace dform {
 namespace {
 
-using test::Regression;
-
 Status readShapeText(const std::string& text, const std::string& source) {
   return parseShape(text, source).status();
 }
@@ -18,30 +16,30 @@ Status readCurveText(const std::string& text, const std::string& source) {
 }
 
 TEST(FuzzRegressions, Svg) {
-  test::checkRegressions("svg", {{"near-touch-depends-on-direction.svg", ErrorCode::Ok, ""}},
-                         readShapeText);
+  EXPECT_TRUE(test::regressionsHold(
+      "svg", {{"near-touch-depends-on-direction.svg", ErrorCode::Ok, ""}}, readShapeText));
 }
 
 TEST(FuzzRegressions, OutlineJson) {
-  test::checkRegressions(
+  EXPECT_TRUE(test::regressionsHold(
       "outline_json",
       {{"control-character-in-parse-error.json", ErrorCode::InputUnreadable, "not valid JSON"}},
-      readShapeText);
+      readShapeText));
 }
 
 TEST(FuzzRegressions, CurveObj) {
-  test::checkRegressions(
+  EXPECT_TRUE(test::regressionsHold(
       "curve_obj",
       {{"control-character-in-token.obj", ErrorCode::InputUnreadable, "is not a number"},
        {"index-past-int-in-message.obj", ErrorCode::InputUnreadable, "vertex index 2147483648 is out of range"}},
-      readCurveText);
+      readCurveText));
 }
 
 TEST(FuzzRegressions, CurveJson) {
-  test::checkRegressions(
+  EXPECT_TRUE(test::regressionsHold(
       "curve_json",
       {{"control-character-in-parse-error.json", ErrorCode::InputUnreadable, "not valid JSON"}},
-      readCurveText);
+      readCurveText));
 }
 
 }  // namespace

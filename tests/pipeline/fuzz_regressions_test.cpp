@@ -7,13 +7,13 @@ namespace dform {
 namespace {
 
 TEST(FuzzRegressions, JobFile) {
-  test::checkRegressions(
+  EXPECT_TRUE(test::regressionsHold(
       "job",
       {{"del-character-in-parse-error.json", ErrorCode::InputUnreadable, "not valid JSON"},
        {"number-overflow.json", ErrorCode::InputUnreadable, "number overflow"}},
       [](const std::string& text, const std::string& source) {
         return parseJobJson(text, source, "/base").status();
-      });
+      }));
 }
 
 }  // namespace
