@@ -41,32 +41,12 @@ Box boundingBox(const Points2& P) {
   return {P.colwise().minCoeff().transpose(), P.colwise().maxCoeff().transpose()};
 }
 
-/// Where two closed polylines touch or cross, if they do. Sweep over x as in findSelfIntersection.
-std::optional<Vec2> findCrossing(const Points2& A, const Points2& B) {
-  struct Edge {
-    const Points2* P;
-    Eigen::Index i;
-    double minX, maxX;
-  };
-  std::vector<Edge> edges;
-  for (const Points2* P : {&A, &B})
-    for (Eigen::Index i = 0; i < P->rows(); ++i) {
-      const double x0 = (*P)(i, 0), x1 = (*P)((i + 1) % P->rows(), 0);
-      edges.push_back({P, i, std::min(x0, x1), std::max(x0, x1)});
-    }
-  std::sort(edges.begin(), edges.end(),
-            [](const Edge& e, const Edge& f) { return e.minX < f.minX; });
-  auto ends = [](const Edge& e) {
-    return std::make_pair(Vec2(e.P->row(e.i)), Vec2(e.P->row((e.i + 1) % e.P->rows())));
-  };
-  for (std::size_t k = 0; k < edges.size(); ++k)
-    for (std::size_t m = k + 1; m < edges.size() && edges[m].minX <= edges[k].maxX; ++m) {
-      if (edges[m].P == edges[k].P) continue;
-      const auto [a, b] = ends(edges[k]);
-      const auto [c, d] = ends(edges[m]);
-      if (segmentsIntersect(a, b, c, d)) return segmentsMeetingPoint(a, b, c, d);
-    }
-  return std::nullopt;
+/// Where two closed polylines touch or cross, if they do.
+std::optional<Vec2> crossingPoint(const Points2& A, const Points2& B) {
+  const auto edges = findCrossing(A, B);
+  if (!edges) return std::nullopt;
+  const auto [i, j] = *edges;
+  return segmentsMeetingPoint(A.row(i), A.row((i + 1) % A.rows()), B.row(j), B.row((j + 1) % B.rows()));
 }
 
 /// Cleans one loop (range check, duplicates removed) and checks it is a simple polygon of
@@ -133,7 +113,7 @@ Result<Shape2> assembleShape(const std::string& path, const std::vector<DrawnLin
     for (std::size_t m = 0; m < k; ++m) {
       const std::size_t j = order[m];
       if (!boxes[i].overlaps(boxes[j])) continue;
-      if (const auto where = findCrossing(clean[i], clean[j]))
+      if (const auto where = crossingPoint(clean[i], clean[j]))
         return Status{ErrorCode::InputInvalid, path + ": " + loops[i].label + " and " + loops[j].label +
                                                    " touch or cross near " + fmtPoint(where->transpose()) + " mm"};
       if (insidePolygon(clean[j], clean[i].row(0).transpose())) depth[i] = depth[j] + 1;
