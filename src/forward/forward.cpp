@@ -337,13 +337,8 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
   } else {
     LeastSquaresSolver solver(problem, options.solver);
     result.summary = solver.solve(x);
-    if (result.summary.canContinue())
-      result.constraintRounds = enforceByMultipliers(
-          [&](Eigen::VectorXd& y) {
-            result.summary.append(solver.solve(y));
-            return result.summary.canContinue();
-          },
-          constraints, options.constraintRounds, x);
+    result.constraintRounds =
+        enforceByMultipliers(solver, constraints, options.constraintRounds, x, result.summary);
   }
   result.model = start;
   unpackVariables(layout, x, result.model.a, result.model.b);

@@ -535,4 +535,15 @@ int enforceByMultipliers(const std::function<bool(Eigen::VectorXd&)>& resolve,
   return rounds;
 }
 
+int enforceByMultipliers(LeastSquaresSolver& solver, const std::vector<Constraint>& constraints,
+                         int maxRounds, Eigen::VectorXd& x, SolverSummary& summary) {
+  if (!summary.canContinue()) return 0;
+  return enforceByMultipliers(
+      [&](Eigen::VectorXd& y) {
+        summary.append(solver.solve(y));
+        return summary.canContinue();
+      },
+      constraints, maxRounds, x);
+}
+
 }  // namespace dform

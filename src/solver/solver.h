@@ -132,6 +132,12 @@ struct Constraint {
 int enforceByMultipliers(const std::function<bool(Eigen::VectorXd&)>& resolve,
                          const std::vector<Constraint>& constraints, int maxRounds, Eigen::VectorXd& x);
 
+/// The same rounds with `solver` re-solving its own problem: each solve is appended to `summary`,
+/// and no round starts once `summary` cannot continue (a failed solve, or one the callback
+/// stopped).
+int enforceByMultipliers(LeastSquaresSolver& solver, const std::vector<Constraint>& constraints,
+                         int maxRounds, Eigen::VectorXd& x, SolverSummary& summary);
+
 /// The summary of a solve that takes no step (maxIterations = 0), made without setting up the
 /// linear algebra, which a large problem would pay for in time and memory for nothing: the
 /// objective and its terms at x, and Termination::NoConvergence with the reason.

@@ -269,12 +269,7 @@ TEST(Solver, MultiplierRoundsMeetAConstraintWithoutRaisingItsWeight) {
   Eigen::VectorXd x = Eigen::VectorXd::Zero(2);
   SolverSummary summary = solver.solve(x);
   EXPECT_NEAR(x[0] + x[1], 1.0, 1e-6);  // soft: (1 + 2) / 3
-  const int rounds = enforceByMultipliers(
-      [&](Eigen::VectorXd& y) {
-        summary.append(solver.solve(y));
-        return summary.canContinue();
-      },
-      {{pull.sum, 1, 1e-7}}, 50, x);
+  const int rounds = enforceByMultipliers(solver, {{pull.sum, 1, 1e-7}}, 50, x, summary);
   EXPECT_GT(rounds, 0);
   EXPECT_GT(summary.iterations.size(), 1u);  // the rounds' solves are in the summary
   EXPECT_LT(std::abs(x[0] + x[1]), 1e-7);
@@ -296,16 +291,15 @@ TEST(Solver, AStopFromTheCallbackEndsTheMultiplierRounds) {
   ASSERT_TRUE(summary.canContinue());
   stop = true;  // the Ctrl-C comes during the first round's solve
   calls = 0;
-  const int rounds = enforceByMultipliers(
-      [&](Eigen::VectorXd& y) {
-        summary.append(solver.solve(y));
-        return summary.canContinue();
-      },
-      {{pull.sum, 1, 1e-7}}, 50, x);
+  const int rounds = enforceByMultipliers(solver, {{pull.sum, 1, 1e-7}}, 50, x, summary);
   EXPECT_EQ(rounds, 1);
   EXPECT_EQ(calls, 1);
   EXPECT_EQ(summary.termination, Termination::UserAbort);
   EXPECT_FALSE(summary.canContinue());
+  // Nor does a round start after the stop, though the constraint is still unmet.
+  calls = 0;
+  EXPECT_EQ(enforceByMultipliers(solver, {{pull.sum, 1, 1e-7}}, 50, x, summary), 0);
+  EXPECT_EQ(calls, 0);
 }
 
 }  // namespace
