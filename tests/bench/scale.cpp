@@ -44,25 +44,23 @@ void runCase(const Case& c, int fd) {
   MessageSink sink;
   long vertices = 0;
   double solve = 0, run = 0, lError = 0, lMax = 0;
+  auto take = [&](const auto& r) {  // a ForwardRun or an InverseRun
+    if (!r.isOk()) _exit(1);
+    vertices = long(r.value().model.a.flat.rows() + r.value().model.b.flat.rows());
+    solve = r.value().timings.solve, run = r.value().timings.total;
+    lError = r.value().metrics.L_error, lMax = r.value().metrics.L_max;
+  };
   if (c.forward) {
     ForwardJob job;
     job.pieceA = std::string(DFORM_SAMPLES_DIR) + "/forward/ellipses-a.svg";
     job.pieceB = std::string(DFORM_SAMPLES_DIR) + "/forward/ellipses-b.svg";
     job.resolution = c.resolution;
-    Result<ForwardRun> r = runForward(job, sink);
-    if (!r.isOk()) _exit(1);
-    vertices = long(r.value().model.a.flat.rows() + r.value().model.b.flat.rows());
-    solve = r.value().timings.solve, run = r.value().timings.total;
-    lError = r.value().metrics.L_error, lMax = r.value().metrics.L_max;
+    take(runForward(job, sink));
   } else {
     InverseJob job;
     job.curve = std::string(DFORM_SAMPLES_DIR) + "/inverse/saddle.obj";
     job.resolution = c.resolution;
-    Result<InverseRun> r = runInverse(job, sink);
-    if (!r.isOk()) _exit(1);
-    vertices = long(r.value().model.a.flat.rows() + r.value().model.b.flat.rows());
-    solve = r.value().timings.solve, run = r.value().timings.total;
-    lError = r.value().metrics.L_error, lMax = r.value().metrics.L_max;
+    take(runInverse(job, sink));
   }
   char line[256];
   const int n = std::snprintf(line, sizeof line, "%ld %.6f %.6f %.9g %.9g\n", vertices, solve, run, lError, lMax);
