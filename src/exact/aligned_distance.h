@@ -1,0 +1,20 @@
+// How far one seam is from another of the same points once rigid motion is taken out: the
+// measure of "the shape on the screen against the shape on the table".
+#pragma once
+
+#include "core/types.h"
+
+namespace dform::exact {
+
+struct AlignedDistance {
+  double rmsRel = 0;   ///< root mean square distance / the reference's bounding-box diagonal
+  double maxRel = 0;   ///< largest distance / the same diagonal
+  double diagonalMm = 0;
+};
+
+/// Row i of `moved` against row i of `reference` (#P by 3 each, mm) after the rigid motion
+/// (rotation and translation, no reflection, no scale) that best fits the first onto the second in
+/// the least-squares sense (Kabsch).
+AlignedDistance alignedDistance(const Points3& reference, const Points3& moved);
+
+}  // namespace dform::exact

@@ -1,0 +1,342 @@
+#include "exact/exact_gluing.h"
+
+#include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <cmath>
+#include <list>
+#include <numeric>
+
+namespace dform::exact {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// The angle from u to w turning counter-clockwise, in [0, 2 pi).
+double ccwAngle(const Eigen::Vector2d& u, const Eigen::Vector2d& w) {
+  const double t = std::atan2(cross(u, w), u.dot(w));
+  return t < 0 ? t + 2.0 * kPi : t;
+}
+
+Eigen::Vector2d row(const Points2& P, long k) {
+  const long n = P.rows();
+  return P.row(((k % n) + n) % n).transpose();
+}
+
+double bboxDiagonal(const Points2& P) { return (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm(); }
+
+// Least-norm Gauss-Newton: moves P so that |P[k+1] - P[k]| = target[k].
+double fitChords(Points2& P, const Eigen::VectorXd& target) {
+  const int n = int(P.rows());
+  const Points2 start = P;
+  for (int iteration = 0; iteration < 8; ++iteration) {
+    Eigen::VectorXd g(n);
+    std::vector<Eigen::Vector2d> u(n);
+    for (int k = 0; k < n; ++k) {
+      const Eigen::Vector2d e = row(P, k + 1) - row(P, k);
+      g[k] = e.norm() - target[k];
+      u[k] = e / e.norm();
+    }
+    // Rounding of a chord length is ~1e-16 of it; stop an order above.
+    if (g.cwiseAbs().maxCoeff() <= 1e-15 * target.maxCoeff()) break;
+    // J J^T of the constraints: 2 on the diagonal, -u_k . u_(k+1) between neighbouring chords.
+    std::vector<Eigen::Triplet<double>> entries;
+    for (int k = 0; k < n; ++k) {
+      entries.emplace_back(k, k, 2.0);
+      const double off = -u[k].dot(u[(k + 1) % n]);
+      entries.emplace_back(k, (k + 1) % n, off);
+      entries.emplace_back((k + 1) % n, k, off);
+    }
+    Eigen::SparseMatrix<double> JJt(n, n);
+    JJt.setFromTriplets(entries.begin(), entries.end());
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(JJt);
+    const Eigen::VectorXd y = solver.solve(g);
+    // delta = -J^T y: chord k pulls vertex k + 1 along u_k and pushes vertex k back.
+    for (int k = 0; k < n; ++k) {
+      P.row((k + 1) % n) -= y[k] * u[k].transpose();
+      P.row(k) += y[k] * u[k].transpose();
+    }
+  }
+  return (P - start).rowwise().norm().maxCoeff();
+}
+
+// Triangulates the simple counter-clockwise polygon whose vertices are `loop` (indices into P) by
+// clipping ears; only reflex vertices can spoil an ear, so a convex polygon takes linear time.
+std::vector<Eigen::Vector3i> earClip(const Points2& P, std::vector<int> loop) {
+  std::vector<Eigen::Vector3i> out;
+  std::list<int> ring(loop.begin(), loop.end());
+  auto prevOf = [&](std::list<int>::iterator it) { return it == ring.begin() ? std::prev(ring.end()) : std::prev(it); };
+  auto nextOf = [&](std::list<int>::iterator it) {
+    auto n = std::next(it);
+    return n == ring.end() ? ring.begin() : n;
+  };
+  auto reflex = [&](std::list<int>::iterator it) {
+    const Eigen::Vector2d a = P.row(*prevOf(it)), b = P.row(*it), c = P.row(*nextOf(it));
+    return cross(b - a, c - b) <= 0.0;
+  };
+  auto isEar = [&](std::list<int>::iterator it) {
+    if (reflex(it)) return false;
+    const Eigen::Vector2d a = P.row(*prevOf(it)), b = P.row(*it), c = P.row(*nextOf(it));
+    for (auto jt = ring.begin(); jt != ring.end(); ++jt) {
+      if (jt == it || jt == prevOf(it) || jt == nextOf(it) || !reflex(jt)) continue;
+      const Eigen::Vector2d p = P.row(*jt);
+      if (cross(b - a, p - a) >= 0 && cross(c - b, p - b) >= 0 && cross(a - c, p - c) >= 0) return false;
+    }
+    return true;
+  };
+  auto it = ring.begin();
+  std::size_t sinceLastEar = 0;
+  while (ring.size() > 3 && sinceLastEar < ring.size()) {
+    if (isEar(it)) {
+      out.emplace_back(*prevOf(it), *it, *nextOf(it));
+      const auto after = nextOf(it);
+      ring.erase(it);
+      it = after;
+      sinceLastEar = 0;
+    } else {
+      it = nextOf(it);
+      ++sinceLastEar;
+    }
+  }
+  if (ring.size() == 3) {
+    auto first = ring.begin();
+    out.emplace_back(*first, *std::next(first), *std::next(first, 2));
+  }
+  return out;
+}
+
+// The orientation-reversing isometry of B's plane onto A's that maps every b_k onto a_k, if the
+// pieces are congruent that way to within `tolerance` mm.
+bool congruentMirror(const SeamPolygons& seam, double tolerance, Eigen::Matrix2d& M, Eigen::Vector2d& t) {
+  const Eigen::Matrix2d mirror = Eigen::Vector2d(1.0, -1.0).asDiagonal();
+  const Points2 b = seam.b * mirror;
+  const Eigen::RowVector2d ca = seam.a.colwise().mean(), cb = b.colwise().mean();
+  const Eigen::Matrix2d H = (b.rowwise() - cb).transpose() * (seam.a.rowwise() - ca);
+  Eigen::JacobiSVD<Eigen::Matrix2d> svd(H, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix2d R = svd.matrixV() * svd.matrixU().transpose();
+  if (R.determinant() < 0) return false;  // would need a reflection of the reflected piece
+  M = R * mirror;
+  t = ca.transpose() - M * (seam.b.colwise().mean().transpose());
+  const Points2 mapped = (seam.b * M.transpose()).rowwise() + t.transpose();
+  return (mapped - seam.a).rowwise().norm().maxCoeff() <= tolerance;
+}
+
+// Seam point k's direction towards q of piece `piece` as a signpost angle at k (A's wedge first,
+// from chord k -> k + 1; then B's, from chord k -> k - 1), and whether q lies in that wedge.
+bool directionTo(const ExactGluing& g, int piece, int k, const Eigen::Vector2d& q, double& angle) {
+  const double slack = 1e-12;
+  if (piece == 0) {
+    const Eigen::Vector2d s = row(g.seam.a, k);
+    double phi = ccwAngle(row(g.seam.a, k + 1) - s, q - s);
+    if (phi > g.angles.a[k] + slack) {
+      // Just below the chord by rounding reads as almost 2 pi.
+      if (phi < 2.0 * kPi - slack) return false;
+      phi = 0.0;
+    }
+    angle = std::min(phi, g.angles.a[k]);
+  } else {
+    const Eigen::Vector2d s = row(g.seam.b, k);
+    double phi = ccwAngle(row(g.seam.b, k - 1) - s, q - s);
+    if (phi > g.angles.b[k] + slack) {
+      if (phi < 2.0 * kPi - slack) return false;
+      phi = 0.0;
+    }
+    angle = g.angles.a[k] + std::min(phi, g.angles.b[k]);
+  }
+  return true;
+}
+
+// Whether the segment from seam point k to q crosses the polygon's boundary (q inside or on it).
+bool crossesBoundary(const Points2& P, int k, const Eigen::Vector2d& q) {
+  const long n = P.rows();
+  const Eigen::Vector2d s = row(P, k);
+  const Eigen::Vector2d d = q - s;
+  const double scale = d.squaredNorm();
+  for (long m = 0; m < n; ++m) {
+    if (m == k || (m + 1) % n == k) continue;
+    const Eigen::Vector2d p0 = row(P, m), p1 = row(P, m + 1);
+    const double eps = 1e-12 * std::max(scale, (p1 - p0).squaredNorm());
+    const double o1 = cross(d, p0 - s), o2 = cross(d, p1 - s);
+    const double o3 = cross(p1 - p0, s - p0), o4 = cross(p1 - p0, q - p0);
+    if (((o1 > eps && o2 < -eps) || (o1 < -eps && o2 > eps)) && ((o3 > eps && o4 < -eps) || (o3 < -eps && o4 > eps)))
+      return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+double equalizeChords(SeamPolygons& seam) {
+  const long n = seam.a.rows();
+  Eigen::VectorXd target(n);
+  for (long k = 0; k < n; ++k)
+    target[k] = 0.5 * ((row(seam.a, k + 1) - row(seam.a, k)).norm() + (row(seam.b, k + 1) - row(seam.b, k)).norm());
+  return std::max(fitChords(seam.a, target), fitChords(seam.b, target));
+}
+
+SeamAngles seamAngles(const SeamPolygons& seam) {
+  const long n = seam.a.rows();
+  SeamAngles out;
+  out.a.resize(n);
+  out.b.resize(n);
+  for (long k = 0; k < n; ++k) {
+    out.a[k] = ccwAngle(row(seam.a, k + 1) - row(seam.a, k), row(seam.a, k - 1) - row(seam.a, k));
+    out.b[k] = ccwAngle(row(seam.b, k - 1) - row(seam.b, k), row(seam.b, k + 1) - row(seam.b, k));
+  }
+  out.curvature = (2.0 * kPi - out.a.array() - out.b.array()).matrix();
+  for (long k = 0; k < n && out.firstNonConvex < 0; ++k)
+    if (out.curvature[k] < -kFlatCurvature) out.firstNonConvex = int(k);
+  return out;
+}
+
+Result<ExactGluing> glue(const SeamPolygons& seam, const ExactOptions& options) {
+  ExactGluing g;
+  g.seam = seam;
+  g.angles = seamAngles(seam);
+  const int n = int(seam.a.rows());
+  if (g.angles.firstNonConvex >= 0) {
+    const int k = g.angles.firstNonConvex;
+    return Status(ErrorCode::InputInvalid,
+                  "the glued metric is not convex: at seam point " + std::to_string(k) + " the two pieces' angles sum to " +
+                      std::to_string((g.angles.a[k] + g.angles.b[k]) * 180.0 / kPi) + " degrees, more than 360");
+  }
+  // Congruent pieces zipped point to point fold flat: Alexandrov's body is the doubly covered
+  // piece, with no inside for an apex. Congruent to rounding of the coordinates.
+  const double size = std::max(bboxDiagonal(seam.a), bboxDiagonal(seam.b));
+  if (congruentMirror(seam, 1e-9 * size, g.flatRotation, g.flatShift)) {
+    g.doublyCovered = true;
+    return g;
+  }
+  // The surface: both pieces triangulated without inner points and glued along the chords. A
+  // seam point on a straight side of both pieces is no vertex of either polygon (its two chords
+  // are one straight chord on each side); other flat points are removed from the triangulation.
+  auto straight = [](double angle) { return std::abs(angle - kPi) <= kFlatCurvature; };
+  std::vector<int> loopA, loopB;
+  for (int k = 0; k < n; ++k)
+    if (!(straight(g.angles.a[k]) && straight(g.angles.b[k]))) loopA.push_back(k);
+  const int m = int(loopA.size());
+  if (m < 4) return Status(ErrorCode::InputInvalid, "the glued surface has fewer than four cone points");
+  loopB.assign(loopA.rbegin(), loopA.rend());  // B counter-clockwise in its plane
+  std::vector<int> nextKept(n);
+  for (int i = 0; i < m; ++i) nextKept[loopA[i]] = loopA[(i + 1) % m];
+  const std::vector<Eigen::Vector3i> facesA = earClip(seam.a, loopA), facesB = earClip(seam.b, loopB);
+  if (int(facesA.size()) != m - 2 || int(facesB.size()) != m - 2)
+    return Status(ErrorCode::InputInvalid, "a piece's seam polygon is not simple");
+  const int nF = 2 * m - 4;
+  Eigen::MatrixX3i F(nF, 3);
+  Eigen::MatrixX3d L(nF, 3), S(nF, 3);
+  std::vector<int> pieceOfFace(nF);
+  for (int f = 0; f < nF; ++f) {
+    const int piece = f < m - 2 ? 0 : 1;
+    pieceOfFace[f] = piece;
+    const Eigen::Vector3i face = piece == 0 ? facesA[f] : facesB[f - (m - 2)];
+    const Points2& P = piece == 0 ? seam.a : seam.b;
+    F.row(f) = face.transpose();
+    for (int c = 0; c < 3; ++c) {
+      const int i = face[c], j = face[(c + 1) % 3];
+      L(f, c) = (P.row(j) - P.row(i)).norm();
+      double angle = 0;
+      directionTo(g, piece, i, P.row(j).transpose(), angle);
+      S(f, c) = angle;
+      // A chord's two sides get one length (equal after equalizeChords up to rounding).
+      if (nextKept[i] == j || nextKept[j] == i) {
+        const int k = nextKept[i] == j ? i : j, l = nextKept[k];
+        L(f, c) = 0.5 * ((row(seam.a, l) - row(seam.a, k)).norm() + (row(seam.b, l) - row(seam.b, k)).norm());
+      }
+    }
+  }
+  std::vector<double> cones(n);
+  for (int k = 0; k < n; ++k) cones[k] = g.angles.a[k] + g.angles.b[k];
+  IntrinsicTriangulation tri(F, L, S, cones, pieceOfFace);
+  for (int k : loopA)
+    if (std::abs(g.angles.curvature[k]) <= kFlatCurvature && !tri.removeFlatVertex(k))
+      return Status(ErrorCode::SolveFailed, "seam point " + std::to_string(k) + " is flat but could not be removed");
+  g.vertexOfSeam = tri.compact();
+  g.seamOfVertex.assign(tri.vertexCount(), -1);
+  for (int k = 0; k < n; ++k)
+    if (g.vertexOfSeam[k] >= 0) g.seamOfVertex[g.vertexOfSeam[k]] = k;
+  g.embedding = embedConvex(tri, options.embedding);
+  if (!g.embedding.converged)
+    return Status(ErrorCode::SolveFailed, "the exact gluing did not converge: " + g.embedding.message);
+  g.vertices = g.embedding.vertices;
+  g.triangulation = std::move(tri);
+  return g;
+}
+
+Points3 placeOnBody(const ExactGluing& g, int piece, const Points2& P) {
+  const Points2& polygon = piece == 0 ? g.seam.a : g.seam.b;
+  Points3 out(P.rows(), 3);
+  if (g.doublyCovered) {
+    for (Eigen::Index i = 0; i < P.rows(); ++i) {
+      const Eigen::Vector2d q = piece == 0 ? Eigen::Vector2d(P.row(i)) : g.flatRotation * P.row(i).transpose() + g.flatShift;
+      out.row(i) << q.x(), q.y(), 0.0;
+    }
+    return out;
+  }
+  std::vector<int> cones;
+  for (std::size_t k = 0; k < g.vertexOfSeam.size(); ++k)
+    if (g.vertexOfSeam[k] >= 0) cones.push_back(int(k));
+  const double size = bboxDiagonal(polygon);
+  std::vector<std::pair<double, int>> byDistance(cones.size());
+  for (Eigen::Index i = 0; i < P.rows(); ++i) {
+    const Eigen::Vector2d q = P.row(i).transpose();
+    out.row(i).setConstant(std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t c = 0; c < cones.size(); ++c) byDistance[c] = {(row(polygon, cones[c]) - q).norm(), cones[c]};
+    std::sort(byDistance.begin(), byDistance.end());
+    for (const auto& [distance, k] : byDistance) {
+      const int v = g.vertexOfSeam[k];
+      if (distance <= 1e-12 * size) {
+        out.row(i) = g.vertices.row(v);
+        break;
+      }
+      double angle = 0;
+      if (!directionTo(g, piece, k, q, angle) || crossesBoundary(polygon, k, q)) continue;
+      const SurfacePoint at = g.triangulation.trace(v, angle, distance);
+      if (at.face < 0) continue;
+      Eigen::RowVector3d x = Eigen::RowVector3d::Zero();
+      for (int c = 0; c < 3; ++c) x += at.bary[c] * g.vertices.row(g.triangulation.tail(3 * at.face + c));
+      out.row(i) = x;
+      break;
+    }
+  }
+  return out;
+}
+
+std::vector<FoundCrease> findCreases(const ExactGluing& g, double minAngle) {
+  std::vector<FoundCrease> out;
+  if (g.doublyCovered) return out;
+  const IntrinsicTriangulation& T = g.triangulation;
+  auto normal = [&](int f) {
+    const Eigen::Vector3d p0 = g.vertices.row(T.tail(3 * f)), p1 = g.vertices.row(T.tail(3 * f + 1)),
+                          p2 = g.vertices.row(T.tail(3 * f + 2));
+    return Eigen::Vector3d((p1 - p0).cross(p2 - p0).normalized());
+  };
+  for (int h = 0; h < T.halfedgeCount(); ++h) {
+    const int t = T.twin(h);
+    if (h > t) continue;
+    const Eigen::Vector3d n1 = normal(h / 3), n2 = normal(t / 3);
+    const double fold = std::atan2(n1.cross(n2).norm(), n1.dot(n2));
+    if (fold <= minAngle) continue;
+    const int k = g.seamOfVertex[T.tail(h)], m = g.seamOfVertex[T.head(h)];
+    const int n = int(g.seam.a.rows());
+    if ((k - m + n) % n == 1 || (m - k + n) % n == 1) continue;  // a chord of the seam
+    for (int piece = 0; piece < 2; ++piece) {
+      const Points2& P = piece == 0 ? g.seam.a : g.seam.b;
+      double angle = 0;
+      const Eigen::Vector2d q = row(P, m);
+      // The edge runs straight through this piece when it leaves k towards m within the piece's
+      // wedge and is as long as the segment: a geodesic that crossed the seam would be longer.
+      const double straight = (q - row(P, k)).norm();
+      if (!directionTo(g, piece, k, q, angle) || std::abs(angle - T.signpost(h)) > 1e-9 ||
+          std::abs(straight - T.length(h)) > 1e-9 * T.length(h) || crossesBoundary(P, k, q))
+        continue;
+      out.push_back({piece, k, m, fold});
+    }
+  }
+  return out;
+}
+
+}  // namespace dform::exact

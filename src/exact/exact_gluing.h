@@ -1,0 +1,85 @@
+// The exact D-Form of two flat pieces: the unique convex body whose surface is the two pieces
+// glued along their seam (Alexandrov; for convex pieces, Demaine and Price: the convex hull of the
+// seam). Only the seam points are cone points of the glued metric; interior points are flat and
+// are placed on the body afterwards by tracing geodesics from the seam.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/status.h"
+#include "core/types.h"
+#include "exact/alexandrov.h"
+#include "exact/intrinsic_triangulation.h"
+
+namespace dform::exact {
+
+/// The two sides of a seam: row k of `a` (counter-clockwise round piece A) is glued to row k of
+/// `b` (clockwise round piece B, in B's own plane), and the chord from k to k + 1 of one to that
+/// of the other. Both in mm.
+struct SeamPolygons {
+  Points2 a;
+  Points2 b;
+};
+
+/// Moves both polygons as little as possible (least-norm Gauss-Newton) so that chord k of each
+/// has the mean of the two lengths, to rounding: the metric glues exactly only when the two sides
+/// of every chord are equally long. Returns the largest move, mm.
+double equalizeChords(SeamPolygons& seam);
+
+/// The glued metric's angles at the seam points.
+struct SeamAngles {
+  Eigen::VectorXd a, b;  ///< interior angle of each piece at each seam point, radians
+  /// 2 pi - (a + b): the cone point's curvature; negative where the metric is not convex.
+  Eigen::VectorXd curvature;
+  int firstNonConvex = -1;  ///< the first seam point whose angle sum exceeds 2 pi + tolerance
+};
+
+/// A cone point whose curvature is within this of 0 is flat. Angles of a polygon computed from
+/// coordinates carry rounding of ~1e-15 rad per point; points sampled along two straight sides
+/// are flat to that, and a smooth curve sampled at n points turns by ~2 pi / n >> 1e-9.
+constexpr double kFlatCurvature = 1e-9;
+
+SeamAngles seamAngles(const SeamPolygons& seam);
+
+/// The glued surface embedded in 3D.
+struct ExactGluing {
+  SeamPolygons seam;                  ///< the polygons glued (after equalizeChords)
+  SeamAngles angles;
+  /// The pieces are congruent and zipped point to point: the body is piece A doubly covered, and
+  /// flatRotation * b + flatShift maps piece B's plane onto A's.
+  bool doublyCovered = false;
+  Eigen::Matrix2d flatRotation = Eigen::Matrix2d::Identity();
+  Eigen::Vector2d flatShift = Eigen::Vector2d::Zero();
+  IntrinsicTriangulation triangulation;  ///< of the cone points: the body's faces
+  std::vector<int> vertexOfSeam;      ///< seam point -> triangulation vertex, -1 if flat
+  std::vector<int> seamOfVertex;      ///< triangulation vertex -> seam point
+  Eigen::MatrixX3d vertices;          ///< 3D position of each triangulation vertex, mm
+  AlexandrovResult embedding;
+};
+
+struct ExactOptions {
+  AlexandrovOptions embedding;
+};
+
+/// Glues the two polygons (equal chords, as left by equalizeChords) and embeds the result.
+/// InputInvalid when the metric is not convex (the message names the seam point and its angle
+/// sum); SolveFailed when the embedding does not converge.
+Result<ExactGluing> glue(const SeamPolygons& seam, const ExactOptions& options = {});
+
+/// The 3D position on the glued body of each row of P, points of piece 0 (A) or 1 (B) given in
+/// that piece's plane, inside or on its polygon. Rows that cannot be placed come back NaN.
+Points3 placeOnBody(const ExactGluing& gluing, int piece, const Points2& P);
+
+/// A fold of the body that runs through a piece: the straight segment between two seam points
+/// of that piece along an edge of the body, and its fold angle (radians, 0 = flat).
+struct FoundCrease {
+  int piece = 0;     ///< 0 for A, 1 for B
+  int from = 0, to = 0;  ///< seam points at its ends
+  double angle = 0;
+};
+
+/// Edges of the body folded by more than `minAngle` radians that cross a piece's interior.
+std::vector<FoundCrease> findCreases(const ExactGluing& gluing, double minAngle);
+
+}  // namespace dform::exact

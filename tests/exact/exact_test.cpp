@@ -1,0 +1,188 @@
+// The exact engine against answers known without it: Platonic and flat bodies, derivatives by
+// finite differences, invariance under rigid motions and relabelling, discretisation.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "core/polyline.h"
+#include "exact/aligned_distance.h"
+#include "exact/exact_gluing.h"
+#include "exact/shapes.h"
+
+namespace dform::exact {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The two sides of a seam as glued: B's polygon listed clockwise.
+SeamPolygons seamOf(const Points2& a, const Points2& bCounterClockwise, int bStart) {
+  SeamPolygons s;
+  s.a = a;
+  const long n = bCounterClockwise.rows();
+  s.b.resize(n, 2);
+  for (long k = 0; k < n; ++k) s.b.row(k) = bCounterClockwise.row(((bStart - k) % n + n) % n);
+  return s;
+}
+
+Points3 seamOnBody(const ExactGluing& g) { return placeOnBody(g, 0, g.seam.a); }
+
+TEST(Exact, TwoRhombiMakeARegularTetrahedron) {
+  // 60-degree rhombi of side 100 mm; A's acute corner (seam point 0) meets B's obtuse one.
+  const int perSide = 5;
+  const Points2 rhombus = testshapes::polygonSampled(
+      {{0, 0}, {100, 0}, {150, 50 * std::sqrt(3.0)}, {50, 50 * std::sqrt(3.0)}}, perSide);
+  SeamPolygons seam = seamOf(rhombus, rhombus, perSide);
+  equalizeChords(seam);
+  Result<ExactGluing> glued = glue(seam);
+  ASSERT_TRUE(glued.isOk()) << glued.status().message();
+  const ExactGluing& g = glued.value();
+  ASSERT_EQ(g.triangulation.vertexCount(), 4) << "only the four corners are cone points";
+  const IntrinsicTriangulation& T = g.triangulation;
+  for (int h = 0; h < T.halfedgeCount(); ++h) {
+    const double length = (g.vertices.row(T.tail(h)) - g.vertices.row(T.head(h))).norm();
+    EXPECT_NEAR(length / 100.0, 1.0, 1e-6);
+  }
+  // Every dihedral angle of the regular tetrahedron is arccos(1/3).
+  for (int h = 0; h < T.halfedgeCount(); ++h) {
+    auto normal = [&](int f) {
+      const Eigen::Vector3d p0 = g.vertices.row(T.tail(3 * f)), p1 = g.vertices.row(T.tail(3 * f + 1)),
+                            p2 = g.vertices.row(T.tail(3 * f + 2));
+      return Eigen::Vector3d((p1 - p0).cross(p2 - p0).normalized());
+    };
+    const double interior = kPi - std::acos(std::clamp(normal(h / 3).dot(normal(T.twin(h) / 3)), -1.0, 1.0));
+    EXPECT_NEAR(interior / std::acos(1.0 / 3.0), 1.0, 1e-6);
+  }
+  // Points along the sides land on the tetrahedron's edges, at their flat distances.
+  const Points3 onBody = seamOnBody(g);
+  ASSERT_TRUE(onBody.allFinite());
+  for (int k = 0; k < onBody.rows(); ++k)
+    EXPECT_NEAR((onBody.row((k + 1) % onBody.rows()) - onBody.row(k)).norm(), 100.0 / perSide, 1e-6);
+}
+
+TEST(Exact, CongruentPiecesPointToPointFoldFlat) {
+  const Points2 ellipse = testshapes::ellipse(80, 50, 64);
+  // B listed clockwise from the same point: b_k is a_k mirrored in the major axis.
+  const SeamPolygons seam = seamOf(ellipse, ellipse, 0);
+  Result<ExactGluing> glued = glue(seam);
+  ASSERT_TRUE(glued.isOk()) << glued.status().message();
+  EXPECT_TRUE(glued.value().doublyCovered);
+  const Points3 a = placeOnBody(glued.value(), 0, seam.a), b = placeOnBody(glued.value(), 1, seam.b);
+  EXPECT_LT((a - b).rowwise().norm().maxCoeff(), 1e-9);
+  EXPECT_LT(a.col(2).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+TEST(Exact, NonConvexMetricNamesItsFirstSeamPoint) {
+  // A square zipped to a square turned by a fraction of a side: corners meet straight sides on
+  // both, and where corner meets corner... here A's concave notch at point 6 breaks convexity.
+  Points2 a = testshapes::polygonSampled({{0, 0}, {100, 0}, {100, 100}, {0, 100}}, 4);
+  a.row(6) = Eigen::RowVector2d(75, 50);  // a notch: A's angle there exceeds pi
+  const Points2 b = testshapes::polygonSampled({{0, 0}, {100, 0}, {100, 100}, {0, 100}}, 4);
+  SeamPolygons seam = seamOf(a, b, 0);
+  const SeamAngles angles = seamAngles(seam);
+  EXPECT_EQ(angles.firstNonConvex, 6);
+  Result<ExactGluing> glued = glue(seam);
+  ASSERT_FALSE(glued.isOk());
+  EXPECT_EQ(glued.status().code(), ErrorCode::InputInvalid);
+  EXPECT_NE(glued.status().message().find("seam point 6"), std::string::npos) << glued.status().message();
+}
+
+TEST(Exact, CurvatureJacobianMatchesFiniteDifferences) {
+  SeamPolygons seam = testshapes::ellipsePair(24);
+  equalizeChords(seam);
+  Result<ExactGluing> glued = glue(seam);
+  ASSERT_TRUE(glued.isOk()) << glued.status().message();
+  IntrinsicTriangulation T = glued.value().triangulation;
+  // Away from the solution, where kappa is far from zero: radii 10 % longer.
+  const Eigen::VectorXd r = 1.1 * glued.value().embedding.radii;
+  ASSERT_TRUE(makeRegular(T, r));
+  const RadialCurvatures at = radialCurvatures(T, r);
+  ASSERT_TRUE(at.valid);
+  EXPECT_GT(at.kappa.cwiseAbs().maxCoeff(), 1e-3);
+  const double step = 1e-6 * r.mean();
+  double worst = 0;
+  for (int j = 0; j < r.size(); ++j) {
+    Eigen::VectorXd up = r, down = r;
+    up[j] += step;
+    down[j] -= step;
+    const Eigen::VectorXd fd = (radialCurvatures(T, up).kappa - radialCurvatures(T, down).kappa) / (2 * step);
+    worst = std::max(worst, (fd - Eigen::VectorXd(at.jacobian.col(j))).cwiseAbs().maxCoeff());
+  }
+  EXPECT_LT(worst, 1e-6 * Eigen::MatrixXd(at.jacobian).cwiseAbs().maxCoeff());
+}
+
+TEST(Exact, EllipsePairIsConvexExactAndConvergesWithTheSeam) {
+  Points3 seams[2];
+  for (int level = 0; level < 2; ++level) {
+    SeamPolygons seam = testshapes::ellipsePair(100 << level);
+    equalizeChords(seam);
+    Result<ExactGluing> glued = glue(seam);
+    ASSERT_TRUE(glued.isOk()) << glued.status().message();
+    const ExactGluing& g = glued.value();
+    EXPECT_LT(g.embedding.maxEdgeError, 1e-9);
+    // Convex: no vertex above the plane of any face.
+    const double diagonal = (g.vertices.colwise().maxCoeff() - g.vertices.colwise().minCoeff()).norm();
+    const IntrinsicTriangulation& T = g.triangulation;
+    double above = -1;
+    for (int f = 0; f < T.faceCount(); ++f) {
+      const Eigen::Vector3d p0 = g.vertices.row(T.tail(3 * f)), p1 = g.vertices.row(T.tail(3 * f + 1)),
+                            p2 = g.vertices.row(T.tail(3 * f + 2));
+      const Eigen::Vector3d n = (p1 - p0).cross(p2 - p0).normalized();
+      above = std::max(above, ((g.vertices.rowwise() - p0.transpose()) * n).maxCoeff());
+    }
+    EXPECT_LT(above, 1e-9 * diagonal);
+    seams[level] = seamOnBody(g);
+    ASSERT_TRUE(seams[level].allFinite());
+  }
+  Points3 everyOther(seams[0].rows(), 3);
+  for (int k = 0; k < seams[0].rows(); ++k) everyOther.row(k) = seams[1].row(2 * k);
+  const AlignedDistance d = alignedDistance(everyOther, seams[0]);
+  EXPECT_LT(d.rmsRel, 2e-4);
+  EXPECT_GT(d.rmsRel, 0.0);
+}
+
+TEST(Exact, RigidMotionsAndRelabellingLeaveTheShape) {
+  SeamPolygons seam = testshapes::ellipsePair(60);
+  equalizeChords(seam);
+  Result<ExactGluing> base = glue(seam);
+  ASSERT_TRUE(base.isOk());
+  const Points3 reference = seamOnBody(base.value());
+  // Each piece moved rigidly in its own plane, and the seam labelled from point 17 on.
+  SeamPolygons moved = seam;
+  const Eigen::Matrix2d turn = Eigen::Rotation2Dd(0.7).toRotationMatrix();
+  moved.a = (seam.a * turn.transpose()).rowwise() + Eigen::RowVector2d(30, -12);
+  moved.b = (seam.b * turn).rowwise() + Eigen::RowVector2d(-5, 44);
+  const int shift = 17;
+  SeamPolygons relabelled = moved;
+  for (int k = 0; k < seam.a.rows(); ++k) {
+    relabelled.a.row(k) = moved.a.row((k + shift) % seam.a.rows());
+    relabelled.b.row(k) = moved.b.row((k + shift) % seam.a.rows());
+  }
+  Result<ExactGluing> other = glue(relabelled);
+  ASSERT_TRUE(other.isOk());
+  const Points3 shifted = seamOnBody(other.value());
+  Points3 back(shifted.rows(), 3);
+  for (int k = 0; k < shifted.rows(); ++k) back.row((k + shift) % shifted.rows()) = shifted.row(k);
+  EXPECT_LT(alignedDistance(reference, back).maxRel, 1e-9);
+}
+
+TEST(Exact, InteriorPointsKeepTheirDistancesToTheSeam) {
+  SeamPolygons seam = testshapes::ellipsePair(80);
+  equalizeChords(seam);
+  Result<ExactGluing> glued = glue(seam);
+  ASSERT_TRUE(glued.isOk());
+  // The centre of piece A is flat on the body: geodesic and straight distance agree wherever the
+  // body is flat between it and a seam point, and never exceed the flat distance.
+  Points2 centre(1, 2);
+  centre.row(0) = seam.a.colwise().mean();
+  const Points3 c = placeOnBody(glued.value(), 0, centre);
+  const Points3 s = seamOnBody(glued.value());
+  ASSERT_TRUE(c.allFinite());
+  for (int k = 0; k < seam.a.rows(); ++k) {
+    const double flat = (seam.a.row(k) - centre.row(0)).norm();
+    EXPECT_LE((s.row(k) - c.row(0)).norm(), flat * (1 + 1e-9));
+  }
+}
+
+}  // namespace
+}  // namespace dform::exact
