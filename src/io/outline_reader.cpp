@@ -75,7 +75,9 @@ Result<Points2> cleanLoop(const std::string& path, const DrawnLine& loop, const 
   const double diagonal = (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm();
   const double area = signedArea(P);
   if (std::abs(area) <= kZeroAreaFraction * diagonal * diagonal) return fail("has zero area");
-  if (area < 0.0) P = P.colwise().reverse().eval();
+  // Turned counter-clockwise about its first point: start fractions are measured from the point
+  // the path was drawn from, whichever way it was drawn.
+  if (area < 0.0) P.bottomRows(P.rows() - 1) = P.bottomRows(P.rows() - 1).colwise().reverse().eval();
   return P;
 }
 

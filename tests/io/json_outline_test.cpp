@@ -24,6 +24,9 @@ TEST(JsonOutline, ObjectWithUnitsAndHole) {
   EXPECT_EQ(P.rows(), 4);
   EXPECT_NEAR(closedLength(P), 300.0, 1e-12);
   EXPECT_NEAR(signedArea(P), 5000.0, 1e-9);  // made counter-clockwise
+  // ... about the point it was drawn from, which stays first: start fractions count from there.
+  EXPECT_EQ(P.row(0), Eigen::RowVector2d(0, 0));
+  EXPECT_EQ(P.row(1), Eigen::RowVector2d(100, 0));
   ASSERT_EQ(shape.value().holes.size(), 1u);
   EXPECT_NEAR(signedArea(shape.value().holes[0].points), 200.0, 1e-9);
   EXPECT_EQ(shape.value().outer.source, path);
