@@ -106,7 +106,7 @@ int run(int argc, char** argv) {
 
   Job forwardJob;
   cli::OutputOptions forwardOut;
-  std::string startANear, startBNear, join;
+  std::string startANear, startBNear, join, model;
   std::vector<std::string> forwardWeights;
   CLI::App* forward = app.add_subcommand("forward", "two flat outlines -> the D-Form they make");
   forward->add_option("piece_a", forwardJob.forward.pieceA, "outline of piece A (.svg or .json)")->required();
@@ -119,6 +119,7 @@ int run(int argc, char** argv) {
   forward->add_option("--join", join, "boundaries zipped, A's then B's: outer,outer (default), inner,inner "
                                       "(anti D-Form) or outer,inner (demi D-Form)");
   forward->add_flag("--flip", forwardJob.forward.flip, "zip piece B turned over");
+  forward->add_option("--model", model, "auto (default: exact where the pieces make a convex body), exact or paper");
   forward->add_flag("--fit-perimeter", forwardJob.forward.fitPerimeter,
                     "scale piece B to A's perimeter");
   forward->add_option("--perimeter-tolerance", forwardJob.forward.perimeterTolerance,
@@ -195,6 +196,8 @@ int run(int argc, char** argv) {
       return usage(Status(ErrorCode::Usage, "--start-b-near must look like X,Y"));
     if (!join.empty() && !parseJoin(join, forwardJob.forward.joinA, forwardJob.forward.joinB))
       return usage(Status(ErrorCode::Usage, "--join must be outer,outer, inner,inner, outer,inner or inner,outer"));
+    if (!model.empty() && !parseModelChoice(model, forwardJob.forward.model))
+      return usage(Status(ErrorCode::Usage, "--model must be auto, exact or paper"));
     forwardJob.forward.solve.weights = defaultWeights(forwardJob.forward.joinA, forwardJob.forward.joinB);
     for (const std::string& w : forwardWeights)
       if (Status s = setWeight(forwardJob, w); !s.isOk()) return usage(s);

@@ -2,6 +2,8 @@
 // measure of "the shape on the screen against the shape on the table".
 #pragma once
 
+#include <Eigen/Geometry>
+
 #include "core/types.h"
 
 namespace dform::exact {
@@ -16,5 +18,9 @@ struct AlignedDistance {
 /// (rotation and translation, no reflection, no scale) that best fits the first onto the second in
 /// the least-squares sense (Kabsch).
 AlignedDistance alignedDistance(const Points3& reference, const Points3& moved);
+
+/// That rigid motion: the rotation and translation taking row i of `from` closest to row i of
+/// `to` in the least-squares sense.
+Eigen::Affine3d rigidFit(const Points3& from, const Points3& to);
 
 }  // namespace dform::exact

@@ -321,8 +321,6 @@ std::vector<FoundCrease> findCreases(const ExactGluing& g, double minAngle) {
     const double fold = std::atan2(n1.cross(n2).norm(), n1.dot(n2));
     if (fold <= minAngle) continue;
     const int k = g.seamOfVertex[T.tail(h)], m = g.seamOfVertex[T.head(h)];
-    const int n = int(g.seam.a.rows());
-    if ((k - m + n) % n == 1 || (m - k + n) % n == 1) continue;  // a chord of the seam
     for (int piece = 0; piece < 2; ++piece) {
       const Points2& P = piece == 0 ? g.seam.a : g.seam.b;
       double angle = 0;
@@ -330,7 +328,12 @@ std::vector<FoundCrease> findCreases(const ExactGluing& g, double minAngle) {
       // The edge runs straight through this piece when it leaves k towards m within the piece's
       // wedge and is as long as the segment: a geodesic that crossed the seam would be longer.
       const double straight = (q - row(P, k)).norm();
-      if (!directionTo(g, piece, k, q, angle) || std::abs(angle - T.signpost(h)) > 1e-9 ||
+      // Strictly inside the piece's wedge at k: an edge along a straight stretch of the seam is
+      // the seam itself.
+      const double wedgeStart = piece == 0 ? 0.0 : g.angles.a[k];
+      const double wedgeEnd = wedgeStart + (piece == 0 ? g.angles.a[k] : g.angles.b[k]);
+      if (!directionTo(g, piece, k, q, angle) || angle < wedgeStart + 1e-9 || angle > wedgeEnd - 1e-9 ||
+          std::abs(angle - T.signpost(h)) > 1e-9 ||
           std::abs(straight - T.length(h)) > 1e-9 * T.length(h) || crossesBoundary(P, k, q))
         continue;
       out.push_back({piece, k, m, fold});

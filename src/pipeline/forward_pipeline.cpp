@@ -6,12 +6,15 @@
 #include <optional>
 
 #include "core/polyline.h"
+#include "exact/exact_gluing.h"
 #include "forward/transfer.h"
 #include "io/outline_reader.h"
 #include "meshing/triangulate.h"
 #include "pipeline/resources.h"
 #include "pipeline/run_util.h"
+#include "pipeline/exact_model.h"
 #include "pipeline/seam_layout.h"
+#include "validate/exact_body.h"
 
 namespace dform {
 
@@ -145,7 +148,66 @@ void startFromCoarser(const DForm& coarse, Piece& a, Piece& b) {
   }
 }
 
+// Why the exact model cannot make this job, or "" when it can (the glued metric's convexity is
+// checked when the seam is sampled).
+std::string exactModelRefusal(const ForwardJob& job, const DrawnPiece& A, const DrawnPiece& B) {
+  if (job.joinA != JoinedBoundary::Outer || job.joinB != JoinedBoundary::Outer)
+    return "a piece is zipped along a hole (anti or demi D-Form): the glued pieces make no closed convex body";
+  if (!A.creases.empty() || !B.creases.empty())
+    return "creases are drawn: the exact D-Form folds only where the glued pieces make it fold";
+  if (job.resolution > kMaxExactSeam)
+    return "the seam has " + std::to_string(job.resolution) + " points, more than the exact engine's " +
+           std::to_string(kMaxExactSeam);
+  return "";
+}
+
+// The two sides of the seam sampled at `fractions` (A's counter-clockwise, B's clockwise from
+// the starting pair), row k of each at seam point k: what the exact engine glues.
+exact::SeamPolygons seamPolygons(const DrawnPiece* drawn[2], const double startFraction[2], const int direction[2],
+                                 const std::vector<double>& fractions) {
+  const Eigen::Index n = Eigen::Index(fractions.size());
+  exact::SeamPolygons polygons;
+  Points2* sides[2] = {&polygons.a, &polygons.b};
+  for (int p = 0; p < 2; ++p) {
+    const LoopSamples seam = sampleLoop(drawn[p]->joined, fractions, startFraction[p], direction[p]);
+    sides[p]->resize(n, 2);
+    for (Eigen::Index k = 0; k < n; ++k) sides[p]->row(k) = seam.rows.row(seam.order[k]);
+  }
+  return polygons;
+}
+
+// The paper model's start on the exact D-Form of the same seam: every vertex placed on the body
+// (seam vertices at its cone points). False when a vertex cannot be placed.
+bool startOnExactBody(const exact::ExactGluing& g, Piece pieces[2]) {
+  const Points3 seam = exact::placeOnBody(g, 0, g.seam.a);
+  for (int p = 0; p < 2; ++p) {
+    Points3 shape = exact::placeOnBody(g, p, pieces[p].flat);
+    for (std::size_t k = 0; k < pieces[p].seam.size(); ++k) shape.row(pieces[p].seam[k]) = seam.row(Eigen::Index(k));
+    if (!shape.allFinite()) return false;
+    pieces[p].shape = std::move(shape);
+  }
+  return true;
+}
+
 }  // namespace
+
+const char* modelChoiceName(ModelChoice model) {
+  switch (model) {
+    case ModelChoice::Auto: return "auto";
+    case ModelChoice::Exact: return "exact";
+    case ModelChoice::Paper: return "paper";
+  }
+  return "?";
+}
+
+bool parseModelChoice(const std::string& text, ModelChoice& model) {
+  for (ModelChoice m : {ModelChoice::Auto, ModelChoice::Exact, ModelChoice::Paper})
+    if (text == modelChoiceName(m)) {
+      model = m;
+      return true;
+    }
+  return false;
+}
 
 const char* joinedBoundaryName(JoinedBoundary boundary) {
   return boundary == JoinedBoundary::Outer ? "outer" : "inner";
@@ -287,6 +349,62 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
       }
   }
 
+  // The exact D-Form wherever it applies; the paper's optimisation otherwise.
+  const std::string paths[2] = {job.pieceA, job.pieceB};
+  std::string refusal = exactModelRefusal(job, A, B);
+  if (job.model != ModelChoice::Paper && refusal.empty()) {
+    const auto solveStart = Clock::now();
+    ModelUsed used;
+    Result<DForm> exactModel =
+        exactDForm(seamPolygons(drawn, startFraction, direction, seamFractions(job.resolution, seamCorners)),
+                   job.interiorEdgeFactor * run.perimeterA / job.resolution, paths, used);
+    run.timings.solve = secondsSince(solveStart);
+    if (hooks.interrupted && hooks.interrupted->load())
+      return Status(ErrorCode::Interrupted, "interrupted during the solve");
+    if (exactModel.isOk()) {
+      used.name = "exact";
+      used.reason = used.doublyCovered
+                        ? "the pieces are congruent and zipped point to point: they fold flat onto each other"
+                        : "two discs zipped along their outlines whose glued metric is convex (every seam point's "
+                          "angle sum at most 360 degrees): the D-Form is that metric's unique convex body";
+      sink.info("exact model: " + std::to_string(used.conePoints) + " cone points, " +
+                std::to_string(used.newtonSteps) + " Newton steps" +
+                format(", curvature left %.2g rad, chords equalised by moving points at most %.2g mm", used.maxCurvature,
+                       used.chordMoveMm));
+      for (const FoundCrease& c : used.creases)
+        sink.info(std::string("the exact D-Form creases piece ") + (c.piece == 0 ? "A" : "B") +
+                  format(" along a line of %.1f mm folded by %.1f degrees", c.lengthMm, c.angleDeg));
+      run.model = std::move(exactModel).value();
+      run.modelUsed = std::move(used);
+      run.metrics = computeMetrics(run.model);
+      run.timings.total = secondsSince(start);
+      return run;
+    }
+    refusal = exactModel.status().message();
+    if (job.model == ModelChoice::Exact) return Status(exactModel.status().code(), job.pieceA + " and " + job.pieceB + ": --model exact: " + refusal);
+  } else if (job.model == ModelChoice::Exact) {
+    return Status(ErrorCode::InputInvalid, job.pieceA + " and " + job.pieceB + ": --model exact: " + refusal);
+  }
+  run.modelUsed.name = "paper";
+  run.modelUsed.reason = job.model == ModelChoice::Paper ? "asked for (--model paper)" : "the exact model does not apply: " + refusal;
+  sink.info("paper model: " + run.modelUsed.reason);
+
+  // Where the pieces are discs with a convex glued metric (drawn creases or not), the paper
+  // model starts on their exact D-Form: its solution differs from it only by what the smoothing
+  // terms and the drawn creases ask, so the finest level alone converges in a few steps and never
+  // passes through the folds that a pillow start can leave behind (the creased Squaricle: 6).
+  std::optional<exact::ExactGluing> exactStart;
+  if (classic && job.resolution <= kMaxExactSeam) {
+    exact::SeamPolygons polygons = seamPolygons(drawn, startFraction, direction, seamFractions(job.resolution, seamCorners));
+    exact::equalizeChords(polygons);
+    Result<exact::ExactGluing> glued = exact::glue(polygons);
+    if (glued.isOk() && !glued.value().doublyCovered) {
+      exactStart = std::move(glued).value();
+      levels = {job.resolution};
+      sink.info("paper model: starting from the exact D-Form of the same seam");
+    }
+  }
+
   ForwardOptions options = job.solve;
   bool interrupted = false;
   detail::connectHooks(options.relaxation, options.solver, hooks, interrupted);
@@ -336,6 +454,10 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
       out.creases = std::move(mesh.value().lines);
     }
     if (level > 0) startFromCoarser(solved.model, pieces[0], pieces[1]);
+    if (exactStart && finest && !startOnExactBody(*exactStart, pieces)) {
+      for (Piece& piece : pieces) piece.shape.resize(0, 3);
+      sink.warning("paper model: a vertex could not be placed on the exact D-Form; starting from the pillow");
+    }
     run.timings.mesh += secondsSince(meshStart);
     // The finest level is what the user asked for; coarser ones are details for the log.
     const Level detail = finest ? Level::Info : Level::Debug;

@@ -38,7 +38,16 @@ ForwardWeights defaultWeights(JoinedBoundary a, JoinedBoundary b);
 /// false when the text is not of that form.
 bool parseJoin(const std::string& text, JoinedBoundary& a, JoinedBoundary& b);
 
+/// Which model makes the 3D shape: the exact D-Form (Alexandrov's convex body of the glued
+/// pieces, src/exact) or the paper's optimisation; `Auto` takes the exact one wherever it applies
+/// (two discs zipped along their outlines, no drawn creases, a convex glued metric).
+enum class ModelChoice { Auto, Exact, Paper };
+
+const char* modelChoiceName(ModelChoice model);            ///< "auto", "exact" or "paper"
+bool parseModelChoice(const std::string& text, ModelChoice& model);
+
 struct ForwardJob {
+  ModelChoice model = ModelChoice::Auto;
   std::string pieceA, pieceB;  ///< outline files (SVG or JSON points)
   JoinedBoundary joinA = JoinedBoundary::Outer, joinB = JoinedBoundary::Outer;
   StartPoint startA, startB;   ///< the starting pair (paper Definition 3), on the joined boundaries
@@ -56,8 +65,30 @@ struct Timings {
   double read = 0, mesh = 0, solve = 0, total = 0;
 };
 
+/// Folds of the exact D-Form through a piece that nobody drew: each is returned as one of the
+/// piece's creases (Piece::creases) and listed here.
+struct FoundCrease {
+  int piece = 0;           ///< 0 for A, 1 for B
+  int crease = 0;          ///< its index in that piece's creases
+  double angleDeg = 0;     ///< its fold angle (0 = flat)
+  double lengthMm = 0;
+};
+
+/// Which model ran, and why the other did not.
+struct ModelUsed {
+  std::string name;    ///< "exact" or "paper"
+  std::string reason;  ///< why this one: the exact model's conditions met, or which failed
+  int conePoints = 0;          ///< exact: seam points that are vertices of the body
+  int newtonSteps = 0;         ///< exact: steps of the deformation
+  double maxCurvature = 0;     ///< exact: largest |curvature| left at a cone point (radians)
+  double chordMoveMm = 0;      ///< exact: the most a seam point moved to make paired chords equal
+  bool doublyCovered = false;  ///< exact: the pieces fold flat onto each other
+  std::vector<FoundCrease> creases;
+};
+
 struct ForwardRun {
   DForm model;
+  ModelUsed modelUsed;
   Metrics metrics;
   LocalGlobalSummary relaxation;  ///< the local-global start of the solve
   SolverSummary summary;          ///< the Levenberg-Marquardt solve

@@ -1,13 +1,17 @@
 #include "pipeline/inverse_pipeline.h"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <tuple>
 
 #include "core/polyline.h"
+#include "exact/aligned_distance.h"
 #include "forward/transfer.h"
 #include "io/curve_reader.h"
 #include "meshing/triangulate.h"
+#include "pipeline/exact_model.h"
 #include "pipeline/resources.h"
 #include "pipeline/run_util.h"
 
@@ -78,6 +82,28 @@ Result<Piece> refinePiece(const Piece& coarse, const Points3& curve, bool clockw
   return piece;
 }
 
+// The pieces of an on-hull curve: the pre-D-Form (the hull cut along the curve) unfolded, zipped
+// by the exact engine and moved rigidly onto the curve.
+Result<DForm> exactInverse(const InverseInit& init, const Points3& target, const InverseJob& job, ModelUsed& used) {
+  const Eigen::Index n = target.rows();
+  exact::SeamPolygons polygons;
+  polygons.a = init.preFlatA.V.topRows(n);
+  polygons.b = init.preFlatB.V.topRows(n);
+  const double edge = closedLength(target) / double(n);
+  const std::string paths[2] = {job.curve + " (piece A)", job.curve + " (piece B)"};
+  Result<DForm> made = exactDForm(polygons, edge * job.init.edgeLengthFactor, paths, used);
+  if (!made.isOk()) return made.status();
+  DForm model = std::move(made).value();
+  Points3 seam(n, 3);
+  for (Eigen::Index k = 0; k < n; ++k) seam.row(k) = model.a.shape.row(model.a.seam[std::size_t(k)]);
+  const Eigen::Affine3d onCurve = exact::rigidFit(seam, target);
+  for (Piece* p : {&model.a, &model.b}) p->shape = (p->shape * onCurve.linear().transpose()).rowwise() + onCurve.translation().transpose();
+  used.name = "exact";
+  used.reason = "the curve lies on its convex hull: the hull's two sides unfolded are the pieces, and zipped "
+                "they make the hull again (Alexandrov)";
+  return model;
+}
+
 }  // namespace
 
 Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const RunHooks& hooks) {
@@ -129,6 +155,29 @@ Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const Ru
       if (!init.isOk()) return init.status();
       run.pre = init.value().pre;
       sink.info("pre-D-Form: " + run.pre.summary);
+      // On its hull the curve is the seam of the hull's two sides: unfolded, they are the pieces,
+      // and zipped they make that hull again (Alexandrov), with nothing to optimise.
+      if (finest && run.pre.isHull) {
+        Result<DForm> exact = exactInverse(init.value(), target, job, run.modelUsed);
+        run.timings.mesh += secondsSince(meshStart);
+        if (exact.isOk()) {
+          sink.info("exact model: the pieces are the curve's convex hull cut along it and unfolded");
+          run.model = std::move(exact).value();
+          run.target.points = target;
+          run.metrics = computeMetrics(run.model);
+          run.curveMatch = computeCurveMatch(run.model, run.target);
+          run.timings.total = secondsSince(start);
+          return run;
+        }
+        sink.warning(job.curve + ": the exact model failed (" + exact.status().message() + "); optimising instead");
+      }
+      run.modelUsed.name = "paper";
+      run.modelUsed.reason = !finest ? "the curve has more points than the exact inverse unfolds in one piece (" +
+                                           std::to_string(kMaxPreDFormPoints) + ")"
+                             : run.pre.isHull ? "the exact model failed"
+                                              : "the curve leaves its convex hull: the pieces are optimised from the "
+                                                "filled pre-D-Form, and zipped they take a convex shape (the round "
+                                                "trip says how far from the curve)";
       startModel = std::move(init.value().model);
     } else {
       const double edge = closedLength(target) / double(target.rows());

@@ -23,6 +23,9 @@ struct InverseJob {
 
 struct InverseRun {
   DForm model;
+  /// exact: the curve lies on its convex hull and the pieces are the hull's two sides unfolded,
+  /// zipped by the exact engine; paper: the optimisation from the pre-D-Form.
+  ModelUsed modelUsed;
   Curve3 target;           ///< the resampled curve the seam follows (mm)
   Metrics metrics;
   CurveMatch curveMatch;   ///< D_error and the largest seam-to-curve distance

@@ -115,7 +115,7 @@ Job parse(const json& root, const std::string& baseDir) {
   const std::string mode = root["mode"].get<std::string>();
   Job job;
   if (mode == "forward") {
-    onlyKeys(root, {"mode", "piece_a", "piece_b", "join", "start_a", "start_b", "resolution", "flip",
+    onlyKeys(root, {"mode", "model", "piece_a", "piece_b", "join", "start_a", "start_b", "resolution", "flip",
                     "fit_perimeter", "perimeter_tolerance", "weights", "solver"}, "");
     ForwardJob& f = job.forward;
     f.pieceA = path(root, "piece_a", baseDir);
@@ -124,6 +124,9 @@ Job parse(const json& root, const std::string& baseDir) {
         !(root["join"].is_string() && parseJoin(root["join"].get<std::string>(), f.joinA, f.joinB)))
       throw KeyError{"join", "must be \"outer,outer\", \"inner,inner\", \"outer,inner\" or \"inner,outer\""};
     f.solve.weights = defaultWeights(f.joinA, f.joinB);
+    if (root.contains("model") &&
+        !(root["model"].is_string() && parseModelChoice(root["model"].get<std::string>(), f.model)))
+      throw KeyError{"model", "must be \"auto\", \"exact\" or \"paper\""};
     if (root.contains("start_a")) f.startA = startPoint(root["start_a"], "start_a");
     if (root.contains("start_b")) f.startB = startPoint(root["start_b"], "start_b");
     if (root.contains("resolution")) f.resolution = integer(root, "resolution");
@@ -203,6 +206,7 @@ std::string jobToJson(const Job& job) {
   if (job.mode == Job::Mode::Forward) {
     const ForwardJob& f = job.forward;
     out = {{"mode", "forward"},
+           {"model", modelChoiceName(f.model)},
            {"piece_a", std::filesystem::absolute(f.pieceA).string()},
            {"piece_b", std::filesystem::absolute(f.pieceB).string()},
            {"join", std::string(joinedBoundaryName(f.joinA)) + "," + joinedBoundaryName(f.joinB)},

@@ -31,7 +31,38 @@ json metricsJson(const Metrics& m) {
           {"degenerate_3d", m.degenerate_3d},
           {"seam_length_a_mm", figure(m.seam_length_a_mm)},
           {"seam_length_b_mm", figure(m.seam_length_b_mm)},
-          {"seam_length_3d_mm", figure(m.seam_length_3d_mm)}};
+          {"seam_length_3d_mm", figure(m.seam_length_3d_mm)},
+          {"exact_distance_rms_rel", figure(m.exact_distance_rms_rel)},
+          {"exact_distance_max_rel", figure(m.exact_distance_max_rel)},
+          {"exact_note", m.exact_note}};
+}
+
+// The inverse figures measured against the target curve.
+void addCurveMatch(json& metrics, const CurveMatch& c) {
+  metrics["D_error"] = figure(c.D_error);
+  metrics["curve_distance_max_mm"] = figure(c.curve_distance_max_mm);
+  metrics["roundtrip_rms_rel"] = figure(c.roundtrip_rms_rel);
+  metrics["roundtrip_max_rel"] = figure(c.roundtrip_max_rel);
+  metrics["roundtrip_note"] = c.roundtrip_note;
+}
+
+// Which model made the shape, why, and what the exact engine found.
+json modelJson(const ModelUsed& used) {
+  json creases = json::array();
+  for (const FoundCrease& c : used.creases)
+    creases.push_back({{"piece", c.piece == 0 ? "A" : "B"},
+                       {"crease", c.crease + 1},
+                       {"angle_deg", figure(c.angleDeg)},
+                       {"length_mm", figure(c.lengthMm)}});
+  json out = {{"name", used.name}, {"reason", used.reason}};
+  if (used.name == "exact")
+    out.update({{"cone_points", used.conePoints},
+                {"newton_steps", used.newtonSteps},
+                {"max_curvature_rad", figure(used.maxCurvature)},
+                {"chord_move_mm", figure(used.chordMoveMm)},
+                {"doubly_covered", used.doublyCovered},
+                {"found_creases", creases}});
+  return out;
 }
 
 // An input file: its path, the SHA-256 of its bytes (null when it can no longer be read) and
@@ -172,6 +203,7 @@ Status writeForwardReport(const std::string& dir, const Job& job, const ForwardR
   report["fit_perimeter_scale"] = figure(run.scaleB);
   report["start_fraction_a"] = figure(run.startFractionA);
   report["start_fraction_b"] = figure(run.startFractionB);
+  report["model"] = modelJson(run.modelUsed);
   report["mesh"] = meshJson(run.model);
   report["solver"] = solverJson(run.relaxation, run.summary);
   report["solver"]["constraint_rounds"] = run.constraintRounds;
@@ -189,6 +221,7 @@ Status writeInverseReport(const std::string& dir, const Job& job, const InverseR
   const auto reportStart = std::chrono::steady_clock::now();
   json report = header(job, "inverse");
   report["inputs"] = {{"curve", inputJson(job.inverse.curve, "length_mm", run.curveLength)}};
+  report["model"] = modelJson(run.modelUsed);
   report["pre_dform"] = {{"on_hull", run.pre.onHull},
                          {"is_hull", run.pre.isHull},
                          {"inside_vertices", run.pre.insideVertices.size()},
@@ -196,8 +229,7 @@ Status writeInverseReport(const std::string& dir, const Job& job, const InverseR
   report["mesh"] = meshJson(run.model);
   report["solver"] = solverJson(run.relaxation, run.summary);
   report["metrics"] = metricsJson(run.metrics);
-  report["metrics"]["D_error"] = figure(run.curveMatch.D_error);
-  report["metrics"]["curve_distance_max_mm"] = figure(run.curveMatch.curve_distance_max_mm);
+  addCurveMatch(report["metrics"], run.curveMatch);
   report["metrics"]["curve_length_mm"] = figure(run.curveLength);
   report["gate"] = gateJson(gate);
   report["messages"] = messagesJson(messages);
@@ -240,10 +272,7 @@ Result<std::vector<std::string>> compareWithReport(const std::string& dir, const
   if (!report.contains("metrics") || !report["metrics"].is_object())
     return Status(ErrorCode::InputInvalid, path + ": has no metrics");
   json now = metricsJson(metrics);
-  if (curve) {
-    now["D_error"] = figure(curve->D_error);
-    now["curve_distance_max_mm"] = figure(curve->curve_distance_max_mm);
-  }
+  if (curve) addCurveMatch(now, *curve);
   std::vector<std::string> differences;
   for (const auto& [key, value] : now.items()) {
     const json& saved = report["metrics"].contains(key) ? report["metrics"][key] : json(nullptr);

@@ -16,7 +16,7 @@ namespace dform {
 
 /// The schema name and version written into every report.
 constexpr const char* kReportSchema = "dform-report";
-constexpr int kReportSchemaVersion = 1;
+constexpr int kReportSchemaVersion = 2;
 
 /// The command's stages around the pipeline's run, for report.json's timings (seconds).
 struct CommandTimings {

@@ -357,6 +357,17 @@ const CheckResult* GateReport::find(const std::string& name) const {
   return nullptr;
 }
 
+namespace {
+
+// A figure of the object a user builds (the exact D-Form of the pieces), or why it has none.
+CheckResult objectCheck(const char* name, double rms, double max, double limit, const std::string& note,
+                        const std::string& what) {
+  if (std::isnan(rms)) return notRunCheck(name, limit, "no exact D-Form to compare with: " + note);
+  return judgeCheck(name, rms, limit, what + " / the bounding-box diagonal; largest " + num(max));
+}
+
+}  // namespace
+
 GateReport runGate(const DForm& model, const GateLimits& limits, const Curve3* target) {
   GateReport report;
   report.name = limits.name;
@@ -409,6 +420,13 @@ GateReport runGate(const DForm& model, const GateLimits& limits, const Curve3* t
         "flat seams " + num(m.seam_length_a_mm) + " mm and " + num(m.seam_length_b_mm) + " mm"));
   checks.push_back(selfIntersectionCheck(model));
   checks.push_back(hullCheck(model, limits));
+  checks.push_back(objectCheck("exact_distance_rel", m.exact_distance_rms_rel, m.exact_distance_max_rel,
+                               limits.exact_distance_rel, m.exact_note,
+                               "RMS distance of the 3D seam from the exact D-Form of these flat pieces"));
+  if (report.curve)
+    checks.push_back(objectCheck("roundtrip_rel", report.curve->roundtrip_rms_rel, report.curve->roundtrip_max_rel,
+                                 limits.roundtrip_rel, report.curve->roundtrip_note,
+                                 "RMS distance of the zipped pieces' exact D-Form from the target curve"));
   return report;
 }
 

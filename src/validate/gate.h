@@ -24,6 +24,12 @@ struct GateLimits {
   double gauss_max_rad = 0.05;      ///< max |angle defect| away from the seam (radians)
   double seam_length_rel = 2e-3;    ///< max |flat seam A - flat seam B| / max of both (fraction)
   double hull_distance_rel = 0.01;  ///< max distance to the seam's hull / seam bbox diagonal
+  /// max RMS seam distance from the exact D-Form of the same pieces / seam bbox diagonal: how far
+  /// the shape shown is from the shape the cut pieces make
+  double exact_distance_rel = 2e-3;
+  /// inverse mode: max RMS distance of the zipped pieces' exact D-Form from the target curve /
+  /// the curve's bbox diagonal
+  double roundtrip_rel = 2e-3;
   int flipped = 0;                  ///< max flipped triangles (flat and 3D together)
   int degenerate = 0;               ///< max degenerate triangles (flat and 3D together)
 };

@@ -72,6 +72,8 @@ Result<GateLimits> parseGateJson(const std::string& text, const std::string& sou
       {"gauss_max_rad", &limits.gauss_max_rad},
       {"seam_length_rel", &limits.seam_length_rel},
       {"hull_distance_rel", &limits.hull_distance_rel},
+      {"exact_distance_rel", &limits.exact_distance_rel},
+      {"roundtrip_rel", &limits.roundtrip_rel},
   };
   struct Count {
     const char* key;

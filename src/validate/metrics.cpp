@@ -6,6 +6,8 @@
 #include <limits>
 
 #include "core/polyline.h"
+#include "exact/aligned_distance.h"
+#include "validate/exact_body.h"
 #include "validate/mesh_measures.h"
 
 namespace dform {
@@ -48,6 +50,13 @@ void addDefects(const Piece& p, const detail::EdgeTopology& topology, double& ma
     sumAbs += std::abs(d);
     ++count;
   }
+}
+
+// A piece's 3D seam, row k for seam point k.
+Points3 seamShape(const Piece& p) {
+  Points3 out(Eigen::Index(p.seam.size()), 3);
+  for (std::size_t k = 0; k < p.seam.size(); ++k) out.row(Eigen::Index(k)) = p.shape.row(p.seam[k]);
+  return out;
 }
 
 }  // namespace
@@ -144,6 +153,14 @@ Metrics computeMetrics(const DForm& model) {
   m.seam_length_3d_mm = detail::seamLength(model.a.shape, sa);
   if (!sa.empty() && m.seam_length_3d_mm > 0.0)
     m.B_error = (sumGap / double(sa.size())) / m.seam_length_3d_mm;
+  const Result<Points3> exactSeam = exactBodySeam(model);
+  if (exactSeam.isOk()) {
+    const exact::AlignedDistance d = exact::alignedDistance(exactSeam.value(), seamShape(model.a));
+    m.exact_distance_rms_rel = d.rmsRel;
+    m.exact_distance_max_rel = d.maxRel;
+  } else {
+    m.exact_note = exactSeam.status().message();
+  }
   return m;
 }
 
@@ -163,6 +180,14 @@ CurveMatch computeCurveMatch(const DForm& model, const Curve3& target) {
   const double curveLength = closedLength(target.points);
   if (!sa.empty() && curveLength > 0.0)
     match.D_error = (sum / (2.0 * double(sa.size()))) / curveLength;
+  const Result<Points3> exactSeam = exactBodySeam(model);
+  if (exactSeam.isOk()) {
+    const exact::AlignedDistance d = exact::alignedDistance(target.points, exactSeam.value());
+    match.roundtrip_rms_rel = d.rmsRel;
+    match.roundtrip_max_rel = d.maxRel;
+  } else {
+    match.roundtrip_note = exactSeam.status().message();
+  }
   return match;
 }
 

@@ -1,6 +1,8 @@
 // Quality figures of a D-Form (paper section 6.3 and Table 2), computed from the meshes alone.
 #pragma once
 
+#include <limits>
+#include <string>
 #include <vector>
 
 #include "core/types.h"
@@ -21,6 +23,12 @@ struct Metrics {
   double seam_length_a_mm = 0;   ///< flat seam length (perimeter) of piece A
   double seam_length_b_mm = 0;   ///< flat seam length of piece B
   double seam_length_3d_mm = 0;  ///< length of the 3D seam (piece A's side)
+  /// The 3D seam against the seam of the exact D-Form of the same flat pieces (exactBodySeam)
+  /// after rigid alignment: root mean square and largest distance over the seam's bounding-box
+  /// diagonal. NaN when there is no exact D-Form to compare with; exact_note then says why.
+  double exact_distance_rms_rel = std::numeric_limits<double>::quiet_NaN();
+  double exact_distance_max_rel = std::numeric_limits<double>::quiet_NaN();
+  std::string exact_note;
 };
 
 /// Figures of `model`. Pure: reads the meshes, never the solver.
@@ -60,6 +68,12 @@ std::vector<CreaseFold> creaseFolds(const Piece& piece);
 struct CurveMatch {
   double D_error = 0;
   double curve_distance_max_mm = 0;
+  /// The round trip: the flat pieces zipped again (their exact D-Form) against the target curve
+  /// after rigid alignment, over the curve's bounding-box diagonal. NaN when the pieces make no
+  /// convex D-Form; roundtrip_note then says why.
+  double roundtrip_rms_rel = std::numeric_limits<double>::quiet_NaN();
+  double roundtrip_max_rel = std::numeric_limits<double>::quiet_NaN();
+  std::string roundtrip_note;
 };
 CurveMatch computeCurveMatch(const DForm& model, const Curve3& target);
 

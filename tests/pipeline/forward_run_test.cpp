@@ -128,9 +128,12 @@ CheckResult hullOfConvexPair(const ForwardJob& j) {
 
 TEST(ForwardRun, CornersMeetingSmoothPointsMustCreaseSoTheHullIsNotJudged) {
   // Circle and square (paper Fig. 14): each square corner meets a smooth point of the circle,
-  // where the real D-Form creases (the Squaricle); this crease-free model bends over the creases
-  // and is not its seam's hull. The check says why, with the distance it measured.
-  const CheckResult square = hullOfConvexPair(job("circle.svg", "square.svg", 60, 0.125));
+  // where the real D-Form creases (the Squaricle); the paper's crease-free model bends over the
+  // creases and is not its seam's hull. The check says why, with the distance it measured. (The
+  // exact model creases there by itself: exact_run_test.cpp.)
+  ForwardJob squaricle = job("circle.svg", "square.svg", 60, 0.125);
+  squaricle.model = ModelChoice::Paper;
+  const CheckResult square = hullOfConvexPair(squaricle);
   EXPECT_EQ(square.verdict, CheckResult::Verdict::NotRun);
   EXPECT_NE(square.detail.find("piece B's corners at seam pairs "), std::string::npos) << square.detail;
   EXPECT_NE(square.detail.find("meet smooth points of piece A"), std::string::npos) << square.detail;
@@ -139,6 +142,7 @@ TEST(ForwardRun, CornersMeetingSmoothPointsMustCreaseSoTheHullIsNotJudged) {
 
   // A regular pentagon of the circle's 800 mm: five corners, each named.
   ForwardJob pentagon = job("circle.svg", "circle.svg", 60);
+  pentagon.model = ModelChoice::Paper;
   pentagon.pieceA = polygonFile("pentagon", regularPolygon(5, 800));
   const CheckResult five = hullOfConvexPair(pentagon);
   std::filesystem::remove(pentagon.pieceA);
@@ -179,7 +183,9 @@ TEST(ForwardRun, StartNearAPointAndFlip) {
   near.startB.nearestToPoint = true;
   near.startB.point = {150, 50};  // the middle of the square's bottom side
   const ForwardRun run = runOk(near);
-  EXPECT_NEAR(run.startFractionB, 0.125, 1e-3);  // the rect's outline starts at its top-left corner
+  // Counter-clockwise from the rect's first point, its top-left corner: down the left side
+  // (0.25) and half along the bottom (0.125).
+  EXPECT_NEAR(run.startFractionB, 0.375, 1e-3);
   const Eigen::RowVector2d first = run.model.b.flat.row(run.model.b.seam[0]);
   EXPECT_LT((first - Eigen::RowVector2d(150, 50)).norm(), 0.3);
 
@@ -233,10 +239,18 @@ TEST(ForwardRun, InterruptionStopsTheSolve) {
   std::vector<std::string> stages;
   hooks.onIteration = [&](const char* stage, const IterationSummary&) { stages.push_back(stage); };
   MessageSink sink;
-  const Result<ForwardRun> run = runForward(job("ellipses-a.svg", "ellipses-b.svg", 40), sink, hooks);
+  ForwardJob paper = job("ellipses-a.svg", "ellipses-b.svg", 40);
+  paper.model = ModelChoice::Paper;
+  const Result<ForwardRun> run = runForward(paper, sink, hooks);
   ASSERT_FALSE(run.isOk());
   EXPECT_EQ(run.status().code(), ErrorCode::Interrupted);
   EXPECT_EQ(stages, std::vector<std::string>{"relaxing"});
+  // The exact engine has no iterations to report, and its result is not kept either.
+  stages.clear();
+  const Result<ForwardRun> exact = runForward(job("ellipses-a.svg", "ellipses-b.svg", 40), sink, hooks);
+  ASSERT_FALSE(exact.isOk());
+  EXPECT_EQ(exact.status().code(), ErrorCode::Interrupted);
+  EXPECT_TRUE(stages.empty());
 }
 
 }  // namespace

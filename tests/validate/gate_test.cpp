@@ -34,7 +34,7 @@ std::string describe(const GateReport& report) {
 const Names kForwardChecks = {
     "L_error",          "L_max",      "B_error",     "seam_gap_mm",     "gauss_max_rad",
     "flipped",          "degenerate", "flat_simple", "seam_length_rel", "self_intersection",
-    "hull_distance_rel"};
+    "hull_distance_rel", "exact_distance_rel"};
 
 TEST(Gate, ExactConvexDFormPassesEveryCheck) {
   const GateReport report = runGate(test::tetraDForm(8), GateLimits{});
@@ -45,16 +45,20 @@ TEST(Gate, ExactConvexDFormPassesEveryCheck) {
   EXPECT_EQ(withVerdict(report, Verdict::Pass), kForwardChecks) << describe(report);
   EXPECT_TRUE(report.passed());
   EXPECT_LT(report.find("hull_distance_rel")->value, 1e-12);  // the surface is its seam's hull
+  // ... and the exact engine, which knows only the flat pieces, makes that very shape.
+  EXPECT_LT(report.find("exact_distance_rel")->value, 1e-9);
+  EXPECT_LT(report.metrics.exact_distance_max_rel, 1e-9);
 }
 
-TEST(Gate, StretchedShapeFailsOnlyLError) {
+TEST(Gate, StretchedShapeFailsLErrorAndTheExactDistance) {
   DForm model = test::tetraDForm(8);
   model.a.shape *= 1.01;
   model.b.shape *= 1.01;
   const GateReport report = runGate(model, GateLimits{});
   // 1% on every edge: L_error (limit 0.5%) fails; L_max (limit 3%) holds; angles, seam, hull and
-  // flat pieces are unchanged by a uniform scaling.
-  EXPECT_EQ(failed(report), Names{"L_error"}) << describe(report);
+  // flat pieces are unchanged by a uniform scaling, but the shape is 1% larger than the one the
+  // cut pieces make: its seam lies ~0.5% of the diagonal off it (limit 0.2%).
+  EXPECT_EQ(failed(report), (Names{"L_error", "exact_distance_rel"})) << describe(report);
   EXPECT_TRUE(notRun(report).empty()) << describe(report);
   EXPECT_NEAR(report.find("L_error")->value, 0.01, 1e-12);
   EXPECT_FALSE(report.passed());
@@ -68,8 +72,9 @@ TEST(Gate, FlatPieceOverlappingItselfFailsOnlyFlatSimple) {
   EXPECT_EQ(failed(report), Names{"flat_simple"}) << describe(report);
   EXPECT_NE(report.find("flat_simple")->detail.find("piece A: outline edges"), std::string::npos);
   // No vertex is away from the seam and the pieces are not convex: said so, not passed.
-  EXPECT_EQ(notRun(report), (Names{"gauss_max_rad", "hull_distance_rel"}));
+  EXPECT_EQ(notRun(report), (Names{"exact_distance_rel", "gauss_max_rad", "hull_distance_rel"}));
   EXPECT_FALSE(report.find("hull_distance_rel")->detail.empty());
+  EXPECT_FALSE(report.find("exact_distance_rel")->detail.empty());
   EXPECT_TRUE(std::isnan(report.find("gauss_max_rad")->value));
 }
 
@@ -217,8 +222,9 @@ TEST(Gate, ExactCreasedDFormPassesWithItsHingesFoldedSharply) {
 TEST(Gate, AntiDFormPassesAndHullIsNotRun) {
   const GateReport report = runGate(test::annulusDForm(), GateLimits{});
   EXPECT_TRUE(failed(report).empty()) << describe(report);
-  EXPECT_EQ(notRun(report), Names{"hull_distance_rel"}) << describe(report);
+  EXPECT_EQ(notRun(report), (Names{"exact_distance_rel", "hull_distance_rel"})) << describe(report);
   EXPECT_NE(report.find("hull_distance_rel")->detail.find("free boundary"), std::string::npos);
+  EXPECT_NE(report.find("exact_distance_rel")->detail.find("hole"), std::string::npos);
   EXPECT_NE(report.find("flat_simple")->detail.find("holes inside"), std::string::npos);
   EXPECT_EQ(report.find("self_intersection")->value, 0.0);
   EXPECT_LT(report.find("seam_gap_mm")->value, 1e-12);
