@@ -132,6 +132,14 @@ Result<RootViewport> rootViewport(const XmlNode* svg) {
       if (const auto token = nonFiniteNumber(std::string(*text)))
         return Status{ErrorCode::InputInvalid, "has a non-finite number '" + *token + "' in its '" +
                                                    name + "' attribute"};
+  // A root size in a unit that is not a length (a typo, "300furlong", or a percentage of a
+  // viewport the file does not have) gives no size in mm: refused like an element's unknown unit,
+  // not read as px.
+  for (const char* name : {"width", "height"})
+    if (const auto text = attributeValue(svg, name); text && !lengthInMillimetres(text))
+      return Status{ErrorCode::InputUnreadable,
+                    "has an unknown unit in its '" + std::string(name) + "' attribute '" +
+                        printable(*text) + "' (units: mm, cm, in, pt, pc, px or none for px)"};
   const std::optional<double> width = lengthInMillimetres(attributeValue(svg, "width"));
   const std::optional<double> height = lengthInMillimetres(attributeValue(svg, "height"));
   const auto viewBoxText = attributeValue(svg, "viewBox");
