@@ -187,12 +187,24 @@ std::set<std::string> resultFileNames() {
   return names;
 }
 
+// An interrupt that stops a command before its result is in place, naming the folder.
+Status leftAsItWas(const std::string& dir, const std::string& what) {
+  return {ErrorCode::Interrupted, dir + ": " + what + "; the folder was left as it was"};
+}
+
+// A run's error; an interrupted solve, which names no file, names the folder it leaves as it was.
+Status namingFolder(const Status& status, const std::string& dir) {
+  const bool unnamed = status.message().rfind("interrupted", 0) == 0;
+  return status.code() == ErrorCode::Interrupted && unnamed ? leftAsItWas(dir, status.message())
+                                                            : status;
+}
+
 // Swaps the staged result in with SIGINT and SIGTERM held back, so that a signal cannot cut the
 // swap short; one that came before it leaves the folder as it was.
 Status commitUnlessInterrupted(ResultFolder& folder, const std::string& dir,
                                const std::atomic<bool>& interrupted) {
   const StopSignalsHeld held;
-  if (interrupted) return {ErrorCode::Interrupted, "interrupted; " + dir + " was left as it was"};
+  if (interrupted) return leftAsItWas(dir, "interrupted");
   return folder.commit();
 }
 
@@ -288,12 +300,12 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
   if (forward) {
     forwardRun = runForward(job.forward, sink, hooks);
     terminal.clearProgress();
-    if (!forwardRun.isOk()) return fail(forwardRun.status());
+    if (!forwardRun.isOk()) return fail(namingFolder(forwardRun.status(), output.outDir));
     model = forwardRun.value().model;
   } else {
     inverseRun = runInverse(job.inverse, sink, hooks);
     terminal.clearProgress();
-    if (!inverseRun.isOk()) return fail(inverseRun.status());
+    if (!inverseRun.isOk()) return fail(namingFolder(inverseRun.status(), output.outDir));
     model = inverseRun.value().model;
   }
   std::optional<GateReport> gate;
@@ -333,9 +345,7 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
   const bool gateFailed = gate && !gate->passed();
 
   // Everything is computed; a Ctrl-C that came meanwhile leaves the output folder as it was.
-  const Status leftAsItWas(ErrorCode::Interrupted,
-                           "interrupted; " + output.outDir + " was left as it was");
-  if (interrupted) return fail(leftAsItWas);
+  if (interrupted) return fail(leftAsItWas(output.outDir, "interrupted"));
   const Status exported =
       prepared.isOk() || !output.exportFiles ? Status::ok() : prepared.status();
   // The whole result goes into the staging folder: meshes, report.json (the gate's verdict,
@@ -365,8 +375,8 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
     return fail(s);
   // A signal held back during the swap is delivered now: the new result is in place.
   if (interrupted)
-    return fail(Status(ErrorCode::Interrupted, "interrupted; the results in " + output.outDir +
-                                                   " were written completely"));
+    return fail(Status(ErrorCode::Interrupted,
+                       output.outDir + ": interrupted; the new result was written completely"));
   if (!exported.isOk()) return exitCode(exported.code());
 
   if (forward)
@@ -445,7 +455,7 @@ int exportSaved(const std::string& dir, const OutputOptions& output,
     if (!failedGate) prepared = prepare(model.value(), exporting.value(), true, name);
     if (!prepared.isOk()) return fail(prepared.status());
   }
-  if (interrupted) return fail(Status(ErrorCode::Interrupted, "interrupted; " + dir + " was left as it was"));
+  if (interrupted) return fail(leftAsItWas(dir, "interrupted"));
   noteExport(prepared.value(), sink);
   // The result's own files go into the new folder unchanged; earlier cutting files do not.
   for (const char* kept : {ModelFileNames::aFlat, ModelFileNames::a3d, ModelFileNames::bFlat,
@@ -461,7 +471,7 @@ int exportSaved(const std::string& dir, const OutputOptions& output,
   if (Status s = commitUnlessInterrupted(folder, dir, interrupted); !s.isOk()) return fail(s);
   if (interrupted)
     return fail(Status(ErrorCode::Interrupted,
-                       "interrupted; the export into " + dir + " was written completely"));
+                       dir + ": interrupted; the new export was written completely"));
   std::fprintf(stdout, "exported %s into %s\n", output.profile.c_str(), dir.c_str());
   return 0;
 }
