@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <map>
+#include <new>
 #include <optional>
 #include <rapidxml_ns/rapidxml_ns.hpp>
 #include <string_view>
@@ -691,6 +692,8 @@ Result<Drawing> readSvgDrawing(const std::string& path, std::string text,
     rootContext.on_exit_element();
   } catch (const SvgProblem& problem) {
     return fail(problem.code, document.currentLabel + " " + problem.what);
+  } catch (const std::bad_alloc&) {  // the machine's limit, not the file's fault (exit 2)
+    return fail(ErrorCode::Usage, "out of memory while reading it");
   } catch (const std::exception& e) {
     return fail(ErrorCode::InputUnreadable,
                 document.currentLabel + ": " + printable(e.what(), 200));
