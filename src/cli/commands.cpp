@@ -11,6 +11,7 @@
 #include <set>
 
 #include "cli/terminal.h"
+#include "core/result_folder.h"
 #include "export/exporter.h"
 #include "io/curve_reader.h"
 #include "io/model_files.h"
@@ -114,6 +115,12 @@ Result<ExportOptions> exportOptions(const OutputOptions& output) {
   }
   options.gltfBinary = !output.gltfText;
   if (Status s = checkExportOptions(options); !s.isOk()) return s;
+  if (output.exportFiles) {  // the profile is read once, now, not after the solve
+    Result<Profile> profile = loadProfile(options.profile, options.templatesDir);
+    if (!profile.isOk()) return profile.status();
+    options.profileOverride = profile.value();
+    options.useProfileOverride = true;
+  }
   return options;
 }
 
@@ -170,18 +177,47 @@ void noteExport(const PreparedExport& prepared, MessageSink& sink) {
             " files");
 }
 
-// A previous run's cutting files would not match this result: removed before it is written.
-void removeOldExports(const std::string& dir) {
-  std::error_code ec;
-  for (const std::string& name : exportFileNames()) fs::remove(fs::path(dir) / name, ec);
+// Every file a run or an export writes into a result folder: the only files a folder that is
+// replaced as a whole may hold.
+std::set<std::string> resultFileNames() {
+  std::set<std::string> names = {ModelFileNames::aFlat, ModelFileNames::a3d,
+                                 ModelFileNames::bFlat, ModelFileNames::b3d,
+                                 ModelFileNames::targetCurve, "report.json", "report.html"};
+  for (const std::string& name : exportFileNames()) names.insert(name);
+  return names;
 }
 
-// Writes the cutting files; when one cannot be written, none is left (a partial set could be
-// taken for the whole).
-Status writeCuttingFiles(const PreparedExport& prepared, const std::string& dir) {
-  const Status written = writeExport(prepared, dir).status();
-  if (!written.isOk()) removeOldExports(dir);
-  return written;
+// An interrupt that stops a command before its result is in place, naming the folder.
+Status leftAsItWas(const std::string& dir, const std::string& what) {
+  return {ErrorCode::Interrupted, dir + ": " + what + "; the folder was left as it was"};
+}
+
+// A run's error; an interrupted solve, which names no file, names the folder it leaves as it was.
+Status namingFolder(const Status& status, const std::string& dir) {
+  const bool unnamed = status.message().rfind("interrupted", 0) == 0;
+  return status.code() == ErrorCode::Interrupted && unnamed ? leftAsItWas(dir, status.message())
+                                                            : status;
+}
+
+// Swaps the staged result in with SIGINT and SIGTERM held back, so that a signal cannot cut the
+// swap short; one that came before it leaves the folder as it was.
+Status commitUnlessInterrupted(ResultFolder& folder, const std::string& dir,
+                               const std::atomic<bool>& interrupted) {
+  const StopSignalsHeld held;
+  if (interrupted) return leftAsItWas(dir, "interrupted");
+  return folder.commit();
+}
+
+// An inverse result's target curve, when the folder holds one, checked against the seam.
+Result<std::optional<Curve3>> readSavedTarget(const std::string& dir, const DForm& model) {
+  const std::string curvePath = (fs::path(dir) / ModelFileNames::targetCurve).string();
+  if (!fs::exists(curvePath)) return std::optional<Curve3>();
+  Result<Curve3> curve = readCurve(curvePath);
+  if (!curve.isOk()) return curve.status();
+  if (std::size_t(curve.value().points.rows()) != model.a.seam.size())
+    return Status(ErrorCode::InputInvalid,
+                  curvePath + ": has a different number of points than the seam");
+  return std::optional<Curve3>(curve.value());
 }
 
 void printFigures(const Metrics& m, const CurveMatch* curve, const Timings& t,
@@ -252,6 +288,10 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
   }
   const Result<ExportOptions> exporting = exportOptions(output);
   if (!exporting.isOk()) return fail(exporting.status());
+  // The output folder is locked and checked before anything is solved; the result is written
+  // into a staging folder beside it and swapped in whole, or not at all.
+  ResultFolder folder;
+  if (Status s = folder.begin(output.outDir, resultFileNames()); !s.isOk()) return fail(s);
 
   // Solve first: nothing is written for a run that fails.
   DForm model;
@@ -260,12 +300,12 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
   if (forward) {
     forwardRun = runForward(job.forward, sink, hooks);
     terminal.clearProgress();
-    if (!forwardRun.isOk()) return fail(forwardRun.status());
+    if (!forwardRun.isOk()) return fail(namingFolder(forwardRun.status(), output.outDir));
     model = forwardRun.value().model;
   } else {
     inverseRun = runInverse(job.inverse, sink, hooks);
     terminal.clearProgress();
-    if (!inverseRun.isOk()) return fail(inverseRun.status());
+    if (!inverseRun.isOk()) return fail(namingFolder(inverseRun.status(), output.outDir));
     model = inverseRun.value().model;
   }
   std::optional<GateReport> gate;
@@ -305,51 +345,38 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
   const bool gateFailed = gate && !gate->passed();
 
   // Everything is computed; a Ctrl-C that came meanwhile leaves the output folder as it was.
-  if (interrupted) return fail(Status(ErrorCode::Interrupted, "interrupted; nothing was written"));
-  Status exported = prepared.isOk() || !output.exportFiles ? Status::ok() : prepared.status();
-  {
-    // The results are written as one set: a Ctrl-C now waits until the last file is in place,
-    // so the folder never holds new meshes beside an old report (each file is atomic anyway).
-    const StopSignalsHeld held;
-    std::error_code ec;
-    fs::create_directories(output.outDir, ec);
-    if (ec || !fs::is_directory(output.outDir))
-      return fail(
-          Status(ErrorCode::OutputFailed,
-                 output.outDir + ": cannot create the output folder (" + ec.message() + ")"));
-    const auto writeStart = Clock::now();
-    Status written = writeModel(output.outDir, model);
-    if (written.isOk() && !forward)
-      written = writeTargetCurve(output.outDir, inverseRun.value().target);
-    if (!written.isOk()) return fail(written);
-    timings.write = secondsSince(writeStart);
-    removeOldExports(output.outDir);
-    // The verdict goes on record before any cutting file is released: report.json (the gate's
-    // verdict, measured on the export prepared in memory) is written first, and a run whose
-    // report cannot be written leaves no cutting file behind.
-    const bool release = prepared.isOk() && (!gateFailed || output.exportAnyway);
-    if (release) noteExport(prepared.value(), sink);
-    const GateReport* gateReport = gate ? &*gate : nullptr;
-    auto writeReport = [&] {
-      return forward ? writeForwardReport(output.outDir, job, forwardRun.value(), sink.messages(),
-                                          gateReport, timings)
-                     : writeInverseReport(output.outDir, job, inverseRun.value(), sink.messages(),
-                                          gateReport, timings);
-    };
-    if (Status reported = writeReport(); !reported.isOk()) return fail(reported);
-    if (release) {
-      exported = writeCuttingFiles(prepared.value(), output.outDir);
-      if (!exported.isOk()) {  // the report says why there are no cutting files
-        sink.emit(Level::Error, "export: " + exported.message());
-        if (Status reported = writeReport(); !reported.isOk()) return fail(reported);
-      }
-    }
-    if (Status html = writeReportHtml(output.outDir, model, templatesDir()); !html.isOk())
-      return fail(html);
-  }
+  if (interrupted) return fail(leftAsItWas(output.outDir, "interrupted"));
+  const Status exported =
+      prepared.isOk() || !output.exportFiles ? Status::ok() : prepared.status();
+  // The whole result goes into the staging folder: meshes, report.json (the gate's verdict,
+  // measured on the export prepared in memory), the cutting files, report.html. Any failure
+  // drops it and leaves the output folder as it was.
+  const std::string& staging = folder.staging();
+  const auto writeStart = Clock::now();
+  Status written = writeModel(staging, model);
+  if (written.isOk() && !forward) written = writeTargetCurve(staging, inverseRun.value().target);
+  if (!written.isOk()) return fail(folder.named(written));
+  timings.write = secondsSince(writeStart);
+  const bool release = prepared.isOk() && (!gateFailed || output.exportAnyway);
+  if (release) noteExport(prepared.value(), sink);
+  const GateReport* gateReport = gate ? &*gate : nullptr;
+  const Status reported =
+      forward ? writeForwardReport(staging, job, forwardRun.value(), sink.messages(), gateReport,
+                                   timings)
+              : writeInverseReport(staging, job, inverseRun.value(), sink.messages(), gateReport,
+                                   timings);
+  if (!reported.isOk()) return fail(folder.named(reported));
+  if (release)
+    if (Status s = writeExport(prepared.value(), staging).status(); !s.isOk())
+      return fail(folder.named(s));
+  if (Status html = writeReportHtml(staging, model, templatesDir()); !html.isOk())
+    return fail(folder.named(html));
+  if (Status s = commitUnlessInterrupted(folder, output.outDir, interrupted); !s.isOk())
+    return fail(s);
+  // A signal held back during the swap is delivered now: the new result is in place.
   if (interrupted)
-    return fail(Status(ErrorCode::Interrupted, "interrupted; the results in " + output.outDir +
-                                                   " were written completely"));
+    return fail(Status(ErrorCode::Interrupted,
+                       output.outDir + ": interrupted; the new result was written completely"));
   if (!exported.isOk()) return exitCode(exported.code());
 
   if (forward)
@@ -360,7 +387,7 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
   if (gate) {
     printGate(*gate);
     if (gateFailed) {
-      Terminal::error("the result failed the quality gate '" + limits->name + "'" +
+      Terminal::error(output.outDir + ": the result failed the quality gate '" + limits->name + "'" +
                       (output.exportAnyway ? " (exported anyway, marked FAILED GATE)"
                                            : "; no cutting files were written"));
       return exitCode(ErrorCode::GateFailed);
@@ -369,25 +396,49 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
   return 0;
 }
 
-int exportSaved(const std::string& dir, const OutputOptions& output) {
+int exportSaved(const std::string& dir, const OutputOptions& output,
+                const std::atomic<bool>& interrupted) {
   Terminal terminal(output.quiet);
   MessageSink sink(terminal.listener());
   const Result<ExportOptions> exporting = exportOptions(output);
   if (!exporting.isOk()) return fail(exporting.status());
+  if (!fs::is_directory(dir))
+    return fail(Status(ErrorCode::InputUnreadable, dir + ": no such result folder"));
+  // Locked before it is read, so that no run replaces the result between reading and writing;
+  // the export is staged with the result's other files and swapped in whole.
+  ResultFolder folder;
+  if (Status s = folder.begin(dir, resultFileNames()); !s.isOk()) return fail(s);
   Result<DForm> model = readModel(dir);
   if (!model.isOk()) return fail(model.status());
-  // A result that failed its gate is exported only on purpose, and marked.
+  Result<std::optional<Curve3>> target = readSavedTarget(dir, model.value());
+  if (!target.isOk()) return fail(target.status());
+  // A result that failed its gate is exported only on purpose, and marked. The gate is run
+  // again on the meshes (report.json's verdicts could have been edited), with the limits of the
+  // preset report.json names, else the default ones.
   const bool hasReport = fs::exists(fs::path(dir) / "report.json");
   bool failedGate = false;
+  std::string gateName = "default";
   if (hasReport) {
     Result<std::optional<bool>> verdict = savedGateVerdict(dir);
     if (!verdict.isOk()) return fail(verdict.status());
     failedGate = verdict.value() == false;
+    const Result<std::string> recorded = savedGateName(dir);
+    if (recorded.isOk() && fs::exists(fs::path(templatesDir()) / "gates" / (recorded.value() + ".json")))
+      gateName = recorded.value();
   }
+  Result<GateLimits> limits = loadGate(gateName);
+  if (!limits.isOk()) return fail(limits.status());
+  const GateReport gate =
+      runGate(model.value(), limits.value(), target.value() ? &*target.value() : nullptr);
+  std::string failing;
+  for (const CheckResult& c : gate.checks)
+    if (c.verdict == CheckResult::Verdict::Fail) failing += (failing.empty() ? "" : ", ") + c.name;
+  failedGate = failedGate || !gate.passed();
   if (failedGate && !output.exportAnyway) {
-    Terminal::error(dir +
-                    "/report.json: the result failed its quality gate; nothing exported "
-                    "(--export-anyway exports it marked FAILED GATE)");
+    Terminal::error(dir + ": the result failed its quality gate '" + gateName +
+                    "' (checked again on the meshes: " +
+                    (failing.empty() ? "report.json records a failure" : failing + " fail") +
+                    "); nothing exported (--export-anyway exports it marked FAILED GATE)");
     return exitCode(ErrorCode::GateFailed);
   }
   const std::string name = savedJobName(dir);
@@ -404,52 +455,56 @@ int exportSaved(const std::string& dir, const OutputOptions& output) {
     if (!failedGate) prepared = prepare(model.value(), exporting.value(), true, name);
     if (!prepared.isOk()) return fail(prepared.status());
   }
-  removeOldExports(dir);
+  if (interrupted) return fail(leftAsItWas(dir, "interrupted"));
   noteExport(prepared.value(), sink);
-  if (Status s = writeCuttingFiles(prepared.value(), dir); !s.isOk()) return fail(s);
+  // The result's own files go into the new folder unchanged; earlier cutting files do not.
+  for (const char* kept : {ModelFileNames::aFlat, ModelFileNames::a3d, ModelFileNames::bFlat,
+                           ModelFileNames::b3d, ModelFileNames::targetCurve, "report.json"})
+    if (fs::exists(fs::path(dir) / kept))
+      if (Status s = folder.carryOver(kept); !s.isOk()) return fail(s);
+  if (Status s = writeExport(prepared.value(), folder.staging()).status(); !s.isOk())
+    return fail(folder.named(s));
   // The report page shows the pattern: redrawn with the new one.
   if (hasReport)
-    if (Status s = writeReportHtml(dir, model.value(), templatesDir()); !s.isOk()) return fail(s);
+    if (Status s = writeReportHtml(folder.staging(), model.value(), templatesDir()); !s.isOk())
+      return fail(folder.named(s));
+  if (Status s = commitUnlessInterrupted(folder, dir, interrupted); !s.isOk()) return fail(s);
+  if (interrupted)
+    return fail(Status(ErrorCode::Interrupted,
+                       dir + ": interrupted; the new export was written completely"));
   std::fprintf(stdout, "exported %s into %s\n", output.profile.c_str(), dir.c_str());
   return 0;
 }
 
 int validateSaved(const std::string& dir, const std::string& gateName) {
+  Result<GateLimits> limits = loadGate(gateName);  // the option first, as for every command
+  if (!limits.isOk()) return fail(limits.status());
   Result<DForm> model = readModel(dir);
   if (!model.isOk()) return fail(model.status());
-  Result<GateLimits> limits = loadGate(gateName);
-  if (!limits.isOk()) return fail(limits.status());
   // An inverse result carries its target curve; its seam is measured against it.
-  std::optional<Curve3> target;
-  const std::string curvePath = (fs::path(dir) / ModelFileNames::targetCurve).string();
-  if (fs::exists(curvePath)) {
-    Result<Curve3> curve = readCurve(curvePath);
-    if (!curve.isOk()) return fail(curve.status());
-    if (std::size_t(curve.value().points.rows()) != model.value().a.seam.size())
-      return fail(Status(ErrorCode::InputInvalid,
-                         curvePath + ": has a different number of points than the seam"));
-    target = curve.value();
-  }
-  GateReport gate = runGate(model.value(), limits.value(), target ? &*target : nullptr);
+  Result<std::optional<Curve3>> target = readSavedTarget(dir, model.value());
+  if (!target.isOk()) return fail(target.status());
+  GateReport gate =
+      runGate(model.value(), limits.value(), target.value() ? &*target.value() : nullptr);
   gate.checks.push_back(notRunCheck(
       "pattern_layout", 0, "validate re-checks the meshes; `dform export` checks the layout"));
   printGate(gate);
-  // The figures are recomputed from the meshes, never taken from the report; a report that
-  // disagrees with its meshes cannot be trusted, and fails.
+  // The figures are recomputed from the meshes, never taken from the report; a report that is
+  // missing or unreadable (3), or incomplete or disagreeing with its meshes (7), fails.
   Result<std::vector<std::string>> differences =
-      compareWithReport(dir, gate.metrics, gate.curve ? &*gate.curve : nullptr);
-  if (!differences.isOk()) {
-    std::fprintf(stdout, "report.json: not compared (%s)\n",
-                 differences.status().message().c_str());
-  } else if (differences.value().empty()) {
-    std::fprintf(stdout, "report.json: its figures match the meshes\n");
-  } else {
+      compareWithReport(dir, model.value(), gate.metrics, gate.curve ? &*gate.curve : nullptr);
+  if (!differences.isOk()) return fail(differences.status());
+  if (!differences.value().empty()) {
     for (const std::string& line : differences.value())
       std::fprintf(stdout, "report.json differs: %s\n", line.c_str());
     Terminal::error(dir + "/report.json: " + std::to_string(differences.value().size()) +
-                    " figure(s) differ from the saved meshes");
+                    " entries differ from the saved result (first: " + differences.value()[0] +
+                    ")");
     return exitCode(ErrorCode::GateFailed);
   }
+  std::fprintf(stdout, "report.json: its mode and mesh sizes agree, its figures match the meshes\n");
+  if (!gate.passed())
+    Terminal::error(dir + ": the result failed the quality gate '" + limits.value().name + "'");
   return gate.passed() ? 0 : exitCode(ErrorCode::GateFailed);
 }
 

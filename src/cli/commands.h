@@ -32,7 +32,8 @@ struct OutputOptions {
 std::string templatesDir();
 
 int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>& interrupted);
-int exportSaved(const std::string& dir, const OutputOptions& output);
+int exportSaved(const std::string& dir, const OutputOptions& output,
+                const std::atomic<bool>& interrupted);
 int validateSaved(const std::string& dir, const std::string& gate);
 int listProfiles();
 

@@ -5,6 +5,7 @@
 #include <csignal>
 #include <cstdio>
 #include <exception>
+#include <new>
 #include <set>
 #include <string>
 
@@ -20,12 +21,11 @@ std::atomic<bool> interrupted{false};
 volatile std::sig_atomic_t stopSignal = 0;
 
 // Ctrl-C (SIGINT) or a batch system's SIGTERM: the run stops at the next solver iteration and
-// writes nothing (README "Exit codes"). A second one ends the program at once: the handler
-// gives the signal back its default action.
+// writes nothing (README "Exit codes"). A second one ends the program at once: the handler is
+// installed with SA_RESETHAND, which gives the signal back its default action.
 extern "C" void onStopSignal(int signal) {
   stopSignal = signal;
   interrupted = true;
-  std::signal(signal, SIG_DFL);
 }
 
 // "--weight isometry=2" -> the named weight of a forward or inverse job.
@@ -183,8 +183,14 @@ int run(int argc, char** argv) {
     return usageError(e.what());
   }
 
-  std::signal(SIGINT, onStopSignal);
-  std::signal(SIGTERM, onStopSignal);
+  // Without SA_RESTART: a read blocked on a FIFO (or any slow file) returns EINTR, so the reader
+  // stops instead of waiting for a writer that may never come.
+  struct sigaction stop {};
+  stop.sa_handler = onStopSignal;
+  sigemptyset(&stop.sa_mask);
+  stop.sa_flags = SA_RESETHAND;  // a second signal ends the program at once
+  sigaction(SIGINT, &stop, nullptr);
+  sigaction(SIGTERM, &stop, nullptr);
   auto usage = [](const Status& s) {
     cli::Terminal::error(s.message());
     return cli::exitCode(s.code());
@@ -218,7 +224,7 @@ int run(int argc, char** argv) {
   if (*exportCommand) {
     if (listOnly) return cli::listProfiles();
     if (exportDir.empty()) return usage(Status(ErrorCode::Usage, "export needs a result folder"));
-    return cli::exportSaved(exportDir, exportOut);
+    return cli::exportSaved(exportDir, exportOut, interrupted);
   }
   return cli::validateSaved(validateDir, validateGate);
 }
@@ -232,6 +238,13 @@ int main(int argc, char** argv) {
     // Interrupted: 130 for Ctrl-C, 143 for SIGTERM, as a shell reports a process they ended.
     const int interruptedCode = dform::cli::exitCode(dform::ErrorCode::Interrupted);
     return code == interruptedCode && stopSignal ? 128 + stopSignal : code;
+  } catch (const std::bad_alloc&) {
+    // An allocation the memory check did not foresee (a limit it cannot see, another process
+    // taking the memory meanwhile): the run needs more memory than it can get, a usage matter.
+    dform::cli::Terminal::error(
+        "out of memory (the machine or its limits, e.g. ulimit -v, give this run less than it "
+        "needs); try a lower --resolution");
+    return dform::cli::exitCode(dform::ErrorCode::Usage);
   } catch (const std::exception& e) {
     dform::cli::Terminal::error(std::string("internal error: ") + e.what());
   } catch (...) {

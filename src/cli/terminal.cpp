@@ -4,6 +4,8 @@
 
 #include <cstdio>
 
+#include "core/message_text.h"
+
 namespace dform::cli {
 
 Terminal::Terminal(bool quiet) : quiet_(quiet), tty_(isatty(STDERR_FILENO) == 1) {}
@@ -15,7 +17,7 @@ MessageSink::Listener Terminal::listener() {
     const char* prefix = m.level == Level::Warning ? "dform: warning: "
                          : m.level == Level::Error ? "dform: error: "
                                                    : "";
-    std::fprintf(stderr, "%s%s\n", prefix, m.text.c_str());
+    std::fprintf(stderr, "%s%s\n", prefix, printableMessage(m.text).c_str());
   };
 }
 
@@ -34,7 +36,7 @@ void Terminal::clearProgress() {
 }
 
 void Terminal::error(const std::string& message) {
-  std::fprintf(stderr, "dform: error: %s\n", message.c_str());
+  std::fprintf(stderr, "dform: error: %s\n", printableMessage(message).c_str());
 }
 
 }  // namespace dform::cli

@@ -1,14 +1,14 @@
 // Content hashes of input files, so that a report says exactly which bytes a result came from.
+// The readers hash the bytes they parse: a file is never opened a second time to hash it (it
+// could have changed meanwhile, or be a FIFO that gives its bytes once).
 #pragma once
 
 #include <string>
-
-#include "core/status.h"
+#include <string_view>
 
 namespace dform {
 
-/// The SHA-256 of the file's bytes as 64 lower-case hex digits. InputUnreadable naming the file
-/// when it cannot be read.
-Result<std::string> sha256OfFile(const std::string& path);
+/// The SHA-256 of `bytes` as 64 lower-case hex digits.
+std::string sha256Hex(std::string_view bytes);
 
 }  // namespace dform

@@ -1,7 +1,11 @@
 #include "core/input_file.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <system_error>
 
 namespace dform {
@@ -32,18 +36,38 @@ Result<std::string> readInputFile(const std::string& path, std::size_t maxBytes)
     return Status{ErrorCode::InputUnreadable, path + ": file is too large (" +
                                                   sizeText(std::size_t(size)) + "; " + limit + ")"};
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Status{ErrorCode::InputUnreadable, path + ": cannot be opened for reading"};
+  // POSIX calls rather than a stream, so that an open or a read blocked on a FIFO (or a slow
+  // mount) that a signal interrupts (the CLI's handlers do not restart calls) gives up and says
+  // so, instead of waiting for a writer that may never come.
+  const auto interrupted = [&path] {
+    return Status{ErrorCode::Interrupted, path + ": interrupted while waiting to read it"};
+  };
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) {
+    if (errno == EINTR) return interrupted();
+    return Status{ErrorCode::InputUnreadable,
+                  path + ": cannot be opened for reading (" + std::strerror(errno) + ")"};
+  }
   std::string text;
   text.reserve(std::size_t(size));
   // Read at most one buffer past the limit, so a file that grows (or a pipe) cannot exhaust memory.
   char buffer[1 << 16];
-  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
-    text.append(buffer, std::size_t(in.gcount()));
-    if (text.size() > maxBytes)
+  for (;;) {
+    const ssize_t got = ::read(fd, buffer, sizeof buffer);
+    if (got == 0) break;
+    if (got < 0) {
+      const int error = errno;
+      ::close(fd);
+      if (error == EINTR) return interrupted();
+      return Status{ErrorCode::InputUnreadable, path + ": read error (" + std::strerror(error) + ")"};
+    }
+    text.append(buffer, std::size_t(got));
+    if (text.size() > maxBytes) {
+      ::close(fd);
       return Status{ErrorCode::InputUnreadable, path + ": file is too large (" + limit + ")"};
+    }
   }
-  if (in.bad()) return Status{ErrorCode::InputUnreadable, path + ": read error"};
+  ::close(fd);
   return text;
 }
 

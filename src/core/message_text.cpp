@@ -1,5 +1,6 @@
 #include "core/message_text.h"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace dform {
@@ -14,7 +15,13 @@ std::string printable(std::string_view text, std::size_t maxBytes) {
   std::string out;
   for (std::size_t i = 0; i < end; ++i) {
     const unsigned char c = static_cast<unsigned char>(text[i]);
-    if (c < 0x20 || c == 0x7f) {
+    if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (c < 0x20 || c == 0x7f) {
       char escape[8];
       std::snprintf(escape, sizeof escape, "\\x%02x", c);
       out += escape;
@@ -23,6 +30,18 @@ std::string printable(std::string_view text, std::size_t maxBytes) {
     }
   }
   return end < text.size() ? out + "..." : out;
+}
+
+std::string printableMessage(std::string_view message) {
+  std::string out;
+  std::size_t start = 0;
+  while (start < message.size()) {
+    const std::size_t space = std::min(message.find(' ', start), message.size());
+    out += printable(message.substr(start, space - start), kMaxTokenBytes);
+    if (space < message.size()) out += ' ';
+    start = space + 1;
+  }
+  return out;
 }
 
 std::string parserReason(std::string_view what) {

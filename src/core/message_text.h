@@ -9,9 +9,19 @@
 
 namespace dform {
 
-/// `text` with control characters written as \xNN escapes, cut after `maxBytes` (at a UTF-8
-/// character boundary) with "..." when longer.
+/// `text` with control characters escaped (\n, \t, \r, else \xNN: an escape sequence of a
+/// terminal is shown as \x1b[...), cut after `maxBytes` (at a UTF-8 character boundary) with
+/// "..." when longer.
 std::string printable(std::string_view text, std::size_t maxBytes = 60);
+
+/// The longest token (a run without spaces: a path, a number) a printed message quotes whole.
+/// A path is rarely longer; a 10-million-digit number is cut.
+constexpr std::size_t kMaxTokenBytes = 300;
+
+/// A whole message as the CLI prints it: one line (control characters escaped as printable()
+/// does), each token longer than kMaxTokenBytes cut with "...". Paths and values in messages
+/// come from the user and may hold anything.
+std::string printableMessage(std::string_view message);
 
 /// The reason in a parser exception's text ("[json.exception.parse_error.101] parse error at line
 /// 1, column 2: ...") without its bracketed tag, printable and at most 200 bytes.

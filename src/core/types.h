@@ -23,6 +23,7 @@ struct Outline2 {
 struct Curve3 {
   Points3 points;
   std::string source;
+  std::string sha256;  ///< of the file's bytes as read (readCurve); empty when not read from one
 };
 
 /// A triangulated flat domain. V is #V by 2 (mm), F is #F by 3 with counter-clockwise triangles,

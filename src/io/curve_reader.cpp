@@ -5,6 +5,7 @@
 #include <numeric>
 #include <optional>
 
+#include "core/file_hash.h"
 #include "core/input_file.h"
 #include "core/polyline.h"
 #include "io/flatten.h"
@@ -166,7 +167,7 @@ Result<Curve3> readObjCurve(const std::string& path, const std::string& text,
            std::to_string(indices[std::size_t(i)] + 1) + ")";
   });
   if (!valid.isOk()) return valid;
-  return Curve3{std::move(P), path};
+  return Curve3{std::move(P), path, {}};
 }
 
 /// Closed piecewise cubic Bezier: 3k control points p0 c c p1 c c ... the last segment ends at p0.
@@ -233,7 +234,7 @@ Result<Curve3> readJsonCurve(const std::string& path, const std::string& text,
     return (bezier ? "flattened point " : "point ") + std::to_string(i + 1);
   });
   if (!valid.isOk()) return valid;
-  return Curve3{std::move(P), path};
+  return Curve3{std::move(P), path, {}};
 }
 
 }  // namespace
@@ -268,7 +269,9 @@ Result<Curve3> readCurve(const std::string& path, const CurveReadOptions& option
   if (const Result<std::string> format = curveFormat(path); !format.isOk()) return format.status();
   const Result<std::string> text = readInputFile(path);
   if (!text.isOk()) return text.status();
-  return parseCurve(text.value(), path, options);
+  Result<Curve3> curve = parseCurve(text.value(), path, options);
+  if (curve.isOk()) curve.value().sha256 = sha256Hex(text.value());
+  return curve;
 }
 
 }  // namespace dform

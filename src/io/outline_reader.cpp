@@ -5,6 +5,7 @@
 #include <cmath>
 #include <optional>
 
+#include "core/file_hash.h"
 #include "core/input_file.h"
 #include "core/polyline.h"
 #include "io/crease_lines.h"
@@ -24,6 +25,11 @@ using io_detail::fmtPoint;
 /// back and forth, not a piece. Relative, so it does not depend on the drawing's scale; the square
 /// root keeps it above the eigen solver's rounding.
 constexpr double kZeroAreaFraction = 1e-12;
+
+/// The smallest outline or hole read, as the diagonal of its bounding box (mm). A smaller one is
+/// nothing a sheet can be cut to, and at the flatten and closing tolerances (0.01 mm) its drawn
+/// shape is no longer kept (a 0.01 mm square closes into a triangle): refused, not reshaped.
+constexpr double kMinOutlineSizeMm = 1.0;
 
 /// Beyond this many outlines the nesting analysis (pairwise) is not worth doing: no piece has it.
 constexpr std::size_t kMaxLoops = 10000;
@@ -60,6 +66,10 @@ Result<Points2> cleanLoop(const std::string& path, const DrawnLine& loop, const 
                 io_detail::describeBadCoordinate(loop.points(bad->first, bad->second), options.maxCoordinate));
   Points2 P = io_detail::dropRepeatedPoints(loop.points, true);
   if (P.rows() < 3) return fail("has fewer than 3 distinct points");
+  if (const double size = (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm();
+      size < kMinOutlineSizeMm)
+    return fail("is " + fmt(size) + " mm across; outlines and holes must be at least " +
+                fmt(kMinOutlineSizeMm) + " mm across (the diagonal of their bounding box)");
   // Collinear points first (their edges overlap, which is not what "crossing" should mean):
   // the spread across the principal direction is nil.
   const Points2 centred = P.rowwise() - P.colwise().mean();
@@ -218,7 +228,10 @@ Result<Shape2> parseShape(std::string text, const std::string& source,
 Result<Shape2> readShape(const std::string& path, const OutlineReadOptions& options) {
   Result<std::string> text = readInputFile(path);
   if (!text.isOk()) return text.status();
-  return parseShape(std::move(text).value(), path, options);
+  std::string sha256 = sha256Hex(text.value());
+  Result<Shape2> shape = parseShape(std::move(text).value(), path, options);
+  if (shape.isOk()) shape.value().sha256 = std::move(sha256);
+  return shape;
 }
 
 }  // namespace dform

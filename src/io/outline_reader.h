@@ -31,6 +31,7 @@ struct Shape2 {
   Outline2 outer;
   std::vector<Outline2> holes;
   std::vector<CreaseLine> creases;
+  std::string sha256;  ///< of the file's bytes as read (readShape); empty from parseShape
 };
 
 /// Reads a shape from `path`: SVG (.svg) or a JSON list of points (.json); see docs/io.md.

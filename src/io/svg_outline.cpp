@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <map>
+#include <new>
 #include <optional>
 #include <rapidxml_ns/rapidxml_ns.hpp>
 #include <string_view>
@@ -132,6 +133,14 @@ Result<RootViewport> rootViewport(const XmlNode* svg) {
       if (const auto token = nonFiniteNumber(std::string(*text)))
         return Status{ErrorCode::InputInvalid, "has a non-finite number '" + *token + "' in its '" +
                                                    name + "' attribute"};
+  // A root size in a unit that is not a length (a typo, "300furlong", or a percentage of a
+  // viewport the file does not have) gives no size in mm: refused like an element's unknown unit,
+  // not read as px.
+  for (const char* name : {"width", "height"})
+    if (const auto text = attributeValue(svg, name); text && !lengthInMillimetres(text))
+      return Status{ErrorCode::InputUnreadable,
+                    "has an unknown unit in its '" + std::string(name) + "' attribute '" +
+                        printable(*text) + "' (units: mm, cm, in, pt, pc, px or none for px)"};
   const std::optional<double> width = lengthInMillimetres(attributeValue(svg, "width"));
   const std::optional<double> height = lengthInMillimetres(attributeValue(svg, "height"));
   const auto viewBoxText = attributeValue(svg, "viewBox");
@@ -683,6 +692,8 @@ Result<Drawing> readSvgDrawing(const std::string& path, std::string text,
     rootContext.on_exit_element();
   } catch (const SvgProblem& problem) {
     return fail(problem.code, document.currentLabel + " " + problem.what);
+  } catch (const std::bad_alloc&) {  // the machine's limit, not the file's fault (exit 2)
+    return fail(ErrorCode::Usage, "out of memory while reading it");
   } catch (const std::exception& e) {
     return fail(ErrorCode::InputUnreadable,
                 document.currentLabel + ": " + printable(e.what(), 200));

@@ -14,6 +14,7 @@
 #include <exception>
 #include <limits>
 #include <map>
+#include <new>
 #include <string>
 #include <utility>
 
@@ -32,6 +33,13 @@ using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::No_constraint_intersection_tag>;
 
 Status invalid(std::string message) { return {ErrorCode::InputInvalid, std::move(message)}; }
+
+// A failed allocation is not bad input nor a bug: the run needs more memory than it can get
+// (the memory check before meshing could not foresee it), a usage matter like a resolution too
+// large for the machine (README "Exit codes").
+Status outOfMemory(const char* what) {
+  return {ErrorCode::Usage, std::string("out of memory while ") + what + "; try a lower --resolution"};
+}
 
 // Level 0 is the unbounded region; crossing a loop's edge enters the next level (`isChainEdge`
 // tells the constrained edges that do not bound a region).
@@ -92,6 +100,8 @@ Result<Faces> constrainedDelaunay(const Points2& P, const std::vector<Loop>& loo
                      : "the outline, holes and crease lines cross or touch each other";
   try {
     for (const auto& [a, b] : edges) cdt.insert_constraint(vertex[a], vertex[b]);
+  } catch (const std::bad_alloc&) {
+    return outOfMemory("meshing");
   } catch (const std::exception&) {
     return invalid(kTouching);
   }
@@ -146,6 +156,8 @@ Result<ConvexHull3> convexHull3(const Points3& P) {
   std::vector<std::array<int, 3>> hullFaces;
   try {
     CGAL::convex_hull_3(points.begin(), points.end(), hullPoints, hullFaces);
+  } catch (const std::bad_alloc&) {
+    return outOfMemory("computing a convex hull");
   } catch (const std::exception& e) {  // CGAL precondition failures: a bug, not bad input
     return Status(ErrorCode::Internal, std::string("convex hull failed: ") + e.what());
   }

@@ -39,6 +39,7 @@ struct DrawnPiece {
   Points2 joined;
   std::optional<Points2> freeOutline;
   std::vector<Points2> creases;
+  std::string sha256;  ///< of the file's bytes as read
 };
 
 // Reads a piece and picks its joined boundary: a disc joins its outline, an annulus-like piece
@@ -54,6 +55,7 @@ Result<DrawnPiece> readPiece(const std::string& path, JoinedBoundary join, const
   for (const Outline2& hole : shape.holes) found += format(", hole %.3f mm", closedLength(hole.points));
   if (!shape.creases.empty()) found += ", " + std::to_string(shape.creases.size()) + " crease(s)";
   DrawnPiece piece;
+  piece.sha256 = shape.sha256;
   for (CreaseLine& crease : shape.creases) piece.creases.push_back(std::move(crease.points));
   if (join == JoinedBoundary::Outer) {
     if (holes != 0)
@@ -264,6 +266,8 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
   if (!drawnB.isOk()) return drawnB.status();
   DrawnPiece& A = drawnA.value();
   DrawnPiece& B = drawnB.value();
+  run.sha256A = A.sha256;
+  run.sha256B = B.sha256;
   run.perimeterA = closedLength(A.joined);
   run.perimeterB = closedLength(B.joined);
   const double mismatch =

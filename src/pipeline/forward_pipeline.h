@@ -95,6 +95,7 @@ struct ForwardRun {
   int constraintRounds = 0;       ///< multiplier rounds that closed the seam and fixed the outlines
   Timings timings;
   double perimeterA = 0, perimeterB = 0;  ///< the joined boundaries' lengths as read, mm
+  std::string sha256A, sha256B;           ///< SHA-256 of each input file's bytes as read
   double scaleB = 1.0;                    ///< applied by fitPerimeter
   double startFractionA = 0, startFractionB = 0;  ///< resolved starting pair
 };

@@ -134,6 +134,7 @@ Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const Ru
     return fits;
   run.curveLength = closedLength(curve.value().points);
   run.target.source = job.curve;
+  run.target.sha256 = curve.value().sha256;
   run.timings.read = secondsSince(start);
   sink.info(format("curve: %.0f points, length %.3f mm", double(curve.value().points.rows()),
                    run.curveLength));
@@ -151,7 +152,7 @@ Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const Ru
     const auto meshStart = Clock::now();
     DForm startModel;
     if (level == 0) {
-      Result<InverseInit> init = initialiseInverse(Curve3{target, job.curve}, job.init);
+      Result<InverseInit> init = initialiseInverse(Curve3{target, job.curve, {}}, job.init);
       if (!init.isOk()) return init.status();
       run.pre = init.value().pre;
       sink.info("pre-D-Form: " + run.pre.summary);

@@ -5,7 +5,6 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
-#include "core/file_hash.h"
 #include "core/input_file.h"
 #include "core/message_text.h"
 
@@ -65,12 +64,12 @@ json modelJson(const ModelUsed& used) {
   return out;
 }
 
-// An input file: its path, the SHA-256 of its bytes (null when it can no longer be read) and
-// one measured size.
-json inputJson(const std::string& path, const char* sizeKey, double size) {
-  const Result<std::string> hash = sha256OfFile(path);
+// An input file: its path, the SHA-256 of the bytes the run read (hashed as they were read, not
+// by opening the file again) and one measured size.
+json inputJson(const std::string& path, const std::string& sha256, const char* sizeKey,
+               double size) {
   return {{"path", path},
-          {"sha256", hash.isOk() ? json(hash.value()) : json(nullptr)},
+          {"sha256", sha256.empty() ? json(nullptr) : json(sha256)},
           {sizeKey, figure(size)}};
 }
 
@@ -198,8 +197,9 @@ Status writeForwardReport(const std::string& dir, const Job& job, const ForwardR
                           const CommandTimings& command) {
   const auto reportStart = std::chrono::steady_clock::now();
   json report = header(job, "forward");
-  report["inputs"] = {{"piece_a", inputJson(job.forward.pieceA, "perimeter_mm", run.perimeterA)},
-                      {"piece_b", inputJson(job.forward.pieceB, "perimeter_mm", run.perimeterB)}};
+  report["inputs"] = {
+      {"piece_a", inputJson(job.forward.pieceA, run.sha256A, "perimeter_mm", run.perimeterA)},
+      {"piece_b", inputJson(job.forward.pieceB, run.sha256B, "perimeter_mm", run.perimeterB)}};
   report["fit_perimeter_scale"] = figure(run.scaleB);
   report["start_fraction_a"] = figure(run.startFractionA);
   report["start_fraction_b"] = figure(run.startFractionB);
@@ -220,7 +220,8 @@ Status writeInverseReport(const std::string& dir, const Job& job, const InverseR
                           const CommandTimings& command) {
   const auto reportStart = std::chrono::steady_clock::now();
   json report = header(job, "inverse");
-  report["inputs"] = {{"curve", inputJson(job.inverse.curve, "length_mm", run.curveLength)}};
+  report["inputs"] = {
+      {"curve", inputJson(job.inverse.curve, run.target.sha256, "length_mm", run.curveLength)}};
   report["model"] = modelJson(run.modelUsed);
   report["pre_dform"] = {{"on_hull", run.pre.onHull},
                          {"is_hull", run.pre.isHull},
@@ -263,27 +264,47 @@ Result<std::optional<bool>> savedGateVerdict(const std::string& dir) {
   return std::optional<bool>(gate["passed"].get<bool>());
 }
 
-Result<std::vector<std::string>> compareWithReport(const std::string& dir, const Metrics& metrics,
+Result<std::string> savedGateName(const std::string& dir) {
+  Result<json> report = readReport(dir);
+  if (!report.isOk()) return report.status();
+  const json& saved = report.value();
+  if (!saved.is_object() || !saved.contains("gate") || !saved["gate"].is_object() ||
+      !saved["gate"].contains("name") || !saved["gate"]["name"].is_string())
+    return Status(ErrorCode::InputInvalid, dir + "/report.json: records no gate");
+  return saved["gate"]["name"].get<std::string>();
+}
+
+Result<std::vector<std::string>> compareWithReport(const std::string& dir, const DForm& model,
+                                                   const Metrics& metrics,
                                                    const CurveMatch* curve) {
-  const std::string path = (std::filesystem::path(dir) / "report.json").string();
   Result<json> read = readReport(dir);
   if (!read.isOk()) return read.status();
   const json& report = read.value();
-  if (!report.contains("metrics") || !report["metrics"].is_object())
-    return Status(ErrorCode::InputInvalid, path + ": has no metrics");
+  if (!report.is_object()) return std::vector<std::string>{"report.json is not a JSON object"};
+  std::vector<std::string> differences;
+  // An entry of report.json next to the value the saved result gives.
+  const auto compare = [&differences](const std::string& name, const json& saved,
+                                      const json& now) {
+    const bool bothNumbers = saved.is_number() && now.is_number();
+    const bool same = bothNumbers ? std::abs(saved.get<double>() - now.get<double>()) <=
+                                        1e-9 * std::max(1.0, std::abs(now.get<double>()))
+                                  : saved == now;
+    if (!same)
+      differences.push_back(name + ": report.json says " +
+                            (saved.is_discarded() ? std::string("nothing") : describeJsonValue(saved)) +
+                            ", the saved result gives " + describeJsonValue(now));
+  };
+  const auto entry = [](const json& object, const std::string& key) {
+    return object.is_object() && object.contains(key) ? object[key] : json(json::value_t::discarded);
+  };
+  compare("mode (inverse when the folder holds target-curve.obj)", entry(report, "mode"),
+          curve ? "inverse" : "forward");
+  const json mesh = entry(report, "mesh"), meshNow = meshJson(model);
+  for (const auto& [key, value] : meshNow.items()) compare("mesh." + key, entry(mesh, key), value);
   json now = metricsJson(metrics);
   if (curve) addCurveMatch(now, *curve);
-  std::vector<std::string> differences;
-  for (const auto& [key, value] : now.items()) {
-    const json& saved = report["metrics"].contains(key) ? report["metrics"][key] : json(nullptr);
-    const bool bothNumbers = saved.is_number() && value.is_number();
-    const bool same = bothNumbers ? std::abs(saved.get<double>() - value.get<double>()) <=
-                                        1e-9 * std::max(1.0, std::abs(value.get<double>()))
-                                  : saved == value;
-    if (!same)
-      differences.push_back(key + ": report.json says " + describeJsonValue(saved) +
-                            ", the meshes give " + describeJsonValue(value));
-  }
+  const json saved = entry(report, "metrics");
+  for (const auto& [key, value] : now.items()) compare("metrics." + key, entry(saved, key), value);
   return differences;
 }
 

@@ -40,12 +40,17 @@ Status writeInverseReport(const std::string& dir, const Job& job, const InverseR
                           const std::vector<Message>& messages, const GateReport* gate,
                           const CommandTimings& command);
 
-/// Compares the figures recomputed from a saved result's meshes with the `metrics` that
-/// `dir`/report.json recorded. Returns one line per figure that differs (beyond 1e-9 relative;
-/// the OBJ files round-trip exactly), empty when all agree. InputUnreadable/InputInvalid when
-/// report.json is missing or unreadable.
-Result<std::vector<std::string>> compareWithReport(const std::string& dir, const Metrics& metrics,
+/// Compares a saved result with what `dir`/report.json recorded: its mode (inverse when `curve`
+/// is given, i.e. the folder holds a target curve), the mesh sizes of `model`, and every figure
+/// of `metrics` and `curve` recomputed from the meshes (beyond 1e-9 relative; the OBJ files
+/// round-trip exactly). Returns one line per entry that differs or is missing, empty when all
+/// agree. InputUnreadable when report.json is missing, unreadable or not JSON.
+Result<std::vector<std::string>> compareWithReport(const std::string& dir, const DForm& model,
+                                                   const Metrics& metrics,
                                                    const CurveMatch* curve);
+
+/// The name of the gate `dir`/report.json recorded; InputInvalid when it records none.
+Result<std::string> savedGateName(const std::string& dir);
 
 /// The gate verdict `dir`/report.json recorded: passed or not, or nullopt when the run had no
 /// gate. InputUnreadable when report.json is missing or not JSON, InputInvalid when its gate

@@ -10,8 +10,9 @@
 
 namespace dform {
 
-/// Bytes of memory this process can still get: /proc/meminfo's MemAvailable, or the room left
-/// under the cgroup's memory.max where that is lower. 0 when neither can be read.
+/// Bytes of memory this process can still get: /proc/meminfo's MemAvailable, or where lower the
+/// room left under its cgroup's memory.max or under its address-space limit (RLIMIT_AS,
+/// `ulimit -v`). 0 when none can be read.
 std::size_t availableMemoryBytes();
 
 /// Peak memory of a solve of `vertices` vertices (both pieces), from measurements on this code

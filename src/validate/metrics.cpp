@@ -27,7 +27,7 @@ void addEdgeLengths(const Piece& p, const detail::EdgeTopology& topology, double
     // infinite unless the 3D edge is zero too.
     const double rel =
         L > 0.0 ? std::abs(Lh - L) / L : (Lh > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
-    maxRel = std::max(maxRel, rel);
+    if (std::isnan(rel) || rel > maxRel) maxRel = rel;  // std::max would skip a NaN; once NaN, kept
   }
 }
 

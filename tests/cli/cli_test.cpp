@@ -1,4 +1,6 @@
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -8,14 +10,18 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
+#include <set>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "core/file_hash.h"
 #include "io/model_files.h"
@@ -443,38 +449,31 @@ TEST_F(CliTest, PrintAndCutPutsEachPieceOnItsOwnPage) {
   EXPECT_NE(svgText.find("id=\"regmark-square-page-2\""), std::string::npos);
 }
 
-TEST_F(CliTest, AReportThatCannotBeWrittenReleasesNoCuttingFile) {
-  // report.json cannot be put in place (a folder holds its name): the run fails before any
-  // cutting file is written.
-  const std::string out = path("out");
-  fs::create_directories(fs::path(out) / "report.json" / "blocked");
-  const Outcome o = run("forward " + sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg") +
-                        " --resolution 30 -q -o " + out);
-  expectError(o, 6, "report.json");
-  for (const char* name : {"pattern.svg", "pattern.pdf", "pattern.json", "dform.stl", "dform.glb"})
-    EXPECT_FALSE(fs::exists(fs::path(out) / name)) << name;
-
-  // A cutting file that cannot be written (pattern.pdf, the second): none is left, and the report
-  // says why.
-  const std::string second = path("second");
-  fs::create_directories(fs::path(second) / "pattern.pdf" / "blocked");
-  const Outcome p = run("forward " + sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg") +
-                        " --resolution 30 -q -o " + second);
-  EXPECT_EQ(p.exitCode, 6) << p.err;
-  for (const char* name : {"pattern.svg", "pattern.json", "dform.stl", "dform.glb"})
-    EXPECT_FALSE(fs::exists(fs::path(second) / name)) << name;
-  const std::string report = readFile(fs::path(second) / "report.json");
-  EXPECT_NE(report.find("export: " + second + "/pattern.pdf"), std::string::npos) << report;
+TEST_F(CliTest, AFolderWhoseFileNamesAreTakenIsRefusedBeforeTheSolve) {
+  // report.json's or pattern.pdf's name taken by a folder: the result folder is replaced as a
+  // whole, and the folder in the way is not a result's, so the run stops before solving and
+  // changes nothing.
+  for (const char* taken : {"report.json", "pattern.pdf"}) {
+    const std::string out = path(std::string("out-") + taken);
+    fs::create_directories(fs::path(out) / taken / "blocked");
+    const Outcome o = run("forward " + sample("forward/ellipses-a.svg") + " " +
+                          sample("forward/ellipses-b.svg") + " --resolution 30 -q -o " + out);
+    expectError(o, 6, out + "/" + taken + ": is not part of a dform result");
+    EXPECT_EQ(std::distance(fs::directory_iterator(out), fs::directory_iterator()), 1) << taken;
+    EXPECT_TRUE(fs::is_directory(fs::path(out) / taken / "blocked"));
+  }
 }
 
 TEST_F(CliTest, ReportsFollowTheirSchema) {
   const std::string forward = path("forward"), inverse = path("inverse");
-  // With the strict gate the run may pass (0) or fail it (7); either way the report has the checks.
+  // Resolution 30 is coarser than the samples strict is measured on: circle + square fails it
+  // (L_error 0.29 %, gauss_max and the seam lengths just over), exit 7, and the report has the
+  // checks all the same.
   const int code =
       run("forward " + sample("forward/circle.svg") + " " + sample("forward/square.svg") +
           " --resolution 30 --gate strict --no-export -q -o " + forward)
           .exitCode;
-  ASSERT_TRUE(code == 0 || code == 7) << code;
+  ASSERT_EQ(code, 7);
   ASSERT_TRUE(fs::exists(fs::path(forward) / "report.json"));
   EXPECT_EQ(schemaCheck((fs::path(forward) / "report.json").string()), 0);
   // The preset by its path under templates/, as the docs write it: the same gate.
@@ -589,8 +588,8 @@ TEST_F(CliTest, JobFileReproducesTheRun) {
   EXPECT_TRUE(report["timings"]["export"].is_null()) << "nothing exported, nothing timed";
   EXPECT_EQ(report["job"]["start_b"].get<double>(), 0.125);
   // The inputs are named by content too: a result can be traced to the exact files.
-  EXPECT_EQ(report["inputs"]["piece_a"]["sha256"], sha256OfFile(sample("forward/circle.svg")).value());
-  EXPECT_EQ(report["inputs"]["piece_b"]["sha256"], sha256OfFile(sample("forward/square.svg")).value());
+  EXPECT_EQ(report["inputs"]["piece_a"]["sha256"], sha256Hex(readFile(sample("forward/circle.svg"))));
+  EXPECT_EQ(report["inputs"]["piece_b"]["sha256"], sha256Hex(readFile(sample("forward/square.svg"))));
   EXPECT_EQ(report["job"]["resolution"].get<int>(), 60);
   // The recorded job runs again to the same figures.
   const std::string again = write("again.json", report["job"].dump());
@@ -686,7 +685,7 @@ TEST_F(CliTest, InterruptedRunExitsWithoutTouchingTheOutputFolder) {
     EXPECT_EQ(WEXITSTATUS(status), signal == SIGINT ? 130 : 143);
     std::ostringstream text;
     text << std::ifstream(err).rdbuf();
-    EXPECT_NE(text.str().find("dform: error: interrupted"), std::string::npos) << text.str();
+    EXPECT_NE(text.str().find("dform: error: " + out + ": interrupted"), std::string::npos) << text.str();
     // Nothing written, nothing half-written, no temporary file: the earlier result, unchanged.
     EXPECT_TRUE(folderContents(out) == before);
   }
@@ -771,6 +770,389 @@ TEST_F(CliTest, ARunTooLargeForTheMachineStopsAtOnceSayingWhatFits) {
               "between 8 and 20000");
 }
 
+// ---- The result folder as one transaction (issue 18) ----------------------------------------
+
+// The hidden entries a run keeps beside its result folder while it works (the lock, the staging
+// folder, the old result): none may stay once it has ended, unless it was killed outright.
+std::vector<std::string> leftoversBeside(const std::string& folder) {
+  const fs::path path(folder);
+  std::vector<std::string> found;
+  for (const auto& entry : fs::directory_iterator(path.parent_path())) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("." + path.filename().string() + ".dform-", 0) == 0) found.push_back(name);
+  }
+  return found;
+}
+
+// Runs `command` through sh in a child process after `prepare` (limits, signal dispositions) ran
+// in it; returns its pid.
+pid_t spawn(const std::string& command, const std::function<void()>& prepare = {}) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    if (prepare) prepare();
+    execl("/bin/sh", "sh", "-c", ("exec " + command).c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  return pid;
+}
+
+// Waits for a child; its exit code, or -signal when a signal ended it.
+int waitFor(pid_t pid) {
+  int status = 0;
+  if (waitpid(pid, &status, 0) != pid) return -1000;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+}
+
+// Waits until `file` holds `text` (a stage's message on stderr), at most 10 minutes.
+bool waitForText(const std::string& file, const std::string& text) {
+  for (int waited = 0; waited < 12000; ++waited) {
+    if (readFile(file).find(text) != std::string::npos) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  return false;
+}
+
+TEST_F(CliTest, AResultFolderIsReplacedWholeAndNothingElseIsTouched) {
+  const std::string out = path("out");
+  const std::string pair = sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  ASSERT_EQ(run("inverse " + sample("inverse/saddle.obj") + " --resolution 30 -q -o " + out).exitCode, 0);
+  ASSERT_TRUE(fs::exists(fs::path(out) / "target-curve.obj"));
+  ASSERT_TRUE(fs::exists(fs::path(out) / "pattern.svg"));
+  // A forward run into it: none of the inverse result's files stays (its target curve would make
+  // validate measure the forward seam against it), and the result validates.
+  const Outcome forward = run("forward " + pair + " --resolution 30 --no-export -q -o " + out);
+  ASSERT_EQ(forward.exitCode, 0) << forward.err;
+  for (const char* gone : {"target-curve.obj", "pattern.svg", "pattern.pdf", "dform.glb"})
+    EXPECT_FALSE(fs::exists(fs::path(out) / gone)) << gone;
+  const Outcome v = run("validate " + out);
+  EXPECT_EQ(v.exitCode, 0) << v.out << v.err;
+  EXPECT_TRUE(leftoversBeside(out).empty());
+  // A folder holding a file of the user's is never swapped away: refused before the solve.
+  write("out/notes.txt", "mine");
+  const std::map<std::string, std::string> before = folderContents(out);
+  expectError(run("forward " + pair + " --resolution 30 -q -o " + out), 6, out + "/notes.txt");
+  EXPECT_TRUE(folderContents(out) == before);
+  // The same through a symbolic link: the folder it names is checked and replaced, the link kept.
+  fs::remove(fs::path(out) / "notes.txt");
+  fs::create_directory_symlink(out, path("link"));
+  ASSERT_EQ(run("forward " + pair + " --resolution 30 -q -o " + path("link")).exitCode, 0);
+  EXPECT_TRUE(fs::is_symlink(path("link")));
+  EXPECT_TRUE(fs::exists(fs::path(out) / "pattern.svg"));
+  EXPECT_TRUE(leftoversBeside(out).empty());
+}
+
+// A file that cannot be written (a full disk; here the file-size limit, which fails a write the
+// same way) fails the run with exit 6 naming the file in the result folder, and leaves exactly the
+// old result, whichever file it was.
+TEST_F(CliTest, AFailedWriteLeavesExactlyTheOldResult) {
+  const std::string out = path("out");
+  const std::string pair = sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  ASSERT_EQ(run("forward " + pair + " --resolution 30 -q -o " + out).exitCode, 0);
+  const std::map<std::string, std::string> before = folderContents(out);
+  std::size_t largest = 0;
+  for (const auto& [name, bytes] : before) largest = std::max(largest, bytes.size());
+  std::set<std::string> failedFiles;
+  // From the first file written (a mesh) to the last ones (the pattern, the report page).
+  for (const double fraction : {0.01, 0.1, 0.3, 0.6, 0.9}) {
+    const rlim_t limit = rlim_t(fraction * double(largest));
+    SCOPED_TRACE("file size limit " + std::to_string(limit));
+    const std::string err = path("err.txt");
+    const pid_t pid = spawn(std::string(DFORM_EXE) + " forward " + pair +
+                                " --resolution 36 -q -o " + out + " >/dev/null 2>" + err,
+                            [limit] {
+                              const struct rlimit fsize = {limit, limit};
+                              setrlimit(RLIMIT_FSIZE, &fsize);
+                              std::signal(SIGXFSZ, SIG_IGN);  // a write past it then fails
+                            });
+    Outcome o;
+    o.exitCode = waitFor(pid);
+    o.err = readFile(err);
+    expectError(o, 6, out + "/");
+    EXPECT_EQ(o.err.find(".dform-new"), std::string::npos) << "named as the user knows it: " << o.err;
+    failedFiles.insert(o.err.substr(o.err.find(out + "/")));
+    EXPECT_TRUE(folderContents(out) == before);
+    EXPECT_TRUE(leftoversBeside(out).empty());
+  }
+  EXPECT_GE(failedFiles.size(), 2u) << "the limits stop different files";
+  EXPECT_EQ(run("validate " + out).exitCode, 0);
+}
+
+// Two runs on one folder: the second fails at once (exit 6, saying another run is writing it)
+// and touches nothing; the first then stops on SIGTERM, leaving the old result.
+TEST_F(CliTest, ASecondRunOnTheSameFolderFailsWhileTheFirstHoldsIt) {
+  const std::string out = path("out");
+  const std::string pair = sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  ASSERT_EQ(run("forward " + pair + " --resolution 30 -q -o " + out).exitCode, 0);
+  const std::map<std::string, std::string> before = folderContents(out);
+  const std::string err = path("first.txt");
+  const pid_t first = spawn(std::string(DFORM_EXE) + " forward " + pair +
+                            " --resolution 250 -o " + out + " >/dev/null 2>" + err);
+  ASSERT_TRUE(waitForText(err, "meshed piece A with")) << readFile(err);
+  expectError(run("inverse " + sample("inverse/saddle.obj") + " --resolution 30 -q -o " + out), 6,
+              out + ": another dform run (process " + std::to_string(first) + ") is writing");
+  expectError(run("export " + out + " -q"), 6, "another dform run");
+  ASSERT_EQ(kill(first, SIGTERM), 0);
+  EXPECT_EQ(waitFor(first), 143);
+  EXPECT_TRUE(folderContents(out) == before);
+  EXPECT_TRUE(leftoversBeside(out).empty());
+  // Free again.
+  EXPECT_EQ(run("inverse " + sample("inverse/saddle.obj") + " --resolution 30 -q -o " + out).exitCode, 0);
+}
+
+// Signals while the result is being written: SIGTERM leaves the old or the new result (exit 143;
+// 0 when the run had finished), SIGKILL the old or the new one too, and the next run clears what a
+// killed one left beside the folder. Never a mixture.
+TEST_F(CliTest, SignalsDuringTheWriteLeaveTheOldOrTheNewResult) {
+  const std::string out = path("out");
+  const std::string pair = sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  // The two results the trials alternate between, and their meshes.
+  std::map<std::string, std::string> meshes[2];
+  const int resolutions[2] = {30, 34};
+  for (int k : {1, 0}) {
+    ASSERT_EQ(run("forward " + pair + " --resolution " + std::to_string(resolutions[k]) + " -q -o " + out).exitCode, 0);
+    for (const auto& [name, bytes] : folderContents(out))
+      if (name.find(".obj") != std::string::npos) meshes[k][name] = bytes;
+  }
+  const auto meshesOf = [](const std::map<std::string, std::string>& files) {
+    std::map<std::string, std::string> objs;
+    for (const auto& [name, bytes] : files)
+      if (name.find(".obj") != std::string::npos) objs[name] = bytes;
+    return objs;
+  };
+  const std::set<std::string> complete = [&] {
+    std::set<std::string> names;
+    for (const auto& entry : folderContents(out)) names.insert(entry.first);
+    return names;
+  }();
+  for (int trial = 0; trial < 8; ++trial) {
+    const int signal = trial % 2 ? SIGKILL : SIGTERM;
+    const int k = 1 - (trial / 2) % 2;  // the result asked for: the other one, every two trials
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    const std::map<std::string, std::string> previous = folderContents(out);
+    // A file of its own: the previous trial's "export (" must not be taken for this one's.
+    const std::string err = path("err-" + std::to_string(trial) + ".txt");
+    const pid_t pid = spawn(std::string(DFORM_EXE) + " forward " + pair + " --resolution " +
+                            std::to_string(resolutions[k]) + " -o " + out + " >/dev/null 2>" + err);
+    // "export (laser): 5 files" is said just before the result is written.
+    ASSERT_TRUE(waitForText(err, "export (")) << readFile(err);
+    ASSERT_EQ(kill(pid, signal), 0);
+    const int code = waitFor(pid);
+    const std::map<std::string, std::string> now = folderContents(out);
+    const bool old = now == previous;
+    std::set<std::string> names;
+    for (const auto& entry : now) names.insert(entry.first);
+    const bool asked = names == complete && meshesOf(now) == meshes[k];
+    EXPECT_TRUE(old || asked) << "a mixture after exit " << code;
+    if (signal == SIGTERM) {
+      EXPECT_TRUE(code == 143 || (code == 0 && asked)) << code << readFile(err);
+      if (code == 143) {
+        EXPECT_NE(readFile(err).find("dform: error: " + out + ": interrupted"), std::string::npos);
+      }
+    } else {
+      EXPECT_TRUE(code == -SIGKILL || (code == 0 && asked)) << code;
+    }
+    if (asked) {
+      EXPECT_EQ(run("validate " + out).exitCode, 0);
+    }
+  }
+  ASSERT_EQ(run("forward " + pair + " --resolution 30 -q -o " + out).exitCode, 0);
+  EXPECT_TRUE(leftoversBeside(out).empty()) << "what killed runs left is cleared";
+}
+
+// dform export writes into a staging copy of the result and swaps it in: a preview of the other
+// kind (dform.gltf after dform.glb) replaces the old one, and an interrupted export changes
+// nothing. It runs the gate again on the meshes rather than trusting report.json's verdict.
+TEST_F(CliTest, ExportIsOneTransactionAndChecksTheGateItself) {
+  const std::string out = path("out");
+  const std::string pair = sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  ASSERT_EQ(run("forward " + pair + " --resolution 30 -q -o " + out).exitCode, 0);
+  ASSERT_TRUE(fs::exists(fs::path(out) / "dform.glb"));
+  ASSERT_EQ(run("export " + out + " --gltf -q").exitCode, 0);
+  EXPECT_TRUE(fs::exists(fs::path(out) / "dform.gltf"));
+  EXPECT_FALSE(fs::exists(fs::path(out) / "dform.glb")) << "the old preview goes with the swap";
+  EXPECT_EQ(run("validate " + out).exitCode, 0);
+  EXPECT_TRUE(leftoversBeside(out).empty());
+  // A SIGTERM once the export is being written: exit 143 and the folder as it was, or the whole
+  // new export when the signal came during the swap (143, saying so) or after it (0).
+  const std::map<std::string, std::string> beforeSignal = folderContents(out);
+  const std::string err = path("export-err.txt");
+  const pid_t pid = spawn(std::string(DFORM_EXE) + " export " + out + " >/dev/null 2>" + err);
+  ASSERT_TRUE(waitForText(err, "export (")) << readFile(err);
+  ASSERT_EQ(kill(pid, SIGTERM), 0);
+  const int code = waitFor(pid);
+  const std::string said = readFile(err);
+  if (said.find(out + ": interrupted; the folder was left as it was") != std::string::npos) {
+    EXPECT_EQ(code, 143);
+    EXPECT_TRUE(folderContents(out) == beforeSignal);
+  } else {
+    EXPECT_TRUE(code == 0 || said.find(out + ": interrupted; the new export was written completely") != std::string::npos)
+        << code << said;
+    EXPECT_TRUE(fs::exists(fs::path(out) / "dform.glb") && !fs::exists(fs::path(out) / "dform.gltf"));
+    EXPECT_EQ(run("validate " + out).exitCode, 0);
+  }
+  EXPECT_TRUE(leftoversBeside(out).empty());
+  // Piece A's 3D mesh stretched by 5 %: report.json still says the gate passed, but the meshes
+  // fail it, and nothing is exported.
+  std::istringstream lines(readFile(fs::path(out) / "piece-a-3d.obj"));
+  std::string line, stretched;
+  while (std::getline(lines, line)) {
+    double x, y, z;
+    if (std::sscanf(line.c_str(), "v %lf %lf %lf", &x, &y, &z) == 3) {
+      char text[128];
+      std::snprintf(text, sizeof text, "v %.17g %.17g %.17g", 1.05 * x, 1.05 * y, 1.05 * z);
+      line = text;
+    }
+    stretched += line + "\n";
+  }
+  std::ofstream(fs::path(out) / "piece-a-3d.obj") << stretched;
+  const std::map<std::string, std::string> before = folderContents(out);
+  const Outcome o = run("export " + out + " -q");
+  expectError(o, 7, out + ": the result failed its quality gate 'default' (checked again on the meshes: L_error, ");
+  EXPECT_TRUE(folderContents(out) == before);
+}
+
+// Everything that can be checked before the solve is: a bad profile, gate or sheet, a folder
+// that cannot be written. Each fails at once, naming the option or file, and the earlier
+// result stays as it was.
+TEST_F(CliTest, OptionsAndTheOutputFolderAreCheckedBeforeTheSolve) {
+  const std::string out = path("out");
+  const std::string pair = sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  ASSERT_EQ(run("forward " + pair + " --resolution 30 -q -o " + out).exitCode, 0);
+  const std::map<std::string, std::string> before = folderContents(out);
+  // At resolution 20000 a solve would take hours or be refused for memory: these fail first.
+  const std::string big = "forward " + pair + " --resolution 250 -q -o " + out;
+  expectError(run(big + " --profile nope"), 2, "unknown profile \"nope\"");
+  expectError(run(big + " --profile " + path("missing-profile.json")), 3, path("missing-profile.json"));
+  expectError(run(big + " --gate " + path("missing-gate.json")), 3, path("missing-gate.json"));
+  expectError(run(big + " --sheet 600x400furlong"), 2, "--sheet");
+  EXPECT_TRUE(folderContents(out) == before);
+  const std::string file = write("a-file", "x");
+  expectError(run(big.substr(0, big.find(" -o ")) + " -o " + file + "/out"), 6, file + "/out");
+}
+
+// validate trusts nothing: report.json missing or not JSON is unreadable (3); a report that is
+// not an object, lacks its figures, or records other mesh sizes or another mode fails (7); an
+// inverse result without its target curve fails.
+TEST_F(CliTest, ValidateFailsAReportThatIsMissingIncompleteOrWrong) {
+  const std::string fwd = path("fwd"), inv = path("inv");
+  ASSERT_EQ(run("forward " + sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg") +
+                " --resolution 30 --no-export -q -o " + fwd).exitCode, 0);
+  ASSERT_EQ(run("inverse " + sample("inverse/saddle.obj") + " --resolution 30 --no-export -q -o " + inv).exitCode, 0);
+  const fs::path report = fs::path(fwd) / "report.json";
+  const std::string good = readFile(report);
+  const nlohmann::json saved = nlohmann::json::parse(good);
+  ASSERT_EQ(run("validate " + fwd).exitCode, 0);
+  const auto validateWith = [&](const std::string& text) {
+    std::ofstream(report, std::ios::binary | std::ios::trunc) << text;
+    return run("validate " + fwd);
+  };
+  fs::remove(report);
+  expectError(run("validate " + fwd), 3, report.string() + ": no such file");
+  expectError(validateWith("{\"metrics\": "), 3, report.string() + ": not valid JSON");
+  expectError(validateWith("[]"), 7, report.string());
+  nlohmann::json edited = saved;
+  edited.erase("metrics");
+  const Outcome noMetrics = validateWith(edited.dump());
+  expectError(noMetrics, 7, "report.json says nothing");
+  EXPECT_NE(noMetrics.out.find("metrics.L_error: report.json says nothing"), std::string::npos)
+      << noMetrics.out;
+  edited = saved;
+  edited["mesh"]["vertices_a"] = saved["mesh"]["vertices_a"].get<int>() + 1;
+  expectError(validateWith(edited.dump()), 7, "mesh.vertices_a");
+  edited = saved;
+  edited["mode"] = "inverse";
+  expectError(validateWith(edited.dump()), 7, "mode");
+  EXPECT_EQ(validateWith(good).exitCode, 0);
+  // The inverse result without its target curve is a forward result to the folder, not its report.
+  fs::remove(fs::path(inv) / "target-curve.obj");
+  expectError(run("validate " + inv), 7, "mode");
+}
+
+// Messages are one printable line whatever the names and values hold.
+TEST_F(CliTest, MessagesAreOneEscapedLineNamingTheFile) {
+  const std::string strange = path("a\nb\x1b[31m.svg");
+  const Outcome o = run("forward '" + strange + "' " + sample("forward/circle.svg") + " -o " + path("out"));
+  expectError(o, 3, path("a\\nb\\x1b[31m.svg") + ": no such file");
+  EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
+  EXPECT_EQ(o.err.find('\x1b'), std::string::npos);
+  // A ten-million-digit number is quoted cut short.
+  const std::string huge = write("huge.obj", "v 1" + std::string(10'000'000, '0') + "x 0 0\n");
+  const Outcome h = run("inverse " + huge + " -o " + path("out"));
+  expectError(h, 3, huge + ": line 1: '1000");
+  EXPECT_LT(h.err.size(), 1000u) << "cut, not quoted whole";
+}
+
+// Exact exit codes: a root size in an unknown unit is unreadable (3) like an element's; a number
+// too large for a double is invalid (4) in an OBJ as in an SVG; an outline too small to cut is
+// refused (4), not reshaped.
+TEST_F(CliTest, UnitsRangesAndSizesHaveTheirExitCodes) {
+  const std::string circle = sample("forward/circle.svg");
+  for (const char* size : {"300furlong", "100%"}) {
+    const std::string file = write("root.svg", "<svg xmlns='http://www.w3.org/2000/svg' width='" +
+                                                   std::string(size) + "' height='300mm' viewBox='0 0 300 300'>"
+                                                   "<rect x='10' y='10' width='100' height='100'/></svg>");
+    expectError(run("forward " + file + " " + circle + " -o " + path("out")), 3,
+                file + ": has an unknown unit in its 'width' attribute '" + size + "'");
+  }
+  const std::string obj = write("far.obj", "v 0 0 0\nv 1e999 0 0\nv 1 1 0\nv 0 1 1\nv 2 2 2\nl 1 2 3 4 5 1\n");
+  expectError(run("inverse " + obj + " -o " + path("out")), 4, obj + ": line 2: '1e999' is out of range");
+  const std::string tiny = write("tiny.svg", svg("<rect x='10' y='10' width='0.01' height='0.01'/>"));
+  expectError(run("forward " + tiny + " " + circle + " -o " + path("out")), 4,
+              "mm across; outlines and holes must be at least 1 mm across");
+  EXPECT_FALSE(fs::exists(path("out")));
+}
+
+// A run reading a FIFO no one writes to stops on SIGTERM (exit 143), naming the file.
+TEST_F(CliTest, ARunWaitingOnAFifoCanBeInterrupted) {
+  const std::string fifo = path("piece.svg");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const std::string err = path("err.txt");
+  const pid_t pid = spawn(std::string(DFORM_EXE) + " forward " + fifo + " " +
+                          sample("forward/circle.svg") + " -o " + path("out") + " 2>" + err);
+  // Blocked opening the FIFO (waiting for a writer): the kernel function it sleeps in says so.
+  std::string wchan;
+  for (int waited = 0; waited < 12000 && wchan != "wait_for_partner"; ++waited) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    wchan = readFile("/proc/" + std::to_string(pid) + "/wchan");
+  }
+  ASSERT_EQ(kill(pid, SIGTERM), 0);
+  EXPECT_EQ(waitFor(pid), 143) << wchan;
+  Outcome o;
+  o.exitCode = 143;
+  o.err = readFile(err);
+  expectError(o, 143, fifo + ": interrupted while waiting to read it");
+}
+
+// Under an address-space limit (ulimit -v) a run too large for it is refused at once with the
+// resolution that fits (exit 2), not ended by a failed allocation, and that resolution runs.
+TEST_F(CliTest, AnAddressSpaceLimitIsHonoured) {
+  const auto limited = [this](int resolution, const std::string& out) {
+    const std::string err = path("err.txt");
+    const pid_t pid = spawn(std::string(DFORM_EXE) + " forward " + sample("forward/ellipses-a.svg") +
+                                " " + sample("forward/ellipses-b.svg") + " --resolution " +
+                                std::to_string(resolution) + " --no-export -q -o " + out +
+                                " >/dev/null 2>" + err,
+                            [] {
+                              const rlim_t limit = rlim_t(400000) * 1024;  // ulimit -v 400000
+                              const struct rlimit as = {limit, limit};
+                              setrlimit(RLIMIT_AS, &as);
+                            });
+    Outcome o;
+    o.exitCode = waitFor(pid);
+    o.err = readFile(err);
+    return o;
+  };
+  // Resolution 1000 needs about 1.7 GB: more than the limit, less than a test machine has.
+  const Outcome refused = limited(1000, path("big"));
+  expectError(refused, 2, "a resolution of ");
+  EXPECT_FALSE(fs::exists(path("big")));
+  const std::size_t at = refused.err.find("a resolution of ") + std::strlen("a resolution of ");
+  const int fits = std::atoi(refused.err.c_str() + at);
+  ASSERT_GE(fits, 8) << refused.err;
+  const Outcome accepted = limited(fits, path("fits"));
+  EXPECT_EQ(accepted.exitCode, 0) << accepted.err;
+}
+
 TEST_F(CliTest, InverseRunAndItsBadInputs) {
   const std::string out = path("out");
   const Outcome o = run("inverse " + sample("inverse/tennis-ball.obj") +
@@ -788,9 +1170,7 @@ TEST_F(CliTest, InverseRunAndItsBadInputs) {
       write("planar.obj", "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\nv -5 5 0\nl 1 2 3 4 5 1\n");
   expectError(run("inverse " + planar + " -o " + path("o2")), 4, planar);
   const std::string faces = write("faces.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-  const Outcome f = run("inverse " + faces + " -o " + path("o3"));
-  EXPECT_TRUE(f.exitCode == 3 || f.exitCode == 4) << f.err;
-  EXPECT_NE(f.err.find(faces), std::string::npos);
+  expectError(run("inverse " + faces + " -o " + path("o3")), 4, faces + ": has faces but no polyline");
   const std::string open =
       write("open.obj", "v 0 0 0\nv 10 0 1\nv 10 10 0\nv 0 10 1\nv -5 5 2\nl 1 2 3 4 5\n");
   expectError(run("inverse " + open + " -o " + path("o4")), 4, open);

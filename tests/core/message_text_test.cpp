@@ -8,7 +8,7 @@ namespace dform {
 namespace {
 
 TEST(MessageText, ControlCharactersAreEscaped) {
-  EXPECT_EQ(printable("cut\nout\x7f\t"), "cut\\x0aout\\x7f\\x09");
+  EXPECT_EQ(printable("cut\nout\x7f\t\r\x1b[31m"), "cut\\nout\\x7f\\t\\r\\x1b[31m");
   EXPECT_EQ(printable("plain text, UTF-8 \xc3\xa9"), "plain text, UTF-8 \xc3\xa9");
 }
 
@@ -16,6 +16,16 @@ TEST(MessageText, LongTextIsCutAtACharacterBoundary) {
   EXPECT_EQ(printable(std::string(100, 'k'), 10), "kkkkkkkkkk...");
   // "é" is two bytes: a cut after 5 bytes would split the third one, so it comes before it.
   EXPECT_EQ(printable("\xc3\xa9\xc3\xa9\xc3\xa9", 5), "\xc3\xa9\xc3\xa9...");
+}
+
+TEST(MessageText, AMessageIsOneLineWithLongTokensCut) {
+  const std::string digits(10'000'000, '7');
+  const std::string shown = printableMessage("x\n\x1b[31m.svg: '" + digits + "' is too large");
+  EXPECT_EQ(shown.find('\n'), std::string::npos);
+  EXPECT_EQ(shown.find('\x1b'), std::string::npos);
+  EXPECT_EQ(shown.rfind("x\\n\\x1b[31m.svg: '", 0), 0u) << shown;
+  // The number is cut to kMaxTokenBytes with "...", the words around it are kept.
+  EXPECT_EQ(shown, "x\\n\\x1b[31m.svg: '" + digits.substr(0, kMaxTokenBytes - 1) + "... is too large");
 }
 
 TEST(MessageText, ParserReasonDropsTheTag) {

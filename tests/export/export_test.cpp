@@ -434,12 +434,26 @@ TEST(ExportPattern, PrintedPdfRendersAtTrueScale) {
         y0 = std::min(y0, y);
         y1 = std::max(y1, y);
       }
-  const double lineW = 0.35;  // print profile's cut width (mm)
-  // Ticks stick out 1.5 mm, so compare the extent along the rows and columns: within 0.3 mm.
-  EXPECT_NEAR((x1 - x0 + 1) / 10.0, hi.x() - lo.x() + lineW + 2 * 1.5, 3.5);
-  EXPECT_GT((x1 - x0 + 1) / 10.0, hi.x() - lo.x());
-  EXPECT_GT((y1 - y0 + 1) / 10.0, hi.y() - lo.y());
-  EXPECT_LT((y1 - y0 + 1) / 10.0, hi.y() - lo.y() + lineW + 2 * 1.5 + 0.3);
+  ASSERT_GE(x1, x0);
+  // The same window in the SVG (mm, same frame): every drawn point in it (the cut line, the
+  // ticks that stick out of it, labels), widened by half its stroke. The printed extent must
+  // match it within 0.3 mm both ways, the accuracy a cut pattern needs (a 2 % scale error is
+  // 2 mm on this 100 mm piece): two pixels of 0.1 mm for the raster and its anti-aliasing.
+  Vec2 drawnLo(1e9, 1e9), drawnHi(-1e9, -1e9);
+  for (const SvgPath& path : e.svg.paths)
+    for (const Polyline& part : path.parts)
+      for (const Vec2& q : part)
+        if (q.x() >= xFrom / 10.0 && q.x() <= xTo / 10.0 && q.y() >= yFrom / 10.0 && q.y() <= yTo / 10.0) {
+          const Vec2 half = Vec2::Constant(path.strokeWidth / 2);
+          drawnLo = drawnLo.cwiseMin(q - half);
+          drawnHi = drawnHi.cwiseMax(q + half);
+        }
+  const double tolerance = 0.3;  // mm
+  EXPECT_NEAR((x1 - x0 + 1) / 10.0, drawnHi.x() - drawnLo.x(), tolerance);
+  EXPECT_NEAR((y1 - y0 + 1) / 10.0, drawnHi.y() - drawnLo.y(), tolerance);
+  // And where it is printed: the page's origin is the SVG's.
+  EXPECT_NEAR(x0 / 10.0, drawnLo.x(), tolerance);
+  EXPECT_NEAR(y0 / 10.0, drawnLo.y(), tolerance);
 }
 
 TEST(ExportPattern, LargePatternIsTiledAcrossA4PagesWithMarks) {

@@ -106,7 +106,9 @@ void validate(const std::string& file, int triangles) {
   std::string out;
   const int rc = run("NODE_PATH='" + modules + "' '" + node + "' '" DFORM_GLTF_VALIDATE_SCRIPT "' '" + file + "'", &out);
   EXPECT_EQ(rc, 0) << out;
-  EXPECT_NE(out.find("\"numErrors\": 0"), std::string::npos) << out;
+  // Clean, not only valid: no error, no warning, no info (hints are style advice).
+  for (const char* count : {"\"numErrors\": 0,", "\"numWarnings\": 0,", "\"numInfos\": 0,"})
+    EXPECT_NE(out.find(count), std::string::npos) << count << "\n" << out;
   EXPECT_NE(out.find("\"totalTriangleCount\": " + std::to_string(triangles)), std::string::npos) << out;
 }
 

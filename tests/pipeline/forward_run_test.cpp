@@ -48,10 +48,13 @@ void expectPapersFigures(const ForwardRun& run, const std::string& what) {
   EXPECT_GT(depth, 0.15 * width) << what;
 }
 
+// A sample pair at resolution 60 and the figures measured on it (dform forward A B
+// --resolution 60 --start-b F, report.json's metrics, 2026-11-23).
 struct Case {
   const char* a;
   const char* b;
   double startB;
+  double lError, lMax, gaussMax;  ///< measured
 };
 
 class SampleRuns : public ::testing::TestWithParam<Case> {};
@@ -60,6 +63,15 @@ TEST_P(SampleRuns, ReachThePapersFigures) {
   const Case c = GetParam();
   const ForwardRun run = runOk(job(c.a, c.b, 60, c.startB));
   expectPapersFigures(run, std::string(c.a) + " + " + c.b);
+  // The paper's limits are far above these samples' figures: held to twice what was measured,
+  // so that a weaker solve fails here. And L_error no lower than half of it: Table 1's 3D
+  // smoothness term (w = 0.01) costs isometry (without it L_error falls 5 to 9 times on these
+  // pairs), so a much lower figure means the objective is no longer the paper's.
+  const Metrics& m = run.metrics;
+  EXPECT_LE(m.L_error, 2 * c.lError);
+  EXPECT_GE(m.L_error, 0.5 * c.lError);
+  EXPECT_LE(m.L_max, 2 * c.lMax);
+  EXPECT_LE(m.gauss_max, 2 * c.gaussMax);
   // Seams pair one to one and the flat outlines keep their drawn perimeters (chords of n = 60).
   EXPECT_EQ(run.model.a.seam.size(), 60u);
   EXPECT_NEAR(run.metrics.seam_length_a_mm, run.perimeterA, 2e-3 * run.perimeterA);
@@ -69,13 +81,14 @@ TEST_P(SampleRuns, ReachThePapersFigures) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Samples, SampleRuns,
-                         ::testing::Values(Case{"ellipses-a.svg", "ellipses-b.svg", 0.0},
-                                           Case{"ellipses-a.svg", "ellipses-b.svg", 0.25},
-                                           Case{"ellipses-a.svg", "ellipses-a.svg", 0.25},
-                                           Case{"circle.svg", "square.svg", 0.0},
-                                           Case{"circle.svg", "square.svg", 0.125},
-                                           Case{"nonconvex-a.svg", "nonconvex-b.svg", 0.0},
-                                           Case{"nonconvex-a.svg", "nonconvex-b.svg", 0.3}),
+                         ::testing::Values(
+                             Case{"ellipses-a.svg", "ellipses-b.svg", 0.0, 3.605e-4, 2.010e-3, 5.931e-3},
+                             Case{"ellipses-a.svg", "ellipses-b.svg", 0.25, 3.864e-4, 2.382e-3, 5.853e-3},
+                             Case{"ellipses-a.svg", "ellipses-a.svg", 0.25, 3.892e-4, 2.391e-3, 5.454e-3},
+                             Case{"circle.svg", "square.svg", 0.0, 2.021e-3, 1.649e-2, 2.838e-2},
+                             Case{"circle.svg", "square.svg", 0.125, 2.084e-3, 1.674e-2, 2.634e-2},
+                             Case{"nonconvex-a.svg", "nonconvex-b.svg", 0.0, 2.010e-3, 1.331e-2, 3.857e-2},
+                             Case{"nonconvex-a.svg", "nonconvex-b.svg", 0.3, 2.036e-3, 1.370e-2, 3.399e-2}),
                          [](const ::testing::TestParamInfo<Case>& info) {
                            // "circle_square_at_125": the two files and B's starting fraction in 1/1000.
                            std::string name = std::filesystem::path(info.param.a).stem().string() + "_" +

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <utility>
 
 #include "core/polyline.h"
 #include "pipeline/inverse_pipeline.h"
@@ -18,6 +20,17 @@ std::string sample(const std::string& name) { return std::string(DFORM_SAMPLES_D
 
 class InverseSamples : public ::testing::TestWithParam<const char*> {};
 
+// L_error and L_max measured on each sample at resolution 60 (dform inverse CURVE --resolution 60,
+// report.json's metrics, 2026-11-23). The paper's limits (0.5 %, 3 %) are ten times above them.
+std::pair<double, double> measuredFigures(const std::string& curve) {
+  static const std::map<std::string, std::pair<double, double>> figures = {
+      {"tennis-ball.obj", {1.743e-4, 1.066e-3}},
+      {"saddle.obj", {9.111e-5, 6.595e-4}},
+      {"pushed-in.obj", {4.521e-4, 3.470e-3}},
+      {"rotated.json", {1.765e-4, 9.971e-4}}};
+  return figures.at(curve);
+}
+
 TEST_P(InverseSamples, ReachThePapersFigures) {
   InverseJob job;
   job.curve = sample(GetParam());
@@ -27,8 +40,10 @@ TEST_P(InverseSamples, ReachThePapersFigures) {
   ASSERT_TRUE(result.isOk()) << result.status().message();
   const InverseRun& run = result.value();
   EXPECT_LE(run.curveMatch.D_error, 1e-6);
-  EXPECT_LE(run.metrics.L_error, 0.005);
-  EXPECT_LE(run.metrics.L_max, 0.03);
+  // Twice the measured figures, so that a weaker solve fails here.
+  const auto [lError, lMax] = measuredFigures(GetParam());
+  EXPECT_LE(run.metrics.L_error, 2 * lError);
+  EXPECT_LE(run.metrics.L_max, 2 * lMax);
   EXPECT_EQ(run.metrics.flipped_2d + run.metrics.flipped_3d, 0);
   // Flat outlines: simple polygons whose perimeters match the length of the curve as read (not
   // only of its resampled polygon) within 0.1 %, issue 3's bar, even at 60 points.

@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "models.h"
@@ -61,6 +62,23 @@ TEST(Gate, StretchedShapeFailsLErrorAndTheExactDistance) {
   EXPECT_EQ(failed(report), (Names{"L_error", "exact_distance_rel"})) << describe(report);
   EXPECT_TRUE(notRun(report).empty()) << describe(report);
   EXPECT_NEAR(report.find("L_error")->value, 0.01, 1e-12);
+  EXPECT_FALSE(report.passed());
+}
+
+// NaN is no figure: a check whose value is NaN fails (never passes by a comparison that NaN
+// slips through), and so does the gate.
+TEST(Gate, NaNFailsEveryCheckItReachesAndTheGate) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(judgeCheck("x", nan, 1.0, "").verdict, Verdict::Fail);
+  EXPECT_EQ(judgeCheck("x", 0.5, nan, "").verdict, Verdict::Fail);
+  EXPECT_EQ(judgeCheck("x", 0.5, 1.0, "").verdict, Verdict::Pass);
+  DForm model = test::tetraDForm(8);
+  model.a.shape(0, 0) = nan;  // one coordinate of a corner of the seam
+  const GateReport report = runGate(model, GateLimits{});
+  for (const CheckResult& c : report.checks)
+    if (std::isnan(c.value)) EXPECT_NE(c.verdict, Verdict::Pass) << describe(report);
+  EXPECT_TRUE(failed(report).count("L_error")) << describe(report);
+  EXPECT_TRUE(failed(report).count("L_max")) << describe(report);
   EXPECT_FALSE(report.passed());
 }
 

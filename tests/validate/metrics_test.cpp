@@ -77,6 +77,28 @@ TEST(Metrics, UniformStretchGivesItsFactor) {
   EXPECT_LT(m.gauss_max, 1e-12);  // scaling keeps every angle
 }
 
+// L_max is the largest single edge's error, not an average: on a stretch that differs from edge
+// to edge it equals the worst edge's |L^ - L| / L (found here edge by edge) and exceeds L_error.
+TEST(Metrics, LMaxIsTheWorstEdgeOfANonUniformStretch) {
+  DForm model = test::tetraDForm(6);
+  for (Piece* piece : {&model.a, &model.b}) {
+    piece->shape.col(0) *= 1.004;  // each edge stretches by its own amount with its direction
+    piece->shape.col(1) *= 1.0005;
+  }
+  double worst = 0;
+  for (const Piece* piece : {&model.a, &model.b})
+    for (Eigen::Index f = 0; f < piece->F.rows(); ++f)
+      for (int k = 0; k < 3; ++k) {
+        const int u = piece->F(f, k), v = piece->F(f, (k + 1) % 3);
+        const double flat = (piece->flat.row(u) - piece->flat.row(v)).norm();
+        const double shape = (piece->shape.row(u) - piece->shape.row(v)).norm();
+        worst = std::max(worst, std::abs(shape - flat) / flat);
+      }
+  const Metrics m = computeMetrics(model);
+  EXPECT_NEAR(m.L_max, worst, 1e-12);
+  EXPECT_GT(m.L_max, m.L_error * (1 + 1e-3)) << "a non-uniform stretch: the worst edge is above the norm";
+}
+
 TEST(Metrics, PyramidApexDefectIsTwoPiMinusItsFaceAngles) {
   const int n = 7;
   const double r = 20.0, H = 9.0;

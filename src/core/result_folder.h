@@ -1,0 +1,54 @@
+// A result folder replaced as one transaction. The new result is written into a fresh hidden
+// folder beside it, then swapped in by one rename: a run that fails, is interrupted or is killed
+// part way leaves the folder exactly as it was, and files of the earlier result that the new one
+// does not produce go with the swap. A lock beside the folder keeps a second run off it meanwhile.
+#pragma once
+
+#include <set>
+#include <string>
+
+#include "core/status.h"
+
+namespace dform {
+
+class ResultFolder {
+ public:
+  ResultFolder() = default;
+  /// Drops the staging folder when the result was not committed, and releases the lock.
+  ~ResultFolder();
+  ResultFolder(const ResultFolder&) = delete;
+  ResultFolder& operator=(const ResultFolder&) = delete;
+
+  /// Locks `dir` against other dform runs (a hidden `.NAME.dform-lock` in its parent, created
+  /// with the parent when missing), checks that it may be replaced (missing, or a folder holding
+  /// only regular files named in `resultFiles`, so that no file of the user's is ever swapped
+  /// away), removes what runs killed outright left beside it, and creates the staging folder.
+  /// OutputFailed naming the folder or the file in the way, or saying which process holds the
+  /// lock.
+  Status begin(const std::string& dir, const std::set<std::string>& resultFiles);
+
+  /// The folder the new result is written into.
+  const std::string& staging() const { return staging_; }
+
+  /// Puts the file `name` of the current result into the staging folder unchanged (a hard link:
+  /// files are only ever replaced by rename, never changed in place; a copy where links are not
+  /// possible). OutputFailed naming the file.
+  Status carryOver(const std::string& name) const;
+
+  /// `status` with the staging folder's path written as the result folder's, so that a message
+  /// names the file the user knows.
+  Status named(const Status& status) const;
+
+  /// Flushes the staged files to disk and swaps the staging folder in for the result folder
+  /// (one atomic exchange; the old result is then removed). OutputFailed when it cannot: the
+  /// result folder then still holds the old result.
+  Status commit();
+
+ private:
+  std::string dir_;       ///< absolute, symbolic links resolved
+  std::string shownDir_;  ///< as the user wrote it, for messages
+  std::string staging_, lockPath_;
+  int lockFd_ = -1;
+};
+
+}  // namespace dform
