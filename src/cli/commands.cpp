@@ -103,6 +103,24 @@ Result<ExportOptions> exportOptions(const OutputOptions& output) {
     if (!sheet.isOk()) return sheet.status();
     options.sheetWidthMm = sheet.value().first;
     options.sheetHeightMm = sheet.value().second;
+    options.sheetGiven = true;
+  }
+  if (!output.page.empty() && !pageSizeMm(output.page))
+    return Status(ErrorCode::Usage, "--page must be A4, Letter, A3, Tabloid or a size such as "
+                                    "200x300mm, got '" + output.page + "'");
+  options.page = output.page;
+  if (output.scale == "fit") {
+    options.scaleToFit = true;
+  } else if (!output.scale.empty()) {
+    double value = 0;
+    char rest[4] = "";
+    const int n = std::sscanf(output.scale.c_str(), "%lf%3s", &value, rest);
+    const std::string unit = rest;
+    if (n < 1 || !(unit.empty() || unit == "%"))
+      return Status(ErrorCode::Usage,
+                    "--scale must be a number (0.8), a percentage (80%) or fit, got '" +
+                        output.scale + "'");
+    options.scale = unit == "%" ? value / 100 : value;
   }
   if (output.tabWidthMm) options.tabWidthMm = *output.tabWidthMm;
   if (output.tickSpacingMm) options.tickSpacingMm = *output.tickSpacingMm;
@@ -113,6 +131,7 @@ Result<ExportOptions> exportOptions(const OutputOptions& output) {
                     "--tabs must be a, b, alternate or none, got '" + output.tabs + "'");
   }
   options.gltfBinary = !output.gltfText;
+  options.title = output.title;
   if (Status s = checkExportOptions(options); !s.isOk()) return s;
   return options;
 }
@@ -158,8 +177,9 @@ CheckResult layoutCheck(const LayoutFindings& f) {
                               std::to_string(f.tabsOverPieces) + " tabs over a piece, " +
                               std::to_string(f.overlappingPieces) + " overlapping pieces, " +
                               std::to_string(f.labelsOutside) + " labels outside their piece, " +
-                              std::to_string(f.overlappingLabels) +
-                              " overlapping label pairs; first: " + f.example;
+                              std::to_string(f.overlappingLabels) + " overlapping label pairs, " +
+                              std::to_string(f.titleOverlaps) +
+                              " title lines over a piece or mark; first: " + f.example;
   return judgeCheck("pattern_layout", f.problems(), 0, detail);
 }
 
@@ -404,13 +424,21 @@ int exportSaved(const std::string& dir, const OutputOptions& output) {
     if (!failedGate) prepared = prepare(model.value(), exporting.value(), true, name);
     if (!prepared.isOk()) return fail(prepared.status());
   }
-  removeOldExports(dir);
+  // -o: the patterns go into another folder and the result folder is left as it is.
+  const std::string target = output.outDir.empty() ? dir : output.outDir;
+  if (!output.outDir.empty()) {
+    std::error_code ec;
+    fs::create_directories(target, ec);
+    if (ec || !fs::is_directory(target))
+      return fail(Status(ErrorCode::OutputFailed, target + ": the output folder cannot be created"));
+  }
+  removeOldExports(target);
   noteExport(prepared.value(), sink);
-  if (Status s = writeCuttingFiles(prepared.value(), dir); !s.isOk()) return fail(s);
-  // The report page shows the pattern: redrawn with the new one.
-  if (hasReport)
+  if (Status s = writeCuttingFiles(prepared.value(), target); !s.isOk()) return fail(s);
+  // The report page shows the pattern: redrawn with the new one (in the result folder only).
+  if (hasReport && output.outDir.empty())
     if (Status s = writeReportHtml(dir, model.value(), templatesDir()); !s.isOk()) return fail(s);
-  std::fprintf(stdout, "exported %s into %s\n", output.profile.c_str(), dir.c_str());
+  std::fprintf(stdout, "exported %s into %s\n", output.profile.c_str(), target.c_str());
   return 0;
 }
 

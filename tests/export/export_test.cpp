@@ -82,7 +82,7 @@ TEST(ExportPattern, SvgIsTrueScaleInMillimetresWithLayersAndIds) {
   EXPECT_DOUBLE_EQ(parseMm(e.svg.width), 600);
   EXPECT_DOUBLE_EQ(parseMm(e.svg.height), 400);
   EXPECT_EQ(e.svg.viewBox, "0 0 600 400");  // 1 user unit = 1 mm
-  EXPECT_EQ(e.svg.layers, (std::vector<std::string>{"Engrave", "Score", "Cut"}));
+  EXPECT_EQ(e.svg.layers, (std::vector<std::string>{"Title", "Engrave", "Score", "Cut"}));
   for (const char* id : {"A-cut", "B-cut", "A-tick-00", "A-tick-07", "B-tick-07", "A-name",
                          "B-name", "A-fold-01", "A-tick-07-label", "title"})
     EXPECT_NE(e.svg.find(id), nullptr) << id;
@@ -109,7 +109,8 @@ TEST(ExportPattern, LaserUsesOnlyTheThreeOperationColoursAndHairlines) {
     EXPECT_EQ(colours.size(), 3u) << profile << ": one colour per operation";
     const Exported e = exportTo("colours-" + profile, model, options(profile));
     const std::map<std::string, std::string> layerColour{
-        {"Cut", p.cutColor}, {"Score", p.scoreColor}, {"Engrave", p.engraveColor}};
+        {"Cut", p.cutColor}, {"Score", p.scoreColor}, {"Engrave", p.engraveColor},
+        {"Title", p.engraveColor}};
     for (const auto& path : e.svg.paths) {
       EXPECT_EQ(path.fill, "none") << profile << " " << path.id;
       EXPECT_EQ(path.stroke, layerColour.at(path.layer)) << profile << " " << path.id;
@@ -470,7 +471,7 @@ TEST(ExportPattern, LargePatternIsTiledAcrossA4PagesWithMarks) {
 TEST(ExportPattern, PrintAndCutHasSilhouetteMarksAndSeparateLayers) {
   const DForm model = ellipseCircleDForm(64, 8, 48, 30, 18);
   const Exported e = exportTo("pnc", model, options("print-and-cut"));
-  EXPECT_EQ(e.svg.layers, (std::vector<std::string>{"Regmarks", "Print", "Cut"}));
+  EXPECT_EQ(e.svg.layers, (std::vector<std::string>{"Title", "Regmarks", "Print", "Cut"}));
   EXPECT_DOUBLE_EQ(parseMm(e.svg.width), 210);
   const SvgPath* square = e.svg.find("regmark-square");
   ASSERT_NE(square, nullptr);
@@ -489,13 +490,14 @@ TEST(ExportPattern, PrintAndCutHasSilhouetteMarksAndSeparateLayers) {
       EXPECT_GE(std::min(q.y(), 297 - q.y()), 10.0 - 1e-9);
     }
   }
-  // Artwork (everything but the marks) keeps 20 mm clear of the marks.
+  // Artwork (everything but the marks) keeps the profile's 5 mm clear of the marks' inner
+  // edges: 10 mm inset + 5 mm square + 5 mm from the page's edges.
   for (const auto& p : e.svg.paths) {
     if (p.layer == "Regmarks") continue;
     for (const auto& part : p.parts)
       for (const Vec2& q : part) {
-        EXPECT_GE(std::min(q.x(), 210 - q.x()), 30.0) << p.id;
-        EXPECT_GE(std::min(q.y(), 297 - q.y()), 30.0) << p.id;
+        EXPECT_GE(std::min(q.x(), 210 - q.x()), 20.0 - 1e-9) << p.id;
+        EXPECT_GE(std::min(q.y(), 297 - q.y()), 20.0 - 1e-9) << p.id;
       }
     if (p.layer == "Cut") {
       EXPECT_TRUE(p.id.find("-cut") != std::string::npos) << p.id;
@@ -505,7 +507,7 @@ TEST(ExportPattern, PrintAndCutHasSilhouetteMarksAndSeparateLayers) {
 
 TEST(ExportPattern, PrintAndCutGivesEachPieceItsOwnPageWhenTheyDoNotFitOne) {
   // A 160 x 100 mm ellipse and a 131 mm circle, tabs on A: each fits the registration area of an
-  // A4 (140 x 227 mm) or Letter page, not both together.
+  // A4 (170 x 257 mm) or Letter page, not both together.
   const DForm model = ellipseCircleDForm();
   struct Case {
     const char* profile;
@@ -514,7 +516,7 @@ TEST(ExportPattern, PrintAndCutGivesEachPieceItsOwnPageWhenTheyDoNotFitOne) {
   };
   const double cw = 6.75 * 25.4, ch = 9.25 * 25.4;
   const Case cases[] = {
-      {"print-and-cut", 210, 297, Vec2(35, 35), Vec2(175, 262)},
+      {"print-and-cut", 210, 297, Vec2(20, 20), Vec2(190, 277)},
       {"print-and-cut-cricut", 215.9, 279.4, Vec2((215.9 - cw) / 2, (279.4 - ch) / 2),
        Vec2((215.9 + cw) / 2, (279.4 + ch) / 2)}};
   for (const Case& c : cases) {
@@ -562,11 +564,13 @@ TEST(ExportPattern, PrintAndCutGivesEachPieceItsOwnPageWhenTheyDoNotFitOne) {
       EXPECT_NEAR(pdfPageSize(out).first, c.W * 72 / 25.4, 0.01) << out;
     }
   }
-  // A piece that does not fit a page even alone is refused, with the size it needs: here the
-  // circle with the tabs on it (131 + 2 x 6 mm, ticks and the 35 mm borders: over 210 mm).
+  // A piece that does not fit a page even alone is refused, with the size it needs: here a
+  // 200 mm circle with the tabs on it (200 + 2 x 6 mm, ticks and the 20 mm borders: over 210 mm),
+  // beside an ellipse that fits.
   ExportOptions o = options("print-and-cut");
   o.tabSide = TabSide::B;
-  auto refused = exportAll(model, o, freshDir("pnc-refused"));
+  const DForm large = ellipseCircleDForm(64, 8, 125, 70, 30);
+  auto refused = exportAll(large, o, freshDir("pnc-refused"));
   ASSERT_FALSE(refused.isOk());
   EXPECT_EQ(refused.status().code(), ErrorCode::Usage);
   const std::string& message = refused.status().message();
@@ -574,6 +578,15 @@ TEST(ExportPattern, PrintAndCutGivesEachPieceItsOwnPageWhenTheyDoNotFitOne) {
             0u)
       << message;
   EXPECT_GT(std::stod(message.substr(message.find("at least") + 9)), 210.0) << message;
+  // Scaled to fit, it goes on its page, and pattern.json records the scale.
+  o.scaleToFit = true;
+  const Exported fitted = exportTo("pnc-scaled", large, o);
+  const double scale = fitted.sidecar["scale"].get<double>();
+  EXPECT_LT(scale, 1.0);
+  EXPECT_GT(scale, 0.5);
+  EXPECT_NEAR(fitted.summary.perimeterA, scale * solvedPerimeter(large.a), kMmTol);
+  ASSERT_NE(fitted.svg.find("title"), nullptr);
+  EXPECT_EQ(fitted.summary.pages, 2);
 }
 
 TEST(ExportPattern, CricutArtworkStaysInThePrintThenCutArea) {
