@@ -629,6 +629,107 @@ TEST(ExportPattern, PiecesAreRotatedToFitAndNeverOverlap) {
   EXPECT_LT(overlap(e.svg.find("A-cut")->parts[0], e.svg.find("B-cut")->parts[0]), 1e-9);
 }
 
+TEST(ExportPattern, LaserPiecesThatDoNotFitOneSheetTogetherGetASheetEach) {
+  // The 160 x 100 mm ellipse (tabs on it) and the 131 mm circle: each fits a 200 x 200 mm
+  // sheet, both do not.
+  const DForm model = ellipseCircleDForm();
+  ExportOptions o = options("laser");
+  o.sheetWidthMm = 200;
+  o.sheetHeightMm = 200;
+  const Exported e = exportTo("two-sheets", model, o);
+  ASSERT_EQ(e.sidecar["sheets"].size(), 2u);
+  EXPECT_EQ(e.summary.pages, 2);
+  for (int k = 0; k < 2; ++k) {
+    const auto& sheet = e.sidecar["sheets"][k];
+    EXPECT_DOUBLE_EQ(sheet["width"].get<double>(), 200);
+    EXPECT_DOUBLE_EQ(sheet["height"].get<double>(), 200);
+    EXPECT_EQ(e.sidecar["pieces"][k]["sheet"].get<int>(), k);
+    // Each sheet is a file of its own, at the sheet's size, with its one piece's cut on it.
+    const std::string file = sheet["file"].get<std::string>();
+    EXPECT_EQ(file, sheetFileName(k + 1, "svg"));
+    const SvgDoc svg = readSvg(e.dir + "/" + file);
+    EXPECT_DOUBLE_EQ(parseMm(svg.width), 200);
+    EXPECT_DOUBLE_EQ(parseMm(svg.height), 200);
+    const std::string mine = k == 0 ? "A-cut" : "B-cut", other = k == 0 ? "B-cut" : "A-cut";
+    ASSERT_NE(svg.find(mine), nullptr) << file;
+    EXPECT_EQ(svg.find(other), nullptr) << file;
+    EXPECT_NE(svg.find(k == 0 ? "title" : "title-page-2"), nullptr) << file << ": its own title";
+    EXPECT_NEAR(length(svg.find(mine)->parts[0], true),
+                length(e.svg.find(mine)->parts[0], true), 1e-3);
+    for (const SvgPath& path : svg.paths)
+      for (const Polyline& part : path.parts)
+        for (const Vec2& q : part) {
+          EXPECT_TRUE(q.x() >= 0 && q.x() <= 200 && q.y() >= 0 && q.y() <= 200) << path.id;
+        }
+  }
+  EXPECT_EQ(fab::checkLayout(build(model, o)).problems(), 0);
+  // A sheet that takes both: one sheet, no sheet files.
+  o.sheetWidthMm = 400;
+  o.sheetHeightMm = 300;
+  const Exported one = exportTo("one-sheet", model, o);
+  EXPECT_EQ(one.sidecar["sheets"].size(), 1u);
+  EXPECT_FALSE(fs::exists(one.dir + "/" + sheetFileName(1, "svg")));
+}
+
+TEST(ExportPattern, PrintPutsEachPieceOnAPageAndTilesOnlyAPieceLargerThanThePage) {
+  // A 112 x 70 mm ellipse and its 92 mm circle fit one A4 page together.
+  const Exported both =
+      exportTo("print-one-page", ellipseCircleDForm(64, 8, 56, 35, 20), options("print"));
+  EXPECT_EQ(both.summary.pages, 1);
+  // An ellipse 250 x 110 mm: fits a landscape A4 alone; its 190 mm circle partner a portrait one.
+  const DForm pair = ellipseCircleDForm(64, 8, 125, 55, 30);
+  const Exported pages = exportTo("print-page-each", pair, options("print"));
+  ASSERT_EQ(pages.sidecar["sheets"].size(), 2u);
+  EXPECT_EQ(pages.summary.pages, 2);
+  // A 300 x 180 mm ellipse with a 250 mm circle partner on A5-like 150 x 210 mm pages: both tiled,
+  // each after a page map.
+  ExportOptions small = options("print");
+  small.page = "150x210mm";
+  const Exported tiled = exportTo("print-tiled", ellipseCircleDForm(64, 8, 150, 90, 40), small);
+  ASSERT_EQ(tiled.sidecar["sheets"].size(), 2u);
+  EXPECT_GT(tiled.summary.pages, 4);
+  for (const auto& page : tiled.sidecar["pages"]) {
+    EXPECT_DOUBLE_EQ(page["width"].get<double>(), 150);
+    EXPECT_DOUBLE_EQ(page["height"].get<double>(), 210);
+  }
+  const fab::PatternBuild pattern = build(ellipseCircleDForm(64, 8, 150, 90, 40), small);
+  int maps = 0, tiles = 0;
+  for (const fab::PageView& page : pattern.pages)
+    for (const fab::Layer& layer : page.overlay)
+      for (const fab::Path& path : layer.paths) {
+        maps += path.id == "page-map-header";
+        tiles += path.id == "tile-header";
+      }
+  EXPECT_EQ(maps, 2);
+  EXPECT_EQ(maps + tiles, int(pattern.pages.size()));
+}
+
+TEST(ExportPattern, PageAndSheetOptionsAreRefusedWhereTheyDoNotApply) {
+  const DForm model = ellipseCircleDForm();
+  ExportOptions print = options("print");
+  print.sheetGiven = true;
+  auto refused = prepareExport(model, print);
+  ASSERT_FALSE(refused.isOk());
+  EXPECT_EQ(refused.status().code(), ErrorCode::Usage);
+  EXPECT_NE(refused.status().message().find("--page"), std::string::npos)
+      << refused.status().message();
+  ExportOptions laser = options("laser");
+  laser.page = "A4";
+  refused = prepareExport(model, laser);
+  ASSERT_FALSE(refused.isOk());
+  EXPECT_EQ(refused.status().code(), ErrorCode::Usage);
+  EXPECT_NE(refused.status().message().find("--sheet"), std::string::npos)
+      << refused.status().message();
+  ExportOptions a3 = options("print");
+  a3.page = "A3";
+  const Exported e = exportTo("a3", model, a3);
+  EXPECT_DOUBLE_EQ(parseMm(e.svg.width), 297);
+  EXPECT_DOUBLE_EQ(parseMm(e.svg.height), 420);
+  EXPECT_FALSE(pageSizeMm("A5x"));
+  EXPECT_NEAR(pageSizeMm("8.5x11in")->first, 215.9, 1e-9);
+  EXPECT_NEAR(pageSizeMm("Tabloid")->second, 431.8, 1e-9);
+}
+
 TEST(ExportPattern, SheetTooSmallSaysWhatSizeIsNeeded) {
   const DForm model = ellipseCircleDForm();
   ExportOptions o = options();
