@@ -706,20 +706,17 @@ TEST(ExportPattern, PrintPutsEachPieceOnAPageAndTilesOnlyAPieceLargerThanThePage
 
 TEST(ExportPattern, PageAndSheetOptionsAreRefusedWhereTheyDoNotApply) {
   const DForm model = ellipseCircleDForm();
-  ExportOptions print = options("print");
+  ExportOptions print = options("print"), laser = options("laser");
   print.sheetGiven = true;
-  auto refused = prepareExport(model, print);
-  ASSERT_FALSE(refused.isOk());
-  EXPECT_EQ(refused.status().code(), ErrorCode::Usage);
-  EXPECT_NE(refused.status().message().find("--page"), std::string::npos)
-      << refused.status().message();
-  ExportOptions laser = options("laser");
   laser.page = "A4";
-  refused = prepareExport(model, laser);
-  ASSERT_FALSE(refused.isOk());
-  EXPECT_EQ(refused.status().code(), ErrorCode::Usage);
-  EXPECT_NE(refused.status().message().find("--sheet"), std::string::npos)
-      << refused.status().message();
+  // Each refusal names the option that does apply.
+  for (const auto& [o, instead] : {std::pair{print, "--page"}, std::pair{laser, "--sheet"}}) {
+    auto refused = prepareExport(model, o);
+    ASSERT_FALSE(refused.isOk()) << instead;
+    EXPECT_EQ(refused.status().code(), ErrorCode::Usage);
+    EXPECT_NE(refused.status().message().find(instead), std::string::npos)
+        << refused.status().message();
+  }
   ExportOptions a3 = options("print");
   a3.page = "A3";
   const Exported e = exportTo("a3", model, a3);

@@ -14,6 +14,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "shipped_samples.h"
 #include "test_util.h"
 
 namespace dform::test {
@@ -28,19 +29,6 @@ constexpr double kMmTol = 0.1;  // the issue's bar for cut and printed lengths
 std::string dform() { return DFORM_EXE; }
 
 json readJson(const std::string& path) { return json::parse(std::ifstream(path)); }
-
-// The shipped samples: forward job files and inverse curves.
-std::vector<std::string> shippedSamples() {
-  std::vector<std::string> samples;
-  for (const char* folder : {"forward", "inverse"})
-    for (const auto& entry : fs::directory_iterator(std::string(DFORM_SAMPLES_DIR) + "/" + folder)) {
-      const std::string ext = entry.path().extension().string();
-      if (ext == ".json" || (ext == ".obj" && std::string(folder) == "inverse"))
-        samples.push_back(std::string(folder) + "/" + entry.path().filename().string());
-    }
-  std::sort(samples.begin(), samples.end());
-  return samples;
-}
 
 struct Paper {
   const char* name;
