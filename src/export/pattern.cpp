@@ -1349,7 +1349,9 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
       map.width = pageW;
       map.height = pageH;
       Layer furniture = furnitureLayer();
-      const double mapScale = std::min(cw / plan.box.w(), ch / plan.box.h());
+      // The grid of windows reaches past the piece's sheet (the last ones overhang it).
+      const double gridW = double(nx) * (cw - ov) + ov, gridH = double(ny) * (ch - ov) + ov;
+      const double mapScale = std::min(cw / gridW, ch / gridH);
       auto onMap = [&](const Vec2& q) -> Vec2 {
         return Vec2(pm, pm + header) + mapScale * (q - plan.box.lo);
       };

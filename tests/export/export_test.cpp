@@ -699,6 +699,10 @@ TEST(ExportPattern, PrintPutsEachPieceOnAPageAndTilesOnlyAPieceLargerThanThePage
       for (const fab::Path& path : layer.paths) {
         maps += path.id == "page-map-header";
         tiles += path.id == "tile-header";
+        for (const Polyline& part : path.parts)  // the map's grid and the furniture on the page
+          for (const Vec2& q : part)
+            EXPECT_TRUE(q.x() >= 0 && q.x() <= page.width && q.y() >= 0 && q.y() <= page.height)
+                << path.id << " at " << q.transpose();
       }
   EXPECT_EQ(maps, 2);
   EXPECT_EQ(maps + tiles, int(pattern.pages.size()));
