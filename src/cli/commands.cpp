@@ -104,6 +104,24 @@ Result<ExportOptions> exportOptions(const OutputOptions& output) {
     if (!sheet.isOk()) return sheet.status();
     options.sheetWidthMm = sheet.value().first;
     options.sheetHeightMm = sheet.value().second;
+    options.sheetGiven = true;
+  }
+  if (!output.page.empty() && !pageSizeMm(output.page))
+    return Status(ErrorCode::Usage, "--page must be A4, Letter, A3, Tabloid or a size such as "
+                                    "200x300mm, got '" + output.page + "'");
+  options.page = output.page;
+  if (output.scale == "fit") {
+    options.scaleToFit = true;
+  } else if (!output.scale.empty()) {
+    double value = 0;
+    char rest[4] = "";
+    const int n = std::sscanf(output.scale.c_str(), "%lf%3s", &value, rest);
+    const std::string unit = rest;
+    if (n < 1 || !(unit.empty() || unit == "%"))
+      return Status(ErrorCode::Usage,
+                    "--scale must be a number (0.8), a percentage (80%) or fit, got '" +
+                        output.scale + "'");
+    options.scale = unit == "%" ? value / 100 : value;
   }
   if (output.tabWidthMm) options.tabWidthMm = *output.tabWidthMm;
   if (output.tickSpacingMm) options.tickSpacingMm = *output.tickSpacingMm;
@@ -114,6 +132,7 @@ Result<ExportOptions> exportOptions(const OutputOptions& output) {
                     "--tabs must be a, b, alternate or none, got '" + output.tabs + "'");
   }
   options.gltfBinary = !output.gltfText;
+  options.title = output.title;
   if (Status s = checkExportOptions(options); !s.isOk()) return s;
   if (output.exportFiles) {  // the profile is read once, now, not after the solve
     Result<Profile> profile = loadProfile(options.profile, options.templatesDir);
@@ -165,8 +184,9 @@ CheckResult layoutCheck(const LayoutFindings& f) {
                               std::to_string(f.tabsOverPieces) + " tabs over a piece, " +
                               std::to_string(f.overlappingPieces) + " overlapping pieces, " +
                               std::to_string(f.labelsOutside) + " labels outside their piece, " +
-                              std::to_string(f.overlappingLabels) +
-                              " overlapping label pairs; first: " + f.example;
+                              std::to_string(f.overlappingLabels) + " overlapping label pairs, " +
+                              std::to_string(f.titleOverlaps) +
+                              " title lines over a piece or mark; first: " + f.example;
   return judgeCheck("pattern_layout", f.problems(), 0, detail);
 }
 
@@ -457,6 +477,16 @@ int exportSaved(const std::string& dir, const OutputOptions& output,
   }
   if (interrupted) return fail(leftAsItWas(dir, "interrupted"));
   noteExport(prepared.value(), sink);
+  // -o: the pattern set goes into a folder of its own, as one transaction too, and the result
+  // folder is left as it is (its lock is released unchanged).
+  if (!output.outDir.empty()) {
+    ResultFolder out;
+    if (Status s = out.begin(output.outDir, resultFileNames()); !s.isOk()) return fail(s);
+    if (Status s = writeExport(prepared.value(), out.staging()).status(); !s.isOk()) return fail(out.named(s));
+    if (Status s = commitUnlessInterrupted(out, output.outDir, interrupted); !s.isOk()) return fail(s);
+    std::fprintf(stdout, "exported %s into %s\n", output.profile.c_str(), output.outDir.c_str());
+    return 0;
+  }
   // The result's own files go into the new folder unchanged; earlier cutting files do not.
   for (const char* kept : {ModelFileNames::aFlat, ModelFileNames::a3d, ModelFileNames::bFlat,
                            ModelFileNames::b3d, ModelFileNames::targetCurve, "report.json"})

@@ -77,10 +77,13 @@ bool parsePoint(const std::string& text, StartPoint& start) {
 // The options of the cutting patterns and previews (forward, inverse, run and export).
 void addExportOptions(CLI::App* command, cli::OutputOptions& out) {
   command->add_option("--profile", out.profile, "export profile name or .json file (default laser)");
-  command->add_option("--sheet", out.sheet, "material sheet, e.g. 600x400mm");
+  command->add_option("--sheet", out.sheet, "material sheet of a laser profile, e.g. 600x400mm");
+  command->add_option("--scale", out.scale, "pattern scale: 1 (true size, the default), 0.8 or 80%, or fit (the largest scale up to 1 at which every piece fits its page or sheet)");
+  command->add_option("--page", out.page, "paper of a print profile: A4, Letter, A3, Tabloid or WxHmm (default: the profile's)");
   command->add_option("--tab-width", out.tabWidthMm, "glue tab width in mm, 0 for none (default 6)");
   command->add_option("--tabs", out.tabs, "which piece gets the glue tabs: a, b, alternate or none (default: the profile's)");
   command->add_option("--tick-spacing", out.tickSpacingMm, "seam length between numbered ticks in mm (default 20)");
+  command->add_flag("!--no-title", out.title, "leave the title block and notes off the pattern sheets");
   command->add_flag("--gltf", out.gltfText, "write the 3D preview as text dform.gltf instead of dform.glb");
 }
 
@@ -157,6 +160,9 @@ int run(int argc, char** argv) {
       app.add_subcommand("export", "write cutting patterns and previews of a saved result");
   exportCommand->add_option("dir", exportDir, "a result folder written by forward, inverse or run");
   addExportOptions(exportCommand, exportOut);
+  exportCommand->add_option("-o,--output", exportOut.outDir,
+                            "write the patterns into this folder (created if missing) instead of "
+                            "the result folder, which is left untouched");
   exportCommand->add_flag("--export-anyway", exportOut.exportAnyway,
                           "export a result that failed its gate, or a pattern that does not lay "
                           "out cleanly (marked FAILED GATE)");

@@ -31,6 +31,8 @@ Status checkExportOptions(const ExportOptions& o) {
     return Status{ErrorCode::Usage, "tab angle must be between 15 and 90 degrees"};
   if (!(o.tabGapMm >= 0) || !(o.tabMaxLengthMm > 0) || !(o.tabMaxTurnDeg > 0))
     return Status{ErrorCode::Usage, "tab gap, length and turn limits must be positive"};
+  if (!(o.scale >= 0.05 && o.scale <= 20))
+    return Status{ErrorCode::Usage, "scale must be between 0.05 (5%) and 20"};
   return Status::ok();
 }
 
@@ -53,6 +55,11 @@ Result<PreparedExport> prepareExport(const DForm& model, const ExportOptions& op
       {"dform.stl", fab::stlDocument(model, options.failedGateMark)},
       {options.gltfBinary ? "dform.glb" : "dform.gltf", gltf.value()},
   };
+  // A pattern on several sheets (pages): each also alone, at its own size, for the machine.
+  if (pat.sheets.size() > 1)
+    for (size_t k = 0; k < pat.sheets.size(); ++k)
+      prepared.files.emplace_back(sheetFileName(int(k) + 1, "svg"),
+                                  fab::svgDocument(fab::sheetDrawing(pat.drawing, pat.sheets[k])));
   prepared.layout = fab::checkLayout(pat);
   ExportSummary& summary = prepared.summary;
   summary.messages = pat.messages;
@@ -81,7 +88,9 @@ Result<ExportSummary> writeExport(const PreparedExport& prepared, const std::str
 }
 
 std::vector<std::string> exportFileNames() {
-  return {"pattern.svg", "pattern.pdf", "pattern.json", "dform.stl", "dform.glb", "dform.gltf"};
+  // A D-Form has two pieces, so a pattern takes at most two sheets.
+  return {"pattern.svg", "pattern.pdf",          "pattern.json",         "dform.stl",
+          "dform.glb",   "dform.gltf",           sheetFileName(1, "svg"), sheetFileName(2, "svg")};
 }
 
 Result<ExportSummary> exportAll(const DForm& model, const ExportOptions& options,

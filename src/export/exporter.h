@@ -67,10 +67,13 @@ struct Profile {
   double perforationGapMm = 1.0;  ///< perforated fold: length of each bridge (mm)
   double dashMm = 3.0;            ///< dashed fold: dash and gap length (mm)
   double marginMm = 5.0;          ///< clear margin at the sheet/page edges and between pieces (mm)
-  std::string page;               ///< "" = the sheet from ExportOptions; "A4" or "Letter"
+  std::string page;  ///< "" = the sheet from ExportOptions; a page name (pageSizeMm) otherwise
   bool tile = false;              ///< page profiles: tile a pattern larger than a page
   double tileOverlapMm = 10.0;    ///< overlap between neighbouring tiles (mm)
   Registration registration = Registration::None;
+  /// Silhouette: clear space (mm) between the artwork and the marks' inner edges (the square's
+  /// far side, 15 mm from the edges), so the artwork keeps 15 mm + this from every page edge.
+  double registrationClearMm = 5.0;
   bool calibrationBar = false;  ///< draw a 50 mm calibration bar with "print at 100%"
   double labelHeightMm = 3.0;   ///< cap height of tick numbers (mm); piece names are 3x
   double kerfMm = 0.0;          ///< outward offset of the closed cut path (mm, half the kerf)
@@ -90,6 +93,14 @@ Result<Profile> parseProfileJson(const std::string& text, const std::string& sou
 /// The profile names found in `<templatesDir>/profiles/`, sorted.
 std::vector<std::string> listProfiles(const std::string& templatesDir);
 
+/// The size (width, height in mm, portrait) of a page called `name`: "A4", "A3", "Letter",
+/// "Tabloid", or "WxH" with a unit mm, cm or in ("200x300mm"); nullopt for anything else.
+std::optional<std::pair<double, double>> pageSizeMm(const std::string& name);
+
+/// The file of sheet `sheet` (1-based) alone, written when a pattern takes more than one sheet or
+/// page: "pattern-sheet-1.svg" for (1, "svg").
+std::string sheetFileName(int sheet, const std::string& extension);
+
 struct ExportOptions {
   std::string profile = "laser";    ///< profile name or path to a profile .json
   std::string templatesDir;         ///< folder holding profiles/ (the CLI passes the install path)
@@ -97,6 +108,10 @@ struct ExportOptions {
   bool useProfileOverride = false;  ///< use profileOverride (tests, callers that built one)
   double sheetWidthMm = 600;        ///< material sheet width (mm); page profiles use their page
   double sheetHeightMm = 400;       ///< material sheet height (mm)
+  /// The sheet size was asked for (--sheet): a page profile refuses it rather than ignore it.
+  bool sheetGiven = false;
+  /// Page profiles: the page (a pageSizeMm name) instead of the profile's; "" = the profile's.
+  std::string page;
   double tickSpacingMm = 20;        ///< seam arc length between numbered ticks (mm)
   double tabWidthMm = 6;            ///< glue tab width (mm); 0 = no tabs
   double tabAngleDeg = 45;          ///< angle of the tab ends against the fold line (degrees)
@@ -106,6 +121,13 @@ struct ExportOptions {
   std::optional<TabSide> tabSide;   ///< which piece gets the glue tabs; unset: the profile's
   double kerfMm = -1;               ///< outward cut-path offset (mm); negative = the profile's
   std::string jobName = "dform";    ///< printed in the title line and file metadata
+  bool title = true;                ///< the title block and notes on each sheet (--no-title: none)
+  /// Scale of the pattern (1 = true size): the pieces are scaled, tabs, ticks and labels keep
+  /// their size; the scale is printed in the title line and written in pattern.json.
+  double scale = 1.0;
+  /// When the pieces do not fit at `scale`, use the largest smaller scale (whole percent) at
+  /// which they do, and say so (--scale fit).
+  bool scaleToFit = false;
   bool failedGateMark = false;      ///< print a visible "FAILED GATE" mark on every output
   /// Optional per-vertex Gaussian curvature of A for the glTF's COLOR_0, in any unit (the map is
   /// scaled by its 95th percentile), e.g. validate's curvatureMap (angle defect, radians).
@@ -142,10 +164,12 @@ struct LayoutFindings {
   int overlappingPieces = 0;  ///< 1 when the two pieces' cut paths share area
   int labelsOutside = 0;      ///< labels not wholly inside their piece's outline
   int overlappingLabels = 0;  ///< pairs of labels whose footprints (convex hulls) share area
+  /// (title block or calibration bar line, piece or registration mark) pairs sharing area
+  int titleOverlaps = 0;
   std::string example;        ///< the first problem found, in words; empty when none
   int problems() const {
     return outsideSheet + overlappingTabs + tabsOverPieces + overlappingPieces + labelsOutside +
-           overlappingLabels;
+           overlappingLabels + titleOverlaps;
   }
 };
 

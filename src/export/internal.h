@@ -122,10 +122,12 @@ struct PieceInfo {
   std::vector<CreaseInfo> creases;
   double perimeter = 0;    ///< flat seam length (mm)
   double rotationDeg = 0;  ///< rotation applied on the sheet (after flipping y)
+  int sheet = 0;           ///< the sheet (page) it is on: an index into PatternBuild::sheets
 };
 
 struct PatternBuild {
   Profile profile;
+  double scale = 1.0;  ///< the pattern's scale: 1 true size, else the flat pieces were scaled
   Drawing drawing;
   /// The sheets or pages the pattern is laid out on (canvas mm): one, or one per piece when a
   /// print-and-cut pattern puts each piece on its own page. Every path lies inside one of them.
@@ -175,6 +177,8 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& optio
                                   const Profile& profile, BuildWork* work = nullptr);
 
 std::string svgDocument(const Drawing& drawing);
+/// The part of `drawing` on `sheet` (the paths inside it), moved to the sheet's own origin.
+Drawing sheetDrawing(const Drawing& drawing, const Box& sheet);
 Result<std::string> pdfDocument(const PatternBuild& pattern);
 Result<std::string> pngImage(const PatternBuild& pattern, int page, double dpi);
 std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName);

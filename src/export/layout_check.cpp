@@ -33,7 +33,15 @@ std::string withoutPage(const std::string& id) {
 bool isLabel(const Path& p) {
   const std::string id = withoutPage(p.id);
   return endsWith(id, "-label") || endsWith(id, "-name") || endsWith(id, "-failed-gate") ||
-         id == "title" || id == "note";
+         id == "title" || id == "note" || id == "tab-note" || id == "failed-gate";
+}
+
+// The sheet's own furniture: its title block (title, notes, legend, failed-gate line) and the
+// calibration bar with its label.
+bool isSheetFurniture(const Path& p) {
+  const std::string id = withoutPage(p.id);
+  return id == "title" || id == "note" || id == "tab-note" || id == "crease-legend-label" ||
+         id == "failed-gate" || id == "calibration-bar" || id == "calibration-label";
 }
 
 // The piece a path belongs to, from its id ("A-tick-07-label" -> A), or -1.
@@ -125,6 +133,38 @@ LayoutFindings checkLayout(const PatternBuild& pattern, BuildWork* workOut) {
     f.overlappingPieces = 1;
     note(f, "the cut paths of " + pieces[0].name + " and " + pieces[1].name + " overlap");
   }
+
+  // The title block and the calibration bar keep off the pieces (their cut paths, tabs included)
+  // and the registration marks.
+  std::vector<Polyline> obstacles;
+  std::vector<std::string> obstacleNames;
+  for (const PieceInfo& piece : pieces)
+    for (const Polyline& cut : piece.cut) {
+      obstacles.push_back(cut);
+      obstacleNames.push_back("piece " + piece.name);
+    }
+  for (const Layer& layer : d.layers)
+    if (layer.name == "Regmarks")
+      for (const Path& mark : layer.paths) {
+        obstacles.push_back(convexHull(mark.parts));
+        obstacleNames.push_back("registration mark " + mark.id);
+      }
+  std::vector<Box> obstacleBoxes;
+  for (const Polyline& o : obstacles) obstacleBoxes.push_back(boxOf({o}));
+  for (const Layer& layer : d.layers)
+    for (const Path& path : layer.paths) {
+      if (!isSheetFurniture(path)) continue;
+      const Polyline hull = convexHull(path.parts);
+      const Box box = boxOf({hull});
+      for (size_t k = 0; k < obstacles.size(); ++k) {
+        if (hull.size() < 3 || !box.overlaps(obstacleBoxes[k])) continue;
+        ++work.pairTests;
+        if (overlapArea(hull, obstacles[k]) > kOverlapTolMm2) {
+          ++f.titleOverlaps;
+          note(f, path.id + " overlaps " + obstacleNames[k]);
+        }
+      }
+    }
 
   std::vector<Polyline> hulls;
   std::vector<Box> hullBoxes;

@@ -41,6 +41,9 @@ double srgbToLinear(double c) {
   return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
 }
 
+// The curvature colour scale's floor (radians of angle defect, as validate's curvatureMap).
+constexpr double kMinCurvatureScale = 1e-3;
+
 // Diverging blue-white-red map for t in [-1, 1], linear RGB.
 Eigen::Vector3f curvatureColor(double t) {
   t = std::clamp(t, -1.0, 1.0);
@@ -161,20 +164,21 @@ Result<std::string> gltfDocument(const DForm& model, const ExportOptions& o) {
                       std::to_string(model.a.shape.rows()) + " and " +
                       std::to_string(model.b.shape.rows()) + ")"};
   }
-  // Colour scale: the 95th percentile of |K| over both pieces, so that a few spikes at the seam
-  // do not wash out the map.
-  double scale = 1.0;
-  if (colored) {
-    std::vector<double> mags;
-    for (double k : o.curvatureA) mags.push_back(std::abs(k));
-    for (double k : o.curvatureB) mags.push_back(std::abs(k));
-    std::sort(mags.begin(), mags.end());
-    const double p95 = mags[size_t(0.95 * double(mags.size() - 1))];
-    if (p95 > 0 && std::isfinite(p95)) scale = p95;
-  }
+  // Colour scale: the largest |K| over both pieces, never below 1e-3 (in validate's unit,
+  // radians: rounding noise on an exactly developable shape stays white), the scale of
+  // report.html's curvature maps (report/views.cpp, curvatureScale), so that a colour means the
+  // same in both.
+  double scale = kMinCurvatureScale;
+  for (const std::vector<double>* values : {&o.curvatureA, &o.curvatureB})
+    for (double k : *values)
+      if (std::isfinite(k)) scale = std::max(scale, std::abs(k));
   GltfBuilder g;
   const std::string tag = o.failedGateMark ? " (FAILED GATE)" : "";
+  // Each piece its own base colour, so that A and B tell apart in any viewer; under a curvature
+  // map (COLOR_0, which glTF multiplies by the base colour) a light tint of it, so the map's
+  // white, blue and red still read.
   const Eigen::Vector4d colors[2] = {{0.80, 0.45, 0.20, 1.0}, {0.20, 0.45, 0.80, 1.0}};
+  const Eigen::Vector4d tints[2] = {{1.00, 0.90, 0.80, 1.0}, {0.80, 0.90, 1.00, 1.0}};
   const Piece* pieces[2] = {&model.a, &model.b};
   const std::vector<double>* curvature[2] = {&o.curvatureA, &o.curvatureB};
   for (int p = 0; p < 2; ++p) {
@@ -208,7 +212,7 @@ Result<std::string> gltfDocument(const DForm& model, const ExportOptions& o) {
     prim.attributes["NORMAL"] = g.vec3(nrm, false);
     if (colored) prim.attributes["COLOR_0"] = g.vec3(col, false);
     prim.indices = g.indices(idx);
-    prim.material = g.material(name, colored ? Eigen::Vector4d(1, 1, 1, 1) : colors[p], false);
+    prim.material = g.material(name, colored ? tints[p] : colors[p], false);
     g.node(name, prim);
   }
   {  // The seam as a line loop drawn with LINES (piece A's side of each seam pair).

@@ -19,14 +19,11 @@ namespace dform::fab {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kA4W = 210.0, kA4H = 297.0;
-constexpr double kLetterW = 215.9, kLetterH = 279.4;
 // Cricut Print Then Cut: 6.75 x 9.25 in (the long-standing safe maximum on Letter).
 constexpr double kCricutW = 6.75 * 25.4, kCricutH = 9.25 * 25.4;
-// Silhouette type-1 marks: 10 mm from the edges, 5 mm square, 20 mm L arms, 0.3 mm lines,
-// 20 mm kept clear of artwork around them.
-constexpr double kRegInset = 10.0, kRegSquare = 5.0, kRegArm = 20.0, kRegLine = 0.3,
-                 kRegClear = 20.0;
+// Silhouette type-1 marks: 10 mm from the edges, 5 mm square, 20 mm L arms, 0.3 mm lines (the
+// artwork's clearance from them is the profile's registration_clear_mm).
+constexpr double kRegInset = 10.0, kRegSquare = 5.0, kRegArm = 20.0, kRegLine = 0.3;
 constexpr double kTickOut = 1.5;      // tick length outside the outline (mm)
 constexpr double kTickIn = 3.0;       // tick length inside the outline (mm)
 constexpr double kStartTickIn = 6.0;  // the start tick is longer (mm)
@@ -418,6 +415,20 @@ Vec2 arranged(const Box& a, const Box& b, bool vertical, double gap) {
                   : Vec2(a.w() + gap + b.w(), std::max(a.h(), b.h()));
 }
 
+// Where a sheet's title block goes: under its pieces, in a column beside them, or nowhere (the
+// pieces and the block do not fit).
+enum class TitleAt { Below, Aside, None };
+
+// One sheet (or page) of the layout and what is on it.
+struct SheetPlan {
+  Box box;                   // on the canvas (mm); the sheets lie side by side
+  std::vector<int> pieces;   // the pieces on it (0 = A, 1 = B)
+  Vec2 size = Vec2::Zero();  // the extent of those pieces, from the region's top-left corner (mm)
+  TitleAt title = TitleAt::Below;
+  bool tiled = false;        // a piece larger than the page, tiled across pages (print)
+  long tilesX = 1, tilesY = 1;  // its pages: columns and rows
+};
+
 // The id of a page's copy of the sheet furniture (title lines, registration marks): the first
 // page keeps the plain id.
 std::string onPage(const std::string& id, size_t page) {
@@ -439,28 +450,32 @@ class DrawingBuilder {
       l.printed = printed;
       return l;
     };
+    // The title block and notes have a layer of their own (first), so that a laser operator can
+    // switch them off without losing the tick numbers and a printer can leave them out.
+    const Layer title = layer("Title", p.engraveColor, p.engraveWidthMm, p.dashMm, true);
     switch (p.kind) {
       case ProfileKind::Laser:  // engrave, then score, then cut (inner cuts first, outer last)
-        drawing_.layers = {layer("Engrave", p.engraveColor, p.engraveWidthMm, p.dashMm, true),
+        drawing_.layers = {title, layer("Engrave", p.engraveColor, p.engraveWidthMm, p.dashMm, true),
                            layer("Score", p.scoreColor, p.scoreWidthMm, p.dashMm, true),
                            layer("Cut", p.cutColor, p.cutWidthMm, p.dashMm, true)};
         break;
       case ProfileKind::Print:
-        drawing_.layers = {layer("Labels", p.engraveColor, p.engraveWidthMm, p.dashMm, true),
+        drawing_.layers = {title, layer("Labels", p.engraveColor, p.engraveWidthMm, p.dashMm, true),
                            layer("Fold", p.scoreColor, p.scoreWidthMm, p.dashMm, true),
                            layer("Cut", p.cutColor, p.cutWidthMm, p.dashMm, true)};
         break;
       case ProfileKind::PrintAndCut:  // the Cut layer goes to the cutter, not the printer
-        drawing_.layers = {layer("Regmarks", "#000000", kRegLine, p.dashMm, true),
+        drawing_.layers = {title, layer("Regmarks", "#000000", kRegLine, p.dashMm, true),
                            layer("Print", p.engraveColor, p.engraveWidthMm, p.dashMm, true),
                            layer("Cut", p.cutColor, p.cutWidthMm, p.dashMm, false)};
         break;
     }
   }
-  Layer& engrave() { return drawing_.layers[kind_ == ProfileKind::PrintAndCut ? 1 : 0]; }
-  Layer& score() { return drawing_.layers[1]; }
-  Layer& cut() { return drawing_.layers[2]; }
-  Layer& regmarks() { return drawing_.layers[0]; }
+  Layer& title() { return drawing_.layers[0]; }
+  Layer& engrave() { return drawing_.layers[kind_ == ProfileKind::PrintAndCut ? 2 : 1]; }
+  Layer& score() { return drawing_.layers[2]; }
+  Layer& cut() { return drawing_.layers[3]; }
+  Layer& regmarks() { return drawing_.layers[1]; }
   Drawing& drawing() { return drawing_; }
 
  private:
@@ -649,19 +664,15 @@ Status checkModel(const DForm& model) {
   return Status::ok();
 }
 
-Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
-                                  const Profile& profile, BuildWork* workOut) {
-  BuildWork unused;
-  BuildWork& work = workOut ? *workOut : unused;
-  if (Status s = checkModel(model); !s.isOk()) return s;
-  if (Status s = checkExportOptions(o); !s.isOk()) return s;
-  if (profile.page.empty() && !(o.sheetWidthMm > 0 && o.sheetHeightMm > 0))
-    return Status{ErrorCode::Usage, "the sheet size must be positive (e.g. 600x400mm)"};
-  auto fontResult = StrokeFont::load(o.fontPath);
-  if (!fontResult.isOk()) return fontResult.status();
-  const StrokeFont& font = fontResult.value();
+namespace {
 
+// The pattern of `model` drawn at `scale` (its flat pieces already scaled by it). `tooLarge` is
+// set when it fails because a piece does not fit its sheet or page.
+Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
+                                  const Profile& profile, const StrokeFont& font, double scale,
+                                  BuildWork& work, bool& tooLargeOut) {
   PatternBuild out;
+  out.scale = scale;
   out.profile = profile;
   out.tickSpacing = o.tickSpacingMm;
   out.failedGate = o.failedGateMark;
@@ -678,35 +689,66 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
   const double lineH = 1.7 * textH;
   const double barH = profile.calibrationBar ? 9.0 : 0.0;
   const double failH = o.failedGateMark ? 2.0 * lineH : 0.0;
-  const double titleH = (creased ? 3 : 2) * lineH + barH + failH;  // a legend line for creases
+  // Tabs fold away from the printed (outer) side: a line says so on every sheet that has them.
+  const bool tabbed = o.tabWidthMm > 0 && profile.tabs != TabSide::None;
+  // The lines: title and note, a legend line for creases, the tab line (none with --no-title).
+  const int titleLines = o.title ? 2 + int(creased) + int(tabbed) : 0;
+  const double titleH = titleLines * lineH + barH + failH;
+  const double titleBlock = titleH > 0 ? m + titleH : 0.0;  // with its margin from the pieces
+  // The page: --page over the profile's. A page profile refuses a sheet size and a sheet profile
+  // a page, rather than ignore them.
+  const std::string pageName = o.page.empty() ? profile.page : o.page;
+  if (!o.page.empty() && profile.page.empty())
+    return Status{ErrorCode::Usage, "--page is for page profiles (print, print-and-cut); profile " +
+                                        profile.name +
+                                        " cuts a material sheet: give its size with --sheet WxHmm"};
+  if (!profile.page.empty() && o.sheetGiven)
+    return Status{ErrorCode::Usage,
+                  "profile " + profile.name + " prints on " + pageName +
+                      " pages, so --sheet does not apply; choose the paper with --page "
+                      "A4|Letter|A3|Tabloid|WxHmm"};
   double pageW = o.sheetWidthMm, pageH = o.sheetHeightMm;
-  if (profile.page == "A4") {
-    pageW = kA4W;
-    pageH = kA4H;
-  } else if (profile.page == "Letter") {
-    pageW = kLetterW;
-    pageH = kLetterH;
+  if (!pageName.empty()) {
+    const auto size = pageSizeMm(pageName);
+    if (!size)
+      return Status{ErrorCode::Usage, "unknown page \"" + pageName +
+                                          "\": use A4, Letter, A3, Tabloid or a size such as "
+                                          "200x300mm"};
+    pageW = size->first;
+    pageH = size->second;
   }
+  const std::string sheetWord = pageName.empty() ? "sheet" : "page";
   // The area of a W x H sheet or page (its top-left corner at `at`) that the pieces and the title
   // lines may use.
   auto artRegion = [&](double W, double H, const Vec2& at = Vec2::Zero()) {
     double inset = m;
-    if (profile.registration == Registration::Silhouette)
-      inset = kRegInset + kRegSquare + kRegClear;  // clear of the square's far edge
+    if (profile.registration == Registration::Silhouette)  // clear of the square's far edge
+      inset = kRegInset + kRegSquare + profile.registrationClearMm;
     Box r = Box::spanning(at + Vec2(inset, inset), at + Vec2(W - inset, H - inset));
-    if (profile.registration == Registration::Cricut) {
-      const Vec2 half(0.5 * kCricutW, 0.5 * kCricutH), centre = at + 0.5 * Vec2(W, H);
+    if (profile.registration == Registration::Cricut) {  // the Print Then Cut area, centred
+      const Vec2 half(0.5 * std::min(kCricutW, W - 2 * m), 0.5 * std::min(kCricutH, H - 2 * m));
+      const Vec2 centre = at + 0.5 * Vec2(W, H);
       r = Box::spanning(centre - half, centre + half);
     }
     return r;
   };
-  // Whether pieces (and tabs) of extent `size` fit a W x H sheet with the title lines below them.
-  auto fits = [&](const Vec2& size, double W, double H) {
-    const Box r = artRegion(W, H);
-    return size.x() <= r.w() + 1e-9 && size.y() + titleH <= r.h() + 1e-9 && r.w() > 0;
+  // Where a sheet's title block goes when the pieces on it take `size` of its region `r`: under
+  // them (a margin apart) where the region is tall enough, else in a column to their right, its
+  // lines reading upwards; None when neither fits (or the pieces do not).
+  auto titleAt = [&](const Vec2& size, const Box& r) {
+    if (!(r.w() > 0 && size.x() <= r.w() + 1e-9 && size.y() <= r.h() + 1e-9)) return TitleAt::None;
+    if (size.y() + titleBlock <= r.h() + 1e-9) return TitleAt::Below;
+    if (size.x() + titleBlock <= r.w() + 1e-9) return TitleAt::Aside;
+    return TitleAt::None;
   };
-  // Only a print profile's page may turn to landscape; a print-and-cut page keeps its marks.
-  const bool mayTurnPage = profile.kind == ProfileKind::Print && !profile.page.empty();
+  // Whether pieces (and tabs) of extent `size` fit a W x H sheet with their title block.
+  auto fits = [&](const Vec2& size, double W, double H) {
+    return titleAt(size, artRegion(W, H)) != TitleAt::None;
+  };
+  // Only a print profile's page may turn to landscape or tile; a print-and-cut page keeps its
+  // marks (the cutter reads one page's), and a laser sheet is the size it is.
+  const bool mayTurnPage = profile.kind == ProfileKind::Print && !pageName.empty();
+  const bool mayTile = profile.kind == ProfileKind::Print && profile.tile;
   auto fitsSomeWay = [&](const Vec2& size) {
     return fits(size, pageW, pageH) || (mayTurnPage && fits(size, pageH, pageW));
   };
@@ -714,40 +756,44 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
   // the message gives the sheet size needed by the arrangement that needs the least enlargement.
   auto tooLarge = [&](const std::string& what, const std::vector<Vec2>& sizes,
                       const std::string& contents) {
+    tooLargeOut = true;
     const Box r = artRegion(pageW, pageH);
     Vec2 need = Vec2::Zero(), size = Vec2::Zero();
     double least = std::numeric_limits<double>::infinity();
     for (const Vec2& candidate : sizes) {
-      const Vec2 n(candidate.x() + (pageW - r.w()), candidate.y() + titleH + (pageH - r.h()));
+      const Vec2 n(candidate.x() + (pageW - r.w()), candidate.y() + titleBlock + (pageH - r.h()));
       if (std::max(n.x() / pageW, n.y() / pageH) < least) {
         least = std::max(n.x() / pageW, n.y() / pageH);
         need = n;
         size = candidate;
       }
     }
-    const std::string area = profile.page.empty() ? "sheet" : profile.page + " page's cutting area";
+    const std::string area = pageName.empty() ? "sheet" : pageName + " page's cutting area";
     return Status{ErrorCode::Usage, what + " does not fit the " + area + ": it needs at least " +
                                         formatMm(need.x()) + " x " + formatMm(need.y()) + " mm (" +
                                         formatMm(size.x()) + " x " + formatMm(size.y()) +
                                         " mm of " + contents +
-                                        ", plus margins and the title line); the " +
-                                        (profile.page.empty() ? "sheet" : "page") + " is " +
-                                        formatMm(pageW) + " x " + formatMm(pageH) + " mm"};
+                                        ", plus margins and the title lines); the " + sheetWord +
+                                        " is " + formatMm(pageW) + " x " + formatMm(pageH) + " mm"};
   };
-  // Tiling: the columns and rows of pages that show pieces of extent `size` with the margins and
-  // title lines; neighbouring windows overlap by tileOverlapMm.
+  // Tiling: the columns and rows of pages that show a piece of extent `size` with the margins and
+  // its title block; neighbouring windows overlap by tileOverlapMm.
   const double tileW = pageW - 2 * kTileMargin, tileH = pageH - 2 * kTileMargin - kTileHeader;
   const double overlap = profile.tileOverlapMm;
+  auto tiledExtent = [&](const Vec2& size) {
+    return Vec2(size.x() + 2 * m, size.y() + titleBlock + 2 * m);
+  };
   auto tileGrid = [&](const Vec2& size) {
     auto count = [&](double length, double window) {
       return std::max(1L, long(std::ceil((length - overlap) / (window - overlap) - 1e-9)));
     };
-    return std::pair<long, long>(count(size.x() + 2 * m, tileW),
-                                 count(size.y() + titleH + 2 * m, tileH));
+    const Vec2 extent = tiledExtent(size);
+    return std::pair<long, long>(count(extent.x(), tileW), count(extent.y(), tileH));
   };
   auto tooManyTiles = [&](long tiles) {
+    tooLargeOut = true;
     return Status{ErrorCode::Usage, "the pattern needs at least " + std::to_string(tiles) + " " +
-                                        profile.page + " pages when tiled, more than the " +
+                                        pageName + " pages when tiled, more than the " +
                                         std::to_string(kMaxTiles) +
                                         " a print profile makes; use a sheet profile"};
   };
@@ -755,38 +801,27 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
   // --- Fit first: before any tick or tab is made ---------------------------------------------
   // A piece's cut path contains its outer outline (tabs and kerf only add to it), so at every turn
   // the layout may choose (2-degree steps; a half turn gives the same box) the outline's extent
-  // bounds the cut path's from below. When not even the bare outlines fit, neither will the
-  // pattern: say so now, at a cost independent of the seam's length in ticks and tabs.
-  std::vector<Box> bare[2];
-  for (int p = 0; p < 2; ++p)
-    for (int deg = 0; deg < 180; deg += kTurnStepDeg)
-      bare[p].push_back(extentAt({material[p].front()}, deg));
-  if (profile.kind == ProfileKind::PrintAndCut) {  // each piece may get a page of its own
-    for (int p = 0; p < 2; ++p) {
-      std::vector<Vec2> sizes;
-      for (const Box& b : bare[p]) sizes.emplace_back(b.w(), b.h());
-      if (std::none_of(sizes.begin(), sizes.end(),
-                       [&](const Vec2& size) { return fits(size, pageW, pageH); }))
-        return tooLarge("piece " + names[p], sizes, "the piece");
-    }
-  } else if (!profile.tile) {
+  // bounds the cut path's from below. Each piece may get a sheet (or page) of its own, so the
+  // pattern fits when each bare outline fits one alone, or, on a tiling profile, when its tiles
+  // are not too many. When that fails, say so now, at a cost independent of the seam's length in
+  // ticks and tabs.
+  long fewestTiles = 0;
+  for (int p = 0; p < 2; ++p) {
     std::vector<Vec2> sizes;
-    for (const Box& a : bare[0])
-      for (const Box& b : bare[1])
-        for (bool vertical : {false, true}) sizes.push_back(arranged(a, b, vertical, m));
-    if (std::none_of(sizes.begin(), sizes.end(), fitsSomeWay))
-      return tooLarge("the pattern", sizes, "pieces");
-  } else {
+    for (int deg = 0; deg < 180; deg += kTurnStepDeg) {
+      const Box b = extentAt({material[p].front()}, deg);
+      sizes.emplace_back(b.w(), b.h());
+    }
+    if (std::any_of(sizes.begin(), sizes.end(), fitsSomeWay)) continue;
+    if (!mayTile) return tooLarge("piece " + names[p], sizes, "the piece");
     long fewest = std::numeric_limits<long>::max();
-    for (const Box& a : bare[0])
-      for (const Box& b : bare[1])
-        for (bool vertical : {false, true}) {
-          const auto [nx, ny] = tileGrid(arranged(a, b, vertical, m));
-          fewest = std::min(fewest, nx * ny);
-        }
-    if (fewest > kMaxTiles) return tooManyTiles(fewest);
+    for (const Vec2& size : sizes) {
+      const auto [nx, ny] = tileGrid(size);
+      fewest = std::min(fewest, nx * ny);
+    }
+    fewestTiles += fewest;
   }
-
+  if (fewestTiles > kMaxTiles) return tooManyTiles(fewestTiles);
   // Seam lengths agree to the gate's tolerance on a solved model; ticks and tabs mark matching
   // seam points on both pieces whatever the difference, which a fabricator sees as a slightly
   // different tick spacing on B (0.1 mm is the accuracy the ticks are held to).
@@ -822,6 +857,10 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
   }
 
   // --- Orientation and arrangement -------------------------------------------------------------
+  // Pieces are packed on as few sheets (pages) as hold them: both on one where they fit together
+  // (side by side or stacked, each at its smallest-box turn or a quarter turn more; a print page
+  // may turn to landscape), else each on its own, at the smaller of its two turns that fits (a
+  // print page turned where only that fits), else (print) tiled across pages.
   double baseRot[2];
   for (int p = 0; p < 2; ++p) baseRot[p] = bestRotation(cuts[p]);
   struct Choice {
@@ -848,66 +887,90 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
       if (fits(c.size, W, H) && (!best || c.size.prod() < best->size.prod() - 1e-9)) best = &c;
     return best;
   };
-  const Choice* chosen = pick(pageW, pageH);
-  bool landscape = false, tiled = false, piecePerPage = false;
-  if (!chosen && mayTurnPage) {
-    chosen = pick(pageH, pageW);
-    landscape = chosen != nullptr;
-  }
-  double canvasW = landscape ? pageH : pageW, canvasH = landscape ? pageW : pageH;
-  if (!chosen && profile.tile) {  // the arrangement of the smallest largest side
-    chosen = &choices[0];
-    for (const Choice& c : choices)
-      if (c.size.maxCoeff() < chosen->size.maxCoeff()) chosen = &c;
-    tiled = true;
-    canvasW = chosen->size.x() + 2 * m;
-    canvasH = chosen->size.y() + titleH + 2 * m;
-    const auto [nx, ny] = tileGrid(chosen->size);
-    if (nx * ny > kMaxTiles) return tooManyTiles(nx * ny);
-  }
   // Where each piece goes: its turn, its extent, and the top-left corner of that extent.
   double rot[2];
   Box box[2];
   Vec2 corner[2];
-  if (chosen) {
-    const Box region = artRegion(canvasW, canvasH);
-    out.sheets.push_back(Box::spanning(Vec2::Zero(), Vec2(canvasW, canvasH)));
+  std::vector<SheetPlan> plans;
+  const Choice* together = pick(pageW, pageH);
+  bool landscape = false;
+  if (!together && mayTurnPage) {
+    together = pick(pageH, pageW);
+    landscape = together != nullptr;
+  }
+  if (together) {
+    SheetPlan plan;
+    plan.box = Box::spanning(Vec2::Zero(), landscape ? Vec2(pageH, pageW) : Vec2(pageW, pageH));
+    plan.pieces = {0, 1};
+    plan.size = together->size;
+    const Box region = artRegion(plan.box.w(), plan.box.h());
+    plan.title = titleAt(plan.size, region);
     for (int p = 0; p < 2; ++p) {
-      rot[p] = chosen->rot[p];
-      box[p] = chosen->box[p];
+      rot[p] = together->rot[p];
+      box[p] = together->box[p];
     }
     corner[0] = region.lo;
-    corner[1] = region.lo + (chosen->vertical ? Vec2(0, box[0].h() + m) : Vec2(box[0].w() + m, 0));
-  } else if (profile.kind == ProfileKind::PrintAndCut) {
-    // Print-and-cut cannot tile (the cutter reads one page's marks): each piece on its own page,
-    // side by side on the canvas, each page with its own marks and title lines.
-    piecePerPage = true;
-    canvasW = 2 * pageW;
-    canvasH = pageH;
+    corner[1] = region.lo + (together->vertical ? Vec2(0, box[0].h() + m) : Vec2(box[0].w() + m, 0));
+    plans.push_back(plan);
+  } else {
+    double x = 0;  // the sheets lie side by side on the canvas
     for (int p = 0; p < 2; ++p) {
-      const Choice* best = nullptr;
-      for (const Choice& c : choices)  // the rotations tried for this piece: its two in `choices`
-        if (fits(Vec2(c.box[p].w(), c.box[p].h()), pageW, pageH) &&
-            (!best || c.box[p].w() * c.box[p].h() < best->box[p].w() * best->box[p].h() - 1e-9))
-          best = &c;
-      if (!best) {
+      SheetPlan plan;
+      plan.pieces = {p};
+      const Choice* best = nullptr;  // the rotations tried for this piece: its two in `choices`
+      bool turned = false;
+      for (bool turn : {false, true}) {
+        if (best || (turn && !mayTurnPage)) continue;
+        const double W = turn ? pageH : pageW, H = turn ? pageW : pageH;
+        for (const Choice& c : choices)
+          if (fits(Vec2(c.box[p].w(), c.box[p].h()), W, H) &&
+              (!best || c.box[p].w() * c.box[p].h() < best->box[p].w() * best->box[p].h() - 1e-9))
+            best = &c;
+        turned = turn;
+      }
+      if (best) {
+        rot[p] = best->rot[p];
+        box[p] = best->box[p];
+        plan.box = Box::spanning(Vec2(x, 0), Vec2(x, 0) + (turned ? Vec2(pageH, pageW)
+                                                                  : Vec2(pageW, pageH)));
+      } else if (mayTile) {  // its turn of the smaller largest side, tiled
+        best = &choices[0];
+        for (const Choice& c : choices)
+          if (std::max(c.box[p].w(), c.box[p].h()) < std::max(best->box[p].w(), best->box[p].h()))
+            best = &c;
+        rot[p] = best->rot[p];
+        box[p] = best->box[p];
+        plan.tiled = true;
+        plan.box = Box::spanning(Vec2(x, 0),
+                                 Vec2(x, 0) + tiledExtent(Vec2(box[p].w(), box[p].h())));
+        const auto [nx, ny] = tileGrid(Vec2(box[p].w(), box[p].h()));
+        plan.tilesX = nx;
+        plan.tilesY = ny;
+      } else {
         std::vector<Vec2> sizes;
         for (const Choice& c : choices) sizes.emplace_back(c.box[p].w(), c.box[p].h());
         return tooLarge("piece " + names[p], sizes, "the piece and its tabs");
       }
-      rot[p] = best->rot[p];
-      box[p] = best->box[p];
-      const Vec2 at(p * pageW, 0);
-      out.sheets.push_back(Box::spanning(at, at + Vec2(pageW, pageH)));
-      corner[p] = artRegion(pageW, pageH, at).lo;
+      plan.size = Vec2(box[p].w(), box[p].h());
+      const Box region = artRegion(plan.box.w(), plan.box.h(), plan.box.lo);
+      plan.title = titleAt(plan.size, region);
+      corner[p] = region.lo;
+      x = plan.box.hi.x();
+      plans.push_back(plan);
     }
-    out.messages.push_back(
-        "the pieces do not fit one " + profile.page +
-        " page together: each is on its own page, with its own registration marks");
-  } else {
-    std::vector<Vec2> sizes;
-    for (const Choice& c : choices) sizes.push_back(c.size);
-    return tooLarge("the pattern", sizes, "pieces and tabs");
+    out.messages.push_back("the pieces do not fit one " +
+                           (pageName.empty() ? std::string("sheet") : pageName + " page") +
+                           " together: each is on its own, in pattern.pdf and in " +
+                           sheetFileName(1, "svg") + " and " + sheetFileName(2, "svg"));
+  }
+  long tiles = 0;
+  for (const SheetPlan& plan : plans) tiles += plan.tilesX * plan.tilesY;
+  if (tiles > kMaxTiles) return tooManyTiles(tiles);
+  double canvasW = 0, canvasH = 0;
+  for (const SheetPlan& plan : plans) {
+    out.sheets.push_back(plan.box);
+    canvasW = std::max(canvasW, plan.box.hi.x());
+    canvasH = std::max(canvasH, plan.box.hi.y());
   }
   Placement place[2];
   for (int p = 0; p < 2; ++p) {
@@ -932,6 +995,8 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
                               place[p].map(flatPolyline(piece[p]->flat, piece[p]->creases[k]))});
     info.perimeter = seams[p].L;
     info.rotationDeg = rot[p];
+    for (size_t k = 0; k < plans.size(); ++k)
+      if (std::count(plans[k].pieces.begin(), plans[k].pieces.end(), p)) info.sheet = int(k);
     out.pieces.push_back(info);
   }
   for (size_t k = 0; k < tickS.size(); ++k) {
@@ -957,12 +1022,18 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
   // --- The drawing -------------------------------------------------------------------------------
   DrawingBuilder b(profile, canvasW, canvasH);
   const std::string perimeterText = formatMm(seams[0].L, 1);
+  // The scale as printed: "1:1" or the percentage of true size.
+  char percent[32];
+  std::snprintf(percent, sizeof percent, "%.0f%%", 100 * scale);
+  const std::string scaleText =
+      scale == 1.0 ? std::string("1:1, mm") : std::string("scale ") + percent + " of true size, mm";
   b.drawing().title = o.jobName + " - D-Form pattern (" + profile.name + ")";
   b.drawing().description = "job " + o.jobName + "; profile " + profile.name +
-                            "; true scale, 1 user unit = 1 mm; seam length " + perimeterText +
+                            "; " + (scale == 1.0 ? std::string("true scale") : "scale " + std::string(percent)) +
+                            ", 1 user unit = 1 mm; seam length " + perimeterText +
                             " mm; ticks every " + formatMm(o.tickSpacingMm) + " mm" +
                             (o.failedGateMark ? "; FAILED GATE: not for fabrication" : "");
-  int skippedLabels = 0, skippedCreaseLabels = 0;
+  int skippedLabels = 0, thinnedLabels = 0, skippedCreaseLabels = 0;
   for (int p = 0; p < 2; ++p) {
     const PieceInfo& info = out.pieces[size_t(p)];
     const std::string& nm = info.name;
@@ -970,6 +1041,8 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
     std::vector<Polyline> creaseLines;  // labels keep off them
     for (const CreaseInfo& crease : info.creases) creaseLines.push_back(crease.line);
     // Tick marks across the outline and their numbers inside the piece.
+    std::vector<Polyline> tickLabelHulls;                               // the numbers placed
+    BoxIndex tickLabelIndex(std::max(2.0 * profile.labelHeightMm, 1.0));  // about one number
     for (const TickInfo& t : out.ticks) {
       int seg = 0;
       seam.at(p == 0 ? t.s : t.sB, &seg);
@@ -990,15 +1063,33 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
       const double h = profile.labelHeightMm;
       const Vec2 d = readable(tan);
       const double halfW = 0.5 * font.width(label, h), halfH = 0.5 * h;
-      bool placed = false;
-      for (int attempt = 0; attempt < 3 && !placed; ++attempt) {
-        const double depth = in + 1.0 + (t.id == 0 ? 1.5 : 0.0) + halfH + attempt * h;
-        const Vec2 center = c - depth * nOut;
-        if (!boxFits(info.boundaries, creaseLines, center, d, halfW, halfH, 0.3)) continue;
-        b.engrave().paths.push_back(textPath(font, tick.id + "-label", label, center, d, h));
-        placed = true;
-      }
-      if (!placed) ++skippedLabels;
+      // Next to the tick, else deeper into the piece, else slid along the seam (at a corner the
+      // tick's own normal points past the corner): moved inward, not dropped. A number that fits
+      // nowhere clear of the numbers already placed is thinned out (the spacing is tighter than
+      // the numbers are wide); one that fits nowhere at all is too narrow a piece.
+      bool fitsSomewhere = false, placed = false;
+      for (int attempt = 0; attempt < 6 && !placed; ++attempt)
+        for (double slide : {0.0, 1.0, -1.0, 2.0, -2.0}) {
+          if (placed) break;
+          const double depth = in + 1.0 + (t.id == 0 ? 1.5 : 0.0) + halfH + attempt * h;
+          const Vec2 center = c - depth * nOut + slide * (halfW + 1.0) * tan;
+          if (!boxFits(info.boundaries, creaseLines, center, d, halfW, halfH, 0.3)) continue;
+          fitsSomewhere = true;
+          Path text = textPath(font, tick.id + "-label", label, center, d, h);
+          Polyline hull = convexHull(text.parts);
+          const Box hullBox = fab::boxOf({hull});
+          bool clear = true;  // sharing no area with a number placed (as the layout check sees it)
+          for (int k : tickLabelIndex.overlapping(hullBox)) {
+            ++work.pairTests;
+            clear = clear && overlapArea(hull, tickLabelHulls[size_t(k)]) <= kOverlapTolMm2;
+          }
+          if (!clear) continue;
+          tickLabelIndex.insert(int(tickLabelHulls.size()), hullBox);
+          tickLabelHulls.push_back(std::move(hull));
+          b.engrave().paths.push_back(std::move(text));
+          placed = true;
+        }
+      if (!placed) ++(fitsSomewhere ? thinnedLabels : skippedLabels);
     }
     // Piece name (and the failed-gate mark) at the roomiest point inside the piece, clear of the
     // creases; and of the tick numbers where the roomiest point is near them (a ring-shaped piece).
@@ -1062,6 +1153,10 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
   if (skippedLabels > 0)
     out.messages.push_back(std::to_string(skippedLabels) +
                            " tick number(s) left out where the piece is too narrow for them");
+  if (thinnedLabels > 0)
+    out.messages.push_back(std::to_string(thinnedLabels) +
+                           " tick number(s) thinned out where the ticks are closer than the "
+                           "numbers are wide; every tick is still marked");
   if (skippedCreaseLabels > 0)
     out.messages.push_back(std::to_string(skippedCreaseLabels) +
                            " crease M/V label(s) left out where there is no room; the crease ids "
@@ -1097,6 +1192,9 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
       fold.id = id;
       fold.parts = {t.fold};
       fold.dashed = profile.fold == FoldStyle::Dashed;
+      // A tab folds back, away from the printed face: a mountain fold seen from it, dashed as
+      // the legend's mountain creases are.
+      if (fold.dashed) fold.dash = creaseDash(FoldDirection::Mountain, profile.dashMm);
       b.score().paths.push_back(fold);
     }
   }
@@ -1119,27 +1217,34 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
       }
     }
 
-  // Title lines (and the calibration bar) at the bottom of each sheet's region, and the
-  // registration marks in each sheet's corners.
-  for (size_t k = 0; k < out.sheets.size(); ++k) {
-    const Box& sheet = out.sheets[k];
+  // Title lines (and the calibration bar) under each sheet's pieces or in a column beside them,
+  // and the registration marks in each sheet's corners.
+  for (size_t k = 0; k < plans.size(); ++k) {
+    const SheetPlan& plan = plans[k];
+    const Box& sheet = plan.box;
     const Box region = artRegion(sheet.w(), sheet.h(), sheet.lo);
-    double y = region.hi.y() - titleH;
-    const double x0 = region.lo.x(), width = region.w();
+    // The block's frame: lines run along `along` from `start`, each the next one across.
+    const bool aside = plan.title == TitleAt::Aside;
+    const Vec2 along = aside ? Vec2(0, -1) : Vec2(1, 0), across = aside ? Vec2(1, 0) : Vec2(0, 1);
+    const Vec2 start = aside ? Vec2(region.lo.x() + plan.size.x() + m, region.hi.y())
+                             : Vec2(region.lo.x(), region.lo.y() + plan.size.y() + m);
+    const double length = aside ? region.h() : region.w();
+    double v = 0;  // how far across the lines so far reach
     auto line = [&](const std::string& id, const std::string& text, double h) {
       const double w = font.width(text, h);
-      if (w > width) h *= width / w;
-      const Vec2 c(x0 + 0.5 * std::min(w, width), y + 0.5 * lineH * h / textH);
-      b.engrave().paths.push_back(textPath(font, onPage(id, k), text, c, {1, 0}, h));
-      y += lineH * h / textH;
+      if (w > length) h *= length / w;
+      const Vec2 c = start + 0.5 * std::min(w, length) * along + (v + 0.5 * lineH * h / textH) * across;
+      b.title().paths.push_back(textPath(font, onPage(id, k), text, c, along, h));
+      v += lineH * h / textH;
     };
-    const std::string pageNote = piecePerPage
-                                     ? " - page " + std::to_string(k + 1) + " of " +
-                                           std::to_string(out.sheets.size()) + ": piece " + names[k]
-                                     : "";
+    std::string pieceNote;
+    if (plans.size() > 1)
+      pieceNote = " - " + sheetWord + " " + std::to_string(k + 1) + " of " +
+                  std::to_string(plans.size()) + ": piece " + names[plan.pieces.front()];
     if (o.failedGateMark) line("failed-gate", "FAILED GATE - NOT FOR FABRICATION", 2 * textH);
+    if (o.title) {
     line("title",
-         o.jobName + " - D-Form " + names[0] + " + " + names[1] + pageNote + " - 1:1, mm - seam " +
+         o.jobName + " - D-Form " + names[0] + " + " + names[1] + pieceNote + " - " + scaleText + " - seam " +
              perimeterText + " mm - " + profile.name,
          textH);
     line("note",
@@ -1153,20 +1258,31 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
                  "(dashed)"
                : "creases seen from this side (the outside): M = mountain, V = valley",
            textH);
+    if (tabbed)
+      line("tab-note",
+           profile.kind == ProfileKind::Laser
+               ? "engraved side out: fold the tabs back, away from the engraving, and glue them "
+                 "inside"
+               : "printed side out: fold the tabs back, away from the print (mountain folds, "
+                 "dash-dot), and glue them inside",
+           textH);
+    }
     if (profile.calibrationBar) {
-      const double yb = y + 4.0;
+      auto at = [&](double u, double w) -> Vec2 { return start + u * along + w * across; };
+      const double vb = v + 4.0;
       Path bar;
       bar.id = onPage("calibration-bar", k);
-      bar.parts.push_back({Vec2(x0, yb), Vec2(x0 + 50, yb)});
+      bar.parts.push_back({at(0, vb), at(50, vb)});
       for (int j = 0; j <= 5; ++j) {
         const double tickLen = (j == 0 || j == 5) ? 3.0 : 1.5;
-        bar.parts.push_back({Vec2(x0 + 10 * j, yb - tickLen), Vec2(x0 + 10 * j, yb)});
+        bar.parts.push_back({at(10 * j, vb - tickLen), at(10 * j, vb)});
       }
-      b.engrave().paths.push_back(bar);
+      b.title().paths.push_back(bar);
       const std::string text = "50 mm - print at 100% (actual size)";
-      b.engrave().paths.push_back(textPath(font, onPage("calibration-label", k), text,
-                                           Vec2(x0 + 54 + 0.5 * font.width(text, textH), yb - 1.5),
-                                           {1, 0}, textH));
+      // Smaller where the block is too short for it beside the bar (a narrow tiled piece).
+      const double h = std::min(textH, (length - 54) / std::max(1.0, font.width(text, 1.0)));
+      b.title().paths.push_back(textPath(font, onPage("calibration-label", k), text,
+                                         at(54 + 0.5 * font.width(text, h), vb - 1.5), along, h));
     }
     if (profile.registration == Registration::Silhouette) {
       const double a = kRegInset, s = kRegSquare;
@@ -1192,29 +1308,98 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
   out.drawing = std::move(b.drawing());
 
   // --- Pages -------------------------------------------------------------------------------------
-  if (!tiled) {
-    for (const Box& sheet : out.sheets) {  // the whole sheet, or each piece's page
+  // A page per sheet; a tiled piece gets a page map, then its tiles.
+  for (size_t k = 0; k < plans.size(); ++k) {
+    const SheetPlan& plan = plans[k];
+    if (!plan.tiled) {
       PageView page;
-      page.width = sheet.w();
-      page.height = sheet.h();
-      page.origin = sheet.lo;
-      page.clipX1 = sheet.w();
-      page.clipY1 = sheet.h();
+      page.width = plan.box.w();
+      page.height = plan.box.h();
+      page.origin = plan.box.lo;
+      page.clipX1 = plan.box.w();
+      page.clipY1 = plan.box.h();
       out.pages.push_back(page);
+      continue;
     }
-  } else {
-    // Tiles, with alignment crosses in the middle of each overlap.
+    const std::string& nm = names[plan.pieces.front()];
+    const PieceInfo& info = out.pieces[size_t(plan.pieces.front())];
     const double pm = kTileMargin, header = kTileHeader, ov = overlap, cw = tileW, ch = tileH;
-    const auto [nx, ny] = tileGrid(chosen->size);
+    const long nx = plan.tilesX, ny = plan.tilesY;
+    const size_t firstTilePage = out.pages.size() + 2;  // 1-based, after the map
+    auto tileName = [&](long row, long col) {
+      return nm + " " + std::to_string(row + 1) + "-" + std::to_string(col + 1);
+    };
+    auto furnitureLayer = [] {
+      Layer l;
+      l.name = "Tiling";
+      l.color = "#000000";
+      l.widthMm = 0.2;
+      l.dashMm = 2.0;
+      return l;
+    };
+    auto headerText = [&](Layer& furniture, const std::string& id, const std::string& head) {
+      const double hh = std::min(3.0, cw / std::max(1.0, font.width(head, 1.0)));
+      furniture.paths.push_back(
+          textPath(font, id, head, Vec2(pm + 0.5 * font.width(head, hh), pm + 3.0), {1, 0}, hh));
+    };
+    // The page map: the piece's cut outline scaled onto one page under the grid of its tiles,
+    // each named as its page's header names it.
+    {
+      PageView map;
+      map.width = pageW;
+      map.height = pageH;
+      Layer furniture = furnitureLayer();
+      // The grid of windows reaches past the piece's sheet (the last ones overhang it).
+      const double gridW = double(nx) * (cw - ov) + ov, gridH = double(ny) * (ch - ov) + ov;
+      const double mapScale = std::min(cw / gridW, ch / gridH);
+      auto onMap = [&](const Vec2& q) -> Vec2 {
+        return Vec2(pm, pm + header) + mapScale * (q - plan.box.lo);
+      };
+      Path outline;
+      outline.id = "page-map-" + nm + "-outline";
+      outline.closed = true;
+      for (const Polyline& cut : info.cut) {
+        Polyline mapped;
+        for (const Vec2& q : cut) mapped.push_back(onMap(q));
+        outline.parts.push_back(mapped);
+      }
+      furniture.paths.push_back(outline);
+      for (long j = 0; j < ny; ++j)
+        for (long i = 0; i < nx; ++i) {
+          const Vec2 lo = plan.box.lo + Vec2(double(i) * (cw - ov), double(j) * (ch - ov));
+          const Vec2 a = onMap(lo), c = onMap(lo + Vec2(cw, ch));
+          Path cell;
+          cell.id = "page-map-" + nm + "-tile-" + std::to_string(j + 1) + "-" + std::to_string(i + 1);
+          cell.closed = true;
+          cell.dashed = true;
+          cell.parts = {{a, Vec2(c.x(), a.y()), c, Vec2(a.x(), c.y())}};
+          furniture.paths.push_back(cell);
+          const std::string text = tileName(j, i) + " (p. " +
+                                   std::to_string(firstTilePage + size_t(j * nx + i)) + ")";
+          const double th = std::min(4.0, 0.8 * (c.x() - a.x()) / std::max(1.0, font.width(text, 1.0)));
+          furniture.paths.push_back(textPath(font, cell.id + "-name", text,
+                                             Vec2(a.x() + 0.5 * (c.x() - a.x()), a.y() + th + 2.0),
+                                             {1, 0}, th));
+        }
+      headerText(furniture, "page-map-header",
+                 o.jobName + " - piece " + nm + ": page map, " + std::to_string(nx * ny) +
+                     " tiles (" + std::to_string(ny) + " rows x " + std::to_string(nx) +
+                     " cols) - not to scale - print the tiles at 100%");
+      map.overlay.push_back(furniture);
+      out.pages.push_back(map);
+    }
+    // Tiles, with alignment crosses in the middle of each overlap.
     std::vector<Vec2> marks;
-    for (int i = 1; i < nx; ++i)
-      for (int j = 0; j <= 2 * ny; ++j)
-        marks.emplace_back(i * (cw - ov) + 0.5 * ov, j * 0.5 * (ch - ov) + 0.5 * ov);
-    for (int j = 1; j < ny; ++j)
-      for (int i = 0; i <= 2 * nx; ++i)
-        marks.emplace_back(i * 0.5 * (cw - ov) + 0.5 * ov, j * (ch - ov) + 0.5 * ov);
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) {
+    for (long i = 1; i < nx; ++i)
+      for (long j = 0; j <= 2 * ny; ++j)
+        marks.push_back(plan.box.lo + Vec2(double(i) * (cw - ov) + 0.5 * ov,
+                                           double(j) * 0.5 * (ch - ov) + 0.5 * ov));
+    for (long j = 1; j < ny; ++j)
+      for (long i = 0; i <= 2 * nx; ++i)
+        marks.push_back(plan.box.lo + Vec2(double(i) * 0.5 * (cw - ov) + 0.5 * ov,
+                                           double(j) * (ch - ov) + 0.5 * ov));
+    for (long j = 0; j < ny; ++j)
+      for (long i = 0; i < nx; ++i) {
         PageView page;
         page.width = pageW;
         page.height = pageH;
@@ -1222,19 +1407,15 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
         page.clipY0 = pm + header;
         page.clipX1 = pm + cw;
         page.clipY1 = pm + header + ch;
-        const Vec2 windowLo(i * (cw - ov), j * (ch - ov));
+        const Vec2 windowLo = plan.box.lo + Vec2(double(i) * (cw - ov), double(j) * (ch - ov));
         page.origin = windowLo - Vec2(page.clipX0, page.clipY0);
-        Layer furniture;
-        furniture.name = "Tiling";
-        furniture.color = "#000000";
-        furniture.widthMm = 0.2;
+        Layer furniture = furnitureLayer();
         Path frame;
         frame.id = "tile-frame";
         frame.closed = true;
         frame.dashed = true;
         frame.parts = {{Vec2(page.clipX0, page.clipY0), Vec2(page.clipX1, page.clipY0),
                         Vec2(page.clipX1, page.clipY1), Vec2(page.clipX0, page.clipY1)}};
-        furniture.dashMm = 2.0;
         furniture.paths.push_back(frame);
         int markId = 0;
         for (const Vec2& q : marks) {
@@ -1244,14 +1425,11 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
             continue;
           furniture.paths.push_back(cross("align-" + std::to_string(++markId), onPage, 4.0));
         }
-        const std::string head = o.jobName + " - tile row " + std::to_string(j + 1) + " col " +
-                                 std::to_string(i + 1) + " of " + std::to_string(ny) + " rows x " +
-                                 std::to_string(nx) + " cols - overlap " + formatMm(ov, 0) +
-                                 " mm, match the crosses - print at 100%";
-        const double hh = std::min(3.0, cw / std::max(1.0, font.width(head, 1.0)));
-        furniture.paths.push_back(textPath(font, "tile-header", head,
-                                           Vec2(pm + 0.5 * font.width(head, hh), pm + 3.0), {1, 0},
-                                           hh));
+        headerText(furniture, "tile-header",
+                   o.jobName + " - piece " + nm + ", tile " + tileName(j, i) + " (row " +
+                       std::to_string(j + 1) + " of " + std::to_string(ny) + ", col " +
+                       std::to_string(i + 1) + " of " + std::to_string(nx) + ") - overlap " +
+                       formatMm(ov, 0) + " mm, match the crosses - print at 100%");
         Path bar;
         bar.id = "tile-calibration-bar";
         const double yb = pm + 9.0;
@@ -1271,10 +1449,64 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
         page.overlay.push_back(furniture);
         out.pages.push_back(page);
       }
-    out.messages.push_back("the pattern is tiled across " + std::to_string(out.pages.size()) +
-                           " pages of pattern.pdf; print at 100% and match the crosses");
+    out.messages.push_back("piece " + nm + " is larger than a " + pageName + " page: it is tiled across " +
+                           std::to_string(nx * ny) + " pages of pattern.pdf after a page map; print at 100% and match the crosses");
   }
   return out;
+}
+
+// The model with its flat pieces scaled by `scale` (the 3D shape, which the pattern does not
+// draw, as it is).
+DForm scaledFlat(const DForm& model, double scale) {
+  DForm scaled = model;
+  scaled.a.flat *= scale;
+  scaled.b.flat *= scale;
+  return scaled;
+}
+
+}  // namespace
+
+Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
+                                  const Profile& profile, BuildWork* workOut) {
+  BuildWork unused;
+  BuildWork& work = workOut ? *workOut : unused;
+  if (Status s = checkModel(model); !s.isOk()) return s;
+  if (Status s = checkExportOptions(o); !s.isOk()) return s;
+  if (profile.page.empty() && !(o.sheetWidthMm > 0 && o.sheetHeightMm > 0))
+    return Status{ErrorCode::Usage, "the sheet size must be positive (e.g. 600x400mm)"};
+  auto fontResult = StrokeFont::load(o.fontPath);
+  if (!fontResult.isOk()) return fontResult.status();
+  const StrokeFont& font = fontResult.value();
+  bool tooLarge = false;
+  Result<PatternBuild> built =
+      buildAtScale(o.scale == 1.0 ? model : scaledFlat(model, o.scale), o, profile, font, o.scale,
+                   work, tooLarge);
+  if (built.isOk() || !tooLarge || !o.scaleToFit) return built;
+  // Scaled to fit: the largest scale below the one asked for, in whole percent, at which every
+  // piece fits, by bisection (a smaller scale never makes a piece's extent larger: its outline
+  // shrinks and its tabs and ticks keep their size).
+  const Status atFull = built.status();
+  int fitsAt = 0, failsAt = int(std::lround(100 * o.scale));
+  Result<PatternBuild> best = atFull;
+  while (failsAt - fitsAt > 1) {
+    const int mid = (fitsAt + failsAt) / 2;
+    tooLarge = false;
+    Result<PatternBuild> attempt = buildAtScale(scaledFlat(model, mid / 100.0), o, profile, font,
+                                                mid / 100.0, work, tooLarge);
+    if (attempt.isOk()) {
+      fitsAt = mid;
+      best = std::move(attempt);
+    } else if (tooLarge) {
+      failsAt = mid;
+    } else {
+      return attempt;
+    }
+  }
+  if (fitsAt == 0) return atFull;
+  best.value().messages.push_back("scaled to " + std::to_string(fitsAt) +
+                                  "% to fit: at " + std::to_string(int(std::lround(100 * o.scale))) +
+                                  "% " + atFull.message());
+  return best;
 }
 
 }  // namespace dform::fab

@@ -2,6 +2,7 @@
 // an error naming the file and the field, so that a typo never silently falls back to a default).
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -110,7 +111,8 @@ const char* kKnownFields[] = {"version",        "name",           "description",
                               "engrave_width_mm", "fold",         "perforation_cut_mm",
                               "perforation_gap_mm", "dash_mm",    "margin_mm",
                               "page",           "tile",           "tile_overlap_mm",
-                              "registration",   "calibration_bar", "label_height_mm",
+                              "registration",   "registration_clear_mm",
+                              "calibration_bar", "label_height_mm",
                               "kerf_mm",        "tabs"};
 
 }  // namespace
@@ -164,6 +166,7 @@ Result<Profile> parseProfileJson(const std::string& text, const std::string& sou
                          {{"none", Registration::None},
                           {"silhouette", Registration::Silhouette},
                           {"cricut", Registration::Cricut}});
+  r.number("registration_clear_mm", p.registrationClearMm, 0, 50);
   r.flag("calibration_bar", p.calibrationBar);
   r.number("label_height_mm", p.labelHeightMm, 0.5, 50);
   r.number("kerf_mm", p.kerfMm, 0, 5);
@@ -171,12 +174,35 @@ Result<Profile> parseProfileJson(const std::string& text, const std::string& sou
   for (TabSide side : kTabSides) sides.emplace_back(tabSideName(side), side);
   r.choice<TabSide>("tabs", p.tabs, sides);
   if (!r.status.isOk()) return r.status;
-  if (!p.page.empty() && p.page != "A4" && p.page != "Letter")
-    return invalid(source, "field \"page\" must be \"A4\", \"Letter\" or absent");
+  if (!p.page.empty() && !pageSizeMm(p.page))
+    return invalid(source,
+                   "field \"page\" must be A4, Letter, A3, Tabloid, a size such as 200x300mm, or "
+                   "absent");
   if (p.kind == ProfileKind::PrintAndCut && p.page.empty())
     return invalid(source, "a print-and-cut profile needs \"page\" (A4 or Letter)");
   if (p.tile && p.page.empty()) return invalid(source, "\"tile\" needs a \"page\"");
   return p;
+}
+
+std::optional<std::pair<double, double>> pageSizeMm(const std::string& name) {
+  if (name == "A4") return std::pair{210.0, 297.0};
+  if (name == "A3") return std::pair{297.0, 420.0};
+  if (name == "Letter") return std::pair{8.5 * 25.4, 11.0 * 25.4};
+  if (name == "Tabloid") return std::pair{11.0 * 25.4, 17.0 * 25.4};
+  double w = 0, h = 0;
+  char unit[8] = "";
+  char rest = 0;
+  if (std::sscanf(name.c_str(), "%lfx%lf%7[a-z]%c", &w, &h, unit, &rest) != 3) return std::nullopt;
+  const std::string u = unit;
+  const double scale = u == "mm" ? 1.0 : u == "cm" ? 10.0 : u == "in" ? 25.4 : 0.0;
+  // A page smaller than 50 mm holds no piece with its marks; over 2 m is a sheet, not a page.
+  if (scale == 0.0 || !(w * scale >= 50 && h * scale >= 50 && w * scale <= 2000 && h * scale <= 2000))
+    return std::nullopt;
+  return std::pair{w * scale, h * scale};
+}
+
+std::string sheetFileName(int sheet, const std::string& extension) {
+  return "pattern-sheet-" + std::to_string(sheet) + "." + extension;
 }
 
 const char* tabSideName(TabSide side) {

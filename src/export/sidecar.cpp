@@ -37,6 +37,7 @@ std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName)
   j["kind"] = kindName(pattern.profile.kind);
   j["frame"] = "sheet millimetres, y down (SVG user units)";
   j["sheet"] = {{"width", pattern.drawing.width}, {"height", pattern.drawing.height}};
+  j["scale"] = pattern.scale;
   j["tick_spacing_mm"] = pattern.tickSpacing;
   j["kerf_mm"] = pattern.profile.kerfMm;
   j["tabs_on"] = tabSideName(pattern.profile.tabs);
@@ -61,6 +62,7 @@ std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName)
     pieces.push_back({{"name", p.name},
                       {"perimeter_mm", p.perimeter},
                       {"rotation_deg", p.rotationDeg},
+                      {"sheet", p.sheet},
                       {"outline", polyline(p.outline)},
                       {"seam_is_hole", p.seamIsHole},
                       {"boundaries", polylines(p.boundaries)},
@@ -87,6 +89,17 @@ std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName)
   for (const PageView& p : pattern.pages)
     pages.push_back({{"width", p.width}, {"height", p.height}, {"origin", point(p.origin)}});
   j["pages"] = pages;
+  // The sheets (pages) the pieces are laid out on, on the canvas; each piece's `sheet` indexes
+  // them, and with more than one each is also a file of its own (`file`).
+  json sheets = json::array();
+  for (size_t k = 0; k < pattern.sheets.size(); ++k) {
+    const Box& b = pattern.sheets[k];
+    sheets.push_back({{"origin", point(b.lo)},
+                      {"width", b.w()},
+                      {"height", b.h()},
+                      {"file", pattern.sheets.size() > 1 ? sheetFileName(int(k) + 1, "svg") : "pattern.svg"}});
+  }
+  j["sheets"] = sheets;
   j["messages"] = pattern.messages;
   return j.dump(1);
 }

@@ -92,4 +92,23 @@ std::string svgDocument(const Drawing& drawing) {
   return s.str();
 }
 
+Drawing sheetDrawing(const Drawing& drawing, const Box& sheet) {
+  Drawing out = drawing;
+  out.width = sheet.w();
+  out.height = sheet.h();
+  // Every path lies inside one sheet (the layout check counts any that does not); 1e-6 mm is
+  // rounding on coordinates of a few metres.
+  for (Layer& layer : out.layers) {
+    std::vector<Path> kept;
+    for (Path& path : layer.paths) {
+      if (!sheet.contains(boxOf(path.parts), 1e-6)) continue;
+      for (Polyline& part : path.parts)
+        for (Vec2& q : part) q -= sheet.lo;
+      kept.push_back(std::move(path));
+    }
+    layer.paths = std::move(kept);
+  }
+  return out;
+}
+
 }  // namespace dform::fab

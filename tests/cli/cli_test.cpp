@@ -25,6 +25,7 @@
 
 #include "core/file_hash.h"
 #include "io/model_files.h"
+#include "shipped_samples.h"
 
 namespace dform {
 namespace {
@@ -524,18 +525,9 @@ TEST_F(CliTest, ReportsFollowTheirSchema) {
   failsWhen(0, "forward with a pre-D-Form", [&](J& r) { r["pre_dform"] = saved[1]["pre_dform"]; });
 }
 
-// Every shipped sample, as shipped (its job file's options, or an inverse curve's defaults).
-std::vector<std::string> shippedSamples() {
-  std::vector<std::string> samples;
-  for (const char* folder : {"forward", "inverse"})
-    for (const auto& entry : fs::directory_iterator(std::string(DFORM_SAMPLES_DIR) + "/" + folder)) {
-      const std::string ext = entry.path().extension().string();
-      if (ext == ".json" || (ext == ".obj" && std::string(folder) == "inverse"))
-        samples.push_back(std::string(folder) + "/" + entry.path().filename().string());
-    }
-  std::sort(samples.begin(), samples.end());
-  return samples;
-}
+// Every shipped sample, as shipped (its job file's options, or an inverse curve's defaults):
+// shippedSamples() from tests/shipped_samples.h.
+using test::shippedSamples;
 
 class SampleUnderStrictGate : public CliTest, public ::testing::WithParamInterface<std::string> {};
 

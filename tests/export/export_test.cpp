@@ -82,7 +82,7 @@ TEST(ExportPattern, SvgIsTrueScaleInMillimetresWithLayersAndIds) {
   EXPECT_DOUBLE_EQ(parseMm(e.svg.width), 600);
   EXPECT_DOUBLE_EQ(parseMm(e.svg.height), 400);
   EXPECT_EQ(e.svg.viewBox, "0 0 600 400");  // 1 user unit = 1 mm
-  EXPECT_EQ(e.svg.layers, (std::vector<std::string>{"Engrave", "Score", "Cut"}));
+  EXPECT_EQ(e.svg.layers, (std::vector<std::string>{"Title", "Engrave", "Score", "Cut"}));
   for (const char* id : {"A-cut", "B-cut", "A-tick-00", "A-tick-07", "B-tick-07", "A-name",
                          "B-name", "A-fold-01", "A-tick-07-label", "title"})
     EXPECT_NE(e.svg.find(id), nullptr) << id;
@@ -109,7 +109,8 @@ TEST(ExportPattern, LaserUsesOnlyTheThreeOperationColoursAndHairlines) {
     EXPECT_EQ(colours.size(), 3u) << profile << ": one colour per operation";
     const Exported e = exportTo("colours-" + profile, model, options(profile));
     const std::map<std::string, std::string> layerColour{
-        {"Cut", p.cutColor}, {"Score", p.scoreColor}, {"Engrave", p.engraveColor}};
+        {"Cut", p.cutColor}, {"Score", p.scoreColor}, {"Engrave", p.engraveColor},
+        {"Title", p.engraveColor}};
     for (const auto& path : e.svg.paths) {
       EXPECT_EQ(path.fill, "none") << profile << " " << path.id;
       EXPECT_EQ(path.stroke, layerColour.at(path.layer)) << profile << " " << path.id;
@@ -484,7 +485,7 @@ TEST(ExportPattern, LargePatternIsTiledAcrossA4PagesWithMarks) {
 TEST(ExportPattern, PrintAndCutHasSilhouetteMarksAndSeparateLayers) {
   const DForm model = ellipseCircleDForm(64, 8, 48, 30, 18);
   const Exported e = exportTo("pnc", model, options("print-and-cut"));
-  EXPECT_EQ(e.svg.layers, (std::vector<std::string>{"Regmarks", "Print", "Cut"}));
+  EXPECT_EQ(e.svg.layers, (std::vector<std::string>{"Title", "Regmarks", "Print", "Cut"}));
   EXPECT_DOUBLE_EQ(parseMm(e.svg.width), 210);
   const SvgPath* square = e.svg.find("regmark-square");
   ASSERT_NE(square, nullptr);
@@ -503,13 +504,14 @@ TEST(ExportPattern, PrintAndCutHasSilhouetteMarksAndSeparateLayers) {
       EXPECT_GE(std::min(q.y(), 297 - q.y()), 10.0 - 1e-9);
     }
   }
-  // Artwork (everything but the marks) keeps 20 mm clear of the marks.
+  // Artwork (everything but the marks) keeps the profile's 5 mm clear of the marks' inner
+  // edges: 10 mm inset + 5 mm square + 5 mm from the page's edges.
   for (const auto& p : e.svg.paths) {
     if (p.layer == "Regmarks") continue;
     for (const auto& part : p.parts)
       for (const Vec2& q : part) {
-        EXPECT_GE(std::min(q.x(), 210 - q.x()), 30.0) << p.id;
-        EXPECT_GE(std::min(q.y(), 297 - q.y()), 30.0) << p.id;
+        EXPECT_GE(std::min(q.x(), 210 - q.x()), 20.0 - 1e-9) << p.id;
+        EXPECT_GE(std::min(q.y(), 297 - q.y()), 20.0 - 1e-9) << p.id;
       }
     if (p.layer == "Cut") {
       EXPECT_TRUE(p.id.find("-cut") != std::string::npos) << p.id;
@@ -519,7 +521,7 @@ TEST(ExportPattern, PrintAndCutHasSilhouetteMarksAndSeparateLayers) {
 
 TEST(ExportPattern, PrintAndCutGivesEachPieceItsOwnPageWhenTheyDoNotFitOne) {
   // A 160 x 100 mm ellipse and a 131 mm circle, tabs on A: each fits the registration area of an
-  // A4 (140 x 227 mm) or Letter page, not both together.
+  // A4 (170 x 257 mm) or Letter page, not both together.
   const DForm model = ellipseCircleDForm();
   struct Case {
     const char* profile;
@@ -528,7 +530,7 @@ TEST(ExportPattern, PrintAndCutGivesEachPieceItsOwnPageWhenTheyDoNotFitOne) {
   };
   const double cw = 6.75 * 25.4, ch = 9.25 * 25.4;
   const Case cases[] = {
-      {"print-and-cut", 210, 297, Vec2(35, 35), Vec2(175, 262)},
+      {"print-and-cut", 210, 297, Vec2(20, 20), Vec2(190, 277)},
       {"print-and-cut-cricut", 215.9, 279.4, Vec2((215.9 - cw) / 2, (279.4 - ch) / 2),
        Vec2((215.9 + cw) / 2, (279.4 + ch) / 2)}};
   for (const Case& c : cases) {
@@ -576,11 +578,13 @@ TEST(ExportPattern, PrintAndCutGivesEachPieceItsOwnPageWhenTheyDoNotFitOne) {
       EXPECT_NEAR(pdfPageSize(out).first, c.W * 72 / 25.4, 0.01) << out;
     }
   }
-  // A piece that does not fit a page even alone is refused, with the size it needs: here the
-  // circle with the tabs on it (131 + 2 x 6 mm, ticks and the 35 mm borders: over 210 mm).
+  // A piece that does not fit a page even alone is refused, with the size it needs: here a
+  // 200 mm circle with the tabs on it (200 + 2 x 6 mm, ticks and the 20 mm borders: over 210 mm),
+  // beside an ellipse that fits.
   ExportOptions o = options("print-and-cut");
   o.tabSide = TabSide::B;
-  auto refused = exportAll(model, o, freshDir("pnc-refused"));
+  const DForm large = ellipseCircleDForm(64, 8, 125, 70, 30);
+  auto refused = exportAll(large, o, freshDir("pnc-refused"));
   ASSERT_FALSE(refused.isOk());
   EXPECT_EQ(refused.status().code(), ErrorCode::Usage);
   const std::string& message = refused.status().message();
@@ -588,6 +592,15 @@ TEST(ExportPattern, PrintAndCutGivesEachPieceItsOwnPageWhenTheyDoNotFitOne) {
             0u)
       << message;
   EXPECT_GT(std::stod(message.substr(message.find("at least") + 9)), 210.0) << message;
+  // Scaled to fit, it goes on its page, and pattern.json records the scale.
+  o.scaleToFit = true;
+  const Exported fitted = exportTo("pnc-scaled", large, o);
+  const double scale = fitted.sidecar["scale"].get<double>();
+  EXPECT_LT(scale, 1.0);
+  EXPECT_GT(scale, 0.5);
+  EXPECT_NEAR(fitted.summary.perimeterA, scale * solvedPerimeter(large.a), kMmTol);
+  ASSERT_NE(fitted.svg.find("title"), nullptr);
+  EXPECT_EQ(fitted.summary.pages, 2);
 }
 
 TEST(ExportPattern, CricutArtworkStaysInThePrintThenCutArea) {
@@ -628,6 +641,108 @@ TEST(ExportPattern, PiecesAreRotatedToFitAndNeverOverlap) {
       EXPECT_LE(q.x(), 235.0 + 1e-6);
     }
   EXPECT_LT(overlap(e.svg.find("A-cut")->parts[0], e.svg.find("B-cut")->parts[0]), 1e-9);
+}
+
+TEST(ExportPattern, LaserPiecesThatDoNotFitOneSheetTogetherGetASheetEach) {
+  // The 160 x 100 mm ellipse (tabs on it) and the 131 mm circle: each fits a 200 x 200 mm
+  // sheet, both do not.
+  const DForm model = ellipseCircleDForm();
+  ExportOptions o = options("laser");
+  o.sheetWidthMm = 200;
+  o.sheetHeightMm = 200;
+  const Exported e = exportTo("two-sheets", model, o);
+  ASSERT_EQ(e.sidecar["sheets"].size(), 2u);
+  EXPECT_EQ(e.summary.pages, 2);
+  for (int k = 0; k < 2; ++k) {
+    const auto& sheet = e.sidecar["sheets"][k];
+    EXPECT_DOUBLE_EQ(sheet["width"].get<double>(), 200);
+    EXPECT_DOUBLE_EQ(sheet["height"].get<double>(), 200);
+    EXPECT_EQ(e.sidecar["pieces"][k]["sheet"].get<int>(), k);
+    // Each sheet is a file of its own, at the sheet's size, with its one piece's cut on it.
+    const std::string file = sheet["file"].get<std::string>();
+    EXPECT_EQ(file, sheetFileName(k + 1, "svg"));
+    const SvgDoc svg = readSvg(e.dir + "/" + file);
+    EXPECT_DOUBLE_EQ(parseMm(svg.width), 200);
+    EXPECT_DOUBLE_EQ(parseMm(svg.height), 200);
+    const std::string mine = k == 0 ? "A-cut" : "B-cut", other = k == 0 ? "B-cut" : "A-cut";
+    ASSERT_NE(svg.find(mine), nullptr) << file;
+    EXPECT_EQ(svg.find(other), nullptr) << file;
+    EXPECT_NE(svg.find(k == 0 ? "title" : "title-page-2"), nullptr) << file << ": its own title";
+    EXPECT_NEAR(length(svg.find(mine)->parts[0], true),
+                length(e.svg.find(mine)->parts[0], true), 1e-3);
+    for (const SvgPath& path : svg.paths)
+      for (const Polyline& part : path.parts)
+        for (const Vec2& q : part) {
+          EXPECT_TRUE(q.x() >= 0 && q.x() <= 200 && q.y() >= 0 && q.y() <= 200) << path.id;
+        }
+  }
+  EXPECT_EQ(fab::checkLayout(build(model, o)).problems(), 0);
+  // A sheet that takes both: one sheet, no sheet files.
+  o.sheetWidthMm = 400;
+  o.sheetHeightMm = 300;
+  const Exported one = exportTo("one-sheet", model, o);
+  EXPECT_EQ(one.sidecar["sheets"].size(), 1u);
+  EXPECT_FALSE(fs::exists(one.dir + "/" + sheetFileName(1, "svg")));
+}
+
+TEST(ExportPattern, PrintPutsEachPieceOnAPageAndTilesOnlyAPieceLargerThanThePage) {
+  // A 112 x 70 mm ellipse and its 92 mm circle fit one A4 page together.
+  const Exported both =
+      exportTo("print-one-page", ellipseCircleDForm(64, 8, 56, 35, 20), options("print"));
+  EXPECT_EQ(both.summary.pages, 1);
+  // An ellipse 250 x 110 mm: fits a landscape A4 alone; its 190 mm circle partner a portrait one.
+  const DForm pair = ellipseCircleDForm(64, 8, 125, 55, 30);
+  const Exported pages = exportTo("print-page-each", pair, options("print"));
+  ASSERT_EQ(pages.sidecar["sheets"].size(), 2u);
+  EXPECT_EQ(pages.summary.pages, 2);
+  // A 300 x 180 mm ellipse with a 250 mm circle partner on A5-like 150 x 210 mm pages: both tiled,
+  // each after a page map.
+  ExportOptions small = options("print");
+  small.page = "150x210mm";
+  const Exported tiled = exportTo("print-tiled", ellipseCircleDForm(64, 8, 150, 90, 40), small);
+  ASSERT_EQ(tiled.sidecar["sheets"].size(), 2u);
+  EXPECT_GT(tiled.summary.pages, 4);
+  for (const auto& page : tiled.sidecar["pages"]) {
+    EXPECT_DOUBLE_EQ(page["width"].get<double>(), 150);
+    EXPECT_DOUBLE_EQ(page["height"].get<double>(), 210);
+  }
+  const fab::PatternBuild pattern = build(ellipseCircleDForm(64, 8, 150, 90, 40), small);
+  int maps = 0, tiles = 0;
+  for (const fab::PageView& page : pattern.pages)
+    for (const fab::Layer& layer : page.overlay)
+      for (const fab::Path& path : layer.paths) {
+        maps += path.id == "page-map-header";
+        tiles += path.id == "tile-header";
+        for (const Polyline& part : path.parts)  // the map's grid and the furniture on the page
+          for (const Vec2& q : part)
+            EXPECT_TRUE(q.x() >= 0 && q.x() <= page.width && q.y() >= 0 && q.y() <= page.height)
+                << path.id << " at " << q.transpose();
+      }
+  EXPECT_EQ(maps, 2);
+  EXPECT_EQ(maps + tiles, int(pattern.pages.size()));
+}
+
+TEST(ExportPattern, PageAndSheetOptionsAreRefusedWhereTheyDoNotApply) {
+  const DForm model = ellipseCircleDForm();
+  ExportOptions print = options("print"), laser = options("laser");
+  print.sheetGiven = true;
+  laser.page = "A4";
+  // Each refusal names the option that does apply.
+  for (const auto& [o, instead] : {std::pair{print, "--page"}, std::pair{laser, "--sheet"}}) {
+    auto refused = prepareExport(model, o);
+    ASSERT_FALSE(refused.isOk()) << instead;
+    EXPECT_EQ(refused.status().code(), ErrorCode::Usage);
+    EXPECT_NE(refused.status().message().find(instead), std::string::npos)
+        << refused.status().message();
+  }
+  ExportOptions a3 = options("print");
+  a3.page = "A3";
+  const Exported e = exportTo("a3", model, a3);
+  EXPECT_DOUBLE_EQ(parseMm(e.svg.width), 297);
+  EXPECT_DOUBLE_EQ(parseMm(e.svg.height), 420);
+  EXPECT_FALSE(pageSizeMm("A5x"));
+  EXPECT_NEAR(pageSizeMm("8.5x11in")->first, 215.9, 1e-9);
+  EXPECT_NEAR(pageSizeMm("Tabloid")->second, 431.8, 1e-9);
 }
 
 TEST(ExportPattern, SheetTooSmallSaysWhatSizeIsNeeded) {

@@ -2,6 +2,8 @@
 // and each kind of defect, planted in a built pattern, is counted by its own figure alone.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <functional>
 
 #include "export/exporter.h"
@@ -127,6 +129,83 @@ TEST(ExportLayout, AHoleIsOutsideItsPiece) {
   const LayoutFindings g = fab::checkLayout(tabInRing);
   EXPECT_EQ(g.tabsOverPieces, 1) << g.example;
   EXPECT_EQ(g.problems(), 1) << g.example;
+}
+
+TEST(ExportLayout, TheTitleBlockOverAPieceOrAMarkIsCounted) {
+  const DForm model = ellipseCircleDForm();
+  // The calibration bar moved inside piece A, halfway between its leftmost point and its middle
+  // (clear of the piece's name and tick numbers).
+  fab::PatternBuild print = build(model, options("print"));
+  ASSERT_EQ(fab::checkLayout(print).problems(), 0) << fab::checkLayout(print).example;
+  const Polyline& outline = print.pieces[0].outline;
+  const Vec2 left = *std::min_element(outline.begin(), outline.end(),
+                                      [](const Vec2& a, const Vec2& b) { return a.x() < b.x(); });
+  fab::Path* bar = findPath(print, "calibration-bar");
+  ASSERT_NE(bar, nullptr);
+  const Vec2 by = 0.5 * (left + centroid(outline)) - centroid(bar->parts[0]);
+  for (Polyline& part : bar->parts) translate(part, by);
+  const LayoutFindings f = fab::checkLayout(print);
+  EXPECT_EQ(f.titleOverlaps, 1) << f.example;
+  EXPECT_EQ(f.problems(), 1) << f.example;
+  EXPECT_NE(f.example.find("calibration-bar overlaps piece A"), std::string::npos) << f.example;
+
+  // The title line moved onto the Silhouette square (its far end may reach the top-right mark
+  // too: every problem counted is the title's).
+  fab::PatternBuild pnc = build(model, options("print-and-cut"));
+  ASSERT_EQ(fab::checkLayout(pnc).problems(), 0) << fab::checkLayout(pnc).example;
+  fab::Path* title = findPath(pnc, "title");
+  fab::Path* square = findPath(pnc, "regmark-square");
+  ASSERT_NE(title, nullptr);
+  ASSERT_NE(square, nullptr);
+  fab::Box box = fab::boxOf(title->parts);
+  const Vec2 onSquare = square->parts[0][0] + Vec2(1, 1) - Vec2(box.lo.x(), 0.5 * (box.lo.y() + box.hi.y()));
+  for (Polyline& part : title->parts) translate(part, onSquare);
+  const LayoutFindings g = fab::checkLayout(pnc);
+  EXPECT_GE(g.titleOverlaps, 1) << g.example;
+  EXPECT_EQ(g.problems(), g.titleOverlaps) << g.example;
+  EXPECT_NE(g.example.find("registration mark regmark-square"), std::string::npos) << g.example;
+}
+
+TEST(ExportLayout, TightTickSpacingThinsTheNumbersAndKeepsEveryTick) {
+  const DForm model = ellipseCircleDForm();
+  ExportOptions o = options("print");
+  o.tickSpacingMm = 2;  // closer than a one-digit number at 3 mm is wide
+  const fab::PatternBuild pattern = build(model, o);
+  const LayoutFindings f = fab::checkLayout(pattern);
+  EXPECT_EQ(f.problems(), 0) << f.example;
+  for (const char* piece : {"A", "B"}) {
+    int ticks = 0, numbers = 0;
+    for (const fab::Layer& layer : pattern.drawing.layers)
+      for (const fab::Path& path : layer.paths) {
+        if (path.id.rfind(std::string(piece) + "-tick-", 0) != 0) continue;
+        const bool label = path.id.size() > 6 && path.id.compare(path.id.size() - 6, 6, "-label") == 0;
+        (label ? numbers : ticks) += 1;
+      }
+    EXPECT_EQ(ticks, int(pattern.ticks.size())) << piece << ": every tick is drawn";
+    EXPECT_LT(numbers, ticks) << piece << ": some numbers thinned out";
+    EXPECT_GT(numbers, ticks / 4) << piece << ": most of every other number kept";
+  }
+  EXPECT_TRUE(std::any_of(pattern.messages.begin(), pattern.messages.end(), [](const std::string& m) {
+    return m.find("thinned") != std::string::npos;
+  }));
+}
+
+TEST(ExportLayout, CornerTickNumbersAreMovedInwardNotDropped) {
+  // The disphenoid's pieces are rhombi: with ticks every 10 mm some fall on or next to a corner,
+  // where the spot beside the tick is outside the piece.
+  const DForm model = tetraDForm(8, 60.0);
+  ExportOptions o = options("laser");
+  o.tickSpacingMm = 10;
+  fab::PatternBuild pattern = build(model, o);
+  EXPECT_EQ(fab::checkLayout(pattern).problems(), 0) << fab::checkLayout(pattern).example;
+  for (const std::string& m : pattern.messages)
+    EXPECT_EQ(m.find("left out"), std::string::npos) << m;
+  for (const fab::TickInfo& t : pattern.ticks)
+    for (const char* piece : {"A", "B"}) {
+      char id[32];
+      std::snprintf(id, sizeof id, "%s-tick-%02d-label", piece, t.id);
+      EXPECT_NE(findPath(pattern, id), nullptr) << id;
+    }
 }
 
 }  // namespace

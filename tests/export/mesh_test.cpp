@@ -88,6 +88,9 @@ TEST(ExportMesh, GltfHasBothPiecesTheSeamAndMetresYUp) {
     EXPECT_TRUE(prim.attributes.count("COLOR_0"));
     EXPECT_NE(prim.material, m.meshes[size_t(1 - p)].primitives.at(0).material) << "own materials";
   }
+  // Each piece its own base colour.
+  EXPECT_NE(m.materials[0].pbrMetallicRoughness.baseColorFactor,
+            m.materials[1].pbrMetallicRoughness.baseColorFactor);
   const auto& seam = m.meshes[2].primitives.at(0);
   EXPECT_EQ(seam.mode, TINYGLTF_MODE_LINE);
   EXPECT_EQ(m.accessors[size_t(seam.indices)].count, 2 * model.a.seam.size());
@@ -117,6 +120,29 @@ void colourByCurvatureMap(const DForm& model, ExportOptions& o) {
   const Eigen::VectorXd a = curvatureMap(model.a), b = curvatureMap(model.b);
   o.curvatureA.assign(a.data(), a.data() + a.size());
   o.curvatureB.assign(b.data(), b.data() + b.size());
+}
+
+TEST(ExportMesh, PiecesHaveTheirOwnColourAndTheCurvatureMapTheReportsScale) {
+  const DForm model = ellipseCircleDForm();
+  for (bool curvature : {false, true}) {
+    ExportOptions o = options();
+    if (curvature) colourByCurvatureMap(model, o);
+    const std::string dir = exportModel(curvature ? "colours-map" : "colours", model, o);
+    tinygltf::Model m;
+    tinygltf::TinyGLTF loader;
+    std::string err, warn;
+    ASSERT_TRUE(loader.LoadBinaryFromFile(&m, &err, &warn, dir + "/dform.glb")) << err;
+    const auto& a = m.materials[size_t(m.meshes[0].primitives[0].material)];
+    const auto& b = m.materials[size_t(m.meshes[1].primitives[0].material)];
+    EXPECT_NE(a.pbrMetallicRoughness.baseColorFactor, b.pbrMetallicRoughness.baseColorFactor)
+        << (curvature ? "with" : "without") << " the curvature map";
+    EXPECT_EQ(m.meshes[0].primitives[0].attributes.count("COLOR_0"), curvature ? 1u : 0u);
+    if (!curvature) continue;
+    // report.html's scale: the largest |angle defect| of either piece, at least 1e-3 rad.
+    double top = 1e-3;
+    for (const Piece* p : {&model.a, &model.b}) top = std::max(top, curvatureMap(*p).cwiseAbs().maxCoeff());
+    EXPECT_NEAR(m.asset.extras.Get("curvatureColourScale").GetNumberAsDouble(), top, 1e-12 * top);
+  }
 }
 
 TEST(ExportMesh, GlbPassesTheKhronosValidator) {

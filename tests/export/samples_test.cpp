@@ -1,0 +1,255 @@
+// Every shipped sample, solved by the command line as a user would, exported with every shipped
+// profile on A4 and on Letter (page profiles: --page; laser profiles: a sheet of that size) and
+// read back: exit 0 (the layout check included), every piece on one sheet, the page count the
+// fewest the pieces' sizes allow, the title block clear of the pieces, the seams' perimeters in
+// the SVG within 0.1 mm of the solved ones times the scale. Everything is exported with
+// --scale fit: a piece larger than the paper (circle+square's 257 mm square on A4) is scaled,
+// and the scale is checked to be 1 wherever the pieces fit at true size.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "shipped_samples.h"
+#include "test_util.h"
+
+namespace dform::test {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using fab::Box;
+
+constexpr double kMmTol = 0.1;  // the bar for cut and printed lengths
+
+std::string dform() { return DFORM_EXE; }
+
+json readJson(const std::string& path) { return json::parse(std::ifstream(path)); }
+
+struct Paper {
+  const char* name;
+  double w, h;  // portrait (mm)
+};
+constexpr Paper kPapers[] = {{"A4", 210, 297}, {"Letter", 215.9, 279.4}};
+
+Box boxOfJson(const json& lines) {
+  Box b;
+  for (const auto& line : lines) b.add(toPolyline(line));
+  return b;
+}
+
+// Where a profile lets artwork go on a W x H page (the rules of docs/export.md, restated).
+Box artArea(const json& profile, double W, double H) {
+  const double m = profile.value("margin_mm", 5.0);
+  const std::string reg = profile.value("registration", std::string("none"));
+  if (reg == "silhouette") {
+    const double inset = 10 + 5 + profile.value("registration_clear_mm", 5.0);
+    return Box::spanning(Vec2(inset, inset), Vec2(W - inset, H - inset));
+  }
+  if (reg == "cricut") {
+    const Vec2 half(0.5 * std::min(6.75 * 25.4, W - 2 * m), 0.5 * std::min(9.25 * 25.4, H - 2 * m));
+    return Box::spanning(Vec2(W, H) / 2 - half, Vec2(W, H) / 2 + half);
+  }
+  return Box::spanning(Vec2(m, m), Vec2(W - m, H - m));
+}
+
+// Whether two pieces of extents a and b (either turned a quarter) fit one W x H page together,
+// side by side or stacked `gap` apart, with a title block `depth` deep under or beside them.
+bool fitTogether(Vec2 a, Vec2 b, double gap, double depth, const Box& area) {
+  for (int ta = 0; ta < 2; ++ta)
+    for (int tb = 0; tb < 2; ++tb)
+      for (bool stacked : {false, true}) {
+        const Vec2 p = ta ? Vec2(a.y(), a.x()) : a, q = tb ? Vec2(b.y(), b.x()) : b;
+        const Vec2 size = stacked ? Vec2(std::max(p.x(), q.x()), p.y() + gap + q.y())
+                                  : Vec2(p.x() + gap + q.x(), std::max(p.y(), q.y()));
+        if (size.x() > area.w() || size.y() > area.h()) continue;
+        if (size.y() + gap + depth <= area.h() || size.x() + gap + depth <= area.w()) return true;
+      }
+  return false;
+}
+
+class SamplePatterns : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
+  const std::string sample = GetParam();
+  const bool forward = sample.rfind("forward/", 0) == 0;
+  const std::string solved = freshDir("solved");
+  std::string out;
+  ASSERT_EQ(run(dform() + (forward ? " run " : " inverse ") + DFORM_SAMPLES_DIR + "/" + sample +
+                    " --gate none --no-export -q -o " + solved,
+                &out),
+            0)
+      << out;
+  const json metrics = readJson(solved + "/report.json")["metrics"];
+  const double seam[2] = {metrics["seam_length_a_mm"].get<double>(),
+                          metrics["seam_length_b_mm"].get<double>()};
+  int exports = 0, judged = 0;
+  for (const std::string& profileName : listProfiles(DFORM_TEMPLATES_DIR)) {
+    const json profile =
+        readJson(std::string(DFORM_TEMPLATES_DIR) + "/profiles/" + profileName + ".json");
+    const bool pageProfile = profile.contains("page");
+    for (const Paper& paper : kPapers) {
+      SCOPED_TRACE(sample + " " + profileName + " " + paper.name);
+      const std::string dir = freshDir("export");
+      char sheet[64];
+      std::snprintf(sheet, sizeof sheet, "%gx%gmm", paper.w, paper.h);
+      const std::string paperOption =
+          pageProfile ? std::string(" --page ") + paper.name : std::string(" --sheet ") + sheet;
+      ASSERT_EQ(run(dform() + " export " + solved + " -o " + dir + " -q --scale fit --profile " +
+                        profileName + paperOption,
+                    &out),
+                0)
+          << out;
+      ++exports;
+      const json pattern = readJson(dir + "/pattern.json");
+      const double scale = pattern["scale"].get<double>();
+      const auto& sheets = pattern["sheets"];
+      const auto& pages = pattern["pages"];
+      // Each piece lies on its own sheet, wholly.
+      Vec2 extent[2];
+      for (int p = 0; p < 2; ++p) {
+        const json& piece = pattern["pieces"][p];
+        const json& onSheet = sheets[piece["sheet"].get<size_t>()];
+        const Vec2 lo = toPolyline(json::array({onSheet["origin"]}))[0];
+        const Box sheetBox =
+            Box::spanning(lo, lo + Vec2(onSheet["width"].get<double>(), onSheet["height"].get<double>()));
+        const Box cut = boxOfJson(piece["cut"]);
+        EXPECT_TRUE(sheetBox.contains(cut, 1e-6)) << "piece " << p << " runs off its sheet";
+        extent[p] = Vec2(cut.w(), cut.h()) + Vec2::Constant(2 * 1.5);  // ticks stick out 1.5 mm
+        // The seam as drawn is the solved one, scaled.
+        EXPECT_NEAR(length(toPolyline(piece["outline"]), true), scale * seam[p], kMmTol);
+      }
+      // The fewest pages: one sheet when both fit one page (with the title block as drawn),
+      // two otherwise; a tiled piece's pages are its map and its tiles.
+      const double W = paper.w, H = paper.h;
+      const double margin = profile.value("margin_mm", 5.0);
+      Box title;
+      const SvgDoc first = readSvg(dir + "/" + sheets[0]["file"].get<std::string>());
+      for (const char* id : {"title", "note", "tab-note", "crease-legend-label", "calibration-bar",
+                             "calibration-label"})
+        if (const SvgPath* path = first.find(id))
+          for (const Polyline& part : path->parts) title.add(part);
+      const double depth = std::min(title.w(), title.h());
+      const bool turnable = profile.value("kind", std::string()) == "print";
+      auto together = [&](double d) {
+        return fitTogether(extent[0], extent[1], margin, d, artArea(profile, W, H)) ||
+               (turnable && fitTogether(extent[0], extent[1], margin, d, artArea(profile, H, W)));
+      };
+      // The block drawn is up to a line's leading less deep than the room kept for it (4 mm at
+      // the largest title height); a case within that of the edge is not judged.
+      if (together(depth) == together(depth + 4)) {
+        EXPECT_EQ(sheets.size(), together(depth) ? 1u : 2u);
+        ++judged;
+      }
+      size_t expectedPages = 0;
+      for (const auto& s : sheets) {
+        const double sw = s["width"].get<double>(), sh = s["height"].get<double>();
+        const bool paperSized = (std::abs(sw - W) < 1e-6 && std::abs(sh - H) < 1e-6) ||
+                                (std::abs(sw - H) < 1e-6 && std::abs(sh - W) < 1e-6);
+        if (paperSized) {
+          ++expectedPages;
+          continue;
+        }
+        // Tiles: windows of the page less 10 mm margins and a 12 mm header, overlapping.
+        ASSERT_TRUE(turnable) << "only a print profile tiles";
+        const double ov = profile.value("tile_overlap_mm", 10.0);
+        auto count = [&](double length, double window) {
+          return size_t(std::max(1.0, std::ceil((length - ov) / (window - ov) - 1e-9)));
+        };
+        expectedPages += 1 + count(sw, W - 20) * count(sh, H - 32);
+      }
+      EXPECT_EQ(pages.size(), expectedPages);
+      // True size wherever the pieces fit at true size, else the largest whole percent that
+      // fits: one percent more is refused as too large.
+      if (scale < 1.0) {
+        char larger[16];
+        std::snprintf(larger, sizeof larger, "%.2f", scale + 0.01);
+        EXPECT_EQ(run(dform() + " export " + solved + " -o " + freshDir("larger") +
+                          " -q --scale " + larger + " --profile " + profileName + paperOption,
+                      &out),
+                  2)
+            << out;
+        EXPECT_NE(out.find("does not fit"), std::string::npos) << out;
+      }
+      // The seams' perimeters in the SVG: exported again without tabs, each piece's cut path is
+      // its seam (no shipped profile has a kerf).
+      if (profileName == "laser" || profileName == "print-and-cut") {
+        const std::string bare = freshDir("bare");
+        ASSERT_EQ(run(dform() + " export " + solved + " -o " + bare +
+                          " -q --tabs none --scale " + std::to_string(scale) + " --profile " +
+                          profileName + paperOption,
+                      &out),
+                  0)
+            << out;
+        const SvgDoc svg = readSvg(bare + "/pattern.svg");
+        const json barePattern = readJson(bare + "/pattern.json");
+        for (int p = 0; p < 2; ++p) {
+          // A seam that is a hole's loop (anti and demi D-Forms) is cut as the piece's hole.
+          const std::string id = std::string(p == 0 ? "A" : "B") +
+                                 (barePattern["pieces"][p]["seam_is_hole"].get<bool>() ? "-cut-hole-1"
+                                                                                         : "-cut");
+          const SvgPath* seamCut = svg.find(id);
+          ASSERT_NE(seamCut, nullptr) << id;
+          EXPECT_NEAR(length(seamCut->parts[0], true), scale * seam[p], kMmTol) << id;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(exports, 2 * int(listProfiles(DFORM_TEMPLATES_DIR).size()));
+  EXPECT_GT(judged, exports / 2) << "most sheet counts are judged, not on the edge";
+}
+
+// The files of a folder and their contents.
+std::map<std::string, std::string> snapshot(const std::string& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::directory_iterator(dir)) files[entry.path().filename()] = readText(entry.path());
+  return files;
+}
+
+TEST(SampleExport, IntoAnotherFolderLeavesTheResultAsItWasAndProfilesSitSideBySide) {
+  const std::string solved = freshDir("solved-ellipses");
+  std::string out;
+  ASSERT_EQ(run(dform() + " run " + DFORM_SAMPLES_DIR + "/forward/ellipses-quarter-turn.json -q -o " +
+                    solved,
+                &out),
+            0)
+      << out;
+  const auto before = snapshot(solved);
+  const std::string laser = freshDir("side") + "/laser", print = freshDir("side") + "/print";
+  ASSERT_EQ(run(dform() + " export " + solved + " -o " + laser + " -q --profile laser", &out), 0)
+      << out;
+  ASSERT_EQ(run(dform() + " export " + solved + " -o " + print + " -q --profile print --page Letter",
+                &out),
+            0)
+      << out;
+  EXPECT_EQ(snapshot(solved), before) << "the result folder is untouched";
+  EXPECT_EQ(readJson(laser + "/pattern.json")["profile"], "laser");
+  EXPECT_EQ(readJson(print + "/pattern.json")["profile"], "print");
+  EXPECT_NEAR(readJson(print + "/pattern.json")["pages"][0]["width"].get<double>(), 215.9, 1e-9);
+  // A page profile refuses a sheet size, a sheet profile a page, with a message.
+  EXPECT_EQ(run(dform() + " export " + solved + " -o " + freshDir("refused") +
+                    " --profile print --sheet 297x420mm",
+                &out),
+            2);
+  EXPECT_NE(out.find("--page"), std::string::npos) << out;
+  EXPECT_EQ(run(dform() + " export " + solved + " -o " + freshDir("refused") +
+                    " --profile laser --page A4",
+                &out),
+            2);
+  EXPECT_NE(out.find("--sheet"), std::string::npos) << out;
+}
+
+INSTANTIATE_TEST_SUITE_P(Shipped, SamplePatterns, ::testing::ValuesIn(shippedSamples()),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                           std::string name = info.param.substr(0, info.param.rfind('.'));
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
+
+}  // namespace
+}  // namespace dform::test
