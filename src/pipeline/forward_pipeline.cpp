@@ -333,15 +333,22 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
   // Points every level must sample: corners of both joined boundaries and the crease ends on
   // them (as seam fractions from the starting pair), and corners and crease ends on each free
   // outline (as fractions of that outline).
+  // A free outline is sampled from its point nearest the seam's start, so that the mesh does not
+  // depend on where that outline's path happened to begin.
   std::vector<double> seamCorners, freeCorners[2];
   const DrawnPiece* drawn[2] = {&A, &B};
   const double startFraction[2] = {run.startFractionA, run.startFractionB};
   const int direction[2] = {directionA, directionB};
+  double freeStart[2] = {0.0, 0.0};
   for (int p = 0; p < 2; ++p) {
     const DrawnPiece& piece = *drawn[p];
     for (double c : cornerFractions(piece.joined, kCornerTurnRadians))
       seamCorners.push_back(fractionFrom(c, startFraction[p], direction[p]));
-    if (piece.freeOutline) freeCorners[p] = cornerFractions(*piece.freeOutline, kCornerTurnRadians);
+    if (piece.freeOutline) {
+      freeStart[p] = nearestArcFraction(*piece.freeOutline, pointAtFraction(piece.joined, startFraction[p]));
+      for (double c : cornerFractions(*piece.freeOutline, kCornerTurnRadians))
+        freeCorners[p].push_back(fractionFrom(c, freeStart[p], 1));
+    }
     for (const Points2& crease : piece.creases)
       for (const Eigen::Index end : {Eigen::Index(0), crease.rows() - 1}) {
         const Eigen::Vector2d q = crease.row(end);
@@ -349,7 +356,7 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
         if ((pointAtFraction(piece.joined, onJoined) - q).norm() < 1e-6)
           seamCorners.push_back(fractionFrom(onJoined, startFraction[p], direction[p]));
         else if (piece.freeOutline)
-          freeCorners[p].push_back(nearestArcFraction(*piece.freeOutline, q));
+          freeCorners[p].push_back(fractionFrom(nearestArcFraction(*piece.freeOutline, q), freeStart[p], 1));
       }
   }
 
@@ -432,7 +439,7 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
       int seamFirstRow = 0;
       if (piece.freeOutline) {
         const int m = std::max(3, int(std::lround(closedLength(*piece.freeOutline) / seamEdge)));
-        outline = sampleLoop(*piece.freeOutline, seamFractions(m, freeCorners[p]), 0.0, 1).rows;
+        outline = sampleLoop(*piece.freeOutline, seamFractions(m, freeCorners[p]), freeStart[p], 1).rows;
         holes.push_back(seam.rows);
         seamFirstRow = int(outline.rows());
       }

@@ -21,13 +21,15 @@ std::string sample(const std::string& name) { return std::string(DFORM_SAMPLES_D
 class InverseSamples : public ::testing::TestWithParam<const char*> {};
 
 // L_error and L_max measured on each sample at resolution 60 (dform inverse CURVE --resolution 60,
-// report.json's metrics, 2026-11-23). The paper's limits (0.5 %, 3 %) are ten times above them.
+// report.json's metrics, 2026-11-23). The paper's limits (0.5 %, 3 %) are above them. The on-hull
+// curves are made by the exact model: there the figures measure how the pieces' meshes chord the
+// polyhedral hull of 60 points (their triangles cross its edges), not a solve.
 std::pair<double, double> measuredFigures(const std::string& curve) {
   static const std::map<std::string, std::pair<double, double>> figures = {
-      {"tennis-ball.obj", {1.743e-4, 1.066e-3}},
-      {"saddle.obj", {9.111e-5, 6.595e-4}},
+      {"tennis-ball.obj", {1.518e-3, 8.366e-3}},
+      {"saddle.obj", {1.152e-3, 7.554e-3}},
       {"pushed-in.obj", {4.521e-4, 3.470e-3}},
-      {"rotated.json", {1.765e-4, 9.971e-4}}};
+      {"rotated.json", {1.507e-3, 8.382e-3}}};
   return figures.at(curve);
 }
 
@@ -45,6 +47,15 @@ TEST_P(InverseSamples, ReachThePapersFigures) {
   EXPECT_LE(run.metrics.L_error, 2 * lError);
   EXPECT_LE(run.metrics.L_max, 2 * lMax);
   EXPECT_EQ(run.metrics.flipped_2d + run.metrics.flipped_3d, 0);
+  // On its hull a curve comes back exactly when its pieces are zipped again (issue 14's bar);
+  // the pushed-in curve leaves its hull, and its pieces make no convex D-Form at all.
+  if (run.pre.isHull) {
+    EXPECT_EQ(run.modelUsed.name, "exact");
+    EXPECT_LE(run.curveMatch.roundtrip_max_rel, 1e-6);
+  } else {
+    EXPECT_EQ(run.modelUsed.name, "paper");
+    EXPECT_NE(run.curveMatch.roundtrip_note.find("not convex"), std::string::npos) << run.curveMatch.roundtrip_note;
+  }
   // Flat outlines: simple polygons whose perimeters match the length of the curve as read (not
   // only of its resampled polygon) within 0.1 %, issue 3's bar, even at 60 points.
   const double curveLength = run.curveLength;
