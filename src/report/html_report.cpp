@@ -150,6 +150,28 @@ Status writeReportHtml(const std::string& dir, const DForm& model,
 
   page.set("metrics", keyValueRows(report["metrics"]));
 
+  // Which model made the shape and how far it is from the one the cut pieces make.
+  const json& model_ = report.contains("model") ? report["model"] : json();
+  page.set("has_model", model_.is_object() ? data(data::type::bool_true) : data(data::type::bool_false));
+  if (model_.is_object()) {
+    page.set("model_name", show(model_["name"]));
+    page.set("model_reason", show(model_["reason"]));
+    const json& m = report["metrics"];
+    const bool inverse = mode == "inverse";
+    const json& rms = inverse ? m["roundtrip_rms_rel"] : m["exact_distance_rms_rel"];
+    const json& max = inverse ? m["roundtrip_max_rel"] : m["exact_distance_max_rel"];
+    page.set("object_figure",
+             rms.is_number()
+                 ? std::string(inverse ? "The pieces zipped again lie " : "The shape lies ") + show(rms) +
+                       " (RMS, largest " + show(max) + ") of the seam's bounding-box diagonal from " +
+                       (inverse ? "the curve asked for." : "the exact D-Form the cut pieces make.")
+                 : "No exact D-Form to compare with: " + show(inverse ? m["roundtrip_note"] : m["exact_note"]) + ".");
+    const std::size_t found = model_.contains("found_creases") ? model_["found_creases"].size() : 0;
+    page.set("found_creases", found == 0 ? std::string()
+                                         : std::to_string(found) + " crease(s) found by the exact model, drawn on the "
+                                                                   "pattern like drawn ones.");
+  }
+
   data views{data::type::list};
   for (const auto& [azimuth, elevation, caption] :
        std::vector<std::tuple<double, double, std::string>>{{30, 25, "from the front, above"},

@@ -377,6 +377,9 @@ TEST_F(CliTest, AFailedGateKeepsTheReportAndReleasesNothing) {
   page << std::ifstream(fs::path(out) / "report.html").rdbuf();
   EXPECT_NE(page.str().find("id=\"A-cut\""), std::string::npos)
       << "the report shows the new pattern";
+  EXPECT_NE(page.str().find("Made by the <strong>exact</strong> model"), std::string::npos)
+      << "the page says which model made the shape";
+  EXPECT_NE(page.str().find("from the exact D-Form the cut pieces make"), std::string::npos);
 
   // --export-anyway on the run itself: every cutting file written and marked, still exit 7.
   const std::string anyway = path("anyway");
@@ -877,8 +880,9 @@ TEST_F(CliTest, ASecondRunOnTheSameFolderFailsWhileTheFirstHoldsIt) {
   ASSERT_EQ(run("forward " + pair + " --resolution 30 -q -o " + out).exitCode, 0);
   const std::map<std::string, std::string> before = folderContents(out);
   const std::string err = path("first.txt");
+  // The paper model at this resolution runs for seconds (the exact one would be done at once).
   const pid_t first = spawn(std::string(DFORM_EXE) + " forward " + pair +
-                            " --resolution 250 -o " + out + " >/dev/null 2>" + err);
+                            " --resolution 250 --model paper -o " + out + " >/dev/null 2>" + err);
   ASSERT_TRUE(waitForText(err, "meshed piece A with")) << readFile(err);
   expectError(run("inverse " + sample("inverse/saddle.obj") + " --resolution 30 -q -o " + out), 6,
               out + ": another dform run (process " + std::to_string(first) + ") is writing");
