@@ -466,7 +466,8 @@ SolverSummary LeastSquaresSolver::solve(Eigen::VectorXd& x) {
     const double trialCost = normal.evaluate(xTrial, false);
     const double actual = cost - trialCost;
     const double rho = predicted > 0 ? actual / predicted : -1.0;
-    if (std::isfinite(trialCost) && actual > 0 && rho > 0) {
+    if (std::isfinite(trialCost) && actual > 0 && rho > 0 &&
+        (!options.acceptStep || options.acceptStep(x, xTrial))) {
       x = xTrial;
       normal.evaluate(x, true);
       normal.assemble();
