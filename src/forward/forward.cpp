@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "core/polyline.h"
+#include "forward/injectivity.h"
 #include "forward/terms.h"
 
 namespace dform {
@@ -308,6 +309,12 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
                                           {w.smooth2d, linear(smooth2d)},
                                           {w.seam, linear(seam)}},
                                          edges, x, held);
+  // No Levenberg-Marquardt step folds a triangle over that stood upright before it
+  // (forward/injectivity.h). The relaxation is not guarded: its path to the shape may pass
+  // through folds (guarded, it stalled on the anti and Squaricle samples).
+  const FoldGuard guard(layout, start.a, start.b);
+  SolverOptions solverOptions = options.solver;
+  refuseNewFolds(guard, solverOptions);
   result.relaxation = relaxation.relax(options.relaxation, x);
 
   Problem problem(layout.numVariables());
@@ -326,7 +333,7 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
   if (result.relaxation.stopped) {  // a Ctrl-C: no further solve
     result.summary = summaryWithoutSteps(problem, x);
     result.summary.termination = Termination::UserAbort;
-  } else if (options.solver.maxIterations == 0) {  // the relaxation is the result, its rounds too
+  } else if (solverOptions.maxIterations == 0) {  // the relaxation is the result, its rounds too
     result.constraintRounds = enforceByMultipliers(
         [&](Eigen::VectorXd& y) {
           result.relaxation.append(relaxation.relax(options.relaxation, y));
@@ -335,7 +342,7 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
         constraints, options.constraintRounds, x);
     result.summary = summaryWithoutSteps(problem, x);
   } else {
-    LeastSquaresSolver solver(problem, options.solver);
+    LeastSquaresSolver solver(problem, solverOptions);
     result.summary = solver.solve(x);
     result.constraintRounds =
         enforceByMultipliers(solver, constraints, options.constraintRounds, x, result.summary);

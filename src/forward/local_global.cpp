@@ -10,8 +10,6 @@
 #include <deque>
 #include <memory>
 
-#include "solver/threads.h"
-
 namespace dform {
 
 namespace {
@@ -139,11 +137,11 @@ class LocalGlobal {
   const EdgeLengthPairs& edges_;
   using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   // Coordinates (offsets within a vertex's block) whose rows of K are the same matrix.
-  // CHOLMOD's supernodal factor: its triangular solves run on BLAS blocks, several times faster
-  // per step than a simplicial factor on meshes of thousands of vertices (docs/benchmarks.md).
+  // CHOLMOD's simplicial factor: no BLAS and no threads, so its solves round the same on every
+  // machine (as the Levenberg-Marquardt steps', solver/solver.cpp).
   struct Group {
     std::vector<int> coordinates;
-    std::unique_ptr<Eigen::CholmodSupernodalLLT<SparseMatrix>> factor;
+    std::unique_ptr<Eigen::CholmodSimplicialLLT<SparseMatrix>> factor;
   };
 
   // K restricted to coordinate c of every vertex (#vertices square).
@@ -165,7 +163,6 @@ class LocalGlobal {
       for (SparseMatrix::InnerIterator it(K, j); it; ++it)
         assert(it.row() % stride_ == j % stride_ && "the objective couples two coordinates");
     std::vector<SparseMatrix> blocks;
-    limitLinearAlgebraThreads();
     ok_ = true;
     for (int c = 0; c < stride_; ++c) {
       SparseMatrix block = coordinateBlock(K, c);
@@ -176,7 +173,7 @@ class LocalGlobal {
         groups_[std::size_t(same - blocks.begin())].coordinates.push_back(c);
         continue;
       }
-      Group group{{c}, std::make_unique<Eigen::CholmodSupernodalLLT<SparseMatrix>>(block)};
+      Group group{{c}, std::make_unique<Eigen::CholmodSimplicialLLT<SparseMatrix>>(block)};
       ok_ = ok_ && group.factor->info() == Eigen::Success;
       groups_.push_back(std::move(group));
       blocks.push_back(std::move(block));

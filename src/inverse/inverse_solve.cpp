@@ -3,6 +3,7 @@
 #include <cassert>
 
 #include "core/polyline.h"
+#include "forward/injectivity.h"
 #include "forward/terms.h"
 
 namespace dform {
@@ -41,6 +42,10 @@ InverseResult solveInverse(const DForm& start, const Points3& curve, const Inver
   const LocalGlobalRelaxation relaxation({{w.smooth3d, static_cast<const LinearResidual*>(smooth3d.get())},
                                           {w.smooth2d, static_cast<const LinearResidual*>(smooth2d.get())}},
                                          edges, x, held);
+  // No Levenberg-Marquardt step folds a triangle over (forward/injectivity.h).
+  const FoldGuard guard(layout, scaled.a, scaled.b);
+  SolverOptions solverOptions = options.solver;
+  refuseNewFolds(guard, solverOptions);
   result.relaxation = relaxation.relax(options.relaxation, x);
 
   Problem problem(layout.numVariables());
@@ -52,7 +57,7 @@ InverseResult solveInverse(const DForm& start, const Points3& curve, const Inver
     result.summary = summaryWithoutSteps(problem, x);
     result.summary.termination = Termination::UserAbort;
   } else {
-    result.summary = solve(problem, options.solver, x);  // no step at all when the cap is 0
+    result.summary = solve(problem, solverOptions, x);  // no step at all when the cap is 0
   }
 
   result.model = scaled;

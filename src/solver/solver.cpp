@@ -9,8 +9,6 @@
 #include <cstdio>
 #include <numeric>
 
-#include "solver/threads.h"
-
 namespace dform {
 
 const char* terminationName(Termination t) {
@@ -252,7 +250,6 @@ Eigen::VectorXd shiftedProduct(const SparseLower& A, double mu, const Eigen::Vec
 class StepSolver {
  public:
   StepSolver(const SparseLower& pattern, const SolverOptions& options) : options_(options) {
-    limitLinearAlgebraThreads();
     factor_.analyzePattern(pattern);
     // CHOLMOD's analysis counts the factorisation's flops and L's nonzeros. One CG iteration
     // costs two triangular solves with L (2 flops per nonzero each) and a product with A
@@ -324,7 +321,12 @@ class StepSolver {
   }
 
   const SolverOptions& options_;
-  Eigen::CholmodSupernodalLLT<SparseLower, Eigen::Lower> factor_;
+  // CHOLMOD's simplicial factor: no BLAS and no threads, so the same rounding on every machine.
+  // The supernodal one hands its dense blocks to whichever kernel OpenBLAS picks for the CPU
+  // (AVX-512, Haswell, ...), and those round differently; a solve that ends on a flat objective
+  // then took other steps per machine (the Squaricle sample folded with one kernel and not with
+  // another, docs/benchmarks.md "Same result on every machine").
+  Eigen::CholmodSimplicialLLT<SparseLower, Eigen::Lower> factor_;
   bool haveFactor_ = false;
   int factorisations_ = 0;
   int cgBudget_ = 1;  ///< CG iterations allowed per step before refactorising
@@ -464,7 +466,8 @@ SolverSummary LeastSquaresSolver::solve(Eigen::VectorXd& x) {
     const double trialCost = normal.evaluate(xTrial, false);
     const double actual = cost - trialCost;
     const double rho = predicted > 0 ? actual / predicted : -1.0;
-    if (std::isfinite(trialCost) && actual > 0 && rho > 0) {
+    if (std::isfinite(trialCost) && actual > 0 && rho > 0 &&
+        (!options.acceptStep || options.acceptStep(x, xTrial))) {
       x = xTrial;
       normal.evaluate(x, true);
       normal.assemble();

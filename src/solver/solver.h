@@ -67,6 +67,10 @@ struct SolverOptions {
   double maxAccelerationRatio = 0.75;
   /// Called after every iteration; return false to stop the solve (Termination::UserAbort).
   std::function<bool(const IterationSummary&)> callback;
+  /// When set, a step from x to x' is taken only if acceptStep(x, x') is true (the forward solve
+  /// refuses one that folds a triangle over); a refused step counts as one that did not lower the
+  /// cost: more damping, a shorter step next.
+  std::function<bool(const Eigen::VectorXd& from, const Eigen::VectorXd& to)> acceptStep;
 
   bool isValid(std::string* why) const;
 };

@@ -61,9 +61,11 @@ class CliTest : public ::testing::Test {
   }
 
   // Runs dform with `args`, capturing stdout and stderr.
-  Outcome run(const std::string& args) const {
+  // Runs dform with `args`; `environment` (e.g. "env NAME=value") is put before the command.
+  Outcome run(const std::string& args, const std::string& environment = "") const {
     const std::string out = path("stdout.txt"), err = path("stderr.txt");
-    const std::string command = std::string(DFORM_EXE) + " " + args + " >" + out + " 2>" + err;
+    const std::string command =
+        environment + " " + std::string(DFORM_EXE) + " " + args + " >" + out + " 2>" + err;
     const int status = std::system(command.c_str());
     Outcome o;
     o.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -532,6 +534,15 @@ TEST_F(CliTest, ReportsFollowTheirSchema) {
 // shippedSamples() from tests/shipped_samples.h.
 using test::shippedSamples;
 
+// A test name for a sample: its path without the extension, other characters than letters and
+// digits as '_'.
+std::string sampleTestName(const ::testing::TestParamInfo<std::string>& info) {
+  std::string name = info.param.substr(0, info.param.rfind('.'));
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return name;
+}
+
 class SampleUnderStrictGate : public CliTest, public ::testing::WithParamInterface<std::string> {};
 
 // The strict preset is set from the samples' figures with a margin (docs/validation.md): every
@@ -549,12 +560,59 @@ TEST_P(SampleUnderStrictGate, Passes) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Shipped, SampleUnderStrictGate, ::testing::ValuesIn(shippedSamples()),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
-                           std::string name = info.param.substr(0, info.param.rfind('.'));
-                           for (char& c : name)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return name;
-                         });
+                         sampleTestName);
+
+class SampleOnEveryKernel : public CliTest, public ::testing::WithParamInterface<std::string> {};
+
+// The figures and the gate's verdicts of a sample do not depend on the machine: OpenBLAS picks a
+// kernel per CPU (AVX-512, Haswell, Sandybridge, ...), which round differently, and the linear
+// algebra may run on more or fewer threads. Each sample runs in a child process per setting; the
+// figures must agree to 3 significant digits and every verdict must be the same.
+TEST_P(SampleOnEveryKernel, GivesTheSameFiguresAndVerdicts) {
+  const std::string file = sample(GetParam());
+  const bool forward = GetParam().rfind("forward/", 0) == 0;
+  const std::pair<std::string, std::string> settings[] = {
+      {"native", "env -u OPENBLAS_CORETYPE"},
+      {"haswell", "env OPENBLAS_CORETYPE=Haswell OPENBLAS_NUM_THREADS=2 OMP_NUM_THREADS=2"},
+      {"sandybridge", "env OPENBLAS_CORETYPE=Sandybridge OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"}};
+  std::vector<nlohmann::json> reports;
+  std::vector<int> codes;
+  for (const auto& [name, environment] : settings) {
+    const std::string out = path(name);
+    const Outcome o = run(std::string(forward ? "run " : "inverse ") + file +
+                              " --gate strict --no-export -q -o " + out,
+                          environment);
+    ASSERT_TRUE(fs::exists(fs::path(out) / "report.json")) << name << ": " << o.err;
+    codes.push_back(o.exitCode);
+    reports.push_back(nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json")));
+  }
+  // 3 significant digits: a relative difference below half a unit in the third digit.
+  const auto agree = [](double a, double b) {
+    return std::abs(a - b) <= 5e-4 * std::max(std::abs(a), std::abs(b));
+  };
+  const nlohmann::json& first = reports[0];
+  ASSERT_FALSE(first["metrics"].empty());
+  for (std::size_t s = 1; s < reports.size(); ++s) {
+    const std::string& name = settings[s].first;
+    const nlohmann::json& other = reports[s];
+    EXPECT_EQ(codes[s], codes[0]) << name;
+    for (const auto& [key, value] : first["metrics"].items()) {
+      ASSERT_TRUE(other["metrics"].contains(key)) << name << ": " << key;
+      if (value.is_number())
+        EXPECT_PRED2(agree, value.get<double>(), other["metrics"][key].get<double>()) << name << ": " << key;
+      else
+        EXPECT_EQ(value, other["metrics"][key]) << name << ": " << key;
+    }
+    EXPECT_EQ(first["gate"]["passed"], other["gate"]["passed"]) << name;
+    const nlohmann::json &checks = first["gate"]["checks"], &otherChecks = other["gate"]["checks"];
+    ASSERT_EQ(checks.size(), otherChecks.size()) << name;
+    for (std::size_t c = 0; c < checks.size(); ++c)
+      EXPECT_EQ(checks[c]["verdict"], otherChecks[c]["verdict"]) << name << ": " << checks[c]["name"];
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Shipped, SampleOnEveryKernel, ::testing::ValuesIn(shippedSamples()),
+                         sampleTestName);
 
 TEST_F(CliTest, AFailedExportStillSavesTheResult) {
   const std::string out = path("out");

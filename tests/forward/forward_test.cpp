@@ -9,6 +9,7 @@
 
 #include <random>
 
+#include "forward/injectivity.h"
 #include "forward/terms.h"
 #include "forward/transfer.h"
 #include "test_meshes.h"
@@ -112,6 +113,62 @@ TEST(Forward, LocalGlobalNeverRaisesItsEnergy) {
   // The relaxation alone brings the paper's objective down from the pillow start.
   const ForwardResult start = solveForward(p.a, p.b, none);
   EXPECT_LT(relaxed.summary.initialCost, 0.5 * start.summary.initialCost);
+}
+
+// An interior vertex of A (the one nearest the piece's centre) and a neighbour of it.
+std::pair<int, int> centralVertexAndNeighbour(const Piece& a) {
+  const Eigen::RowVector2d centre = a.flat.colwise().mean();
+  int v = 0;
+  for (int i = 1; i < a.flat.rows(); ++i)
+    if ((a.flat.row(i) - centre).norm() < (a.flat.row(v) - centre).norm()) v = i;
+  for (int f = 0; f < a.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c)
+      if (a.F(f, c) == v) return {v, a.F(f, (c + 1) % 3)};
+  return {v, -1};
+}
+
+// The solved pair with A's central vertex dragged past its neighbour in 3D: the triangles
+// between them turn over, so the shape has folds the gate counts.
+DForm foldedEllipses(const DForm& solved) {
+  DForm folded = solved;
+  const auto [v, w] = centralVertexAndNeighbour(folded.a);
+  folded.a.shape.row(v) += 1.8 * (folded.a.shape.row(w) - folded.a.shape.row(v));
+  return folded;
+}
+
+TEST(Forward, FoldGuardCountsTheGatesFoldsAndRefusesOnlyNewOnes) {
+  EllipsePair p;
+  const ForwardResult r = solveForward(p.a, p.b, ForwardOptions{});
+  const DForm folded = foldedEllipses(r.model);
+  ASSERT_GT(computeMetrics(folded).flipped_3d, 0);
+  const VariableLayout layout(int(p.a.flat.rows()), int(p.b.flat.rows()), p.a.seam, p.b.seam);
+  const FoldGuard guard(layout, p.a, p.b);
+  const Eigen::VectorXd clean = packVariables(layout, r.model.a, r.model.b);
+  const Eigen::VectorXd bad = packVariables(layout, folded.a, folded.b);
+  EXPECT_EQ(guard.count(clean), 0);
+  EXPECT_GT(guard.count(bad), 0);
+  EXPECT_TRUE(guard.addsFold(clean, bad));
+  EXPECT_FALSE(guard.addsFold(bad, clean)) << "unfolding is always allowed";
+  EXPECT_FALSE(guard.addsFold(bad, bad)) << "a fold already there is not a new one";
+  // A flat triangle turned over counts as well: A's central vertex mirrored across a neighbour.
+  DForm flipped = r.model;
+  const auto [v, w] = centralVertexAndNeighbour(flipped.a);
+  flipped.a.flat.row(v) += 2.0 * (flipped.a.flat.row(w) - flipped.a.flat.row(v));
+  ASSERT_GT(computeMetrics(flipped).flipped_2d, 0);
+  EXPECT_TRUE(guard.addsFold(clean, packVariables(layout, flipped.a, flipped.b)));
+}
+
+TEST(Forward, AFoldedStartEndsUnfolded) {
+  EllipsePair p;
+  const ForwardResult solved = solveForward(p.a, p.b, ForwardOptions{});
+  const DForm folded = foldedEllipses(solved.model);
+  ASSERT_GT(computeMetrics(folded).flipped_3d, 0);
+  const ForwardResult r = solveForward(folded.a, folded.b, ForwardOptions{});
+  ASSERT_TRUE(r.summary.usable()) << r.summary.message;
+  const Metrics m = computeMetrics(r.model);
+  EXPECT_EQ(m.flipped_2d + m.flipped_3d, 0);
+  EXPECT_LE(m.L_error, 0.005);
+  EXPECT_LE(m.L_max, 0.03);
 }
 
 TEST(Forward, TransferIsExactOnTheSameMeshAndStartsAFinerSolve) {

@@ -120,13 +120,19 @@ class Rosenbrock : public ResidualTerm {
   double k_;
 };
 
+// The valley's classic start.
+Eigen::VectorXd rosenbrockStart() {
+  Eigen::VectorXd x(2);
+  x << -1.2, 1.0;
+  return x;
+}
+
 TEST(Solver, GeodesicAccelerationFollowsACurvedValley) {
   int iterations[2] = {0, 0};
   for (int accelerate = 0; accelerate < 2; ++accelerate) {
     Problem problem(2);
     problem.addTerm("rosenbrock", 1.0, std::make_unique<Rosenbrock>(1000.0));
-    Eigen::VectorXd x(2);
-    x << -1.2, 1.0;
+    Eigen::VectorXd x = rosenbrockStart();
     SolverOptions options;
     options.functionTolerance = 0.0;
     options.gradientTolerance = 1e-12;
@@ -141,6 +147,35 @@ TEST(Solver, GeodesicAccelerationFollowsACurvedValley) {
   std::printf("  Rosenbrock (k = 1000): %d iterations plain, %d with geodesic acceleration\n",
               iterations[0], iterations[1]);
   EXPECT_LT(iterations[1], iterations[0]);
+}
+
+TEST(Solver, ARefusedStepIsNeverTakenAndTheSolveStopsAtTheBoundary) {
+  // Rosenbrock's minimum (1, 1) lies beyond x[0] = 0.5, which no step may cross: the solve goes
+  // as far as it may, every point it stands on stays on the allowed side, and it still ends.
+  Problem problem(2);
+  problem.addTerm("rosenbrock", 1.0, std::make_unique<Rosenbrock>(10.0));
+  Eigen::VectorXd x = rosenbrockStart();
+  SolverOptions options;
+  options.functionTolerance = 0.0;
+  options.maxIterations = 500;
+  int asked = 0, fromOutside = 0;
+  options.acceptStep = [&](const Eigen::VectorXd& from, const Eigen::VectorXd& to) {
+    ++asked;
+    if (from[0] > 0.5) ++fromOutside;
+    return to[0] <= 0.5;
+  };
+  const SolverSummary summary = solve(problem, options, x);
+  ASSERT_TRUE(summary.usable()) << summary.message;
+  EXPECT_GT(asked, 0);
+  EXPECT_EQ(fromOutside, 0);
+  EXPECT_LE(x[0], 0.5);
+  // It got close to the boundary: the cost at the constrained minimum (x[0] = 0.5, y = 0.25) is 0.25.
+  EXPECT_LT(summary.finalCost, 0.25 + 0.05);
+  // Unconstrained, the same solve crosses the boundary to the minimum.
+  Eigen::VectorXd free = rosenbrockStart();
+  options.acceptStep = nullptr;
+  ASSERT_TRUE(solve(problem, options, free).usable());
+  EXPECT_NEAR(free[0], 1.0, 1e-4);
 }
 
 TEST(Solver, HeldUnknownsNeverMoveAndTheRestReachTheirConstrainedMinimum) {
