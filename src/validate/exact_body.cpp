@@ -1,6 +1,7 @@
 #include "validate/exact_body.h"
 
 #include "exact/exact_gluing.h"
+#include "forward/forward.h"
 
 namespace dform {
 
@@ -25,6 +26,28 @@ Result<Points3> exactBodySeam(const DForm& model) {
   Points3 out = exact::placeOnBody(glued.value(), 0, glued.value().seam.a);
   if (!out.allFinite()) return Status(ErrorCode::SolveFailed, "a seam point could not be placed on the exact body");
   return out;
+}
+
+Result<Points3> zippedAgainSeam(const DForm& model, std::string& how) {
+  Result<Points3> exact = exactBodySeam(model);
+  if (exact.isOk()) {
+    how = "the exact D-Form of the pieces";
+    return exact;
+  }
+  // A non-convex metric: the optimisation says what shape the sheet takes instead. Other reasons
+  // (a hole zipped, a seam too long to glue) are not the round trip's to work around.
+  if (exact.status().message().find("not convex") == std::string::npos) return exact.status();
+  Piece a = model.a, b = model.b;
+  a.shape.resize(0, 3);
+  b.shape.resize(0, 3);
+  const ForwardResult solved = solveForward(a, b, ForwardOptions{});
+  if (!solved.summary.usable())
+    return Status(ErrorCode::SolveFailed, exact.status().message() + "; and the optimisation failed: " + solved.summary.message);
+  how = "the paper's optimisation, since " + exact.status().message();
+  Points3 seam(Eigen::Index(model.a.seam.size()), 3);
+  for (std::size_t k = 0; k < model.a.seam.size(); ++k)
+    seam.row(Eigen::Index(k)) = solved.model.a.shape.row(solved.model.a.seam[k]);
+  return seam;
 }
 
 }  // namespace dform

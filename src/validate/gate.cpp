@@ -426,7 +426,8 @@ GateReport runGate(const DForm& model, const GateLimits& limits, const Curve3* t
   if (report.curve)
     checks.push_back(objectCheck("roundtrip_rel", report.curve->roundtrip_rms_rel, report.curve->roundtrip_max_rel,
                                  limits.roundtrip_rel, report.curve->roundtrip_note,
-                                 "RMS distance of the zipped pieces' exact D-Form from the target curve"));
+                                 "RMS distance from the target curve of the pieces zipped again (" +
+                                     report.curve->roundtrip_note + ")"));
   return report;
 }
 

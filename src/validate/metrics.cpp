@@ -180,13 +180,15 @@ CurveMatch computeCurveMatch(const DForm& model, const Curve3& target) {
   const double curveLength = closedLength(target.points);
   if (!sa.empty() && curveLength > 0.0)
     match.D_error = (sum / (2.0 * double(sa.size()))) / curveLength;
-  const Result<Points3> exactSeam = exactBodySeam(model);
-  if (exactSeam.isOk()) {
-    const exact::AlignedDistance d = exact::alignedDistance(target.points, exactSeam.value());
+  std::string how;
+  const Result<Points3> zipped = zippedAgainSeam(model, how);
+  if (zipped.isOk()) {
+    const exact::AlignedDistance d = exact::alignedDistance(target.points, zipped.value());
     match.roundtrip_rms_rel = d.rmsRel;
     match.roundtrip_max_rel = d.maxRel;
+    match.roundtrip_note = "zipped by " + how;
   } else {
-    match.roundtrip_note = exactSeam.status().message();
+    match.roundtrip_note = zipped.status().message();
   }
   return match;
 }

