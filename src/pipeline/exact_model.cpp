@@ -77,6 +77,19 @@ Result<DForm> exactDForm(exact::SeamPolygons polygons, double targetEdge, const 
   // Seam partners are one point of the body; placed from either side they differ by rounding.
   for (std::size_t k = 0; k < model.a.seam.size(); ++k)
     model.b.shape.row(model.b.seam[k]) = model.a.shape.row(model.a.seam[k]);
+  // Every mesh edge on the body is a chord of a path as long as the flat edge, so never longer
+  // than it: a longer one means a vertex was placed off its spot, and the result is not used.
+  for (int p = 0; p < 2; ++p) {
+    const Piece& piece = *pieces[p];
+    for (Eigen::Index f = 0; f < piece.F.rows(); ++f)
+      for (int c = 0; c < 3; ++c) {
+        const int i = piece.F(f, c), j = piece.F(f, (c + 1) % 3);
+        const double flat = (piece.flat.row(i) - piece.flat.row(j)).norm();
+        if ((piece.shape.row(i) - piece.shape.row(j)).norm() > flat * (1 + 1e-6))
+          return Status(ErrorCode::SolveFailed, paths[p] + ": a mesh vertex was placed off the exact D-Form (an edge "
+                                                          "came out longer than it is flat)");
+      }
+  }
   return model;
 }
 
