@@ -123,7 +123,14 @@ Result<std::vector<SweepRow>> runSweep(const Job& base, const SweepOptions& opti
                                        const std::atomic<bool>& interrupted) {
   const std::vector<SweepStart> starts = sweepStarts(base, options);
   ResultFolder folder;
-  if (Status s = folder.begin(outDir, {"sweep.json", "gallery.html"}); !s.isOk()) return s;
+  // An earlier sweep in the folder is replaced whole, its start folders with it.
+  const auto isStartFolder = [](const std::string& name) {
+    int k = 0, used = 0;
+    return std::sscanf(name.c_str(), "start-%d%n", &k, &used) == 1 &&
+           (name.size() == std::size_t(used) || name.substr(used) == "-flip");
+  };
+  if (Status s = folder.begin(outDir, {"sweep.json", "gallery.html"}, isStartFolder); !s.isOk())
+    return s;
   const auto begun = Clock::now();
   std::vector<SweepRow> rows(starts.size());
   std::mutex mutex;

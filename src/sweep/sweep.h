@@ -58,8 +58,8 @@ using SweepRunner = std::function<Status(const Job& job, const std::string& dir,
 /// the seconds since the sweep began.
 using SweepProgress = std::function<void(int done, int failed, int total, double seconds)>;
 
-/// Locks and stages `outDir` (which must be missing or empty, or hold an earlier sweep's
-/// sweep.json and gallery.html only), runs every start with `run` on a pool of threads, measures
+/// Locks and stages `outDir` (which must be missing or empty, or hold only an earlier sweep:
+/// sweep.json, gallery.html and start-K[-flip] folders, all replaced), runs every start with `run` on a pool of threads, measures
 /// each saved result, writes sweep.json and gallery.html, and swaps the folder in. Interrupted
 /// when `interrupted` is set meanwhile (the folder is left as it was); OutputFailed naming the
 /// file. `progress` is called under a lock, one call at a time.

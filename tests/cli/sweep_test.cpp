@@ -158,6 +158,31 @@ TEST_F(SweepTest, ARowIsTheSingleForwardRunOfItsStart) {
   EXPECT_EQ(a["job"], b["job"]);
 }
 
+// A sweep run again into the folder of an earlier one replaces it whole, start folders and all;
+// a folder holding anything else is refused and left as it was.
+TEST_F(SweepTest, ASecondSweepReplacesTheFirstWhole) {
+  ASSERT_EQ(exit_, 0) << readText(dir_ / "sweep.log");
+  const fs::path again = dir_ / "again";
+  fs::copy(dir_ / "sweep", again, fs::copy_options::recursive);
+  const std::string command = exe() + " sweep " + sample("ellipses-a.svg") + " " +
+                              sample("ellipses-b.svg") + " --starts 2 --flip flipped -q --no-export -o " +
+                              again.string();
+  ASSERT_EQ(shell(command, dir_ / "again.log"), 0) << readText(dir_ / "again.log");
+  std::set<std::string> names;
+  for (const auto& entry : fs::directory_iterator(again)) names.insert(entry.path().filename().string());
+  EXPECT_EQ(names, (std::set<std::string>{"gallery.html", "start-0-flip", "start-1-flip", "sweep.json"}));
+  const json rows = json::parse(readText(again / "sweep.json"))["rows"];
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_TRUE(rows[1]["flip"].get<bool>());
+  EXPECT_DOUBLE_EQ(rows[1]["start_b"].get<double>(), 0.5);
+
+  std::ofstream(again / "notes.txt") << "mine";
+  EXPECT_EQ(shell(command, dir_ / "again.log"), 6);
+  EXPECT_NE(readText(dir_ / "again.log").find("notes.txt"), std::string::npos);
+  EXPECT_EQ(readText(again / "notes.txt"), "mine");
+  EXPECT_TRUE(fs::exists(again / "start-1-flip" / "report.json"));
+}
+
 // The gallery in headless Chromium: the page loads and runs its script without a console error,
 // and the rendered page has one picture per card.
 TEST_F(SweepTest, GalleryRendersInHeadlessChromium) {
