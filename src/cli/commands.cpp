@@ -289,29 +289,49 @@ std::string templatesDir() {
   return env && *env ? env : DFORM_TEMPLATES_DIR;
 }
 
-int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>& interrupted) {
-  CommandTimings timings;
-  timings.start = Clock::now();
-  Terminal terminal(output.quiet);
-  MessageSink sink(terminal.listener());
-  const bool forward = job.mode == Job::Mode::Forward;
-  RunHooks hooks;
-  hooks.interrupted = &interrupted;
-  hooks.onIteration = [&](const char* stage, const IterationSummary& it) {
-    terminal.progress(forward ? stage : std::string(stage) + " (inverse)", it);
-  };
+namespace {
+
+// A run's settings, checked before anything is solved: the gate's limits (none: no gate) and the
+// export options.
+struct RunSettings {
   std::optional<GateLimits> limits;
+  ExportOptions exporting;
+};
+
+// What a result written into its folder shows on the terminal afterwards. `exported` is the
+// export's error when the result was saved without its cutting files.
+struct WrittenResult {
+  Metrics metrics;
+  std::optional<CurveMatch> curve;
+  Timings timings;
+  std::optional<GateReport> gate;
+  Status exported = Status::ok();
+};
+
+Result<RunSettings> runSettings(const OutputOptions& output) {
+  RunSettings settings;
   if (output.gate != "none") {
     Result<GateLimits> loaded = loadGate(output.gate);
-    if (!loaded.isOk()) return fail(loaded.status());
-    limits = loaded.value();
+    if (!loaded.isOk()) return loaded.status();
+    settings.limits = loaded.value();
   }
-  const Result<ExportOptions> exporting = exportOptions(output);
-  if (!exporting.isOk()) return fail(exporting.status());
+  Result<ExportOptions> exporting = exportOptions(output);
+  if (!exporting.isOk()) return exporting.status();
+  settings.exporting = exporting.value();
+  return settings;
+}
+
+Result<WrittenResult> writeResult(const Job& job, const OutputOptions& output,
+                                  const RunSettings& settings, const std::atomic<bool>& interrupted,
+                                  MessageSink& sink, const RunHooks& hooks) {
+  CommandTimings timings;
+  timings.start = Clock::now();
+  const bool forward = job.mode == Job::Mode::Forward;
+  const std::optional<GateLimits>& limits = settings.limits;
   // The output folder is locked and checked before anything is solved; the result is written
   // into a staging folder beside it and swapped in whole, or not at all.
   ResultFolder folder;
-  if (Status s = folder.begin(output.outDir, resultFileNames()); !s.isOk()) return fail(s);
+  if (Status s = folder.begin(output.outDir, resultFileNames()); !s.isOk()) return s;
 
   // Solve first: nothing is written for a run that fails.
   DForm model;
@@ -319,13 +339,11 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
   Result<InverseRun> inverseRun = Status(ErrorCode::Internal, "not run");
   if (forward) {
     forwardRun = runForward(job.forward, sink, hooks);
-    terminal.clearProgress();
-    if (!forwardRun.isOk()) return fail(namingFolder(forwardRun.status(), output.outDir));
+    if (!forwardRun.isOk()) return namingFolder(forwardRun.status(), output.outDir);
     model = forwardRun.value().model;
   } else {
     inverseRun = runInverse(job.inverse, sink, hooks);
-    terminal.clearProgress();
-    if (!inverseRun.isOk()) return fail(namingFolder(inverseRun.status(), output.outDir));
+    if (!inverseRun.isOk()) return namingFolder(inverseRun.status(), output.outDir);
     model = inverseRun.value().model;
   }
   std::optional<GateReport> gate;
@@ -342,12 +360,12 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
   Result<PreparedExport> prepared = Status(ErrorCode::Internal, "no export");
   const auto exportStart = Clock::now();
   if (output.exportFiles) {
-    prepared = prepare(model, exporting.value(), gate && !gate->passed(), name);
+    prepared = prepare(model, settings.exporting, gate && !gate->passed(), name);
     if (prepared.isOk() && gate) {
       const bool passedBefore = gate->passed();
       gate->checks.push_back(layoutCheck(prepared.value().layout));
       // Failed on its layout alone: lay it out again with the FAILED GATE mark.
-      if (passedBefore && !gate->passed()) prepared = prepare(model, exporting.value(), true, name);
+      if (passedBefore && !gate->passed()) prepared = prepare(model, settings.exporting, true, name);
     } else if (!prepared.isOk()) {
       if (gate)
         gate->checks.push_back(
@@ -365,7 +383,7 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
   const bool gateFailed = gate && !gate->passed();
 
   // Everything is computed; a Ctrl-C that came meanwhile leaves the output folder as it was.
-  if (interrupted) return fail(leftAsItWas(output.outDir, "interrupted"));
+  if (interrupted) return leftAsItWas(output.outDir, "interrupted");
   const Status exported =
       prepared.isOk() || !output.exportFiles ? Status::ok() : prepared.status();
   // The whole result goes into the staging folder: meshes, report.json (the gate's verdict,
@@ -375,7 +393,7 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
   const auto writeStart = Clock::now();
   Status written = writeModel(staging, model);
   if (written.isOk() && !forward) written = writeTargetCurve(staging, inverseRun.value().target);
-  if (!written.isOk()) return fail(folder.named(written));
+  if (!written.isOk()) return folder.named(written);
   timings.write = secondsSince(writeStart);
   const bool release = prepared.isOk() && (!gateFailed || output.exportAnyway);
   if (release) noteExport(prepared.value(), sink);
@@ -385,34 +403,176 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
                                    timings)
               : writeInverseReport(staging, job, inverseRun.value(), sink.messages(), gateReport,
                                    timings);
-  if (!reported.isOk()) return fail(folder.named(reported));
+  if (!reported.isOk()) return folder.named(reported);
   if (release)
     if (Status s = writeExport(prepared.value(), staging).status(); !s.isOk())
-      return fail(folder.named(s));
+      return folder.named(s);
   if (Status html = writeReportHtml(staging, model, templatesDir()); !html.isOk())
-    return fail(folder.named(html));
+    return folder.named(html);
   if (Status s = commitUnlessInterrupted(folder, output.outDir, interrupted); !s.isOk())
-    return fail(s);
+    return s;
   // A signal held back during the swap is delivered now: the new result is in place.
   if (interrupted)
-    return fail(Status(ErrorCode::Interrupted,
-                       output.outDir + ": interrupted; the new result was written completely"));
-  if (!exported.isOk()) return exitCode(exported.code());
+    return Status(ErrorCode::Interrupted,
+                  output.outDir + ": interrupted; the new result was written completely");
+  WrittenResult result;
+  result.gate = gate;
+  result.exported = exported;
+  if (forward) {
+    result.metrics = forwardRun.value().metrics;
+    result.timings = forwardRun.value().timings;
+  } else {
+    result.metrics = inverseRun.value().metrics;
+    result.curve = inverseRun.value().curveMatch;
+    result.timings = inverseRun.value().timings;
+  }
+  return result;
+}
 
-  if (forward)
-    printFigures(forwardRun.value().metrics, nullptr, forwardRun.value().timings, output.outDir);
-  else
-    printFigures(inverseRun.value().metrics, &inverseRun.value().curveMatch,
-                 inverseRun.value().timings, output.outDir);
+}  // namespace
+
+int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>& interrupted) {
+  Terminal terminal(output.quiet);
+  MessageSink sink(terminal.listener());
+  const bool forward = job.mode == Job::Mode::Forward;
+  RunHooks hooks;
+  hooks.interrupted = &interrupted;
+  hooks.onIteration = [&](const char* stage, const IterationSummary& it) {
+    terminal.progress(forward ? stage : std::string(stage) + " (inverse)", it);
+  };
+  const Result<RunSettings> settings = runSettings(output);
+  if (!settings.isOk()) return fail(settings.status());
+  const Result<WrittenResult> result =
+      writeResult(job, output, settings.value(), interrupted, sink, hooks);
+  terminal.clearProgress();
+  if (!result.isOk()) return fail(result.status());
+  const WrittenResult& written = result.value();
+  if (!written.exported.isOk()) return exitCode(written.exported.code());
+  printFigures(written.metrics, written.curve ? &*written.curve : nullptr, written.timings,
+               output.outDir);
+  const std::optional<GateReport>& gate = written.gate;
+  const bool gateFailed = gate && !gate->passed();
   if (gate) {
     printGate(*gate);
     if (gateFailed) {
-      Terminal::error(output.outDir + ": the result failed the quality gate '" + limits->name + "'" +
+      Terminal::error(output.outDir + ": the result failed the quality gate '" +
+                      settings.value().limits->name + "'" +
                       (output.exportAnyway ? " (exported anyway, marked FAILED GATE)"
                                            : "; no cutting files were written"));
       return exitCode(ErrorCode::GateFailed);
     }
   }
+  return 0;
+}
+
+namespace {
+
+// A progress line for many jobs: done of total, failed, and the time left at the pace so far.
+SweepProgress progressLine(Terminal& terminal, const char* what) {
+  return [&terminal, what](int done, int failed, int total, double seconds) {
+    char line[160];
+    std::snprintf(line, sizeof line, "%s: %d of %d done, %d failed, about %.0f s left", what, done,
+                  total, failed, seconds / done * (total - done));
+    terminal.status(line);
+  };
+}
+
+void printBatchRows(const std::vector<BatchRow>& rows) {
+  std::fprintf(stdout, "%-24s %-12s %4s %10s %12s %10s %8s\n", "job", "status", "exit",
+               "height_mm", "volume_cm3", "max_curv", "seconds");
+  for (const BatchRow& r : rows)
+    std::fprintf(stdout, "%-24s %-12s %4d %10.2f %12.4g %10.4g %8.2f\n", r.job.name.c_str(),
+                 r.status.c_str(), r.exitCode, r.figures.heightMm, r.figures.volumeMm3 / 1000,
+                 r.figures.maxCurvature, r.seconds);
+}
+
+}  // namespace
+
+int runSweepCommand(const Job& base, const SweepOptions& options, const OutputOptions& output,
+                    const std::atomic<bool>& interrupted) {
+  Terminal terminal(output.quiet);
+  const Result<RunSettings> settings = runSettings(output);
+  if (!settings.isOk()) return fail(settings.status());
+  // Each start runs as `dform forward` would, into its own folder, its messages kept in its
+  // report.json (its sink has no listener: many runs at once would interleave on the terminal).
+  const SweepRunner run = [&](const Job& job, const std::string& dir, MessageSink& sink) {
+    OutputOptions one = output;
+    one.outDir = dir;
+    RunHooks hooks;
+    hooks.interrupted = &interrupted;
+    const Result<WrittenResult> written =
+        writeResult(job, one, settings.value(), interrupted, sink, hooks);
+    return written.isOk() ? written.value().exported : written.status();
+  };
+  const Result<std::vector<SweepRow>> rows =
+      runSweep(base, options, output.outDir, run, progressLine(terminal, "sweep"), interrupted);
+  terminal.clearProgress();
+  if (!rows.isOk()) return fail(rows.status());
+  int passed = 0, solved = 0;
+  std::fprintf(stdout, "%-16s %8s %10s %12s %10s %8s %8s\n", "start", "start_b", "height_mm",
+               "volume_cm3", "max_curv", "gate", "seconds");
+  for (const SweepRow& r : rows.value()) {
+    solved += r.solved;
+    passed += r.solved && r.passed;
+    std::fprintf(stdout, "%-16s %8.4f %10.2f %12.4g %10.4g %8s %8.2f\n", r.subfolder.c_str(),
+                 r.startB, r.heightMm, r.volumeMm3 / 1000, r.maxCurvature,
+                 !r.solved ? "unsolved" : r.passed ? "passed" : "FAILED", r.seconds);
+  }
+  std::fprintf(stdout, "%d starts: %d passed the gate, %d failed; gallery in %s/gallery.html\n",
+               int(rows.value().size()), passed, int(rows.value().size()) - passed,
+               output.outDir.c_str());
+  if (solved == 0) {
+    Terminal::error(output.outDir + ": no start was solved (first: " + rows.value()[0].reason + ")");
+    return exitCode(ErrorCode::SolveFailed);
+  }
+  return 0;
+}
+
+int runBatchCommand(const std::vector<BatchJob>& jobs, const BatchOptions& options,
+                    const OutputOptions& output, const std::atomic<bool>& interrupted) {
+  Terminal terminal(output.quiet);
+  const Result<RunSettings> settings = runSettings(output);
+  if (!settings.isOk()) return fail(settings.status());
+  // Each job as `dform run` runs it; its messages are kept in its report.json.
+  const BatchRunner run = [&](const std::string& path, const std::string& dir) -> JobOutcome {
+    const Result<Job> job = readJobFile(path);
+    if (!job.isOk()) return {exitCode(job.status().code()), job.status().message()};
+    OutputOptions one = output;
+    one.outDir = dir;
+    MessageSink sink;
+    RunHooks hooks;
+    hooks.interrupted = &interrupted;
+    const Result<WrittenResult> written =
+        writeResult(job.value(), one, settings.value(), interrupted, sink, hooks);
+    if (!written.isOk()) return {exitCode(written.status().code()), written.status().message()};
+    if (!written.value().exported.isOk())
+      return {exitCode(written.value().exported.code()), written.value().exported.message()};
+    const bool gateFailed = written.value().gate && !written.value().gate->passed();
+    return {gateFailed ? exitCode(ErrorCode::GateFailed) : 0, ""};
+  };
+  const Result<std::vector<BatchRow>> rows =
+      runBatch(jobs, options, output.outDir, run, progressLine(terminal, "batch"), interrupted);
+  terminal.clearProgress();
+  if (!rows.isOk()) return fail(rows.status());
+  printBatchRows(rows.value());
+  int worst = 0, failed = 0;
+  for (const BatchRow& r : rows.value()) {
+    failed += r.exitCode != 0;
+    if (r.exitCode != 0 && worst == 0) worst = r.exitCode;
+  }
+  std::fprintf(stdout, "%d jobs (shard %d of %d): %d done, %d failed; manifest %s/%s\n",
+               int(rows.value().size()), options.shard, options.shards,
+               int(rows.value().size()) - failed, failed, output.outDir.c_str(),
+               manifestName(options).c_str());
+  return worst;
+}
+
+int mergeBatchCommand(const std::string& dir) {
+  const Result<std::vector<BatchRow>> rows = mergeBatch(dir);
+  if (!rows.isOk()) return fail(rows.status());
+  printBatchRows(rows.value());
+  std::fprintf(stdout, "%d jobs merged into %s/batch.json and %s/gallery.html\n",
+               int(rows.value().size()), dir.c_str(), dir.c_str());
   return 0;
 }
 

@@ -7,6 +7,8 @@
 
 #include "core/status.h"
 #include "pipeline/job_file.h"
+#include "sweep/batch.h"
+#include "sweep/sweep.h"
 
 namespace dform::cli {
 
@@ -35,6 +37,16 @@ struct OutputOptions {
 std::string templatesDir();
 
 int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>& interrupted);
+/// `dform sweep`: `base` from every start of `options`, each result written as `runJob` writes
+/// one, into output.outDir/<start>/, with sweep.json and gallery.html (docs/sweep.md).
+int runSweepCommand(const Job& base, const SweepOptions& options, const OutputOptions& output,
+                    const std::atomic<bool>& interrupted);
+/// `dform batch`: every job of `jobs` in the options' shard, each written as `dform run` writes
+/// it, into output.outDir/<job name>/, with the manifest (docs/batch.md).
+int runBatchCommand(const std::vector<BatchJob>& jobs, const BatchOptions& options,
+                    const OutputOptions& output, const std::atomic<bool>& interrupted);
+/// `dform batch --merge DIR`: the shards' manifests gathered into batch.json and gallery.html.
+int mergeBatchCommand(const std::string& dir);
 int exportSaved(const std::string& dir, const OutputOptions& output,
                 const std::atomic<bool>& interrupted);
 int validateSaved(const std::string& dir, const std::string& gate);

@@ -147,6 +147,36 @@ int run(int argc, char** argv) {
                       "Levenberg-Marquardt iteration cap");
   addOutputOptions(inverse, inverseOut);
 
+  Job sweepJob;
+  SweepOptions sweepOptions;
+  cli::OutputOptions sweepOut;
+  std::string sweepFlip = "none", sweepModel;
+  CLI::App* sweep = app.add_subcommand(
+      "sweep", "two outlines from many starting pairs -> a gallery of the D-Forms to choose from");
+  sweep->add_option("piece_a", sweepJob.forward.pieceA, "outline of piece A (.svg or .json)")->required();
+  sweep->add_option("piece_b", sweepJob.forward.pieceB, "outline of piece B (.svg or .json)")->required();
+  sweep->add_option("--starts", sweepOptions.starts, "starting pairs: start_b = k/N, k = 0 .. N-1 (default 8)");
+  sweep->add_option("--flip", sweepFlip, "none (B as drawn, the default), flipped (B turned over) or both");
+  sweep->add_option("--start-a", sweepJob.forward.startA.fraction, "start of A's seam: arc-length fraction in [0, 1)");
+  sweep->add_option("--model", sweepModel, "auto (default), exact or paper");
+  sweep->add_option("--resolution", sweepJob.forward.resolution, "seam vertices per piece (default 100)");
+  sweep->add_flag("--fit-perimeter", sweepJob.forward.fitPerimeter, "scale piece B to A's perimeter");
+  sweep->add_option("--threads", sweepOptions.threads, "starts solved at once (default: the machine's cores)");
+  addOutputOptions(sweep, sweepOut);
+
+  std::string batchInput, batchShard = "1/1", mergeDir;
+  BatchOptions batchOptions;
+  cli::OutputOptions batchOut;
+  CLI::App* batch = app.add_subcommand(
+      "batch", "many job files, each into OUT/<job name>/, with a resumable manifest batch.json");
+  batch->add_option("jobs", batchInput, "a text file listing job files (one a line), or a folder of *.json jobs");
+  batch->add_flag("--resume", batchOptions.resume, "skip the jobs the manifest has as finished");
+  batch->add_option("--shard", batchShard, "run only slice I of N (job k goes to slice k % N + 1), e.g. 2/8");
+  batch->add_option("--merge", mergeDir, "gather the shards' manifests in this folder into batch.json and gallery.html");
+  batch->add_option("--threads", batchOptions.threads, "jobs run at once (default: the machine's cores)");
+  addOutputOptions(batch, batchOut);
+  batch->get_option("--output")->required(false);
+
   std::string jobPath;
   cli::OutputOptions runOut;
   CLI::App* runCommand = app.add_subcommand("run", "run a job file (forward or inverse)");
@@ -175,10 +205,10 @@ int run(int argc, char** argv) {
   validate->add_option("dir", validateDir, "a result folder")->required();
   validate->add_option("--gate", validateGate, "default, strict, lenient or a .json file");
 
-  const std::set<std::string> commands = {"forward", "inverse", "run", "export", "validate"};
+  const std::set<std::string> commands = {"forward", "inverse", "run", "sweep", "batch", "export", "validate"};
   if (argc > 1 && argv[1][0] != '-' && !commands.count(argv[1]))
     return usageError("unknown command '" + std::string(argv[1]) +
-                      "' (commands: forward, inverse, run, export, validate; see dform --help)");
+                      "' (commands: forward, inverse, run, sweep, batch, export, validate; see dform --help)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -221,6 +251,37 @@ int run(int argc, char** argv) {
       if (Status s = setWeight(inverseJob, w); !s.isOk()) return usage(s);
     if (Status s = validateInverseJob(inverseJob.inverse); !s.isOk()) return usage(s);
     return cli::runJob(inverseJob, inverseOut, interrupted);
+  }
+  if (*sweep) {
+    if (!sweepModel.empty() && !parseModelChoice(sweepModel, sweepJob.forward.model))
+      return usage(Status(ErrorCode::Usage, "--model must be auto, exact or paper"));
+    if (sweepFlip != "none" && sweepFlip != "flipped" && sweepFlip != "both")
+      return usage(Status(ErrorCode::Usage, "--flip must be none, flipped or both"));
+    if (sweepOptions.starts < 1 || sweepOptions.starts > 4096)
+      return usage(Status(ErrorCode::Usage, "--starts must be between 1 and 4096"));
+    if (sweepOptions.threads < 0)
+      return usage(Status(ErrorCode::Usage, "--threads must be 0 (the machine's cores) or more"));
+    sweepJob.forward.solve.weights = defaultWeights(sweepJob.forward.joinA, sweepJob.forward.joinB);
+    sweepJob.forward.flip = sweepFlip == "flipped";
+    sweepOptions.bothFlips = sweepFlip == "both";
+    if (Status s = validateForwardJob(sweepJob.forward); !s.isOk()) return usage(s);
+    return cli::runSweepCommand(sweepJob, sweepOptions, sweepOut, interrupted);
+  }
+  if (*batch) {
+    if (!mergeDir.empty()) {
+      if (!batchInput.empty() || !batchOut.outDir.empty())
+        return usage(Status(ErrorCode::Usage, "batch --merge DIR takes no job list and no -o"));
+      return cli::mergeBatchCommand(mergeDir);
+    }
+    if (batchInput.empty() || batchOut.outDir.empty())
+      return usage(Status(ErrorCode::Usage, "batch needs a job list or folder and -o OUT (or --merge OUT)"));
+    if (!parseShard(batchShard, batchOptions.shard, batchOptions.shards))
+      return usage(Status(ErrorCode::Usage, "--shard must look like I/N with 1 <= I <= N, got '" + batchShard + "'"));
+    if (batchOptions.threads < 0)
+      return usage(Status(ErrorCode::Usage, "--threads must be 0 (the machine's cores) or more"));
+    Result<std::vector<BatchJob>> jobs = listBatchJobs(batchInput);
+    if (!jobs.isOk()) return usage(jobs.status());
+    return cli::runBatchCommand(jobs.value(), batchOptions, batchOut, interrupted);
   }
   if (*runCommand) {
     Result<Job> job = readJobFile(jobPath);

@@ -29,6 +29,13 @@ void Terminal::progress(const std::string& stage, const IterationSummary& it) {
   progressShown_ = true;
 }
 
+void Terminal::status(const std::string& text) {
+  if (quiet_ || !tty_) return;
+  std::fprintf(stderr, "\r\033[K%s", text.c_str());
+  std::fflush(stderr);
+  progressShown_ = true;
+}
+
 void Terminal::clearProgress() {
   if (!progressShown_) return;
   std::fprintf(stderr, "\r\033[K");

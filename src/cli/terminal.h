@@ -15,6 +15,8 @@ class Terminal {
   explicit Terminal(bool quiet);
   MessageSink::Listener listener();
   void progress(const std::string& stage, const IterationSummary& it);
+  /// One updating line of any text (e.g. a sweep's jobs done and time left), on the same terms.
+  void status(const std::string& text);
   void clearProgress();
   /// One line "dform: error: ..." on stderr.
   static void error(const std::string& message);

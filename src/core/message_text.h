@@ -27,6 +27,9 @@ std::string printableMessage(std::string_view message);
 /// 1, column 2: ...") without its bracketed tag, printable and at most 200 bytes.
 std::string parserReason(std::string_view what);
 
+/// `text` for XML or HTML text and double-quoted attributes: & < > " as entities.
+std::string escapeXml(std::string_view text);
+
 /// A JSON value (nlohmann::json; a template so that core needs no JSON library) as a message
 /// shows it: a scalar as JSON text, printable and short; an array or object by its type only,
 /// since printing one would recurse as deep as the file nests.

@@ -47,7 +47,8 @@ ResultFolder::~ResultFolder() {
   }
 }
 
-Status ResultFolder::begin(const std::string& dir, const std::set<std::string>& resultFiles) {
+Status ResultFolder::begin(const std::string& dir, const std::set<std::string>& resultFiles,
+                           const std::function<bool(const std::string&)>& isResultFolder) {
   std::error_code ec;
   fs::path path = fs::absolute(dir, ec).lexically_normal();
   if (path.has_parent_path() && path.filename().empty()) path = path.parent_path();  // "out/"
@@ -116,7 +117,9 @@ Status ResultFolder::begin(const std::string& dir, const std::set<std::string>& 
       const std::string entryName = entry.path().filename().string();
       // An earlier version's temporary file ("report.json.tmp.123") is a result's too.
       const std::string stem = entryName.substr(0, entryName.find(".tmp."));
-      if (!resultFiles.count(stem) || !fs::is_regular_file(entry.symlink_status(ec)))
+      const fs::file_status entryStatus = entry.symlink_status(ec);
+      if (isResultFolder && fs::is_directory(entryStatus) && isResultFolder(entryName)) continue;
+      if (!resultFiles.count(stem) || !fs::is_regular_file(entryStatus))
         return outputFailed((fs::path(dir) / entryName).string() +
                             ": is not part of a dform result, and the result folder is "
                             "replaced as a whole; nothing was written (use an empty or new "

@@ -4,6 +4,7 @@
 // does not produce go with the swap. A lock beside the folder keeps a second run off it meanwhile.
 #pragma once
 
+#include <functional>
 #include <set>
 #include <string>
 
@@ -24,8 +25,10 @@ class ResultFolder {
   /// only regular files named in `resultFiles`, so that no file of the user's is ever swapped
   /// away), removes what runs killed outright left beside it, and creates the staging folder.
   /// OutputFailed naming the folder or the file in the way, or saying which process holds the
-  /// lock.
-  Status begin(const std::string& dir, const std::set<std::string>& resultFiles);
+  /// lock. `isResultFolder`, when given, names the subfolders that are the result's too (a
+  /// sweep's starts): they go with the swap like its files.
+  Status begin(const std::string& dir, const std::set<std::string>& resultFiles,
+               const std::function<bool(const std::string&)>& isResultFolder = nullptr);
 
   /// The folder the new result is written into.
   const std::string& staging() const { return staging_; }

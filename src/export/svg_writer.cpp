@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "core/message_text.h"
 #include "export/internal.h"
 
 namespace dform::fab {
@@ -18,20 +19,6 @@ std::string num(double x) {
   if (!s.empty() && s.back() == '.') s.pop_back();
   if (s == "-0") s = "0";
   return s;
-}
-
-std::string escapeXml(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
 }
 
 std::string pathData(const Path& p) {

@@ -1,0 +1,78 @@
+// Batches (issue 19): many job files, each run into OUT/<job name>/, with a manifest (batch.json)
+// rewritten atomically as jobs finish, so that a batch can be resumed, sharded over a cluster's
+// scheduler (GNU parallel, a Slurm array) and its shards' manifests merged (docs/batch.md).
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/status.h"
+#include "sweep/sweep.h"
+
+namespace dform {
+
+/// One job of a batch: its file and the result folder's name (the file's stem).
+struct BatchJob {
+  int index = 0;     ///< its place in the batch's list, from 0
+  std::string path;  ///< the job file, as listed (relative paths of a list file: from its folder)
+  std::string name;  ///< OUT/<name>/
+};
+
+/// The jobs of `input`: a text file with one job file per line (blank lines and lines starting
+/// with # skipped; relative paths from the list's folder), or every *.json in a folder, sorted by
+/// name. InputUnreadable naming the file; InputInvalid when the list is empty or two jobs have
+/// the same name.
+Result<std::vector<BatchJob>> listBatchJobs(const std::string& input);
+
+/// Shard `shard` of `shards` (1-based): job k belongs to shard k % shards + 1.
+std::vector<BatchJob> shardOf(const std::vector<BatchJob>& jobs, int shard, int shards);
+
+/// "i/N" -> {i, N}; false unless 1 <= i <= N.
+bool parseShard(const std::string& text, int& shard, int& shards);
+
+/// A finished job: what happened and what its saved result measures.
+struct BatchRow {
+  BatchJob job;
+  std::string status;  ///< "done", "gate failed" (result written), "failed" (no result)
+  int exitCode = 0;    ///< as `dform run` of the job would exit
+  std::string message; ///< the error, for a job that failed
+  SweepRow figures;    ///< measured on OUT/<name>/ when a result was written
+  double seconds = 0;
+};
+
+/// What one job's run gives: the exit code `dform run` would give and the error, if any.
+struct JobOutcome {
+  int exitCode = 0;
+  std::string message;
+};
+
+/// Runs one job into `dir`; called from several threads at once.
+using BatchRunner = std::function<JobOutcome(const std::string& jobPath, const std::string& dir)>;
+
+struct BatchOptions {
+  int shard = 1, shards = 1;  ///< run only this slice
+  bool resume = false;        ///< skip jobs the manifest has as finished with their result in place
+  int threads = 0;            ///< jobs at once; 0: the machine's cores
+};
+
+/// The manifest's file name in OUT: batch.json, or batch-shard-I-of-N.json for a shard (so that
+/// shards running at once never write the same file).
+std::string manifestName(const BatchOptions& options);
+
+/// Runs the options' shard of `jobs` into `outDir` (created when missing), rewriting the
+/// manifest atomically after each job. Returns every row of the manifest (resumed ones too), in
+/// job order. Interrupted when `interrupted` is set (the finished jobs are in the manifest);
+/// OutputFailed naming the file.
+Result<std::vector<BatchRow>> runBatch(const std::vector<BatchJob>& jobs,
+                                       const BatchOptions& options, const std::string& outDir,
+                                       const BatchRunner& run, const SweepProgress& progress,
+                                       const std::atomic<bool>& interrupted);
+
+/// Gathers every manifest in `outDir` (batch.json and the shards') into batch.json, one row per
+/// job (the latest where several have it), in job order, and gallery.html. Returns the rows.
+/// InputUnreadable when there is no manifest, InputInvalid naming a manifest that is not one.
+Result<std::vector<BatchRow>> mergeBatch(const std::string& outDir);
+
+}  // namespace dform

@@ -1,0 +1,154 @@
+// `dform batch` as a cluster runs it (build/dform in real processes): shards merged equal the
+// whole batch, and a resumed batch finishes what was left and redoes nothing already finished.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "cli/text_files.h"
+
+namespace dform {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+using test::occurrences;
+using test::readText;
+
+class BatchTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() /
+           ("dform_batch_" + std::string(info->name()) + "_" + std::to_string(getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Runs dform with `args`; the exit code, the output in `log_`.
+  int dform(const std::string& args) {
+    const int status = std::system((std::string(DFORM_EXE) + " " + args + " >" +
+                                    (dir_ / "log.txt").string() + " 2>&1")
+                                       .c_str());
+    log_ = readText(dir_ / "log.txt");
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  static std::string samples() { return std::string(DFORM_SAMPLES_DIR) + "/forward"; }
+  static json rows(const fs::path& manifest) { return json::parse(readText(manifest))["rows"]; }
+
+  fs::path dir_;
+  std::string log_;
+};
+
+// The same job measured twice agrees to rounding (the solver's sums may run in another order).
+void expectSameRow(const json& a, const json& b) {
+  for (const char* key : {"index", "job", "name", "status", "exit_code", "model", "gate_passed",
+                          "failing_checks"})
+    EXPECT_EQ(a[key], b[key]) << a["name"] << " " << key;
+  for (const char* key : {"height_mm", "volume_mm3", "max_curvature"}) {
+    ASSERT_EQ(a[key].is_null(), b[key].is_null()) << a["name"] << " " << key;
+    if (a[key].is_null()) continue;
+    const double x = a[key], y = b[key];
+    EXPECT_NEAR(x, y, 1e-6 * std::max(1.0, std::abs(x))) << a["name"] << " " << key;
+  }
+}
+
+TEST_F(BatchTest, ShardsMergedEqualTheWholeBatch) {
+  const fs::path whole = dir_ / "whole", sharded = dir_ / "sharded";
+  const int wholeCode = dform("batch " + samples() + " -o " + whole.string() + " --no-export -q");
+  const std::string wholeLog = log_;
+  const json all = rows(whole / "batch.json");
+  int jobs = 0;
+  for (const auto& entry : fs::directory_iterator(samples())) jobs += entry.path().extension() == ".json";
+  ASSERT_EQ(int(all.size()), jobs) << wholeLog;
+  int firstFailure = 0;
+  for (const json& row : all) {
+    if (row["exit_code"] != 0 && firstFailure == 0) firstFailure = row["exit_code"];
+    // Every written result is one `dform validate` accepts with the row's verdict.
+    if (row["status"] == "failed") continue;
+    const int code = dform("validate " + (whole / row["name"].get<std::string>()).string());
+    EXPECT_EQ(code, row["gate_passed"].get<bool>() ? 0 : 7) << row["name"] << ": " << log_;
+  }
+  EXPECT_EQ(wholeCode, firstFailure) << wholeLog;
+
+  for (int i = 1; i <= 3; ++i) {
+    dform("batch " + samples() + " -o " + sharded.string() + " --no-export -q --shard " +
+          std::to_string(i) + "/3");
+    const json slice = rows(sharded / ("batch-shard-" + std::to_string(i) + "-of-3.json"));
+    for (const json& row : slice) EXPECT_EQ(row["index"].get<int>() % 3 + 1, i) << log_;
+  }
+  ASSERT_EQ(dform("batch --merge " + sharded.string()), 0) << log_;
+  const json merged = rows(sharded / "batch.json");
+  ASSERT_EQ(merged.size(), all.size());
+  for (std::size_t k = 0; k < all.size(); ++k) expectSameRow(all[k], merged[k]);
+  // The merged gallery has a card per job.
+  const std::string gallery = readText(sharded / "gallery.html");
+  EXPECT_EQ(occurrences(gallery, "<div class=\"card"), jobs);
+}
+
+struct Stamp {
+  ino_t inode;
+  long long mtimeNs;
+  bool operator==(const Stamp& o) const { return inode == o.inode && mtimeNs == o.mtimeNs; }
+};
+Stamp stamp(const fs::path& path) {
+  struct stat s {};
+  EXPECT_EQ(::stat(path.c_str(), &s), 0) << path;
+  return {s.st_ino, (long long)s.st_mtim.tv_sec * 1000000000LL + s.st_mtim.tv_nsec};
+}
+
+TEST_F(BatchTest, ResumeFinishesTheRestAndRedoesNothingFinished) {
+  // A job list as a lab writes one: comments, a blank line, paths relative to the list.
+  const fs::path list = dir_ / "jobs.txt";
+  std::ofstream(list) << "# three quick jobs\n" << samples() << "/ellipse-twin.json\n\n"
+                      << fs::relative(samples() + "/ellipses-quarter-turn.json", dir_).string()
+                      << "\n" << samples() << "/squaricle.json\n";
+  const fs::path out = dir_ / "out";
+  ASSERT_EQ(dform("batch " + list.string() + " -o " + out.string() + " -q"), 0) << log_;
+  json manifest = json::parse(readText(out / "batch.json"));
+  ASSERT_EQ(manifest["rows"].size(), 3u);
+
+  // As if the batch had been stopped before its second job finished: no row, no result.
+  manifest["rows"].erase(1);
+  std::ofstream(out / "batch.json") << manifest.dump(2);
+  fs::remove_all(out / "ellipses-quarter-turn");
+  std::map<std::string, Stamp> before;
+  for (const char* name : {"ellipse-twin", "squaricle"}) before[name] = stamp(out / name / "report.json");
+
+  ASSERT_EQ(dform("batch " + list.string() + " -o " + out.string() + " -q --resume"), 0) << log_;
+  const json resumed = rows(out / "batch.json");
+  ASSERT_EQ(resumed.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) EXPECT_EQ(resumed[k]["index"], int(k));
+  EXPECT_EQ(resumed[1]["status"], "done");
+  EXPECT_TRUE(fs::exists(out / "ellipses-quarter-turn" / "report.json"));
+  for (const auto& [name, s] : before) EXPECT_TRUE(stamp(out / name / "report.json") == s) << name;
+
+  // Resumed once more: everything is finished, nothing runs.
+  const Stamp third = stamp(out / "ellipses-quarter-turn" / "report.json");
+  ASSERT_EQ(dform("batch " + list.string() + " -o " + out.string() + " -q --resume"), 0) << log_;
+  EXPECT_TRUE(stamp(out / "ellipses-quarter-turn" / "report.json") == third);
+  for (const auto& [name, s] : before) EXPECT_TRUE(stamp(out / name / "report.json") == s) << name;
+  EXPECT_EQ(rows(out / "batch.json"), resumed);
+}
+
+TEST_F(BatchTest, BadShardIsAUsageErrorAMissingListUnreadable) {
+  EXPECT_EQ(dform("batch " + samples() + " -o " + (dir_ / "o").string() + " --shard 4/3"), 2);
+  EXPECT_NE(log_.find("--shard"), std::string::npos) << log_;
+  EXPECT_EQ(dform("batch " + (dir_ / "missing.txt").string() + " -o " + (dir_ / "o").string()), 3);
+  EXPECT_NE(log_.find("missing.txt"), std::string::npos) << log_;
+  EXPECT_EQ(dform("batch --merge " + dir_.string()), 3);
+}
+
+}  // namespace
+}  // namespace dform
