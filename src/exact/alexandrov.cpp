@@ -114,10 +114,15 @@ Eigen::Vector3d trilaterate(const Eigen::Vector3d& A, const Eigen::Vector3d& B, 
   return inPlane - gamma * n;  // det(B, A, X) = -X . (A x B) > 0
 }
 
-// Places every vertex, face by face from face 0 outwards, with the apex at the origin.
+// Places every vertex with the apex at the origin: a first face from its tetrahedron, then one
+// vertex at a time from a face whose other two corners are placed. Each placement solves with
+// the Gram matrix of those two corners' radial vectors, which is ill-conditioned when they are
+// nearly parallel (a short edge seen from far: 4 mm at 50 mm amplifies errors 150 times), and
+// errors compound from vertex to vertex; so each step takes the face whose two placed radial
+// vectors are furthest from parallel.
 Eigen::MatrixX3d placeVertices(const IntrinsicTriangulation& tri, const Eigen::VectorXd& r) {
   Eigen::MatrixX3d V = Eigen::MatrixX3d::Zero(tri.vertexCount(), 3);
-  std::vector<bool> placed(tri.vertexCount(), false), seen(tri.faceCount(), false);
+  std::vector<bool> placed(tri.vertexCount(), false);
   const FaceLayout L = layout(tri, 0);
   double rr[3], qx, qy, h2;
   for (int k = 0; k < 3; ++k) rr[k] = r[tri.tail(k)];
@@ -126,27 +131,26 @@ Eigen::MatrixX3d placeVertices(const IntrinsicTriangulation& tri, const Eigen::V
     V.row(tri.tail(k)) = Eigen::RowVector3d(L.v[k].x() - qx, L.v[k].y() - qy, std::sqrt(std::max(0.0, h2)));
     placed[tri.tail(k)] = true;
   }
-  std::deque<int> queue{0};
-  seen[0] = true;
-  while (!queue.empty()) {
-    const int f = queue.front();
-    queue.pop_front();
-    for (int c = 0; c < 3; ++c) {
-      const int t = tri.twin(3 * f + c);
-      const int g = t / 3;
-      if (seen[g]) continue;
-      seen[g] = true;
-      queue.push_back(g);
+  for (int left = tri.vertexCount() - 3; left > 0; --left) {
+    int bestHalfedge = -1;
+    double bestSine = -1.0;
+    for (int t = 0; t < tri.halfedgeCount(); ++t) {
       const int l = tri.tail(IntrinsicTriangulation::prev(t));
-      if (placed[l]) continue;
-      // g = (j, i, l) with t running j -> i.
-      const int j = tri.tail(t), i = tri.head(t);
-      V.row(l) = trilaterate(V.row(i).transpose(), V.row(j).transpose(), r[l],
-                             tri.length(IntrinsicTriangulation::next(t)),
-                             tri.length(IntrinsicTriangulation::prev(t)))
-                     .transpose();
-      placed[l] = true;
+      if (placed[l] || !placed[tri.tail(t)] || !placed[tri.head(t)]) continue;
+      const Eigen::Vector3d A = V.row(tri.head(t)), B = V.row(tri.tail(t));
+      const double sine = A.cross(B).norm() / (A.norm() * B.norm());
+      if (sine > bestSine) {
+        bestSine = sine;
+        bestHalfedge = t;
+      }
     }
+    if (bestHalfedge < 0) break;  // a disconnected triangulation: left unplaced (at the origin)
+    // The face (j, i, l) with t running j -> i.
+    const int t = bestHalfedge, j = tri.tail(t), i = tri.head(t), l = tri.tail(IntrinsicTriangulation::prev(t));
+    V.row(l) = trilaterate(V.row(i).transpose(), V.row(j).transpose(), r[l],
+                           tri.length(IntrinsicTriangulation::next(t)), tri.length(IntrinsicTriangulation::prev(t)))
+                   .transpose();
+    placed[l] = true;
   }
   return V;
 }

@@ -261,6 +261,10 @@ Result<ExactGluing> glue(const SeamPolygons& seam, const ExactOptions& options) 
   g.embedding = embedConvex(tri, options.embedding);
   if (!g.embedding.converged)
     return Status(ErrorCode::SolveFailed, "the exact gluing did not converge: " + g.embedding.message);
+  // Laid out in 3D, every edge keeps its length to ~1e-10 where the layout is sound (tests/exact).
+  if (!(g.embedding.maxEdgeError <= 1e-6))
+    return Status(ErrorCode::SolveFailed, "the exact body's vertices could not be laid out consistently (an edge off by " +
+                                              std::to_string(100 * g.embedding.maxEdgeError) + " %)");
   g.vertices = g.embedding.vertices;
   g.triangulation = std::move(tri);
   return g;

@@ -166,6 +166,33 @@ TEST(Exact, RigidMotionsAndRelabellingLeaveTheShape) {
   EXPECT_LT(alignedDistance(reference, back).maxRel, 1e-9);
 }
 
+TEST(Exact, EveryStartingPairIsLaidOutAndPlacedConsistently) {
+  // B's seam started at every third point (and at 1 and 22, where a layout that compounded the
+  // error of nearly parallel radial edges put vertices 22 % and 112 % off): the laid-out body
+  // keeps its edge lengths, and points near the seam keep their spacing.
+  const SeamPolygons base = testshapes::ellipsePair(100);
+  std::vector<int> shifts{1, 22};
+  for (int shift = 0; shift < 100; shift += 3) shifts.push_back(shift);
+  for (int shift : shifts) {
+    SeamPolygons seam = base;
+    for (int k = 0; k < 100; ++k) seam.b.row(k) = base.b.row((k + shift) % 100);
+    equalizeChords(seam);
+    Result<ExactGluing> glued = glue(seam);
+    ASSERT_TRUE(glued.isOk()) << "shift " << shift << ": " << glued.status().message();
+    EXPECT_LT(glued.value().embedding.maxEdgeError, 1e-8) << "shift " << shift;
+    const Points2& P = glued.value().seam.a;
+    const Eigen::RowVector2d centre = P.colwise().mean();
+    const Points2 ring = resampleClosed((P.rowwise() - centre) * 0.97, 400).rowwise() + centre;
+    const Points3 onBody = placeOnBody(glued.value(), 0, ring);
+    double longest = 0;
+    for (int i = 0; i < ring.rows(); ++i) {
+      const int j = (i + 1) % int(ring.rows());
+      longest = std::max(longest, (onBody.row(j) - onBody.row(i)).norm() / (ring.row(j) - ring.row(i)).norm());
+    }
+    EXPECT_LE(longest, 1 + 1e-6) << "shift " << shift;
+  }
+}
+
 TEST(Exact, InteriorPointsBendWithoutStretching) {
   SeamPolygons seam = testshapes::ellipsePair(80);
   equalizeChords(seam);
