@@ -196,13 +196,13 @@ Result<std::vector<BatchRow>> runBatch(const std::vector<BatchJob>& jobs,
         kept[r.job.index] = r;
   }
   std::vector<BatchRow> rows;
-  std::vector<BatchJob> todo;
+  std::vector<BatchJob> pending;
   for (const BatchJob& job : slice) {
     const auto at = kept.find(job.index);
     if (at != kept.end() && at->second.job.path == job.path)
       rows.push_back(at->second);
     else
-      todo.push_back(job);
+      pending.push_back(job);
   }
   std::mutex mutex;
   Status written = writeFileAtomically(manifest.string(), manifestText(rows, options, false));
@@ -210,9 +210,9 @@ Result<std::vector<BatchRow>> runBatch(const std::vector<BatchJob>& jobs,
   const auto begun = Clock::now();
   int done = 0, failed = 0;
   parallelFor(
-      todo.size(), options.threads,
+      pending.size(), options.threads,
       [&](std::size_t k) {
-        const BatchJob& job = todo[k];
+        const BatchJob& job = pending[k];
         const std::string dir = (fs::path(outDir) / job.name).string();
         const auto jobBegun = Clock::now();
         const JobOutcome outcome = run(job.path, dir);
@@ -241,7 +241,7 @@ Result<std::vector<BatchRow>> runBatch(const std::vector<BatchJob>& jobs,
         if (written.isOk())
           written = writeFileAtomically(manifest.string(), manifestText(rows, options, false));
         if (progress)
-          progress(done, failed, int(todo.size()),
+          progress(done, failed, int(pending.size()),
                    std::chrono::duration<double>(Clock::now() - begun).count());
       },
       interrupted);
