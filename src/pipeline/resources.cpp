@@ -1,12 +1,16 @@
 #include "pipeline/resources.h"
 
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "pipeline/run_util.h"
 
@@ -42,11 +46,36 @@ std::string cgroupFolder() {
   return "/sys/fs/cgroup";
 }
 
+// Waits, at most a second, until no other thread of this process is running. A library's
+// threads map their buffers as they start (each OpenBLAS worker 128 MB, right after the library
+// is loaded, although dform never calls BLAS): read before they have, the address space in use,
+// and with it the resolution offered, would depend on the scheduler.
+void letOtherThreadsSettle() {
+  namespace fs = std::filesystem;
+  const std::string self = std::to_string(gettid());
+  for (int waited = 0; waited < 1000; ++waited) {
+    bool running = false;
+    std::error_code error;
+    for (const fs::directory_entry& task : fs::directory_iterator("/proc/self/task", error)) {
+      if (task.path().filename() == self) continue;
+      std::ifstream in(task.path() / "stat");
+      std::string stat;
+      std::getline(in, stat);
+      const std::size_t name = stat.rfind(')');  // "tid (name) state ...": the name may hold ')'
+      running = running || (name != std::string::npos && name + 2 < stat.size() && stat[name + 2] == 'R');
+    }
+    if (!running) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+}
+
 // Bytes of address space this process may still map under RLIMIT_AS (ulimit -v), or -1 when
-// unlimited: the limit less what is mapped already (/proc/self/status VmSize, kB).
+// unlimited: the limit less what is mapped once the other threads have settled
+// (/proc/self/status VmSize, kB).
 double addressSpaceRoom() {
   struct rlimit limit {};
   if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return -1.0;
+  letOtherThreadsSettle();
   const double mappedKb = readNumber("/proc/self/status", "VmSize:");
   return std::max(0.0, double(limit.rlim_cur) - std::max(0.0, mappedKb) * 1024.0);
 }

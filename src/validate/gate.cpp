@@ -118,9 +118,33 @@ CheckResult flatSimpleCheck(const DForm& model) {
   return judgeCheck("flat_simple", bad, 0, detail);
 }
 
+// The first coordinate of the model that is not a finite number, "piece A's 3D vertex 0" (empty
+// when none). CGAL's exact predicates cannot take one (its multiprecision fallback asserts), so
+// the checks that need them fail on such a model instead of calling CGAL.
+std::string nonFiniteCoordinate(const DForm& model) {
+  auto firstBad = [](const auto& points) {
+    for (Eigen::Index v = 0; v < points.rows(); ++v)
+      if (!points.row(v).allFinite()) return v;
+    return Eigen::Index(-1);
+  };
+  for (const Piece* p : {&model.a, &model.b}) {
+    if (const Eigen::Index v = firstBad(p->shape); v >= 0)
+      return "piece " + p->name + "'s 3D vertex " + std::to_string(v);
+    if (const Eigen::Index v = firstBad(p->flat); v >= 0)
+      return "piece " + p->name + "'s flat vertex " + std::to_string(v);
+  }
+  return {};
+}
+
+CheckResult nonFiniteCheck(const char* name, double limit, const std::string& where) {
+  return judgeCheck(name, kNaN, limit, "not measured: " + where + " has a coordinate that is not a number");
+}
+
 // Both pieces as one triangle soup, each seam pair welded into one vertex at its midpoint (the
 // gap itself is judged by seam_gap_mm), so that triangles meeting at the seam are adjacent.
 CheckResult selfIntersectionCheck(const DForm& model) {
+  if (const std::string where = nonFiniteCoordinate(model); !where.empty())
+    return nonFiniteCheck("self_intersection", 0, where);
   const Piece& a = model.a;
   const Piece& b = model.b;
   const int na = int(a.shape.rows());
@@ -273,6 +297,8 @@ std::string cornersMeetingSmoothPoints(const DForm& model) {
 // largest distance from a 3D vertex to the hull surface of the seam points (both sides).
 CheckResult hullCheck(const DForm& model, const GateLimits& limits) {
   const char* name = "hull_distance_rel";
+  if (const std::string where = nonFiniteCoordinate(model); !where.empty())
+    return nonFiniteCheck(name, limits.hull_distance_rel, where);
   std::string convexity;
   for (const Piece* p : {&model.a, &model.b}) {
     if (!p->freeBoundaries.empty())

@@ -64,14 +64,37 @@ void expectSameRow(const json& a, const json& b) {
   }
 }
 
+// A folder of seven jobs as a lab writes them: the exact and the paper model, the Squaricle (at
+// this coarse resolution it fails the default gate on its distance from the exact shape) and a
+// job whose piece is missing. Small resolutions keep it quick; every shipped job runs in
+// SampleOnEveryKernel.
+fs::path writeJobFolder(const fs::path& dir) {
+  const std::string svg = std::string(DFORM_SAMPLES_DIR) + "/forward/";
+  auto job = [&](const std::string& name, const std::string& a, const std::string& b,
+                 const std::string& extra) {
+    std::ofstream(dir / (name + ".json"))
+        << "{\"mode\": \"forward\", \"piece_a\": \"" << svg + a << "\", \"piece_b\": \""
+        << svg + b << "\", \"resolution\": 40" << extra << "}\n";
+  };
+  fs::create_directories(dir);
+  job("twin", "ellipses-a.svg", "ellipses-a.svg", ", \"start_b\": 0.25");
+  job("pair-0", "ellipses-a.svg", "ellipses-b.svg", "");
+  job("pair-0.3", "ellipses-a.svg", "ellipses-b.svg", ", \"start_b\": 0.3");
+  job("paper", "ellipses-a.svg", "ellipses-b.svg", ", \"start_b\": 0.1, \"model\": \"paper\"");
+  job("circle-square", "circle.svg", "square.svg", ", \"start_b\": 0.125");
+  job("squaricle", "squaricle-disc.svg", "squaricle-square.svg", "");
+  job("missing", "no-such-piece.svg", "square.svg", "");
+  return dir;
+}
+
 TEST_F(BatchTest, ShardsMergedEqualTheWholeBatch) {
+  const fs::path jobs = writeJobFolder(dir_ / "jobs");
   const fs::path whole = dir_ / "whole", sharded = dir_ / "sharded";
-  const int wholeCode = dform("batch " + samples() + " -o " + whole.string() + " --no-export -q");
+  const int wholeCode = dform("batch " + jobs.string() + " -o " + whole.string() + " --no-export -q");
   const std::string wholeLog = log_;
   const json all = rows(whole / "batch.json");
-  int jobs = 0;
-  for (const auto& entry : fs::directory_iterator(samples())) jobs += entry.path().extension() == ".json";
-  ASSERT_EQ(int(all.size()), jobs) << wholeLog;
+  const int jobCount = 7;
+  ASSERT_EQ(int(all.size()), jobCount) << wholeLog;
   int firstFailure = 0;
   for (const json& row : all) {
     if (row["exit_code"] != 0 && firstFailure == 0) firstFailure = row["exit_code"];
@@ -81,9 +104,16 @@ TEST_F(BatchTest, ShardsMergedEqualTheWholeBatch) {
     EXPECT_EQ(code, row["gate_passed"].get<bool>() ? 0 : 7) << row["name"] << ": " << log_;
   }
   EXPECT_EQ(wholeCode, firstFailure) << wholeLog;
+  std::map<std::string, int> statuses, models;
+  for (const json& row : all) {
+    ++statuses[row["status"].get<std::string>()];
+    if (row["status"] != "failed") ++models[row["model"].get<std::string>()];
+  }
+  EXPECT_EQ(statuses, (std::map<std::string, int>{{"done", 5}, {"failed", 1}, {"gate failed", 1}}));
+  EXPECT_EQ(models, (std::map<std::string, int>{{"exact", 4}, {"paper", 2}}));
 
   for (int i = 1; i <= 3; ++i) {
-    dform("batch " + samples() + " -o " + sharded.string() + " --no-export -q --shard " +
+    dform("batch " + jobs.string() + " -o " + sharded.string() + " --no-export -q --shard " +
           std::to_string(i) + "/3");
     const json slice = rows(sharded / ("batch-shard-" + std::to_string(i) + "-of-3.json"));
     for (const json& row : slice) EXPECT_EQ(row["index"].get<int>() % 3 + 1, i) << log_;
@@ -94,7 +124,7 @@ TEST_F(BatchTest, ShardsMergedEqualTheWholeBatch) {
   for (std::size_t k = 0; k < all.size(); ++k) expectSameRow(all[k], merged[k]);
   // The merged gallery has a card per job.
   const std::string gallery = readText(sharded / "gallery.html");
-  EXPECT_EQ(occurrences(gallery, "<div class=\"card"), jobs);
+  EXPECT_EQ(occurrences(gallery, "<div class=\"card"), jobCount);
 }
 
 struct Stamp {

@@ -75,11 +75,25 @@ TEST(Gate, NaNFailsEveryCheckItReachesAndTheGate) {
   DForm model = test::tetraDForm(8);
   model.a.shape(0, 0) = nan;  // one coordinate of a corner of the seam
   const GateReport report = runGate(model, GateLimits{});
-  for (const CheckResult& c : report.checks)
-    if (std::isnan(c.value)) EXPECT_NE(c.verdict, Verdict::Pass) << describe(report);
+  for (const CheckResult& c : report.checks) {
+    if (std::isnan(c.value)) {
+      EXPECT_NE(c.verdict, Verdict::Pass) << describe(report);
+    }
+  }
   EXPECT_TRUE(failed(report).count("L_error")) << describe(report);
   EXPECT_TRUE(failed(report).count("L_max")) << describe(report);
+  // The checks on exact predicates fail without reaching CGAL, which asserts on a NaN.
+  for (const char* name : {"self_intersection", "hull_distance_rel"}) {
+    EXPECT_EQ(report.find(name)->verdict, Verdict::Fail) << describe(report);
+    EXPECT_NE(report.find(name)->detail.find("piece A's 3D vertex 0"), std::string::npos);
+  }
   EXPECT_FALSE(report.passed());
+  DForm flatNaN = test::tetraDForm(8);
+  flatNaN.b.flat(3, 1) = std::numeric_limits<double>::infinity();
+  const GateReport flatReport = runGate(flatNaN, GateLimits{});
+  EXPECT_NE(flatReport.find("self_intersection")->detail.find("piece B's flat vertex 3"),
+            std::string::npos) << describe(flatReport);
+  EXPECT_FALSE(flatReport.passed());
 }
 
 TEST(Gate, FlatPieceOverlappingItselfFailsOnlyFlatSimple) {
