@@ -26,7 +26,7 @@ using test::occurrences;
 using test::readText;
 
 class BatchTest : public ::testing::Test {
- protected:
+ public:
   void SetUp() override {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     dir_ = fs::temp_directory_path() /
@@ -66,8 +66,7 @@ void expectSameRow(const json& a, const json& b) {
 
 // A folder of seven jobs as a lab writes them: the exact and the paper model, the Squaricle (at
 // this coarse resolution it fails the default gate on its distance from the exact shape) and a
-// job whose piece is missing. Small resolutions keep it quick; every shipped job runs in
-// SampleOnEveryKernel.
+// job whose piece is missing. Small resolutions keep it quick enough for the sanitizers.
 fs::path writeJobFolder(const fs::path& dir) {
   const std::string svg = std::string(DFORM_SAMPLES_DIR) + "/forward/";
   auto job = [&](const std::string& name, const std::string& a, const std::string& b,
@@ -87,23 +86,51 @@ fs::path writeJobFolder(const fs::path& dir) {
   return dir;
 }
 
-TEST_F(BatchTest, ShardsMergedEqualTheWholeBatch) {
-  const fs::path jobs = writeJobFolder(dir_ / "jobs");
-  const fs::path whole = dir_ / "whole", sharded = dir_ / "sharded";
-  const int wholeCode = dform("batch " + jobs.string() + " -o " + whole.string() + " --no-export -q");
-  const std::string wholeLog = log_;
-  const json all = rows(whole / "batch.json");
-  const int jobCount = 7;
-  ASSERT_EQ(int(all.size()), jobCount) << wholeLog;
+// Runs the jobs at `jobs` whole and in three shards merged: every result validates with its row's
+// verdict, the batch exits with the first failure's code, and the merged table and gallery equal
+// the whole batch's. The whole batch's rows.
+json expectShardsMergeToTheWhole(BatchTest& t, const fs::path& jobs, const fs::path& dir, int jobCount) {
+  const fs::path whole = dir / "whole", sharded = dir / "sharded";
+  const int wholeCode = t.dform("batch " + jobs.string() + " -o " + whole.string() + " --no-export -q");
+  const std::string wholeLog = t.log_;
+  const json all = BatchTest::rows(whole / "batch.json");
+  EXPECT_EQ(int(all.size()), jobCount) << wholeLog;
   int firstFailure = 0;
   for (const json& row : all) {
     if (row["exit_code"] != 0 && firstFailure == 0) firstFailure = row["exit_code"];
     // Every written result is one `dform validate` accepts with the row's verdict.
     if (row["status"] == "failed") continue;
-    const int code = dform("validate " + (whole / row["name"].get<std::string>()).string());
-    EXPECT_EQ(code, row["gate_passed"].get<bool>() ? 0 : 7) << row["name"] << ": " << log_;
+    const int code = t.dform("validate " + (whole / row["name"].get<std::string>()).string());
+    EXPECT_EQ(code, row["gate_passed"].get<bool>() ? 0 : 7) << row["name"] << ": " << t.log_;
   }
   EXPECT_EQ(wholeCode, firstFailure) << wholeLog;
+
+  for (int i = 1; i <= 3; ++i) {
+    t.dform("batch " + jobs.string() + " -o " + sharded.string() + " --no-export -q --shard " +
+            std::to_string(i) + "/3");
+    const json slice = BatchTest::rows(sharded / ("batch-shard-" + std::to_string(i) + "-of-3.json"));
+    for (const json& row : slice) EXPECT_EQ(row["index"].get<int>() % 3 + 1, i) << t.log_;
+  }
+  EXPECT_EQ(t.dform("batch --merge " + sharded.string()), 0) << t.log_;
+  const json merged = BatchTest::rows(sharded / "batch.json");
+  EXPECT_EQ(merged.size(), all.size());
+  for (std::size_t k = 0; k < std::min(all.size(), merged.size()); ++k) expectSameRow(all[k], merged[k]);
+  // The merged gallery has a card per job.
+  const std::string gallery = readText(sharded / "gallery.html");
+  EXPECT_EQ(occurrences(gallery, "<div class=\"card"), jobCount);
+  return all;
+}
+
+// Every shipped job (the Release suite; minutes under the sanitizers, which run the next test).
+TEST_F(BatchTest, ShardsMergedEqualTheWholeBatch) {
+  int jobs = 0;
+  for (const auto& entry : fs::directory_iterator(samples())) jobs += entry.path().extension() == ".json";
+  ASSERT_GE(jobs, 7);
+  expectShardsMergeToTheWhole(*this, samples(), dir_, jobs);
+}
+
+TEST_F(BatchTest, ShardsOfMixedOutcomesMergeToTheWhole) {
+  const json all = expectShardsMergeToTheWhole(*this, writeJobFolder(dir_ / "jobs"), dir_, 7);
   std::map<std::string, int> statuses, models;
   for (const json& row : all) {
     ++statuses[row["status"].get<std::string>()];
@@ -111,20 +138,6 @@ TEST_F(BatchTest, ShardsMergedEqualTheWholeBatch) {
   }
   EXPECT_EQ(statuses, (std::map<std::string, int>{{"done", 5}, {"failed", 1}, {"gate failed", 1}}));
   EXPECT_EQ(models, (std::map<std::string, int>{{"exact", 4}, {"paper", 2}}));
-
-  for (int i = 1; i <= 3; ++i) {
-    dform("batch " + jobs.string() + " -o " + sharded.string() + " --no-export -q --shard " +
-          std::to_string(i) + "/3");
-    const json slice = rows(sharded / ("batch-shard-" + std::to_string(i) + "-of-3.json"));
-    for (const json& row : slice) EXPECT_EQ(row["index"].get<int>() % 3 + 1, i) << log_;
-  }
-  ASSERT_EQ(dform("batch --merge " + sharded.string()), 0) << log_;
-  const json merged = rows(sharded / "batch.json");
-  ASSERT_EQ(merged.size(), all.size());
-  for (std::size_t k = 0; k < all.size(); ++k) expectSameRow(all[k], merged[k]);
-  // The merged gallery has a card per job.
-  const std::string gallery = readText(sharded / "gallery.html");
-  EXPECT_EQ(occurrences(gallery, "<div class=\"card"), jobCount);
 }
 
 struct Stamp {
