@@ -1,6 +1,7 @@
 #include "io/json_util.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "core/message_text.h"
@@ -62,6 +63,10 @@ Result<Eigen::MatrixXd> jsonPointList(const std::string& path, const nlohmann::j
       P(Eigen::Index(i), k) = scale * p[std::size_t(k)].get<double>();
   }
   return P;
+}
+
+nlohmann::json numberOrNull(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
 
 }  // namespace dform::io_detail

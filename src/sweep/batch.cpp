@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "core/atomic_file.h"
+#include "io/json_util.h"
 
 namespace dform {
 
@@ -22,7 +23,6 @@ namespace fs = std::filesystem;
 using json = nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
-json figure(double value) { return std::isfinite(value) ? json(value) : json(nullptr); }
 double number(const json& row, const char* key) {
   const auto at = row.find(key);
   return at != row.end() && at->is_number() ? at->get<double>() : NAN;
@@ -37,12 +37,12 @@ json rowJson(const BatchRow& r) {
           {"exit_code", r.exitCode},
           {"message", r.message},
           {"model", f.model},
-          {"height_mm", f.solved ? figure(f.heightMm) : json(nullptr)},
-          {"volume_mm3", f.solved ? figure(f.volumeMm3) : json(nullptr)},
-          {"max_curvature", f.solved ? figure(f.maxCurvature) : json(nullptr)},
+          {"height_mm", f.solved ? io_detail::numberOrNull(f.heightMm) : json(nullptr)},
+          {"volume_mm3", f.solved ? io_detail::numberOrNull(f.volumeMm3) : json(nullptr)},
+          {"max_curvature", f.solved ? io_detail::numberOrNull(f.maxCurvature) : json(nullptr)},
           {"gate_passed", f.passed},
           {"failing_checks", f.failing},
-          {"seconds", figure(r.seconds)}};
+          {"seconds", io_detail::numberOrNull(r.seconds)}};
 }
 
 // A manifest's row back; false when it is not one.

@@ -12,6 +12,7 @@
 
 #include "core/atomic_file.h"
 #include "core/result_folder.h"
+#include "io/json_util.h"
 #include "io/model_files.h"
 #include "report/views.h"
 #include "validate/metrics.h"
@@ -39,7 +40,6 @@ double coneVolume(const Piece& piece, const Eigen::Vector3d& apex) {
 double maxAbs(const Eigen::VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
 
 // A number for JSON: finite, or null.
-json figure(double value) { return std::isfinite(value) ? json(value) : json(nullptr); }
 
 }  // namespace
 
@@ -192,13 +192,13 @@ std::string sweepJson(const Job& base, const SweepOptions& options,
                     {"subfolder", r.subfolder},
                     {"solved", r.solved},
                     {"model", r.model},
-                    {"height_mm", figure(r.heightMm)},
-                    {"volume_mm3", figure(r.volumeMm3)},
-                    {"max_curvature", figure(r.maxCurvature)},
+                    {"height_mm", io_detail::numberOrNull(r.heightMm)},
+                    {"volume_mm3", io_detail::numberOrNull(r.volumeMm3)},
+                    {"max_curvature", io_detail::numberOrNull(r.maxCurvature)},
                     {"gate_passed", r.passed},
                     {"failing_checks", r.failing},
                     {"reason", r.reason},
-                    {"seconds", figure(r.seconds)}});
+                    {"seconds", io_detail::numberOrNull(r.seconds)}});
   out["rows"] = list;
   return out.dump(2) + "\n";
 }

@@ -27,13 +27,7 @@ using test::readText;
 
 class BatchTest : public ::testing::Test {
  public:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("dform_batch_" + std::string(info->name()) + "_" + std::to_string(getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
+  void SetUp() override { dir_ = test::freshTestFolder("dform_batch"); }
   void TearDown() override { fs::remove_all(dir_); }
 
   // Runs dform with `args`; the exit code, the output in `log_`.

@@ -23,6 +23,7 @@
 #include <thread>
 #include <vector>
 
+#include "cli/text_files.h"
 #include "core/file_hash.h"
 #include "io/model_files.h"
 #include "shipped_samples.h"
@@ -31,6 +32,7 @@ namespace dform {
 namespace {
 
 namespace fs = std::filesystem;
+using test::readText;
 
 struct Outcome {
   int exitCode = -1;
@@ -40,13 +42,7 @@ struct Outcome {
 // A scratch folder per test, removed at the end.
 class CliTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("dform_cli_" + std::string(info->name()) + "_" + std::to_string(getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
+  void SetUp() override { dir_ = test::freshTestFolder("dform_cli"); }
   void TearDown() override { fs::remove_all(dir_); }
 
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
@@ -106,12 +102,6 @@ class CliTest : public ::testing::Test {
 
   fs::path dir_;
 };
-
-std::string readFile(const fs::path& file) {
-  std::ostringstream text;
-  text << std::ifstream(file, std::ios::binary).rdbuf();
-  return text.str();
-}
 
 // report.html opens offline: nothing is fetched (no script, no src/href, no CSS url) and every
 // picture is inline SVG. Returns the page.
@@ -295,7 +285,7 @@ TEST_F(CliTest, ForwardWritesEveryFileAndValidates) {
   EXPECT_LE(report["metrics"]["L_error"].get<double>(), 0.005);
   EXPECT_EQ(schemaCheck((fs::path(out) / "report.json").string()), 0);
   // The glTF preview carries the curvature map by default; the pattern is fit to cut.
-  EXPECT_NE(readFile(fs::path(out) / "dform.glb").find("\"COLOR_0\""), std::string::npos);
+  EXPECT_NE(readText(fs::path(out) / "dform.glb").find("\"COLOR_0\""), std::string::npos);
   const nlohmann::json pattern = nlohmann::json::parse(std::ifstream(fs::path(out) / "pattern.json"));
   EXPECT_FALSE(pattern["failed_gate"].get<bool>());
   EXPECT_EQ(pattern["job"], "ellipses-a");
@@ -451,7 +441,7 @@ TEST_F(CliTest, PrintAndCutPutsEachPieceOnItsOwnPage) {
   const nlohmann::json pattern = nlohmann::json::parse(std::ifstream(fs::path(out) / "pattern.json"));
   ASSERT_EQ(pattern["pages"].size(), 2u);
   EXPECT_EQ(pattern["pages"][1]["origin"][0].get<double>(), 210.0);
-  const std::string svgText = readFile(fs::path(out) / "pattern.svg");
+  const std::string svgText = readText(fs::path(out) / "pattern.svg");
   EXPECT_NE(svgText.find("id=\"regmark-square-page-2\""), std::string::npos);
 }
 
@@ -652,8 +642,8 @@ TEST_F(CliTest, JobFileReproducesTheRun) {
   EXPECT_TRUE(report["timings"]["export"].is_null()) << "nothing exported, nothing timed";
   EXPECT_EQ(report["job"]["start_b"].get<double>(), 0.125);
   // The inputs are named by content too: a result can be traced to the exact files.
-  EXPECT_EQ(report["inputs"]["piece_a"]["sha256"], sha256Hex(readFile(sample("forward/circle.svg"))));
-  EXPECT_EQ(report["inputs"]["piece_b"]["sha256"], sha256Hex(readFile(sample("forward/square.svg"))));
+  EXPECT_EQ(report["inputs"]["piece_a"]["sha256"], sha256Hex(readText(sample("forward/circle.svg"))));
+  EXPECT_EQ(report["inputs"]["piece_b"]["sha256"], sha256Hex(readText(sample("forward/square.svg"))));
   EXPECT_EQ(report["job"]["resolution"].get<int>(), 60);
   // The recorded job runs again to the same figures.
   const std::string again = write("again.json", report["job"].dump());
@@ -871,7 +861,7 @@ int waitFor(pid_t pid) {
 // Waits until `file` holds `text` (a stage's message on stderr), at most 10 minutes.
 bool waitForText(const std::string& file, const std::string& text) {
   for (int waited = 0; waited < 12000; ++waited) {
-    if (readFile(file).find(text) != std::string::npos) return true;
+    if (readText(file).find(text) != std::string::npos) return true;
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   return false;
@@ -931,7 +921,7 @@ TEST_F(CliTest, AFailedWriteLeavesExactlyTheOldResult) {
                             });
     Outcome o;
     o.exitCode = waitFor(pid);
-    o.err = readFile(err);
+    o.err = readText(err);
     expectError(o, 6, out + "/");
     EXPECT_EQ(o.err.find(".dform-new"), std::string::npos) << "named as the user knows it: " << o.err;
     failedFiles.insert(o.err.substr(o.err.find(out + "/")));
@@ -953,7 +943,7 @@ TEST_F(CliTest, ASecondRunOnTheSameFolderFailsWhileTheFirstHoldsIt) {
   // The paper model at this resolution runs for seconds (the exact one would be done at once).
   const pid_t first = spawn(std::string(DFORM_EXE) + " forward " + pair +
                             " --resolution 250 --model paper -o " + out + " >/dev/null 2>" + err);
-  ASSERT_TRUE(waitForText(err, "meshed piece A with")) << readFile(err);
+  ASSERT_TRUE(waitForText(err, "meshed piece A with")) << readText(err);
   expectError(run("inverse " + sample("inverse/saddle.obj") + " --resolution 30 -q -o " + out), 6,
               out + ": another dform run (process " + std::to_string(first) + ") is writing");
   expectError(run("export " + out + " -q"), 6, "another dform run");
@@ -1000,7 +990,7 @@ TEST_F(CliTest, SignalsDuringTheWriteLeaveTheOldOrTheNewResult) {
     const pid_t pid = spawn(std::string(DFORM_EXE) + " forward " + pair + " --resolution " +
                             std::to_string(resolutions[k]) + " -o " + out + " >/dev/null 2>" + err);
     // "export (laser): 5 files" is said just before the result is written.
-    ASSERT_TRUE(waitForText(err, "export (")) << readFile(err);
+    ASSERT_TRUE(waitForText(err, "export (")) << readText(err);
     ASSERT_EQ(kill(pid, signal), 0);
     const int code = waitFor(pid);
     const std::map<std::string, std::string> now = folderContents(out);
@@ -1010,9 +1000,9 @@ TEST_F(CliTest, SignalsDuringTheWriteLeaveTheOldOrTheNewResult) {
     const bool asked = names == complete && meshesOf(now) == meshes[k];
     EXPECT_TRUE(old || asked) << "a mixture after exit " << code;
     if (signal == SIGTERM) {
-      EXPECT_TRUE(code == 143 || (code == 0 && asked)) << code << readFile(err);
+      EXPECT_TRUE(code == 143 || (code == 0 && asked)) << code << readText(err);
       if (code == 143) {
-        EXPECT_NE(readFile(err).find("dform: error: " + out + ": interrupted"), std::string::npos);
+        EXPECT_NE(readText(err).find("dform: error: " + out + ": interrupted"), std::string::npos);
       }
     } else {
       EXPECT_TRUE(code == -SIGKILL || (code == 0 && asked)) << code;
@@ -1043,10 +1033,10 @@ TEST_F(CliTest, ExportIsOneTransactionAndChecksTheGateItself) {
   const std::map<std::string, std::string> beforeSignal = folderContents(out);
   const std::string err = path("export-err.txt");
   const pid_t pid = spawn(std::string(DFORM_EXE) + " export " + out + " >/dev/null 2>" + err);
-  ASSERT_TRUE(waitForText(err, "export (")) << readFile(err);
+  ASSERT_TRUE(waitForText(err, "export (")) << readText(err);
   ASSERT_EQ(kill(pid, SIGTERM), 0);
   const int code = waitFor(pid);
-  const std::string said = readFile(err);
+  const std::string said = readText(err);
   if (said.find(out + ": interrupted; the folder was left as it was") != std::string::npos) {
     EXPECT_EQ(code, 143);
     EXPECT_TRUE(folderContents(out) == beforeSignal);
@@ -1059,7 +1049,7 @@ TEST_F(CliTest, ExportIsOneTransactionAndChecksTheGateItself) {
   EXPECT_TRUE(leftoversBeside(out).empty());
   // Piece A's 3D mesh stretched by 5 %: report.json still says the gate passed, but the meshes
   // fail it, and nothing is exported.
-  std::istringstream lines(readFile(fs::path(out) / "piece-a-3d.obj"));
+  std::istringstream lines(readText(fs::path(out) / "piece-a-3d.obj"));
   std::string line, stretched;
   while (std::getline(lines, line)) {
     double x, y, z;
@@ -1105,7 +1095,7 @@ TEST_F(CliTest, ValidateFailsAReportThatIsMissingIncompleteOrWrong) {
                 " --resolution 30 --no-export -q -o " + fwd).exitCode, 0);
   ASSERT_EQ(run("inverse " + sample("inverse/saddle.obj") + " --resolution 30 --no-export -q -o " + inv).exitCode, 0);
   const fs::path report = fs::path(fwd) / "report.json";
-  const std::string good = readFile(report);
+  const std::string good = readText(report);
   const nlohmann::json saved = nlohmann::json::parse(good);
   ASSERT_EQ(run("validate " + fwd).exitCode, 0);
   const auto validateWith = [&](const std::string& text) {
@@ -1179,13 +1169,13 @@ TEST_F(CliTest, ARunWaitingOnAFifoCanBeInterrupted) {
   std::string wchan;
   for (int waited = 0; waited < 12000 && wchan != "wait_for_partner"; ++waited) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    wchan = readFile("/proc/" + std::to_string(pid) + "/wchan");
+    wchan = readText("/proc/" + std::to_string(pid) + "/wchan");
   }
   ASSERT_EQ(kill(pid, SIGTERM), 0);
   EXPECT_EQ(waitFor(pid), 143) << wchan;
   Outcome o;
   o.exitCode = 143;
-  o.err = readFile(err);
+  o.err = readText(err);
   expectError(o, 143, fifo + ": interrupted while waiting to read it");
 }
 
@@ -1208,7 +1198,7 @@ TEST_F(CliTest, AnAddressSpaceLimitIsHonoured) {
                             });
     Outcome o;
     o.exitCode = waitFor(pid);
-    o.err = readFile(err);
+    o.err = readText(err);
     return o;
   };
   // Resolution 1000 needs about 1.7 GB: more than the limit, less than a test machine has.

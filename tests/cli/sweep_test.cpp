@@ -56,9 +56,7 @@ std::string attribute(const std::string& element, const std::string& name) {
 class SweepTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = fs::temp_directory_path() / ("dform_sweep_test_" + std::to_string(getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = test::freshTestFolder("dform_sweep_test");
     exit_ = shell(exe() + " sweep " + sample("ellipses-a.svg") + " " + sample("ellipses-b.svg") +
                       " --starts 8 -q -o " + (dir_ / "sweep").string(),
                   dir_ / "sweep.log");

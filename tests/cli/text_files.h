@@ -1,5 +1,8 @@
-// Reading what a dform process wrote, for the CLI tests that run it (sweep, batch).
+// Scratch folders and reading what a dform process wrote, for the CLI tests that run it.
 #pragma once
+
+#include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -7,6 +10,18 @@
 #include <string>
 
 namespace dform::test {
+
+/// An empty folder in the system's temporary folder named after `prefix`, the running test (none
+/// in a suite's set-up) and this process, so that tests ctest runs side by side never share one.
+inline std::filesystem::path freshTestFolder(const std::string& prefix) {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() /
+      (prefix + (info ? std::string("_") + info->name() : std::string()) + "_" + std::to_string(getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
 
 /// The whole file, or "" when it cannot be read.
 inline std::string readText(const std::filesystem::path& path) {
