@@ -13,35 +13,34 @@ namespace dform {
 
 namespace {
 
+using io_detail::numberOrNull;  // JSON has no NaN or infinity: such a figure is written as null
 using nlohmann::json;
 
-// JSON has no NaN or infinity: such a figure is written as null.
-
 json metricsJson(const Metrics& m) {
-  return {{"L_error", io_detail::numberOrNull(m.L_error)},
-          {"L_max", io_detail::numberOrNull(m.L_max)},
-          {"B_error", io_detail::numberOrNull(m.B_error)},
-          {"seam_gap_mm", io_detail::numberOrNull(m.seam_gap_mm)},
-          {"gauss_max", io_detail::numberOrNull(m.gauss_max)},
-          {"gauss_mean", io_detail::numberOrNull(m.gauss_mean)},
+  return {{"L_error", numberOrNull(m.L_error)},
+          {"L_max", numberOrNull(m.L_max)},
+          {"B_error", numberOrNull(m.B_error)},
+          {"seam_gap_mm", numberOrNull(m.seam_gap_mm)},
+          {"gauss_max", numberOrNull(m.gauss_max)},
+          {"gauss_mean", numberOrNull(m.gauss_mean)},
           {"flipped_2d", m.flipped_2d},
           {"flipped_3d", m.flipped_3d},
           {"degenerate_2d", m.degenerate_2d},
           {"degenerate_3d", m.degenerate_3d},
-          {"seam_length_a_mm", io_detail::numberOrNull(m.seam_length_a_mm)},
-          {"seam_length_b_mm", io_detail::numberOrNull(m.seam_length_b_mm)},
-          {"seam_length_3d_mm", io_detail::numberOrNull(m.seam_length_3d_mm)},
-          {"exact_distance_rms_rel", io_detail::numberOrNull(m.exact_distance_rms_rel)},
-          {"exact_distance_max_rel", io_detail::numberOrNull(m.exact_distance_max_rel)},
+          {"seam_length_a_mm", numberOrNull(m.seam_length_a_mm)},
+          {"seam_length_b_mm", numberOrNull(m.seam_length_b_mm)},
+          {"seam_length_3d_mm", numberOrNull(m.seam_length_3d_mm)},
+          {"exact_distance_rms_rel", numberOrNull(m.exact_distance_rms_rel)},
+          {"exact_distance_max_rel", numberOrNull(m.exact_distance_max_rel)},
           {"exact_note", m.exact_note}};
 }
 
 // The inverse figures measured against the target curve.
 void addCurveMatch(json& metrics, const CurveMatch& c) {
-  metrics["D_error"] = io_detail::numberOrNull(c.D_error);
-  metrics["curve_distance_max_mm"] = io_detail::numberOrNull(c.curve_distance_max_mm);
-  metrics["roundtrip_rms_rel"] = io_detail::numberOrNull(c.roundtrip_rms_rel);
-  metrics["roundtrip_max_rel"] = io_detail::numberOrNull(c.roundtrip_max_rel);
+  metrics["D_error"] = numberOrNull(c.D_error);
+  metrics["curve_distance_max_mm"] = numberOrNull(c.curve_distance_max_mm);
+  metrics["roundtrip_rms_rel"] = numberOrNull(c.roundtrip_rms_rel);
+  metrics["roundtrip_max_rel"] = numberOrNull(c.roundtrip_max_rel);
   metrics["roundtrip_note"] = c.roundtrip_note;
 }
 
@@ -51,14 +50,14 @@ json modelJson(const ModelUsed& used) {
   for (const FoundCrease& c : used.creases)
     creases.push_back({{"piece", c.piece == 0 ? "A" : "B"},
                        {"crease", c.crease + 1},
-                       {"angle_deg", io_detail::numberOrNull(c.angleDeg)},
-                       {"length_mm", io_detail::numberOrNull(c.lengthMm)}});
+                       {"angle_deg", numberOrNull(c.angleDeg)},
+                       {"length_mm", numberOrNull(c.lengthMm)}});
   json out = {{"name", used.name}, {"reason", used.reason}};
   if (used.name == "exact")
     out.update({{"cone_points", used.conePoints},
                 {"newton_steps", used.newtonSteps},
-                {"max_curvature_rad", io_detail::numberOrNull(used.maxCurvature)},
-                {"chord_move_mm", io_detail::numberOrNull(used.chordMoveMm)},
+                {"max_curvature_rad", numberOrNull(used.maxCurvature)},
+                {"chord_move_mm", numberOrNull(used.chordMoveMm)},
                 {"doubly_covered", used.doublyCovered},
                 {"found_creases", creases}});
   return out;
@@ -70,7 +69,7 @@ json inputJson(const std::string& path, const std::string& sha256, const char* s
                double size) {
   return {{"path", path},
           {"sha256", sha256.empty() ? json(nullptr) : json(sha256)},
-          {sizeKey, io_detail::numberOrNull(size)}};
+          {sizeKey, numberOrNull(size)}};
 }
 
 json solverJson(const LocalGlobalSummary& relaxation, const SolverSummary& s) {
@@ -78,35 +77,35 @@ json solverJson(const LocalGlobalSummary& relaxation, const SolverSummary& s) {
   for (const IterationSummary& it : s.iterations) {
     json terms = json::object();
     for (std::size_t t = 0; t < it.termCosts.size() && t < s.termNames.size(); ++t)
-      terms[s.termNames[t]] = io_detail::numberOrNull(it.termCosts[t]);
+      terms[s.termNames[t]] = numberOrNull(it.termCosts[t]);
     iterations.push_back({{"iteration", it.iteration},
-                          {"cost", io_detail::numberOrNull(it.cost)},
+                          {"cost", numberOrNull(it.cost)},
                           {"term_costs", terms},
-                          {"step_norm", io_detail::numberOrNull(it.stepNorm)},
-                          {"damping", io_detail::numberOrNull(it.damping)},
+                          {"step_norm", numberOrNull(it.stepNorm)},
+                          {"damping", numberOrNull(it.damping)},
                           {"accepted", it.accepted},
                           {"refactorised", it.refactorised},
                           {"cg_iterations", it.cgIterations},
-                          {"seconds", io_detail::numberOrNull(it.seconds)}});
+                          {"seconds", numberOrNull(it.seconds)}});
   }
   json finalTerms = json::object();
   for (std::size_t t = 0; t < s.finalTermCosts.size() && t < s.termNames.size(); ++t)
-    finalTerms[s.termNames[t]] = io_detail::numberOrNull(s.finalTermCosts[t]);
+    finalTerms[s.termNames[t]] = numberOrNull(s.finalTermCosts[t]);
   return {{"local_global",
            {{"iterations", relaxation.iterations},
-            {"initial_energy", io_detail::numberOrNull(relaxation.initialEnergy)},
-            {"final_energy", io_detail::numberOrNull(relaxation.finalEnergy)},
-            {"seconds", io_detail::numberOrNull(relaxation.seconds)}}},
+            {"initial_energy", numberOrNull(relaxation.initialEnergy)},
+            {"final_energy", numberOrNull(relaxation.finalEnergy)},
+            {"seconds", numberOrNull(relaxation.seconds)}}},
           {"termination", terminationName(s.termination)},
           {"message", s.message},
-          {"initial_cost", io_detail::numberOrNull(s.initialCost)},
-          {"final_cost", io_detail::numberOrNull(s.finalCost)},
+          {"initial_cost", numberOrNull(s.initialCost)},
+          {"final_cost", numberOrNull(s.finalCost)},
           {"final_term_costs", finalTerms},
           {"factorisations", s.factorisations},
           {"variables", s.numVariables},
           {"residuals", s.numResiduals},
-          {"setup_seconds", io_detail::numberOrNull(s.setupSeconds)},
-          {"solve_seconds", io_detail::numberOrNull(s.totalSeconds)},
+          {"setup_seconds", numberOrNull(s.setupSeconds)},
+          {"solve_seconds", numberOrNull(s.totalSeconds)},
           {"iterations", iterations}};
 }
 
@@ -125,15 +124,15 @@ json timingsJson(const Timings& t, const CommandTimings& command,
                  std::chrono::steady_clock::time_point reportStart) {
   const auto now = std::chrono::steady_clock::now();
   const auto seconds = [](auto duration) { return std::chrono::duration<double>(duration).count(); };
-  return {{"read", io_detail::numberOrNull(t.read)},
-          {"mesh", io_detail::numberOrNull(t.mesh)},
-          {"solve", io_detail::numberOrNull(t.solve)},
-          {"run", io_detail::numberOrNull(t.total)},
-          {"gate", io_detail::numberOrNull(command.gate)},
-          {"write", io_detail::numberOrNull(command.write)},
-          {"export", io_detail::numberOrNull(command.exportFiles)},
-          {"report", io_detail::numberOrNull(seconds(now - reportStart))},
-          {"total", io_detail::numberOrNull(seconds(now - command.start))}};
+  return {{"read", numberOrNull(t.read)},
+          {"mesh", numberOrNull(t.mesh)},
+          {"solve", numberOrNull(t.solve)},
+          {"run", numberOrNull(t.total)},
+          {"gate", numberOrNull(command.gate)},
+          {"write", numberOrNull(command.write)},
+          {"export", numberOrNull(command.exportFiles)},
+          {"report", numberOrNull(seconds(now - reportStart))},
+          {"total", numberOrNull(seconds(now - command.start))}};
 }
 
 json messagesJson(const std::vector<Message>& messages) {
@@ -148,8 +147,8 @@ json gateJson(const GateReport* gate) {
   json checks = json::array();
   for (const CheckResult& c : gate->checks)
     checks.push_back({{"name", c.name},
-                      {"value", io_detail::numberOrNull(c.value)},
-                      {"limit", io_detail::numberOrNull(c.limit)},
+                      {"value", numberOrNull(c.value)},
+                      {"limit", numberOrNull(c.limit)},
                       {"verdict", verdictName(c.verdict)},
                       {"detail", c.detail}});
   return {{"name", gate->name},
@@ -169,10 +168,10 @@ json creasesJson(const DForm& model) {
       out.push_back({{"piece", piece->name},
                      {"crease", k + 1},
                      {"fold", foldDirectionName(folds[k].direction)},
-                     {"angle_deg", io_detail::numberOrNull(folds[k].angleDeg)},
-                     {"min_angle_deg", io_detail::numberOrNull(folds[k].minAngleDeg)},
-                     {"max_angle_deg", io_detail::numberOrNull(folds[k].maxAngleDeg)},
-                     {"length_mm", io_detail::numberOrNull(folds[k].lengthMm)}});
+                     {"angle_deg", numberOrNull(folds[k].angleDeg)},
+                     {"min_angle_deg", numberOrNull(folds[k].minAngleDeg)},
+                     {"max_angle_deg", numberOrNull(folds[k].maxAngleDeg)},
+                     {"length_mm", numberOrNull(folds[k].lengthMm)}});
   }
   return out;
 }
@@ -200,9 +199,9 @@ Status writeForwardReport(const std::string& dir, const Job& job, const ForwardR
   report["inputs"] = {
       {"piece_a", inputJson(job.forward.pieceA, run.sha256A, "perimeter_mm", run.perimeterA)},
       {"piece_b", inputJson(job.forward.pieceB, run.sha256B, "perimeter_mm", run.perimeterB)}};
-  report["fit_perimeter_scale"] = io_detail::numberOrNull(run.scaleB);
-  report["start_fraction_a"] = io_detail::numberOrNull(run.startFractionA);
-  report["start_fraction_b"] = io_detail::numberOrNull(run.startFractionB);
+  report["fit_perimeter_scale"] = numberOrNull(run.scaleB);
+  report["start_fraction_a"] = numberOrNull(run.startFractionA);
+  report["start_fraction_b"] = numberOrNull(run.startFractionB);
   report["model"] = modelJson(run.modelUsed);
   report["mesh"] = meshJson(run.model);
   report["solver"] = solverJson(run.relaxation, run.summary);
@@ -231,7 +230,7 @@ Status writeInverseReport(const std::string& dir, const Job& job, const InverseR
   report["solver"] = solverJson(run.relaxation, run.summary);
   report["metrics"] = metricsJson(run.metrics);
   addCurveMatch(report["metrics"], run.curveMatch);
-  report["metrics"]["curve_length_mm"] = io_detail::numberOrNull(run.curveLength);
+  report["metrics"]["curve_length_mm"] = numberOrNull(run.curveLength);
   report["gate"] = gateJson(gate);
   report["messages"] = messagesJson(messages);
   report["timings"] = timingsJson(run.timings, command, reportStart);

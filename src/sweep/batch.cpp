@@ -21,6 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
+using io_detail::numberOrNull;
 using Clock = std::chrono::steady_clock;
 
 double number(const json& row, const char* key) {
@@ -37,12 +38,12 @@ json rowJson(const BatchRow& r) {
           {"exit_code", r.exitCode},
           {"message", r.message},
           {"model", f.model},
-          {"height_mm", f.solved ? io_detail::numberOrNull(f.heightMm) : json(nullptr)},
-          {"volume_mm3", f.solved ? io_detail::numberOrNull(f.volumeMm3) : json(nullptr)},
-          {"max_curvature", f.solved ? io_detail::numberOrNull(f.maxCurvature) : json(nullptr)},
+          {"height_mm", f.solved ? numberOrNull(f.heightMm) : json(nullptr)},
+          {"volume_mm3", f.solved ? numberOrNull(f.volumeMm3) : json(nullptr)},
+          {"max_curvature", f.solved ? numberOrNull(f.maxCurvature) : json(nullptr)},
           {"gate_passed", f.passed},
           {"failing_checks", f.failing},
-          {"seconds", io_detail::numberOrNull(r.seconds)}};
+          {"seconds", numberOrNull(r.seconds)}};
 }
 
 // A manifest's row back; false when it is not one.

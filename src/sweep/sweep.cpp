@@ -23,6 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
+using io_detail::numberOrNull;
 using Clock = std::chrono::steady_clock;
 
 // Signed volume enclosed by the triangles of a piece's 3D shape, as cones from `apex`.
@@ -192,13 +193,13 @@ std::string sweepJson(const Job& base, const SweepOptions& options,
                     {"subfolder", r.subfolder},
                     {"solved", r.solved},
                     {"model", r.model},
-                    {"height_mm", io_detail::numberOrNull(r.heightMm)},
-                    {"volume_mm3", io_detail::numberOrNull(r.volumeMm3)},
-                    {"max_curvature", io_detail::numberOrNull(r.maxCurvature)},
+                    {"height_mm", numberOrNull(r.heightMm)},
+                    {"volume_mm3", numberOrNull(r.volumeMm3)},
+                    {"max_curvature", numberOrNull(r.maxCurvature)},
                     {"gate_passed", r.passed},
                     {"failing_checks", r.failing},
                     {"reason", r.reason},
-                    {"seconds", io_detail::numberOrNull(r.seconds)}});
+                    {"seconds", numberOrNull(r.seconds)}});
   out["rows"] = list;
   return out.dump(2) + "\n";
 }
