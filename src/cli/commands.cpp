@@ -349,7 +349,10 @@ Result<WrittenResult> writeResult(const Job& job, const OutputOptions& output,
   std::optional<GateReport> gate;
   if (limits) {
     const auto gateStart = Clock::now();
-    gate = runGate(model, *limits, forward ? nullptr : &inverseRun.value().target);
+    // On the figures the run measured on this model (the exact body, the round trip): not twice.
+    gate = forward ? runGate(model, *limits, forwardRun.value().metrics, nullptr, nullptr)
+                   : runGate(model, *limits, inverseRun.value().metrics, &inverseRun.value().target,
+                             &inverseRun.value().curveMatch);
     timings.gate = secondsSince(gateStart);
   }
 

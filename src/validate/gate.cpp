@@ -395,9 +395,18 @@ CheckResult objectCheck(const char* name, double rms, double max, double limit, 
 }  // namespace
 
 GateReport runGate(const DForm& model, const GateLimits& limits, const Curve3* target) {
+  const size_t pairs = model.a.seam.size();
+  std::optional<CurveMatch> curve;
+  if (target && size_t(target->points.rows()) == pairs && pairs > 0)
+    curve = computeCurveMatch(model, *target);
+  return runGate(model, limits, computeMetrics(model), target, curve ? &*curve : nullptr);
+}
+
+GateReport runGate(const DForm& model, const GateLimits& limits, const Metrics& metrics,
+                   const Curve3* target, const CurveMatch* curve) {
   GateReport report;
   report.name = limits.name;
-  const Metrics& m = report.metrics = computeMetrics(model);
+  const Metrics& m = report.metrics = metrics;
   auto& checks = report.checks;
   const size_t pairs = model.a.seam.size();
 
@@ -406,12 +415,12 @@ GateReport runGate(const DForm& model, const GateLimits& limits, const Curve3* t
   checks.push_back(
       judgeCheck("L_max", m.L_max, limits.L_max, "largest relative error of one edge"));
   if (target) {
-    if (size_t(target->points.rows()) != pairs || pairs == 0) {
+    if (size_t(target->points.rows()) != pairs || pairs == 0 || !curve) {
       checks.push_back(notRunCheck("D_error", limits.D_error,
                                    "the target curve has " + std::to_string(target->points.rows()) +
                                        " points for " + std::to_string(pairs) + " seam pairs"));
     } else {
-      report.curve = computeCurveMatch(model, *target);
+      report.curve = *curve;
       checks.push_back(judgeCheck("D_error", report.curve->D_error, limits.D_error,
                                   "mean seam-to-curve distance / curve length; largest distance " +
                                       num(report.curve->curve_distance_max_mm) + " mm"));

@@ -78,4 +78,11 @@ struct GateReport {
 /// D_error is checked, otherwise B_error. Pure: reads the meshes only.
 GateReport runGate(const DForm& model, const GateLimits& limits, const Curve3* target = nullptr);
 
+/// runGate with the figures the caller has measured on this very model: `metrics` is
+/// computeMetrics(model) and `curve` computeCurveMatch(model, *target) (nullptr without a target),
+/// so that a run measures its model once (the exact body and the round trip are the costly
+/// figures). Results read back from files go through runGate, which measures them again.
+GateReport runGate(const DForm& model, const GateLimits& limits, const Metrics& metrics,
+                   const Curve3* target, const CurveMatch* curve);
+
 }  // namespace dform

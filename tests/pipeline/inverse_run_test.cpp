@@ -11,7 +11,9 @@
 #include <utility>
 
 #include "core/polyline.h"
+#include "pipeline/forward_pipeline.h"
 #include "pipeline/inverse_pipeline.h"
+#include "validate/gate.h"
 
 namespace dform {
 namespace {
@@ -177,6 +179,45 @@ TEST(InverseRun, BadCurvesAreInputErrorsNamingTheFile) {
     EXPECT_EQ(run.status().message().find('\n'), std::string::npos) << run.status().message();
   }
   std::filesystem::remove_all(dir);
+}
+
+// The gate a run judges on the figures it measured (the exact body, the round trip computed once)
+// is the gate measured again on the same model: the same checks, verdicts and values.
+void expectSameGate(const GateReport& once, const GateReport& again) {
+  ASSERT_EQ(once.checks.size(), again.checks.size());
+  for (std::size_t k = 0; k < once.checks.size(); ++k) {
+    const CheckResult &a = once.checks[k], &b = again.checks[k];
+    EXPECT_EQ(a.name, b.name);
+    EXPECT_EQ(a.verdict, b.verdict) << a.name;
+    EXPECT_EQ(a.detail, b.detail) << a.name;
+    if (!std::isnan(a.value) || !std::isnan(b.value)) {
+      EXPECT_EQ(a.value, b.value) << a.name;
+    }
+  }
+}
+
+TEST(InverseRun, TheGateOnTheRunsFiguresIsTheGateMeasuredAgain) {
+  MessageSink sink;
+  InverseJob inverse;
+  inverse.curve = sample("pushed-in.obj");  // the paper model and a round trip by optimisation
+  inverse.resolution = 40;
+  const Result<InverseRun> ran = runInverse(inverse, sink);
+  ASSERT_TRUE(ran.isOk()) << ran.status().message();
+  const InverseRun& r = ran.value();
+  ASSERT_FALSE(r.curveMatch.roundtrip_note.empty());
+  const GateReport again = runGate(r.model, GateLimits{}, &r.target);
+  ASSERT_TRUE(again.curve.has_value());
+  EXPECT_EQ(again.curve->roundtrip_rms_rel, r.curveMatch.roundtrip_rms_rel);
+  expectSameGate(runGate(r.model, GateLimits{}, r.metrics, &r.target, &r.curveMatch), again);
+
+  ForwardJob forward;
+  forward.pieceA = std::string(DFORM_SAMPLES_DIR) + "/forward/ellipses-a.svg";
+  forward.pieceB = std::string(DFORM_SAMPLES_DIR) + "/forward/ellipses-b.svg";
+  const Result<ForwardRun> solved = runForward(forward, sink);
+  ASSERT_TRUE(solved.isOk()) << solved.status().message();
+  const DForm& model = solved.value().model;
+  expectSameGate(runGate(model, GateLimits{}, solved.value().metrics, nullptr, nullptr),
+                 runGate(model, GateLimits{}));
 }
 
 }  // namespace
