@@ -119,6 +119,21 @@ std::vector<SweepRow> galleryRows(const std::vector<BatchRow>& rows) {
   return cards;
 }
 
+// The gallery of `rows` as OUT/<fileName>, each card drawn from its saved result (the manifests
+// keep the figures, not the drawings).
+Status writeGallery(const std::string& outDir, const std::vector<BatchRow>& rows,
+                    const std::string& fileName) {
+  std::vector<SweepRow> cards = galleryRows(rows);
+  for (SweepRow& card : cards)
+    if (card.solved) {
+      const SweepRow measured = measureResult((fs::path(outDir) / card.subfolder).string());
+      card.svg = measured.svg;
+      if (!card.passed && card.reason.empty()) card.reason = measured.reason;
+    }
+  return writeFileAtomically((fs::path(outDir) / fileName).string(),
+                             galleryHtml("dform batch: " + outDir, cards));
+}
+
 }  // namespace
 
 Result<std::vector<BatchJob>> listBatchJobs(const std::string& input) {
@@ -175,6 +190,12 @@ std::string manifestName(const BatchOptions& options) {
   return options.shards == 1 ? "batch.json"
                              : "batch-shard-" + std::to_string(options.shard) + "-of-" +
                                    std::to_string(options.shards) + ".json";
+}
+
+std::string galleryName(const BatchOptions& options) {
+  return options.shards == 1 ? "gallery.html"
+                             : "gallery-shard-" + std::to_string(options.shard) + "-of-" +
+                                   std::to_string(options.shards) + ".html";
 }
 
 Result<std::vector<BatchRow>> runBatch(const std::vector<BatchJob>& jobs,
@@ -251,6 +272,7 @@ Result<std::vector<BatchRow>> runBatch(const std::vector<BatchJob>& jobs,
     return Status(ErrorCode::Interrupted,
                   outDir + ": interrupted; " + manifest.filename().string() +
                       " lists the finished jobs (--resume runs the rest)");
+  if (Status s = writeGallery(outDir, rows, galleryName(options)); !s.isOk()) return s;
   return rows;
 }
 
@@ -274,21 +296,11 @@ Result<std::vector<BatchRow>> mergeBatch(const std::string& outDir) {
   }
   std::vector<BatchRow> rows;
   for (auto& [index, row] : byIndex) rows.push_back(std::move(row));
-  std::vector<SweepRow> cards = galleryRows(rows);
-  for (SweepRow& card : cards)  // drawn from the saved results, which the manifests do not hold
-    if (card.solved) {
-      const SweepRow measured = measureResult((fs::path(outDir) / card.subfolder).string());
-      card.svg = measured.svg;
-      if (!card.passed && card.reason.empty()) card.reason = measured.reason;
-    }
   const fs::path base = fs::path(outDir);
   if (Status s = writeFileAtomically((base / "batch.json").string(), manifestText(rows, {}, true));
       !s.isOk())
     return s;
-  if (Status s = writeFileAtomically((base / "gallery.html").string(),
-                                     galleryHtml("dform batch: " + outDir, cards));
-      !s.isOk())
-    return s;
+  if (Status s = writeGallery(outDir, rows, "gallery.html"); !s.isOk()) return s;
   return rows;
 }
 

@@ -61,8 +61,12 @@ struct BatchOptions {
 /// shards running at once never write the same file).
 std::string manifestName(const BatchOptions& options);
 
+/// The gallery's file name in OUT: gallery.html, or gallery-shard-I-of-N.html for a shard.
+std::string galleryName(const BatchOptions& options);
+
 /// Runs the options' shard of `jobs` into `outDir` (created when missing), rewriting the
-/// manifest atomically after each job. Returns every row of the manifest (resumed ones too), in
+/// manifest atomically after each job, and draws the slice's gallery (galleryName) when all
+/// have run. Returns every row of the manifest (resumed ones too), in
 /// job order. Interrupted when `interrupted` is set (the finished jobs are in the manifest);
 /// OutputFailed naming the file.
 Result<std::vector<BatchRow>> runBatch(const std::vector<BatchJob>& jobs,

@@ -98,13 +98,19 @@ json expectShardsMergeToTheWhole(BatchTest& t, const fs::path& jobs, const fs::p
     EXPECT_EQ(code, row["gate_passed"].get<bool>() ? 0 : 7) << row["name"] << ": " << t.log_;
   }
   EXPECT_EQ(wholeCode, firstFailure) << wholeLog;
+  // The whole batch draws its gallery, a card per job; each shard its slice's.
+  EXPECT_EQ(occurrences(readText(whole / "gallery.html"), "<div class=\"card"), jobCount);
 
   for (int i = 1; i <= 3; ++i) {
     t.dform("batch " + jobs.string() + " -o " + sharded.string() + " --no-export -q --shard " +
             std::to_string(i) + "/3");
-    const json slice = BatchTest::rows(sharded / ("batch-shard-" + std::to_string(i) + "-of-3.json"));
+    const std::string shard = std::to_string(i) + "-of-3";
+    const json slice = BatchTest::rows(sharded / ("batch-shard-" + shard + ".json"));
     for (const json& row : slice) EXPECT_EQ(row["index"].get<int>() % 3 + 1, i) << t.log_;
+    EXPECT_EQ(occurrences(readText(sharded / ("gallery-shard-" + shard + ".html")), "<div class=\"card"),
+              int(slice.size()));
   }
+  EXPECT_FALSE(fs::exists(sharded / "gallery.html"));  // drawn by --merge
   EXPECT_EQ(t.dform("batch --merge " + sharded.string()), 0) << t.log_;
   const json merged = BatchTest::rows(sharded / "batch.json");
   EXPECT_EQ(merged.size(), all.size());
