@@ -1,6 +1,7 @@
 // The cutting SVG, written by hand: millimetre page (1 user unit = 1 mm), one Inkscape layer per
 // operation, an id on every path, inline hex styles repeated as presentation attributes (VisiCut
 // ignores CSS classes; early LaserGRBL read only style=""). Paths use absolute M/L/Z only.
+#include <charconv>
 #include <cstdio>
 #include <sstream>
 
@@ -12,9 +13,8 @@ namespace dform::fab {
 namespace {
 
 std::string num(double x) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.4f", x);  // 0.1 um: far below any cutter's resolution
-  std::string s = buf;
+  char buf[48];  // 0.1 um: far below any cutter's resolution (to_chars: printf's "%.4f" digits)
+  std::string s(buf, std::to_chars(buf, buf + sizeof buf, x, std::chars_format::fixed, 4).ptr);
   while (!s.empty() && s.back() == '0') s.pop_back();
   if (!s.empty() && s.back() == '.') s.pop_back();
   if (s == "-0") s = "0";

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -10,9 +11,9 @@ namespace dform::svg {
 
 /// A coordinate with one decimal: a tenth of a pixel is below what a screen shows.
 inline std::string number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f", v);
-  return text;
+  char text[32];  // to_chars: printf's "%.1f" digits, without its locale and format parsing
+  const auto end = std::to_chars(text, text + sizeof text, v, std::chars_format::fixed, 1).ptr;
+  return std::string(text, end);
 }
 
 /// "#rrggbb" from components in [0, 1].

@@ -47,16 +47,26 @@ std::string creaseLines(const Piece& piece, Pixel pixel) {
   return svg;
 }
 
-}  // namespace
+// Both pieces' curvature maps and the colour scale they share, measured once per picture.
+struct Curvatures {
+  Eigen::VectorXd piece[2];
+  double scale = 1.0;
+};
 
-double curvatureScale(const DForm& model) {
-  double top = 0.0;
-  for (const Piece* p : {&model.a, &model.b})
-    top = std::max(top, curvatureMap(*p).cwiseAbs().maxCoeff());
+Curvatures curvatures(const DForm& model) {
+  Curvatures c;
+  c.piece[0] = curvatureMap(model.a);
+  c.piece[1] = curvatureMap(model.b);
+  const double top = std::max(c.piece[0].cwiseAbs().maxCoeff(), c.piece[1].cwiseAbs().maxCoeff());
   // Never below 1e-3 rad (a 20th of the default gate's limit): on an exactly developable shape
   // the defects are rounding noise, which must stay white rather than be stretched to full colour.
-  return std::max(top, 1e-3);
+  c.scale = std::max(top, 1e-3);
+  return c;
 }
+
+}  // namespace
+
+double curvatureScale(const DForm& model) { return curvatures(model).scale; }
 
 std::string shapeSvg(const DForm& model, const View& view) {
   // Model z is up; the camera turns about it by the azimuth, then tilts by the elevation.
@@ -84,12 +94,12 @@ std::string shapeSvg(const DForm& model, const View& view) {
                            height - margin - (s.y() - lo.y()) * scale);
   };
   const Eigen::Vector3d light = Eigen::Vector3d(-0.4, 0.5, 1.0).normalized();  // screen frame
-  const double kScale = curvatureScale(model);
+  const Curvatures K = view.curvature ? curvatures(model) : Curvatures{};
 
   std::vector<Polygon> polygons;
   for (int piece = 0; piece < 2; ++piece) {
     const Piece& p = piece == 0 ? model.a : model.b;
-    const Eigen::VectorXd K = view.curvature ? curvatureMap(p) : Eigen::VectorXd();
+    const Eigen::VectorXd& k = K.piece[piece];
     for (Eigen::Index f = 0; f < p.F.rows(); ++f) {
       Eigen::Vector3d s[3];
       for (int k = 0; k < 3; ++k) s[k] = toScreen(p.shape.row(p.F(f, k)).transpose());
@@ -101,8 +111,7 @@ std::string shapeSvg(const DForm& model, const View& view) {
       }
       std::string fill;
       if (view.curvature) {
-        const double k = (K(p.F(f, 0)) + K(p.F(f, 1)) + K(p.F(f, 2))) / 3.0;
-        fill = divergingColour(k / kScale);
+        fill = divergingColour((k(p.F(f, 0)) + k(p.F(f, 1)) + k(p.F(f, 2))) / 3.0 / K.scale);
       } else {
         const double shade = 0.35 + 0.65 * std::abs(n.dot(light));
         fill = piece == 0 ? hexColour(0.98 * shade, 0.72 * shade, 0.45 * shade)
@@ -146,7 +155,7 @@ std::string flatCurvatureSvg(const DForm& model, double widthPx) {
   const double margin = 8.0;
   const double scale = (widthPx - 2 * margin) / std::max(totalW, 1e-9);
   const double height = totalH * scale + 2 * margin;
-  const double kScale = curvatureScale(model);
+  const Curvatures K = curvatures(model);
   std::string svg = svg::open(widthPx, height);
   for (int piece = 0; piece < 2; ++piece) {
     const Piece& p = piece == 0 ? model.a : model.b;
@@ -157,10 +166,9 @@ std::string flatCurvatureSvg(const DForm& model, double widthPx) {
       return number(margin + (q.x() + offset) * scale) + "," +
              number(height - margin - q.y() * scale);
     };
-    const Eigen::VectorXd K = curvatureMap(p);
+    const Eigen::VectorXd& k = K.piece[piece];
     for (Eigen::Index f = 0; f < p.F.rows(); ++f) {
-      const double k = (K(p.F(f, 0)) + K(p.F(f, 1)) + K(p.F(f, 2))) / 3.0;
-      const std::string fill = divergingColour(k / kScale);
+      const std::string fill = divergingColour((k(p.F(f, 0)) + k(p.F(f, 1)) + k(p.F(f, 2))) / 3.0 / K.scale);
       svg += "<polygon points='" + pixel(p.F(f, 0)) + " " + pixel(p.F(f, 1)) + " " +
              pixel(p.F(f, 2)) + "' fill='" + fill + "' stroke='" + fill + "' stroke-width='0.4'/>";
     }
