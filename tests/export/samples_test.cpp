@@ -188,6 +188,7 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
                   0)
             << out;
         const SvgDoc svg = readSvg(bare + "/pattern.svg");
+        const std::vector<PdfPath> pdfPaths = readPdfPaths(bare + "/pattern.pdf");
         const json barePattern = readJson(bare + "/pattern.json");
         for (int p = 0; p < 2; ++p) {
           // A seam that is a hole's loop (anti and demi D-Forms) is cut as the piece's hole.
@@ -197,6 +198,8 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
           const SvgPath* seamCut = svg.find(id);
           ASSERT_NE(seamCut, nullptr) << id;
           EXPECT_NEAR(length(seamCut->parts[0], true), scale * seam[p], kMmTol) << id;
+          // The PDF draws the same seam, point for point (so its perimeter too).
+          EXPECT_LT(closestDrawing(pdfPaths, seamCut->parts[0]), kMmTol) << id << " in pattern.pdf";
         }
       }
     }

@@ -8,8 +8,10 @@
 #include <array>
 #include <cctype>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace dform::test {
@@ -199,6 +201,172 @@ bool crossing(const Polyline& loop, const Vec2& a, const Vec2& b, Vec2* at) {
     }
   }
   return false;
+}
+
+namespace {
+
+// The tokens of a PDF content stream: numbers and operators; strings, names, arrays and
+// dictionaries (operands of text and marked-content operators) come back as "?".
+std::vector<std::string> contentTokens(const std::string& text) {
+  std::vector<std::string> tokens;
+  for (size_t i = 0; i < text.size();) {
+    const char c = text[i];
+    if (std::isspace(static_cast<unsigned char>(c))) {
+      ++i;
+    } else if (c == '%') {
+      while (i < text.size() && text[i] != '\n' && text[i] != '\r') ++i;
+    } else if (c == '(') {  // a string, with nesting and escapes
+      int depth = 0;
+      for (; i < text.size(); ++i) {
+        if (text[i] == '\\') ++i;
+        else if (text[i] == '(') ++depth;
+        else if (text[i] == ')' && --depth == 0) break;
+      }
+      ++i;
+      tokens.push_back("?");
+    } else if (c == '<' || c == '>' || c == '[' || c == ']' || c == '{' || c == '}') {
+      ++i;
+      if (c == '<' && i < text.size() && text[i] != '<')  // a hex string
+        while (i < text.size() && text[i] != '>') ++i;
+      tokens.push_back("?");
+    } else {
+      const size_t start = i;
+      while (i < text.size() && !std::isspace(static_cast<unsigned char>(text[i])) &&
+             std::string("()<>[]{}/%").find(text[i]) == std::string::npos)
+        ++i;
+      if (i == start) {  // a name: '/' and its characters
+        ++i;
+        while (i < text.size() && !std::isspace(static_cast<unsigned char>(text[i])) &&
+               std::string("()<>[]{}/%").find(text[i]) == std::string::npos)
+          ++i;
+        tokens.push_back("?");
+      } else {
+        tokens.push_back(text.substr(start, i - start));
+      }
+    }
+  }
+  return tokens;
+}
+
+// Affine map [a b c d e f] as PDF writes it: (x, y) -> (a x + c y + e, b x + d y + f).
+using Affine = std::array<double, 6>;
+Affine then(const Affine& m, const Affine& n) {  // m first, then n
+  return {m[0] * n[0] + m[1] * n[2],        m[0] * n[1] + m[1] * n[3],
+          m[2] * n[0] + m[3] * n[2],        m[2] * n[1] + m[3] * n[3],
+          m[4] * n[0] + m[5] * n[2] + n[4], m[4] * n[1] + m[5] * n[3] + n[5]};
+}
+
+}  // namespace
+
+std::vector<PdfPath> readPdfPaths(const std::string& pdf) {
+  std::string pages;
+  if (run("qpdf --show-pages " + pdf, &pages) != 0) {
+    ADD_FAILURE() << "qpdf cannot list the pages of " << pdf << ": " << pages;
+    return {};
+  }
+  // "page 1: 2 0 R" then its content streams, "    4 0 R".
+  std::vector<std::pair<int, std::vector<int>>> pageContents;
+  std::istringstream lines(pages);
+  for (std::string line; std::getline(lines, line);) {
+    int page = 0, object = 0;
+    if (std::sscanf(line.c_str(), "page %d: %d 0 R", &page, &object) == 2)
+      pageContents.push_back({object, {}});
+    else if (std::sscanf(line.c_str(), " %d 0 R", &object) == 1 && !pageContents.empty())
+      pageContents.back().second.push_back(object);
+  }
+  constexpr double kMmPerPt = 25.4 / 72.0;
+  std::vector<PdfPath> paths;
+  for (size_t p = 0; p < pageContents.size(); ++p) {
+    std::string page;
+    run("qpdf --show-object=" + std::to_string(pageContents[p].first) + " " + pdf, &page);
+    double box[4] = {0, 0, 0, 0};
+    const size_t at = page.find("/MediaBox");
+    if (at == std::string::npos ||
+        std::sscanf(page.c_str() + at, "/MediaBox [ %lf %lf %lf %lf", &box[0], &box[1], &box[2], &box[3]) != 4) {
+      ADD_FAILURE() << pdf << " page " << p + 1 << " has no MediaBox: " << page;
+      return {};
+    }
+    std::vector<Affine> saved;
+    Affine ctm{1, 0, 0, 1, 0, 0};
+    std::vector<double> operands;
+    std::vector<PdfPath> current;  // the path being built, one entry per subpath
+    auto point = [&](double x, double y) {
+      const double X = ctm[0] * x + ctm[2] * y + ctm[4], Y = ctm[1] * x + ctm[3] * y + ctm[5];
+      return Vec2((X - box[0]) * kMmPerPt, (box[3] - Y) * kMmPerPt);
+    };
+    auto startSubpath = [&](const Vec2& q) {
+      PdfPath path;
+      path.page = int(p) + 1;
+      path.points.push_back(q);
+      current.push_back(path);
+    };
+    for (int object : pageContents[p].second) {
+      std::string content;
+      run("qpdf --show-object=" + std::to_string(object) + " --filtered-stream-data " + pdf, &content);
+      for (const std::string& token : contentTokens(content)) {
+        char* end = nullptr;
+        const double value = std::strtod(token.c_str(), &end);
+        if (token != "?" && end == token.c_str() + token.size()) {
+          operands.push_back(value);
+          continue;
+        }
+        const auto& o = operands;
+        const size_t n = o.size();
+        if (token == "q") {
+          saved.push_back(ctm);
+        } else if (token == "Q" && !saved.empty()) {
+          ctm = saved.back();
+          saved.pop_back();
+        } else if (token == "cm" && n >= 6) {
+          ctm = then({o[n - 6], o[n - 5], o[n - 4], o[n - 3], o[n - 2], o[n - 1]}, ctm);
+        } else if (token == "m" && n >= 2) {
+          startSubpath(point(o[n - 2], o[n - 1]));
+        } else if ((token == "l" && n >= 2) || (token == "c" && n >= 6) ||
+                   ((token == "v" || token == "y") && n >= 4)) {
+          if (!current.empty()) current.back().points.push_back(point(o[n - 2], o[n - 1]));
+        } else if (token == "h" && !current.empty()) {
+          current.back().closed = true;
+        } else if (token == "re" && n >= 4) {
+          const double x = o[n - 4], y = o[n - 3], w = o[n - 2], h = o[n - 1];
+          startSubpath(point(x, y));
+          for (const Vec2& q : {point(x + w, y), point(x + w, y + h), point(x, y + h)})
+            current.back().points.push_back(q);
+          current.back().closed = true;
+        } else if (std::string(" S s f F f* B B* b b* n ").find(" " + token + " ") != std::string::npos) {
+          for (PdfPath& path : current) {
+            if (token == "s" || token == "b" || token == "b*") path.closed = true;
+            // A closed subpath drawn back to its start: the start once.
+            if (path.points.size() > 2 && (path.points.front() - path.points.back()).norm() < 1e-9) {
+              path.points.pop_back();
+              path.closed = true;
+            }
+            if (token != "n") paths.push_back(path);
+          }
+          current.clear();
+        }
+        operands.clear();
+      }
+    }
+  }
+  return paths;
+}
+
+double closestDrawing(const std::vector<PdfPath>& paths, const Polyline& loop) {
+  auto corner = [](const Polyline& points) {
+    Vec2 lo = points.front();
+    for (const Vec2& q : points) lo = lo.cwiseMin(q);
+    return lo;
+  };
+  double best = std::numeric_limits<double>::infinity();
+  for (const PdfPath& path : paths) {
+    if (!path.closed || path.points.size() != loop.size() || loop.empty()) continue;
+    const Vec2 shift = corner(loop) - corner(path.points);
+    double worst = 0.0;
+    for (size_t k = 0; k < loop.size(); ++k)
+      worst = std::max(worst, (path.points[k] + shift - loop[k]).norm());
+    best = std::min(best, worst);
+  }
+  return best;
 }
 
 int run(const std::string& command, std::string* out) {

@@ -35,6 +35,22 @@ struct SvgDoc {
 SvgDoc readSvg(const std::string& path);
 std::string readText(const std::string& path);
 
+/// A subpath drawn on a PDF page, in millimetres from the page's top left corner, y down (the
+/// SVG's frame): its points (a curve contributes its end point) and whether it was closed.
+struct PdfPath {
+  int page = 0;  ///< from 1
+  Polyline points;
+  bool closed = false;
+};
+/// Every subpath stroked or filled in the PDF's page content streams (decoded by qpdf), with the
+/// transformation matrix (q, Q, cm) applied. Empty, and the test told, when qpdf cannot read it.
+std::vector<PdfPath> readPdfPaths(const std::string& pdf);
+/// How far the closed subpath of `paths` nearest to the closed polyline `loop` departs from it,
+/// point by point, once their bounding boxes' corners are put together (a page's origin is not
+/// the sheet's): the largest distance in mm; infinity when no closed subpath has its point count.
+/// A scaled, mirrored or turned drawing of `loop` is as far off as the change moves a point.
+double closestDrawing(const std::vector<PdfPath>& paths, const Polyline& loop);
+
 /// Options for `profile` with the source tree's templates and the job name "test-job".
 ExportOptions options(const std::string& profile = "laser");
 
