@@ -177,8 +177,8 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
             << out;
         EXPECT_NE(out.find("does not fit"), std::string::npos) << out;
       }
-      // The seams' perimeters in the SVG: exported again without tabs, each piece's cut path is
-      // its seam (no shipped profile has a kerf).
+      // The seams' perimeters in the SVG and the DXF: exported again without tabs, each piece's
+      // cut path is its seam (no shipped profile has a kerf).
       if (profileName == "laser" || profileName == "print-and-cut") {
         const std::string bare = freshDir("bare");
         ASSERT_EQ(run(dform() + " export " + solved + " -o " + bare +
@@ -198,6 +198,9 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
           ASSERT_NE(seamCut, nullptr) << id;
           EXPECT_NEAR(length(seamCut->parts[0], true), scale * seam[p], kMmTol) << id;
         }
+        // And in the DXF (and each sheet's), read back with ezdxf.
+        expectDxfChecks(bare, "--seam " + std::to_string(scale * seam[0]) + " " +
+                                  std::to_string(scale * seam[1]));
       }
     }
   }
