@@ -35,6 +35,16 @@ TEST(ExportDxf, EveryExportWritesPatternDxfInItsFileList) {
   EXPECT_NE(text.find("LWPOLYLINE"), std::string::npos);
 }
 
+TEST(ExportDxf, AFailedWriteIsAnOutputErrorNamingTheDxf) {
+  const std::string blocked = freshDir("dxf-blocked");
+  fs::create_directory(blocked + "/pattern.dxf");  // a folder holds its name
+  auto clash = exportAll(ellipseCircleDForm(), options(), blocked);
+  ASSERT_FALSE(clash.isOk());
+  EXPECT_EQ(clash.status().code(), ErrorCode::OutputFailed);
+  EXPECT_NE(clash.status().message().find("pattern.dxf"), std::string::npos)
+      << clash.status().message();
+}
+
 TEST(ExportDxf, LaserPatternReadsBackWithEzdxf) {
   const Exported e = exportTo("dxf-laser", ellipseCircleDForm(), options("laser"));
   expectDxfChecks(e.dir);
