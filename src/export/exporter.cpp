@@ -50,16 +50,20 @@ Result<PreparedExport> prepareExport(const DForm& model, const ExportOptions& op
   PreparedExport prepared;
   prepared.files = {
       {"pattern.svg", fab::svgDocument(pat.drawing)},
+      {"pattern.dxf", fab::dxfDocument(pat.drawing)},
       {"pattern.pdf", pdf.value()},
       {"pattern.json", fab::sidecarJson(pat, options.jobName)},
       {"dform.stl", fab::stlDocument(model, options.failedGateMark)},
       {options.gltfBinary ? "dform.glb" : "dform.gltf", gltf.value()},
   };
-  // A pattern on several sheets (pages): each also alone, at its own size, for the machine.
+  // A pattern on several sheets (pages): each also alone, at its own size, for the machine, as
+  // SVG and as DXF.
   if (pat.sheets.size() > 1)
-    for (size_t k = 0; k < pat.sheets.size(); ++k)
-      prepared.files.emplace_back(sheetFileName(int(k) + 1, "svg"),
-                                  fab::svgDocument(fab::sheetDrawing(pat.drawing, pat.sheets[k])));
+    for (size_t k = 0; k < pat.sheets.size(); ++k) {
+      const fab::Drawing sheet = fab::sheetDrawing(pat.drawing, pat.sheets[k]);
+      prepared.files.emplace_back(sheetFileName(int(k) + 1, "svg"), fab::svgDocument(sheet));
+      prepared.files.emplace_back(sheetFileName(int(k) + 1, "dxf"), fab::dxfDocument(sheet));
+    }
   prepared.layout = fab::checkLayout(pat);
   ExportSummary& summary = prepared.summary;
   summary.messages = pat.messages;
@@ -89,8 +93,10 @@ Result<ExportSummary> writeExport(const PreparedExport& prepared, const std::str
 
 std::vector<std::string> exportFileNames() {
   // A D-Form has two pieces, so a pattern takes at most two sheets.
-  return {"pattern.svg", "pattern.pdf",          "pattern.json",         "dform.stl",
-          "dform.glb",   "dform.gltf",           sheetFileName(1, "svg"), sheetFileName(2, "svg")};
+  return {"pattern.svg",           "pattern.dxf",           "pattern.pdf",
+          "pattern.json",          "dform.stl",             "dform.glb",
+          "dform.gltf",            sheetFileName(1, "svg"), sheetFileName(2, "svg"),
+          sheetFileName(1, "dxf"), sheetFileName(2, "dxf")};
 }
 
 Result<ExportSummary> exportAll(const DForm& model, const ExportOptions& options,

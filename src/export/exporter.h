@@ -1,5 +1,6 @@
 // Fabrication export of a solved D-Form: cut-ready flat patterns (SVG written by our own writer,
-// PDF through Cairo) with seam tick marks and glue tabs, and 3D previews (binary STL, glTF 2.0).
+// DXF through dxflib, PDF through Cairo) with seam tick marks and glue tabs, and 3D previews
+// (binary STL, glTF 2.0).
 // Works on any DForm (forward or inverse modelling); it never looks at the solver.
 // What each file holds, the profiles and the error codes: docs/export.md.
 #pragma once
@@ -98,7 +99,7 @@ std::vector<std::string> listProfiles(const std::string& templatesDir);
 std::optional<std::pair<double, double>> pageSizeMm(const std::string& name);
 
 /// The file of sheet `sheet` (1-based) alone, written when a pattern takes more than one sheet or
-/// page: "pattern-sheet-1.svg" for (1, "svg").
+/// page: "pattern-sheet-1.svg" for (1, "svg"), "pattern-sheet-1.dxf" for (1, "dxf").
 std::string sheetFileName(int sheet, const std::string& extension);
 
 struct ExportOptions {
@@ -191,8 +192,10 @@ Result<ExportSummary> writeExport(const PreparedExport& prepared, const std::str
 std::vector<std::string> exportFileNames();
 
 /// prepareExport then writeExport. Writes into `outDir` (which must exist): pattern.svg,
-/// pattern.pdf (one page per tile, or per piece), pattern.json (sidecar: outlines, ticks, tabs in
-/// sheet mm), dform.stl and dform.glb (or dform.gltf). Each file is written atomically. Usage for a
+/// pattern.dxf (mm, y up, layers CUT/SCORE/ENGRAVE), pattern.pdf (one page per tile, or per
+/// piece), pattern.json (sidecar: outlines, ticks, tabs in sheet mm), dform.stl and dform.glb (or
+/// dform.gltf), and with two sheets each alone (pattern-sheet-k.svg/.dxf). Each file is written
+/// atomically. Usage for a
 /// bad option or a sheet too small (the message gives the size needed), InputInvalid for a model
 /// that cannot be exported, OutputFailed for an unwritable folder, and loadProfile's codes.
 Result<ExportSummary> exportAll(const DForm& model, const ExportOptions& options,

@@ -177,6 +177,10 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& optio
                                   const Profile& profile, BuildWork* work = nullptr);
 
 std::string svgDocument(const Drawing& drawing);
+/// The drawing as DXF through dxflib (dxf_writer.cpp): mm, y up (flipped about the drawing's
+/// height), layers CUT, SCORE, ENGRAVE (and REGMARKS for print-and-cut marks), every polyline an
+/// LWPOLYLINE, closed paths with the closed flag.
+std::string dxfDocument(const Drawing& drawing);
 /// The part of `drawing` on `sheet` (the paths inside it), moved to the sheet's own origin.
 Drawing sheetDrawing(const Drawing& drawing, const Box& sheet);
 Result<std::string> pdfDocument(const PatternBuild& pattern);

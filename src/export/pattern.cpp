@@ -961,7 +961,8 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
     out.messages.push_back("the pieces do not fit one " +
                            (pageName.empty() ? std::string("sheet") : pageName + " page") +
                            " together: each is on its own, in pattern.pdf and in " +
-                           sheetFileName(1, "svg") + " and " + sheetFileName(2, "svg"));
+                           sheetFileName(1, "svg") + " and " + sheetFileName(2, "svg") +
+                           " (and .dxf)");
   }
   long tiles = 0;
   for (const SheetPlan& plan : plans) tiles += plan.tilesX * plan.tilesY;

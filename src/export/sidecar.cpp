@@ -94,10 +94,12 @@ std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName)
   json sheets = json::array();
   for (size_t k = 0; k < pattern.sheets.size(); ++k) {
     const Box& b = pattern.sheets[k];
+    const bool alone = pattern.sheets.size() > 1;
     sheets.push_back({{"origin", point(b.lo)},
                       {"width", b.w()},
                       {"height", b.h()},
-                      {"file", pattern.sheets.size() > 1 ? sheetFileName(int(k) + 1, "svg") : "pattern.svg"}});
+                      {"file", alone ? sheetFileName(int(k) + 1, "svg") : "pattern.svg"},
+                      {"dxf", alone ? sheetFileName(int(k) + 1, "dxf") : "pattern.dxf"}});
   }
   j["sheets"] = sheets;
   j["messages"] = pattern.messages;

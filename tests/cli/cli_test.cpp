@@ -264,7 +264,7 @@ TEST_F(CliTest, ForwardWritesEveryFileAndValidates) {
   ASSERT_EQ(o.exitCode, 0) << o.err;
   for (const char* name :
        {"piece-a-flat.obj", "piece-a-3d.obj", "piece-b-flat.obj", "piece-b-3d.obj", "report.json",
-        "pattern.svg", "pattern.pdf", "dform.stl", "dform.glb"})
+        "pattern.svg", "pattern.dxf", "pattern.pdf", "dform.stl", "dform.glb"})
     EXPECT_TRUE(fs::exists(fs::path(out) / name)) << name;
   // No temporary file is left behind.
   for (const auto& entry : fs::directory_iterator(out))
@@ -345,7 +345,8 @@ TEST_F(CliTest, AFailedGateKeepsTheReportAndReleasesNothing) {
       run("forward " + pieces + " --resolution 30 -q --gate " + tight + " -o " + out);
   expectError(failed, 7, "no cutting files");
   EXPECT_NE(failed.out.find("gate: FAILED (tight: "), std::string::npos) << failed.out;
-  for (const char* name : {"pattern.svg", "pattern.pdf", "pattern.json", "dform.stl", "dform.glb"})
+  for (const char* name :
+       {"pattern.svg", "pattern.dxf", "pattern.pdf", "pattern.json", "dform.stl", "dform.glb"})
     EXPECT_FALSE(fs::exists(fs::path(out) / name))
         << name << ": the previous run's file must not stay";
   const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
@@ -877,7 +878,8 @@ TEST_F(CliTest, AResultFolderIsReplacedWholeAndNothingElseIsTouched) {
   // validate measure the forward seam against it), and the result validates.
   const Outcome forward = run("forward " + pair + " --resolution 30 --no-export -q -o " + out);
   ASSERT_EQ(forward.exitCode, 0) << forward.err;
-  for (const char* gone : {"target-curve.obj", "pattern.svg", "pattern.pdf", "dform.glb"})
+  for (const char* gone :
+       {"target-curve.obj", "pattern.svg", "pattern.dxf", "pattern.pdf", "dform.glb"})
     EXPECT_FALSE(fs::exists(fs::path(out) / gone)) << gone;
   const Outcome v = run("validate " + out);
   EXPECT_EQ(v.exitCode, 0) << v.out << v.err;
@@ -989,7 +991,7 @@ TEST_F(CliTest, SignalsDuringTheWriteLeaveTheOldOrTheNewResult) {
     const std::string err = path("err-" + std::to_string(trial) + ".txt");
     const pid_t pid = spawn(std::string(DFORM_EXE) + " forward " + pair + " --resolution " +
                             std::to_string(resolutions[k]) + " -o " + out + " >/dev/null 2>" + err);
-    // "export (laser): 5 files" is said just before the result is written.
+    // "export (laser): 6 files" is said just before the result is written.
     ASSERT_TRUE(waitForText(err, "export (")) << readText(err);
     ASSERT_EQ(kill(pid, signal), 0);
     const int code = waitFor(pid);

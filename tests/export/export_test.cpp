@@ -24,13 +24,6 @@ using nlohmann::json;
 // The bar: printed or cut dimensions within 0.1 mm of the solved ones.
 constexpr double kMmTol = 0.1;
 
-double solvedPerimeter(const Piece& piece) {
-  Points2 P(Eigen::Index(piece.seam.size()), 2);
-  for (size_t i = 0; i < piece.seam.size(); ++i)
-    P.row(Eigen::Index(i)) = piece.flat.row(piece.seam[i]);
-  return closedLength(P);
-}
-
 ClipperLib::Path clip(const Polyline& p) {
   ClipperLib::Path out;
   for (const Vec2& q : p)
@@ -94,7 +87,7 @@ TEST(ExportPattern, SvgIsTrueScaleInMillimetresWithLayersAndIds) {
       }
   }
   for (const std::string f :
-       {"pattern.svg", "pattern.pdf", "pattern.json", "dform.stl", "dform.glb"})
+       {"pattern.svg", "pattern.dxf", "pattern.pdf", "pattern.json", "dform.stl", "dform.glb"})
     EXPECT_TRUE(fs::exists(e.dir + "/" + f)) << f;
   EXPECT_FALSE(e.sidecar["failed_gate"].get<bool>()) << "fit for fabrication";
 }
@@ -673,6 +666,7 @@ TEST(ExportPattern, LaserPiecesThatDoNotFitOneSheetTogetherGetASheetEach) {
     // Each sheet is a file of its own, at the sheet's size, with its one piece's cut on it.
     const std::string file = sheet["file"].get<std::string>();
     EXPECT_EQ(file, sheetFileName(k + 1, "svg"));
+    EXPECT_EQ(sheet["dxf"].get<std::string>(), sheetFileName(k + 1, "dxf"));  // and its DXF
     const SvgDoc svg = readSvg(e.dir + "/" + file);
     EXPECT_DOUBLE_EQ(parseMm(svg.width), 200);
     EXPECT_DOUBLE_EQ(parseMm(svg.height), 200);
@@ -689,6 +683,7 @@ TEST(ExportPattern, LaserPiecesThatDoNotFitOneSheetTogetherGetASheetEach) {
         }
   }
   EXPECT_EQ(fab::checkLayout(build(model, o)).problems(), 0);
+  expectDxfChecks(e.dir);  // each sheet's DXF against its SVG, and pattern.dxf against pattern.svg
   // A sheet that takes both: one sheet, no sheet files.
   o.sheetWidthMm = 400;
   o.sheetHeightMm = 300;

@@ -177,8 +177,8 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
             << out;
         EXPECT_NE(out.find("does not fit"), std::string::npos) << out;
       }
-      // The seams' perimeters in the SVG: exported again without tabs, each piece's cut path is
-      // its seam (no shipped profile has a kerf).
+      // The seams' perimeters in the SVG and the DXF: exported again without tabs, each piece's
+      // cut path is its seam (no shipped profile has a kerf).
       if (profileName == "laser" || profileName == "print-and-cut") {
         const std::string bare = freshDir("bare");
         ASSERT_EQ(run(dform() + " export " + solved + " -o " + bare +
@@ -201,6 +201,9 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
           // The PDF draws the same seam, point for point (so its perimeter too).
           EXPECT_LT(closestDrawing(pdfPaths, seamCut->parts[0]), kMmTol) << id << " in pattern.pdf";
         }
+        // And in the DXF (and each sheet's), read back with ezdxf.
+        expectDxfChecks(bare, "--seam " + std::to_string(scale * seam[0]) + " " +
+                                  std::to_string(scale * seam[1]));
       }
     }
   }

@@ -158,6 +158,12 @@ double length(const Polyline& p, bool closed) {
   return len;
 }
 
+double solvedPerimeter(const Piece& piece) {
+  Polyline seam;
+  for (int v : piece.seam) seam.push_back(piece.flat.row(v).transpose());
+  return length(seam, true);
+}
+
 std::pair<double, double> arcLengthOf(const Polyline& loop, const Vec2& q) {
   double best = 1e300, bestS = 0, acc = 0;
   for (size_t i = 0; i < loop.size(); ++i) {
@@ -379,6 +385,20 @@ int run(const std::string& command, std::string* out) {
   const int status = pclose(pipe);
   if (out) *out = text;
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+int checkDxf(const std::string& dir, std::string* out, const std::string& extra) {
+  const int code = run(std::string(DFORM_PYTHON3) + " '" + DFORM_DXF_CHECKER + "' '" + dir +
+                           "' " + extra,
+                       out);
+  ::testing::Test::RecordProperty("check_dxf", *out);
+  return code;
+}
+
+void expectDxfChecks(const std::string& dir, const std::string& extra) {
+  std::string out;
+  EXPECT_EQ(checkDxf(dir, &out, extra), 0) << out;
+  std::printf("%s", out.c_str());  // the differences measured, for the log
 }
 
 bool haveProgram(const std::string& name) { return run("command -v " + name + " >/dev/null") == 0; }

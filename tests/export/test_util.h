@@ -71,12 +71,20 @@ fab::PatternBuild build(const DForm& model, const ExportOptions& o);
 Polyline toPolyline(const nlohmann::json& j);
 
 double length(const Polyline& p, bool closed);
+/// The length of `piece`'s seam in its flat coordinates (mm): the solved length, not the pattern's.
+double solvedPerimeter(const Piece& piece);
 /// Arc length along the closed polyline `loop` (from its first point) of the point of `loop`
 /// nearest to q, and that distance.
 std::pair<double, double> arcLengthOf(const Polyline& loop, const Vec2& q);
 bool inside(const Polyline& polygon, const Vec2& q);
 /// Where segment [a, b] crosses the closed polyline, if it does (first crossing).
 bool crossing(const Polyline& loop, const Vec2& a, const Vec2& b, Vec2* at);
+
+/// check_dxf.py (ezdxf) on an export folder, `extra` its options (--seam A B); its report in *out.
+/// A missing python3-ezdxf is exit 2: a failure, never a skip (scripts/install-deps installs it).
+int checkDxf(const std::string& dir, std::string* out, const std::string& extra = "");
+/// checkDxf passes; its report (the differences measured) goes to the log.
+void expectDxfChecks(const std::string& dir, const std::string& extra = "");
 
 /// Runs a shell command; returns its exit code, output (stdout and stderr) in *out.
 int run(const std::string& command, std::string* out = nullptr);
