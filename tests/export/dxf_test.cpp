@@ -27,7 +27,7 @@ TEST(ExportDxf, EveryExportWritesPatternDxfInItsFileList) {
             e.summary.files.end());
   EXPECT_EQ(e.sidecar["sheets"][0]["dxf"].get<std::string>(), "pattern.dxf");
   const std::vector<std::string> names = exportFileNames();
-  for (const std::string name :
+  for (const std::string& name :
        {std::string("pattern.dxf"), sheetFileName(1, "dxf"), sheetFileName(2, "dxf")})
     EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
   const std::string text = readText(e.dir + "/pattern.dxf");
