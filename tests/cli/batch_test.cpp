@@ -140,6 +140,32 @@ TEST_F(BatchTest, ShardsOfMixedOutcomesMergeToTheWhole) {
   EXPECT_EQ(models, (std::map<std::string, int>{{"exact", 4}, {"paper", 2}}));
 }
 
+TEST_F(BatchTest, ProgressOnlyOnATerminalAndNotWhenQuiet) {
+  const fs::path jobs = writeJobFolder(dir_ / "jobs");
+  // util-linux `script` runs the batch on a pseudo-terminal and copies what it shows.
+  auto onTerminal = [&](const std::string& more, const std::string& out) {
+    const fs::path log = dir_ / (out + ".txt");
+    const std::string command = "script -qec '" + std::string(DFORM_EXE) + " batch " +
+                                jobs.string() + " --no-export --threads 1 -o " +
+                                (dir_ / out).string() + more + "' /dev/null > " + log.string() +
+                                " 2>&1";
+    std::system(command.c_str());
+    return readText(log);
+  };
+  const std::string shown = onTerminal("", "tty");
+  for (int done = 1; done <= 7; ++done)
+    EXPECT_NE(shown.find("batch: " + std::to_string(done) + " of 7 done, "), std::string::npos)
+        << shown;
+  EXPECT_NE(shown.find(" failed, about "), std::string::npos) << shown;
+  EXPECT_NE(shown.find("\r\033[K"), std::string::npos) << "redrawn in place";
+  EXPECT_EQ(onTerminal(" -q", "tty-quiet").find(" of 7 done"), std::string::npos);
+  // On a pipe (a scheduler's log): the table at the end, no progress.
+  dform("batch " + jobs.string() + " --no-export -o " + (dir_ / "piped").string());
+  EXPECT_EQ(log_.find(" of 7 done"), std::string::npos) << log_;
+  EXPECT_EQ(log_.find('\r'), std::string::npos);
+  EXPECT_NE(log_.find("7 jobs (shard 1 of 1): 5 done, 2 failed"), std::string::npos) << log_;
+}
+
 struct Stamp {
   ino_t inode;
   long long mtimeNs;
