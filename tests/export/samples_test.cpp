@@ -198,7 +198,7 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
           const SvgPath* seamCut = svg.find(id);
           ASSERT_NE(seamCut, nullptr) << id;
           EXPECT_NEAR(length(seamCut->parts[0], true), scale * seam[p], kMmTol) << id;
-          // The PDF draws the same seam, point for point (so its perimeter too).
+          // The PDF draws the same seam (so its perimeter too).
           EXPECT_LT(closestDrawing(pdfPaths, seamCut->parts[0]), kMmTol) << id << " in pattern.pdf";
         }
         // And in the DXF (and each sheet's), read back with ezdxf.

@@ -357,20 +357,44 @@ std::vector<PdfPath> readPdfPaths(const std::string& pdf) {
   return paths;
 }
 
+namespace {
+
+// The largest distance from a point of `from` to the closed polyline `to`.
+double farthestFrom(const Polyline& from, const Polyline& to) {
+  double worst = 0.0;
+  for (const Vec2& q : from) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (size_t k = 0; k < to.size(); ++k) {
+      const Vec2 a = to[k], d = to[(k + 1) % to.size()] - a;
+      const double t = d.squaredNorm() > 0 ? std::clamp((q - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+      nearest = std::min(nearest, (a + t * d - q).norm());
+    }
+    worst = std::max(worst, nearest);
+  }
+  return worst;
+}
+
+}  // namespace
+
 double closestDrawing(const std::vector<PdfPath>& paths, const Polyline& loop) {
-  auto corner = [](const Polyline& points) {
-    Vec2 lo = points.front();
-    for (const Vec2& q : points) lo = lo.cwiseMin(q);
-    return lo;
+  auto box = [](const Polyline& points) {
+    Vec2 lo = points.front(), hi = points.front();
+    for (const Vec2& q : points) {
+      lo = lo.cwiseMin(q);
+      hi = hi.cwiseMax(q);
+    }
+    return std::make_pair(lo, hi);
   };
   double best = std::numeric_limits<double>::infinity();
+  if (loop.empty()) return best;
+  const auto [lo, hi] = box(loop);
   for (const PdfPath& path : paths) {
-    if (!path.closed || path.points.size() != loop.size() || loop.empty()) continue;
-    const Vec2 shift = corner(loop) - corner(path.points);
-    double worst = 0.0;
-    for (size_t k = 0; k < loop.size(); ++k)
-      worst = std::max(worst, (path.points[k] + shift - loop[k]).norm());
-    best = std::min(best, worst);
+    if (!path.closed || path.points.size() < 3) continue;
+    const auto [plo, phi] = box(path.points);
+    if (((phi - plo) - (hi - lo)).cwiseAbs().maxCoeff() > 1.0) continue;  // another shape
+    Polyline moved = path.points;
+    for (Vec2& q : moved) q += lo - plo;
+    best = std::min(best, std::max(farthestFrom(moved, loop), farthestFrom(loop, moved)));
   }
   return best;
 }

@@ -45,10 +45,11 @@ struct PdfPath {
 /// Every subpath stroked or filled in the PDF's page content streams (decoded by qpdf), with the
 /// transformation matrix (q, Q, cm) applied. Empty, and the test told, when qpdf cannot read it.
 std::vector<PdfPath> readPdfPaths(const std::string& pdf);
-/// How far the closed subpath of `paths` nearest to the closed polyline `loop` departs from it,
-/// point by point, once their bounding boxes' corners are put together (a page's origin is not
-/// the sheet's): the largest distance in mm; infinity when no closed subpath has its point count.
-/// A scaled, mirrored or turned drawing of `loop` is as far off as the change moves a point.
+/// How far the closed subpath of `paths` nearest to the closed polyline `loop` departs from it
+/// once their bounding boxes' corners are put together (a page's origin is not the sheet's): the
+/// largest distance, in mm, from a point of either to the other line (Cairo merges collinear
+/// segments, so the points themselves differ); infinity when no closed subpath has the loop's
+/// extent within 1 mm. A scaled or turned drawing of `loop` is as far off as the change moves it.
 double closestDrawing(const std::vector<PdfPath>& paths, const Polyline& loop);
 
 /// Options for `profile` with the source tree's templates and the job name "test-job".
