@@ -45,7 +45,10 @@ void drawLayer(cairo_t* cr, const Layer& layer, double minWidthMm, const Box* vi
       if (p.closed) cairo_close_path(cr);
     }
     if (p.filled) {
+      if (!p.fill.empty()) setColor(cr, p.fill);
+      cairo_set_fill_rule(cr, CAIRO_FILL_RULE_EVEN_ODD);
       cairo_fill(cr);
+      setColor(cr, layer.color);
       continue;
     }
     if (p.dashed) {

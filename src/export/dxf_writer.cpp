@@ -10,6 +10,7 @@
 #include <dxflib/dl_dxf.h>
 #include <dxflib/dl_writer_ascii.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cstdio>
 #include <string>
@@ -112,7 +113,13 @@ void writeVariable(const DL_WriterA& dw, const char* name, double x, double y) {
 
 }  // namespace
 
-std::string dxfDocument(const Drawing& drawing) {
+std::string dxfDocument(const Drawing& full) {
+  // The printed tint (layer Bleed) is for the printer alone: a DXF holds what a machine cuts,
+  // scores or engraves.
+  Drawing drawing = full;
+  drawing.layers.erase(std::remove_if(drawing.layers.begin(), drawing.layers.end(),
+                                      [](const Layer& l) { return l.name == "Bleed"; }),
+                       drawing.layers.end());
   std::string out;
   StringWriter dw(&out);
   DL_Dxf dxf;

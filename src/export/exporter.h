@@ -76,6 +76,12 @@ struct Profile {
   /// far side, 15 mm from the edges), so the artwork keeps 15 mm + this from every page edge.
   double registrationClearMm = 5.0;
   bool calibrationBar = false;  ///< draw a 50 mm calibration bar with "print at 100%"
+  /// Print-and-cut: each piece is printed as a tint (fillColorA, fillColorB) reaching this far
+  /// outside its cut line, so that a cut a little off its line leaves no white edge; 0 = no tint.
+  /// While it is on, the outline is not printed on the cut line, where an off cut would show it.
+  double bleedMm = 0.0;
+  std::string fillColorA = "#FFE6CC";  ///< piece A's tint, #RRGGBB (the 3D preview's A)
+  std::string fillColorB = "#CCE6FF";  ///< piece B's tint, #RRGGBB (the 3D preview's B)
   double labelHeightMm = 3.0;   ///< cap height of tick numbers (mm); piece names are 3x
   double kerfMm = 0.0;          ///< outward offset of the closed cut path (mm, half the kerf)
   TabSide tabs = TabSide::A;    ///< which piece gets the glue tabs

@@ -55,7 +55,8 @@ struct Path {
   std::string id;
   std::vector<Polyline> parts;
   bool closed = false;       ///< every part is a closed loop
-  bool filled = false;       ///< filled with the layer colour, no stroke (registration square)
+  bool filled = false;       ///< filled (even-odd), no stroke: registration square, piece tint
+  std::string fill;          ///< filled: its colour (#RRGGBB) instead of the layer's
   bool dashed = false;       ///< drawn with the layer's dash pattern, or with `dash` when it is set
   std::vector<double> dash;  ///< dashed: on/off lengths (mm) instead of the layer's (a fold style)
 };
@@ -117,6 +118,9 @@ struct PieceInfo {
   /// even-odd rule. Just the seam for a classic piece.
   std::vector<Polyline> boundaries;
   bool seamIsHole = false;         ///< the seam is a hole's loop (anti and demi D-Forms)
+  /// The printed tint's loops (sheet mm, even-odd): the cut region grown by the profile's bleed;
+  /// empty without a bleed.
+  std::vector<Polyline> bleed;
   std::vector<Polyline> cut;       ///< closed outer cut paths (outline with tabs, kerf applied)
   std::vector<Polyline> holeCuts;  ///< closed cut paths of the holes (cut before the outer ones)
   std::vector<CreaseInfo> creases;

@@ -134,15 +134,20 @@ LayoutFindings checkLayout(const PatternBuild& pattern, BuildWork* workOut) {
     note(f, "the cut paths of " + pieces[0].name + " and " + pieces[1].name + " overlap");
   }
 
-  // The title block and the calibration bar keep off the pieces (their cut paths, tabs included)
-  // and the registration marks.
+  // The title block and the calibration bar keep off the pieces (their cut paths, tabs included,
+  // and their printed bleed) and the registration marks.
   std::vector<Polyline> obstacles;
   std::vector<std::string> obstacleNames;
-  for (const PieceInfo& piece : pieces)
+  for (const PieceInfo& piece : pieces) {
     for (const Polyline& cut : piece.cut) {
       obstacles.push_back(cut);
       obstacleNames.push_back("piece " + piece.name);
     }
+    for (const Polyline& tint : piece.bleed) {
+      obstacles.push_back(tint);
+      obstacleNames.push_back("piece " + piece.name + "'s printed bleed");
+    }
+  }
   for (const Layer& layer : d.layers)
     if (layer.name == "Regmarks")
       for (const Path& mark : layer.paths) {

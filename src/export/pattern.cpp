@@ -301,6 +301,16 @@ struct CutPaths {
   std::vector<Polyline> holes;  // clockwise
 };
 
+// `region` (outer loops positive, holes negative) grown by `mm`: the outer loops move out and the
+// holes shrink, corners rounded within 5 um.
+ClipperLib::Paths grownRegion(const ClipperLib::Paths& region, double mm) {
+  ClipperLib::ClipperOffset offset(2.0, 0.005 * kClipScale);
+  offset.AddPaths(region, ClipperLib::jtRound, ClipperLib::etClosedPolygon);
+  ClipperLib::Paths grown;
+  offset.Execute(grown, mm * kClipScale);
+  return grown;
+}
+
 // The closed cut paths of one piece (flat frame): its outline, holes and tabs merged, offset by
 // the kerf (outward from the material: the outline grows and the holes shrink). `freeLoops` are
 // its free boundaries; `outer` is outerLoopIndex (0 the seam, k free loop k - 1).
@@ -343,15 +353,20 @@ CutPaths cutPaths(const Seam& seam, const std::vector<Polyline>& freeLoops, int 
   c.AddPaths(shapes, ClipperLib::ptSubject, true);
   c.Execute(ClipperLib::ctUnion, merged, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
   ClipperLib::CleanPolygons(merged);  // drops duplicate and collinear points left by rounding
-  if (kerf > 0) {
-    ClipperLib::ClipperOffset offset(2.0, 0.005 * kClipScale);  // arcs within 5 um
-    offset.AddPaths(merged, ClipperLib::jtRound, ClipperLib::etClosedPolygon);
-    ClipperLib::Paths grown;
-    offset.Execute(grown, kerf * kClipScale);
-    merged = grown;
-  }
+  if (kerf > 0) merged = grownRegion(merged, kerf);
   for (const auto& p : merged)
     (ClipperLib::Orientation(p) ? out.outer : out.holes).push_back(fromClip(p));
+  return out;
+}
+
+// A piece's printed tint (flat frame, loops filled even-odd): its cut region grown by `bleed`.
+std::vector<Polyline> bleedLoops(const std::vector<Polyline>& outer,
+                                 const std::vector<Polyline>& holes, double bleed) {
+  ClipperLib::Paths region;
+  for (const auto* loops : {&outer, &holes})
+    for (const Polyline& loop : *loops) region.push_back(toClip(loop));
+  std::vector<Polyline> out;
+  for (const auto& p : grownRegion(region, bleed)) out.push_back(fromClip(p));
   return out;
 }
 
@@ -400,12 +415,12 @@ double bestRotation(const std::vector<Polyline>& cut) {
   return best;
 }
 
-// A piece's extent on the sheet turned by `deg`: the box of its paths grown by the ticks, which
-// stick out of the outline by kTickOut.
-Box extentAt(const std::vector<Polyline>& paths, double deg) {
+// A piece's extent on the sheet turned by `deg`: the box of its paths grown by `edge`, what sticks
+// out of the outline (the ticks, kTickOut, or a printed bleed).
+Box extentAt(const std::vector<Polyline>& paths, double deg, double edge) {
   Box b = boxOf(paths, flipRotate(deg));
-  b.lo -= Vec2::Constant(kTickOut);
-  b.hi += Vec2::Constant(kTickOut);
+  b.lo -= Vec2::Constant(edge);
+  b.hi += Vec2::Constant(edge);
   return b;
 }
 
@@ -438,50 +453,69 @@ std::string onPage(const std::string& id, size_t page) {
 // Builds the drawing's layers and routes each operation to its layer for the profile's kind.
 class DrawingBuilder {
  public:
-  DrawingBuilder(const Profile& p, double w, double h) : kind_(p.kind) {
+  DrawingBuilder(const Profile& p, double w, double h) {
     drawing_.width = w;
     drawing_.height = h;
-    auto layer = [](std::string name, std::string color, double width, double dash, bool printed) {
+    auto layer = [&](std::string name, std::string color, double width, bool printed) {
       Layer l;
       l.name = std::move(name);
       l.color = std::move(color);
       l.widthMm = width;
-      l.dashMm = dash;
+      l.dashMm = p.dashMm;
       l.printed = printed;
-      return l;
+      drawing_.layers.push_back(std::move(l));
+      return int(drawing_.layers.size()) - 1;
     };
     // The title block and notes have a layer of their own (first), so that a laser operator can
     // switch them off without losing the tick numbers and a printer can leave them out.
-    const Layer title = layer("Title", p.engraveColor, p.engraveWidthMm, p.dashMm, true);
+    title_ = layer("Title", p.engraveColor, p.engraveWidthMm, true);
+    const bool printAndCut = p.kind == ProfileKind::PrintAndCut;
+    if (printAndCut || p.registration != Registration::None)
+      regmarks_ = layer("Regmarks", "#000000", kRegLine, true);
     switch (p.kind) {
       case ProfileKind::Laser:  // engrave, then score, then cut (inner cuts first, outer last)
-        drawing_.layers = {title, layer("Engrave", p.engraveColor, p.engraveWidthMm, p.dashMm, true),
-                           layer("Score", p.scoreColor, p.scoreWidthMm, p.dashMm, true),
-                           layer("Cut", p.cutColor, p.cutWidthMm, p.dashMm, true)};
+        engrave_ = layer("Engrave", p.engraveColor, p.engraveWidthMm, true);
+        score_ = layer("Score", p.scoreColor, p.scoreWidthMm, true);
         break;
       case ProfileKind::Print:
-        drawing_.layers = {title, layer("Labels", p.engraveColor, p.engraveWidthMm, p.dashMm, true),
-                           layer("Fold", p.scoreColor, p.scoreWidthMm, p.dashMm, true),
-                           layer("Cut", p.cutColor, p.cutWidthMm, p.dashMm, true)};
+        engrave_ = layer("Labels", p.engraveColor, p.engraveWidthMm, true);
+        score_ = layer("Fold", p.scoreColor, p.scoreWidthMm, true);
         break;
-      case ProfileKind::PrintAndCut:  // the Cut layer goes to the cutter, not the printer
-        drawing_.layers = {title, layer("Regmarks", "#000000", kRegLine, p.dashMm, true),
-                           layer("Print", p.engraveColor, p.engraveWidthMm, p.dashMm, true),
-                           layer("Cut", p.cutColor, p.cutWidthMm, p.dashMm, false)};
+      case ProfileKind::PrintAndCut:
+        // Printed: the marks, the pieces' tint (under the lines), the lines and labels. For the
+        // cutter only: a score pass along the folds (a scoring tool, or off), then the cut.
+        if (p.bleedMm > 0) bleed_ = layer("Bleed", p.fillColorA, p.engraveWidthMm, true);
+        engrave_ = score_ = layer("Print", p.engraveColor, p.engraveWidthMm, true);
+        cutterScore_ = layer("Score", p.scoreColor, p.scoreWidthMm, false);
         break;
     }
+    cut_ = layer("Cut", p.cutColor, p.cutWidthMm, !printAndCut);
   }
-  Layer& title() { return drawing_.layers[0]; }
-  Layer& engrave() { return drawing_.layers[kind_ == ProfileKind::PrintAndCut ? 2 : 1]; }
-  Layer& score() { return drawing_.layers[2]; }
-  Layer& cut() { return drawing_.layers[3]; }
-  Layer& regmarks() { return drawing_.layers[1]; }
+  Layer& title() { return drawing_.layers[size_t(title_)]; }
+  Layer& engrave() { return drawing_.layers[size_t(engrave_)]; }
+  /// Tick marks and printed or scored folds.
+  Layer& score() { return drawing_.layers[size_t(score_)]; }
+  Layer& cut() { return drawing_.layers[size_t(cut_)]; }
+  /// Null where the profile has none: the registration marks, the printed tint (print-and-cut
+  /// with a bleed), the cutter's own score pass (print-and-cut).
+  Layer* regmarks() { return layerAt(regmarks_); }
+  Layer* bleed() { return layerAt(bleed_); }
+  Layer* cutterScore() { return layerAt(cutterScore_); }
   Drawing& drawing() { return drawing_; }
 
  private:
-  ProfileKind kind_;
+  Layer* layerAt(int index) { return index < 0 ? nullptr : &drawing_.layers[size_t(index)]; }
   Drawing drawing_;
+  int title_ = -1, engrave_ = -1, score_ = -1, cut_ = -1;
+  int regmarks_ = -1, bleed_ = -1, cutterScore_ = -1;
 };
+
+// The cutter's score pass along a printed fold line: the whole line, its own id.
+Path scorePass(const Path& fold) {
+  Path pass = fold;
+  pass.id += "-score";
+  return pass;
+}
 
 std::string twoDigits(int k) {
   char buf[16];
@@ -685,6 +719,7 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
 
   // --- Sheet, page and the region where the pieces go -----------------------------------------
   const double m = profile.marginMm;
+  const double edge = std::max(kTickOut, profile.bleedMm);  // drawn outside a piece's cut line
   const double textH = std::clamp(profile.labelHeightMm, 2.0, 4.0);
   const double lineH = 1.7 * textH;
   const double barH = profile.calibrationBar ? 9.0 : 0.0;
@@ -809,7 +844,7 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
   for (int p = 0; p < 2; ++p) {
     std::vector<Vec2> sizes;
     for (int deg = 0; deg < 180; deg += kTurnStepDeg) {
-      const Box b = extentAt({material[p].front()}, deg);
+      const Box b = extentAt({material[p].front()}, deg, edge);
       sizes.emplace_back(b.w(), b.h());
     }
     if (std::any_of(sizes.begin(), sizes.end(), fitsSomeWay)) continue;
@@ -877,7 +912,7 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
         c.rot[0] = baseRot[0] + 90 * ra;
         c.rot[1] = baseRot[1] + 90 * rb;
         c.vertical = v == 1;
-        for (int p = 0; p < 2; ++p) c.box[p] = extentAt(cuts[p], c.rot[p]);
+        for (int p = 0; p < 2; ++p) c.box[p] = extentAt(cuts[p], c.rot[p], edge);
         c.size = arranged(c.box[0], c.box[1], c.vertical, m);
         choices.push_back(c);
       }
@@ -988,6 +1023,9 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
     info.seamIsHole = seams[p].hole;
     for (const auto& c : cuts[p]) info.cut.push_back(place[p].map(c));
     for (const auto& c : holeCuts[p]) info.holeCuts.push_back(place[p].map(c));
+    if (profile.bleedMm > 0)
+      for (const auto& loop : bleedLoops(cuts[p], holeCuts[p], profile.bleedMm))
+        info.bleed.push_back(place[p].map(loop));
     const std::vector<CreaseFold> folds = creaseFolds(*piece[p]);
     for (size_t k = 0; k < folds.size(); ++k)
       info.creases.push_back({info.name + "-crease-" + std::to_string(k + 1) + "-" +
@@ -1174,6 +1212,7 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
         continue;
       }
       line.parts = {crease.line};
+      if (Layer* cutter = b.cutterScore()) cutter->paths.push_back(scorePass(line));
       line.dashed = profile.fold == FoldStyle::Dashed;
       if (line.dashed) line.dash = creaseDash(crease.fold.direction, profile.dashMm);
       b.score().paths.push_back(line);
@@ -1192,6 +1231,7 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
       Path fold;
       fold.id = id;
       fold.parts = {t.fold};
+      if (Layer* cutter = b.cutterScore()) cutter->paths.push_back(scorePass(fold));
       fold.dashed = profile.fold == FoldStyle::Dashed;
       // A tab folds back, away from the printed face: a mountain fold seen from it, dashed as
       // the legend's mountain creases are.
@@ -1210,12 +1250,23 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
         cut.parts = {cutList[k]};
         cut.closed = true;
         b.cut().paths.push_back(cut);
-        if (profile.kind == ProfileKind::PrintAndCut) {  // the printed outline the cutter follows
+        // Print-and-cut prints the outline the cutter follows, unless a tint with a bleed stands
+        // for it (a line on the cut would show wherever the cut is a little off).
+        if (profile.kind == ProfileKind::PrintAndCut && !b.bleed()) {
           Path printed = cut;
           printed.id = names[p] + "-outline" + suffix;
           b.engrave().paths.push_back(printed);
         }
       }
+    }
+  if (Layer* tint = b.bleed())
+    for (size_t p = 0; p < 2; ++p) {
+      Path fill;
+      fill.id = names[p] + "-bleed";
+      fill.parts = out.pieces[p].bleed;
+      fill.closed = fill.filled = true;
+      fill.fill = p == 0 ? profile.fillColorA : profile.fillColorB;
+      tint->paths.push_back(fill);
     }
 
   // Title lines (and the calibration bar) under each sheet's pieces or in a column beside them,
@@ -1293,17 +1344,17 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
       square.filled = true;
       square.closed = true;
       square.parts = {{lo, lo + Vec2(s, 0), lo + Vec2(s, s), lo + Vec2(0, s)}};
-      b.regmarks().paths.push_back(square);
+      b.regmarks()->paths.push_back(square);
       Path tr;
       tr.id = onPage("regmark-top-right", k);
       tr.parts = {
           {Vec2(hi.x() - kRegArm, lo.y()), Vec2(hi.x(), lo.y()), Vec2(hi.x(), lo.y() + kRegArm)}};
-      b.regmarks().paths.push_back(tr);
+      b.regmarks()->paths.push_back(tr);
       Path bl;
       bl.id = onPage("regmark-bottom-left", k);
       bl.parts = {
           {Vec2(lo.x(), hi.y() - kRegArm), Vec2(lo.x(), hi.y()), Vec2(lo.x() + kRegArm, hi.y())}};
-      b.regmarks().paths.push_back(bl);
+      b.regmarks()->paths.push_back(bl);
     }
   }
   out.drawing = std::move(b.drawing());

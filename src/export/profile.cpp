@@ -113,7 +113,8 @@ const char* kKnownFields[] = {"version",        "name",           "description",
                               "page",           "tile",           "tile_overlap_mm",
                               "registration",   "registration_clear_mm",
                               "calibration_bar", "label_height_mm",
-                              "kerf_mm",        "tabs"};
+                              "kerf_mm",        "tabs",
+                              "bleed_mm",       "fill_color_a",   "fill_color_b"};
 
 }  // namespace
 
@@ -170,6 +171,10 @@ Result<Profile> parseProfileJson(const std::string& text, const std::string& sou
   r.flag("calibration_bar", p.calibrationBar);
   r.number("label_height_mm", p.labelHeightMm, 0.5, 50);
   r.number("kerf_mm", p.kerfMm, 0, 5);
+  // Print shops ask for up to 3 mm of bleed; a cutter's registration is off by far less.
+  r.number("bleed_mm", p.bleedMm, 0, 3);
+  r.color("fill_color_a", p.fillColorA);
+  r.color("fill_color_b", p.fillColorB);
   std::vector<std::pair<std::string, TabSide>> sides;
   for (TabSide side : kTabSides) sides.emplace_back(tabSideName(side), side);
   r.choice<TabSide>("tabs", p.tabs, sides);
@@ -181,6 +186,10 @@ Result<Profile> parseProfileJson(const std::string& text, const std::string& sou
   if (p.kind == ProfileKind::PrintAndCut && p.page.empty())
     return invalid(source, "a print-and-cut profile needs \"page\" (A4 or Letter)");
   if (p.tile && p.page.empty()) return invalid(source, "\"tile\" needs a \"page\"");
+  if (p.kind != ProfileKind::PrintAndCut && p.bleedMm > 0)
+    return invalid(source,
+                   "field \"bleed_mm\" is for print-and-cut profiles: scissors follow the printed "
+                   "line, which a bleed leaves out, and a laser prints nothing");
   return p;
 }
 

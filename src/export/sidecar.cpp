@@ -40,6 +40,7 @@ std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName)
   j["scale"] = pattern.scale;
   j["tick_spacing_mm"] = pattern.tickSpacing;
   j["kerf_mm"] = pattern.profile.kerfMm;
+  j["bleed_mm"] = pattern.profile.bleedMm;
   j["tabs_on"] = tabSideName(pattern.profile.tabs);
   // Exported after a failed quality gate (--export-anyway): not for fabrication.
   j["failed_gate"] = pattern.failedGate;
@@ -68,6 +69,7 @@ std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName)
                       {"boundaries", polylines(p.boundaries)},
                       {"cut", polylines(p.cut)},
                       {"hole_cuts", polylines(p.holeCuts)},
+                      {"bleed", polylines(p.bleed)},
                       {"creases", creases}});
   }
   j["pieces"] = pieces;

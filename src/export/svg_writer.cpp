@@ -54,8 +54,9 @@ std::string svgDocument(const Drawing& drawing) {
       if (d.empty()) continue;
       std::string style, attributes;
       if (p.filled) {
-        style = "fill:" + layer.color + ";stroke:none";
-        attributes = "fill=\"" + layer.color + "\" stroke=\"none\"";
+        const std::string& color = p.fill.empty() ? layer.color : p.fill;
+        style = "fill:" + color + ";fill-rule:evenodd;stroke:none";
+        attributes = "fill=\"" + color + "\" fill-rule=\"evenodd\" stroke=\"none\"";
       } else {
         style = "fill:none;stroke:" + layer.color + ";stroke-width:" + num(layer.widthMm) +
                 ";stroke-linecap:round;stroke-linejoin:round";

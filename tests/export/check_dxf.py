@@ -7,7 +7,8 @@ usage: check_dxf.py DIR [--seam A_MM B_MM]
 For pattern.dxf (against pattern.svg) and, with several sheets, each pattern-sheet-k.dxf (against
 pattern-sheet-k.svg):
   - $INSUNITS is 4 (mm); the layers CUT, SCORE and ENGRAVE exist;
-  - every drawn SVG polyline is one LWPOLYLINE, in order, on the DXF layer of its SVG layer, with
+  - every drawn SVG polyline (but the printed tint of layer Bleed, which is no machine's work) is
+    one LWPOLYLINE, in order, on the DXF layer of its SVG layer, with
     the SVG's closed flag, its vertices at (x, H - y) (y up, H the sheet height) within the SVG's
     rounding (1.1e-4 mm per coordinate);
   - every cut outline (A-cut, B-cut, holes) is closed and its perimeter is the SVG's within 0.1 mm;
@@ -74,7 +75,8 @@ def read_svg(path):
             else:
                 fail("%s: unknown path command %r in %s" % (path, t, m.group(2)))
                 i += 1
-        paths.append({"id": m.group(2), "layer": layer, "parts": parts, "closed": closed})
+        if layer != "Bleed":  # printed only: the DXF leaves it out
+            paths.append({"id": m.group(2), "layer": layer, "parts": parts, "closed": closed})
     return width, height, paths
 
 

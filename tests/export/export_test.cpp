@@ -12,6 +12,7 @@
 
 #include "core/polyline.h"
 #include "export/exporter.h"
+#include "export/plane_geometry.h"
 #include "synthetic.h"
 #include "test_util.h"
 
@@ -493,7 +494,8 @@ TEST(ExportPattern, LargePatternIsTiledAcrossA4PagesWithMarks) {
 TEST(ExportPattern, PrintAndCutHasSilhouetteMarksAndSeparateLayers) {
   const DForm model = ellipseCircleDForm(64, 8, 48, 30, 18);
   const Exported e = exportTo("pnc", model, options("print-and-cut"));
-  EXPECT_EQ(e.svg.layers, (std::vector<std::string>{"Title", "Regmarks", "Print", "Cut"}));
+  EXPECT_EQ(e.svg.layers, (std::vector<std::string>{"Title", "Regmarks", "Bleed", "Print", "Score",
+                                                    "Cut"}));
   EXPECT_DOUBLE_EQ(parseMm(e.svg.width), 210);
   const SvgPath* square = e.svg.find("regmark-square");
   ASSERT_NE(square, nullptr);
@@ -525,6 +527,77 @@ TEST(ExportPattern, PrintAndCutHasSilhouetteMarksAndSeparateLayers) {
       EXPECT_TRUE(p.id.find("-cut") != std::string::npos) << p.id;
     }
   }
+}
+
+TEST(ExportPattern, PrintAndCutPrintsATintWithABleedAndScoresTheFoldsOnTheirOwnLayer) {
+  const DForm model = ellipseCircleDForm(64, 8, 48, 30, 18);
+  ExportOptions o = options("print-and-cut");
+  const double bleed = loadProfile("print-and-cut", DFORM_TEMPLATES_DIR).value().bleedMm;
+  ASSERT_GT(bleed, 0.5) << "the shipped profile has a bleed";
+  const Exported e = exportTo("pnc-bleed", model, o);
+  EXPECT_DOUBLE_EQ(e.sidecar["bleed_mm"].get<double>(), bleed);
+  const std::string tints[2] = {"#FFE6CC", "#CCE6FF"};  // the 3D preview's piece colours
+  for (int p = 0; p < 2; ++p) {
+    const std::string name = p == 0 ? "A" : "B";
+    const SvgPath* tint = e.svg.find(name + "-bleed");
+    ASSERT_NE(tint, nullptr) << name;
+    EXPECT_EQ(tint->layer, "Bleed");
+    EXPECT_EQ(tint->fill, tints[p]);
+    // The tint is the cut region grown by the bleed: each of its vertices lies the bleed away
+    // from the cut line (within Clipper's 5 um arcs and the SVG's rounding), the cut line inside
+    // it, and nothing of the cut line nearer its edge than the bleed.
+    const auto& piece = e.sidecar["pieces"][p];
+    std::vector<Polyline> cut;
+    for (const auto& loop : piece["cut"]) cut.push_back(toPolyline(loop));
+    ASSERT_EQ(piece["bleed"].size(), tint->parts.size());
+    double nearest = 1e9, farthest = 0;
+    for (const Polyline& loop : tint->parts)
+      for (const Vec2& q : loop) {
+        const double d = fab::distanceToPolylines(cut, q, true);
+        nearest = std::min(nearest, d);
+        farthest = std::max(farthest, d);
+      }
+    EXPECT_NEAR(nearest, bleed, 0.01) << name;
+    EXPECT_NEAR(farthest, bleed, 0.01) << name;
+    for (const Vec2& q : cut[0]) {
+      EXPECT_TRUE(inside(tint->parts[0], q)) << name << " cut line outside its tint";
+      EXPECT_GE(fab::distanceToPolylines(tint->parts, q, true), bleed - 0.01) << name;
+    }
+    // With a tint the outline is not printed on the cut line (an off cut would show it).
+    EXPECT_EQ(e.svg.find(name + "-outline"), nullptr) << name;
+  }
+  // The folds: printed dashed on Print, and the whole line again on Score for the cutter's
+  // scoring pass; neither the Score nor the Cut layer is printed.
+  const SvgPath* printed = e.svg.find("A-fold-01");
+  const SvgPath* scored = e.svg.find("A-fold-01-score");
+  ASSERT_NE(printed, nullptr);
+  ASSERT_NE(scored, nullptr);
+  EXPECT_EQ(printed->layer, "Print");
+  EXPECT_NE(printed->style.find("stroke-dasharray"), std::string::npos);
+  EXPECT_EQ(scored->layer, "Score");
+  EXPECT_EQ(scored->style.find("stroke-dasharray"), std::string::npos);
+  EXPECT_EQ(scored->parts, printed->parts);
+  EXPECT_EQ(scored->stroke, "#0000FF");
+  const std::vector<PdfPath> pdf = readPdfPaths(e.dir + "/pattern.pdf");
+  EXPECT_LT(closestDrawing(pdf, e.svg.find("A-bleed")->parts[0]), 0.1) << "the tint is printed";
+  EXPECT_GT(closestDrawing(pdf, e.svg.find("A-cut")->parts[0]), 1.0) << "the cut line is not";
+  // A calibration bar, 50 mm, to check the print's scale before cutting.
+  const SvgPath* bar = e.svg.find("calibration-bar");
+  ASSERT_NE(bar, nullptr);
+  EXPECT_NEAR(length(bar->parts[0], false), 50.0, 1e-9);
+  const fab::PatternBuild pattern = build(model, o);
+  EXPECT_EQ(fab::checkLayout(pattern).problems(), 0) << fab::checkLayout(pattern).example;
+  // The DXF is the machine's: no tint in it, the score pass on SCORE.
+  expectDxfChecks(e.dir);
+  // Without a bleed, the outline is printed on the cut line and there is no Bleed layer.
+  o.profileOverride = loadProfile("print-and-cut", DFORM_TEMPLATES_DIR).value();
+  o.profileOverride.bleedMm = 0;
+  o.useProfileOverride = true;
+  const Exported bare = exportTo("pnc-no-bleed", model, o);
+  EXPECT_EQ(bare.svg.find("A-bleed"), nullptr);
+  ASSERT_NE(bare.svg.find("A-outline"), nullptr);
+  EXPECT_EQ(bare.svg.find("A-outline")->parts, bare.svg.find("A-cut")->parts);
+  EXPECT_EQ(std::count(bare.svg.layers.begin(), bare.svg.layers.end(), "Bleed"), 0);
 }
 
 TEST(ExportPattern, PrintAndCutGivesEachPieceItsOwnPageWhenTheyDoNotFitOne) {
@@ -587,11 +660,11 @@ TEST(ExportPattern, PrintAndCutGivesEachPieceItsOwnPageWhenTheyDoNotFitOne) {
     }
   }
   // A piece that does not fit a page even alone is refused, with the size it needs: here a
-  // 200 mm circle with the tabs on it (200 + 2 x 6 mm, ticks and the 20 mm borders: over 210 mm),
-  // beside an ellipse that fits.
+  // 195 mm circle with the tabs on it (195 + 2 x 6 mm, ticks and the 20 mm borders: over 210 mm),
+  // beside a 250 x 130 mm ellipse that fits with the title block and calibration bar beside it.
   ExportOptions o = options("print-and-cut");
   o.tabSide = TabSide::B;
-  const DForm large = ellipseCircleDForm(64, 8, 125, 70, 30);
+  const DForm large = ellipseCircleDForm(64, 8, 125, 65, 30);
   auto refused = exportAll(large, o, freshDir("pnc-refused"));
   ASSERT_FALSE(refused.isOk());
   EXPECT_EQ(refused.status().code(), ErrorCode::Usage);

@@ -101,6 +101,12 @@ TEST(ExportProfile, BadProfilesNameTheFileAndField) {
       {"tiny-page", R"({"kind": "print", "page": "40x40mm"})", ErrorCode::InputInvalid, "page"},
       {"pnc-no-page", R"({"kind": "print-and-cut"})", ErrorCode::InputInvalid, "page"},
       {"bad-tabs", R"({"tabs": "both"})", ErrorCode::InputInvalid, "tabs"},
+      {"laser-bleed", R"({"kind": "laser", "bleed_mm": 1})", ErrorCode::InputInvalid, "bleed_mm"},
+      {"print-bleed", R"({"kind": "print", "page": "A4", "bleed_mm": 1})",
+       ErrorCode::InputInvalid, "bleed_mm"},
+      {"wide-bleed", R"({"kind": "print-and-cut", "page": "A4", "bleed_mm": 3.5})",
+       ErrorCode::InputInvalid, "bleed_mm"},
+      {"bad-tint", R"({"fill_color_b": "blue"})", ErrorCode::InputInvalid, "fill_color_b"},
       {"not-json", R"({"kind": )", ErrorCode::InputUnreadable, "not JSON"},
       {"not-object", R"([1, 2])", ErrorCode::InputInvalid, "object"},
   };
