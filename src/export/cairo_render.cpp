@@ -46,8 +46,12 @@ void drawLayer(cairo_t* cr, const Layer& layer, double minWidthMm, const Box* vi
     }
     if (p.filled) {
       if (!p.fill.empty()) setColor(cr, p.fill);
-      cairo_set_fill_rule(cr, CAIRO_FILL_RULE_EVEN_ODD);
-      cairo_fill(cr);
+      if (p.sealed) {
+        cairo_fill_preserve(cr);
+        cairo_stroke(cr);
+      } else {
+        cairo_fill(cr);
+      }
       setColor(cr, layer.color);
       continue;
     }
@@ -81,6 +85,12 @@ void drawPage(cairo_t* cr, const PatternBuild& pattern, const PageView& page, do
   for (const Layer& layer : page.overlay) drawLayer(cr, layer, minWidthMm);
 }
 
+// Draws a whole drawing (every printed layer) at its own origin; 1 unit = 1 mm.
+void drawDrawing(cairo_t* cr, const Drawing& drawing, double minWidthMm) {
+  for (const Layer& layer : drawing.layers)
+    if (layer.printed) drawLayer(cr, layer, minWidthMm);
+}
+
 Status cairoError(cairo_status_t status, const std::string& what) {
   return {ErrorCode::OutputFailed,
           what + ": Cairo failed (" + cairo_status_to_string(status) + ")"};
@@ -110,6 +120,14 @@ Result<std::string> pdfDocument(const PatternBuild& pattern) {
     cairo_restore(cr.get());
     cairo_show_page(cr.get());
   }
+  if (const Drawing& assembly = pattern.assembly; assembly.width > 0) {  // the last page
+    cairo_pdf_surface_set_size(surface.get(), assembly.width * k, assembly.height * k);
+    cairo_save(cr.get());
+    cairo_scale(cr.get(), k, k);
+    drawDrawing(cr.get(), assembly, 0.0);
+    cairo_restore(cr.get());
+    cairo_show_page(cr.get());
+  }
   cr.reset();
   cairo_surface_finish(surface.get());
   if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS)
@@ -118,20 +136,26 @@ Result<std::string> pdfDocument(const PatternBuild& pattern) {
 }
 
 Result<std::string> pngImage(const PatternBuild& pattern, int pageIndex, double dpi) {
-  if (pageIndex < 0 || pageIndex >= int(pattern.pages.size()))
+  const bool assembly = pageIndex == int(pattern.pages.size()) && pattern.assembly.width > 0;
+  const int pages = int(pattern.pages.size()) + (pattern.assembly.width > 0 ? 1 : 0);
+  if (pageIndex < 0 || pageIndex >= pages)
     return Status{ErrorCode::Usage, "page " + std::to_string(pageIndex + 1) + " does not exist (" +
-                                        std::to_string(pattern.pages.size()) + " pages)"};
+                                        std::to_string(pages) + " pages)"};
   if (!(dpi >= 10 && dpi <= 1200)) return Status{ErrorCode::Usage, "dpi must be in 10..1200"};
-  const PageView& page = pattern.pages[size_t(pageIndex)];
+  const double pageW = assembly ? pattern.assembly.width : pattern.pages[size_t(pageIndex)].width;
+  const double pageH = assembly ? pattern.assembly.height : pattern.pages[size_t(pageIndex)].height;
   const double k = dpi / kMmPerInch;
-  const int w = int(std::ceil(page.width * k)), h = int(std::ceil(page.height * k));
+  const int w = int(std::ceil(pageW * k)), h = int(std::ceil(pageH * k));
   std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
       cairo_image_surface_create(CAIRO_FORMAT_RGB24, w, h), cairo_surface_destroy);
   std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()), cairo_destroy);
   cairo_set_source_rgb(cr.get(), 1, 1, 1);
   cairo_paint(cr.get());
   cairo_scale(cr.get(), k, k);
-  drawPage(cr.get(), pattern, page, 1.0 / k);  // hairlines: one pixel
+  if (assembly)  // hairlines: one pixel
+    drawDrawing(cr.get(), pattern.assembly, 1.0 / k);
+  else
+    drawPage(cr.get(), pattern, pattern.pages[size_t(pageIndex)], 1.0 / k);
   cr.reset();
   std::string bytes;
   const cairo_status_t status =

@@ -52,6 +52,7 @@ Result<PreparedExport> prepareExport(const DForm& model, const ExportOptions& op
       {"pattern.svg", fab::svgDocument(pat.drawing)},
       {"pattern.dxf", fab::dxfDocument(pat.drawing)},
       {"pattern.pdf", pdf.value()},
+      {"assembly.svg", fab::svgDocument(pat.assembly)},
       {"pattern.json", fab::sidecarJson(pat, options.jobName)},
       {"dform.stl", fab::stlDocument(model, options.failedGateMark)},
       {options.gltfBinary ? "dform.glb" : "dform.gltf", gltf.value()},
@@ -94,9 +95,9 @@ Result<ExportSummary> writeExport(const PreparedExport& prepared, const std::str
 std::vector<std::string> exportFileNames() {
   // A D-Form has two pieces, so a pattern takes at most two sheets.
   return {"pattern.svg",           "pattern.dxf",           "pattern.pdf",
-          "pattern.json",          "dform.stl",             "dform.glb",
-          "dform.gltf",            sheetFileName(1, "svg"), sheetFileName(2, "svg"),
-          sheetFileName(1, "dxf"), sheetFileName(2, "dxf")};
+          "assembly.svg",          "pattern.json",          "dform.stl",
+          "dform.glb",             "dform.gltf",            sheetFileName(1, "svg"),
+          sheetFileName(2, "svg"), sheetFileName(1, "dxf"), sheetFileName(2, "dxf")};
 }
 
 Result<ExportSummary> exportAll(const DForm& model, const ExportOptions& options,

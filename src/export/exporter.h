@@ -158,7 +158,8 @@ struct ExportSummary {
   int ticks = 0;                               ///< tick pairs
   int tabs = 0;                                ///< glue tabs on both pieces
   int creases = 0;                             ///< crease fold lines on both pieces
-  int pages = 0;  ///< PDF pages (more than 1 when tiled or one piece per page)
+  int pages = 0;  ///< pattern pages (more than 1 when tiled or one piece per page); the PDF has
+                  ///< the assembly page after them
   int triangles = 0;                           ///< triangles in the STL (both pieces)
 };
 
@@ -199,15 +200,16 @@ std::vector<std::string> exportFileNames();
 
 /// prepareExport then writeExport. Writes into `outDir` (which must exist): pattern.svg,
 /// pattern.dxf (mm, y up, layers CUT/SCORE/ENGRAVE), pattern.pdf (one page per tile, or per
-/// piece), pattern.json (sidecar: outlines, ticks, tabs in sheet mm), dform.stl and dform.glb (or
-/// dform.gltf), and with two sheets each alone (pattern-sheet-k.svg/.dxf). Each file is written
-/// atomically. Usage for a
+/// piece, then the assembly page), assembly.svg (the assembly page alone), pattern.json (sidecar:
+/// outlines, ticks, tabs in sheet mm), dform.stl and dform.glb (or dform.gltf), and with two
+/// sheets each alone (pattern-sheet-k.svg/.dxf). Each file is written atomically. Usage for a
 /// bad option or a sheet too small (the message gives the size needed), InputInvalid for a model
 /// that cannot be exported, OutputFailed for an unwritable folder, and loadProfile's codes.
 Result<ExportSummary> exportAll(const DForm& model, const ExportOptions& options,
                                 const std::string& outDir);
 
-/// Renders the pattern's page `page` (0-based; tiles of a print profile are pages) to a PNG at
+/// Renders the pattern's page `page` (0-based; tiles of a print profile are pages, and the page
+/// after the last is the assembly page) to a PNG at
 /// `dpi` pixels per inch, white background, hairlines drawn at least one pixel wide.
 Status renderPatternPng(const DForm& model, const ExportOptions& options,
                         const std::string& pngPath, double dpi = 96, int page = 0);

@@ -55,8 +55,13 @@ struct Path {
   std::string id;
   std::vector<Polyline> parts;
   bool closed = false;       ///< every part is a closed loop
-  bool filled = false;       ///< filled (even-odd), no stroke: registration square, piece tint
+  /// Filled, no stroke (registration square, piece tint, shaded faces), by the non-zero rule: a
+  /// hole winds the other way round, parts of one winding add up.
+  bool filled = false;
   std::string fill;          ///< filled: its colour (#RRGGBB) instead of the layer's
+  /// Filled and stroked in the fill colour at the layer's width, so that neighbouring shaded faces
+  /// meet without the hairline gaps antialiasing leaves between them.
+  bool sealed = false;
   bool dashed = false;       ///< drawn with the layer's dash pattern, or with `dash` when it is set
   std::vector<double> dash;  ///< dashed: on/off lengths (mm) instead of the layer's (a fold style)
 };
@@ -118,8 +123,8 @@ struct PieceInfo {
   /// even-odd rule. Just the seam for a classic piece.
   std::vector<Polyline> boundaries;
   bool seamIsHole = false;         ///< the seam is a hole's loop (anti and demi D-Forms)
-  /// The printed tint's loops (sheet mm, even-odd): the cut region grown by the profile's bleed;
-  /// empty without a bleed.
+  /// The printed tint's loops (sheet mm; holes wind against the outer loops): the cut region grown
+  /// by the profile's bleed; empty without a bleed.
   std::vector<Polyline> bleed;
   std::vector<Polyline> cut;       ///< closed outer cut paths (outline with tabs, kerf applied)
   std::vector<Polyline> holeCuts;  ///< closed cut paths of the holes (cut before the outer ones)
@@ -137,6 +142,8 @@ struct PatternBuild {
   /// print-and-cut pattern puts each piece on its own page. Every path lies inside one of them.
   std::vector<Box> sheets;
   std::vector<PageView> pages;
+  /// The assembly page (how to glue the pieces), the last page of pattern.pdf and assembly.svg.
+  Drawing assembly;
   std::vector<PieceInfo> pieces;
   std::vector<TickInfo> ticks;
   std::vector<TabInfo> tabs;
@@ -179,6 +186,16 @@ Result<Profile> resolveProfile(const ExportOptions& options);
 /// `work`, when given, counts the work done (also when the build fails).
 Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& options,
                                   const Profile& profile, BuildWork* work = nullptr);
+
+/// The tick number as printed: one that reads as another number upside down (6, 9, 16, 68, ...)
+/// gets a trailing dot.
+std::string tickLabel(int k);
+
+/// The assembly page of a laid-out pattern (A4, or Letter for a Letter profile; mm, y down): the
+/// 3D shape with the tick numbers at their seam points, both pieces small with tick 0 and the zip
+/// direction, and the numbered steps. Its text is `font`'s.
+Drawing assemblyPage(const DForm& model, const PatternBuild& pattern, const ExportOptions& options,
+                     const StrokeFont& font);
 
 std::string svgDocument(const Drawing& drawing);
 /// The drawing as DXF through dxflib (dxf_writer.cpp): mm, y up (flipped about the drawing's

@@ -359,7 +359,8 @@ CutPaths cutPaths(const Seam& seam, const std::vector<Polyline>& freeLoops, int 
   return out;
 }
 
-// A piece's printed tint (flat frame, loops filled even-odd): its cut region grown by `bleed`.
+// A piece's printed tint (flat frame; holes wind against the outer loops): its cut region grown
+// by `bleed`.
 std::vector<Polyline> bleedLoops(const std::vector<Polyline>& outer,
                                  const std::vector<Polyline>& holes, double bleed) {
   ClipperLib::Paths region;
@@ -523,24 +524,6 @@ std::string twoDigits(int k) {
   return buf;
 }
 
-// Tick numbers that read as another number upside down (6, 9, 16, 68, ...) get a trailing dot.
-std::string tickLabel(int k) {
-  std::string s = std::to_string(k);
-  std::string turned;
-  for (auto it = s.rbegin(); it != s.rend(); ++it) {
-    const char c = *it;
-    if (c == '6')
-      turned += '9';
-    else if (c == '9')
-      turned += '6';
-    else if (c == '0' || c == '1' || c == '8')
-      turned += c;
-    else
-      return s;
-  }
-  return turned != s ? s + "." : s;
-}
-
 // A text direction along `t` that does not read upside down on the sheet (y down).
 Vec2 readable(Vec2 t) {
   t.normalize();
@@ -607,25 +590,6 @@ Path textPath(const StrokeFont& font, std::string id, const std::string& text, c
   return p;
 }
 
-// The point at arc length s along the open polyline, and the unit direction of the segment it is
-// on.
-Vec2 pointAlong(const Polyline& line, double s, Vec2* tangent = nullptr) {
-  double acc = 0;
-  Vec2 dir(1, 0);
-  for (size_t i = 0; i + 1 < line.size(); ++i) {
-    const double seg = (line[i + 1] - line[i]).norm();
-    if (seg <= 0) continue;
-    dir = (line[i + 1] - line[i]) / seg;
-    if (acc + seg >= s) {
-      if (tangent) *tangent = dir;
-      return line[i] + (s - acc) * dir;
-    }
-    acc += seg;
-  }
-  if (tangent) *tangent = dir;
-  return line.back();
-}
-
 // Splits an open polyline into dashes `on` mm long separated by `off`, centred so that both
 // ends are bridges (the tab stays attached at its ends).
 std::vector<Polyline> perforate(const Polyline& line, double on, double off) {
@@ -663,6 +627,23 @@ Path cross(const std::string& id, const Vec2& c, double r) {
 }
 
 }  // namespace
+
+std::string tickLabel(int k) {
+  std::string s = std::to_string(k);
+  std::string turned;
+  for (auto it = s.rbegin(); it != s.rend(); ++it) {
+    const char c = *it;
+    if (c == '6')
+      turned += '9';
+    else if (c == '9')
+      turned += '6';
+    else if (c == '0' || c == '1' || c == '8')
+      turned += c;
+    else
+      return s;
+  }
+  return turned != s ? s + "." : s;
+}
 
 Status checkModel(const DForm& model) {
   for (const Piece* p : {&model.a, &model.b}) {
@@ -1529,11 +1510,16 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
   auto fontResult = StrokeFont::load(o.fontPath);
   if (!fontResult.isOk()) return fontResult.status();
   const StrokeFont& font = fontResult.value();
+  // The pattern's assembly page, once it is laid out.
+  auto withAssembly = [&](Result<PatternBuild> built) {
+    if (built.isOk()) built.value().assembly = assemblyPage(model, built.value(), o, font);
+    return built;
+  };
   bool tooLarge = false;
   Result<PatternBuild> built =
       buildAtScale(o.scale == 1.0 ? model : scaledFlat(model, o.scale), o, profile, font, o.scale,
                    work, tooLarge);
-  if (built.isOk() || !tooLarge || !o.scaleToFit) return built;
+  if (built.isOk() || !tooLarge || !o.scaleToFit) return withAssembly(std::move(built));
   // Scaled to fit: the largest scale below the one asked for, in whole percent, at which every
   // piece fits, by bisection (a smaller scale never makes a piece's extent larger: its outline
   // shrinks and its tabs and ticks keep their size).
@@ -1558,7 +1544,7 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
   best.value().messages.push_back("scaled to " + std::to_string(fitsAt) +
                                   "% to fit: at " + std::to_string(int(std::lround(100 * o.scale))) +
                                   "% " + atFull.message());
-  return best;
+  return withAssembly(std::move(best));
 }
 
 }  // namespace dform::fab

@@ -148,4 +148,21 @@ Polyline convexHull(const std::vector<Polyline>& parts) {
   return hull;
 }
 
+Vec2 pointAlong(const Polyline& line, double s, Vec2* tangent) {
+  double acc = 0;
+  Vec2 dir(1, 0);
+  for (size_t i = 0; i + 1 < line.size(); ++i) {
+    const double seg = (line[i + 1] - line[i]).norm();
+    if (seg <= 0) continue;
+    dir = (line[i + 1] - line[i]) / seg;
+    if (acc + seg >= s) {
+      if (tangent) *tangent = dir;
+      return line[i] + (s - acc) * dir;
+    }
+    acc += seg;
+  }
+  if (tangent) *tangent = dir;
+  return line.back();
+}
+
 }  // namespace dform::fab

@@ -35,6 +35,10 @@ bool insideRegion(const std::vector<Polyline>& loops, const Vec2& q);
 /// Distance from q to the nearest edge of the polylines, closed (`closed`) or open.
 double distanceToPolylines(const std::vector<Polyline>& lines, const Vec2& q, bool closed);
 
+/// The point at arc length `s` along the open polyline (its end past its length), and the unit
+/// direction of the segment it is on.
+Vec2 pointAlong(const Polyline& line, double s, Vec2* tangent = nullptr);
+
 /// Whether `shape` shares more than `tol` mm^2 with one of `others`; Clipper runs only for the
 /// others whose box meets the shape's.
 bool overlapsAny(const Polyline& shape, const std::vector<Polyline>& others, double tol);

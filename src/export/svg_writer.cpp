@@ -55,8 +55,13 @@ std::string svgDocument(const Drawing& drawing) {
       std::string style, attributes;
       if (p.filled) {
         const std::string& color = p.fill.empty() ? layer.color : p.fill;
-        style = "fill:" + color + ";fill-rule:evenodd;stroke:none";
-        attributes = "fill=\"" + color + "\" fill-rule=\"evenodd\" stroke=\"none\"";
+        const std::string stroke = p.sealed ? color : "none";
+        style = "fill:" + color + ";stroke:" + stroke;
+        attributes = "fill=\"" + color + "\" stroke=\"" + stroke + "\"";
+        if (p.sealed) {
+          style += ";stroke-width:" + num(layer.widthMm) + ";stroke-linejoin:round";
+          attributes += " stroke-width=\"" + num(layer.widthMm) + "\"";
+        }
       } else {
         style = "fill:none;stroke:" + layer.color + ";stroke-width:" + num(layer.widthMm) +
                 ";stroke-linecap:round;stroke-linejoin:round";

@@ -201,10 +201,13 @@ Status writeReportHtml(const std::string& dir, const DForm& model,
                               ? data(data::type::bool_false)
                               : data(data::type::bool_true));
 
-  const Result<std::string> pattern = readInputFile((fs::path(dir) / "pattern.svg").string());
-  page.set("has_pattern",
-           pattern.isOk() ? data(data::type::bool_true) : data(data::type::bool_false));
-  page.set("pattern_svg", pattern.isOk() ? inlineSvg(pattern.value()) : std::string());
+  // The export's pictures, inline when the result has them: has_<key> and <key>_svg.
+  for (const auto& [file, key] : {std::pair{"pattern.svg", "pattern"}, {"assembly.svg", "assembly"}}) {
+    const Result<std::string> svg = readInputFile((fs::path(dir) / file).string());
+    page.set(std::string("has_") + key,
+             svg.isOk() ? data(data::type::bool_true) : data(data::type::bool_false));
+    page.set(std::string(key) + "_svg", svg.isOk() ? inlineSvg(svg.value()) : std::string());
+  }
 
   const json& solver = report["solver"];
   page.set("termination", show(solver["termination"]));

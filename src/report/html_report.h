@@ -9,7 +9,8 @@
 
 namespace dform {
 
-/// Writes `dir`/report.html (atomically) from `dir`/report.json, `dir`/pattern.svg when it exists,
+/// Writes `dir`/report.html (atomically) from `dir`/report.json, `dir`/pattern.svg and
+/// `dir`/assembly.svg when they exist,
 /// and the model, through the Mustache template `templatesDir`/report/report.html.mustache.
 Status writeReportHtml(const std::string& dir, const DForm& model, const std::string& templatesDir);
 

@@ -1,12 +1,12 @@
 #include "report/views.h"
 
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
 #include "core/piece_loops.h"
+#include "core/shape_projection.h"
 #include "report/svg_text.h"
 #include "validate/metrics.h"
 
@@ -23,11 +23,6 @@ std::string divergingColour(double t) {
   return t >= 0 ? hexColour(1.0, 1.0 - 0.8 * t, 1.0 - 0.8 * t)
                 : hexColour(1.0 + 0.8 * t, 1.0 + 0.8 * t, 1.0);
 }
-
-struct Polygon {
-  double depth;
-  std::string points, fill;
-};
 
 // A piece's creases as SVG polylines through `pixel(v)` ("x,y"), styled by their fold as on the
 // printed pattern: a valley dashed, a mountain dash-dot, each in its own colour.
@@ -69,64 +64,44 @@ Curvatures curvatures(const DForm& model) {
 double curvatureScale(const DForm& model) { return curvatures(model).scale; }
 
 std::string shapeSvg(const DForm& model, const View& view) {
-  // Model z is up; the camera turns about it by the azimuth, then tilts by the elevation.
-  const double az = view.azimuthDeg * M_PI / 180.0, el = view.elevationDeg * M_PI / 180.0;
-  const Eigen::Matrix3d R = (Eigen::AngleAxisd(el, Eigen::Vector3d::UnitX()) *
-                             Eigen::AngleAxisd(-az, Eigen::Vector3d::UnitZ()))
-                                .toRotationMatrix();
-  // Screen: x right, y up = rotated (x, z); depth = rotated y (away from the viewer).
-  auto toScreen = [&](const Eigen::Vector3d& p) {
-    const Eigen::Vector3d q = R * p;
-    return Eigen::Vector3d(q.x(), q.z(), q.y());
-  };
+  const ShapeCamera camera(view.azimuthDeg, view.elevationDeg);
   Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
   for (const Piece* p : {&model.a, &model.b})
     for (Eigen::Index i = 0; i < p->shape.rows(); ++i) {
-      const Eigen::Vector3d s = toScreen(p->shape.row(i).transpose());
+      const Eigen::Vector3d s = camera.screen(p->shape.row(i).transpose());
       lo = lo.cwiseMin(s.head<2>());
       hi = hi.cwiseMax(s.head<2>());
     }
   const double margin = 8.0;
   const double scale = (view.widthPx - 2 * margin) / std::max(hi.x() - lo.x(), 1e-9);
   const double height = (hi.y() - lo.y()) * scale + 2 * margin;
-  auto pixel = [&](const Eigen::Vector3d& s) {
+  auto pixel = [&](const Eigen::Vector2d& s) {
     return Eigen::Vector2d(margin + (s.x() - lo.x()) * scale,
                            height - margin - (s.y() - lo.y()) * scale);
   };
-  const Eigen::Vector3d light = Eigen::Vector3d(-0.4, 0.5, 1.0).normalized();  // screen frame
+  auto toScreen = [&](const Eigen::Vector3d& p) { return camera.screen(p).head<2>().eval(); };
   const Curvatures K = view.curvature ? curvatures(model) : Curvatures{};
 
-  std::vector<Polygon> polygons;
-  for (int piece = 0; piece < 2; ++piece) {
-    const Piece& p = piece == 0 ? model.a : model.b;
-    const Eigen::VectorXd& k = K.piece[piece];
-    for (Eigen::Index f = 0; f < p.F.rows(); ++f) {
-      Eigen::Vector3d s[3];
-      for (int k = 0; k < 3; ++k) s[k] = toScreen(p.shape.row(p.F(f, k)).transpose());
-      const Eigen::Vector3d n = (s[1] - s[0]).cross(s[2] - s[0]).normalized();
-      std::string points;
-      for (int k = 0; k < 3; ++k) {
-        const Eigen::Vector2d q = pixel(s[k]);
-        points += number(q.x()) + "," + number(q.y()) + (k < 2 ? " " : "");
-      }
-      std::string fill;
-      if (view.curvature) {
-        fill = divergingColour((k(p.F(f, 0)) + k(p.F(f, 1)) + k(p.F(f, 2))) / 3.0 / K.scale);
-      } else {
-        const double shade = 0.35 + 0.65 * std::abs(n.dot(light));
-        fill = piece == 0 ? hexColour(0.98 * shade, 0.72 * shade, 0.45 * shade)
-                          : hexColour(0.50 * shade, 0.70 * shade, 0.95 * shade);
-      }
-      polygons.push_back({(s[0].z() + s[1].z() + s[2].z()) / 3.0, points, fill});
-    }
-  }
-  // Painter's algorithm: far (large depth) first.
-  std::sort(polygons.begin(), polygons.end(),
-            [](const Polygon& a, const Polygon& b) { return a.depth > b.depth; });
   std::string svg = svg::open(view.widthPx, height);
-  for (const Polygon& poly : polygons)
-    svg += "<polygon points='" + poly.points + "' fill='" + poly.fill + "' stroke='" + poly.fill +
+  for (const SeenFace& face : paintersFaces(model, camera)) {
+    const Piece& p = face.piece == 0 ? model.a : model.b;
+    std::string points;
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector2d q = pixel(face.corners[size_t(k)]);
+      points += number(q.x()) + "," + number(q.y()) + (k < 2 ? " " : "");
+    }
+    std::string fill;
+    if (view.curvature) {
+      const Eigen::VectorXd& k = K.piece[face.piece];
+      const auto f = face.face;
+      fill = divergingColour((k(p.F(f, 0)) + k(p.F(f, 1)) + k(p.F(f, 2))) / 3.0 / K.scale);
+    } else {
+      const Eigen::Vector3d c = shadedPieceColour(face.piece, face.shade);
+      fill = hexColour(c.x(), c.y(), c.z());
+    }
+    svg += "<polygon points='" + points + "' fill='" + fill + "' stroke='" + fill +
            "' stroke-width='0.4'/>";
+  }
   // The seam, on top: it is the ridge where the two pieces meet.
   std::string seam;
   for (int v : model.a.seam) {

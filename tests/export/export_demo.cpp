@@ -37,6 +37,7 @@ int render(const std::string& outDir, const std::string& imagesDir) {
     double sheetW, sheetH, scale;
     std::optional<dform::TabSide> tabs;  // unset: the profile's
     Model model = Model::Ellipses;
+    bool assembly = false;  // the assembly page rather than the first page
   };
   const std::vector<Job> jobs = {
       {"laser", "export-laser", 400, 250, 1.0, {}},
@@ -50,6 +51,7 @@ int render(const std::string& outDir, const std::string& imagesDir) {
       {"laser", "export-laser-anti", 300, 180, 1.0, {}, Model::Anti},
       {"laser", "export-laser-demi", 300, 180, 1.0, dform::TabSide::Alternate, Model::Demi},
       {"print", "export-print-creases", 0, 0, 1.0, {}, Model::Creased},
+      {"print", "export-assembly", 0, 0, 1.0, {}, Model::Ellipses, true},
   };
   auto model = [](const Job& job) {
     namespace t = dform::test;
@@ -79,7 +81,8 @@ int render(const std::string& outDir, const std::string& imagesDir) {
     auto summary = dform::exportAll(m, o, dir);
     if (!summary.isOk()) return fail(summary.status());
     const std::string png = (fs::path(imagesDir) / (job.image + ".png")).string();
-    if (auto s = dform::renderPatternPng(m, o, png, 60, 0); !s.isOk()) return fail(s);
+    const int page = job.assembly ? summary.value().pages : 0;  // the assembly page comes last
+    if (auto s = dform::renderPatternPng(m, o, png, 60, page); !s.isOk()) return fail(s);
     std::printf("%-22s %d page(s), %d ticks, %d tabs, %d creases -> %s\n", job.profile.c_str(),
                 summary.value().pages, summary.value().ticks, summary.value().tabs,
                 summary.value().creases, png.c_str());

@@ -65,11 +65,6 @@ std::pair<double, double> pdfPageSize(const std::string& pdfinfo) {
   return {w, h};
 }
 
-double parseMm(const std::string& s) {
-  EXPECT_EQ(s.substr(s.size() - 2), "mm") << s;
-  return std::stod(s.substr(0, s.size() - 2));
-}
-
 TEST(ExportPattern, SvgIsTrueScaleInMillimetresWithLayersAndIds) {
   const DForm model = ellipseCircleDForm();
   const Exported e = exportTo("svg-scale", model, options());
@@ -390,9 +385,10 @@ TEST(ExportPattern, PdfPagesHaveTheSheetSizeAndRender) {
   const auto [w, h] = pdfPageSize(out);
   EXPECT_NEAR(w, 600 * pt, 0.01) << out;
   EXPECT_NEAR(h, 400 * pt, 0.01) << out;
-  EXPECT_EQ(pdfPages(out), 1) << out;
+  EXPECT_EQ(pdfPages(out), 2) << out << ": the sheet, then the assembly page";
   EXPECT_EQ(run("pdftoppm -r 10 -png '" + pdf + "' '" + e.dir + "/render'", &out), 0) << out;
   EXPECT_TRUE(fs::exists(e.dir + "/render-1.png"));
+  EXPECT_TRUE(fs::exists(e.dir + "/render-2.png"));
 }
 
 // Reads a binary PGM (P5) written by pdftoppm -gray.
@@ -481,14 +477,14 @@ TEST(ExportPattern, LargePatternIsTiledAcrossA4PagesWithMarks) {
   const std::string pdf = e.dir + "/pattern.pdf";
   EXPECT_EQ(run("qpdf --check '" + pdf + "'", &out), 0) << out;
   ASSERT_EQ(run("pdfinfo '" + pdf + "'", &out), 0);
-  EXPECT_EQ(pdfPages(out), e.summary.pages) << out;
+  EXPECT_EQ(pdfPages(out), e.summary.pages + 1) << out << ": the tiles, then the assembly page";
   EXPECT_NE(out.find("pts (A4)"), std::string::npos) << out;
   EXPECT_NEAR(pdfPageSize(out).first, 210 * 72 / 25.4, 0.01) << out;
   EXPECT_EQ(run("pdftoppm -r 8 -png '" + pdf + "' '" + e.dir + "/tile'", &out), 0) << out;
   int rendered = 0;
   for (const auto& f : fs::directory_iterator(e.dir))
     rendered += f.path().filename().string().rfind("tile-", 0) == 0;
-  EXPECT_EQ(rendered, e.summary.pages);
+  EXPECT_EQ(rendered, e.summary.pages + 1);
 }
 
 TEST(ExportPattern, PrintAndCutHasSilhouetteMarksAndSeparateLayers) {
@@ -655,7 +651,7 @@ TEST(ExportPattern, PrintAndCutGivesEachPieceItsOwnPageWhenTheyDoNotFitOne) {
     if (haveProgram("pdfinfo")) {
       std::string out;
       ASSERT_EQ(run("pdfinfo '" + e.dir + "/pattern.pdf'", &out), 0) << out;
-      EXPECT_EQ(pdfPages(out), 2) << out;
+      EXPECT_EQ(pdfPages(out), 3) << out << ": a page per piece, then the assembly page";
       EXPECT_NEAR(pdfPageSize(out).first, c.W * 72 / 25.4, 0.01) << out;
     }
   }

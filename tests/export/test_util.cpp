@@ -145,6 +145,11 @@ fab::PatternBuild build(const DForm& model, const ExportOptions& o) {
   return pattern.isOk() ? pattern.value() : fab::PatternBuild{};
 }
 
+double parseMm(const std::string& s) {
+  EXPECT_EQ(s.substr(s.size() < 2 ? 0 : s.size() - 2), "mm") << s;
+  return s.size() < 2 ? -1 : std::stod(s.substr(0, s.size() - 2));
+}
+
 Polyline toPolyline(const nlohmann::json& j) {
   Polyline p;
   for (const auto& q : j) p.emplace_back(q[0].get<double>(), q[1].get<double>());

@@ -68,6 +68,9 @@ Exported exportTo(const std::string& name, const DForm& model, const ExportOptio
 /// The pattern laid out for `model`, no file written (the test is told when it fails).
 fab::PatternBuild build(const DForm& model, const ExportOptions& o);
 
+/// An SVG length written in mm ("210mm") as a number; the test fails on another unit.
+double parseMm(const std::string& s);
+
 /// A polyline of pattern.json, [[x, y], ...].
 Polyline toPolyline(const nlohmann::json& j);
 

@@ -9,9 +9,13 @@
 #include <iterator>
 #include <regex>
 #include <set>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "models.h"
 #include "report/convergence_plot.h"
+#include "core/shape_projection.h"
 #include "report/html_report.h"
 #include "report/views.h"
 #include "validate/metrics.h"
@@ -49,7 +53,8 @@ std::vector<std::string> fills(const std::string& svg) {
 
 TEST(ReportViews, ShapeFromAboveIsTheSeamAtScale) {
   // A flat disc of radius 50 seen from straight above: the seam is a circle whose diameter is
-  // the picture's width less its two 8 px margins, centred; one polygon per triangle and the seam.
+  // the picture's width less its two 8 px margins, centred; one polygon per triangle turned to
+  // the viewer (A's: B's lie under them, turned away) and the seam.
   const DForm disc = test::flatDoubleDisc(6, 48, 50.0);
   View view;
   view.elevationDeg = 90;
@@ -57,13 +62,30 @@ TEST(ReportViews, ShapeFromAboveIsTheSeamAtScale) {
   view.widthPx = 300;
   const std::string svg = shapeSvg(disc, view);
   const auto polygons = pointLists(svg, "polygon");
-  ASSERT_EQ(polygons.size(), std::size_t(disc.a.F.rows() + disc.b.F.rows() + 1));
+  ASSERT_EQ(polygons.size(), std::size_t(disc.a.F.rows() + 1));
   const std::vector<Point>& seam = polygons.back();
   ASSERT_EQ(seam.size(), disc.a.seam.size());
   for (const Point& p : seam)
     EXPECT_NEAR(std::hypot(p.first - 150.0, p.second - 150.0), 150.0 - 8.0,
                 0.2);  // rounding: 0.1 px
   EXPECT_NE(svg.find("viewBox='0 0 300.0 300.0'"), std::string::npos);
+}
+
+TEST(ReportViews, AClosedShapeDrawsOnlyTheFacesTurnedToTheViewer) {
+  DForm model = test::tetraDForm(6);
+  const ShapeCamera camera(30, 25);
+  const std::vector<SeenFace> seen = paintersFaces(model, camera);
+  const long all = long(model.a.F.rows() + model.b.F.rows());
+  EXPECT_GT(long(seen.size()), all / 4);
+  EXPECT_LT(long(seen.size()), all) << "the faces turned away are hidden on a closed surface";
+  for (const SeenFace& f : seen) {  // turned to the viewer: counter-clockwise on the screen
+    const Eigen::Vector2d u = f.corners[1] - f.corners[0], v = f.corners[2] - f.corners[0];
+    EXPECT_GT(u.x() * v.y() - u.y() * v.x(), 0.0) << "piece " << f.piece << " face " << f.face;
+  }
+  for (size_t k = 1; k < seen.size(); ++k) EXPECT_GE(seen[k - 1].depth, seen[k].depth);
+  // An open surface (a free boundary) shows both sides: every face is drawn.
+  model.a.freeBoundaries = {{model.a.seam[0], model.a.seam[1], model.a.seam[2]}};
+  EXPECT_EQ(long(paintersFaces(model, camera).size()), all);
 }
 
 TEST(ReportViews, EveryPointIsInsideThePicture) {
@@ -201,8 +223,10 @@ TEST(ReportViews, CreasesAreDrawnByTheirFoldAndTheSurfaceStaysWhite) {
   EXPECT_EQ(flatCurvatureSvg(test::tetraDForm(6), 400).find("crease"), std::string::npos);
 }
 
-// report.html for `model` from a minimal report.json, written into a fresh folder.
-std::string reportHtml(const DForm& model, const std::string& name) {
+// report.html for `model` from a minimal report.json, written into a fresh folder with `extra`
+// files (name, content) beside it.
+std::string reportHtml(const DForm& model, const std::string& name,
+                       const std::vector<std::pair<std::string, std::string>>& extra = {}) {
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() /
       ("dform-report-test-" + name + "-" + std::to_string(::getpid()));
@@ -214,6 +238,7 @@ std::string reportHtml(const DForm& model, const std::string& name) {
              "solver": {"initial_cost": 1.0, "iterations": [], "termination": "converged",
                         "message": "", "factorisations": 0,
                         "local_global": {"iterations": 0, "initial_energy": 1.0, "final_energy": 1.0}}})";
+  for (const auto& [file, content] : extra) std::ofstream(dir / file) << content;
   const Status written = writeReportHtml(dir.string(), model, DFORM_TEMPLATES_DIR);
   EXPECT_TRUE(written.isOk()) << written.message();
   std::ifstream in(dir / "report.html");
@@ -237,6 +262,21 @@ TEST(ReportHtml, ListsEachCreaseWithItsFold) {
   const std::string classic = reportHtml(test::tetraDForm(6), "classic");
   EXPECT_EQ(classic.find("<h2>Creases</h2>"), std::string::npos);
   EXPECT_EQ(classic.find("crease"), std::string::npos);
+}
+
+TEST(ReportHtml, ShowsTheAssemblyPageWhenTheResultHasOne) {
+  const std::string page =
+      "<?xml version=\"1.0\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\"><path id=\"view-seam\" "
+      "d=\"M 0 0 L 1 1\"/></svg>\n";
+  const std::string html = reportHtml(test::tetraDForm(6), "assembly", {{"assembly.svg", page}});
+  const size_t heading = html.find("<h2>Assembly</h2>");
+  ASSERT_NE(heading, std::string::npos);
+  EXPECT_NE(html.find("<svg xmlns=\"http://www.w3.org/2000/svg\"><path id=\"view-seam\"", heading),
+            std::string::npos)
+      << "the page inline, without its XML declaration";
+  EXPECT_EQ(html.find("<?xml"), std::string::npos);
+  EXPECT_EQ(reportHtml(test::tetraDForm(6), "no-assembly").find("<h2>Assembly</h2>"),
+            std::string::npos);
 }
 
 TEST(ReportPlot, DecadesAreEvenlySpacedAndZerosAreLeftOut) {

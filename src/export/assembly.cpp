@@ -1,0 +1,345 @@
+// The assembly page: how the two cut pieces become the D-Form. A person gluing paper wants to see
+// the shape they are making with the tick numbers where they end up, where to start and which
+// way to zip on each piece, and a few numbered steps; the page is drawn once, as a Drawing, and
+// goes into pattern.pdf (last page), assembly.svg and report.html alike.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/shape_projection.h"
+#include "export/internal.h"
+#include "export/plane_geometry.h"
+
+namespace dform::fab {
+
+namespace {
+
+constexpr double kMargin = 15.0;     // page margin (mm)
+constexpr double kTextH = 3.2;       // cap height of the steps (mm)
+constexpr double kLineH = 1.7;       // line pitch, in cap heights
+constexpr double kShadeSteps = 16;   // shades per piece: runs of one colour merge into one path
+constexpr double kViewAzimuth = 30;  // the report's first view
+constexpr double kViewElevation = 25;
+
+std::string hex(const Eigen::Vector3d& rgb) {
+  char text[8];
+  auto c = [](double v) { return int(std::lround(255.0 * std::clamp(v, 0.0, 1.0))); };
+  std::snprintf(text, sizeof text, "#%02X%02X%02X", c(rgb.x()), c(rgb.y()), c(rgb.z()));
+  return text;
+}
+
+Layer makeLayer(std::string name, std::string color, double width) {
+  Layer l;
+  l.name = std::move(name);
+  l.color = std::move(color);
+  l.widthMm = width;
+  return l;
+}
+
+// A small filled disc (mm), as a polygon.
+Polyline disc(const Vec2& c, double r) {
+  Polyline p;
+  for (int k = 0; k < 16; ++k) {
+    const double a = 2 * M_PI * k / 16;
+    p.push_back(c + r * Vec2(std::cos(a), std::sin(a)));
+  }
+  return p;
+}
+
+// `text` broken into lines no wider than `width` at cap height `h`, at spaces.
+std::vector<std::string> wrapped(const StrokeFont& font, const std::string& text, double width,
+                                 double h) {
+  std::vector<std::string> lines;
+  std::string line, word;
+  auto flush = [&]() {
+    if (word.empty()) return;
+    const std::string longer = line.empty() ? word : line + " " + word;
+    if (!line.empty() && font.width(longer, h) > width) {
+      lines.push_back(line);
+      line = word;
+    } else {
+      line = longer;
+    }
+    word.clear();
+  };
+  for (char c : text) {
+    if (c == ' ') {
+      flush();
+    } else {
+      word += c;
+    }
+  }
+  flush();
+  if (!line.empty()) lines.push_back(line);
+  return lines;
+}
+
+// Maps a box of points onto a page box, uniformly scaled and centred; `flipY` for the screen's
+// y-up frame.
+struct Fit {
+  double scale = 1;
+  Vec2 from = Vec2::Zero(), to = Vec2::Zero();
+  bool flipY = false;
+  Fit(const Box& content, const Box& area, bool flip) : flipY(flip) {
+    scale = std::min(area.w() / std::max(content.w(), 1e-9), area.h() / std::max(content.h(), 1e-9));
+    from = 0.5 * (content.lo + content.hi);
+    to = 0.5 * (area.lo + area.hi);
+  }
+  Vec2 operator()(const Vec2& p) const {
+    const Vec2 d = scale * (p - from);
+    return to + Vec2(d.x(), flipY ? -d.y() : d.y());
+  }
+  Polyline operator()(const Polyline& line) const {
+    Polyline out;
+    for (const Vec2& p : line) out.push_back((*this)(p));
+    return out;
+  }
+};
+
+// The index of the seam edge and the fraction along it at arc length `s` of the closed loop.
+std::pair<size_t, double> edgeAt(const Polyline& loop, double s) {
+  double acc = 0;
+  for (size_t i = 0; i < loop.size(); ++i) {
+    const double seg = (loop[(i + 1) % loop.size()] - loop[i]).norm();
+    if (seg > 0 && acc + seg >= s) return {i, (s - acc) / seg};
+    acc += seg;
+  }
+  return {loop.size() - 1, 1.0};
+}
+
+// The numbered steps, for this pattern's tabs and profile.
+std::vector<std::string> steps(const PatternBuild& pattern) {
+  const std::string& a = pattern.pieces[0].name;
+  const std::string& b = pattern.pieces[1].name;
+  bool tabsOn[2] = {false, false};
+  for (const TabInfo& t : pattern.tabs) tabsOn[t.piece] = true;
+  const bool laser = pattern.profile.kind == ProfileKind::Laser;
+  const std::string face = laser ? "engraved" : "printed";
+  std::string cut = "Cut out both pieces on their cut lines";
+  if (tabsOn[0] || tabsOn[1])
+    cut += "; crease each tab's fold line and fold the tab back, away from the " + face + " side.";
+  else
+    cut += ". There are no glue tabs: join the edges with tape on the inside.";
+  std::string join = "Join " + a + "'s tick 0 to " + b + "'s tick 0, edge to edge, " + face +
+                     " sides out";
+  if (tabsOn[0] && tabsOn[1])
+    join += "; the tabs alternate between the pieces and go inside, under the other edge.";
+  else if (tabsOn[0] || tabsOn[1])
+    join += "; " + (tabsOn[0] ? a : b) + "'s tabs go inside, under " + (tabsOn[0] ? b : a) +
+            "'s edge. Glue one tab at a time.";
+  else
+    join += ".";
+  const std::string last = tickLabel(int(pattern.ticks.size()) - 1);
+  return {cut,
+          "Find tick 0 on each piece: the long tick with the arrow, which points the way to zip "
+          "(shown on the small pieces above).",
+          join,
+          "Zip along the arrows: tick 1 to 1, 2 to 2, and on. The sheet bends by itself; do not "
+          "crease it anywhere but on drawn fold lines.",
+          "Close the last gap, from tick " + last +
+              " back to 0, from the outside (tweezers help with the last tabs), and compare the "
+              "shape with the picture above."};
+}
+
+}  // namespace
+
+Drawing assemblyPage(const DForm& model, const PatternBuild& pattern, const ExportOptions& o,
+                     const StrokeFont& font) {
+  Drawing d;
+  const bool letter = pattern.profile.page == "Letter" || o.page == "Letter";
+  d.width = letter ? 8.5 * 25.4 : 210.0;
+  d.height = letter ? 11.0 * 25.4 : 297.0;
+  d.title = o.jobName + " - assembly";
+  d.description = "How to glue the pieces: dform assembly page, mm";
+  d.layers = {makeLayer("Shape", "#000000", 0.1),  makeLayer("Hidden", "#999999", 0.25),
+              makeLayer("Seam", "#C2185B", 0.5),   makeLayer("Pieces", "#333333", 0.3),
+              makeLayer("Marks", "#C2185B", 0.6),  makeLayer("Text", "#000000", 0.3)};
+  Layer& shapeLayer = d.layers[0];
+  Layer& hidden = d.layers[1];
+  Layer& seamLayer = d.layers[2];
+  Layer& piecesLayer = d.layers[3];
+  Layer& marks = d.layers[4];
+  Layer& text = d.layers[5];
+  auto write = [&](Layer& layer, const std::string& id, const std::string& s, const Vec2& c,
+                   double h) {
+    Path p;
+    p.id = id;
+    p.parts = font.layout(s, c, Vec2(1, 0), h);
+    layer.paths.push_back(std::move(p));
+  };
+  const double W = d.width, H = d.height;
+  write(text, "assembly-title",
+        "How to assemble " + o.jobName + ": D-Form " + pattern.pieces[0].name + " + " +
+            pattern.pieces[1].name,
+        Vec2(0.5 * W, kMargin + 2.5), 5.0);
+
+  // The steps first, from the bottom up, so that the pictures take the room that is left.
+  std::vector<std::vector<std::string>> stepLines;
+  double stepsH = 0;
+  const double indent = 8.0, textW = W - 2 * kMargin - indent;
+  for (const std::string& step : steps(pattern)) {
+    stepLines.push_back(wrapped(font, step, textW, kTextH));
+    stepsH += (double(stepLines.back().size()) + 0.4) * kLineH * kTextH;
+  }
+  double y = H - kMargin - stepsH;
+  const double stepsTop = y;
+  for (size_t k = 0; k < stepLines.size(); ++k) {
+    const std::string number = std::to_string(k + 1) + ".";
+    write(text, "step-" + std::to_string(k + 1) + "-number", number,
+          Vec2(kMargin + 0.5 * font.width(number, kTextH), y + 0.5 * kTextH), kTextH);
+    for (size_t i = 0; i < stepLines[k].size(); ++i) {
+      const std::string& line = stepLines[k][i];
+      write(text, "step-" + std::to_string(k + 1) + "-line-" + std::to_string(i + 1), line,
+            Vec2(kMargin + indent + 0.5 * font.width(line, kTextH), y + 0.5 * kTextH), kTextH);
+      y += kLineH * kTextH;
+    }
+    y += 0.4 * kLineH * kTextH;
+  }
+
+  // The two pieces, small, side by side above the steps: outline and tabs, tick 0 and the zip.
+  const double top = kMargin + 10.0, gap = 8.0;
+  const double thumbsH = std::min(60.0, 0.35 * (stepsTop - top));
+  const double thumbsTop = stepsTop - gap - thumbsH;
+  const double half = 0.5 * (W - 2 * kMargin - gap);
+  for (size_t p = 0; p < 2; ++p) {
+    const PieceInfo& piece = pattern.pieces[p];
+    const std::string& name = piece.name;
+    Box content = boxOf(piece.cut);
+    content.add(piece.outline);
+    const double x0 = kMargin + double(p) * (half + gap);
+    const Box area = Box::spanning(Vec2(x0 + 6, thumbsTop + 2), Vec2(x0 + half - 6, thumbsTop + thumbsH - 8));
+    const Fit fit(content, area, false);
+    Path cut;
+    cut.id = "thumb-" + name + "-cut";
+    cut.closed = true;
+    for (const Polyline& loop : piece.cut) cut.parts.push_back(fit(loop));
+    for (const Polyline& loop : piece.holeCuts) cut.parts.push_back(fit(loop));
+    piecesLayer.paths.push_back(cut);
+    // The zip: the seam from tick 0 to tick 1 (or a tenth of the way round), arrowed.
+    Polyline loop = piece.outline;
+    loop.push_back(loop.front());
+    const TickInfo& t0 = pattern.ticks.front();
+    const double s0 = p == 0 ? t0.s : t0.sB;
+    const double step = pattern.ticks.size() > 1
+                            ? (p == 0 ? pattern.ticks[1].s : pattern.ticks[1].sB) - s0
+                            : 0.1 * piece.perimeter;
+    Path zip;
+    zip.id = "thumb-" + name + "-zip";
+    Polyline arc;
+    const int pieces = 24;
+    for (int k = 0; k <= pieces; ++k) arc.push_back(fit(pointAlong(loop, s0 + step * k / pieces)));
+    Vec2 along = (arc.back() - arc[arc.size() - 2]);
+    along = along.norm() > 0 ? along.normalized() : Vec2(1, 0);
+    const Vec2 side(-along.y(), along.x()), tip = arc.back();
+    zip.parts = {arc, {tip - 2.5 * along + 1.3 * side, tip, tip - 2.5 * along - 1.3 * side}};
+    marks.paths.push_back(zip);
+    Path start;
+    start.id = "thumb-" + name + "-start";
+    start.filled = start.closed = true;
+    const Vec2 at = fit(p == 0 ? t0.onA : t0.onB);
+    start.parts = {disc(at, 1.2)};
+    marks.paths.push_back(start);
+    // "0" just outside the start, away from the piece's centre.
+    Vec2 out = at - 0.5 * (area.lo + area.hi);
+    out = out.norm() > 0 ? out.normalized() : Vec2(0, -1);
+    write(text, "thumb-" + name + "-start-label", "0", at + 3.5 * out, kTextH);
+    write(text, "thumb-" + name + "-name", name, Vec2(x0 + 0.5 * half, thumbsTop + thumbsH - 3), 4.0);
+  }
+
+  // The 3D shape, shaded, with its seam and the tick numbers where the ticks meet.
+  const ShapeCamera camera(kViewAzimuth, kViewElevation);
+  const std::vector<SeenFace> faces = paintersFaces(model, camera);
+  Box seen;
+  for (const SeenFace& f : faces)
+    for (const Vec2& c : f.corners) seen.add(c);
+  const Box viewArea = Box::spanning(Vec2(kMargin + 8, top + 6), Vec2(W - kMargin - 8, thumbsTop - gap - 6));
+  const Fit view(seen, viewArea, true);
+  for (size_t i = 0; i < faces.size();) {
+    const std::string colour = hex(shadedPieceColour(
+        faces[i].piece, std::round(faces[i].shade * kShadeSteps) / kShadeSteps));
+    Path run;
+    run.id = "view-faces-" + std::to_string(shapeLayer.paths.size() + 1);
+    run.filled = run.closed = run.sealed = true;
+    run.fill = colour;
+    for (; i < faces.size(); ++i) {
+      const SeenFace& f = faces[i];
+      if (hex(shadedPieceColour(f.piece, std::round(f.shade * kShadeSteps) / kShadeSteps)) != colour)
+        break;
+      // A hundredth of a millimetre is finer than any printer: shorter numbers, a smaller file.
+      auto at = [&](const Vec2& c) { return Vec2((100 * view(c)).array().round() / 100); };
+      Polyline tri{at(f.corners[0]), at(f.corners[1]), at(f.corners[2])};
+      const double twiceArea = (tri[1] - tri[0]).x() * (tri[2] - tri[0]).y() -
+                               (tri[1] - tri[0]).y() * (tri[2] - tri[0]).x();
+      if (twiceArea < 0) std::swap(tri[1], tri[2]);  // one winding: the run's triangles add up
+      run.parts.push_back(tri);
+    }
+    shapeLayer.paths.push_back(std::move(run));
+  }
+  // Whether the surface hides a point (screen x, y, depth): a face covers it that is nearer
+  // there by more than a hundredth of the shape (the faces beside a seam point are at its depth).
+  const double size = std::max(seen.w(), seen.h());
+  auto hiddenAt = [&](const Eigen::Vector3d& s) {
+    for (const SeenFace& f : faces) {
+      const Vec2 u = f.corners[1] - f.corners[0], v = f.corners[2] - f.corners[0];
+      const Vec2 w = Vec2(s.head<2>()) - f.corners[0];
+      const double det = u.x() * v.y() - u.y() * v.x();
+      if (std::abs(det) < 1e-12) continue;
+      const double b1 = (w.x() * v.y() - w.y() * v.x()) / det;
+      const double b2 = (u.x() * w.y() - u.y() * w.x()) / det;
+      if (b1 < 0 || b2 < 0 || b1 + b2 > 1) continue;
+      const double there = (1 - b1 - b2) * f.cornerDepths[0] + b1 * f.cornerDepths[1] +
+                           b2 * f.cornerDepths[2];
+      if (there < s.z() - 0.01 * size) return true;
+    }
+    return false;
+  };
+  // The seam: all of it dashed grey, then the stretches in sight over it.
+  const Piece& a = model.a;
+  const size_t n = a.seam.size();
+  auto seam3 = [&](size_t i) { return Eigen::Vector3d(a.shape.row(a.seam[i % n]).transpose()); };
+  Path seamPath;
+  seamPath.id = "view-seam";
+  seamPath.closed = seamPath.dashed = true;
+  seamPath.dash = {1.5, 1.0};
+  seamPath.parts.emplace_back();
+  Path inSight;
+  inSight.id = "view-seam-in-sight";
+  std::vector<bool> seenAt(n);
+  for (size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d s = camera.screen(seam3(i));
+    seamPath.parts[0].push_back(view(Vec2(s.head<2>())));
+    seenAt[i] = !hiddenAt(s);
+  }
+  for (size_t i = 0; i < n; ++i) {  // each edge with both ends in sight, runs joined
+    if (!seenAt[i] || !seenAt[(i + 1) % n]) continue;
+    const Vec2& from = seamPath.parts[0][i];
+    if (inSight.parts.empty() || (inSight.parts.back().back() - from).norm() > 0)
+      inSight.parts.push_back({from});
+    inSight.parts.back().push_back(seamPath.parts[0][(i + 1) % n]);
+  }
+  hidden.paths.push_back(seamPath);
+  if (!inSight.parts.empty()) seamLayer.paths.push_back(inSight);
+  // A tick's 3D point: the same seam edge and fraction as on the flat outline of A. Its number
+  // goes outside the shape's picture; grey where the surface hides the point.
+  const Polyline& flatSeam = pattern.pieces[0].outline;
+  const Vec2 middle = view(0.5 * (seen.lo + seen.hi));
+  for (const TickInfo& t : pattern.ticks) {
+    if (flatSeam.size() != n) break;  // not A's seam vertex for vertex: no numbers, not wrong ones
+    const auto [i, frac] = edgeAt(flatSeam, t.s);
+    const Eigen::Vector3d s = camera.screen((1 - frac) * seam3(i) + frac * seam3(i + 1));
+    const Vec2 at = view(Vec2(s.head<2>()));
+    const bool covered = hiddenAt(s);
+    Path dot;
+    dot.id = "view-tick-" + std::to_string(t.id);
+    dot.filled = dot.closed = true;
+    dot.parts = {disc(at, t.id == 0 ? 1.2 : 0.7)};
+    (covered ? hidden : marks).paths.push_back(dot);
+    Vec2 out = at - middle;
+    out = out.norm() > 0 ? out.normalized() : Vec2(0, -1);
+    write(covered ? hidden : text, "view-tick-" + std::to_string(t.id) + "-label",
+          tickLabel(t.id), at + 4.0 * out, t.id == 0 ? 3.2 : 2.6);
+  }
+  return d;
+}
+
+}  // namespace dform::fab

@@ -1,0 +1,195 @@
+// The assembly page, read back from assembly.svg and pattern.pdf: the pieces' thumbnails are the
+// cut pieces scaled, with the start on tick 0 and the zip running to tick 1; the 3D view's tick
+// dots lie on its seam in seam order; the steps are numbered and keep off the pictures; the PDF's
+// last page is the page.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "synthetic.h"
+#include "test_util.h"
+
+namespace dform::test {
+namespace {
+
+Vec2 centre(const Polyline& loop) {
+  Vec2 sum = Vec2::Zero();
+  for (const Vec2& q : loop) sum += q;
+  return sum / double(loop.size());
+}
+
+Vec2 boxLo(const std::vector<Polyline>& parts) {
+  Vec2 lo(1e300, 1e300);
+  for (const Polyline& p : parts)
+    for (const Vec2& q : p) lo = lo.cwiseMin(q);
+  return lo;
+}
+
+Vec2 boxHi(const std::vector<Polyline>& parts) {
+  Vec2 hi(-1e300, -1e300);
+  for (const Polyline& p : parts)
+    for (const Vec2& q : p) hi = hi.cwiseMax(q);
+  return hi;
+}
+
+// Arc length along the closed polyline to its point nearest `q`, and that distance.
+std::pair<double, double> arcOn(const Polyline& loop, const Vec2& q) {
+  double acc = 0, best = 1e300, at = 0;
+  for (size_t i = 0; i < loop.size(); ++i) {
+    const Vec2 a = loop[i], b = loop[(i + 1) % loop.size()];
+    const double len = (b - a).norm();
+    const double t = len > 0 ? std::clamp((q - a).dot(b - a) / (len * len), 0.0, 1.0) : 0.0;
+    const double d = (a + t * (b - a) - q).norm();
+    if (d < best) best = d, at = acc + t * len;
+    acc += len;
+  }
+  return {at, best};
+}
+
+struct Assembly {
+  Exported e;
+  SvgDoc page;
+};
+
+Assembly exportAssembly(const std::string& name, const std::string& profile) {
+  Assembly a;
+  a.e = exportTo(name, ellipseCircleDForm(), options(profile));
+  a.page = readSvg(a.e.dir + "/assembly.svg");
+  return a;
+}
+
+TEST(Assembly, IsThePdfsLastPageAndAFileOfItsOwn) {
+  for (const auto& [profile, W, H] : {std::tuple{"laser", 210.0, 297.0},
+                                      std::tuple{"print-letter", 215.9, 279.4}}) {
+    const Assembly a = exportAssembly(std::string("asm-pages-") + profile, profile);
+    EXPECT_DOUBLE_EQ(parseMm(a.page.width), W) << profile;
+    EXPECT_DOUBLE_EQ(parseMm(a.page.height), H) << profile;
+    ASSERT_NE(a.page.find("view-seam"), nullptr);
+    // The PDF: the pattern's pages, then this one, which draws the same seam.
+    const std::vector<PdfPath> pdf = readPdfPaths(a.e.dir + "/pattern.pdf");
+    int lastPage = 0;
+    for (const PdfPath& p : pdf) lastPage = std::max(lastPage, p.page);
+    EXPECT_EQ(lastPage, a.e.summary.pages + 1) << profile;
+    std::vector<PdfPath> onLast;
+    for (const PdfPath& p : pdf)
+      if (p.page == lastPage) onLast.push_back(p);
+    EXPECT_LT(closestDrawing(onLast, a.page.find("view-seam")->parts[0]), 0.1) << profile;
+  }
+}
+
+TEST(Assembly, ThumbnailsAreThePiecesScaledWithTheStartOnTickZero) {
+  const Assembly a = exportAssembly("asm-thumbs", "laser");
+  const auto& ticks = a.e.sidecar["ticks"];
+  ASSERT_GE(ticks.size(), 2u);
+  for (int p = 0; p < 2; ++p) {
+    const std::string name = p == 0 ? "A" : "B";
+    const SvgPath* thumb = a.page.find("thumb-" + name + "-cut");
+    ASSERT_NE(thumb, nullptr) << name;
+    std::vector<Polyline> cut;
+    for (const auto& loop : a.e.sidecar["pieces"][p]["cut"]) cut.push_back(toPolyline(loop));
+    ASSERT_EQ(thumb->parts.size(), cut.size());
+    ASSERT_EQ(thumb->parts[0].size(), cut[0].size());
+    // One scale and a shift map the piece onto the thumbnail.
+    const Vec2 tlo = boxLo(thumb->parts);
+    const double k = (boxHi(thumb->parts) - tlo).x() / (boxHi(cut) - boxLo(cut)).x();
+    EXPECT_GT(k, 0.05);
+    EXPECT_LT(k, 1.0) << "smaller than the piece";
+    auto map = [&](const Vec2& q) { return Vec2(tlo + k * (q - boxLo(cut))); };
+    double worst = 0;
+    for (size_t i = 0; i < cut[0].size(); ++i)
+      worst = std::max(worst, (map(cut[0][i]) - thumb->parts[0][i]).norm());
+    EXPECT_LT(worst, 1e-3) << name << ": the thumbnail is the piece, scaled";
+    // The start dot on tick 0, and the zip from it to tick 1.
+    const char* side = p == 0 ? "a" : "b";
+    const SvgPath* start = a.page.find("thumb-" + name + "-start");
+    ASSERT_NE(start, nullptr);
+    const Vec2 tick0 = map(Vec2(ticks[0][side][0].get<double>(), ticks[0][side][1].get<double>()));
+    const Vec2 tick1 = map(Vec2(ticks[1][side][0].get<double>(), ticks[1][side][1].get<double>()));
+    EXPECT_LT((centre(start->parts[0]) - tick0).norm(), 1e-3) << name;
+    const SvgPath* zip = a.page.find("thumb-" + name + "-zip");
+    ASSERT_NE(zip, nullptr);
+    EXPECT_LT((zip->parts[0].front() - tick0).norm(), 1e-3) << name;
+    EXPECT_LT((zip->parts[0].back() - tick1).norm(), 1e-3) << name << ": the arrow ends at tick 1";
+    EXPECT_LT((zip->parts[1][1] - tick1).norm(), 1e-3) << name << ": the arrowhead's tip";
+  }
+}
+
+TEST(Assembly, TickDotsLieOnTheSeamInSeamOrder) {
+  const Assembly a = exportAssembly("asm-view", "laser");
+  const SvgPath* seam = a.page.find("view-seam");
+  ASSERT_NE(seam, nullptr);
+  const Polyline& loop = seam->parts[0];
+  double L = 0;
+  for (size_t i = 0; i < loop.size(); ++i) L += (loop[(i + 1) % loop.size()] - loop[i]).norm();
+  const size_t n = a.e.sidecar["ticks"].size();
+  double previous = -1, first = 0;
+  for (size_t k = 0; k < n; ++k) {
+    const SvgPath* dot = a.page.find("view-tick-" + std::to_string(k));
+    ASSERT_NE(dot, nullptr) << k;
+    ASSERT_NE(a.page.find("view-tick-" + std::to_string(k) + "-label"), nullptr) << k;
+    const auto [s, off] = arcOn(loop, centre(dot->parts[0]));
+    EXPECT_LT(off, 1e-3) << "tick " << k << " is on the seam";
+    if (k == 0) first = s;
+    const double along = std::fmod(s - first + L, L);  // from tick 0, the way the seam runs
+    EXPECT_GT(along, previous) << "tick " << k << " follows tick " << k - 1;
+    previous = along;
+  }
+  EXPECT_EQ(a.page.find("view-tick-" + std::to_string(n)), nullptr);
+  // This dome's far rim is behind it as seen (30 degrees round, 25 up): those ticks and that
+  // stretch of the seam are grey (the Hidden layer); the seam in sight is drawn over its own line.
+  int hidden = 0, inSight = 0;
+  for (size_t k = 0; k < n; ++k)
+    (a.page.find("view-tick-" + std::to_string(k))->layer == "Hidden" ? hidden : inSight) += 1;
+  EXPECT_GT(hidden, 0);
+  EXPECT_GT(inSight, hidden);
+  const SvgPath* seen = a.page.find("view-seam-in-sight");
+  ASSERT_NE(seen, nullptr);
+  double seenLength = 0;
+  for (const Polyline& part : seen->parts)
+    for (size_t i = 0; i < part.size(); ++i) {
+      EXPECT_LT(arcOn(loop, part[i]).second, 1e-6);
+      if (i > 0) seenLength += (part[i] - part[i - 1]).norm();
+    }
+  EXPECT_GT(seenLength, 0.3 * L);
+  EXPECT_LT(seenLength, L);
+  // The picture is shaded faces of both pieces' colours (A warm, B cool).
+  int warm = 0, cool = 0;
+  for (const SvgPath& p : a.page.paths) {
+    if (p.id.rfind("view-faces-", 0) != 0) continue;
+    const unsigned long rgb = std::stoul(p.fill.substr(1), nullptr, 16);
+    const int r = int(rgb >> 16), b = int(rgb & 0xFF);
+    (r > b ? warm : cool) += 1;
+  }
+  EXPECT_GT(warm, 0);
+  EXPECT_GT(cool, 0);
+}
+
+TEST(Assembly, StepsAreNumberedAndKeepOffThePictures) {
+  for (const char* profile : {"laser", "print", "print-and-cut"}) {
+    const Assembly a = exportAssembly(std::string("asm-steps-") + profile, profile);
+    int steps = 0;
+    while (a.page.find("step-" + std::to_string(steps + 1) + "-number")) ++steps;
+    EXPECT_GE(steps, 4) << profile;
+    EXPECT_LE(steps, 6) << profile;
+    // Every drawn thing on the page inside its 10 mm margin; no step line on a picture.
+    const double W = parseMm(a.page.width), H = parseMm(a.page.height);
+    std::vector<std::pair<Vec2, Vec2>> pictures, lines;
+    for (const SvgPath& p : a.page.paths) {
+      const Vec2 lo = boxLo(p.parts), hi = boxHi(p.parts);
+      EXPECT_TRUE(lo.x() >= 10 && lo.y() >= 10 && hi.x() <= W - 10 && hi.y() <= H - 10)
+          << profile << ": " << p.id;
+      if (p.id.rfind("step-", 0) == 0) lines.emplace_back(lo, hi);
+      if (p.id.rfind("view-", 0) == 0 || p.id.rfind("thumb-", 0) == 0) pictures.emplace_back(lo, hi);
+    }
+    for (const auto& [llo, lhi] : lines)
+      for (const auto& [plo, phi] : pictures)
+        EXPECT_FALSE(llo.x() < phi.x() && plo.x() < lhi.x() && llo.y() < phi.y() &&
+                     plo.y() < lhi.y())
+            << profile << ": a step line on a picture";
+  }
+}
+
+}  // namespace
+}  // namespace dform::test
