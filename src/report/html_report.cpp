@@ -191,10 +191,11 @@ Status writeReportHtml(const std::string& dir, const DForm& model,
   View curvatureView;
   curvatureView.curvature = true;
   curvatureView.widthPx = 420;
-  page.set("curvature_3d", shapeSvg(model, curvatureView));
-  page.set("curvature_flat", flatCurvatureSvg(model, 520));
+  const CurvatureMaps maps = curvatureMaps(model);  // once for the two pictures and the scale
+  page.set("curvature_3d", shapeSvg(model, curvatureView, &maps));
+  page.set("curvature_flat", flatCurvatureSvg(model, 520, &maps));
   char scale[32];
-  std::snprintf(scale, sizeof scale, "%.3g", curvatureScale(model));
+  std::snprintf(scale, sizeof scale, "%.3g", maps.scale);
   page.set("curvature_scale", scale);
   page.set("creases", creaseRows(model));
   page.set("has_creases", model.a.creases.empty() && model.b.creases.empty()

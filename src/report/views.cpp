@@ -42,14 +42,10 @@ std::string creaseLines(const Piece& piece, Pixel pixel) {
   return svg;
 }
 
-// Both pieces' curvature maps and the colour scale they share, measured once per picture.
-struct Curvatures {
-  Eigen::VectorXd piece[2];
-  double scale = 1.0;
-};
+}  // namespace
 
-Curvatures curvatures(const DForm& model) {
-  Curvatures c;
+CurvatureMaps curvatureMaps(const DForm& model) {
+  CurvatureMaps c;
   c.piece[0] = curvatureMap(model.a);
   c.piece[1] = curvatureMap(model.b);
   const double top = std::max(c.piece[0].cwiseAbs().maxCoeff(), c.piece[1].cwiseAbs().maxCoeff());
@@ -59,11 +55,9 @@ Curvatures curvatures(const DForm& model) {
   return c;
 }
 
-}  // namespace
+double curvatureScale(const DForm& model) { return curvatureMaps(model).scale; }
 
-double curvatureScale(const DForm& model) { return curvatures(model).scale; }
-
-std::string shapeSvg(const DForm& model, const View& view) {
+std::string shapeSvg(const DForm& model, const View& view, const CurvatureMaps* maps) {
   const ShapeCamera camera(view.azimuthDeg, view.elevationDeg);
   Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
   for (const Piece* p : {&model.a, &model.b})
@@ -80,7 +74,9 @@ std::string shapeSvg(const DForm& model, const View& view) {
                            height - margin - (s.y() - lo.y()) * scale);
   };
   auto toScreen = [&](const Eigen::Vector3d& p) { return camera.screen(p).head<2>().eval(); };
-  const Curvatures K = view.curvature ? curvatures(model) : Curvatures{};
+  const CurvatureMaps measured =
+      view.curvature && !maps ? curvatureMaps(model) : CurvatureMaps{};
+  const CurvatureMaps& K = maps ? *maps : measured;
 
   std::string svg = svg::open(view.widthPx, height);
   for (const SeenFace& face : paintersFaces(model, camera)) {
@@ -118,7 +114,7 @@ std::string shapeSvg(const DForm& model, const View& view) {
   return svg + "</svg>";
 }
 
-std::string flatCurvatureSvg(const DForm& model, double widthPx) {
+std::string flatCurvatureSvg(const DForm& model, double widthPx, const CurvatureMaps* maps) {
   // Lay A and B side by side with a gap of a tenth of the larger piece.
   Eigen::RowVector2d loA = model.a.flat.colwise().minCoeff(),
                      hiA = model.a.flat.colwise().maxCoeff();
@@ -130,7 +126,8 @@ std::string flatCurvatureSvg(const DForm& model, double widthPx) {
   const double margin = 8.0;
   const double scale = (widthPx - 2 * margin) / std::max(totalW, 1e-9);
   const double height = totalH * scale + 2 * margin;
-  const Curvatures K = curvatures(model);
+  const CurvatureMaps measured = maps ? CurvatureMaps{} : curvatureMaps(model);
+  const CurvatureMaps& K = maps ? *maps : measured;
   std::string svg = svg::open(widthPx, height);
   for (int piece = 0; piece < 2; ++piece) {
     const Piece& p = piece == 0 ? model.a : model.b;

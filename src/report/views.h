@@ -15,17 +15,28 @@ struct View {
   bool curvature = false;    ///< colour by angle defect instead of shading
 };
 
+/// Both pieces' curvature maps (angle defect per vertex, radians) and the colour scale they share:
+/// the largest |angle defect| away from the seam, and at least 1e-3 rad.
+struct CurvatureMaps {
+  Eigen::VectorXd piece[2];
+  double scale = 1.0;
+};
+
+/// The maps of `model`, measured once for every picture of a page.
+CurvatureMaps curvatureMaps(const DForm& model);
+
 /// The closed 3D shape (both pieces) in orthographic projection, painter's order, Lambert shading
 /// (A warm, B cool) or a blue-white-red curvature scale; the seam and the creases (class 'crease
 /// mountain' dash-dot, 'crease valley' dashed) drawn on top.
-std::string shapeSvg(const DForm& model, const View& view);
+/// `maps`: the model's curvatureMaps when the caller has them (else measured here when needed).
+std::string shapeSvg(const DForm& model, const View& view, const CurvatureMaps* maps = nullptr);
 
 /// Both flat pieces side by side at the same scale, coloured by their 3D curvature, every boundary
 /// loop outlined (holes stay empty), the creases drawn as in shapeSvg.
-std::string flatCurvatureSvg(const DForm& model, double widthPx);
+std::string flatCurvatureSvg(const DForm& model, double widthPx,
+                             const CurvatureMaps* maps = nullptr);
 
-/// The curvature scale used by both (radians of angle defect at full colour): the largest
-/// |angle defect| away from the seam, and at least 1e-3 rad.
+/// The curvature scale used by both (radians of angle defect at full colour): curvatureMaps' scale.
 double curvatureScale(const DForm& model);
 
 }  // namespace dform
