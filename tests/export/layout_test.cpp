@@ -166,6 +166,38 @@ TEST(ExportLayout, TheTitleBlockOverAPieceOrAMarkIsCounted) {
   EXPECT_NE(g.example.find("registration mark regmark-square"), std::string::npos) << g.example;
 }
 
+TEST(ExportLayout, TheTitleBlockOnAPrintedBleedIsCounted) {
+  // The calibration bar moved to lie half a millimetre under piece B's lowest cut point, centred
+  // on it: clear of the cut line, on the 1.5 mm tint printed around it. Counted with a bleed, not
+  // without.
+  const DForm model = ellipseCircleDForm();
+  ExportOptions o = options("print-and-cut");
+  for (const bool bleed : {true, false}) {
+    o.profileOverride = loadProfile("print-and-cut", DFORM_TEMPLATES_DIR).value();
+    if (!bleed) o.profileOverride.bleedMm = 0;
+    o.useProfileOverride = true;
+    fab::PatternBuild pnc = build(model, o);
+    ASSERT_EQ(fab::checkLayout(pnc).problems(), 0) << fab::checkLayout(pnc).example;
+    const Polyline& cut = pnc.pieces[1].cut[0];
+    const Vec2 low = *std::max_element(cut.begin(), cut.end(),
+                                       [](const Vec2& a, const Vec2& b) { return a.y() < b.y(); });
+    const int sheet = pnc.pieces[1].sheet;  // the bar of B's own page
+    fab::Path* bar =
+        findPath(pnc, sheet == 0 ? "calibration-bar" : "calibration-bar-page-" + std::to_string(sheet + 1));
+    ASSERT_NE(bar, nullptr);
+    const fab::Box box = fab::boxOf(bar->parts);
+    const Vec2 by = low + Vec2(0, 0.5) - Vec2(0.5 * (box.lo.x() + box.hi.x()), box.lo.y());
+    for (Polyline& part : bar->parts) translate(part, by);
+    const LayoutFindings f = fab::checkLayout(pnc);
+    EXPECT_EQ(f.titleOverlaps, bleed ? 1 : 0) << f.example;
+    EXPECT_EQ(f.problems(), f.titleOverlaps) << f.example;
+    if (bleed)
+      EXPECT_NE(f.example.find(bar->id + " overlaps piece B's printed bleed"),
+                std::string::npos)
+          << f.example;
+  }
+}
+
 TEST(ExportLayout, TightTickSpacingThinsTheNumbersAndKeepsEveryTick) {
   const DForm model = ellipseCircleDForm();
   ExportOptions o = options("print");
