@@ -72,6 +72,7 @@ const char* foldDirectionName(FoldDirection direction) {
 }
 
 std::vector<CreaseFold> creaseFolds(const Piece& piece) {
+  if (piece.creases.empty()) return {};  // most pieces: no edge table to build
   const detail::EdgeTopology topology = detail::edgeTopology(piece.F);
   auto corner = [&](int v) -> Eigen::Vector3d { return piece.shape.row(v).transpose(); };
   auto unitNormal = [&](int f) {
