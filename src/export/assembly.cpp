@@ -254,17 +254,18 @@ Drawing assemblyPage(const DForm& model, const PatternBuild& pattern, const Expo
     for (const Vec2& c : f.corners) seen.add(c);
   const Box viewArea = Box::spanning(Vec2(kMargin + 8, top + 6), Vec2(W - kMargin - 8, thumbsTop - gap - 6));
   const Fit view(seen, viewArea, true);
+  // Each face's shade, quantised; a run of faces of one colour in painter's order is one path.
+  std::vector<std::string> colours;
+  for (const SeenFace& f : faces)
+    colours.push_back(
+        hex(shadedPieceColour(f.piece, std::round(f.shade * kShadeSteps) / kShadeSteps)));
   for (size_t i = 0; i < faces.size();) {
-    const std::string colour = hex(shadedPieceColour(
-        faces[i].piece, std::round(faces[i].shade * kShadeSteps) / kShadeSteps));
     Path run;
     run.id = "view-faces-" + std::to_string(shapeLayer.paths.size() + 1);
     run.filled = run.closed = run.sealed = true;
-    run.fill = colour;
-    for (; i < faces.size(); ++i) {
+    run.fill = colours[i];
+    for (; i < faces.size() && colours[i] == run.fill; ++i) {
       const SeenFace& f = faces[i];
-      if (hex(shadedPieceColour(f.piece, std::round(f.shade * kShadeSteps) / kShadeSteps)) != colour)
-        break;
       // A hundredth of a millimetre is finer than any printer: shorter numbers, a smaller file.
       auto at = [&](const Vec2& c) { return Vec2((100 * view(c)).array().round() / 100); };
       Polyline tri{at(f.corners[0]), at(f.corners[1]), at(f.corners[2])};
