@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <new>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -16,6 +17,7 @@
 #include "io/curve_reader.h"
 #include "io/model_files.h"
 #include "pipeline/report.h"
+#include "pipeline/resources.h"
 #include "report/html_report.h"
 #include "validate/gate.h"
 #include "validate/metrics.h"
@@ -355,6 +357,7 @@ Result<WrittenResult> writeResult(const Job& job, const OutputOptions& output,
                              &inverseRun.value().curveMatch);
     timings.gate = secondsSince(gateStart);
   }
+  if (interrupted) return leftAsItWas(output.outDir, "interrupted");
 
   // The pattern's layout is the gate's last check, so it is laid out before the verdict; the
   // report is written whatever the export does, so that a failed export (a sheet too small)
@@ -364,6 +367,7 @@ Result<WrittenResult> writeResult(const Job& job, const OutputOptions& output,
   const auto exportStart = Clock::now();
   if (output.exportFiles) {
     prepared = prepare(model, settings.exporting, gate && !gate->passed(), name);
+    if (interrupted) return leftAsItWas(output.outDir, "interrupted");
     if (prepared.isOk() && gate) {
       const bool passedBefore = gate->passed();
       gate->checks.push_back(layoutCheck(prepared.value().layout));
@@ -445,8 +449,14 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
   };
   const Result<RunSettings> settings = runSettings(output);
   if (!settings.isOk()) return fail(settings.status());
-  const Result<WrittenResult> result =
-      writeResult(job, output, settings.value(), interrupted, sink, hooks);
+  Result<WrittenResult> result = Status();
+  try {
+    result = writeResult(job, output, settings.value(), interrupted, sink, hooks);
+  } catch (const std::bad_alloc&) {
+    // Past the solve (which says this itself, with its estimate): exporting, measuring, writing.
+    const int resolution = forward ? job.forward.resolution : job.inverse.resolution;
+    result = outOfMemory({}, resolution, output.outDir + ": the run");
+  }
   terminal.clearProgress();
   if (!result.isOk()) return fail(result.status());
   const WrittenResult& written = result.value();
@@ -593,6 +603,7 @@ int exportSaved(const std::string& dir, const OutputOptions& output,
   if (Status s = folder.begin(dir, resultFileNames()); !s.isOk()) return fail(s);
   Result<DForm> model = readModel(dir);
   if (!model.isOk()) return fail(model.status());
+  if (interrupted) return fail(leftAsItWas(dir, "interrupted"));
   Result<std::optional<Curve3>> target = readSavedTarget(dir, model.value());
   if (!target.isOk()) return fail(target.status());
   // A result that failed its gate is exported only on purpose, and marked. The gate is run
@@ -613,6 +624,7 @@ int exportSaved(const std::string& dir, const OutputOptions& output,
   if (!limits.isOk()) return fail(limits.status());
   const GateReport gate =
       runGate(model.value(), limits.value(), target.value() ? &*target.value() : nullptr);
+  if (interrupted) return fail(leftAsItWas(dir, "interrupted"));
   std::string failing;
   for (const CheckResult& c : gate.checks)
     if (c.verdict == CheckResult::Verdict::Fail) failing += (failing.empty() ? "" : ", ") + c.name;
@@ -626,6 +638,7 @@ int exportSaved(const std::string& dir, const OutputOptions& output,
   }
   const std::string name = savedJobName(dir);
   Result<PreparedExport> prepared = prepare(model.value(), exporting.value(), failedGate, name);
+  if (interrupted) return fail(leftAsItWas(dir, "interrupted"));
   if (!prepared.isOk()) return fail(prepared.status());
   const LayoutFindings& layout = prepared.value().layout;
   if (layout.problems() > 0) {

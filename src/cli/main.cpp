@@ -12,12 +12,14 @@
 #include "cli/commands.h"
 #include "cli/terminal.h"
 #include "core/allocator.h"
+#include "core/interrupt.h"
 
 namespace {
 
 using namespace dform;
 
-std::atomic<bool> interrupted{false};
+// The process's stop flag (core/interrupt.h), which the readers and long loops poll too.
+std::atomic<bool>& interrupted = interruptFlag();
 volatile std::sig_atomic_t stopSignal = 0;
 
 // Ctrl-C (SIGINT) or a batch system's SIGTERM: the run stops at the next solver iteration and
@@ -219,8 +221,8 @@ int run(int argc, char** argv) {
     return usageError(e.what());
   }
 
-  // Without SA_RESTART: a read blocked on a FIFO (or any slow file) returns EINTR, so the reader
-  // stops instead of waiting for a writer that may never come.
+  // Without SA_RESTART, so that a blocked read the signal reaches returns EINTR at once (the
+  // reader polls the flag too, core/input_file.cpp).
   struct sigaction stop {};
   stop.sa_handler = onStopSignal;
   sigemptyset(&stop.sa_mask);

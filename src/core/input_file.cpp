@@ -4,22 +4,33 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
+#include <condition_variable>
 #include <cstring>
 #include <filesystem>
+#include <memory>
+#include <mutex>
+#include <optional>
 #include <system_error>
+#include <thread>
+
+#include "core/interrupt.h"
 
 namespace dform {
 
 namespace {
+
+Status interruptedReading(const std::string& path) {
+  return Status{ErrorCode::Interrupted, path + ": interrupted while waiting to read it"};
+}
 
 std::string sizeText(std::size_t bytes) {
   return bytes >= (std::size_t(1) << 20) ? std::to_string(bytes >> 20) + " MiB"
                                          : std::to_string(bytes >> 10) + " KiB";
 }
 
-}  // namespace
-
-Result<std::string> readInputFile(const std::string& path, std::size_t maxBytes) {
+// The blocking part of readInputFile: stat, open and read.
+Result<std::string> readBlocking(const std::string& path, std::size_t maxBytes) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
@@ -36,15 +47,11 @@ Result<std::string> readInputFile(const std::string& path, std::size_t maxBytes)
     return Status{ErrorCode::InputUnreadable, path + ": file is too large (" +
                                                   sizeText(std::size_t(size)) + "; " + limit + ")"};
   }
-  // POSIX calls rather than a stream, so that an open or a read blocked on a FIFO (or a slow
-  // mount) that a signal interrupts (the CLI's handlers do not restart calls) gives up and says
-  // so, instead of waiting for a writer that may never come.
-  const auto interrupted = [&path] {
-    return Status{ErrorCode::Interrupted, path + ": interrupted while waiting to read it"};
-  };
+  // POSIX calls rather than a stream, so that an open or a read that a signal interrupts (the
+  // CLI's handlers do not restart calls) gives up at once.
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) {
-    if (errno == EINTR) return interrupted();
+    if (errno == EINTR) return interruptedReading(path);
     return Status{ErrorCode::InputUnreadable,
                   path + ": cannot be opened for reading (" + std::strerror(errno) + ")"};
   }
@@ -58,7 +65,7 @@ Result<std::string> readInputFile(const std::string& path, std::size_t maxBytes)
     if (got < 0) {
       const int error = errno;
       ::close(fd);
-      if (error == EINTR) return interrupted();
+      if (error == EINTR) return interruptedReading(path);
       return Status{ErrorCode::InputUnreadable, path + ": read error (" + std::strerror(error) + ")"};
     }
     text.append(buffer, std::size_t(got));
@@ -69,6 +76,34 @@ Result<std::string> readInputFile(const std::string& path, std::size_t maxBytes)
   }
   ::close(fd);
   return text;
+}
+
+}  // namespace
+
+Result<std::string> readInputFile(const std::string& path, std::size_t maxBytes) {
+  // The read runs on a thread of its own while this one polls the interrupt flag: an open or a
+  // read can block for as long as a FIFO has no writer or a network mount does not answer, and
+  // a signal that came just before the blocking call (or was delivered to another thread) would
+  // not interrupt it. An abandoned read keeps its state alive until it returns, if ever; the
+  // process is stopping meanwhile.
+  struct Pending {
+    std::mutex mutex;
+    std::condition_variable done;
+    std::optional<Result<std::string>> result;
+  };
+  auto pending = std::make_shared<Pending>();
+  std::thread([pending, path, maxBytes] {
+    Result<std::string> result = readBlocking(path, maxBytes);
+    const std::lock_guard<std::mutex> lock(pending->mutex);
+    pending->result = std::move(result);
+    pending->done.notify_one();
+  }).detach();
+  // 20 ms: far below what a person notices, and a few hundred wake-ups over a long wait.
+  constexpr std::chrono::milliseconds kPoll{20};
+  std::unique_lock<std::mutex> lock(pending->mutex);
+  while (!pending->done.wait_for(lock, kPoll, [&] { return pending->result.has_value(); }))
+    if (interruptRequested()) return interruptedReading(path);
+  return std::move(*pending->result);
 }
 
 }  // namespace dform

@@ -10,6 +10,8 @@
 #include <deque>
 #include <memory>
 
+#include "core/interrupt.h"
+
 namespace dform {
 
 namespace {
@@ -165,6 +167,13 @@ class LocalGlobal {
     std::vector<SparseMatrix> blocks;
     ok_ = true;
     for (int c = 0; c < stride_; ++c) {
+      // One factorisation of a fine mesh takes seconds (7 s at 210k vertices) and cannot be
+      // interrupted: a stop asked for meanwhile is honoured before the next one, leaving the
+      // relaxation not ok (it then takes no step; the caller sees the flag too).
+      if (interruptRequested()) {
+        ok_ = false;
+        return;
+      }
       SparseMatrix block = coordinateBlock(K, c);
       auto same = std::find_if(blocks.begin(), blocks.end(), [&](const SparseMatrix& other) {
         return (other - block).norm() == 0.0;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 #include <numeric>
 #include <optional>
 
@@ -255,7 +256,12 @@ Status validateForwardJob(const ForwardJob& job) {
   return Status::ok();
 }
 
-Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const RunHooks& hooks) {
+namespace {
+
+// runForward, which turns a failed allocation into the resolution that fits; `estimate` is what
+// the memory check allowed for.
+Result<ForwardRun> readAndSolve(const ForwardJob& job, MessageSink& sink, const RunHooks& hooks,
+                                MemoryEstimate& estimate) {
   if (Status s = validateForwardJob(job); !s.isOk()) return s;
   const auto start = Clock::now();
   ForwardRun run;
@@ -307,8 +313,8 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
   for (const DrawnPiece* piece : {&A, &B})
     area += piece->freeOutline ? std::abs(signedArea(*piece->freeOutline)) - std::abs(signedArea(piece->joined))
                                : std::abs(signedArea(piece->joined));
-  if (Status fits = checkMemory(2.0 * area / (std::sqrt(3.0) * h * h) + 2.0 * job.resolution, 0.0,
-                                job.resolution, job.pieceA + " and " + job.pieceB + ": the run");
+  estimate.vertices = 2.0 * area / (std::sqrt(3.0) * h * h) + 2.0 * job.resolution;
+  if (Status fits = checkMemory(estimate, job.resolution, job.pieceA + " and " + job.pieceB + ": the run");
       !fits.isOk())
     return fits;
 
@@ -370,8 +376,7 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
         exactDForm(seamPolygons(drawn, startFraction, direction, seamFractions(job.resolution, seamCorners)),
                    job.interiorEdgeFactor * run.perimeterA / job.resolution, paths, used);
     run.timings.solve = secondsSince(solveStart);
-    if (hooks.interrupted && hooks.interrupted->load())
-      return Status(ErrorCode::Interrupted, "interrupted during the solve");
+    if (detail::stopRequested(hooks)) return detail::interruptedDuring("the solve");
     if (exactModel.isOk()) {
       used.name = "exact";
       used.reason = used.doublyCovered
@@ -424,8 +429,7 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
   }
 
   ForwardOptions options = job.solve;
-  bool interrupted = false;
-  detail::connectHooks(options.relaxation, options.solver, hooks, interrupted);
+  detail::connectHooks(options.relaxation, options.solver, hooks);
   ForwardResult solved;
   for (std::size_t level = 0; level < levels.size(); ++level) {
     const int n = levels[level];
@@ -435,6 +439,8 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
     const double seamEdge = run.perimeterA / n;
     Piece pieces[2];
     for (int p = 0; p < 2; ++p) {
+      // Meshing a fine level takes seconds per piece.
+      if (detail::stopRequested(hooks)) return detail::interruptedDuring("the meshing");
       const DrawnPiece& piece = *drawn[p];
       const std::string& path = p == 0 ? job.pieceA : job.pieceB;
       const LoopSamples seam = sampleLoop(piece.joined, t, startFraction[p], direction[p]);
@@ -497,7 +503,7 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
                              levelOptions.relaxation);
     solved = solveForward(pieces[0], pieces[1], levelOptions);
     run.timings.solve += secondsSince(solveStart);
-    if (interrupted) return Status(ErrorCode::Interrupted, "interrupted during the solve");
+    if (detail::stopRequested(hooks)) return detail::interruptedDuring("the solve");
     if (!solved.summary.usable())
       return Status(ErrorCode::SolveFailed, "the solver failed: " + solved.summary.message);
     sink.emit(Level::Debug, format("local-global start: %.0f iterations, energy %.4g -> %.4g",
@@ -515,6 +521,17 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
   run.metrics = computeMetrics(run.model);
   run.timings.total = secondsSince(start);
   return run;
+}
+
+}  // namespace
+
+Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const RunHooks& hooks) {
+  MemoryEstimate estimate;
+  try {
+    return readAndSolve(job, sink, hooks, estimate);
+  } catch (const std::bad_alloc&) {
+    return outOfMemory(estimate, job.resolution, job.pieceA + " and " + job.pieceB + ": the run");
+  }
 }
 
 }  // namespace dform

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 #include <tuple>
 
 #include "core/polyline.h"
@@ -104,9 +105,10 @@ Result<DForm> exactInverse(const InverseInit& init, const Points3& target, const
   return model;
 }
 
-}  // namespace
-
-Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const RunHooks& hooks) {
+// runInverse, which turns a failed allocation into the resolution that fits; `estimate` is what
+// the memory check allowed for.
+Result<InverseRun> readAndSolve(const InverseJob& job, MessageSink& sink, const RunHooks& hooks,
+                                MemoryEstimate& estimate) {
   if (Status s = validateInverseJob(job); !s.isOk()) return s;
   const auto start = Clock::now();
   InverseRun run;
@@ -129,9 +131,8 @@ Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const Ru
   // together; the pre-D-Form's tables (cost, apex, normal, side per pair of points) hold 37 n^2
   // bytes, n the coarsest level's points.
   const double n = job.resolution, coarsest = levels.front();
-  if (Status fits = checkMemory(0.2 * n * n, 37.0 * coarsest * coarsest, job.resolution, job.curve + ": the run");
-      !fits.isOk())
-    return fits;
+  estimate = {0.2 * n * n, 37.0 * coarsest * coarsest};
+  if (Status fits = checkMemory(estimate, job.resolution, job.curve + ": the run"); !fits.isOk()) return fits;
   run.curveLength = closedLength(curve.value().points);
   run.target.source = job.curve;
   run.target.sha256 = curve.value().sha256;
@@ -140,8 +141,7 @@ Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const Ru
                    run.curveLength));
 
   InverseOptions options = job.solve;
-  bool interrupted = false;
-  detail::connectHooks(options.relaxation, options.solver, hooks, interrupted);
+  detail::connectHooks(options.relaxation, options.solver, hooks);
   InverseResult solved;
   for (std::size_t level = 0; level < levels.size(); ++level) {
     const bool finest = level + 1 == levels.size();
@@ -184,6 +184,8 @@ Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const Ru
       const double edge = closedLength(target) / double(target.rows());
       for (auto [coarse, fine, clockwise] : {std::tuple{&solved.model.a, &startModel.a, false},
                                              std::tuple{&solved.model.b, &startModel.b, true}}) {
+        // Meshing a fine level takes seconds per piece (2-3 s at resolution 1500).
+        if (detail::stopRequested(hooks)) return detail::interruptedDuring("the meshing");
         Result<Piece> piece = refinePiece(*coarse, target, clockwise, edge, job.init);
         if (!piece.isOk()) return Status(piece.status().code(), job.curve + ": " + piece.status().message());
         *fine = std::move(piece).value();
@@ -195,6 +197,7 @@ Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const Ru
                           std::to_string(startModel.a.flat.rows()) + " vertices, piece B with " +
                           std::to_string(startModel.b.flat.rows()));
 
+    if (detail::stopRequested(hooks)) return detail::interruptedDuring("the meshing");
     const auto solveStart = Clock::now();
     InverseOptions levelOptions = options;
     detail::relaxOnlyIfLarge(startModel.a.flat.rows() + startModel.b.flat.rows(), levelOptions.solver,
@@ -202,7 +205,7 @@ Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const Ru
     if (level > 0) levelOptions.relaxation.relativeTolerance = detail::kRefinedRelaxationTolerance;
     solved = solveInverse(startModel, target, levelOptions);
     run.timings.solve += secondsSince(solveStart);
-    if (interrupted) return Status(ErrorCode::Interrupted, "interrupted during the solve");
+    if (detail::stopRequested(hooks)) return detail::interruptedDuring("the solve");
     if (!solved.summary.usable())
       return Status(ErrorCode::SolveFailed, job.curve + ": the solver failed: " + solved.summary.message);
     sink.emit(Level::Debug, format("local-global start: %.0f iterations, energy %.4g -> %.4g",
@@ -230,6 +233,17 @@ Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const Ru
   }
   run.timings.total = secondsSince(start);
   return run;
+}
+
+}  // namespace
+
+Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const RunHooks& hooks) {
+  MemoryEstimate estimate;
+  try {
+    return readAndSolve(job, sink, hooks, estimate);
+  } catch (const std::bad_alloc&) {
+    return outOfMemory(estimate, job.resolution, job.curve + ": the run");
+  }
 }
 
 }  // namespace dform

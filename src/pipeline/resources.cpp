@@ -102,29 +102,56 @@ std::size_t estimatedPeakBytes(double vertices, double extraBytes) {
   return std::size_t(kProgramBytes + perVertex * vertices + extraBytes);
 }
 
-Status checkMemory(double vertices, double extraBytes, int resolution, const std::string& what) {
-  const double available = double(availableMemoryBytes());
-  if (available <= 0) return Status::ok();  // unknown: nothing to hold the run to
-  const double budget = kUsableFraction * available;
-  if (double(estimatedPeakBytes(vertices, extraBytes)) <= budget) return Status::ok();
-  // Vertices and the pre-D-Form's tables both grow with the square of the resolution, the seam's
-  // vertices only linearly, so the square underestimates a lower resolution's count: the
-  // resolution offered is held to 85 % of the budget (the seam is at most ~10 % of the vertices
-  // at the resolutions this refuses), so that it is really accepted when tried.
-  constexpr double kOfferedFraction = 0.85;
+namespace {
+
+// Vertices and the pre-D-Form's tables both grow with the square of the resolution, the seam's
+// vertices only linearly, so the square underestimates a lower resolution's count: the
+// resolution offered is held to 85 % of the budget (the seam is at most ~10 % of the vertices
+// at the resolutions this refuses), so that it is really accepted when tried.
+constexpr double kOfferedFraction = 0.85;
+
+// The highest resolution (down to 8, in 5 % steps) whose estimated peak stays within `budget`.
+int resolutionFitting(const MemoryEstimate& estimate, int resolution, double budget) {
   int fits = resolution;
   while (fits > 8) {
     const double s = double(fits) / double(resolution);
-    if (double(estimatedPeakBytes(vertices * s * s, extraBytes * s * s)) <= kOfferedFraction * budget)
-      break;
+    if (double(estimatedPeakBytes(estimate.vertices * s * s, estimate.extraBytes * s * s)) <= budget) break;
     fits = std::max(8, int(fits * 0.95));
   }
+  return fits;
+}
+
+}  // namespace
+
+Status checkMemory(const MemoryEstimate& estimate, int resolution, const std::string& what) {
+  const double available = double(availableMemoryBytes());
+  if (available <= 0) return Status::ok();  // unknown: nothing to hold the run to
+  const double budget = kUsableFraction * available;
+  const double needed = double(estimatedPeakBytes(estimate.vertices, estimate.extraBytes));
+  if (needed <= budget) return Status::ok();
+  const int fits = resolutionFitting(estimate, resolution, kOfferedFraction * budget);
   char text[320];
   std::snprintf(text, sizeof text,
                 "%s at resolution %d would need about %.1f GB of memory (about %.0f vertices) and "
                 "%.1f GB is available to it; a resolution of %d or less fits",
-                what.c_str(), resolution, double(estimatedPeakBytes(vertices, extraBytes)) / 1e9, vertices,
-                available / 1e9, fits);
+                what.c_str(), resolution, needed / 1e9, estimate.vertices, available / 1e9, fits);
+  return Status(ErrorCode::Usage, text);
+}
+
+Status outOfMemory(const MemoryEstimate& estimate, int resolution, const std::string& what) {
+  // The run needed more than its estimate: the resolution offered is held to half the estimate
+  // (half the vertices where nothing was estimated yet) and to what is available now.
+  double budget = 0.5 * double(estimatedPeakBytes(estimate.vertices, estimate.extraBytes));
+  if (const double available = double(availableMemoryBytes()); available > 0)
+    budget = std::min(budget, kOfferedFraction * kUsableFraction * available);
+  const int fits = estimate.vertices > 0 ? resolutionFitting(estimate, resolution, budget)
+                                         : std::max(8, int(resolution / std::sqrt(2.0)));
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "%s at resolution %d ran out of memory (more than its estimate: the machine or its "
+                "limits, e.g. ulimit -v, gave it less than it needed); a resolution of %d or less fits "
+                "in half the memory",
+                what.c_str(), resolution, fits);
   return Status(ErrorCode::Usage, text);
 }
 

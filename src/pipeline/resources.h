@@ -21,9 +21,22 @@ std::size_t availableMemoryBytes();
 /// does, plus `extraBytes` (the inverse's pre-D-Form tables) and 64 MB for the program itself.
 std::size_t estimatedPeakBytes(double vertices, double extraBytes = 0.0);
 
+/// What a run is estimated to hold at its peak: vertices of both pieces and bytes beside them
+/// (the inverse's pre-D-Form tables); both grow with the square of the resolution.
+struct MemoryEstimate {
+  double vertices = 0;
+  double extraBytes = 0;
+};
+
 /// Usage error when the estimate exceeds 80 % of the available memory (the rest for the system
 /// and the files written), saying how much is needed and which resolution would fit (the vertex
 /// count grows with its square). `what` names the run for the message.
-Status checkMemory(double vertices, double extraBytes, int resolution, const std::string& what);
+Status checkMemory(const MemoryEstimate& estimate, int resolution, const std::string& what);
+
+/// Usage error for a run that ran out of memory although checkMemory let it start (a limit it
+/// cannot see, another process taking memory meanwhile, a shape the estimate undershoots),
+/// offering the resolution whose estimate is half this run's and fits what is available now
+/// (without an estimate, the resolution of half the vertices).
+Status outOfMemory(const MemoryEstimate& estimate, int resolution, const std::string& what);
 
 }  // namespace dform

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string>
 
+#include "core/interrupt.h"
 #include "pipeline/forward_pipeline.h"
 
 namespace dform::detail {
@@ -44,16 +45,24 @@ inline void relaxOnlyIfLarge(long vertices, SolverOptions& solver, LocalGlobalOp
   relaxation.relativeTolerance = kRefinedRelaxationTolerance;
 }
 
-/// Routes the relaxation's and the solver's iterations to the run's hooks; `interrupted` turns
-/// true when the caller asked the run to stop (the relaxation then stops, the solver ends with
-/// UserAbort).
-inline void connectHooks(LocalGlobalOptions& relaxation, SolverOptions& solver, const RunHooks& hooks,
-                         bool& interrupted) {
-  auto callback = [&hooks, &interrupted](const char* stage) {
-    return [&hooks, &interrupted, stage](const IterationSummary& it) {
+/// Whether the caller asked the run to stop: its hooks' flag, or the process's (core/interrupt.h),
+/// which the reads and the relaxation's factorisations poll where no hooks reach.
+inline bool stopRequested(const RunHooks& hooks) {
+  return (hooks.interrupted && hooks.interrupted->load()) || interruptRequested();
+}
+
+/// The Interrupted status of a run that stopped at `stage` ("the solve", "the meshing").
+inline Status interruptedDuring(const std::string& stage) {
+  return Status(ErrorCode::Interrupted, "interrupted during " + stage);
+}
+
+/// Routes the relaxation's and the solver's iterations to the run's hooks, and stops them (the
+/// relaxation stops, the solver ends with UserAbort) when the caller asks the run to stop.
+inline void connectHooks(LocalGlobalOptions& relaxation, SolverOptions& solver, const RunHooks& hooks) {
+  auto callback = [&hooks](const char* stage) {
+    return [&hooks, stage](const IterationSummary& it) {
       if (hooks.onIteration) hooks.onIteration(stage, it);
-      interrupted = hooks.interrupted && hooks.interrupted->load();
-      return !interrupted;
+      return !stopRequested(hooks);
     };
   };
   relaxation.callback = callback("relaxing");

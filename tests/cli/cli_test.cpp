@@ -1167,14 +1167,21 @@ TEST_F(CliTest, ARunWaitingOnAFifoCanBeInterrupted) {
   const std::string err = path("err.txt");
   const pid_t pid = spawn(std::string(DFORM_EXE) + " forward " + fifo + " " +
                           sample("forward/circle.svg") + " -o " + path("out") + " 2>" + err);
-  // Blocked opening the FIFO (waiting for a writer): the kernel function it sleeps in says so.
-  std::string wchan;
-  for (int waited = 0; waited < 12000 && wchan != "wait_for_partner"; ++waited) {
+  // Blocked opening the FIFO (waiting for a writer): the kernel function its reading thread
+  // sleeps in says so.
+  const auto waitingForAWriter = [pid] {
+    std::error_code ec;
+    for (const auto& task : fs::directory_iterator("/proc/" + std::to_string(pid) + "/task", ec))
+      if (readText((task.path() / "wchan").string()) == "wait_for_partner") return true;
+    return false;
+  };
+  bool waiting = false;
+  for (int waited = 0; waited < 12000 && !waiting; ++waited) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    wchan = readText("/proc/" + std::to_string(pid) + "/wchan");
+    waiting = waitingForAWriter();
   }
   ASSERT_EQ(kill(pid, SIGTERM), 0);
-  EXPECT_EQ(waitFor(pid), 143) << wchan;
+  EXPECT_EQ(waitFor(pid), 143) << (waiting ? "" : "never seen waiting for a writer");
   Outcome o;
   o.exitCode = 143;
   o.err = readText(err);

@@ -106,8 +106,15 @@ fi
 mkfifo fifo.svg
 "$dform" forward fifo.svg "$samples/forward/circle.svg" -o fifo-out >/dev/null 2>"$work/err.txt" &
 reader=$!
+# Whether one of its threads (the one reading) waits in open() for a writer.
+waiting_for_writer() {
+  for wchan in /proc/$reader/task/*/wchan; do
+    [ "$(cat "$wchan" 2>/dev/null)" = wait_for_partner ] && return 0
+  done
+  return 1
+}
 for _ in $(seq 12000); do
-  [ "$(cat /proc/$reader/wchan 2>/dev/null)" = wait_for_partner ] || ! kill -0 "$reader" 2>/dev/null && break
+  waiting_for_writer || ! kill -0 "$reader" 2>/dev/null && break
   sleep 0.05
 done
 kill -TERM "$reader"

@@ -1,10 +1,16 @@
 #include "core/input_file.h"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <thread>
+
+#include "core/interrupt.h"
 
 namespace dform {
 namespace {
@@ -53,6 +59,51 @@ TEST_F(InputFile, MissingFileAndFolderAreUnreadable) {
   EXPECT_EQ(readInputFile(missing).status().message(), missing + ": no such file");
   EXPECT_EQ(readInputFile(dir_.string()).status().message(),
             dir_.string() + ": is a folder, not a file");
+}
+
+// A FIFO with no writer blocks its reader's open: a stop ends the read however it arrives.
+class BlockedRead : public InputFile {
+ protected:
+  void SetUp() override {
+    InputFile::SetUp();
+    fifo_ = (dir_ / "piece.svg").string();
+    ASSERT_EQ(::mkfifo(fifo_.c_str(), 0600), 0);
+  }
+  void TearDown() override {
+    interruptFlag() = false;
+    // The abandoned read still waits in open(): a writer that comes and goes lets it finish.
+    const int fd = ::open(fifo_.c_str(), O_WRONLY | O_NONBLOCK);
+    if (fd >= 0) ::close(fd);
+    InputFile::TearDown();
+  }
+  std::string fifo_;
+};
+
+TEST_F(BlockedRead, AStopDuringTheWaitEndsIt) {
+  std::thread stopper([] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    interruptFlag() = true;
+  });
+  const Result<std::string> text = readInputFile(fifo_);
+  stopper.join();
+  EXPECT_EQ(text.status().code(), ErrorCode::Interrupted);
+  EXPECT_EQ(text.status().message(), fifo_ + ": interrupted while waiting to read it");
+}
+
+// A signal that comes before the read blocks (no call left for it to interrupt) still stops it:
+// the read would otherwise wait for a writer forever.
+TEST_F(BlockedRead, AStopBeforeTheReadEndsIt) {
+  interruptFlag() = true;
+  const Result<std::string> text = readInputFile(fifo_);
+  EXPECT_EQ(text.status().code(), ErrorCode::Interrupted);
+}
+
+TEST_F(BlockedRead, AWriterThatComesIsRead) {
+  std::thread writer([this] { std::ofstream(fifo_) << "<svg/>"; });
+  const Result<std::string> text = readInputFile(fifo_);
+  writer.join();
+  ASSERT_TRUE(text.isOk()) << text.status().message();
+  EXPECT_EQ(text.value(), "<svg/>");
 }
 
 }  // namespace

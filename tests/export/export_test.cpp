@@ -10,6 +10,7 @@
 #include <polyclipping/clipper.hpp>
 #include <set>
 
+#include "core/interrupt.h"
 #include "core/polyline.h"
 #include "export/exporter.h"
 #include "export/plane_geometry.h"
@@ -822,6 +823,17 @@ TEST(ExportPattern, PageAndSheetOptionsAreRefusedWhereTheyDoNotApply) {
   EXPECT_FALSE(pageSizeMm("A5x"));
   EXPECT_NEAR(pageSizeMm("8.5x11in")->first, 215.9, 1e-9);
   EXPECT_NEAR(pageSizeMm("Tabloid")->second, 431.8, 1e-9);
+}
+
+// A stop asked for while an export is prepared ends it between its stages, with nothing to write.
+TEST(ExportPattern, AStopEndsThePreparation) {
+  const DForm model = ellipseCircleDForm();
+  interruptFlag() = true;
+  const Result<PreparedExport> stopped = prepareExport(model, options());
+  interruptFlag() = false;
+  EXPECT_EQ(stopped.status().code(), ErrorCode::Interrupted);
+  EXPECT_EQ(stopped.status().message(), "interrupted during the export");
+  EXPECT_TRUE(prepareExport(model, options()).isOk());
 }
 
 TEST(ExportPattern, SheetTooSmallSaysWhatSizeIsNeeded) {

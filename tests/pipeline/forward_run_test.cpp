@@ -1,14 +1,15 @@
 // Forward runs on the samples: the figures the issue asks for, and the run's options.
 #include <gtest/gtest.h>
-
 #include <unistd.h>
 
 #include <cctype>
-#include <string>
-#include <vector>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <new>
+#include <regex>
+#include <string>
+#include <vector>
 
 #include "core/polyline.h"
 #include "pipeline/forward_pipeline.h"
@@ -247,26 +248,52 @@ TEST(ForwardRun, BadJobsAreUsageErrors) {
 }
 
 TEST(ForwardRun, InterruptionStopsTheSolve) {
-  std::atomic<bool> stop{true};
+  std::atomic<bool> stop{false};
   RunHooks hooks;
   hooks.interrupted = &stop;
-  // The relaxation sees the stop after its first step, and nothing runs after it: neither more
+  // Asked for during the relaxation's first step: nothing runs after it, neither more
   // relaxation, nor Levenberg-Marquardt, nor the multiplier rounds.
   std::vector<std::string> stages;
-  hooks.onIteration = [&](const char* stage, const IterationSummary&) { stages.push_back(stage); };
+  hooks.onIteration = [&](const char* stage, const IterationSummary&) {
+    stages.push_back(stage);
+    stop = true;
+  };
   MessageSink sink;
   ForwardJob paper = job("ellipses-a.svg", "ellipses-b.svg", 40);
   paper.model = ModelChoice::Paper;
   const Result<ForwardRun> run = runForward(paper, sink, hooks);
   ASSERT_FALSE(run.isOk());
   EXPECT_EQ(run.status().code(), ErrorCode::Interrupted);
+  EXPECT_EQ(run.status().message(), "interrupted during the solve");
   EXPECT_EQ(stages, std::vector<std::string>{"relaxing"});
-  // The exact engine has no iterations to report, and its result is not kept either.
+  // Asked for before: the run stops before meshing a piece (seconds each on a fine mesh).
   stages.clear();
+  const Result<ForwardRun> early = runForward(paper, sink, hooks);
+  EXPECT_EQ(early.status().message(), "interrupted during the meshing");
+  EXPECT_TRUE(stages.empty());
+  // The exact engine has no iterations to report, and its result is not kept either.
   const Result<ForwardRun> exact = runForward(job("ellipses-a.svg", "ellipses-b.svg", 40), sink, hooks);
   ASSERT_FALSE(exact.isOk());
   EXPECT_EQ(exact.status().code(), ErrorCode::Interrupted);
   EXPECT_TRUE(stages.empty());
+}
+
+// A failed allocation during the run (here thrown where the solver reports an iteration) is a
+// usage error offering a lower resolution, not an internal error.
+TEST(ForwardRun, AFailedAllocationOffersALowerResolution) {
+  RunHooks hooks;
+  hooks.onIteration = [](const char*, const IterationSummary&) { throw std::bad_alloc(); };
+  MessageSink sink;
+  ForwardJob paper = job("ellipses-a.svg", "ellipses-b.svg", 60);
+  paper.model = ModelChoice::Paper;
+  const Result<ForwardRun> run = runForward(paper, sink, hooks);
+  EXPECT_EQ(run.status().code(), ErrorCode::Usage);
+  const std::string message = run.status().message();
+  EXPECT_EQ(message.rfind(paper.pieceA + " and " + paper.pieceB + ": the run at resolution 60 ran out of memory", 0), 0u)
+      << message;
+  std::smatch offered;
+  ASSERT_TRUE(std::regex_search(message, offered, std::regex("a resolution of ([0-9]+) or less fits")));
+  EXPECT_LT(std::stoi(offered[1]), 60);
 }
 
 }  // namespace
