@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <set>
 #include <vector>
 
 #include "core/types.h"
@@ -36,8 +37,40 @@ struct SeenFace {
   double shade = 1;
 };
 
+/// A picture needs no more faces than it can show, while at resolution 1500 the pieces have 420k
+/// triangles (a 32 MB assembly.svg, a report.html of 184 MB, seconds of hidden-line tests): a
+/// finer mesh is drawn on about this many faces, its vertices clustered on a grid (vertex
+/// clustering, Rossignac and Borrel).
+constexpr double kDrawnFaces = 20000;
+
+/// The grid cell that leaves about kDrawnFaces of a mesh of `faces` faces on a surface of `area`
+/// (mm, mm^2), or 0 where the mesh has no more faces than that (nothing to merge).
+double drawingCell(double area, Eigen::Index faces);
+
+/// Points (rows, 2D or 3D) merged on a grid of `cell` (0: each its own): each point's cluster
+/// and each cluster's mean, clusters numbered by first appearance (the same on every machine).
+struct PointClusters {
+  std::vector<int> of;
+  Eigen::MatrixXd mean;
+};
+PointClusters clusterPoints(const Eigen::MatrixXd& points, double cell);
+
+/// Which faces of a mesh drawn on clusters are drawn: not one whose corners merged, nor a second
+/// on the same three clusters. Without merging (cell 0) every face is.
+class ClusteredFaces {
+ public:
+  explicit ClusteredFaces(double cell) : merged_(cell > 0) {}
+  bool draws(std::array<int, 3> clusters);
+
+ private:
+  bool merged_;
+  std::set<std::array<int, 3>> drawn_;
+};
+
 /// Both pieces' faces, far first (painter's order); on a closed surface only those turned towards
-/// the viewer (the others are hidden behind them).
+/// the viewer (the others are hidden behind them). A mesh of more than kDrawnFaces faces is drawn
+/// on about that many, both pieces' vertices clustered together (one face per cluster triple;
+/// `face` is a solved face it stands for).
 std::vector<SeenFace> paintersFaces(const DForm& model, const ShapeCamera& camera);
 
 /// A piece's colour (red, green, blue in [0, 1]) at a shade: A warm, B cool.

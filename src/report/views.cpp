@@ -1,6 +1,7 @@
 #include "report/views.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -129,20 +130,36 @@ std::string flatCurvatureSvg(const DForm& model, double widthPx, const Curvature
   const CurvatureMaps measured = maps ? CurvatureMaps{} : curvatureMaps(model);
   const CurvatureMaps& K = maps ? *maps : measured;
   std::string svg = svg::open(widthPx, height);
+  // A fine mesh is drawn on about kDrawnFaces faces (core/shape_projection.h), with one cell for
+  // both pieces.
+  double area = 0;
+  for (const Piece* p : {&model.a, &model.b})
+    for (Eigen::Index f = 0; f < p->F.rows(); ++f) {
+      const Eigen::RowVector2d u = p->flat.row(p->F(f, 1)) - p->flat.row(p->F(f, 0));
+      const Eigen::RowVector2d v = p->flat.row(p->F(f, 2)) - p->flat.row(p->F(f, 0));
+      area += 0.5 * std::abs(u.x() * v.y() - u.y() * v.x());
+    }
+  const double cell = drawingCell(area, model.a.F.rows() + model.b.F.rows());
   for (int piece = 0; piece < 2; ++piece) {
     const Piece& p = piece == 0 ? model.a : model.b;
     const Eigen::RowVector2d origin = piece == 0 ? loA : loB;
     const double offset = piece == 0 ? 0.0 : (hiA.x() - loA.x()) + gap;
-    auto pixel = [&](Eigen::Index v) {
-      const Eigen::RowVector2d q = p.flat.row(v) - origin;
+    auto pixelAt = [&](const Eigen::RowVector2d& at) {
+      const Eigen::RowVector2d q = at - origin;
       return number(margin + (q.x() + offset) * scale) + "," +
              number(height - margin - q.y() * scale);
     };
+    auto pixel = [&](Eigen::Index v) { return pixelAt(p.flat.row(v)); };
+    const PointClusters drawn = clusterPoints(p.flat, cell);
+    ClusteredFaces kept(cell);
     const Eigen::VectorXd& k = K.piece[piece];
     for (Eigen::Index f = 0; f < p.F.rows(); ++f) {
+      std::array<int, 3> c{};
+      for (int j = 0; j < 3; ++j) c[size_t(j)] = drawn.of[size_t(p.F(f, j))];
+      if (!kept.draws(c)) continue;
       const std::string fill = divergingColour((k(p.F(f, 0)) + k(p.F(f, 1)) + k(p.F(f, 2))) / 3.0 / K.scale);
-      svg += "<polygon points='" + pixel(p.F(f, 0)) + " " + pixel(p.F(f, 1)) + " " +
-             pixel(p.F(f, 2)) + "' fill='" + fill + "' stroke='" + fill + "' stroke-width='0.4'/>";
+      svg += "<polygon points='" + pixelAt(drawn.mean.row(c[0])) + " " + pixelAt(drawn.mean.row(c[1])) + " " +
+             pixelAt(drawn.mean.row(c[2])) + "' fill='" + fill + "' stroke='" + fill + "' stroke-width='0.4'/>";
     }
     // Every boundary loop outlined (the seam, the free outlines and holes; a hole has no
     // triangles, so it stays empty), then the creases.

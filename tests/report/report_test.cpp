@@ -1,5 +1,6 @@
 // report.html's pictures, read back as numbers: the 3D view's projection and scale, the
 // curvature colours, and the convergence plot's log axis.
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -86,6 +87,42 @@ TEST(ReportViews, AClosedShapeDrawsOnlyTheFacesTurnedToTheViewer) {
   // An open surface (a free boundary) shows both sides: every face is drawn.
   model.a.freeBoundaries = {{model.a.seam[0], model.a.seam[1], model.a.seam[2]}};
   EXPECT_EQ(long(paintersFaces(model, camera).size()), all);
+}
+
+// A fine mesh is drawn on about 20k faces (its vertices clustered on a grid of cell c, with
+// 2 S / c^2 = 20k for its area S), its outline within a cell of the solved one's; a coarse mesh
+// has every face drawn, on its own vertices.
+TEST(ReportViews, AFineMeshIsDrawnOnAboutTwentyThousandFaces) {
+  DForm fine = test::tetraDForm(150);  // 90k faces
+  fine.a.freeBoundaries = {{fine.a.seam[0], fine.a.seam[1], fine.a.seam[2]}};  // open: all drawn
+  const ShapeCamera camera(30, 25);
+  const std::vector<SeenFace> drawn = paintersFaces(fine, camera);
+  EXPECT_GT(drawn.size(), 12000u);
+  EXPECT_LT(drawn.size(), 28000u);
+  double area = 0;
+  Eigen::AlignedBox2d solved, seen;
+  for (const Piece* p : {&fine.a, &fine.b})
+    for (Eigen::Index f = 0; f < p->F.rows(); ++f) {
+      const Eigen::Vector3d q0 = p->shape.row(p->F(f, 0)).transpose();
+      area += 0.5 * (p->shape.row(p->F(f, 1)).transpose() - q0).cross(p->shape.row(p->F(f, 2)).transpose() - q0).norm();
+      for (int k = 0; k < 3; ++k) solved.extend(camera.screen(p->shape.row(p->F(f, k)).transpose()).head<2>());
+    }
+  for (const SeenFace& f : drawn)
+    for (const Eigen::Vector2d& c : f.corners) seen.extend(c);
+  const double cell = std::sqrt(2.0 * area / 20000.0);
+  EXPECT_LT((seen.min() - solved.min()).cwiseAbs().maxCoeff(), cell);
+  EXPECT_LT((seen.max() - solved.max()).cwiseAbs().maxCoeff(), cell);
+  EXPECT_TRUE(solved.contains(seen));
+  for (size_t k = 1; k < drawn.size(); ++k) EXPECT_GE(drawn[k - 1].depth, drawn[k].depth);
+
+  DForm coarse = test::tetraDForm(20);  // 3.2k faces
+  coarse.a.freeBoundaries = fine.a.freeBoundaries;
+  const std::vector<SeenFace> all = paintersFaces(coarse, camera);
+  ASSERT_EQ(long(all.size()), long(coarse.a.F.rows() + coarse.b.F.rows()));
+  for (const SeenFace& f : all) {
+    const Piece& p = f.piece == 0 ? coarse.a : coarse.b;
+    EXPECT_EQ(f.corners[0], camera.screen(p.shape.row(p.F(f.face, 0)).transpose()).head<2>());
+  }
 }
 
 TEST(ReportViews, EveryPointIsInsideThePicture) {
