@@ -117,6 +117,9 @@ int run(int argc, char** argv) {
   forward->add_option("piece_a", forwardJob.forward.pieceA, "outline of piece A (.svg or .json)")->required();
   forward->add_option("piece_b", forwardJob.forward.pieceB, "outline of piece B (.svg or .json)")->required();
   forward->add_option("--resolution", forwardJob.forward.resolution, "seam vertices per piece (default 100)");
+  forward->add_option("--interior-edge", forwardJob.forward.interiorEdgeFactor,
+                      "interior edge length over the seam's edge length, 0.25-8 (default 1): above 1 a "
+                      "coarser, faster mesh at the same seam resolution");
   forward->add_option("--start-a", forwardJob.forward.startA.fraction, "start of A's seam: arc-length fraction in [0, 1)");
   forward->add_option("--start-b", forwardJob.forward.startB.fraction, "start of B's seam: arc-length fraction in [0, 1)");
   forward->add_option("--start-a-near", startANear, "start of A's seam: the outline point nearest X,Y (mm)");
@@ -162,6 +165,7 @@ int run(int argc, char** argv) {
   sweep->add_option("--start-a", sweepJob.forward.startA.fraction, "start of A's seam: arc-length fraction in [0, 1)");
   sweep->add_option("--model", sweepModel, "auto (default), exact or paper");
   sweep->add_option("--resolution", sweepJob.forward.resolution, "seam vertices per piece (default 100)");
+  sweep->add_option("--interior-edge", sweepJob.forward.interiorEdgeFactor, "as for forward (default 1)");
   sweep->add_flag("--fit-perimeter", sweepJob.forward.fitPerimeter, "scale piece B to A's perimeter");
   sweep->add_option("--threads", sweepOptions.threads, "starts solved at once (default: the machine's cores)");
   addOutputOptions(sweep, sweepOut);

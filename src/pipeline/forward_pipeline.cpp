@@ -247,7 +247,7 @@ Status validateForwardJob(const ForwardJob& job) {
   if (!(job.perimeterTolerance > 0.0 && job.perimeterTolerance < 1.0))
     return usage("the perimeter tolerance must be in (0, 1)");
   if (!(job.interiorEdgeFactor >= 0.25 && job.interiorEdgeFactor <= 8.0))
-    return usage("the interior edge factor must be in [0.25, 8]");
+    return usage("the interior edge factor (--interior-edge, interior_edge in a job file) must be in [0.25, 8]");
   const ForwardWeights& w = job.solve.weights;
   for (double weight : {w.isometry, w.alignment, w.boundaryFix, w.smooth3d, w.smooth2d, w.seam})
     if (!(weight >= 0.0 && std::isfinite(weight))) return usage("weights must be finite and >= 0");

@@ -115,8 +115,8 @@ Job parse(const json& root, const std::string& baseDir) {
   const std::string mode = root["mode"].get<std::string>();
   Job job;
   if (mode == "forward") {
-    onlyKeys(root, {"mode", "model", "piece_a", "piece_b", "join", "start_a", "start_b", "resolution", "flip",
-                    "fit_perimeter", "perimeter_tolerance", "weights", "solver"}, "");
+    onlyKeys(root, {"mode", "model", "piece_a", "piece_b", "join", "start_a", "start_b", "resolution", "interior_edge",
+                    "flip", "fit_perimeter", "perimeter_tolerance", "weights", "solver"}, "");
     ForwardJob& f = job.forward;
     f.pieceA = path(root, "piece_a", baseDir);
     f.pieceB = path(root, "piece_b", baseDir);
@@ -130,6 +130,7 @@ Job parse(const json& root, const std::string& baseDir) {
     if (root.contains("start_a")) f.startA = startPoint(root["start_a"], "start_a");
     if (root.contains("start_b")) f.startB = startPoint(root["start_b"], "start_b");
     if (root.contains("resolution")) f.resolution = integer(root, "resolution");
+    if (root.contains("interior_edge")) f.interiorEdgeFactor = number(root, "interior_edge", "");
     if (root.contains("flip")) f.flip = flag(root, "flip");
     if (root.contains("fit_perimeter")) f.fitPerimeter = flag(root, "fit_perimeter");
     if (root.contains("perimeter_tolerance"))
@@ -213,6 +214,7 @@ std::string jobToJson(const Job& job) {
            {"start_a", startJson(f.startA)},
            {"start_b", startJson(f.startB)},
            {"resolution", f.resolution},
+           {"interior_edge", f.interiorEdgeFactor},
            {"flip", f.flip},
            {"fit_perimeter", f.fitPerimeter},
            {"perimeter_tolerance", f.perimeterTolerance},

@@ -247,6 +247,32 @@ TEST(ForwardRun, BadJobsAreUsageErrors) {
   EXPECT_EQ(runForward(bad, sink).status().code(), ErrorCode::Usage);
 }
 
+// --interior-edge meshes the interiors coarser than the seam: about 1/F^2 of the interior
+// vertices, the same seam, and under the exact model the same seam in 3D (its shape is the
+// seam's). Outside [0.25, 8] the job is refused naming the option.
+TEST(ForwardRun, TheInteriorEdgeFactorCoarsensTheInteriorOnly) {
+  const ForwardRun fine = runOk(job("ellipses-a.svg", "ellipses-b.svg", 60));
+  ForwardJob coarseJob = job("ellipses-a.svg", "ellipses-b.svg", 60);
+  coarseJob.interiorEdgeFactor = 2.0;
+  const ForwardRun coarse = runOk(coarseJob);
+  ASSERT_EQ(fine.modelUsed.name, "exact");
+  ASSERT_EQ(coarse.modelUsed.name, "exact");
+  ASSERT_EQ(coarse.model.a.seam.size(), fine.model.a.seam.size());
+  const double interiorFine = double(fine.model.a.flat.rows()) - 60, interiorCoarse = double(coarse.model.a.flat.rows()) - 60;
+  EXPECT_GT(interiorCoarse / interiorFine, 0.15);
+  EXPECT_LT(interiorCoarse / interiorFine, 0.4);
+  for (size_t i = 0; i < fine.model.a.seam.size(); ++i)
+    EXPECT_LT((coarse.model.a.shape.row(coarse.model.a.seam[i]) - fine.model.a.shape.row(fine.model.a.seam[i])).norm(), 1e-9)
+        << "seam vertex " << i;
+  MessageSink sink;
+  for (double factor : {0.2, 9.0, std::nan("")}) {
+    coarseJob.interiorEdgeFactor = factor;
+    const Status refused = runForward(coarseJob, sink).status();
+    EXPECT_EQ(refused.code(), ErrorCode::Usage) << factor;
+    EXPECT_NE(refused.message().find("--interior-edge"), std::string::npos) << refused.message();
+  }
+}
+
 TEST(ForwardRun, InterruptionStopsTheSolve) {
   std::atomic<bool> stop{false};
   RunHooks hooks;

@@ -11,7 +11,7 @@ namespace {
 
 TEST(JobFile, ForwardJobRoundTrips) {
   const std::string text = R"({"mode": "forward", "piece_a": "a.svg", "piece_b": "/abs/b.svg",
-    "start_a": {"fraction": 0.1}, "start_b": {"near": [3.5, -2]}, "resolution": 80, "flip": true,
+    "start_a": {"fraction": 0.1}, "start_b": {"near": [3.5, -2]}, "resolution": 80, "interior_edge": 1.5, "flip": true,
     "fit_perimeter": true, "perimeter_tolerance": 0.01, "weights": {"smooth_3d": 0.02},
     "solver": {"max_iterations": 30}})";
   const Result<Job> job = parseJobJson(text, "job.json", "/base");
@@ -23,6 +23,7 @@ TEST(JobFile, ForwardJobRoundTrips) {
   EXPECT_TRUE(f.startB.nearestToPoint);
   EXPECT_EQ(f.startB.point, Eigen::Vector2d(3.5, -2));
   EXPECT_EQ(f.resolution, 80);
+  EXPECT_DOUBLE_EQ(f.interiorEdgeFactor, 1.5);
   EXPECT_TRUE(f.flip && f.fitPerimeter);
   EXPECT_DOUBLE_EQ(f.solve.weights.smooth3d, 0.02);
   EXPECT_DOUBLE_EQ(f.solve.weights.isometry, 1.0);
