@@ -92,12 +92,18 @@ Result<std::string> readInputFile(const std::string& path, std::size_t maxBytes)
     std::optional<Result<std::string>> result;
   };
   auto pending = std::make_shared<Pending>();
-  std::thread([pending, path, maxBytes] {
-    Result<std::string> result = readBlocking(path, maxBytes);
-    const std::lock_guard<std::mutex> lock(pending->mutex);
-    pending->result = std::move(result);
-    pending->done.notify_one();
-  }).detach();
+  try {
+    std::thread([pending, path, maxBytes] {
+      Result<std::string> result = readBlocking(path, maxBytes);
+      const std::lock_guard<std::mutex> lock(pending->mutex);
+      pending->result = std::move(result);
+      pending->done.notify_one();
+    }).detach();
+  } catch (const std::system_error&) {
+    // No thread to be had (a process or memory limit): read here, where a signal still
+    // interrupts a blocked call (EINTR).
+    return readBlocking(path, maxBytes);
+  }
   // 20 ms: far below what a person notices, and a few hundred wake-ups over a long wait.
   constexpr std::chrono::milliseconds kPoll{20};
   std::unique_lock<std::mutex> lock(pending->mutex);

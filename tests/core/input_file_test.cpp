@@ -2,13 +2,18 @@
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <system_error>
 #include <thread>
+#include <vector>
 
 #include "core/interrupt.h"
 
@@ -59,6 +64,45 @@ TEST_F(InputFile, MissingFileAndFolderAreUnreadable) {
   EXPECT_EQ(readInputFile(missing).status().message(), missing + ": no such file");
   EXPECT_EQ(readInputFile(dir_.string()).status().message(),
             dir_.string() + ": is a folder, not a file");
+}
+
+// Where no thread can be started (here: an address-space limit leaving less room than a
+// thread's stack), the file is read on the caller's thread.
+TEST_F(InputFile, IsReadWithoutAThreadWhereNoneCanBeStarted) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "AddressSanitizer's shadow memory needs more address space than any limit admits";
+#endif
+  const std::string path = (dir_ / "small.svg").string();
+  std::ofstream(path) << "<svg/>";
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    long mappedPages = 0;
+    std::ifstream("/proc/self/statm") >> mappedPages;
+    // 1 MiB of room: less than any thread stack glibc gives (2 MiB or RLIMIT_STACK's 8 MiB).
+    const rlim_t limit = rlim_t(mappedPages) * rlim_t(::sysconf(_SC_PAGESIZE)) + (rlim_t(1) << 20);
+    const struct rlimit as = {limit, limit};
+    if (::setrlimit(RLIMIT_AS, &as) != 0) ::_exit(2);
+    // Threads started and kept until one cannot be (glibc reuses the stacks of threads that
+    // ended, which need no new room).
+    static std::atomic<bool> release{false};
+    std::vector<std::thread> held;
+    held.reserve(64);
+    try {
+      while (held.size() < 64)
+        held.emplace_back([] {
+          while (!release) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        });
+    } catch (const std::system_error&) {
+    }
+    const bool noThread = held.size() < 64;
+    const Result<std::string> text = readInputFile(path);
+    ::_exit(!noThread ? 3 : text.isOk() && text.value() == "<svg/>" ? 0 : 1);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status)) << "the child died of signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 0) << "1: not read, 2: no limit set, 3: a thread could still start";
 }
 
 // A FIFO with no writer blocks its reader's open: a stop ends the read however it arrives.
