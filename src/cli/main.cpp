@@ -43,26 +43,8 @@ Status setWeight(Job& job, const std::string& assignment) {
   } catch (const std::exception&) {
     return Status(ErrorCode::Usage, "--weight must look like name=value, got '" + assignment + "'");
   }
-  ForwardWeights& f = job.forward.solve.weights;
-  InverseWeights& i = job.inverse.solve.weights;
-  double* target = nullptr;
-  if (job.mode == Job::Mode::Forward) {
-    target = name == "isometry"       ? &f.isometry
-             : name == "alignment"    ? &f.alignment
-             : name == "boundary_fix" ? &f.boundaryFix
-             : name == "smooth_3d"    ? &f.smooth3d
-             : name == "smooth_2d"    ? &f.smooth2d
-             : name == "seam"         ? &f.seam
-                                      : nullptr;
-  } else {
-    target = name == "isometry"    ? &i.isometry
-             : name == "closeness" ? &i.closeness
-             : name == "smooth_3d" ? &i.smooth3d
-             : name == "smooth_2d" ? &i.smooth2d
-                                   : nullptr;
-  }
-  if (!target) return Status(ErrorCode::Usage, "--weight: unknown weight '" + name + "'");
-  *target = value;
+  if (!setNamedWeight(job, name, value))
+    return Status(ErrorCode::Usage, "--weight: unknown weight '" + name + "'");
   return Status::ok();
 }
 

@@ -12,6 +12,14 @@
 
 namespace dform {
 
+const std::vector<std::pair<std::string, double ForwardWeights::*>>& forwardWeightNames() {
+  static const std::vector<std::pair<std::string, double ForwardWeights::*>> names = {
+      {"isometry", &ForwardWeights::isometry},        {"alignment", &ForwardWeights::alignment},
+      {"boundary_fix", &ForwardWeights::boundaryFix}, {"smooth_3d", &ForwardWeights::smooth3d},
+      {"smooth_2d", &ForwardWeights::smooth2d},       {"seam", &ForwardWeights::seam}};
+  return names;
+}
+
 namespace {
 
 Points2 flatRows(const Piece& p, const std::vector<int>& vertices) {

@@ -1,6 +1,10 @@
 // Forward modelling (paper section 4): two triangulated flat pieces in, the D-Form they make out.
 #pragma once
 
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "core/types.h"
 #include "forward/local_global.h"
 #include "solver/solver.h"
@@ -16,6 +20,10 @@ struct ForwardWeights {
   double smooth2d = 1.0;    ///< w_2D, Eq. 4 on the flat meshes
   double seam = 0.01;       ///< w_seam, Eq. 5
 };
+
+/// Each weight by the name that job files, --weight and report.json give it:
+/// the one list of them.
+const std::vector<std::pair<std::string, double ForwardWeights::*>>& forwardWeightNames();
 
 struct ForwardOptions {
   ForwardWeights weights;

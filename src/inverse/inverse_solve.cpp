@@ -8,6 +8,15 @@
 
 namespace dform {
 
+const std::vector<std::pair<std::string, double InverseWeights::*>>& inverseWeightNames() {
+  static const std::vector<std::pair<std::string, double InverseWeights::*>> names = {
+      {"isometry", &InverseWeights::isometry},
+      {"closeness", &InverseWeights::closeness},
+      {"smooth_3d", &InverseWeights::smooth3d},
+      {"smooth_2d", &InverseWeights::smooth2d}};
+  return names;
+}
+
 InverseResult solveInverse(const DForm& start, const Points3& curve, const InverseOptions& options) {
   assert(start.a.seam.size() == start.b.seam.size() &&
          start.a.seam.size() == std::size_t(curve.rows()) && "one seam pair per curve point");

@@ -2,6 +2,10 @@
 // and their 3D shapes whose seam runs along the target curve, with the flat boundaries free.
 #pragma once
 
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "core/types.h"
 #include "forward/local_global.h"
 #include "solver/solver.h"
@@ -15,6 +19,10 @@ struct InverseWeights {
   double smooth3d = 0.001;  ///< w_3D, Eq. 4 on the 3D meshes
   double smooth2d = 1.0;    ///< w_2D, Eq. 4 on the flat meshes
 };
+
+/// Each weight by the name that job files, --weight and report.json give it:
+/// the one list of them.
+const std::vector<std::pair<std::string, double InverseWeights::*>>& inverseWeightNames();
 
 struct InverseOptions {
   InverseWeights weights;

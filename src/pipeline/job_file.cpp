@@ -98,16 +98,6 @@ void readWeights(const json& object,
     if (object.contains(name)) weights.*member = number(object, name, "weights.");
 }
 
-const std::vector<std::pair<std::string, double ForwardWeights::*>> kForwardWeights = {
-    {"isometry", &ForwardWeights::isometry},        {"alignment", &ForwardWeights::alignment},
-    {"boundary_fix", &ForwardWeights::boundaryFix}, {"smooth_3d", &ForwardWeights::smooth3d},
-    {"smooth_2d", &ForwardWeights::smooth2d},       {"seam", &ForwardWeights::seam}};
-const std::vector<std::pair<std::string, double InverseWeights::*>> kInverseWeights = {
-    {"isometry", &InverseWeights::isometry},
-    {"closeness", &InverseWeights::closeness},
-    {"smooth_3d", &InverseWeights::smooth3d},
-    {"smooth_2d", &InverseWeights::smooth2d}};
-
 Job parse(const json& root, const std::string& baseDir) {
   if (!root.is_object()) throw KeyError{"(top level)", "must be a JSON object"};
   if (!root.contains("mode") || !root["mode"].is_string())
@@ -135,7 +125,7 @@ Job parse(const json& root, const std::string& baseDir) {
     if (root.contains("fit_perimeter")) f.fitPerimeter = flag(root, "fit_perimeter");
     if (root.contains("perimeter_tolerance"))
       f.perimeterTolerance = number(root, "perimeter_tolerance", "");
-    if (root.contains("weights")) readWeights(root["weights"], kForwardWeights, f.solve.weights);
+    if (root.contains("weights")) readWeights(root["weights"], forwardWeightNames(), f.solve.weights);
     if (root.contains("solver")) readSolver(root["solver"], f.solve.solver);
   } else if (mode == "inverse") {
     job.mode = Job::Mode::Inverse;
@@ -144,7 +134,7 @@ Job parse(const json& root, const std::string& baseDir) {
     i.curve = path(root, "curve", baseDir);
     if (root.contains("closed")) i.forceClosed = flag(root, "closed");
     if (root.contains("resolution")) i.resolution = integer(root, "resolution");
-    if (root.contains("weights")) readWeights(root["weights"], kInverseWeights, i.solve.weights);
+    if (root.contains("weights")) readWeights(root["weights"], inverseWeightNames(), i.solve.weights);
     if (root.contains("solver")) readSolver(root["solver"], i.solve.solver);
   } else {
     throw KeyError{"mode", "must be \"forward\" or \"inverse\", not \"" + printable(mode) + "\""};
@@ -202,6 +192,16 @@ Result<Job> readJobFile(const std::string& path) {
   return parseJobJson(text.value(), path, base.empty() ? "." : base);
 }
 
+bool setNamedWeight(Job& job, const std::string& name, double value) {
+  const auto set = [&name, value](const auto& names, auto& weights) {
+    for (const auto& [known, member] : names)
+      if (known == name) return (weights.*member = value, true);
+    return false;
+  };
+  return job.mode == Job::Mode::Forward ? set(forwardWeightNames(), job.forward.solve.weights)
+                                        : set(inverseWeightNames(), job.inverse.solve.weights);
+}
+
 std::string jobToJson(const Job& job) {
   json out;
   if (job.mode == Job::Mode::Forward) {
@@ -218,7 +218,7 @@ std::string jobToJson(const Job& job) {
            {"flip", f.flip},
            {"fit_perimeter", f.fitPerimeter},
            {"perimeter_tolerance", f.perimeterTolerance},
-           {"weights", weightsJson(kForwardWeights, f.solve.weights)},
+           {"weights", weightsJson(forwardWeightNames(), f.solve.weights)},
            {"solver", solverJson(f.solve.solver)}};
   } else {
     const InverseJob& i = job.inverse;
@@ -226,7 +226,7 @@ std::string jobToJson(const Job& job) {
            {"curve", std::filesystem::absolute(i.curve).string()},
            {"closed", i.forceClosed},
            {"resolution", i.resolution},
-           {"weights", weightsJson(kInverseWeights, i.solve.weights)},
+           {"weights", weightsJson(inverseWeightNames(), i.solve.weights)},
            {"solver", solverJson(i.solve.solver)}};
   }
   return out.dump(2);

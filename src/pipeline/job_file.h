@@ -30,4 +30,8 @@ Result<Job> parseJobJson(const std::string& text, const std::string& source,
 /// so that a run can be repeated.
 std::string jobToJson(const Job& job);
 
+/// Sets the weight of `job`'s mode named `name` (as job files spell it, forward/forward.h and
+/// inverse/inverse_solve.h list them); false for a name the mode has no weight of.
+bool setNamedWeight(Job& job, const std::string& name, double value);
+
 }  // namespace dform

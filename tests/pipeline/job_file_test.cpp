@@ -34,6 +34,30 @@ TEST(JobFile, ForwardJobRoundTrips) {
   EXPECT_EQ(jobToJson(again.value()), jobToJson(job.value()));
 }
 
+// --weight and job files set weights from one list per mode: every name reaches its member, a
+// name of the other mode's list is unknown.
+TEST(JobFile, NamedWeightsReachTheirMembers) {
+  Job forward;
+  for (const auto& [name, member] : forwardWeightNames()) {
+    ASSERT_TRUE(setNamedWeight(forward, name, 0.125)) << name;
+    EXPECT_EQ(forward.forward.solve.weights.*member, 0.125) << name;
+  }
+  EXPECT_EQ(forwardWeightNames().size(), 6u);
+  EXPECT_FALSE(setNamedWeight(forward, "closeness", 1.0));
+  Job inverse;
+  inverse.mode = Job::Mode::Inverse;
+  for (const auto& [name, member] : inverseWeightNames()) {
+    ASSERT_TRUE(setNamedWeight(inverse, name, 0.25)) << name;
+    EXPECT_EQ(inverse.inverse.solve.weights.*member, 0.25) << name;
+  }
+  EXPECT_FALSE(setNamedWeight(inverse, "seam", 1.0));
+  // The names a job file reads are the same: a job setting each one round trips.
+  const Result<Job> read = parseJobJson(R"({"mode": "inverse", "curve": "c.obj",
+    "weights": {"isometry": 2, "closeness": 3, "smooth_3d": 4, "smooth_2d": 5}})", "job.json", "/base");
+  ASSERT_TRUE(read.isOk()) << read.status().message();
+  EXPECT_EQ(read.value().inverse.solve.weights.smooth2d, 5.0);
+}
+
 TEST(JobFile, InverseJobRoundTrips) {
   const Result<Job> job = parseJobJson(R"({"mode": "inverse", "curve": "seam.obj", "closed": true,
     "weights": {"closeness": 2}})",
