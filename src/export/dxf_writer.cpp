@@ -161,7 +161,9 @@ std::string dxfDocument(const Drawing& full) {
                    DL_Attributes("", nearestAci(l.rgb), l.rgb, 0, "CONTINUOUS"));
   dw.tableEnd();
   dw.tableStyle(1);
-  dxf.writeStyle(dw, DL_StyleData("standard", 0, 2.5, 1.0, 0.0, 0, 2.5, "txt", ""));
+  // "Standard" exactly: dxflib takes the handle the dimension style points at (group 340) from
+  // the style of that name; under any other name it writes an unset value.
+  dxf.writeStyle(dw, DL_StyleData("Standard", 0, 2.5, 1.0, 0.0, 0, 2.5, "txt", ""));
   dw.tableEnd();
   dxf.writeView(dw);
   dxf.writeUcs(dw);

@@ -7,6 +7,9 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <string>
+#include <vector>
 
 #include "core/atomic_file.h"
 #include "export/exporter.h"
@@ -72,6 +75,36 @@ TEST(ExportDxf, EveryShippedProfileReadsBack) {
     const Exported e = exportTo("dxf-profile-" + profile, model, options(profile));
     expectDxfChecks(e.dir);
   }
+}
+
+// The DXF's group pairs (code, value) of each table record or entity, in file order.
+std::vector<std::map<std::string, std::string>> dxfRecords(const std::string& path) {
+  std::vector<std::map<std::string, std::string>> records;
+  std::ifstream in(path);
+  const auto trimmed = [](std::string s) {
+    s.erase(0, s.find_first_not_of(" \r"));
+    s.erase(s.find_last_not_of(" \r") + 1);
+    return s;
+  };
+  for (std::string code, value; std::getline(in, code) && std::getline(in, value);) {
+    if (trimmed(code) == "0") records.emplace_back();
+    if (!records.empty()) records.back().emplace(trimmed(code), trimmed(value));  // first kept
+  }
+  return records;
+}
+
+// dxflib points the dimension style at the text style named exactly "Standard" (group 340); under
+// any other name that handle is left unset, and the file held different bytes on every export.
+TEST(ExportDxf, TheDimensionStylePointsAtTheStandardTextStyle) {
+  const Exported e = exportTo("dxf_dimension_style", ellipseCircleDForm(), options("laser"));
+  std::string standard, pointedAt;
+  for (const auto& record : dxfRecords(e.dir + "/pattern.dxf")) {
+    if (record.at("0") == "STYLE" && record.count("2") && record.at("2") == "Standard")
+      standard = record.count("5") ? record.at("5") : "";
+    if (record.at("0") == "DIMSTYLE" && record.count("340")) pointedAt = record.at("340");
+  }
+  ASSERT_FALSE(standard.empty()) << "no text style named Standard with a handle";
+  EXPECT_EQ(pointedAt, standard);
 }
 
 TEST(ExportDxf, HolesAreClosedCutsOfTheirOwn) {
