@@ -59,7 +59,7 @@ bool parsePoint(const std::string& text, StartPoint& start) {
 }
 
 // The options of the cutting patterns and previews (forward, inverse, run and export).
-void addExportOptions(CLI::App* command, cli::OutputOptions& out) {
+void addExportOptions(CLI::App* command, OutputOptions& out) {
   command->add_option("--profile", out.profile, "export profile name or .json file (default laser)");
   command->add_option("--sheet", out.sheet, "material sheet of a laser profile, e.g. 600x400mm");
   command->add_option("--scale", out.scale, "pattern scale: 1 (true size, the default), 0.8 or 80%, or fit (the largest scale up to 1 at which every piece fits its page or sheet)");
@@ -71,7 +71,7 @@ void addExportOptions(CLI::App* command, cli::OutputOptions& out) {
   command->add_flag("--gltf", out.gltfText, "write the 3D preview as text dform.gltf instead of dform.glb");
 }
 
-void addOutputOptions(CLI::App* command, cli::OutputOptions& out) {
+void addOutputOptions(CLI::App* command, OutputOptions& out) {
   command->add_option("-o,--output", out.outDir, "folder for the results (created if missing)")
       ->required();
   command->add_flag("!--no-export", out.exportFiles, "skip the cutting patterns and 3D previews");
@@ -83,7 +83,7 @@ void addOutputOptions(CLI::App* command, cli::OutputOptions& out) {
 
 int usageError(const std::string& message) {
   cli::Terminal::error(message);
-  return cli::exitCode(ErrorCode::Usage);
+  return exitCode(ErrorCode::Usage);
 }
 
 int run(int argc, char** argv) {
@@ -92,7 +92,7 @@ int run(int argc, char** argv) {
   app.require_subcommand(1);
 
   Job forwardJob;
-  cli::OutputOptions forwardOut;
+  OutputOptions forwardOut;
   std::string startANear, startBNear, join, model;
   std::vector<std::string> forwardWeights;
   CLI::App* forward = app.add_subcommand("forward", "two flat outlines -> the D-Form they make");
@@ -121,7 +121,7 @@ int run(int argc, char** argv) {
 
   Job inverseJob;
   inverseJob.mode = Job::Mode::Inverse;
-  cli::OutputOptions inverseOut;
+  OutputOptions inverseOut;
   std::vector<std::string> inverseWeights;
   CLI::App* inverse =
       app.add_subcommand("inverse", "a 3D seam curve -> the two flat pieces that make it");
@@ -136,7 +136,7 @@ int run(int argc, char** argv) {
 
   Job sweepJob;
   SweepOptions sweepOptions;
-  cli::OutputOptions sweepOut;
+  OutputOptions sweepOut;
   std::string sweepFlip = "none", sweepModel;
   CLI::App* sweep = app.add_subcommand(
       "sweep", "two outlines from many starting pairs -> a gallery of the D-Forms to choose from");
@@ -154,7 +154,7 @@ int run(int argc, char** argv) {
 
   std::string batchInput, batchShard = "1/1", mergeDir;
   BatchOptions batchOptions;
-  cli::OutputOptions batchOut;
+  OutputOptions batchOut;
   CLI::App* batch = app.add_subcommand(
       "batch", "many job files, each into OUT/<job name>/, with a resumable manifest batch.json");
   batch->add_option("jobs", batchInput, "a text file listing job files (one a line), or a folder of *.json jobs");
@@ -166,13 +166,13 @@ int run(int argc, char** argv) {
   batch->get_option("--output")->required(false);
 
   std::string jobPath;
-  cli::OutputOptions runOut;
+  OutputOptions runOut;
   CLI::App* runCommand = app.add_subcommand("run", "run a job file (forward or inverse)");
   runCommand->add_option("job", jobPath, "job file (.json, see docs/cli.md)")->required();
   addOutputOptions(runCommand, runOut);
 
   std::string exportDir;
-  cli::OutputOptions exportOut;
+  OutputOptions exportOut;
   bool listOnly = false;
   CLI::App* exportCommand =
       app.add_subcommand("export", "write cutting patterns and previews of a saved result");
@@ -217,7 +217,7 @@ int run(int argc, char** argv) {
   sigaction(SIGTERM, &stop, nullptr);
   auto usage = [](const Status& s) {
     cli::Terminal::error(s.message());
-    return cli::exitCode(s.code());
+    return exitCode(s.code());
   };
   if (*forward) {
     if (!startANear.empty() && !parsePoint(startANear, forwardJob.forward.startA))
@@ -291,7 +291,7 @@ int main(int argc, char** argv) {
   try {
     const int code = run(argc, argv);
     // Interrupted: 130 for Ctrl-C, 143 for SIGTERM, as a shell reports a process they ended.
-    const int interruptedCode = dform::cli::exitCode(dform::ErrorCode::Interrupted);
+    const int interruptedCode = dform::exitCode(dform::ErrorCode::Interrupted);
     return code == interruptedCode && stopSignal ? 128 + stopSignal : code;
   } catch (const std::bad_alloc&) {
     // An allocation the memory check did not foresee (a limit it cannot see, another process
@@ -299,7 +299,7 @@ int main(int argc, char** argv) {
     dform::cli::Terminal::error(
         "out of memory (the machine or its limits, e.g. ulimit -v, give this run less than it "
         "needs); try a lower --resolution");
-    return dform::cli::exitCode(dform::ErrorCode::Usage);
+    return dform::exitCode(dform::ErrorCode::Usage);
   } catch (const std::exception& e) {
     dform::cli::Terminal::error(std::string("internal error: ") + e.what());
   } catch (...) {

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "core/messages.h"
-#include "solver/solver.h"
+#include "pipeline/forward_pipeline.h"
 
 namespace dform::cli {
 

@@ -1,4 +1,4 @@
-#include "sweep/batch.h"
+#include "pipeline/batch.h"
 
 #include <algorithm>
 #include <chrono>

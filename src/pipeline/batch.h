@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/status.h"
-#include "sweep/sweep.h"
+#include "pipeline/sweep.h"
 
 namespace dform {
 

@@ -3,7 +3,7 @@
 #include <string>
 
 #include "core/message_text.h"
-#include "sweep/sweep.h"
+#include "pipeline/sweep.h"
 
 namespace dform {
 

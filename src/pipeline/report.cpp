@@ -184,16 +184,19 @@ json header(const Job& job, const char* mode) {
           {"job", json::parse(jobToJson(job))}};
 }
 
-Status write(const std::string& dir, const json& report) {
-  return writeFileAtomically((std::filesystem::path(dir) / "report.json").string(),
-                             report.dump(2) + "\n");
+Result<std::string> write(const std::string& dir, const json& report) {
+  std::string text = report.dump(2) + "\n";
+  if (Status s = writeFileAtomically((std::filesystem::path(dir) / "report.json").string(), text);
+      !s.isOk())
+    return s;
+  return text;
 }
 
 }  // namespace
 
-Status writeForwardReport(const std::string& dir, const Job& job, const ForwardRun& run,
-                          const std::vector<Message>& messages, const GateReport* gate,
-                          const CommandTimings& command) {
+Result<std::string> writeForwardReport(const std::string& dir, const Job& job, const ForwardRun& run,
+                                       const std::vector<Message>& messages,
+                                       const GateReport* gate, const CommandTimings& command) {
   const auto reportStart = std::chrono::steady_clock::now();
   json report = header(job, "forward");
   report["inputs"] = {
@@ -214,9 +217,9 @@ Status writeForwardReport(const std::string& dir, const Job& job, const ForwardR
   return write(dir, report);
 }
 
-Status writeInverseReport(const std::string& dir, const Job& job, const InverseRun& run,
-                          const std::vector<Message>& messages, const GateReport* gate,
-                          const CommandTimings& command) {
+Result<std::string> writeInverseReport(const std::string& dir, const Job& job, const InverseRun& run,
+                                       const std::vector<Message>& messages,
+                                       const GateReport* gate, const CommandTimings& command) {
   const auto reportStart = std::chrono::steady_clock::now();
   json report = header(job, "inverse");
   report["inputs"] = {

@@ -28,17 +28,17 @@ struct CommandTimings {
   double exportFiles = std::numeric_limits<double>::quiet_NaN();
 };
 
-/// Writes `dir`/report.json (atomically) for a forward run. `gate` may be null (no gate ran).
-/// Its timings add the command's stages, the making of report.json itself, and the total from
-/// `command.start` to the moment report.json is made.
-Status writeForwardReport(const std::string& dir, const Job& job, const ForwardRun& run,
-                          const std::vector<Message>& messages, const GateReport* gate,
-                          const CommandTimings& command);
+/// Writes `dir`/report.json (atomically) for a forward run and returns its text (for report.html).
+/// `gate` may be null (no gate ran). Its timings add the command's stages, the making of
+/// report.json itself, and the total from `command.start` to the moment report.json is made.
+Result<std::string> writeForwardReport(const std::string& dir, const Job& job, const ForwardRun& run,
+                                       const std::vector<Message>& messages,
+                                       const GateReport* gate, const CommandTimings& command);
 
 /// The same for an inverse run; its metrics add D_error and curve_distance_max_mm.
-Status writeInverseReport(const std::string& dir, const Job& job, const InverseRun& run,
-                          const std::vector<Message>& messages, const GateReport* gate,
-                          const CommandTimings& command);
+Result<std::string> writeInverseReport(const std::string& dir, const Job& job, const InverseRun& run,
+                                       const std::vector<Message>& messages,
+                                       const GateReport* gate, const CommandTimings& command);
 
 /// Compares a saved result with what `dir`/report.json recorded: its mode (inverse when `curve`
 /// is given, i.e. the folder holds a target curve), the mesh sizes of `model`, and every figure

@@ -1,4 +1,4 @@
-#include "sweep/sweep.h"
+#include "pipeline/sweep.h"
 
 #include <Eigen/Geometry>
 #include <chrono>

@@ -6,7 +6,6 @@
 #include <kainjow/mustache.hpp>
 #include <nlohmann/json.hpp>
 
-#include "core/atomic_file.h"
 #include "core/input_file.h"
 #include "core/message_text.h"
 #include "report/convergence_plot.h"
@@ -94,19 +93,17 @@ std::string inlineSvg(const std::string& svg) {
 
 }  // namespace
 
-Status writeReportHtml(const std::string& dir, const DForm& model,
-                       const std::string& templatesDir) {
-  const Result<std::string> reportText = readInputFile((fs::path(dir) / "report.json").string());
-  if (!reportText.isOk()) return reportText.status();
+Result<std::string> renderReportHtml(const ReportSources& sources, const DForm& model,
+                                     const std::string& templatesDir) {
   const Result<std::string> templateText =
       readInputFile(templatesDir + "/report/report.html.mustache");
   if (!templateText.isOk()) return templateText.status();
   json report;
   try {
-    report = json::parse(reportText.value());
+    report = json::parse(sources.reportJson);
   } catch (const json::exception& e) {
     return Status(ErrorCode::InputUnreadable,
-                  dir + "/report.json: not valid JSON (" + parserReason(e.what()) + ")");
+                  sources.reportPath + ": not valid JSON (" + parserReason(e.what()) + ")");
   }
 
   data page;
@@ -203,11 +200,11 @@ Status writeReportHtml(const std::string& dir, const DForm& model,
                               : data(data::type::bool_true));
 
   // The export's pictures, inline when the result has them: has_<key> and <key>_svg.
-  for (const auto& [file, key] : {std::pair{"pattern.svg", "pattern"}, {"assembly.svg", "assembly"}}) {
-    const Result<std::string> svg = readInputFile((fs::path(dir) / file).string());
+  for (const auto& [svg, key] : {std::pair{&sources.patternSvg, "pattern"},
+                                 {&sources.assemblySvg, "assembly"}}) {
     page.set(std::string("has_") + key,
-             svg.isOk() ? data(data::type::bool_true) : data(data::type::bool_false));
-    page.set(std::string(key) + "_svg", svg.isOk() ? inlineSvg(svg.value()) : std::string());
+             svg->empty() ? data(data::type::bool_false) : data(data::type::bool_true));
+    page.set(std::string(key) + "_svg", inlineSvg(*svg));
   }
 
   const json& solver = report["solver"];
@@ -237,7 +234,7 @@ Status writeReportHtml(const std::string& dir, const DForm& model,
   if (!tmpl.is_valid())
     return Status(ErrorCode::Internal,
                   templatesDir + "/report/report.html.mustache: " + tmpl.error_message());
-  return writeFileAtomically((fs::path(dir) / "report.html").string(), tmpl.render(page));
+  return tmpl.render(page);
 }
 
 }  // namespace dform

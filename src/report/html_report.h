@@ -9,9 +9,18 @@
 
 namespace dform {
 
-/// Writes `dir`/report.html (atomically) from `dir`/report.json, `dir`/pattern.svg and
-/// `dir`/assembly.svg when they exist,
-/// and the model, through the Mustache template `templatesDir`/report/report.html.mustache.
-Status writeReportHtml(const std::string& dir, const DForm& model, const std::string& templatesDir);
+/// What report.html shows besides the model, all in memory: report.json's text and the exported
+/// pattern's and assembly sheet's SVG (empty: none was exported).
+struct ReportSources {
+  std::string reportJson;
+  std::string reportPath;  ///< where report.json is (or will be), named in errors
+  std::string patternSvg;
+  std::string assemblySvg;
+};
+
+/// report.html's text, rendered through the Mustache template
+/// `templatesDir`/report/report.html.mustache. InputUnreadable when reportJson is not JSON.
+Result<std::string> renderReportHtml(const ReportSources& sources, const DForm& model,
+                                     const std::string& templatesDir);
 
 }  // namespace dform

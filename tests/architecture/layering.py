@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
 """The modules of src/ depend one way (docs/architecture.md): each may include only the modules
-below it. Lists every #include of a module a file may not use and exits 1, else 0.
+below it, and the command line links the pipeline alone. Lists every #include of a module a file
+may not use (or every module the CLI links besides the pipeline) and exits 1, else 0.
 
     layering.py SRC_DIR
-    layering.py --self-test   (a planted upward include must be found, a clean tree pass)
+    layering.py --cli-links "LINK;LIBRARIES"   (the dform target's LINK_LIBRARIES property)
+    layering.py --self-test   (a planted upward include or link must be found, a clean tree pass)
 """
 import os
 import re
@@ -11,9 +13,8 @@ import sys
 import tempfile
 
 # What each module may include besides itself: the data flow io -> meshing -> forward/inverse
-# on a generic solver -> validate -> export/report -> pipeline -> sweep -> cli, with core under
-# all. The cli still reaches past pipeline into the stages (issue 16 moves the run policy into
-# pipeline, and then narrows it to pipeline and core).
+# on a generic solver -> validate -> export/report -> pipeline (runs: one, a sweep's, a batch's)
+# -> cli, with core under all. The cli sees the pipeline and core only.
 ALLOWED = {
     "core": set(),
     "solver": {"core"},
@@ -25,9 +26,9 @@ ALLOWED = {
     "validate": {"core", "exact", "forward"},
     "export": {"core", "validate"},
     "report": {"core", "validate"},
-    "pipeline": {"core", "io", "meshing", "solver", "exact", "forward", "inverse", "validate"},
-    "sweep": {"core", "io", "pipeline", "report", "validate"},
-    "cli": {"core", "io", "solver", "validate", "export", "report", "pipeline", "sweep"},
+    "pipeline": {"core", "io", "meshing", "solver", "exact", "forward", "inverse", "validate",
+                 "export", "report"},
+    "cli": {"core", "pipeline"},
 }
 
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([a-z_]+)/')
@@ -57,6 +58,17 @@ def violations(src):
     return found
 
 
+# The CLI's own targets may link these besides third-party libraries: the pipeline (which brings
+# core) and the warning flags.
+CLI_MAY_LINK = {"dform::pipeline", "dform_warnings"}
+
+
+def cli_link_violations(link_libraries):
+    ours = [lib for lib in link_libraries.split(";") if lib.startswith(("dform::", "dform_"))]
+    return [f"the cli links {lib}, which it may not (only {', '.join(sorted(CLI_MAY_LINK))})"
+            for lib in ours if lib not in CLI_MAY_LINK]
+
+
 def self_test():
     with tempfile.TemporaryDirectory() as src:
         def write(path, text):
@@ -71,6 +83,9 @@ def self_test():
         assert len(found) == 1 and found[0].startswith("io/bad.cpp:2: io includes pipeline/"), found
         write("core/worse.h", '#include "export/exporter.h"\n')
         assert len(violations(src)) == 2, violations(src)
+    assert cli_link_violations("dform::pipeline;CLI11::CLI11;dform_warnings") == []
+    found = cli_link_violations("dform::pipeline;dform::export;CLI11::CLI11;dform_report")
+    assert len(found) == 2 and "dform::export" in found[0] and "dform_report" in found[1], found
     print("layering.py: self-test passed")
     return 0
 
@@ -78,6 +93,12 @@ def self_test():
 def main():
     if sys.argv[1:] == ["--self-test"]:
         return self_test()
+    if len(sys.argv) == 3 and sys.argv[1] == "--cli-links":
+        found = cli_link_violations(sys.argv[2])
+        for v in found:
+            print(v)
+        print(f"cli links: {sys.argv[2]}")
+        return 1 if found else 0
     if len(sys.argv) != 2:
         print(__doc__, file=sys.stderr)
         return 2

@@ -2,11 +2,8 @@
 // curvature colours, and the convergence plot's log axis.
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <iterator>
 #include <regex>
 #include <set>
@@ -260,33 +257,37 @@ TEST(ReportViews, CreasesAreDrawnByTheirFoldAndTheSurfaceStaysWhite) {
   EXPECT_EQ(flatCurvatureSvg(test::tetraDForm(6), 400).find("crease"), std::string::npos);
 }
 
-// report.html for `model` from a minimal report.json, written into a fresh folder with `extra`
-// files (name, content) beside it.
-std::string reportHtml(const DForm& model, const std::string& name,
-                       const std::vector<std::pair<std::string, std::string>>& extra = {}) {
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() /
-      ("dform-report-test-" + name + "-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  std::ofstream(dir / "report.json")
-      << R"({"mode": "forward", "job": {"piece_a": "a.svg", "piece_b": "b.svg"},
-             "tool": {"version": "test"}, "schema_version": 1, "gate": null,
-             "metrics": {"L_error": 0.001}, "timings": {"total": 1.0}, "messages": [],
-             "solver": {"initial_cost": 1.0, "iterations": [], "termination": "converged",
-                        "message": "", "factorisations": 0,
-                        "local_global": {"iterations": 0, "initial_energy": 1.0, "final_energy": 1.0}}})";
-  for (const auto& [file, content] : extra) std::ofstream(dir / file) << content;
-  const Status written = writeReportHtml(dir.string(), model, DFORM_TEMPLATES_DIR);
-  EXPECT_TRUE(written.isOk()) << written.message();
-  std::ifstream in(dir / "report.html");
-  const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::filesystem::remove_all(dir);
-  return html;
+// report.html for `model`, rendered from a minimal report.json and an assembly sheet (empty: none).
+std::string reportHtml(const DForm& model, const std::string& assemblySvg = "") {
+  ReportSources sources;
+  sources.reportPath = "report.json";
+  sources.reportJson =
+      R"({"mode": "forward", "job": {"piece_a": "a.svg", "piece_b": "b.svg"},
+          "tool": {"version": "test"}, "schema_version": 1, "gate": null,
+          "metrics": {"L_error": 0.001}, "timings": {"total": 1.0}, "messages": [],
+          "solver": {"initial_cost": 1.0, "iterations": [], "termination": "converged",
+                     "message": "", "factorisations": 0,
+                     "local_global": {"iterations": 0, "initial_energy": 1.0, "final_energy": 1.0}}})";
+  sources.assemblySvg = assemblySvg;
+  const Result<std::string> html = renderReportHtml(sources, model, DFORM_TEMPLATES_DIR);
+  EXPECT_TRUE(html.isOk()) << html.status().message();
+  return html.isOk() ? html.value() : std::string();
+}
+
+TEST(ReportHtml, ANotJsonReportIsAnUnreadableInputNamingIt) {
+  ReportSources sources;
+  sources.reportJson = "{\"mode\": ";
+  sources.reportPath = "out/report.json";
+  const Result<std::string> html = renderReportHtml(sources, test::tetraDForm(6), DFORM_TEMPLATES_DIR);
+  ASSERT_FALSE(html.isOk());
+  EXPECT_EQ(html.status().code(), ErrorCode::InputUnreadable);
+  EXPECT_EQ(html.status().message().rfind("out/report.json: not valid JSON", 0), 0u)
+      << html.status().message();
 }
 
 TEST(ReportHtml, ListsEachCreaseWithItsFold) {
   // The disphenoid's hinges, drawn as creases, fold by acos(0.6) = 53.1 degrees: mountains.
-  const std::string html = reportHtml(test::creasedTetraDForm(6, 40.0, 0.25), "creased");
+  const std::string html = reportHtml(test::creasedTetraDForm(6, 40.0, 0.25));
   ASSERT_NE(html.find("<h2>Creases</h2>"), std::string::npos);
   for (const char* piece : {"A", "B"})
     EXPECT_NE(
@@ -296,7 +297,7 @@ TEST(ReportHtml, ListsEachCreaseWithItsFold) {
         << piece;
   EXPECT_NE(html.find("53.1 to 53.1"), std::string::npos);
   EXPECT_NE(html.find("class='crease mountain'"), std::string::npos);  // in the pictures
-  const std::string classic = reportHtml(test::tetraDForm(6), "classic");
+  const std::string classic = reportHtml(test::tetraDForm(6));
   EXPECT_EQ(classic.find("<h2>Creases</h2>"), std::string::npos);
   EXPECT_EQ(classic.find("crease"), std::string::npos);
 }
@@ -305,14 +306,14 @@ TEST(ReportHtml, ShowsTheAssemblyPageWhenTheResultHasOne) {
   const std::string page =
       "<?xml version=\"1.0\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\"><path id=\"view-seam\" "
       "d=\"M 0 0 L 1 1\"/></svg>\n";
-  const std::string html = reportHtml(test::tetraDForm(6), "assembly", {{"assembly.svg", page}});
+  const std::string html = reportHtml(test::tetraDForm(6), page);
   const size_t heading = html.find("<h2>Assembly</h2>");
   ASSERT_NE(heading, std::string::npos);
   EXPECT_NE(html.find("<svg xmlns=\"http://www.w3.org/2000/svg\"><path id=\"view-seam\"", heading),
             std::string::npos)
       << "the page inline, without its XML declaration";
   EXPECT_EQ(html.find("<?xml"), std::string::npos);
-  EXPECT_EQ(reportHtml(test::tetraDForm(6), "no-assembly").find("<h2>Assembly</h2>"),
+  EXPECT_EQ(reportHtml(test::tetraDForm(6)).find("<h2>Assembly</h2>"),
             std::string::npos);
 }
 

@@ -1,0 +1,237 @@
+#include "pipeline/run_steps.h"
+
+#include <signal.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+#include "core/atomic_file.h"
+#include "io/model_files.h"
+#include "report/html_report.h"
+#include "validate/metrics.h"
+
+namespace dform {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Holds SIGINT and SIGTERM back for its lifetime; one that came meanwhile is delivered when it
+// ends (a first one sets the run's flag, a second one ends the program: see main.cpp).
+class StopSignalsHeld {
+ public:
+  StopSignalsHeld() {
+    sigset_t stop;
+    sigemptyset(&stop);
+    sigaddset(&stop, SIGINT);
+    sigaddset(&stop, SIGTERM);
+    sigprocmask(SIG_BLOCK, &stop, &previous_);
+  }
+  ~StopSignalsHeld() { sigprocmask(SIG_SETMASK, &previous_, nullptr); }
+  StopSignalsHeld(const StopSignalsHeld&) = delete;
+  StopSignalsHeld& operator=(const StopSignalsHeld&) = delete;
+
+ private:
+  sigset_t previous_;
+};
+
+// "600x400", "600x400mm", "23.6x15.7in" -> millimetres.
+Result<std::pair<double, double>> parseSheet(const std::string& text) {
+  double w = 0, h = 0;
+  char unit[8] = "";
+  const int n = std::sscanf(text.c_str(), "%lfx%lf%7s", &w, &h, unit);
+  const std::string u = unit;
+  const double scale = u.empty() || u == "mm" ? 1.0 : u == "cm" ? 10.0 : u == "in" ? 25.4 : 0.0;
+  if (n < 2 || scale == 0.0 || !(w > 0 && h > 0 && std::isfinite(w) && std::isfinite(h)))
+    return Status(ErrorCode::Usage,
+                  "--sheet must look like 600x400mm (units mm, cm or in), got '" + text + "'");
+  return std::make_pair(w * scale, h * scale);
+}
+
+}  // namespace
+
+int exitCode(ErrorCode code) {
+  switch (code) {
+    case ErrorCode::Ok: return 0;
+    case ErrorCode::Internal: return 1;
+    case ErrorCode::Usage: return 2;
+    case ErrorCode::InputUnreadable: return 3;
+    case ErrorCode::InputInvalid: return 4;
+    case ErrorCode::SolveFailed: return 5;
+    case ErrorCode::OutputFailed: return 6;
+    case ErrorCode::GateFailed: return 7;
+    case ErrorCode::Interrupted: return 130;
+  }
+  return 1;
+}
+
+std::string templatesDir() {
+  const char* env = std::getenv("DFORM_TEMPLATES");
+  return env && *env ? env : DFORM_TEMPLATES_DIR;
+}
+
+std::vector<std::string> exportProfileNames() { return listProfiles(templatesDir()); }
+
+Result<GateLimits> loadGate(const std::string& nameOrPath) {
+  const bool preset =
+      nameOrPath.find('/') == std::string::npos && nameOrPath.find(".json") == std::string::npos;
+  if (preset) {
+    // A preset name that is not one is a usage mistake (2), as an unknown export profile is; a
+    // gate file that cannot be read is unreadable input (3).
+    const fs::path file = fs::path(templatesDir()) / "gates" / (nameOrPath + ".json");
+    if (!fs::exists(file)) {
+      std::set<std::string> names;
+      for (const auto& entry : fs::directory_iterator(file.parent_path()))
+        if (entry.path().extension() == ".json") names.insert(entry.path().stem().string());
+      std::string known;
+      for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
+      return Status(ErrorCode::Usage, "--gate: unknown gate \"" + nameOrPath + "\" (known: " +
+                                          known + ", or a gate .json file)");
+    }
+    return readGateFile(file.string());
+  }
+  // "gates/strict.json" as the docs write it: a path relative to templates/ when not one here.
+  const std::string inTemplates = templatesDir() + "/" + nameOrPath;
+  if (!fs::exists(nameOrPath) && fs::path(nameOrPath).is_relative() && fs::exists(inTemplates))
+    return readGateFile(inTemplates);
+  return readGateFile(nameOrPath);
+}
+
+// The export options the command line asks for, checked before anything is solved: Usage with a
+// one-line message for a bad value.
+Result<ExportOptions> exportOptions(const OutputOptions& output) {
+  ExportOptions options;
+  options.profile = output.profile;
+  options.templatesDir = templatesDir();
+  if (!output.sheet.empty()) {
+    Result<std::pair<double, double>> sheet = parseSheet(output.sheet);
+    if (!sheet.isOk()) return sheet.status();
+    options.sheetWidthMm = sheet.value().first;
+    options.sheetHeightMm = sheet.value().second;
+    options.sheetGiven = true;
+  }
+  if (!output.page.empty() && !pageSizeMm(output.page))
+    return Status(ErrorCode::Usage, "--page must be A4, Letter, A3, Tabloid or a size such as "
+                                    "200x300mm, got '" + output.page + "'");
+  options.page = output.page;
+  if (output.scale == "fit") {
+    options.scaleToFit = true;
+  } else if (!output.scale.empty()) {
+    double value = 0;
+    char rest[4] = "";
+    const int n = std::sscanf(output.scale.c_str(), "%lf%3s", &value, rest);
+    const std::string unit = rest;
+    if (n < 1 || !(unit.empty() || unit == "%"))
+      return Status(ErrorCode::Usage,
+                    "--scale must be a number (0.8), a percentage (80%) or fit, got '" +
+                        output.scale + "'");
+    options.scale = unit == "%" ? value / 100 : value;
+  }
+  if (output.tabWidthMm) options.tabWidthMm = *output.tabWidthMm;
+  if (output.tickSpacingMm) options.tickSpacingMm = *output.tickSpacingMm;
+  if (!output.tabs.empty()) {
+    options.tabSide = tabSideNamed(output.tabs);
+    if (!options.tabSide)
+      return Status(ErrorCode::Usage,
+                    "--tabs must be a, b, alternate or none, got '" + output.tabs + "'");
+  }
+  options.gltfBinary = !output.gltfText;
+  options.title = output.title;
+  if (Status s = checkExportOptions(options); !s.isOk()) return s;
+  if (output.exportFiles) {  // the profile is read once, now, not after the solve
+    Result<Profile> profile = loadProfile(options.profile, options.templatesDir);
+    if (!profile.isOk()) return profile.status();
+    options.profileOverride = profile.value();
+    options.useProfileOverride = true;
+  }
+  return options;
+}
+
+// Lays out and renders the cutting patterns and previews of `model`, not yet written. The glTF
+// preview carries the curvature map the report shows (COLOR_0).
+Result<PreparedExport> prepare(const DForm& model, ExportOptions options, bool failedGate,
+                               const std::string& jobName) {
+  options.jobName = jobName;
+  options.failedGateMark = failedGate;
+  const Eigen::VectorXd curvature[2] = {curvatureMap(model.a), curvatureMap(model.b)};
+  options.curvatureA.assign(curvature[0].data(), curvature[0].data() + curvature[0].size());
+  options.curvatureB.assign(curvature[1].data(), curvature[1].data() + curvature[1].size());
+  return prepareExport(model, options);
+}
+
+
+// A run's job name: its first input's file name.
+std::string jobName(const Job& job) {
+  return fs::path(job.mode == Job::Mode::Forward ? job.forward.pieceA : job.inverse.curve)
+      .stem()
+      .string();
+}
+
+
+// The gate's fabrication check: the laid-out pattern fits the sheet and nothing on it overlaps.
+CheckResult layoutCheck(const LayoutFindings& f) {
+  const std::string detail =
+      f.problems() == 0 ? "every path on the sheet; tabs, pieces and labels clear of each other"
+                        : std::to_string(f.outsideSheet) + " off the sheet, " +
+                              std::to_string(f.overlappingTabs) + " overlapping tab pairs, " +
+                              std::to_string(f.tabsOverPieces) + " tabs over a piece, " +
+                              std::to_string(f.overlappingPieces) + " overlapping pieces, " +
+                              std::to_string(f.labelsOutside) + " labels outside their piece, " +
+                              std::to_string(f.overlappingLabels) + " overlapping label pairs, " +
+                              std::to_string(f.titleOverlaps) +
+                              " title lines over a piece or mark; first: " + f.example;
+  return judgeCheck("pattern_layout", f.problems(), 0, detail);
+}
+
+// Says what a prepared export holds, before it is written (so that the report has it).
+void noteExport(const PreparedExport& prepared, MessageSink& sink) {
+  for (const std::string& note : prepared.summary.messages) sink.info("export: " + note);
+  sink.info("export (" + prepared.summary.profile + "): " + std::to_string(prepared.files.size()) +
+            " files");
+}
+
+Status writeReportPage(const std::string& dir, const std::string& reportJson,
+                       const std::string& reportPath, const PreparedExport* exported,
+                       const DForm& model) {
+  ReportSources sources;
+  sources.reportJson = reportJson;
+  sources.reportPath = reportPath;
+  if (exported)
+    for (const auto& [name, content] : exported->files) {
+      if (name == "pattern.svg") sources.patternSvg = content;
+      if (name == "assembly.svg") sources.assemblySvg = content;
+    }
+  const Result<std::string> html = renderReportHtml(sources, model, templatesDir());
+  if (!html.isOk()) return html.status();
+  return writeFileAtomically((fs::path(dir) / "report.html").string(), html.value());
+}
+
+// Every file a run or an export writes into a result folder: the only files a folder that is
+// replaced as a whole may hold.
+std::set<std::string> resultFileNames() {
+  std::set<std::string> names = {ModelFileNames::aFlat, ModelFileNames::a3d,
+                                 ModelFileNames::bFlat, ModelFileNames::b3d,
+                                 ModelFileNames::targetCurve, "report.json", "report.html"};
+  for (const std::string& name : exportFileNames()) names.insert(name);
+  return names;
+}
+
+// An interrupt that stops a command before its result is in place, naming the folder.
+Status leftAsItWas(const std::string& dir, const std::string& what) {
+  return {ErrorCode::Interrupted, dir + ": " + what + "; the folder was left as it was"};
+}
+
+// Swaps the staged result in with SIGINT and SIGTERM held back, so that a signal cannot cut the
+// swap short; one that came before it leaves the folder as it was.
+Status commitUnlessInterrupted(ResultFolder& folder, const std::string& dir,
+                               const std::atomic<bool>& interrupted) {
+  const StopSignalsHeld held;
+  if (interrupted) return leftAsItWas(dir, "interrupted");
+  return folder.commit();
+}
+
+
+
+}  // namespace dform

@@ -1,0 +1,55 @@
+// The steps runs and saved results share (pipeline-internal): export options checked, a pattern
+// prepared with its layout judged, the result folder's names and its interruptible commit.
+#pragma once
+
+#include <atomic>
+#include <set>
+#include <string>
+
+#include "core/messages.h"
+#include "core/result_folder.h"
+#include "core/status.h"
+#include "export/exporter.h"
+#include "pipeline/job_file.h"
+#include "pipeline/run.h"
+#include "validate/gate.h"
+
+namespace dform {
+
+/// The export options the command line asks for: Usage with a one-line message for a bad
+/// value; the profile is read now (when files are exported), not after the solve.
+Result<ExportOptions> exportOptions(const OutputOptions& output);
+
+/// Lays out and renders the cutting patterns and previews of `model`, not yet written; the glTF
+/// preview carries the curvature map the report shows.
+Result<PreparedExport> prepare(const DForm& model, ExportOptions options, bool failedGate,
+                               const std::string& jobName);
+
+/// A run's job name: its first input's file name.
+std::string jobName(const Job& job);
+
+/// The gate's fabrication check: the laid-out pattern fits the sheet and nothing on it overlaps.
+CheckResult layoutCheck(const LayoutFindings& findings);
+
+/// Says what a prepared export holds, before it is written (so that the report has it).
+void noteExport(const PreparedExport& prepared, MessageSink& sink);
+
+/// Writes `dir`/report.html, rendered in memory from report.json's text (`reportPath` names it
+/// in errors) and, when `exported` is given, the pattern's and the assembly sheet's SVG.
+Status writeReportPage(const std::string& dir, const std::string& reportJson,
+                       const std::string& reportPath, const PreparedExport* exported,
+                       const DForm& model);
+
+/// Every file a run or an export writes into a result folder: the only files a folder that is
+/// replaced as a whole may hold.
+std::set<std::string> resultFileNames();
+
+/// An interrupt that stops a command before its result is in place, naming the folder.
+Status leftAsItWas(const std::string& dir, const std::string& what);
+
+/// Swaps the staged result in with SIGINT and SIGTERM held back, so that a signal cannot cut
+/// the swap short; one that came before it leaves the folder as it was.
+Status commitUnlessInterrupted(ResultFolder& folder, const std::string& dir,
+                               const std::atomic<bool>& interrupted);
+
+}  // namespace dform

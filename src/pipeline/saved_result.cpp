@@ -1,0 +1,166 @@
+#include "pipeline/saved_result.h"
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "core/result_folder.h"
+#include "io/curve_reader.h"
+#include "io/model_files.h"
+#include "pipeline/report.h"
+#include "pipeline/run_steps.h"
+#include "core/input_file.h"
+
+namespace dform {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// A saved result's job name, from the job its report.json records; the folder's name when there is
+// no readable job.
+std::string savedJobName(const std::string& dir) {
+  const fs::path path = fs::path(dir) / "report.json";
+  std::ifstream in(path);
+  const nlohmann::json report = nlohmann::json::parse(in, nullptr, false);
+  if (report.is_object() && report.contains("job")) {
+    Result<Job> job = parseJobJson(report["job"].dump(), path.string(), dir);
+    if (job.isOk()) return jobName(job.value());
+  }
+  return fs::path(dir).filename().string();
+}
+
+// An inverse result's target curve, when the folder holds one, checked against the seam.
+Result<std::optional<Curve3>> readSavedTarget(const std::string& dir, const DForm& model) {
+  const std::string curvePath = (fs::path(dir) / ModelFileNames::targetCurve).string();
+  if (!fs::exists(curvePath)) return std::optional<Curve3>();
+  Result<Curve3> curve = readCurve(curvePath);
+  if (!curve.isOk()) return curve.status();
+  if (std::size_t(curve.value().points.rows()) != model.a.seam.size())
+    return Status(ErrorCode::InputInvalid,
+                  curvePath + ": has a different number of points than the seam");
+  return std::optional<Curve3>(curve.value());
+}
+
+}  // namespace
+
+Result<std::string> exportSavedResult(const std::string& dir, const OutputOptions& output,
+                                      MessageSink& sink, const std::atomic<bool>& interrupted) {
+  const Result<ExportOptions> exporting = exportOptions(output);
+  if (!exporting.isOk()) return exporting.status();
+  if (!fs::is_directory(dir))
+    return Status(ErrorCode::InputUnreadable, dir + ": no such result folder");
+  // Locked before it is read, so that no run replaces the result between reading and writing;
+  // the export is staged with the result's other files and swapped in whole.
+  ResultFolder folder;
+  if (Status s = folder.begin(dir, resultFileNames()); !s.isOk()) return s;
+  Result<DForm> model = readModel(dir);
+  if (!model.isOk()) return model.status();
+  if (interrupted) return leftAsItWas(dir, "interrupted");
+  Result<std::optional<Curve3>> target = readSavedTarget(dir, model.value());
+  if (!target.isOk()) return target.status();
+  // A result that failed its gate is exported only on purpose, and marked. The gate is run
+  // again on the meshes (report.json's verdicts could have been edited), with the limits of the
+  // preset report.json names, else the default ones.
+  const bool hasReport = fs::exists(fs::path(dir) / "report.json");
+  bool failedGate = false;
+  std::string gateName = "default";
+  if (hasReport) {
+    Result<std::optional<bool>> verdict = savedGateVerdict(dir);
+    if (!verdict.isOk()) return verdict.status();
+    failedGate = verdict.value() == false;
+    const Result<std::string> recorded = savedGateName(dir);
+    if (recorded.isOk() && fs::exists(fs::path(templatesDir()) / "gates" / (recorded.value() + ".json")))
+      gateName = recorded.value();
+  }
+  Result<GateLimits> limits = loadGate(gateName);
+  if (!limits.isOk()) return limits.status();
+  const GateReport gate =
+      runGate(model.value(), limits.value(), target.value() ? &*target.value() : nullptr);
+  if (interrupted) return leftAsItWas(dir, "interrupted");
+  std::string failing;
+  for (const CheckResult& c : gate.checks)
+    if (c.verdict == CheckResult::Verdict::Fail) failing += (failing.empty() ? "" : ", ") + c.name;
+  failedGate = failedGate || !gate.passed();
+  if (failedGate && !output.exportAnyway) {
+    return Status(ErrorCode::GateFailed,
+                  dir + ": the result failed its quality gate '" + gateName +
+                    "' (checked again on the meshes: " +
+                    (failing.empty() ? "report.json records a failure" : failing + " fail") +
+                    "); nothing exported (--export-anyway exports it marked FAILED GATE)");
+  }
+  const std::string name = savedJobName(dir);
+  Result<PreparedExport> prepared = prepare(model.value(), exporting.value(), failedGate, name);
+  if (interrupted) return leftAsItWas(dir, "interrupted");
+  if (!prepared.isOk()) return prepared.status();
+  const LayoutFindings& layout = prepared.value().layout;
+  if (layout.problems() > 0) {
+    if (!output.exportAnyway) {
+      return Status(ErrorCode::GateFailed,
+                    dir + ": the pattern does not lay out cleanly (" +
+                      layoutCheck(layout).detail +
+                      "); nothing exported (--export-anyway exports it marked FAILED GATE)");
+    }
+    if (!failedGate) prepared = prepare(model.value(), exporting.value(), true, name);
+    if (!prepared.isOk()) return prepared.status();
+  }
+  if (interrupted) return leftAsItWas(dir, "interrupted");
+  noteExport(prepared.value(), sink);
+  // -o: the pattern set goes into a folder of its own, as one transaction too, and the result
+  // folder is left as it is (its lock is released unchanged).
+  if (!output.outDir.empty()) {
+    ResultFolder out;
+    if (Status s = out.begin(output.outDir, resultFileNames()); !s.isOk()) return s;
+    if (Status s = writeExport(prepared.value(), out.staging()).status(); !s.isOk()) return out.named(s);
+    if (Status s = commitUnlessInterrupted(out, output.outDir, interrupted); !s.isOk()) return s;
+    return output.outDir;
+  }
+  // The result's own files go into the new folder unchanged; earlier cutting files do not.
+  for (const char* kept : {ModelFileNames::aFlat, ModelFileNames::a3d, ModelFileNames::bFlat,
+                           ModelFileNames::b3d, ModelFileNames::targetCurve, "report.json"})
+    if (fs::exists(fs::path(dir) / kept))
+      if (Status s = folder.carryOver(kept); !s.isOk()) return s;
+  if (Status s = writeExport(prepared.value(), folder.staging()).status(); !s.isOk())
+    return folder.named(s);
+  // The report page shows the pattern: redrawn with the new one.
+  if (hasReport) {
+    const std::string reportPath = (fs::path(dir) / "report.json").string();
+    const Result<std::string> report = readInputFile(reportPath);
+    if (!report.isOk()) return report.status();
+    if (Status s = writeReportPage(folder.staging(), report.value(), reportPath, &prepared.value(),
+                                   model.value());
+        !s.isOk())
+      return folder.named(s);
+  }
+  if (Status s = commitUnlessInterrupted(folder, dir, interrupted); !s.isOk()) return s;
+  if (interrupted)
+    return Status(ErrorCode::Interrupted,
+                       dir + ": interrupted; the new export was written completely");
+  return dir;
+}
+
+Result<SavedCheck> validateSavedResult(const std::string& dir, const std::string& gateName) {
+  Result<GateLimits> limits = loadGate(gateName);  // the option first, as for every command
+  if (!limits.isOk()) return limits.status();
+  Result<DForm> model = readModel(dir);
+  if (!model.isOk()) return model.status();
+  // An inverse result carries its target curve; its seam is measured against it.
+  Result<std::optional<Curve3>> target = readSavedTarget(dir, model.value());
+  if (!target.isOk()) return target.status();
+  SavedCheck check;
+  check.gateName = limits.value().name;
+  check.gate = runGate(model.value(), limits.value(), target.value() ? &*target.value() : nullptr);
+  check.gate.checks.push_back(notRunCheck(
+      "pattern_layout", 0, "validate re-checks the meshes; `dform export` checks the layout"));
+  // The figures are recomputed from the meshes, never taken from the report.
+  Result<std::vector<std::string>> differences = compareWithReport(
+      dir, model.value(), check.gate.metrics, check.gate.curve ? &*check.gate.curve : nullptr);
+  if (differences.isOk())
+    check.differences = differences.value();
+  else
+    check.report = differences.status();
+  return check;
+}
+
+}  // namespace dform

@@ -1,0 +1,37 @@
+// A saved result folder exported again or validated: both read the meshes and run the gate on
+// them again instead of trusting report.json.
+#pragma once
+
+#include <atomic>
+#include <string>
+#include <vector>
+
+#include "core/messages.h"
+#include "core/status.h"
+#include "pipeline/run.h"
+#include "validate/gate.h"
+
+namespace dform {
+
+/// `dform export DIR`: the cutting files of the result in `dir` with `output`'s export options,
+/// into `dir` itself (its other files kept) or into output.outDir when given, as one
+/// transaction. A result that fails its gate again, or whose pattern does not lay out cleanly,
+/// is exported only with output.exportAnyway (marked FAILED GATE), else GateFailed. Returns the
+/// folder the files went into.
+Result<std::string> exportSavedResult(const std::string& dir, const OutputOptions& output,
+                                      MessageSink& sink, const std::atomic<bool>& interrupted);
+
+/// What `dform validate DIR` found: the gate run on the meshes, and report.json compared with
+/// the figures measured again.
+struct SavedCheck {
+  std::string gateName;
+  GateReport gate;
+  /// report.json missing or unreadable (InputUnreadable) or malformed; ok when it was compared.
+  Status report = Status::ok();
+  std::vector<std::string> differences;  ///< report.json's entries that disagree with the meshes
+};
+
+/// Validates the result in `dir` against the gate `gateName` (a preset or a file).
+Result<SavedCheck> validateSavedResult(const std::string& dir, const std::string& gateName);
+
+}  // namespace dform
