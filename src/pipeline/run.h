@@ -26,7 +26,8 @@ struct ExportOptions;
 /// The documented exit code of an error kind (README "Exit codes"); batch manifests record it.
 int exitCode(ErrorCode code);
 
-/// The templates folder: $DFORM_TEMPLATES, else the source tree's templates/.
+/// The templates folder: $DFORM_TEMPLATES, else the source tree's templates/, else the one
+/// `cmake --install` put under the configured prefix (share/dform/templates).
 std::string templatesDir();
 
 /// The export profiles a run can name (templates/profiles/*.json), sorted.

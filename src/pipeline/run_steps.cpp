@@ -69,7 +69,10 @@ int exitCode(ErrorCode code) {
 
 std::string templatesDir() {
   const char* env = std::getenv("DFORM_TEMPLATES");
-  return env && *env ? env : DFORM_TEMPLATES_DIR;
+  if (env && *env) return env;
+  std::error_code ec;
+  return fs::is_directory(DFORM_TEMPLATES_DIR, ec) ? DFORM_TEMPLATES_DIR
+                                                   : DFORM_INSTALLED_TEMPLATES_DIR;
 }
 
 std::vector<std::string> exportProfileNames() { return listProfiles(templatesDir()); }
