@@ -19,6 +19,22 @@ struct Outline2 {
   std::string source;
 };
 
+/// A crease line drawn inside a piece: an open polyline (#P by 2, mm) whose two ends lie on the
+/// piece's boundary (its outline or a hole). `label` names it in messages ("path 3").
+struct CreaseLine {
+  Points2 points;
+  std::string label;
+};
+
+/// A flat shape: its outer outline and any holes (each counter-clockwise, dense polylines in mm),
+/// and the crease lines drawn on it.
+struct Shape2 {
+  Outline2 outer;
+  std::vector<Outline2> holes;
+  std::vector<CreaseLine> creases;
+  std::string sha256;  ///< of the file's bytes as read (readShape); empty when not read from one
+};
+
 /// A closed space curve in mm: #P by 3, the first point not repeated at the end.
 struct Curve3 {
   Points3 points;

@@ -18,22 +18,6 @@ struct OutlineReadOptions {
   std::size_t maxPoints = 1'000'000;
 };
 
-/// A crease line drawn inside a piece: an open polyline (#P by 2, mm) whose two ends lie on the
-/// piece's boundary (its outline or a hole). `label` names it in messages ("path 3").
-struct CreaseLine {
-  Points2 points;
-  std::string label;
-};
-
-/// A flat shape: its outer outline and any holes (each counter-clockwise, dense polylines in mm),
-/// and the crease lines drawn on it.
-struct Shape2 {
-  Outline2 outer;
-  std::vector<Outline2> holes;
-  std::vector<CreaseLine> creases;
-  std::string sha256;  ///< of the file's bytes as read (readShape); empty from parseShape
-};
-
 /// Reads a shape from `path`: SVG (.svg) or a JSON list of points (.json); see docs/io.md.
 ///
 /// SVG: the root width/height/viewBox give millimetres (mm, cm, in, pt, pc, px at 96 per inch;

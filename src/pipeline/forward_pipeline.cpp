@@ -43,13 +43,16 @@ struct DrawnPiece {
   std::string sha256;  ///< of the file's bytes as read
 };
 
-// Reads a piece and picks its joined boundary: a disc joins its outline, an annulus-like piece
-// (one hole) its hole. Says what it found, since the join decides what the D-Form is.
-Result<DrawnPiece> readPiece(const std::string& path, JoinedBoundary join, const std::string& name,
-                             MessageSink& sink) {
-  Result<Shape2> read = readShape(path);
-  if (!read.isOk()) return read.status();
-  Shape2& shape = read.value();
+// What messages and errors call a piece: its file, else "piece A" or "piece B".
+std::string pieceLabel(const Shape2& shape, const char* name) {
+  return shape.outer.source.empty() ? std::string("piece ") + name : shape.outer.source;
+}
+
+// Picks a piece's joined boundary: a disc joins its outline, an annulus-like piece (one hole) its
+// hole. Says what it found, since the join decides what the D-Form is.
+Result<DrawnPiece> drawnPiece(Shape2& shape, JoinedBoundary join, const std::string& name,
+                              MessageSink& sink) {
+  const std::string path = pieceLabel(shape, name.c_str());
   const std::size_t holes = shape.holes.size();
   std::string found =
       "piece " + name + " (" + path + "): outline " + format("%.3f mm", closedLength(shape.outer.points));
@@ -153,7 +156,7 @@ void startFromCoarser(const DForm& coarse, Piece& a, Piece& b) {
 
 // Why the exact model cannot make this job, or "" when it can (the glued metric's convexity is
 // checked when the seam is sampled).
-std::string exactModelRefusal(const ForwardJob& job, const DrawnPiece& A, const DrawnPiece& B) {
+std::string exactModelRefusal(const ForwardSettings& job, const DrawnPiece& A, const DrawnPiece& B) {
   if (job.joinA != JoinedBoundary::Outer || job.joinB != JoinedBoundary::Outer)
     return "a piece is zipped along a hole (anti or demi D-Form): the glued pieces make no closed convex body";
   if (!A.creases.empty() || !B.creases.empty())
@@ -234,7 +237,7 @@ bool parseJoin(const std::string& text, JoinedBoundary& a, JoinedBoundary& b) {
   return true;
 }
 
-Status validateForwardJob(const ForwardJob& job) {
+Status validateForwardJob(const ForwardSettings& job) {
   auto usage = [](const std::string& text) { return Status(ErrorCode::Usage, text); };
   if (job.resolution < 8 || job.resolution > 20000)
     return usage("resolution must be between 8 and 20000 seam vertices, got " +
@@ -258,17 +261,19 @@ Status validateForwardJob(const ForwardJob& job) {
 
 namespace {
 
-// runForward, which turns a failed allocation into the resolution that fits; `estimate` is what
+// makeDForm, which turns a failed allocation into the resolution that fits; `estimate` is what
 // the memory check allowed for.
-Result<ForwardRun> readAndSolve(const ForwardJob& job, MessageSink& sink, const RunHooks& hooks,
-                                MemoryEstimate& estimate) {
+Result<ForwardRun> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSettings& job,
+                               MessageSink& sink, const RunHooks& hooks, MemoryEstimate& estimate) {
   if (Status s = validateForwardJob(job); !s.isOk()) return s;
   const auto start = Clock::now();
   ForwardRun run;
+  const std::string pathA = pieceLabel(shapeA, "A"), pathB = pieceLabel(shapeB, "B");
+  const std::string both = pathA + " and " + pathB;
 
-  Result<DrawnPiece> drawnA = readPiece(job.pieceA, job.joinA, "A", sink);
+  Result<DrawnPiece> drawnA = drawnPiece(shapeA, job.joinA, "A", sink);
   if (!drawnA.isOk()) return drawnA.status();
-  Result<DrawnPiece> drawnB = readPiece(job.pieceB, job.joinB, "B", sink);
+  Result<DrawnPiece> drawnB = drawnPiece(shapeB, job.joinB, "B", sink);
   if (!drawnB.isOk()) return drawnB.status();
   DrawnPiece& A = drawnA.value();
   DrawnPiece& B = drawnB.value();
@@ -283,7 +288,7 @@ Result<ForwardRun> readAndSolve(const ForwardJob& job, MessageSink& sink, const 
   if (mismatch > job.perimeterTolerance) {
     if (!job.fitPerimeter)
       return Status(ErrorCode::InputInvalid,
-                    job.pieceA + " and " + job.pieceB + ": " + lengths + " differ" +
+                    both + ": " + lengths + " differ" +
                         format(" (%.3f mm and %.3f mm, %.2f%%", run.perimeterA, run.perimeterB,
                                100.0 * mismatch) +
                         format(" > %.2f%%); a D-Form needs equal lengths (--fit-perimeter "
@@ -314,7 +319,7 @@ Result<ForwardRun> readAndSolve(const ForwardJob& job, MessageSink& sink, const 
     area += piece->freeOutline ? std::abs(signedArea(*piece->freeOutline)) - std::abs(signedArea(piece->joined))
                                : std::abs(signedArea(piece->joined));
   estimate.vertices = 2.0 * area / (std::sqrt(3.0) * h * h) + 2.0 * job.resolution;
-  if (Status fits = checkMemory(estimate, job.resolution, job.pieceA + " and " + job.pieceB + ": the run");
+  if (Status fits = checkMemory(estimate, job.resolution, both + ": the run");
       !fits.isOk())
     return fits;
 
@@ -367,7 +372,7 @@ Result<ForwardRun> readAndSolve(const ForwardJob& job, MessageSink& sink, const 
   }
 
   // The exact D-Form wherever it applies; the paper's optimisation otherwise.
-  const std::string paths[2] = {job.pieceA, job.pieceB};
+  const std::string paths[2] = {pathA, pathB};
   std::string refusal = exactModelRefusal(job, A, B);
   if (job.model != ModelChoice::Paper && refusal.empty()) {
     const auto solveStart = Clock::now();
@@ -397,13 +402,13 @@ Result<ForwardRun> readAndSolve(const ForwardJob& job, MessageSink& sink, const 
       return run;
     }
     refusal = exactModel.status().message();
-    if (job.model == ModelChoice::Exact) return Status(exactModel.status().code(), job.pieceA + " and " + job.pieceB + ": --model exact: " + refusal);
+    if (job.model == ModelChoice::Exact) return Status(exactModel.status().code(), both + ": --model exact: " + refusal);
     if (exactModel.status().code() == ErrorCode::SolveFailed) {
       sink.warning("the exact model failed (" + refusal + "); the paper model makes the shape instead");
       refusal = "it failed: " + refusal;
     }
   } else if (job.model == ModelChoice::Exact) {
-    return Status(ErrorCode::InputInvalid, job.pieceA + " and " + job.pieceB + ": --model exact: " + refusal);
+    return Status(ErrorCode::InputInvalid, both + ": --model exact: " + refusal);
   }
   run.modelUsed.name = "paper";
   run.modelUsed.reason = job.model == ModelChoice::Paper ? "asked for (--model paper)" : "the exact model does not apply: " + refusal;
@@ -442,7 +447,7 @@ Result<ForwardRun> readAndSolve(const ForwardJob& job, MessageSink& sink, const 
       // Meshing a fine level takes seconds per piece.
       if (detail::stopRequested(hooks)) return detail::interruptedDuring("the meshing");
       const DrawnPiece& piece = *drawn[p];
-      const std::string& path = p == 0 ? job.pieceA : job.pieceB;
+      const std::string& path = paths[p];
       const LoopSamples seam = sampleLoop(piece.joined, t, startFraction[p], direction[p]);
       // The mesher's fixed points: the outline, then the hole. The joined boundary is the outline
       // of a disc and the hole of an annulus-like piece, whose outline is sampled about as
@@ -525,13 +530,33 @@ Result<ForwardRun> readAndSolve(const ForwardJob& job, MessageSink& sink, const 
 
 }  // namespace
 
-Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const RunHooks& hooks) {
+Result<ForwardRun> makeDForm(Shape2 a, Shape2 b, const ForwardSettings& settings,
+                             MessageSink& sink, const RunHooks& hooks) {
   MemoryEstimate estimate;
   try {
-    return readAndSolve(job, sink, hooks, estimate);
+    return solveShapes(a, b, settings, sink, hooks, estimate);
   } catch (const std::bad_alloc&) {
-    return outOfMemory(estimate, job.resolution, job.pieceA + " and " + job.pieceB + ": the run");
+    return outOfMemory(estimate, settings.resolution,
+                       pieceLabel(a, "A") + " and " + pieceLabel(b, "B") + ": the run");
   }
+}
+
+Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const RunHooks& hooks) {
+  // The job's numbers first: a bad one costs no reading.
+  if (Status s = validateForwardJob(job); !s.isOk()) return s;
+  const auto start = Clock::now();
+  Result<Shape2> a = readShape(job.pieceA);
+  if (!a.isOk()) return a.status();
+  Result<Shape2> b = readShape(job.pieceB);
+  if (!b.isOk()) return b.status();
+  const double read = secondsSince(start);
+  a.value().outer.source = job.pieceA;
+  b.value().outer.source = job.pieceB;
+  Result<ForwardRun> run = makeDForm(std::move(a).value(), std::move(b).value(), job, sink, hooks);
+  if (!run.isOk()) return run;
+  run.value().timings.read += read;
+  run.value().timings.total = secondsSince(start);
+  return run;
 }
 
 }  // namespace dform

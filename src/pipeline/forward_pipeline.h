@@ -46,9 +46,10 @@ enum class ModelChoice { Auto, Exact, Paper };
 const char* modelChoiceName(ModelChoice model);            ///< "auto", "exact" or "paper"
 bool parseModelChoice(const std::string& text, ModelChoice& model);
 
-struct ForwardJob {
+/// Everything a forward run needs besides the two pieces: the model, which boundaries are
+/// zipped, the starting pair, the mesh and the solve.
+struct ForwardSettings {
   ModelChoice model = ModelChoice::Auto;
-  std::string pieceA, pieceB;  ///< outline files (SVG or JSON points)
   JoinedBoundary joinA = JoinedBoundary::Outer, joinB = JoinedBoundary::Outer;
   StartPoint startA, startB;   ///< the starting pair (paper Definition 3), on the joined boundaries
   int resolution = 100;        ///< seam vertices per piece
@@ -58,6 +59,11 @@ struct ForwardJob {
   double interiorEdgeFactor = 1.0;    ///< interior edge length / seam edge length
   bool coarseToFine = true;           ///< start from solutions at 1/3, 1/9, ... of the resolution
   ForwardOptions solve;
+};
+
+/// A forward job: the settings and the two outline files (SVG or JSON points).
+struct ForwardJob : ForwardSettings {
+  std::string pieceA, pieceB;
 };
 
 /// Seconds spent in each stage.
@@ -107,10 +113,18 @@ struct RunHooks {
   const std::atomic<bool>* interrupted = nullptr;  ///< checked between iterations
 };
 
-/// Reads, checks, meshes, solves and measures. Errors name the file and the problem.
+/// Reads the two files, then makes and measures their D-Form as makeDForm does. Errors name the
+/// file and the problem.
 Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const RunHooks& hooks = {});
 
+/// The D-Form of two shapes in memory (mm, counter-clockwise loops, as readShape gives them):
+/// checks, meshes, solves (the exact model or the paper's) and measures. Messages and errors name
+/// a piece by its outline's `source` (a file path), else "piece A" / "piece B". A failed
+/// allocation is an error with the resolution that fits.
+Result<ForwardRun> makeDForm(Shape2 a, Shape2 b, const ForwardSettings& settings,
+                             MessageSink& sink, const RunHooks& hooks = {});
+
 /// Checks a job's numbers before any work is done (Usage errors).
-Status validateForwardJob(const ForwardJob& job);
+Status validateForwardJob(const ForwardSettings& job);
 
 }  // namespace dform

@@ -22,7 +22,7 @@ using detail::Clock;
 using detail::format;
 using detail::secondsSince;
 
-Status validateInverseJob(const InverseJob& job) {
+Status validateInverseJob(const InverseSettings& job) {
   auto usage = [](const std::string& text) { return Status(ErrorCode::Usage, text); };
   if (job.resolution < 8 || job.resolution > 20000)
     return usage("resolution must be between 8 and 20000 curve points, got " +
@@ -85,13 +85,14 @@ Result<Piece> refinePiece(const Piece& coarse, const Points3& curve, bool clockw
 
 // The pieces of an on-hull curve: the pre-D-Form (the hull cut along the curve) unfolded, zipped
 // by the exact engine and moved rigidly onto the curve.
-Result<DForm> exactInverse(const InverseInit& init, const Points3& target, const InverseJob& job, ModelUsed& used) {
+Result<DForm> exactInverse(const InverseInit& init, const Points3& target, const std::string& name,
+                           const InverseSettings& job, ModelUsed& used) {
   const Eigen::Index n = target.rows();
   exact::SeamPolygons polygons;
   polygons.a = init.preFlatA.V.topRows(n);
   polygons.b = init.preFlatB.V.topRows(n);
   const double edge = closedLength(target) / double(n);
-  const std::string paths[2] = {job.curve + " (piece A)", job.curve + " (piece B)"};
+  const std::string paths[2] = {name + " (piece A)", name + " (piece B)"};
   Result<DForm> made = exactDForm(polygons, edge * job.init.edgeLengthFactor, paths, used);
   if (!made.isOk()) return made.status();
   DForm model = std::move(made).value();
@@ -105,18 +106,19 @@ Result<DForm> exactInverse(const InverseInit& init, const Points3& target, const
   return model;
 }
 
-// runInverse, which turns a failed allocation into the resolution that fits; `estimate` is what
+// What messages and errors call the curve: its file, else "the curve".
+std::string curveLabel(const Curve3& curve) {
+  return curve.source.empty() ? "the curve" : curve.source;
+}
+
+// makePieces, which turns a failed allocation into the resolution that fits; `estimate` is what
 // the memory check allowed for.
-Result<InverseRun> readAndSolve(const InverseJob& job, MessageSink& sink, const RunHooks& hooks,
-                                MemoryEstimate& estimate) {
+Result<InverseRun> solveCurve(const Curve3& curve, const InverseSettings& job, MessageSink& sink,
+                              const RunHooks& hooks, MemoryEstimate& estimate) {
   if (Status s = validateInverseJob(job); !s.isOk()) return s;
   const auto start = Clock::now();
   InverseRun run;
-
-  CurveReadOptions readOptions;
-  readOptions.forceClosed = job.forceClosed;
-  Result<Curve3> curve = readCurve(job.curve, readOptions);
-  if (!curve.isOk()) return curve.status();
+  const std::string name = curveLabel(curve);
 
   // Coarse to fine, as in forward runs: the pre-D-Form's search is cubic in the curve's points and
   // the relaxation smooths its facets slowly on a fine mesh, so a curve of more than
@@ -132,12 +134,12 @@ Result<InverseRun> readAndSolve(const InverseJob& job, MessageSink& sink, const 
   // bytes, n the coarsest level's points.
   const double n = job.resolution, coarsest = levels.front();
   estimate = {0.2 * n * n, 37.0 * coarsest * coarsest};
-  if (Status fits = checkMemory(estimate, job.resolution, job.curve + ": the run"); !fits.isOk()) return fits;
-  run.curveLength = closedLength(curve.value().points);
-  run.target.source = job.curve;
-  run.target.sha256 = curve.value().sha256;
+  if (Status fits = checkMemory(estimate, job.resolution, name + ": the run"); !fits.isOk()) return fits;
+  run.curveLength = closedLength(curve.points);
+  run.target.source = curve.source;
+  run.target.sha256 = curve.sha256;
   run.timings.read = secondsSince(start);
-  sink.info(format("curve: %.0f points, length %.3f mm", double(curve.value().points.rows()),
+  sink.info(format("curve: %.0f points, length %.3f mm", double(curve.points.rows()),
                    run.curveLength));
 
   InverseOptions options = job.solve;
@@ -148,18 +150,18 @@ Result<InverseRun> readAndSolve(const InverseJob& job, MessageSink& sink, const 
     // Compensated for chord loss (core/polyline.h) so that the seam, and the flat outlines
     // isometric to it, keep the curve's length: inscribed, 100 points fall short of a
     // tennis-ball seam by 0.11 %.
-    const Points3 target = compensateChordLoss(resampleClosed(curve.value().points, levels[level]));
+    const Points3 target = compensateChordLoss(resampleClosed(curve.points, levels[level]));
     const auto meshStart = Clock::now();
     DForm startModel;
     if (level == 0) {
-      Result<InverseInit> init = initialiseInverse(Curve3{target, job.curve, {}}, job.init);
+      Result<InverseInit> init = initialiseInverse(Curve3{target, curve.source, {}}, job.init);
       if (!init.isOk()) return init.status();
       run.pre = init.value().pre;
       sink.info("pre-D-Form: " + run.pre.summary);
       // On its hull the curve is the seam of the hull's two sides: unfolded, they are the pieces,
       // and zipped they make that hull again (Alexandrov), with nothing to optimise.
       if (finest && run.pre.isHull) {
-        Result<DForm> exact = exactInverse(init.value(), target, job, run.modelUsed);
+        Result<DForm> exact = exactInverse(init.value(), target, name, job, run.modelUsed);
         run.timings.mesh += secondsSince(meshStart);
         if (exact.isOk()) {
           sink.info("exact model: the pieces are the curve's convex hull cut along it and unfolded");
@@ -170,7 +172,7 @@ Result<InverseRun> readAndSolve(const InverseJob& job, MessageSink& sink, const 
           run.timings.total = secondsSince(start);
           return run;
         }
-        sink.warning(job.curve + ": the exact model failed (" + exact.status().message() + "); optimising instead");
+        sink.warning(name + ": the exact model failed (" + exact.status().message() + "); optimising instead");
       }
       run.modelUsed.name = "paper";
       run.modelUsed.reason = !finest ? "the curve has more points than the exact inverse unfolds in one piece (" +
@@ -187,7 +189,7 @@ Result<InverseRun> readAndSolve(const InverseJob& job, MessageSink& sink, const 
         // Meshing a fine level takes seconds per piece (2-3 s at resolution 1500).
         if (detail::stopRequested(hooks)) return detail::interruptedDuring("the meshing");
         Result<Piece> piece = refinePiece(*coarse, target, clockwise, edge, job.init);
-        if (!piece.isOk()) return Status(piece.status().code(), job.curve + ": " + piece.status().message());
+        if (!piece.isOk()) return Status(piece.status().code(), name + ": " + piece.status().message());
         *fine = std::move(piece).value();
       }
     }
@@ -207,7 +209,7 @@ Result<InverseRun> readAndSolve(const InverseJob& job, MessageSink& sink, const 
     run.timings.solve += secondsSince(solveStart);
     if (detail::stopRequested(hooks)) return detail::interruptedDuring("the solve");
     if (!solved.summary.usable())
-      return Status(ErrorCode::SolveFailed, job.curve + ": the solver failed: " + solved.summary.message);
+      return Status(ErrorCode::SolveFailed, name + ": the solver failed: " + solved.summary.message);
     sink.emit(Level::Debug, format("local-global start: %.0f iterations, energy %.4g -> %.4g",
                                    solved.relaxation.iterations, solved.relaxation.initialEnergy,
                                    solved.relaxation.finalEnergy));
@@ -221,7 +223,7 @@ Result<InverseRun> readAndSolve(const InverseJob& job, MessageSink& sink, const 
   run.curveMatch = computeCurveMatch(run.model, run.target);
   // A sheet folded over is what the gate rejects; where the curve leaves its hull, say why.
   if (run.metrics.flipped_3d > 0 && !run.pre.onHull)
-    sink.warning(job.curve + ": the shape folds over itself (" + std::to_string(run.metrics.flipped_3d) +
+    sink.warning(name + ": the shape folds over itself (" + std::to_string(run.metrics.flipped_3d) +
                  " triangles): the stretch of the curve inside its convex hull (" + run.pre.summary +
                  ") is too deep to bend into a D-Form from the filled pre-D-Form; a shallower dent, or one "
                  "spread along more of the curve, can be made (docs/inverse.md, Limits)");
@@ -237,13 +239,31 @@ Result<InverseRun> readAndSolve(const InverseJob& job, MessageSink& sink, const 
 
 }  // namespace
 
-Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const RunHooks& hooks) {
+Result<InverseRun> makePieces(Curve3 curve, const InverseSettings& settings, MessageSink& sink,
+                              const RunHooks& hooks) {
   MemoryEstimate estimate;
   try {
-    return readAndSolve(job, sink, hooks, estimate);
+    return solveCurve(curve, settings, sink, hooks, estimate);
   } catch (const std::bad_alloc&) {
-    return outOfMemory(estimate, job.resolution, job.curve + ": the run");
+    return outOfMemory(estimate, settings.resolution, curveLabel(curve) + ": the run");
   }
+}
+
+Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const RunHooks& hooks) {
+  // The job's numbers first: a bad one costs no reading.
+  if (Status s = validateInverseJob(job); !s.isOk()) return s;
+  const auto start = Clock::now();
+  CurveReadOptions readOptions;
+  readOptions.forceClosed = job.forceClosed;
+  Result<Curve3> curve = readCurve(job.curve, readOptions);
+  if (!curve.isOk()) return curve.status();
+  curve.value().source = job.curve;
+  const double read = secondsSince(start);
+  Result<InverseRun> run = makePieces(std::move(curve).value(), job, sink, hooks);
+  if (!run.isOk()) return run;
+  run.value().timings.read += read;
+  run.value().timings.total = secondsSince(start);
+  return run;
 }
 
 }  // namespace dform

@@ -13,12 +13,17 @@
 
 namespace dform {
 
-struct InverseJob {
-  std::string curve;        ///< seam curve file (OBJ polyline, JSON points or Bezier)
-  bool forceClosed = false; ///< an open OBJ polyline is closed (`--closed`)
+/// Everything an inverse run needs besides the curve.
+struct InverseSettings {
   int resolution = 100;     ///< seam vertices
   InverseInitOptions init;
   InverseOptions solve;
+};
+
+/// An inverse job: the settings and the curve's file.
+struct InverseJob : InverseSettings {
+  std::string curve;        ///< seam curve file (OBJ polyline, JSON points or Bezier)
+  bool forceClosed = false; ///< an open OBJ polyline is closed (`--closed`)
 };
 
 struct InverseRun {
@@ -37,9 +42,17 @@ struct InverseRun {
 };
 
 /// Checks a job's numbers before any work is done (Usage errors).
-Status validateInverseJob(const InverseJob& job);
+Status validateInverseJob(const InverseSettings& job);
 
-/// Reads, initialises (pre-D-Form), optimises and measures. Errors name the file and the problem.
+/// Reads the curve, then makes and measures its pieces as makePieces does. Errors name the file
+/// and the problem.
 Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const RunHooks& hooks = {});
+
+/// The two flat pieces whose D-Form has `curve` (mm, closed, in memory) as its seam: initialised
+/// (pre-D-Form; the exact model where the curve lies on its convex hull), optimised and
+/// measured. Messages and errors name the curve by its `source` (a file path), else "the curve".
+/// A failed allocation is an error with the resolution that fits.
+Result<InverseRun> makePieces(Curve3 curve, const InverseSettings& settings, MessageSink& sink,
+                              const RunHooks& hooks = {});
 
 }  // namespace dform

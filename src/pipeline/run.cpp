@@ -28,100 +28,95 @@ Status namingFolder(const Status& status, const std::string& dir) {
                                                             : status;
 }
 
-Result<WrittenResult> writeResult(const Job& job, const OutputOptions& output,
-                                  const RunSettings& settings, MessageSink& sink,
-                                  const RunHooks& hooks) {
-  const std::atomic<bool>& interrupted = hooks.interrupted ? *hooks.interrupted : kNeverStopped;
-  CommandTimings timings;
-  timings.start = Clock::now();
-  const bool forward = job.mode == Job::Mode::Forward;
-  const std::optional<GateLimits>& limits = settings.limits;
-  // The output folder is locked and checked before anything is solved; the result is written
-  // into a staging folder beside it and swapped in whole, or not at all.
-  ResultFolder folder;
-  if (Status s = folder.begin(output.outDir, resultFileNames()); !s.isOk()) return s;
+// A run's solved result, of either mode (exactly one is set).
+struct Solved {
+  const ForwardRun* forward = nullptr;
+  const InverseRun* inverse = nullptr;
+  const DForm& model() const { return forward ? forward->model : inverse->model; }
+};
 
-  // Solve first: nothing is written for a run that fails.
-  DForm model;
-  Result<ForwardRun> forwardRun = Status(ErrorCode::Internal, "not run");
-  Result<InverseRun> inverseRun = Status(ErrorCode::Internal, "not run");
-  if (forward) {
-    forwardRun = runForward(job.forward, sink, hooks);
-    if (!forwardRun.isOk()) return namingFolder(forwardRun.status(), output.outDir);
-    model = forwardRun.value().model;
-  } else {
-    inverseRun = runInverse(job.inverse, sink, hooks);
-    if (!inverseRun.isOk()) return namingFolder(inverseRun.status(), output.outDir);
-    model = inverseRun.value().model;
+// The gate on the figures the run measured on its model (the exact body, the round trip): not
+// measured twice.
+GateReport gateSolved(const Solved& solved, const GateLimits& limits) {
+  return solved.forward ? runGate(solved.model(), limits, solved.forward->metrics, nullptr, nullptr)
+                        : runGate(solved.model(), limits, solved.inverse->metrics,
+                                  &solved.inverse->target, &solved.inverse->curveMatch);
+}
+
+// The cutting files laid out in memory, the layout judged as the gate's last check (so that it
+// comes before the verdict). A pattern that fails on its layout alone is laid out again with the
+// FAILED GATE mark. An export that fails leaves the rest of the result to be written (a sheet too
+// small: the export can be redone alone).
+Result<PreparedExport> prepareJudged(const Solved& solved, const std::string& name,
+                                     const OutputOptions& output, const RunSettings& settings,
+                                     std::optional<GateReport>& gate, MessageSink& sink) {
+  if (!output.exportFiles) {
+    if (gate) gate->checks.push_back(notRunCheck("pattern_layout", 0, "no export (--no-export)"));
+    return Status(ErrorCode::Internal, "no export");
   }
+  Result<PreparedExport> prepared =
+      prepare(solved.model(), *settings.exporting, gate && !gate->passed(), name);
+  if (prepared.isOk() && gate) {
+    const bool passedBefore = gate->passed();
+    gate->checks.push_back(layoutCheck(prepared.value().layout));
+    if (passedBefore && !gate->passed())
+      prepared = prepare(solved.model(), *settings.exporting, true, name);
+  } else if (!prepared.isOk()) {
+    if (gate)
+      gate->checks.push_back(
+          notRunCheck("pattern_layout", 0, "the export failed: " + prepared.status().message()));
+    sink.emit(Level::Error, "export: " + prepared.status().message() +
+                                " (the result is saved; run `dform export " + output.outDir +
+                                "` with another --sheet or --profile)");
+  }
+  if (prepared.isOk() && !gate && prepared.value().layout.problems() > 0)
+    sink.warning("export: " + layoutCheck(prepared.value().layout).detail);
+  return prepared;
+}
+
+// Gates, lays out and writes a solved run into `folder` (begun before the solve), then swaps it
+// in: meshes, report.json (the gate's verdict, measured on the export prepared in memory), the
+// cutting files when released, report.html. Any failure drops it and leaves the output folder
+// as it was.
+Result<WrittenResult> writeSolved(const Job& job, const Solved& solved, ResultFolder& folder,
+                                  const OutputOptions& output, const RunSettings& settings,
+                                  MessageSink& sink, const std::atomic<bool>& interrupted,
+                                  CommandTimings timings) {
   std::optional<GateReport> gate;
-  if (limits) {
+  if (settings.limits) {
     const auto gateStart = Clock::now();
-    // On the figures the run measured on this model (the exact body, the round trip): not twice.
-    gate = forward ? runGate(model, *limits, forwardRun.value().metrics, nullptr, nullptr)
-                   : runGate(model, *limits, inverseRun.value().metrics, &inverseRun.value().target,
-                             &inverseRun.value().curveMatch);
+    gate = gateSolved(solved, *settings.limits);
     timings.gate = secondsSince(gateStart);
   }
   if (interrupted) return leftAsItWas(output.outDir, "interrupted");
-
-  // The pattern's layout is the gate's last check, so it is laid out before the verdict; the
-  // report is written whatever the export does, so that a failed export (a sheet too small)
-  // still leaves the solved result complete and the export can be redone alone.
-  const std::string name = jobName(job);
-  Result<PreparedExport> prepared = Status(ErrorCode::Internal, "no export");
   const auto exportStart = Clock::now();
-  if (output.exportFiles) {
-    prepared = prepare(model, *settings.exporting, gate && !gate->passed(), name);
-    if (interrupted) return leftAsItWas(output.outDir, "interrupted");
-    if (prepared.isOk() && gate) {
-      const bool passedBefore = gate->passed();
-      gate->checks.push_back(layoutCheck(prepared.value().layout));
-      // Failed on its layout alone: lay it out again with the FAILED GATE mark.
-      if (passedBefore && !gate->passed()) prepared = prepare(model, *settings.exporting, true, name);
-    } else if (!prepared.isOk()) {
-      if (gate)
-        gate->checks.push_back(
-            notRunCheck("pattern_layout", 0, "the export failed: " + prepared.status().message()));
-      sink.emit(Level::Error, "export: " + prepared.status().message() +
-                                  " (the result is saved; run `dform export " + output.outDir +
-                                  "` with another --sheet or --profile)");
-    }
-    if (prepared.isOk() && !gate && prepared.value().layout.problems() > 0)
-      sink.warning("export: " + layoutCheck(prepared.value().layout).detail);
-  } else if (gate) {
-    gate->checks.push_back(notRunCheck("pattern_layout", 0, "no export (--no-export)"));
-  }
+  const Result<PreparedExport> prepared =
+      prepareJudged(solved, jobName(job), output, settings, gate, sink);
   if (output.exportFiles) timings.exportFiles = secondsSince(exportStart);
   const bool gateFailed = gate && !gate->passed();
 
   // Everything is computed; a Ctrl-C that came meanwhile leaves the output folder as it was.
   if (interrupted) return leftAsItWas(output.outDir, "interrupted");
-  const Status exported =
-      prepared.isOk() || !output.exportFiles ? Status::ok() : prepared.status();
-  // The whole result goes into the staging folder: meshes, report.json (the gate's verdict,
-  // measured on the export prepared in memory), the cutting files, report.html. Any failure
-  // drops it and leaves the output folder as it was.
   const std::string& staging = folder.staging();
   const auto writeStart = Clock::now();
-  Status written = writeModel(staging, model);
-  if (written.isOk() && !forward) written = writeTargetCurve(staging, inverseRun.value().target);
+  Status written = writeModel(staging, solved.model());
+  if (written.isOk() && solved.inverse) written = writeTargetCurve(staging, solved.inverse->target);
   if (!written.isOk()) return folder.named(written);
   timings.write = secondsSince(writeStart);
   const bool release = prepared.isOk() && (!gateFailed || output.exportAnyway);
   if (release) noteExport(prepared.value(), sink);
   const GateReport* gateReport = gate ? &*gate : nullptr;
   const Result<std::string> reported =
-      forward ? writeForwardReport(staging, job, forwardRun.value(), sink.messages(), gateReport,
-                                   timings)
-              : writeInverseReport(staging, job, inverseRun.value(), sink.messages(), gateReport,
-                                   timings);
+      solved.forward ? writeForwardReport(staging, job, *solved.forward, sink.messages(),
+                                          gateReport, timings)
+                     : writeInverseReport(staging, job, *solved.inverse, sink.messages(),
+                                          gateReport, timings);
   if (!reported.isOk()) return folder.named(reported.status());
   if (release)
     if (Status s = writeExport(prepared.value(), staging).status(); !s.isOk())
       return folder.named(s);
   if (Status html = writeReportPage(staging, reported.value(), output.outDir + "/report.json",
-                                    release ? &prepared.value() : nullptr, model);
+                                    release ? &prepared.value() : nullptr, solved.model());
       !html.isOk())
     return folder.named(html);
   if (Status s = commitUnlessInterrupted(folder, output.outDir, interrupted); !s.isOk())
@@ -132,16 +127,43 @@ Result<WrittenResult> writeResult(const Job& job, const OutputOptions& output,
                   output.outDir + ": interrupted; the new result was written completely");
   WrittenResult result;
   result.gate = gate;
-  result.exported = exported;
-  if (forward) {
-    result.metrics = forwardRun.value().metrics;
-    result.timings = forwardRun.value().timings;
-  } else {
-    result.metrics = inverseRun.value().metrics;
-    result.curve = inverseRun.value().curveMatch;
-    result.timings = inverseRun.value().timings;
-  }
+  result.exported = prepared.isOk() || !output.exportFiles ? Status::ok() : prepared.status();
+  result.metrics = solved.forward ? solved.forward->metrics : solved.inverse->metrics;
+  result.timings = solved.forward ? solved.forward->timings : solved.inverse->timings;
+  if (solved.inverse) result.curve = solved.inverse->curveMatch;
   return result;
+}
+
+// The output folder is locked and checked before anything is solved; nothing is written for a
+// run that fails.
+Result<WrittenResult> solveAndWrite(const Job& job, const OutputOptions& output,
+                                    const RunSettings& settings, MessageSink& sink,
+                                    const RunHooks& hooks) {
+  const std::atomic<bool>& interrupted = hooks.interrupted ? *hooks.interrupted : kNeverStopped;
+  CommandTimings timings;
+  timings.start = Clock::now();
+  ResultFolder folder;
+  if (Status s = folder.begin(output.outDir, resultFileNames()); !s.isOk()) return s;
+  if (job.mode == Job::Mode::Forward) {
+    const Result<ForwardRun> run = runForward(job.forward, sink, hooks);
+    if (!run.isOk()) return namingFolder(run.status(), output.outDir);
+    return writeSolved(job, {&run.value(), nullptr}, folder, output, settings, sink, interrupted,
+                       timings);
+  }
+  const Result<InverseRun> run = runInverse(job.inverse, sink, hooks);
+  if (!run.isOk()) return namingFolder(run.status(), output.outDir);
+  return writeSolved(job, {nullptr, &run.value()}, folder, output, settings, sink, interrupted,
+                     timings);
+}
+
+// A result made in memory, written as a run writes its own.
+Result<WrittenResult> writeMade(const Job& job, const Solved& solved, const OutputOptions& output,
+                                const RunSettings& settings, MessageSink& sink) {
+  CommandTimings timings;
+  timings.start = Clock::now();
+  ResultFolder folder;
+  if (Status s = folder.begin(output.outDir, resultFileNames()); !s.isOk()) return s;
+  return writeSolved(job, solved, folder, output, settings, sink, kNeverStopped, timings);
 }
 
 }  // namespace
@@ -163,13 +185,30 @@ Result<WrittenResult> runAndWrite(const Job& job, const OutputOptions& output,
                                   const RunSettings& settings, MessageSink& sink,
                                   const RunHooks& hooks) {
   try {
-    return writeResult(job, output, settings, sink, hooks);
+    return solveAndWrite(job, output, settings, sink, hooks);
   } catch (const std::bad_alloc&) {
     // Past the solve (which says this itself, with its estimate): exporting, measuring, writing.
     const int resolution =
         job.mode == Job::Mode::Forward ? job.forward.resolution : job.inverse.resolution;
     return outOfMemory({}, resolution, output.outDir + ": the run");
   }
+}
+
+Result<WrittenResult> writeResult(const ForwardJob& job, const ForwardRun& run,
+                                  const OutputOptions& output, const RunSettings& settings,
+                                  MessageSink& sink) {
+  Job whole;
+  whole.forward = job;
+  return writeMade(whole, {&run, nullptr}, output, settings, sink);
+}
+
+Result<WrittenResult> writeResult(const InverseJob& job, const InverseRun& run,
+                                  const OutputOptions& output, const RunSettings& settings,
+                                  MessageSink& sink) {
+  Job whole;
+  whole.mode = Job::Mode::Inverse;
+  whole.inverse = job;
+  return writeMade(whole, {nullptr, &run}, output, settings, sink);
 }
 
 Result<std::vector<SweepRow>> sweepAndWrite(const Job& base, const SweepOptions& options,

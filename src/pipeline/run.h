@@ -82,6 +82,15 @@ Result<WrittenResult> runAndWrite(const Job& job, const OutputOptions& output,
                                   const RunSettings& settings, MessageSink& sink,
                                   const RunHooks& hooks);
 
+/// A result made in memory (makeDForm, makePieces) written into output.outDir as runAndWrite
+/// writes one; `job` (its settings, and names for its inputs) is what report.json records.
+Result<WrittenResult> writeResult(const ForwardJob& job, const ForwardRun& run,
+                                  const OutputOptions& output, const RunSettings& settings,
+                                  MessageSink& sink);
+Result<WrittenResult> writeResult(const InverseJob& job, const InverseRun& run,
+                                  const OutputOptions& output, const RunSettings& settings,
+                                  MessageSink& sink);
+
 /// `base` from every start of `options`, each written as runAndWrite writes one into
 /// output.outDir/<start>/, with sweep.json and gallery.html (docs/sweep.md).
 Result<std::vector<SweepRow>> sweepAndWrite(const Job& base, const SweepOptions& options,
