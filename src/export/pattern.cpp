@@ -27,13 +27,6 @@ constexpr double kTileMargin = 10.0, kTileHeader = 12.0;
 // paper): such a pattern is refused before it is drawn, as one too large for its sheet is.
 constexpr long kMaxTiles = 500;
 
-double polylineLength(const Polyline& p, bool closed) {
-  double len = 0;
-  for (size_t i = 0; i + 1 < p.size(); ++i) len += (p[i + 1] - p[i]).norm();
-  if (closed && p.size() > 1) len += (p.front() - p.back()).norm();
-  return len;
-}
-
 // The closed polygon turned counter-clockwise (ccw) or clockwise.
 Polyline oriented(const Polyline& P, bool ccw) {
   return (signedArea(toPoints(P)) >= 0) == ccw ? P : Polyline(P.rbegin(), P.rend());
@@ -330,7 +323,7 @@ Path textPath(const StrokeFont& font, std::string id, const std::string& text, c
 }
 
 std::vector<Polyline> perforate(const Polyline& line, double on, double off) {
-  const double len = polylineLength(line, false);
+  const double len = openLength(toPoints(line));
   std::vector<Polyline> dashes;
   const int count = int(std::floor((len - off) / (on + off)));
   if (count < 1) return dashes;
@@ -829,7 +822,7 @@ int drawCreaseLetters(const PieceInfo& info, const std::vector<Polyline>& crease
   for (const CreaseInfo& crease : info.creases) {
     const std::string letter = crease.fold.direction == FoldDirection::Mountain ? "M" : "V";
     const double h = profile.labelHeightMm, halfW = 0.5 * font.width(letter, h), halfH = 0.5 * h;
-    const double length = polylineLength(crease.line, false);
+    const double length = openLength(toPoints(crease.line));
     bool placed = false;
     for (double f : {0.5, 0.3, 0.7, 0.15, 0.85})
       for (double side : {1.0, -1.0}) {
