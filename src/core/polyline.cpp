@@ -278,15 +278,32 @@ double distanceToSegment(const Eigen::Vector2d& q, const Eigen::Vector2d& a, con
   return (a + t * ab - q).norm();
 }
 
-bool insidePolygon(const Points2& P, const Eigen::Vector2d& q) {
+namespace {
+
+// Even-odd rule: whether a ray from q crosses the polygon's edges an odd number of times. `at(i)`
+// is vertex i of the n.
+template <class Vertex>
+bool insideEvenOdd(Eigen::Index n, Vertex at, const Eigen::Vector2d& q) {
   bool inside = false;
-  for (Eigen::Index i = 0, j = P.rows() - 1; i < P.rows(); j = i++) {
-    const double yi = P(i, 1), yj = P(j, 1);
-    if ((yi > q.y()) != (yj > q.y()) &&
-        q.x() < P(j, 0) + (q.y() - yj) * (P(i, 0) - P(j, 0)) / (yi - yj))
+  for (Eigen::Index i = 0, j = n - 1; i < n; j = i++) {
+    const Eigen::Vector2d a = at(i), b = at(j);
+    if ((a.y() > q.y()) != (b.y() > q.y()) &&
+        q.x() < b.x() + (q.y() - b.y()) * (a.x() - b.x()) / (a.y() - b.y()))
       inside = !inside;
   }
   return inside;
+}
+
+}  // namespace
+
+bool insidePolygon(const Points2& P, const Eigen::Vector2d& q) {
+  return insideEvenOdd(
+      P.rows(), [&](Eigen::Index i) -> Eigen::Vector2d { return P.row(i).transpose(); }, q);
+}
+
+bool insidePolygon(const std::vector<Eigen::Vector2d>& P, const Eigen::Vector2d& q) {
+  return insideEvenOdd(
+      Eigen::Index(P.size()), [&](Eigen::Index i) { return P[size_t(i)]; }, q);
 }
 
 }  // namespace dform

@@ -86,4 +86,7 @@ double distanceToSegment(const Eigen::Vector2d& q, const Eigen::Vector2d& a, con
 /// for a point on an edge the answer is either.
 bool insidePolygon(const Points2& P, const Eigen::Vector2d& q);
 
+/// The same for the closed polygon through the points of P (a sheet polyline).
+bool insidePolygon(const std::vector<Eigen::Vector2d>& P, const Eigen::Vector2d& q);
+
 }  // namespace dform

@@ -141,39 +141,19 @@ std::vector<std::string> steps(const PatternBuild& pattern) {
               "shape with the picture above."};
 }
 
-}  // namespace
+// `s` in `font`, centred on c at capital height h, as one path of `layer`.
+void write(Layer& layer, const StrokeFont& font, const std::string& id, const std::string& s,
+           const Vec2& c, double h) {
+  Path p;
+  p.id = id;
+  p.parts = font.layout(s, c, Vec2(1, 0), h);
+  layer.paths.push_back(std::move(p));
+}
 
-Drawing assemblyPage(const DForm& model, const PatternBuild& pattern, const ExportOptions& o,
-                     const StrokeFont& font) {
-  Drawing d;
-  const bool letter = pattern.profile.page == "Letter" || o.page == "Letter";
-  d.width = letter ? 8.5 * 25.4 : 210.0;
-  d.height = letter ? 11.0 * 25.4 : 297.0;
-  d.title = o.jobName + " - assembly";
-  d.description = "How to glue the pieces: dform assembly page, mm";
-  d.layers = {makeLayer("Shape", "#000000", 0.1),  makeLayer("Hidden", "#999999", 0.25),
-              makeLayer("Seam", "#C2185B", 0.5),   makeLayer("Pieces", "#333333", 0.3),
-              makeLayer("Marks", "#C2185B", 0.6),  makeLayer("Text", "#000000", 0.3)};
-  Layer& shapeLayer = d.layers[0];
-  Layer& hidden = d.layers[1];
-  Layer& seamLayer = d.layers[2];
-  Layer& piecesLayer = d.layers[3];
-  Layer& marks = d.layers[4];
-  Layer& text = d.layers[5];
-  auto write = [&](Layer& layer, const std::string& id, const std::string& s, const Vec2& c,
-                   double h) {
-    Path p;
-    p.id = id;
-    p.parts = font.layout(s, c, Vec2(1, 0), h);
-    layer.paths.push_back(std::move(p));
-  };
-  const double W = d.width, H = d.height;
-  write(text, "assembly-title",
-        "How to assemble " + o.jobName + ": D-Form " + pattern.pieces[0].name + " + " +
-            pattern.pieces[1].name,
-        Vec2(0.5 * W, kMargin + 2.5), 5.0);
-
-  // The steps first, from the bottom up, so that the pictures take the room that is left.
+// The numbered steps at the foot of a W x H page, laid out from the bottom up so that the
+// pictures take the room that is left. Returns the top of the steps (mm).
+double drawSteps(const PatternBuild& pattern, const StrokeFont& font, double W, double H,
+                 Layer& text) {
   std::vector<std::vector<std::string>> stepLines;
   double stepsH = 0;
   const double indent = 8.0, textW = W - 2 * kMargin - indent;
@@ -185,76 +165,81 @@ Drawing assemblyPage(const DForm& model, const PatternBuild& pattern, const Expo
   const double stepsTop = y;
   for (size_t k = 0; k < stepLines.size(); ++k) {
     const std::string number = std::to_string(k + 1) + ".";
-    write(text, "step-" + std::to_string(k + 1) + "-number", number,
+    write(text, font, "step-" + std::to_string(k + 1) + "-number", number,
           Vec2(kMargin + 0.5 * font.width(number, kTextH), y + 0.5 * kTextH), kTextH);
     for (size_t i = 0; i < stepLines[k].size(); ++i) {
       const std::string& line = stepLines[k][i];
-      write(text, "step-" + std::to_string(k + 1) + "-line-" + std::to_string(i + 1), line,
+      write(text, font, "step-" + std::to_string(k + 1) + "-line-" + std::to_string(i + 1), line,
             Vec2(kMargin + indent + 0.5 * font.width(line, kTextH), y + 0.5 * kTextH), kTextH);
       y += kLineH * kTextH;
     }
     y += 0.4 * kLineH * kTextH;
   }
+  return stepsTop;
+}
 
-  // The two pieces, small, side by side above the steps: outline and tabs, tick 0 and the zip.
-  const double top = kMargin + 10.0, gap = 8.0;
-  const double thumbsH = std::min(60.0, 0.35 * (stepsTop - top));
-  const double thumbsTop = stepsTop - gap - thumbsH;
-  const double half = 0.5 * (W - 2 * kMargin - gap);
-  for (size_t p = 0; p < 2; ++p) {
-    const PieceInfo& piece = pattern.pieces[p];
-    const std::string& name = piece.name;
-    Box content = boxOf(piece.cut);
-    content.add(piece.outline);
-    const double x0 = kMargin + double(p) * (half + gap);
-    const Box area = Box::spanning(Vec2(x0 + 6, thumbsTop + 2), Vec2(x0 + half - 6, thumbsTop + thumbsH - 8));
-    const Fit fit(content, area, false);
-    Path cut;
-    cut.id = "thumb-" + name + "-cut";
-    cut.closed = true;
-    for (const Polyline& loop : piece.cut) cut.parts.push_back(fit(loop));
-    for (const Polyline& loop : piece.holeCuts) cut.parts.push_back(fit(loop));
-    piecesLayer.paths.push_back(cut);
-    // The zip: the seam from tick 0 to tick 1 (or a tenth of the way round), arrowed.
-    Polyline loop = piece.outline;
-    loop.push_back(loop.front());
-    const TickInfo& t0 = pattern.ticks.front();
-    const double s0 = p == 0 ? t0.s : t0.sB;
-    const double step = pattern.ticks.size() > 1
-                            ? (p == 0 ? pattern.ticks[1].s : pattern.ticks[1].sB) - s0
-                            : 0.1 * piece.perimeter;
-    Path zip;
-    zip.id = "thumb-" + name + "-zip";
-    Polyline arc;
-    const int pieces = 24;
-    for (int k = 0; k <= pieces; ++k) arc.push_back(fit(pointAlong(loop, s0 + step * k / pieces)));
-    Vec2 along = (arc.back() - arc[arc.size() - 2]);
-    along = along.norm() > 0 ? along.normalized() : Vec2(1, 0);
-    const Vec2 side(-along.y(), along.x()), tip = arc.back();
-    zip.parts = {arc, {tip - 2.5 * along + 1.3 * side, tip, tip - 2.5 * along - 1.3 * side}};
-    marks.paths.push_back(zip);
-    Path start;
-    start.id = "thumb-" + name + "-start";
-    start.filled = start.closed = true;
-    const Vec2 at = fit(p == 0 ? t0.onA : t0.onB);
-    start.parts = {disc(at, 1.2)};
-    marks.paths.push_back(start);
-    // "0" just outside the start, away from the piece's centre.
-    Vec2 out = at - 0.5 * (area.lo + area.hi);
-    out = out.norm() > 0 ? out.normalized() : Vec2(0, -1);
-    write(text, "thumb-" + name + "-start-label", "0", at + 3.5 * out, kTextH);
-    write(text, "thumb-" + name + "-name", name, Vec2(x0 + 0.5 * half, thumbsTop + thumbsH - 3), 4.0);
-  }
+// The page's layers, in drawing order.
+struct AssemblyLayers {
+  Layer& shape;
+  Layer& hidden;
+  Layer& seam;
+  Layer& pieces;
+  Layer& marks;
+  Layer& text;
+};
 
-  // The 3D shape, shaded, with its seam and the tick numbers where the ticks meet.
-  const ShapeCamera camera(kViewAzimuth, kViewElevation);
-  const std::vector<SeenFace> faces = paintersFaces(model, camera);
-  Box seen;
-  for (const SeenFace& f : faces)
-    for (const Vec2& c : f.corners) seen.add(c);
-  const Box viewArea = Box::spanning(Vec2(kMargin + 8, top + 6), Vec2(W - kMargin - 8, thumbsTop - gap - 6));
-  const Fit view(seen, viewArea, true);
-  // Each face's shade, quantised; a run of faces of one colour in painter's order is one path.
+// Piece p small in its half of the strip [thumbsTop, thumbsTop + thumbsH] whose left edge is at
+// x0: outline and tabs, tick 0 and the zip.
+void drawThumbnail(const PatternBuild& pattern, size_t p, double x0, double half, double thumbsTop,
+                   double thumbsH, const StrokeFont& font, AssemblyLayers& layers) {
+  const PieceInfo& piece = pattern.pieces[p];
+  const std::string& name = piece.name;
+  Box content = boxOf(piece.cut);
+  content.add(piece.outline);
+  const Box area =
+      Box::spanning(Vec2(x0 + 6, thumbsTop + 2), Vec2(x0 + half - 6, thumbsTop + thumbsH - 8));
+  const Fit fit(content, area, false);
+  Path cut;
+  cut.id = "thumb-" + name + "-cut";
+  cut.closed = true;
+  for (const Polyline& loop : piece.cut) cut.parts.push_back(fit(loop));
+  for (const Polyline& loop : piece.holeCuts) cut.parts.push_back(fit(loop));
+  layers.pieces.paths.push_back(cut);
+  // The zip: the seam from tick 0 to tick 1 (or a tenth of the way round), arrowed.
+  Polyline loop = piece.outline;
+  loop.push_back(loop.front());
+  const TickInfo& t0 = pattern.ticks.front();
+  const double s0 = p == 0 ? t0.s : t0.sB;
+  const double step = pattern.ticks.size() > 1
+                          ? (p == 0 ? pattern.ticks[1].s : pattern.ticks[1].sB) - s0
+                          : 0.1 * piece.perimeter;
+  Path zip;
+  zip.id = "thumb-" + name + "-zip";
+  Polyline arc;
+  const int pieces = 24;
+  for (int k = 0; k <= pieces; ++k) arc.push_back(fit(pointAlong(loop, s0 + step * k / pieces)));
+  Vec2 along = (arc.back() - arc[arc.size() - 2]);
+  along = along.norm() > 0 ? along.normalized() : Vec2(1, 0);
+  const Vec2 side(-along.y(), along.x()), tip = arc.back();
+  zip.parts = {arc, {tip - 2.5 * along + 1.3 * side, tip, tip - 2.5 * along - 1.3 * side}};
+  layers.marks.paths.push_back(zip);
+  Path start;
+  start.id = "thumb-" + name + "-start";
+  start.filled = start.closed = true;
+  const Vec2 at = fit(p == 0 ? t0.onA : t0.onB);
+  start.parts = {disc(at, 1.2)};
+  layers.marks.paths.push_back(start);
+  // "0" just outside the start, away from the piece's centre.
+  Vec2 out = at - 0.5 * (area.lo + area.hi);
+  out = out.norm() > 0 ? out.normalized() : Vec2(0, -1);
+  write(layers.text, font, "thumb-" + name + "-start-label", "0", at + 3.5 * out, kTextH);
+  write(layers.text, font, "thumb-" + name + "-name", name,
+        Vec2(x0 + 0.5 * half, thumbsTop + thumbsH - 3), 4.0);
+}
+
+// The faces, shaded. Each face's shade is quantised; a run of faces of one colour in painter's
+// order is one path.
+void drawShadedFaces(const std::vector<SeenFace>& faces, const Fit& view, Layer& shapeLayer) {
   std::vector<std::string> colours;
   for (const SeenFace& f : faces)
     colours.push_back(
@@ -276,25 +261,35 @@ Drawing assemblyPage(const DForm& model, const PatternBuild& pattern, const Expo
     }
     shapeLayer.paths.push_back(std::move(run));
   }
-  // Whether the surface hides a point (screen x, y, depth): a face covers it that is nearer
-  // there by more than a hundredth of the shape (the faces beside a seam point are at its depth).
+}
+
+// Whether the surface hides a point (screen x, y, depth): a face covers it that is nearer there
+// by more than a hundredth of the shape's `size` (the faces beside a seam point are at its
+// depth).
+bool hiddenBySurface(const std::vector<SeenFace>& faces, double size, const Eigen::Vector3d& s) {
+  for (const SeenFace& f : faces) {
+    const Vec2 u = f.corners[1] - f.corners[0], v = f.corners[2] - f.corners[0];
+    const Vec2 w = Vec2(s.head<2>()) - f.corners[0];
+    const double det = u.x() * v.y() - u.y() * v.x();
+    if (std::abs(det) < 1e-12) continue;
+    const double b1 = (w.x() * v.y() - w.y() * v.x()) / det;
+    const double b2 = (u.x() * w.y() - u.y() * w.x()) / det;
+    if (b1 < 0 || b2 < 0 || b1 + b2 > 1) continue;
+    const double there =
+        (1 - b1 - b2) * f.cornerDepths[0] + b1 * f.cornerDepths[1] + b2 * f.cornerDepths[2];
+    if (there < s.z() - 0.01 * size) return true;
+  }
+  return false;
+}
+
+// The seam on the 3D shape: all of it dashed grey, then the stretches in sight over it; and the
+// tick numbers where the ticks meet. A tick's 3D point is the same seam edge and fraction as on
+// the flat outline of A; its number goes outside the shape's picture, grey where the surface
+// hides the point.
+void drawSeamAndTicks(const DForm& model, const PatternBuild& pattern, const ShapeCamera& camera,
+                      const std::vector<SeenFace>& faces, const Box& seen, const Fit& view,
+                      const StrokeFont& font, AssemblyLayers& layers) {
   const double size = std::max(seen.w(), seen.h());
-  auto hiddenAt = [&](const Eigen::Vector3d& s) {
-    for (const SeenFace& f : faces) {
-      const Vec2 u = f.corners[1] - f.corners[0], v = f.corners[2] - f.corners[0];
-      const Vec2 w = Vec2(s.head<2>()) - f.corners[0];
-      const double det = u.x() * v.y() - u.y() * v.x();
-      if (std::abs(det) < 1e-12) continue;
-      const double b1 = (w.x() * v.y() - w.y() * v.x()) / det;
-      const double b2 = (u.x() * w.y() - u.y() * w.x()) / det;
-      if (b1 < 0 || b2 < 0 || b1 + b2 > 1) continue;
-      const double there = (1 - b1 - b2) * f.cornerDepths[0] + b1 * f.cornerDepths[1] +
-                           b2 * f.cornerDepths[2];
-      if (there < s.z() - 0.01 * size) return true;
-    }
-    return false;
-  };
-  // The seam: all of it dashed grey, then the stretches in sight over it.
   const Piece& a = model.a;
   const size_t n = a.seam.size();
   auto seam3 = [&](size_t i) { return Eigen::Vector3d(a.shape.row(a.seam[i % n]).transpose()); };
@@ -309,7 +304,7 @@ Drawing assemblyPage(const DForm& model, const PatternBuild& pattern, const Expo
   for (size_t i = 0; i < n; ++i) {
     const Eigen::Vector3d s = camera.screen(seam3(i));
     seamPath.parts[0].push_back(view(Vec2(s.head<2>())));
-    seenAt[i] = !hiddenAt(s);
+    seenAt[i] = !hiddenBySurface(faces, size, s);
   }
   for (size_t i = 0; i < n; ++i) {  // each edge with both ends in sight, runs joined
     if (!seenAt[i] || !seenAt[(i + 1) % n]) continue;
@@ -318,10 +313,8 @@ Drawing assemblyPage(const DForm& model, const PatternBuild& pattern, const Expo
       inSight.parts.push_back({from});
     inSight.parts.back().push_back(seamPath.parts[0][(i + 1) % n]);
   }
-  hidden.paths.push_back(seamPath);
-  if (!inSight.parts.empty()) seamLayer.paths.push_back(inSight);
-  // A tick's 3D point: the same seam edge and fraction as on the flat outline of A. Its number
-  // goes outside the shape's picture; grey where the surface hides the point.
+  layers.hidden.paths.push_back(seamPath);
+  if (!inSight.parts.empty()) layers.seam.paths.push_back(inSight);
   const Polyline& flatSeam = pattern.pieces[0].outline;
   const Vec2 middle = view(0.5 * (seen.lo + seen.hi));
   for (const TickInfo& t : pattern.ticks) {
@@ -329,17 +322,61 @@ Drawing assemblyPage(const DForm& model, const PatternBuild& pattern, const Expo
     const auto [i, frac] = edgeAt(flatSeam, t.s);
     const Eigen::Vector3d s = camera.screen((1 - frac) * seam3(i) + frac * seam3(i + 1));
     const Vec2 at = view(Vec2(s.head<2>()));
-    const bool covered = hiddenAt(s);
+    const bool covered = hiddenBySurface(faces, size, s);
     Path dot;
     dot.id = "view-tick-" + std::to_string(t.id);
     dot.filled = dot.closed = true;
     dot.parts = {disc(at, t.id == 0 ? 1.2 : 0.7)};
-    (covered ? hidden : marks).paths.push_back(dot);
+    (covered ? layers.hidden : layers.marks).paths.push_back(dot);
     Vec2 out = at - middle;
     out = out.norm() > 0 ? out.normalized() : Vec2(0, -1);
-    write(covered ? hidden : text, "view-tick-" + std::to_string(t.id) + "-label",
-          tickLabel(t.id), at + 4.0 * out, t.id == 0 ? 3.2 : 2.6);
+    write(covered ? layers.hidden : layers.text, font,
+          "view-tick-" + std::to_string(t.id) + "-label", tickLabel(t.id), at + 4.0 * out,
+          t.id == 0 ? 3.2 : 2.6);
   }
+}
+
+}  // namespace
+
+Drawing assemblyPage(const DForm& model, const PatternBuild& pattern, const ExportOptions& o,
+                     const StrokeFont& font) {
+  Drawing d;
+  const bool letter = pattern.profile.page == "Letter" || o.page == "Letter";
+  d.width = letter ? 8.5 * 25.4 : 210.0;
+  d.height = letter ? 11.0 * 25.4 : 297.0;
+  d.title = o.jobName + " - assembly";
+  d.description = "How to glue the pieces: dform assembly page, mm";
+  d.layers = {makeLayer("Shape", "#000000", 0.1),  makeLayer("Hidden", "#999999", 0.25),
+              makeLayer("Seam", "#C2185B", 0.5),   makeLayer("Pieces", "#333333", 0.3),
+              makeLayer("Marks", "#C2185B", 0.6),  makeLayer("Text", "#000000", 0.3)};
+  AssemblyLayers layers{d.layers[0], d.layers[1], d.layers[2],
+                        d.layers[3], d.layers[4], d.layers[5]};
+  const double W = d.width, H = d.height;
+  write(layers.text, font, "assembly-title",
+        "How to assemble " + o.jobName + ": D-Form " + pattern.pieces[0].name + " + " +
+            pattern.pieces[1].name,
+        Vec2(0.5 * W, kMargin + 2.5), 5.0);
+  // The steps first, so that the pictures take the room that is left.
+  const double stepsTop = drawSteps(pattern, font, W, H, layers.text);
+  // The two pieces, small, side by side above the steps.
+  const double top = kMargin + 10.0, gap = 8.0;
+  const double thumbsH = std::min(60.0, 0.35 * (stepsTop - top));
+  const double thumbsTop = stepsTop - gap - thumbsH;
+  const double half = 0.5 * (W - 2 * kMargin - gap);
+  for (size_t p = 0; p < 2; ++p)
+    drawThumbnail(pattern, p, kMargin + double(p) * (half + gap), half, thumbsTop, thumbsH, font,
+                  layers);
+  // The 3D shape, shaded, with its seam and the tick numbers where the ticks meet.
+  const ShapeCamera camera(kViewAzimuth, kViewElevation);
+  const std::vector<SeenFace> faces = paintersFaces(model, camera);
+  Box seen;
+  for (const SeenFace& f : faces)
+    for (const Vec2& c : f.corners) seen.add(c);
+  const Box viewArea =
+      Box::spanning(Vec2(kMargin + 8, top + 6), Vec2(W - kMargin - 8, thumbsTop - gap - 6));
+  const Fit view(seen, viewArea, true);
+  drawShadedFaces(faces, view, layers.shape);
+  drawSeamAndTicks(model, pattern, camera, faces, seen, view, font, layers);
   return d;
 }
 

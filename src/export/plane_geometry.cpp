@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/polyline.h"
+
 namespace dform::fab {
 
 ClipperLib::Path toClip(const Polyline& p) {
@@ -37,18 +39,6 @@ double overlapArea(const Polyline& a, const Polyline& b) {
   return overlapArea(std::vector<Polyline>{a}, std::vector<Polyline>{b});
 }
 
-bool insidePolygon(const Polyline& poly, const Vec2& q) {
-  bool inside = false;
-  for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-    const Vec2& a = poly[i];
-    const Vec2& b = poly[j];
-    if ((a.y() > q.y()) != (b.y() > q.y()) &&
-        q.x() < (b.x() - a.x()) * (q.y() - a.y()) / (b.y() - a.y()) + a.x())
-      inside = !inside;
-  }
-  return inside;
-}
-
 bool insideRegion(const std::vector<Polyline>& loops, const Vec2& q) {
   bool inside = false;
   for (const Polyline& loop : loops) inside = inside != insidePolygon(loop, q);
@@ -58,14 +48,8 @@ bool insideRegion(const std::vector<Polyline>& loops, const Vec2& q) {
 double distanceToPolylines(const std::vector<Polyline>& lines, const Vec2& q, bool closed) {
   double best = 1e300;
   for (const Polyline& line : lines)
-    for (size_t i = 0; i + (closed ? 0 : 1) < line.size(); ++i) {
-      const Vec2& a = line[i];
-      const Vec2& b = line[(i + 1) % line.size()];
-      const Vec2 ab = b - a;
-      const double len2 = ab.squaredNorm();
-      const double t = len2 > 0 ? std::clamp((q - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-      best = std::min(best, (a + t * ab - q).norm());
-    }
+    for (size_t i = 0; i + (closed ? 0 : 1) < line.size(); ++i)
+      best = std::min(best, distanceToSegment(q, line[i], line[(i + 1) % line.size()]));
   return best;
 }
 

@@ -1,6 +1,7 @@
 // Plane geometry on sheet polylines shared by the pattern builder and its layout check: polygon
-// overlap through Clipper (integer grid), point in polygon, distance to an outline. A region is a
-// set of closed polygons read by the even-odd rule: a piece's outline and its holes. Internal.
+// overlap through Clipper (integer grid), point in a region, distance to an outline (the single
+// polygon and segment tests are core's, core/polyline.h). A region is a set of closed polygons
+// read by the even-odd rule: a piece's outline and its holes. Internal.
 #pragma once
 
 #include <polyclipping/clipper.hpp>
@@ -26,10 +27,7 @@ double overlapArea(const std::vector<Polyline>& a, const std::vector<Polyline>& 
 /// Area (mm^2) common to two closed polygons.
 double overlapArea(const Polyline& a, const Polyline& b);
 
-/// Whether q is inside the closed polygon (even-odd rule).
-bool insidePolygon(const Polyline& poly, const Vec2& q);
-
-/// Whether q is inside the region.
+/// Whether q is inside the region (core's insidePolygon on each loop).
 bool insideRegion(const std::vector<Polyline>& loops, const Vec2& q);
 
 /// Distance from q to the nearest edge of the polylines, closed (`closed`) or open.

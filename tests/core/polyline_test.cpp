@@ -177,6 +177,16 @@ TEST(Polyline, InsideClosedByTheEvenOddRule) {
   EXPECT_TRUE(insidePolygon(clockwise, {1, 9}));
 }
 
+TEST(Polyline, InsideAListOfPointsAsInsideTheMatrixOfThem) {
+  const Points2 P = square(0, 0, 10);
+  std::vector<Eigen::Vector2d> points;
+  for (Eigen::Index i = 0; i < P.rows(); ++i) points.push_back(P.row(i).transpose());
+  for (const Eigen::Vector2d& q : {Eigen::Vector2d(5, 5), Eigen::Vector2d(15, 5),
+                                   Eigen::Vector2d(5, -1), Eigen::Vector2d(0.5, 9.5)})
+    EXPECT_EQ(insidePolygon(points, q), insidePolygon(P, q)) << q.transpose();
+  EXPECT_FALSE(insidePolygon(std::vector<Eigen::Vector2d>{}, {0, 0}));
+}
+
 TEST(Polyline, NearTouchIsJudgedTheSameWhicheverWayTheSegmentsRun) {
   // From the SVG fuzz target: a vertex within rounding of another edge. Walked one way the edges
   // touched, walked the other they did not, so an outline passed the reader's check and crossed

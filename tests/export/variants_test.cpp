@@ -157,11 +157,11 @@ TEST(ExportVariants, KerfGrowsTheOutlineAndShrinksTheHole) {
     // drawn within 5 um, Clipper's grid is 0.1 um).
     for (const Vec2& q : piece.cut[0]) {
       EXPECT_NEAR(fab::distanceToPolylines({outline}, q, true), 0.2, 0.01);
-      EXPECT_FALSE(fab::insidePolygon(outline, q));
+      EXPECT_FALSE(insidePolygon(outline, q));
     }
     for (const Vec2& q : piece.holeCuts[0]) {
       EXPECT_NEAR(fab::distanceToPolylines({hole}, q, true), 0.2, 0.01);
-      EXPECT_TRUE(fab::insidePolygon(hole, q));
+      EXPECT_TRUE(insidePolygon(hole, q));
     }
     EXPECT_LT(area(piece.holeCuts[0]), area(hole));
     EXPECT_GT(area(piece.cut[0]), area(outline));

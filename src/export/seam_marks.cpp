@@ -1,0 +1,109 @@
+// The seam marks: numbered ticks at matching seam points on both pieces, across each piece's
+// outline, the start tick longer with an arrow along the zip direction.
+#include "export/pattern_parts.h"
+#include "export/plane_geometry.h"
+
+namespace dform::fab {
+
+namespace {
+
+constexpr double kTickIn = 3.0;       // tick length inside the outline (mm)
+constexpr double kStartTickIn = 6.0;  // the start tick is longer (mm)
+
+}  // namespace
+
+double matchingArc(const Seam& from, const Seam& to, double s) {
+  const int i = from.segmentAt(s);
+  const size_t k = size_t(i);
+  const double len = from.cum[k + 1] - from.cum[k];
+  const double f = len > 0 ? std::clamp((s - from.cum[k]) / len, 0.0, 1.0) : 0.0;
+  return to.cum[k] + f * (to.cum[k + 1] - to.cum[k]);
+}
+
+std::vector<double> tickParameters(double L, double spacing, BuildWork& work) {
+  // A last tick closer than half a spacing to the start would crowd tick 0 and its arrow, so it
+  // is left out.
+  std::vector<double> tickS;
+  for (int k = 0; k * spacing < L; ++k) {
+    const double s = k * spacing;
+    if (k > 0 && L - s < 0.5 * spacing) break;
+    tickS.push_back(s);
+    ++work.ticks;
+  }
+  return tickS;
+}
+
+std::vector<TickInfo> placeTicks(const std::vector<double>& tickS, const Seam seams[2],
+                                 const Placement place[2]) {
+  std::vector<TickInfo> ticks;
+  for (size_t k = 0; k < tickS.size(); ++k) {
+    TickInfo t;
+    t.id = int(k);
+    t.s = tickS[k];
+    t.sB = matchingArc(seams[0], seams[1], t.s);
+    t.onA = place[0].point(seams[0].at(t.s));
+    t.onB = place[1].point(seams[1].at(t.sB));
+    ticks.push_back(t);
+  }
+  return ticks;
+}
+
+TickLabelCounts drawTicks(int p, const PieceInfo& info, const Seam& seam, const Placement& place,
+                          const std::vector<TickInfo>& ticks,
+                          const std::vector<Polyline>& creaseLines, const Profile& profile,
+                          const StrokeFont& font, DrawingBuilder& b, BuildWork& work) {
+  TickLabelCounts counts;
+  std::vector<Polyline> tickLabelHulls;                                 // the numbers placed
+  BoxIndex tickLabelIndex(std::max(2.0 * profile.labelHeightMm, 1.0));  // about one number
+  for (const TickInfo& t : ticks) {
+    int seg = 0;
+    seam.at(p == 0 ? t.s : t.sB, &seg);
+    const Vec2 c = p == 0 ? t.onA : t.onB;
+    const Vec2 nOut = place.vector(seam.outward(seg)).normalized();
+    const Vec2 tan = place.vector(seam.dir(seg)).normalized();
+    const double in = t.id == 0 ? kStartTickIn : kTickIn;
+    Path tick;
+    tick.id = info.name + "-tick-" + twoDigits(t.id);
+    tick.parts.push_back({c + kTickOut * nOut, c - in * nOut});
+    if (t.id == 0) {  // the start: a longer tick with an arrow pointing along the seam
+      const Vec2 a0 = c - in * nOut, a1 = a0 + 4.0 * tan;
+      tick.parts.push_back({a0, a1});
+      tick.parts.push_back({a1 - 1.5 * tan + 1.0 * nOut, a1, a1 - 1.5 * tan - 1.0 * nOut});
+    }
+    b.score().paths.push_back(tick);
+    const std::string label = tickLabel(t.id);
+    const double h = profile.labelHeightMm;
+    const Vec2 d = readable(tan);
+    const double halfW = 0.5 * font.width(label, h), halfH = 0.5 * h;
+    // Next to the tick, else deeper into the piece, else slid along the seam (at a corner the
+    // tick's own normal points past the corner): moved inward, not dropped. A number that fits
+    // nowhere clear of the numbers already placed is thinned out (the spacing is tighter than
+    // the numbers are wide); one that fits nowhere at all is too narrow a piece.
+    bool fitsSomewhere = false, placed = false;
+    for (int attempt = 0; attempt < 6 && !placed; ++attempt)
+      for (double slide : {0.0, 1.0, -1.0, 2.0, -2.0}) {
+        if (placed) break;
+        const double depth = in + 1.0 + (t.id == 0 ? 1.5 : 0.0) + halfH + attempt * h;
+        const Vec2 center = c - depth * nOut + slide * (halfW + 1.0) * tan;
+        if (!boxFits(info.boundaries, creaseLines, center, d, halfW, halfH, 0.3)) continue;
+        fitsSomewhere = true;
+        Path text = textPath(font, tick.id + "-label", label, center, d, h);
+        Polyline hull = convexHull(text.parts);
+        const Box hullBox = fab::boxOf({hull});
+        bool clear = true;  // sharing no area with a number placed (as the layout check sees it)
+        for (int k : tickLabelIndex.overlapping(hullBox)) {
+          ++work.pairTests;
+          clear = clear && overlapArea(hull, tickLabelHulls[size_t(k)]) <= kOverlapTolMm2;
+        }
+        if (!clear) continue;
+        tickLabelIndex.insert(int(tickLabelHulls.size()), hullBox);
+        tickLabelHulls.push_back(std::move(hull));
+        b.engrave().paths.push_back(std::move(text));
+        placed = true;
+      }
+    if (!placed) ++(fitsSomewhere ? counts.thinned : counts.skipped);
+  }
+  return counts;
+}
+
+}  // namespace dform::fab
