@@ -279,6 +279,14 @@ TEST_F(ViewerTest, TickNumbersSitAtTheirSeamPoints) {
   EXPECT_EQ(found, ticks.size()) << dom.substr(dom.find("viewer-labels"), 800);
 }
 
+TEST_F(ViewerTest, WithoutWebGlANoteTakesItsPlaceAndTheStillPicturesStay) {
+  writeReport(test::tetraDForm(4), {});
+  const std::string dom = chromium("--disable-webgl --dump-dom", "");
+  EXPECT_NE(dom.find("class=\"viewer no-webgl\" data-viewer=\"no-webgl\""), std::string::npos);
+  EXPECT_NE(dom.find("id=\"viewer-fallback\""), std::string::npos);
+  EXPECT_NE(dom.find("<figcaption>from the front, above</figcaption>"), std::string::npos);
+}
+
 TEST_F(ViewerTest, AScriptErrorIsReportedAndFailsTheConsoleCheck) {
   // The same page with a model the script cannot read: its status says so and Chromium logs it.
   std::string html = writeReport(test::tetraDForm(4), {});
