@@ -32,6 +32,7 @@ double drawingCell(double area, Eigen::Index faces) {
 
 PointClusters clusterPoints(const Eigen::MatrixXd& points, double cell) {
   PointClusters clusters;
+  clusters.cell = cell;
   if (!(cell > 0)) {
     clusters.of.resize(size_t(points.rows()));
     std::iota(clusters.of.begin(), clusters.of.end(), 0);
@@ -61,25 +62,27 @@ bool ClusteredFaces::draws(std::array<int, 3> clusters) {
   return clusters[0] != clusters[1] && clusters[1] != clusters[2] && drawn_.insert(clusters).second;
 }
 
+PointClusters drawnShapeClusters(const DForm& model) {
+  Eigen::MatrixXd points(model.a.shape.rows() + model.b.shape.rows(), 3);
+  points << model.a.shape, model.b.shape;
+  double area = 0;
+  for (const Piece* p : {&model.a, &model.b})
+    for (Eigen::Index f = 0; f < p->F.rows(); ++f) {
+      const Eigen::Vector3d p0 = p->shape.row(p->F(f, 0)).transpose();
+      area += 0.5 * (p->shape.row(p->F(f, 1)).transpose() - p0).cross(p->shape.row(p->F(f, 2)).transpose() - p0).norm();
+    }
+  return clusterPoints(points, drawingCell(area, model.a.F.rows() + model.b.F.rows()));
+}
+
 std::vector<SeenFace> paintersFaces(const DForm& model, const ShapeCamera& camera) {
   const Eigen::Vector3d light = Eigen::Vector3d(-0.4, 0.5, 1.0).normalized();  // screen frame
   // A closed surface (no free boundary; faces wind outward) hides every face turned away from
   // the viewer behind one turned towards it: those need no drawing. An open one shows both sides.
   const bool closed = model.a.freeBoundaries.empty() && model.b.freeBoundaries.empty();
   const Eigen::Vector3d away = camera.depthAxis();
-  // Both pieces clustered together, so that the seam, where their vertices coincide, stays one.
   const Piece* pieces[2] = {&model.a, &model.b};
-  Eigen::MatrixXd points(model.a.shape.rows() + model.b.shape.rows(), 3);
-  points << model.a.shape, model.b.shape;
-  double area = 0;
-  for (const Piece* p : pieces)
-    for (Eigen::Index f = 0; f < p->F.rows(); ++f) {
-      const Eigen::Vector3d p0 = p->shape.row(p->F(f, 0)).transpose();
-      area += 0.5 * (p->shape.row(p->F(f, 1)).transpose() - p0).cross(p->shape.row(p->F(f, 2)).transpose() - p0).norm();
-    }
-  const double cell = drawingCell(area, model.a.F.rows() + model.b.F.rows());
-  const PointClusters drawn = clusterPoints(points, cell);
-  ClusteredFaces kept(cell);
+  const PointClusters drawn = drawnShapeClusters(model);
+  ClusteredFaces kept(drawn.cell);
   std::vector<SeenFace> faces;
   for (int piece = 0; piece < 2; ++piece) {
     const Piece& p = *pieces[piece];

@@ -52,8 +52,13 @@ double drawingCell(double area, Eigen::Index faces);
 struct PointClusters {
   std::vector<int> of;
   Eigen::MatrixXd mean;
+  double cell = 0;
 };
 PointClusters clusterPoints(const Eigen::MatrixXd& points, double cell);
+
+/// Both pieces' 3D vertices (A's, then B's) merged together as a picture draws them: on the
+/// drawingCell of their area, so that the seam, where their vertices coincide, stays one.
+PointClusters drawnShapeClusters(const DForm& model);
 
 /// Which faces of a mesh drawn on clusters are drawn: not one whose corners merged, nor a second
 /// on the same three clusters. Without merging (cell 0) every face is.

@@ -80,4 +80,12 @@ struct DForm {
   Piece b;
 };
 
+/// A numbered tick pair of the cut pattern at the 3D seam point where its two ticks meet: what
+/// the assembly page and the report's 3D view label.
+struct SeamTick {
+  int id = 0;
+  std::string label;  ///< as printed on the pattern ("0", "1", ..., "6." for a turned-over 9)
+  Eigen::Vector3d at = Eigen::Vector3d::Zero();
+};
+
 }  // namespace dform

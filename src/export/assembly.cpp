@@ -315,12 +315,10 @@ void drawSeamAndTicks(const DForm& model, const PatternBuild& pattern, const Sha
   }
   layers.hidden.paths.push_back(seamPath);
   if (!inSight.parts.empty()) layers.seam.paths.push_back(inSight);
-  const Polyline& flatSeam = pattern.pieces[0].outline;
+  // A tick's number goes outside the shape's picture; grey where the surface hides its point.
   const Vec2 middle = view(0.5 * (seen.lo + seen.hi));
-  for (const TickInfo& t : pattern.ticks) {
-    if (flatSeam.size() != n) break;  // not A's seam vertex for vertex: no numbers, not wrong ones
-    const auto [i, frac] = edgeAt(flatSeam, t.s);
-    const Eigen::Vector3d s = camera.screen((1 - frac) * seam3(i) + frac * seam3(i + 1));
+  for (const SeamTick& t : seamTicks(model, pattern)) {
+    const Eigen::Vector3d s = camera.screen(t.at);
     const Vec2 at = view(Vec2(s.head<2>()));
     const bool covered = hiddenBySurface(faces, size, s);
     Path dot;
@@ -331,7 +329,7 @@ void drawSeamAndTicks(const DForm& model, const PatternBuild& pattern, const Sha
     Vec2 out = at - middle;
     out = out.norm() > 0 ? out.normalized() : Vec2(0, -1);
     write(covered ? layers.hidden : layers.text, font,
-          "view-tick-" + std::to_string(t.id) + "-label", tickLabel(t.id), at + 4.0 * out,
+          "view-tick-" + std::to_string(t.id) + "-label", t.label, at + 4.0 * out,
           t.id == 0 ? 3.2 : 2.6);
   }
 }
@@ -378,6 +376,20 @@ Drawing assemblyPage(const DForm& model, const PatternBuild& pattern, const Expo
   drawShadedFaces(faces, view, layers.shape);
   drawSeamAndTicks(model, pattern, camera, faces, seen, view, font, layers);
   return d;
+}
+
+std::vector<SeamTick> seamTicks(const DForm& model, const PatternBuild& pattern) {
+  const Piece& a = model.a;
+  const size_t n = a.seam.size();
+  const Polyline& flatSeam = pattern.pieces[0].outline;
+  if (flatSeam.size() != n) return {};
+  auto seam3 = [&](size_t i) { return Eigen::Vector3d(a.shape.row(a.seam[i % n]).transpose()); };
+  std::vector<SeamTick> ticks;
+  for (const TickInfo& t : pattern.ticks) {
+    const auto [i, frac] = edgeAt(flatSeam, t.s);
+    ticks.push_back({t.id, tickLabel(t.id), (1 - frac) * seam3(i) + frac * seam3(i + 1)});
+  }
+  return ticks;
 }
 
 }  // namespace dform::fab

@@ -72,6 +72,7 @@ Result<PreparedExport> prepareExport(const DForm& model, const ExportOptions& op
       prepared.files.emplace_back(sheetFileName(int(k) + 1, "dxf"), fab::dxfDocument(sheet));
     }
   prepared.layout = fab::checkLayout(pat);
+  prepared.ticks = fab::seamTicks(model, pat);
   ExportSummary& summary = prepared.summary;
   summary.messages = pat.messages;
   summary.profile = pat.profile.name;

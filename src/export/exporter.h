@@ -186,6 +186,7 @@ struct PreparedExport {
   std::vector<std::pair<std::string, std::string>> files;  ///< file name -> content
   ExportSummary summary;                                   ///< `files` still empty
   LayoutFindings layout;
+  std::vector<SeamTick> ticks;  ///< the pattern's numbered ticks on the 3D seam
 };
 
 /// Lays out and renders everything exportAll writes, and checks the layout. The same errors as

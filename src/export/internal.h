@@ -191,6 +191,10 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& optio
 /// gets a trailing dot.
 std::string tickLabel(int k);
 
+/// The pattern's ticks on the 3D seam: the same seam edge and fraction as on A's flat outline.
+/// None when that outline is not A's seam vertex for vertex (no numbers rather than wrong ones).
+std::vector<SeamTick> seamTicks(const DForm& model, const PatternBuild& pattern);
+
 /// The assembly page of a laid-out pattern (A4, or Letter for a Letter profile; mm, y down): the
 /// 3D shape with the tick numbers at their seam points, both pieces small with tick 0 and the zip
 /// direction, and the numbered steps. Its text is `font`'s.

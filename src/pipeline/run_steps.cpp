@@ -201,11 +201,13 @@ Status writeReportPage(const std::string& dir, const std::string& reportJson,
   ReportSources sources;
   sources.reportJson = reportJson;
   sources.reportPath = reportPath;
-  if (exported)
+  if (exported) {
     for (const auto& [name, content] : exported->files) {
       if (name == "pattern.svg") sources.patternSvg = content;
       if (name == "assembly.svg") sources.assemblySvg = content;
     }
+    sources.seamTicks = exported->ticks;
+  }
   const Result<std::string> html = renderReportHtml(sources, model, templatesDir());
   if (!html.isOk()) return html.status();
   return writeFileAtomically((fs::path(dir) / "report.html").string(), html.value());

@@ -9,6 +9,7 @@
 #include "core/input_file.h"
 #include "core/message_text.h"
 #include "report/convergence_plot.h"
+#include "report/viewer_model.h"
 #include "report/views.h"
 #include "validate/metrics.h"
 
@@ -85,6 +86,27 @@ data creaseRows(const DForm& model) {
   return rows;
 }
 
+// The shape's still pictures from four viewpoints, each {svg, caption}; the interactive view's
+// first one is the first of them.
+data stillViews(const DForm& model) {
+  data views{data::type::list};
+  for (const auto& [azimuth, elevation, caption] :
+       std::vector<std::tuple<double, double, std::string>>{{30, 25, "from the front, above"},
+                                                            {120, 10, "from the side"},
+                                                            {-60, -30, "from below"},
+                                                            {0, 89, "from the top"}}) {
+    View view;
+    view.azimuthDeg = azimuth;
+    view.elevationDeg = elevation;
+    view.widthPx = 280;
+    data item;
+    item.set("svg", shapeSvg(model, view));
+    item.set("caption", caption);
+    views.push_back(item);
+  }
+  return views;
+}
+
 // The pattern as inline SVG: the file minus its XML declaration.
 std::string inlineSvg(const std::string& svg) {
   const auto start = svg.find("<svg");
@@ -98,6 +120,8 @@ Result<std::string> renderReportHtml(const ReportSources& sources, const DForm& 
   const Result<std::string> templateText =
       readInputFile(templatesDir + "/report/report.html.mustache");
   if (!templateText.isOk()) return templateText.status();
+  const Result<std::string> viewerScript = readInputFile(templatesDir + "/report/viewer.js");
+  if (!viewerScript.isOk()) return viewerScript.status();
   json report;
   try {
     report = json::parse(sources.reportJson);
@@ -169,22 +193,7 @@ Result<std::string> renderReportHtml(const ReportSources& sources, const DForm& 
                                                                    "pattern like drawn ones.");
   }
 
-  data views{data::type::list};
-  for (const auto& [azimuth, elevation, caption] :
-       std::vector<std::tuple<double, double, std::string>>{{30, 25, "from the front, above"},
-                                                            {120, 10, "from the side"},
-                                                            {-60, -30, "from below"},
-                                                            {0, 89, "from the top"}}) {
-    View view;
-    view.azimuthDeg = azimuth;
-    view.elevationDeg = elevation;
-    view.widthPx = 280;
-    data item;
-    item.set("svg", shapeSvg(model, view));
-    item.set("caption", caption);
-    views.push_back(item);
-  }
-  page.set("views", views);
+  page.set("views", stillViews(model));
   View curvatureView;
   curvatureView.curvature = true;
   curvatureView.widthPx = 420;
@@ -194,6 +203,10 @@ Result<std::string> renderReportHtml(const ReportSources& sources, const DForm& 
   char scale[32];
   std::snprintf(scale, sizeof scale, "%.3g", maps.scale);
   page.set("curvature_scale", scale);
+  page.set("viewer_model", viewerModelJson(model, maps, sources.seamTicks));
+  page.set("viewer_js", viewerScript.value());
+  page.set("has_ticks", sources.seamTicks.empty() ? data(data::type::bool_false)
+                                                  : data(data::type::bool_true));
   page.set("creases", creaseRows(model));
   page.set("has_creases", model.a.creases.empty() && model.b.creases.empty()
                               ? data(data::type::bool_false)

@@ -3,19 +3,22 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "core/status.h"
 #include "core/types.h"
 
 namespace dform {
 
-/// What report.html shows besides the model, all in memory: report.json's text and the exported
-/// pattern's and assembly sheet's SVG (empty: none was exported).
+/// What report.html shows besides the model, all in memory: report.json's text, the exported
+/// pattern's and assembly sheet's SVG and the pattern's ticks on the seam (empty: none was
+/// exported).
 struct ReportSources {
   std::string reportJson;
   std::string reportPath;  ///< where report.json is (or will be), named in errors
   std::string patternSvg;
   std::string assemblySvg;
+  std::vector<SeamTick> seamTicks;
 };
 
 /// report.html's text, rendered through the Mustache template

@@ -18,11 +18,9 @@ namespace {
 using svg::hexColour;
 using svg::number;
 
-// Blue (negative) - white (0) - red (positive), saturating at |t| = 1.
 std::string divergingColour(double t) {
-  t = std::clamp(t, -1.0, 1.0);
-  return t >= 0 ? hexColour(1.0, 1.0 - 0.8 * t, 1.0 - 0.8 * t)
-                : hexColour(1.0 + 0.8 * t, 1.0 + 0.8 * t, 1.0);
+  const Eigen::Vector3d c = curvatureColour(t);
+  return hexColour(c.x(), c.y(), c.z());
 }
 
 // A piece's creases as SVG polylines through `pixel(v)` ("x,y"), styled by their fold as on the
@@ -54,6 +52,12 @@ CurvatureMaps curvatureMaps(const DForm& model) {
   // the defects are rounding noise, which must stay white rather than be stretched to full colour.
   c.scale = std::max(top, 1e-3);
   return c;
+}
+
+Eigen::Vector3d curvatureColour(double t) {
+  t = std::clamp(t, -1.0, 1.0);
+  return t >= 0 ? Eigen::Vector3d(1.0, 1.0 - 0.8 * t, 1.0 - 0.8 * t)
+                : Eigen::Vector3d(1.0 + 0.8 * t, 1.0 + 0.8 * t, 1.0);
 }
 
 double curvatureScale(const DForm& model) { return curvatureMaps(model).scale; }

@@ -25,6 +25,10 @@ struct CurvatureMaps {
 /// The maps of `model`, measured once for every picture of a page.
 CurvatureMaps curvatureMaps(const DForm& model);
 
+/// The curvature colour (red, green, blue in [0, 1]) of a defect `t` times the scale: blue
+/// (negative), white (0), red (positive), saturating at |t| = 1.
+Eigen::Vector3d curvatureColour(double t);
+
 /// The closed 3D shape (both pieces) in orthographic projection, painter's order, Lambert shading
 /// (A warm, B cool) or a blue-white-red curvature scale; the seam and the creases (class 'crease
 /// mountain' dash-dot, 'crease valley' dashed) drawn on top.

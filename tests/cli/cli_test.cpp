@@ -103,8 +103,18 @@ class CliTest : public ::testing::Test {
   fs::path dir_;
 };
 
-// report.html opens offline: nothing is fetched (no script, no src/href, no CSS url) and every
-// picture is inline SVG. Returns the page.
+// The model report.html's 3D view draws (its JSON script).
+nlohmann::json viewerModel(const std::string& html) {
+  const std::string start = "<script type=\"application/json\" id=\"viewer-model\">";
+  const std::size_t from = html.find(start);
+  EXPECT_NE(from, std::string::npos);
+  if (from == std::string::npos) return nlohmann::json::object();
+  const std::size_t begin = from + start.size();
+  return nlohmann::json::parse(html.substr(begin, html.find("</script>", begin) - begin));
+}
+
+// report.html opens offline: nothing is fetched (scripts are inline: no src/href, no CSS url)
+// and every still picture is inline SVG. Returns the page.
 std::string expectSelfContainedReport(const std::string& dir, const nlohmann::json& report) {
   std::ifstream in(fs::path(dir) / "report.html");
   EXPECT_TRUE(in.good()) << dir << "/report.html";
@@ -114,7 +124,7 @@ std::string expectSelfContainedReport(const std::string& dir, const nlohmann::js
   // The only addresses allowed are XML namespace names (SVG, Inkscape), which are never fetched.
   const std::string rest =
       std::regex_replace(html, std::regex(R"(xmlns(:\w+)?=["'][^"']*["'])"), "");
-  for (const char* remote : {"<script", "src=", "href=", "url(", "@import", "http://", "https://"})
+  for (const char* remote : {"src=", "href=", "url(", "@import", "http://", "https://"})
     EXPECT_EQ(rest.find(remote), std::string::npos) << remote;
   std::size_t svgs = 0;
   for (std::size_t at = 0; (at = html.find("<svg", at)) != std::string::npos; ++at) ++svgs;
@@ -292,6 +302,11 @@ TEST_F(CliTest, ForwardWritesEveryFileAndValidates) {
   const std::string html = expectSelfContainedReport(out, report);
   EXPECT_NE(html.find("PASSED"), std::string::npos);
   EXPECT_NE(html.find("id=\"A-cut\""), std::string::npos) << "the flat pattern, inline";
+  // The 3D view labels the pattern's ticks, numbered as printed ("6." for a 6 upside down).
+  const nlohmann::json viewer = viewerModel(html);
+  ASSERT_EQ(viewer["ticks"].size(), pattern["ticks"].size());
+  for (size_t k = 0; k < pattern["ticks"].size(); ++k)
+    EXPECT_EQ(viewer["ticks"][k]["label"].get<std::string>().rfind(std::to_string(k), 0), 0u) << k;
   const Outcome v = run("validate " + out);
   EXPECT_EQ(v.exitCode, 0) << v.out;
   EXPECT_NE(v.out.find("gate: PASSED"), std::string::npos) << v.out;
@@ -354,6 +369,7 @@ TEST_F(CliTest, AFailedGateKeepsTheReportAndReleasesNothing) {
   EXPECT_EQ(schemaCheck((fs::path(out) / "report.json").string()), 0);
   const std::string html = expectSelfContainedReport(out, report);
   EXPECT_NE(html.find("FAILED GATE"), std::string::npos);
+  EXPECT_TRUE(viewerModel(html)["ticks"].empty()) << "no pattern, no tick numbers";
   EXPECT_NE(html.find("<tr class=\"fail\"><td>L_error</td>"), std::string::npos);
 
   // The saved result is not exported by accident; on purpose it is, marked, and the page shows it.

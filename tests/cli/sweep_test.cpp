@@ -15,6 +15,7 @@
 #include <string>
 
 #include "cli/text_files.h"
+#include "headless_chromium.h"
 #include <vector>
 
 namespace dform {
@@ -185,15 +186,14 @@ TEST_F(SweepTest, ASecondSweepReplacesTheFirstWhole) {
 // and the rendered page has one picture per card.
 TEST_F(SweepTest, GalleryRendersInHeadlessChromium) {
   ASSERT_EQ(exit_, 0) << readText(dir_ / "sweep.log");
-  if (std::system("command -v chromium >/dev/null 2>&1") != 0)
+  if (!test::chromiumInstalled())
     GTEST_SKIP() << "chromium is not installed (scripts/install-deps --browser installs it); "
                     "the gallery was not rendered";
   const fs::path dom = dir_ / "dom.html", log = dir_ / "chromium.log";
-  const std::string command =
-      "chromium --headless=new --no-sandbox --disable-gpu --enable-logging=stderr --v=0 "
-      "--user-data-dir=" + (dir_ / "profile").string() + " --dump-dom file://" +
-      (dir_ / "sweep" / "gallery.html").string() + " >" + dom.string() + " 2>" + log.string();
-  ASSERT_EQ(std::system(command.c_str()), 0) << readText(log);
+  ASSERT_EQ(test::runChromium("--dump-dom", "file://" + (dir_ / "sweep" / "gallery.html").string(),
+                              (dir_ / "profile").string(), dom.string(), log.string()),
+            0)
+      << readText(log);
   const std::string messages = readText(log);
   EXPECT_EQ(messages.find("CONSOLE"), std::string::npos) << messages;
   const std::vector<std::string> rendered = cards(readText(dom));

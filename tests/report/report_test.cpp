@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "minimal_report.h"
 #include "models.h"
 #include "report/convergence_plot.h"
 #include "core/shape_projection.h"
@@ -259,15 +260,7 @@ TEST(ReportViews, CreasesAreDrawnByTheirFoldAndTheSurfaceStaysWhite) {
 
 // report.html for `model`, rendered from a minimal report.json and an assembly sheet (empty: none).
 std::string reportHtml(const DForm& model, const std::string& assemblySvg = "") {
-  ReportSources sources;
-  sources.reportPath = "report.json";
-  sources.reportJson =
-      R"({"mode": "forward", "job": {"piece_a": "a.svg", "piece_b": "b.svg"},
-          "tool": {"version": "test"}, "schema_version": 1, "gate": null,
-          "metrics": {"L_error": 0.001}, "timings": {"total": 1.0}, "messages": [],
-          "solver": {"initial_cost": 1.0, "iterations": [], "termination": "converged",
-                     "message": "", "factorisations": 0,
-                     "local_global": {"iterations": 0, "initial_energy": 1.0, "final_energy": 1.0}}})";
+  ReportSources sources = test::minimalReportSources();
   sources.assemblySvg = assemblySvg;
   const Result<std::string> html = renderReportHtml(sources, model, DFORM_TEMPLATES_DIR);
   EXPECT_TRUE(html.isOk()) << html.status().message();
