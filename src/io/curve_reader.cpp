@@ -258,8 +258,12 @@ Result<Curve3> parseCurve(const std::string& text, const std::string& source,
   if (!(options.flattenTolerance > 0.0) || !(options.maxCoordinate > 0.0))
     return Status{ErrorCode::Usage,
                   source + ": the flatten tolerance and coordinate limit must be positive"};
-  const Result<std::string> format = curveFormat(source);
-  if (!format.isOk()) return format.status();
+  Result<std::string> format = curveFormat(source);
+  if (!format.isOk()) {  // a source without a known extension (a curve made in memory): sniffed
+    const auto first = text.find_first_not_of(" \t\r\n");
+    if (first == std::string::npos || text[first] != '{') return format.status();
+    format = std::string("json");
+  }
   return format.value() == "obj" ? readObjCurve(source, text, options)
                                  : readJsonCurve(source, text, options);
 }

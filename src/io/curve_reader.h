@@ -24,7 +24,7 @@ struct CurveReadOptions {
 Result<Curve3> readCurve(const std::string& path, const CurveReadOptions& options = {});
 
 /// The same from the file's text; `source` names it in messages and its extension (.obj or
-/// .json) gives the format.
+/// .json) gives the format, or else a text that is a JSON object is read as JSON.
 Result<Curve3> parseCurve(const std::string& text, const std::string& source,
                           const CurveReadOptions& options = {});
 

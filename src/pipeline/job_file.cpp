@@ -202,14 +202,25 @@ bool setNamedWeight(Job& job, const std::string& name, double value) {
                                         : set(inverseWeightNames(), job.inverse.solve.weights);
 }
 
+namespace {
+
+// An input as a job file records it: a file by its absolute path (the job runs again from any
+// folder); a name that is no file (a shape made in memory, named by its role) as it is.
+std::string recordedInput(const std::string& input) {
+  std::error_code ec;
+  return std::filesystem::exists(input, ec) ? std::filesystem::absolute(input).string() : input;
+}
+
+}  // namespace
+
 std::string jobToJson(const Job& job) {
   json out;
   if (job.mode == Job::Mode::Forward) {
     const ForwardJob& f = job.forward;
     out = {{"mode", "forward"},
            {"model", modelChoiceName(f.model)},
-           {"piece_a", std::filesystem::absolute(f.pieceA).string()},
-           {"piece_b", std::filesystem::absolute(f.pieceB).string()},
+           {"piece_a", recordedInput(f.pieceA)},
+           {"piece_b", recordedInput(f.pieceB)},
            {"join", std::string(joinedBoundaryName(f.joinA)) + "," + joinedBoundaryName(f.joinB)},
            {"start_a", startJson(f.startA)},
            {"start_b", startJson(f.startB)},
@@ -223,7 +234,7 @@ std::string jobToJson(const Job& job) {
   } else {
     const InverseJob& i = job.inverse;
     out = {{"mode", "inverse"},
-           {"curve", std::filesystem::absolute(i.curve).string()},
+           {"curve", recordedInput(i.curve)},
            {"closed", i.forceClosed},
            {"resolution", i.resolution},
            {"weights", weightsJson(inverseWeightNames(), i.solve.weights)},

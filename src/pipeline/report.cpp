@@ -194,6 +194,12 @@ Result<std::string> write(const std::string& dir, const json& report) {
 
 }  // namespace
 
+std::string metricsJsonText(const Metrics& metrics, const CurveMatch* curve) {
+  json figures = metricsJson(metrics);
+  if (curve) addCurveMatch(figures, *curve);
+  return figures.dump();
+}
+
 Result<std::string> writeForwardReport(const std::string& dir, const Job& job, const ForwardRun& run,
                                        const std::vector<Message>& messages,
                                        const GateReport* gate, const CommandTimings& command) {

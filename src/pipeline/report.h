@@ -40,6 +40,10 @@ Result<std::string> writeInverseReport(const std::string& dir, const Job& job, c
                                        const std::vector<Message>& messages,
                                        const GateReport* gate, const CommandTimings& command);
 
+/// The figures as report.json records them under "metrics" (with the inverse's `curve` figures
+/// when given), as JSON text: for front ends that show them (the Python module).
+std::string metricsJsonText(const Metrics& metrics, const CurveMatch* curve);
+
 /// Compares a saved result with what `dir`/report.json recorded: its mode (inverse when `curve`
 /// is given, i.e. the folder holds a target curve), the mesh sizes of `model`, and every figure
 /// of `metrics` and `curve` recomputed from the meshes (beyond 1e-9 relative; the OBJ files
