@@ -81,122 +81,241 @@ void addOutputOptions(CLI::App* command, OutputOptions& out) {
   command->add_flag("-q,--quiet", out.quiet, "print only the figures, warnings and errors");
 }
 
-int usageError(const std::string& message) {
-  cli::Terminal::error(message);
-  return exitCode(ErrorCode::Usage);
+
+int failUsage(const Status& status) {
+  cli::Terminal::error(status.message());
+  return exitCode(status.code());
 }
+
+// Each subcommand: its options as parsed (`add` declares them) and what it runs.
+struct ForwardCommand {
+  Job job;
+  OutputOptions out;
+  std::string startANear, startBNear, join, model;
+  std::vector<std::string> weights;
+  CLI::App* command = nullptr;
+
+  void add(CLI::App& app) {
+    command = app.add_subcommand("forward", "two flat outlines -> the D-Form they make");
+    command->add_option("piece_a", job.forward.pieceA, "outline of piece A (.svg or .json)")->required();
+    command->add_option("piece_b", job.forward.pieceB, "outline of piece B (.svg or .json)")->required();
+    command->add_option("--resolution", job.forward.resolution, "seam vertices per piece (default 100)");
+    command->add_option("--interior-edge", job.forward.interiorEdgeFactor,
+                        "interior edge length over the seam's edge length, 0.25-8 (default 1): above 1 a "
+                        "coarser, faster mesh at the same seam resolution");
+    command->add_option("--start-a", job.forward.startA.fraction, "start of A's seam: arc-length fraction in [0, 1)");
+    command->add_option("--start-b", job.forward.startB.fraction, "start of B's seam: arc-length fraction in [0, 1)");
+    command->add_option("--start-a-near", startANear, "start of A's seam: the outline point nearest X,Y (mm)");
+    command->add_option("--start-b-near", startBNear, "start of B's seam: the outline point nearest X,Y (mm)");
+    command->add_option("--join", join, "boundaries zipped, A's then B's: outer,outer (default), inner,inner "
+                                        "(anti D-Form) or outer,inner (demi D-Form)");
+    command->add_flag("--flip", job.forward.flip, "zip piece B turned over");
+    command->add_option("--model", model, "auto (default: exact where the pieces make a convex body), exact or paper");
+    command->add_flag("--fit-perimeter", job.forward.fitPerimeter,
+                      "scale piece B to A's perimeter");
+    command->add_option("--perimeter-tolerance", job.forward.perimeterTolerance,
+                        "largest relative perimeter difference (default 0.005)");
+    command->add_option("--weight", weights, "term weight, e.g. smooth_3d=0.02 (repeatable)");
+    command->add_option("--max-iterations", job.forward.solve.solver.maxIterations,
+                        "Levenberg-Marquardt iteration cap");
+    addOutputOptions(command, out);
+  }
+  int run() {
+    if (!startANear.empty() && !parsePoint(startANear, job.forward.startA))
+      return failUsage(Status(ErrorCode::Usage, "--start-a-near must look like X,Y"));
+    if (!startBNear.empty() && !parsePoint(startBNear, job.forward.startB))
+      return failUsage(Status(ErrorCode::Usage, "--start-b-near must look like X,Y"));
+    if (!join.empty() && !parseJoin(join, job.forward.joinA, job.forward.joinB))
+      return failUsage(Status(ErrorCode::Usage, "--join must be outer,outer, inner,inner, outer,inner or inner,outer"));
+    if (!model.empty() && !parseModelChoice(model, job.forward.model))
+      return failUsage(Status(ErrorCode::Usage, "--model must be auto, exact or paper"));
+    job.forward.solve.weights = defaultWeights(job.forward.joinA, job.forward.joinB);
+    for (const std::string& w : weights)
+      if (Status s = setWeight(job, w); !s.isOk()) return failUsage(s);
+    if (Status s = validateForwardJob(job.forward); !s.isOk()) return failUsage(s);
+    return cli::runJob(job, out, interrupted);
+  }
+};
+
+struct InverseCommand {
+  Job job;
+  OutputOptions out;
+  std::vector<std::string> weights;
+  CLI::App* command = nullptr;
+
+  void add(CLI::App& app) {
+    job.mode = Job::Mode::Inverse;
+    command = app.add_subcommand("inverse", "a 3D seam curve -> the two flat pieces that make it");
+    command->add_option("curve", job.inverse.curve, "seam curve (.obj polyline or .json)")
+        ->required();
+    command->add_option("--resolution", job.inverse.resolution, "seam vertices (default 100)");
+    command->add_flag("--closed", job.inverse.forceClosed, "close an open OBJ polyline");
+    command->add_option("--weight", weights, "term weight, e.g. smooth_3d=0.005 (repeatable)");
+    command->add_option("--max-iterations", job.inverse.solve.solver.maxIterations,
+                        "Levenberg-Marquardt iteration cap");
+    addOutputOptions(command, out);
+  }
+  int run() {
+    for (const std::string& w : weights)
+      if (Status s = setWeight(job, w); !s.isOk()) return failUsage(s);
+    if (Status s = validateInverseJob(job.inverse); !s.isOk()) return failUsage(s);
+    return cli::runJob(job, out, interrupted);
+  }
+};
+
+struct SweepCommand {
+  Job job;
+  SweepOptions options;
+  OutputOptions out;
+  std::string flip = "none", model;
+  CLI::App* command = nullptr;
+
+  void add(CLI::App& app) {
+    command = app.add_subcommand(
+        "sweep", "two outlines from many starting pairs -> a gallery of the D-Forms to choose from");
+    command->add_option("piece_a", job.forward.pieceA, "outline of piece A (.svg or .json)")->required();
+    command->add_option("piece_b", job.forward.pieceB, "outline of piece B (.svg or .json)")->required();
+    command->add_option("--starts", options.starts, "starting pairs: start_b = k/N, k = 0 .. N-1 (default 8)");
+    command->add_option("--flip", flip, "none (B as drawn, the default), flipped (B turned over) or both");
+    command->add_option("--start-a", job.forward.startA.fraction, "start of A's seam: arc-length fraction in [0, 1)");
+    command->add_option("--model", model, "auto (default), exact or paper");
+    command->add_option("--resolution", job.forward.resolution, "seam vertices per piece (default 100)");
+    command->add_option("--interior-edge", job.forward.interiorEdgeFactor, "as for forward (default 1)");
+    command->add_flag("--fit-perimeter", job.forward.fitPerimeter, "scale piece B to A's perimeter");
+    command->add_option("--threads", options.threads, "starts solved at once (default: the machine's cores)");
+    addOutputOptions(command, out);
+  }
+  int run() {
+    if (!model.empty() && !parseModelChoice(model, job.forward.model))
+      return failUsage(Status(ErrorCode::Usage, "--model must be auto, exact or paper"));
+    if (flip != "none" && flip != "flipped" && flip != "both")
+      return failUsage(Status(ErrorCode::Usage, "--flip must be none, flipped or both"));
+    if (options.starts < 1 || options.starts > 4096)
+      return failUsage(Status(ErrorCode::Usage, "--starts must be between 1 and 4096"));
+    if (options.threads < 0)
+      return failUsage(Status(ErrorCode::Usage, "--threads must be 0 (the machine's cores) or more"));
+    job.forward.solve.weights = defaultWeights(job.forward.joinA, job.forward.joinB);
+    job.forward.flip = flip == "flipped";
+    options.bothFlips = flip == "both";
+    if (Status s = validateForwardJob(job.forward); !s.isOk()) return failUsage(s);
+    return cli::runSweepCommand(job, options, out, interrupted);
+  }
+};
+
+struct BatchCommand {
+  std::string input, shard = "1/1", mergeDir;
+  BatchOptions options;
+  OutputOptions out;
+  CLI::App* command = nullptr;
+
+  void add(CLI::App& app) {
+    command = app.add_subcommand(
+        "batch", "many job files, each into OUT/<job name>/, with a resumable manifest batch.json");
+    command->add_option("jobs", input, "a text file listing job files (one a line), or a folder of *.json jobs");
+    command->add_flag("--resume", options.resume, "skip the jobs the manifest has as finished");
+    command->add_option("--shard", shard, "run only slice I of N (job k goes to slice k % N + 1), e.g. 2/8");
+    command->add_option("--merge", mergeDir, "gather the shards' manifests in this folder into batch.json and gallery.html");
+    command->add_option("--threads", options.threads, "jobs run at once (default: the machine's cores)");
+    addOutputOptions(command, out);
+    command->get_option("--output")->required(false);
+  }
+  int run() {
+    if (!mergeDir.empty()) {
+      if (!input.empty() || !out.outDir.empty())
+        return failUsage(Status(ErrorCode::Usage, "batch --merge DIR takes no job list and no -o"));
+      return cli::mergeBatchCommand(mergeDir);
+    }
+    if (input.empty() || out.outDir.empty())
+      return failUsage(Status(ErrorCode::Usage, "batch needs a job list or folder and -o OUT (or --merge OUT)"));
+    if (!parseShard(shard, options.shard, options.shards))
+      return failUsage(Status(ErrorCode::Usage, "--shard must look like I/N with 1 <= I <= N, got '" + shard + "'"));
+    if (options.threads < 0)
+      return failUsage(Status(ErrorCode::Usage, "--threads must be 0 (the machine's cores) or more"));
+    Result<std::vector<BatchJob>> jobs = listBatchJobs(input);
+    if (!jobs.isOk()) return failUsage(jobs.status());
+    return cli::runBatchCommand(jobs.value(), options, out, interrupted);
+  }
+};
+
+struct RunCommand {
+  std::string jobPath;
+  OutputOptions out;
+  CLI::App* command = nullptr;
+
+  void add(CLI::App& app) {
+    command = app.add_subcommand("run", "run a job file (forward or inverse)");
+    command->add_option("job", jobPath, "job file (.json, see docs/cli.md)")->required();
+    addOutputOptions(command, out);
+  }
+  int run() {
+    Result<Job> job = readJobFile(jobPath);
+    if (!job.isOk()) return failUsage(job.status());
+    return cli::runJob(job.value(), out, interrupted);
+  }
+};
+
+struct ExportCommand {
+  std::string dir;
+  OutputOptions out;
+  bool listOnly = false;
+  CLI::App* command = nullptr;
+
+  void add(CLI::App& app) {
+    command = app.add_subcommand("export", "write cutting patterns and previews of a saved result");
+    command->add_option("dir", dir, "a result folder written by forward, inverse or run");
+    addExportOptions(command, out);
+    command->add_option("-o,--output", out.outDir,
+                              "write the patterns into this folder (created if missing) instead of "
+                              "the result folder, which is left untouched");
+    command->add_flag("--export-anyway", out.exportAnyway,
+                            "export a result that failed its gate, or a pattern that does not lay "
+                            "out cleanly (marked FAILED GATE)");
+    command->add_flag("--list-profiles", listOnly, "list the profiles and exit");
+    command->add_flag("-q,--quiet", out.quiet, "print only warnings and errors");
+  }
+  int run() {
+    if (listOnly) return cli::listProfiles();
+    if (dir.empty()) return failUsage(Status(ErrorCode::Usage, "export needs a result folder"));
+    return cli::exportSaved(dir, out, interrupted);
+  }
+};
+
+struct ValidateCommand {
+  std::string dir, gate = "default";
+  CLI::App* command = nullptr;
+
+  void add(CLI::App& app) {
+    command = app.add_subcommand("validate", "re-check a saved result against a quality gate");
+    command->add_option("dir", dir, "a result folder")->required();
+    command->add_option("--gate", gate, "default, strict, lenient or a .json file");
+  }
+  int run() { return cli::validateSaved(dir, gate); }
+};
 
 int run(int argc, char** argv) {
   CLI::App app{"dform: design and fabricate D-Forms (forward, inverse, export, validate)"};
   app.set_version_flag("--version", std::string("dform ") + DFORM_VERSION);
   app.require_subcommand(1);
-
-  Job forwardJob;
-  OutputOptions forwardOut;
-  std::string startANear, startBNear, join, model;
-  std::vector<std::string> forwardWeights;
-  CLI::App* forward = app.add_subcommand("forward", "two flat outlines -> the D-Form they make");
-  forward->add_option("piece_a", forwardJob.forward.pieceA, "outline of piece A (.svg or .json)")->required();
-  forward->add_option("piece_b", forwardJob.forward.pieceB, "outline of piece B (.svg or .json)")->required();
-  forward->add_option("--resolution", forwardJob.forward.resolution, "seam vertices per piece (default 100)");
-  forward->add_option("--interior-edge", forwardJob.forward.interiorEdgeFactor,
-                      "interior edge length over the seam's edge length, 0.25-8 (default 1): above 1 a "
-                      "coarser, faster mesh at the same seam resolution");
-  forward->add_option("--start-a", forwardJob.forward.startA.fraction, "start of A's seam: arc-length fraction in [0, 1)");
-  forward->add_option("--start-b", forwardJob.forward.startB.fraction, "start of B's seam: arc-length fraction in [0, 1)");
-  forward->add_option("--start-a-near", startANear, "start of A's seam: the outline point nearest X,Y (mm)");
-  forward->add_option("--start-b-near", startBNear, "start of B's seam: the outline point nearest X,Y (mm)");
-  forward->add_option("--join", join, "boundaries zipped, A's then B's: outer,outer (default), inner,inner "
-                                      "(anti D-Form) or outer,inner (demi D-Form)");
-  forward->add_flag("--flip", forwardJob.forward.flip, "zip piece B turned over");
-  forward->add_option("--model", model, "auto (default: exact where the pieces make a convex body), exact or paper");
-  forward->add_flag("--fit-perimeter", forwardJob.forward.fitPerimeter,
-                    "scale piece B to A's perimeter");
-  forward->add_option("--perimeter-tolerance", forwardJob.forward.perimeterTolerance,
-                      "largest relative perimeter difference (default 0.005)");
-  forward->add_option("--weight", forwardWeights, "term weight, e.g. smooth_3d=0.02 (repeatable)");
-  forward->add_option("--max-iterations", forwardJob.forward.solve.solver.maxIterations,
-                      "Levenberg-Marquardt iteration cap");
-  addOutputOptions(forward, forwardOut);
-
-  Job inverseJob;
-  inverseJob.mode = Job::Mode::Inverse;
-  OutputOptions inverseOut;
-  std::vector<std::string> inverseWeights;
-  CLI::App* inverse =
-      app.add_subcommand("inverse", "a 3D seam curve -> the two flat pieces that make it");
-  inverse->add_option("curve", inverseJob.inverse.curve, "seam curve (.obj polyline or .json)")
-      ->required();
-  inverse->add_option("--resolution", inverseJob.inverse.resolution, "seam vertices (default 100)");
-  inverse->add_flag("--closed", inverseJob.inverse.forceClosed, "close an open OBJ polyline");
-  inverse->add_option("--weight", inverseWeights, "term weight, e.g. smooth_3d=0.005 (repeatable)");
-  inverse->add_option("--max-iterations", inverseJob.inverse.solve.solver.maxIterations,
-                      "Levenberg-Marquardt iteration cap");
-  addOutputOptions(inverse, inverseOut);
-
-  Job sweepJob;
-  SweepOptions sweepOptions;
-  OutputOptions sweepOut;
-  std::string sweepFlip = "none", sweepModel;
-  CLI::App* sweep = app.add_subcommand(
-      "sweep", "two outlines from many starting pairs -> a gallery of the D-Forms to choose from");
-  sweep->add_option("piece_a", sweepJob.forward.pieceA, "outline of piece A (.svg or .json)")->required();
-  sweep->add_option("piece_b", sweepJob.forward.pieceB, "outline of piece B (.svg or .json)")->required();
-  sweep->add_option("--starts", sweepOptions.starts, "starting pairs: start_b = k/N, k = 0 .. N-1 (default 8)");
-  sweep->add_option("--flip", sweepFlip, "none (B as drawn, the default), flipped (B turned over) or both");
-  sweep->add_option("--start-a", sweepJob.forward.startA.fraction, "start of A's seam: arc-length fraction in [0, 1)");
-  sweep->add_option("--model", sweepModel, "auto (default), exact or paper");
-  sweep->add_option("--resolution", sweepJob.forward.resolution, "seam vertices per piece (default 100)");
-  sweep->add_option("--interior-edge", sweepJob.forward.interiorEdgeFactor, "as for forward (default 1)");
-  sweep->add_flag("--fit-perimeter", sweepJob.forward.fitPerimeter, "scale piece B to A's perimeter");
-  sweep->add_option("--threads", sweepOptions.threads, "starts solved at once (default: the machine's cores)");
-  addOutputOptions(sweep, sweepOut);
-
-  std::string batchInput, batchShard = "1/1", mergeDir;
-  BatchOptions batchOptions;
-  OutputOptions batchOut;
-  CLI::App* batch = app.add_subcommand(
-      "batch", "many job files, each into OUT/<job name>/, with a resumable manifest batch.json");
-  batch->add_option("jobs", batchInput, "a text file listing job files (one a line), or a folder of *.json jobs");
-  batch->add_flag("--resume", batchOptions.resume, "skip the jobs the manifest has as finished");
-  batch->add_option("--shard", batchShard, "run only slice I of N (job k goes to slice k % N + 1), e.g. 2/8");
-  batch->add_option("--merge", mergeDir, "gather the shards' manifests in this folder into batch.json and gallery.html");
-  batch->add_option("--threads", batchOptions.threads, "jobs run at once (default: the machine's cores)");
-  addOutputOptions(batch, batchOut);
-  batch->get_option("--output")->required(false);
-
-  std::string jobPath;
-  OutputOptions runOut;
-  CLI::App* runCommand = app.add_subcommand("run", "run a job file (forward or inverse)");
-  runCommand->add_option("job", jobPath, "job file (.json, see docs/cli.md)")->required();
-  addOutputOptions(runCommand, runOut);
-
-  std::string exportDir;
-  OutputOptions exportOut;
-  bool listOnly = false;
-  CLI::App* exportCommand =
-      app.add_subcommand("export", "write cutting patterns and previews of a saved result");
-  exportCommand->add_option("dir", exportDir, "a result folder written by forward, inverse or run");
-  addExportOptions(exportCommand, exportOut);
-  exportCommand->add_option("-o,--output", exportOut.outDir,
-                            "write the patterns into this folder (created if missing) instead of "
-                            "the result folder, which is left untouched");
-  exportCommand->add_flag("--export-anyway", exportOut.exportAnyway,
-                          "export a result that failed its gate, or a pattern that does not lay "
-                          "out cleanly (marked FAILED GATE)");
-  exportCommand->add_flag("--list-profiles", listOnly, "list the profiles and exit");
-  exportCommand->add_flag("-q,--quiet", exportOut.quiet, "print only warnings and errors");
-
-  std::string validateDir, validateGate = "default";
-  CLI::App* validate =
-      app.add_subcommand("validate", "re-check a saved result against a quality gate");
-  validate->add_option("dir", validateDir, "a result folder")->required();
-  validate->add_option("--gate", validateGate, "default, strict, lenient or a .json file");
+  ForwardCommand forward;
+  InverseCommand inverse;
+  SweepCommand sweep;
+  BatchCommand batch;
+  RunCommand runCommand;
+  ExportCommand exportCommand;
+  ValidateCommand validate;
+  forward.add(app);
+  inverse.add(app);
+  sweep.add(app);
+  batch.add(app);
+  runCommand.add(app);
+  exportCommand.add(app);
+  validate.add(app);
 
   const std::set<std::string> commands = {"forward", "inverse", "run", "sweep", "batch", "export", "validate"};
   if (argc > 1 && argv[1][0] != '-' && !commands.count(argv[1]))
-    return usageError("unknown command '" + std::string(argv[1]) +
-                      "' (commands: forward, inverse, run, sweep, batch, export, validate; see dform --help)");
+    return failUsage(Status(ErrorCode::Usage, "unknown command '" + std::string(argv[1]) +
+                                                  "' (commands: forward, inverse, run, sweep, "
+                                                  "batch, export, validate; see dform --help)"));
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -204,7 +323,7 @@ int run(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    return usageError(e.what());
+    return failUsage(Status(ErrorCode::Usage, e.what()));
   }
 
   // Without SA_RESTART, so that a blocked read the signal reaches returns EINTR at once (the
@@ -215,73 +334,13 @@ int run(int argc, char** argv) {
   stop.sa_flags = SA_RESETHAND;  // a second signal ends the program at once
   sigaction(SIGINT, &stop, nullptr);
   sigaction(SIGTERM, &stop, nullptr);
-  auto usage = [](const Status& s) {
-    cli::Terminal::error(s.message());
-    return exitCode(s.code());
-  };
-  if (*forward) {
-    if (!startANear.empty() && !parsePoint(startANear, forwardJob.forward.startA))
-      return usage(Status(ErrorCode::Usage, "--start-a-near must look like X,Y"));
-    if (!startBNear.empty() && !parsePoint(startBNear, forwardJob.forward.startB))
-      return usage(Status(ErrorCode::Usage, "--start-b-near must look like X,Y"));
-    if (!join.empty() && !parseJoin(join, forwardJob.forward.joinA, forwardJob.forward.joinB))
-      return usage(Status(ErrorCode::Usage, "--join must be outer,outer, inner,inner, outer,inner or inner,outer"));
-    if (!model.empty() && !parseModelChoice(model, forwardJob.forward.model))
-      return usage(Status(ErrorCode::Usage, "--model must be auto, exact or paper"));
-    forwardJob.forward.solve.weights = defaultWeights(forwardJob.forward.joinA, forwardJob.forward.joinB);
-    for (const std::string& w : forwardWeights)
-      if (Status s = setWeight(forwardJob, w); !s.isOk()) return usage(s);
-    if (Status s = validateForwardJob(forwardJob.forward); !s.isOk()) return usage(s);
-    return cli::runJob(forwardJob, forwardOut, interrupted);
-  }
-  if (*inverse) {
-    for (const std::string& w : inverseWeights)
-      if (Status s = setWeight(inverseJob, w); !s.isOk()) return usage(s);
-    if (Status s = validateInverseJob(inverseJob.inverse); !s.isOk()) return usage(s);
-    return cli::runJob(inverseJob, inverseOut, interrupted);
-  }
-  if (*sweep) {
-    if (!sweepModel.empty() && !parseModelChoice(sweepModel, sweepJob.forward.model))
-      return usage(Status(ErrorCode::Usage, "--model must be auto, exact or paper"));
-    if (sweepFlip != "none" && sweepFlip != "flipped" && sweepFlip != "both")
-      return usage(Status(ErrorCode::Usage, "--flip must be none, flipped or both"));
-    if (sweepOptions.starts < 1 || sweepOptions.starts > 4096)
-      return usage(Status(ErrorCode::Usage, "--starts must be between 1 and 4096"));
-    if (sweepOptions.threads < 0)
-      return usage(Status(ErrorCode::Usage, "--threads must be 0 (the machine's cores) or more"));
-    sweepJob.forward.solve.weights = defaultWeights(sweepJob.forward.joinA, sweepJob.forward.joinB);
-    sweepJob.forward.flip = sweepFlip == "flipped";
-    sweepOptions.bothFlips = sweepFlip == "both";
-    if (Status s = validateForwardJob(sweepJob.forward); !s.isOk()) return usage(s);
-    return cli::runSweepCommand(sweepJob, sweepOptions, sweepOut, interrupted);
-  }
-  if (*batch) {
-    if (!mergeDir.empty()) {
-      if (!batchInput.empty() || !batchOut.outDir.empty())
-        return usage(Status(ErrorCode::Usage, "batch --merge DIR takes no job list and no -o"));
-      return cli::mergeBatchCommand(mergeDir);
-    }
-    if (batchInput.empty() || batchOut.outDir.empty())
-      return usage(Status(ErrorCode::Usage, "batch needs a job list or folder and -o OUT (or --merge OUT)"));
-    if (!parseShard(batchShard, batchOptions.shard, batchOptions.shards))
-      return usage(Status(ErrorCode::Usage, "--shard must look like I/N with 1 <= I <= N, got '" + batchShard + "'"));
-    if (batchOptions.threads < 0)
-      return usage(Status(ErrorCode::Usage, "--threads must be 0 (the machine's cores) or more"));
-    Result<std::vector<BatchJob>> jobs = listBatchJobs(batchInput);
-    if (!jobs.isOk()) return usage(jobs.status());
-    return cli::runBatchCommand(jobs.value(), batchOptions, batchOut, interrupted);
-  }
-  if (*runCommand) {
-    Result<Job> job = readJobFile(jobPath);
-    if (!job.isOk()) return usage(job.status());
-    return cli::runJob(job.value(), runOut, interrupted);
-  }
-  if (*exportCommand) {
-    if (listOnly) return cli::listProfiles();
-    if (exportDir.empty()) return usage(Status(ErrorCode::Usage, "export needs a result folder"));
-    return cli::exportSaved(exportDir, exportOut, interrupted);
-  }
-  return cli::validateSaved(validateDir, validateGate);
+  if (*forward.command) return forward.run();
+  if (*inverse.command) return inverse.run();
+  if (*sweep.command) return sweep.run();
+  if (*batch.command) return batch.run();
+  if (*runCommand.command) return runCommand.run();
+  if (*exportCommand.command) return exportCommand.run();
+  return validate.run();
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "pipeline/forward_pipeline.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <new>
 #include <numeric>
@@ -169,7 +170,7 @@ std::string exactModelRefusal(const ForwardSettings& job, const DrawnPiece& A, c
 
 // The two sides of the seam sampled at `fractions` (A's counter-clockwise, B's clockwise from
 // the starting pair), row k of each at seam point k: what the exact engine glues.
-exact::SeamPolygons seamPolygons(const DrawnPiece* drawn[2], const double startFraction[2], const int direction[2],
+exact::SeamPolygons seamPolygons(const DrawnPiece* const drawn[2], const double startFraction[2], const int direction[2],
                                  const std::vector<double>& fractions) {
   const Eigen::Index n = Eigen::Index(fractions.size());
   exact::SeamPolygons polygons;
@@ -261,24 +262,32 @@ Status validateForwardJob(const ForwardSettings& job) {
 
 namespace {
 
-// makeDForm, which turns a failed allocation into the resolution that fits; `estimate` is what
-// the memory check allowed for.
-Result<ForwardRun> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSettings& job,
-                               MessageSink& sink, const RunHooks& hooks, MemoryEstimate& estimate) {
-  if (Status s = validateForwardJob(job); !s.isOk()) return s;
-  const auto start = Clock::now();
-  ForwardRun run;
-  const std::string pathA = pieceLabel(shapeA, "A"), pathB = pieceLabel(shapeB, "B");
-  const std::string both = pathA + " and " + pathB;
+// The two pieces as the seam is laid out on them: which boundary is zipped, where the seam starts
+// and which way it runs, and the points every level must sample: corners of both joined
+// boundaries and the crease ends on them (as seam fractions from the starting pair), and corners
+// and crease ends on each free outline (as fractions of that outline, sampled from its point
+// nearest the seam's start, so that the mesh does not depend on where its path began).
+struct SeamLayout {
+  DrawnPiece pieces[2];
+  std::string paths[2];
+  double startFraction[2] = {0.0, 0.0};
+  int direction[2] = {1, -1};
+  double freeStart[2] = {0.0, 0.0};
+  std::vector<double> seamCorners, freeCorners[2];
+  const DrawnPiece* drawn[2] = {&pieces[0], &pieces[1]};
 
-  Result<DrawnPiece> drawnA = drawnPiece(shapeA, job.joinA, "A", sink);
-  if (!drawnA.isOk()) return drawnA.status();
-  Result<DrawnPiece> drawnB = drawnPiece(shapeB, job.joinB, "B", sink);
-  if (!drawnB.isOk()) return drawnB.status();
-  DrawnPiece& A = drawnA.value();
-  DrawnPiece& B = drawnB.value();
-  run.sha256A = A.sha256;
-  run.sha256B = B.sha256;
+  SeamLayout() = default;
+  SeamLayout(const SeamLayout&) = delete;  // `drawn` points into the object
+  SeamLayout& operator=(const SeamLayout&) = delete;
+};
+
+// Checks the joined lengths (fitting B to A when asked), turns B over when asked and resolves
+// the starting pair: what reading left to do before the seam is laid out.
+Status matchPieces(const ForwardSettings& job, SeamLayout& layout, ForwardRun& run,
+                   MessageSink& sink) {
+  DrawnPiece& A = layout.pieces[0];
+  DrawnPiece& B = layout.pieces[1];
+  const std::string both = layout.paths[0] + " and " + layout.paths[1];
   run.perimeterA = closedLength(A.joined);
   run.perimeterB = closedLength(B.joined);
   const double mismatch =
@@ -309,30 +318,157 @@ Result<ForwardRun> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSett
   }
   run.startFractionA = resolveFraction(A.joined, job.startA);
   run.startFractionB = resolveFraction(B.joined, startB);
-  run.timings.read = secondsSince(start);
+  return Status::ok();
+}
 
-  // The finest mesh: interior points on a hexagonal lattice of spacing h, 2 / (sqrt(3) h^2) per
-  // unit area, plus the boundary samples.
-  const double h = job.interiorEdgeFactor * run.perimeterA / job.resolution;
+// The finest mesh's vertices, for the memory check: interior points on a hexagonal lattice of
+// spacing h, 2 / (sqrt(3) h^2) per unit area, plus the boundary samples.
+double finestVertices(const ForwardSettings& job, const SeamLayout& layout, double perimeterA) {
+  const double h = job.interiorEdgeFactor * perimeterA / job.resolution;
   double area = 0.0;
-  for (const DrawnPiece* piece : {&A, &B})
-    area += piece->freeOutline ? std::abs(signedArea(*piece->freeOutline)) - std::abs(signedArea(piece->joined))
-                               : std::abs(signedArea(piece->joined));
-  estimate.vertices = 2.0 * area / (std::sqrt(3.0) * h * h) + 2.0 * job.resolution;
-  if (Status fits = checkMemory(estimate, job.resolution, both + ": the run");
-      !fits.isOk())
-    return fits;
+  for (const DrawnPiece& piece : layout.pieces)
+    area += piece.freeOutline ? std::abs(signedArea(*piece.freeOutline)) - std::abs(signedArea(piece.joined))
+                              : std::abs(signedArea(piece.joined));
+  return 2.0 * area / (std::sqrt(3.0) * h * h) + 2.0 * job.resolution;
+}
 
-  // Each seam runs so that the zipped pieces are consistently oriented: A's the way A's triangles
-  // run along it (counter-clockwise round an outline, clockwise round a hole), B's the other way
-  // round from B's triangles (so B is turned over unless exactly one of the two joins a hole).
-  const int directionA = job.joinA == JoinedBoundary::Outer ? 1 : -1;
-  const int directionB = job.joinB == JoinedBoundary::Outer ? -1 : 1;
+// Each seam runs so that the zipped pieces are consistently oriented: A's the way A's triangles
+// run along it (counter-clockwise round an outline, clockwise round a hole), B's the other way
+// round from B's triangles (so B is turned over unless exactly one of the two joins a hole).
+void layOutSeam(const ForwardSettings& job, const ForwardRun& run, SeamLayout& layout) {
+  layout.direction[0] = job.joinA == JoinedBoundary::Outer ? 1 : -1;
+  layout.direction[1] = job.joinB == JoinedBoundary::Outer ? -1 : 1;
+  layout.startFraction[0] = run.startFractionA;
+  layout.startFraction[1] = run.startFractionB;
+  for (int p = 0; p < 2; ++p) {
+    const DrawnPiece& piece = layout.pieces[p];
+    const double start = layout.startFraction[p];
+    const int direction = layout.direction[p];
+    double& freeStart = layout.freeStart[p];
+    for (double c : cornerFractions(piece.joined, kCornerTurnRadians))
+      layout.seamCorners.push_back(fractionFrom(c, start, direction));
+    if (piece.freeOutline) {
+      freeStart = nearestArcFraction(*piece.freeOutline, pointAtFraction(piece.joined, start));
+      for (double c : cornerFractions(*piece.freeOutline, kCornerTurnRadians))
+        layout.freeCorners[p].push_back(fractionFrom(c, freeStart, 1));
+    }
+    for (const Points2& crease : piece.creases)
+      for (const Eigen::Index end : {Eigen::Index(0), crease.rows() - 1}) {
+        const Eigen::Vector2d q = crease.row(end);
+        const double onJoined = nearestArcFraction(piece.joined, q);
+        if ((pointAtFraction(piece.joined, onJoined) - q).norm() < 1e-6)
+          layout.seamCorners.push_back(fractionFrom(onJoined, start, direction));
+        else if (piece.freeOutline)
+          layout.freeCorners[p].push_back(
+              fractionFrom(nearestArcFraction(*piece.freeOutline, q), freeStart, 1));
+      }
+  }
+}
 
-  // Coarse to fine: the job is solved first with a third of the seam vertices (recursively, down
-  // to kCoarsestSeam), and each level starts from the coarser solution carried over by
-  // barycentric transfer. The coarse levels do the large shape change cheaply; the finest level
-  // then converges in a few Levenberg-Marquardt steps on one factorisation.
+// The exact D-Form where it applies and was not declined: the finished run, or nothing with
+// `refusal` saying why not (an error where --model exact asked for it).
+Result<std::optional<ForwardRun>> tryExactModel(const ForwardSettings& job, const SeamLayout& layout,
+                                                ForwardRun& run, std::string& refusal,
+                                                MessageSink& sink, const RunHooks& hooks) {
+  const std::string both = layout.paths[0] + " and " + layout.paths[1];
+  refusal = exactModelRefusal(job, layout.pieces[0], layout.pieces[1]);
+  if (job.model == ModelChoice::Paper) return std::optional<ForwardRun>();
+  if (!refusal.empty()) {
+    if (job.model == ModelChoice::Exact)
+      return Status(ErrorCode::InputInvalid, both + ": --model exact: " + refusal);
+    return std::optional<ForwardRun>();
+  }
+  const auto solveStart = Clock::now();
+  ModelUsed used;
+  Result<DForm> exactModel =
+      exactDForm(seamPolygons(layout.drawn, layout.startFraction, layout.direction,
+                              seamFractions(job.resolution, layout.seamCorners)),
+                 job.interiorEdgeFactor * run.perimeterA / job.resolution, layout.paths, used);
+  run.timings.solve = secondsSince(solveStart);
+  if (detail::stopRequested(hooks)) return detail::interruptedDuring("the solve");
+  if (!exactModel.isOk()) {
+    refusal = exactModel.status().message();
+    if (job.model == ModelChoice::Exact)
+      return Status(exactModel.status().code(), both + ": --model exact: " + refusal);
+    if (exactModel.status().code() == ErrorCode::SolveFailed) {
+      sink.warning("the exact model failed (" + refusal + "); the paper model makes the shape instead");
+      refusal = "it failed: " + refusal;
+    }
+    return std::optional<ForwardRun>();
+  }
+  used.name = "exact";
+  used.reason = used.doublyCovered
+                    ? "the pieces are congruent and zipped point to point: they fold flat onto each other"
+                    : "two discs zipped along their outlines whose glued metric is convex (every seam point's "
+                      "angle sum at most 360 degrees): the D-Form is that metric's unique convex body";
+  sink.info("exact model: " + std::to_string(used.conePoints) + " cone points, " +
+            std::to_string(used.newtonSteps) + " Newton steps" +
+            format(", curvature left %.2g rad, chords equalised by moving points at most %.2g mm", used.maxCurvature,
+                   used.chordMoveMm));
+  for (const FoundCrease& c : used.creases)
+    sink.info(std::string("the exact D-Form creases piece ") + (c.piece == 0 ? "A" : "B") +
+              format(" along a line of %.1f mm folded by %.1f degrees", c.lengthMm, c.angleDeg));
+  run.model = std::move(exactModel).value();
+  run.modelUsed = std::move(used);
+  run.metrics = computeMetrics(run.model);
+  return std::optional<ForwardRun>(std::move(run));
+}
+
+// Both pieces meshed for a level of n seam vertices, seam rows listed in seam order.
+Result<std::array<Piece, 2>> meshLevel(const ForwardSettings& job, const SeamLayout& layout,
+                                       int n, double perimeterA, const RunHooks& hooks) {
+  const std::vector<double> t = seamFractions(n, layout.seamCorners);
+  const double seamEdge = perimeterA / n;
+  std::array<Piece, 2> pieces;
+  for (int p = 0; p < 2; ++p) {
+    // Meshing a fine level takes seconds per piece.
+    if (detail::stopRequested(hooks)) return detail::interruptedDuring("the meshing");
+    const DrawnPiece& piece = layout.pieces[p];
+    const std::string& path = layout.paths[p];
+    const LoopSamples seam = sampleLoop(piece.joined, t, layout.startFraction[p], layout.direction[p]);
+    // The mesher's fixed points: the outline, then the hole. The joined boundary is the outline
+    // of a disc and the hole of an annulus-like piece, whose outline is sampled about as
+    // densely as the seam.
+    Points2 outline = seam.rows;
+    std::vector<Points2> holes;
+    int seamFirstRow = 0;
+    if (piece.freeOutline) {
+      const int m = std::max(3, int(std::lround(closedLength(*piece.freeOutline) / seamEdge)));
+      outline = sampleLoop(*piece.freeOutline, seamFractions(m, layout.freeCorners[p]),
+                           layout.freeStart[p], 1).rows;
+      holes.push_back(seam.rows);
+      seamFirstRow = int(outline.rows());
+    }
+    Points2 fixed(outline.rows() + seam.rows.rows() * Eigen::Index(piece.freeOutline.has_value()), 2);
+    fixed.topRows(outline.rows()) = outline;
+    if (piece.freeOutline) fixed.bottomRows(seam.rows.rows()) = seam.rows;
+    std::vector<InteriorLine> creases;
+    for (const Points2& crease : piece.creases) creases.push_back(creaseLine(crease, fixed, seamEdge));
+
+    TriangulateOptions meshOptions;
+    meshOptions.targetEdgeLength = job.interiorEdgeFactor * seamEdge;
+    Result<FlatMesh> mesh = triangulateDomain(outline, holes, meshOptions, creases);
+    if (!mesh.isOk()) return Status(mesh.status().code(), path + ": " + mesh.status().message());
+    Piece& out = pieces[p];
+    out.name = p == 0 ? "A" : "B";
+    out.flat = std::move(mesh.value().V);
+    out.F = std::move(mesh.value().F);
+    for (int row : seam.order) out.seam.push_back(seamFirstRow + row);
+    if (piece.freeOutline) {
+      out.freeBoundaries.emplace_back(seamFirstRow);
+      std::iota(out.freeBoundaries[0].begin(), out.freeBoundaries[0].end(), 0);
+    }
+    out.creases = std::move(mesh.value().lines);
+  }
+  return pieces;
+}
+
+// The paper's optimisation, coarse to fine: the job is solved first with a third of the seam
+// vertices (recursively, down to kCoarsestSeam), and each level starts from the coarser solution
+// carried over by barycentric transfer. The coarse levels do the large shape change cheaply; the
+// finest level then converges in a few Levenberg-Marquardt steps on one factorisation.
+Status solvePaperModel(const ForwardSettings& job, const SeamLayout& layout, ForwardRun& run,
+                       MessageSink& sink, const RunHooks& hooks) {
   constexpr int kCoarsestSeam = 24;
   constexpr int kLevelRatio = 3;
   constexpr int kCoarseIterations = 30;
@@ -341,79 +477,6 @@ Result<ForwardRun> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSett
     levels.push_back(levels.back() / kLevelRatio);
   std::reverse(levels.begin(), levels.end());
 
-  // Points every level must sample: corners of both joined boundaries and the crease ends on
-  // them (as seam fractions from the starting pair), and corners and crease ends on each free
-  // outline (as fractions of that outline).
-  // A free outline is sampled from its point nearest the seam's start, so that the mesh does not
-  // depend on where that outline's path happened to begin.
-  std::vector<double> seamCorners, freeCorners[2];
-  const DrawnPiece* drawn[2] = {&A, &B};
-  const double startFraction[2] = {run.startFractionA, run.startFractionB};
-  const int direction[2] = {directionA, directionB};
-  double freeStart[2] = {0.0, 0.0};
-  for (int p = 0; p < 2; ++p) {
-    const DrawnPiece& piece = *drawn[p];
-    for (double c : cornerFractions(piece.joined, kCornerTurnRadians))
-      seamCorners.push_back(fractionFrom(c, startFraction[p], direction[p]));
-    if (piece.freeOutline) {
-      freeStart[p] = nearestArcFraction(*piece.freeOutline, pointAtFraction(piece.joined, startFraction[p]));
-      for (double c : cornerFractions(*piece.freeOutline, kCornerTurnRadians))
-        freeCorners[p].push_back(fractionFrom(c, freeStart[p], 1));
-    }
-    for (const Points2& crease : piece.creases)
-      for (const Eigen::Index end : {Eigen::Index(0), crease.rows() - 1}) {
-        const Eigen::Vector2d q = crease.row(end);
-        const double onJoined = nearestArcFraction(piece.joined, q);
-        if ((pointAtFraction(piece.joined, onJoined) - q).norm() < 1e-6)
-          seamCorners.push_back(fractionFrom(onJoined, startFraction[p], direction[p]));
-        else if (piece.freeOutline)
-          freeCorners[p].push_back(fractionFrom(nearestArcFraction(*piece.freeOutline, q), freeStart[p], 1));
-      }
-  }
-
-  // The exact D-Form wherever it applies; the paper's optimisation otherwise.
-  const std::string paths[2] = {pathA, pathB};
-  std::string refusal = exactModelRefusal(job, A, B);
-  if (job.model != ModelChoice::Paper && refusal.empty()) {
-    const auto solveStart = Clock::now();
-    ModelUsed used;
-    Result<DForm> exactModel =
-        exactDForm(seamPolygons(drawn, startFraction, direction, seamFractions(job.resolution, seamCorners)),
-                   job.interiorEdgeFactor * run.perimeterA / job.resolution, paths, used);
-    run.timings.solve = secondsSince(solveStart);
-    if (detail::stopRequested(hooks)) return detail::interruptedDuring("the solve");
-    if (exactModel.isOk()) {
-      used.name = "exact";
-      used.reason = used.doublyCovered
-                        ? "the pieces are congruent and zipped point to point: they fold flat onto each other"
-                        : "two discs zipped along their outlines whose glued metric is convex (every seam point's "
-                          "angle sum at most 360 degrees): the D-Form is that metric's unique convex body";
-      sink.info("exact model: " + std::to_string(used.conePoints) + " cone points, " +
-                std::to_string(used.newtonSteps) + " Newton steps" +
-                format(", curvature left %.2g rad, chords equalised by moving points at most %.2g mm", used.maxCurvature,
-                       used.chordMoveMm));
-      for (const FoundCrease& c : used.creases)
-        sink.info(std::string("the exact D-Form creases piece ") + (c.piece == 0 ? "A" : "B") +
-                  format(" along a line of %.1f mm folded by %.1f degrees", c.lengthMm, c.angleDeg));
-      run.model = std::move(exactModel).value();
-      run.modelUsed = std::move(used);
-      run.metrics = computeMetrics(run.model);
-      run.timings.total = secondsSince(start);
-      return run;
-    }
-    refusal = exactModel.status().message();
-    if (job.model == ModelChoice::Exact) return Status(exactModel.status().code(), both + ": --model exact: " + refusal);
-    if (exactModel.status().code() == ErrorCode::SolveFailed) {
-      sink.warning("the exact model failed (" + refusal + "); the paper model makes the shape instead");
-      refusal = "it failed: " + refusal;
-    }
-  } else if (job.model == ModelChoice::Exact) {
-    return Status(ErrorCode::InputInvalid, both + ": --model exact: " + refusal);
-  }
-  run.modelUsed.name = "paper";
-  run.modelUsed.reason = job.model == ModelChoice::Paper ? "asked for (--model paper)" : "the exact model does not apply: " + refusal;
-  sink.info("paper model: " + run.modelUsed.reason);
-
   // Where creases are drawn on discs with a convex glued metric, the paper model starts on their
   // exact D-Form, which folds where the glued pieces fold: its solution differs from it only by
   // what the smoothing terms and the drawn creases ask, so the finest level alone converges in a
@@ -421,9 +484,12 @@ Result<ForwardRun> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSett
   // Squaricle: 6 folded triangles in 13 s from the pillow, none in 0.6 s from the exact body).
   // Without creases the coarse-to-fine start is as good and faster (a finest level relaxed from
   // the exact body's ridges takes seconds at 7k vertices).
+  const bool classic = job.joinA == JoinedBoundary::Outer && job.joinB == JoinedBoundary::Outer;
+  const bool creased = !layout.pieces[0].creases.empty() || !layout.pieces[1].creases.empty();
   std::optional<exact::ExactGluing> exactStart;
-  if (classic && (!A.creases.empty() || !B.creases.empty()) && job.resolution <= kMaxExactSeam) {
-    exact::SeamPolygons polygons = seamPolygons(drawn, startFraction, direction, seamFractions(job.resolution, seamCorners));
+  if (classic && creased && job.resolution <= kMaxExactSeam) {
+    exact::SeamPolygons polygons = seamPolygons(layout.drawn, layout.startFraction, layout.direction,
+                                                seamFractions(job.resolution, layout.seamCorners));
     exact::equalizeChords(polygons);
     Result<exact::ExactGluing> glued = exact::glue(polygons);
     if (glued.isOk() && !glued.value().doublyCovered) {
@@ -437,54 +503,14 @@ Result<ForwardRun> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSett
   detail::connectHooks(options.relaxation, options.solver, hooks);
   ForwardResult solved;
   for (std::size_t level = 0; level < levels.size(); ++level) {
-    const int n = levels[level];
     const bool finest = level + 1 == levels.size();
     const auto meshStart = Clock::now();
-    const std::vector<double> t = seamFractions(n, seamCorners);
-    const double seamEdge = run.perimeterA / n;
-    Piece pieces[2];
-    for (int p = 0; p < 2; ++p) {
-      // Meshing a fine level takes seconds per piece.
-      if (detail::stopRequested(hooks)) return detail::interruptedDuring("the meshing");
-      const DrawnPiece& piece = *drawn[p];
-      const std::string& path = paths[p];
-      const LoopSamples seam = sampleLoop(piece.joined, t, startFraction[p], direction[p]);
-      // The mesher's fixed points: the outline, then the hole. The joined boundary is the outline
-      // of a disc and the hole of an annulus-like piece, whose outline is sampled about as
-      // densely as the seam.
-      Points2 outline = seam.rows;
-      std::vector<Points2> holes;
-      int seamFirstRow = 0;
-      if (piece.freeOutline) {
-        const int m = std::max(3, int(std::lround(closedLength(*piece.freeOutline) / seamEdge)));
-        outline = sampleLoop(*piece.freeOutline, seamFractions(m, freeCorners[p]), freeStart[p], 1).rows;
-        holes.push_back(seam.rows);
-        seamFirstRow = int(outline.rows());
-      }
-      Points2 fixed(outline.rows() + seam.rows.rows() * Eigen::Index(piece.freeOutline.has_value()), 2);
-      fixed.topRows(outline.rows()) = outline;
-      if (piece.freeOutline) fixed.bottomRows(seam.rows.rows()) = seam.rows;
-      std::vector<InteriorLine> creases;
-      for (const Points2& crease : piece.creases) creases.push_back(creaseLine(crease, fixed, seamEdge));
-
-      TriangulateOptions meshOptions;
-      meshOptions.targetEdgeLength = job.interiorEdgeFactor * seamEdge;
-      Result<FlatMesh> mesh = triangulateDomain(outline, holes, meshOptions, creases);
-      if (!mesh.isOk()) return Status(mesh.status().code(), path + ": " + mesh.status().message());
-      Piece& out = pieces[p];
-      out.name = p == 0 ? "A" : "B";
-      out.flat = std::move(mesh.value().V);
-      out.F = std::move(mesh.value().F);
-      for (int row : seam.order) out.seam.push_back(seamFirstRow + row);
-      if (piece.freeOutline) {
-        out.freeBoundaries.emplace_back(seamFirstRow);
-        std::iota(out.freeBoundaries[0].begin(), out.freeBoundaries[0].end(), 0);
-      }
-      out.creases = std::move(mesh.value().lines);
-    }
+    Result<std::array<Piece, 2>> meshed = meshLevel(job, layout, levels[level], run.perimeterA, hooks);
+    if (!meshed.isOk()) return meshed.status();
+    Piece* pieces = meshed.value().data();
     if (level > 0) startFromCoarser(solved.model, pieces[0], pieces[1]);
     if (exactStart && finest && !startOnExactBody(*exactStart, pieces)) {
-      for (Piece& piece : pieces) piece.shape.resize(0, 3);
+      for (Piece& piece : meshed.value()) piece.shape.resize(0, 3);
       sink.warning("paper model: a vertex could not be placed on the exact D-Form; starting from the pillow");
     }
     run.timings.mesh += secondsSince(meshStart);
@@ -524,6 +550,48 @@ Result<ForwardRun> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSett
   run.model = std::move(solved.model);
   run.summary = std::move(solved.summary);
   run.metrics = computeMetrics(run.model);
+  return Status::ok();
+}
+
+// makeDForm, which turns a failed allocation into the resolution that fits; `estimate` is what
+// the memory check allowed for.
+Result<ForwardRun> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSettings& job,
+                               MessageSink& sink, const RunHooks& hooks, MemoryEstimate& estimate) {
+  if (Status s = validateForwardJob(job); !s.isOk()) return s;
+  const auto start = Clock::now();
+  ForwardRun run;
+  SeamLayout layout;
+  layout.paths[0] = pieceLabel(shapeA, "A");
+  layout.paths[1] = pieceLabel(shapeB, "B");
+  Result<DrawnPiece> drawnA = drawnPiece(shapeA, job.joinA, "A", sink);
+  if (!drawnA.isOk()) return drawnA.status();
+  Result<DrawnPiece> drawnB = drawnPiece(shapeB, job.joinB, "B", sink);
+  if (!drawnB.isOk()) return drawnB.status();
+  layout.pieces[0] = std::move(drawnA).value();
+  layout.pieces[1] = std::move(drawnB).value();
+  run.sha256A = layout.pieces[0].sha256;
+  run.sha256B = layout.pieces[1].sha256;
+  if (Status s = matchPieces(job, layout, run, sink); !s.isOk()) return s;
+  run.timings.read = secondsSince(start);
+
+  estimate.vertices = finestVertices(job, layout, run.perimeterA);
+  const std::string both = layout.paths[0] + " and " + layout.paths[1];
+  if (Status fits = checkMemory(estimate, job.resolution, both + ": the run"); !fits.isOk())
+    return fits;
+  layOutSeam(job, run, layout);
+
+  // The exact D-Form wherever it applies; the paper's optimisation otherwise.
+  std::string refusal;
+  Result<std::optional<ForwardRun>> exact = tryExactModel(job, layout, run, refusal, sink, hooks);
+  if (!exact.isOk()) return exact.status();
+  if (exact.value()) {
+    exact.value()->timings.total = secondsSince(start);
+    return std::move(*exact.value());
+  }
+  run.modelUsed.name = "paper";
+  run.modelUsed.reason = job.model == ModelChoice::Paper ? "asked for (--model paper)" : "the exact model does not apply: " + refusal;
+  sink.info("paper model: " + run.modelUsed.reason);
+  if (Status s = solvePaperModel(job, layout, run, sink, hooks); !s.isOk()) return s;
   run.timings.total = secondsSince(start);
   return run;
 }

@@ -191,10 +191,11 @@ TEST(ExportLayout, TheTitleBlockOnAPrintedBleedIsCounted) {
     const LayoutFindings f = fab::checkLayout(pnc);
     EXPECT_EQ(f.titleOverlaps, bleed ? 1 : 0) << f.example;
     EXPECT_EQ(f.problems(), f.titleOverlaps) << f.example;
-    if (bleed)
+    if (bleed) {  // braces: EXPECT_NE expands to an if-else of its own
       EXPECT_NE(f.example.find(bar->id + " overlaps piece B's printed bleed"),
                 std::string::npos)
           << f.example;
+    }
   }
 }
 
