@@ -170,13 +170,13 @@ std::string exactModelRefusal(const ForwardSettings& job, const DrawnPiece& A, c
 
 // The two sides of the seam sampled at `fractions` (A's counter-clockwise, B's clockwise from
 // the starting pair), row k of each at seam point k: what the exact engine glues.
-exact::SeamPolygons seamPolygons(const DrawnPiece* const drawn[2], const double startFraction[2], const int direction[2],
+exact::SeamPolygons seamPolygons(const DrawnPiece pieces[2], const double startFraction[2], const int direction[2],
                                  const std::vector<double>& fractions) {
   const Eigen::Index n = Eigen::Index(fractions.size());
   exact::SeamPolygons polygons;
   Points2* sides[2] = {&polygons.a, &polygons.b};
   for (int p = 0; p < 2; ++p) {
-    const LoopSamples seam = sampleLoop(drawn[p]->joined, fractions, startFraction[p], direction[p]);
+    const LoopSamples seam = sampleLoop(pieces[p].joined, fractions, startFraction[p], direction[p]);
     sides[p]->resize(n, 2);
     for (Eigen::Index k = 0; k < n; ++k) sides[p]->row(k) = seam.rows.row(seam.order[k]);
   }
@@ -274,11 +274,8 @@ struct SeamLayout {
   int direction[2] = {1, -1};
   double freeStart[2] = {0.0, 0.0};
   std::vector<double> seamCorners, freeCorners[2];
-  const DrawnPiece* drawn[2] = {&pieces[0], &pieces[1]};
 
-  SeamLayout() = default;
-  SeamLayout(const SeamLayout&) = delete;  // `drawn` points into the object
-  SeamLayout& operator=(const SeamLayout&) = delete;
+  std::string bothPaths() const { return paths[0] + " and " + paths[1]; }
 };
 
 // Checks the joined lengths (fitting B to A when asked), turns B over when asked and resolves
@@ -287,7 +284,6 @@ Status matchPieces(const ForwardSettings& job, SeamLayout& layout, ForwardRun& r
                    MessageSink& sink) {
   DrawnPiece& A = layout.pieces[0];
   DrawnPiece& B = layout.pieces[1];
-  const std::string both = layout.paths[0] + " and " + layout.paths[1];
   run.perimeterA = closedLength(A.joined);
   run.perimeterB = closedLength(B.joined);
   const double mismatch =
@@ -297,7 +293,7 @@ Status matchPieces(const ForwardSettings& job, SeamLayout& layout, ForwardRun& r
   if (mismatch > job.perimeterTolerance) {
     if (!job.fitPerimeter)
       return Status(ErrorCode::InputInvalid,
-                    both + ": " + lengths + " differ" +
+                    layout.bothPaths() + ": " + lengths + " differ" +
                         format(" (%.3f mm and %.3f mm, %.2f%%", run.perimeterA, run.perimeterB,
                                100.0 * mismatch) +
                         format(" > %.2f%%); a D-Form needs equal lengths (--fit-perimeter "
@@ -370,7 +366,7 @@ void layOutSeam(const ForwardSettings& job, const ForwardRun& run, SeamLayout& l
 Result<std::optional<ForwardRun>> tryExactModel(const ForwardSettings& job, const SeamLayout& layout,
                                                 ForwardRun& run, std::string& refusal,
                                                 MessageSink& sink, const RunHooks& hooks) {
-  const std::string both = layout.paths[0] + " and " + layout.paths[1];
+  const std::string both = layout.bothPaths();
   refusal = exactModelRefusal(job, layout.pieces[0], layout.pieces[1]);
   if (job.model == ModelChoice::Paper) return std::optional<ForwardRun>();
   if (!refusal.empty()) {
@@ -381,7 +377,7 @@ Result<std::optional<ForwardRun>> tryExactModel(const ForwardSettings& job, cons
   const auto solveStart = Clock::now();
   ModelUsed used;
   Result<DForm> exactModel =
-      exactDForm(seamPolygons(layout.drawn, layout.startFraction, layout.direction,
+      exactDForm(seamPolygons(layout.pieces, layout.startFraction, layout.direction,
                               seamFractions(job.resolution, layout.seamCorners)),
                  job.interiorEdgeFactor * run.perimeterA / job.resolution, layout.paths, used);
   run.timings.solve = secondsSince(solveStart);
@@ -488,7 +484,7 @@ Status solvePaperModel(const ForwardSettings& job, const SeamLayout& layout, For
   const bool creased = !layout.pieces[0].creases.empty() || !layout.pieces[1].creases.empty();
   std::optional<exact::ExactGluing> exactStart;
   if (classic && creased && job.resolution <= kMaxExactSeam) {
-    exact::SeamPolygons polygons = seamPolygons(layout.drawn, layout.startFraction, layout.direction,
+    exact::SeamPolygons polygons = seamPolygons(layout.pieces, layout.startFraction, layout.direction,
                                                 seamFractions(job.resolution, layout.seamCorners));
     exact::equalizeChords(polygons);
     Result<exact::ExactGluing> glued = exact::glue(polygons);
@@ -575,8 +571,8 @@ Result<ForwardRun> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSett
   run.timings.read = secondsSince(start);
 
   estimate.vertices = finestVertices(job, layout, run.perimeterA);
-  const std::string both = layout.paths[0] + " and " + layout.paths[1];
-  if (Status fits = checkMemory(estimate, job.resolution, both + ": the run"); !fits.isOk())
+  if (Status fits = checkMemory(estimate, job.resolution, layout.bothPaths() + ": the run");
+      !fits.isOk())
     return fits;
   layOutSeam(job, run, layout);
 

@@ -164,14 +164,12 @@ Result<PreparedExport> prepare(const DForm& model, ExportOptions options, bool f
   return prepareExport(model, options);
 }
 
-
 // A run's job name: its first input's file name.
 std::string jobName(const Job& job) {
   return fs::path(job.mode == Job::Mode::Forward ? job.forward.pieceA : job.inverse.curve)
       .stem()
       .string();
 }
-
 
 // The gate's fabrication check: the laid-out pattern fits the sheet and nothing on it overlaps.
 CheckResult layoutCheck(const LayoutFindings& f) {
@@ -236,7 +234,5 @@ Status commitUnlessInterrupted(ResultFolder& folder, const std::string& dir,
   if (interrupted) return leftAsItWas(dir, "interrupted");
   return folder.commit();
 }
-
-
 
 }  // namespace dform
