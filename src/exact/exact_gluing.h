@@ -42,6 +42,11 @@ constexpr double kFlatCurvature = 1e-9;
 
 SeamAngles seamAngles(const SeamPolygons& seam);
 
+/// Seams longer than this are not glued exactly (neither as a run's model nor for a figure): the
+/// engine's time grows about as n^1.5 (1000 seam points take ~0.3 s), and such seams come from the
+/// relaxation-only runs.
+constexpr int kMaxExactSeam = 1000;
+
 /// The glued surface embedded in 3D.
 struct ExactGluing {
   SeamPolygons seam;                  ///< the polygons glued (after equalizeChords)

@@ -1,130 +1,33 @@
 // The forward run end to end: two outline files in, a solved and measured D-Form out.
 #pragma once
 
-#include <Eigen/Core>
-#include <atomic>
-#include <functional>
 #include <string>
 
 #include "core/messages.h"
 #include "core/status.h"
 #include "core/types.h"
-#include "forward/forward.h"
+#include "forward/dform_from_shapes.h"
 #include "validate/metrics.h"
 
 namespace dform {
-
-/// Where a piece's seam starts: an arc-length fraction from the outline's first point, or the
-/// outline point nearest to a given point (mm, page frame, y up).
-struct StartPoint {
-  bool nearestToPoint = false;
-  double fraction = 0.0;
-  Eigen::Vector2d point = Eigen::Vector2d::Zero();
-};
-
-/// Which boundary of a piece is zipped (paper section 6.4): its outline, as in a classic D-Form,
-/// or its one hole. Two holes make an anti D-Form, an outline and a hole a demi D-Form; the other
-/// boundary of an annulus-like piece stays free.
-enum class JoinedBoundary { Outer, Inner };
-
-const char* joinedBoundaryName(JoinedBoundary boundary);  ///< "outer" or "inner"
-
-/// The term weights a job starts from: paper Table 1's for a classic D-Form; for anti and demi
-/// D-Forms (a hole joined) the 3D smoothness weight is 0.001, Table 1's inverse-mode value. At
-/// 0.01 their free brims stay stiff enough to strain the seam past the 3% bar (docs/variants.md).
-ForwardWeights defaultWeights(JoinedBoundary a, JoinedBoundary b);
-
-/// Reads "outer,inner" (A's joined boundary, then B's; "outer" or "inner" each) into the job;
-/// false when the text is not of that form.
-bool parseJoin(const std::string& text, JoinedBoundary& a, JoinedBoundary& b);
-
-/// Which model makes the 3D shape: the exact D-Form (Alexandrov's convex body of the glued
-/// pieces, src/exact) or the paper's optimisation; `Auto` takes the exact one wherever it applies
-/// (two discs zipped along their outlines, no drawn creases, a convex glued metric).
-enum class ModelChoice { Auto, Exact, Paper };
-
-const char* modelChoiceName(ModelChoice model);            ///< "auto", "exact" or "paper"
-bool parseModelChoice(const std::string& text, ModelChoice& model);
-
-/// Everything a forward run needs besides the two pieces: the model, which boundaries are
-/// zipped, the starting pair, the mesh and the solve.
-struct ForwardSettings {
-  ModelChoice model = ModelChoice::Auto;
-  JoinedBoundary joinA = JoinedBoundary::Outer, joinB = JoinedBoundary::Outer;
-  StartPoint startA, startB;   ///< the starting pair (paper Definition 3), on the joined boundaries
-  int resolution = 100;        ///< seam vertices per piece
-  bool flip = false;           ///< zip B turned over (its mirror image) instead
-  bool fitPerimeter = false;   ///< scale B uniformly to A's perimeter
-  double perimeterTolerance = 0.005;  ///< largest |pA - pB| / max(pA, pB) accepted as equal
-  double interiorEdgeFactor = 1.0;    ///< interior edge length / seam edge length
-  bool coarseToFine = true;           ///< start from solutions at 1/3, 1/9, ... of the resolution
-  ForwardOptions solve;
-};
 
 /// A forward job: the settings and the two outline files (SVG or JSON points).
 struct ForwardJob : ForwardSettings {
   std::string pieceA, pieceB;
 };
 
-/// Seconds spent in each stage.
-struct Timings {
-  double read = 0, mesh = 0, solve = 0, total = 0;
-};
-
-/// Folds of the exact D-Form through a piece that nobody drew: each is returned as one of the
-/// piece's creases (Piece::creases) and listed here.
-struct FoundCrease {
-  int piece = 0;           ///< 0 for A, 1 for B
-  int crease = 0;          ///< its index in that piece's creases
-  double angleDeg = 0;     ///< its fold angle (0 = flat)
-  double lengthMm = 0;
-};
-
-/// Which model ran, and why the other did not.
-struct ModelUsed {
-  std::string name;    ///< "exact" or "paper"
-  std::string reason;  ///< why this one: the exact model's conditions met, or which failed
-  int conePoints = 0;          ///< exact: seam points that are vertices of the body
-  int newtonSteps = 0;         ///< exact: steps of the deformation
-  double maxCurvature = 0;     ///< exact: largest |curvature| left at a cone point (radians)
-  double chordMoveMm = 0;      ///< exact: the most a seam point moved to make paired chords equal
-  bool doublyCovered = false;  ///< exact: the pieces fold flat onto each other
-  std::vector<FoundCrease> creases;
-};
-
-struct ForwardRun {
-  DForm model;
-  ModelUsed modelUsed;
+/// A forward run's result: the solved D-Form and its figures.
+struct ForwardRun : SolvedDForm {
   Metrics metrics;
-  LocalGlobalSummary relaxation;  ///< the local-global start of the solve
-  SolverSummary summary;          ///< the Levenberg-Marquardt solve
-  int constraintRounds = 0;       ///< multiplier rounds that closed the seam and fixed the outlines
-  Timings timings;
-  double perimeterA = 0, perimeterB = 0;  ///< the joined boundaries' lengths as read, mm
-  std::string sha256A, sha256B;           ///< SHA-256 of each input file's bytes as read
-  double scaleB = 1.0;                    ///< applied by fitPerimeter
-  double startFractionA = 0, startFractionB = 0;  ///< resolved starting pair
-};
-
-/// Hooks for a caller that shows progress or can be interrupted.
-struct RunHooks {
-  /// Each iteration of a stage ("relaxing": local-global steps, "solving": Levenberg-Marquardt).
-  std::function<void(const char* stage, const IterationSummary&)> onIteration;
-  const std::atomic<bool>* interrupted = nullptr;  ///< checked between iterations
 };
 
 /// Reads the two files, then makes and measures their D-Form as makeDForm does. Errors name the
 /// file and the problem.
 Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const RunHooks& hooks = {});
 
-/// The D-Form of two shapes in memory (mm, counter-clockwise loops, as readShape gives them):
-/// checks, meshes, solves (the exact model or the paper's) and measures. Messages and errors name
-/// a piece by its outline's `source` (a file path), else "piece A" / "piece B". A failed
-/// allocation is an error with the resolution that fits.
+/// The D-Form of two shapes in memory, solved as forward's solveDForm does (the exact model or
+/// the paper's), and measured.
 Result<ForwardRun> makeDForm(Shape2 a, Shape2 b, const ForwardSettings& settings,
                              MessageSink& sink, const RunHooks& hooks = {});
-
-/// Checks a job's numbers before any work is done (Usage errors).
-Status validateForwardJob(const ForwardSettings& job);
 
 }  // namespace dform

@@ -1,226 +1,26 @@
 #include "pipeline/inverse_pipeline.h"
 
-#include <Eigen/Geometry>
-
-#include <algorithm>
-#include <cmath>
 #include <new>
-#include <tuple>
 
 #include "core/polyline.h"
-#include "exact/aligned_distance.h"
-#include "forward/transfer.h"
+#include "forward/resources.h"
+#include "forward/run_control.h"
 #include "io/curve_reader.h"
-#include "meshing/triangulate.h"
-#include "pipeline/exact_model.h"
-#include "pipeline/resources.h"
-#include "pipeline/run_util.h"
 
 namespace dform {
 
 using detail::Clock;
-using detail::format;
 using detail::secondsSince;
-
-Status validateInverseJob(const InverseSettings& job) {
-  auto usage = [](const std::string& text) { return Status(ErrorCode::Usage, text); };
-  if (job.resolution < 8 || job.resolution > 20000)
-    return usage("resolution must be between 8 and 20000 curve points, got " +
-                 std::to_string(job.resolution));
-  const InverseWeights& w = job.solve.weights;
-  for (double weight : {w.isometry, w.closeness, w.smooth3d, w.smooth2d})
-    if (!(weight >= 0.0 && std::isfinite(weight))) return usage("weights must be finite and >= 0");
-  std::string why;
-  if (!job.solve.solver.isValid(&why)) return usage("solver options: " + why);
-  return Status::ok();
-}
 
 namespace {
 
-// The closed curve through the rows of P (#P by 2, point k at parameter k / #P) by periodic
-// Catmull-Rom interpolation, at parameters j / m: a smooth boundary through the coarse seam
-// vertices rather than their chords, which are shorter than the seam and straight where it bends.
-Points2 catmullRom(const Points2& P, int m) {
-  const int n = int(P.rows());
-  Points2 out(m, 2);
-  for (int j = 0; j < m; ++j) {
-    const double t = double(j) * n / m;
-    const int k = int(std::floor(t));
-    const double u = t - k, u2 = u * u, u3 = u2 * u;
-    const Eigen::RowVector2d p0 = P.row((k + n - 1) % n), p1 = P.row(k % n), p2 = P.row((k + 1) % n),
-                             p3 = P.row((k + 2) % n);
-    out.row(j) = 0.5 * ((2.0 * p1) + (p2 - p0) * u + (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) * u2 +
-                        (3.0 * p1 - p0 - 3.0 * p2 + p3) * u3);
-  }
-  return out;
-}
-
-// A finer level's piece from the coarser solution: its flat seam runs through the coarse flat
-// seam (curve point j of m at parameter j / m: both levels sample the curve uniformly), meshed
-// like the pre-D-Form pieces, and its 3D shape is carried over by barycentric transfer, with the
-// seam on the finer curve. Seam convention as InverseInit's: A's seam counter-clockwise in rows
-// 0..m-1, B's clockwise.
-Result<Piece> refinePiece(const Piece& coarse, const Points3& curve, bool clockwiseSeam, double edgeLength,
-                          const InverseInitOptions& init) {
-  const int m = int(curve.rows());
-  Points2 seam(Eigen::Index(coarse.seam.size()), 2);
-  for (std::size_t k = 0; k < coarse.seam.size(); ++k) seam.row(Eigen::Index(k)) = coarse.flat.row(coarse.seam[k]);
-  const Points2 fineSeam = catmullRom(seam, m);  // in seam order
-  Points2 outline(m, 2);  // counter-clockwise rows
-  for (int row = 0; row < m; ++row) outline.row(row) = fineSeam.row(clockwiseSeam ? (m - row) % m : row);
-  TriangulateOptions options;
-  options.targetEdgeLength = edgeLength * init.edgeLengthFactor;
-  options.minAngleDegrees = init.minAngleDegrees;
-  Result<FlatMesh> mesh = triangulateDomain(outline, {}, options);
-  if (!mesh.isOk()) return mesh.status();
-  Piece piece;
-  piece.name = coarse.name;
-  piece.flat = std::move(mesh.value().V);
-  piece.F = std::move(mesh.value().F);
-  for (int k = 0; k < m; ++k) piece.seam.push_back(clockwiseSeam ? (m - k) % m : k);
-  piece.shape = transferShape(coarse, piece.flat);
-  for (int k = 0; k < m; ++k) piece.shape.row(piece.seam[std::size_t(k)]) = curve.row(k);
-  return piece;
-}
-
-// The pieces of an on-hull curve: the pre-D-Form (the hull cut along the curve) unfolded, zipped
-// by the exact engine and moved rigidly onto the curve.
-Result<DForm> exactInverse(const InverseInit& init, const Points3& target, const std::string& name,
-                           const InverseSettings& job, ModelUsed& used) {
-  const Eigen::Index n = target.rows();
-  exact::SeamPolygons polygons;
-  polygons.a = init.preFlatA.V.topRows(n);
-  polygons.b = init.preFlatB.V.topRows(n);
-  const double edge = closedLength(target) / double(n);
-  const std::string paths[2] = {name + " (piece A)", name + " (piece B)"};
-  Result<DForm> made = exactDForm(polygons, edge * job.init.edgeLengthFactor, paths, used);
-  if (!made.isOk()) return made.status();
-  DForm model = std::move(made).value();
-  Points3 seam(n, 3);
-  for (Eigen::Index k = 0; k < n; ++k) seam.row(k) = model.a.shape.row(model.a.seam[std::size_t(k)]);
-  const Eigen::Affine3d onCurve = exact::rigidFit(seam, target);
-  for (Piece* p : {&model.a, &model.b}) p->shape = (p->shape * onCurve.linear().transpose()).rowwise() + onCurve.translation().transpose();
-  used.name = "exact";
-  used.reason = "the curve lies on its convex hull: the hull's two sides unfolded are the pieces, and zipped "
-                "they make the hull again (Alexandrov)";
-  return model;
-}
-
-// What messages and errors call the curve: its file, else "the curve".
-std::string curveLabel(const Curve3& curve) {
-  return curve.source.empty() ? "the curve" : curve.source;
-}
-
-// makePieces, which turns a failed allocation into the resolution that fits; `estimate` is what
-// the memory check allowed for.
-Result<InverseRun> solveCurve(const Curve3& curve, const InverseSettings& job, MessageSink& sink,
-                              const RunHooks& hooks, MemoryEstimate& estimate) {
-  if (Status s = validateInverseJob(job); !s.isOk()) return s;
-  const auto start = Clock::now();
+// The figures of solved pieces, and what they say a designer should know.
+InverseRun measure(SolvedPieces solved, MessageSink& sink) {
   InverseRun run;
-  const std::string name = curveLabel(curve);
-
-  // Coarse to fine, as in forward runs: the pre-D-Form's search is cubic in the curve's points and
-  // the relaxation smooths its facets slowly on a fine mesh, so a curve of more than
-  // kMaxPreDFormPoints is solved first at a third of its points (recursively), each finer level
-  // starting from the coarser solution.
-  constexpr int kMaxPreDFormPoints = 200;
-  std::vector<int> levels{job.resolution};
-  while (levels.back() > kMaxPreDFormPoints) levels.push_back(levels.back() / 3);
-  std::reverse(levels.begin(), levels.end());
-
-  // Measured on the samples, a curve of n points gives pieces of 0.10 n^2 to 0.18 n^2 vertices
-  // together; the pre-D-Form's tables (cost, apex, normal, side per pair of points) hold 37 n^2
-  // bytes, n the coarsest level's points.
-  const double n = job.resolution, coarsest = levels.front();
-  estimate = {0.2 * n * n, 37.0 * coarsest * coarsest};
-  if (Status fits = checkMemory(estimate, job.resolution, name + ": the run"); !fits.isOk()) return fits;
-  run.curveLength = closedLength(curve.points);
-  run.target.source = curve.source;
-  run.target.sha256 = curve.sha256;
-  run.timings.read = secondsSince(start);
-  sink.info(format("curve: %.0f points, length %.3f mm", double(curve.points.rows()),
-                   run.curveLength));
-
-  InverseOptions options = job.solve;
-  detail::connectHooks(options.relaxation, options.solver, hooks);
-  InverseResult solved;
-  for (std::size_t level = 0; level < levels.size(); ++level) {
-    const bool finest = level + 1 == levels.size();
-    // Compensated for chord loss (core/polyline.h) so that the seam, and the flat outlines
-    // isometric to it, keep the curve's length: inscribed, 100 points fall short of a
-    // tennis-ball seam by 0.11 %.
-    const Points3 target = compensateChordLoss(resampleClosed(curve.points, levels[level]));
-    const auto meshStart = Clock::now();
-    DForm startModel;
-    if (level == 0) {
-      Result<InverseInit> init = initialiseInverse(Curve3{target, curve.source, {}}, job.init);
-      if (!init.isOk()) return init.status();
-      run.pre = init.value().pre;
-      sink.info("pre-D-Form: " + run.pre.summary);
-      // On its hull the curve is the seam of the hull's two sides: unfolded, they are the pieces,
-      // and zipped they make that hull again (Alexandrov), with nothing to optimise.
-      if (finest && run.pre.isHull) {
-        Result<DForm> exact = exactInverse(init.value(), target, name, job, run.modelUsed);
-        run.timings.mesh += secondsSince(meshStart);
-        if (exact.isOk()) {
-          sink.info("exact model: the pieces are the curve's convex hull cut along it and unfolded");
-          run.model = std::move(exact).value();
-          run.target.points = target;
-          run.metrics = computeMetrics(run.model);
-          run.curveMatch = computeCurveMatch(run.model, run.target);
-          run.timings.total = secondsSince(start);
-          return run;
-        }
-        sink.warning(name + ": the exact model failed (" + exact.status().message() + "); optimising instead");
-      }
-      run.modelUsed.name = "paper";
-      run.modelUsed.reason = !finest ? "the curve has more points than the exact inverse unfolds in one piece (" +
-                                           std::to_string(kMaxPreDFormPoints) + ")"
-                             : run.pre.isHull ? "the exact model failed"
-                                              : "the curve leaves its convex hull: the pieces are optimised from the "
-                                                "filled pre-D-Form, and zipped they take a convex shape (the round "
-                                                "trip says how far from the curve)";
-      startModel = std::move(init.value().model);
-    } else {
-      const double edge = closedLength(target) / double(target.rows());
-      for (auto [coarse, fine, clockwise] : {std::tuple{&solved.model.a, &startModel.a, false},
-                                             std::tuple{&solved.model.b, &startModel.b, true}}) {
-        // Meshing a fine level takes seconds per piece (2-3 s at resolution 1500).
-        if (detail::stopRequested(hooks)) return detail::interruptedDuring("the meshing");
-        Result<Piece> piece = refinePiece(*coarse, target, clockwise, edge, job.init);
-        if (!piece.isOk()) return Status(piece.status().code(), name + ": " + piece.status().message());
-        *fine = std::move(piece).value();
-      }
-    }
-    run.timings.mesh += secondsSince(meshStart);
-    const Level detail = finest ? Level::Info : Level::Debug;
-    sink.emit(detail, (finest ? "meshed piece A with " : "coarse level: piece A with ") +
-                          std::to_string(startModel.a.flat.rows()) + " vertices, piece B with " +
-                          std::to_string(startModel.b.flat.rows()));
-
-    if (detail::stopRequested(hooks)) return detail::interruptedDuring("the meshing");
-    const auto solveStart = Clock::now();
-    InverseOptions levelOptions = options;
-    detail::relaxOnlyIfLarge(startModel.a.flat.rows() + startModel.b.flat.rows(), levelOptions.solver,
-                             levelOptions.relaxation);
-    if (level > 0) levelOptions.relaxation.relativeTolerance = detail::kRefinedRelaxationTolerance;
-    solved = solveInverse(startModel, target, levelOptions);
-    run.timings.solve += secondsSince(solveStart);
-    if (detail::stopRequested(hooks)) return detail::interruptedDuring("the solve");
-    if (!solved.summary.usable())
-      return Status(ErrorCode::SolveFailed, name + ": the solver failed: " + solved.summary.message);
-    sink.emit(Level::Debug, format("local-global start: %.0f iterations, energy %.4g -> %.4g",
-                                   solved.relaxation.iterations, solved.relaxation.initialEnergy,
-                                   solved.relaxation.finalEnergy));
-    sink.emit(detail, "solve: " + solved.summary.briefReport());
-    if (finest) run.target.points = target;
-  }
-  run.model = std::move(solved.model);
-  run.relaxation = solved.relaxation;
-  run.summary = std::move(solved.summary);
+  static_cast<SolvedPieces&>(run) = std::move(solved);
   run.metrics = computeMetrics(run.model);
   run.curveMatch = computeCurveMatch(run.model, run.target);
+  const std::string name = curveLabel(run.target);
   // A sheet folded over is what the gate rejects; where the curve leaves its hull, say why.
   if (run.metrics.flipped_3d > 0 && !run.pre.onHull)
     sink.warning(name + ": the shape folds over itself (" + std::to_string(run.metrics.flipped_3d) +
@@ -233,7 +33,6 @@ Result<InverseRun> solveCurve(const Curve3& curve, const InverseSettings& job, M
     if (findSelfIntersection(outline))
       sink.warning("piece " + p->name + "'s flat outline overlaps itself: it cannot be cut from one sheet");
   }
-  run.timings.total = secondsSince(start);
   return run;
 }
 
@@ -241,11 +40,12 @@ Result<InverseRun> solveCurve(const Curve3& curve, const InverseSettings& job, M
 
 Result<InverseRun> makePieces(Curve3 curve, const InverseSettings& settings, MessageSink& sink,
                               const RunHooks& hooks) {
-  MemoryEstimate estimate;
+  Result<SolvedPieces> solved = solvePieces(curve, settings, sink, hooks);
+  if (!solved.isOk()) return solved.status();
   try {
-    return solveCurve(curve, settings, sink, hooks, estimate);
+    return measure(std::move(solved).value(), sink);
   } catch (const std::bad_alloc&) {
-    return outOfMemory(estimate, settings.resolution, curveLabel(curve) + ": the run");
+    return outOfMemory({}, settings.resolution, curveLabel(curve) + ": measuring the run");
   }
 }
 

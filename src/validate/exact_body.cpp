@@ -10,9 +10,9 @@ Result<Points3> exactBodySeam(const DForm& model) {
   if (!model.a.freeBoundaries.empty() || !model.b.freeBoundaries.empty())
     return Status(ErrorCode::InputInvalid,
                   "a piece is zipped along a hole (anti or demi D-Form): its pieces glue no sphere");
-  if (n > std::size_t(kMaxExactSeam))
+  if (n > std::size_t(exact::kMaxExactSeam))
     return Status(ErrorCode::InputInvalid, "the seam has " + std::to_string(n) + " points, more than the " +
-                                               std::to_string(kMaxExactSeam) + " glued exactly for a figure");
+                                               std::to_string(exact::kMaxExactSeam) + " glued exactly for a figure");
   exact::SeamPolygons seam;
   seam.a.resize(Eigen::Index(n), 2);
   seam.b.resize(Eigen::Index(n), 2);

@@ -9,14 +9,10 @@
 
 namespace dform {
 
-/// Seams longer than this are not glued exactly for a figure: the engine's time grows about as
-/// n^1.5 (1000 seam points take ~0.3 s) and such seams come from the relaxation-only runs.
-constexpr int kMaxExactSeam = 1000;
-
 /// The 3D seam of the convex body that the flat pieces of `model` make when zipped (row k for
 /// seam point k), or a Status saying why there is none: a piece joined along a hole (anti and
 /// demi D-Forms glue no sphere), a glued metric that is not convex (naming the seam point and
-/// its angle sum: no convex D-Form exists), a seam past kMaxExactSeam, or an engine failure.
+/// its angle sum: no convex D-Form exists), a seam past exact::kMaxExactSeam, or an engine failure.
 Result<Points3> exactBodySeam(const DForm& model);
 
 /// The 3D seam the flat pieces of `model` take when zipped again, row k for seam point k: their

@@ -1,5 +1,5 @@
-// A D-Form made by the exact engine (src/exact), meshed for the rest of the pipeline: shared by
-// forward runs and by inverse runs whose curve lies on its convex hull (internal to pipeline).
+// A D-Form made by the exact engine (src/exact), meshed as the paper model's pieces are: shared by
+// forward runs and by inverse runs whose curve lies on its convex hull.
 #pragma once
 
 #include <string>
@@ -7,7 +7,7 @@
 #include "core/status.h"
 #include "core/types.h"
 #include "exact/exact_gluing.h"
-#include "pipeline/forward_pipeline.h"
+#include "forward/dform_from_shapes.h"
 
 namespace dform {
 

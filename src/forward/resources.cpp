@@ -1,4 +1,4 @@
-#include "pipeline/resources.h"
+#include "forward/resources.h"
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -12,7 +12,7 @@
 #include <string>
 #include <thread>
 
-#include "pipeline/run_util.h"
+#include "forward/run_control.h"
 
 namespace dform {
 

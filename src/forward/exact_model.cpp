@@ -1,4 +1,4 @@
-#include "pipeline/exact_model.h"
+#include "forward/exact_model.h"
 
 #include <algorithm>
 #include <cmath>

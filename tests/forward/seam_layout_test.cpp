@@ -1,4 +1,4 @@
-#include "pipeline/seam_layout.h"
+#include "forward/seam_layout.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,5 @@
-// Small helpers shared by the pipeline's runs (internal to src/pipeline).
+// What the forward and inverse runs share about running: timing, message formatting, when a
+// level is left to the relaxation alone, and the caller's hooks (progress, a request to stop).
 #pragma once
 
 #include <chrono>
@@ -6,7 +7,7 @@
 #include <string>
 
 #include "core/interrupt.h"
-#include "pipeline/forward_pipeline.h"
+#include "forward/dform_from_shapes.h"
 
 namespace dform::detail {
 

@@ -3,7 +3,7 @@
 
 #include <regex>
 
-#include "pipeline/resources.h"
+#include "forward/resources.h"
 
 namespace dform {
 namespace {

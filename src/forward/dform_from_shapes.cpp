@@ -1,0 +1,388 @@
+#include "forward/dform_from_shapes.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <new>
+#include <numeric>
+#include <optional>
+
+#include "core/polyline.h"
+#include "exact/exact_gluing.h"
+#include "forward/exact_model.h"
+#include "forward/resources.h"
+#include "forward/run_control.h"
+#include "forward/seam_layout.h"
+#include "forward/transfer.h"
+#include "meshing/triangulate.h"
+
+namespace dform {
+
+using detail::Clock;
+using detail::format;
+using detail::secondsSince;
+using namespace forward_detail;
+
+namespace {
+
+// The crease's ends as rows of the sampled boundary `fixed`, and its points in between, about
+// `edge` apart. At the finest level its ends are sample points (see the corners passed to
+// seamFractions); a coarse level takes the nearest ones.
+InteriorLine creaseLine(const Points2& crease, const Points2& fixed, double edge) {
+  auto nearestRow = [&](const Eigen::RowVector2d& q) {
+    Eigen::Index row = 0;
+    (fixed.rowwise() - q).rowwise().squaredNorm().minCoeff(&row);
+    return int(row);
+  };
+  const int segments = std::max(1, int(std::lround(openLength(crease) / edge)));
+  const Eigen::MatrixXd points = resampleOpen(crease, segments);
+  return {nearestRow(crease.row(0)), nearestRow(crease.row(crease.rows() - 1)),
+          points.middleRows(1, segments - 1)};
+}
+
+// Starts a and b from the coarser solution: barycentric transfer, then each seam pair at the mean
+// of its two transferred positions so that the seam starts closed.
+void startFromCoarser(const DForm& coarse, Piece& a, Piece& b) {
+  a.shape = transferShape(coarse.a, a.flat);
+  b.shape = transferShape(coarse.b, b.flat);
+  for (std::size_t k = 0; k < a.seam.size(); ++k) {
+    const Eigen::RowVector3d mid = 0.5 * (a.shape.row(a.seam[k]) + b.shape.row(b.seam[k]));
+    a.shape.row(a.seam[k]) = b.shape.row(b.seam[k]) = mid;
+  }
+}
+
+// Why the exact model cannot make this job, or "" when it can (the glued metric's convexity is
+// checked when the seam is sampled).
+std::string exactModelRefusal(const ForwardSettings& job, const DrawnPiece& A, const DrawnPiece& B) {
+  if (job.joinA != JoinedBoundary::Outer || job.joinB != JoinedBoundary::Outer)
+    return "a piece is zipped along a hole (anti or demi D-Form): the glued pieces make no closed convex body";
+  if (!A.creases.empty() || !B.creases.empty())
+    return "creases are drawn: the exact D-Form folds only where the glued pieces make it fold";
+  if (job.resolution > exact::kMaxExactSeam)
+    return "the seam has " + std::to_string(job.resolution) + " points, more than the exact engine's " +
+           std::to_string(exact::kMaxExactSeam);
+  return "";
+}
+
+// The paper model's start on the exact D-Form of the same seam: every vertex placed on the body
+// (seam vertices at its cone points). False when a vertex cannot be placed.
+bool startOnExactBody(const exact::ExactGluing& g, Piece pieces[2]) {
+  const Points3 seam = exact::placeOnBody(g, 0, g.seam.a);
+  for (int p = 0; p < 2; ++p) {
+    Points3 shape = exact::placeOnBody(g, p, pieces[p].flat);
+    for (std::size_t k = 0; k < pieces[p].seam.size(); ++k) shape.row(pieces[p].seam[k]) = seam.row(Eigen::Index(k));
+    if (!shape.allFinite()) return false;
+    pieces[p].shape = std::move(shape);
+  }
+  return true;
+}
+
+}  // namespace
+
+const char* modelChoiceName(ModelChoice model) {
+  switch (model) {
+    case ModelChoice::Auto: return "auto";
+    case ModelChoice::Exact: return "exact";
+    case ModelChoice::Paper: return "paper";
+  }
+  return "?";
+}
+
+bool parseModelChoice(const std::string& text, ModelChoice& model) {
+  for (ModelChoice m : {ModelChoice::Auto, ModelChoice::Exact, ModelChoice::Paper})
+    if (text == modelChoiceName(m)) {
+      model = m;
+      return true;
+    }
+  return false;
+}
+
+const char* joinedBoundaryName(JoinedBoundary boundary) {
+  return boundary == JoinedBoundary::Outer ? "outer" : "inner";
+}
+
+ForwardWeights defaultWeights(JoinedBoundary a, JoinedBoundary b) {
+  ForwardWeights weights;
+  if (a == JoinedBoundary::Inner || b == JoinedBoundary::Inner) weights.smooth3d = 0.001;
+  return weights;
+}
+
+bool parseJoin(const std::string& text, JoinedBoundary& a, JoinedBoundary& b) {
+  const std::size_t comma = text.find(',');
+  if (comma == std::string::npos) return false;
+  JoinedBoundary* targets[2] = {&a, &b};
+  const std::string names[2] = {text.substr(0, comma), text.substr(comma + 1)};
+  for (int p = 0; p < 2; ++p) {
+    if (names[p] != "outer" && names[p] != "inner") return false;
+    *targets[p] = names[p] == "outer" ? JoinedBoundary::Outer : JoinedBoundary::Inner;
+  }
+  return true;
+}
+
+Status validateForwardJob(const ForwardSettings& job) {
+  auto usage = [](const std::string& text) { return Status(ErrorCode::Usage, text); };
+  if (job.resolution < 8 || job.resolution > 20000)
+    return usage("resolution must be between 8 and 20000 seam vertices, got " +
+                 std::to_string(job.resolution));
+  for (const StartPoint* s : {&job.startA, &job.startB})
+    if (!s->nearestToPoint && !(s->fraction >= 0.0 && s->fraction < 1.0))
+      return usage("a start fraction must be in [0, 1)");
+    else if (s->nearestToPoint && !s->point.allFinite())
+      return usage("a start point must have finite coordinates");
+  if (!(job.perimeterTolerance > 0.0 && job.perimeterTolerance < 1.0))
+    return usage("the perimeter tolerance must be in (0, 1)");
+  if (!(job.interiorEdgeFactor >= 0.25 && job.interiorEdgeFactor <= 8.0))
+    return usage("the interior edge factor (--interior-edge, interior_edge in a job file) must be in [0.25, 8]");
+  const ForwardWeights& w = job.solve.weights;
+  for (double weight : {w.isometry, w.alignment, w.boundaryFix, w.smooth3d, w.smooth2d, w.seam})
+    if (!(weight >= 0.0 && std::isfinite(weight))) return usage("weights must be finite and >= 0");
+  std::string why;
+  if (!job.solve.solver.isValid(&why)) return usage("solver options: " + why);
+  return Status::ok();
+}
+
+namespace {
+
+// The exact D-Form where it applies and was not declined: the finished run, or nothing with
+// `refusal` saying why not (an error where --model exact asked for it).
+Result<std::optional<SolvedDForm>> tryExactModel(const ForwardSettings& job, const SeamLayout& layout,
+                                                SolvedDForm& run, std::string& refusal,
+                                                MessageSink& sink, const RunHooks& hooks) {
+  const std::string both = layout.bothPaths();
+  refusal = exactModelRefusal(job, layout.pieces[0], layout.pieces[1]);
+  if (job.model == ModelChoice::Paper) return std::optional<SolvedDForm>();
+  if (!refusal.empty()) {
+    if (job.model == ModelChoice::Exact)
+      return Status(ErrorCode::InputInvalid, both + ": --model exact: " + refusal);
+    return std::optional<SolvedDForm>();
+  }
+  const auto solveStart = Clock::now();
+  ModelUsed used;
+  Result<DForm> exactModel =
+      exactDForm(seamPolygons(layout.pieces, layout.startFraction, layout.direction,
+                              seamFractions(job.resolution, layout.seamCorners)),
+                 job.interiorEdgeFactor * run.perimeterA / job.resolution, layout.paths, used);
+  run.timings.solve = secondsSince(solveStart);
+  if (detail::stopRequested(hooks)) return detail::interruptedDuring("the solve");
+  if (!exactModel.isOk()) {
+    refusal = exactModel.status().message();
+    if (job.model == ModelChoice::Exact)
+      return Status(exactModel.status().code(), both + ": --model exact: " + refusal);
+    if (exactModel.status().code() == ErrorCode::SolveFailed) {
+      sink.warning("the exact model failed (" + refusal + "); the paper model makes the shape instead");
+      refusal = "it failed: " + refusal;
+    }
+    return std::optional<SolvedDForm>();
+  }
+  used.name = "exact";
+  used.reason = used.doublyCovered
+                    ? "the pieces are congruent and zipped point to point: they fold flat onto each other"
+                    : "two discs zipped along their outlines whose glued metric is convex (every seam point's "
+                      "angle sum at most 360 degrees): the D-Form is that metric's unique convex body";
+  sink.info("exact model: " + std::to_string(used.conePoints) + " cone points, " +
+            std::to_string(used.newtonSteps) + " Newton steps" +
+            format(", curvature left %.2g rad, chords equalised by moving points at most %.2g mm", used.maxCurvature,
+                   used.chordMoveMm));
+  for (const FoundCrease& c : used.creases)
+    sink.info(std::string("the exact D-Form creases piece ") + (c.piece == 0 ? "A" : "B") +
+              format(" along a line of %.1f mm folded by %.1f degrees", c.lengthMm, c.angleDeg));
+  run.model = std::move(exactModel).value();
+  run.modelUsed = std::move(used);
+  return std::optional<SolvedDForm>(std::move(run));
+}
+
+// Both pieces meshed for a level of n seam vertices, seam rows listed in seam order.
+Result<std::array<Piece, 2>> meshLevel(const ForwardSettings& job, const SeamLayout& layout,
+                                       int n, double perimeterA, const RunHooks& hooks) {
+  const std::vector<double> t = seamFractions(n, layout.seamCorners);
+  const double seamEdge = perimeterA / n;
+  std::array<Piece, 2> pieces;
+  for (int p = 0; p < 2; ++p) {
+    // Meshing a fine level takes seconds per piece.
+    if (detail::stopRequested(hooks)) return detail::interruptedDuring("the meshing");
+    const DrawnPiece& piece = layout.pieces[p];
+    const std::string& path = layout.paths[p];
+    const LoopSamples seam = sampleLoop(piece.joined, t, layout.startFraction[p], layout.direction[p]);
+    // The mesher's fixed points: the outline, then the hole. The joined boundary is the outline
+    // of a disc and the hole of an annulus-like piece, whose outline is sampled about as
+    // densely as the seam.
+    Points2 outline = seam.rows;
+    std::vector<Points2> holes;
+    int seamFirstRow = 0;
+    if (piece.freeOutline) {
+      const int m = std::max(3, int(std::lround(closedLength(*piece.freeOutline) / seamEdge)));
+      outline = sampleLoop(*piece.freeOutline, seamFractions(m, layout.freeCorners[p]),
+                           layout.freeStart[p], 1).rows;
+      holes.push_back(seam.rows);
+      seamFirstRow = int(outline.rows());
+    }
+    Points2 fixed(outline.rows() + seam.rows.rows() * Eigen::Index(piece.freeOutline.has_value()), 2);
+    fixed.topRows(outline.rows()) = outline;
+    if (piece.freeOutline) fixed.bottomRows(seam.rows.rows()) = seam.rows;
+    std::vector<InteriorLine> creases;
+    for (const Points2& crease : piece.creases) creases.push_back(creaseLine(crease, fixed, seamEdge));
+
+    TriangulateOptions meshOptions;
+    meshOptions.targetEdgeLength = job.interiorEdgeFactor * seamEdge;
+    Result<FlatMesh> mesh = triangulateDomain(outline, holes, meshOptions, creases);
+    if (!mesh.isOk()) return Status(mesh.status().code(), path + ": " + mesh.status().message());
+    Piece& out = pieces[p];
+    out.name = p == 0 ? "A" : "B";
+    out.flat = std::move(mesh.value().V);
+    out.F = std::move(mesh.value().F);
+    for (int row : seam.order) out.seam.push_back(seamFirstRow + row);
+    if (piece.freeOutline) {
+      out.freeBoundaries.emplace_back(seamFirstRow);
+      std::iota(out.freeBoundaries[0].begin(), out.freeBoundaries[0].end(), 0);
+    }
+    out.creases = std::move(mesh.value().lines);
+  }
+  return pieces;
+}
+
+// The paper's optimisation, coarse to fine: the job is solved first with a third of the seam
+// vertices (recursively, down to kCoarsestSeam), and each level starts from the coarser solution
+// carried over by barycentric transfer. The coarse levels do the large shape change cheaply; the
+// finest level then converges in a few Levenberg-Marquardt steps on one factorisation.
+Status solvePaperModel(const ForwardSettings& job, const SeamLayout& layout, SolvedDForm& run,
+                       MessageSink& sink, const RunHooks& hooks) {
+  constexpr int kCoarsestSeam = 24;
+  constexpr int kLevelRatio = 3;
+  constexpr int kCoarseIterations = 30;
+  std::vector<int> levels{job.resolution};
+  while (job.coarseToFine && levels.back() / kLevelRatio >= kCoarsestSeam)
+    levels.push_back(levels.back() / kLevelRatio);
+  std::reverse(levels.begin(), levels.end());
+
+  // Where creases are drawn on discs with a convex glued metric, the paper model starts on their
+  // exact D-Form, which folds where the glued pieces fold: its solution differs from it only by
+  // what the smoothing terms and the drawn creases ask, so the finest level alone converges in a
+  // few steps and never passes through the folds that a pillow start leaves behind (the creased
+  // Squaricle: 6 folded triangles in 13 s from the pillow, none in 0.6 s from the exact body).
+  // Without creases the coarse-to-fine start is as good and faster (a finest level relaxed from
+  // the exact body's ridges takes seconds at 7k vertices).
+  const bool classic = job.joinA == JoinedBoundary::Outer && job.joinB == JoinedBoundary::Outer;
+  const bool creased = !layout.pieces[0].creases.empty() || !layout.pieces[1].creases.empty();
+  std::optional<exact::ExactGluing> exactStart;
+  if (classic && creased && job.resolution <= exact::kMaxExactSeam) {
+    exact::SeamPolygons polygons = seamPolygons(layout.pieces, layout.startFraction, layout.direction,
+                                                seamFractions(job.resolution, layout.seamCorners));
+    exact::equalizeChords(polygons);
+    Result<exact::ExactGluing> glued = exact::glue(polygons);
+    if (glued.isOk() && !glued.value().doublyCovered) {
+      exactStart = std::move(glued).value();
+      levels = {job.resolution};
+      sink.info("paper model: starting from the exact D-Form of the same seam");
+    }
+  }
+
+  ForwardOptions options = job.solve;
+  detail::connectHooks(options.relaxation, options.solver, hooks);
+  ForwardResult solved;
+  for (std::size_t level = 0; level < levels.size(); ++level) {
+    const bool finest = level + 1 == levels.size();
+    const auto meshStart = Clock::now();
+    Result<std::array<Piece, 2>> meshed = meshLevel(job, layout, levels[level], run.perimeterA, hooks);
+    if (!meshed.isOk()) return meshed.status();
+    Piece* pieces = meshed.value().data();
+    if (level > 0) startFromCoarser(solved.model, pieces[0], pieces[1]);
+    if (exactStart && finest && !startOnExactBody(*exactStart, pieces)) {
+      for (Piece& piece : meshed.value()) piece.shape.resize(0, 3);
+      sink.warning("paper model: a vertex could not be placed on the exact D-Form; starting from the pillow");
+    }
+    run.timings.mesh += secondsSince(meshStart);
+    // The finest level is what the user asked for; coarser ones are details for the log.
+    const Level detail = finest ? Level::Info : Level::Debug;
+    sink.emit(detail, (finest ? "meshed piece A with " : "coarse level: piece A with ") +
+                          std::to_string(pieces[0].flat.rows()) + " vertices and " +
+                          std::to_string(pieces[0].F.rows()) + " triangles, piece B with " +
+                          std::to_string(pieces[1].flat.rows()) + " and " +
+                          std::to_string(pieces[1].F.rows()));
+
+    const auto solveStart = Clock::now();
+    // A coarse level only has to start the next one well: a few iterations, seam left to the
+    // alignment weight.
+    ForwardOptions levelOptions = options;
+    if (!finest) {
+      levelOptions.solver.maxIterations = std::min(options.solver.maxIterations, kCoarseIterations);
+      levelOptions.constraintRounds = 0;
+    }
+    detail::relaxOnlyIfLarge(pieces[0].flat.rows() + pieces[1].flat.rows(), levelOptions.solver,
+                             levelOptions.relaxation);
+    solved = solveForward(pieces[0], pieces[1], levelOptions);
+    run.timings.solve += secondsSince(solveStart);
+    if (detail::stopRequested(hooks)) return detail::interruptedDuring("the solve");
+    if (!solved.summary.usable())
+      return Status(ErrorCode::SolveFailed, "the solver failed: " + solved.summary.message);
+    sink.emit(Level::Debug, format("local-global start: %.0f iterations, energy %.4g -> %.4g",
+                                   solved.relaxation.iterations, solved.relaxation.initialEnergy,
+                                   solved.relaxation.finalEnergy) +
+                                format(" in %.3f s; level solved in %.3f s",
+                                       solved.relaxation.seconds, secondsSince(solveStart)));
+    sink.emit(detail, "solve: " + solved.summary.briefReport() + ", " +
+                          std::to_string(solved.constraintRounds) + " constraint round(s)");
+  }
+  run.relaxation = solved.relaxation;
+  run.constraintRounds = solved.constraintRounds;
+  run.model = std::move(solved.model);
+  run.summary = std::move(solved.summary);
+  return Status::ok();
+}
+
+// makeDForm, which turns a failed allocation into the resolution that fits; `estimate` is what
+// the memory check allowed for.
+Result<SolvedDForm> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSettings& job,
+                               MessageSink& sink, const RunHooks& hooks, MemoryEstimate& estimate) {
+  if (Status s = validateForwardJob(job); !s.isOk()) return s;
+  const auto start = Clock::now();
+  SolvedDForm run;
+  SeamLayout layout;
+  layout.paths[0] = pieceLabel(shapeA, "A");
+  layout.paths[1] = pieceLabel(shapeB, "B");
+  Result<DrawnPiece> drawnA = drawnPiece(shapeA, job.joinA, "A", sink);
+  if (!drawnA.isOk()) return drawnA.status();
+  Result<DrawnPiece> drawnB = drawnPiece(shapeB, job.joinB, "B", sink);
+  if (!drawnB.isOk()) return drawnB.status();
+  layout.pieces[0] = std::move(drawnA).value();
+  layout.pieces[1] = std::move(drawnB).value();
+  run.sha256A = layout.pieces[0].sha256;
+  run.sha256B = layout.pieces[1].sha256;
+  if (Status s = matchPieces(job, layout, run, sink); !s.isOk()) return s;
+  run.timings.read = secondsSince(start);
+
+  estimate.vertices = finestVertices(job, layout, run.perimeterA);
+  if (Status fits = checkMemory(estimate, job.resolution, layout.bothPaths() + ": the run");
+      !fits.isOk())
+    return fits;
+  layOutSeam(job, run, layout);
+
+  // The exact D-Form wherever it applies; the paper's optimisation otherwise.
+  std::string refusal;
+  Result<std::optional<SolvedDForm>> exact = tryExactModel(job, layout, run, refusal, sink, hooks);
+  if (!exact.isOk()) return exact.status();
+  if (exact.value()) {
+    exact.value()->timings.total = secondsSince(start);
+    return std::move(*exact.value());
+  }
+  run.modelUsed.name = "paper";
+  run.modelUsed.reason = job.model == ModelChoice::Paper ? "asked for (--model paper)" : "the exact model does not apply: " + refusal;
+  sink.info("paper model: " + run.modelUsed.reason);
+  if (Status s = solvePaperModel(job, layout, run, sink, hooks); !s.isOk()) return s;
+  run.timings.total = secondsSince(start);
+  return run;
+}
+
+}  // namespace
+
+Result<SolvedDForm> solveDForm(Shape2 a, Shape2 b, const ForwardSettings& settings, MessageSink& sink,
+                               const RunHooks& hooks) {
+  MemoryEstimate estimate;
+  try {
+    return solveShapes(a, b, settings, sink, hooks, estimate);
+  } catch (const std::bad_alloc&) {
+    return outOfMemory(estimate, settings.resolution,
+                       pieceLabel(a, "A") + " and " + pieceLabel(b, "B") + ": the run");
+  }
+}
+
+}  // namespace dform

@@ -1,0 +1,52 @@
+// The two flat pieces whose D-Form has a given 3D seam (inverse modelling end to end, in memory):
+// the pre-D-Form start, the exact pieces where the curve lies on its convex hull, else the
+// optimisation coarse to fine. Measuring the result is validate's (pipeline/inverse_pipeline.h
+// makePieces does both).
+#pragma once
+
+#include <string>
+
+#include "core/messages.h"
+#include "core/status.h"
+#include "core/types.h"
+#include "forward/dform_from_shapes.h"
+#include "inverse/inverse_solve.h"
+#include "inverse/pre_dform.h"
+
+namespace dform {
+
+/// Everything an inverse run needs besides the curve.
+struct InverseSettings {
+  int resolution = 100;     ///< seam vertices
+  InverseInitOptions init;
+  InverseOptions solve;
+};
+
+/// A solved inverse job: the pieces, which model made them and how the solve went.
+struct SolvedPieces {
+  DForm model;
+  /// exact: the curve lies on its convex hull and the pieces are the hull's two sides unfolded,
+  /// zipped by the exact engine; paper: the optimisation from the pre-D-Form.
+  ModelUsed modelUsed;
+  Curve3 target;           ///< the resampled curve the seam follows (mm)
+  PreDForm pre;            ///< how the start was built (on-hull or not)
+  LocalGlobalSummary relaxation;
+  SolverSummary summary;
+  double curveLength = 0;  ///< length of the curve as read (mm)
+  Timings timings;
+};
+
+/// Checks a job's numbers before any work is done (Usage errors).
+Status validateInverseJob(const InverseSettings& job);
+
+/// The pieces for `curve` (mm, closed, in memory): initialised (pre-D-Form; the exact model where
+/// the curve lies on its convex hull) and optimised. Messages and errors name the curve by its
+/// `source` (a file path), else "the curve". A failed allocation is an error with the resolution
+/// that fits.
+Result<SolvedPieces> solvePieces(const Curve3& curve, const InverseSettings& settings, MessageSink& sink,
+                                 const RunHooks& hooks = {});
+
+/// What messages and errors call the curve: its file, else "the curve".
+std::string curveLabel(const Curve3& curve);
+
+}  // namespace dform
