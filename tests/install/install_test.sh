@@ -14,17 +14,24 @@ cmake --install "$build" --prefix "$work/prefix" > "$work/install.log" ||
   fail "cmake --install failed: $(tail -3 "$work/install.log")"
 include=$work/prefix/include/dform
 [ -f "$include/pipeline/run.h" ] || fail "pipeline/run.h is not installed"
-for internal in pipeline/run_steps.h pipeline/exact_model.h io/json_util.h export/internal.h; do
+for internal in pipeline/run_steps.h forward/exact_model.h forward/seam_layout.h io/json_util.h export/internal.h; do
   [ ! -e "$include/$internal" ] || fail "the internal header $internal is installed"
 done
 "$work/prefix/bin/dform" --version > /dev/null || fail "the installed dform does not run"
 
-# The consumer: consumer/CMakeLists.txt and docs/api.md's first C++ block as main.cpp.
+# The consumer: consumer/CMakeLists.txt, docs/api.md's first C++ block as main.cpp (a run that
+# writes its folder) and its second as memory.cpp (a D-Form made in memory).
 mkdir "$work/example"
 cp "$source/tests/install/consumer/CMakeLists.txt" "$work/example/"
-awk '/^```cpp$/ {inside = 1; next} /^```$/ && inside {exit} inside' "$source/docs/api.md" \
-  > "$work/example/main.cpp"
-grep -q "int main" "$work/example/main.cpp" || fail "docs/api.md has no C++ example with a main"
+cppBlock() {  # the Nth ```cpp block of docs/api.md
+  awk -v want="$1" '/^```cpp$/ {n++; inside = (n == want); next} /^```$/ {inside = 0} inside' \
+    "$source/docs/api.md"
+}
+cppBlock 1 > "$work/example/main.cpp"
+cppBlock 2 > "$work/example/memory.cpp"
+for example in main memory; do
+  grep -q "int main" "$work/example/$example.cpp" || fail "docs/api.md has no C++ example for $example.cpp"
+done
 
 flags=()
 if [ "$sanitized" = ON ]; then  # the installed libraries need the sanitizers' runtimes
@@ -44,4 +51,8 @@ DFORM_TEMPLATES="$work/prefix/share/dform/templates" "$work/consumer/consumer" \
 for file in report.json report.html pattern.svg piece-a-3d.obj; do
   [ -s "$work/out/$file" ] || fail "the consumer's result has no $file"
 done
-echo "install test: installed, found, built and ran a separate project"
+# The disc and the square are both convex: the exact model makes them, its seam closed.
+made=$("$work/consumer/memory") || fail "the in-memory example failed"
+[[ "$made" =~ ^model\ exact,\ [0-9]+\ vertices,\ L_max\ [0-9.]+\ %,\ seam\ gap\ 0\ mm$ ]] ||
+  fail "the in-memory example printed: $made"
+echo "install test: installed, found, built and ran a separate project ($made)"
