@@ -13,6 +13,7 @@
 #include "forward/resources.h"
 #include "forward/run_control.h"
 #include "forward/seam_layout.h"
+#include "forward/term_table.h"
 #include "forward/transfer.h"
 #include "meshing/triangulate.h"
 
@@ -133,9 +134,8 @@ Status validateForwardJob(const ForwardSettings& job) {
     return usage("the perimeter tolerance must be in (0, 1)");
   if (!(job.interiorEdgeFactor >= 0.25 && job.interiorEdgeFactor <= 8.0))
     return usage("the interior edge factor (--interior-edge, interior_edge in a job file) must be in [0.25, 8]");
-  const ForwardWeights& w = job.solve.weights;
-  for (double weight : {w.isometry, w.alignment, w.boundaryFix, w.smooth3d, w.smooth2d, w.seam})
-    if (!(weight >= 0.0 && std::isfinite(weight))) return usage("weights must be finite and >= 0");
+  if (!weightsAreValid(forwardTerms(), job.solve.weights))
+    return usage("weights must be finite and >= 0");
   std::string why;
   if (!job.solve.solver.isValid(&why)) return usage("solver options: " + why);
   return Status::ok();

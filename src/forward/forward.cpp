@@ -8,27 +8,14 @@
 
 #include "core/polyline.h"
 #include "forward/injectivity.h"
+#include "forward/term_table.h"
 #include "forward/terms.h"
 
 namespace dform {
 
-const std::vector<std::pair<std::string, double ForwardWeights::*>>& forwardWeightNames() {
-  static const std::vector<std::pair<std::string, double ForwardWeights::*>> names = {
-      {"isometry", &ForwardWeights::isometry},        {"alignment", &ForwardWeights::alignment},
-      {"boundary_fix", &ForwardWeights::boundaryFix}, {"smooth_3d", &ForwardWeights::smooth3d},
-      {"smooth_2d", &ForwardWeights::smooth2d},       {"seam", &ForwardWeights::seam}};
-  return names;
-}
-
 namespace {
 
-Points2 flatRows(const Piece& p, const std::vector<int>& vertices) {
-  Points2 S(vertices.size(), 2);
-  for (std::size_t k = 0; k < vertices.size(); ++k) S.row(k) = p.flat.row(vertices[k]);
-  return S;
-}
-
-Points2 seamPoints(const Piece& p) { return flatRows(p, p.seam); }
+Points2 seamPoints(const Piece& p) { return p.flat(p.seam, Eigen::all); }
 
 // Seam positions (k of a.seam[k] and b.seam[k]) whose flat vertices may move a little from where
 // they were drawn: each corner of either seam outline (sampledCorners) and
@@ -301,22 +288,15 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
         movable->push_back(v);
       }
     }
-  auto anchor = makeFlatAnchorTerm(layout, movableA, flatRows(start.a, movableA), movableB, flatRows(start.b, movableB));
-  auto smooth3d = makeSmoothnessTerm(layout, start.a, start.b, true);
-  auto smooth2d = makeSmoothnessTerm(layout, start.a, start.b, false);
-  auto seam = makeSeamSmoothnessTerm(layout, a.seam, b.seam);
+  const TermTable<ForwardWeights>& table = forwardTerms();
+  std::vector<std::unique_ptr<ResidualTerm>> terms =
+      makeTerms(table, {layout, start.a, start.b, edges, std::move(movableA), std::move(movableB)});
+  auto* anchorTerm =
+      static_cast<LinearResidual*>(terms[rowOf(table, &ForwardWeights::boundaryFix)].get());
   Eigen::VectorXd x = packVariables(layout, start.a, start.b);
 
   weightByFlatLength(edges, x, w.isometry);
-  const auto linear = [](const std::unique_ptr<ResidualTerm>& t) {
-    return static_cast<const LinearResidual*>(t.get());
-  };
-  auto* anchorTerm = static_cast<LinearResidual*>(anchor.get());
-  const LocalGlobalRelaxation relaxation({{w.boundaryFix, linear(anchor)},
-                                          {w.smooth3d, linear(smooth3d)},
-                                          {w.smooth2d, linear(smooth2d)},
-                                          {w.seam, linear(seam)}},
-                                         edges, x, held);
+  const LocalGlobalRelaxation relaxation(linearTerms(table, terms, w), edges, x, held);
   // No Levenberg-Marquardt step folds a triangle over that stood upright before it
   // (forward/injectivity.h). The relaxation is not guarded: its path to the shape may pass
   // through folds (guarded, it stalled on the anti and Squaricle samples).
@@ -326,11 +306,7 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
   result.relaxation = relaxation.relax(options.relaxation, x);
 
   Problem problem(layout.numVariables());
-  problem.addTerm("isometry", w.isometry, makeIsometryTerm(edges));
-  problem.addTerm("boundary_fix", w.boundaryFix, std::move(anchor));
-  problem.addTerm("smooth_3d", w.smooth3d, std::move(smooth3d));
-  problem.addTerm("smooth_2d", w.smooth2d, std::move(smooth2d));
-  problem.addTerm("seam", w.seam, std::move(seam));
+  addTerms(problem, table, terms, w);
   problem.holdConstant(held);
   // Hold the seam corners near the drawn ones: the boundary fix as a constraint. The tolerance is
   // relative to the perimeter, #seam in the unit of the mean seam edge.

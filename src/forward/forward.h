@@ -1,17 +1,14 @@
 // Forward modelling (paper section 4): two triangulated flat pieces in, the D-Form they make out.
 #pragma once
 
-#include <string>
-#include <utility>
-#include <vector>
-
 #include "core/types.h"
 #include "forward/local_global.h"
 #include "solver/solver.h"
 
 namespace dform {
 
-/// Term weights of the forward objective (paper Table 1's defaults).
+/// Term weights of the forward objective (paper Table 1's defaults). Each has its row in
+/// forwardTerms (forward/term_table.h): its name, its term and how the solve uses it.
 struct ForwardWeights {
   double isometry = 1.0;    ///< w_iso, Eq. 1
   double alignment = 1.0;   ///< w_align, Eq. 2: any positive weight closes the seam exactly (see VariableLayout)
@@ -20,10 +17,6 @@ struct ForwardWeights {
   double smooth2d = 1.0;    ///< w_2D, Eq. 4 on the flat meshes
   double seam = 0.01;       ///< w_seam, Eq. 5
 };
-
-/// Each weight by the name that job files, --weight and report.json give it:
-/// the one list of them.
-const std::vector<std::pair<std::string, double ForwardWeights::*>>& forwardWeightNames();
 
 struct ForwardOptions {
   ForwardWeights weights;

@@ -83,4 +83,16 @@ std::unique_ptr<ResidualTerm> makeSeamSmoothnessTerm(const VariableLayout& layou
                                                      const std::vector<int>& seamA,
                                                      const std::vector<int>& seamB);
 
+/// What every term of an objective is built from (forward and inverse alike), in the solver's
+/// unit: the tables of forward/term_table.h make each term from these alone.
+struct TermInputs {
+  const VariableLayout& layout;
+  const Piece& a;                ///< flat rest mesh, seam and creases of piece A
+  const Piece& b;                ///< the same of piece B
+  const EdgeLengthPairs& edges;  ///< every edge of both pieces (the isometry term)
+  /// Drawn vertices of each piece that the boundary-fix term holds at their flat positions
+  /// (forward modelling; none in inverse modelling, whose flat boundaries are free).
+  std::vector<int> anchoredA, anchoredB;
+};
+
 }  // namespace dform

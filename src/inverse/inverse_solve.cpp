@@ -5,16 +5,18 @@
 #include "core/polyline.h"
 #include "forward/injectivity.h"
 #include "forward/terms.h"
+#include "inverse/inverse_terms.h"
 
 namespace dform {
 
-const std::vector<std::pair<std::string, double InverseWeights::*>>& inverseWeightNames() {
-  static const std::vector<std::pair<std::string, double InverseWeights::*>> names = {
-      {"isometry", &InverseWeights::isometry},
-      {"closeness", &InverseWeights::closeness},
-      {"smooth_3d", &InverseWeights::smooth3d},
-      {"smooth_2d", &InverseWeights::smooth2d}};
-  return names;
+const TermTable<InverseWeights>& inverseTerms() {
+  // Closeness makes no term: any positive weight holds the seam on the curve exactly.
+  static const TermTable<InverseWeights> table = {
+      {"isometry", &InverseWeights::isometry, isometryTerm, false},
+      {"closeness", &InverseWeights::closeness, nullptr, false},
+      {"smooth_3d", &InverseWeights::smooth3d, smooth3dTerm, true},
+      {"smooth_2d", &InverseWeights::smooth2d, smooth2dTerm, true}};
+  return table;
 }
 
 InverseResult solveInverse(const DForm& start, const Points3& curve, const InverseOptions& options) {
@@ -33,8 +35,10 @@ InverseResult solveInverse(const DForm& start, const Points3& curve, const Inver
                               scaled.b.seam);
   const InverseWeights& w = options.weights;
   EdgeLengthPairs edges = meshEdgePairs(layout, scaled.a.F, scaled.b.F);
-  auto smooth3d = makeSmoothnessTerm(layout, scaled.a, scaled.b, true);
-  auto smooth2d = makeSmoothnessTerm(layout, scaled.a, scaled.b, false);
+  const TermTable<InverseWeights>& table = inverseTerms();
+  // The flat boundaries are free: no vertex is anchored.
+  std::vector<std::unique_ptr<ResidualTerm>> terms =
+      makeTerms(table, {layout, scaled.a, scaled.b, edges, {}, {}});
   Eigen::VectorXd x = packVariables(layout, scaled.a, scaled.b);
   // The seam lies on the curve: the closeness term (Eq. 6) as an exact constraint, the limit of
   // its penalty (the paper's section 6.6 suggests it): its 3D unknowns are held at the curve.
@@ -48,9 +52,7 @@ InverseResult solveInverse(const DForm& start, const Points3& curve, const Inver
       }
 
   weightByFlatLength(edges, x, w.isometry);
-  const LocalGlobalRelaxation relaxation({{w.smooth3d, static_cast<const LinearResidual*>(smooth3d.get())},
-                                          {w.smooth2d, static_cast<const LinearResidual*>(smooth2d.get())}},
-                                         edges, x, held);
+  const LocalGlobalRelaxation relaxation(linearTerms(table, terms, w), edges, x, held);
   // No Levenberg-Marquardt step folds a triangle over (forward/injectivity.h).
   const FoldGuard guard(layout, scaled.a, scaled.b);
   SolverOptions solverOptions = options.solver;
@@ -58,9 +60,7 @@ InverseResult solveInverse(const DForm& start, const Points3& curve, const Inver
   result.relaxation = relaxation.relax(options.relaxation, x);
 
   Problem problem(layout.numVariables());
-  problem.addTerm("isometry", w.isometry, makeIsometryTerm(edges));
-  problem.addTerm("smooth_3d", w.smooth3d, std::move(smooth3d));
-  problem.addTerm("smooth_2d", w.smooth2d, std::move(smooth2d));
+  addTerms(problem, table, terms, w);
   problem.holdConstant(held);
   if (result.relaxation.stopped) {  // a Ctrl-C: no further solve
     result.summary = summaryWithoutSteps(problem, x);

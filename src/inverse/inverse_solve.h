@@ -2,27 +2,20 @@
 // and their 3D shapes whose seam runs along the target curve, with the flat boundaries free.
 #pragma once
 
-#include <string>
-#include <utility>
-#include <vector>
-
 #include "core/types.h"
 #include "forward/local_global.h"
 #include "solver/solver.h"
 
 namespace dform {
 
-/// Term weights of the inverse objective (paper Table 1's defaults for inverse modelling).
+/// Term weights of the inverse objective (paper Table 1's defaults for inverse modelling). Each has
+/// its row in inverseTerms (inverse/inverse_terms.h): its name, its term and how the solve uses it.
 struct InverseWeights {
   double isometry = 1.0;    ///< w_iso, Eq. 1
   double closeness = 1.0;   ///< w_close, Eq. 6: any positive weight holds the seam on the curve exactly
   double smooth3d = 0.001;  ///< w_3D, Eq. 4 on the 3D meshes
   double smooth2d = 1.0;    ///< w_2D, Eq. 4 on the flat meshes
 };
-
-/// Each weight by the name that job files, --weight and report.json give it:
-/// the one list of them.
-const std::vector<std::pair<std::string, double InverseWeights::*>>& inverseWeightNames();
 
 struct InverseOptions {
   InverseWeights weights;

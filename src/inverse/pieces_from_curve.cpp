@@ -13,6 +13,7 @@
 #include "forward/resources.h"
 #include "forward/run_control.h"
 #include "forward/transfer.h"
+#include "inverse/inverse_terms.h"
 #include "meshing/triangulate.h"
 
 namespace dform {
@@ -30,9 +31,8 @@ Status validateInverseJob(const InverseSettings& job) {
   if (job.resolution < 8 || job.resolution > 20000)
     return usage("resolution must be between 8 and 20000 curve points, got " +
                  std::to_string(job.resolution));
-  const InverseWeights& w = job.solve.weights;
-  for (double weight : {w.isometry, w.closeness, w.smooth3d, w.smooth2d})
-    if (!(weight >= 0.0 && std::isfinite(weight))) return usage("weights must be finite and >= 0");
+  if (!weightsAreValid(inverseTerms(), job.solve.weights))
+    return usage("weights must be finite and >= 0");
   std::string why;
   if (!job.solve.solver.isValid(&why)) return usage("solver options: " + why);
   return Status::ok();

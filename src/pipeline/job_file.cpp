@@ -9,6 +9,8 @@
 
 #include "core/input_file.h"
 #include "core/message_text.h"
+#include "forward/term_table.h"
+#include "inverse/inverse_terms.h"
 
 namespace dform {
 
@@ -88,14 +90,12 @@ void readSolver(const json& object, SolverOptions& options) {
 }
 
 template <typename Weights>
-void readWeights(const json& object,
-                 const std::vector<std::pair<std::string, double Weights::*>>& names,
-                 Weights& weights) {
+void readWeights(const json& object, const TermTable<Weights>& table, Weights& weights) {
   std::set<std::string> allowed;
-  for (const auto& [name, member] : names) allowed.insert(name);
+  for (const TermRow<Weights>& row : table) allowed.insert(row.name);
   onlyKeys(object, allowed, "weights.");
-  for (const auto& [name, member] : names)
-    if (object.contains(name)) weights.*member = number(object, name, "weights.");
+  for (const TermRow<Weights>& row : table)
+    if (object.contains(row.name)) weights.*row.weight = number(object, row.name, "weights.");
 }
 
 Job parse(const json& root, const std::string& baseDir) {
@@ -125,7 +125,7 @@ Job parse(const json& root, const std::string& baseDir) {
     if (root.contains("fit_perimeter")) f.fitPerimeter = flag(root, "fit_perimeter");
     if (root.contains("perimeter_tolerance"))
       f.perimeterTolerance = number(root, "perimeter_tolerance", "");
-    if (root.contains("weights")) readWeights(root["weights"], forwardWeightNames(), f.solve.weights);
+    if (root.contains("weights")) readWeights(root["weights"], forwardTerms(), f.solve.weights);
     if (root.contains("solver")) readSolver(root["solver"], f.solve.solver);
   } else if (mode == "inverse") {
     job.mode = Job::Mode::Inverse;
@@ -134,7 +134,7 @@ Job parse(const json& root, const std::string& baseDir) {
     i.curve = path(root, "curve", baseDir);
     if (root.contains("closed")) i.forceClosed = flag(root, "closed");
     if (root.contains("resolution")) i.resolution = integer(root, "resolution");
-    if (root.contains("weights")) readWeights(root["weights"], inverseWeightNames(), i.solve.weights);
+    if (root.contains("weights")) readWeights(root["weights"], inverseTerms(), i.solve.weights);
     if (root.contains("solver")) readSolver(root["solver"], i.solve.solver);
   } else {
     throw KeyError{"mode", "must be \"forward\" or \"inverse\", not \"" + printable(mode) + "\""};
@@ -154,10 +154,9 @@ json solverJson(const SolverOptions& o) {
 }
 
 template <typename Weights>
-json weightsJson(const std::vector<std::pair<std::string, double Weights::*>>& names,
-                 const Weights& weights) {
+json weightsJson(const TermTable<Weights>& table, const Weights& weights) {
   json out = json::object();
-  for (const auto& [name, member] : names) out[name] = weights.*member;
+  for (const TermRow<Weights>& row : table) out[row.name] = weights.*row.weight;
   return out;
 }
 
@@ -193,13 +192,13 @@ Result<Job> readJobFile(const std::string& path) {
 }
 
 bool setNamedWeight(Job& job, const std::string& name, double value) {
-  const auto set = [&name, value](const auto& names, auto& weights) {
-    for (const auto& [known, member] : names)
-      if (known == name) return (weights.*member = value, true);
-    return false;
+  const auto set = [&name, value](const auto& table, auto& weights) {
+    const auto* row = findTerm(table, name);
+    if (row) weights.*row->weight = value;
+    return row != nullptr;
   };
-  return job.mode == Job::Mode::Forward ? set(forwardWeightNames(), job.forward.solve.weights)
-                                        : set(inverseWeightNames(), job.inverse.solve.weights);
+  return job.mode == Job::Mode::Forward ? set(forwardTerms(), job.forward.solve.weights)
+                                        : set(inverseTerms(), job.inverse.solve.weights);
 }
 
 namespace {
@@ -229,7 +228,7 @@ std::string jobToJson(const Job& job) {
            {"flip", f.flip},
            {"fit_perimeter", f.fitPerimeter},
            {"perimeter_tolerance", f.perimeterTolerance},
-           {"weights", weightsJson(forwardWeightNames(), f.solve.weights)},
+           {"weights", weightsJson(forwardTerms(), f.solve.weights)},
            {"solver", solverJson(f.solve.solver)}};
   } else {
     const InverseJob& i = job.inverse;
@@ -237,7 +236,7 @@ std::string jobToJson(const Job& job) {
            {"curve", recordedInput(i.curve)},
            {"closed", i.forceClosed},
            {"resolution", i.resolution},
-           {"weights", weightsJson(inverseWeightNames(), i.solve.weights)},
+           {"weights", weightsJson(inverseTerms(), i.solve.weights)},
            {"solver", solverJson(i.solve.solver)}};
   }
   return out.dump(2);

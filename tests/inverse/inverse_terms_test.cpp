@@ -1,0 +1,20 @@
+// inverseTerms: the inverse objective's one table of terms and weights.
+#include "inverse/inverse_terms.h"
+
+#include <gtest/gtest.h>
+
+#include "forward/term_table_checks.h"
+#include "inverse/pieces_from_curve.h"
+
+namespace dform {
+namespace {
+
+// inverseTerms covers every member of InverseWeights once, each row's linear flag agrees with the
+// term its factory makes, a Problem and the relaxation's list built from it follow it, and a job's
+// validation refuses a bad value of every weight (term_table_checks.h).
+TEST(InverseTerms, TableIsWholeAndAgreesWithItsTerms) {
+  test::expectTermTableHolds(inverseTerms(), validateInverseJob);
+}
+
+}  // namespace
+}  // namespace dform
