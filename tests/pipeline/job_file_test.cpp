@@ -78,6 +78,29 @@ TEST(JobFile, NamedWeightsRoundTripThroughTheTables) {
   EXPECT_FALSE(setNamedWeight(inverse, "seam", 1.0));
 }
 
+// The names are the job files' interface (docs/cli.md): each sets the weight it says, so two
+// rows whose names were swapped fail here even though every table check above still holds.
+TEST(JobFile, EachWeightNameSetsItsOwnWeight) {
+  const std::vector<std::pair<std::string, double ForwardWeights::*>> forwardNames = {
+      {"isometry", &ForwardWeights::isometry},   {"alignment", &ForwardWeights::alignment},
+      {"boundary_fix", &ForwardWeights::boundaryFix}, {"smooth_3d", &ForwardWeights::smooth3d},
+      {"smooth_2d", &ForwardWeights::smooth2d},  {"seam", &ForwardWeights::seam}};
+  for (const auto& [name, member] : forwardNames) {
+    Job forward;  // a fresh one each time: a weight set by another name must not pass here
+    ASSERT_TRUE(setNamedWeight(forward, name, 123.5)) << name;
+    EXPECT_EQ(forward.forward.solve.weights.*member, 123.5) << name;
+  }
+  const std::vector<std::pair<std::string, double InverseWeights::*>> inverseNames = {
+      {"isometry", &InverseWeights::isometry}, {"closeness", &InverseWeights::closeness},
+      {"smooth_3d", &InverseWeights::smooth3d}, {"smooth_2d", &InverseWeights::smooth2d}};
+  for (const auto& [name, member] : inverseNames) {
+    Job inverse;
+    inverse.mode = Job::Mode::Inverse;
+    ASSERT_TRUE(setNamedWeight(inverse, name, 0.25)) << name;
+    EXPECT_EQ(inverse.inverse.solve.weights.*member, 0.25) << name;
+  }
+}
+
 TEST(JobFile, InverseJobRoundTrips) {
   const Result<Job> job = parseJobJson(R"({"mode": "inverse", "curve": "seam.obj", "closed": true,
     "weights": {"closeness": 2}})",
