@@ -8,7 +8,8 @@ For pattern.dxf (against pattern.svg) and, with several sheets, each pattern-she
 pattern-sheet-k.svg):
   - $INSUNITS is 4 (mm); the layers CUT, SCORE and ENGRAVE exist;
   - every drawn SVG polyline (but the printed tint of layer Bleed, which is no machine's work) is
-    one LWPOLYLINE, in order, on the DXF layer of its SVG layer, with
+    one LWPOLYLINE, in order, on the DXF layer of its SVG layer (a FAILED GATE stamp's on
+    FAILED-GATE), with
     the SVG's closed flag, its vertices at (x, H - y) (y up, H the sheet height) within the SVG's
     rounding (1.1e-4 mm per coordinate);
   - every cut outline (A-cut, B-cut, holes) is closed and its perimeter is the SVG's within 0.1 mm;
@@ -39,7 +40,8 @@ MM_TOL = 0.1     # the issue's bar for cut dimensions
 # the DXF 9.
 SVG_TOL = 1.1e-4
 
-LAYER_OF = {"Cut": "CUT", "Score": "SCORE", "Fold": "SCORE", "Regmarks": "REGMARKS"}
+LAYER_OF = {"Cut": "CUT", "Score": "SCORE", "Fold": "SCORE", "Regmarks": "REGMARKS",
+            "FailedGate": "FAILED-GATE"}
 
 problems = []
 worst = {"perimeter_vs_svg": 0.0, "perimeter_vs_seam": 0.0, "vertex": 0.0}
