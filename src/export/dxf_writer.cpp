@@ -1,8 +1,9 @@
 // The cutting DXF, written through dxflib (Debian's libdxflib-dev): R2000 (AC1015), millimetres
 // ($INSUNITS 4), one LWPOLYLINE per drawn polyline (closed flag on closed cut paths), on the layers
-// CUT, SCORE and ENGRAVE (REGMARKS for a print-and-cut sheet's marks). DXF's y axis points up: a
-// point (x, y) of the y-down drawing is written at (x, H - y), H the drawing's height, so the
-// sheet's corner (0, 0) is its lower left and nothing is mirrored.
+// CUT, SCORE and ENGRAVE (REGMARKS for a print-and-cut sheet's marks, FAILED-GATE for the stamp of
+// a pattern that failed its gate). DXF's y axis points up: a point (x, y) of the y-down drawing is
+// written at (x, H - y), H the drawing's height, so the sheet's corner (0, 0) is its lower left
+// and nothing is mirrored.
 //
 // dxflib writes every section, table and entity. Its ASCII writer (DL_WriterA) only streams to a
 // file it opens itself; the export renders every file in memory first and writes each atomically,
@@ -62,6 +63,7 @@ std::string dxfLayerName(const std::string& layer) {
   if (layer == "Cut") return "CUT";
   if (layer == "Score" || layer == "Fold") return "SCORE";
   if (layer == "Regmarks") return "REGMARKS";
+  if (layer == kFailedGateLayer) return "FAILED-GATE";  // the stamp: no operation at all
   return "ENGRAVE";  // Engrave, Labels, Title, and print-and-cut's printed artwork (Print)
 }
 

@@ -1,7 +1,9 @@
-// exportAll: every output rendered to memory first, then each file written atomically, so that a
-// failed run leaves no half-written file.
+// exportAll: the pattern laid out once, stamped FAILED GATE when asked (an overlay: nothing moves),
+// every output rendered to memory, then each file written atomically, so that a failed run leaves
+// no half-written file.
 #include "export/exporter.h"
 
+#include <atomic>
 #include <filesystem>
 
 #include "core/atomic_file.h"
@@ -21,6 +23,12 @@ Status checkFolder(const std::string& outDir) {
   return Status::ok();
 }
 
+std::atomic<long> layoutsMade{0};
+
+// Each stage takes seconds on a fine mesh (420k triangles: the pattern with its assembly page
+// 4 s, the PDF 4 s): a stop asked for meanwhile is honoured between them.
+Status stopped() { return Status(ErrorCode::Interrupted, "interrupted during the export"); }
+
 }  // namespace
 
 Status checkExportOptions(const ExportOptions& o) {
@@ -37,22 +45,47 @@ Status checkExportOptions(const ExportOptions& o) {
   return Status::ok();
 }
 
-Result<PreparedExport> prepareExport(const DForm& model, const ExportOptions& options) {
+long fab::patternsLaidOut() { return layoutsMade.load(); }
+
+bool LaidOutExport::failedGate() const { return pattern && pattern->build.failedGate; }
+
+Result<LaidOutExport> layOutExport(const DForm& model, const ExportOptions& options) {
   auto profile = fab::resolveProfile(options);
   if (!profile.isOk()) return profile.status();
-  // Each stage takes seconds on a fine mesh (420k triangles: the pattern with its assembly page
-  // 4 s, the PDF 4 s): a stop asked for meanwhile is honoured between them.
-  const Status stopped(ErrorCode::Interrupted, "interrupted during the export");
+  ++layoutsMade;
   auto pattern = fab::buildPattern(model, options, profile.value());
   if (!pattern.isOk()) return pattern.status();
-  const fab::PatternBuild& pat = pattern.value();
-  if (interruptRequested()) return stopped;
+  if (interruptRequested()) return stopped();
+  auto font = fab::StrokeFont::load(options.fontPath);  // read by the build already: it loads
+  if (!font.isOk()) return font.status();
+  LaidOutExport laidOut;
+  laidOut.layout = fab::checkLayout(pattern.value());
+  laidOut.ticks = fab::seamTicks(model, pattern.value());
+  laidOut.pattern = std::make_shared<const fab::LaidOutPattern>(
+      fab::LaidOutPattern{std::move(pattern.value()), std::move(font.value()), options});
+  return laidOut;
+}
+
+LaidOutExport markFailedGate(const LaidOutExport& laidOut) {
+  if (!laidOut.pattern || laidOut.failedGate()) return laidOut;
+  auto marked = std::make_shared<fab::LaidOutPattern>(*laidOut.pattern);
+  fab::stampFailedGate(marked->build, marked->font);
+  LaidOutExport out = laidOut;
+  out.pattern = std::move(marked);
+  return out;
+}
+
+Result<PreparedExport> renderExport(const DForm& model, const LaidOutExport& laidOut) {
+  if (!laidOut.pattern) return Status(ErrorCode::Internal, "renderExport: nothing laid out");
+  const fab::PatternBuild& pat = laidOut.pattern->build;
+  ExportOptions options = laidOut.pattern->options;
+  options.failedGateMark = pat.failedGate;  // the previews' names and header say so too
   auto pdf = fab::pdfDocument(pat);
   if (!pdf.isOk()) return pdf.status();
-  if (interruptRequested()) return stopped;
+  if (interruptRequested()) return stopped();
   auto gltf = fab::gltfDocument(model, options);
   if (!gltf.isOk()) return gltf.status();
-  if (interruptRequested()) return stopped;
+  if (interruptRequested()) return stopped();
   PreparedExport prepared;
   prepared.files = {
       {"pattern.svg", fab::svgDocument(pat.drawing)},
@@ -60,7 +93,7 @@ Result<PreparedExport> prepareExport(const DForm& model, const ExportOptions& op
       {"pattern.pdf", pdf.value()},
       {"assembly.svg", fab::svgDocument(pat.assembly)},
       {"pattern.json", fab::sidecarJson(pat, options.jobName)},
-      {"dform.stl", fab::stlDocument(model, options.failedGateMark)},
+      {"dform.stl", fab::stlDocument(model, pat.failedGate)},
       {options.gltfBinary ? "dform.glb" : "dform.gltf", gltf.value()},
   };
   // A pattern on several sheets (pages): each also alone, at its own size, for the machine, as
@@ -71,8 +104,8 @@ Result<PreparedExport> prepareExport(const DForm& model, const ExportOptions& op
       prepared.files.emplace_back(sheetFileName(int(k) + 1, "svg"), fab::svgDocument(sheet));
       prepared.files.emplace_back(sheetFileName(int(k) + 1, "dxf"), fab::dxfDocument(sheet));
     }
-  prepared.layout = fab::checkLayout(pat);
-  prepared.ticks = fab::seamTicks(model, pat);
+  prepared.layout = laidOut.layout;
+  prepared.ticks = laidOut.ticks;
   ExportSummary& summary = prepared.summary;
   summary.messages = pat.messages;
   summary.profile = pat.profile.name;
@@ -86,6 +119,13 @@ Result<PreparedExport> prepareExport(const DForm& model, const ExportOptions& op
   summary.pages = int(pat.pages.size());
   summary.triangles = int(model.a.F.rows() + model.b.F.rows());
   return prepared;
+}
+
+Result<PreparedExport> prepareExport(const DForm& model, const ExportOptions& options) {
+  Result<LaidOutExport> laidOut = layOutExport(model, options);
+  if (!laidOut.isOk()) return laidOut.status();
+  return renderExport(model,
+                      options.failedGateMark ? markFailedGate(laidOut.value()) : laidOut.value());
 }
 
 Result<ExportSummary> writeExport(const PreparedExport& prepared, const std::string& outDir) {
@@ -121,6 +161,11 @@ Status renderPatternPng(const DForm& model, const ExportOptions& options,
   if (!profile.isOk()) return profile.status();
   auto pattern = fab::buildPattern(model, options, profile.value());
   if (!pattern.isOk()) return pattern.status();
+  if (options.failedGateMark) {
+    auto font = fab::StrokeFont::load(options.fontPath);
+    if (!font.isOk()) return font.status();
+    fab::stampFailedGate(pattern.value(), font.value());
+  }
   auto png = fab::pngImage(pattern.value(), page, dpi);
   if (!png.isOk()) return png.status();
   return writeFileAtomically(pngPath, png.value());

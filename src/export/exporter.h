@@ -5,6 +5,7 @@
 // What each file holds, the profiles and the error codes: docs/export.md.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -14,6 +15,10 @@
 #include "core/types.h"
 
 namespace dform {
+
+namespace fab {
+struct LaidOutPattern;  // export-internal (export/internal.h)
+}
 
 /// What kind of machine a profile is for.
 enum class ProfileKind {
@@ -135,7 +140,8 @@ struct ExportOptions {
   /// When the pieces do not fit at `scale`, use the largest smaller scale (whole percent) at
   /// which they do, and say so (--scale fit).
   bool scaleToFit = false;
-  bool failedGateMark = false;      ///< print a visible "FAILED GATE" mark on every output
+  /// prepareExport, exportAll, renderPatternPng: stamp every output FAILED GATE (markFailedGate)
+  bool failedGateMark = false;
   /// Optional per-vertex Gaussian curvature of A for the glTF's COLOR_0, in any unit (the map is
   /// scaled by its 95th percentile), e.g. validate's curvatureMap (angle defect, radians).
   std::vector<double> curvatureA;
@@ -181,6 +187,27 @@ struct LayoutFindings {
   }
 };
 
+/// A pattern laid out (sheets, the pieces' arrangement, ticks, tabs, labels, title block, pages
+/// and tiles, the assembly page) and checked, not yet rendered. Everything geometric is decided
+/// here; marking it FAILED GATE afterwards moves nothing. Cheap to copy: the pattern is shared.
+struct LaidOutExport {
+  std::shared_ptr<const fab::LaidOutPattern> pattern;  ///< the layout, its font and options
+  LayoutFindings layout;        ///< the layout check (a stamp, added later, is not part of it)
+  std::vector<SeamTick> ticks;  ///< the pattern's numbered ticks on the 3D seam
+  bool failedGate() const;      ///< stamped by markFailedGate
+};
+
+/// Lays out the pattern of `model` and checks the layout, once; nothing is rendered. The same
+/// errors as exportAll except the folder's and the renderers'.
+Result<LaidOutExport> layOutExport(const DForm& model, const ExportOptions& options);
+
+/// The same layout stamped "FAILED GATE - NOT FOR FABRICATION" as an overlay: on every sheet of
+/// pattern.svg and pattern.dxf (a layer of its own, first), every page and tile of pattern.pdf
+/// and the assembly page, in the free margin above (or below) what each shows and in a colour no
+/// profile cuts or scores with; the STL header, the glTF names and pattern.json's `failed_gate`
+/// say so when rendered. Nothing moves: every other path is as laid out. `laidOut` is unchanged.
+LaidOutExport markFailedGate(const LaidOutExport& laidOut);
+
 /// Every output rendered in memory, not yet written, with the layout check of its pattern.
 struct PreparedExport {
   std::vector<std::pair<std::string, std::string>> files;  ///< file name -> content
@@ -189,8 +216,13 @@ struct PreparedExport {
   std::vector<SeamTick> ticks;  ///< the pattern's numbered ticks on the 3D seam
 };
 
-/// Lays out and renders everything exportAll writes, and checks the layout. The same errors as
-/// exportAll except the folder's.
+/// Renders everything exportAll writes from a laid-out pattern of `model` (the model it was laid
+/// out from: the STL and glTF previews are drawn from its meshes). OutputFailed when Cairo fails,
+/// Usage for curvature arrays of the wrong size.
+Result<PreparedExport> renderExport(const DForm& model, const LaidOutExport& laidOut);
+
+/// layOutExport, markFailedGate when options.failedGateMark, then renderExport. The same errors
+/// as exportAll except the folder's.
 Result<PreparedExport> prepareExport(const DForm& model, const ExportOptions& options);
 
 /// Writes a prepared export into `outDir` (which must exist), each file atomically.

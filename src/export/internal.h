@@ -149,7 +149,9 @@ struct PatternBuild {
   std::vector<TabInfo> tabs;
   std::vector<std::string> messages;
   double tickSpacing = 0;
-  bool failedGate = false;  ///< exported after a failed quality gate (--export-anyway)
+  /// Stamped FAILED GATE (stampFailedGate) after a failed quality gate: the stamp is an overlay,
+  /// the layout is the same as without it.
+  bool failedGate = false;
 };
 
 /// The work of a build, counted so that tests can bound it without timing it.
@@ -178,6 +180,29 @@ class StrokeFont {
   const Glyph& glyph(char c) const;
   std::vector<Glyph> glyphs_;
 };
+
+/// A laid-out pattern as layOutExport keeps it for rendering: the build, the font its labels are
+/// written in (the stamp's too) and the options it was laid out with.
+struct LaidOutPattern {
+  PatternBuild build;
+  StrokeFont font;
+  ExportOptions options;
+};
+
+/// How many patterns layOutExport has laid out in this process (tests count them).
+long patternsLaidOut();
+
+/// The FAILED GATE stamp's text, and the layer that holds it.
+inline constexpr const char* kFailedGateText = "FAILED GATE - NOT FOR FABRICATION";
+inline constexpr const char* kFailedGateLayer = "FailedGate";
+
+/// Stamps a laid-out pattern FAILED GATE without moving anything (failed_gate.cpp): the text in
+/// the free band above (or below) what each sheet, page, tile and the assembly page show, in a
+/// colour no profile operation uses, on a layer of its own (first in the drawing: pattern.svg,
+/// pattern.dxf, the sheets' files; not printed, since every PDF page gets its own in its overlay)
+/// and on the assembly page; "FAILED GATE" in the drawings' descriptions; `failedGate` set.
+/// Stamping a stamped pattern changes nothing.
+void stampFailedGate(PatternBuild& pattern, const StrokeFont& font);
 
 /// The profile to use for `options` (loaded or the override), the kerf applied.
 Result<Profile> resolveProfile(const ExportOptions& options);

@@ -519,12 +519,11 @@ Result<SheetFit> sheetFit(const ExportOptions& o, const Profile& profile, bool c
   fit.textH = std::clamp(profile.labelHeightMm, 2.0, 4.0);
   fit.lineH = 1.7 * fit.textH;
   const double barH = profile.calibrationBar ? 9.0 : 0.0;
-  const double failH = o.failedGateMark ? 2.0 * fit.lineH : 0.0;
   // Tabs fold away from the printed (outer) side: a line says so on every sheet that has them.
   fit.tabbed = o.tabWidthMm > 0 && profile.tabs != TabSide::None;
   // The lines: title and note, a legend line for creases, the tab line (none with --no-title).
   const int titleLines = o.title ? 2 + int(creased) + int(fit.tabbed) : 0;
-  const double titleH = titleLines * fit.lineH + barH + failH;
+  const double titleH = titleLines * fit.lineH + barH;
   fit.titleBlock = titleH > 0 ? fit.m + titleH : 0.0;
   // The page: --page over the profile's. A page profile refuses a sheet size and a sheet profile
   // a page, rather than ignore them.
@@ -777,27 +776,18 @@ std::string percentText(double scale) {
   return percent;
 }
 
-// The piece's name (and the failed-gate mark) at the roomiest point inside it, clear of the
-// creases; and of the labels already placed (`taken`) where the roomiest point is near them (a
-// ring-shaped piece). The labels placed join `taken`.
+// The piece's name at the roomiest point inside it, clear of the creases; and of the labels
+// already placed (`taken`) where the roomiest point is near them (a ring-shaped piece). The label
+// placed joins `taken`.
 void drawPieceName(const PieceInfo& info, const std::vector<Polyline>& creaseLines,
-                   const ExportOptions& o, const Profile& profile, const StrokeFont& font,
-                   DrawingBuilder& b, std::vector<Polyline>& taken) {
+                   const Profile& profile, const StrokeFont& font, DrawingBuilder& b,
+                   std::vector<Polyline>& taken) {
   const std::string& nm = info.name;
   auto nameLabels = [&](const std::vector<Polyline>& avoid) {
     const auto [centre, room] = roomiestPoint(info.boundaries, creaseLines, avoid);
     std::vector<Path> labels;
     const double nameH = std::min(3 * profile.labelHeightMm, 0.9 * room);
-    Vec2 nameAt = centre;
-    if (o.failedGateMark) nameAt.y() -= 0.6 * nameH;
-    if (nameH >= 1.0) labels.push_back(textPath(font, nm + "-name", nm, nameAt, {1, 0}, nameH));
-    if (o.failedGateMark) {
-      const std::string mark = "FAILED GATE";
-      const double h =
-          std::min(1.5 * profile.labelHeightMm, 1.6 * room / std::max(1.0, font.width(mark, 1.0)));
-      labels.push_back(textPath(font, nm + "-failed-gate", mark,
-                                centre + Vec2(0, 0.6 * nameH + 0.6 * h), {1, 0}, h));
-    }
+    if (nameH >= 1.0) labels.push_back(textPath(font, nm + "-name", nm, centre, {1, 0}, nameH));
     return labels;
   };
   auto clashes = [&](const std::vector<Path>& labels) {
@@ -849,9 +839,9 @@ int drawCreaseLetters(const PieceInfo& info, const std::vector<Polyline>& crease
 
 // Each piece's ticks and tick numbers, name and crease letters, and messages for the labels left
 // out.
-void drawPieceLabels(const FlatPieces& flat, const Placement place[2], const ExportOptions& o,
-                     const Profile& profile, const StrokeFont& font, DrawingBuilder& b,
-                     PatternBuild& out, BuildWork& work) {
+void drawPieceLabels(const FlatPieces& flat, const Placement place[2], const Profile& profile,
+                     const StrokeFont& font, DrawingBuilder& b, PatternBuild& out,
+                     BuildWork& work) {
   int skippedLabels = 0, thinnedLabels = 0, skippedCreaseLabels = 0;
   for (int p = 0; p < 2; ++p) {
     const PieceInfo& info = out.pieces[size_t(p)];
@@ -864,7 +854,7 @@ void drawPieceLabels(const FlatPieces& flat, const Placement place[2], const Exp
     std::vector<Polyline> taken;  // footprints of the piece's labels so far
     for (const Path& path : b.engrave().paths)
       if (path.id.rfind(info.name + "-", 0) == 0) taken.push_back(convexHull(path.parts));
-    drawPieceName(info, creaseLines, o, profile, font, b, taken);
+    drawPieceName(info, creaseLines, profile, font, b, taken);
     skippedCreaseLabels += drawCreaseLetters(info, creaseLines, profile, font, b, taken);
   }
   if (skippedLabels > 0)
@@ -954,8 +944,8 @@ TitleBlock titleBlockOf(const SheetPlan& plan, const SheetFit& fit) {
   return block;
 }
 
-// The title lines of sheet k (of `sheets`): the failed-gate line, then (unless --no-title) the
-// title, the note and the legends for creases and tabs.
+// The title lines of sheet k (of `sheets`), unless --no-title: the title, the note and the
+// legends for creases and tabs.
 void drawTitleLines(size_t k, size_t sheets, const SheetPlan& plan, const SheetFit& fit,
                     const FlatPieces& flat, const ExportOptions& o, const std::string& scaleText,
                     const std::string& perimeterText, const StrokeFont& font, DrawingBuilder& b,
@@ -974,7 +964,6 @@ void drawTitleLines(size_t k, size_t sheets, const SheetPlan& plan, const SheetF
   if (sheets > 1)
     pieceNote = " - " + fit.sheetWord + " " + std::to_string(k + 1) + " of " +
                 std::to_string(sheets) + ": piece " + flat.names[plan.pieces.front()];
-  if (o.failedGateMark) line("failed-gate", "FAILED GATE - NOT FOR FABRICATION", 2 * textH);
   if (!o.title) return;
   line("title",
        o.jobName + " - D-Form " + flat.names[0] + " + " + flat.names[1] + pieceNote + " - " +
@@ -1215,12 +1204,6 @@ PageView tilePage(const SheetPlan& plan, const std::string& nm, long j, long i,
   furniture.paths.push_back(textPath(font, "tile-bar-label", "50 mm",
                                      Vec2(pm + 56 + 0.5 * font.width("50 mm", 2.5), yb - 1.2),
                                      {1, 0}, 2.5));
-  if (o.failedGateMark) {
-    const std::string mark = "FAILED GATE";
-    furniture.paths.push_back(textPath(font, "tile-failed-gate", mark,
-                                       Vec2(fit.pageW - pm - 0.5 * font.width(mark, 4.0), pm + 8.0),
-                                       {1, 0}, 4.0));
-  }
   page.overlay.push_back(furniture);
   return page;
 }
@@ -1255,8 +1238,7 @@ void describe(Drawing& drawing, const ExportOptions& o, const Profile& profile, 
   drawing.description = "job " + o.jobName + "; profile " + profile.name + "; " +
                         (scale == 1.0 ? std::string("true scale") : "scale " + percentText(scale)) +
                         ", 1 user unit = 1 mm; seam length " + perimeterText + " mm; ticks every " +
-                        formatMm(o.tickSpacingMm) + " mm" +
-                        (o.failedGateMark ? "; FAILED GATE: not for fabrication" : "");
+                        formatMm(o.tickSpacingMm) + " mm";
 }
 
 // The pattern of `model` drawn at `scale` (its flat pieces already scaled by it). `tooLargeOut`
@@ -1268,7 +1250,6 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
   out.scale = scale;
   out.profile = profile;
   out.tickSpacing = o.tickSpacingMm;
-  out.failedGate = o.failedGateMark;
   const FlatPieces flat(model);
   Result<SheetFit> fitResult = sheetFit(o, profile, flat.creased, tooLargeOut);
   if (!fitResult.isOk()) return fitResult.status();
@@ -1318,7 +1299,7 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
   const std::string scaleText =
       scale == 1.0 ? std::string("1:1, mm") : "scale " + percentText(scale) + " of true size, mm";
   describe(b.drawing(), o, profile, scale, perimeterText);
-  drawPieceLabels(flat, place, o, profile, font, b, out, work);
+  drawPieceLabels(flat, place, profile, font, b, out, work);
   drawCreases(out.pieces, profile, b);
   drawTabFolds(out.tabs, flat.names, profile, b);
   drawCuts(out.pieces, flat.names, profile, b);

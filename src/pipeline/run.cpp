@@ -43,10 +43,11 @@ GateReport gateSolved(const Solved& solved, const GateLimits& limits) {
                                   &solved.inverse->target, &solved.inverse->curveMatch);
 }
 
-// The cutting files laid out in memory, the layout judged as the gate's last check (so that it
-// comes before the verdict). A pattern that fails on its layout alone is laid out again with the
-// FAILED GATE mark. An export that fails leaves the rest of the result to be written (a sheet too
-// small: the export can be redone alone).
+// The cutting files laid out once in memory and the layout judged as the gate's last check (so
+// that it comes before the verdict), then rendered, stamped FAILED GATE when the gate failed for
+// any reason: the stamp is an overlay, so the pattern judged is the pattern written. An export
+// that fails leaves the rest of the result to be written (a sheet too small: the export can be
+// redone alone).
 Result<PreparedExport> prepareJudged(const Solved& solved, const std::string& name,
                                      const OutputOptions& output, const RunSettings& settings,
                                      std::optional<GateReport>& gate, MessageSink& sink) {
@@ -54,23 +55,22 @@ Result<PreparedExport> prepareJudged(const Solved& solved, const std::string& na
     if (gate) gate->checks.push_back(notRunCheck("pattern_layout", 0, "no export (--no-export)"));
     return Status(ErrorCode::Internal, "no export");
   }
-  Result<PreparedExport> prepared =
-      prepare(solved.model(), *settings.exporting, gate && !gate->passed(), name);
-  if (prepared.isOk() && gate) {
-    const bool passedBefore = gate->passed();
-    gate->checks.push_back(layoutCheck(prepared.value().layout));
-    if (passedBefore && !gate->passed())
-      prepared = prepare(solved.model(), *settings.exporting, true, name);
-  } else if (!prepared.isOk()) {
-    if (gate)
-      gate->checks.push_back(
-          notRunCheck("pattern_layout", 0, "the export failed: " + prepared.status().message()));
+  const Result<LaidOutExport> laidOut = layOut(solved.model(), *settings.exporting, name);
+  Result<PreparedExport> prepared = laidOut.status();
+  if (laidOut.isOk()) {
+    if (gate) gate->checks.push_back(layoutCheck(laidOut.value().layout));
+    prepared = render(solved.model(), laidOut.value(), gate && !gate->passed());
+  } else if (gate) {
+    gate->checks.push_back(
+        notRunCheck("pattern_layout", 0, "the export failed: " + laidOut.status().message()));
+  }
+  if (!prepared.isOk()) {
     sink.emit(Level::Error, "export: " + prepared.status().message() +
                                 " (the result is saved; run `dform export " + output.outDir +
                                 "` with another --sheet or --profile)");
-  }
-  if (prepared.isOk() && !gate && prepared.value().layout.problems() > 0)
+  } else if (!gate && prepared.value().layout.problems() > 0) {
     sink.warning("export: " + layoutCheck(prepared.value().layout).detail);
+  }
   return prepared;
 }
 

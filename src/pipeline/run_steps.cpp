@@ -152,16 +152,21 @@ Result<ExportOptions> exportOptions(const OutputOptions& output) {
   return options;
 }
 
-// Lays out and renders the cutting patterns and previews of `model`, not yet written. The glTF
-// preview carries the curvature map the report shows (COLOR_0).
-Result<PreparedExport> prepare(const DForm& model, ExportOptions options, bool failedGate,
-                               const std::string& jobName) {
+// Lays out the cutting patterns of `model` once, not yet rendered. The glTF preview will carry
+// the curvature map the report shows (COLOR_0).
+Result<LaidOutExport> layOut(const DForm& model, ExportOptions options,
+                             const std::string& jobName) {
   options.jobName = jobName;
-  options.failedGateMark = failedGate;
+  options.failedGateMark = false;  // stamped, if at all, once the gate is known (render)
   const Eigen::VectorXd curvature[2] = {curvatureMap(model.a), curvatureMap(model.b)};
   options.curvatureA.assign(curvature[0].data(), curvature[0].data() + curvature[0].size());
   options.curvatureB.assign(curvature[1].data(), curvature[1].data() + curvature[1].size());
-  return prepareExport(model, options);
+  return layOutExport(model, options);
+}
+
+// Renders a laid-out pattern, stamped FAILED GATE when the gate failed.
+Result<PreparedExport> render(const DForm& model, const LaidOutExport& laidOut, bool failedGate) {
+  return renderExport(model, failedGate ? markFailedGate(laidOut) : laidOut);
 }
 
 // A run's job name: its first input's file name.

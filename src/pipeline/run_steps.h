@@ -1,5 +1,6 @@
 // The steps runs and saved results share (pipeline-internal): export options checked, a pattern
-// prepared with its layout judged, the result folder's names and its interruptible commit.
+// laid out (its layout judged by the caller) and rendered, the result folder's names and its
+// interruptible commit.
 #pragma once
 
 #include <atomic>
@@ -20,10 +21,14 @@ namespace dform {
 /// value; the profile is read now (when files are exported), not after the solve.
 Result<ExportOptions> exportOptions(const OutputOptions& output);
 
-/// Lays out and renders the cutting patterns and previews of `model`, not yet written; the glTF
-/// preview carries the curvature map the report shows.
-Result<PreparedExport> prepare(const DForm& model, ExportOptions options, bool failedGate,
-                               const std::string& jobName);
+/// Lays out the cutting patterns of `model` once, not yet rendered; the glTF preview will carry
+/// the curvature map the report shows.
+Result<LaidOutExport> layOut(const DForm& model, ExportOptions options,
+                             const std::string& jobName);
+
+/// Renders a laid-out pattern of `model` and its previews, not yet written, stamped FAILED GATE
+/// (an overlay: nothing moves) when `failedGate`.
+Result<PreparedExport> render(const DForm& model, const LaidOutExport& laidOut, bool failedGate);
 
 /// A run's job name: its first input's file name.
 std::string jobName(const Job& job);

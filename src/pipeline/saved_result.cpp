@@ -90,22 +90,21 @@ Result<std::string> exportSavedResult(const std::string& dir, const OutputOption
                     (failing.empty() ? "report.json records a failure" : failing + " fail") +
                     "); nothing exported (--export-anyway exports it marked FAILED GATE)");
   }
-  const std::string name = savedJobName(dir);
-  Result<PreparedExport> prepared = prepare(model.value(), exporting.value(), failedGate, name);
+  // Laid out once: a layout that fails is stamped as it is (the stamp is an overlay).
+  const Result<LaidOutExport> laidOut =
+      layOut(model.value(), exporting.value(), savedJobName(dir));
+  if (interrupted) return leftAsItWas(dir, "interrupted");
+  if (!laidOut.isOk()) return laidOut.status();
+  const LayoutFindings& layout = laidOut.value().layout;
+  if (layout.problems() > 0 && !output.exportAnyway) {
+    return Status(ErrorCode::GateFailed,
+                  dir + ": the pattern does not lay out cleanly (" + layoutCheck(layout).detail +
+                      "); nothing exported (--export-anyway exports it marked FAILED GATE)");
+  }
+  failedGate = failedGate || layout.problems() > 0;
+  const Result<PreparedExport> prepared = render(model.value(), laidOut.value(), failedGate);
   if (interrupted) return leftAsItWas(dir, "interrupted");
   if (!prepared.isOk()) return prepared.status();
-  const LayoutFindings& layout = prepared.value().layout;
-  if (layout.problems() > 0) {
-    if (!output.exportAnyway) {
-      return Status(ErrorCode::GateFailed,
-                    dir + ": the pattern does not lay out cleanly (" +
-                      layoutCheck(layout).detail +
-                      "); nothing exported (--export-anyway exports it marked FAILED GATE)");
-    }
-    if (!failedGate) prepared = prepare(model.value(), exporting.value(), true, name);
-    if (!prepared.isOk()) return prepared.status();
-  }
-  if (interrupted) return leftAsItWas(dir, "interrupted");
   noteExport(prepared.value(), sink);
   // -o: the pattern set goes into a folder of its own, as one transaction too, and the result
   // folder is left as it is (its lock is released unchanged).

@@ -8,7 +8,8 @@ For pattern.dxf (against pattern.svg) and, with several sheets, each pattern-she
 pattern-sheet-k.svg):
   - $INSUNITS is 4 (mm); the layers CUT, SCORE and ENGRAVE exist;
   - every drawn SVG polyline (but the printed tint of layer Bleed, which is no machine's work) is
-    one LWPOLYLINE, in order, on the DXF layer of its SVG layer, with
+    one LWPOLYLINE, in order, on the DXF layer of its SVG layer (a FAILED GATE stamp's on
+    FAILED-GATE), with
     the SVG's closed flag, its vertices at (x, H - y) (y up, H the sheet height) within the SVG's
     rounding (1.1e-4 mm per coordinate);
   - every cut outline (A-cut, B-cut, holes) is closed and its perimeter is the SVG's within 0.1 mm;
@@ -39,7 +40,8 @@ MM_TOL = 0.1     # the issue's bar for cut dimensions
 # the DXF 9.
 SVG_TOL = 1.1e-4
 
-LAYER_OF = {"Cut": "CUT", "Score": "SCORE", "Fold": "SCORE", "Regmarks": "REGMARKS"}
+LAYER_OF = {"Cut": "CUT", "Score": "SCORE", "Fold": "SCORE", "Regmarks": "REGMARKS",
+            "FailedGate": "FAILED-GATE"}
 
 problems = []
 worst = {"perimeter_vs_svg": 0.0, "perimeter_vs_seam": 0.0, "vertex": 0.0}
@@ -155,9 +157,10 @@ def check_pair(svg_path, dxf_path, sidecar, sheet_index, seams):
                 fail("%s: the SVG's %s is not closed" % (name, path["id"]))
 
     # The sheet and what is drawn on it.
+    # The SVG writes the sheet's size to 4 decimals too: a tiled piece's sheet is not a whole size.
     lim_min, lim_max = doc.header.get("$LIMMIN"), doc.header.get("$LIMMAX")
     if lim_min is None or lim_max is None or math.dist(lim_min[:2], (0, 0)) > 1e-9 or \
-            math.dist(lim_max[:2], (width, height)) > 1e-9:
+            max(abs(lim_max[0] - width), abs(lim_max[1] - height)) > SVG_TOL:
         fail("%s: limits %s-%s, the SVG sheet is (0, 0)-(%g, %g)" % (name, lim_min, lim_max, width, height))
     xs = [q[0] for _, part in drawn for q in part]
     ys = [q[1] for _, part in drawn for q in part]

@@ -300,6 +300,7 @@ std::vector<PdfPath> readPdfPaths(const std::string& pdf) {
     std::vector<Affine> saved;
     Affine ctm{1, 0, 0, 1, 0, 0};
     std::vector<double> operands;
+    Eigen::Vector3d strokeColor = Eigen::Vector3d::Zero(), fillColor = Eigen::Vector3d::Zero();
     std::vector<PdfPath> current;  // the path being built, one entry per subpath
     auto point = [&](double x, double y) {
       const double X = ctm[0] * x + ctm[2] * y + ctm[4], Y = ctm[1] * x + ctm[3] * y + ctm[5];
@@ -343,8 +344,12 @@ std::vector<PdfPath> readPdfPaths(const std::string& pdf) {
           for (const Vec2& q : {point(x + w, y), point(x + w, y + h), point(x, y + h)})
             current.back().points.push_back(q);
           current.back().closed = true;
+        } else if ((token == "RG" || token == "rg") && n >= 3) {
+          (token == "RG" ? strokeColor : fillColor) = Eigen::Vector3d(o[n - 3], o[n - 2], o[n - 1]);
         } else if (std::string(" S s f F f* B B* b b* n ").find(" " + token + " ") != std::string::npos) {
+          const bool stroked = token == "S" || token == "s" || token[0] == 'B' || token[0] == 'b';
           for (PdfPath& path : current) {
+            path.color = stroked ? strokeColor : fillColor;
             if (token == "s" || token == "b" || token == "b*") path.closed = true;
             // A closed subpath drawn back to its start: the start once.
             if (path.points.size() > 2 && (path.points.front() - path.points.back()).norm() < 1e-9) {

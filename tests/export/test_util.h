@@ -41,6 +41,7 @@ struct PdfPath {
   int page = 0;  ///< from 1
   Polyline points;
   bool closed = false;
+  Eigen::Vector3d color = Eigen::Vector3d::Zero();  ///< RGB 0..1 it was stroked (or filled) in
 };
 /// Every subpath stroked or filled in the PDF's page content streams (decoded by qpdf), with the
 /// transformation matrix (q, Q, cm) applied. Empty, and the test told, when qpdf cannot read it.
