@@ -5,6 +5,7 @@ may not use (or every module the CLI links besides the pipeline) and exits 1, el
 
     layering.py SRC_DIR
     layering.py --cli-links "LINK;LIBRARIES"   (the dform target's LINK_LIBRARIES property)
+    layering.py --core-copies SRC_DIR   (export defines none of core/polyline.h's 2D helpers again)
     layering.py --self-test   (a planted upward include or link must be found, a clean tree pass)
 """
 import os
@@ -71,6 +72,33 @@ def cli_link_violations(link_libraries):
             for lib in ours if lib not in CLI_MAY_LINK]
 
 
+# core's 2D helpers (core/polyline.h) are the one copy: export, which draws in 2D, uses them
+# rather than defining a function of the same name again (a renamed copy is what the
+# `duplicates` tool finds).
+DECLARED = re.compile(r"^[A-Za-z][\w:<>,\s\*&]*?[\s\*&](\w+)\(", re.M)
+
+
+def core_helper_copies(src, module="export", header="core/polyline.h"):
+    with open(os.path.join(src, header), encoding="utf-8") as f:
+        names = set(DECLARED.findall(f.read()))
+    found = []
+    for root, _, files in os.walk(os.path.join(src, module)):
+        for name in sorted(files):
+            path = os.path.join(root, name)
+            with open(path, encoding="utf-8") as f:
+                text = f.read()
+            for helper in sorted(names):
+                # A definition: a return type at the start of a line, the name, its parameters
+                # and a body (not a call, which has no type before it, nor a declaration).
+                definition = re.compile(r"^[A-Za-z][\w:<>,\s\*&]*?[\s\*&]" + helper +
+                                        r"\([^;{]*\)\s*(const\s*)?\{", re.M)
+                for m in definition.finditer(text):
+                    line = text.count("\n", 0, m.start()) + 1
+                    found.append(f"{os.path.relpath(path, src)}:{line}: {module} defines {helper}, "
+                                 f"which {header} has")
+    return found
+
+
 def self_test():
     with tempfile.TemporaryDirectory() as src:
         def write(path, text):
@@ -85,6 +113,14 @@ def self_test():
         assert len(found) == 1 and found[0].startswith("io/bad.cpp:2: io includes pipeline/"), found
         write("core/worse.h", '#include "export/exporter.h"\n')
         assert len(violations(src)) == 2, violations(src)
+        write("core/polyline.h", "double closedLength(const Eigen::MatrixXd& P);\n"
+                                 "bool segmentsIntersect(const Vec2& a,\n    const Vec2& b);\n")
+        write("export/draw.cpp", "double width(const Polyline& p) { return closedLength(p); }\n")
+        assert core_helper_copies(src) == [], core_helper_copies(src)
+        write("export/copy.cpp", "namespace {\nstatic double closedLength(const Polyline& p,\n"
+                                 "                           int k) {\n  return 0;\n}\n}\n")
+        found = core_helper_copies(src)
+        assert found == ["export/copy.cpp:2: export defines closedLength, which core/polyline.h has"], found
     assert cli_link_violations("dform::pipeline;CLI11::CLI11;dform_warnings") == []
     found = cli_link_violations("dform::pipeline;dform::export;CLI11::CLI11;dform_report")
     assert len(found) == 2 and "dform::export" in found[0] and "dform_report" in found[1], found
@@ -100,6 +136,12 @@ def main():
         for v in found:
             print(v)
         print(f"cli links: {sys.argv[2]}")
+        return 1 if found else 0
+    if len(sys.argv) == 3 and sys.argv[1] == "--core-copies":
+        found = core_helper_copies(sys.argv[2])
+        for v in found:
+            print(v)
+        print(f"core helper copies in export: {len(found)}")
         return 1 if found else 0
     if len(sys.argv) != 2:
         print(__doc__, file=sys.stderr)
