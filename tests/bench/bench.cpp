@@ -21,6 +21,7 @@
 
 #include "core/allocator.h"
 #include "export/exporter.h"
+#include "median.h"
 #include "models.h"
 #include "pipeline/forward_pipeline.h"
 #include "pipeline/inverse_pipeline.h"
@@ -46,12 +47,6 @@ struct Case {
 // A hard sample of the paper model: its job file at another resolution (the bar's mesh size).
 Case sampleJob(const char* name, const char* jobFile, int resolution) {
   return {name, nullptr, nullptr, resolution, 0.0, ModelChoice::Paper, jobFile};
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 std::string sample(const char* name) { return std::string(DFORM_SAMPLES_DIR) + "/forward/" + name; }
