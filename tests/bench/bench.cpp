@@ -3,7 +3,8 @@
 // figures, as a Markdown table for docs/benchmarks.md. Method and machine: docs/benchmarks.md.
 //
 //   dform_bench [--repeats N] [--smoke] [--export]
-//   dform_bench --scale [--repeats N] [--plot FILE.svg]   (scale.cpp)
+//   dform_bench --scale [--repeats N] [--plot FILE.svg]      (scale.cpp)
+//   dform_bench --accuracy [--repeats N] [--plot FILE.svg]   (accuracy.cpp)
 //
 // --export times only the export: each forward case is solved once and exported N times; then a
 // long seam, two flat 2.5 m squares (a 10 m seam, synthetic: tests/validate/models.h).
@@ -19,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "accuracy.h"
 #include "core/allocator.h"
 #include "export/exporter.h"
 #include "median.h"
@@ -144,7 +146,7 @@ int benchExport(const std::vector<Case>& cases, int repeats, const std::filesyst
 int main(int argc, char** argv) {
   keepFreedMemory();  // as build/dform does
   int repeats = 7;
-  bool smoke = false, exportOnly = false, scale = false;
+  bool smoke = false, exportOnly = false, scale = false, accuracy = false;
   std::string plot;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--smoke")) {
@@ -154,16 +156,21 @@ int main(int argc, char** argv) {
       exportOnly = true;
     } else if (!std::strcmp(argv[i], "--scale")) {
       scale = true;
+    } else if (!std::strcmp(argv[i], "--accuracy")) {
+      accuracy = true;
     } else if (!std::strcmp(argv[i], "--plot") && i + 1 < argc) {
       plot = argv[++i];
     } else if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc) {
       repeats = std::max(1, std::atoi(argv[++i]));
     } else {
-      std::fprintf(stderr, "usage: dform_bench [--repeats N] [--smoke] [--export] | --scale [--repeats N] [--plot FILE.svg]\n");
+      std::fprintf(stderr,
+                   "usage: dform_bench [--repeats N] [--smoke] [--export] | --scale [--repeats N] [--plot FILE.svg]"
+                   " | --accuracy [--repeats N] [--plot FILE.svg]\n");
       return 2;
     }
   }
   if (scale) return runScale(repeats, plot);
+  if (accuracy) return runAccuracy(repeats, plot, false);
   std::vector<Case> cases = {
       {"ellipses", "ellipses-a.svg", "ellipses-b.svg", 50, 0.0},
       {"ellipses", "ellipses-a.svg", "ellipses-b.svg", 75, 0.0},
@@ -263,6 +270,10 @@ int main(int argc, char** argv) {
                 last.summary.factorisations, last.curveMatch.D_error, 100 * last.metrics.L_error,
                 100 * last.metrics.L_max, last.curveMatch.roundtrip_rms_rel);
     std::fflush(stdout);
+  }
+  if (smoke) {
+    std::printf("\n");
+    return runAccuracy(repeats, "", true);
   }
   return 0;
 }
