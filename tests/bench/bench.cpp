@@ -3,7 +3,8 @@
 // figures, as a Markdown table for docs/benchmarks.md. Method and machine: docs/benchmarks.md.
 //
 //   dform_bench [--repeats N] [--smoke] [--export]
-//   dform_bench --scale [--repeats N] [--plot FILE.svg]   (scale.cpp)
+//   dform_bench --scale [--repeats N] [--plot FILE.svg]      (scale.cpp)
+//   dform_bench --accuracy [--repeats N] [--plot FILE.svg]   (accuracy.cpp)
 //
 // --export times only the export: each forward case is solved once and exported N times; then a
 // long seam, two flat 2.5 m squares (a 10 m seam, synthetic: tests/validate/models.h).
@@ -11,6 +12,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <ctime>
@@ -18,17 +20,22 @@
 #include <string>
 #include <vector>
 
+#include "accuracy.h"
 #include "core/allocator.h"
 #include "export/exporter.h"
+#include "median.h"
 #include "models.h"
 #include "pipeline/forward_pipeline.h"
 #include "pipeline/inverse_pipeline.h"
+#include "pipeline/job_file.h"
 #include "scale.h"
 
 namespace {
 
 using namespace dform;
 
+// Two outlines of samples/forward/ with the default settings but B's starting fraction, or, when
+// jobFile is set, one of its job files run as the sample runs (join, starting pair, weights).
 struct Case {
   const char* name;
   const char* a;
@@ -36,12 +43,12 @@ struct Case {
   int resolution;
   double startB;
   ModelChoice model = ModelChoice::Auto;  ///< auto: the exact model wherever it applies
+  const char* jobFile = nullptr;
 };
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+// A hard sample of the paper model: its job file at another resolution (the bar's mesh size).
+Case sampleJob(const char* name, const char* jobFile, int resolution) {
+  return {name, nullptr, nullptr, resolution, 0.0, ModelChoice::Paper, jobFile};
 }
 
 std::string sample(const char* name) { return std::string(DFORM_SAMPLES_DIR) + "/forward/" + name; }
@@ -72,13 +79,27 @@ ExportTime timeExport(const DForm& model, const std::filesystem::path& dir, doub
 
 Result<ForwardRun> solveCase(const Case& c) {
   ForwardJob job;
-  job.pieceA = sample(c.a);
-  job.pieceB = sample(c.b);
+  if (c.jobFile) {
+    Result<Job> read = readJobFile(sample(c.jobFile));
+    if (!read.isOk()) return read.status();
+    job = read.value().forward;
+  } else {
+    job.pieceA = sample(c.a);
+    job.pieceB = sample(c.b);
+    job.startB.fraction = c.startB;
+  }
   job.resolution = c.resolution;
-  job.startB.fraction = c.startB;
   job.model = c.model;
   MessageSink sink;
   return runForward(job, sink);
+}
+
+// A distance from the exact D-Form, or "n/a" where there is none to compare with (metrics.h).
+std::string exactDistance(double relative) {
+  if (std::isnan(relative)) return "n/a";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1e", relative);
+  return text;
 }
 
 // Times `repeats` exports of `model` and prints its row; false when an export fails.
@@ -125,7 +146,7 @@ int benchExport(const std::vector<Case>& cases, int repeats, const std::filesyst
 int main(int argc, char** argv) {
   keepFreedMemory();  // as build/dform does
   int repeats = 7;
-  bool smoke = false, exportOnly = false, scale = false;
+  bool smoke = false, exportOnly = false, scale = false, accuracy = false;
   std::string plot;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--smoke")) {
@@ -135,16 +156,21 @@ int main(int argc, char** argv) {
       exportOnly = true;
     } else if (!std::strcmp(argv[i], "--scale")) {
       scale = true;
+    } else if (!std::strcmp(argv[i], "--accuracy")) {
+      accuracy = true;
     } else if (!std::strcmp(argv[i], "--plot") && i + 1 < argc) {
       plot = argv[++i];
     } else if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc) {
       repeats = std::max(1, std::atoi(argv[++i]));
     } else {
-      std::fprintf(stderr, "usage: dform_bench [--repeats N] [--smoke] [--export] | --scale [--repeats N] [--plot FILE.svg]\n");
+      std::fprintf(stderr,
+                   "usage: dform_bench [--repeats N] [--smoke] [--export] | --scale [--repeats N] [--plot FILE.svg]"
+                   " | --accuracy [--repeats N] [--plot FILE.svg]\n");
       return 2;
     }
   }
   if (scale) return runScale(repeats, plot);
+  if (accuracy) return runAccuracy(repeats, plot, false);
   std::vector<Case> cases = {
       {"ellipses", "ellipses-a.svg", "ellipses-b.svg", 50, 0.0},
       {"ellipses", "ellipses-a.svg", "ellipses-b.svg", 75, 0.0},
@@ -160,8 +186,17 @@ int main(int argc, char** argv) {
       {"circle + square", "circle.svg", "square.svg", 125, 0.0},
       {"non-convex", "nonconvex-a.svg", "nonconvex-b.svg", 75, 0.0},
       {"non-convex", "nonconvex-a.svg", "nonconvex-b.svg", 125, 0.0},
+      // The paper model at the sizes of issue 17's bars: ~1k vertices for the ellipses, ~2.6k for
+      // the hard samples.
+      {"ellipses", "ellipses-a.svg", "ellipses-b.svg", 75, 0.0, ModelChoice::Paper},
+      sampleJob("circle + square, mid side", "circle-square-mid-side.json", 125),
+      sampleJob("non-convex, shifted", "nonconvex-shifted.json", 125),
+      sampleJob("squaricle", "squaricle.json", 125),
+      sampleJob("demi", "demi.json", 79),
+      sampleJob("anti", "anti.json", 63),
   };
-  if (smoke) cases = {{"ellipses", "ellipses-a.svg", "ellipses-b.svg", 30, 0.0}};
+  if (smoke)  // a tiny sample job too, so that the job-file rows keep working
+    cases = {{"ellipses", "ellipses-a.svg", "ellipses-b.svg", 30, 0.0}, sampleJob("anti", "anti.json", 20)};
 
   // Per process: benches of other checkouts on the same machine use the temporary folder too.
   const auto exportDir =
@@ -173,8 +208,9 @@ int main(int argc, char** argv) {
     return status;
   }
   std::printf("| case | model | seam n | vertices | mesh s | solve s | run s | export s | LM iters | "
-              "factorisations | L_error %% | L_max %% | B_error | exact distance (RMS) |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+              "factorisations | L_error %% | L_max %% | B_error | flipped | exact distance (RMS) | "
+              "exact distance (max) |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Case& c : cases) {
     std::vector<double> mesh, solveSeconds, total, exportSeconds;
     ForwardRun last;
@@ -192,11 +228,12 @@ int main(int argc, char** argv) {
       if (exportSeconds.back() < 0) return 1;
     }
     const Metrics& m = last.metrics;
-    std::printf("| %s | %s | %d | %ld | %.3f | %.3f | %.3f | %.3f | %zu | %d | %.3f | %.3f | %.1e | %.1e |\n",
+    std::printf("| %s | %s | %d | %ld | %.3f | %.3f | %.3f | %.3f | %zu | %d | %.3f | %.3f | %.1e | %d | %s | %s |\n",
                 c.name, last.modelUsed.name.c_str(), c.resolution,
                 long(last.model.a.flat.rows() + last.model.b.flat.rows()), median(mesh), median(solveSeconds),
                 median(total), median(exportSeconds), last.summary.iterations.size(), last.summary.factorisations,
-                100 * m.L_error, 100 * m.L_max, m.B_error, m.exact_distance_rms_rel);
+                100 * m.L_error, 100 * m.L_max, m.B_error, m.flipped_2d + m.flipped_3d,
+                exactDistance(m.exact_distance_rms_rel).c_str(), exactDistance(m.exact_distance_max_rel).c_str());
     std::fflush(stdout);
   }
   std::filesystem::remove_all(exportDir);
@@ -233,6 +270,10 @@ int main(int argc, char** argv) {
                 last.summary.factorisations, last.curveMatch.D_error, 100 * last.metrics.L_error,
                 100 * last.metrics.L_max, last.curveMatch.roundtrip_rms_rel);
     std::fflush(stdout);
+  }
+  if (smoke) {
+    std::printf("\n");
+    return runAccuracy(repeats, "", true);
   }
   return 0;
 }

@@ -12,12 +12,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <string>
 #include <vector>
 
+#include "median.h"
 #include "pipeline/forward_pipeline.h"
 #include "pipeline/inverse_pipeline.h"
+#include "plot.h"
 
 namespace {
 
@@ -32,12 +33,6 @@ struct Measured {
   long vertices = 0;
   double solveSeconds = 0, runSeconds = 0, wallSeconds = 0, peakMb = 0, lError = 0, lMax = 0;
 };
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 // Runs the case in this process and writes "vertices solve run L_error L_max" to fd.
 void runCase(const Case& c, int fd) {
@@ -93,55 +88,25 @@ bool measure(const Case& c, Measured& out) {
 }
 
 // Two panels, seconds and MB against thousands of vertices, forward and inverse series.
-void writePlot(const std::string& path, const std::vector<Case>& cases, const std::vector<Measured>& rows) {
-  const double width = 380, height = 260, left = 60, top = 30, gap = 90;
+bool writeScalePlot(const std::string& path, const std::vector<Case>& cases, const std::vector<Measured>& rows) {
   double maxV = 0, maxT = 20, maxM = 0;
   for (const Measured& m : rows) maxV = std::max(maxV, m.vertices / 1000.0), maxT = std::max(maxT, m.wallSeconds),
                                  maxM = std::max(maxM, m.peakMb);
-  maxV = 20 * std::ceil(maxV / 20), maxT = 10 * std::ceil(maxT / 10), maxM = 500 * std::ceil(maxM / 500);
-  std::ofstream svg(path);
-  svg << "<svg xmlns='http://www.w3.org/2000/svg' width='" << 2 * width + gap + 2 * left << "' height='"
-      << height + 2 * top + 40 << "' font-family='sans-serif' font-size='12'>\n"
-      << "<rect width='100%' height='100%' fill='white'/>\n";
-  auto panel = [&](double x0, const char* title, double maxY, auto value, double goal, const char* unit) {
-    auto px = [&](double v) { return x0 + v / maxV * width; };
-    auto py = [&](double y) { return top + height - y / maxY * height; };
-    svg << "<text x='" << x0 + width / 2 << "' y='" << top - 10 << "' text-anchor='middle' font-weight='bold'>"
-        << title << "</text>\n";
-    for (int k = 0; k <= 5; ++k) {
-      const double vx = maxV * k / 5, vy = maxY * k / 5;
-      svg << "<line x1='" << px(vx) << "' y1='" << py(0) << "' x2='" << px(vx) << "' y2='" << py(maxY)
-          << "' stroke='#eee'/><text x='" << px(vx) << "' y='" << py(0) + 16 << "' text-anchor='middle'>" << vx
-          << "k</text>\n<line x1='" << px(0) << "' y1='" << py(vy) << "' x2='" << px(maxV) << "' y2='" << py(vy)
-          << "' stroke='#eee'/><text x='" << px(0) - 6 << "' y='" << py(vy) + 4 << "' text-anchor='end'>" << vy
-          << "</text>\n";
+  const PlotAxis vertices{"vertices", 20 * std::ceil(maxV / 20), 0, "k"};
+  PlotPanel time{"Wall time (median), s", vertices, {"seconds", 10 * std::ceil(maxT / 10), 0, ""}, {}, 0, 20};
+  PlotPanel memory{"Peak memory, MB", vertices, {"MB", 500 * std::ceil(maxM / 500), 0, ""}, {}, 0, 2048};
+  for (const bool forward : {true, false}) {
+    const std::string colour = forward ? "#1f77b4" : "#ff7f0e";
+    PlotSeries wall{colour, forward ? "forward (two ellipses)" : "inverse (saddle curve)", {}, {}, {}};
+    PlotSeries peak = wall;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      if (cases[i].forward != forward) continue;
+      wall.x.push_back(rows[i].vertices / 1000.0), wall.y.push_back(rows[i].wallSeconds);
+      peak.x.push_back(rows[i].vertices / 1000.0), peak.y.push_back(rows[i].peakMb);
     }
-    svg << "<text x='" << x0 + width / 2 << "' y='" << top + height + 34 << "' text-anchor='middle'>vertices</text>"
-        << "<text x='" << x0 - 48 << "' y='" << top + height / 2 << "' transform='rotate(-90 " << x0 - 48 << " "
-        << top + height / 2 << ")' text-anchor='middle'>" << unit << "</text>\n";
-    if (goal > 0 && goal <= maxY)
-      svg << "<line x1='" << px(0) << "' y1='" << py(goal) << "' x2='" << px(maxV) << "' y2='" << py(goal)
-          << "' stroke='#c00' stroke-dasharray='6 4'/><text x='" << px(maxV) << "' y='" << py(goal) - 4
-          << "' text-anchor='end' fill='#c00'>goal</text>\n";
-    for (const bool forward : {true, false}) {
-      const char* colour = forward ? "#1f77b4" : "#ff7f0e";
-      std::string points;
-      for (std::size_t i = 0; i < rows.size(); ++i) {
-        if (cases[i].forward != forward) continue;
-        const double x = px(rows[i].vertices / 1000.0), y = py(value(rows[i]));
-        points += std::to_string(x) + "," + std::to_string(y) + " ";
-        svg << "<circle cx='" << x << "' cy='" << y << "' r='3.5' fill='" << colour << "'/>\n";
-      }
-      svg << "<polyline points='" << points << "' fill='none' stroke='" << colour << "' stroke-width='2'/>\n";
-    }
-    svg << "<rect x='" << x0 << "' y='" << top << "' width='" << width << "' height='" << height
-        << "' fill='none' stroke='#333'/>\n";
-  };
-  panel(left, "Wall time (median), s", maxT, [](const Measured& m) { return m.wallSeconds; }, 20, "seconds");
-  panel(left + width + gap, "Peak memory, MB", maxM, [](const Measured& m) { return m.peakMb; }, 2048, "MB");
-  svg << "<text x='" << left << "' y='" << top + height + 54 << "' fill='#1f77b4'>forward (two ellipses)</text>"
-      << "<text x='" << left + 200 << "' y='" << top + height + 54 << "' fill='#ff7f0e'>inverse (saddle curve)</text>"
-      << "\n</svg>\n";
+    time.series.push_back(wall), memory.series.push_back(peak);
+  }
+  return writePlot(path, {time, memory});
 }
 
 }  // namespace
@@ -174,6 +139,9 @@ int runScale(int repeats, const std::string& plotPath) {
     std::fflush(stdout);
     rows.push_back(m);
   }
-  if (!plotPath.empty()) writePlot(plotPath, cases, rows);
+  if (!plotPath.empty() && !writeScalePlot(plotPath, cases, rows)) {
+    std::fprintf(stderr, "dform_bench: cannot write %s\n", plotPath.c_str());
+    return 1;
+  }
   return 0;
 }
