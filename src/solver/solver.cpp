@@ -446,22 +446,18 @@ SolverSummary LeastSquaresSolver::solve(Eigen::VectorXd& x) {
       continue;
     }
     it.stepNorm = dx.norm();
-    // Predicted decrease of the model m(dx) = f + 2 g.dx + dx.A.dx.
-    const double predicted =
-        -(2.0 * normal.g().dot(dx) + dx.dot(normal.A().selfadjointView<Eigen::Lower>() * dx));
+    // The fraction t of the step taken: 1, or less where the valley bends too much for it.
+    double t = 1.0;
     Eigen::VectorXd step = dx;
     if (options.geodesicAcceleration &&
         stepSolver.solveAgain(normal.A(), mu, normal.curvatureGradient(x, dx), acceleration, it)) {
       it.acceleration = 2.0 * acceleration.norm() / std::max(it.stepNorm, 1e-300);
-      if (it.acceleration > options.maxAccelerationRatio) {  // the valley bends too much for it
-        mu *= nu;
-        nu *= 2.0;
-        it.cost = cost;
-        if (!record(it, iterationStart)) break;
-        continue;
-      }
-      step += 0.5 * acceleration;
+      if (it.acceleration > options.maxAccelerationRatio) t = options.maxAccelerationRatio / it.acceleration;
+      step = t * dx + (0.5 * t * t) * acceleration;
     }
+    // Predicted decrease of the model m(t dx) = f + 2 t g.dx + t^2 dx.A.dx.
+    const double predicted =
+        -(2.0 * t * normal.g().dot(dx) + t * t * dx.dot(normal.A().selfadjointView<Eigen::Lower>() * dx));
     const Eigen::VectorXd xTrial = x + step;
     const double trialCost = normal.evaluate(xTrial, false);
     const double actual = cost - trialCost;
@@ -475,7 +471,7 @@ SolverSummary LeastSquaresSolver::solve(Eigen::VectorXd& x) {
       it.costChange = actual;
       const double previous = cost;
       cost = trialCost;
-      mu = std::max(muFloor, mu * std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3)));
+      mu = t < 1.0 ? mu / t : std::max(muFloor, mu * std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3)));
       nu = 2.0;
       it.cost = cost;
       it.termCosts = normal.termCosts();

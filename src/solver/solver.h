@@ -62,7 +62,10 @@ struct SolverOptions {
   /// Geodesic acceleration (Transtrum and Sethna, 2012): each step v gets the second-order
   /// correction a/2, a = -(J^T J + mu I)^-1 J^T r''[v, v], so that it follows a curved valley of
   /// the objective instead of leaving it (bending a sheet isometrically is such a valley). A step
-  /// whose correction is large, 2 |a| / |v| > maxAccelerationRatio, is rejected as too long.
+  /// whose correction is large, 2 |a| / |v| > maxAccelerationRatio, is too long for the valley: it is
+  /// taken shortened along it, t v + t^2 a / 2 with t = maxAccelerationRatio / (2 |a| / |v|), and
+  /// the damping rises by 1 / t (refusing it instead raised the damping 64-fold in three refusals,
+  /// and the anti D-Form's solve crawled).
   bool geodesicAcceleration = true;
   double maxAccelerationRatio = 0.75;
   /// Called after every iteration; return false to stop the solve (Termination::UserAbort).

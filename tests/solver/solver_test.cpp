@@ -149,6 +149,35 @@ TEST(Solver, GeodesicAccelerationFollowsACurvedValley) {
   EXPECT_LT(iterations[1], iterations[0]);
 }
 
+TEST(Solver, AStepTooLongForTheValleyIsShortenedAlongItNotRefused) {
+  // From the classic start with almost no damping, the first Gauss-Newton steps leave Rosenbrock's
+  // curved valley (2 |a| / |v| > maxAccelerationRatio). Such a step is taken shortened along the
+  // geodesic, t v + t^2 a / 2 with t = maxAccelerationRatio / (2 |a| / |v|), rather than refused,
+  // and the damping rises by 1 / t so that the next step starts at about the length that was
+  // taken: refusing it instead multiplied the damping by 2, 4, 8, ... on the way in and cost the
+  // anti D-Form's solve 54 iterations in place of 16.
+  Problem problem(2);
+  problem.addTerm("rosenbrock", 1.0, std::make_unique<Rosenbrock>(1000.0));
+  Eigen::VectorXd x = rosenbrockStart();
+  SolverOptions options;
+  options.functionTolerance = 0.0;
+  options.maxIterations = 1000;
+  options.initialDampingRatio = 1e-12;
+  const SolverSummary summary = solve(problem, options, x);
+  ASSERT_EQ(summary.termination, Termination::Converged) << summary.message;
+  EXPECT_NEAR(x[0], 1.0, 1e-6);
+  int shortened = 0;
+  for (std::size_t i = 0; i + 1 < summary.iterations.size(); ++i) {
+    const IterationSummary& it = summary.iterations[i];
+    if (!(it.acceleration > options.maxAccelerationRatio) || !it.accepted) continue;
+    ++shortened;
+    EXPECT_GT(it.costChange, 0.0);
+    EXPECT_NEAR(summary.iterations[i + 1].damping, it.damping * it.acceleration / options.maxAccelerationRatio,
+                1e-12 * summary.iterations[i + 1].damping);
+  }
+  EXPECT_GT(shortened, 0);
+}
+
 TEST(Solver, ARefusedStepIsNeverTakenAndTheSolveStopsAtTheBoundary) {
   // Rosenbrock's minimum (1, 1) lies beyond x[0] = 0.5, which no step may cross: the solve goes
   // as far as it may, every point it stands on stays on the allowed side, and it still ends.
