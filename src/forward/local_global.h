@@ -30,13 +30,13 @@ struct EdgeLengthPairs {
 struct LocalGlobalOptions {
   /// 0 switches the relaxation off. Its steps cost a few back-substitutions each, so it may run
   /// long: a large shape change (an anti D-Form's brims swinging out) is far cheaper here than in
-  /// Levenberg-Marquardt, whose steps the change's curvature keeps short. Depth 12 and 1e-7 run
-  /// it close to the minimum, so that Levenberg-Marquardt mostly polishes: with depth 6 and 1e-6
-  /// it stopped on the first slow step, and LM crawled on from there (the demi sample: 8 LM
-  /// iterations and 5 factorisations in 10 s, against 1 and 1 in 7 s, docs/benchmarks.md).
+  /// Levenberg-Marquardt, whose steps the change's curvature keeps short. Stopping below 1e-7 per
+  /// step runs it close to the minimum, so that Levenberg-Marquardt mostly polishes: at 1e-6 it
+  /// stopped early and LM crawled on from there (the demi sample: 8 LM iterations and 5
+  /// factorisations in 14 s, against 1 and 1 in 4 s; docs/benchmarks.md, "Issue 17").
   int maxIterations = 2000;
   double relativeTolerance = 1e-7;  ///< stop when an iteration lowers the energy by less than this fraction
-  int andersonDepth = 12;           ///< past iterates used by Anderson acceleration (0: plain)
+  int andersonDepth = 6;            ///< past iterates used by Anderson acceleration (0: plain)
   /// Called after every iteration (iteration, cost = energy, costChange, cumulativeSeconds set);
   /// return false to stop the relaxation (a Ctrl-C, say).
   std::function<bool(const IterationSummary&)> callback;

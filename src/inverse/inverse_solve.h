@@ -26,7 +26,6 @@ struct InverseOptions {
     LocalGlobalOptions o;
     o.maxIterations = 300;
     o.relativeTolerance = 1e-4;
-    o.andersonDepth = 6;  // as its figures were measured: the start needs smoothing, not a long run
     return o;
   }();
   /// Levenberg-Marquardt after the relaxation, on Eq. 6 with its exact quartic isometry term. Off
