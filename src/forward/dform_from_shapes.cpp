@@ -134,10 +134,8 @@ Status validateForwardJob(const ForwardSettings& job) {
     return usage("the perimeter tolerance must be in (0, 1)");
   if (!(job.interiorEdgeFactor >= 0.25 && job.interiorEdgeFactor <= 8.0))
     return usage("the interior edge factor (--interior-edge, interior_edge in a job file) must be in [0.25, 8]");
-  if (!weightsAreValid(forwardTerms(), job.solve.weights))
-    return usage("weights must be finite and >= 0");
-  std::string why;
-  if (!job.solve.solver.isValid(&why)) return usage("solver options: " + why);
+  if (std::string problem = settingsProblem(forwardTerms(), job.solve.weights, job.solve.solver); !problem.empty())
+    return usage(problem);
   return Status::ok();
 }
 

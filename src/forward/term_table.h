@@ -102,14 +102,16 @@ const TermRow<Weights>* findTerm(const TermTable<Weights>& table, const std::str
   return nullptr;
 }
 
-/// True when every weight is finite and >= 0.
+/// Why a job's weights and solver options cannot be used, or "" when they can: a weight that is
+/// negative or not finite, or solver options that are not valid. Forward and inverse jobs share it.
 template <typename Weights>
-bool weightsAreValid(const TermTable<Weights>& table, const Weights& weights) {
+std::string settingsProblem(const TermTable<Weights>& table, const Weights& weights, const SolverOptions& solver) {
   for (const TermRow<Weights>& row : table) {
     const double weight = weights.*row.weight;
-    if (!(weight >= 0.0 && std::isfinite(weight))) return false;
+    if (!(weight >= 0.0 && std::isfinite(weight))) return "weights must be finite and >= 0";
   }
-  return true;
+  std::string why;
+  return solver.isValid(&why) ? "" : "solver options: " + why;
 }
 
 }  // namespace dform

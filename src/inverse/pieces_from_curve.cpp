@@ -31,10 +31,8 @@ Status validateInverseJob(const InverseSettings& job) {
   if (job.resolution < 8 || job.resolution > 20000)
     return usage("resolution must be between 8 and 20000 curve points, got " +
                  std::to_string(job.resolution));
-  if (!weightsAreValid(inverseTerms(), job.solve.weights))
-    return usage("weights must be finite and >= 0");
-  std::string why;
-  if (!job.solve.solver.isValid(&why)) return usage("solver options: " + why);
+  if (std::string problem = settingsProblem(inverseTerms(), job.solve.weights, job.solve.solver); !problem.empty())
+    return usage(problem);
   return Status::ok();
 }
 
