@@ -253,6 +253,11 @@ std::optional<HullDistance> distanceToSeamHull(const DForm& model) {
   if (!hull) return std::nullopt;
   HullDistance result;
   result.diagonalMm = (seam.colwise().maxCoeff() - seam.colwise().minCoeff()).norm();
+  // Where seam points are coplanar, CGAL's quickhull triangulates their facet in an order that
+  // follows memory addresses (its border map is keyed by vertex handles), so a vertex on the hull
+  // measures ~1e-13 of the diagonal, a different rounding each run. Below this floor, about 5e4
+  // units in the last place of the diagonal, a vertex is on the hull: 0, the same every run.
+  const double onHullMm = 1e-11 * result.diagonalMm;
   for (const Piece* p : {&model.a, &model.b})
     for (int v = 0; v < p->shape.rows(); ++v) {
       double d = std::numeric_limits<double>::infinity();
@@ -260,6 +265,7 @@ std::optional<HullDistance> distanceToSeamHull(const DForm& model) {
         d = std::min(d,
                      pointTriangleDistance(p->shape.row(v), hull->V.row(hull->F(h, 0)),
                                            hull->V.row(hull->F(h, 1)), hull->V.row(hull->F(h, 2))));
+      if (d < onHullMm) d = 0.0;
       if (d > result.worstMm || result.where.empty()) {
         result.worstMm = std::max(result.worstMm, d);
         result.where = "piece " + p->name + " vertex " + std::to_string(v);

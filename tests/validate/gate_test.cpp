@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -36,6 +37,27 @@ const Names kForwardChecks = {
     "L_error",          "L_max",      "B_error",     "seam_gap_mm",     "gauss_max_rad",
     "flipped",          "degenerate", "flat_simple", "seam_length_rel", "self_intersection",
     "hull_distance_rel", "exact_distance_rel"};
+
+TEST(Gate, AVertexOnTheSeamHullMeasuresZeroEveryRun) {
+  // The tetrahedral D-Form's faces are the hull's facets, many seam points to each, which CGAL
+  // triangulates in an address-dependent order: on the hull is 0, not ~1e-13 of the diagonal that
+  // changed from run to run (and made a run's gate differ from the same gate measured again).
+  DForm model = test::tetraDForm(8);
+  const CheckResult onHull = *runGate(model, GateLimits{}).find("hull_distance_rel");
+  EXPECT_EQ(onHull.value, 0.0) << onHull.detail;
+  EXPECT_NE(onHull.detail.find("at piece A vertex 0;"), std::string::npos) << onHull.detail;
+  // The floor hides nothing larger: a vertex off the seam moved 1e-9 of the diagonal inwards
+  // is measured.
+  std::vector<bool> onSeam(std::size_t(model.a.shape.rows()), false);
+  for (int v : model.a.seam) onSeam[std::size_t(v)] = true;
+  const int inner = int(std::find(onSeam.begin(), onSeam.end(), false) - onSeam.begin());
+  ASSERT_LT(inner, model.a.shape.rows());
+  const double diagonal = 2.0 * std::sqrt(2.0) * 40.0;  // the seam's bounding box: 80 x 80 x 20 mm
+  model.a.shape.row(inner) *= 1.0 - 1e-9 * diagonal / model.a.shape.row(inner).norm();
+  const CheckResult inside = *runGate(model, GateLimits{}).find("hull_distance_rel");
+  EXPECT_GT(inside.value, 1e-10) << inside.detail;
+  EXPECT_LT(inside.value, 2e-9) << inside.detail;
+}
 
 TEST(Gate, ExactConvexDFormPassesEveryCheck) {
   const GateReport report = runGate(test::tetraDForm(8), GateLimits{});
