@@ -120,6 +120,21 @@ class Rosenbrock : public ResidualTerm {
   double k_;
 };
 
+// The valley of steepness k as a problem of its own.
+Problem rosenbrockProblem(double k) {
+  Problem problem(2);
+  problem.addTerm("rosenbrock", 1.0, std::make_unique<Rosenbrock>(k));
+  return problem;
+}
+
+// Options that stop on the gradient, the step or the cap, never on a small decrease.
+SolverOptions withoutDecreaseStop(int maxIterations) {
+  SolverOptions options;
+  options.functionTolerance = 0.0;
+  options.maxIterations = maxIterations;
+  return options;
+}
+
 // The valley's classic start.
 Eigen::VectorXd rosenbrockStart() {
   Eigen::VectorXd x(2);
@@ -130,13 +145,10 @@ Eigen::VectorXd rosenbrockStart() {
 TEST(Solver, GeodesicAccelerationFollowsACurvedValley) {
   int iterations[2] = {0, 0};
   for (int accelerate = 0; accelerate < 2; ++accelerate) {
-    Problem problem(2);
-    problem.addTerm("rosenbrock", 1.0, std::make_unique<Rosenbrock>(1000.0));
+    const Problem problem = rosenbrockProblem(1000.0);
     Eigen::VectorXd x = rosenbrockStart();
-    SolverOptions options;
-    options.functionTolerance = 0.0;
+    SolverOptions options = withoutDecreaseStop(1000);
     options.gradientTolerance = 1e-12;
-    options.maxIterations = 1000;
     options.geodesicAcceleration = accelerate == 1;
     const SolverSummary summary = solve(problem, options, x);
     ASSERT_EQ(summary.termination, Termination::Converged) << summary.message;
@@ -156,12 +168,9 @@ TEST(Solver, AStepTooLongForTheValleyIsShortenedAlongItNotRefused) {
   // and the damping rises by 1 / t so that the next step starts at about the length that was
   // taken: refusing it instead multiplied the damping by 2, 4, 8, ... on the way in and cost the
   // anti D-Form's solve 54 iterations in place of 16.
-  Problem problem(2);
-  problem.addTerm("rosenbrock", 1.0, std::make_unique<Rosenbrock>(1000.0));
+  const Problem problem = rosenbrockProblem(1000.0);
   Eigen::VectorXd x = rosenbrockStart();
-  SolverOptions options;
-  options.functionTolerance = 0.0;
-  options.maxIterations = 1000;
+  SolverOptions options = withoutDecreaseStop(1000);
   options.initialDampingRatio = 1e-12;
   const SolverSummary summary = solve(problem, options, x);
   ASSERT_EQ(summary.termination, Termination::Converged) << summary.message;
@@ -181,12 +190,9 @@ TEST(Solver, AStepTooLongForTheValleyIsShortenedAlongItNotRefused) {
 TEST(Solver, ARefusedStepIsNeverTakenAndTheSolveStopsAtTheBoundary) {
   // Rosenbrock's minimum (1, 1) lies beyond x[0] = 0.5, which no step may cross: the solve goes
   // as far as it may, every point it stands on stays on the allowed side, and it still ends.
-  Problem problem(2);
-  problem.addTerm("rosenbrock", 1.0, std::make_unique<Rosenbrock>(10.0));
+  const Problem problem = rosenbrockProblem(10.0);
   Eigen::VectorXd x = rosenbrockStart();
-  SolverOptions options;
-  options.functionTolerance = 0.0;
-  options.maxIterations = 500;
+  SolverOptions options = withoutDecreaseStop(500);
   int asked = 0, fromOutside = 0;
   options.acceptStep = [&](const Eigen::VectorXd& from, const Eigen::VectorXd& to) {
     ++asked;
