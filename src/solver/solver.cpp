@@ -1,6 +1,7 @@
 #include "solver/solver.h"
 
-#include <Eigen/CholmodSupport>
+#include "solver/supernodal_cholesky.h"
+
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cassert>
@@ -249,15 +250,14 @@ Eigen::VectorXd shiftedProduct(const SparseLower& A, double mu, const Eigen::Vec
 // refactorising otherwise.
 class StepSolver {
  public:
-  StepSolver(const SparseLower& pattern, const SolverOptions& options) : options_(options) {
-    factor_.analyzePattern(pattern);
+  StepSolver(const SparseLower& pattern, const SolverOptions& options) : options_(options), factor_(pattern) {
     // CHOLMOD's analysis counts the factorisation's flops and L's nonzeros. One CG iteration
     // costs two triangular solves with L (2 flops per nonzero each) and a product with A
     // (4 flops per stored lower nonzero). CG may spend a quarter of a factorisation: a stale
     // preconditioner that needs longer stays stale for the next steps too, and refactorising
     // serves them all. Counting flops rather than seconds keeps runs reproducible.
-    const double factorFlops = factor_.cholmod().fl;
-    const double cgFlops = 4.0 * factor_.cholmod().lnz + 4.0 * double(pattern.nonZeros());
+    const double factorFlops = factor_.factorFlops();
+    const double cgFlops = 4.0 * factor_.factorNonZeros() + 4.0 * double(pattern.nonZeros());
     cgBudget_ = std::clamp(int(0.25 * factorFlops / std::max(cgFlops, 1.0)), 1,
                            std::max(1, options.maxCgIterations));
   }
@@ -268,11 +268,9 @@ class StepSolver {
     it.cgIterations = 0;
     if (haveFactor_ && options_.maxCgIterations > 0 && preconditionedCg(A, mu, g, dx, it))
       return true;
-    factor_.setShift(mu);
-    factor_.factorize(A);
     ++factorisations_;
     it.refactorised = true;
-    if (factor_.info() != Eigen::Success) return haveFactor_ = false;
+    if (!factor_.factorize(A, mu)) return haveFactor_ = false;
     haveFactor_ = true;
     dx = -factor_.solve(g);
     return dx.allFinite();
@@ -321,12 +319,11 @@ class StepSolver {
   }
 
   const SolverOptions& options_;
-  // CHOLMOD's simplicial factor: no BLAS and no threads, so the same rounding on every machine.
-  // The supernodal one hands its dense blocks to whichever kernel OpenBLAS picks for the CPU
-  // (AVX-512, Haswell, ...), and those round differently; a solve that ends on a flat objective
-  // then took other steps per machine (the Squaricle sample folded with one kernel and not with
-  // another, docs/benchmarks.md "Same result on every machine").
-  Eigen::CholmodSimplicialLLT<SparseLower, Eigen::Lower> factor_;
+  // Not CHOLMOD's supernodal factor: it hands its dense blocks to whichever kernel OpenBLAS picks
+  // for the CPU (AVX-512, Haswell, ...), and those round differently; a solve that ends on a flat
+  // objective then took other steps per machine (the Squaricle sample folded with one kernel and
+  // not with another, docs/benchmarks.md "Same result on every machine").
+  SupernodalCholesky factor_;
   bool haveFactor_ = false;
   int factorisations_ = 0;
   int cgBudget_ = 1;  ///< CG iterations allowed per step before refactorising

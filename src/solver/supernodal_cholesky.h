@@ -1,0 +1,57 @@
+// A sparse Cholesky factorisation L L^T = P (A + mu I) P^T whose rounding is the same on every
+// x86-64 machine and thread count, at the speed of a supernodal factor.
+//
+// CHOLMOD's supernodal factor hands its dense blocks to the BLAS, and OpenBLAS picks a kernel per
+// CPU (AVX-512, Haswell, Sandybridge, ...) that sums in another order; its simplicial factor is
+// reproducible but does scalar work (about 1.8 GFlop/s here, docs/benchmarks.md). This class keeps
+// CHOLMOD's symbolic analysis (ordering, supernodes, which involve no floating-point rounding) and
+// does the numeric work itself, left-looking over the supernodes, with Eigen's dense kernels.
+// Those are compiled into this binary (no run-time kernel choice) and their only machine-dependent
+// choice, the product's blocking, which follows the CPU's cache sizes, is pinned.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <vector>
+
+namespace dform {
+
+class SupernodalCholesky {
+ public:
+  using SparseLower = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+
+  /// Analyses the pattern of `pattern`'s lower triangle (fill-reducing ordering, supernodes).
+  explicit SupernodalCholesky(const SparseLower& pattern);
+  ~SupernodalCholesky();
+  SupernodalCholesky(const SupernodalCholesky&) = delete;
+  SupernodalCholesky& operator=(const SupernodalCholesky&) = delete;
+
+  /// Factorises A + shift I, A given by its lower triangle with the analysed pattern (values
+  /// outside it are an error). False when A + shift I is not numerically positive definite.
+  bool factorize(const SparseLower& A, double shift = 0.0);
+
+  /// The solution Y of (A + shift I) Y = B for the last successful factorisation (one column
+  /// per right-hand side).
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
+
+  /// Floating-point operations of one factorisation and nonzeros of L, as the analysis counts
+  /// them (they set how many CG iterations a factorisation is worth).
+  double factorFlops() const { return factorFlops_; }
+  double factorNonZeros() const { return factorNonZeros_; }
+
+ private:
+  // The supernodes: columns first[s] .. first[s + 1] - 1 of L; their rows rows[rowStart[s] ..
+  // rowStart[s + 1]) (ascending, the supernode's own columns first); their values, column-major,
+  // at values[valueStart[s]].
+  int n_ = 0;
+  std::vector<int> first_, rowStart_, rows_, superOf_;
+  std::vector<long> valueStart_;
+  std::vector<int> perm_;         ///< row k of P A P^T is row perm_[k] of A
+  std::vector<long> scatter_;     ///< where each stored entry of A lands in values_
+  std::vector<long> diagonal_;    ///< where each diagonal entry of L lands (for the shift)
+  std::vector<double> values_;
+  double factorFlops_ = 0, factorNonZeros_ = 0;
+  bool factored_ = false;
+};
+
+}  // namespace dform
