@@ -308,6 +308,7 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
   Problem problem(layout.numVariables());
   addTerms(problem, table, terms, w);
   problem.holdConstant(held);
+  problem.setBlockSize(VariableLayout::kPerVertex);
   // Hold the seam corners near the drawn ones: the boundary fix as a constraint. The tolerance is
   // relative to the perimeter, #seam in the unit of the mean seam edge.
   const double perimeter = double(a.seam.size());

@@ -62,6 +62,7 @@ InverseResult solveInverse(const DForm& start, const Points3& curve, const Inver
   Problem problem(layout.numVariables());
   addTerms(problem, table, terms, w);
   problem.holdConstant(held);
+  problem.setBlockSize(VariableLayout::kPerVertex);
   if (result.relaxation.stopped) {  // a Ctrl-C: no further solve
     result.summary = summaryWithoutSteps(problem, x);
     result.summary.termination = Termination::UserAbort;

@@ -52,6 +52,11 @@ void Problem::holdConstant(const std::vector<int>& variables) {
   }
 }
 
+void Problem::setBlockSize(int size) {
+  assert(size >= 1 && "setBlockSize: a block has at least one unknown");
+  blockSize_ = size;
+}
+
 std::vector<double> Problem::termCosts(const Eigen::VectorXd& x) const {
   std::vector<double> costs;
   std::vector<double> r;

@@ -250,7 +250,8 @@ Eigen::VectorXd shiftedProduct(const SparseLower& A, double mu, const Eigen::Vec
 // refactorising otherwise.
 class StepSolver {
  public:
-  StepSolver(const SparseLower& pattern, const SolverOptions& options) : options_(options), factor_(pattern) {
+  StepSolver(const SparseLower& pattern, int blockSize, const SolverOptions& options)
+      : options_(options), factor_(pattern, blockSize) {
     // CHOLMOD's analysis counts the factorisation's flops and L's nonzeros. One CG iteration
     // costs two triangular solves with L (2 flops per nonzero each) and a product with A
     // (4 flops per stored lower nonzero). CG may spend a quarter of a factorisation: a stale
@@ -333,7 +334,7 @@ class StepSolver {
 
 struct LeastSquaresSolver::Impl {
   Impl(const Problem& p, SolverOptions o)
-      : problem(p), options(std::move(o)), normal(p), stepSolver(normal.A(), options) {}
+      : problem(p), options(std::move(o)), normal(p), stepSolver(normal.A(), p.blockSize(), options) {}
   const Problem& problem;
   const SolverOptions options;
   NormalEquations normal;

@@ -31,27 +31,76 @@ struct CholmodSession {
   }
 };
 
-}  // namespace
-
-SupernodalCholesky::SupernodalCholesky(const SparseLower& pattern) {
-  assert(pattern.rows() == pattern.cols() && pattern.isCompressed() && "a compressed square pattern");
-  pinProductBlocking();
-  n_ = int(pattern.rows());
-  CholmodSession session;
-  cholmod_common& c = session.common;
-  c.supernodal = CHOLMOD_SUPERNODAL;
+// CHOLMOD's view of the lower triangle of a symmetric pattern (no values).
+cholmod_sparse patternView(int n, const int* outer, const int* inner) {
   cholmod_sparse view{};
-  view.nrow = view.ncol = std::size_t(n_);
-  view.nzmax = std::size_t(pattern.nonZeros());
-  view.p = const_cast<int*>(pattern.outerIndexPtr());
-  view.i = const_cast<int*>(pattern.innerIndexPtr());
+  view.nrow = view.ncol = std::size_t(n);
+  view.nzmax = std::size_t(outer[n]);
+  view.p = const_cast<int*>(outer);
+  view.i = const_cast<int*>(inner);
   view.stype = -1;  // the lower triangle of a symmetric matrix
   view.itype = CHOLMOD_INT;
   view.xtype = CHOLMOD_PATTERN;
   view.dtype = CHOLMOD_DOUBLE;
   view.sorted = 1;
   view.packed = 1;
-  session.factor = cholmod_analyze(&view, &c);
+  return view;
+}
+
+// A fill-reducing ordering of the symmetric pattern whose lower triangle is `pattern`, found by
+// METIS on the graph of its blocks of `blockSize` unknowns (a vertex's x y z u v), each block
+// ordered as one. That graph is blockSize times smaller, and METIS takes a small fraction of
+// the time it took on the unknowns' graph (at 13k unknowns as long as a factorisation), for
+// about the same fill.
+std::vector<int> blockOrdering(const Eigen::SparseMatrix<double, Eigen::ColMajor, int>& pattern, int blockSize) {
+  const int n = int(pattern.rows()), blocks = (n + blockSize - 1) / blockSize;
+  std::vector<std::vector<int>> below(blocks);  // lower triangle of the block graph
+  for (int j = 0; j < n; ++j)
+    for (int p = pattern.outerIndexPtr()[j]; p < pattern.outerIndexPtr()[j + 1]; ++p) {
+      const int bi = pattern.innerIndexPtr()[p] / blockSize, bj = j / blockSize;
+      below[std::min(bi, bj)].push_back(std::max(bi, bj));
+    }
+  std::vector<int> outer(blocks + 1, 0), inner;
+  for (int b = 0; b < blocks; ++b) {
+    below[b].push_back(b);
+    std::sort(below[b].begin(), below[b].end());
+    below[b].erase(std::unique(below[b].begin(), below[b].end()), below[b].end());
+    inner.insert(inner.end(), below[b].begin(), below[b].end());
+    outer[b + 1] = int(inner.size());
+  }
+  CholmodSession session;
+  session.common.supernodal = CHOLMOD_SIMPLICIAL;  // only the ordering is wanted
+  session.common.nmethods = 1;
+  session.common.method[0].ordering = CHOLMOD_METIS;
+  cholmod_sparse view = patternView(blocks, outer.data(), inner.data());
+  session.factor = cholmod_analyze(&view, &session.common);
+  if (!session.factor || session.common.status < CHOLMOD_OK) throw std::bad_alloc();
+  const int* blockOrder = static_cast<const int*>(session.factor->Perm);
+  std::vector<int> order;
+  order.reserve(n);
+  for (int k = 0; k < blocks; ++k)
+    for (int u = blockOrder[k] * blockSize; u < std::min(n, (blockOrder[k] + 1) * blockSize); ++u) order.push_back(u);
+  return order;
+}
+
+}  // namespace
+
+SupernodalCholesky::SupernodalCholesky(const SparseLower& pattern, int blockSize) {
+  assert(pattern.rows() == pattern.cols() && pattern.isCompressed() && "a compressed square pattern");
+  pinProductBlocking();
+  n_ = int(pattern.rows());
+  CholmodSession session;
+  cholmod_common& c = session.common;
+  c.supernodal = CHOLMOD_SUPERNODAL;
+  cholmod_sparse view = patternView(n_, pattern.outerIndexPtr(), pattern.innerIndexPtr());
+  if (blockSize > 1) {
+    std::vector<int> ordering = blockOrdering(pattern, blockSize);
+    c.nmethods = 1;
+    c.method[0].ordering = CHOLMOD_GIVEN;
+    session.factor = cholmod_analyze_p(&view, ordering.data(), nullptr, 0, &c);
+  } else {
+    session.factor = cholmod_analyze(&view, &c);
+  }
   if (!session.factor || c.status < CHOLMOD_OK || !session.factor->is_super) throw std::bad_alloc();
   const cholmod_factor& L = *session.factor;
   factorFlops_ = c.fl;

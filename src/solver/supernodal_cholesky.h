@@ -21,7 +21,9 @@ class SupernodalCholesky {
   using SparseLower = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
   /// Analyses the pattern of `pattern`'s lower triangle (fill-reducing ordering, supernodes).
-  explicit SupernodalCholesky(const SparseLower& pattern);
+  /// With blockSize > 1 the unknowns come in consecutive blocks of that many (the last may be
+  /// shorter), and the ordering keeps each block together.
+  explicit SupernodalCholesky(const SparseLower& pattern, int blockSize = 1);
   ~SupernodalCholesky();
   SupernodalCholesky(const SupernodalCholesky&) = delete;
   SupernodalCholesky& operator=(const SupernodalCholesky&) = delete;
