@@ -104,6 +104,7 @@ SupernodalCholesky::SupernodalCholesky(const SparseLower& pattern, int blockSize
   if (!session.factor || c.status < CHOLMOD_OK || !session.factor->is_super) throw std::bad_alloc();
   const cholmod_factor& L = *session.factor;
   factorFlops_ = c.fl;
+  updateBuffer_.resize(L.maxcsize);
   factorNonZeros_ = c.lnz;
 
   const int nsuper = int(L.nsuper);
@@ -162,7 +163,6 @@ bool SupernodalCholesky::factorize(const SparseLower& A, double shift) {
   // `position` the first of its rows not yet used.
   const int nsuper = int(first_.size()) - 1;
   std::vector<int> head(nsuper, -1), next(nsuper, -1), position(nsuper, 0), local(n_, -1);
-  Matrix update;
   for (int k = 0; k < nsuper; ++k) {
     const int k1 = first_[k], k2 = first_[k + 1], cols = k2 - k1;
     const int* rows = rows_.data() + rowStart_[k];
@@ -178,6 +178,9 @@ bool SupernodalCholesky::factorize(const SparseLower& A, double shift) {
       int p2 = p1;
       while (p2 < dnrows && drows[p2] < k2) ++p2;
       const int m = p2 - p1, rest = dnrows - p1;
+      // CHOLMOD's analysis bounds every update (maxcsize); the buffer grows should one exceed it.
+      if (std::size_t(rest) * std::size_t(m) > updateBuffer_.size()) updateBuffer_.resize(std::size_t(rest) * std::size_t(m));
+      Block update(updateBuffer_.data(), rest, m);
       update.noalias() = Ld.middleRows(p1, rest) * Ld.middleRows(p1, m).transpose();
       for (int j = 0; j < m; ++j) {
         const int col = drows[p1 + j] - k1;
