@@ -257,6 +257,13 @@ DForm pillowInitialGuess(const Piece& a, const Piece& b) {
   return model;
 }
 
+double relaxationSmoothing(double smooth3d, const ForwardOptions& options) {
+  const double stiffest = ForwardWeights{}.smooth3d;
+  if (options.smoothingContinuation <= 1.0 || options.solver.maxIterations == 0 || smooth3d >= stiffest)
+    return smooth3d;
+  return std::min(stiffest, options.smoothingContinuation * smooth3d);
+}
+
 ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions& options) {
   assert(a.seam.size() == b.seam.size() && a.seam.size() >= 3 && "seams must pair one to one");
   ForwardResult result;
@@ -296,7 +303,9 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
   Eigen::VectorXd x = packVariables(layout, start.a, start.b);
 
   weightByFlatLength(edges, x, w.isometry);
-  const LocalGlobalRelaxation relaxation(linearTerms(table, terms, w), edges, x, held);
+  ForwardWeights relaxationWeights = w;
+  relaxationWeights.smooth3d = relaxationSmoothing(w.smooth3d, options);
+  const LocalGlobalRelaxation relaxation(linearTerms(table, terms, relaxationWeights), edges, x, held);
   // No Levenberg-Marquardt step folds a triangle over that stood upright before it
   // (forward/injectivity.h). The relaxation is not guarded: its path to the shape may pass
   // through folds (guarded, it stalled on the anti and Squaricle samples).

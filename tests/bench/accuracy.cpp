@@ -55,7 +55,7 @@ int runAccuracy(int repeats, const std::string& plotPath, bool smoke) {
   // Resolution 75 meshes the pair with about 1k vertices (both pieces), the bar's size. The sweep
   // brackets the default w_3D, 0.01: below it the sheet bends more freely, nearer the exact shape.
   const std::vector<double> weights =
-      smoke ? std::vector<double>{0.01} : std::vector<double>{0.03, 0.01, 0.003, 0.001, 0.0003, 0.0001};
+      smoke ? std::vector<double>{0.01} : std::vector<double>{0.03, 0.01, 0.003, 0.001, 0.0005, 0.0003, 0.0001};
   ForwardJob job;
   job.pieceA = std::string(DFORM_SAMPLES_DIR) + "/forward/ellipses-a.svg";
   job.pieceB = std::string(DFORM_SAMPLES_DIR) + "/forward/ellipses-b.svg";

@@ -115,6 +115,43 @@ TEST(Forward, LocalGlobalNeverRaisesItsEnergy) {
   EXPECT_LT(relaxed.summary.initialCost, 0.5 * start.summary.initialCost);
 }
 
+TEST(Forward, TheRelaxationRunsStifferBelowTheDefaultSmoothing) {
+  ForwardOptions o;  // continuation 6
+  EXPECT_DOUBLE_EQ(relaxationSmoothing(0.0005, o), 0.003);
+  EXPECT_DOUBLE_EQ(relaxationSmoothing(0.0001, o), 0.0006);
+  EXPECT_DOUBLE_EQ(relaxationSmoothing(0.004, o), 0.01) << "never stiffer than the default";
+  EXPECT_DOUBLE_EQ(relaxationSmoothing(0.01, o), 0.01);
+  EXPECT_DOUBLE_EQ(relaxationSmoothing(0.05, o), 0.05) << "a stiffer sheet relaxes at its own weight";
+  ForwardOptions off = o;
+  off.smoothingContinuation = 1.0;
+  EXPECT_DOUBLE_EQ(relaxationSmoothing(0.0005, off), 0.0005);
+  ForwardOptions relaxationOnly = o;  // nothing would continue from the relaxation's shape
+  relaxationOnly.solver.maxIterations = 0;
+  EXPECT_DOUBLE_EQ(relaxationSmoothing(0.0005, relaxationOnly), 0.0005);
+}
+
+TEST(Forward, AContinuationInTheSmoothingEndsOnTheDirectSolvesMinimum) {
+  // At w_3D = 0.0005 the relaxation runs at 0.003 and LM continues at 0.0005. Both solves are
+  // run to convergence: they must end on the same shape of the same objective, the continued
+  // one after fewer relaxation steps.
+  EllipsePair p;
+  ForwardOptions continued;
+  continued.weights.smooth3d = 0.0005;
+  continued.solver.functionTolerance = 1e-12;
+  continued.solver.gradientTolerance = 1e-9;
+  continued.solver.maxIterations = 200;
+  ForwardOptions direct = continued;
+  direct.smoothingContinuation = 0.0;
+  const ForwardResult c = solveForward(p.a, p.b, continued), d = solveForward(p.a, p.b, direct);
+  ASSERT_TRUE(c.summary.usable() && d.summary.usable());
+  EXPECT_NEAR(c.summary.finalCost, d.summary.finalCost, 1e-7 * d.summary.finalCost);
+  double largest = 0;
+  for (Eigen::Index i = 0; i < c.model.a.shape.rows(); ++i)
+    largest = std::max(largest, (c.model.a.shape.row(i) - d.model.a.shape.row(i)).norm());
+  EXPECT_LT(largest, 1e-3 * c.unitMm) << "mm";
+  EXPECT_LT(c.relaxation.iterations, d.relaxation.iterations);
+}
+
 // An interior vertex of A (the one nearest the piece's centre) and a neighbour of it.
 std::pair<int, int> centralVertexAndNeighbour(const Piece& a) {
   const Eigen::RowVector2d centre = a.flat.colwise().mean();
