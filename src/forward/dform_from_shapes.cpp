@@ -275,6 +275,7 @@ Status solvePaperModel(const ForwardSettings& job, const SeamLayout& layout, Sol
   }
 
   ForwardOptions options = job.solve;
+  options.continuationSmoothing = defaultWeights(job.joinA, job.joinB).smooth3d;
   detail::connectHooks(options.relaxation, options.solver, hooks);
   ForwardResult solved;
   for (std::size_t level = 0; level < levels.size(); ++level) {

@@ -258,7 +258,7 @@ DForm pillowInitialGuess(const Piece& a, const Piece& b) {
 }
 
 double relaxationSmoothing(double smooth3d, const ForwardOptions& options) {
-  const double stiffest = ForwardWeights{}.smooth3d;
+  const double stiffest = options.continuationSmoothing;
   if (options.smoothingContinuation <= 1.0 || options.solver.maxIterations == 0 || smooth3d >= stiffest)
     return smooth3d;
   return std::min(stiffest, options.smoothingContinuation * smooth3d);

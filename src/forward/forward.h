@@ -33,13 +33,16 @@ struct ForwardOptions {
     o.functionTolerance = 1e-3;
     return o;
   }();
-  /// Continuation in the 3D smoothing weight: when w_3D is below the default 0.01, the relaxation
-  /// runs at the stiffer min(0.01, smoothingContinuation * w_3D) and Levenberg-Marquardt goes on
-  /// from its shape at w_3D itself (relaxationSmoothing). The relaxation's steps crawl along the
+  /// Continuation in the 3D smoothing weight: when w_3D is below continuationSmoothing (the
+  /// weight the job's kind of D-Form is tuned for: 0.01 for a classic one, 0.001 for anti and demi
+  /// D-Forms, forward/dform_from_shapes.h), the relaxation runs at the stiffer
+  /// min(continuationSmoothing, smoothingContinuation * w_3D) and Levenberg-Marquardt goes on from
+  /// its shape at w_3D itself (relaxationSmoothing). The relaxation's steps crawl along the
   /// sheet's bending modes the more, the less it resists them (1031 steps at w_3D = 0.0003 on the
   /// ellipses at 1k vertices, 165 at 0.01), where LM's steps follow them in one or two
   /// factorisations. Values <= 1 turn it off; so does a solve by the relaxation alone.
   double smoothingContinuation = 6.0;
+  double continuationSmoothing = ForwardWeights{}.smooth3d;
   /// Every drawn line (the seam, free boundaries, creases) keeps its flat position exactly, but
   /// for the seam's corners: there, the real D-Form creases (paper section 7) and the corner needs
   /// a little room, so only the boundary-fix term holds it, tightened by multiplier updates

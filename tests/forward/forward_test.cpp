@@ -128,6 +128,11 @@ TEST(Forward, TheRelaxationRunsStifferBelowTheDefaultSmoothing) {
   ForwardOptions relaxationOnly = o;  // nothing would continue from the relaxation's shape
   relaxationOnly.solver.maxIterations = 0;
   EXPECT_DOUBLE_EQ(relaxationSmoothing(0.0005, relaxationOnly), 0.0005);
+  ForwardOptions hole = o;  // an anti or demi D-Form is tuned for 0.001
+  hole.continuationSmoothing = 0.001;
+  EXPECT_DOUBLE_EQ(relaxationSmoothing(0.001, hole), 0.001);
+  EXPECT_DOUBLE_EQ(relaxationSmoothing(0.0001, hole), 0.0006);
+  EXPECT_DOUBLE_EQ(relaxationSmoothing(0.0005, hole), 0.001);
 }
 
 TEST(Forward, AContinuationInTheSmoothingEndsOnTheDirectSolvesMinimum) {
