@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cholmod.h>
+#include <mutex>
 #include <new>
 
 namespace dform {
@@ -17,8 +18,16 @@ using ConstBlock = Eigen::Map<const Matrix>;
 // Eigen's dense product splits its sum over k into panels sized from the CPU's cache sizes, and
 // another panel size sums in another order. These are fixed so that every machine sums alike;
 // they are typical of an x86-64 core (32 KiB L1, 1 MiB L2, 8 MiB L3) and only set the panel
-// sizes, not what is computed.
-void pinProductBlocking() { Eigen::setCpuCacheSizes(32 * 1024, 1024 * 1024, 8 * 1024 * 1024); }
+// sizes, not what is computed. Eigen keeps them in process-wide variables: they are set before
+// main (one thread), and set again only if some code has changed them since, under a lock.
+constexpr std::ptrdiff_t kL1 = 32 * 1024, kL2 = 1024 * 1024, kL3 = 8 * 1024 * 1024;
+void pinProductBlocking() {
+  if (Eigen::l1CacheSize() == kL1 && Eigen::l2CacheSize() == kL2 && Eigen::l3CacheSize() == kL3) return;
+  static std::mutex mutex;
+  const std::lock_guard<std::mutex> lock(mutex);
+  Eigen::setCpuCacheSizes(kL1, kL2, kL3);
+}
+[[maybe_unused]] const bool pinnedBeforeMain = (pinProductBlocking(), true);
 
 // CHOLMOD's workspace for one analysis, released however the analysis ends.
 struct CholmodSession {
@@ -104,8 +113,8 @@ SupernodalCholesky::SupernodalCholesky(const SparseLower& pattern, int blockSize
   if (!session.factor || c.status < CHOLMOD_OK || !session.factor->is_super) throw std::bad_alloc();
   const cholmod_factor& L = *session.factor;
   factorFlops_ = c.fl;
-  updateBuffer_.resize(L.maxcsize);
   factorNonZeros_ = c.lnz;
+  updateBuffer_.resize(L.maxcsize);
 
   const int nsuper = int(L.nsuper);
   const int* super = static_cast<const int*>(L.super);
@@ -140,8 +149,8 @@ SupernodalCholesky::SupernodalCholesky(const SparseLower& pattern, int blockSize
   scatter_.reserve(std::size_t(pattern.nonZeros()));
   for (int j = 0; j < n_; ++j)
     for (int p = pattern.outerIndexPtr()[j]; p < pattern.outerIndexPtr()[j + 1]; ++p) {
-      const int pi_ = inverse[pattern.innerIndexPtr()[p]], pj = inverse[j];
-      scatter_.push_back(slot(std::max(pi_, pj), std::min(pi_, pj)));
+      const int ri = inverse[pattern.innerIndexPtr()[p]], rj = inverse[j];
+      scatter_.push_back(slot(std::max(ri, rj), std::min(ri, rj)));
     }
   diagonal_.resize(n_);
   for (int k = 0; k < n_; ++k) diagonal_[k] = slot(k, k);
