@@ -140,7 +140,9 @@ class LocalGlobal {
   using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   // Coordinates (offsets within a vertex's block) whose rows of K are the same matrix.
   // CHOLMOD's simplicial factor: no BLAS and no threads, so its solves round the same on every
-  // machine (as the Levenberg-Marquardt steps', solver/solver.cpp).
+  // machine. Not dform's supernodal one (solver/supernodal_cholesky.h), which the
+  // Levenberg-Marquardt steps use: with one unknown per vertex its supernodes are mostly single
+  // columns, and its solves took 2.5 times as long (docs/benchmarks.md, issue 17's second stop).
   struct Group {
     std::vector<int> coordinates;
     std::unique_ptr<Eigen::CholmodSimplicialLLT<SparseMatrix>> factor;

@@ -96,7 +96,6 @@ std::vector<int> blockOrdering(const Eigen::SparseMatrix<double, Eigen::ColMajor
 
 SupernodalCholesky::SupernodalCholesky(const SparseLower& pattern, int blockSize) {
   assert(pattern.rows() == pattern.cols() && pattern.isCompressed() && "a compressed square pattern");
-  pinProductBlocking();
   n_ = int(pattern.rows());
   CholmodSession session;
   cholmod_common& c = session.common;
@@ -221,6 +220,7 @@ bool SupernodalCholesky::factorize(const SparseLower& A, double shift) {
 
 Eigen::MatrixXd SupernodalCholesky::solve(const Eigen::MatrixXd& b) const {
   assert(factored_ && b.rows() == n_ && "solve needs a factorisation and right-hand sides of n rows");
+  pinProductBlocking();  // several right-hand sides make its products matrix products
   Matrix x(n_, b.cols()), gathered;
   for (int k = 0; k < n_; ++k) x.row(k) = b.row(perm_[k]);
   const int nsuper = int(first_.size()) - 1;
