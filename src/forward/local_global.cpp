@@ -79,11 +79,10 @@ class LocalGlobal {
 
   bool ok() const { return ok_; }
 
-  // What the global step from x to g lowers the energy by with the projections held: the
-  // quadratic's exact decrease (g - x)^T K (g - x), K's proximal part included (it is 1e-8 of
-  // K's diagonal). The local step that follows only lowers the energy further.
-  double globalStepDecrease(const Eigen::VectorXd& x, const Eigen::VectorXd& g) const {
-    const Eigen::VectorXd d = g - x;
+  // What the global step d = g - x lowers the energy by with the projections held: the
+  // quadratic's exact decrease d^T K d, K's proximal part included (it is 1e-8 of K's diagonal).
+  // The local step that follows only lowers the energy further.
+  double globalStepDecrease(const Eigen::VectorXd& d) const {
     Eigen::Map<const RowMatrix> D(d.data(), Eigen::Index(d.size()) / stride_, stride_);
     double decrease = 0.0;
     for (const Group& group : groups_)
@@ -283,8 +282,9 @@ LocalGlobalSummary LocalGlobalRelaxation::relax(const LocalGlobalOptions& option
   for (int k = 1; k <= options.maxIterations; ++k) {
     summary.iterations = k;
     const Eigen::VectorXd g = lg.global(x, proj, constant);
-    const double plainGain = lg.globalStepDecrease(x, g);
-    Eigen::VectorXd candidate = options.andersonDepth > 0 ? anderson.next(g, g - x) : g;
+    const Eigen::VectorXd plainStep = g - x;
+    const double plainGain = lg.globalStepDecrease(plainStep);
+    Eigen::VectorXd candidate = options.andersonDepth > 0 ? anderson.next(g, plainStep) : g;
     double candidateEnergy = lg.energy(candidate, candidateProj);
     // Plain steps never raise the energy; an accelerated one that does is replaced by the plain
     // one, taken further while that keeps lowering the energy.
@@ -293,7 +293,7 @@ LocalGlobalSummary LocalGlobalRelaxation::relax(const LocalGlobalOptions& option
       candidate = g;
       candidateEnergy = lg.energy(candidate, candidateProj);
       for (int e = 1; e <= options.plainStepExtensions; ++e) {
-        Eigen::VectorXd longer = x + std::ldexp(1.0, e) * (g - x);
+        Eigen::VectorXd longer = x + std::ldexp(1.0, e) * plainStep;
         const double longerEnergy = lg.energy(longer, longerProj);
         if (!(longerEnergy < candidateEnergy)) break;
         candidate = std::move(longer);
