@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "core/interrupt.h"
+#include "solver/supernodal_cholesky.h"
 
 namespace dform {
 
@@ -27,8 +28,9 @@ struct Projections {
 class LocalGlobal {
  public:
   LocalGlobal(const std::vector<std::pair<double, const LinearResidual*>>& quadratic,
-              const EdgeLengthPairs& edges, const Eigen::VectorXd& x0, const std::vector<int>& held)
-      : quadratic_(quadratic), edges_(edges), stride_(edges.stride) {
+              const EdgeLengthPairs& edges, const Eigen::VectorXd& x0, const std::vector<int>& held,
+              int supernodalFrom)
+      : quadratic_(quadratic), edges_(edges), stride_(edges.stride), supernodalFrom_(supernodalFrom) {
     const int n = int(x0.size());
     // K = sum_t w_t M_t^T M_t + sum_e w_e D_e^T D_e + eps I. The eps I (with eps x_prev on the
     // right) is a proximal term: it fixes the free translation and vanishes at a fixed point.
@@ -141,7 +143,7 @@ class LocalGlobal {
       Eigen::MatrixXd part(vertices, group.coordinates.size());
       for (std::size_t k = 0; k < group.coordinates.size(); ++k)
         part.col(k) = B.col(group.coordinates[k]);
-      part = group.factor->solve(part);
+      part = group.factor.solve(part);
       for (std::size_t k = 0; k < group.coordinates.size(); ++k)
         X.col(group.coordinates[k]) = part.col(k);
     }
@@ -152,15 +154,37 @@ class LocalGlobal {
   const std::vector<std::pair<double, const LinearResidual*>>& quadratic_;
   const EdgeLengthPairs& edges_;
   using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  // The factor of one coordinate block, by size (kSupernodalRelaxationVertices): CHOLMOD's
+  // simplicial one (no BLAS, no threads) or dform's supernodal one; both round the same on every
+  // machine.
+  class BlockFactor {
+   public:
+    BlockFactor(const SparseMatrix& block, bool supernodal) {
+      if (supernodal) {
+        const SupernodalCholesky::SparseLower lower = block.triangularView<Eigen::Lower>();
+        supernodal_ = std::make_unique<SupernodalCholesky>(lower);
+        ok_ = supernodal_->factorize(lower);
+      } else {
+        simplicial_ = std::make_unique<Eigen::CholmodSimplicialLLT<SparseMatrix>>(block);
+        ok_ = simplicial_->info() == Eigen::Success;
+      }
+    }
+    bool ok() const { return ok_; }
+    Eigen::MatrixXd solve(const Eigen::MatrixXd& b) const {
+      return supernodal_ ? supernodal_->solve(b) : Eigen::MatrixXd(simplicial_->solve(b));
+    }
+
+   private:
+    std::unique_ptr<Eigen::CholmodSimplicialLLT<SparseMatrix>> simplicial_;
+    std::unique_ptr<SupernodalCholesky> supernodal_;
+    bool ok_ = false;
+  };
+
   // Coordinates (offsets within a vertex's block) whose rows of K are the same matrix.
-  // CHOLMOD's simplicial factor: no BLAS and no threads, so its solves round the same on every
-  // machine. Not dform's supernodal one (solver/supernodal_cholesky.h), which the
-  // Levenberg-Marquardt steps use: with one unknown per vertex its supernodes are mostly single
-  // columns, and its solves took 2.5 times as long (docs/benchmarks.md, issue 17's second stop).
   struct Group {
     std::vector<int> coordinates;
     SparseMatrix matrix;  ///< K restricted to one of the coordinates (#vertices square)
-    std::unique_ptr<Eigen::CholmodSimplicialLLT<SparseMatrix>> factor;
+    BlockFactor factor;
   };
 
   // K restricted to coordinate c of every vertex (#vertices square).
@@ -198,13 +222,14 @@ class LocalGlobal {
         same->coordinates.push_back(c);
         continue;
       }
-      auto factor = std::make_unique<Eigen::CholmodSimplicialLLT<SparseMatrix>>(block);
-      ok_ = ok_ && factor->info() == Eigen::Success;
+      BlockFactor factor(block, block.rows() >= supernodalFrom_);
+      ok_ = ok_ && factor.ok();
       groups_.push_back(Group{{c}, std::move(block), std::move(factor)});
     }
   }
 
   const int stride_;
+  const int supernodalFrom_;
   std::vector<bool> held_;
   Eigen::VectorXd heldRhs_, heldValue_;
   double proximal_ = 0;
@@ -253,15 +278,15 @@ struct LocalGlobalRelaxation::Impl {
   std::vector<std::pair<double, const LinearResidual*>> quadratic;
   LocalGlobal lg;
   Impl(std::vector<std::pair<double, const LinearResidual*>> q, const EdgeLengthPairs& edges,
-       const Eigen::VectorXd& x0, const std::vector<int>& held)
-      : quadratic(std::move(q)), lg(quadratic, edges, x0, held) {}
+       const Eigen::VectorXd& x0, const std::vector<int>& held, int supernodalFrom)
+      : quadratic(std::move(q)), lg(quadratic, edges, x0, held, supernodalFrom) {}
 };
 
 LocalGlobalRelaxation::LocalGlobalRelaxation(std::vector<std::pair<double, const LinearResidual*>> quadratic,
                                              const EdgeLengthPairs& edges, const Eigen::VectorXd& x0,
-                                             const std::vector<int>& held) {
+                                             const std::vector<int>& held, int supernodalFrom) {
   assert(edges.x.size() == edges.weight.size() && edges.u.size() == edges.weight.size());
-  impl_ = std::make_unique<Impl>(std::move(quadratic), edges, x0, held);
+  impl_ = std::make_unique<Impl>(std::move(quadratic), edges, x0, held, supernodalFrom);
 }
 
 LocalGlobalRelaxation::~LocalGlobalRelaxation() = default;

@@ -70,6 +70,14 @@ struct LocalGlobalSummary {
   }
 };
 
+/// Coordinate blocks of at least this many vertices are factorised by dform's supernodal Cholesky
+/// (solver/supernodal_cholesky.h), smaller ones by CHOLMOD's simplicial factor; both round the
+/// same on every machine. The simplicial factor does scalar work: at 97k vertices its two
+/// factorisations took 5.9 and 4.3 s, the supernodal one's 1.0 and 0.7 s (plus 1.4 s of analysis),
+/// while on small meshes, whose supernodes are mostly single columns, the simplicial factor
+/// solves 2.5 times faster. Measured crossover at about 10k vertices (docs/benchmarks.md, "Scale").
+constexpr int kSupernodalRelaxationVertices = 10000;
+
 /// Minimises sum_t w_t ||M_t x - b_t||^2 + sum_e w_e (|x_a - x_b| - |u_a - u_b|)^2 / 2 over x by
 /// local-global steps. `quadratic` lists the weighted linear terms. The linear system (one
 /// factorisation per coordinate group) is set up once, at construction; relax() reads the terms'
@@ -79,8 +87,10 @@ class LocalGlobalRelaxation {
  public:
   /// `held` lists unknowns kept at their values in x0 (rows of the system replaced by x_i = x0_i);
   /// held unknowns of one coordinate group must belong to the same vertices (e.g. u and v both).
+  /// Blocks of `supernodalFrom` vertices or more are factorised supernodally.
   LocalGlobalRelaxation(std::vector<std::pair<double, const LinearResidual*>> quadratic,
-                        const EdgeLengthPairs& edges, const Eigen::VectorXd& x0, const std::vector<int>& held = {});
+                        const EdgeLengthPairs& edges, const Eigen::VectorXd& x0, const std::vector<int>& held = {},
+                        int supernodalFrom = kSupernodalRelaxationVertices);
   ~LocalGlobalRelaxation();
   LocalGlobalRelaxation(const LocalGlobalRelaxation&) = delete;
   LocalGlobalRelaxation& operator=(const LocalGlobalRelaxation&) = delete;
