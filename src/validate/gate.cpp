@@ -1,5 +1,6 @@
 #include "validate/gate.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -258,13 +259,32 @@ std::optional<HullDistance> distanceToSeamHull(const DForm& model) {
   // measures ~1e-13 of the diagonal, a different rounding each run. Below this floor, about 5e4
   // units in the last place of the diagonal, a vertex is on the hull: 0, the same every run.
   const double onHullMm = 1e-11 * result.diagonalMm;
+  // Inside a convex hull the nearest surface point lies on the nearest face's plane (the ball that
+  // reaches that plane lies inside every face's half-space), so a vertex inside takes the smallest
+  // plane distance; one outside (or on the surface, by rounding) is measured face by face. Faces
+  // of no area (collinear seam points) carry no surface and are left out of the planes.
+  const Eigen::Index faces = hull->F.rows();
+  Eigen::Matrix<double, 4, Eigen::Dynamic> planes(4, faces);  // unit outward normal, offset
+  Eigen::Index planeCount = 0;
+  for (Eigen::Index h = 0; h < faces; ++h) {
+    const Eigen::Vector3d a = hull->V.row(hull->F(h, 0)), b = hull->V.row(hull->F(h, 1)), c = hull->V.row(hull->F(h, 2));
+    const Eigen::Vector3d normal = (b - a).cross(c - a);
+    if (!(normal.norm() > 1e-12 * result.diagonalMm * result.diagonalMm)) continue;
+    const Eigen::Vector3d unit = normal.normalized();
+    planes.col(planeCount) << unit, -unit.dot(a);
+    ++planeCount;
+  }
+  planes.conservativeResize(4, planeCount);
   for (const Piece* p : {&model.a, &model.b})
     for (int v = 0; v < p->shape.rows(); ++v) {
-      double d = std::numeric_limits<double>::infinity();
-      for (int h = 0; h < hull->F.rows(); ++h)
-        d = std::min(d,
-                     pointTriangleDistance(p->shape.row(v), hull->V.row(hull->F(h, 0)),
-                                           hull->V.row(hull->F(h, 1)), hull->V.row(hull->F(h, 2))));
+      const Eigen::Vector4d q(p->shape(v, 0), p->shape(v, 1), p->shape(v, 2), 1.0);
+      double d = -(planes.transpose() * q).maxCoeff();  // the nearest plane, when inside them all
+      if (!(d > 0.0)) {
+        d = std::numeric_limits<double>::infinity();
+        for (Eigen::Index h = 0; h < faces; ++h)
+          d = std::min(d, pointTriangleDistance(p->shape.row(v), hull->V.row(hull->F(h, 0)),
+                                                hull->V.row(hull->F(h, 1)), hull->V.row(hull->F(h, 2))));
+      }
       if (d < onHullMm) d = 0.0;
       if (d > result.worstMm || result.where.empty()) {
         result.worstMm = std::max(result.worstMm, d);

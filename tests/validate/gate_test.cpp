@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -221,6 +222,29 @@ TEST(Gate, HullDistanceOfAVertexPushedOutOfTheHull) {
   const double diagonal = Eigen::Vector3d(80, 80, 20).norm();  // the seam's bounding box
   EXPECT_NEAR(report.find("hull_distance_rel")->value, push / diagonal, 1e-12) << describe(report);
   EXPECT_EQ(report.find("hull_distance_rel")->verdict, Verdict::Fail);  // 1.2% > 1%
+}
+
+TEST(Gate, HullDistanceOfAVertexDeepInsideIsItsNearestFacesPlane) {
+  // Off the centre, the four faces of the tetrahedral D-Form's hull lie at four distances; a
+  // vertex moved there measures the smallest, to the plane of the nearest face.
+  DForm model = test::tetraDForm(8);
+  const Eigen::Vector3d A(-40, 0, -10), B(0, -40, 10), C(40, 0, -10), D(0, 40, 10);
+  const Eigen::Vector3d p(6, -3, 2);
+  double nearest = std::numeric_limits<double>::infinity(), farthest = 0.0;
+  for (const auto& [a, b, c] : {std::array{A, B, C}, std::array{A, C, D}, std::array{A, B, D}, std::array{B, C, D}}) {
+    const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();
+    nearest = std::min(nearest, std::abs(normal.dot(p - a)));
+    farthest = std::max(farthest, std::abs(normal.dot(p - a)));
+  }
+  ASSERT_GT(farthest - nearest, 1.0);  // the four planes are told apart
+  std::vector<bool> onSeam(std::size_t(model.a.shape.rows()), false);
+  for (int v : model.a.seam) onSeam[std::size_t(v)] = true;
+  const int inner = int(std::find(onSeam.begin(), onSeam.end(), false) - onSeam.begin());
+  model.a.shape.row(inner) = p.transpose();
+  const double diagonal = Eigen::Vector3d(80, 80, 20).norm();
+  const CheckResult hull = *runGate(model, GateLimits{}).find("hull_distance_rel");
+  EXPECT_NEAR(hull.value, nearest / diagonal, 1e-12) << hull.detail;
+  EXPECT_NE(hull.detail.find("at piece A vertex " + std::to_string(inner) + ";"), std::string::npos) << hull.detail;
 }
 
 TEST(Gate, ConvexityIsJudgedWithinWhatSamplingAndSolvingMayMove) {
