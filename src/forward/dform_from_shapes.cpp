@@ -41,17 +41,6 @@ InteriorLine creaseLine(const Points2& crease, const Points2& fixed, double edge
           points.middleRows(1, segments - 1)};
 }
 
-// Starts a and b from the coarser solution: barycentric transfer, then each seam pair at the mean
-// of its two transferred positions so that the seam starts closed.
-void startFromCoarser(const DForm& coarse, Piece& a, Piece& b) {
-  a.shape = transferShape(coarse.a, a.flat);
-  b.shape = transferShape(coarse.b, b.flat);
-  for (std::size_t k = 0; k < a.seam.size(); ++k) {
-    const Eigen::RowVector3d mid = 0.5 * (a.shape.row(a.seam[k]) + b.shape.row(b.seam[k]));
-    a.shape.row(a.seam[k]) = b.shape.row(b.seam[k]) = mid;
-  }
-}
-
 // Why the exact model cannot make this job, or "" when it can (the glued metric's convexity is
 // checked when the seam is sampled).
 std::string exactModelRefusal(const ForwardSettings& job, const DrawnPiece& A, const DrawnPiece& B) {
@@ -238,19 +227,11 @@ Result<std::array<Piece, 2>> meshLevel(const ForwardSettings& job, const SeamLay
   return pieces;
 }
 
-// The paper's optimisation, coarse to fine: the job is solved first with a third of the seam
-// vertices (recursively, down to kCoarsestSeam), and each level starts from the coarser solution
-// carried over by barycentric transfer. The coarse levels do the large shape change cheaply; the
-// finest level then converges in a few Levenberg-Marquardt steps on one factorisation.
+// The paper's optimisation, coarse to fine (detail::seamLevels): each level's pieces are meshed
+// from the drawn outlines sampled at its resolution.
 Status solvePaperModel(const ForwardSettings& job, const SeamLayout& layout, SolvedDForm& run,
                        MessageSink& sink, const RunHooks& hooks) {
-  constexpr int kCoarsestSeam = 24;
-  constexpr int kLevelRatio = 3;
-  constexpr int kCoarseIterations = 30;
-  std::vector<int> levels{job.resolution};
-  while (job.coarseToFine && levels.back() / kLevelRatio >= kCoarsestSeam)
-    levels.push_back(levels.back() / kLevelRatio);
-  std::reverse(levels.begin(), levels.end());
+  std::vector<int> levels = detail::seamLevels(job.resolution, job.coarseToFine);
 
   // Where creases are drawn on discs with a convex glued metric, the paper model starts on their
   // exact D-Form, which folds where the glued pieces fold: its solution differs from it only by
@@ -299,16 +280,8 @@ Status solvePaperModel(const ForwardSettings& job, const SeamLayout& layout, Sol
                           std::to_string(pieces[1].F.rows()));
 
     const auto solveStart = Clock::now();
-    // A coarse level only has to start the next one well: a few iterations, seam left to the
-    // alignment weight.
-    ForwardOptions levelOptions = options;
-    if (!finest) {
-      levelOptions.solver.maxIterations = std::min(options.solver.maxIterations, kCoarseIterations);
-      levelOptions.constraintRounds = 0;
-    }
-    detail::relaxOnlyIfLarge(pieces[0].flat.rows() + pieces[1].flat.rows(), levelOptions.solver,
-                             levelOptions.relaxation);
-    solved = solveForward(pieces[0], pieces[1], levelOptions);
+    solved = solveForward(pieces[0], pieces[1],
+                          detail::levelOptions(options, finest, pieces[0].flat.rows() + pieces[1].flat.rows()));
     run.timings.solve += secondsSince(solveStart);
     if (detail::stopRequested(hooks)) return detail::interruptedDuring("the solve");
     if (!solved.summary.usable())

@@ -2,12 +2,15 @@
 // level is left to the relaxation alone, and the caller's hooks (progress, a request to stop).
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "core/interrupt.h"
 #include "forward/dform_from_shapes.h"
+#include "forward/forward.h"
 
 namespace dform::detail {
 
@@ -44,6 +47,35 @@ inline void relaxOnlyIfLarge(long vertices, SolverOptions& solver, LocalGlobalOp
   if (vertices <= kDirectSolveVertices) return;
   solver.maxIterations = 0;
   relaxation.relativeTolerance = kRefinedRelaxationTolerance;
+}
+
+/// Coarse-to-fine solves (paper model): each level has a third of the next one's seam vertices,
+/// down to kCoarsestSeam, and starts from the coarser solution carried over by barycentric
+/// transfer. The coarse levels do the large shape change cheaply; the finest level converges from
+/// there in a few steps.
+constexpr int kCoarsestSeam = 24;
+constexpr int kLevelRatio = 3;
+/// A coarse level only has to start the next one well: at most this many LM iterations.
+constexpr int kCoarseIterations = 30;
+
+/// The seam resolutions of a solve, coarsest first and `resolution` last (only it when
+/// coarseToFine is off).
+inline std::vector<int> seamLevels(int resolution, bool coarseToFine) {
+  std::vector<int> levels{resolution};
+  while (coarseToFine && levels.back() / kLevelRatio >= kCoarsestSeam) levels.push_back(levels.back() / kLevelRatio);
+  std::reverse(levels.begin(), levels.end());
+  return levels;
+}
+
+/// One level's options: a coarse level runs a few LM iterations and leaves the seam corners to
+/// the boundary-fix term (no constraint rounds); a large level is left to the relaxation.
+inline ForwardOptions levelOptions(ForwardOptions options, bool finest, long vertices) {
+  if (!finest) {
+    options.solver.maxIterations = std::min(options.solver.maxIterations, kCoarseIterations);
+    options.constraintRounds = 0;
+  }
+  relaxOnlyIfLarge(vertices, options.solver, options.relaxation);
+  return options;
 }
 
 /// Whether the caller asked the run to stop: its hooks' flag, or the process's (core/interrupt.h),

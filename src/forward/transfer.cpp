@@ -103,4 +103,13 @@ Points3 transferShape(const Piece& source, const Points2& points) {
   return out;
 }
 
+void startFromCoarser(const DForm& coarse, Piece& a, Piece& b) {
+  a.shape = transferShape(coarse.a, a.flat);
+  b.shape = transferShape(coarse.b, b.flat);
+  for (std::size_t k = 0; k < a.seam.size(); ++k) {
+    const Eigen::RowVector3d mid = 0.5 * (a.shape.row(a.seam[k]) + b.shape.row(b.seam[k]));
+    a.shape.row(a.seam[k]) = b.shape.row(b.seam[k]) = mid;
+  }
+}
+
 }  // namespace dform

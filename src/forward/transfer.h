@@ -11,4 +11,8 @@ namespace dform {
 /// triangle, clamped to it.
 Points3 transferShape(const Piece& source, const Points2& points);
 
+/// Starts a and b from the coarser solution: barycentric transfer, then each seam pair at the
+/// mean of its two transferred positions so that the seam starts closed.
+void startFromCoarser(const DForm& coarse, Piece& a, Piece& b);
+
 }  // namespace dform

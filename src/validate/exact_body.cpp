@@ -1,7 +1,7 @@
 #include "validate/exact_body.h"
 
 #include "exact/exact_gluing.h"
-#include "forward/forward.h"
+#include "forward/coarse_to_fine.h"
 
 namespace dform {
 
@@ -37,10 +37,7 @@ Result<Points3> zippedAgainSeam(const DForm& model, std::string& how) {
   // A non-convex metric: the optimisation says what shape the sheet takes instead. Other reasons
   // (a hole zipped, a seam too long to glue) are not the round trip's to work around.
   if (exact.status().message().find("not convex") == std::string::npos) return exact.status();
-  Piece a = model.a, b = model.b;
-  a.shape.resize(0, 3);
-  b.shape.resize(0, 3);
-  const ForwardResult solved = solveForward(a, b, ForwardOptions{});
+  const ForwardResult solved = solveMeshedCoarseToFine(model.a, model.b, ForwardOptions{});
   if (!solved.summary.usable())
     return Status(ErrorCode::SolveFailed, exact.status().message() + "; and the optimisation failed: " + solved.summary.message);
   how = "the paper's optimisation, since " + exact.status().message();

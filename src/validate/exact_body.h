@@ -17,8 +17,8 @@ Result<Points3> exactBodySeam(const DForm& model);
 
 /// The 3D seam the flat pieces of `model` take when zipped again, row k for seam point k: their
 /// exact D-Form where it exists, otherwise the paper's optimisation of the same meshes from its
-/// pillow start (a non-convex metric: no convex body exists, and the sheet takes some other
-/// shape). `how` says which made it and why.
+/// pillow start, coarse to fine as a forward run (a non-convex metric: no convex body exists, and
+/// the sheet takes some other shape). `how` says which made it and why.
 Result<Points3> zippedAgainSeam(const DForm& model, std::string& how);
 
 }  // namespace dform

@@ -9,6 +9,8 @@
 
 #include <random>
 
+#include "exact/aligned_distance.h"
+#include "forward/coarse_to_fine.h"
 #include "forward/injectivity.h"
 #include "forward/term_table.h"
 #include "forward/terms.h"
@@ -29,6 +31,30 @@ struct EllipsePair {
   }
   Piece a, b;
 };
+
+TEST(Forward, MeshedPiecesZipCoarseToFineToTheOneLevelShape) {
+  // 90 seam points: a coarse level of 30 starts the finest one. Both solves end on the same shape
+  // of the same objective; the finest level started from the coarse one needs fewer relaxation
+  // steps (a coarse level that failed to mesh, or paired the wrong points, would start it from
+  // the pillow or from a wrong shape).
+  const Points2 A = test::ellipse(120, 70), B = test::ellipse(110, 82.305579);
+  const Piece a = test::meshedPiece(A, 90, false), b = test::meshedPiece(B, 90, true);
+  ForwardOptions o;
+  o.solver.functionTolerance = 1e-10;
+  const ForwardResult oneLevel = solveForward(a, b, o);
+  const ForwardResult levels = solveMeshedCoarseToFine(a, b, o);
+  ASSERT_TRUE(oneLevel.summary.usable() && levels.summary.usable());
+  EXPECT_LT(levels.relaxation.iterations, oneLevel.relaxation.iterations / 2)
+      << levels.relaxation.iterations << " against " << oneLevel.relaxation.iterations;
+  ASSERT_EQ(levels.model.a.shape.rows(), a.flat.rows());
+  auto seam = [](const Piece& p) {
+    Points3 s(Eigen::Index(p.seam.size()), 3);
+    for (std::size_t k = 0; k < p.seam.size(); ++k) s.row(Eigen::Index(k)) = p.shape.row(p.seam[k]);
+    return s;
+  };
+  const exact::AlignedDistance d = exact::alignedDistance(seam(oneLevel.model.a), seam(levels.model.a));
+  EXPECT_LT(d.maxRel, 1e-4);
+}
 
 TEST(Forward, PillowStartIsClosedAndInflated) {
   EllipsePair p;
