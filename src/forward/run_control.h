@@ -1,5 +1,6 @@
-// What the forward and inverse runs share about running: timing, message formatting, when a
-// level is left to the relaxation alone, and the caller's hooks (progress, a request to stop).
+// What the forward and inverse runs share about running: timing, message formatting, the levels
+// of a coarse-to-fine solve and when one is left to the relaxation alone, and the caller's hooks
+// (progress, a request to stop).
 #pragma once
 
 #include <algorithm>
