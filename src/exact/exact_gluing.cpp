@@ -7,19 +7,15 @@
 #include <list>
 #include <numeric>
 
+#include "exact/plane_angles.h"
+
 namespace dform::exact {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-// The angle from u to w turning counter-clockwise, in [0, 2 pi).
-double ccwAngle(const Eigen::Vector2d& u, const Eigen::Vector2d& w) {
-  const double t = std::atan2(cross(u, w), u.dot(w));
-  return t < 0 ? t + 2.0 * kPi : t;
-}
+using plane::ccwAngle;
+using plane::cross;
+using plane::kPi;
 
 Eigen::Vector2d row(const Points2& P, long k) {
   const long n = P.rows();
@@ -304,43 +300,6 @@ Points3 placeOnBody(const ExactGluing& g, int piece, const Points2& P) {
       for (int c = 0; c < 3; ++c) x += at.bary[c] * g.vertices.row(g.triangulation.tail(3 * at.face + c));
       out.row(i) = x;
       break;
-    }
-  }
-  return out;
-}
-
-std::vector<FoundCrease> findCreases(const ExactGluing& g, double minAngle) {
-  std::vector<FoundCrease> out;
-  if (g.doublyCovered) return out;
-  const IntrinsicTriangulation& T = g.triangulation;
-  auto normal = [&](int f) {
-    const Eigen::Vector3d p0 = g.vertices.row(T.tail(3 * f)), p1 = g.vertices.row(T.tail(3 * f + 1)),
-                          p2 = g.vertices.row(T.tail(3 * f + 2));
-    return Eigen::Vector3d((p1 - p0).cross(p2 - p0).normalized());
-  };
-  for (int h = 0; h < T.halfedgeCount(); ++h) {
-    const int t = T.twin(h);
-    if (h > t) continue;
-    const Eigen::Vector3d n1 = normal(h / 3), n2 = normal(t / 3);
-    const double fold = std::atan2(n1.cross(n2).norm(), n1.dot(n2));
-    if (fold <= minAngle) continue;
-    const int k = g.seamOfVertex[T.tail(h)], m = g.seamOfVertex[T.head(h)];
-    for (int piece = 0; piece < 2; ++piece) {
-      const Points2& P = piece == 0 ? g.seam.a : g.seam.b;
-      double angle = 0;
-      const Eigen::Vector2d q = row(P, m);
-      // The edge runs straight through this piece when it leaves k towards m within the piece's
-      // wedge and is as long as the segment: a geodesic that crossed the seam would be longer.
-      const double straight = (q - row(P, k)).norm();
-      // Strictly inside the piece's wedge at k: an edge along a straight stretch of the seam is
-      // the seam itself.
-      const double wedgeStart = piece == 0 ? 0.0 : g.angles.a[k];
-      const double wedgeEnd = wedgeStart + (piece == 0 ? g.angles.a[k] : g.angles.b[k]);
-      if (!directionTo(g, piece, k, q, angle) || angle < wedgeStart + 1e-9 || angle > wedgeEnd - 1e-9 ||
-          std::abs(angle - T.signpost(h)) > 1e-9 ||
-          std::abs(straight - T.length(h)) > 1e-9 * T.length(h) || crossesBoundary(P, k, q))
-        continue;
-      out.push_back({piece, k, m, fold});
     }
   }
   return out;

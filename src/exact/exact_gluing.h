@@ -76,15 +76,4 @@ Result<ExactGluing> glue(const SeamPolygons& seam, const ExactOptions& options =
 /// that piece's plane, inside or on its polygon. Rows that cannot be placed come back NaN.
 Points3 placeOnBody(const ExactGluing& gluing, int piece, const Points2& P);
 
-/// A fold of the body that runs through a piece: the straight segment between two seam points
-/// of that piece along an edge of the body, and its fold angle (radians, 0 = flat).
-struct FoundCrease {
-  int piece = 0;     ///< 0 for A, 1 for B
-  int from = 0, to = 0;  ///< seam points at its ends
-  double angle = 0;
-};
-
-/// Edges of the body folded by more than `minAngle` radians that cross a piece's interior.
-std::vector<FoundCrease> findCreases(const ExactGluing& gluing, double minAngle);
-
 }  // namespace dform::exact
