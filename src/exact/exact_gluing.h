@@ -24,8 +24,15 @@ struct SeamPolygons {
 
 /// Moves both polygons as little as possible (least-norm Gauss-Newton) so that chord k of each
 /// has the mean of the two lengths, to rounding: the metric glues exactly only when the two sides
-/// of every chord are equally long. Returns the largest move, mm.
+/// of every chord are equally long. A stretch of seam points where both pieces are straight to
+/// within kSamplingExcess and whose angle sums exceed 2 pi while the points around it turn
+/// forwards by more is made straight on both sides (a sampling artefact, exact_gluing.cpp).
+/// Returns the largest move, mm.
 double equalizeChords(SeamPolygons& seam);
+
+/// How far from straight (each piece's turn, radians: 0.5 degrees) a seam point may be for
+/// equalizeChords to take its angle sum over 2 pi for a sampling artefact.
+constexpr double kSamplingExcess = 0.5 * 3.14159265358979323846 / 180.0;
 
 /// The glued metric's angles at the seam points.
 struct SeamAngles {

@@ -89,6 +89,26 @@ struct PieceLines {
   std::vector<double> folds;  ///< radians
 };
 
+// Whether the run between seam places i and j cuts off a single place m between them (an ear of
+// the seam) lying within kSliver of the run's length from it: the face between them is a sliver
+// whose corners at i and j are under 1e-3 rad, which no mesh draws without triangles that thin.
+// The fold is not followed: the triangles beside the seam there cross it within that sliver
+// (an edge of length l across a fold of angle theta at distance d from its end is shorter by
+// about theta^2 d / (2 l) of l).
+constexpr double kSliver = 1e-3;
+
+bool hugsTheSeam(const Points2& outline, const std::vector<int>& rowOf, int i, int j) {
+  const int N = int(rowOf.size());
+  for (const auto& [from, to] : {std::pair{i, j}, std::pair{j, i}}) {
+    if ((from + 2) % N != to) continue;
+    const Eigen::Vector2d p = outline.row(rowOf[std::size_t(from)]), q = outline.row(rowOf[std::size_t(to)]),
+                          m = outline.row(rowOf[std::size_t((from + 1) % N)]);
+    const Eigen::Vector2d u = (q - p).normalized();
+    if (std::abs(u.x() * (m - p).y() - u.y() * (m - p).x()) < kSliver * (q - p).norm()) return true;
+  }
+  return false;
+}
+
 PieceLines pieceLines(const std::vector<const exact::BodyEdge*>& followed, int piece, const ConformingSeam& seam,
                       const std::vector<int>& rowOf, const Points2& outline, double edge) {
   PieceLines out;
@@ -103,6 +123,7 @@ PieceLines pieceLines(const std::vector<const exact::BodyEdge*>& followed, int p
       InteriorLine line;
       line.from = rowOf[std::size_t(i)];
       line.to = rowOf[std::size_t(j)];
+      if (hugsTheSeam(outline, rowOf, i, j)) continue;
       const auto key = std::minmax(line.from, line.to);
       if (const auto it = seen.find(key); it != seen.end()) {
         out.folds[it->second] = std::max(out.folds[it->second], body->fold);
