@@ -3,8 +3,8 @@
 #include <array>
 
 #include "core/polyline.h"
-#include "forward/run_control.h"
-#include "forward/transfer.h"
+#include "model/run_control.h"
+#include "model/transfer.h"
 #include "meshing/triangulate.h"
 
 namespace dform {

@@ -2,7 +2,7 @@
 #pragma once
 
 #include "core/types.h"
-#include "forward/local_global.h"
+#include "model/local_global.h"
 #include "solver/solver.h"
 
 namespace dform {

@@ -3,8 +3,8 @@
 #include <cassert>
 
 #include "core/polyline.h"
-#include "forward/injectivity.h"
-#include "forward/terms.h"
+#include "model/injectivity.h"
+#include "model/terms.h"
 #include "inverse/inverse_terms.h"
 
 namespace dform {

@@ -2,7 +2,7 @@
 // holds and who reads it).
 #pragma once
 
-#include "forward/term_table.h"
+#include "model/term_table.h"
 #include "inverse/inverse_solve.h"
 
 namespace dform {

@@ -2,8 +2,8 @@
 
 #include <new>
 
-#include "forward/resources.h"
-#include "forward/run_control.h"
+#include "model/resources.h"
+#include "model/run_control.h"
 #include "io/outline_reader.h"
 
 namespace dform {

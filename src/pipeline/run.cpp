@@ -6,7 +6,7 @@
 #include "core/result_folder.h"
 #include "io/model_files.h"
 #include "pipeline/report.h"
-#include "forward/resources.h"
+#include "model/resources.h"
 #include "pipeline/run_steps.h"
 
 namespace dform {

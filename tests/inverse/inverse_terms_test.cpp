@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "forward/term_table_checks.h"
+#include "model/term_table_checks.h"
 #include "inverse/pieces_from_curve.h"
 
 namespace dform {

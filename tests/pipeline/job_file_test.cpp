@@ -7,7 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "forward/term_table.h"
+#include "model/term_table.h"
 #include "inverse/inverse_terms.h"
 
 namespace dform {

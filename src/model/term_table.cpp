@@ -1,4 +1,4 @@
-#include "forward/term_table.h"
+#include "model/term_table.h"
 
 namespace dform {
 

@@ -4,7 +4,7 @@
 #include <Eigen/Geometry>
 #include <random>
 
-#include "forward/terms.h"
+#include "model/terms.h"
 #include "solver/gradient_check.h"
 #include "validate/metrics.h"
 #include "test_meshes.h"

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/types.h"
-#include "forward/local_global.h"
+#include "model/local_global.h"
 #include "solver/problem.h"
 
 namespace dform {

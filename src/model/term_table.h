@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "forward/forward.h"
-#include "forward/terms.h"
+#include "model/terms.h"
 #include "solver/problem.h"
 
 namespace dform {
