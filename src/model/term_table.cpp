@@ -36,4 +36,14 @@ const TermTable<ForwardWeights>& forwardTerms() {
   return table;
 }
 
+const TermTable<InverseWeights>& inverseTerms() {
+  // Closeness makes no term: any positive weight holds the seam on the curve exactly.
+  static const TermTable<InverseWeights> table = {
+      {"isometry", &InverseWeights::isometry, isometryTerm, false},
+      {"closeness", &InverseWeights::closeness, nullptr, false},
+      {"smooth_3d", &InverseWeights::smooth3d, smooth3dTerm, true},
+      {"smooth_2d", &InverseWeights::smooth2d, smooth2dTerm, true}};
+  return table;
+}
+
 }  // namespace dform

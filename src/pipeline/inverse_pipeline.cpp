@@ -3,9 +3,9 @@
 #include <new>
 
 #include "core/polyline.h"
+#include "io/curve_reader.h"
 #include "model/resources.h"
 #include "model/run_control.h"
-#include "io/curve_reader.h"
 
 namespace dform {
 

@@ -10,7 +10,6 @@
 #include "core/input_file.h"
 #include "core/message_text.h"
 #include "model/term_table.h"
-#include "inverse/inverse_terms.h"
 
 namespace dform {
 

@@ -14,8 +14,8 @@
 #include "model/injectivity.h"
 #include "model/term_table.h"
 #include "model/terms.h"
-#include "model/transfer.h"
 #include "model/test_meshes.h"
+#include "model/transfer.h"
 #include "validate/gate.h"
 #include "validate/metrics.h"
 

@@ -6,8 +6,8 @@
 
 #include "model/terms.h"
 #include "solver/gradient_check.h"
-#include "validate/metrics.h"
 #include "test_meshes.h"
+#include "validate/metrics.h"
 
 namespace dform {
 namespace {

@@ -8,7 +8,6 @@
 #include <nlohmann/json.hpp>
 
 #include "model/term_table.h"
-#include "inverse/inverse_terms.h"
 
 namespace dform {
 namespace {
