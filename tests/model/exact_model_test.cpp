@@ -8,7 +8,7 @@
 
 #include "exact/body_edges.h"
 #include "exact/shapes.h"
-#include "forward/exact_model.h"
+#include "model/exact_model.h"
 #include "validate/metrics.h"
 
 namespace dform {
