@@ -15,7 +15,8 @@ import tempfile
 
 # What each module may include besides itself: the data flow io -> meshing -> forward/inverse
 # on a generic solver -> validate -> export/report -> pipeline (runs: one, a sweep's, a batch's)
-# -> cli and the Python module, with core under all. The cli sees the pipeline and core only;
+# -> cli, studio and the Python module, with core under all. The cli sees the pipeline, the
+# studio (which it starts) and core only;
 # the Python module reads outlines and curves given as arrays as io reads their files.
 ALLOWED = {
     "core": set(),
@@ -30,8 +31,11 @@ ALLOWED = {
     "report": {"core", "validate"},
     "pipeline": {"core", "io", "meshing", "solver", "exact", "forward", "inverse", "validate",
                  "export", "report"},
-    "cli": {"core", "pipeline"},
+    "cli": {"core", "pipeline", "studio"},
     "python": {"core", "io", "pipeline"},
+    # The studio reads uploads as io reads files, runs them through the pipeline and judges the
+    # result in memory with validate's gate, as the pipeline does for a written result.
+    "studio": {"core", "io", "pipeline", "validate"},
 }
 
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([a-z_]+)/')
@@ -62,8 +66,8 @@ def violations(src):
 
 
 # The CLI's own targets may link these besides third-party libraries: the pipeline (which brings
-# core) and the warning flags.
-CLI_MAY_LINK = {"dform::pipeline", "dform_warnings"}
+# core), the studio (`dform studio`) and the warning flags.
+CLI_MAY_LINK = {"dform::pipeline", "dform::studio", "dform_warnings"}
 
 
 def cli_link_violations(link_libraries):
@@ -113,6 +117,11 @@ def self_test():
         assert len(found) == 1 and found[0].startswith("io/bad.cpp:2: io includes pipeline/"), found
         write("core/worse.h", '#include "export/exporter.h"\n')
         assert len(violations(src)) == 2, violations(src)
+        write("studio/server.cpp", '#include "pipeline/run.h"\n#include "io/outline_reader.h"\n')
+        assert len(violations(src)) == 2, violations(src)
+        write("studio/worse.cpp", '#include "export/exporter.h"\n')
+        found = violations(src)
+        assert len(found) == 3 and any(f.startswith("studio/worse.cpp:1: studio includes export/") for f in found), found
         write("core/polyline.h", "double closedLength(const Eigen::MatrixXd& P);\n"
                                  "bool segmentsIntersect(const Vec2& a,\n    const Vec2& b);\n")
         write("export/draw.cpp", "double width(const Polyline& p) { return closedLength(p); }\n")
@@ -121,7 +130,7 @@ def self_test():
                                  "                           int k) {\n  return 0;\n}\n}\n")
         found = core_helper_copies(src)
         assert found == ["export/copy.cpp:2: export defines closedLength, which core/polyline.h has"], found
-    assert cli_link_violations("dform::pipeline;CLI11::CLI11;dform_warnings") == []
+    assert cli_link_violations("dform::pipeline;dform::studio;CLI11::CLI11;dform_warnings") == []
     found = cli_link_violations("dform::pipeline;dform::export;CLI11::CLI11;dform_report")
     assert len(found) == 2 and "dform::export" in found[0] and "dform_report" in found[1], found
     print("layering.py: self-test passed")

@@ -1,0 +1,65 @@
+#!/usr/bin/env python3
+"""dform studio's live-drag latency in a real browser (docs/benchmarks.md, "Studio"): headless
+Chromium drags piece B's start handle of the shipped ellipse pair (resolution 100) through 100
+positions along its outline, one real pointer move every PAUSE seconds, and the page records,
+for every shape it shows, the time from the pointer event (event.timeStamp) to the animation
+frame after the new shape was drawn. Prints the median, the 95th percentile and the count.
+
+    studio_latency.py BUILD/dform SAMPLES_DIR [--pause 0.15] [--positions 100]
+"""
+import argparse
+import os
+import statistics
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "studio"))
+import studio_browser  # noqa: E402
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("dform")
+    parser.add_argument("samples")
+    parser.add_argument("--pause", type=float, default=0.15)
+    parser.add_argument("--positions", type=int, default=100)
+    args = parser.parse_args()
+    missing = studio_browser.chromium_missing()
+    if missing:
+        print("cannot run: " + missing)
+        return 1
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.by import By
+    forward = os.path.join(args.samples, "forward")
+    s = studio_browser.Studio(args.dform, [os.path.join(forward, "ellipses-a.svg"), os.path.join(forward, "ellipses-b.svg")])
+    try:
+        s.settle()
+        s.js("window.studio.latencies = []")
+        n = args.positions
+        points = s.js(f"""
+            var v = window.studio.views[1], out = [], h = v.handle.getBoundingClientRect(), m = v.svg.getScreenCTM();
+            for (var k = 1; k <= {n}; ++k) {{
+              var p = v.loop.at(v.fraction + 0.5 * k / {n}), q = v.svg.createSVGPoint();
+              q.x = p[0]; q.y = -p[1]; q = q.matrixTransform(m);
+              out.push([Math.round(q.x - (h.left + h.width / 2)), Math.round(q.y - (h.top + h.height / 2))]);
+            }}
+            return out;""")
+        actions = ActionChains(s.driver, duration=0).click_and_hold(s.driver.find_element(By.CSS_SELECTOR, "#svg-b circle.handle"))
+        last = [0, 0]
+        for x, y in points:
+            actions.move_by_offset(x - last[0], y - last[1]).pause(args.pause)
+            last = [x, y]
+        actions.release().perform()
+        s.settle()
+        latencies = s.js("return window.studio.latencies")
+        errors = s.console_errors()
+    finally:
+        s.close()
+    latencies.sort()
+    p95 = latencies[min(len(latencies) - 1, int(round(0.95 * (len(latencies) - 1))))]
+    print(f"frames {len(latencies)} of {args.positions} positions; latency median {statistics.median(latencies):.1f} ms, "
+          f"p95 {p95:.1f} ms, min {latencies[0]:.1f} ms, max {latencies[-1]:.1f} ms; console errors {len(errors)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
