@@ -99,24 +99,36 @@ std::optional<CurveInput> Session::curve() const {
   return curve_;
 }
 
-json Session::finish(const Result<json>& result, const Latest::Ticket& ticket, long seq, bool preview) {
+// The answer to the page: the result, or superseded, or the error. With gateNow the gate's
+// verdict is in it; else the worker sends it as a "gate" event unless newer input came first.
+json Session::finish(const Result<Solved>& result, const Latest::Ticket& ticket, long seq, bool preview,
+                     bool gateNow) {
   if (!result.isOk()) {
     if (ticket.cancel->load()) return {{"seq", seq}, {"superseded", true}};
     return {{"seq", seq}, {"error", result.status().message()}};
   }
-  json out = result.value();
+  json out = result.value().result;
   out["seq"] = seq;
   out["preview"] = preview;
   out["refining"] = false;
+  if (gateNow) {
+    out["gate"] = result.value().gate();
+  } else {
+    queue([this, gate = result.value().gate, ticket, seq, preview] {
+      if (!live_.current(ticket)) return;
+      events_.push({{"type", "gate"}, {"seq", seq}, {"preview", preview}, {"gate", gate()}});
+    }, Task::Gate);
+  }
   return out;
 }
 
-json Session::solveLive(const SolveAt& solve, int resolution, bool optimises, long seq) {
+json Session::solveLive(const SolveAt& solve, int resolution, bool optimises, long seq,
+                        const std::string& design) {
   const Latest::Ticket ticket = live_.next();
   std::unique_lock<std::mutex> lock(solveMutex_);
   if (!live_.current(ticket)) return {{"seq", seq}, {"superseded", true}};
   const int preview = std::min(resolution, kPreviewResolution);
-  bool refine = optimises && preview < resolution;
+  bool refine = (optimises || design == optimisedDesign_) && preview < resolution;
   if (!refine) {
     // Solve in full unless the run starts to optimise (the paper model: its first iteration),
     // which is then stopped and previewed instead. Newer input stops it as well.
@@ -128,13 +140,14 @@ json Session::solveLive(const SolveAt& solve, int resolution, bool optimises, lo
       if (preview < resolution) optimising = true;
       if (optimising || ticket.cancel->load()) stop = true;
     };
-    Result<json> full = solve(resolution, probe);
-    if (!optimising) return finish(full, ticket, seq, false);
+    Result<Solved> full = solve(resolution, probe);
+    if (!optimising) return finish(full, ticket, seq, false, false);
+    optimisedDesign_ = design;
     refine = true;
   }
   RunHooks hooks;
   hooks.interrupted = ticket.cancel.get();
-  json out = finish(solve(preview, hooks), ticket, seq, true);
+  json out = finish(solve(preview, hooks), ticket, seq, true, false);
   if (!out.contains("error") && !out.contains("superseded")) {
     out["refining"] = true;
     queue([this, solve, resolution, ticket, seq] {
@@ -149,11 +162,11 @@ json Session::solveLive(const SolveAt& solve, int resolution, bool optimises, lo
         events_.push({{"type", "progress"}, {"seq", seq}, {"stage", stage},
                       {"iteration", it.iteration}, {"cost", it.cost}});
       };
-      json result = finish(solve(resolution, progress), ticket, seq, false);
+      json result = finish(solve(resolution, progress), ticket, seq, false, true);
       if (result.contains("superseded")) return;
       result["type"] = "result";
       events_.push(result);
-    }, true);
+    }, Task::Refinement);
   }
   return out;
 }
@@ -172,39 +185,47 @@ void Session::startStrip(std::vector<std::pair<json, SolveAt>> starts, long seq)
       if (!strip_.current(ticket)) return;
       RunHooks hooks;
       hooks.interrupted = ticket.cancel.get();
-      Result<json> result = solve(kPreviewResolution, hooks);
+      Result<Solved> result = solve(kPreviewResolution, hooks);
       if (!strip_.current(ticket)) return;
       json event = card;
       event["type"] = "strip";
       event["seq"] = seq;
       event["index"] = k;
-      if (result.isOk()) event["result"] = result.value();
-      else event["error"] = result.status().message();
+      if (result.isOk()) {
+        event["result"] = result.value().result;
+        event["result"]["gate"] = result.value().gate();
+      } else {
+        event["error"] = result.status().message();
+      }
       events_.push(event);
       if (k + 1 == count) events_.push({{"type", "strip_done"}, {"seq", seq}});
-    }, false);
+    }, Task::Strip);
   }
 }
 
-void Session::queue(std::function<void()> task, bool refinement) {
+void Session::queue(std::function<void()> task, Task kind) {
   {
     std::lock_guard<std::mutex> lock(workMutex_);
-    if (refinement) refinement_ = std::move(task);
-    else stripTasks_.push_back(std::move(task));
+    if (kind == Task::Gate) gate_ = std::move(task);
+    if (kind == Task::Refinement) refinement_ = std::move(task);
+    if (kind == Task::Strip) stripTasks_.push_back(std::move(task));
   }
   workReady_.notify_one();
 }
 
-// The worker: the newest refinement first, then the strip's starts one at a time, so that a
-// refinement never waits for a whole strip.
+// The worker: the newest shape's gate first, then the newest refinement, then the strip's starts
+// one at a time, so that neither waits for a whole strip.
 void Session::work() {
   for (;;) {
     std::function<void()> task;
     {
       std::unique_lock<std::mutex> lock(workMutex_);
-      workReady_.wait(lock, [&] { return stopping_ || refinement_ || !stripTasks_.empty(); });
+      workReady_.wait(lock, [&] { return stopping_ || gate_ || refinement_ || !stripTasks_.empty(); });
       if (stopping_) return;
-      if (refinement_) {
+      if (gate_) {
+        task = std::move(*gate_);
+        gate_.reset();
+      } else if (refinement_) {
         task = std::move(*refinement_);
         refinement_.reset();
       } else {

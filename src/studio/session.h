@@ -72,8 +72,15 @@ class Latest {
   std::shared_ptr<std::atomic<bool>> cancel_;
 };
 
-/// A solve at a seam resolution, as JSON for the page (wire.h), or why it failed.
-using SolveAt = std::function<Result<nlohmann::json>(int resolution, const RunHooks& hooks)>;
+/// A solve's answer for the page (wire.h) and its gate's verdict, which the live loop sends as
+/// an event after the shape (the gate's checks cost as much again as an exact solve).
+struct Solved {
+  nlohmann::json result;
+  std::function<nlohmann::json()> gate;
+};
+
+/// A solve at a seam resolution, or why it failed.
+using SolveAt = std::function<Result<Solved>(int resolution, const RunHooks& hooks)>;
 
 class Session {
  public:
@@ -86,10 +93,13 @@ class Session {
   std::optional<CurveInput> curve() const;
 
   /// Solves at `resolution` for the request numbered `seq`; newer requests cancel it (answer
-  /// {"superseded": true}). Where the solve turns out to need the paper model's optimisation
-  /// (or `optimises` says so), the answer is a preview at kPreviewResolution with "refining":
-  /// true, and the worker streams the full solve ("progress" and "result" events).
-  nlohmann::json solveLive(const SolveAt& solve, int resolution, bool optimises, long seq);
+  /// {"superseded": true}). The gate's verdict follows as a "gate" event. Where the solve turns out to need the paper model's optimisation
+  /// (or `optimises` says so, or the last solve of the same `design` did), the answer is a
+  /// preview at kPreviewResolution with "refining": true, and the worker streams the full solve
+  /// ("progress" and "result" events). `design` names what decides the model: the pieces and
+  /// every setting but the starts.
+  nlohmann::json solveLive(const SolveAt& solve, int resolution, bool optimises, long seq,
+                           const std::string& design);
 
   /// Solves each of `starts` (queued to the worker, one "strip" event each, then "strip_done"),
   /// cancelling the strip asked for before.
@@ -102,21 +112,23 @@ class Session {
 
  private:
   void work();
-  void queue(std::function<void()> task, bool refinement);
-  nlohmann::json finish(const Result<nlohmann::json>& result, const Latest::Ticket& ticket, long seq,
-                        bool preview);
+  enum class Task { Gate, Refinement, Strip };
+  void queue(std::function<void()> task, Task kind);
+  nlohmann::json finish(const Result<Solved>& result, const Latest::Ticket& ticket, long seq,
+                        bool preview, bool gateNow);
 
   mutable std::mutex inputMutex_;
   PieceInput pieces_[2];
   std::optional<CurveInput> curve_;
 
   std::mutex solveMutex_;  ///< one solve at a time per session
+  std::string optimisedDesign_;  ///< the last design whose solve optimised (under solveMutex_)
   Latest live_, strip_;
   EventStream events_;
 
   std::mutex workMutex_;
   std::condition_variable workReady_;
-  std::optional<std::function<void()>> refinement_;
+  std::optional<std::function<void()>> gate_, refinement_;
   std::deque<std::function<void()>> stripTasks_;
   bool stopping_ = false;
   std::thread worker_;

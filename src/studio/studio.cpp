@@ -67,33 +67,44 @@ json pieceSummary(const PieceInput& piece) {
   return out;
 }
 
+// What decides whether a forward solve optimises: the pieces and every setting but the starts.
+std::string forwardDesign(const PieceInput& a, const PieceInput& b, const ForwardSettings& s) {
+  const std::hash<std::string> hash;
+  return std::to_string(hash(a.text)) + "/" + std::to_string(hash(b.text)) + "/" + joinedBoundaryName(s.joinA) +
+         joinedBoundaryName(s.joinB) + (s.flip ? "/flip/" : "/") + modelChoiceName(s.model) + "/" +
+         std::to_string(s.resolution) + (s.fitPerimeter ? "/fit" : "");
+}
+
 studio::SolveAt forwardSolve(const PieceInput& a, const PieceInput& b, const ForwardSettings& settings,
                              const GateLimits& gate) {
-  return [a = a.shape, b = b.shape, settings, gate](int resolution, const RunHooks& hooks) -> Result<json> {
+  return [a = a.shape, b = b.shape, settings, gate](int resolution, const RunHooks& hooks) -> Result<studio::Solved> {
     ForwardSettings s = settings;
     s.resolution = resolution;
     MessageSink sink;
-    Result<ForwardRun> run = makeDForm(a, b, s, sink, hooks);
-    if (!run.isOk()) return run.status();
-    const GateReport report = runGate(run.value().model, gate, run.value().metrics, nullptr, nullptr);
-    json out = studio::forwardResultJson(run.value(), report);
+    Result<ForwardRun> made = makeDForm(a, b, s, sink, hooks);
+    if (!made.isOk()) return made.status();
+    auto run = std::make_shared<const ForwardRun>(std::move(made).value());
+    json out = studio::forwardResultJson(*run);
     out["warnings"] = warnings(sink);
-    return out;
+    return studio::Solved{out, [run, gate] {
+      return studio::gateJson(runGate(run->model, gate, run->metrics, nullptr, nullptr));
+    }};
   };
 }
 
 studio::SolveAt inverseSolve(const CurveInput& curve, const InverseSettings& settings, const GateLimits& gate) {
-  return [curve = curve.curve, settings, gate](int resolution, const RunHooks& hooks) -> Result<json> {
+  return [curve = curve.curve, settings, gate](int resolution, const RunHooks& hooks) -> Result<studio::Solved> {
     InverseSettings s = settings;
     s.resolution = resolution;
     MessageSink sink;
-    Result<InverseRun> run = makePieces(curve, s, sink, hooks);
-    if (!run.isOk()) return run.status();
-    const InverseRun& r = run.value();
-    const GateReport report = runGate(r.model, gate, r.metrics, &r.target, &r.curveMatch);
-    json out = studio::inverseResultJson(r, report);
+    Result<InverseRun> made = makePieces(curve, s, sink, hooks);
+    if (!made.isOk()) return made.status();
+    auto run = std::make_shared<const InverseRun>(std::move(made).value());
+    json out = studio::inverseResultJson(*run);
     out["warnings"] = warnings(sink);
-    return out;
+    return studio::Solved{out, [run, gate] {
+      return studio::gateJson(runGate(run->model, gate, run->metrics, &run->target, &run->curveMatch));
+    }};
   };
 }
 
@@ -328,8 +339,9 @@ void Studio::Impl::routes(httplib::Server& server) {
   });
   api(server, "/api/solve", [this](const json& body, Session& s, httplib::Response& res) {
     const ForwardSettings settings = studio::forwardSettingsFrom(body);
-    reply(res, 200, s.solveLive(forwardSolve(s.piece(0), s.piece(1), settings, gate), settings.resolution,
-                                settings.model == ModelChoice::Paper, sequence(body)));
+    const PieceInput a = s.piece(0), b = s.piece(1);
+    reply(res, 200, s.solveLive(forwardSolve(a, b, settings, gate), settings.resolution,
+                                settings.model == ModelChoice::Paper, sequence(body), forwardDesign(a, b, settings)));
   });
   api(server, "/api/strip", [this](const json& body, Session& s, httplib::Response& res) {
     const ForwardSettings settings = studio::forwardSettingsFrom(body);
@@ -364,7 +376,9 @@ void Studio::Impl::routes(httplib::Server& server) {
     const InverseSettings settings = studio::inverseSettingsFrom(body, closed);
     std::optional<CurveInput> curve = s.curve();
     if (!curve) throw RequestError("no seam curve loaded");
-    reply(res, 200, s.solveLive(inverseSolve(*curve, settings, gate), settings.resolution, false, sequence(body)));
+    reply(res, 200, s.solveLive(inverseSolve(*curve, settings, gate), settings.resolution, false, sequence(body),
+                                std::to_string(std::hash<std::string>()(curve->text)) + "/" +
+                                    std::to_string(settings.resolution)));
   });
   api(server, "/api/job", [](const json& body, Session& s, httplib::Response& res) {
     if (body.value("mode", "forward") == "inverse") {

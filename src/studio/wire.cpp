@@ -83,7 +83,7 @@ json metricsJson(const Metrics& m) {
           {"exact_note", m.exact_note}};
 }
 
-json gateJson(const GateReport& gate) {
+json gateChecks(const GateReport& gate) {
   json checks = json::array();
   for (const CheckResult& c : gate.checks)
     checks.push_back({{"name", c.name},
@@ -91,7 +91,7 @@ json gateJson(const GateReport& gate) {
                       {"limit", figure(c.limit)},
                       {"verdict", verdictName(c.verdict)},
                       {"detail", c.detail}});
-  return {{"name", gate.name}, {"passed", gate.passed()}, {"failed", gate.failed()}, {"checks", checks}};
+  return checks;
 }
 
 json modelJson(const ModelUsed& used) {
@@ -171,11 +171,14 @@ InverseSettings inverseSettingsFrom(const json& request, bool& forceClosed) {
   return s;
 }
 
-json forwardResultJson(const ForwardRun& run, const GateReport& gate) {
+json gateJson(const GateReport& gate) {
+  return {{"name", gate.name}, {"passed", gate.passed()}, {"failed", gate.failed()}, {"checks", gateChecks(gate)}};
+}
+
+json forwardResultJson(const ForwardRun& run) {
   return {{"mode", "forward"},
           {"model", modelJson(run.modelUsed)},
           {"figures", metricsJson(run.metrics)},
-          {"gate", gateJson(gate)},
           {"pieces", {pieceJson(run.model.a), pieceJson(run.model.b)}},
           {"start_a", run.startFractionA},
           {"start_b", run.startFractionB},
@@ -185,12 +188,11 @@ json forwardResultJson(const ForwardRun& run, const GateReport& gate) {
           {"timings", timingsJson(run.timings)}};
 }
 
-json inverseResultJson(const InverseRun& run, const GateReport& gate) {
+json inverseResultJson(const InverseRun& run) {
   const CurveMatch& c = run.curveMatch;
   return {{"mode", "inverse"},
           {"model", modelJson(run.modelUsed)},
           {"figures", metricsJson(run.metrics)},
-          {"gate", gateJson(gate)},
           {"pieces", {pieceJson(run.model.a), pieceJson(run.model.b)}},
           {"curve_match", {{"D_error", figure(c.D_error)},
                            {"curve_distance_max_mm", figure(c.curve_distance_max_mm)},

@@ -29,11 +29,14 @@ ForwardSettings forwardSettingsFrom(const nlohmann::json& request);
 /// A seam curve's settings ("resolution", "closed").
 InverseSettings inverseSettingsFrom(const nlohmann::json& request, bool& forceClosed);
 
-/// A solved forward run for the page: model and why, figures, the gate's verdict, both pieces.
-nlohmann::json forwardResultJson(const ForwardRun& run, const GateReport& gate);
+/// A solved forward run for the page: model and why, figures, both pieces.
+nlohmann::json forwardResultJson(const ForwardRun& run);
 
 /// A solved inverse run: as forwardResultJson, plus the curve match and the on-hull test.
-nlohmann::json inverseResultJson(const InverseRun& run, const GateReport& gate);
+nlohmann::json inverseResultJson(const InverseRun& run);
+
+/// The gate's verdict: its name, passed, and every check.
+nlohmann::json gateJson(const GateReport& gate);
 
 /// An outline as read, for drawing and the start handles: outer loop, holes, creases (flat
 /// [x0, y0, x1, y1, ...] arrays, mm, at most `maxPoints` points a loop), perimeters, bounds.

@@ -131,6 +131,13 @@
     }, function () { scheduleStrip(); });
   });
   studio.views = views;
+  // A start set as a drag ending there sets it (scripts and tests).
+  studio.setStart = function (i, f) {
+    remember();
+    state.settings[i ? "start_b" : "start_a"] = f;
+    views[i].setFraction(f);
+    solve(); scheduleStrip();
+  };
   [0, 1].forEach(function (i) { $("svg-" + "ab"[i]).addEventListener("pointerdown", function (e) {
     if (e.target.classList.contains("handle-target")) remember();
   }, true); });
@@ -214,11 +221,25 @@
   }
 
   function number(x, digits) { return x == null ? "—" : (+x).toPrecision(digits || 3); }
-  function facts(r) {
+  // The gate's verdict, which arrives with a refined result or as an event after the shape.
+  function showGate(gate, preview) {
     var status = $("status");
-    status.className = "status " + (r.gate.passed ? "pass" : "fail");
-    status.textContent = (r.gate.passed ? "gate passed" : "gate failed: " + r.gate.failed + " check(s)") +
-      (r.preview ? " — preview at " + studio.previewResolution + " seam points, refining…" : "");
+    status.className = "status " + (gate ? (gate.passed ? "pass" : "fail") : "");
+    status.textContent = (!gate ? "checking the gate…" : gate.passed ? "gate passed" : "gate failed: " + gate.failed + " check(s)") +
+      (preview ? " — preview at " + studio.previewResolution + " seam points, refining…" : "");
+    $("checks").innerHTML = "";
+    (gate ? gate.checks : []).forEach(function (c) {
+      var li = document.createElement("li");
+      li.className = c.verdict; li.textContent = c.name + ": " + c.verdict + (c.verdict === "fail" ? " — " + c.detail : "");
+      $("checks").appendChild(li);
+    });
+    studio.gate = gate;
+  }
+
+  var earlyGates = {};
+  function facts(r) {
+    showGate(r.gate || earlyGates[r.seq], r.preview);
+    earlyGates = {};
     $("model").textContent = r.model.name + (r.model.found_creases.length ? ", " + r.model.found_creases.length + " found crease(s)" : "");
     $("reason").textContent = r.model.reason;
     var f = r.figures, rows = [
@@ -235,12 +256,6 @@
       var tr = document.createElement("tr");
       row.forEach(function (cell) { var td = document.createElement("td"); td.textContent = cell; tr.appendChild(td); });
       $("figures").appendChild(tr);
-    });
-    $("checks").innerHTML = "";
-    r.gate.checks.forEach(function (c) {
-      var li = document.createElement("li");
-      li.className = c.verdict; li.textContent = c.name + ": " + c.verdict + (c.verdict === "fail" ? " — " + c.detail : "");
-      $("checks").appendChild(li);
     });
     $("warnings").textContent = (r.warnings || []).join("\n");
   }
@@ -354,6 +369,8 @@
       var e = JSON.parse(m.data);
       if (e.type === "progress" && e.seq === shownSeq) $("status").textContent = "refining: " + e.stage + " step " + e.iteration;
       if (e.type === "result" && e.seq >= shownSeq && pending == null && !inFlight) show(e);
+      if (e.type === "gate" && e.seq === shownSeq) showGate(e.gate, e.preview);
+      if (e.type === "gate" && e.seq > shownSeq) earlyGates[e.seq] = e.gate;  // before its shape's answer
       if (e.type === "strip") strip.add(e);
       if (e.type === "strip_done") strip.done(e);
     };

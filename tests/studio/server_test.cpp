@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <fstream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 #include <thread>
 
@@ -127,6 +129,7 @@ TEST(StudioServer, TwoSessionsAreIndependent) {
 TEST(StudioServer, ShapeEqualsTheInMemoryRunForTheSameStart) {
   StudioClient c;
   const std::string session = c.session();
+  test::EventReader events(c, session);
   auto r = c.post("/api/solve", {{"session", session}, {"seq", 3}, {"start_a", 0.1}, {"start_b", 0.37}});
   ASSERT_EQ(r.first, 200) << r.second;
   ASSERT_FALSE(r.second.contains("error")) << r.second;
@@ -148,6 +151,12 @@ TEST(StudioServer, ShapeEqualsTheInMemoryRunForTheSameStart) {
       for (int k = 0; k < 3; ++k) EXPECT_EQ(got[std::size_t(3 * v + k)], expected(v, k));
   }
   EXPECT_DOUBLE_EQ(r.second["figures"]["L_error"].get<double>(), direct.value().metrics.L_error);
+  // The gate's verdict follows the shape as an event.
+  const json gate = events.waitFor("gate", std::chrono::seconds(60));
+  ASSERT_FALSE(gate.is_null());
+  EXPECT_EQ(gate["seq"], 3);
+  EXPECT_TRUE(gate["gate"]["passed"].get<bool>()) << gate;
+  EXPECT_GE(gate["gate"]["checks"].size(), 10u);
 }
 
 TEST(StudioServer, NewestInputWinsAndStaleRefinementsNeverArrive) {
@@ -170,6 +179,7 @@ TEST(StudioServer, NewestInputWinsAndStaleRefinementsNeverArrive) {
   EXPECT_EQ(result["seq"], 2);
   EXPECT_FALSE(result["preview"].get<bool>());
   EXPECT_EQ(result["pieces"][0]["seam"].size(), 60u);
+  EXPECT_TRUE(result["gate"].contains("passed"));  // a refined result carries its verdict
   for (const json& e : events.seen()) EXPECT_NE(e.value("seq", 0) == 1 && e["type"] == "result", true) << e;
 }
 
@@ -183,6 +193,49 @@ TEST(StudioServer, LatestTicketCancelsTheOneBefore) {
   EXPECT_TRUE(latest.current(two));
   latest.cancel();
   EXPECT_FALSE(latest.current(two));
+}
+
+}  // namespace
+}  // namespace dform
+
+namespace dform {
+namespace {
+
+std::string sampleText(const std::string& name) {
+  std::ifstream in(std::string(DFORM_SAMPLES_DIR) + "/inverse/" + name);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A seam curve on its convex hull gets the exact pieces; one pushed inside its hull says which
+// points are inside; both with the round trip's figures.
+TEST(StudioServer, InverseShowsTheOnHullTestAndTheRoundTrip) {
+  test::StudioClient c;
+  const std::string session = c.session();
+  auto missing = c.post("/api/inverse", {{"session", session}, {"seq", 1}});
+  EXPECT_EQ(missing.first, 400);
+  auto curve = c.post("/api/curve", {{"session", session}, {"name", "tennis-ball.obj"}, {"text", sampleText("tennis-ball.obj")}});
+  ASSERT_EQ(curve.first, 200) << curve.second;
+  EXPECT_GT(curve.second["length"].get<double>(), 100.0);
+  auto ball = c.post("/api/inverse", {{"session", session}, {"seq", 2}, {"resolution", 60}});
+  ASSERT_EQ(ball.first, 200) << ball.second;
+  ASSERT_FALSE(ball.second.contains("error")) << ball.second;
+  EXPECT_TRUE(ball.second["on_hull"]["on_hull"].get<bool>());
+  EXPECT_EQ(ball.second["model"]["name"], "exact");
+  EXPECT_LT(ball.second["curve_match"]["roundtrip_max_rel"].get<double>(), 0.01);
+  EXPECT_EQ(test::decodeDoubles(ball.second["target"]).size(), 60u * 3);
+
+  ASSERT_EQ(c.post("/api/curve", {{"session", session}, {"name", "pushed-in.obj"}, {"text", sampleText("pushed-in.obj")}}).first, 200);
+  auto pushed = c.post("/api/inverse", {{"session", session}, {"seq", 3}, {"resolution", 60}});
+  ASSERT_EQ(pushed.first, 200) << pushed.second;
+  EXPECT_FALSE(pushed.second["on_hull"]["on_hull"].get<bool>()) << pushed.second["on_hull"];
+  EXPECT_FALSE(pushed.second["on_hull"]["inside_points"].empty());
+  EXPECT_FALSE(pushed.second["on_hull"]["summary"].get<std::string>().empty());
+
+  auto bad = c.post("/api/curve", {{"session", session}, {"name", "flat.obj"}, {"text", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 2 0\nl 1 2 3 4 5 1\n"}});
+  EXPECT_EQ(bad.first, 400);
+  EXPECT_NE(bad.second["error"].get<std::string>().find("flat.obj"), std::string::npos) << bad.second;
 }
 
 }  // namespace
