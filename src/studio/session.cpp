@@ -125,7 +125,9 @@ json Session::finish(const Result<Solved>& result, const Latest::Ticket& ticket,
 json Session::solveLive(const SolveAt& solve, int resolution, bool optimises, long seq,
                         const std::string& design) {
   const Latest::Ticket ticket = live_.next();
+  ++liveWaiting_;
   std::unique_lock<std::mutex> lock(solveMutex_);
+  --liveWaiting_;
   if (!live_.current(ticket)) return {{"seq", seq}, {"superseded", true}};
   const int preview = std::min(resolution, kPreviewResolution);
   bool refine = (optimises || design == optimisedDesign_) && preview < resolution;
@@ -151,7 +153,7 @@ json Session::solveLive(const SolveAt& solve, int resolution, bool optimises, lo
   if (!out.contains("error") && !out.contains("superseded")) {
     out["refining"] = true;
     queue([this, solve, resolution, ticket, seq] {
-      std::lock_guard<std::mutex> solving(solveMutex_);
+      std::unique_lock<std::mutex> solving = lockAfterLive();
       if (!live_.current(ticket)) return;
       auto last = Clock::now();
       RunHooks progress;
@@ -181,7 +183,7 @@ void Session::startStrip(std::vector<std::pair<json, SolveAt>> starts, long seq)
   for (int k = 0; k < count; ++k) {
     auto [card, solve] = std::move(starts[std::size_t(k)]);
     queue([this, card = std::move(card), solve = std::move(solve), ticket, seq, k, count] {
-      std::lock_guard<std::mutex> solving(solveMutex_);
+      std::unique_lock<std::mutex> solving = lockAfterLive();
       if (!strip_.current(ticket)) return;
       RunHooks hooks;
       hooks.interrupted = ticket.cancel.get();
@@ -200,6 +202,14 @@ void Session::startStrip(std::vector<std::pair<json, SolveAt>> starts, long seq)
       events_.push(event);
       if (k + 1 == count) events_.push({{"type", "strip_done"}, {"seq", seq}});
     }, Task::Strip);
+  }
+}
+
+std::unique_lock<std::mutex> Session::lockAfterLive() {
+  for (;;) {
+    while (liveWaiting_.load() > 0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    std::unique_lock<std::mutex> lock(solveMutex_);
+    if (liveWaiting_.load() == 0) return lock;
   }
 }
 

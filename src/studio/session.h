@@ -122,6 +122,10 @@ class Session {
   std::optional<CurveInput> curve_;
 
   std::mutex solveMutex_;  ///< one solve at a time per session
+  /// Live solves waiting for solveMutex_: the worker's tasks let them go first (a mutex is not
+  /// fair, and a strip's back-to-back solves would otherwise hold a drag for seconds).
+  std::atomic<int> liveWaiting_{0};
+  std::unique_lock<std::mutex> lockAfterLive();
   std::string optimisedDesign_;  ///< the last design whose solve optimised (under solveMutex_)
   Latest live_, strip_;
   EventStream events_;

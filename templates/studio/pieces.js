@@ -66,7 +66,7 @@ function PieceView(svg, label, onStart, onRelease) {
     return self.loop.nearest(q.x, -q.y);
   }
   svg.addEventListener("pointerdown", function (e) {
-    if (!self.loop || !e.target.classList.contains("handle-target")) return;
+    if (!self.loop || self.fixed || !e.target.classList.contains("handle-target")) return;
     dragging = true;
     svg.setPointerCapture(e.pointerId);
     e.preventDefault();
@@ -89,6 +89,21 @@ PieceView.prototype.setShape = function (shape, join) {
                                     shape.max[1] - shape.min[1] + 2 * pad].join(" "));
   this.unit = (shape.max[0] - shape.min[0] + 2 * pad) / 300;  // one screen pixel of a 300-px panel, in mm
   this.result = null;
+  this.fixed = false;
+  this.render();
+};
+
+// An inverse result's flat piece (no outline was read): its seam loop drawn as the outline,
+// with its ticks and creases, and no handle (the seam's start is the curve's first point).
+PieceView.prototype.setSolvedPiece = function (piece) {
+  var outer = [];
+  piece.seam.forEach(function (v) { outer.push(piece.flat[2 * v], piece.flat[2 * v + 1]); });
+  var xs = outer.filter(function (_, k) { return k % 2 === 0; }), ys = outer.filter(function (_, k) { return k % 2 === 1; });
+  this.setShape({ outer: outer, holes: [], creases: [], min: [Math.min.apply(null, xs), Math.min.apply(null, ys)],
+                  max: [Math.max.apply(null, xs), Math.max.apply(null, ys)] }, "outer");
+  this.fraction = 0;
+  this.result = { piece: piece, direction: 1, breakPoint: null, scale: [1, 1], offset: [0, 0] };
+  this.fixed = true;
   this.render();
 };
 
@@ -112,6 +127,7 @@ PieceView.prototype.render = function () {
   this.ticks = svgNode("g", { class: "ticks" }, svg);
   this.renderTicks();
   if (this.result) this.renderFound();
+  if (this.fixed) { this.handle = null; return; }
   this.handle = svgNode("circle", { r: 7 * u, class: "handle handle-target", "stroke-width": 2 * u }, svg);
   this.handleLabel = svgNode("text", { class: "handle-label", "font-size": 12 * u }, svg);
   this.renderHandle();

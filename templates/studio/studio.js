@@ -202,6 +202,10 @@
     if (r.target) extra.push({ points: decodeF64(r.target), colour: [0.1, 0.5, 0.2], loop: true });
     view3d.setModel(pieces, extra);
     var brk = /at seam point (\d+)/.exec(r.model.reason);
+    if (state.mode === "inverse") [0, 1].forEach(function (i) {
+      views[i].setSolvedPiece(pieces[i]);
+      $("name-" + "ab"[i]).textContent = "piece " + "AB"[i] + " as cut, unfolded from the curve";
+    });
     if (state.mode === "forward") {
       [0, 1].forEach(function (i) {
         var place = placement(pieces[i], summaries[i]);
@@ -302,7 +306,12 @@
   // ---- inverse ----------------------------------------------------------------------------------
   function setMode(mode) {
     remember(); state.mode = mode; syncControls();
-    if (mode === "forward") { refreshPieces(); scheduleStrip(); }
+    if (mode === "forward") {
+      [0, 1].forEach(function (i) {
+        $("name-" + "ab"[i]).textContent = summaries[i].name + " — perimeter " + summaries[i].perimeter.toFixed(1) + " mm";
+      });
+      refreshPieces(); scheduleStrip();
+    }
     if (mode === "forward" || state.curve) solve();
   }
   $("mode-forward").onclick = function () { setMode("forward"); };
@@ -348,7 +357,7 @@
   };
 
   // ---- start ------------------------------------------------------------------------------------
-  var view3d = new View3D($("view3d"));
+  var view3d = studio.view3d = new View3D($("view3d"));
   window.addEventListener("resize", function () { view3d.draw(); });
   api("/api/session", {}).then(function (s) {
     session = s.session; kinds = s.kinds; studio.session = session; studio.previewResolution = s.preview_resolution;

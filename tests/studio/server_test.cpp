@@ -157,6 +157,12 @@ TEST(StudioServer, ShapeEqualsTheInMemoryRunForTheSameStart) {
   EXPECT_EQ(gate["seq"], 3);
   EXPECT_TRUE(gate["gate"]["passed"].get<bool>()) << gate;
   EXPECT_GE(gate["gate"]["checks"].size(), 10u);
+  // Sent uncompressed even to a client that accepts compression (on loopback it only costs).
+  httplib::Headers accepting = c.headers();
+  accepting.emplace("Accept-Encoding", "gzip, deflate, br");
+  auto plain = c.raw().Post("/api/solve", accepting, json{{"session", session}, {"seq", 4}}.dump(), "application/json");
+  ASSERT_TRUE(plain);
+  EXPECT_EQ(plain->get_header_value("Content-Encoding"), "");
 }
 
 TEST(StudioServer, NewestInputWinsAndStaleRefinementsNeverArrive) {
