@@ -109,9 +109,10 @@ PieceView.prototype.setSolvedPiece = function (piece) {
 
 PieceView.prototype.setFraction = function (f) { this.fraction = f; this.renderHandle(); };
 
-// The result's seam for ticks (its fractions along the seam) and its creases on the flat piece.
-PieceView.prototype.setResult = function (piece, direction, breakPoint) {
-  this.result = { piece: piece, direction: direction, breakPoint: breakPoint };
+// A result over the outline as read: the way its seam runs (ticks), its found creases and the
+// seam point that breaks convexity, its flat piece placed by `place` ({scale, offset}).
+PieceView.prototype.setResult = function (piece, direction, breakPoint, place) {
+  this.result = { piece: piece, direction: direction, breakPoint: breakPoint, scale: place.scale, offset: place.offset };
   this.render();
 };
 

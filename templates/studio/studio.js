@@ -208,10 +208,8 @@
     });
     if (state.mode === "forward") {
       [0, 1].forEach(function (i) {
-        var place = placement(pieces[i], summaries[i]);
-        views[i].setResult(pieces[i], i === 0 || state.settings.flip ? 1 : -1, brk ? +brk[1] : null);
-        Object.assign(views[i].result, place);
-        views[i].render();
+        views[i].setResult(pieces[i], i === 0 || state.settings.flip ? 1 : -1, brk ? +brk[1] : null,
+                           placement(pieces[i], summaries[i]));
       });
     }
     facts(r);
@@ -296,6 +294,7 @@
   function scheduleStrip() {
     if (state.mode !== "forward") return;
     clearTimeout(stripTimer);
+    $("strip-cards").setAttribute("data-state", "scheduled");
     stripTimer = setTimeout(function () {
       var seq = ++stripSeq;
       strip.reset(seq);

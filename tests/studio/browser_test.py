@@ -154,6 +154,24 @@ def main():
         with open(os.path.join(export_dir, "pattern.svg"), "rb") as f1, open(os.path.join(cli_dir, "pattern.svg"), "rb") as f2:
             check(f1.read() == f2.read(), "Export's pattern.svg is byte-identical to the CLI's")
 
+        # A pair whose glued metric is not convex: a preview at once, then the refined paper model
+        # streamed, with the seam point that breaks convexity marked on the pieces.
+        seq = s.js("return window.studio.frameSeq")
+        s.driver.find_element("id", "file-a").send_keys(os.path.join(samples, "forward", "nonconvex-a.svg"))
+        s.wait(lambda: s.js("return window.studio.frameSeq") > seq, 60, "the first non-convex shape")
+        seq = s.js("return window.studio.frameSeq")
+        s.driver.find_element("id", "file-b").send_keys(os.path.join(samples, "forward", "nonconvex-b.svg"))
+        s.wait(lambda: s.js("return window.studio.frameSeq") > seq, 60, "the non-convex pair's shape")
+        preview = s.js("return window.studio.shown.result.preview")
+        s.settle(300)
+        result = s.js("return window.studio.shown.result")
+        check(preview and not result["preview"] and result["model"]["name"] == "paper",
+              "a non-convex pair shows a preview, then the refined paper model")
+        check(len(result["pieces"][0]["seam"]) == 100, "the refined shape has the page's resolution")
+        check("seam point" in result["model"]["reason"] and
+              len(s.driver.find_elements("css selector", "#svg-a circle.break-point")) == 1,
+              "the seam point that breaks convexity is named and marked")
+
         base = f"http://127.0.0.1:{s.port}"
         check(http_status(base + "/", {}) == 403, "a request without the token gets 403")
         check(http_status(base + "/api/session", {"X-Dform-Token": s.token, "Origin": "http://evil.example"}) == 403,
