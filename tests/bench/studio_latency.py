@@ -8,7 +8,13 @@ it answers). The drag starts once the page's first strip of alternative starts i
 the median, the 95th percentile and how many of the positions got a frame of their own.
 
     studio_latency.py BUILD/dform SAMPLES_DIR [--pause 0.15] [--positions 100]
+
+With --paper: the non-convex sample pair (the paper model) dragged for positions x pause seconds;
+prints how long after letting go the page showed the last position's preview and its refined
+shape.
+    studio_latency.py BUILD/dform SAMPLES_DIR --paper --positions 50 --pause 0.1
 """
+import time
 import argparse
 import os
 import statistics
@@ -24,6 +30,7 @@ def main():
     parser.add_argument("samples")
     parser.add_argument("--pause", type=float, default=0.15)
     parser.add_argument("--positions", type=int, default=100)
+    parser.add_argument("--paper", action="store_true")
     args = parser.parse_args()
     missing = studio_browser.chromium_missing()
     if missing:
@@ -32,7 +39,8 @@ def main():
     from selenium.webdriver.common.action_chains import ActionChains
     from selenium.webdriver.common.by import By
     forward = os.path.join(args.samples, "forward")
-    s = studio_browser.Studio(args.dform, [os.path.join(forward, "ellipses-a.svg"), os.path.join(forward, "ellipses-b.svg")])
+    pair = ("nonconvex-a.svg", "nonconvex-b.svg") if args.paper else ("ellipses-a.svg", "ellipses-b.svg")
+    s = studio_browser.Studio(args.dform, [os.path.join(forward, name) for name in pair])
     try:
         s.settle()
         # The page's first strip of alternative starts is solved in the background: wait for it,
@@ -53,7 +61,19 @@ def main():
         for x, y in points:
             actions.move_by_offset(x - last[0], y - last[1]).pause(args.pause)
             last = [x, y]
-        actions.release().perform()
+        actions.release()
+        if args.paper:
+            actions.perform()
+            released = time.time()
+            last = s.js("return window.studio.views[1].fraction")
+            showing = "var s = window.studio; return s.frameSeq === s.shown.seq && Math.abs(s.shown.settings.start_b - %r) < 1e-12" % last
+            s.wait(lambda: s.js(showing), 300, "the last position")
+            preview = time.time() - released
+            s.wait(lambda: s.js(showing + " && !s.shown.result.preview && !s.shown.result.refining"), 300, "its refined shape")
+            print(f"released after {args.positions} moves x {args.pause} s: the last position's first shape after {preview:.2f} s, "
+                  f"refined after {time.time() - released:.2f} s")
+            return 0
+        actions.perform()
         s.settle()
         latencies = s.js("return window.studio.latencies")
         errors = s.console_errors()
