@@ -86,7 +86,9 @@ constexpr double kFollowedFold = 1e-5;
 // row of the conforming seam to another, with points about `edge` apart; and each line's fold.
 struct PieceLines {
   std::vector<InteriorLine> lines;
-  std::vector<double> folds;  ///< radians
+  std::vector<double> folds;                  ///< radians
+  std::vector<std::pair<int, int>> places;    ///< each line's ends in the conforming seam
+  std::vector<const exact::BodyEdge*> edges;  ///< the body edge each line follows
 };
 
 // Whether the run between seam places i and j cuts off a single place m between them (an ear of
@@ -136,6 +138,8 @@ PieceLines pieceLines(const std::vector<const exact::BodyEdge*>& followed, int p
       line.interior = resampleOpen(ends, segments).middleRows(1, segments - 1);
       out.lines.push_back(std::move(line));
       out.folds.push_back(body->fold);
+      out.places.emplace_back(i, j);
+      out.edges.push_back(body);
     }
   return out;
 }
@@ -196,8 +200,12 @@ Result<DForm> exactDForm(exact::SeamPolygons polygons, double targetEdge, const 
     out.F = std::move(mesh.value().F);
     out.seam = rowOf;
     for (std::size_t l = 0; l < lines.lines.size(); ++l) {
-      if (lines.folds[l] <= creaseAngle) continue;
       const InteriorLine& line = lines.lines[l];
+      const auto seamPointAt = [&](int i) { return seam.place(i).isSeamPoint() ? seam.place(i).chord : -1; };
+      used.folds.push_back({p, line.from, line.to, seamPointAt(lines.places[l].first),
+                            seamPointAt(lines.places[l].second), lines.edges[l]->from, lines.edges[l]->to,
+                            lines.folds[l], lines.folds[l] > creaseAngle ? int(out.creases.size()) : -1});
+      if (lines.folds[l] <= creaseAngle) continue;
       used.creases.push_back({p, int(out.creases.size()), lines.folds[l] / kDegree,
                               (outline.row(line.from) - outline.row(line.to)).norm()});
       out.creases.push_back(mesh.value().lines[l]);

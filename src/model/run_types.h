@@ -25,6 +25,19 @@ struct FoundCrease {
   double lengthMm = 0;
 };
 
+/// A fold of the exact D-Form through a piece: a straight run of one of the body's edges between
+/// two places on the piece's seam, with the angle between the two faces that meet along it.
+/// Folds steeper than the found-crease angle are the piece's creases; gentler ones are listed too.
+struct BodyFold {
+  int piece = 0;                   ///< 0 for A, 1 for B
+  int from = 0, to = 0;            ///< the mesh vertices (rows of the piece's flat) at its ends
+  int fromSeamPoint = -1;          ///< the seam point at `from`, -1 where it crosses a chord
+  int toSeamPoint = -1;            ///< likewise at `to`
+  int edgeFrom = 0, edgeTo = 0;    ///< the seam points the body edge joins (its ends on the body)
+  double radians = 0;              ///< fold angle: between the two faces' normals (0 = flat)
+  int crease = -1;                 ///< its index in the piece's creases, -1 for a gentle fold
+};
+
 /// Which model ran, and why the other did not.
 struct ModelUsed {
   std::string name;    ///< "exact" or "paper"
@@ -35,6 +48,7 @@ struct ModelUsed {
   double chordMoveMm = 0;      ///< exact: the most a seam point moved to make paired chords equal
   bool doublyCovered = false;  ///< exact: the pieces fold flat onto each other
   std::vector<FoundCrease> creases;
+  std::vector<BodyFold> folds;  ///< exact: every fold through a piece (the paper model knows none)
 };
 
 /// Hooks for a caller that shows progress or can be interrupted.

@@ -44,8 +44,34 @@ void addCurveMatch(json& metrics, const CurveMatch& c) {
   metrics["roundtrip_note"] = c.roundtrip_note;
 }
 
+// A seam point's index, or null where a fold crosses a chord between seam points.
+json seamPointOrNull(int k) { return k < 0 ? json(nullptr) : json(k); }
+
+// The exact body's folds through the pieces, each with its ends in its piece's flat coordinates.
+json foldsJson(const ModelUsed& used, const DForm& model) {
+  constexpr double kDegree = 3.14159265358979323846 / 180.0;
+  json out = json::array();
+  for (const BodyFold& f : used.folds) {
+    const Points2& flat = f.piece == 0 ? model.a.flat : model.b.flat;
+    const auto at = [&](int v) { return json::array({numberOrNull(flat(v, 0)), numberOrNull(flat(v, 1))}); };
+    json fold = {{"piece", f.piece == 0 ? "A" : "B"},
+                 {"from_mm", at(f.from)},
+                 {"to_mm", at(f.to)},
+                 {"from_seam_point", seamPointOrNull(f.fromSeamPoint)},
+                 {"to_seam_point", seamPointOrNull(f.toSeamPoint)},
+                 {"body_edge", json::array({f.edgeFrom, f.edgeTo})},
+                 {"length_mm", numberOrNull((flat.row(f.from) - flat.row(f.to)).norm())},
+                 {"angle_deg", numberOrNull(f.radians / kDegree)},
+                 {"angle_rad", numberOrNull(f.radians)},
+                 {"crease", f.crease >= 0}};
+    if (f.crease >= 0) fold["crease_index"] = f.crease + 1;
+    out.push_back(std::move(fold));
+  }
+  return out;
+}
+
 // Which model made the shape, why, and what the exact engine found.
-json modelJson(const ModelUsed& used) {
+json modelJson(const ModelUsed& used, const DForm& model) {
   json creases = json::array();
   for (const FoundCrease& c : used.creases)
     creases.push_back({{"piece", c.piece == 0 ? "A" : "B"},
@@ -59,7 +85,8 @@ json modelJson(const ModelUsed& used) {
                 {"max_curvature_rad", numberOrNull(used.maxCurvature)},
                 {"chord_move_mm", numberOrNull(used.chordMoveMm)},
                 {"doubly_covered", used.doublyCovered},
-                {"found_creases", creases}});
+                {"found_creases", creases},
+                {"folds", foldsJson(used, model)}});
   return out;
 }
 
@@ -211,7 +238,7 @@ Result<std::string> writeForwardReport(const std::string& dir, const Job& job, c
   report["fit_perimeter_scale"] = numberOrNull(run.scaleB);
   report["start_fraction_a"] = numberOrNull(run.startFractionA);
   report["start_fraction_b"] = numberOrNull(run.startFractionB);
-  report["model"] = modelJson(run.modelUsed);
+  report["model"] = modelJson(run.modelUsed, run.model);
   report["mesh"] = meshJson(run.model);
   report["solver"] = solverJson(run.relaxation, run.summary);
   report["solver"]["constraint_rounds"] = run.constraintRounds;
@@ -230,7 +257,7 @@ Result<std::string> writeInverseReport(const std::string& dir, const Job& job, c
   json report = header(job, "inverse");
   report["inputs"] = {
       {"curve", inputJson(job.inverse.curve, run.target.sha256, "length_mm", run.curveLength)}};
-  report["model"] = modelJson(run.modelUsed);
+  report["model"] = modelJson(run.modelUsed, run.model);
   report["pre_dform"] = {{"on_hull", run.pre.onHull},
                          {"is_hull", run.pre.isHull},
                          {"inside_vertices", run.pre.insideVertices.size()},

@@ -3,7 +3,12 @@
 // resolution, and no triangle of a piece straddles a fold.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <cmath>
+#include <map>
+#include <utility>
+#include <vector>
 #include <string>
 
 #include "exact/body_edges.h"
@@ -30,6 +35,19 @@ void expectRounding(const Metrics& m, const std::string& what) {
   EXPECT_EQ(m.flipped_2d + m.flipped_3d, 0) << what;
 }
 
+// A circle and a square of 400 mm perimeter, 25 seam points a side, the square's corners midway
+// between seam rows.
+exact::SeamPolygons circleAndSquare() {
+  const int perSide = 25;
+  exact::SeamPolygons seam;
+  const double radius = 200.0 / std::acos(-1.0);
+  seam.a = exact::testshapes::ellipse(radius, radius, 4 * perSide);
+  const Points2 square = exact::testshapes::polygonSampled({{0, 0}, {100, 0}, {100, 100}, {0, 100}}, perSide);
+  seam.b.resize(square.rows(), 2);
+  for (Eigen::Index k = 0; k < square.rows(); ++k) seam.b.row(k) = square.row((square.rows() - k + perSide / 2) % square.rows());
+  return seam;
+}
+
 TEST(ExactModel, EllipsePairMeshesConformAndTheFiguresAreRounding) {
   for (int n : {50, 100, 200}) {
     ModelUsed used;
@@ -40,15 +58,8 @@ TEST(ExactModel, EllipsePairMeshesConformAndTheFiguresAreRounding) {
 }
 
 TEST(ExactModel, CircleAndSquareCreaseAndBendWithoutStretching) {
-  const int perSide = 25;
-  exact::SeamPolygons seam;
-  const double radius = 200.0 / std::acos(-1.0);  // 400 mm round, as the square
-  seam.a = exact::testshapes::ellipse(radius, radius, 4 * perSide);
-  const Points2 square = exact::testshapes::polygonSampled({{0, 0}, {100, 0}, {100, 100}, {0, 100}}, perSide);
-  seam.b.resize(square.rows(), 2);
-  for (Eigen::Index k = 0; k < square.rows(); ++k) seam.b.row(k) = square.row((square.rows() - k + perSide / 2) % square.rows());
   ModelUsed used;
-  Result<DForm> model = made(seam, used);
+  Result<DForm> model = made(circleAndSquare(), used);
   ASSERT_TRUE(model.isOk()) << model.status().message();
   // The square's flat face is triangulated by many flips, whose chained laws of cosines leave its
   // edges' lengths off by ~1e-7: the figures read that, not the meshing.
@@ -104,6 +115,95 @@ TEST(ExactModel, NoTriangleStraddlesAFoldOfTheBody) {
     }
   }
   EXPECT_GT(folds, 50) << "a curved body folds along many lines through its pieces";
+}
+
+// The angle between the 3D normals of the two triangles beside each interior mesh edge, keyed by
+// the edge's vertices (smaller first): the body's dihedral angles read from the mesh alone.
+std::map<std::pair<int, int>, double> meshFolds(const Piece& piece) {
+  std::map<std::pair<int, int>, std::vector<Eigen::Vector3d>> normals;
+  for (Eigen::Index f = 0; f < piece.F.rows(); ++f) {
+    const Eigen::Vector3d a = piece.shape.row(piece.F(f, 0)), b = piece.shape.row(piece.F(f, 1)),
+                          c = piece.shape.row(piece.F(f, 2));
+    const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();
+    for (int k = 0; k < 3; ++k) normals[std::minmax(piece.F(f, k), piece.F(f, (k + 1) % 3))].push_back(normal);
+  }
+  std::map<std::pair<int, int>, double> out;
+  for (const auto& [edge, ns] : normals)
+    if (ns.size() == 2) out[edge] = std::atan2(ns[0].cross(ns[1]).norm(), ns[0].dot(ns[1]));
+  return out;
+}
+
+// Whether flat point x lies on the segment p-q, within `tol` mm.
+bool onSegment(const Eigen::Vector2d& x, const Eigen::Vector2d& p, const Eigen::Vector2d& q, double tol) {
+  const Eigen::Vector2d d = q - p;
+  const double t = (x - p).dot(d) / d.squaredNorm();
+  return t >= -1e-9 && t <= 1 + 1e-9 && (p + t * d - x).norm() <= tol;
+}
+
+// The fold map against the mesh: every mesh edge along a listed fold turns by that fold's angle,
+// every other interior edge is flat, and every fold is crossed by its edges end to end.
+void expectFoldMapMatchesTheMesh(const DForm& model, const ModelUsed& used, double tolRad) {
+  const Piece* pieces[2] = {&model.a, &model.b};
+  for (int p = 0; p < 2; ++p) {
+    const Piece& piece = *pieces[p];
+    std::map<std::pair<int, int>, double> dihedral = meshFolds(piece);
+    for (const BodyFold& fold : used.folds) {
+      if (fold.piece != p) continue;
+      const Eigen::Vector2d from = piece.flat.row(fold.from), to = piece.flat.row(fold.to);
+      double covered = 0;
+      for (auto it = dihedral.begin(); it != dihedral.end();) {
+        const Eigen::Vector2d u = piece.flat.row(it->first.first), v = piece.flat.row(it->first.second);
+        if (onSegment(u, from, to, 1e-7) && onSegment(v, from, to, 1e-7)) {
+          EXPECT_NEAR(it->second, fold.radians, tolRad) << "piece " << p << " fold " << fold.from << "-" << fold.to;
+          covered += (u - v).norm();
+          it = dihedral.erase(it);
+        } else {
+          ++it;
+        }
+      }
+      EXPECT_NEAR(covered, (from - to).norm(), 1e-7) << "the fold's mesh edges run its whole length";
+    }
+    double steepestUnlisted = 0;
+    for (const auto& [edge, angle] : dihedral) steepestUnlisted = std::max(steepestUnlisted, angle);
+    EXPECT_LE(steepestUnlisted, tolRad) << "piece " << p << ": a fold of the mesh is missing from the fold map";
+  }
+}
+
+TEST(ExactModel, EllipsePairFoldMapHoldsTheBodysDihedralAngles) {
+  ModelUsed used;
+  Result<DForm> model = made(exact::testshapes::ellipsePair(80), used);
+  ASSERT_TRUE(model.isOk()) << model.status().message();
+  ASSERT_FALSE(used.folds.empty());
+  expectFoldMapMatchesTheMesh(model.value(), used, 1e-6);
+  for (const BodyFold& fold : used.folds) {
+    EXPECT_EQ(fold.crease, -1) << "a smooth pair has gentle folds only";
+    EXPECT_GT(fold.radians, 0.0);
+  }
+}
+
+TEST(ExactModel, CircleAndSquareFoldMapHoldsFourCreasesAndTheGentleFolds) {
+  ModelUsed used;
+  Result<DForm> model = made(circleAndSquare(), used);
+  ASSERT_TRUE(model.isOk()) << model.status().message();
+  expectFoldMapMatchesTheMesh(model.value(), used, 1e-5);
+  int creases = 0, gentle = 0;
+  for (const BodyFold& fold : used.folds) {
+    const double degrees = fold.radians * 180.0 / std::acos(-1.0);
+    if (fold.crease >= 0) {
+      ++creases;
+      EXPECT_NEAR(degrees, 66.7, 0.5) << "the disc's creases between the square's corners";
+      const Piece& piece = fold.piece == 0 ? model.value().a : model.value().b;
+      ASSERT_LT(std::size_t(fold.crease), piece.creases.size());
+      const std::vector<int>& line = piece.creases[std::size_t(fold.crease)];
+      EXPECT_TRUE((line.front() == fold.from && line.back() == fold.to) || (line.front() == fold.to && line.back() == fold.from));
+    } else {
+      ++gentle;
+      EXPECT_LT(degrees, 20.0);
+    }
+  }
+  EXPECT_EQ(creases, 4);
+  EXPECT_EQ(std::size_t(creases), used.creases.size());
+  EXPECT_GT(gentle, 0) << "the disc bends between its creases";
 }
 
 }  // namespace
