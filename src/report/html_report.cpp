@@ -108,6 +108,19 @@ data stillViews(const DForm& model) {
 }
 
 // The pattern as inline SVG: the file minus its XML declaration.
+// The exact body's folds from report.json (none for the paper model).
+std::vector<FlatFold> flatFolds(const json& report) {
+  std::vector<FlatFold> out;
+  if (!report.contains("model") || !report["model"].contains("folds")) return out;
+  for (const json& f : report["model"]["folds"]) {
+    const json &from = f["from_mm"], &to = f["to_mm"];
+    if (!from[0].is_number() || !from[1].is_number() || !to[0].is_number() || !to[1].is_number()) continue;
+    out.push_back({f["piece"] == "A" ? 0 : 1, {from[0].get<double>(), from[1].get<double>()},
+                   {to[0].get<double>(), to[1].get<double>()}, f["crease"].get<bool>()});
+  }
+  return out;
+}
+
 std::string inlineSvg(const std::string& svg) {
   const auto start = svg.find("<svg");
   return start == std::string::npos ? std::string() : svg.substr(start);
@@ -199,7 +212,11 @@ Result<std::string> renderReportHtml(const ReportSources& sources, const DForm& 
   curvatureView.widthPx = 420;
   const CurvatureMaps maps = curvatureMaps(model);  // once for the two pictures and the scale
   page.set("curvature_3d", shapeSvg(model, curvatureView, &maps));
-  page.set("curvature_flat", flatCurvatureSvg(model, 520, &maps));
+  const std::vector<FlatFold> folds = flatFolds(report);
+  page.set("curvature_flat", flatCurvatureSvg(model, 520, &maps, folds));
+  page.set("fold_legend", folds.empty() ? std::string()
+                                        : ". Faint lines: the folds of the exact body (" + std::to_string(folds.size()) +
+                                              "), darker where one is a found crease.");
   char scale[32];
   std::snprintf(scale, sizeof scale, "%.3g", maps.scale);
   page.set("curvature_scale", scale);

@@ -119,7 +119,8 @@ std::string shapeSvg(const DForm& model, const View& view, const CurvatureMaps* 
   return svg + "</svg>";
 }
 
-std::string flatCurvatureSvg(const DForm& model, double widthPx, const CurvatureMaps* maps) {
+std::string flatCurvatureSvg(const DForm& model, double widthPx, const CurvatureMaps* maps,
+                             const std::vector<FlatFold>& folds) {
   // Lay A and B side by side with a gap of a tenth of the larger piece.
   Eigen::RowVector2d loA = model.a.flat.colwise().minCoeff(),
                      hiA = model.a.flat.colwise().maxCoeff();
@@ -172,6 +173,15 @@ std::string flatCurvatureSvg(const DForm& model, double widthPx, const Curvature
       for (int v : loop) outline += pixel(v) + " ";
       svg += "<polygon points='" + outline + "' fill='none' stroke='#333' stroke-width='1'/>";
     }
+    // The body's folds under the creases: gentle ones barely there, found creases stronger.
+    for (const FlatFold& fold : folds)
+      if (fold.piece == piece)
+        svg += "<line class='fold " + std::string(fold.crease ? "steep" : "gentle") + "' x1='" +
+               number(margin + (fold.from.x() - origin.x() + offset) * scale) + "' y1='" +
+               number(height - margin - (fold.from.y() - origin.y()) * scale) + "' x2='" +
+               number(margin + (fold.to.x() - origin.x() + offset) * scale) + "' y2='" +
+               number(height - margin - (fold.to.y() - origin.y()) * scale) + "' stroke='#333' " +
+               (fold.crease ? "stroke-opacity='0.7' stroke-width='1'" : "stroke-opacity='0.3' stroke-width='0.5'") + "/>";
     svg += creaseLines(p, [&](int v) { return pixel(v); });
   }
   return svg + "</svg>";

@@ -35,10 +35,19 @@ Eigen::Vector3d curvatureColour(double t);
 /// `maps`: the model's curvatureMaps when the caller has them (else measured here when needed).
 std::string shapeSvg(const DForm& model, const View& view, const CurvatureMaps* maps = nullptr);
 
+/// A fold of the body through a flat piece (report.json's model.folds): a straight line between
+/// two points of the piece's seam, in its flat coordinates, mm.
+struct FlatFold {
+  int piece = 0;  ///< 0 for A, 1 for B
+  Eigen::Vector2d from, to;
+  bool crease = false;  ///< a found crease rather than a gentle fold
+};
+
 /// Both flat pieces side by side at the same scale, coloured by their 3D curvature, every boundary
-/// loop outlined (holes stay empty), the creases drawn as in shapeSvg.
-std::string flatCurvatureSvg(const DForm& model, double widthPx,
-                             const CurvatureMaps* maps = nullptr);
+/// loop outlined (holes stay empty), the body's folds (if any) drawn faintly (class 'fold gentle'
+/// or 'fold steep', a found crease stronger), the creases drawn as in shapeSvg.
+std::string flatCurvatureSvg(const DForm& model, double widthPx, const CurvatureMaps* maps = nullptr,
+                             const std::vector<FlatFold>& folds = {});
 
 /// The curvature scale used by both (radians of angle defect at full colour): curvatureMaps' scale.
 double curvatureScale(const DForm& model);

@@ -477,6 +477,45 @@ TEST_F(CliTest, AFolderWhoseFileNamesAreTakenIsRefusedBeforeTheSolve) {
   }
 }
 
+// Occurrences of `needle` in `text`.
+std::size_t countOf(const std::string& text, const std::string& needle) {
+  std::size_t count = 0;
+  for (std::size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++count;
+  return count;
+}
+
+// The exact result's fold map: circle + square at resolution 100 folds the disc at its four found
+// creases (66.7 degrees, where the square's corners meet it) and gently between them; report.html
+// draws each fold on the flat pieces, the creases stronger, with a legend line.
+TEST_F(CliTest, TheFoldMapIsListedAndDrawnOnTheFlatPieces) {
+  const std::string out = path("folds");
+  ASSERT_EQ(run("forward " + sample("forward/circle.svg") + " " + sample("forward/square.svg") +
+                " --resolution 100 --no-export -q -o " + out)
+                .exitCode,
+            0);
+  const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
+  ASSERT_EQ(report["model"]["name"], "exact");
+  std::size_t creases = 0, gentle = 0;
+  for (const nlohmann::json& fold : report["model"]["folds"]) {
+    EXPECT_NEAR(fold["angle_rad"].get<double>() * 180.0 / std::acos(-1.0), fold["angle_deg"].get<double>(), 1e-9);
+    if (fold["crease"].get<bool>()) {
+      ++creases;
+      EXPECT_NEAR(fold["angle_deg"].get<double>(), 66.7, 0.5);
+    } else {
+      ++gentle;
+      EXPECT_LT(fold["angle_deg"].get<double>(), 20.0);
+    }
+  }
+  EXPECT_EQ(creases, 4u);
+  EXPECT_EQ(creases, report["model"]["found_creases"].size());
+  EXPECT_GT(gentle, 0u);
+  const std::string html = readText(fs::path(out) / "report.html");
+  EXPECT_EQ(countOf(html, "class='fold steep'"), creases);
+  EXPECT_EQ(countOf(html, "class='fold gentle'"), gentle);
+  EXPECT_NE(html.find("Faint lines: the folds of the exact body (" + std::to_string(creases + gentle) + ")"),
+            std::string::npos);
+}
+
 TEST_F(CliTest, ReportsFollowTheirSchema) {
   const std::string forward = path("forward"), inverse = path("inverse");
   // Circle + square is made by the exact model, whose meshes follow the body's folds: it passes
