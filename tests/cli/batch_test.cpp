@@ -221,7 +221,7 @@ TEST_F(BatchTest, TheDemiJobGivesTheSameFiguresAloneAndInAThreeThreadBatch) {
   const json alone = json::parse(readText(dir_ / "alone" / "report.json"))["metrics"];
   ASSERT_TRUE(alone.is_object());
   const fs::path list = dir_ / "jobs.txt";
-  std::ofstream(list) << samples() << "/anti.json\n" << demi << "\n" << samples() << "/nonconvex-shifted.json\n";
+  std::ofstream(list) << samples() << "/squaricle.json\n" << demi << "\n" << samples() << "/nonconvex-shifted.json\n";
   for (int round = 0; round < 5; ++round) {
     const fs::path out = dir_ / ("batch-" + std::to_string(round));
     dform("batch " + list.string() + " --threads 3 --no-export -q -o " + out.string());
