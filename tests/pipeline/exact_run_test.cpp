@@ -90,7 +90,10 @@ TEST(ExactRun, AutoTakesTheExactModelForConvexPiecesAndThePaperModelIsMeasuredAg
   // The paper's model is close to the physical D-Form, but measurably not it.
   EXPECT_GT(p.exact_distance_rms_rel, 1e-5);
   EXPECT_LT(p.exact_distance_rms_rel, 2e-3);
-  EXPECT_GE(p.exact_distance_max_rel, p.exact_distance_rms_rel);
+  // Its distance from the exact shape varies along the seam: the largest point's is above the
+  // root mean square (a max reported as the RMS, or the other way round, fails here).
+  EXPECT_GT(p.exact_distance_max_rel, 1.05 * p.exact_distance_rms_rel);
+  EXPECT_LT(p.exact_distance_max_rel, 20 * p.exact_distance_rms_rel);
 }
 
 TEST(ExactRun, TheCircleAndTheSquareCreaseBetweenTheSquaresCorners) {
