@@ -13,6 +13,7 @@
 #include "core/status.h"
 #include "core/types.h"
 #include "forward/forward.h"
+#include "forward/inextensible.h"
 
 namespace dform {
 
@@ -41,11 +42,13 @@ ForwardWeights defaultWeights(JoinedBoundary a, JoinedBoundary b);
 bool parseJoin(const std::string& text, JoinedBoundary& a, JoinedBoundary& b);
 
 /// Which model makes the 3D shape: the exact D-Form (Alexandrov's convex body of the glued
-/// pieces, src/exact) or the paper's optimisation; `Auto` takes the exact one wherever it applies
-/// (two discs zipped along their outlines, no drawn creases, a convex glued metric).
-enum class ModelChoice { Auto, Exact, Paper };
+/// pieces, src/exact), the paper's optimisation, or the general engine (the paper's shape relaxed
+/// to a stationary point of a stiff sheet's bending and stretching energy, forward/inextensible.h);
+/// `Auto` takes the exact one wherever it applies (two discs zipped along their outlines, no drawn
+/// creases, a convex glued metric), else the paper's.
+enum class ModelChoice { Auto, Exact, Paper, General };
 
-const char* modelChoiceName(ModelChoice model);            ///< "auto", "exact" or "paper"
+const char* modelChoiceName(ModelChoice model);  ///< "auto", "exact", "paper" or "general"
 bool parseModelChoice(const std::string& text, ModelChoice& model);
 
 /// Everything a forward run needs besides the two pieces: the model, which boundaries are
@@ -61,6 +64,7 @@ struct ForwardSettings {
   double interiorEdgeFactor = 1.0;    ///< interior edge length / seam edge length
   bool coarseToFine = true;           ///< start from solutions at 1/3, 1/9, ... of the resolution
   ForwardOptions solve;
+  InextensibleOptions inextensible;  ///< the general engine's (ModelChoice::General)
 };
 
 /// Seconds spent in each stage.
@@ -79,13 +83,15 @@ struct FoundCrease {
 
 /// Which model ran, and why the other did not.
 struct ModelUsed {
-  std::string name;    ///< "exact" or "paper"
+  std::string name;    ///< "exact", "paper" or "general"
   std::string reason;  ///< why this one: the exact model's conditions met, or which failed
   int conePoints = 0;          ///< exact: seam points that are vertices of the body
-  int newtonSteps = 0;         ///< exact: steps of the deformation
+  int newtonSteps = 0;         ///< exact: steps of the deformation; general: Newton steps of the sheet
   double maxCurvature = 0;     ///< exact: largest |curvature| left at a cone point (radians)
   double chordMoveMm = 0;      ///< exact: the most a seam point moved to make paired chords equal
   bool doublyCovered = false;  ///< exact: the pieces fold flat onto each other
+  double stationarity = 0;     ///< general: relative first-order residual at the answer
+  double stiffness = 0;        ///< general: stretching over bending stiffness (forward/inextensible.h)
   std::vector<FoundCrease> creases;
 };
 
