@@ -9,12 +9,12 @@
 
 #include "core/polyline.h"
 #include "exact/aligned_distance.h"
-#include "forward/exact_model.h"
-#include "forward/resources.h"
-#include "forward/run_control.h"
-#include "forward/transfer.h"
-#include "inverse/inverse_terms.h"
 #include "meshing/triangulate.h"
+#include "model/exact_model.h"
+#include "model/resources.h"
+#include "model/run_control.h"
+#include "model/term_table.h"
+#include "model/transfer.h"
 
 namespace dform {
 

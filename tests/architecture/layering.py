@@ -13,8 +13,9 @@ import re
 import sys
 import tempfile
 
-# What each module may include besides itself: the data flow io -> meshing -> forward/inverse
-# on a generic solver -> validate -> export/report -> pipeline (runs: one, a sweep's, a batch's)
+# What each module may include besides itself: the data flow io -> meshing -> model (the D-Form
+# solve on a generic solver) -> forward/inverse, neither using the other -> validate ->
+# export/report -> pipeline (runs: one, a sweep's, a batch's)
 # -> cli and the Python module, with core under all. The cli sees the pipeline and core only;
 # the Python module reads outlines and curves given as arrays as io reads their files.
 ALLOWED = {
@@ -23,12 +24,13 @@ ALLOWED = {
     "io": {"core"},
     "meshing": {"core"},
     "exact": {"core"},
-    "forward": {"core", "solver", "meshing", "exact"},
-    "inverse": {"core", "solver", "meshing", "exact", "forward"},
+    "model": {"core", "solver", "meshing", "exact"},
+    "forward": {"core", "solver", "meshing", "exact", "model"},
+    "inverse": {"core", "solver", "meshing", "exact", "model"},
     "validate": {"core", "exact", "forward"},
     "export": {"core", "validate"},
     "report": {"core", "validate"},
-    "pipeline": {"core", "io", "meshing", "solver", "exact", "forward", "inverse", "validate",
+    "pipeline": {"core", "io", "meshing", "solver", "exact", "model", "forward", "inverse", "validate",
                  "export", "report"},
     "cli": {"core", "pipeline"},
     "python": {"core", "io", "pipeline"},
@@ -113,6 +115,16 @@ def self_test():
         assert len(found) == 1 and found[0].startswith("io/bad.cpp:2: io includes pipeline/"), found
         write("core/worse.h", '#include "export/exporter.h"\n')
         assert len(violations(src)) == 2, violations(src)
+        # forward and inverse share the model below them and use neither the other; validate
+        # judges meshes and uses no solver.
+        write("inverse/solve.cpp", '#include "model/terms.h"\n#include "forward/forward.h"\n')
+        write("forward/solve.cpp", '#include "model/terms.h"\n#include "inverse/pre_dform.h"\n')
+        write("model/terms.h", '#include "solver/problem.h"\n#include "forward/forward.h"\n')
+        write("validate/metrics.cpp", '#include "core/types.h"\n#include "solver/problem.h"\n')
+        found = violations(src)
+        assert [f.split(": ")[0] for f in found] == [
+            "core/worse.h:1", "forward/solve.cpp:2", "inverse/solve.cpp:2", "io/bad.cpp:2",
+            "model/terms.h:2", "validate/metrics.cpp:2"], found
         write("core/polyline.h", "double closedLength(const Eigen::MatrixXd& P);\n"
                                  "bool segmentsIntersect(const Vec2& a,\n    const Vec2& b);\n")
         write("export/draw.cpp", "double width(const Polyline& p) { return closedLength(p); }\n")

@@ -8,8 +8,8 @@
 #include <Eigen/Geometry>
 
 #include "forward/forward.h"
-#include "forward/inextensible.h"
-#include "test_meshes.h"
+#include "model/inextensible.h"
+#include "model/test_meshes.h"
 
 namespace dform {
 namespace {

@@ -4,10 +4,10 @@
 #include <Eigen/Geometry>
 #include <random>
 
-#include "forward/terms.h"
+#include "model/terms.h"
 #include "solver/gradient_check.h"
-#include "validate/metrics.h"
 #include "test_meshes.h"
+#include "validate/metrics.h"
 
 namespace dform {
 namespace {

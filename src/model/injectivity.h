@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/types.h"
-#include "forward/terms.h"
+#include "model/terms.h"
 #include "solver/solver.h"
 
 namespace dform {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/types.h"
-#include "forward/local_global.h"
+#include "model/local_global.h"
 #include "solver/problem.h"
 
 namespace dform {
@@ -84,7 +84,7 @@ std::unique_ptr<ResidualTerm> makeSeamSmoothnessTerm(const VariableLayout& layou
                                                      const std::vector<int>& seamB);
 
 /// What every term of an objective is built from (forward and inverse alike), in the solver's
-/// unit: the tables of forward/term_table.h make each term from these alone.
+/// unit: the tables of model/term_table.h make each term from these alone.
 struct TermInputs {
   const VariableLayout& layout;
   const Piece& a;                ///< flat rest mesh, seam and creases of piece A

@@ -1,4 +1,4 @@
-#include "forward/terms.h"
+#include "model/terms.h"
 
 #include <Eigen/SparseCore>
 #include <algorithm>

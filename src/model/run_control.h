@@ -10,8 +10,10 @@
 #include <vector>
 
 #include "core/interrupt.h"
-#include "forward/dform_from_shapes.h"
-#include "forward/forward.h"
+#include "core/status.h"
+#include "model/local_global.h"
+#include "model/run_types.h"
+#include "solver/solver.h"
 
 namespace dform::detail {
 
@@ -66,17 +68,6 @@ inline std::vector<int> seamLevels(int resolution, bool coarseToFine) {
   while (coarseToFine && levels.back() / kLevelRatio >= kCoarsestSeam) levels.push_back(levels.back() / kLevelRatio);
   std::reverse(levels.begin(), levels.end());
   return levels;
-}
-
-/// One level's options: a coarse level runs a few LM iterations and leaves the seam corners to
-/// the boundary-fix term (no constraint rounds); a large level is left to the relaxation.
-inline ForwardOptions levelOptions(ForwardOptions options, bool finest, long vertices) {
-  if (!finest) {
-    options.solver.maxIterations = std::min(options.solver.maxIterations, kCoarseIterations);
-    options.constraintRounds = 0;
-  }
-  relaxOnlyIfLarge(vertices, options.solver, options.relaxation);
-  return options;
 }
 
 /// Whether the caller asked the run to stop: its hooks' flag, or the process's (core/interrupt.h),

@@ -1,4 +1,4 @@
-#include "forward/term_table.h"
+#include "model/term_table.h"
 
 namespace dform {
 
@@ -33,6 +33,16 @@ const TermTable<ForwardWeights>& forwardTerms() {
       {"smooth_3d", &ForwardWeights::smooth3d, smooth3dTerm, true},
       {"smooth_2d", &ForwardWeights::smooth2d, smooth2dTerm, true},
       {"seam", &ForwardWeights::seam, seamTerm, true}};
+  return table;
+}
+
+const TermTable<InverseWeights>& inverseTerms() {
+  // Closeness makes no term: any positive weight holds the seam on the curve exactly.
+  static const TermTable<InverseWeights> table = {
+      {"isometry", &InverseWeights::isometry, isometryTerm, false},
+      {"closeness", &InverseWeights::closeness, nullptr, false},
+      {"smooth_3d", &InverseWeights::smooth3d, smooth3dTerm, true},
+      {"smooth_2d", &InverseWeights::smooth2d, smooth2dTerm, true}};
   return table;
 }
 

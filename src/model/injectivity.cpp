@@ -1,4 +1,4 @@
-#include "forward/injectivity.h"
+#include "model/injectivity.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>

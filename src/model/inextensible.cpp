@@ -1,4 +1,4 @@
-#include "forward/inextensible.h"
+#include "model/inextensible.h"
 
 #include <Eigen/SparseCore>
 #include <algorithm>

@@ -3,7 +3,7 @@
 
 #include <regex>
 
-#include "forward/resources.h"
+#include "model/resources.h"
 
 namespace dform {
 namespace {

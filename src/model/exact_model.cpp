@@ -1,4 +1,4 @@
-#include "forward/exact_model.h"
+#include "model/exact_model.h"
 
 #include <algorithm>
 #include <cmath>

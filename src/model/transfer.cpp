@@ -1,4 +1,4 @@
-#include "forward/transfer.h"
+#include "model/transfer.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-// Checks that hold for every table of terms and weights (forward/term_table.h): the forward tests
+// Checks that hold for every table of terms and weights (model/term_table.h): the forward tests
 // run them on forwardTerms, the inverse tests on inverseTerms.
 #pragma once
 
@@ -10,7 +10,7 @@
 #include <set>
 #include <vector>
 
-#include "forward/term_table.h"
+#include "model/term_table.h"
 #include "test_meshes.h"
 
 namespace dform::test {

@@ -1,4 +1,4 @@
-#include "forward/local_global.h"
+#include "model/local_global.h"
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/Dense>

@@ -7,7 +7,7 @@
 #include "core/status.h"
 #include "core/types.h"
 #include "exact/exact_gluing.h"
-#include "forward/dform_from_shapes.h"
+#include "model/run_types.h"
 
 namespace dform {
 

@@ -1,4 +1,4 @@
-#include "forward/resources.h"
+#include "model/resources.h"
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -12,7 +12,7 @@
 #include <string>
 #include <thread>
 
-#include "forward/run_control.h"
+#include "model/run_control.h"
 
 namespace dform {
 

@@ -1,9 +1,9 @@
-// The one table per objective of its terms and their weights: forward modelling's here
-// (forwardTerms), inverse modelling's in inverse/inverse_terms.h. Job files, --weight, the
-// validation of a job, report.json's term names and the solves (their Problem and their
-// local-global relaxation's linear terms) all loop over it. To add a term: a member in the mode's
-// weights struct and a row in its table (its name, that member, its factory, whether it is
-// linear); the factory reads TermInputs (forward/terms.h), which grows a field if it needs one.
+// The one table per objective of its terms and their weights: forward modelling's (forwardTerms)
+// and inverse modelling's (inverseTerms). Job files, --weight, the validation of a job,
+// report.json's term names and the solves (their Problem and their local-global relaxation's
+// linear terms) all loop over it. To add a term: a member in the mode's weights struct
+// (model/weights.h) and a row in its table (its name, that member, its factory, whether it is
+// linear); the factory reads TermInputs (model/terms.h), which grows a field if it needs one.
 #pragma once
 
 #include <cassert>
@@ -14,9 +14,10 @@
 #include <utility>
 #include <vector>
 
-#include "forward/forward.h"
-#include "forward/terms.h"
+#include "model/terms.h"
+#include "model/weights.h"
 #include "solver/problem.h"
+#include "solver/solver.h"
 
 namespace dform {
 
@@ -40,6 +41,10 @@ using TermTable = std::vector<TermRow<Weights>>;
 /// The forward objective (paper Eq. 1-5): every member of ForwardWeights once, in the order the
 /// terms are built, solved and reported.
 const TermTable<ForwardWeights>& forwardTerms();
+
+/// The inverse objective (paper Eq. 6): every member of InverseWeights once, in the order the
+/// terms are built, solved and reported.
+const TermTable<InverseWeights>& inverseTerms();
 
 /// The tables' factories on terms.h's builders (inverse modelling's table shares the first three):
 /// isometry (Eq. 1), surface smoothness in 3D and flat (Eq. 4), the boundary fix of the anchored
