@@ -60,6 +60,10 @@ json modelJson(const ModelUsed& used) {
                 {"chord_move_mm", numberOrNull(used.chordMoveMm)},
                 {"doubly_covered", used.doublyCovered},
                 {"found_creases", creases}});
+  if (used.name == "general")
+    out.update({{"newton_steps", used.newtonSteps},
+                {"stationarity", numberOrNull(used.stationarity)},
+                {"stiffness", numberOrNull(used.stiffness)}});
   return out;
 }
 

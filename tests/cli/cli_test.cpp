@@ -478,6 +478,25 @@ TEST_F(CliTest, AFolderWhoseFileNamesAreTakenIsRefusedBeforeTheSolve) {
   }
 }
 
+TEST_F(CliTest, TheGeneralModelReportsHowStationaryItsAnswerIs) {
+  const std::string out = path("general");
+  ASSERT_EQ(run("forward " + sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg") +
+                " --model general --resolution 30 --no-export -q -o " + out)
+                .exitCode,
+            0);
+  EXPECT_EQ(schemaCheck((fs::path(out) / "report.json").string()), 0);
+  const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
+  EXPECT_EQ(report["model"]["name"], "general");
+  ASSERT_TRUE(report["model"]["stationarity"].is_number());
+  EXPECT_LE(report["model"]["stationarity"].get<double>(), 1e-6);
+  EXPECT_GT(report["model"]["newton_steps"].get<int>(), 0);
+  EXPECT_EQ(run("validate " + out).exitCode, 0);
+  const Outcome bad = run("forward " + sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg") +
+                            " --model generic -q -o " + path("generic"));
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_NE(bad.err.find("auto, exact, paper or general"), std::string::npos) << bad.err;
+}
+
 TEST_F(CliTest, ReportsFollowTheirSchema) {
   const std::string forward = path("forward"), inverse = path("inverse");
   // Resolution 30 is coarser than the samples strict is measured on: circle + square by the
