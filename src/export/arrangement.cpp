@@ -120,22 +120,26 @@ bool arrangeTogether(const SheetFit& fit, const std::vector<Choice>& choices, Ar
 }
 
 // Piece p on a sheet of its own whose left edge is at x on the canvas: at the smaller of its two
-// turns that fits (a print page turned where only that fits), else (print) tiled across pages.
+// turns that fits (a print page turned where only that fits), with its title block, else
+// without, else (print) tiled across pages.
 Status arrangeAlone(const SheetFit& fit, const std::vector<Choice>& choices, int p, double x,
                     const std::string& name, Arrangement& a) {
   SheetPlan plan;
   plan.pieces = {p};
   const Choice* best = nullptr;  // the rotations tried for this piece: its two in `choices`
   bool turned = false;
-  for (bool turn : {false, true}) {
-    if (best || (turn && !fit.mayTurnPage)) continue;
-    const double W = turn ? fit.pageH : fit.pageW, H = turn ? fit.pageW : fit.pageH;
-    for (const Choice& c : choices)
-      if (fit.fits(Vec2(c.box[p].w(), c.box[p].h()), W, H) &&
-          (!best || c.box[p].w() * c.box[p].h() < best->box[p].w() * best->box[p].h() - 1e-9))
-        best = &c;
-    turned = turn;
-  }
+  // With its title block beside it where one fits, else bare (the title lines on a page of
+  // their own): the title never makes a piece tiled or refused.
+  for (bool withTitle : {true, false})
+    for (bool turn : {false, true}) {
+      if (best || (turn && !fit.mayTurnPage)) continue;
+      const double W = turn ? fit.pageH : fit.pageW, H = turn ? fit.pageW : fit.pageH;
+      for (const Choice& c : choices)
+        if (fit.fits(Vec2(c.box[p].w(), c.box[p].h()), W, H, withTitle) &&
+            (!best || c.box[p].w() * c.box[p].h() < best->box[p].w() * best->box[p].h() - 1e-9))
+          best = &c;
+      turned = turn;
+    }
   if (best) {
     a.rot[p] = best->rot[p];
     a.box[p] = best->box[p];

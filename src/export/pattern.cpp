@@ -31,50 +31,57 @@ ClipperLib::Paths grownRegion(const ClipperLib::Paths& region, double mm) {
   return grown;
 }
 
-// The closed cut paths of one piece (flat frame): its outline, holes and tabs merged, offset by
-// the kerf (outward from the material: the outline grows and the holes shrink). `freeLoops` are
-// its free boundaries; `outer` is outerLoopIndex (0 the seam, k free loop k - 1).
+// The seam loop with piece `piece`'s tabs spliced into it, in the seam's own direction: at each
+// tab's fold start the loop leaves the seam along the tab's outer edge and rejoins it at the
+// fold's end. Built rather than united with the piece, so that a tab is part of the piece's one
+// cut loop by construction: a polygon union leaves a tab lying along a straight stretch of the
+// outline (a square's side) as a loop of its own, touching the piece along its fold line.
+Polyline seamWithTabs(const Seam& seam, const std::vector<FlatTab>& tabs, int piece) {
+  std::vector<const FlatTab*> own;
+  for (const FlatTab& t : tabs)
+    if (t.piece == piece) own.push_back(&t);
+  std::sort(own.begin(), own.end(),
+            [](const FlatTab* a, const FlatTab* b) { return a->own0 < b->own0; });
+  Polyline loop;
+  size_t next = 0;
+  double coveredTo = -1;  // seam vertices up to this arc length lie under a tab's fold line
+  auto splice = [&](const FlatTab& t) {
+    const size_t folds = t.fold.size();
+    loop.push_back(t.fold.front());
+    loop.insert(loop.end(), t.polygon.rbegin(), t.polygon.rend() - long(folds));
+    loop.push_back(t.fold.back());
+    coveredTo = t.own1;
+  };
+  for (int i = 0; i < seam.n(); ++i) {
+    const double s = seam.cum[size_t(i)];
+    for (; next < own.size() && own[next]->own0 <= s; ++next) splice(*own[next]);
+    if (s > coveredTo) loop.push_back(seam.P[size_t(i)]);
+  }
+  for (; next < own.size(); ++next) splice(*own[next]);
+  return loop;
+}
+
+// The closed cut paths of one piece (flat frame): its outline with its tabs spliced in, and its
+// holes, offset by the kerf (outward from the material: the outline grows and the holes shrink).
+// `freeLoops` are its free boundaries; `outer` is outerLoopIndex (0 the seam, k free loop k - 1).
+// One cut loop per boundary loop, tabs or not.
 CutPaths cutPaths(const Seam& seam, const std::vector<Polyline>& freeLoops, int outer,
                   const std::vector<FlatTab>& tabs, int piece, double kerf) {
-  // The seam gets the tabs' fold ends as vertices, computed exactly as the tabs' own, so that
-  // piece and tabs share their edges to the last bit and the union leaves no slivers.
-  std::vector<double> ends;
-  for (const FlatTab& t : tabs)
-    if (t.piece == piece) ends.insert(ends.end(), {t.own0, t.own1});
-  std::vector<Polyline> loops{seam.P};
+  std::vector<Polyline> loops{seamWithTabs(seam, tabs, piece)};
   loops.insert(loops.end(), freeLoops.begin(), freeLoops.end());
   CutPaths out;
-  if (ends.empty() && kerf <= 0) {
+  if (kerf <= 0) {
     for (size_t k = 0; k < loops.size(); ++k)
       (int(k) == outer ? out.outer : out.holes).push_back(oriented(loops[k], int(k) == outer));
     return out;
   }
-  std::sort(ends.begin(), ends.end());
-  Polyline& outline = loops[0];
-  outline.clear();
-  size_t e = 0;
-  for (int i = 0; i < seam.n(); ++i) {
-    for (; e < ends.size() && ends[e] <= seam.cum[size_t(i)]; ++e)
-      if (ends[e] < seam.cum[size_t(i)]) outline.push_back(seam.at(ends[e]));
-    outline.push_back(seam.P[size_t(i)]);
-  }
-  for (; e < ends.size(); ++e) outline.push_back(seam.at(ends[e]));
-  // Non-zero winding: the outline counter-clockwise, holes clockwise, tabs (in a hole too)
-  // counter-clockwise.
-  ClipperLib::Paths shapes;
+  // Non-zero winding: the outline counter-clockwise, holes clockwise.
+  ClipperLib::Paths region;
   for (size_t k = 0; k < loops.size(); ++k) {
-    shapes.push_back(toClip(loops[k]));
-    if (int(k) != outer) ClipperLib::ReversePath(shapes.back());
+    region.push_back(toClip(loops[k]));
+    if (int(k) != outer) ClipperLib::ReversePath(region.back());
   }
-  for (const FlatTab& t : tabs)
-    if (t.piece == piece) shapes.push_back(toClip(t.polygon));
-  ClipperLib::Paths merged;
-  ClipperLib::Clipper c;
-  c.AddPaths(shapes, ClipperLib::ptSubject, true);
-  c.Execute(ClipperLib::ctUnion, merged, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-  ClipperLib::CleanPolygons(merged);  // drops duplicate and collinear points left by rounding
-  if (kerf > 0) merged = grownRegion(merged, kerf);
-  for (const auto& p : merged)
+  for (const auto& p : grownRegion(region, kerf))
     (ClipperLib::Orientation(p) ? out.outer : out.holes).push_back(fromClip(p));
   return out;
 }
@@ -251,9 +258,10 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
   drawCreases(out.pieces, profile, b);
   drawTabFolds(out.tabs, flat.names, profile, b);
   drawCuts(out.pieces, flat.names, profile, b);
-  drawSheetFurniture(a.plans, fit, flat, o, scaleText, perimeterText, font, b);
+  const TitleText title{flat, o, scaleText, perimeterText, font};
+  drawSheetFurniture(a.plans, fit, title, b);
   out.drawing = std::move(b.drawing());
-  addPages(a.plans, fit, o, font, out);
+  addPages(a.plans, fit, title, out);
   return out;
 }
 

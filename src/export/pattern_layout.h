@@ -85,15 +85,17 @@ struct SheetFit {
   // them (a margin apart) where the region is tall enough, else in a column to their right, its
   // lines reading upwards; None when neither fits (or the pieces do not).
   TitleAt titleAt(const Vec2& size, const Box& r) const;
-  // Whether pieces (and tabs) of extent `size` fit a W x H sheet with their title block.
-  bool fits(const Vec2& size, double W, double H) const;
+  // Whether pieces (and tabs) of extent `size` fit a W x H sheet, with their title block beside
+  // them unless `withTitle` is false (the title lines then go on a page of their own).
+  bool fits(const Vec2& size, double W, double H, bool withTitle = true) const;
+  // Whether they fit a page or sheet alone, turned where the page may turn, title or not.
   bool fitsSomeWay(const Vec2& size) const;
   // `what` (`contents`) fits the sheet in none of the arrangements tried, of extents `sizes`:
   // the message gives the sheet size needed by the arrangement that needs the least enlargement.
   Status tooLarge(const std::string& what, const std::vector<Vec2>& sizes,
                   const std::string& contents) const;
-  // Tiling: the columns and rows of pages that show a piece of extent `size` with the margins and
-  // its title block; neighbouring windows overlap by tileOverlapMm.
+  // Tiling: the columns and rows of pages that show a piece of extent `size` with the margins
+  // (its title block goes on its page map); neighbouring windows overlap by tileOverlapMm.
   Vec2 tiledExtent(const Vec2& size) const;
   std::pair<long, long> tileGrid(const Vec2& size) const;
   Status tooManyTiles(long tiles) const;
@@ -163,19 +165,47 @@ void drawCuts(const std::vector<PieceInfo>& pieces, const std::string names[2],
 // The scale as a percentage of true size ("80%").
 std::string percentText(double scale);
 
-// Title lines (and the calibration bar) under each sheet's pieces or in a column beside them,
-// and the registration marks in each sheet's corners.
+// What the title lines of a pattern's sheets say: its pieces, options, scale and seam length.
+struct TitleText {
+  const FlatPieces& flat;
+  const ExportOptions& o;
+  std::string scaleText, perimeterText;
+  const StrokeFont& font;
+};
+
+// A title block: its lines run along `along` from `start`, each the next one across, in
+// `length` mm; `v` is how far across the lines so far reach.
+struct TitleBlock {
+  Vec2 along, across, start;
+  double length = 0;
+  double v = 0;
+};
+
+// The title lines of sheet k (of `sheets`), unless --no-title, into `layer`: the title, the note
+// and the legends for creases and tabs.
+void drawTitleLines(size_t k, size_t sheets, const SheetPlan& plan, const SheetFit& fit,
+                    const TitleText& text, Layer& layer, TitleBlock& block);
+
+// The title lines and, where the profile has one, the 50 mm calibration bar after them.
+void drawTitleBlock(size_t k, size_t sheets, const SheetPlan& plan, const SheetFit& fit,
+                    const TitleText& text, Layer& layer, TitleBlock& block);
+
+// Title lines (and the calibration bar) under each sheet's pieces or in a column beside them;
+// those of a tiled piece go on its page map, those that do not fit beside the pieces on a cover
+// page before the sheet's. The registration marks in each sheet's corners.
 void drawSheetFurniture(const std::vector<SheetPlan>& plans, const SheetFit& fit,
-                        const FlatPieces& flat, const ExportOptions& o,
-                        const std::string& scaleText, const std::string& perimeterText,
-                        const StrokeFont& font, DrawingBuilder& b);
+                        const TitleText& text, DrawingBuilder& b);
 
 // The drawing's title and description (SVG <title> and <desc>, PDF title).
 void describe(Drawing& drawing, const ExportOptions& o, const Profile& profile, double scale,
               const std::string& perimeterText);
 
-// The pages: one per sheet; a tiled piece gets a page map, then its tiles.
-void addPages(const std::vector<SheetPlan>& plans, const SheetFit& fit, const ExportOptions& o,
-              const StrokeFont& font, PatternBuild& out);
+// The pages: one per sheet; a tiled piece gets a page map (with its sheet's title lines), then
+// its tiles.
+void addPages(const std::vector<SheetPlan>& plans, const SheetFit& fit, const TitleText& text,
+              PatternBuild& out);
+
+// "an A4", "a Letter": the page's name with its article.
+std::string aPage(const std::string& pageName);
 
 }  // namespace dform::fab

@@ -29,12 +29,14 @@ TitleAt SheetFit::titleAt(const Vec2& size, const Box& r) const {
   return TitleAt::None;
 }
 
-bool SheetFit::fits(const Vec2& size, double W, double H) const {
-  return titleAt(size, artRegion(W, H)) != TitleAt::None;
+bool SheetFit::fits(const Vec2& size, double W, double H, bool withTitle) const {
+  const Box r = artRegion(W, H);
+  if (!withTitle) return r.w() > 0 && size.x() <= r.w() + 1e-9 && size.y() <= r.h() + 1e-9;
+  return titleAt(size, r) != TitleAt::None;
 }
 
 bool SheetFit::fitsSomeWay(const Vec2& size) const {
-  return fits(size, pageW, pageH) || (mayTurnPage && fits(size, pageH, pageW));
+  return fits(size, pageW, pageH, false) || (mayTurnPage && fits(size, pageH, pageW, false));
 }
 
 Status SheetFit::tooLarge(const std::string& what, const std::vector<Vec2>& sizes,
@@ -44,7 +46,7 @@ Status SheetFit::tooLarge(const std::string& what, const std::vector<Vec2>& size
   Vec2 need = Vec2::Zero(), size = Vec2::Zero();
   double least = std::numeric_limits<double>::infinity();
   for (const Vec2& candidate : sizes) {
-    const Vec2 n(candidate.x() + (pageW - r.w()), candidate.y() + titleBlock + (pageH - r.h()));
+    const Vec2 n(candidate.x() + (pageW - r.w()), candidate.y() + (pageH - r.h()));
     if (std::max(n.x() / pageW, n.y() / pageH) < least) {
       least = std::max(n.x() / pageW, n.y() / pageH);
       need = n;
@@ -55,13 +57,13 @@ Status SheetFit::tooLarge(const std::string& what, const std::vector<Vec2>& size
   return Status{ErrorCode::Usage, what + " does not fit the " + area + ": it needs at least " +
                                       formatMm(need.x()) + " x " + formatMm(need.y()) + " mm (" +
                                       formatMm(size.x()) + " x " + formatMm(size.y()) + " mm of " +
-                                      contents + ", plus margins and the title lines); the " +
+                                      contents + ", plus margins); the " +
                                       sheetWord + " is " + formatMm(pageW) + " x " +
                                       formatMm(pageH) + " mm"};
 }
 
 Vec2 SheetFit::tiledExtent(const Vec2& size) const {
-  return Vec2(size.x() + 2 * m, size.y() + titleBlock + 2 * m);
+  return Vec2(size.x() + 2 * m, size.y() + 2 * m);
 }
 
 std::pair<long, long> SheetFit::tileGrid(const Vec2& size) const {

@@ -37,6 +37,11 @@ Layer tilingLayer() {
   return l;
 }
 
+// "1 row", "2 columns".
+std::string counted(long n, const std::string& noun) {
+  return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+}
+
 // A tile as its page's header and the page map name it: the piece, its row and column.
 std::string tileName(const std::string& piece, long row, long col) {
   return piece + " " + std::to_string(row + 1) + "-" + std::to_string(col + 1);
@@ -61,17 +66,21 @@ void addHeader(Layer& furniture, const std::string& id, const std::string& head,
 
 // The page map of a tiled piece: its cut outline scaled onto one page under the grid of its
 // tiles, each named as its page's header names it (its tiles are pages firstTilePage on).
-PageView pageMap(const SheetPlan& plan, const PieceInfo& info, const SheetFit& fit,
-                 size_t firstTilePage, const ExportOptions& o, const StrokeFont& font) {
+PageView pageMap(size_t k, size_t sheets, const SheetPlan& plan, const PieceInfo& info,
+                 const SheetFit& fit, size_t firstTilePage, const TitleText& title) {
+  const ExportOptions& o = title.o;
+  const StrokeFont& font = title.font;
   const std::string& nm = info.name;
   const double pm = kTileMargin, header = kTileHeader, ov = fit.overlap, cw = fit.tileW,
                ch = fit.tileH;
   const long nx = plan.tilesX, ny = plan.tilesY;
   PageView map = blankPage(fit);
+  map.kind = "map";
   Layer furniture = tilingLayer();
-  // The grid of windows reaches past the piece's sheet (the last ones overhang it).
+  // The grid of windows reaches past the piece's sheet (the last ones overhang it). The sheet's
+  // title lines go under it, on this page: never on a tile, where they would be cut at its edge.
   const double gridW = double(nx) * (cw - ov) + ov, gridH = double(ny) * (ch - ov) + ov;
-  const double mapScale = std::min(cw / gridW, ch / gridH);
+  const double mapScale = std::min(cw / gridW, std::max(ch - fit.titleBlock, 0.5 * ch) / gridH);
   auto onMap = [&](const Vec2& q) -> Vec2 {
     return Vec2(pm, pm + header) + mapScale * (q - plan.box.lo);
   };
@@ -103,11 +112,40 @@ PageView pageMap(const SheetPlan& plan, const PieceInfo& info, const SheetFit& f
     }
   addHeader(furniture, "page-map-header",
             o.jobName + " - piece " + nm + ": page map, " + std::to_string(nx * ny) + " tiles (" +
-                std::to_string(ny) + " rows x " + std::to_string(nx) +
-                " cols) - not to scale - print the tiles at 100%",
+                counted(ny, "row") + " x " + counted(nx, "column") +
+                ") - not to scale - print the tiles at 100%",
             fit, font);
+  TitleBlock block;
+  block.along = Vec2(1, 0);
+  block.across = Vec2(0, 1);
+  block.start = Vec2(pm, pm + header + mapScale * gridH + fit.m);
+  block.length = cw;
+  Layer titleLines = tilingLayer();
+  titleLines.name = "Title";
+  drawTitleBlock(k, sheets, plan, fit, title, titleLines, block);
+  map.overlay.push_back(titleLines);
   map.overlay.push_back(furniture);
   return map;
+}
+
+// The title lines and calibration bar of sheet k on a page of their own, where they do not fit
+// beside its pieces: the sheet's size, the lines from its top-left margin.
+PageView coverPage(size_t k, size_t sheets, const SheetPlan& plan, const SheetFit& fit,
+                   const TitleText& text) {
+  PageView cover;
+  cover.kind = "cover";
+  cover.width = plan.box.w();
+  cover.height = plan.box.h();
+  TitleBlock block;
+  block.along = Vec2(1, 0);
+  block.across = Vec2(0, 1);
+  block.start = Vec2(kTileMargin, kTileMargin);
+  block.length = cover.width - 2 * kTileMargin;
+  Layer lines = tilingLayer();
+  lines.name = "Title";
+  drawTitleBlock(k, sheets, plan, fit, text, lines, block);
+  cover.overlay.push_back(lines);
+  return cover;
 }
 
 // The alignment crosses of a tiled sheet (canvas mm): in the middle of each overlap.
@@ -135,12 +173,15 @@ PageView tilePage(const SheetPlan& plan, const std::string& nm, long j, long i,
                ch = fit.tileH;
   const long nx = plan.tilesX, ny = plan.tilesY;
   PageView page = blankPage(fit);
+  page.kind = "tile";
   page.clipX0 = pm;
   page.clipY0 = pm + header;
-  page.clipX1 = pm + cw;
-  page.clipY1 = pm + header + ch;
   const Vec2 windowLo = plan.box.lo + Vec2(double(i) * (cw - ov), double(j) * (ch - ov));
   page.origin = windowLo - Vec2(page.clipX0, page.clipY0);
+  // The window ends where the piece's sheet does: the last row and column of tiles overhang it,
+  // and what lies beyond (the other piece's sheet) is not this piece's.
+  page.clipX1 = std::min(pm + cw, plan.box.hi.x() - page.origin.x());
+  page.clipY1 = std::min(pm + header + ch, plan.box.hi.y() - page.origin.y());
   Layer furniture = tilingLayer();
   Path frame;
   frame.id = "tile-frame";
@@ -179,22 +220,33 @@ PageView tilePage(const SheetPlan& plan, const std::string& nm, long j, long i,
 
 }  // namespace
 
-// The pages: one per sheet; a tiled piece gets a page map, then its tiles.
-void addPages(const std::vector<SheetPlan>& plans, const SheetFit& fit, const ExportOptions& o,
-              const StrokeFont& font, PatternBuild& out) {
-  for (const SheetPlan& plan : plans) {
+std::string aPage(const std::string& pageName) {
+  // A4, A3 ... read "ay-four": an; Letter, Tabloid and sizes (200x300mm): a.
+  return (pageName.rfind('A', 0) == 0 ? "an " : "a ") + pageName;
+}
+
+void addPages(const std::vector<SheetPlan>& plans, const SheetFit& fit, const TitleText& text,
+              PatternBuild& out) {
+  for (size_t k = 0; k < plans.size(); ++k) {
+    const SheetPlan& plan = plans[k];
     if (!plan.tiled) {
+      if (plan.title == TitleAt::None && text.o.title) {
+        out.pages.push_back(coverPage(k, plans.size(), plan, fit, text));
+        out.messages.push_back("the title lines do not fit beside piece " +
+                               out.pieces[size_t(plan.pieces.front())].name + " on its " +
+                               fit.sheetWord + ": they are on a page of their own before it");
+      }
       out.pages.push_back(sheetPage(plan));
       continue;
     }
     const PieceInfo& info = out.pieces[size_t(plan.pieces.front())];
     const size_t firstTilePage = out.pages.size() + 2;  // 1-based, after the map
-    out.pages.push_back(pageMap(plan, info, fit, firstTilePage, o, font));
+    out.pages.push_back(pageMap(k, plans.size(), plan, info, fit, firstTilePage, text));
     const std::vector<Vec2> marks = alignmentMarks(plan, fit);
     for (long j = 0; j < plan.tilesY; ++j)
       for (long i = 0; i < plan.tilesX; ++i)
-        out.pages.push_back(tilePage(plan, info.name, j, i, marks, fit, o, font));
-    out.messages.push_back("piece " + info.name + " is larger than a " + fit.pageName +
+        out.pages.push_back(tilePage(plan, info.name, j, i, marks, fit, text.o, text.font));
+    out.messages.push_back("piece " + info.name + " is larger than " + aPage(fit.pageName) +
                            " page: it is tiled across " +
                            std::to_string(plan.tilesX * plan.tilesY) +
                            " pages of pattern.pdf after a page map; print at 100% and match the "

@@ -27,14 +27,6 @@ std::string percentText(double scale) {
 
 namespace {
 
-// A sheet's title block: its lines run along `along` from `start`, each the next one across,
-// in `length` mm; `v` is how far across the lines so far reach.
-struct TitleBlock {
-  Vec2 along, across, start;
-  double length = 0;
-  double v = 0;
-};
-
 // Where a sheet's title lines go: under its pieces or in a column beside them.
 TitleBlock titleBlockOf(const SheetPlan& plan, const SheetFit& fit) {
   const Box region = fit.artRegion(plan.box.w(), plan.box.h(), plan.box.lo);
@@ -48,20 +40,21 @@ TitleBlock titleBlockOf(const SheetPlan& plan, const SheetFit& fit) {
   return block;
 }
 
-// The title lines of sheet k (of `sheets`), unless --no-title: the title, the note and the
-// legends for creases and tabs.
+}  // namespace
+
 void drawTitleLines(size_t k, size_t sheets, const SheetPlan& plan, const SheetFit& fit,
-                    const FlatPieces& flat, const ExportOptions& o, const std::string& scaleText,
-                    const std::string& perimeterText, const StrokeFont& font, DrawingBuilder& b,
-                    TitleBlock& block) {
+                    const TitleText& text, Layer& layer, TitleBlock& block) {
+  const FlatPieces& flat = text.flat;
+  const ExportOptions& o = text.o;
+  const StrokeFont& font = text.font;
   const Profile& profile = *fit.profile;
   const double textH = fit.textH, lineH = fit.lineH;
-  auto line = [&](const std::string& id, const std::string& text, double h) {
-    const double w = font.width(text, h);
+  auto line = [&](const std::string& id, const std::string& words, double h) {
+    const double w = font.width(words, h);
     if (w > block.length) h *= block.length / w;
     const Vec2 c = block.start + 0.5 * std::min(w, block.length) * block.along +
                    (block.v + 0.5 * lineH * h / textH) * block.across;
-    b.title().paths.push_back(textPath(font, onPage(id, k), text, c, block.along, h));
+    layer.paths.push_back(textPath(font, onPage(id, k), words, c, block.along, h));
     block.v += lineH * h / textH;
   };
   std::string pieceNote;
@@ -71,7 +64,7 @@ void drawTitleLines(size_t k, size_t sheets, const SheetPlan& plan, const SheetF
   if (!o.title) return;
   line("title",
        o.jobName + " - D-Form " + flat.names[0] + " + " + flat.names[1] + pieceNote + " - " +
-           scaleText + " - seam " + perimeterText + " mm - " + profile.name,
+           text.scaleText + " - seam " + text.perimeterText + " mm - " + profile.name,
        textH);
   line("note",
        "tick 0 = start, arrow = zip direction; ticks every " + formatMm(o.tickSpacingMm, 0) +
@@ -91,9 +84,11 @@ void drawTitleLines(size_t k, size_t sheets, const SheetPlan& plan, const SheetF
   if (fit.tabbed) line("tab-note", tabNote, textH);
 }
 
+namespace {
+
 // The 50 mm calibration bar of sheet k, after its title lines.
 void drawCalibrationBar(size_t k, const TitleBlock& block, double textH, const StrokeFont& font,
-                        DrawingBuilder& b) {
+                        Layer& layer) {
   auto at = [&](double u, double w) -> Vec2 {
     return block.start + u * block.along + w * block.across;
   };
@@ -105,11 +100,11 @@ void drawCalibrationBar(size_t k, const TitleBlock& block, double textH, const S
     const double tickLen = (j == 0 || j == 5) ? 3.0 : 1.5;
     bar.parts.push_back({at(10 * j, vb - tickLen), at(10 * j, vb)});
   }
-  b.title().paths.push_back(bar);
+  layer.paths.push_back(bar);
   const std::string text = "50 mm - print at 100% (actual size)";
   // Smaller where the block is too short for it beside the bar (a narrow tiled piece).
   const double h = std::min(textH, (block.length - 54) / std::max(1.0, font.width(text, 1.0)));
-  b.title().paths.push_back(textPath(font, onPage("calibration-label", k), text,
+  layer.paths.push_back(textPath(font, onPage("calibration-label", k), text,
                                      at(54 + 0.5 * font.width(text, h), vb - 1.5), block.along, h));
 }
 
@@ -139,15 +134,19 @@ void drawRegistrationMarks(size_t k, const Box& sheet, Layer& regmarks) {
 
 // Title lines (and the calibration bar) under each sheet's pieces or in a column beside them,
 // and the registration marks in each sheet's corners.
+void drawTitleBlock(size_t k, size_t sheets, const SheetPlan& plan, const SheetFit& fit,
+                    const TitleText& text, Layer& layer, TitleBlock& block) {
+  drawTitleLines(k, sheets, plan, fit, text, layer, block);
+  if (fit.profile->calibrationBar) drawCalibrationBar(k, block, fit.textH, text.font, layer);
+}
+
 void drawSheetFurniture(const std::vector<SheetPlan>& plans, const SheetFit& fit,
-                        const FlatPieces& flat, const ExportOptions& o,
-                        const std::string& scaleText, const std::string& perimeterText,
-                        const StrokeFont& font, DrawingBuilder& b) {
+                        const TitleText& text, DrawingBuilder& b) {
   for (size_t k = 0; k < plans.size(); ++k) {
-    TitleBlock block = titleBlockOf(plans[k], fit);
-    drawTitleLines(k, plans.size(), plans[k], fit, flat, o, scaleText, perimeterText, font, b,
-                   block);
-    if (fit.profile->calibrationBar) drawCalibrationBar(k, block, fit.textH, font, b);
+    if (!plans[k].tiled && plans[k].title != TitleAt::None) {
+      TitleBlock block = titleBlockOf(plans[k], fit);
+      drawTitleBlock(k, plans.size(), plans[k], fit, text, b.title(), block);
+    }
     if (fit.profile->registration == Registration::Silhouette)
       drawRegistrationMarks(k, plans[k].box, *b.regmarks());
   }
