@@ -34,6 +34,12 @@ def pushed_in(t, r=80.0, h=40.0, depth=0.45, centre=math.pi / 4, half=math.pi / 
     return (s * math.cos(t), s * math.sin(t), h * math.cos(2 * t))
 
 
+def three_lobed(t):
+    """Three lobes on the curve's convex hull, rising and falling three times."""
+    return (60.0 * math.cos(t) + 10.0 * math.cos(2 * t), 50.0 * math.sin(t) - 10.0 * math.sin(2 * t),
+            18.0 * math.sin(3 * t))
+
+
 def write_obj(name, f, comment):
     with open(os.path.join(HERE, name), "w") as out:
         out.write("# " + comment + "\n")
@@ -75,4 +81,6 @@ write_obj("tennis-ball.obj", tennis, "tennis-ball seam on a sphere of radius 60 
 write_obj("saddle.obj", saddle, "saddle (80 cos t, 80 sin t, 40 cos 2t) mm (on-hull)")
 write_obj("pushed-in.obj", pushed_in,
           "saddle with the stretch around t = pi/4 pushed 45 % towards the axis (non-on-hull)")
+write_obj("three-lobed.obj", three_lobed,
+          "three lobes (60 cos t + 10 cos 2t, 50 sin t - 10 sin 2t, 18 sin 3t) mm (on-hull)")
 write_rotated_bezier("rotated.json")

@@ -1,6 +1,10 @@
 #include "cli/commands.h"
 
+#include <chrono>
+#include <csignal>
 #include <cstdio>
+#include <cstdlib>
+#include <thread>
 
 #include "cli/terminal.h"
 #include "pipeline/saved_result.h"
@@ -195,6 +199,28 @@ int listProfiles() {
   for (const std::string& name : exportProfileNames())
     std::fprintf(stdout, "%s\n", name.c_str());
   return 0;
+}
+
+int runStudio(const StudioOptions& options, bool openBrowser, const std::atomic<bool>& interrupted) {
+  // A browser that closes a connection mid-answer must not end the server.
+  std::signal(SIGPIPE, SIG_IGN);
+  Result<std::unique_ptr<Studio>> studio = Studio::start(options);
+  if (!studio.isOk()) {
+    Terminal::error(studio.status().message());
+    return exitCode(studio.status().code());
+  }
+  const std::string url = studio.value()->url();
+  std::printf("dform studio: open %s\n(Ctrl-C stops it)\n", url.c_str());
+  std::fflush(stdout);
+  // The address holds digits, letters and ":/?=." only, so it is safe in single quotes; without
+  // xdg-open (or a desktop) the printed address is all there is.
+  if (openBrowser && std::system("command -v xdg-open >/dev/null 2>&1") == 0) {
+    const int opened = std::system(("xdg-open '" + url + "' >/dev/null 2>&1 &").c_str());
+    static_cast<void>(opened);
+  }
+  while (!interrupted.load()) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  studio.value()->stop();
+  return exitCode(ErrorCode::Interrupted);
 }
 
 }  // namespace dform::cli

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "pipeline/run.h"
+#include "studio/studio.h"
 
 namespace dform::cli {
 
@@ -25,5 +26,8 @@ int exportSaved(const std::string& dir, const OutputOptions& output,
                 const std::atomic<bool>& interrupted);
 int validateSaved(const std::string& dir, const std::string& gate);
 int listProfiles();
+/// `dform studio`: serves the design page, prints its address (and opens it in the browser
+/// when `openBrowser` and xdg-open is there) until `interrupted` is set (Ctrl-C, SIGTERM).
+int runStudio(const StudioOptions& options, bool openBrowser, const std::atomic<bool>& interrupted);
 
 }  // namespace dform::cli

@@ -292,6 +292,32 @@ struct ValidateCommand {
   int run() { return cli::validateSaved(dir, gate); }
 };
 
+// `dform studio`: serves the design page until Ctrl-C or SIGTERM (docs/studio.md).
+struct StudioCommand {
+  std::vector<std::string> inputs;
+  StudioOptions options;
+  bool noBrowser = false;
+  CLI::App* command = nullptr;
+
+  void add(CLI::App& app) {
+    command = app.add_subcommand("studio", "design a D-Form live in the browser");
+    command->add_option("inputs", inputs, "two outlines (A B) or a job file to start from (default: two ellipses)");
+    command->add_option("--port", options.port, "port on 127.0.0.1 (default: any free one)");
+    command->add_flag("--no-browser", noBrowser, "print the address but do not open a browser");
+  }
+  int run() {
+    if (inputs.size() == 2) {
+      options.pieceA = inputs[0];
+      options.pieceB = inputs[1];
+    } else if (inputs.size() == 1) {
+      options.jobFile = inputs[0];
+    } else if (!inputs.empty()) {
+      return failUsage(Status(ErrorCode::Usage, "studio takes two outlines (A B), a job file, or nothing"));
+    }
+    return cli::runStudio(options, !noBrowser, interrupted);
+  }
+};
+
 int run(int argc, char** argv) {
   CLI::App app{"dform: design and fabricate D-Forms (forward, inverse, export, validate)"};
   app.set_version_flag("--version", std::string("dform ") + DFORM_VERSION);
@@ -303,6 +329,7 @@ int run(int argc, char** argv) {
   RunCommand runCommand;
   ExportCommand exportCommand;
   ValidateCommand validate;
+  StudioCommand studio;
   forward.add(app);
   inverse.add(app);
   sweep.add(app);
@@ -310,12 +337,13 @@ int run(int argc, char** argv) {
   runCommand.add(app);
   exportCommand.add(app);
   validate.add(app);
+  studio.add(app);
 
-  const std::set<std::string> commands = {"forward", "inverse", "run", "sweep", "batch", "export", "validate"};
+  const std::set<std::string> commands = {"forward", "inverse", "run", "sweep", "batch", "export", "validate", "studio"};
   if (argc > 1 && argv[1][0] != '-' && !commands.count(argv[1]))
     return failUsage(Status(ErrorCode::Usage, "unknown command '" + std::string(argv[1]) +
                                                   "' (commands: forward, inverse, run, sweep, "
-                                                  "batch, export, validate; see dform --help)"));
+                                                  "batch, export, validate, studio; see dform --help)"));
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -340,6 +368,7 @@ int run(int argc, char** argv) {
   if (*batch.command) return batch.run();
   if (*runCommand.command) return runCommand.run();
   if (*exportCommand.command) return exportCommand.run();
+  if (*studio.command) return studio.run();
   return validate.run();
 }
 

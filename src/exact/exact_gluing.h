@@ -24,8 +24,15 @@ struct SeamPolygons {
 
 /// Moves both polygons as little as possible (least-norm Gauss-Newton) so that chord k of each
 /// has the mean of the two lengths, to rounding: the metric glues exactly only when the two sides
-/// of every chord are equally long. Returns the largest move, mm.
+/// of every chord are equally long. A stretch of seam points where both pieces are straight to
+/// within kSamplingExcess and whose angle sums exceed 2 pi while the points around it turn
+/// forwards by more is made straight on both sides (a sampling artefact, exact_gluing.cpp).
+/// Returns the largest move, mm.
 double equalizeChords(SeamPolygons& seam);
+
+/// How far from straight (each piece's turn, radians: 0.5 degrees) a seam point may be for
+/// equalizeChords to take its angle sum over 2 pi for a sampling artefact.
+constexpr double kSamplingExcess = 0.5 * 3.14159265358979323846 / 180.0;
 
 /// The glued metric's angles at the seam points.
 struct SeamAngles {
@@ -75,16 +82,5 @@ Result<ExactGluing> glue(const SeamPolygons& seam, const ExactOptions& options =
 /// The 3D position on the glued body of each row of P, points of piece 0 (A) or 1 (B) given in
 /// that piece's plane, inside or on its polygon. Rows that cannot be placed come back NaN.
 Points3 placeOnBody(const ExactGluing& gluing, int piece, const Points2& P);
-
-/// A fold of the body that runs through a piece: the straight segment between two seam points
-/// of that piece along an edge of the body, and its fold angle (radians, 0 = flat).
-struct FoundCrease {
-  int piece = 0;     ///< 0 for A, 1 for B
-  int from = 0, to = 0;  ///< seam points at its ends
-  double angle = 0;
-};
-
-/// Edges of the body folded by more than `minAngle` radians that cross a piece's interior.
-std::vector<FoundCrease> findCreases(const ExactGluing& gluing, double minAngle);
 
 }  // namespace dform::exact

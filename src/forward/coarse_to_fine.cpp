@@ -3,9 +3,9 @@
 #include <array>
 
 #include "core/polyline.h"
-#include "forward/run_control.h"
-#include "forward/transfer.h"
 #include "meshing/triangulate.h"
+#include "model/run_control.h"
+#include "model/transfer.h"
 
 namespace dform {
 
@@ -39,6 +39,19 @@ Result<std::array<Piece, 2>> coarserPieces(const Piece& a, const Piece& b, int m
 }
 
 }  // namespace
+
+namespace detail {
+
+ForwardOptions levelOptions(ForwardOptions options, bool finest, long vertices) {
+  if (!finest) {
+    options.solver.maxIterations = std::min(options.solver.maxIterations, kCoarseIterations);
+    options.constraintRounds = 0;
+  }
+  relaxOnlyIfLarge(vertices, options.solver, options.relaxation);
+  return options;
+}
+
+}  // namespace detail
 
 ForwardResult solveMeshedCoarseToFine(const Piece& a, const Piece& b, const ForwardOptions& options) {
   const bool discs = a.freeBoundaries.empty() && b.freeBoundaries.empty();

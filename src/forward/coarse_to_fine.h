@@ -14,4 +14,13 @@ namespace dform {
 /// 99k-vertex pieces took 355 s to zip again; coarse to fine, about 16 s.
 ForwardResult solveMeshedCoarseToFine(const Piece& a, const Piece& b, const ForwardOptions& options);
 
+namespace detail {
+
+/// One level's options: a coarse level runs a few LM iterations (kCoarseIterations) and leaves the
+/// seam corners to the boundary-fix term (no constraint rounds); a large level is left to the
+/// relaxation (relaxOnlyIfLarge, model/run_control.h).
+ForwardOptions levelOptions(ForwardOptions options, bool finest, long vertices);
+
+}  // namespace detail
+
 }  // namespace dform

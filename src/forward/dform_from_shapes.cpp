@@ -10,13 +10,14 @@
 
 #include "core/polyline.h"
 #include "exact/exact_gluing.h"
-#include "forward/exact_model.h"
-#include "forward/resources.h"
-#include "forward/run_control.h"
+#include "forward/coarse_to_fine.h"
 #include "forward/seam_layout.h"
-#include "forward/term_table.h"
-#include "forward/transfer.h"
 #include "meshing/triangulate.h"
+#include "model/exact_model.h"
+#include "model/resources.h"
+#include "model/run_control.h"
+#include "model/term_table.h"
+#include "model/transfer.h"
 
 namespace dform {
 

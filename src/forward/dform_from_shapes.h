@@ -4,15 +4,13 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <atomic>
-#include <functional>
 #include <string>
-#include <vector>
 
 #include "core/messages.h"
 #include "core/status.h"
 #include "core/types.h"
 #include "forward/forward.h"
+#include "model/run_types.h"
 
 namespace dform {
 
@@ -61,39 +59,6 @@ struct ForwardSettings {
   double interiorEdgeFactor = 1.0;    ///< interior edge length / seam edge length
   bool coarseToFine = true;           ///< start from solutions at 1/3, 1/9, ... of the resolution
   ForwardOptions solve;
-};
-
-/// Seconds spent in each stage.
-struct Timings {
-  double read = 0, mesh = 0, solve = 0, total = 0;
-};
-
-/// Folds of the exact D-Form through a piece that nobody drew: each is returned as one of the
-/// piece's creases (Piece::creases) and listed here.
-struct FoundCrease {
-  int piece = 0;           ///< 0 for A, 1 for B
-  int crease = 0;          ///< its index in that piece's creases
-  double angleDeg = 0;     ///< its fold angle (0 = flat)
-  double lengthMm = 0;
-};
-
-/// Which model ran, and why the other did not.
-struct ModelUsed {
-  std::string name;    ///< "exact" or "paper"
-  std::string reason;  ///< why this one: the exact model's conditions met, or which failed
-  int conePoints = 0;          ///< exact: seam points that are vertices of the body
-  int newtonSteps = 0;         ///< exact: steps of the deformation
-  double maxCurvature = 0;     ///< exact: largest |curvature| left at a cone point (radians)
-  double chordMoveMm = 0;      ///< exact: the most a seam point moved to make paired chords equal
-  bool doublyCovered = false;  ///< exact: the pieces fold flat onto each other
-  std::vector<FoundCrease> creases;
-};
-
-/// Hooks for a caller that shows progress or can be interrupted.
-struct RunHooks {
-  /// Each iteration of a stage ("relaxing": local-global steps, "solving": Levenberg-Marquardt).
-  std::function<void(const char* stage, const IterationSummary&)> onIteration;
-  const std::atomic<bool>* interrupted = nullptr;  ///< checked between iterations
 };
 
 /// A solved forward job: the model, which model made it and how the solve went.

@@ -7,9 +7,9 @@
 #include <tuple>
 
 #include "core/polyline.h"
-#include "forward/injectivity.h"
-#include "forward/term_table.h"
-#include "forward/terms.h"
+#include "model/injectivity.h"
+#include "model/term_table.h"
+#include "model/terms.h"
 
 namespace dform {
 

@@ -2,21 +2,11 @@
 #pragma once
 
 #include "core/types.h"
-#include "forward/local_global.h"
+#include "model/local_global.h"
+#include "model/weights.h"
 #include "solver/solver.h"
 
 namespace dform {
-
-/// Term weights of the forward objective (paper Table 1's defaults). Each has its row in
-/// forwardTerms (forward/term_table.h): its name, its term and how the solve uses it.
-struct ForwardWeights {
-  double isometry = 1.0;    ///< w_iso, Eq. 1
-  double alignment = 1.0;   ///< w_align, Eq. 2: any positive weight closes the seam exactly (see VariableLayout)
-  double boundaryFix = 1.0; ///< w_fix, Eq. 3
-  double smooth3d = 0.01;   ///< w_3D, Eq. 4 on the 3D meshes
-  double smooth2d = 1.0;    ///< w_2D, Eq. 4 on the flat meshes
-  double seam = 0.01;       ///< w_seam, Eq. 5
-};
 
 struct ForwardOptions {
   ForwardWeights weights;

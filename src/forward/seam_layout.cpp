@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "core/polyline.h"
-#include "forward/run_control.h"
+#include "model/run_control.h"
 
 namespace dform {
 

@@ -3,21 +3,11 @@
 #include <cassert>
 
 #include "core/polyline.h"
-#include "forward/injectivity.h"
-#include "forward/terms.h"
-#include "inverse/inverse_terms.h"
+#include "model/injectivity.h"
+#include "model/term_table.h"
+#include "model/terms.h"
 
 namespace dform {
-
-const TermTable<InverseWeights>& inverseTerms() {
-  // Closeness makes no term: any positive weight holds the seam on the curve exactly.
-  static const TermTable<InverseWeights> table = {
-      {"isometry", &InverseWeights::isometry, isometryTerm, false},
-      {"closeness", &InverseWeights::closeness, nullptr, false},
-      {"smooth_3d", &InverseWeights::smooth3d, smooth3dTerm, true},
-      {"smooth_2d", &InverseWeights::smooth2d, smooth2dTerm, true}};
-  return table;
-}
 
 InverseResult solveInverse(const DForm& start, const Points3& curve, const InverseOptions& options) {
   assert(start.a.seam.size() == start.b.seam.size() &&

@@ -3,19 +3,11 @@
 #pragma once
 
 #include "core/types.h"
-#include "forward/local_global.h"
+#include "model/local_global.h"
+#include "model/weights.h"
 #include "solver/solver.h"
 
 namespace dform {
-
-/// Term weights of the inverse objective (paper Table 1's defaults for inverse modelling). Each has
-/// its row in inverseTerms (inverse/inverse_terms.h): its name, its term and how the solve uses it.
-struct InverseWeights {
-  double isometry = 1.0;    ///< w_iso, Eq. 1
-  double closeness = 1.0;   ///< w_close, Eq. 6: any positive weight holds the seam on the curve exactly
-  double smooth3d = 0.001;  ///< w_3D, Eq. 4 on the 3D meshes
-  double smooth2d = 1.0;    ///< w_2D, Eq. 4 on the flat meshes
-};
 
 struct InverseOptions {
   InverseWeights weights;

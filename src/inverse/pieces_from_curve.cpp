@@ -9,12 +9,12 @@
 
 #include "core/polyline.h"
 #include "exact/aligned_distance.h"
-#include "forward/exact_model.h"
-#include "forward/resources.h"
-#include "forward/run_control.h"
-#include "forward/transfer.h"
-#include "inverse/inverse_terms.h"
 #include "meshing/triangulate.h"
+#include "model/exact_model.h"
+#include "model/resources.h"
+#include "model/run_control.h"
+#include "model/term_table.h"
+#include "model/transfer.h"
 
 namespace dform {
 
@@ -97,6 +97,10 @@ Result<DForm> exactInverse(const InverseInit& init, const Points3& target, const
   Result<DForm> made = exactDForm(polygons, edge * job.init.edgeLengthFactor, paths, used);
   if (!made.isOk()) return made.status();
   DForm model = std::move(made).value();
+  // A fold of the body that crossed the seam would have become a seam vertex with no point of the
+  // curve to pair with (on-hull curves have none: their chords are edges of the hull).
+  if (Eigen::Index(model.a.seam.size()) != n)
+    return Status(ErrorCode::SolveFailed, "a fold of the exact D-Form crosses the seam between curve points");
   Points3 seam(n, 3);
   for (Eigen::Index k = 0; k < n; ++k) seam.row(k) = model.a.shape.row(model.a.seam[std::size_t(k)]);
   const Eigen::Affine3d onCurve = exact::rigidFit(seam, target);

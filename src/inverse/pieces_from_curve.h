@@ -9,9 +9,9 @@
 #include "core/messages.h"
 #include "core/status.h"
 #include "core/types.h"
-#include "forward/dform_from_shapes.h"
 #include "inverse/inverse_solve.h"
 #include "inverse/pre_dform.h"
+#include "model/run_types.h"
 
 namespace dform {
 

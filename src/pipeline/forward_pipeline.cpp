@@ -2,9 +2,9 @@
 
 #include <new>
 
-#include "forward/resources.h"
-#include "forward/run_control.h"
 #include "io/outline_reader.h"
+#include "model/resources.h"
+#include "model/run_control.h"
 
 namespace dform {
 

@@ -3,9 +3,9 @@
 #include <new>
 
 #include "core/polyline.h"
-#include "forward/resources.h"
-#include "forward/run_control.h"
 #include "io/curve_reader.h"
+#include "model/resources.h"
+#include "model/run_control.h"
 
 namespace dform {
 

@@ -9,8 +9,7 @@
 
 #include "core/input_file.h"
 #include "core/message_text.h"
-#include "forward/term_table.h"
-#include "inverse/inverse_terms.h"
+#include "model/term_table.h"
 
 namespace dform {
 

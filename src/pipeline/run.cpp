@@ -5,8 +5,8 @@
 
 #include "core/result_folder.h"
 #include "io/model_files.h"
+#include "model/resources.h"
 #include "pipeline/report.h"
-#include "forward/resources.h"
 #include "pipeline/run_steps.h"
 
 namespace dform {

@@ -13,9 +13,11 @@ import re
 import sys
 import tempfile
 
-# What each module may include besides itself: the data flow io -> meshing -> forward/inverse
-# on a generic solver -> validate -> export/report -> pipeline (runs: one, a sweep's, a batch's)
-# -> cli and the Python module, with core under all. The cli sees the pipeline and core only;
+# What each module may include besides itself: the data flow io -> meshing -> model (the D-Form
+# solve on a generic solver) -> forward/inverse, neither using the other -> validate ->
+# export/report -> pipeline (runs: one, a sweep's, a batch's)
+# -> cli, studio and the Python module, with core under all. The cli sees the pipeline, the
+# studio (which it starts) and core only;
 # the Python module reads outlines and curves given as arrays as io reads their files.
 ALLOWED = {
     "core": set(),
@@ -23,15 +25,19 @@ ALLOWED = {
     "io": {"core"},
     "meshing": {"core"},
     "exact": {"core"},
-    "forward": {"core", "solver", "meshing", "exact"},
-    "inverse": {"core", "solver", "meshing", "exact", "forward"},
+    "model": {"core", "solver", "meshing", "exact"},
+    "forward": {"core", "solver", "meshing", "exact", "model"},
+    "inverse": {"core", "solver", "meshing", "exact", "model"},
     "validate": {"core", "exact", "forward"},
     "export": {"core", "validate"},
     "report": {"core", "validate"},
-    "pipeline": {"core", "io", "meshing", "solver", "exact", "forward", "inverse", "validate",
+    "pipeline": {"core", "io", "meshing", "solver", "exact", "model", "forward", "inverse", "validate",
                  "export", "report"},
-    "cli": {"core", "pipeline"},
+    "cli": {"core", "pipeline", "studio"},
     "python": {"core", "io", "pipeline"},
+    # The studio reads uploads as io reads files, runs them through the pipeline and judges the
+    # result in memory with validate's gate, as the pipeline does for a written result.
+    "studio": {"core", "io", "pipeline", "validate"},
 }
 
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([a-z_]+)/')
@@ -62,8 +68,8 @@ def violations(src):
 
 
 # The CLI's own targets may link these besides third-party libraries: the pipeline (which brings
-# core) and the warning flags.
-CLI_MAY_LINK = {"dform::pipeline", "dform_warnings"}
+# core), the studio (`dform studio`) and the warning flags.
+CLI_MAY_LINK = {"dform::pipeline", "dform::studio", "dform_warnings"}
 
 
 def cli_link_violations(link_libraries):
@@ -113,6 +119,22 @@ def self_test():
         assert len(found) == 1 and found[0].startswith("io/bad.cpp:2: io includes pipeline/"), found
         write("core/worse.h", '#include "export/exporter.h"\n')
         assert len(violations(src)) == 2, violations(src)
+        # forward and inverse share the model below them and use neither the other; validate
+        # judges meshes and uses no solver.
+        write("inverse/solve.cpp", '#include "model/terms.h"\n#include "forward/forward.h"\n')
+        write("forward/solve.cpp", '#include "model/terms.h"\n#include "inverse/pre_dform.h"\n')
+        write("model/terms.h", '#include "solver/problem.h"\n#include "forward/forward.h"\n')
+        write("validate/metrics.cpp", '#include "core/types.h"\n#include "solver/problem.h"\n')
+        found = violations(src)
+        assert [f.split(": ")[0] for f in found] == [
+            "core/worse.h:1", "forward/solve.cpp:2", "inverse/solve.cpp:2", "io/bad.cpp:2",
+            "model/terms.h:2", "validate/metrics.cpp:2"], found
+        # The studio uses the pipeline, io and validate, nothing else of the stages.
+        write("studio/server.cpp", '#include "pipeline/run.h"\n#include "io/outline_reader.h"\n')
+        assert len(violations(src)) == 6, violations(src)
+        write("studio/worse.cpp", '#include "export/exporter.h"\n')
+        found = violations(src)
+        assert len(found) == 7 and any(f.startswith("studio/worse.cpp:1: studio includes export/") for f in found), found
         write("core/polyline.h", "double closedLength(const Eigen::MatrixXd& P);\n"
                                  "bool segmentsIntersect(const Vec2& a,\n    const Vec2& b);\n")
         write("export/draw.cpp", "double width(const Polyline& p) { return closedLength(p); }\n")
@@ -121,7 +143,7 @@ def self_test():
                                  "                           int k) {\n  return 0;\n}\n}\n")
         found = core_helper_copies(src)
         assert found == ["export/copy.cpp:2: export defines closedLength, which core/polyline.h has"], found
-    assert cli_link_violations("dform::pipeline;CLI11::CLI11;dform_warnings") == []
+    assert cli_link_violations("dform::pipeline;dform::studio;CLI11::CLI11;dform_warnings") == []
     found = cli_link_violations("dform::pipeline;dform::export;CLI11::CLI11;dform_report")
     assert len(found) == 2 and "dform::export" in found[0] and "dform_report" in found[1], found
     print("layering.py: self-test passed")

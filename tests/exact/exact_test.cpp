@@ -87,6 +87,36 @@ TEST(Exact, NonConvexMetricNamesItsFirstSeamPoint) {
   EXPECT_NE(glued.status().message().find("seam point 6"), std::string::npos) << glued.status().message();
 }
 
+// Two 100 mm squares, B's seam started mid-side: side points meet side points (flat) and
+// corners meet side points. A's seam point 1, next to its corner, pushed inwards by `depth` mm:
+// it turns backwards (angle sum above 2 pi) and the corner and point 2 take its turn.
+SeamPolygons squaresWithADent(double depth) {
+  const int perSide = 25;
+  const Points2 square = testshapes::polygonSampled({{0, 0}, {100, 0}, {100, 100}, {0, 100}}, perSide);
+  SeamPolygons seam = seamOf(square, square, perSide / 2);
+  seam.a(1, 1) += depth;
+  return seam;
+}
+
+TEST(Exact, ASamplingArtefactPastFlatIsStraightenedAndASaddleIsNot) {
+  // 1e-4 mm on 4 mm chords: the angle sum exceeds 2 pi by 5e-5 rad, as sampled flattened arcs do.
+  SeamPolygons seam = squaresWithADent(1e-4);
+  ASSERT_EQ(seamAngles(seam).firstNonConvex, 1);
+  const SeamPolygons before = seam;
+  equalizeChords(seam);
+  const SeamAngles after = seamAngles(seam);
+  EXPECT_EQ(after.firstNonConvex, -1);
+  EXPECT_NEAR(after.a[1], kPi, 1e-9) << "straight on both sides";
+  EXPECT_NEAR(after.b[1], kPi, 1e-9);
+  EXPECT_LT((seam.a - before.a).rowwise().norm().maxCoeff(), 2e-4) << "moved by about the dent";
+  Result<ExactGluing> glued = glue(seam);
+  EXPECT_TRUE(glued.isOk()) << glued.status().message();
+  // A dent of 0.5 mm turns A backwards by 14 degrees: a saddle of the metric, refused as such.
+  SeamPolygons saddle = squaresWithADent(0.5);
+  equalizeChords(saddle);
+  EXPECT_EQ(seamAngles(saddle).firstNonConvex, 1);
+}
+
 TEST(Exact, CurvatureJacobianMatchesFiniteDifferences) {
   SeamPolygons seam = testshapes::ellipsePair(24);
   equalizeChords(seam);

@@ -11,11 +11,11 @@
 
 #include "exact/aligned_distance.h"
 #include "forward/coarse_to_fine.h"
-#include "forward/injectivity.h"
-#include "forward/term_table.h"
-#include "forward/terms.h"
-#include "forward/transfer.h"
-#include "test_meshes.h"
+#include "model/injectivity.h"
+#include "model/term_table.h"
+#include "model/terms.h"
+#include "model/test_meshes.h"
+#include "model/transfer.h"
 #include "validate/gate.h"
 #include "validate/metrics.h"
 

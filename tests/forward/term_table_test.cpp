@@ -1,10 +1,10 @@
 // forwardTerms: the forward objective's one table of terms and weights.
-#include "forward/term_table.h"
+#include "model/term_table.h"
 
 #include <gtest/gtest.h>
 
 #include "forward/dform_from_shapes.h"
-#include "term_table_checks.h"
+#include "model/term_table_checks.h"
 
 namespace dform {
 namespace {

@@ -1,10 +1,10 @@
 // inverseTerms: the inverse objective's one table of terms and weights.
-#include "inverse/inverse_terms.h"
+#include "model/term_table.h"
 
 #include <gtest/gtest.h>
 
-#include "forward/term_table_checks.h"
 #include "inverse/pieces_from_curve.h"
+#include "model/term_table_checks.h"
 
 namespace dform {
 namespace {

@@ -7,8 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "forward/term_table.h"
-#include "inverse/inverse_terms.h"
+#include "model/term_table.h"
 
 namespace dform {
 namespace {

@@ -1,0 +1,223 @@
+#include "model/exact_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <utility>
+
+#include "core/polyline.h"
+#include "exact/body_edges.h"
+#include "meshing/triangulate.h"
+
+namespace dform {
+
+namespace {
+
+constexpr double kDegree = 3.14159265358979323846 / 180.0;
+
+// A smoothly curved body of n seam points folds by up to about 3 x 360/n degrees between
+// neighbouring faces (measured on ellipse pairs and an ellipse with a circle, n = 100 to 400:
+// 10.4, 5.2 and 2.6 degrees); a real crease keeps its angle as n grows (a square's corners
+// against a circle: 66 degrees). Twice that margin, and never below 20 degrees.
+double foundCreaseRadians(long n) { return std::max(20.0, 6.0 * 360.0 / double(n)) * kDegree; }
+
+// The seam of the meshes: every seam point, and between them the places where followed body edges
+// cross the seam (the same places on both pieces), in seam order.
+class ConformingSeam {
+ public:
+  ConformingSeam(int n, const std::vector<const exact::BodyEdge*>& edges) : crossings_(std::size_t(n)) {
+    for (const exact::BodyEdge* edge : edges)
+      for (const exact::EdgeRun& run : edge->runs)
+        for (const exact::SeamPlace& place : {run.from, run.to})
+          if (!place.isSeamPoint()) crossings_[std::size_t(place.chord)].push_back(place.t);
+    first_.resize(std::size_t(n) + 1);
+    for (int k = 0; k < n; ++k) {
+      std::vector<double>& ts = crossings_[std::size_t(k)];
+      std::sort(ts.begin(), ts.end());
+      // Places closer than kSeamMerge of the chord to a seam point or to each other are one.
+      std::vector<double> merged;
+      for (double t : ts) {
+        if (t <= kSeamMerge || t >= 1.0 - kSeamMerge) continue;
+        if (!merged.empty() && t - merged.back() <= kSeamMerge) continue;
+        merged.push_back(t);
+      }
+      ts = std::move(merged);
+      first_[std::size_t(k) + 1] = first_[std::size_t(k)] + 1 + int(ts.size());
+    }
+  }
+
+  /// Places where edges meet the seam closer than this fraction of the chord to a seam point, or
+  /// to each other, are merged into one.
+  static constexpr double kSeamMerge = 1e-6;
+
+  int size() const { return first_.back(); }
+  /// The index in the conforming seam of a place.
+  int indexOf(const exact::SeamPlace& place) const {
+    const std::vector<double>& ts = crossings_[std::size_t(place.chord)];
+    if (place.t <= kSeamMerge) return first_[std::size_t(place.chord)];
+    if (place.t >= 1.0 - kSeamMerge) return first_[std::size_t(place.chord) + 1] % size();
+    const auto nearest = std::min_element(ts.begin(), ts.end(), [&](double u, double v) {
+      return std::abs(u - place.t) < std::abs(v - place.t);
+    });
+    return first_[std::size_t(place.chord)] + 1 + int(nearest - ts.begin());
+  }
+  /// The place of index i.
+  exact::SeamPlace place(int i) const {
+    const int k = int(std::upper_bound(first_.begin(), first_.end(), i) - first_.begin()) - 1;
+    const int offset = i - first_[std::size_t(k)];
+    return {k, offset == 0 ? 0.0 : crossings_[std::size_t(k)][std::size_t(offset - 1)]};
+  }
+
+ private:
+  std::vector<std::vector<double>> crossings_;
+  std::vector<int> first_{0};
+};
+
+}  // namespace
+
+namespace {
+
+// Folds of the body the meshes do not follow: a mesh edge across a fold of angle theta is shorter
+// on the body than flat by at most theta^2 / 8 of its length, 1.25e-11 at 1e-5 rad, below what
+// the figures resolve; such folds are the body's triangulation of a flat face and rounding.
+constexpr double kFollowedFold = 1e-5;
+
+// The lines a piece's mesh follows: each run of a followed body edge through the piece, from one
+// row of the conforming seam to another, with points about `edge` apart; and each line's fold.
+struct PieceLines {
+  std::vector<InteriorLine> lines;
+  std::vector<double> folds;  ///< radians
+};
+
+// Whether the run between seam places i and j cuts off a single place m between them (an ear of
+// the seam) lying within kSliver of the run's length from it: the face between them is a sliver
+// whose corners at i and j are under 1e-3 rad, which no mesh draws without triangles that thin.
+// The fold is not followed: the triangles beside the seam there cross it within that sliver
+// (an edge of length l across a fold of angle theta at distance d from its end is shorter by
+// about theta^2 d / (2 l) of l).
+constexpr double kSliver = 1e-3;
+
+bool hugsTheSeam(const Points2& outline, const std::vector<int>& rowOf, int i, int j) {
+  const int N = int(rowOf.size());
+  for (const auto& [from, to] : {std::pair{i, j}, std::pair{j, i}}) {
+    if ((from + 2) % N != to) continue;
+    const Eigen::Vector2d p = outline.row(rowOf[std::size_t(from)]), q = outline.row(rowOf[std::size_t(to)]),
+                          m = outline.row(rowOf[std::size_t((from + 1) % N)]);
+    const Eigen::Vector2d u = (q - p).normalized();
+    if (std::abs(u.x() * (m - p).y() - u.y() * (m - p).x()) < kSliver * (q - p).norm()) return true;
+  }
+  return false;
+}
+
+PieceLines pieceLines(const std::vector<const exact::BodyEdge*>& followed, int piece, const ConformingSeam& seam,
+                      const std::vector<int>& rowOf, const Points2& outline, double edge) {
+  PieceLines out;
+  const int N = seam.size();
+  std::map<std::pair<int, int>, std::size_t> seen;
+  for (const exact::BodyEdge* body : followed)
+    for (const exact::EdgeRun& run : body->runs) {
+      if (run.piece != piece) continue;
+      const int i = seam.indexOf(run.from), j = seam.indexOf(run.to);
+      // Merged into one place, or along the seam between neighbouring places: nothing to follow.
+      if (i == j || (i + 1) % N == j || (j + 1) % N == i) continue;
+      InteriorLine line;
+      line.from = rowOf[std::size_t(i)];
+      line.to = rowOf[std::size_t(j)];
+      if (hugsTheSeam(outline, rowOf, i, j)) continue;
+      const auto key = std::minmax(line.from, line.to);
+      if (const auto it = seen.find(key); it != seen.end()) {
+        out.folds[it->second] = std::max(out.folds[it->second], body->fold);
+        continue;
+      }
+      seen[key] = out.lines.size();
+      Points2 ends(2, 2);
+      ends << outline.row(line.from), outline.row(line.to);
+      const int segments = std::max(1, int(std::lround(openLength(ends) / edge)));
+      line.interior = resampleOpen(ends, segments).middleRows(1, segments - 1);
+      out.lines.push_back(std::move(line));
+      out.folds.push_back(body->fold);
+    }
+  return out;
+}
+
+// Every mesh edge on the body is a chord of a path as long as the flat edge, so never longer than
+// it: the largest excess over the flat length, relative (a misplaced vertex shows as one).
+double longestStretch(const Piece& piece) {
+  double longest = 0.0;
+  for (Eigen::Index f = 0; f < piece.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const int i = piece.F(f, c), j = piece.F(f, (c + 1) % 3);
+      const double flat = (piece.flat.row(i) - piece.flat.row(j)).norm();
+      longest = std::max(longest, (piece.shape.row(i) - piece.shape.row(j)).norm() / flat - 1.0);
+    }
+  return longest;
+}
+
+}  // namespace
+
+Result<DForm> exactDForm(exact::SeamPolygons polygons, double targetEdge, const std::string paths[2],
+                         ModelUsed& used) {
+  const Eigen::Index n = polygons.a.rows();
+  used.chordMoveMm = exact::equalizeChords(polygons);
+  Result<exact::ExactGluing> glued = exact::glue(polygons);
+  if (!glued.isOk()) return glued.status();
+  const exact::ExactGluing& g = glued.value();
+  used.doublyCovered = g.doublyCovered;
+  used.conePoints = g.doublyCovered ? 0 : g.triangulation.vertexCount();
+  used.newtonSteps = g.embedding.iterations;
+  used.maxCurvature = g.embedding.maxCurvature;
+  Result<std::vector<exact::BodyEdge>> traced = exact::traceBodyEdges(g);
+  if (!traced.isOk()) return traced.status();
+  std::vector<const exact::BodyEdge*> followed;
+  for (const exact::BodyEdge& edge : traced.value())
+    if (edge.fold >= kFollowedFold && !edge.runs.empty()) followed.push_back(&edge);
+  const ConformingSeam seam(int(n), followed);
+  const int N = seam.size();
+  const double creaseAngle = foundCreaseRadians(n);
+  DForm model;
+  Piece* pieces[2] = {&model.a, &model.b};
+  for (int p = 0; p < 2; ++p) {
+    // The mesher takes the outline counter-clockwise: A's seam order, B's reversed.
+    std::vector<int> rowOf(static_cast<std::size_t>(N));
+    Points2 outline(N, 2);
+    for (int k = 0; k < N; ++k) {
+      rowOf[std::size_t(k)] = p == 0 ? k : (N - k) % N;
+      outline.row(rowOf[std::size_t(k)]) = exact::seamPlacePoint(g, p, seam.place(k)).transpose();
+    }
+    const PieceLines lines = pieceLines(followed, p, seam, rowOf, outline, targetEdge);
+    TriangulateOptions meshOptions;
+    meshOptions.targetEdgeLength = targetEdge;
+    Result<FlatMesh> mesh = triangulateDomain(outline, {}, meshOptions, lines.lines);
+    if (!mesh.isOk())
+      return Status(ErrorCode::SolveFailed, paths[p] + ": the body's folds could not be meshed: " + mesh.status().message());
+    Piece& out = *pieces[p];
+    out.name = p == 0 ? "A" : "B";
+    out.flat = std::move(mesh.value().V);
+    out.F = std::move(mesh.value().F);
+    out.seam = rowOf;
+    for (std::size_t l = 0; l < lines.lines.size(); ++l) {
+      if (lines.folds[l] <= creaseAngle) continue;
+      const InteriorLine& line = lines.lines[l];
+      used.creases.push_back({p, int(out.creases.size()), lines.folds[l] / kDegree,
+                              (outline.row(line.from) - outline.row(line.to)).norm()});
+      out.creases.push_back(mesh.value().lines[l]);
+    }
+    out.shape = exact::placeOnBody(g, p, out.flat);
+    if (!out.shape.allFinite())
+      return Status(ErrorCode::SolveFailed, paths[p] + ": a mesh vertex could not be placed on the exact D-Form");
+  }
+  // Seam partners are one point of the body; placed from either side they differ by rounding.
+  for (std::size_t k = 0; k < model.a.seam.size(); ++k)
+    model.b.shape.row(model.b.seam[k]) = model.a.shape.row(model.a.seam[k]);
+  // A longer edge means a vertex was placed off its spot, and the result is not used (auto then
+  // makes the shape with the paper model). 1e-4: the seam polygons were moved by up to ~1e-6 of
+  // an edge to equal chords, and placing a vertex rounds; a misplaced vertex is off by a good part
+  // of an edge (seen: 174 %).
+  for (int p = 0; p < 2; ++p)
+    if (const double longest = longestStretch(*pieces[p]); longest > 1e-4)
+      return Status(ErrorCode::SolveFailed, paths[p] + ": a mesh vertex was placed off the exact D-Form (an edge came "
+                                                      "out longer than it is flat, by " + std::to_string(100 * longest) + " %)");
+  return model;
+}
+
+}  // namespace dform

@@ -1,0 +1,143 @@
+#include "studio/downloads.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "pipeline/job_file.h"
+#include "pipeline/run.h"
+#include "studio/wire.h"
+#include "studio/zip.h"
+
+namespace dform::studio {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using Files = std::vector<std::pair<std::string, std::string>>;
+
+namespace {
+
+// jobToJson records an input that exists as a file by its absolute path; the saved job names
+// its inputs beside it instead, whatever the server's working folder holds.
+std::string withInputs(const Job& job, const std::vector<std::pair<const char*, std::string>>& inputs) {
+  json text = json::parse(jobToJson(job));
+  for (const auto& [key, name] : inputs) text[key] = name;
+  return text.dump(2) + "\n";
+}
+
+// A fresh private folder under the system's temporary folder.
+Result<fs::path> temporaryFolder() {
+  std::string pattern = (fs::temp_directory_path() / "dform-studio-XXXXXX").string();
+  if (!mkdtemp(pattern.data()))
+    return Status(ErrorCode::OutputFailed, pattern + ": cannot create a temporary folder");
+  return fs::path(pattern);
+}
+
+Status writeFile(const fs::path& path, const std::string& content) {
+  std::ofstream out(path, std::ios::binary);
+  out << content;
+  out.close();
+  return out ? Status::ok() : Status(ErrorCode::OutputFailed, path.string() + ": cannot write");
+}
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Every regular file under `dir`, by its '/'-separated path relative to it, sorted.
+Files filesUnder(const fs::path& dir) {
+  Files files;
+  for (const auto& entry : fs::recursive_directory_iterator(dir))
+    if (entry.is_regular_file())
+      files.emplace_back(fs::relative(entry.path(), dir).generic_string(), readFile(entry.path()));
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+std::string text(const json& request, const char* key) {
+  if (!request.contains(key)) return "";
+  if (!request.at(key).is_string()) throw RequestError(std::string(key) + ": must be a string");
+  return request.at(key).get<std::string>();
+}
+
+}  // namespace
+
+Files forwardJobFiles(const PieceInput& a, const PieceInput& b, const ForwardSettings& settings) {
+  Job job;
+  job.mode = Job::Mode::Forward;
+  static_cast<ForwardSettings&>(job.forward) = settings;
+  job.forward.pieceA = a.name;
+  job.forward.pieceB = b.name;
+  return {{"job.json", withInputs(job, {{"piece_a", a.name}, {"piece_b", b.name}})},
+          {a.name, a.text},
+          {b.name, b.text}};
+}
+
+Files inverseJobFiles(const CurveInput& curve, const InverseSettings& settings, bool forceClosed) {
+  Job job;
+  job.mode = Job::Mode::Inverse;
+  static_cast<InverseSettings&>(job.inverse) = settings;
+  job.inverse.curve = curve.name;
+  job.inverse.forceClosed = forceClosed;
+  return {{"job.json", withInputs(job, {{"curve", curve.name}})}, {curve.name, curve.text}};
+}
+
+std::string savedForwardJob(const PieceInput& a, const PieceInput& b, const ForwardSettings& settings) {
+  return storedZip(forwardJobFiles(a, b, settings));
+}
+
+std::string savedInverseJob(const CurveInput& curve, const InverseSettings& settings, bool forceClosed) {
+  return storedZip(inverseJobFiles(curve, settings, forceClosed));
+}
+
+ExportRequest exportRequestFrom(const json& request) {
+  ExportRequest r;
+  if (std::string p = text(request, "profile"); !p.empty()) r.profile = p;
+  const std::vector<std::string> profiles = exportProfileNames();
+  if (std::find(profiles.begin(), profiles.end(), r.profile) == profiles.end())
+    throw RequestError("profile: not one of the shipped export profiles");
+  r.page = text(request, "page");
+  r.sheet = text(request, "sheet");
+  r.scale = text(request, "scale");
+  if (request.contains("export_anyway")) r.exportAnyway = request.at("export_anyway").get<bool>();
+  return r;
+}
+
+Result<std::string> exportedResult(const Files& jobFiles, const ExportRequest& request) {
+  Result<fs::path> folder = temporaryFolder();
+  if (!folder.isOk()) return folder.status();
+  const fs::path dir = folder.value();
+  struct Cleanup {
+    fs::path dir;
+    ~Cleanup() {
+      std::error_code ec;
+      fs::remove_all(dir, ec);
+    }
+  } cleanup{dir};
+  for (const auto& [name, content] : jobFiles)
+    if (Status s = writeFile(dir / name, content); !s.isOk()) return s;
+  Result<Job> job = readJobFile((dir / "job.json").string());
+  if (!job.isOk()) return job.status();
+  OutputOptions output;
+  output.outDir = (dir / "result").string();
+  output.profile = request.profile;
+  output.page = request.page;
+  output.sheet = request.sheet;
+  output.scale = request.scale;
+  output.exportAnyway = request.exportAnyway;
+  output.quiet = true;
+  Result<RunSettings> settings = checkOutput(output);
+  if (!settings.isOk()) return settings.status();
+  MessageSink sink;
+  Result<WrittenResult> written = runAndWrite(job.value(), output, settings.value(), sink, RunHooks{});
+  if (!fs::is_directory(output.outDir))
+    return written.isOk() ? Status(ErrorCode::OutputFailed, "the export wrote nothing") : written.status();
+  return storedZip(filesUnder(output.outDir));
+}
+
+}  // namespace dform::studio

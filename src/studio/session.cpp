@@ -1,0 +1,250 @@
+#include "studio/session.h"
+
+#include <chrono>
+
+namespace dform::studio {
+
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+void EventStream::push(const json& event) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    events_.push_back("data: " + event.dump() + "\n\n");
+    ++next_;
+    while (events_.size() > kKept) events_.pop_front();
+  }
+  changed_.notify_all();
+}
+
+std::string EventStream::waitAfter(long& position, std::chrono::milliseconds timeout) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  changed_.wait_for(lock, timeout, [&] { return closed_ || next_ > position; });
+  if (closed_) return "";
+  const long oldest = next_ - long(events_.size());
+  std::string out;
+  for (long k = std::max(position, oldest); k < next_; ++k) out += events_[std::size_t(k - oldest)];
+  position = next_;
+  return out;
+}
+
+void EventStream::close() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    closed_ = true;
+  }
+  changed_.notify_all();
+}
+
+long EventStream::end() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return next_;
+}
+
+bool EventStream::closed() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return closed_;
+}
+
+Latest::Ticket Latest::next() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (cancel_) cancel_->store(true);
+  cancel_ = std::make_shared<std::atomic<bool>>(false);
+  return {++generation_, cancel_};
+}
+
+bool Latest::current(const Ticket& ticket) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return ticket.generation == generation_ && !ticket.cancel->load();
+}
+
+void Latest::cancel() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (cancel_) cancel_->store(true);
+}
+
+Session::Session(PieceInput a, PieceInput b) : pieces_{std::move(a), std::move(b)} {
+  worker_ = std::thread([this] { work(); });
+}
+
+Session::~Session() {
+  {
+    std::lock_guard<std::mutex> lock(workMutex_);
+    stopping_ = true;
+  }
+  live_.cancel();
+  strip_.cancel();
+  events_.close();
+  workReady_.notify_all();
+  worker_.join();
+}
+
+void Session::setPiece(int which, PieceInput input) {
+  std::lock_guard<std::mutex> lock(inputMutex_);
+  pieces_[which] = std::move(input);
+}
+
+PieceInput Session::piece(int which) const {
+  std::lock_guard<std::mutex> lock(inputMutex_);
+  return pieces_[which];
+}
+
+void Session::setCurve(CurveInput input) {
+  std::lock_guard<std::mutex> lock(inputMutex_);
+  curve_ = std::move(input);
+}
+
+std::optional<CurveInput> Session::curve() const {
+  std::lock_guard<std::mutex> lock(inputMutex_);
+  return curve_;
+}
+
+// The answer to the page: the result, or superseded, or the error. With gateNow the gate's
+// verdict is in it; else the worker sends it as a "gate" event unless newer input came first.
+json Session::finish(const Result<Solved>& result, const Latest::Ticket& ticket, long seq, bool preview,
+                     bool gateNow) {
+  if (!result.isOk()) {
+    if (ticket.cancel->load()) return {{"seq", seq}, {"superseded", true}};
+    return {{"seq", seq}, {"error", result.status().message()}};
+  }
+  json out = result.value().result;
+  out["seq"] = seq;
+  out["preview"] = preview;
+  out["refining"] = false;
+  if (gateNow) {
+    out["gate"] = result.value().gate();
+  } else {
+    queue([this, gate = result.value().gate, ticket, seq, preview] {
+      if (!live_.current(ticket)) return;
+      events_.push({{"type", "gate"}, {"seq", seq}, {"preview", preview}, {"gate", gate()}});
+    }, Task::Gate);
+  }
+  return out;
+}
+
+json Session::solveLive(const SolveAt& solve, int resolution, bool optimises, long seq,
+                        const std::string& design) {
+  const Latest::Ticket ticket = live_.next();
+  ++liveWaiting_;
+  std::unique_lock<std::mutex> lock(solveMutex_);
+  --liveWaiting_;
+  if (!live_.current(ticket)) return {{"seq", seq}, {"superseded", true}};
+  const int preview = std::min(resolution, kPreviewResolution);
+  bool refine = (optimises || design == optimisedDesign_) && preview < resolution;
+  if (!refine) {
+    // Solve in full unless the run starts to optimise (the paper model: its first iteration),
+    // which is then stopped and previewed instead. Newer input stops it as well.
+    std::atomic<bool> stop{false};
+    bool optimising = false;
+    RunHooks probe;
+    probe.interrupted = &stop;
+    probe.onIteration = [&](const char*, const IterationSummary&) {
+      if (preview < resolution) optimising = true;
+      if (optimising || ticket.cancel->load()) stop = true;
+    };
+    Result<Solved> full = solve(resolution, probe);
+    if (!optimising) return finish(full, ticket, seq, false, false);
+    optimisedDesign_ = design;
+    refine = true;
+  }
+  RunHooks hooks;
+  hooks.interrupted = ticket.cancel.get();
+  json out = finish(solve(preview, hooks), ticket, seq, true, false);
+  if (!out.contains("error") && !out.contains("superseded")) {
+    out["refining"] = true;
+    queue([this, solve, resolution, ticket, seq] {
+      std::unique_lock<std::mutex> solving = lockAfterLive();
+      if (!live_.current(ticket)) return;
+      auto last = Clock::now();
+      RunHooks progress;
+      progress.interrupted = ticket.cancel.get();
+      progress.onIteration = [&](const char* stage, const IterationSummary& it) {
+        if (Clock::now() - last < std::chrono::milliseconds(50)) return;
+        last = Clock::now();
+        events_.push({{"type", "progress"}, {"seq", seq}, {"stage", stage},
+                      {"iteration", it.iteration}, {"cost", it.cost}});
+      };
+      json result = finish(solve(resolution, progress), ticket, seq, false, true);
+      if (result.contains("superseded")) return;
+      result["type"] = "result";
+      events_.push(result);
+    }, Task::Refinement);
+  }
+  return out;
+}
+
+void Session::startStrip(std::vector<std::pair<json, SolveAt>> starts, long seq) {
+  const Latest::Ticket ticket = strip_.next();
+  {
+    std::lock_guard<std::mutex> lock(workMutex_);
+    stripTasks_.clear();
+  }
+  const int count = int(starts.size());
+  for (int k = 0; k < count; ++k) {
+    auto [card, solve] = std::move(starts[std::size_t(k)]);
+    queue([this, card = std::move(card), solve = std::move(solve), ticket, seq, k, count] {
+      std::unique_lock<std::mutex> solving = lockAfterLive();
+      if (!strip_.current(ticket)) return;
+      RunHooks hooks;
+      hooks.interrupted = ticket.cancel.get();
+      Result<Solved> result = solve(kPreviewResolution, hooks);
+      if (!strip_.current(ticket)) return;
+      json event = card;
+      event["type"] = "strip";
+      event["seq"] = seq;
+      event["index"] = k;
+      if (result.isOk()) {
+        event["result"] = result.value().result;
+        event["result"]["gate"] = result.value().gate();
+      } else {
+        event["error"] = result.status().message();
+      }
+      events_.push(event);
+      if (k + 1 == count) events_.push({{"type", "strip_done"}, {"seq", seq}});
+    }, Task::Strip);
+  }
+}
+
+std::unique_lock<std::mutex> Session::lockAfterLive() {
+  for (;;) {
+    while (liveWaiting_.load() > 0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    std::unique_lock<std::mutex> lock(solveMutex_);
+    if (liveWaiting_.load() == 0) return lock;
+  }
+}
+
+void Session::queue(std::function<void()> task, Task kind) {
+  {
+    std::lock_guard<std::mutex> lock(workMutex_);
+    if (kind == Task::Gate) gate_ = std::move(task);
+    if (kind == Task::Refinement) refinement_ = std::move(task);
+    if (kind == Task::Strip) stripTasks_.push_back(std::move(task));
+  }
+  workReady_.notify_one();
+}
+
+// The worker: the newest shape's gate first, then the newest refinement, then the strip's starts
+// one at a time, so that neither waits for a whole strip.
+void Session::work() {
+  for (;;) {
+    std::function<void()> task;
+    {
+      std::unique_lock<std::mutex> lock(workMutex_);
+      workReady_.wait(lock, [&] { return stopping_ || gate_ || refinement_ || !stripTasks_.empty(); });
+      if (stopping_) return;
+      if (gate_) {
+        task = std::move(*gate_);
+        gate_.reset();
+      } else if (refinement_) {
+        task = std::move(*refinement_);
+        refinement_.reset();
+      } else {
+        task = std::move(stripTasks_.front());
+        stripTasks_.pop_front();
+      }
+    }
+    task();
+  }
+}
+
+}  // namespace dform::studio

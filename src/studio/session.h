@@ -1,0 +1,141 @@
+// One browser tab's design: its outlines (or seam curve), its solves and its event stream. Newest
+// input wins: a solve cancels the one before it, and a paper-model solve answers with a coarse
+// preview at once while a worker refines it and streams progress and the result as events.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/status.h"
+#include "core/types.h"
+#include "pipeline/forward_pipeline.h"
+
+namespace dform::studio {
+
+/// An input as the page gave it: the name it is saved under, the text as uploaded or generated,
+/// and what the reader made of it.
+struct PieceInput {
+  std::string name, text;
+  Shape2 shape;
+};
+struct CurveInput {
+  std::string name, text;
+  Curve3 curve;
+  bool forceClosed = false;  ///< an open polyline was closed (`--closed`)
+};
+
+/// Server-sent events of one session: a bounded queue that each open stream reads from its own
+/// position.
+class EventStream {
+ public:
+  /// Queues one event (a JSON object; its "type" names it).
+  void push(const nlohmann::json& event);
+  /// Waits up to `timeout` for events after `position` (0: from the oldest kept); returns them as
+  /// SSE text ("data: ...\n\n" each) and moves `position` on. Empty on timeout or once closed.
+  std::string waitAfter(long& position, std::chrono::milliseconds timeout);
+  void close();
+  bool closed() const;
+  long end() const;  ///< the position after the newest event
+
+ private:
+  static constexpr std::size_t kKept = 256;
+  mutable std::mutex mutex_;
+  std::condition_variable changed_;
+  std::deque<std::string> events_;
+  long next_ = 0;  ///< the number the next event gets
+  bool closed_ = false;
+};
+
+/// Tickets of which only the newest is current: taking one cancels the one before.
+class Latest {
+ public:
+  struct Ticket {
+    long generation = 0;
+    std::shared_ptr<std::atomic<bool>> cancel;
+  };
+  Ticket next();
+  bool current(const Ticket& ticket) const;
+  void cancel();
+
+ private:
+  mutable std::mutex mutex_;
+  long generation_ = 0;
+  std::shared_ptr<std::atomic<bool>> cancel_;
+};
+
+/// A solve's answer for the page (wire.h) and its gate's verdict, which the live loop sends as
+/// an event after the shape (the gate's checks cost as much again as an exact solve).
+struct Solved {
+  nlohmann::json result;
+  std::function<nlohmann::json()> gate;
+};
+
+/// A solve at a seam resolution, or why it failed.
+using SolveAt = std::function<Result<Solved>(int resolution, const RunHooks& hooks)>;
+
+class Session {
+ public:
+  Session(PieceInput a, PieceInput b);
+  ~Session();  ///< cancels its solves and joins its worker
+
+  void setPiece(int which, PieceInput input);  ///< 0: A, 1: B
+  PieceInput piece(int which) const;
+  void setCurve(CurveInput input);
+  std::optional<CurveInput> curve() const;
+
+  /// Solves at `resolution` for the request numbered `seq`; newer requests cancel it (answer
+  /// {"superseded": true}). The gate's verdict follows as a "gate" event. Where the solve turns out to need the paper model's optimisation
+  /// (or `optimises` says so, or the last solve of the same `design` did), the answer is a
+  /// preview at kPreviewResolution with "refining": true, and the worker streams the full solve
+  /// ("progress" and "result" events). `design` names what decides the model: the pieces and
+  /// every setting but the starts.
+  nlohmann::json solveLive(const SolveAt& solve, int resolution, bool optimises, long seq,
+                           const std::string& design);
+
+  /// Solves each of `starts` (queued to the worker, one "strip" event each, then "strip_done"),
+  /// cancelling the strip asked for before.
+  void startStrip(std::vector<std::pair<nlohmann::json, SolveAt>> starts, long seq);
+
+  EventStream& events() { return events_; }
+
+  /// Seam vertices of a preview, and of the alternative-starts strip's cards.
+  static constexpr int kPreviewResolution = 36;
+
+ private:
+  void work();
+  enum class Task { Gate, Refinement, Strip };
+  void queue(std::function<void()> task, Task kind);
+  nlohmann::json finish(const Result<Solved>& result, const Latest::Ticket& ticket, long seq,
+                        bool preview, bool gateNow);
+
+  mutable std::mutex inputMutex_;
+  PieceInput pieces_[2];
+  std::optional<CurveInput> curve_;
+
+  std::mutex solveMutex_;  ///< one solve at a time per session
+  /// Live solves waiting for solveMutex_: the worker's tasks let them go first (a mutex is not
+  /// fair, and a strip's back-to-back solves would otherwise hold a drag for seconds).
+  std::atomic<int> liveWaiting_{0};
+  std::unique_lock<std::mutex> lockAfterLive();
+  std::string optimisedDesign_;  ///< the last design whose solve optimised (under solveMutex_)
+  Latest live_, strip_;
+  EventStream events_;
+
+  std::mutex workMutex_;
+  std::condition_variable workReady_;
+  std::optional<std::function<void()>> gate_, refinement_;
+  std::deque<std::function<void()>> stripTasks_;
+  bool stopping_ = false;
+  std::thread worker_;
+};
+
+}  // namespace dform::studio

@@ -1,0 +1,490 @@
+#include "studio/studio.h"
+
+#include <chrono>
+#include <map>
+#include <mutex>
+#include <thread>
+
+#include "core/input_file.h"
+#include "io/curve_reader.h"
+#include "io/outline_reader.h"
+#include "pipeline/job_file.h"
+#include "pipeline/run.h"
+#include "studio/downloads.h"
+#include "studio/guard.h"
+#include "studio/outlines.h"
+#include "studio/session.h"
+#include "studio/wire.h"
+
+// Last: glibc's resolv.h, which it includes, defines _res, a name Eigen's headers use.
+#include <httplib.h>
+
+namespace dform {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using studio::CurveInput;
+using studio::PieceInput;
+using studio::RequestError;
+using studio::Session;
+
+namespace {
+
+const std::vector<std::string> kOutlineExtensions = {".svg", ".json"};
+const std::vector<std::string> kCurveExtensions = {".obj", ".json"};
+const char* const kAssets[] = {"index.html", "studio.js", "studio.css", "view3d.js", "pieces.js", "strip.js"};
+
+// JSON answers. The charset parameter also keeps cpp-httplib from compressing them (it
+// compresses a bare "application/json" for a browser that accepts gzip or brotli): on loopback
+// that only costs time, brotli on a 150 KB shape about a second on a loaded 2-core machine.
+void reply(httplib::Response& res, int status, const json& body) {
+  res.status = status;
+  res.set_content(body.dump(), "application/json; charset=utf-8");
+}
+
+std::vector<std::string> warnings(const MessageSink& sink) {
+  std::vector<std::string> out;
+  for (const Message& m : sink.messages())
+    if (m.level == Level::Warning) out.push_back(m.text);
+  return out;
+}
+
+// A piece's outline, read from its text as the command line reads its file.
+PieceInput readPiece(const std::string& name, std::string text) {
+  Result<Shape2> shape = parseShape(text, name);
+  if (!shape.isOk()) throw RequestError(shape.status().message());
+  return {name, std::move(text), std::move(shape).value()};
+}
+
+CurveInput readCurveInput(const std::string& name, std::string text, bool forceClosed) {
+  CurveReadOptions options;
+  options.forceClosed = forceClosed;
+  Result<Curve3> curve = parseCurve(text, name, options);
+  if (!curve.isOk()) throw RequestError(curve.status().message());
+  return {name, std::move(text), std::move(curve).value(), forceClosed};
+}
+
+json pieceSummary(const PieceInput& piece) {
+  json out = studio::shapeJson(piece.shape);
+  out["name"] = piece.name;
+  return out;
+}
+
+// What decides whether a forward solve optimises: the pieces and every setting but the starts.
+std::string forwardDesign(const PieceInput& a, const PieceInput& b, const ForwardSettings& s) {
+  const std::hash<std::string> hash;
+  return std::to_string(hash(a.text)) + "/" + std::to_string(hash(b.text)) + "/" + joinedBoundaryName(s.joinA) +
+         joinedBoundaryName(s.joinB) + (s.flip ? "/flip/" : "/") + modelChoiceName(s.model) + "/" +
+         std::to_string(s.resolution) + (s.fitPerimeter ? "/fit" : "");
+}
+
+studio::SolveAt forwardSolve(const PieceInput& a, const PieceInput& b, const ForwardSettings& settings,
+                             const GateLimits& gate) {
+  return [a = a.shape, b = b.shape, settings, gate](int resolution, const RunHooks& hooks) -> Result<studio::Solved> {
+    ForwardSettings s = settings;
+    s.resolution = resolution;
+    MessageSink sink;
+    Result<ForwardRun> made = makeDForm(a, b, s, sink, hooks);
+    if (!made.isOk()) return made.status();
+    auto run = std::make_shared<const ForwardRun>(std::move(made).value());
+    json out = studio::forwardResultJson(*run);
+    out["warnings"] = warnings(sink);
+    return studio::Solved{out, [run, gate] {
+      return studio::gateJson(runGate(run->model, gate, run->metrics, nullptr, nullptr));
+    }};
+  };
+}
+
+studio::SolveAt inverseSolve(const CurveInput& curve, const InverseSettings& settings, const GateLimits& gate) {
+  return [curve = curve.curve, settings, gate](int resolution, const RunHooks& hooks) -> Result<studio::Solved> {
+    InverseSettings s = settings;
+    s.resolution = resolution;
+    MessageSink sink;
+    Result<InverseRun> made = makePieces(curve, s, sink, hooks);
+    if (!made.isOk()) return made.status();
+    auto run = std::make_shared<const InverseRun>(std::move(made).value());
+    json out = studio::inverseResultJson(*run);
+    out["warnings"] = warnings(sink);
+    return studio::Solved{out, [run, gate] {
+      return studio::gateJson(runGate(run->model, gate, run->metrics, &run->target, &run->curveMatch));
+    }};
+  };
+}
+
+std::string requiredText(const json& body, const char* key) {
+  if (!body.contains(key) || !body.at(key).is_string()) throw RequestError(std::string(key) + ": must be a string");
+  return body.at(key).get<std::string>();
+}
+
+int pieceIndex(const json& body) {
+  const std::string piece = requiredText(body, "piece");
+  if (piece != "a" && piece != "b") throw RequestError("piece: must be \"a\" or \"b\"");
+  return piece == "a" ? 0 : 1;
+}
+
+long sequence(const json& body) {
+  if (!body.contains("seq")) return 0;
+  if (!body.at("seq").is_number_integer()) throw RequestError("seq: must be a whole number");
+  return body.at("seq").get<long>();
+}
+
+void sendZip(httplib::Response& res, const std::string& zip, const std::string& fileName) {
+  res.set_header("Content-Disposition", "attachment; filename=\"" + fileName + "\"");
+  res.set_content(zip, "application/zip");
+}
+
+}  // namespace
+
+struct Studio::Impl {
+  StudioOptions options;
+  std::string token;
+  int port = 0;
+  GateLimits gate;
+  std::map<std::string, std::string> assets;
+  PieceInput startA, startB;
+  json startSettings = json::object();
+  std::optional<CurveInput> startCurve;
+
+  std::mutex sessionsMutex;
+  std::map<std::string, std::pair<std::shared_ptr<Session>, std::chrono::steady_clock::time_point>> sessions;
+  std::atomic<bool> stopping{false};
+  httplib::Server v4, v6;
+  std::thread listen4, listen6;
+  bool stopped = false;
+
+  std::shared_ptr<Session> session(const std::string& id) {
+    std::lock_guard<std::mutex> lock(sessionsMutex);
+    auto found = sessions.find(id);
+    if (found == sessions.end()) return nullptr;
+    found->second.second = std::chrono::steady_clock::now();
+    return found->second.first;
+  }
+
+  std::string newSession() {
+    auto created = std::make_shared<Session>(startA, startB);
+    if (startCurve) created->setCurve(*startCurve);
+    const std::string id = studio::randomToken().substr(0, 16);
+    std::shared_ptr<Session> dropped;  // destroyed outside the lock: it joins its worker
+    std::lock_guard<std::mutex> lock(sessionsMutex);
+    if (int(sessions.size()) >= options.maxSessions) {
+      auto oldest = sessions.begin();
+      for (auto it = sessions.begin(); it != sessions.end(); ++it)
+        if (it->second.second < oldest->second.second) oldest = it;
+      dropped = oldest->second.first;
+      sessions.erase(oldest);
+    }
+    sessions[id] = {created, std::chrono::steady_clock::now()};
+    return id;
+  }
+
+  Status readStart();
+  void guard(httplib::Server& server);
+  void routes(httplib::Server& server);
+  void api(httplib::Server& server, const char* path,
+           std::function<void(const json&, Session&, httplib::Response&)> handle);
+};
+
+// The first design of every session: the files given, a job file's, or two built-in ellipses
+// (the shipped sample pair's semi-axes: 120 x 70 and 110 x 82.3 mm, equal perimeters).
+Status Studio::Impl::readStart() {
+  auto piece = [](const std::string& path, const char* fallback) -> Result<PieceInput> {
+    Result<std::string> text = readInputFile(path);
+    if (!text.isOk()) return text.status();
+    Result<Shape2> shape = parseShape(text.value(), path);
+    if (!shape.isOk()) return shape.status();
+    return PieceInput{studio::safeFileName(path, kOutlineExtensions, fallback), text.value(), shape.value()};
+  };
+  std::string a = options.pieceA, b = options.pieceB;
+  if (!options.jobFile.empty()) {
+    Result<Job> job = readJobFile(options.jobFile);
+    if (!job.isOk()) return job.status();
+    if (job.value().mode == Job::Mode::Forward) {
+      const ForwardJob& f = job.value().forward;
+      a = f.pieceA;
+      b = f.pieceB;
+      startSettings = {{"start_a", f.startA.nearestToPoint ? 0.0 : f.startA.fraction},
+                       {"start_b", f.startB.nearestToPoint ? 0.0 : f.startB.fraction},
+                       {"flip", f.flip}, {"fit_perimeter", f.fitPerimeter}, {"resolution", f.resolution},
+                       {"model", modelChoiceName(f.model)},
+                       {"join", std::string(joinedBoundaryName(f.joinA)) + "," + joinedBoundaryName(f.joinB)}};
+    } else {
+      const InverseJob& i = job.value().inverse;
+      Result<std::string> text = readInputFile(i.curve);
+      if (!text.isOk()) return text.status();
+      try {
+        startCurve = readCurveInput(studio::safeFileName(i.curve, kCurveExtensions, "curve.json"), text.value(),
+                                    i.forceClosed);
+      } catch (const RequestError& e) {
+        return Status(ErrorCode::InputInvalid, e.what());
+      }
+      startSettings = {{"mode", "inverse"}, {"resolution", i.resolution}};
+    }
+  }
+  if (a.empty()) {
+    startA = readPiece("ellipse-a.json", studio::parametricOutline("ellipse", {{"a", 120}, {"b", 70}}));
+    startB = readPiece("ellipse-b.json", studio::parametricOutline("ellipse", {{"a", 110}, {"b", 82.305579}}));
+    return Status::ok();
+  }
+  Result<PieceInput> readA = piece(a, "piece-a.svg"), readB = piece(b, "piece-b.svg");
+  if (!readA.isOk()) return readA.status();
+  if (!readB.isOk()) return readB.status();
+  startA = readA.value();
+  startB = readB.value();
+  if (startB.name == startA.name) startB.name = "b-" + startB.name;
+  return Status::ok();
+}
+
+// Every request: Host, Origin and token checked before anything is routed.
+void Studio::Impl::guard(httplib::Server& server) {
+  server.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+    studio::RequestFacts facts{req.get_header_value("Host"), req.get_header_value("Origin"),
+                               req.get_header_value("Sec-Fetch-Site"), req.get_param_value("token"),
+                               req.get_header_value("X-Dform-Token"), req.get_header_value("Cookie")};
+    const std::string why = studio::refusal(facts, port, token);
+    if (why.empty()) return httplib::Server::HandlerResponse::Unhandled;
+    reply(res, 403, {{"error", why}});
+    return httplib::Server::HandlerResponse::Handled;
+  });
+  server.set_error_handler([this](const httplib::Request&, httplib::Response& res) {
+    if (!res.body.empty()) return;
+    const std::string why = res.status == 413 ? "the request is larger than " +
+                                                    std::to_string(options.maxUploadBytes) + " bytes"
+                            : res.status == 404 ? "no such page or API"
+                                                : "HTTP " + std::to_string(res.status);
+    reply(res, res.status, {{"error", why}});
+  });
+  server.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
+    reply(res, 500, {{"error", "internal error"}});
+  });
+  server.set_payload_max_length(options.maxUploadBytes);
+  server.set_keep_alive_timeout(1);
+  server.set_read_timeout(5);
+  server.set_write_timeout(5);
+  server.new_task_queue = [] { return new httplib::ThreadPool(16); };
+}
+
+// A JSON API route: the body parsed, its session found, any error a JSON answer.
+void Studio::Impl::api(httplib::Server& server, const char* path,
+                       std::function<void(const json&, Session&, httplib::Response&)> handle) {
+  server.Post(path, [this, handle](const httplib::Request& req, httplib::Response& res) {
+    try {
+      const json body = json::parse(req.body);
+      if (!body.is_object()) throw RequestError("the request must be a JSON object");
+      std::shared_ptr<Session> found = session(requiredText(body, "session"));
+      if (!found) throw RequestError("unknown session (reload the page)");
+      handle(body, *found, res);
+    } catch (const json::parse_error&) {
+      reply(res, 400, {{"error", "the request is not JSON"}});
+    } catch (const RequestError& e) {
+      reply(res, 400, {{"error", e.what()}});
+    } catch (const json::exception& e) {
+      reply(res, 400, {{"error", std::string("malformed request: ") + e.what()}});
+    } catch (const std::bad_alloc&) {
+      reply(res, 503, {{"error", "out of memory"}});
+    }
+  });
+}
+
+void Studio::Impl::routes(httplib::Server& server) {
+  server.Get("/", [this](const httplib::Request&, httplib::Response& res) {
+    std::string page = assets["index.html"];
+    const std::string mark = "{{token}}";
+    page.replace(page.find(mark), mark.size(), token);
+    res.set_header("Set-Cookie", studio::tokenCookieName(port) + "=" + token + "; Path=/; HttpOnly; SameSite=Strict");
+    res.set_header("Content-Security-Policy",
+                   "default-src 'self'; img-src 'self' data: blob:; frame-ancestors 'none'");
+    res.set_header("Cache-Control", "no-store");
+    res.set_content(page, "text/html; charset=utf-8");
+  });
+  for (const char* name : kAssets) {
+    if (std::string(name) == "index.html") continue;
+    server.Get(std::string("/") + name, [this, name = std::string(name)](const httplib::Request&, httplib::Response& res) {
+      const bool js = name.size() > 3 && name.compare(name.size() - 3, 3, ".js") == 0;
+      res.set_content(assets[name], js ? "text/javascript; charset=utf-8" : "text/css; charset=utf-8");
+    });
+  }
+  server.Post("/api/session", [this](const httplib::Request&, httplib::Response& res) {
+    json kinds = json::array();
+    for (const studio::OutlineKind& k : studio::outlineKinds()) {
+      json parameters = json::array();
+      for (const studio::Parameter& p : k.parameters)
+        parameters.push_back({{"name", p.name}, {"min", p.min}, {"max", p.max}, {"value", p.value}});
+      kinds.push_back({{"name", k.name}, {"label", k.label}, {"parameters", parameters}});
+    }
+    json out = {{"session", newSession()}, {"kinds", kinds}, {"settings", startSettings},
+                {"pieces", {pieceSummary(startA), pieceSummary(startB)}},
+                {"profiles", exportProfileNames()}, {"preview_resolution", Session::kPreviewResolution}};
+    for (int i = 0; i < 2; ++i) out["pieces"][i]["text"] = (i == 0 ? startA : startB).text;  // for undo
+    if (startCurve) out["curve"] = studio::curveJson(startCurve->curve);
+    reply(res, 200, out);
+  });
+  api(server, "/api/outline", [](const json& body, Session& s, httplib::Response& res) {
+    const int which = pieceIndex(body);
+    std::string name = studio::safeFileName(requiredText(body, "name"), kOutlineExtensions,
+                                            which == 0 ? "piece-a.svg" : "piece-b.svg");
+    if (name == s.piece(1 - which).name) name = (which == 0 ? "a-" : "b-") + name;
+    PieceInput piece = readPiece(name, requiredText(body, "text"));
+    json out = pieceSummary(piece);
+    s.setPiece(which, std::move(piece));
+    reply(res, 200, out);
+  });
+  api(server, "/api/parametric", [](const json& body, Session& s, httplib::Response& res) {
+    const int which = pieceIndex(body);
+    const std::string kind = requiredText(body, "kind");
+    std::map<std::string, double> values;
+    if (body.contains("values")) values = body.at("values").get<std::map<std::string, double>>();
+    const std::string text = studio::parametricOutline(kind, values);
+    if (text.empty()) throw RequestError("kind: unknown outline kind");
+    PieceInput piece = readPiece(std::string(which == 0 ? "a-" : "b-") + kind + ".json", text);
+    json out = pieceSummary(piece);
+    s.setPiece(which, std::move(piece));
+    reply(res, 200, out);
+  });
+  api(server, "/api/solve", [this](const json& body, Session& s, httplib::Response& res) {
+    const ForwardSettings settings = studio::forwardSettingsFrom(body);
+    const PieceInput a = s.piece(0), b = s.piece(1);
+    reply(res, 200, s.solveLive(forwardSolve(a, b, settings, gate), settings.resolution,
+                                settings.model == ModelChoice::Paper, sequence(body), forwardDesign(a, b, settings)));
+  });
+  api(server, "/api/strip", [this](const json& body, Session& s, httplib::Response& res) {
+    const ForwardSettings settings = studio::forwardSettingsFrom(body);
+    const int starts = body.value("starts", 16);
+    if (starts < 1 || starts > 64) throw RequestError("starts: must be in [1, 64]");
+    const bool bothFlips = body.value("both_flips", true);
+    std::vector<std::pair<json, studio::SolveAt>> cards;
+    const PieceInput a = s.piece(0), b = s.piece(1);
+    for (bool flip : {false, true}) {
+      if (flip && !bothFlips) break;
+      for (int k = 0; k < starts; ++k) {
+        ForwardSettings card = settings;
+        card.startB.fraction = double(k) / starts;
+        card.flip = bothFlips ? flip : settings.flip;
+        cards.emplace_back(json{{"start_b", card.startB.fraction}, {"flip", card.flip}},
+                           forwardSolve(a, b, card, gate));
+      }
+    }
+    s.startStrip(std::move(cards), sequence(body));
+    reply(res, 200, {{"queued", starts * (bothFlips ? 2 : 1)}, {"seq", sequence(body)}});
+  });
+  api(server, "/api/curve", [](const json& body, Session& s, httplib::Response& res) {
+    CurveInput curve = readCurveInput(studio::safeFileName(requiredText(body, "name"), kCurveExtensions, "curve.obj"),
+                                      requiredText(body, "text"), body.value("closed", false));
+    json out = studio::curveJson(curve.curve);
+    out["name"] = curve.name;
+    s.setCurve(std::move(curve));
+    reply(res, 200, out);
+  });
+  api(server, "/api/inverse", [this](const json& body, Session& s, httplib::Response& res) {
+    bool closed = false;
+    const InverseSettings settings = studio::inverseSettingsFrom(body, closed);
+    std::optional<CurveInput> curve = s.curve();
+    if (!curve) throw RequestError("no seam curve loaded");
+    reply(res, 200, s.solveLive(inverseSolve(*curve, settings, gate), settings.resolution, false, sequence(body),
+                                std::to_string(std::hash<std::string>()(curve->text)) + "/" +
+                                    std::to_string(settings.resolution)));
+  });
+  api(server, "/api/job", [](const json& body, Session& s, httplib::Response& res) {
+    if (body.value("mode", "forward") == "inverse") {
+      bool closed = false;
+      const InverseSettings settings = studio::inverseSettingsFrom(body, closed);
+      std::optional<CurveInput> curve = s.curve();
+      if (!curve) throw RequestError("no seam curve loaded");
+      sendZip(res, studio::savedInverseJob(*curve, settings, curve->forceClosed), "dform-job.zip");
+      return;
+    }
+    sendZip(res, studio::savedForwardJob(s.piece(0), s.piece(1), studio::forwardSettingsFrom(body)),
+            "dform-job.zip");
+  });
+  api(server, "/api/export", [](const json& body, Session& s, httplib::Response& res) {
+    const studio::ExportRequest request = studio::exportRequestFrom(body);
+    std::vector<std::pair<std::string, std::string>> files;
+    if (body.value("mode", "forward") == "inverse") {
+      bool closed = false;
+      const InverseSettings settings = studio::inverseSettingsFrom(body, closed);
+      std::optional<CurveInput> curve = s.curve();
+      if (!curve) throw RequestError("no seam curve loaded");
+      files = studio::inverseJobFiles(*curve, settings, curve->forceClosed);
+    } else {
+      files = studio::forwardJobFiles(s.piece(0), s.piece(1), studio::forwardSettingsFrom(body));
+    }
+    Result<std::string> zip = studio::exportedResult(files, request);
+    if (!zip.isOk()) throw RequestError(zip.status().message());
+    sendZip(res, zip.value(), "dform-export.zip");
+  });
+  server.Get("/api/events", [this](const httplib::Request& req, httplib::Response& res) {
+    std::shared_ptr<Session> found = session(req.get_param_value("session"));
+    if (!found) return reply(res, 400, {{"error", "unknown session (reload the page)"}});
+    res.set_header("Cache-Control", "no-store");
+    res.set_chunked_content_provider(
+        "text/event-stream",
+        [this, found, position = found->events().end()](std::size_t, httplib::DataSink& sink) mutable {
+          if (stopping || found->events().closed()) {
+            sink.done();
+            return true;
+          }
+          std::string text = found->events().waitAfter(position, std::chrono::milliseconds(500));
+          if (text.empty()) text = ": alive\n\n";  // a comment: finds a closed connection
+          return sink.write(text.data(), text.size());
+        });
+  });
+}
+
+Studio::Studio(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+
+Studio::~Studio() { stop(); }
+
+Result<std::unique_ptr<Studio>> Studio::start(const StudioOptions& options) {
+  auto impl = std::make_unique<Impl>();
+  impl->options = options;
+  impl->token = options.token.empty() ? studio::randomToken() : options.token;
+  if (options.port < 0 || options.port > 65535)
+    return Status(ErrorCode::Usage, "--port must be in [0, 65535]");
+  if (Status s = impl->readStart(); !s.isOk()) return s;
+  Result<GateLimits> gate = loadGate("default");
+  if (!gate.isOk()) return gate.status();
+  impl->gate = gate.value();
+  const fs::path assets = fs::path(templatesDir()) / "studio";
+  for (const char* name : kAssets) {
+    Result<std::string> text = readInputFile((assets / name).string());
+    if (!text.isOk()) return text.status();
+    impl->assets[name] = text.value();
+  }
+  for (httplib::Server* server : {&impl->v4, &impl->v6}) {
+    impl->guard(*server);
+    impl->routes(*server);
+  }
+  impl->port = options.port == 0 ? impl->v4.bind_to_any_port("127.0.0.1")
+                                 : (impl->v4.bind_to_port("127.0.0.1", options.port) ? options.port : -1);
+  if (impl->port <= 0)
+    return Status(ErrorCode::OutputFailed, "127.0.0.1:" + std::to_string(options.port) +
+                                               ": cannot listen (the port is taken?)");
+  const bool ipv6 = impl->v6.bind_to_port("::1", impl->port);  // where the machine has IPv6
+  Impl* raw = impl.get();
+  raw->listen4 = std::thread([raw] { raw->v4.listen_after_bind(); });
+  if (ipv6) raw->listen6 = std::thread([raw] { raw->v6.listen_after_bind(); });
+  return std::unique_ptr<Studio>(new Studio(std::move(impl)));
+}
+
+int Studio::port() const { return impl_->port; }
+const std::string& Studio::token() const { return impl_->token; }
+std::string Studio::url() const {
+  return "http://127.0.0.1:" + std::to_string(impl_->port) + "/?token=" + impl_->token;
+}
+
+void Studio::stop() {
+  if (impl_->stopped) return;
+  impl_->stopped = true;
+  impl_->stopping = true;
+  {
+    std::lock_guard<std::mutex> lock(impl_->sessionsMutex);
+    for (auto& [id, entry] : impl_->sessions) entry.first->events().close();
+  }
+  impl_->v4.stop();
+  impl_->v6.stop();
+  if (impl_->listen4.joinable()) impl_->listen4.join();
+  if (impl_->listen6.joinable()) impl_->listen6.join();
+  std::lock_guard<std::mutex> lock(impl_->sessionsMutex);
+  impl_->sessions.clear();
+}
+
+}  // namespace dform

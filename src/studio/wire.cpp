@@ -1,0 +1,235 @@
+#include "studio/wire.h"
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+namespace dform::studio {
+
+using nlohmann::json;
+
+std::string base64(const void* data, std::size_t size) {
+  static const char alphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  const auto* bytes = static_cast<const unsigned char*>(data);
+  std::string out;
+  out.reserve((size + 2) / 3 * 4);
+  for (std::size_t i = 0; i < size; i += 3) {
+    const std::uint32_t n = (std::uint32_t(bytes[i]) << 16) |
+                            (i + 1 < size ? std::uint32_t(bytes[i + 1]) << 8 : 0) |
+                            (i + 2 < size ? std::uint32_t(bytes[i + 2]) : 0);
+    out += alphabet[(n >> 18) & 63];
+    out += alphabet[(n >> 12) & 63];
+    out += i + 1 < size ? alphabet[(n >> 6) & 63] : '=';
+    out += i + 2 < size ? alphabet[n & 63] : '=';
+  }
+  return out;
+}
+
+namespace {
+
+// Little-endian doubles, row after row (the page reads them as a Float64Array; x86 and ARM
+// Linux are little-endian, which the static_assert below pins).
+template <typename Matrix>
+std::string rowsBase64(const Matrix& m) {
+  std::vector<double> values(std::size_t(m.rows()) * m.cols());
+  for (Eigen::Index r = 0; r < m.rows(); ++r)
+    for (Eigen::Index c = 0; c < m.cols(); ++c) values[std::size_t(r * m.cols() + c)] = m(r, c);
+  return base64(values.data(), values.size() * sizeof(double));
+}
+
+std::string indicesBase64(const std::vector<std::uint32_t>& indices) {
+  return base64(indices.data(), indices.size() * sizeof(std::uint32_t));
+}
+
+std::string facesBase64(const Faces& F) {
+  std::vector<std::uint32_t> indices(std::size_t(F.rows()) * 3);
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) indices[std::size_t(f * 3 + k)] = std::uint32_t(F(f, k));
+  return indicesBase64(indices);
+}
+
+json loops(const std::vector<std::vector<int>>& lines) {
+  json out = json::array();
+  for (const auto& line : lines) out.push_back(line);
+  return out;
+}
+
+json pieceJson(const Piece& piece) {
+  return {{"flat", rowsBase64(piece.flat)},
+          {"shape", rowsBase64(piece.shape)},
+          {"faces", facesBase64(piece.F)},
+          {"seam", piece.seam},
+          {"free", loops(piece.freeBoundaries)},
+          {"creases", loops(piece.creases)}};
+}
+
+// A figure that may be NaN (no exact D-Form to compare with): null in JSON.
+json figure(double value) { return std::isfinite(value) ? json(value) : json(nullptr); }
+
+json metricsJson(const Metrics& m) {
+  return {{"L_error", figure(m.L_error)},
+          {"L_max", figure(m.L_max)},
+          {"B_error", figure(m.B_error)},
+          {"seam_gap_mm", figure(m.seam_gap_mm)},
+          {"gauss_max", figure(m.gauss_max)},
+          {"gauss_mean", figure(m.gauss_mean)},
+          {"flipped_2d", m.flipped_2d},
+          {"flipped_3d", m.flipped_3d},
+          {"seam_length_a_mm", figure(m.seam_length_a_mm)},
+          {"seam_length_b_mm", figure(m.seam_length_b_mm)},
+          {"seam_length_3d_mm", figure(m.seam_length_3d_mm)},
+          {"exact_distance_max_rel", figure(m.exact_distance_max_rel)},
+          {"exact_note", m.exact_note}};
+}
+
+json gateChecks(const GateReport& gate) {
+  json checks = json::array();
+  for (const CheckResult& c : gate.checks)
+    checks.push_back({{"name", c.name},
+                      {"value", figure(c.value)},
+                      {"limit", figure(c.limit)},
+                      {"verdict", verdictName(c.verdict)},
+                      {"detail", c.detail}});
+  return checks;
+}
+
+json modelJson(const ModelUsed& used) {
+  json creases = json::array();
+  for (const FoundCrease& c : used.creases)
+    creases.push_back({{"piece", c.piece}, {"crease", c.crease}, {"angle_deg", c.angleDeg},
+                       {"length_mm", c.lengthMm}});
+  return {{"name", used.name}, {"reason", used.reason}, {"cone_points", used.conePoints},
+          {"doubly_covered", used.doublyCovered}, {"found_creases", creases}};
+}
+
+json timingsJson(const Timings& t) {
+  return {{"read", t.read}, {"mesh", t.mesh}, {"solve", t.solve}, {"total", t.total}};
+}
+
+template <typename T>
+T valueOr(const json& request, const char* key, T fallback) {
+  if (!request.contains(key)) return fallback;
+  try {
+    return request.at(key).get<T>();
+  } catch (const json::exception&) {
+    throw RequestError(std::string(key) + ": wrong type");
+  }
+}
+
+double fraction(const json& request, const char* key) {
+  const double f = valueOr<double>(request, key, 0.0);
+  if (!(f >= 0.0 && f < 1.0)) throw RequestError(std::string(key) + ": must be in [0, 1)");
+  return f;
+}
+
+// Flattened loop points, every k-th point so that at most maxPoints remain.
+template <typename Matrix>
+std::vector<double> flatPoints(const Matrix& points, int maxPoints) {
+  const Eigen::Index step = std::max<Eigen::Index>(1, (points.rows() + maxPoints - 1) / maxPoints);
+  std::vector<double> out;
+  for (Eigen::Index r = 0; r < points.rows(); r += step)
+    for (Eigen::Index c = 0; c < points.cols(); ++c) out.push_back(points(r, c));
+  return out;
+}
+
+double loopLength(const Points2& p) {
+  double length = 0;
+  for (Eigen::Index i = 0; i < p.rows(); ++i) length += (p.row((i + 1) % p.rows()) - p.row(i)).norm();
+  return length;
+}
+
+}  // namespace
+
+static_assert(sizeof(double) == 8, "the page reads vertices as 64-bit doubles");
+
+ForwardSettings forwardSettingsFrom(const json& request) {
+  if (!request.is_object()) throw RequestError("the request must be a JSON object");
+  ForwardSettings s;
+  s.startA.fraction = fraction(request, "start_a");
+  s.startB.fraction = fraction(request, "start_b");
+  s.flip = valueOr<bool>(request, "flip", false);
+  s.fitPerimeter = valueOr<bool>(request, "fit_perimeter", true);
+  s.resolution = valueOr<int>(request, "resolution", 100);
+  if (s.resolution < 8 || s.resolution > 1000) throw RequestError("resolution: must be in [8, 1000]");
+  if (!parseJoin(valueOr<std::string>(request, "join", "outer,outer"), s.joinA, s.joinB))
+    throw RequestError("join: must be outer,outer, inner,inner, outer,inner or inner,outer");
+  if (!parseModelChoice(valueOr<std::string>(request, "model", "auto"), s.model))
+    throw RequestError("model: must be auto, exact or paper");
+  s.solve.weights = defaultWeights(s.joinA, s.joinB);
+  if (Status ok = validateForwardJob(s); !ok.isOk()) throw RequestError(ok.message());
+  return s;
+}
+
+InverseSettings inverseSettingsFrom(const json& request, bool& forceClosed) {
+  if (!request.is_object()) throw RequestError("the request must be a JSON object");
+  InverseSettings s;
+  s.resolution = valueOr<int>(request, "resolution", s.resolution);
+  if (s.resolution < 8 || s.resolution > 1000) throw RequestError("resolution: must be in [8, 1000]");
+  forceClosed = valueOr<bool>(request, "closed", false);
+  if (Status ok = validateInverseJob(s); !ok.isOk()) throw RequestError(ok.message());
+  return s;
+}
+
+json gateJson(const GateReport& gate) {
+  return {{"name", gate.name}, {"passed", gate.passed()}, {"failed", gate.failed()}, {"checks", gateChecks(gate)}};
+}
+
+json forwardResultJson(const ForwardRun& run) {
+  return {{"mode", "forward"},
+          {"model", modelJson(run.modelUsed)},
+          {"figures", metricsJson(run.metrics)},
+          {"pieces", {pieceJson(run.model.a), pieceJson(run.model.b)}},
+          {"start_a", run.startFractionA},
+          {"start_b", run.startFractionB},
+          {"scale_b", run.scaleB},
+          {"perimeter_a", run.perimeterA},
+          {"perimeter_b", run.perimeterB},
+          {"timings", timingsJson(run.timings)}};
+}
+
+json inverseResultJson(const InverseRun& run) {
+  const CurveMatch& c = run.curveMatch;
+  return {{"mode", "inverse"},
+          {"model", modelJson(run.modelUsed)},
+          {"figures", metricsJson(run.metrics)},
+          {"pieces", {pieceJson(run.model.a), pieceJson(run.model.b)}},
+          {"curve_match", {{"D_error", figure(c.D_error)},
+                           {"curve_distance_max_mm", figure(c.curve_distance_max_mm)},
+                           {"roundtrip_rms_rel", figure(c.roundtrip_rms_rel)},
+                           {"roundtrip_max_rel", figure(c.roundtrip_max_rel)},
+                           {"roundtrip_note", c.roundtrip_note}}},
+          {"on_hull", {{"on_hull", run.pre.onHull},
+                       {"is_hull", run.pre.isHull},
+                       {"inside_points", run.pre.insideVertices},
+                       {"summary", run.pre.summary}}},
+          {"target", rowsBase64(run.target.points)},
+          {"curve_length", run.curveLength},
+          {"timings", timingsJson(run.timings)}};
+}
+
+json shapeJson(const Shape2& shape, int maxPoints) {
+  json holes = json::array(), holeLengths = json::array(), creases = json::array();
+  for (const Outline2& h : shape.holes) {
+    holes.push_back(flatPoints(h.points, maxPoints));
+    holeLengths.push_back(loopLength(h.points));
+  }
+  for (const CreaseLine& c : shape.creases) creases.push_back(flatPoints(c.points, maxPoints));
+  const Points2& p = shape.outer.points;
+  return {{"outer", flatPoints(p, maxPoints)},
+          {"perimeter", loopLength(p)},
+          {"holes", holes},
+          {"hole_perimeters", holeLengths},
+          {"creases", creases},
+          {"min", {p.col(0).minCoeff(), p.col(1).minCoeff()}},
+          {"max", {p.col(0).maxCoeff(), p.col(1).maxCoeff()}}};
+}
+
+json curveJson(const Curve3& curve, int maxPoints) {
+  double length = 0;
+  const Points3& p = curve.points;
+  for (Eigen::Index i = 0; i < p.rows(); ++i) length += (p.row((i + 1) % p.rows()) - p.row(i)).norm();
+  return {{"points", flatPoints(p, maxPoints)}, {"length", length}};
+}
+
+}  // namespace dform::studio

@@ -1,0 +1,178 @@
+// dform studio's flat pieces: one SVG panel per piece with its outline, holes and drawn creases
+// as read, the seam's numbered ticks from the start, the found creases, the seam point that
+// breaks convexity, and the start handle, dragged along the joined boundary.
+"use strict";
+
+var SVG_NS = "http://www.w3.org/2000/svg";
+
+function svgNode(tag, attributes, parent) {
+  var n = document.createElementNS(SVG_NS, tag);
+  for (var k in attributes) n.setAttribute(k, attributes[k]);
+  if (parent) parent.appendChild(n);
+  return n;
+}
+
+// A closed loop [x0, y0, x1, y1, ...] (mm) with its cumulative arc lengths.
+function Loop(points) {
+  this.points = points;
+  this.n = points.length / 2;
+  this.cumulative = [0];
+  for (var i = 0; i < this.n; ++i) {
+    var j = (i + 1) % this.n;
+    this.cumulative.push(this.cumulative[i] + Math.hypot(points[2 * j] - points[2 * i], points[2 * j + 1] - points[2 * i + 1]));
+  }
+  this.length = this.cumulative[this.n];
+}
+
+// The point at arc-length fraction f from the first point, counter-clockwise.
+Loop.prototype.at = function (f) {
+  var s = ((f % 1) + 1) % 1 * this.length, lo = 0, hi = this.n;
+  while (hi - lo > 1) { var mid = (lo + hi) >> 1; if (this.cumulative[mid] <= s) lo = mid; else hi = mid; }
+  var j = (lo + 1) % this.n, t = (s - this.cumulative[lo]) / Math.max(1e-12, this.cumulative[lo + 1] - this.cumulative[lo]);
+  var p = this.points;
+  return [p[2 * lo] + t * (p[2 * j] - p[2 * lo]), p[2 * lo + 1] + t * (p[2 * j + 1] - p[2 * lo + 1])];
+};
+
+// The arc-length fraction of the loop point nearest to (x, y).
+Loop.prototype.nearest = function (x, y) {
+  var best = Infinity, bestS = 0, p = this.points;
+  for (var i = 0; i < this.n; ++i) {
+    var j = (i + 1) % this.n, ax = p[2 * i], ay = p[2 * i + 1], dx = p[2 * j] - ax, dy = p[2 * j + 1] - ay;
+    var len2 = dx * dx + dy * dy, t = len2 > 0 ? Math.max(0, Math.min(1, ((x - ax) * dx + (y - ay) * dy) / len2)) : 0;
+    var d = Math.hypot(ax + t * dx - x, ay + t * dy - y);
+    if (d < best) { best = d; bestS = this.cumulative[i] + t * (this.cumulative[i + 1] - this.cumulative[i]); }
+  }
+  return bestS / this.length % 1;
+};
+
+function pathOf(points, closed) {
+  var d = "";
+  for (var i = 0; i < points.length; i += 2) d += (i ? "L" : "M") + points[i].toFixed(3) + " " + (-points[i + 1]).toFixed(3);
+  return d + (closed ? "Z" : "");
+}
+
+// One piece's panel. onStart(fraction, event) is called as the handle is dragged.
+function PieceView(svg, label, onStart, onRelease) {
+  this.svg = svg;
+  this.label = label;
+  this.shape = null;
+  this.loop = null;
+  this.fraction = 0;
+  var self = this, dragging = false;
+  function fractionAt(e) {
+    var m = self.svg.getScreenCTM().inverse(), p = self.svg.createSVGPoint();
+    p.x = e.clientX; p.y = e.clientY;
+    var q = p.matrixTransform(m);
+    return self.loop.nearest(q.x, -q.y);
+  }
+  svg.addEventListener("pointerdown", function (e) {
+    if (!self.loop || self.fixed || !e.target.classList.contains("handle-target")) return;
+    dragging = true;
+    svg.setPointerCapture(e.pointerId);
+    e.preventDefault();
+  });
+  svg.addEventListener("pointermove", function (e) {
+    if (!dragging) return;
+    self.setFraction(fractionAt(e));
+    onStart(self.fraction, e);
+  });
+  svg.addEventListener("pointerup", function () { if (dragging) { dragging = false; onRelease(); } });
+}
+
+// shape: the server's summary of the outline; join: "outer" or "inner"
+PieceView.prototype.setShape = function (shape, join) {
+  this.shape = shape;
+  var boundary = join === "inner" && shape.holes.length === 1 ? shape.holes[0] : shape.outer;
+  this.loop = new Loop(boundary);
+  var pad = 0.08 * Math.max(shape.max[0] - shape.min[0], shape.max[1] - shape.min[1]);
+  this.svg.setAttribute("viewBox", [shape.min[0] - pad, -shape.max[1] - pad, shape.max[0] - shape.min[0] + 2 * pad,
+                                    shape.max[1] - shape.min[1] + 2 * pad].join(" "));
+  this.unit = (shape.max[0] - shape.min[0] + 2 * pad) / 300;  // one screen pixel of a 300-px panel, in mm
+  this.result = null;
+  this.fixed = false;
+  this.render();
+};
+
+// An inverse result's flat piece (no outline was read): its seam loop drawn as the outline,
+// with its ticks and creases, and no handle (the seam's start is the curve's first point).
+PieceView.prototype.setSolvedPiece = function (piece) {
+  var outer = [];
+  piece.seam.forEach(function (v) { outer.push(piece.flat[2 * v], piece.flat[2 * v + 1]); });
+  var xs = outer.filter(function (_, k) { return k % 2 === 0; }), ys = outer.filter(function (_, k) { return k % 2 === 1; });
+  this.setShape({ outer: outer, holes: [], creases: [], min: [Math.min.apply(null, xs), Math.min.apply(null, ys)],
+                  max: [Math.max.apply(null, xs), Math.max.apply(null, ys)] }, "outer");
+  this.fraction = 0;
+  this.result = { piece: piece, direction: 1, breakPoint: null, scale: [1, 1], offset: [0, 0] };
+  this.fixed = true;
+  this.render();
+};
+
+PieceView.prototype.setFraction = function (f) { this.fraction = f; this.renderHandle(); };
+
+// A result over the outline as read: the way its seam runs (ticks), its found creases and the
+// seam point that breaks convexity, its flat piece placed by `place` ({scale, offset}).
+PieceView.prototype.setResult = function (piece, direction, breakPoint, place) {
+  this.result = { piece: piece, direction: direction, breakPoint: breakPoint, scale: place.scale, offset: place.offset };
+  this.render();
+};
+
+PieceView.prototype.render = function () {
+  var svg = this.svg, shape = this.shape, u = this.unit;
+  while (svg.firstChild) svg.removeChild(svg.firstChild);
+  if (!shape) return;
+  var d = pathOf(shape.outer, true);
+  shape.holes.forEach(function (h) { d += pathOf(h, true); });
+  svgNode("path", { d: d, class: "cut", "fill-rule": "evenodd", "stroke-width": 1.5 * u }, svg);
+  shape.creases.forEach(function (c) { svgNode("path", { d: pathOf(c, false), class: "drawn-crease", "stroke-width": 1.5 * u }, svg); });
+  svgNode("path", { d: pathOf(this.loop.points, true), class: "handle-target", "stroke-width": 14 * u }, svg);
+  this.ticks = svgNode("g", { class: "ticks" }, svg);
+  this.renderTicks();
+  if (this.result) this.renderFound();
+  if (this.fixed) { this.handle = null; return; }
+  this.handle = svgNode("circle", { r: 7 * u, class: "handle handle-target", "stroke-width": 2 * u }, svg);
+  this.handleLabel = svgNode("text", { class: "handle-label", "font-size": 12 * u }, svg);
+  this.renderHandle();
+};
+
+// Ticks every 20 mm of seam from the start, numbered every fifth, running the way the seam runs.
+PieceView.prototype.renderTicks = function () {
+  var g = this.ticks, u = this.unit, loop = this.loop, dir = this.result ? this.result.direction : 1;
+  var count = Math.floor(loop.length / 20);
+  for (var k = 1; k < count; ++k) {
+    var f = this.fraction + dir * k * 20 / loop.length, p = loop.at(f), q = loop.at(f + 0.002);
+    var tx = q[0] - p[0], ty = q[1] - p[1], t = Math.hypot(tx, ty) || 1, nx = -ty / t, ny = tx / t;
+    var size = (k % 5 === 0 ? 9 : 5) * u;
+    svgNode("line", { x1: p[0], y1: -p[1], x2: p[0] + nx * size, y2: -(p[1] + ny * size), "stroke-width": u }, g);
+    if (k % 5 === 0) {
+      var text = svgNode("text", { x: p[0] + nx * 2 * size, y: -(p[1] + ny * 2 * size), "font-size": 10 * u }, g);
+      text.textContent = k;
+    }
+  }
+};
+
+// Found creases, drawn where the result's flat piece lies over the outline as read.
+PieceView.prototype.renderFound = function () {
+  var r = this.result, flat = r.piece.flat, u = this.unit, svg = this.svg;
+  r.piece.creases.forEach(function (c) {
+    var pts = [];
+    c.forEach(function (v) { pts.push(flat[2 * v] * r.scale[0] + r.offset[0], flat[2 * v + 1] * r.scale[1] + r.offset[1]); });
+    svgNode("path", { d: pathOf(pts, false), class: "found-crease", "stroke-width": 2 * u }, svg);
+  });
+  if (r.breakPoint != null && r.piece.seam[r.breakPoint] != null) {
+    var v = r.piece.seam[r.breakPoint];
+    svgNode("circle", { cx: flat[2 * v] * r.scale[0] + r.offset[0], cy: -(flat[2 * v + 1] * r.scale[1] + r.offset[1]),
+                        r: 6 * u, class: "break-point", "stroke-width": 2 * u }, svg);
+  }
+};
+
+PieceView.prototype.renderHandle = function () {
+  if (!this.handle) return;
+  var p = this.loop.at(this.fraction);
+  this.handle.setAttribute("cx", p[0]);
+  this.handle.setAttribute("cy", -p[1]);
+  this.handleLabel.setAttribute("x", p[0] + 10 * this.unit);
+  this.handleLabel.setAttribute("y", -p[1] - 10 * this.unit);
+  this.handleLabel.textContent = this.label + " start " + this.fraction.toFixed(3);
+  while (this.ticks.firstChild) this.ticks.removeChild(this.ticks.firstChild);
+  this.renderTicks();
+};

@@ -1,0 +1,388 @@
+// dform studio's page: the design's state, the calls to the server, the live drag loop (one solve
+// in flight; the newest input is sent when it answers), undo and redo, the strip, downloads.
+// window.studio exposes the state for tests and the latency benchmark.
+"use strict";
+
+(function () {
+  var TOKEN = document.querySelector('meta[name="dform-token"]').content;
+  var $ = function (id) { return document.getElementById(id); };
+  var studio = window.studio = { latencies: [], shown: null, errors: [] };
+  var session = null, kinds = [];
+  var state = {
+    mode: "forward",
+    settings: { start_a: 0, start_b: 0, flip: false, join: "outer,outer", model: "auto", resolution: 100, fit_perimeter: true },
+    pieces: [null, null],   // {name, kind, values} or {name, text}: what made each outline
+    curve: null,
+  };
+  var summaries = [null, null], history = [], future = [];
+
+  function api(path, body, binary) {
+    return fetch(path, { method: "POST", headers: { "Content-Type": "application/json", "X-Dform-Token": TOKEN },
+                         body: JSON.stringify(Object.assign({ session: session }, body)) })
+      .then(function (res) {
+        if (binary && res.ok) return res.blob();
+        return res.json().then(function (j) { if (!res.ok) throw new Error(j.error || res.statusText); return j; });
+      });
+  }
+
+  // ---- undo / redo: snapshots of the state, outlines included -----------------------------------
+  function snapshot() { return JSON.stringify(state); }
+  function remember() { history.push(snapshot()); if (history.length > 200) history.shift(); future = []; updateUndo(); }
+  function updateUndo() { $("undo").disabled = !history.length; $("redo").disabled = !future.length; }
+  function restore(text) {
+    var old = state;
+    state = JSON.parse(text);
+    var loads = [0, 1].map(function (i) {
+      return JSON.stringify(old.pieces[i]) === JSON.stringify(state.pieces[i]) ? null : loadPiece(i, state.pieces[i], false);
+    });
+    return Promise.all(loads).then(function () { syncControls(); refreshPieces(); solve(); scheduleStrip(); });
+  }
+  $("undo").onclick = function () { if (history.length) { future.push(snapshot()); restore(history.pop()); updateUndo(); } };
+  $("redo").onclick = function () { if (future.length) { history.push(snapshot()); restore(future.pop()); updateUndo(); } };
+  document.addEventListener("keydown", function (e) {
+    if ((e.ctrlKey || e.metaKey) && e.key === "z") { e.preventDefault(); (e.shiftKey ? $("redo") : $("undo")).click(); }
+    if ((e.ctrlKey || e.metaKey) && e.key === "y") { e.preventDefault(); $("redo").click(); }
+  });
+
+  // ---- outlines ---------------------------------------------------------------------------------
+  function loadPiece(i, source, record) {
+    var request = source.text != null
+      ? api("/api/outline", { piece: "ab"[i], name: source.name, text: source.text })
+      : api("/api/parametric", { piece: "ab"[i], kind: source.kind, values: source.values });
+    return request.then(function (summary) {
+      if (record) remember();
+      state.pieces[i] = source;
+      summaries[i] = summary;
+      $("error-" + "ab"[i]).textContent = "";
+      $("name-" + "ab"[i]).textContent = summary.name + " — perimeter " + summary.perimeter.toFixed(1) + " mm";
+      return summary;
+    }).catch(function (e) {
+      $("error-" + "ab"[i]).textContent = e.message;
+      studio.errors.push(e.message);
+      throw e;
+    });
+  }
+
+  function sliders(i) {
+    var box = $("sliders-" + "ab"[i]), source = state.pieces[i];
+    box.innerHTML = "";
+    if (!source || source.kind == null) return;
+    var kind = kinds.filter(function (k) { return k.name === source.kind; })[0];
+    kind.parameters.forEach(function (p) {
+      var label = document.createElement("label"), input = document.createElement("input"), out = document.createElement("output");
+      label.textContent = p.name + " ";
+      input.type = "range"; input.min = p.min; input.max = p.max;
+      input.step = p.max - p.min > 20 ? 1 : (p.max - p.min) / 200;
+      input.value = source.values[p.name] != null ? source.values[p.name] : p.value;
+      out.textContent = (+input.value).toFixed(2).replace(/\.?0+$/, "");
+      input.oninput = function () {
+        out.textContent = (+input.value).toFixed(2).replace(/\.?0+$/, "");
+        var values = Object.assign({}, state.pieces[i].values); values[p.name] = +input.value;
+        loadPiece(i, { name: source.kind, kind: source.kind, values: values }, false)
+          .then(function () { refreshPieces(); solve(); }).catch(function () {});
+      };
+      input.onchange = function () { scheduleStrip(); };
+      input.onpointerdown = function () { remember(); };
+      label.appendChild(input); label.appendChild(out); box.appendChild(label);
+    });
+  }
+
+  function fillKinds(i) {
+    var select = $("kind-" + "ab"[i]);
+    select.innerHTML = "";
+    var first = document.createElement("option"); first.value = ""; first.textContent = "outline…"; select.appendChild(first);
+    kinds.forEach(function (k) { var o = document.createElement("option"); o.value = k.name; o.textContent = k.label; select.appendChild(o); });
+    select.onchange = function () {
+      if (!select.value) return;
+      var kind = kinds.filter(function (k) { return k.name === select.value; })[0], values = {};
+      kind.parameters.forEach(function (p) { values[p.name] = p.value; });
+      loadPiece(i, { name: kind.name, kind: kind.name, values: values }, true)
+        .then(function () { sliders(i); refreshPieces(); solve(); scheduleStrip(); }).catch(function () {});
+    };
+  }
+
+  function readFile(i, file) {
+    var reader = new FileReader();
+    reader.onload = function () {
+      loadPiece(i, { name: file.name, text: reader.result }, true)
+        .then(function () { $("kind-" + "ab"[i]).value = ""; sliders(i); refreshPieces(); solve(); scheduleStrip(); })
+        .catch(function () {});
+    };
+    reader.readAsText(file);
+  }
+  [0, 1].forEach(function (i) {
+    var panel = $("panel-" + "ab"[i]), input = $("file-" + "ab"[i]);
+    input.onchange = function () { if (input.files[0]) readFile(i, input.files[0]); input.value = ""; };
+    panel.addEventListener("dragover", function (e) { e.preventDefault(); panel.classList.add("drop"); });
+    panel.addEventListener("dragleave", function () { panel.classList.remove("drop"); });
+    panel.addEventListener("drop", function (e) {
+      e.preventDefault(); panel.classList.remove("drop");
+      if (e.dataTransfer.files[0]) readFile(i, e.dataTransfer.files[0]);
+    });
+  });
+
+  // ---- the pieces and the live drag -------------------------------------------------------------
+  var pending = null, inFlight = false, nextSeq = 1, shownSeq = 0, inputTime = {};
+  studio.idle = function () { return pending == null && !inFlight; };
+  var views = [0, 1].map(function (i) {
+    return new PieceView($("svg-" + "ab"[i]), "AB"[i], function (f, e) {
+      state.settings[i ? "start_b" : "start_a"] = f;
+      solve(e.timeStamp);
+    }, function () { scheduleStrip(); });
+  });
+  studio.views = views;
+  // A start set as a drag ending there sets it (scripts and tests).
+  studio.setStart = function (i, f) {
+    remember();
+    state.settings[i ? "start_b" : "start_a"] = f;
+    views[i].setFraction(f);
+    solve(); scheduleStrip();
+  };
+  [0, 1].forEach(function (i) { $("svg-" + "ab"[i]).addEventListener("pointerdown", function (e) {
+    if (e.target.classList.contains("handle-target")) remember();
+  }, true); });
+
+  function joinOf(i) { return state.settings.join.split(",")[i]; }
+  function refreshPieces() {
+    [0, 1].forEach(function (i) {
+      if (!summaries[i]) return;
+      views[i].setShape(summaries[i], joinOf(i));
+      views[i].setFraction(state.settings[i ? "start_b" : "start_a"]);
+    });
+    $("fit-note").textContent = summaries[0] && summaries[1]
+      ? "A " + summaries[0].perimeter.toFixed(1) + " mm, B " + summaries[1].perimeter.toFixed(1) + " mm" : "";
+  }
+
+  function solve(eventTime) {
+    var seq = nextSeq++;
+    inputTime[seq] = eventTime != null ? eventTime : performance.now();
+    pending = seq;
+    if (!inFlight) send();
+  }
+
+  function send() {
+    if (pending == null) return;
+    var seq = pending; pending = null; inFlight = true;
+    var path = state.mode === "inverse" ? "/api/inverse" : "/api/solve";
+    var body = Object.assign({ seq: seq }, state.settings);
+    api(path, body).then(function (r) {
+      inFlight = false;
+      if (!r.superseded) show(r);
+      send();
+    }).catch(function (e) { inFlight = false; showError(e.message); send(); });
+  }
+
+  function showError(text) {
+    $("status").textContent = text;
+    $("status").className = "status error";
+    studio.errors.push(text);
+  }
+
+  function decodePieces(r) {
+    return r.pieces.map(function (p) {
+      return { flat: decodeF64(p.flat), shape: decodeF64(p.shape), faces: decodeU32(p.faces), seam: p.seam, creases: p.creases };
+    });
+  }
+
+  // The flat piece as solved laid over the outline as read (B may be scaled to A's perimeter
+  // and turned over): a scale per axis and an offset from the two bounding boxes.
+  function placement(piece, summary) {
+    var lo = [Infinity, Infinity], hi = [-Infinity, -Infinity], f = piece.flat;
+    for (var k = 0; k < f.length; ++k) { lo[k % 2] = Math.min(lo[k % 2], f[k]); hi[k % 2] = Math.max(hi[k % 2], f[k]); }
+    var s = [(summary.max[0] - summary.min[0]) / (hi[0] - lo[0]), (summary.max[1] - summary.min[1]) / (hi[1] - lo[1])];
+    return { scale: s, offset: [summary.min[0] - lo[0] * s[0], summary.min[1] - lo[1] * s[1]] };
+  }
+
+  function show(r) {
+    if (r.seq < shownSeq) return;
+    if (r.error) { showError(r.error); return; }
+    shownSeq = r.seq;
+    var pieces = decodePieces(r);
+    var extra = [];
+    if (r.target) extra.push({ points: decodeF64(r.target), colour: [0.1, 0.5, 0.2], loop: true });
+    view3d.setModel(pieces, extra);
+    var brk = /at seam point (\d+)/.exec(r.model.reason);
+    if (state.mode === "inverse") [0, 1].forEach(function (i) {
+      views[i].setSolvedPiece(pieces[i]);
+      $("name-" + "ab"[i]).textContent = "piece " + "AB"[i] + " as cut, unfolded from the curve";
+    });
+    if (state.mode === "forward") {
+      [0, 1].forEach(function (i) {
+        views[i].setResult(pieces[i], i === 0 || state.settings.flip ? 1 : -1, brk ? +brk[1] : null,
+                           placement(pieces[i], summaries[i]));
+      });
+    }
+    facts(r);
+    var time = inputTime[r.seq];
+    delete inputTime[r.seq];
+    studio.shown = { seq: r.seq, result: r, pieces: pieces, settings: Object.assign({}, state.settings) };
+    requestAnimationFrame(function () {
+      if (time != null && !r.refining) studio.latencies.push(performance.now() - time);
+      studio.frameSeq = r.seq;
+    });
+  }
+
+  function number(x, digits) { return x == null ? "—" : (+x).toPrecision(digits || 3); }
+  // The gate's verdict, which arrives with a refined result or as an event after the shape.
+  function showGate(gate, preview) {
+    var status = $("status");
+    status.className = "status " + (gate ? (gate.passed ? "pass" : "fail") : "");
+    status.textContent = (!gate ? "checking the gate…" : gate.passed ? "gate passed" : "gate failed: " + gate.failed + " check(s)") +
+      (preview ? " — preview at " + studio.previewResolution + " seam points, refining…" : "");
+    $("checks").innerHTML = "";
+    (gate ? gate.checks : []).forEach(function (c) {
+      var li = document.createElement("li");
+      li.className = c.verdict; li.textContent = c.name + ": " + c.verdict + (c.verdict === "fail" ? " — " + c.detail : "");
+      $("checks").appendChild(li);
+    });
+    studio.gate = gate;
+  }
+
+  var earlyGates = {};
+  function facts(r) {
+    showGate(r.gate || earlyGates[r.seq], r.preview);
+    earlyGates = {};
+    $("model").textContent = r.model.name + (r.model.found_creases.length ? ", " + r.model.found_creases.length + " found crease(s)" : "");
+    $("reason").textContent = r.model.reason;
+    var f = r.figures, rows = [
+      ["L_error", (100 * f.L_error).toFixed(3) + " %"], ["L_max", (100 * f.L_max).toFixed(3) + " %"],
+      ["B_error", number(f.B_error)], ["seam gap", number(f.seam_gap_mm) + " mm"],
+      ["curvature max", number(f.gauss_max) + " rad"], ["3D seam", number(f.seam_length_3d_mm, 5) + " mm"],
+    ];
+    if (r.scale_b != null) rows.push(["B scaled by", number(r.scale_b, 6)], ["starts", "A " + r.start_a.toFixed(4) + ", B " + r.start_b.toFixed(4)]);
+    if (r.curve_match) rows.push(["D_error", number(r.curve_match.D_error)], ["round trip max", number(r.curve_match.roundtrip_max_rel)],
+                                 ["on hull", r.on_hull.on_hull ? "yes" : "no: " + r.on_hull.summary]);
+    rows.push(["solve", (1000 * r.timings.total).toFixed(0) + " ms"]);
+    $("figures").innerHTML = "";
+    rows.forEach(function (row) {
+      var tr = document.createElement("tr");
+      row.forEach(function (cell) { var td = document.createElement("td"); td.textContent = cell; tr.appendChild(td); });
+      $("figures").appendChild(tr);
+    });
+    $("warnings").textContent = (r.warnings || []).join("\n");
+  }
+
+  // ---- settings ---------------------------------------------------------------------------------
+  function syncControls() {
+    var s = state.settings;
+    $("flip").checked = s.flip; $("join").value = s.join; $("model-choice").value = s.model;
+    $("resolution").value = s.resolution; $("fit").checked = s.fit_perimeter;
+    document.body.setAttribute("data-mode", state.mode);
+    $("mode-forward").classList.toggle("active", state.mode === "forward");
+    $("mode-inverse").classList.toggle("active", state.mode === "inverse");
+  }
+  function setting(id, key, read) {
+    $(id).onchange = function () {
+      remember();
+      state.settings[key] = read($(id));
+      refreshPieces(); solve(); scheduleStrip();
+    };
+  }
+  setting("flip", "flip", function (e) { return e.checked; });
+  setting("join", "join", function (e) { return e.value; });
+  setting("model-choice", "model", function (e) { return e.value; });
+  setting("resolution", "resolution", function (e) { return Math.max(8, Math.min(1000, +e.value | 0)); });
+  setting("fit", "fit_perimeter", function (e) { return e.checked; });
+
+  // ---- the strip --------------------------------------------------------------------------------
+  var strip = new Strip($("strip-cards"), $("thumbnail"), function (card) {
+    remember();
+    state.settings.start_b = card.start_b; state.settings.flip = card.flip;
+    syncControls(); refreshPieces(); solve();
+  });
+  var stripTimer = null, stripSeq = 0;
+  function scheduleStrip() {
+    if (state.mode !== "forward") return;
+    clearTimeout(stripTimer);
+    $("strip-cards").setAttribute("data-state", "scheduled");
+    stripTimer = setTimeout(function () {
+      var seq = ++stripSeq;
+      strip.reset(seq);
+      api("/api/strip", Object.assign({ seq: seq, starts: 16, both_flips: true }, state.settings)).catch(function (e) { showError(e.message); });
+    }, 300);
+  }
+
+  // ---- inverse ----------------------------------------------------------------------------------
+  function setMode(mode) {
+    remember(); state.mode = mode; syncControls();
+    if (mode === "forward") {
+      [0, 1].forEach(function (i) {
+        $("name-" + "ab"[i]).textContent = summaries[i].name + " — perimeter " + summaries[i].perimeter.toFixed(1) + " mm";
+      });
+      refreshPieces(); scheduleStrip();
+    }
+    if (mode === "forward" || state.curve) solve();
+  }
+  $("mode-forward").onclick = function () { setMode("forward"); };
+  $("mode-inverse").onclick = function () { setMode("inverse"); };
+  function readCurve(file) {
+    var reader = new FileReader();
+    reader.onload = function () {
+      api("/api/curve", { name: file.name, text: reader.result, closed: $("closed").checked }).then(function (c) {
+        state.curve = { name: c.name };
+        $("curve-error").textContent = "";
+        $("curve-name").textContent = c.name + " — " + c.length.toFixed(1) + " mm";
+        solve();
+      }).catch(function (e) { $("curve-error").textContent = e.message; studio.errors.push(e.message); });
+    };
+    reader.readAsText(file);
+  }
+  $("curve-file").onchange = function () { if ($("curve-file").files[0]) readCurve($("curve-file").files[0]); $("curve-file").value = ""; };
+  $("curve-drop").addEventListener("dragover", function (e) { e.preventDefault(); });
+  $("curve-drop").addEventListener("drop", function (e) { e.preventDefault(); if (e.dataTransfer.files[0]) readCurve(e.dataTransfer.files[0]); });
+
+  // ---- downloads --------------------------------------------------------------------------------
+  function download(blob, name) {
+    var a = document.createElement("a");
+    a.href = URL.createObjectURL(blob); a.download = name;
+    document.body.appendChild(a); a.click(); a.remove();
+    setTimeout(function () { URL.revokeObjectURL(a.href); }, 10000);
+  }
+  function jobBody() { return Object.assign({ mode: state.mode }, state.settings); }
+  $("save-job").onclick = function () {
+    api("/api/job", jobBody(), true).then(function (b) { studio.lastDownload = b; download(b, "dform-job.zip"); })
+      .catch(function (e) { showError(e.message); });
+  };
+  $("export").onclick = function () { $("export-dialog").showModal(); };
+  $("export-cancel").onclick = function () { $("export-dialog").close(); };
+  $("export-go").onclick = function (e) {
+    e.preventDefault();
+    $("export-state").textContent = "exporting…";
+    var body = Object.assign(jobBody(), { profile: $("profile").value, page: $("page").value, sheet: $("sheet").value,
+                                          scale: $("scale").value, export_anyway: $("export-anyway").checked });
+    api("/api/export", body, true).then(function (b) {
+      studio.lastDownload = b; $("export-state").textContent = ""; $("export-dialog").close(); download(b, "dform-export.zip");
+    }).catch(function (err) { $("export-state").textContent = err.message; });
+  };
+
+  // ---- start ------------------------------------------------------------------------------------
+  var view3d = studio.view3d = new View3D($("view3d"));
+  window.addEventListener("resize", function () { view3d.draw(); });
+  api("/api/session", {}).then(function (s) {
+    session = s.session; kinds = s.kinds; studio.session = session; studio.previewResolution = s.preview_resolution;
+    Object.assign(state.settings, s.settings);
+    if (s.settings.mode) state.mode = s.settings.mode;
+    delete state.settings.mode;
+    s.profiles.forEach(function (p) { var o = document.createElement("option"); o.value = o.textContent = p; $("profile").appendChild(o); });
+    [0, 1].forEach(function (i) {
+      summaries[i] = s.pieces[i];
+      state.pieces[i] = { name: s.pieces[i].name, text: s.pieces[i].text };
+      delete s.pieces[i].text;
+      fillKinds(i);
+      $("name-" + "ab"[i]).textContent = s.pieces[i].name + " — perimeter " + s.pieces[i].perimeter.toFixed(1) + " mm";
+    });
+    if (s.curve) { state.curve = { name: "curve" }; $("curve-name").textContent = s.curve.length.toFixed(1) + " mm"; }
+    var events = new EventSource("/api/events?session=" + session + "&token=" + TOKEN);
+    events.onmessage = function (m) {
+      var e = JSON.parse(m.data);
+      if (e.type === "progress" && e.seq === shownSeq) $("status").textContent = "refining: " + e.stage + " step " + e.iteration;
+      if (e.type === "result" && e.seq >= shownSeq && pending == null && !inFlight) show(e);
+      if (e.type === "gate" && e.seq === shownSeq) showGate(e.gate, e.preview);
+      if (e.type === "gate" && e.seq > shownSeq) earlyGates[e.seq] = e.gate;  // before its shape's answer
+      if (e.type === "strip") strip.add(e);
+      if (e.type === "strip_done") strip.done(e);
+    };
+    syncControls(); refreshPieces(); solve(); scheduleStrip(); updateUndo();
+    studio.ready = true;
+  }).catch(function (e) { showError("cannot start a session: " + e.message); });
+})();

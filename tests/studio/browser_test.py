@@ -1,0 +1,193 @@
+#!/usr/bin/env python3
+"""dform studio in a real browser (headless Chromium): the page loads without console errors;
+dragging a start handle changes the shape, and the shape is the command line's for that start;
+flip and the alternative-starts strip work; a bad SVG shows its error and the next good one
+solves; Save job + `dform run` reproduces the figures; Export's pattern.svg is the CLI's, byte
+for byte; requests without the token or from a foreign origin get 403.
+
+    browser_test.py DFORM SAMPLES_DIR      (exit 77 when Chromium, its driver or Selenium is absent)
+"""
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import urllib.error
+import urllib.request
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import studio_browser  # noqa: E402
+
+failures = []
+
+
+def check(condition, message):
+    print(("ok   " if condition else "FAIL ") + message, flush=True)
+    if not condition:
+        failures.append(message)
+
+
+def http_status(url, headers):
+    try:
+        return urllib.request.urlopen(urllib.request.Request(url, headers=headers), timeout=10).status
+    except urllib.error.HTTPError as e:
+        return e.code
+
+
+def obj_vertices(path):
+    with open(path) as f:
+        return [[float(x) for x in line.split()[1:4]] for line in f if line.startswith("v ")]
+
+
+def drag_handle(s, piece, steps):
+    """Drags piece's start handle along its outline with real pointer input (a quarter turn)."""
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.by import By
+    handle = s.driver.find_element(By.CSS_SELECTOR, f"#svg-{piece} circle.handle")
+    svg = s.driver.find_element(By.ID, f"svg-{piece}")
+    before = s.js(f"return window.studio.shown.settings.start_{piece}")
+    actions = ActionChains(s.driver, duration=10).click_and_hold(handle)
+    # Points of the outline a quarter turn on, in screen offsets from the handle.
+    points = s.js(f"""
+        var v = window.studio.views[{'ab'.index(piece)}], out = [], h = v.handle.getBoundingClientRect();
+        var m = v.svg.getScreenCTM();
+        for (var k = 1; k <= {steps}; ++k) {{
+          var p = v.loop.at(v.fraction + 0.25 * k / {steps}), q = v.svg.createSVGPoint();
+          q.x = p[0]; q.y = -p[1]; q = q.matrixTransform(m);
+          out.push([q.x - (h.left + h.width / 2), q.y - (h.top + h.height / 2)]);
+        }}
+        return out;""")
+    last = [0, 0]
+    for x, y in points:
+        actions.move_by_offset(round(x - last[0]), round(y - last[1]))
+        last = [round(x), round(y)]
+    actions.release().perform()
+    s.settle()
+    return before
+
+
+def main():
+    dform, samples = sys.argv[1], sys.argv[2]
+    missing = studio_browser.chromium_missing()
+    if missing:
+        print("SKIP: " + missing)
+        return studio_browser.SKIP
+    a, b = os.path.join(samples, "forward", "ellipses-a.svg"), os.path.join(samples, "forward", "ellipses-b.svg")
+    work = tempfile.mkdtemp(prefix="dform-studio-browser-")
+    s = studio_browser.Studio(dform, [a, b])
+    try:
+        s.settle()
+        errors = s.console_errors()
+        check(errors == [], f"the page loads without console errors {errors}")
+        check(s.js("return document.getElementById('model').textContent") == "exact", "the exact model is shown")
+
+        first = s.js("return Array.from(window.studio.shown.pieces[0].shape)")
+        before = drag_handle(s, "b", 12)
+        after = s.js("return window.studio.shown.settings")
+        shape = s.js("return Array.from(window.studio.shown.pieces[0].shape)")
+        check(abs(after["start_b"] - before) > 0.05, f"dragging B's handle moved its start ({before} -> {after['start_b']})")
+        check(shape != first, "the shape changed with the start")
+
+        # The command line's shape for the same start.
+        out = os.path.join(work, "cli-drag")
+        subprocess.run([dform, "forward", a, b, "--start-a", repr(after["start_a"]), "--start-b", repr(after["start_b"]),
+                        "--fit-perimeter", "--no-export", "--gate", "none", "-q", "-o", out], check=True)
+        cli = obj_vertices(os.path.join(out, "piece-a-3d.obj"))
+        seam = s.js("return window.studio.shown.result.pieces[0].seam")
+        lo = [min(v[k] for v in cli) for k in range(3)]
+        hi = [max(v[k] for v in cli) for k in range(3)]
+        diagonal = math.dist(lo, hi)
+        worst = max(math.dist(cli[i], shape[3 * i:3 * i + 3]) for i in seam) if len(cli) * 3 == len(shape) else math.inf
+        check(worst <= 1e-9 * diagonal, f"seam vertices equal the CLI's for the same start (largest distance {worst:.3g} mm)")
+
+        flat_before = s.js("return window.studio.shown.result.pieces[1].flat")
+        s.driver.find_element("id", "flip").click()
+        s.settle()
+        check(s.js("return window.studio.shown.settings.flip") is True, "flip is on")
+        check(s.js("return window.studio.shown.result.pieces[1].flat") != flat_before, "flipping B changes piece B")
+
+        s.wait(lambda: s.js("return document.getElementById('strip-cards').getAttribute('data-state')") == "done", 180,
+               "the strip")
+        cards = s.driver.find_elements("css selector", "#strip-cards .card")
+        grouped = s.js("return document.querySelectorAll('#strip-cards .card').length")
+        check(0 < grouped < 32, f"the strip shows {grouped} cards for 32 starts (symmetric duplicates grouped)")
+        target = cards[min(1, len(cards) - 1)]
+        want_b, want_flip = float(target.get_attribute("data-start-b")), target.get_attribute("data-flip") == "true"
+        target.click()
+        s.settle()
+        got = s.js("return window.studio.shown.settings")
+        check(abs(got["start_b"] - want_b) < 1e-12 and got["flip"] == want_flip, "clicking a card jumps to its start")
+
+        bad = os.path.join(work, "bad.svg")
+        with open(bad, "w") as f:
+            f.write("<svg xmlns='http://www.w3.org/2000/svg' width='100mm' height='100mm'><path d='M 10 10 L 90 10 L 50'/></svg>")
+        s.driver.find_element("id", "file-a").send_keys(bad)
+        s.wait(lambda: s.js("return document.getElementById('error-a').textContent") != "", 30, "the reader's error")
+        error = s.js("return document.getElementById('error-a').textContent")
+        check("bad.svg" in error, f"a bad SVG shows the reader's error ({error})")
+        seq = s.js("return window.studio.frameSeq")
+        s.driver.find_element("id", "file-a").send_keys(os.path.join(samples, "forward", "circle.svg"))
+        s.wait(lambda: s.js("return window.studio.frameSeq") > seq, 60, "the next good outline's shape")
+        s.settle()
+        check(s.js("return document.getElementById('error-a').textContent") == "", "the good outline clears the error")
+        check("circle.svg" in s.js("return document.getElementById('name-a').textContent"), "the good outline solved")
+
+        s.driver.find_element("id", "save-job").click()
+        s.wait(lambda: s.js("return !!window.studio.lastDownload"), 30, "the saved job")
+        job_dir = os.path.join(work, "job")
+        studio_browser.unzip(s.download(), job_dir)
+        cli_dir = os.path.join(work, "cli-job")
+        subprocess.run([dform, "run", os.path.join(job_dir, "job.json"), "-o", cli_dir, "-q"], check=True)
+        with open(os.path.join(cli_dir, "report.json")) as f:
+            report = json.load(f)
+        figures = s.js("return window.studio.shown.result.figures")
+        same = all(report["metrics"][k] == figures[k] for k in ("L_error", "L_max", "B_error", "gauss_max"))
+        check(same, "Save job + dform run reproduces the figures")
+
+        s.js("window.studio.lastDownload = null")
+        s.driver.find_element("id", "export").click()
+        s.driver.find_element("id", "export-go").click()
+        s.wait(lambda: s.js("return !!window.studio.lastDownload"), 120, "the export")
+        export_dir = os.path.join(work, "export")
+        studio_browser.unzip(s.download(), export_dir)
+        with open(os.path.join(export_dir, "pattern.svg"), "rb") as f1, open(os.path.join(cli_dir, "pattern.svg"), "rb") as f2:
+            check(f1.read() == f2.read(), "Export's pattern.svg is byte-identical to the CLI's")
+
+        # A pair whose glued metric is not convex: a preview at once, then the refined paper model
+        # streamed, with the seam point that breaks convexity marked on the pieces.
+        seq = s.js("return window.studio.frameSeq")
+        s.driver.find_element("id", "file-a").send_keys(os.path.join(samples, "forward", "nonconvex-a.svg"))
+        s.wait(lambda: s.js("return window.studio.frameSeq") > seq, 60, "the first non-convex shape")
+        seq = s.js("return window.studio.frameSeq")
+        s.driver.find_element("id", "file-b").send_keys(os.path.join(samples, "forward", "nonconvex-b.svg"))
+        s.wait(lambda: s.js("return window.studio.frameSeq") > seq, 60, "the non-convex pair's shape")
+        preview = s.js("return window.studio.shown.result.preview")
+        s.settle(300)
+        result = s.js("return window.studio.shown.result")
+        check(preview and not result["preview"] and result["model"]["name"] == "paper",
+              "a non-convex pair shows a preview, then the refined paper model")
+        check(len(result["pieces"][0]["seam"]) == 100, "the refined shape has the page's resolution")
+        check("seam point" in result["model"]["reason"] and
+              len(s.driver.find_elements("css selector", "#svg-a circle.break-point")) == 1,
+              "the seam point that breaks convexity is named and marked")
+
+        base = f"http://127.0.0.1:{s.port}"
+        check(http_status(base + "/", {}) == 403, "a request without the token gets 403")
+        check(http_status(base + "/api/session", {"X-Dform-Token": s.token, "Origin": "http://evil.example"}) == 403,
+              "a request with a foreign Origin gets 403")
+        check(http_status(base + "/?token=" + s.token, {"Host": "evil.example:%d" % s.port}) == 403,
+              "a request with a foreign Host gets 403")
+        # The bad SVG's upload was answered 400, which the browser logs; nothing else may be.
+        errors = [e for e in s.console_errors() if not ("/api/outline" in e["message"] and " 400 " in e["message"])]
+        check(errors == [], f"no other console errors {errors}")
+    finally:
+        s.close()
+    code = s.process.returncode
+    check(code == 143, f"SIGTERM stops the studio with exit 143 (got {code})")
+    print(f"{len(failures)} failure(s)")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,248 @@
+// The studio's server over loopback: the token, Host and Origin guard, malformed requests, upload
+// limits, independent sessions, results equal to the pipeline's in memory, and newest-input-wins.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <fstream>
+#include <sstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "io/outline_reader.h"
+#include "pipeline/forward_pipeline.h"
+#include "studio/session.h"
+#include "studio/studio.h"
+#include "studio/wire.h"
+#include "studio_client.h"
+#include <httplib.h>  // last: its resolv.h defines _res, a name Eigen uses
+
+namespace dform {
+namespace {
+
+using nlohmann::json;
+using test::StudioClient;
+
+TEST(StudioServer, RefusesRequestsWithoutTheToken) {
+  StudioClient c;
+  auto page = c.raw().Get("/");
+  ASSERT_TRUE(page);
+  EXPECT_EQ(page->status, 403);
+  EXPECT_TRUE(json::parse(page->body).contains("error"));
+  auto api = c.raw().Post("/api/session", "{}", "application/json");
+  ASSERT_TRUE(api);
+  EXPECT_EQ(api->status, 403);
+  auto wrong = c.raw().Get(("/?token=" + std::string(c.studio().token().size(), '0')).c_str());
+  EXPECT_EQ(wrong->status, 403);
+  // With the token: the page, which carries it for its own requests and sets the cookie.
+  auto good = c.raw().Get(("/?token=" + c.studio().token()).c_str());
+  ASSERT_TRUE(good);
+  EXPECT_EQ(good->status, 200);
+  EXPECT_NE(good->body.find(c.studio().token()), std::string::npos);
+  EXPECT_NE(good->get_header_value("Set-Cookie").find("HttpOnly"), std::string::npos);
+  httplib::Headers cookie = {{"Cookie", "dform_studio_" + std::to_string(c.studio().port()) + "=" + c.studio().token()}};
+  auto script = c.raw().Get("/studio.js", cookie);
+  EXPECT_EQ(script->status, 200);
+}
+
+TEST(StudioServer, RefusesForeignOriginAndHost) {
+  StudioClient c;
+  const std::string port = std::to_string(c.studio().port());
+  auto post = [&](const httplib::Headers& extra) {
+    httplib::Headers h = c.headers();
+    h.insert(extra.begin(), extra.end());
+    return c.raw().Post("/api/session", h, "{}", "application/json")->status;
+  };
+  EXPECT_EQ(post({{"Origin", "http://evil.example"}}), 403);
+  EXPECT_EQ(post({{"Origin", "http://127.0.0.1:" + port + ".evil.example"}}), 403);
+  EXPECT_EQ(post({{"Origin", "null"}}), 403);
+  EXPECT_EQ(post({{"Sec-Fetch-Site", "cross-site"}}), 403);
+  EXPECT_EQ(post({{"Host", "evil.example:" + port}}), 403);  // DNS rebinding
+  EXPECT_EQ(post({{"Host", "127.0.0.1:1"}}), 403);
+  EXPECT_EQ(post({{"Origin", "http://127.0.0.1:" + port}}), 200);
+  EXPECT_EQ(post({{"Origin", "http://localhost:" + port}, {"Host", "localhost:" + port}}), 200);
+}
+
+TEST(StudioServer, MalformedRequestsGetJsonErrorsAndTheServerKeepsServing) {
+  StudioClient c;
+  const std::string session = c.session();
+  for (const char* body : {"{not json", "[]", "42", "{}", "{\"session\": 7}", "{\"session\": \"nope\"}"}) {
+    auto r = c.raw().Post("/api/solve", c.headers(), body, "application/json");
+    ASSERT_TRUE(r) << body;
+    EXPECT_EQ(r->status, 400) << body;
+    EXPECT_TRUE(json::parse(r->body).contains("error")) << body;
+  }
+  for (const json& bad : {json{{"start_a", 1.5}}, json{{"resolution", "many"}}, json{{"join", "sideways"}},
+                          json{{"model", "magic"}}, json{{"resolution", 3}}, json{{"flip", 1}}}) {
+    json body = bad;
+    body["session"] = session;
+    auto r = c.post("/api/solve", body);
+    EXPECT_EQ(r.first, 400) << bad;
+    EXPECT_TRUE(r.second.contains("error")) << bad;
+  }
+  auto unknown = c.raw().Get("/no/such/page", c.headers());
+  EXPECT_EQ(unknown->status, 404);
+  EXPECT_TRUE(json::parse(unknown->body).contains("error"));
+  EXPECT_EQ(c.post("/api/solve", {{"session", session}, {"seq", 1}}).first, 200);
+}
+
+TEST(StudioServer, UploadsAreSizeLimitedAndReadAsContent) {
+  StudioOptions options;
+  options.maxUploadBytes = 64 * 1024;
+  StudioClient c(options);
+  const std::string session = c.session();
+  json big = {{"session", session}, {"piece", "a"}, {"name", "big.svg"}, {"text", std::string(70 * 1024, ' ')}};
+  auto r = c.raw().Post("/api/outline", c.headers(), big.dump(), "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 413);
+  EXPECT_TRUE(json::parse(r->body).contains("error"));
+  // A name that looks like a path is only a name: the text is what is read.
+  auto bad = c.post("/api/outline", {{"session", session}, {"piece", "a"}, {"name", "../../etc/passwd.svg"},
+                                     {"text", "<svg xmlns='http://www.w3.org/2000/svg'><rect/></svg>"}});
+  EXPECT_EQ(bad.first, 400);
+  EXPECT_NE(bad.second["error"].get<std::string>().find("passwd.svg"), std::string::npos) << bad.second;
+  EXPECT_EQ(bad.second["error"].get<std::string>().find("../"), std::string::npos) << bad.second;
+  auto good = c.post("/api/outline", {{"session", session}, {"piece", "a"}, {"name", "/etc/hosts.json"},
+                                      {"text", "{\"points\": [[0,0],[100,0],[100,80],[0,80]], \"units\": \"mm\"}"}});
+  EXPECT_EQ(good.first, 200) << good.second;
+  EXPECT_EQ(good.second["name"], "hosts.json");
+  EXPECT_NEAR(good.second["perimeter"].get<double>(), 360.0, 1e-9);
+}
+
+TEST(StudioServer, TwoSessionsAreIndependent) {
+  StudioClient c;
+  const std::string one = c.session(), two = c.session();
+  ASSERT_NE(one, two);
+  auto square = c.post("/api/parametric", {{"session", one}, {"piece", "b"}, {"kind", "polygon"},
+                                            {"values", {{"sides", 4}, {"radius", 96}}}});
+  ASSERT_EQ(square.first, 200) << square.second;
+  auto a = c.post("/api/solve", {{"session", one}, {"seq", 1}});
+  auto b = c.post("/api/solve", {{"session", two}, {"seq", 1}});
+  ASSERT_EQ(a.first, 200);
+  ASSERT_EQ(b.first, 200);
+  // Session one zips an ellipse to a square (corners: seam vertices at the corners, the paper
+  // model or folds); session two still has the two ellipses of the start.
+  EXPECT_NE(a.second["pieces"][1]["flat"], b.second["pieces"][1]["flat"]);
+  auto again = c.post("/api/solve", {{"session", two}, {"seq", 2}});
+  EXPECT_EQ(again.second["pieces"][1]["flat"], b.second["pieces"][1]["flat"]);
+}
+
+TEST(StudioServer, ShapeEqualsTheInMemoryRunForTheSameStart) {
+  StudioClient c;
+  const std::string session = c.session();
+  test::EventReader events(c, session);
+  auto r = c.post("/api/solve", {{"session", session}, {"seq", 3}, {"start_a", 0.1}, {"start_b", 0.37}});
+  ASSERT_EQ(r.first, 200) << r.second;
+  ASSERT_FALSE(r.second.contains("error")) << r.second;
+  EXPECT_EQ(r.second["seq"], 3);
+  EXPECT_EQ(r.second["model"]["name"], "exact");
+  ForwardSettings s;
+  s.startA.fraction = 0.1;
+  s.startB.fraction = 0.37;
+  s.fitPerimeter = true;
+  MessageSink sink;
+  Result<ForwardRun> direct = makeDForm(test::startEllipse(120, 70, "ellipse-a.json"),
+                                        test::startEllipse(110, 82.305579, "ellipse-b.json"), s, sink);
+  ASSERT_TRUE(direct.isOk()) << direct.status().message();
+  for (int piece = 0; piece < 2; ++piece) {
+    const Points3& expected = piece == 0 ? direct.value().model.a.shape : direct.value().model.b.shape;
+    const std::vector<double> got = test::decodeDoubles(r.second["pieces"][piece]["shape"]);
+    ASSERT_EQ(got.size(), std::size_t(expected.size()));
+    for (Eigen::Index v = 0; v < expected.rows(); ++v)
+      for (int k = 0; k < 3; ++k) EXPECT_EQ(got[std::size_t(3 * v + k)], expected(v, k));
+  }
+  EXPECT_DOUBLE_EQ(r.second["figures"]["L_error"].get<double>(), direct.value().metrics.L_error);
+  // The gate's verdict follows the shape as an event.
+  const json gate = events.waitFor("gate", std::chrono::seconds(60));
+  ASSERT_FALSE(gate.is_null());
+  EXPECT_EQ(gate["seq"], 3);
+  EXPECT_TRUE(gate["gate"]["passed"].get<bool>()) << gate;
+  EXPECT_GE(gate["gate"]["checks"].size(), 10u);
+  // Sent uncompressed even to a client that accepts compression (on loopback it only costs).
+  httplib::Headers accepting = c.headers();
+  accepting.emplace("Accept-Encoding", "gzip, deflate, br");
+  auto plain = c.raw().Post("/api/solve", accepting, json{{"session", session}, {"seq", 4}}.dump(), "application/json");
+  ASSERT_TRUE(plain);
+  EXPECT_EQ(plain->get_header_value("Content-Encoding"), "");
+}
+
+TEST(StudioServer, NewestInputWinsAndStaleRefinementsNeverArrive) {
+  StudioClient c;
+  const std::string session = c.session();
+  test::EventReader events(c, session);
+  json paper = {{"session", session}, {"model", "paper"}, {"resolution", 60}};
+  paper["seq"] = 1;
+  paper["start_b"] = 0.1;
+  auto first = c.post("/api/solve", paper);
+  ASSERT_EQ(first.first, 200) << first.second;
+  EXPECT_TRUE(first.second["preview"].get<bool>()) << first.second;
+  EXPECT_TRUE(first.second["refining"].get<bool>());
+  paper["seq"] = 2;
+  paper["start_b"] = 0.2;
+  auto second = c.post("/api/solve", paper);
+  ASSERT_EQ(second.first, 200) << second.second;
+  const json result = events.waitFor("result", std::chrono::seconds(120));
+  ASSERT_FALSE(result.is_null()) << "no refined result streamed";
+  EXPECT_EQ(result["seq"], 2);
+  EXPECT_FALSE(result["preview"].get<bool>());
+  EXPECT_EQ(result["pieces"][0]["seam"].size(), 60u);
+  EXPECT_TRUE(result["gate"].contains("passed"));  // a refined result carries its verdict
+  for (const json& e : events.seen()) EXPECT_NE(e.value("seq", 0) == 1 && e["type"] == "result", true) << e;
+}
+
+TEST(StudioServer, LatestTicketCancelsTheOneBefore) {
+  studio::Latest latest;
+  const studio::Latest::Ticket one = latest.next();
+  EXPECT_TRUE(latest.current(one));
+  const studio::Latest::Ticket two = latest.next();
+  EXPECT_TRUE(one.cancel->load());
+  EXPECT_FALSE(latest.current(one));
+  EXPECT_TRUE(latest.current(two));
+  latest.cancel();
+  EXPECT_FALSE(latest.current(two));
+}
+
+}  // namespace
+}  // namespace dform
+
+namespace dform {
+namespace {
+
+std::string sampleText(const std::string& name) {
+  std::ifstream in(std::string(DFORM_SAMPLES_DIR) + "/inverse/" + name);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A seam curve on its convex hull gets the exact pieces; one pushed inside its hull says which
+// points are inside; both with the round trip's figures.
+TEST(StudioServer, InverseShowsTheOnHullTestAndTheRoundTrip) {
+  test::StudioClient c;
+  const std::string session = c.session();
+  auto missing = c.post("/api/inverse", {{"session", session}, {"seq", 1}});
+  EXPECT_EQ(missing.first, 400);
+  auto curve = c.post("/api/curve", {{"session", session}, {"name", "tennis-ball.obj"}, {"text", sampleText("tennis-ball.obj")}});
+  ASSERT_EQ(curve.first, 200) << curve.second;
+  EXPECT_GT(curve.second["length"].get<double>(), 100.0);
+  auto ball = c.post("/api/inverse", {{"session", session}, {"seq", 2}, {"resolution", 60}});
+  ASSERT_EQ(ball.first, 200) << ball.second;
+  ASSERT_FALSE(ball.second.contains("error")) << ball.second;
+  EXPECT_TRUE(ball.second["on_hull"]["on_hull"].get<bool>());
+  EXPECT_EQ(ball.second["model"]["name"], "exact");
+  EXPECT_LT(ball.second["curve_match"]["roundtrip_max_rel"].get<double>(), 0.01);
+  EXPECT_EQ(test::decodeDoubles(ball.second["target"]).size(), 60u * 3);
+
+  ASSERT_EQ(c.post("/api/curve", {{"session", session}, {"name", "pushed-in.obj"}, {"text", sampleText("pushed-in.obj")}}).first, 200);
+  auto pushed = c.post("/api/inverse", {{"session", session}, {"seq", 3}, {"resolution", 60}});
+  ASSERT_EQ(pushed.first, 200) << pushed.second;
+  EXPECT_FALSE(pushed.second["on_hull"]["on_hull"].get<bool>()) << pushed.second["on_hull"];
+  EXPECT_FALSE(pushed.second["on_hull"]["inside_points"].empty());
+  EXPECT_FALSE(pushed.second["on_hull"]["summary"].get<std::string>().empty());
+
+  auto bad = c.post("/api/curve", {{"session", session}, {"name", "flat.obj"}, {"text", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 2 0\nl 1 2 3 4 5 1\n"}});
+  EXPECT_EQ(bad.first, 400);
+  EXPECT_NE(bad.second["error"].get<std::string>().find("flat.obj"), std::string::npos) << bad.second;
+}
+
+}  // namespace
+}  // namespace dform

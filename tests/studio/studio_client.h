@@ -1,0 +1,131 @@
+// A studio on a free loopback port for a test, and a client that talks to it as the page does.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstring>
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <thread>
+#include <vector>
+
+#include "io/outline_reader.h"
+#include "studio/outlines.h"
+#include "studio/studio.h"
+#include <httplib.h>  // last: its resolv.h defines _res, a name Eigen uses
+
+namespace dform::test {
+
+class StudioClient {
+ public:
+  explicit StudioClient(const StudioOptions& options = {}) {
+    Result<std::unique_ptr<Studio>> started = Studio::start(options);
+    if (!started.isOk()) ADD_FAILURE() << started.status().message();
+    studio_ = std::move(started).value();
+    client_ = std::make_unique<httplib::Client>("127.0.0.1", studio_->port());
+    client_->set_read_timeout(180);
+  }
+  Studio& studio() { return *studio_; }
+  httplib::Client& raw() { return *client_; }
+  httplib::Headers headers() const { return {{"X-Dform-Token", studio_->token()}}; }
+
+  std::pair<int, nlohmann::json> post(const std::string& path, const nlohmann::json& body) {
+    auto r = client_->Post(path.c_str(), headers(), body.dump(), "application/json");
+    if (!r) return {0, nullptr};
+    nlohmann::json parsed = nlohmann::json::parse(r->body, nullptr, false);
+    return {r->status, parsed};
+  }
+  std::string session() {
+    auto r = post("/api/session", nlohmann::json::object());
+    EXPECT_EQ(r.first, 200);
+    return r.second.value("session", "");
+  }
+
+ private:
+  std::unique_ptr<Studio> studio_;
+  std::unique_ptr<httplib::Client> client_;
+};
+
+/// Reads a session's event stream on a thread of its own.
+class EventReader {
+ public:
+  EventReader(StudioClient& c, const std::string& session)
+      : client_("127.0.0.1", c.studio().port()), headers_(c.headers()) {
+    client_.set_read_timeout(5);
+    thread_ = std::thread([this, session] {
+      while (!stop_) {
+        client_.Get(("/api/events?session=" + session).c_str(), headers_, [this](const char* data, std::size_t n) {
+          std::lock_guard<std::mutex> lock(mutex_);
+          buffer_.append(data, n);
+          for (std::size_t end; (end = buffer_.find("\n\n")) != std::string::npos;) {
+            const std::string event = buffer_.substr(0, end);
+            buffer_.erase(0, end + 2);
+            if (event.rfind("data: ", 0) == 0) events_.push_back(nlohmann::json::parse(event.substr(6)));
+          }
+          changed_.notify_all();
+          return !stop_.load();
+        });
+      }
+    });
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the stream is open
+  }
+  ~EventReader() {
+    stop_ = true;
+    client_.stop();
+    thread_.join();
+  }
+  /// The first event of `type` (null on timeout).
+  nlohmann::json waitFor(const std::string& type, std::chrono::seconds timeout) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    nlohmann::json found;
+    changed_.wait_for(lock, timeout, [&] {
+      for (const auto& e : events_)
+        if (e.value("type", "") == type) return found = e, true;
+      return false;
+    });
+    return found;
+  }
+  std::vector<nlohmann::json> seen() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return events_;
+  }
+
+ private:
+  httplib::Client client_;
+  httplib::Headers headers_;
+  std::atomic<bool> stop_{false};
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::string buffer_;
+  std::vector<nlohmann::json> events_;
+  std::thread thread_;
+};
+
+inline std::vector<double> decodeDoubles(const nlohmann::json& text) {
+  const std::string in = text.get<std::string>();
+  std::string bytes;
+  int bits = 0, value = 0;
+  for (char ch : in) {
+    const auto pos = std::string("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/").find(ch);
+    if (pos == std::string::npos) break;
+    value = (value << 6) | int(pos);
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      bytes += char((value >> bits) & 0xFF);
+    }
+  }
+  std::vector<double> out(bytes.size() / sizeof(double));
+  std::memcpy(out.data(), bytes.data(), out.size() * sizeof(double));
+  return out;
+}
+
+/// The studio's built-in starting ellipse of semi-axes a, b, read as the studio reads it.
+inline Shape2 startEllipse(double a, double b, const std::string& name) {
+  return parseShape(studio::parametricOutline("ellipse", {{"a", a}, {"b", b}}), name).value();
+}
+
+}  // namespace dform::test
