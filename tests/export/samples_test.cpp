@@ -79,8 +79,8 @@ void expectOneCutLoopPerBoundary(const std::string& dir) {
   size_t loops = 0, boundaries = 0;
   for (const SvgPath& path : svg.paths)
     if (path.layer == "Cut" && path.closed) loops += path.parts.size();
-  for (const auto& piece : readJson(dir + "/pattern.json")["pieces"])
-    boundaries += piece["boundaries"].size();
+  const json pattern = readJson(dir + "/pattern.json");
+  for (const auto& piece : pattern["pieces"]) boundaries += piece["boundaries"].size();
   EXPECT_EQ(loops, boundaries) << dir;
 }
 
