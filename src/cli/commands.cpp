@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "cli/terminal.h"
+#include "core/message_text.h"
 #include "pipeline/saved_result.h"
 
 namespace dform::cli {
@@ -96,7 +97,8 @@ void printBatchRows(const std::vector<BatchRow>& rows) {
   std::fprintf(stdout, "%-24s %-12s %4s %10s %12s %10s %8s\n", "job", "status", "exit",
                "height_mm", "volume_cm3", "max_curv", "seconds");
   for (const BatchRow& r : rows)
-    std::fprintf(stdout, "%-24s %-12s %4d %10.2f %12.4g %10.4g %8.2f\n", r.job.name.c_str(),
+    std::fprintf(stdout, "%-24s %-12s %4d %10.2f %12.4g %10.4g %8.2f\n",
+                 printable(r.job.name, 40).c_str(),
                  r.status.c_str(), r.exitCode, r.figures.heightMm, r.figures.volumeMm3 / 1000,
                  r.figures.maxCurvature, r.seconds);
 }
@@ -143,14 +145,23 @@ int runBatchCommand(const std::vector<BatchJob>& jobs, const BatchOptions& optio
   if (!rows.isOk()) return fail(rows.status());
   printBatchRows(rows.value());
   int worst = 0, failed = 0;
+  const BatchRow* first = nullptr;
   for (const BatchRow& r : rows.value()) {
     failed += r.exitCode != 0;
-    if (r.exitCode != 0 && worst == 0) worst = r.exitCode;
+    if (r.exitCode != 0 && worst == 0) {
+      worst = r.exitCode;
+      first = &r;
+    }
   }
   std::fprintf(stdout, "%d jobs (shard %d of %d): %d done, %d failed; manifest %s/%s\n",
                int(rows.value().size()), options.shard, options.shards,
-               int(rows.value().size()) - failed, failed, output.outDir.c_str(),
+               int(rows.value().size()) - failed, failed, printable(output.outDir, 300).c_str(),
                manifestName(options).c_str());
+  // A failed batch says so on stderr, once: a scheduler's log shows why the job array failed.
+  if (first)
+    Terminal::error(output.outDir + "/" + manifestName(options) + ": " + std::to_string(failed) +
+                    " of " + std::to_string(rows.value().size()) + " jobs failed (first: " +
+                    first->job.name + ": " + printable(first->message, 200) + ")");
   return worst;
 }
 

@@ -110,7 +110,7 @@ struct ForwardCommand {
     command->add_option("--join", join, "boundaries zipped, A's then B's: outer,outer (default), inner,inner "
                                         "(anti D-Form) or outer,inner (demi D-Form)");
     command->add_flag("--flip", job.forward.flip, "zip piece B turned over");
-    command->add_option("--model", model, "auto (default: exact where the pieces make a convex body), exact or paper");
+    command->add_option("--model", model, "auto (default: exact where the pieces make a convex body, else paper), exact, paper or general (a stiff sheet at a stationary point of its energy)");
     command->add_flag("--fit-perimeter", job.forward.fitPerimeter,
                       "scale piece B to A's perimeter");
     command->add_option("--perimeter-tolerance", job.forward.perimeterTolerance,
@@ -128,7 +128,7 @@ struct ForwardCommand {
     if (!join.empty() && !parseJoin(join, job.forward.joinA, job.forward.joinB))
       return failUsage(Status(ErrorCode::Usage, "--join must be outer,outer, inner,inner, outer,inner or inner,outer"));
     if (!model.empty() && !parseModelChoice(model, job.forward.model))
-      return failUsage(Status(ErrorCode::Usage, "--model must be auto, exact or paper"));
+      return failUsage(Status(ErrorCode::Usage, "--model must be auto, exact, paper or general"));
     job.forward.solve.weights = defaultWeights(job.forward.joinA, job.forward.joinB);
     for (const std::string& w : weights)
       if (Status s = setWeight(job, w); !s.isOk()) return failUsage(s);
@@ -178,7 +178,7 @@ struct SweepCommand {
     command->add_option("--starts", options.starts, "starting pairs: start_b = k/N, k = 0 .. N-1 (default 8)");
     command->add_option("--flip", flip, "none (B as drawn, the default), flipped (B turned over) or both");
     command->add_option("--start-a", job.forward.startA.fraction, "start of A's seam: arc-length fraction in [0, 1)");
-    command->add_option("--model", model, "auto (default), exact or paper");
+    command->add_option("--model", model, "auto (default), exact, paper or general");
     command->add_option("--resolution", job.forward.resolution, "seam vertices per piece (default 100)");
     command->add_option("--interior-edge", job.forward.interiorEdgeFactor, "as for forward (default 1)");
     command->add_flag("--fit-perimeter", job.forward.fitPerimeter, "scale piece B to A's perimeter");
@@ -187,7 +187,7 @@ struct SweepCommand {
   }
   int run() {
     if (!model.empty() && !parseModelChoice(model, job.forward.model))
-      return failUsage(Status(ErrorCode::Usage, "--model must be auto, exact or paper"));
+      return failUsage(Status(ErrorCode::Usage, "--model must be auto, exact, paper or general"));
     if (flip != "none" && flip != "flipped" && flip != "both")
       return failUsage(Status(ErrorCode::Usage, "--flip must be none, flipped or both"));
     if (options.starts < 1 || options.starts > 4096)

@@ -5,6 +5,56 @@
 
 namespace dform {
 
+namespace {
+
+// The length of the well-formed UTF-8 character at text[i] (1 to 4), or 0 when it is not one
+// (a stray continuation byte, an overlong form, a surrogate, past U+10FFFF, cut short).
+std::size_t utf8Length(std::string_view text, std::size_t i) {
+  const unsigned char c = static_cast<unsigned char>(text[i]);
+  if (c < 0x80) return 1;
+  std::size_t n = 0;
+  unsigned char low = 0x80, high = 0xBF;  // the range of the second byte
+  if (c >= 0xC2 && c <= 0xDF) {
+    n = 2;
+  } else if (c >= 0xE0 && c <= 0xEF) {
+    n = 3;
+    if (c == 0xE0) low = 0xA0;
+    if (c == 0xED) high = 0x9F;
+  } else if (c >= 0xF0 && c <= 0xF4) {
+    n = 4;
+    if (c == 0xF0) low = 0x90;
+    if (c == 0xF4) high = 0x8F;
+  } else {
+    return 0;
+  }
+  if (i + n > text.size()) return 0;
+  for (std::size_t k = 1; k < n; ++k) {
+    const unsigned char b = static_cast<unsigned char>(text[i + k]);
+    if (b < (k == 1 ? low : 0x80) || b > (k == 1 ? high : 0xBF)) return 0;
+  }
+  return n;
+}
+
+}  // namespace
+
+std::string utf8Text(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t n = utf8Length(text, i);
+    if (n > 0) {
+      out.append(text.substr(i, n));
+      i += n;
+    } else {
+      char escape[8];
+      std::snprintf(escape, sizeof escape, "\\x%02x", static_cast<unsigned char>(text[i]));
+      out += escape;
+      ++i;
+    }
+  }
+  return out;
+}
+
 std::string printable(std::string_view text, std::size_t maxBytes) {
   std::size_t end = text.size();
   if (end > maxBytes) {
@@ -25,8 +75,12 @@ std::string printable(std::string_view text, std::size_t maxBytes) {
       char escape[8];
       std::snprintf(escape, sizeof escape, "\\x%02x", c);
       out += escape;
-    } else {
+    } else if (c < 0x80) {
       out += char(c);
+    } else {
+      const std::size_t n = std::min(utf8Length(text, i), end - i);
+      out += utf8Text(text.substr(i, std::max<std::size_t>(n, 1)));
+      i += std::max<std::size_t>(n, 1) - 1;
     }
   }
   return end < text.size() ? out + "..." : out;

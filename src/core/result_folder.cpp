@@ -1,8 +1,6 @@
 #include "core/result_folder.h"
 
 #include <fcntl.h>
-#include <sys/file.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -34,21 +32,36 @@ void syncPath(const fs::path& path) {
   ::close(fd);
 }
 
+// Whether `entry` is the lock (".NAME.dform-lock") or a killed run's staging or old folder of a
+// subfolder NAME that `isResultFolder` accepts: it goes with the folder that holds it.
+bool isLockOrLeftoverOf(const std::string& entry,
+                        const std::function<bool(const std::string&)>& isResultFolder) {
+  if (entry.size() < 2 || entry[0] != '.') return false;
+  for (const char* suffix : {".dform-lock", ".dform-new.", ".dform-old."}) {
+    const std::size_t at = entry.rfind(suffix);
+    if (at == std::string::npos || at < 2) continue;
+    const std::string tail = entry.substr(at + std::strlen(suffix));
+    const bool isLock = suffix[6] == 'l';
+    if (isLock ? !tail.empty()
+               : tail.empty() || tail.find_first_not_of("0123456789") != std::string::npos)
+      continue;
+    if (isResultFolder(entry.substr(1, at - 1))) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 ResultFolder::~ResultFolder() {
   std::error_code ec;
   if (!staging_.empty()) fs::remove_all(staging_, ec);
-  if (lockFd_ >= 0) {
-    // Unlinked while still held: a run that opens it meanwhile finds it gone once it has the
-    // lock (begin checks the inode) and takes a fresh one.
-    ::unlink(lockPath_.c_str());
-    ::close(lockFd_);
-  }
+  lock_.release();
+  // A run that put nothing in place leaves no folder it created for its lock either.
+  if (!committed_)
+    for (const std::string& made : createdFolders_) fs::remove(made, ec);
 }
 
-Status ResultFolder::begin(const std::string& dir, const std::set<std::string>& resultFiles,
-                           const std::function<bool(const std::string&)>& isResultFolder) {
+Status ResultFolder::lock(const std::string& dir, std::string& absolute, std::string& name) {
   std::error_code ec;
   fs::path path = fs::absolute(dir, ec).lexically_normal();
   if (path.has_parent_path() && path.filename().empty()) path = path.parent_path();  // "out/"
@@ -58,76 +71,72 @@ Status ResultFolder::begin(const std::string& dir, const std::set<std::string>& 
     if (ec) return outputFailed(dir + ": a symbolic link that leads nowhere (" + ec.message() + ")");
     path = target;
   }
-  const std::string name = path.filename().string();
+  name = path.filename().string();
   if (name.empty() || name == "." || name == ".." || path == path.root_path())
     return outputFailed(dir + ": cannot be used as a result folder (it is replaced as a whole)");
   const fs::path parent = path.parent_path();
+  for (fs::path missing = parent; !missing.empty() && !fs::exists(fs::symlink_status(missing, ec));
+       missing = missing.parent_path()) {
+    createdFolders_.push_back(missing.string());  // deepest first
+    if (missing == missing.root_path()) break;
+  }
   fs::create_directories(parent, ec);
   if (ec || !fs::is_directory(parent))
     return outputFailed(dir + ": cannot create the output folder (" +
                         (ec ? ec.message() : std::string("Not a directory")) + ")");
-
+  absolute = path.string();
   lockPath_ = (parent / ("." + name + ".dform-lock")).string();
-  for (int attempt = 0; attempt < 8 && lockFd_ < 0; ++attempt) {
-    const int fd = ::open(lockPath_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    if (fd < 0)
-      return outputFailed(dir + ": cannot write in " + parent.string() + " (" +
-                          std::strerror(errno) + ")");
-    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
-      const int error = errno;
-      char holder[32] = "";
-      const ssize_t got = ::pread(fd, holder, sizeof holder - 1, 0);
-      holder[got > 0 ? got : 0] = '\0';
-      ::close(fd);
-      if (error == EWOULDBLOCK)
-        return outputFailed(dir + ": another dform run" +
-                            (holder[0] ? " (process " + std::string(holder) + ")" : "") +
-                            " is writing this folder; nothing was written (run again when it has "
-                            "finished)");
-      return outputFailed(dir + ": cannot lock " + lockPath_ + " (" + std::strerror(error) + ")");
-    }
-    // The run that held it may have removed it as we opened it: the lock is ours only if the
-    // file we hold is the one at the path.
-    struct stat held {}, atPath {};
-    if (::fstat(fd, &held) == 0 && ::stat(lockPath_.c_str(), &atPath) == 0 &&
-        held.st_ino == atPath.st_ino && held.st_dev == atPath.st_dev) {
-      lockFd_ = fd;
-    } else {
-      ::close(fd);
-    }
+  return lock_.acquire(lockPath_, true, dir);
+}
+
+Status ResultFolder::hold(const std::string& dir, const std::set<std::string>& resultFiles) {
+  std::string absolute, name;
+  if (Status s = lock(dir, absolute, name); !s.isOk()) return s;
+  return checkReplaceable(absolute, dir, resultFiles, nullptr);
+}
+
+Status ResultFolder::checkReplaceable(
+    const std::string& absolute, const std::string& dir, const std::set<std::string>& resultFiles,
+    const std::function<bool(const std::string&)>& isResultFolder) {
+  std::error_code ec;
+  const fs::file_status status = fs::symlink_status(absolute, ec);
+  if (!fs::exists(status)) return Status::ok();
+  if (!fs::is_directory(status)) return outputFailed(dir + ": exists and is not a folder");
+  for (const fs::directory_entry& entry : fs::directory_iterator(absolute, ec)) {
+    const std::string entryName = entry.path().filename().string();
+    // An earlier version's temporary file ("report.json.tmp.123") is a result's too.
+    const std::string stem = entryName.substr(0, entryName.find(".tmp."));
+    const fs::file_status entryStatus = entry.symlink_status(ec);
+    if (isResultFolder && fs::is_directory(entryStatus) && isResultFolder(entryName)) continue;
+    if (isResultFolder && isLockOrLeftoverOf(entryName, isResultFolder)) continue;
+    if (!resultFiles.count(stem) || !fs::is_regular_file(entryStatus))
+      return outputFailed((fs::path(dir) / entryName).string() +
+                          ": is not part of a dform result, and the result folder is "
+                          "replaced as a whole; nothing was written (use an empty or new "
+                          "folder)");
   }
-  if (lockFd_ < 0) return outputFailed(dir + ": cannot lock " + lockPath_);
+  if (ec) return outputFailed(dir + ": cannot be read (" + ec.message() + ")");
+  return Status::ok();
+}
+
+Status ResultFolder::begin(const std::string& dir, const std::set<std::string>& resultFiles,
+                           const std::function<bool(const std::string&)>& isResultFolder) {
+  std::string absolute, name;
+  if (Status s = lock(dir, absolute, name); !s.isOk()) return s;
+  const fs::path parent = fs::path(absolute).parent_path();
   const std::string pid = std::to_string(::getpid());
-  if (::ftruncate(lockFd_, 0) != 0 || ::pwrite(lockFd_, pid.data(), pid.size(), 0) < 0)
-    return outputFailed(dir + ": cannot write " + lockPath_ + " (" + std::strerror(errno) + ")");
 
   // Staging and old folders of runs killed outright (SIGKILL, a second Ctrl-C, a power cut):
   // no run is using them while we hold the lock.
+  std::error_code ec;
   const std::string stagingPrefix = "." + name + ".dform-new.", oldPrefix = "." + name + ".dform-old.";
   for (const fs::directory_entry& entry : fs::directory_iterator(parent, ec)) {
     const std::string entryName = entry.path().filename().string();
     if (isLeftover(entryName, stagingPrefix) || isLeftover(entryName, oldPrefix))
       fs::remove_all(entry.path(), ec);
   }
-
-  const fs::file_status status = fs::symlink_status(path, ec);
-  if (fs::exists(status)) {
-    if (!fs::is_directory(status)) return outputFailed(dir + ": exists and is not a folder");
-    for (const fs::directory_entry& entry : fs::directory_iterator(path, ec)) {
-      const std::string entryName = entry.path().filename().string();
-      // An earlier version's temporary file ("report.json.tmp.123") is a result's too.
-      const std::string stem = entryName.substr(0, entryName.find(".tmp."));
-      const fs::file_status entryStatus = entry.symlink_status(ec);
-      if (isResultFolder && fs::is_directory(entryStatus) && isResultFolder(entryName)) continue;
-      if (!resultFiles.count(stem) || !fs::is_regular_file(entryStatus))
-        return outputFailed((fs::path(dir) / entryName).string() +
-                            ": is not part of a dform result, and the result folder is "
-                            "replaced as a whole; nothing was written (use an empty or new "
-                            "folder)");
-    }
-    if (ec) return outputFailed(dir + ": cannot be read (" + ec.message() + ")");
-  }
-  dir_ = path.string();
+  if (Status s = checkReplaceable(absolute, dir, resultFiles, isResultFolder); !s.isOk()) return s;
+  dir_ = absolute;
   shownDir_ = dir;
   while (shownDir_.size() > 1 && shownDir_.back() == '/') shownDir_.pop_back();
   staging_ = (parent / (stagingPrefix + pid)).string();
@@ -193,6 +202,7 @@ Status ResultFolder::commit() {
     }
   }
   syncPath(parent);
+  committed_ = true;
   // staging_ now names the old result (or nothing): removed, the lock released by the destructor.
   fs::remove_all(staging_, ec);
   staging_.clear();

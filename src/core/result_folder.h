@@ -7,7 +7,9 @@
 #include <functional>
 #include <set>
 #include <string>
+#include <vector>
 
+#include "core/lock_file.h"
 #include "core/status.h"
 
 namespace dform {
@@ -15,7 +17,8 @@ namespace dform {
 class ResultFolder {
  public:
   ResultFolder() = default;
-  /// Drops the staging folder when the result was not committed, and releases the lock.
+  /// Drops the staging folder when the result was not committed, releases the lock, and
+  /// removes the parent folders `begin` created when nothing was committed.
   ~ResultFolder();
   ResultFolder(const ResultFolder&) = delete;
   ResultFolder& operator=(const ResultFolder&) = delete;
@@ -26,9 +29,15 @@ class ResultFolder {
   /// away), removes what runs killed outright left beside it, and creates the staging folder.
   /// OutputFailed naming the folder or the file in the way, or saying which process holds the
   /// lock. `isResultFolder`, when given, names the subfolders that are the result's too (a
-  /// sweep's starts): they go with the swap like its files.
+  /// sweep's starts): they go with the swap like their locks, but their contents are the
+  /// caller's to check (`hold`).
   Status begin(const std::string& dir, const std::set<std::string>& resultFiles,
                const std::function<bool(const std::string&)>& isResultFolder = nullptr);
+
+  /// Locks `dir` as `begin` does and checks that it may be replaced, without staging anything:
+  /// a folder that goes with an enclosing result (a sweep's start folder) held against other
+  /// runs until this object is destroyed. `begin`'s errors.
+  Status hold(const std::string& dir, const std::set<std::string>& resultFiles);
 
   /// The folder the new result is written into.
   const std::string& staging() const { return staging_; }
@@ -48,10 +57,19 @@ class ResultFolder {
   Status commit();
 
  private:
+  // Locks `dir` (its parent created when missing); its absolute path and its name.
+  Status lock(const std::string& dir, std::string& absolute, std::string& name);
+  // OutputFailed naming the first entry of `absolute` (shown as `dir`) that is not a result's.
+  static Status checkReplaceable(const std::string& absolute, const std::string& dir,
+                                 const std::set<std::string>& resultFiles,
+                                 const std::function<bool(const std::string&)>& isResultFolder);
+
   std::string dir_;       ///< absolute, symbolic links resolved
   std::string shownDir_;  ///< as the user wrote it, for messages
   std::string staging_, lockPath_;
-  int lockFd_ = -1;
+  LockFile lock_;
+  std::vector<std::string> createdFolders_;  ///< the lock's missing parents begin made, deepest first
+  bool committed_ = false;
 };
 
 }  // namespace dform

@@ -111,7 +111,7 @@ std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName)
   }
   j["sheets"] = sheets;
   j["messages"] = pattern.messages;
-  return j.dump(1);
+  return j.dump(1, ' ', false, json::error_handler_t::replace);
 }
 
 }  // namespace dform::fab

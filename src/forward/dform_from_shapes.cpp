@@ -76,12 +76,13 @@ const char* modelChoiceName(ModelChoice model) {
     case ModelChoice::Auto: return "auto";
     case ModelChoice::Exact: return "exact";
     case ModelChoice::Paper: return "paper";
+    case ModelChoice::General: return "general";
   }
   return "?";
 }
 
 bool parseModelChoice(const std::string& text, ModelChoice& model) {
-  for (ModelChoice m : {ModelChoice::Auto, ModelChoice::Exact, ModelChoice::Paper})
+  for (ModelChoice m : {ModelChoice::Auto, ModelChoice::Exact, ModelChoice::Paper, ModelChoice::General})
     if (text == modelChoiceName(m)) {
       model = m;
       return true;
@@ -139,7 +140,7 @@ Result<std::optional<SolvedDForm>> tryExactModel(const ForwardSettings& job, con
                                                 MessageSink& sink, const RunHooks& hooks) {
   const std::string both = layout.bothPaths();
   refusal = exactModelRefusal(job, layout.pieces[0], layout.pieces[1]);
-  if (job.model == ModelChoice::Paper) return std::optional<SolvedDForm>();
+  if (job.model == ModelChoice::Paper || job.model == ModelChoice::General) return std::optional<SolvedDForm>();
   if (!refusal.empty()) {
     if (job.model == ModelChoice::Exact)
       return Status(ErrorCode::InputInvalid, both + ": --model exact: " + refusal);
@@ -343,10 +344,28 @@ Result<SolvedDForm> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSet
     exact.value()->timings.total = secondsSince(start);
     return std::move(*exact.value());
   }
-  run.modelUsed.name = "paper";
-  run.modelUsed.reason = job.model == ModelChoice::Paper ? "asked for (--model paper)" : "the exact model does not apply: " + refusal;
-  sink.info("paper model: " + run.modelUsed.reason);
+  const bool general = job.model == ModelChoice::General;
+  run.modelUsed.name = general ? "general" : "paper";
+  run.modelUsed.reason = general ? "asked for (--model general)"
+                         : job.model == ModelChoice::Paper ? "asked for (--model paper)"
+                                                           : "the exact model does not apply: " + refusal;
+  sink.info(run.modelUsed.name + " model: " + run.modelUsed.reason);
   if (Status s = solvePaperModel(job, layout, run, sink, hooks); !s.isOk()) return s;
+  if (general) {
+    const auto solveStart = Clock::now();
+    InextensibleResult sheet = solveInextensible(run.model, job.inextensible);
+    run.timings.solve += secondsSince(solveStart);
+    if (detail::stopRequested(hooks)) return detail::interruptedDuring("the solve");
+    run.model = std::move(sheet.model);
+    run.modelUsed.stationarity = sheet.summary.stationarity;
+    run.modelUsed.stiffness = job.inextensible.stiffness;
+    run.modelUsed.newtonSteps = sheet.summary.steps;
+    sink.info("general model: " + std::to_string(sheet.summary.steps) + " Newton steps" +
+              format(", stationarity %.2g, bending energy %.4g, stretching energy %.4g", sheet.summary.stationarity,
+                     sheet.summary.bendingEnergy, sheet.summary.stretchingEnergy) +
+              format(" in %.3f s", sheet.summary.seconds));
+    if (!sheet.summary.converged) sink.warning("general model: " + sheet.summary.message);
+  }
   run.timings.total = secondsSince(start);
   return run;
 }

@@ -10,6 +10,7 @@
 #include "core/status.h"
 #include "core/types.h"
 #include "forward/forward.h"
+#include "model/inextensible.h"
 #include "model/run_types.h"
 
 namespace dform {
@@ -39,11 +40,13 @@ ForwardWeights defaultWeights(JoinedBoundary a, JoinedBoundary b);
 bool parseJoin(const std::string& text, JoinedBoundary& a, JoinedBoundary& b);
 
 /// Which model makes the 3D shape: the exact D-Form (Alexandrov's convex body of the glued
-/// pieces, src/exact) or the paper's optimisation; `Auto` takes the exact one wherever it applies
-/// (two discs zipped along their outlines, no drawn creases, a convex glued metric).
-enum class ModelChoice { Auto, Exact, Paper };
+/// pieces, src/exact), the paper's optimisation, or the general engine (the paper's shape relaxed
+/// to a stationary point of a stiff sheet's bending and stretching energy, forward/inextensible.h);
+/// `Auto` takes the exact one wherever it applies (two discs zipped along their outlines, no drawn
+/// creases, a convex glued metric), else the paper's.
+enum class ModelChoice { Auto, Exact, Paper, General };
 
-const char* modelChoiceName(ModelChoice model);            ///< "auto", "exact" or "paper"
+const char* modelChoiceName(ModelChoice model);  ///< "auto", "exact", "paper" or "general"
 bool parseModelChoice(const std::string& text, ModelChoice& model);
 
 /// Everything a forward run needs besides the two pieces: the model, which boundaries are
@@ -59,6 +62,7 @@ struct ForwardSettings {
   double interiorEdgeFactor = 1.0;    ///< interior edge length / seam edge length
   bool coarseToFine = true;           ///< start from solutions at 1/3, 1/9, ... of the resolution
   ForwardOptions solve;
+  InextensibleOptions inextensible;  ///< the general engine's (ModelChoice::General)
 };
 
 /// A solved forward job: the model, which model made it and how the solve went.

@@ -8,6 +8,7 @@
 
 #include "core/polyline.h"
 #include "model/injectivity.h"
+#include "model/relax_then_solve.h"
 #include "model/term_table.h"
 #include "model/terms.h"
 
@@ -307,12 +308,9 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
   relaxationWeights.smooth3d = relaxationSmoothing(w.smooth3d, options);
   const LocalGlobalRelaxation relaxation(linearTerms(table, terms, relaxationWeights), edges, x, held);
   // No Levenberg-Marquardt step folds a triangle over that stood upright before it
-  // (forward/injectivity.h). The relaxation is not guarded: its path to the shape may pass
+  // (model/injectivity.h). The relaxation is not guarded: its path to the shape may pass
   // through folds (guarded, it stalled on the anti and Squaricle samples).
   const FoldGuard guard(layout, start.a, start.b);
-  SolverOptions solverOptions = options.solver;
-  refuseNewFolds(guard, solverOptions);
-  result.relaxation = relaxation.relax(options.relaxation, x);
 
   Problem problem(layout.numVariables());
   addTerms(problem, table, terms, w);
@@ -324,23 +322,11 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
   std::vector<Constraint> constraints;
   if (w.boundaryFix > 0 && anchorTerm->numResiduals() > 0)
     constraints.push_back({anchorTerm, 2, options.outlineTolerance * perimeter});
-  if (result.relaxation.stopped) {  // a Ctrl-C: no further solve
-    result.summary = summaryWithoutSteps(problem, x);
-    result.summary.termination = Termination::UserAbort;
-  } else if (solverOptions.maxIterations == 0) {  // the relaxation is the result, its rounds too
-    result.constraintRounds = enforceByMultipliers(
-        [&](Eigen::VectorXd& y) {
-          result.relaxation.append(relaxation.relax(options.relaxation, y));
-          return !result.relaxation.stopped;
-        },
-        constraints, options.constraintRounds, x);
-    result.summary = summaryWithoutSteps(problem, x);
-  } else {
-    LeastSquaresSolver solver(problem, solverOptions);
-    result.summary = solver.solve(x);
-    result.constraintRounds =
-        enforceByMultipliers(solver, constraints, options.constraintRounds, x, result.summary);
-  }
+  SolveSequenceSummary solved = relaxThenSolve(relaxation, options.relaxation, problem, options.solver,
+                                               guard, constraints, options.constraintRounds, x);
+  result.relaxation = std::move(solved.relaxation);
+  result.summary = std::move(solved.summary);
+  result.constraintRounds = solved.constraintRounds;
   result.model = start;
   unpackVariables(layout, x, result.model.a, result.model.b);
   scaleLengths(result.model, unit);

@@ -3,7 +3,7 @@
 #include <cassert>
 
 #include "core/polyline.h"
-#include "model/injectivity.h"
+#include "model/relax_then_solve.h"
 #include "model/term_table.h"
 #include "model/terms.h"
 
@@ -43,22 +43,18 @@ InverseResult solveInverse(const DForm& start, const Points3& curve, const Inver
 
   weightByFlatLength(edges, x, w.isometry);
   const LocalGlobalRelaxation relaxation(linearTerms(table, terms, w), edges, x, held);
-  // No Levenberg-Marquardt step folds a triangle over (forward/injectivity.h).
+  // No Levenberg-Marquardt step folds a triangle over (model/injectivity.h).
   const FoldGuard guard(layout, scaled.a, scaled.b);
-  SolverOptions solverOptions = options.solver;
-  refuseNewFolds(guard, solverOptions);
-  result.relaxation = relaxation.relax(options.relaxation, x);
 
   Problem problem(layout.numVariables());
   addTerms(problem, table, terms, w);
   problem.holdConstant(held);
   problem.setBlockSize(VariableLayout::kPerVertex);
-  if (result.relaxation.stopped) {  // a Ctrl-C: no further solve
-    result.summary = summaryWithoutSteps(problem, x);
-    result.summary.termination = Termination::UserAbort;
-  } else {
-    result.summary = solve(problem, solverOptions, x);  // no step at all when the cap is 0
-  }
+  // The seam is held on the curve exactly: no constraint is left to multiplier rounds.
+  SolveSequenceSummary solved =
+      relaxThenSolve(relaxation, options.relaxation, problem, options.solver, guard, {}, 0, x);
+  result.relaxation = std::move(solved.relaxation);
+  result.summary = std::move(solved.summary);
 
   result.model = scaled;
   unpackVariables(layout, x, result.model.a, result.model.b);

@@ -64,6 +64,13 @@ std::optional<double> parseDouble(const std::string& token) {
   return value;
 }
 
+bool isOutOfRangeNumber(const std::string& token) {
+  const char* begin = token.data() + (!token.empty() && token[0] == '+');
+  double value = 0.0;
+  const auto [end, ec] = std::from_chars(begin, token.data() + token.size(), value);
+  return ec == std::errc::result_out_of_range && end == token.data() + token.size();
+}
+
 std::optional<double> millimetresPerUnit(const std::string& unit) {
   if (unit == "mm") return 1.0;
   if (unit == "cm") return 10.0;

@@ -37,6 +37,10 @@ std::string exactDecimal(double value);
 /// Parses a whole token as a double, locale-independently (accepts a leading '+').
 std::optional<double> parseDouble(const std::string& token);
 
+/// Whether `token` is a whole number that no double holds: too large ("1e999") or too small to
+/// be told from zero ("1e-999"). OBJ and JSON files refuse both alike (InputInvalid).
+bool isOutOfRangeNumber(const std::string& token);
+
 /// Millimetres per unit for the unit names accepted in JSON files ("mm", "cm", "in"); nullopt if
 /// the name is unknown.
 std::optional<double> millimetresPerUnit(const std::string& unit);

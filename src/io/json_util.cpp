@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "core/message_text.h"
@@ -9,8 +10,34 @@
 
 namespace dform::io_detail {
 
+namespace {
+
+// The first number of a JSON text that no double holds ("1e999", "1e-999"), if any: nlohmann
+// reads an underflow as 0 and refuses an overflow as a parse error, where OBJ refuses both as out
+// of range. Strings are skipped.
+std::optional<std::string> outOfRangeNumber(const std::string& text) {
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '"') {
+      for (++i; i < text.size() && text[i] != '"'; ++i)
+        if (text[i] == '\\') ++i;
+    } else if (c == '-' || (c >= '0' && c <= '9')) {
+      const std::size_t end = text.find_first_not_of("0123456789+-.eE", i);
+      const std::string token = text.substr(i, end - i);
+      if (isOutOfRangeNumber(token)) return token;
+      i = std::min(end, text.size()) - 1;
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 Result<nlohmann::json> parseJson(const std::string& path, const std::string& text,
                                  std::size_t maxPoints) {
+  if (const std::optional<std::string> token = outOfRangeNumber(text))
+    return Status{ErrorCode::InputInvalid, path + ": '" + printable(*token) +
+                                               "' is out of range (coordinates must be finite)"};
   // A point is at most 4 values (its list and 3 numbers); the rest of a document is a handful.
   const std::size_t maxValues = 4 * maxPoints + 1024;
   struct TooManyValues {};

@@ -23,14 +23,6 @@ std::optional<long> vertexIndex(const std::string& token) {
   return value;
 }
 
-/// Whether `token` is a whole number too large (or too small) for a double, like "1e999".
-bool outOfRange(const std::string& token) {
-  const char* begin = token.data() + (!token.empty() && token[0] == '+');
-  double value = 0.0;
-  const auto [end, ec] = std::from_chars(begin, token.data() + token.size(), value);
-  return ec == std::errc::result_out_of_range && end == token.data() + token.size();
-}
-
 }  // namespace
 
 Result<ObjData> parseObj(const std::string& path, const std::string& text,
@@ -62,7 +54,7 @@ Result<ObjData> parseObj(const std::string& path, const std::string& text,
       int count = 0;
       while (tokens >> token) {
         const std::optional<double> value = parseDouble(token);
-        if (!value && outOfRange(token))  // "1e999": a number, but no finite one (as in SVG)
+        if (!value && isOutOfRangeNumber(token))  // "1e999", "1e-999": no double holds them
           return Status{ErrorCode::InputInvalid,
                         path + ": line " + std::to_string(lineNumber) + ": '" + printable(token) +
                             "' is out of range (coordinates must be finite)"};

@@ -143,6 +143,14 @@ Result<RootViewport> rootViewport(const XmlNode* svg) {
                         printable(*text) + "' (units: mm, cm, in, pt, pc, px or none for px)"};
   const std::optional<double> width = lengthInMillimetres(attributeValue(svg, "width"));
   const std::optional<double> height = lengthInMillimetres(attributeValue(svg, "height"));
+  // SVG gives a negative root size no meaning (a drawing would be mirrored) and a zero one
+  // disables rendering: refused by name rather than drawn mirrored or read as no shape.
+  for (const auto& [name, size] : {std::pair{"width", width}, std::pair{"height", height}})
+    if (size && !(*size > 0.0))
+      return Status{ErrorCode::InputInvalid,
+                    "has a root '" + std::string(name) + "' of " +
+                        printable(std::string(*attributeValue(svg, name))) +
+                        ": a drawing's size must be positive"};
   const auto viewBoxText = attributeValue(svg, "viewBox");
   const auto box = parseViewBox(viewBoxText);
   RootViewport vp;

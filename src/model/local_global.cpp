@@ -34,11 +34,15 @@ class LocalGlobal {
     const int n = int(x0.size());
     // K = sum_t w_t M_t^T M_t + sum_e w_e D_e^T D_e + eps I. The eps I (with eps x_prev on the
     // right) is a proximal term: it fixes the free translation and vanishes at a fixed point.
+    // Each step of the set-up takes seconds on a fine mesh: a stop asked for meanwhile leaves
+    // the relaxation not ok (ok_ is false until splitByCoordinate), so it takes no step.
     SparseMatrix K(n, n);
     for (const auto& [w, term] : quadratic) {
+      if (interruptRequested()) return;
       const SparseMatrix M = term->matrix();
       K += w * SparseMatrix(M.transpose() * M);
     }
+    if (interruptRequested()) return;
     std::vector<Eigen::Triplet<double>> entries;
     for (std::size_t e = 0; e < edges.weight.size(); ++e) {
       const double w = edges.weight[e];
@@ -53,9 +57,11 @@ class LocalGlobal {
       addPair(edges.x[e][0], edges.x[e][1], 3);
       addPair(edges.u[e][0], edges.u[e][1], 2);
     }
+    if (interruptRequested()) return;
     SparseMatrix edgePart(n, n);
     edgePart.setFromTriplets(entries.begin(), entries.end());
     K += edgePart;
+    if (interruptRequested()) return;
     proximal_ = 1e-8 * K.diagonal().maxCoeff();
     SparseMatrix identity(n, n);
     identity.setIdentity();
@@ -74,6 +80,7 @@ class LocalGlobal {
           if (!heldRow && !heldCol) kept.emplace_back(it.row(), c, it.value());
         }
       for (int i : held) kept.emplace_back(i, i, 1.0);
+      if (interruptRequested()) return;
       K.setFromTriplets(kept.begin(), kept.end());
     }
     splitByCoordinate(K);
@@ -165,7 +172,12 @@ class LocalGlobal {
         supernodal_ = std::make_unique<SupernodalCholesky>(lower);
         ok_ = supernodal_->factorize(lower);
       } else {
-        simplicial_ = std::make_unique<Eigen::CholmodSimplicialLLT<SparseMatrix>>(block);
+        simplicial_ = std::make_unique<Eigen::CholmodSimplicialLLT<SparseMatrix>>();
+        {
+          const std::lock_guard<std::mutex> lock(cholmodAnalysisMutex());  // METIS's rand()
+          simplicial_->analyzePattern(block);
+        }
+        simplicial_->factorize(block);
         ok_ = simplicial_->info() == Eigen::Success;
       }
     }

@@ -27,13 +27,15 @@ struct FoundCrease {
 
 /// Which model ran, and why the other did not.
 struct ModelUsed {
-  std::string name;    ///< "exact" or "paper"
+  std::string name;    ///< "exact", "paper" or "general"
   std::string reason;  ///< why this one: the exact model's conditions met, or which failed
   int conePoints = 0;          ///< exact: seam points that are vertices of the body
-  int newtonSteps = 0;         ///< exact: steps of the deformation
+  int newtonSteps = 0;         ///< exact: steps of the deformation; general: Newton steps of the sheet
   double maxCurvature = 0;     ///< exact: largest |curvature| left at a cone point (radians)
   double chordMoveMm = 0;      ///< exact: the most a seam point moved to make paired chords equal
   bool doublyCovered = false;  ///< exact: the pieces fold flat onto each other
+  double stationarity = 0;     ///< general: relative first-order residual at the answer
+  double stiffness = 0;        ///< general: stretching over bending stiffness (model/inextensible.h)
   std::vector<FoundCrease> creases;
 };
 

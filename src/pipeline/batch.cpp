@@ -13,7 +13,13 @@
 #include <sstream>
 
 #include "core/atomic_file.h"
+#include "core/file_hash.h"
+#include "core/input_file.h"
+#include "core/lock_file.h"
+#include "core/message_text.h"
 #include "io/json_util.h"
+#include "pipeline/job_file.h"
+#include "pipeline/run.h"
 
 namespace dform {
 
@@ -29,14 +35,25 @@ double number(const json& row, const char* key) {
   return at != row.end() && at->is_number() ? at->get<double>() : NAN;
 }
 
+// A manifest's field of the expected type, else `otherwise` (a hand-edited manifest).
+std::string text(const json& row, const char* key) {
+  const auto at = row.find(key);
+  return at != row.end() && at->is_string() ? at->get<std::string>() : std::string();
+}
+bool flag(const json& row, const char* key) {
+  const auto at = row.find(key);
+  return at != row.end() && at->is_boolean() && at->get<bool>();
+}
+
 json rowJson(const BatchRow& r) {
   const SweepRow& f = r.figures;
   return {{"index", r.job.index},
-          {"job", r.job.path},
-          {"name", r.job.name},
+          {"job", utf8Text(r.job.path)},
+          {"name", utf8Text(r.job.name)},
+          {"sha256", r.job.sha256},
           {"status", r.status},
           {"exit_code", r.exitCode},
-          {"message", r.message},
+          {"message", printableMessage(r.message)},
           {"model", f.model},
           {"height_mm", f.solved ? numberOrNull(f.heightMm) : json(nullptr)},
           {"volume_mm3", f.solved ? numberOrNull(f.volumeMm3) : json(nullptr)},
@@ -55,17 +72,20 @@ bool rowFromJson(const json& j, BatchRow& r) {
   r.job.index = j["index"].get<int>();
   r.job.path = j["job"].get<std::string>();
   r.job.name = j["name"].get<std::string>();
+  r.job.sha256 = text(j, "sha256");
   r.status = j["status"].get<std::string>();
-  r.exitCode = j.value("exit_code", 1);
-  r.message = j.value("message", std::string());
+  const auto code = j.find("exit_code");
+  r.exitCode = code != j.end() && code->is_number_integer() ? code->get<int>() : 1;
+  r.message = text(j, "message");
   SweepRow& f = r.figures;
-  f.subfolder = f.label = r.job.name;
-  f.model = j.value("model", std::string());
+  f.label = r.job.name;
+  f.subfolder = isJobName(r.job.name) ? r.job.name : "";  // a forged row links nowhere
+  f.model = text(j, "model");
   f.heightMm = number(j, "height_mm");
   f.volumeMm3 = number(j, "volume_mm3");
   f.maxCurvature = number(j, "max_curvature");
   f.solved = std::isfinite(f.heightMm);
-  f.passed = j.value("gate_passed", false);
+  f.passed = flag(j, "gate_passed");
   if (j.contains("failing_checks") && j["failing_checks"].is_array())
     for (const json& name : j["failing_checks"])
       if (name.is_string()) f.failing.push_back(name.get<std::string>());
@@ -76,41 +96,66 @@ bool rowFromJson(const json& j, BatchRow& r) {
 }
 
 std::string manifestText(const std::vector<BatchRow>& rows, const BatchOptions& options,
-                         bool merged) {
+                         const JobList& jobs, bool merged) {
   json list = json::array();
   for (const BatchRow& r : rows) list.push_back(rowJson(r));
-  json out = {{"schema", "dform-batch"}, {"schema_version", 1}};
+  json out = {{"schema", "dform-batch"},
+              {"schema_version", 2},
+              {"jobs", {{"count", jobs.count}, {"sha256", jobs.sha256}}}};
   if (merged)
     out["merged"] = true;
   else
     out["shard"] = {options.shard, options.shards};
   out["rows"] = list;
-  return out.dump(2) + "\n";
+  return out.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
 }
 
+// One manifest: its rows and the job list it was run from (empty for a manifest that does not
+// record it).
+struct Manifest {
+  std::vector<BatchRow> rows;
+  JobList jobs;
+};
+
 // The rows of one manifest file; InputInvalid naming it when it is not one.
-Result<std::vector<BatchRow>> readManifest(const fs::path& path) {
+Result<Manifest> readManifest(const fs::path& path) {
   std::ifstream in(path);
   if (!in) return Status(ErrorCode::InputUnreadable, path.string() + ": cannot be read");
   const json manifest = json::parse(in, nullptr, false);
-  if (!manifest.is_object() || manifest.value("schema", std::string()) != "dform-batch" ||
+  if (!manifest.is_object() || text(manifest, "schema") != "dform-batch" ||
       !manifest.contains("rows") || !manifest["rows"].is_array())
     return Status(ErrorCode::InputInvalid, path.string() + ": is not a dform batch manifest");
-  std::vector<BatchRow> rows;
+  Manifest read;
   for (const json& j : manifest["rows"]) {
     BatchRow r;
     if (!rowFromJson(j, r))
       return Status(ErrorCode::InputInvalid, path.string() + ": a row is not a batch job's");
-    rows.push_back(std::move(r));
+    read.rows.push_back(std::move(r));
   }
-  return rows;
+  const auto jobs = manifest.find("jobs");
+  if (jobs != manifest.end() && jobs->is_object() && jobs->contains("count") &&
+      (*jobs)["count"].is_number_integer() && jobs->contains("sha256") && (*jobs)["sha256"].is_string()) {
+    read.jobs.count = (*jobs)["count"].get<int>();
+    read.jobs.sha256 = (*jobs)["sha256"].get<std::string>();
+  }
+  return read;
+}
+
+// "PREFIX<digits>-of-<digits>SUFFIX": a shard's manifest or gallery.
+bool isShardFileName(const std::string& name, const std::string& prefix, const std::string& suffix) {
+  if (name.size() <= prefix.size() + suffix.size() || name.compare(0, prefix.size(), prefix) != 0 ||
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+    return false;
+  const std::string middle = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  const std::size_t of = middle.find("-of-");
+  const auto digits = [](const std::string& t) {
+    return !t.empty() && t.find_first_not_of("0123456789") == std::string::npos;
+  };
+  return of != std::string::npos && digits(middle.substr(0, of)) && digits(middle.substr(of + 4));
 }
 
 bool isManifestName(const std::string& name) {
-  int i = 0, n = 0;
-  char rest = 0;
-  return name == "batch.json" ||
-         std::sscanf(name.c_str(), "batch-shard-%d-of-%d.json%c", &i, &n, &rest) == 2;
+  return name == "batch.json" || isShardFileName(name, "batch-shard-", ".json");
 }
 
 std::vector<SweepRow> galleryRows(const std::vector<BatchRow>& rows) {
@@ -124,17 +169,73 @@ std::vector<SweepRow> galleryRows(const std::vector<BatchRow>& rows) {
 Status writeGallery(const std::string& outDir, const std::vector<BatchRow>& rows,
                     const std::string& fileName) {
   std::vector<SweepRow> cards = galleryRows(rows);
-  for (SweepRow& card : cards)
+  for (SweepRow& card : cards) {
+    // A card links only to a job's folder in OUT that holds a result.
+    std::error_code ec;
+    if (!isJobName(card.subfolder) ||
+        !fs::is_regular_file(fs::path(outDir) / card.subfolder / "report.json", ec)) {
+      card.subfolder.clear();
+      card.solved = false;
+    }
     if (card.solved) {
       const SweepRow measured = measureResult((fs::path(outDir) / card.subfolder).string());
       card.svg = measured.svg;
       if (!card.passed && card.reason.empty()) card.reason = measured.reason;
     }
+  }
   return writeFileAtomically((fs::path(outDir) / fileName).string(),
                              galleryHtml("dform batch: " + outDir, cards));
 }
 
+// The lock that keeps a second batch off OUT: exclusive for a whole batch and for a merge,
+// shared by the shards of one batch, which take their own manifest's lock exclusively besides.
+struct BatchLock {
+  LockFile batch, manifest;
+  Status acquire(const std::string& outDir, const BatchOptions& options, bool merging) {
+    const bool alone = merging || options.shards == 1;
+    if (Status s = batch.acquire((fs::path(outDir) / ".dform-batch.lock").string(), alone, outDir,
+                                 "batch");
+        !s.isOk())
+      return s;
+    if (alone) return Status::ok();
+    return manifest.acquire((fs::path(outDir) / ("." + manifestName(options) + ".dform-lock")).string(),
+                            true, outDir, "batch shard " + std::to_string(options.shard) + "/" +
+                                              std::to_string(options.shards));
+  }
+};
+
 }  // namespace
+
+bool isJobName(const std::string& name) {
+  return !name.empty() && name.size() <= 255 && name[0] != '.' &&
+         name.find('/') == std::string::npos && name.find('\0') == std::string::npos &&
+         !isManifestName(name) && name != "gallery.html" &&
+         !isShardFileName(name, "gallery-shard-", ".html");
+}
+
+std::string jobSha256(const std::string& jobPath) {
+  const Result<std::string> bytes = readInputFile(jobPath, kMaxSettingsBytes);
+  if (!bytes.isOk()) return "";
+  std::string hashes = sha256Hex(bytes.value());
+  const Result<Job> job = readJobFile(jobPath);
+  if (job.isOk()) {
+    const Job& j = job.value();
+    const std::vector<std::string> inputs =
+        j.mode == Job::Mode::Forward ? std::vector<std::string>{j.forward.pieceA, j.forward.pieceB}
+                                     : std::vector<std::string>{j.inverse.curve};
+    for (const std::string& input : inputs) {
+      const Result<std::string> read = readInputFile(input);
+      hashes += " " + (read.isOk() ? sha256Hex(read.value()) : std::string("missing"));
+    }
+  }
+  return sha256Hex(hashes);
+}
+
+JobList jobListOf(const std::vector<BatchJob>& jobs) {
+  std::string all;
+  for (const BatchJob& job : jobs) all += sha256Hex(job.name) + " " + job.sha256 + "\n";
+  return {int(jobs.size()), sha256Hex(all)};
+}
 
 Result<std::vector<BatchJob>> listBatchJobs(const std::string& input) {
   std::vector<BatchJob> jobs;
@@ -165,11 +266,19 @@ Result<std::vector<BatchJob>> listBatchJobs(const std::string& input) {
   for (std::size_t k = 0; k < jobs.size(); ++k) {
     jobs[k].index = int(k);
     jobs[k].name = fs::path(jobs[k].path).stem().string();
+    if (!isJobName(jobs[k].name))
+      return Status(ErrorCode::InputInvalid,
+                    input + ": " + printable(jobs[k].path, 200) + " cannot have its result in OUT/" +
+                        printable(jobs[k].name, 200) + "/ (a hidden name, one longer than 255 bytes, or one of the "
+                                       "batch's own files: batch.json, gallery.html, their shards'); "
+                                       "nothing was run (rename the job file)");
     const auto [at, inserted] = byName.emplace(jobs[k].name, jobs[k].path);
     if (!inserted)
-      return Status(ErrorCode::InputInvalid, input + ": " + at->second + " and " + jobs[k].path +
-                                                 " would both write " + jobs[k].name + "/");
+      return Status(ErrorCode::InputInvalid, input + ": " + printable(at->second, 200) + " and " +
+                                                 printable(jobs[k].path, 200) + " would both write " +
+                                                 printable(jobs[k].name, 200) + "/");
   }
+  for (BatchJob& job : jobs) job.sha256 = jobSha256(job.path);
   return jobs;
 }
 
@@ -181,9 +290,22 @@ std::vector<BatchJob> shardOf(const std::vector<BatchJob>& jobs, int shard, int 
 }
 
 bool parseShard(const std::string& text, int& shard, int& shards) {
-  char rest = 0;
-  return std::sscanf(text.c_str(), "%d/%d%c", &shard, &shards, &rest) == 2 && shards >= 1 &&
-         shard >= 1 && shard <= shards;
+  const std::size_t slash = text.find('/');
+  if (slash == std::string::npos) return false;
+  // Decimal digits only, at most 7 of them: no sign, no space, no overflow to wrap around.
+  const auto number = [](const std::string& digits, int& value) {
+    if (digits.empty() || digits.size() > 7 || digits.find_first_not_of("0123456789") != std::string::npos)
+      return false;
+    value = std::stoi(digits);
+    return true;
+  };
+  int i = 0, n = 0;
+  if (!number(text.substr(0, slash), i) || !number(text.substr(slash + 1), n) || n < 1 ||
+      n > 1000000 || i < 1 || i > n)
+    return false;
+  shard = i;
+  shards = n;
+  return true;
 }
 
 std::string manifestName(const BatchOptions& options) {
@@ -204,30 +326,37 @@ Result<std::vector<BatchRow>> runBatch(const std::vector<BatchJob>& jobs,
                                        const std::atomic<bool>& interrupted) {
   std::error_code ec;
   fs::create_directories(outDir, ec);
-  if (!fs::is_directory(outDir))
+  if (!fs::is_directory(outDir, ec))
     return Status(ErrorCode::OutputFailed, outDir + ": cannot create the folder (" + ec.message() + ")");
+  BatchLock lock;
+  if (Status s = lock.acquire(outDir, options, false); !s.isOk()) return s;
+  const JobList list = jobListOf(jobs);
   const fs::path manifest = fs::path(outDir) / manifestName(options);
   const std::vector<BatchJob> slice = shardOf(jobs, options.shard, options.shards);
-  // Resumed: a job the manifest has as finished, with its result still in place, is kept.
-  std::map<int, BatchRow> kept;
-  if (options.resume && fs::exists(manifest)) {
-    Result<std::vector<BatchRow>> earlier = readManifest(manifest);
+  // Resumed: a job the manifest has as finished, made from the same job file and inputs as now,
+  // with its result still in place, is kept.
+  std::map<std::string, BatchRow> kept;
+  if (options.resume && fs::exists(manifest, ec)) {
+    Result<Manifest> earlier = readManifest(manifest);
     if (!earlier.isOk()) return earlier.status();
-    for (const BatchRow& r : earlier.value())
-      if (r.status != "failed" && fs::exists(fs::path(outDir) / r.job.name / "report.json"))
-        kept[r.job.index] = r;
+    for (const BatchRow& r : earlier.value().rows)
+      if (r.status != "failed" && !r.job.sha256.empty() && isJobName(r.job.name) &&
+          fs::exists(fs::path(outDir) / r.job.name / "report.json"))
+        kept[r.job.name] = r;
   }
   std::vector<BatchRow> rows;
   std::vector<BatchJob> pending;
   for (const BatchJob& job : slice) {
-    const auto at = kept.find(job.index);
-    if (at != kept.end() && at->second.job.path == job.path)
+    const auto at = kept.find(job.name);
+    if (at != kept.end() && at->second.job.sha256 == job.sha256 && !job.sha256.empty()) {
       rows.push_back(at->second);
-    else
+      rows.back().job = job;  // its place in this list
+    } else {
       pending.push_back(job);
+    }
   }
   std::mutex mutex;
-  Status written = writeFileAtomically(manifest.string(), manifestText(rows, options, false));
+  Status written = writeFileAtomically(manifest.string(), manifestText(rows, options, list, false));
   if (!written.isOk()) return written;
   const auto begun = Clock::now();
   int done = 0, failed = 0;
@@ -237,7 +366,12 @@ Result<std::vector<BatchRow>> runBatch(const std::vector<BatchJob>& jobs,
         const BatchJob& job = pending[k];
         const std::string dir = (fs::path(outDir) / job.name).string();
         const auto jobBegun = Clock::now();
-        const JobOutcome outcome = run(job.path, dir);
+        JobOutcome outcome;
+        const Status guarded = runGuarded([&] {
+          outcome = run(job.path, dir);
+          return Status::ok();
+        });
+        if (!guarded.isOk()) outcome = {exitCode(guarded.code()), guarded.message()};
         // An interrupted job is not finished: no row, so that a resumed batch runs it.
         if (interrupted) return;
         BatchRow row;
@@ -254,14 +388,14 @@ Result<std::vector<BatchRow>> runBatch(const std::vector<BatchJob>& jobs,
         row.status = !saved ? "failed" : outcome.exitCode == 0 ? "done" : "gate failed";
         row.seconds = std::chrono::duration<double>(Clock::now() - jobBegun).count();
         row.figures.seconds = row.seconds;
-        const std::lock_guard<std::mutex> lock(mutex);
+        const std::lock_guard<std::mutex> held(mutex);
         rows.push_back(std::move(row));
         std::sort(rows.begin(), rows.end(),
                   [](const BatchRow& a, const BatchRow& b) { return a.job.index < b.job.index; });
         ++done;
         failed += outcome.exitCode != 0;
         if (written.isOk())
-          written = writeFileAtomically(manifest.string(), manifestText(rows, options, false));
+          written = writeFileAtomically(manifest.string(), manifestText(rows, options, list, false));
         if (progress)
           progress(done, failed, int(pending.size()),
                    std::chrono::duration<double>(Clock::now() - begun).count());
@@ -284,20 +418,59 @@ Result<std::vector<BatchRow>> mergeBatch(const std::string& outDir) {
   if (manifests.empty())
     return Status(ErrorCode::InputUnreadable, outDir + ": holds no batch manifest (batch.json or "
                                                        "batch-shard-I-of-N.json)");
+  BatchLock lock;
+  if (Status s = lock.acquire(outDir, {}, true); !s.isOk()) return s;
   // Oldest first, so that a job in several manifests keeps its latest row.
   std::sort(manifests.begin(), manifests.end(), [](const fs::path& a, const fs::path& b) {
-    return fs::last_write_time(a) < fs::last_write_time(b);
+    std::error_code e;
+    return fs::last_write_time(a, e) < fs::last_write_time(b, e);
   });
-  std::map<int, BatchRow> byIndex;
+  // Every manifest must come from one job list: shards of another order, of other jobs, or run
+  // after a job file or an input was edited would merge into a table that matches no list.
+  std::map<std::string, BatchRow> byName;
+  std::map<int, std::string> nameAt;
+  JobList list;
+  fs::path listedBy;
+  const auto mismatch = [&](const fs::path& a, const fs::path& b, const std::string& what) {
+    return Status(ErrorCode::InputInvalid,
+                  a.string() + " and " + b.filename().string() + " were run from different job " +
+                      "lists (" + what + "); nothing was merged (run the shards again from one list)");
+  };
   for (const fs::path& path : manifests) {
-    Result<std::vector<BatchRow>> rows = readManifest(path);
-    if (!rows.isOk()) return rows.status();
-    for (BatchRow& r : rows.value()) byIndex[r.job.index] = std::move(r);
+    Result<Manifest> read = readManifest(path);
+    if (!read.isOk()) return read.status();
+    const JobList& jobs = read.value().jobs;
+    if (jobs.count >= 0) {
+      if (list.count >= 0 && (jobs.count != list.count || jobs.sha256 != list.sha256))
+        return mismatch(listedBy, path, jobs.count != list.count ? "another number of jobs"
+                                                                 : "other jobs, another order or "
+                                                                   "edited files");
+      if (list.count < 0) {
+        list = jobs;
+        listedBy = path;
+      }
+    }
+    for (BatchRow& r : read.value().rows) {
+      const auto named = nameAt.emplace(r.job.index, r.job.name);
+      if (!named.second && named.first->second != r.job.name)
+        return mismatch(manifests.front(), path, "job " + std::to_string(r.job.index) + " is " +
+                                                     named.first->second + " in one, " +
+                                                     r.job.name + " in the other");
+      byName[r.job.name] = std::move(r);
+    }
   }
   std::vector<BatchRow> rows;
-  for (auto& [index, row] : byIndex) rows.push_back(std::move(row));
+  for (auto& [name, row] : byName) rows.push_back(std::move(row));
+  std::sort(rows.begin(), rows.end(),
+            [](const BatchRow& a, const BatchRow& b) { return a.job.index < b.job.index; });
+  for (std::size_t k = 1; k < rows.size(); ++k)
+    if (rows[k].job.index == rows[k - 1].job.index)
+      return mismatch(manifests.front(), manifests.back(),
+                      rows[k - 1].job.name + " and " + rows[k].job.name + " are both job " +
+                          std::to_string(rows[k].job.index));
   const fs::path base = fs::path(outDir);
-  if (Status s = writeFileAtomically((base / "batch.json").string(), manifestText(rows, {}, true));
+  if (Status s = writeFileAtomically((base / "batch.json").string(),
+                                     manifestText(rows, {}, list, true));
       !s.isOk())
     return s;
   if (Status s = writeGallery(outDir, rows, "gallery.html"); !s.isOk()) return s;

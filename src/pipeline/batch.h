@@ -15,21 +15,41 @@ namespace dform {
 
 /// One job of a batch: its file and the result folder's name (the file's stem).
 struct BatchJob {
-  int index = 0;     ///< its place in the batch's list, from 0
-  std::string path;  ///< the job file, as listed (relative paths of a list file: from its folder)
-  std::string name;  ///< OUT/<name>/
+  int index = 0;       ///< its place in the batch's list, from 0
+  std::string path;    ///< the job file, as listed (relative paths of a list file: from its folder)
+  std::string name;    ///< OUT/<name>/
+  std::string sha256;  ///< jobSha256 of the job when the batch listed it
 };
+
+/// What a job's result is made from, as one SHA-256: the job file's bytes and those of the
+/// inputs it names (the pieces, or the curve). A job file or an input edited since gives
+/// another; a file that cannot be read counts as missing. Empty when the job file is unreadable.
+std::string jobSha256(const std::string& jobPath);
+
+/// The identity of a batch's job list: how many jobs, and one SHA-256 of every job's name and
+/// jobSha256 in list order. Shards run from the same list and the same files agree on it.
+struct JobList {
+  int count = -1;      ///< -1: not recorded
+  std::string sha256;
+};
+JobList jobListOf(const std::vector<BatchJob>& jobs);
+
+/// Whether `name` can be a job's result folder in OUT: not empty, at most 255 bytes, not hidden
+/// (".x": the folders' locks), no '/', and none of the batch's own files (batch.json,
+/// gallery.html, batch-shard-I-of-N.json, gallery-shard-I-of-N.html).
+bool isJobName(const std::string& name);
 
 /// The jobs of `input`: a text file with one job file per line (blank lines and lines starting
 /// with # skipped; relative paths from the list's folder), or every *.json in a folder, sorted by
-/// name. InputUnreadable naming the file; InputInvalid when the list is empty or two jobs have
-/// the same name.
+/// name, each with its jobSha256. InputUnreadable naming the file; InputInvalid when the list is
+/// empty, two jobs have the same name, or a name is not isJobName (all refused before anything
+/// runs).
 Result<std::vector<BatchJob>> listBatchJobs(const std::string& input);
 
 /// Shard `shard` of `shards` (1-based): job k belongs to shard k % shards + 1.
 std::vector<BatchJob> shardOf(const std::vector<BatchJob>& jobs, int shard, int shards);
 
-/// "i/N" -> {i, N}; false unless 1 <= i <= N.
+/// "i/N" (decimal digits only) -> {i, N}; false unless 1 <= i <= N <= 1000000.
 bool parseShard(const std::string& text, int& shard, int& shards);
 
 /// A finished job: what happened and what its saved result measures.
@@ -53,7 +73,8 @@ using BatchRunner = std::function<JobOutcome(const std::string& jobPath, const s
 
 struct BatchOptions {
   int shard = 1, shards = 1;  ///< run only this slice
-  bool resume = false;        ///< skip jobs the manifest has as finished with their result in place
+  bool resume = false;        ///< skip jobs the manifest has as finished with their result in
+                              ///< place and the same jobSha256 as now
   int threads = 0;            ///< jobs at once; 0: the machine's cores
 };
 
@@ -65,9 +86,11 @@ std::string manifestName(const BatchOptions& options);
 std::string galleryName(const BatchOptions& options);
 
 /// Runs the options' shard of `jobs` into `outDir` (created when missing), rewriting the
-/// manifest atomically after each job, and draws the slice's gallery (galleryName) when all
-/// have run. Returns every row of the manifest (resumed ones too), in
-/// job order. Interrupted when `interrupted` is set (the finished jobs are in the manifest);
+/// manifest atomically after each job. A lock in `outDir` keeps a second batch off it (shards
+/// of one batch may run side by side, each on its own manifest): OutputFailed at once naming the
+/// process that holds it. An exception in a job is that job's failure. Draws the slice's gallery
+/// (galleryName) when all have run. Returns every row of the manifest (resumed ones too), in job
+/// order. Interrupted when `interrupted` is set (the finished jobs are in the manifest);
 /// OutputFailed naming the file.
 Result<std::vector<BatchRow>> runBatch(const std::vector<BatchJob>& jobs,
                                        const BatchOptions& options, const std::string& outDir,
@@ -76,7 +99,9 @@ Result<std::vector<BatchRow>> runBatch(const std::vector<BatchJob>& jobs,
 
 /// Gathers every manifest in `outDir` (batch.json and the shards') into batch.json, one row per
 /// job (the latest where several have it), in job order, and gallery.html. Returns the rows.
-/// InputUnreadable when there is no manifest, InputInvalid naming a manifest that is not one.
+/// InputUnreadable when there is no manifest, InputInvalid naming a manifest that is not one, or
+/// the manifests that were run from different job lists (another order, other jobs, a job or an
+/// input edited in between): nothing is written then. OutputFailed while a batch runs in `outDir`.
 Result<std::vector<BatchRow>> mergeBatch(const std::string& outDir);
 
 }  // namespace dform

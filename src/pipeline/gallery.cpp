@@ -65,8 +65,8 @@ constexpr const char* kScript = R"(
 
 std::string galleryHtml(const std::string& title, const std::vector<SweepRow>& rows) {
   std::string html = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>" +
-                     escapeXml(title) + "</title>\n<style>" + kStyle + "</style></head>\n<body>\n<h1>" +
-                     escapeXml(title) + "</h1>\n<p>" + std::to_string(rows.size()) +
+                     escapeXml(utf8Text(title)) + "</title>\n<style>" + kStyle + "</style></head>\n<body>\n<h1>" +
+                     escapeXml(utf8Text(title)) + "</h1>\n<p>" + std::to_string(rows.size()) +
                      " results; click a card for its report, a button to sort.</p>\n"
                      "<div class=\"sort\">sort by ";
   for (const Key& key : kKeys)
@@ -78,29 +78,32 @@ std::string galleryHtml(const std::string& title, const std::vector<SweepRow>& r
     const bool ok = r.solved && r.passed;
     const std::string nan = "NaN";
     html += std::string("<div class=\"card") + (ok ? "" : " failed") + "\" data-subfolder=\"" +
-            escapeXml(r.subfolder) + "\" data-order=\"" + std::to_string(k) +
+            escapeXml(utf8Text(r.subfolder)) + "\" data-order=\"" + std::to_string(k) +
             "\" data-height=\"" + (r.solved ? number("%.17g", r.heightMm) : nan) +
             "\" data-volume=\"" + (r.solved ? number("%.17g", r.volumeMm3) : nan) +
             "\" data-curvature=\"" + (r.solved ? number("%.17g", r.maxCurvature) : nan) +
             "\" data-passed=\"" + (ok ? "0" : "1") + "\" data-seconds=\"" +
             number("%.17g", r.seconds) + "\">\n";
-    html += "<a href=\"" + escapeXml(r.subfolder) + "/report.html\">";
+    // A card links to its result's page only where the result is there (an empty subfolder: the
+    // folder is not one the run made, and nothing is linked).
+    const bool linked = !r.subfolder.empty();
+    if (linked) html += "<a href=\"" + escapeXml(utf8Text(r.subfolder)) + "/report.html\">";
     html += "<div class=\"pic\">" + (r.solved ? r.svg : std::string("<span>no shape</span>")) +
             "</div>\n<table>";
     const auto line = [&](const std::string& name, const std::string& value) {
       html += "<tr><td>" + name + "</td><td>" + value + "</td></tr>";
     };
-    html += "<tr><td colspan=\"2\"><b>" + escapeXml(r.label) + "</b></td></tr>";
+    html += "<tr><td colspan=\"2\"><b>" + escapeXml(utf8Text(r.label)) + "</b></td></tr>";
     if (r.solved) {
-      line("model", escapeXml(r.model));
+      line("model", escapeXml(utf8Text(r.model)));
       line("height", number("%.1f mm", r.heightMm));
       line("volume", number("%.4g", r.volumeMm3 / 1000) + " cm&sup3;");
       line("max |curvature|", number("%.3g rad", r.maxCurvature));
     }
     line("gate", ok ? "passed" : r.solved ? "FAILED" : "not solved");
     line("time", number("%.2f s", r.seconds));
-    html += "</table></a>\n";
-    if (!ok) html += "<div class=\"why\">" + escapeXml(r.reason) + "</div>\n";
+    html += linked ? "</table></a>\n" : "</table>\n";
+    if (!ok) html += "<div class=\"why\">" + escapeXml(utf8Text(r.reason)) + "</div>\n";
     html += "</div>\n";
   }
   html += std::string("</div>\n<script>") + kScript + "</script>\n</body></html>\n";

@@ -203,10 +203,12 @@ bool setNamedWeight(Job& job, const std::string& name, double value) {
 namespace {
 
 // An input as a job file records it: a file by its absolute path (the job runs again from any
-// folder); a name that is no file (a shape made in memory, named by its role) as it is.
+// folder); a name that is no file (a shape made in memory, named by its role) as it is. Bytes
+// that are not UTF-8 (a Latin-1 file name) are recorded as the text \xNN: JSON holds text only.
 std::string recordedInput(const std::string& input) {
   std::error_code ec;
-  return std::filesystem::exists(input, ec) ? std::filesystem::absolute(input).string() : input;
+  return utf8Text(std::filesystem::exists(input, ec) ? std::filesystem::absolute(input).string()
+                                                     : input);
 }
 
 }  // namespace
@@ -238,7 +240,7 @@ std::string jobToJson(const Job& job) {
            {"weights", weightsJson(inverseTerms(), i.solve.weights)},
            {"solver", solverJson(i.solve.solver)}};
   }
-  return out.dump(2);
+  return out.dump(2, ' ', false, json::error_handler_t::replace);
 }
 
 }  // namespace dform

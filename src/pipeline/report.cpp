@@ -60,6 +60,10 @@ json modelJson(const ModelUsed& used) {
                 {"chord_move_mm", numberOrNull(used.chordMoveMm)},
                 {"doubly_covered", used.doublyCovered},
                 {"found_creases", creases}});
+  if (used.name == "general")
+    out.update({{"newton_steps", used.newtonSteps},
+                {"stationarity", numberOrNull(used.stationarity)},
+                {"stiffness", numberOrNull(used.stiffness)}});
   return out;
 }
 
@@ -67,7 +71,7 @@ json modelJson(const ModelUsed& used) {
 // by opening the file again) and one measured size.
 json inputJson(const std::string& path, const std::string& sha256, const char* sizeKey,
                double size) {
-  return {{"path", path},
+  return {{"path", utf8Text(path)},
           {"sha256", sha256.empty() ? json(nullptr) : json(sha256)},
           {sizeKey, numberOrNull(size)}};
 }
@@ -185,7 +189,7 @@ json header(const Job& job, const char* mode) {
 }
 
 Result<std::string> write(const std::string& dir, const json& report) {
-  std::string text = report.dump(2) + "\n";
+  std::string text = report.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
   if (Status s = writeFileAtomically((std::filesystem::path(dir) / "report.json").string(), text);
       !s.isOk())
     return s;
@@ -197,7 +201,7 @@ Result<std::string> write(const std::string& dir, const json& report) {
 std::string metricsJsonText(const Metrics& metrics, const CurveMatch* curve) {
   json figures = metricsJson(metrics);
   if (curve) addCurveMatch(figures, *curve);
-  return figures.dump();
+  return figures.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
 Result<std::string> writeForwardReport(const std::string& dir, const Job& job, const ForwardRun& run,
@@ -282,6 +286,50 @@ Result<std::string> savedGateName(const std::string& dir) {
   return saved["gate"]["name"].get<std::string>();
 }
 
+namespace {
+
+// What report.json says of how the result was made, against the result: its schema, the model
+// it names (an exact result lies on the exact shape: its seam within 1e-6 of the diagonal of
+// it, or of its curve zipped again), the inputs it records and the job's resolution.
+void compareSavedJob(const json& report, const Metrics& metrics, const CurveMatch* curve,
+                     std::vector<std::string>& differences) {
+  const auto differ = [&differences](const std::string& what) { differences.push_back(what); };
+  const auto at = [](const json& object, const char* key) {
+    return object.is_object() && object.contains(key) ? object[key] : json(nullptr);
+  };
+  if (at(report, "schema") != kReportSchema || at(report, "schema_version") != kReportSchemaVersion)
+    differ("schema: report.json says " + describeJsonValue(at(report, "schema")) + " version " +
+           describeJsonValue(at(report, "schema_version")) + ", dform writes \"" + kReportSchema +
+           "\" version " + std::to_string(kReportSchemaVersion));
+  const json model = at(at(report, "model"), "name");
+  const double exactDistance = curve ? curve->roundtrip_max_rel : metrics.exact_distance_max_rel;
+  if (model != "exact" && model != "paper")
+    differ("model.name: report.json says " + describeJsonValue(model) + ", not exact or paper");
+  else if (model == "exact" && !(exactDistance <= 1e-6))
+    differ("model.name: report.json says exact, but the saved shape is " +
+           describeJsonValue(json(exactDistance)) + " of its size from the exact one");
+  const json job = at(report, "job"), inputs = at(report, "inputs");
+  const std::vector<std::string> names = curve ? std::vector<std::string>{"curve"}
+                                               : std::vector<std::string>{"piece_a", "piece_b"};
+  for (const std::string& name : names) {
+    const json input = at(inputs, name.c_str()), path = at(input, "path"), hash = at(input, "sha256");
+    const json named = at(job, name.c_str());
+    if (!path.is_string() || !hash.is_string() || hash.get<std::string>().size() != 64)
+      differ("inputs." + name + ": report.json records no path and SHA-256 of it");
+    else if (!named.is_string() || std::filesystem::path(named.get<std::string>()).filename() !=
+                                       std::filesystem::path(path.get<std::string>()).filename())
+      differ("job." + name + ": report.json says " + describeJsonValue(named) +
+             ", its inputs record " + describeJsonValue(path));
+  }
+  const json resolution = at(job, "resolution"), seam = at(at(report, "mesh"), "seam_vertices");
+  if (!resolution.is_number_integer() || !seam.is_number_integer() ||
+      seam.get<long long>() < resolution.get<long long>())
+    differ("job.resolution: report.json says " + describeJsonValue(resolution) + ", the seam has " +
+           describeJsonValue(seam) + " vertices");
+}
+
+}  // namespace
+
 Result<std::vector<std::string>> compareWithReport(const std::string& dir, const DForm& model,
                                                    const Metrics& metrics,
                                                    const CurveMatch* curve) {
@@ -313,6 +361,14 @@ Result<std::vector<std::string>> compareWithReport(const std::string& dir, const
   if (curve) addCurveMatch(now, *curve);
   const json saved = entry(report, "metrics");
   for (const auto& [key, value] : now.items()) compare("metrics." + key, entry(saved, key), value);
+  // A figure the saved result does not give is one report.json may not claim either; an inverse
+  // report's curve_length_mm (the curve as read, before resampling) is the one it adds.
+  if (saved.is_object())
+    for (const auto& [key, value] : saved.items())
+      if (!now.contains(key) && !(curve && key == "curve_length_mm"))
+        differences.push_back("metrics." + key + ": report.json says " + describeJsonValue(value) +
+                              ", a figure dform does not write");
+  compareSavedJob(report, metrics, curve, differences);
   return differences;
 }
 

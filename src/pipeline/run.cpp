@@ -3,6 +3,7 @@
 #include <chrono>
 #include <new>
 
+#include "core/input_file.h"
 #include "core/result_folder.h"
 #include "io/model_files.h"
 #include "model/resources.h"
@@ -216,6 +217,9 @@ Result<std::vector<SweepRow>> sweepAndWrite(const Job& base, const SweepOptions&
                                             const RunSettings& settings,
                                             const SweepProgress& progress,
                                             const std::atomic<bool>& interrupted) {
+  // A piece that cannot be read fails every start alike: said once, before the folder is made.
+  for (const std::string& piece : {base.forward.pieceA, base.forward.pieceB})
+    if (const Result<std::string> read = readInputFile(piece); !read.isOk()) return read.status();
   // Each start runs as `dform forward` would, into its own folder, its messages kept in its
   // report.json (its sink has no listener: many runs at once would interleave on a terminal).
   const SweepRunner run = [&](const Job& job, const std::string& dir, MessageSink& sink) {

@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "core/atomic_file.h"
+#include "core/message_text.h"
 #include "io/model_files.h"
 #include "report/html_report.h"
 #include "validate/metrics.h"
@@ -84,7 +85,8 @@ Result<GateLimits> loadGate(const std::string& nameOrPath) {
     // A preset name that is not one is a usage mistake (2), as an unknown export profile is; a
     // gate file that cannot be read is unreadable input (3).
     const fs::path file = fs::path(templatesDir()) / "gates" / (nameOrPath + ".json");
-    if (!fs::exists(file)) {
+    std::error_code missing;
+    if (!fs::exists(file, missing)) {
       std::set<std::string> names;
       for (const auto& entry : fs::directory_iterator(file.parent_path()))
         if (entry.path().extension() == ".json") names.insert(entry.path().stem().string());
@@ -97,7 +99,8 @@ Result<GateLimits> loadGate(const std::string& nameOrPath) {
   }
   // "gates/strict.json" as the docs write it: a path relative to templates/ when not one here.
   const std::string inTemplates = templatesDir() + "/" + nameOrPath;
-  if (!fs::exists(nameOrPath) && fs::path(nameOrPath).is_relative() && fs::exists(inTemplates))
+  std::error_code ec;
+  if (!fs::exists(nameOrPath, ec) && fs::path(nameOrPath).is_relative() && fs::exists(inTemplates, ec))
     return readGateFile(inTemplates);
   return readGateFile(nameOrPath);
 }
@@ -156,7 +159,7 @@ Result<ExportOptions> exportOptions(const OutputOptions& output) {
 // the curvature map the report shows (COLOR_0).
 Result<LaidOutExport> layOut(const DForm& model, ExportOptions options,
                              const std::string& jobName) {
-  options.jobName = jobName;
+  options.jobName = utf8Text(jobName);  // Cairo's PDF metadata and the SVG title take UTF-8 only
   options.failedGateMark = false;  // stamped, if at all, once the gate is known (render)
   const Eigen::VectorXd curvature[2] = {curvatureMap(model.a), curvatureMap(model.b)};
   options.curvatureA.assign(curvature[0].data(), curvature[0].data() + curvature[0].size());

@@ -25,7 +25,7 @@ std::string savedJobName(const std::string& dir) {
   std::ifstream in(path);
   const nlohmann::json report = nlohmann::json::parse(in, nullptr, false);
   if (report.is_object() && report.contains("job")) {
-    Result<Job> job = parseJobJson(report["job"].dump(), path.string(), dir);
+    Result<Job> job = parseJobJson(report["job"].dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), path.string(), dir);
     if (job.isOk()) return jobName(job.value());
   }
   return fs::path(dir).filename().string();
@@ -34,7 +34,8 @@ std::string savedJobName(const std::string& dir) {
 // An inverse result's target curve, when the folder holds one, checked against the seam.
 Result<std::optional<Curve3>> readSavedTarget(const std::string& dir, const DForm& model) {
   const std::string curvePath = (fs::path(dir) / ModelFileNames::targetCurve).string();
-  if (!fs::exists(curvePath)) return std::optional<Curve3>();
+  std::error_code ec;
+  if (!fs::exists(curvePath, ec)) return std::optional<Curve3>();
   Result<Curve3> curve = readCurve(curvePath);
   if (!curve.isOk()) return curve.status();
   if (std::size_t(curve.value().points.rows()) != model.a.seam.size())
@@ -49,7 +50,8 @@ Result<std::string> exportSavedResult(const std::string& dir, const OutputOption
                                       MessageSink& sink, const std::atomic<bool>& interrupted) {
   const Result<ExportOptions> exporting = exportOptions(output);
   if (!exporting.isOk()) return exporting.status();
-  if (!fs::is_directory(dir))
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec))  // a name too long for the system is no folder either
     return Status(ErrorCode::InputUnreadable, dir + ": no such result folder");
   // Locked before it is read, so that no run replaces the result between reading and writing;
   // the export is staged with the result's other files and swapped in whole.

@@ -1,17 +1,23 @@
 #include "pipeline/sweep.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
+#include <exception>
 #include <mutex>
+#include <new>
 #include <nlohmann/json.hpp>
 #include <thread>
 
 #include "core/atomic_file.h"
+#include "core/message_text.h"
 #include "core/result_folder.h"
+#include "pipeline/run_steps.h"
 #include "io/json_util.h"
 #include "io/model_files.h"
 #include "report/views.h"
@@ -40,9 +46,20 @@ double coneVolume(const Piece& piece, const Eigen::Vector3d& apex) {
 
 double maxAbs(const Eigen::VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
 
-// A number for JSON: finite, or null.
-
 }  // namespace
+
+Status runGuarded(const std::function<Status()>& run) {
+  try {
+    return run();
+  } catch (const std::bad_alloc&) {
+    return Status(ErrorCode::Usage, "out of memory (the machine or its limits give this run less "
+                                    "than it needs); try a lower resolution");
+  } catch (const std::exception& e) {
+    return Status(ErrorCode::Internal, std::string("internal error: ") + printable(e.what(), 200));
+  } catch (...) {
+    return Status(ErrorCode::Internal, "internal error");
+  }
+}
 
 std::vector<SweepStart> sweepStarts(const Job& base, const SweepOptions& options) {
   std::vector<SweepStart> starts;
@@ -107,8 +124,20 @@ SweepRow measureResult(const std::string& dir) {
 void parallelFor(std::size_t count, int threads, const std::function<void(std::size_t)>& work,
                  const std::atomic<bool>& stop) {
   std::atomic<std::size_t> next{0};
+  // An exception that escaped a worker thread would end the process (std::terminate, exit 134)
+  // with the folders' locks and staging left behind: the first is kept, the pool stops handing
+  // out work, and it is thrown again here once every thread has joined.
+  std::exception_ptr failure;
+  std::mutex failureMutex;
+  std::atomic<bool> failed{false};
   const auto worker = [&] {
-    for (std::size_t k; !stop && (k = next++) < count;) work(k);
+    try {
+      for (std::size_t k; !stop && !failed && (k = next++) < count;) work(k);
+    } catch (...) {
+      const std::lock_guard<std::mutex> lock(failureMutex);
+      if (!failure) failure = std::current_exception();
+      failed = true;
+    }
   };
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   const std::size_t n = std::min<std::size_t>(threads > 0 ? std::size_t(threads) : cores, count);
@@ -116,6 +145,7 @@ void parallelFor(std::size_t count, int threads, const std::function<void(std::s
   for (std::size_t t = 1; t < n; ++t) pool.emplace_back(worker);
   worker();
   for (std::thread& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
 }
 
 Result<std::vector<SweepRow>> runSweep(const Job& base, const SweepOptions& options,
@@ -132,6 +162,21 @@ Result<std::vector<SweepRow>> runSweep(const Job& base, const SweepOptions& opti
   };
   if (Status s = folder.begin(outDir, {"sweep.json", "gallery.html"}, isStartFolder); !s.isOk())
     return s;
+  // Each earlier start folder is locked as a run locks its folder, and refused as a run refuses
+  // it when it holds anything but a result's files: it goes with the swap, and an export into
+  // it meanwhile would be swapped away with it.
+  std::vector<std::unique_ptr<ResultFolder>> heldStarts;
+  std::error_code ec;
+  std::vector<std::string> earlierStarts;
+  for (const fs::directory_entry& entry : fs::directory_iterator(outDir, ec))
+    if (isStartFolder(entry.path().filename().string())) earlierStarts.push_back(entry.path().filename().string());
+  std::sort(earlierStarts.begin(), earlierStarts.end());
+  for (const std::string& name : earlierStarts) {
+    heldStarts.push_back(std::make_unique<ResultFolder>());
+    if (Status s = heldStarts.back()->hold((fs::path(outDir) / name).string(), resultFileNames());
+        !s.isOk())
+      return s;
+  }
   const auto begun = Clock::now();
   std::vector<SweepRow> rows(starts.size());
   std::mutex mutex;
@@ -141,7 +186,7 @@ Result<std::vector<SweepRow>> runSweep(const Job& base, const SweepOptions& opti
     const std::string dir = (fs::path(folder.staging()) / start.subfolder).string();
     const auto jobBegun = Clock::now();
     MessageSink sink;  // each job its own: its messages go into its report.json
-    const Status status = run(start.job, dir, sink);
+    const Status status = runGuarded([&] { return run(start.job, dir, sink); });
     // A result whose export failed is saved all the same: measured, and failed with why.
     SweepRow row = fs::exists(fs::path(dir) / "report.json") ? measureResult(dir) : SweepRow{};
     if (!status.isOk()) {
@@ -201,7 +246,7 @@ std::string sweepJson(const Job& base, const SweepOptions& options,
                     {"reason", r.reason},
                     {"seconds", numberOrNull(r.seconds)}});
   out["rows"] = list;
-  return out.dump(2) + "\n";
+  return out.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace dform

@@ -68,9 +68,14 @@ Result<std::vector<SweepRow>> runSweep(const Job& base, const SweepOptions& opti
                                        const SweepProgress& progress,
                                        const std::atomic<bool>& interrupted);
 
+/// `run()`, or an exception it throws as a Status (Internal naming the exception, Usage for an
+/// allocation that failed): one job of many fails, not the process.
+Status runGuarded(const std::function<Status()>& run);
+
 /// Calls `work(k)` for k = 0 .. count-1 on `threads` threads (0: the machine's cores), each k
 /// once, stopping to hand out new ones once `stop` is set. `work` must be safe to call at once
-/// from several threads.
+/// from several threads. An exception thrown by `work` stops the handing out and is thrown
+/// again once every thread has finished.
 void parallelFor(std::size_t count, int threads, const std::function<void(std::size_t)>& work,
                  const std::atomic<bool>& stop);
 

@@ -28,7 +28,7 @@ std::string show(const json& v) {
     std::snprintf(text, sizeof text, "%.4g", v.get<double>());
     return text;
   }
-  return v.is_string() ? v.get<std::string>() : v.dump();
+  return v.is_string() ? v.get<std::string>() : v.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
 // {key, value} rows of a JSON object, for a two-column table.
@@ -232,7 +232,7 @@ Result<std::string> renderReportHtml(const ReportSources& sources, const DForm& 
                              show(relaxation["initial_energy"]) + " to " +
                              show(relaxation["final_energy"]));
   page.set("timings", keyValueRows(report["timings"]));
-  page.set("job", job.dump(2));
+  page.set("job", job.dump(2, ' ', false, json::error_handler_t::replace));
   data messages{data::type::list};
   for (const json& m : report["messages"]) {
     if (m["level"] == "debug") continue;

@@ -84,7 +84,7 @@ std::string viewerModelJson(const DForm& model, const CurvatureMaps& maps,
     coordinates(at, t.at);
     tickList.push_back({{"label", t.label}, {"at", at}});
   }
-  return json{{"pieces", pieces}, {"seam", seam}, {"ticks", tickList}}.dump();
+  return json{{"pieces", pieces}, {"seam", seam}, {"ticks", tickList}}.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
 }  // namespace dform

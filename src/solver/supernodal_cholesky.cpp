@@ -82,7 +82,10 @@ std::vector<int> blockOrdering(const Eigen::SparseMatrix<double, Eigen::ColMajor
   session.common.nmethods = 1;
   session.common.method[0].ordering = CHOLMOD_METIS;
   cholmod_sparse view = patternView(blocks, outer.data(), inner.data());
-  session.factor = cholmod_analyze(&view, &session.common);
+  {
+    const std::lock_guard<std::mutex> lock(cholmodAnalysisMutex());
+    session.factor = cholmod_analyze(&view, &session.common);
+  }
   if (!session.factor || session.common.status < CHOLMOD_OK) throw std::bad_alloc();
   const int* blockOrder = static_cast<const int*>(session.factor->Perm);
   std::vector<int> order;
@@ -93,6 +96,11 @@ std::vector<int> blockOrdering(const Eigen::SparseMatrix<double, Eigen::ColMajor
 }
 
 }  // namespace
+
+std::mutex& cholmodAnalysisMutex() {
+  static std::mutex mutex;
+  return mutex;
+}
 
 SupernodalCholesky::SupernodalCholesky(const SparseLower& pattern, int blockSize) {
   assert(pattern.rows() == pattern.cols() && pattern.isCompressed() && "a compressed square pattern");
@@ -107,6 +115,7 @@ SupernodalCholesky::SupernodalCholesky(const SparseLower& pattern, int blockSize
     c.method[0].ordering = CHOLMOD_GIVEN;
     session.factor = cholmod_analyze_p(&view, ordering.data(), nullptr, 0, &c);
   } else {
+    const std::lock_guard<std::mutex> lock(cholmodAnalysisMutex());
     session.factor = cholmod_analyze(&view, &c);
   }
   if (!session.factor || c.status < CHOLMOD_OK || !session.factor->is_super) throw std::bad_alloc();

@@ -12,9 +12,18 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <mutex>
 #include <vector>
 
 namespace dform {
+
+/// Held by every CHOLMOD analysis in dform. METIS, which CHOLMOD's analysis calls for its
+/// ordering, draws its random numbers from the C library's one rand() state, seeded at the start
+/// of each call: two analyses on two threads at once interleave their draws, and an ordering (so
+/// a factor's rounding, so a result) then depends on the timing. One at a time, every analysis
+/// is the one it is in a process of its own, whatever else the process runs (a sweep's or a
+/// batch's other jobs).
+std::mutex& cholmodAnalysisMutex();
 
 class SupernodalCholesky {
  public:

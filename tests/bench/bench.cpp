@@ -194,6 +194,11 @@ int main(int argc, char** argv) {
       sampleJob("squaricle", "squaricle.json", 125),
       sampleJob("demi", "demi.json", 79),
       sampleJob("anti", "anti.json", 63),
+      // The general engine against the referee: on convex pairs the exact body is the answer.
+      {"ellipses", "ellipses-a.svg", "ellipses-b.svg", 100, 0.0, ModelChoice::General},
+      {"ellipses", "ellipses-a.svg", "ellipses-b.svg", 200, 0.0, ModelChoice::General},
+      {"circle + square", "circle.svg", "square.svg", 100, 0.0, ModelChoice::General},
+      {"non-convex", "nonconvex-a.svg", "nonconvex-b.svg", 100, 0.0, ModelChoice::General},
   };
   if (smoke)  // a tiny sample job too, so that the job-file rows keep working
     cases = {{"ellipses", "ellipses-a.svg", "ellipses-b.svg", 30, 0.0}, sampleJob("anti", "anti.json", 20)};

@@ -353,11 +353,12 @@ TEST_F(CliTest, AFailedGateKeepsTheReportAndReleasesNothing) {
       sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
   ASSERT_EQ(run("forward " + pieces + " --resolution 30 -q -o " + out).exitCode, 0);
   ASSERT_TRUE(fs::exists(fs::path(out) / "pattern.svg"));
-  // Run again into the same folder against a gate no solve can pass (L_error <= 1e-9).
+  // Run again into the same folder with the paper model against a gate it cannot pass
+  // (L_error <= 1e-9; an exact result's L_error is rounding).
   const std::string tight =
       write("tight.json", R"({"version": 1, "name": "tight", "limits": {"L_error": 1e-9}})");
-  const Outcome failed =
-      run("forward " + pieces + " --resolution 30 -q --gate " + tight + " -o " + out);
+  const Outcome failed = run("forward " + pieces + " --resolution 30 --model paper -q --gate " +
+                             tight + " -o " + out);
   expectError(failed, 7, "no cutting files");
   EXPECT_NE(failed.out.find("gate: FAILED (tight: "), std::string::npos) << failed.out;
   for (const char* name :
@@ -386,14 +387,14 @@ TEST_F(CliTest, AFailedGateKeepsTheReportAndReleasesNothing) {
   page << std::ifstream(fs::path(out) / "report.html").rdbuf();
   EXPECT_NE(page.str().find("id=\"A-cut\""), std::string::npos)
       << "the report shows the new pattern";
-  EXPECT_NE(page.str().find("Made by the <strong>exact</strong> model"), std::string::npos)
+  EXPECT_NE(page.str().find("Made by the <strong>paper</strong> model"), std::string::npos)
       << "the page says which model made the shape";
   EXPECT_NE(page.str().find("from the exact D-Form the cut pieces make"), std::string::npos);
 
   // --export-anyway on the run itself: every cutting file written and marked, still exit 7.
   const std::string anyway = path("anyway");
-  const Outcome marked = run("forward " + pieces + " --resolution 30 -q --gate " + tight +
-                             " --export-anyway -o " + anyway);
+  const Outcome marked = run("forward " + pieces + " --resolution 30 --model paper -q --gate " +
+                             tight + " --export-anyway -o " + anyway);
   EXPECT_EQ(marked.exitCode, 7) << marked.err;
   std::ostringstream stl;
   stl << std::ifstream(fs::path(anyway) / "dform.stl", std::ios::binary).rdbuf();
@@ -477,14 +478,32 @@ TEST_F(CliTest, AFolderWhoseFileNamesAreTakenIsRefusedBeforeTheSolve) {
   }
 }
 
+TEST_F(CliTest, TheGeneralModelReportsHowStationaryItsAnswerIs) {
+  const std::string out = path("general");
+  ASSERT_EQ(run("forward " + sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg") +
+                " --model general --resolution 30 --no-export -q -o " + out)
+                .exitCode,
+            0);
+  EXPECT_EQ(schemaCheck((fs::path(out) / "report.json").string()), 0);
+  const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
+  EXPECT_EQ(report["model"]["name"], "general");
+  ASSERT_TRUE(report["model"]["stationarity"].is_number());
+  EXPECT_LE(report["model"]["stationarity"].get<double>(), 1e-6);
+  EXPECT_GT(report["model"]["newton_steps"].get<int>(), 0);
+  EXPECT_EQ(run("validate " + out).exitCode, 0);
+  const Outcome bad = run("forward " + sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg") +
+                            " --model generic -q -o " + path("generic"));
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_NE(bad.err.find("auto, exact, paper or general"), std::string::npos) << bad.err;
+}
+
 TEST_F(CliTest, ReportsFollowTheirSchema) {
   const std::string forward = path("forward"), inverse = path("inverse");
-  // Resolution 30 is coarser than the samples strict is measured on: circle + square fails it
-  // (L_error 0.29 %, gauss_max and the seam lengths just over), exit 7, and the report has the
-  // checks all the same.
+  // Resolution 30 is coarser than the samples strict is measured on: circle + square by the
+  // paper model fails it, exit 7, and the report has the checks all the same.
   const int code =
       run("forward " + sample("forward/circle.svg") + " " + sample("forward/square.svg") +
-          " --resolution 30 --gate strict --no-export -q -o " + forward)
+          " --resolution 30 --model paper --gate strict --no-export -q -o " + forward)
           .exitCode;
   ASSERT_EQ(code, 7);
   ASSERT_TRUE(fs::exists(fs::path(forward) / "report.json"));

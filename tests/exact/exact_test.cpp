@@ -171,6 +171,30 @@ TEST(Exact, EllipsePairIsConvexExactAndConvergesWithTheSeam) {
   EXPECT_GT(d.rmsRel, 0.0);
 }
 
+// The two figures of an aligned distance, known from outside the code: a ring of 12 points
+// (radius 1 mm, bounding-box diagonal 2 sqrt 2) moved off its plane by e cos(2 theta) is
+// orthogonal to every rigid motion (translations and tilts are frequencies 0 and 1; the ring's
+// symmetries pin the best fit to the identity), so after any rigid motion of the moved copy the
+// distances are e |cos(2 theta_i)|: the largest e, the root mean square e / sqrt 2. A max taken
+// as the RMS, or the RMS as a mean, fails here.
+TEST(Exact, AlignedDistanceIsTheLargestAndTheRootMeanSquareOverTheDiagonal) {
+  const int n = 12;
+  const double e = 1e-3, diagonal = 2 * std::sqrt(2.0);
+  Points3 ring(n, 3), moved(n, 3);
+  for (int i = 0; i < n; ++i) {
+    const double theta = 2 * M_PI * i / n;
+    ring.row(i) << std::cos(theta), std::sin(theta), 0;
+    moved.row(i) << std::cos(theta), std::sin(theta), e * std::cos(2 * theta);
+  }
+  const Eigen::Matrix3d turn =
+      Eigen::AngleAxisd(0.9, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  moved = (moved * turn.transpose()).rowwise() + Eigen::RowVector3d(40, -7, 3);
+  const AlignedDistance d = alignedDistance(ring, moved);
+  EXPECT_NEAR(d.diagonalMm, diagonal, 1e-12);
+  EXPECT_NEAR(d.maxRel, e / diagonal, 1e-9 * e);
+  EXPECT_NEAR(d.rmsRel, e / std::sqrt(2.0) / diagonal, 1e-9 * e);
+}
+
 TEST(Exact, RigidMotionsAndRelabellingLeaveTheShape) {
   SeamPolygons seam = testshapes::ellipsePair(60);
   equalizeChords(seam);

@@ -90,7 +90,34 @@ TEST(ExactRun, AutoTakesTheExactModelForConvexPiecesAndThePaperModelIsMeasuredAg
   // The paper's model is close to the physical D-Form, but measurably not it.
   EXPECT_GT(p.exact_distance_rms_rel, 1e-5);
   EXPECT_LT(p.exact_distance_rms_rel, 2e-3);
-  EXPECT_GE(p.exact_distance_max_rel, p.exact_distance_rms_rel);
+  // Its distance from the exact shape varies along the seam: the largest point's is above the
+  // root mean square (a max reported as the RMS, or the other way round, fails here).
+  EXPECT_GT(p.exact_distance_max_rel, 1.05 * p.exact_distance_rms_rel);
+  EXPECT_LT(p.exact_distance_max_rel, 20 * p.exact_distance_rms_rel);
+}
+
+TEST(ExactRun, TheGeneralEngineConvergesToTheExactBodyOnAConvexPair) {
+  // The exact body is the physical D-Form of a convex glued metric (Alexandrov, Pogorelov), so a
+  // sheet that barely stretches must come to it: the general engine's answer is stationary, its
+  // strain well below the paper model's, and its seam several times closer to the exact body's
+  // (measured at n = 40: 4.2e-5 of the diagonal RMS against the paper model's 5.1e-4; a sheet 100
+  // times softer, k = 1e7, stays 1.7e-4 away).
+  ForwardJob j = job("ellipses-a.svg", "ellipses-b.svg", ModelChoice::General);
+  j.resolution = 40;
+  Result<ForwardRun> general = run(j);
+  ASSERT_TRUE(general.isOk()) << general.status().message();
+  EXPECT_EQ(general.value().modelUsed.name, "general");
+  EXPECT_LE(general.value().modelUsed.stationarity, 1e-6);
+  j.model = ModelChoice::Paper;
+  Result<ForwardRun> paper = run(j);
+  ASSERT_TRUE(paper.isOk()) << paper.status().message();
+  const Metrics& g = general.value().metrics;
+  const Metrics& p = paper.value().metrics;
+  EXPECT_LT(g.exact_distance_rms_rel, 1e-4);
+  EXPECT_LT(g.exact_distance_rms_rel, 0.5 * p.exact_distance_rms_rel);
+  EXPECT_LT(g.L_max, 0.002);
+  EXPECT_LT(g.L_max, 0.5 * p.L_max);
+  EXPECT_EQ(g.flipped_2d + g.flipped_3d, 0);
 }
 
 TEST(ExactRun, TheCircleAndTheSquareCreaseBetweenTheSquaresCorners) {

@@ -138,6 +138,14 @@ TEST_F(FailedGateRun, AFailedLayoutIsLaidOutOnceAndStampedAsItIs) {
 }
 
 TEST_F(FailedGateRun, AFigureThatFailsStampsTheLayoutTheGateJudged) {
+  // The paper model's result: an exact result's L_error is rounding and passes any limit.
+  job_.model = ModelChoice::Paper;
+  Result<Shape2> a = readShape(job_.pieceA), b = readShape(job_.pieceB);
+  ASSERT_TRUE(a.isOk() && b.isOk());
+  MessageSink solveSink;
+  Result<ForwardRun> paper = makeDForm(a.value(), b.value(), job_, solveSink);
+  ASSERT_TRUE(paper.isOk()) << paper.status().message();
+  run_ = paper.value();
   const fs::path tight = dir_ / "tight.json";
   std::ofstream(tight) << R"({"version": 1, "name": "tight", "limits": {"L_error": 1e-9}})";
   OutputOptions output;

@@ -248,8 +248,10 @@ TEST(ForwardRun, BadJobsAreUsageErrors) {
 }
 
 // --interior-edge meshes the interiors coarser than the seam: about 1/F^2 of the interior
-// vertices, the same seam, and under the exact model the same seam in 3D (its shape is the
-// seam's). Outside [0.25, 8] the job is refused naming the option.
+// vertices away from the body's folds (which the exact model meshes along at every factor, so the
+// whole interior shrinks less: 0.46 at F = 2 on this pair), the same seam, and under the exact
+// model the same seam in 3D (its shape is the seam's). Outside [0.25, 8] the job is refused
+// naming the option.
 TEST(ForwardRun, TheInteriorEdgeFactorCoarsensTheInteriorOnly) {
   const ForwardRun fine = runOk(job("ellipses-a.svg", "ellipses-b.svg", 60));
   ForwardJob coarseJob = job("ellipses-a.svg", "ellipses-b.svg", 60);
@@ -260,7 +262,7 @@ TEST(ForwardRun, TheInteriorEdgeFactorCoarsensTheInteriorOnly) {
   ASSERT_EQ(coarse.model.a.seam.size(), fine.model.a.seam.size());
   const double interiorFine = double(fine.model.a.flat.rows()) - 60, interiorCoarse = double(coarse.model.a.flat.rows()) - 60;
   EXPECT_GT(interiorCoarse / interiorFine, 0.15);
-  EXPECT_LT(interiorCoarse / interiorFine, 0.4);
+  EXPECT_LT(interiorCoarse / interiorFine, 0.55);
   for (size_t i = 0; i < fine.model.a.seam.size(); ++i)
     EXPECT_LT((coarse.model.a.shape.row(coarse.model.a.seam[i]) - fine.model.a.shape.row(fine.model.a.seam[i])).norm(), 1e-9)
         << "seam vertex " << i;

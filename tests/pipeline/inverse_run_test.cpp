@@ -62,7 +62,8 @@ TEST_P(InverseSamples, ReachThePapersFigures) {
     EXPECT_NE(note.find("optimisation"), std::string::npos) << note;
     EXPECT_NE(note.find("not convex"), std::string::npos) << note;
     EXPECT_GT(run.curveMatch.roundtrip_rms_rel, 1e-4);
-    EXPECT_GE(run.curveMatch.roundtrip_max_rel, run.curveMatch.roundtrip_rms_rel);
+    // The round trip's distance varies along the curve: its largest is above its RMS.
+    EXPECT_GT(run.curveMatch.roundtrip_max_rel, 1.05 * run.curveMatch.roundtrip_rms_rel);
   }
   // Flat outlines: simple polygons whose perimeters match the length of the curve as read (not
   // only of its resampled polygon) within 0.1 %, issue 3's bar, even at 60 points.

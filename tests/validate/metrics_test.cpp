@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
+#include <utility>
 #include <vector>
 
 #include "core/polyline.h"
@@ -97,6 +99,36 @@ TEST(Metrics, LMaxIsTheWorstEdgeOfANonUniformStretch) {
   const Metrics m = computeMetrics(model);
   EXPECT_NEAR(m.L_max, worst, 1e-12);
   EXPECT_GT(m.L_max, m.L_error * (1 + 1e-3)) << "a non-uniform stretch: the worst edge is above the norm";
+}
+
+// L_error is the relative root-sum-square over every edge of both pieces, each edge once:
+// sqrt(sum (L^ - L)^2 / sum L^2), found here edge by edge. A mean of the relative errors, a
+// root mean square of them, an edge counted once per triangle or a missing square root fails.
+TEST(Metrics, LErrorIsTheRelativeRootSumSquareOverEveryEdgeOnce) {
+  DForm model = test::tetraDForm(6);
+  for (Piece* piece : {&model.a, &model.b}) {
+    piece->shape.col(0) *= 1.004;
+    piece->shape.col(1) *= 1.0005;
+  }
+  double sumSqDiff = 0, sumSqFlat = 0, sumRel = 0;
+  int edges = 0;
+  for (const Piece* piece : {&model.a, &model.b}) {
+    std::set<std::pair<int, int>> seen;
+    for (Eigen::Index f = 0; f < piece->F.rows(); ++f)
+      for (int k = 0; k < 3; ++k) {
+        const int u = piece->F(f, k), v = piece->F(f, (k + 1) % 3);
+        if (!seen.insert({std::min(u, v), std::max(u, v)}).second) continue;
+        const double flat = (piece->flat.row(u) - piece->flat.row(v)).norm();
+        const double shape = (piece->shape.row(u) - piece->shape.row(v)).norm();
+        sumSqDiff += (shape - flat) * (shape - flat);
+        sumSqFlat += flat * flat;
+        sumRel += std::abs(shape - flat) / flat;
+        ++edges;
+      }
+  }
+  const Metrics m = computeMetrics(model);
+  EXPECT_NEAR(m.L_error, std::sqrt(sumSqDiff / sumSqFlat), 1e-14);
+  EXPECT_GT(std::abs(m.L_error - sumRel / edges), 1e-6) << "not the mean relative error";
 }
 
 TEST(Metrics, PyramidApexDefectIsTwoPiMinusItsFaceAngles) {
