@@ -180,10 +180,13 @@ struct LayoutFindings {
   int overlappingLabels = 0;  ///< pairs of labels whose footprints (convex hulls) share area
   /// (title block or calibration bar line, piece or registration mark) pairs sharing area
   int titleOverlaps = 0;
+  /// Closed cut loops beyond one per boundary loop of each piece (its outline and its holes): a
+  /// glue tab or a sliver the cutter would cut free of its piece
+  int extraCutLoops = 0;
   std::string example;        ///< the first problem found, in words; empty when none
   int problems() const {
     return outsideSheet + overlappingTabs + tabsOverPieces + overlappingPieces + labelsOutside +
-           overlappingLabels + titleOverlaps;
+           overlappingLabels + titleOverlaps + extraCutLoops;
   }
 };
 

@@ -3,7 +3,7 @@
 // pieces, the pieces clear of each other, labels inside their piece and clear of each other. A
 // piece is its material: the outline minus its holes. Shapes are compared pairwise only where
 // their boxes meet (a grid of boxes finds those pairs), so the check costs about as much as the
-// pattern has shapes.
+// pattern has shapes. Every piece is cut as one loop per boundary loop, its tabs in it.
 #include <algorithm>
 #include <cctype>
 #include <string>
@@ -170,6 +170,21 @@ LayoutFindings checkLayout(const PatternBuild& pattern, BuildWork* workOut) {
         }
       }
     }
+
+  // One closed cut loop per boundary loop of each piece: its outline (tabs included) and each
+  // hole. A loop more is cut free of its piece (a detached tab); perforations are open paths.
+  size_t loopsExpected = 0, loopsCut = 0;
+  for (const PieceInfo& piece : pieces) loopsExpected += piece.boundaries.size();
+  for (const Layer& layer : d.layers)
+    if (layer.name == "Cut")
+      for (const Path& path : layer.paths)
+        if (path.closed) loopsCut += path.parts.size();
+  if (loopsCut > loopsExpected) {
+    f.extraCutLoops = int(loopsCut - loopsExpected);
+    note(f, std::to_string(loopsCut) + " closed cut loops for " + std::to_string(pieces.size()) +
+                " pieces with " + std::to_string(loopsExpected) +
+                " boundary loops: a tab or a sliver would be cut free");
+  }
 
   std::vector<Polyline> hulls;
   std::vector<Box> hullBoxes;

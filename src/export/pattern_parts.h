@@ -1,4 +1,4 @@
-// Internals of the pattern builder, shared by pattern.cpp (sheets, arrangement, drawing, pages),
+// Internals of the pattern builder, shared by its files (pattern_layout.h lists the layout's),
 // seam_marks.cpp (the ticks across the seam) and glue_tabs.cpp (the tabs along it): a piece's
 // seam parameterised by arc length, the flat-frame-to-sheet placement, the drawing's layers and
 // the label and fold-line helpers they all use. Geometry is in each piece's flat frame (mm, y up)

@@ -89,7 +89,13 @@ std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName)
   j["tabs"] = tabs;
   json pages = json::array();
   for (const PageView& p : pattern.pages)
-    pages.push_back({{"width", p.width}, {"height", p.height}, {"origin", point(p.origin)}});
+    pages.push_back({{"kind", p.kind},
+                     {"width", p.width},
+                     {"height", p.height},
+                     {"origin", point(p.origin)},
+                     {"window",
+                      {point(p.origin + Vec2(p.clipX0, p.clipY0)),
+                       point(p.origin + Vec2(p.clipX1, p.clipY1))}}});
   j["pages"] = pages;
   // The sheets (pages) the pieces are laid out on, on the canvas; each piece's `sheet` indexes
   // them, and with more than one each is also a file of its own (`file`).

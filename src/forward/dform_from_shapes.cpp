@@ -1,6 +1,7 @@
 #include "forward/dform_from_shapes.h"
 
 #include <algorithm>
+#include <set>
 #include <array>
 #include <cmath>
 #include <new>
@@ -172,9 +173,14 @@ Result<std::optional<SolvedDForm>> tryExactModel(const ForwardSettings& job, con
             std::to_string(used.newtonSteps) + " Newton steps" +
             format(", curvature left %.2g rad, chords equalised by moving points at most %.2g mm", used.maxCurvature,
                    used.chordMoveMm));
-  for (const FoundCrease& c : used.creases)
-    sink.info(std::string("the exact D-Form creases piece ") + (c.piece == 0 ? "A" : "B") +
-              format(" along a line of %.1f mm folded by %.1f degrees", c.lengthMm, c.angleDeg));
+  // Each crease once: the exact body may find one line in several pieces of the same fold.
+  std::set<std::string> reported;
+  for (const FoundCrease& c : used.creases) {
+    const std::string line =
+        std::string("the exact D-Form creases piece ") + (c.piece == 0 ? "A" : "B") +
+        format(" along a line of %.1f mm folded by %.1f degrees", c.lengthMm, c.angleDeg);
+    if (reported.insert(line).second) sink.info(line);
+  }
   run.model = std::move(exactModel).value();
   run.modelUsed = std::move(used);
   return std::optional<SolvedDForm>(std::move(run));

@@ -189,8 +189,9 @@ CheckResult layoutCheck(const LayoutFindings& f) {
                               std::to_string(f.overlappingPieces) + " overlapping pieces, " +
                               std::to_string(f.labelsOutside) + " labels outside their piece, " +
                               std::to_string(f.overlappingLabels) + " overlapping label pairs, " +
-                              std::to_string(f.titleOverlaps) +
-                              " title lines over a piece or mark; first: " + f.example;
+                              std::to_string(f.titleOverlaps) + " title lines over a piece or mark, " +
+                              std::to_string(f.extraCutLoops) +
+                              " cut loops cut free of their piece; first: " + f.example;
   return judgeCheck("pattern_layout", f.problems(), 0, detail);
 }
 

@@ -85,6 +85,16 @@ TEST(ExportLayout, EachPlantedDefectIsCountedByItsOwnFigure) {
       {"A's tick label filed under piece B",
        [](fab::PatternBuild& p) { findPath(p, "A-tick-03-label")->id = "B-tick-03-label"; },
        &LayoutFindings::labelsOutside, "B-tick-03-label"},
+      {"a tab cut free of its piece as a loop of its own",
+       [](fab::PatternBuild& p) {
+         fab::Path loose;
+         loose.id = "A-cut-2";
+         loose.closed = true;
+         loose.parts = {p.tabs[0].polygon};
+         for (fab::Layer& layer : p.drawing.layers)
+           if (layer.name == "Cut") layer.paths.push_back(loose);
+       },
+       &LayoutFindings::extraCutLoops, "cut free"},
       {"a second label printed over a tick number",
        [](fab::PatternBuild& p) {
          fab::Path copy = *findPath(p, "A-tick-03-label");
@@ -101,6 +111,45 @@ TEST(ExportLayout, EachPlantedDefectIsCountedByItsOwnFigure) {
     EXPECT_EQ(f.problems(), 1) << plant.what << ": " << f.example;
     EXPECT_NE(f.example.find(plant.example), std::string::npos) << plant.what << ": " << f.example;
   }
+}
+
+// The distance from q to the closed polyline `loop`.
+double distanceToLoop(const Polyline& loop, const Vec2& q) {
+  double best = 1e300;
+  for (size_t i = 0; i < loop.size(); ++i) {
+    const Vec2 a = loop[i], b = loop[(i + 1) % loop.size()];
+    const double len2 = (b - a).squaredNorm();
+    const double t = len2 > 0 ? std::clamp((q - a).dot(b - a) / len2, 0.0, 1.0) : 0.0;
+    best = std::min(best, (a + t * (b - a) - q).norm());
+  }
+  return best;
+}
+
+TEST(ExportLayout, EveryTabIsPartOfItsPiecesOneCutLoop) {
+  // Straight sides and corners (the disphenoid's rhombi) and a curved pair, tabs on either piece
+  // or alternating: each piece is cut as one loop per boundary loop, every point of every tab on
+  // it, and the layout check counts no loop cut free.
+  for (const DForm& model : {tetraDForm(8, 80.0), ellipseCircleDForm(64, 8, 90, 35)})
+    for (TabSide side : {TabSide::A, TabSide::B, TabSide::Alternate}) {
+      ExportOptions o = options("laser-lightburn");
+      o.tabSide = side;
+      const fab::PatternBuild p = build(model, o);
+      ASSERT_FALSE(p.tabs.empty());
+      for (const fab::PieceInfo& piece : p.pieces)
+        EXPECT_EQ(piece.cut.size() + piece.holeCuts.size(), piece.boundaries.size())
+            << piece.name << " tabs " << tabSideName(side);
+      for (const fab::TabInfo& tab : p.tabs) {
+        const fab::PieceInfo& piece = p.pieces[size_t(tab.piece)];
+        ASSERT_EQ(piece.cut.size(), 1u);
+        // The fold line's ends and the tab's outer edge (the polygon after its fold line) are
+        // cut; the fold line between them is not.
+        double off = 0;
+        for (size_t i = tab.fold.size() - 1; i <= tab.polygon.size(); ++i)
+          off = std::max(off, distanceToLoop(piece.cut[0], tab.polygon[i % tab.polygon.size()]));
+        EXPECT_LT(off, 1e-6) << piece.name << "'s tab at s = " << tab.s0 << " is not on its cut";
+      }
+      EXPECT_EQ(fab::checkLayout(p).extraCutLoops, 0) << fab::checkLayout(p).example;
+    }
 }
 
 TEST(ExportLayout, AHoleIsOutsideItsPiece) {

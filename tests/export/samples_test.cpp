@@ -72,6 +72,18 @@ bool fitTogether(Vec2 a, Vec2 b, double gap, double depth, const Box& area) {
   return false;
 }
 
+// Each piece is cut as one closed loop per boundary loop (its outline with its tabs in it, and
+// each hole), counted in pattern.svg's Cut layer: a glue tab cut free would be one more.
+void expectOneCutLoopPerBoundary(const std::string& dir) {
+  const SvgDoc svg = readSvg(dir + "/pattern.svg");
+  size_t loops = 0, boundaries = 0;
+  for (const SvgPath& path : svg.paths)
+    if (path.layer == "Cut" && path.closed) loops += path.parts.size();
+  const json pattern = readJson(dir + "/pattern.json");
+  for (const auto& piece : pattern["pieces"]) boundaries += piece["boundaries"].size();
+  EXPECT_EQ(loops, boundaries) << dir;
+}
+
 class SamplePatterns : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
@@ -111,6 +123,31 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
       const double scale = pattern["scale"].get<double>();
       const auto& sheets = pattern["sheets"];
       const auto& pages = pattern["pages"];
+      expectOneCutLoopPerBoundary(dir);
+      // No page shows another sheet's geometry: each page's window of the canvas lies within one
+      // sheet (a page map or a cover page shows none).
+      for (const auto& page : pages) {
+        const Polyline window = toPolyline(page["window"]);
+        const Box shown = Box::spanning(window[0], window[1]);
+        if (shown.w() <= 0 || shown.h() <= 0) continue;
+        bool within = false;
+        for (const auto& s : sheets) {
+          const Vec2 lo = toPolyline(json::array({s["origin"]}))[0];
+          within = within || Box::spanning(lo, lo + Vec2(s["width"].get<double>(),
+                                                         s["height"].get<double>()))
+                                 .contains(shown, 1e-6);
+        }
+        EXPECT_TRUE(within) << page["kind"] << " page shows more than one sheet";
+      }
+      if (profileName == "laser") {  // tabs on the square, the Squaricle's square too
+        const std::string onB = freshDir("tabs-b");
+        ASSERT_EQ(run(dform() + " export " + solved + " -o " + onB + " -q --scale fit --tabs b" +
+                          " --profile laser" + paperOption,
+                      &out),
+                  0)
+            << out;
+        expectOneCutLoopPerBoundary(onB);
+      }
       // Each piece lies on its own sheet, wholly.
       Vec2 extent[2];
       for (int p = 0; p < 2; ++p) {
@@ -143,7 +180,8 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
       };
       // The block drawn is up to a line's leading less deep than the room kept for it (4 mm at
       // the largest title height); a case within that of the edge is not judged.
-      if (together(depth) == together(depth + 4)) {
+      // A first sheet without its title (on a cover page, or a tiled piece's page map) is not judged.
+      if (title.w() >= 0 && together(depth) == together(depth + 4)) {
         EXPECT_EQ(sheets.size(), together(depth) ? 1u : 2u);
         ++judged;
       }
@@ -164,6 +202,8 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
         };
         expectedPages += 1 + count(sw, W - 20) * count(sh, H - 32);
       }
+      // A sheet whose title lines do not fit beside its pieces gets a cover page for them.
+      for (const auto& page : pages) expectedPages += page["kind"] == "cover";
       EXPECT_EQ(pages.size(), expectedPages);
       // True size wherever the pieces fit at true size, else the largest whole percent that
       // fits: one percent more is refused as too large.
