@@ -42,6 +42,10 @@ void reply(httplib::Response& res, int status, const json& body) {
   res.set_content(body.dump(), "application/json; charset=utf-8");
 }
 
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
 std::vector<std::string> warnings(const MessageSink& sink) {
   std::vector<std::string> out;
   for (const Message& m : sink.messages())
@@ -268,11 +272,19 @@ void Studio::Impl::api(httplib::Server& server, const char* path,
                        std::function<void(const json&, Session&, httplib::Response&)> handle) {
   server.Post(path, [this, handle](const httplib::Request& req, httplib::Response& res) {
     try {
+      // Server-Timing (read by the page's drag breakdown): parsing the request, handling it
+      // (waiting for the session's solver, solving, building the answer) and writing its JSON.
+      const auto start = std::chrono::steady_clock::now();
       const json body = json::parse(req.body);
+      const double parsed = millisecondsSince(start);
       if (!body.is_object()) throw RequestError("the request must be a JSON object");
       std::shared_ptr<Session> found = session(requiredText(body, "session"));
       if (!found) throw RequestError("unknown session (reload the page)");
       handle(body, *found, res);
+      const double handled = millisecondsSince(start);
+      res.set_header("Server-Timing", "parse;dur=" + std::to_string(parsed) + ", handle;dur=" +
+                                          std::to_string(handled - parsed) + ", total;dur=" +
+                                          std::to_string(millisecondsSince(start)));
     } catch (const json::parse_error&) {
       reply(res, 400, {{"error", "the request is not JSON"}});
     } catch (const RequestError& e) {

@@ -6,7 +6,7 @@
 (function () {
   var TOKEN = document.querySelector('meta[name="dform-token"]').content;
   var $ = function (id) { return document.getElementById(id); };
-  var studio = window.studio = { latencies: [], shown: null, errors: [] };
+  var studio = window.studio = { latencies: [], breakdown: [], shown: null, errors: [] };
   var session = null, kinds = [];
   var state = {
     mode: "forward",
@@ -21,7 +21,12 @@
                          body: JSON.stringify(Object.assign({ session: session }, body)) })
       .then(function (res) {
         if (binary && res.ok) return res.blob();
-        return res.json().then(function (j) { if (!res.ok) throw new Error(j.error || res.statusText); return j; });
+        var headers = performance.now();
+        return res.json().then(function (j) {
+          if (!res.ok) throw new Error(j.error || res.statusText);
+          j.arrival = { headers: headers, parsed: performance.now(), server: res.headers.get("Server-Timing") };
+          return j;
+        });
       });
   }
 
@@ -165,7 +170,9 @@
     var seq = pending; pending = null; inFlight = true;
     var path = state.mode === "inverse" ? "/api/inverse" : "/api/solve";
     var body = Object.assign({ seq: seq }, state.settings);
+    var sent = performance.now();
     api(path, body).then(function (r) {
+      if (r.arrival) r.arrival.sent = sent;
       inFlight = false;
       if (!r.superseded) show(r);
       send();
@@ -216,10 +223,27 @@
     var time = inputTime[r.seq];
     delete inputTime[r.seq];
     studio.shown = { seq: r.seq, result: r, pieces: pieces, settings: Object.assign({}, state.settings) };
+    var drawn = performance.now();
     requestAnimationFrame(function () {
-      if (time != null && !r.refining) studio.latencies.push(performance.now() - time);
+      if (time != null && !r.refining) {
+        studio.latencies.push(performance.now() - time);
+        if (r.arrival) studio.breakdown.push(breakdown(r, time, drawn, performance.now()));
+      }
       studio.frameSeq = r.seq;
     });
+  }
+
+  // Where a drag frame's time goes (ms), for tests/bench/studio_latency.py: waiting for the
+  // solve in flight, the request's round trip (the server's share and the solve's within it),
+  // reading and parsing the answer, showing it (decode, buffers, panels) and the frame.
+  function breakdown(r, time, drawn, frame) {
+    var a = r.arrival, server = {};
+    (a.server || "").split(",").forEach(function (m) {
+      var d = /^\s*(\w+);dur=([\d.]+)/.exec(m);
+      if (d) server[d[1]] = +d[2];
+    });
+    return { queued: a.sent - time, round_trip: a.headers - a.sent, server: server.total, solve: 1000 * r.timings.total,
+             server_handle: server.handle, body_and_parse: a.parsed - a.headers, show: drawn - a.parsed, frame: frame - drawn };
   }
 
   function number(x, digits) { return x == null ? "—" : (+x).toPrecision(digits || 3); }

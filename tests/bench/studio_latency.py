@@ -46,7 +46,7 @@ def main():
         # The page's first strip of alternative starts is solved in the background: wait for it,
         # so that the drag is measured, not the drag competing with 32 other solves.
         s.wait(lambda: s.js("return document.getElementById('strip-cards').getAttribute('data-state')") == "done", 600)
-        s.js("window.studio.latencies = []")
+        s.js("window.studio.latencies = []; window.studio.breakdown = []")
         n = args.positions
         points = s.js(f"""
             var v = window.studio.views[1], out = [], h = v.handle.getBoundingClientRect(), m = v.svg.getScreenCTM();
@@ -76,6 +76,7 @@ def main():
         actions.perform()
         s.settle()
         latencies = s.js("return window.studio.latencies")
+        breakdown = s.js("return window.studio.breakdown")
         errors = s.console_errors()
     finally:
         s.close()
@@ -83,6 +84,11 @@ def main():
     p95 = latencies[min(len(latencies) - 1, int(round(0.95 * (len(latencies) - 1))))]
     print(f"frames {len(latencies)} of {args.positions} positions; latency median {statistics.median(latencies):.1f} ms, "
           f"p95 {p95:.1f} ms, min {latencies[0]:.1f} ms, max {latencies[-1]:.1f} ms; console errors {len(errors)}")
+    # The median of each part of a frame (ms): queued behind the solve in flight, the request's
+    # round trip (the server's time in it, the solve's in that), the answer's body and parsing,
+    # showing it, and the wait for the frame.
+    parts = [key for key in (breakdown[0] if breakdown else {}) if all(b.get(key) is not None for b in breakdown)]
+    print("breakdown (medians, ms): " + ", ".join(f"{key} {statistics.median(b[key] for b in breakdown):.1f}" for key in parts))
     return 0
 
 
