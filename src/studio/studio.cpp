@@ -88,11 +88,15 @@ studio::SolveAt forwardSolve(const PieceInput& a, const PieceInput& b, const For
     ForwardSettings s = settings;
     s.resolution = resolution;
     MessageSink sink;
+    const auto start = std::chrono::steady_clock::now();
     Result<ForwardRun> made = makeDForm(a, b, s, sink, hooks);
     if (!made.isOk()) return made.status();
     auto run = std::make_shared<const ForwardRun>(std::move(made).value());
+    const double madeMs = millisecondsSince(start);
     json out = studio::forwardResultJson(*run);
     out["warnings"] = warnings(sink);
+    out["timings"]["made"] = madeMs / 1000;
+    out["timings"]["answer"] = (millisecondsSince(start) - madeMs) / 1000;
     return studio::Solved{out, [run, gate] {
       return studio::gateJson(runGate(run->model, gate, run->metrics, nullptr, nullptr));
     }};
@@ -261,6 +265,9 @@ void Studio::Impl::guard(httplib::Server& server) {
     reply(res, 500, {{"error", "internal error"}});
   });
   server.set_payload_max_length(options.maxUploadBytes);
+  // An answer goes out as its headers, then its body: with Nagle's algorithm the body's last
+  // partial segment waits for the client's delayed acknowledgement of the ones before.
+  server.set_tcp_nodelay(true);
   server.set_keep_alive_timeout(1);
   server.set_read_timeout(5);
   server.set_write_timeout(5);

@@ -242,7 +242,7 @@
       var d = /^\s*(\w+);dur=([\d.]+)/.exec(m);
       if (d) server[d[1]] = +d[2];
     });
-    return { queued: a.sent - time, round_trip: a.headers - a.sent, server: server.total, solve: 1000 * r.timings.total,
+    return { queued: a.sent - time, round_trip: a.headers - a.sent, server: server.total, solve: 1000 * r.timings.total, made: 1000 * r.timings.made, answer: 1000 * r.timings.answer,
              server_handle: server.handle, body_and_parse: a.parsed - a.headers, show: drawn - a.parsed, frame: frame - drawn };
   }
 
