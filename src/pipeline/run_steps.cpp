@@ -160,6 +160,7 @@ std::vector<FoldToScore> foldsToScore(const ModelUsed& used, const DForm& model)
   constexpr double kDegree = 3.14159265358979323846 / 180.0;
   std::vector<FoldToScore> out;
   for (const BodyFold& f : used.folds) {
+    if (f.crease >= 0) continue;  // drawn already, as the piece's crease line
     const Points2& flat = f.piece == 0 ? model.a.flat : model.b.flat;
     out.push_back({f.piece, flat.row(f.from).transpose(), flat.row(f.to).transpose(),
                    f.radians / kDegree});

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """--score-folds end to end: circle + square (exact model, resolution 100: 4 creases at ~66.7 deg
-and gentle folds under 6 deg) exported with --score-folds DEG puts exactly the folds of
-report.json's model.folds with angle_deg >= DEG on the SCORE layer of pattern.svg and
+and gentle folds under 6 deg) exported with --score-folds DEG puts exactly the gentle folds of
+report.json's model.folds with angle_deg >= DEG (the creases are drawn as crease lines already,
+never scored twice) on the SCORE layer of pattern.svg and
 pattern.dxf (read back with ezdxf) and in pattern.json, every line inside its piece;
 `dform export` of the saved result draws the same lines; a paper-model result warns; bad values
 exit 2 naming the option.
@@ -86,10 +87,12 @@ base_dxf = dxf_score_count(base)
 check(svg_score_ids(base) == [], "score lines without --score-folds")
 
 # A threshold equal to a fold's angle (as report.json writes it) scores that fold: at least DEG.
-for deg in ["10", "90", "0.5", repr(min(f["angle_deg"] for f in folds if f["crease"]))]:
+gentle = sorted(f["angle_deg"] for f in folds if not f["crease"])
+middle = repr(gentle[len(gentle) // 2])
+for deg in ["10", "90", "0.5", middle]:
     out = os.path.join(WORK, "deg-" + deg)
     forward(out, "--score-folds", deg)
-    want = sorted(f["angle_deg"] for f in folds if f["angle_deg"] >= float(deg))
+    want = sorted(a for a in gentle if a >= float(deg))
     lines = scored(out)
     check(sorted(a for a, _ in lines.values()) == want,
           f"--score-folds {deg}: pattern.json lists {len(lines)} folds, {len(want)} expected")
@@ -99,9 +102,12 @@ for deg in ["10", "90", "0.5", repr(min(f["angle_deg"] for f in folds if f["crea
     check(dxf_score_count(out) - base_dxf == parts,
           f"--score-folds {deg}: {dxf_score_count(out) - base_dxf} more DXF SCORE entities, {parts} expected")
     if deg == "10":
-        check(len(want) == 4, f"--score-folds 10: {len(want)} folds, the 4 creases expected")
+        check(want == [], f"--score-folds 10: {len(want)} folds; the 4 creases are crease lines")
+    if deg == middle:
+        check(0 < len(want) < len(gentle),
+              f"--score-folds {deg}: {len(want)} of {len(gentle)} gentle folds: not a split")
         saved = scored(out)
-        r = run("export", out, "--score-folds", "10", "-q")
+        r = run("export", out, "--score-folds", deg, "-q")
         check(r.returncode == 0, f"export exit {r.returncode}: {r.stderr.strip()}")
         check(scored(out) == saved, "dform export gives other score lines than the run")
     if deg == "90":
