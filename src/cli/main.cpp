@@ -67,6 +67,8 @@ void addExportOptions(CLI::App* command, OutputOptions& out) {
   command->add_option("--tab-width", out.tabWidthMm, "glue tab width in mm, 0 for none (default 6)");
   command->add_option("--tabs", out.tabs, "which piece gets the glue tabs: a, b, alternate or none (default: the profile's)");
   command->add_option("--tick-spacing", out.tickSpacingMm, "seam length between numbered ticks in mm (default 20)");
+  command->add_option("--score-folds", out.scoreFoldsDeg, "score every fold of the solved body of at least DEG degrees on its piece (SCORE layer, pattern.json); 0 to 180")
+      ->type_name("DEG");
   command->add_flag("!--no-title", out.title, "leave the title block and notes off the pattern sheets");
   command->add_flag("--gltf", out.gltfText, "write the 3D preview as text dform.gltf instead of dform.glb");
 }

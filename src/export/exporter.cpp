@@ -32,6 +32,8 @@ Status stopped() { return Status(ErrorCode::Interrupted, "interrupted during the
 }  // namespace
 
 Status checkExportOptions(const ExportOptions& o) {
+  if (o.scoreFoldsDeg && !(*o.scoreFoldsDeg >= 0 && *o.scoreFoldsDeg <= 180))
+    return Status{ErrorCode::Usage, "--score-folds must be an angle from 0 to 180 degrees"};
   if (!(o.tickSpacingMm >= 1.0))
     return Status{ErrorCode::Usage, "tick spacing must be at least 1 mm"};
   if (!(o.tabWidthMm >= 0 && o.tabWidthMm <= 50))

@@ -113,6 +113,14 @@ std::optional<std::pair<double, double>> pageSizeMm(const std::string& name);
 /// page: "pattern-sheet-1.svg" for (1, "svg"), "pattern-sheet-1.dxf" for (1, "dxf").
 std::string sheetFileName(int sheet, const std::string& extension);
 
+/// A fold of the solved body through a flat piece (report.json's model.folds), to score.
+struct FoldToScore {
+  int piece = 0;                                 ///< 0 = A, 1 = B
+  Eigen::Vector2d from = Eigen::Vector2d::Zero();  ///< one end in the piece's flat frame (mm)
+  Eigen::Vector2d to = Eigen::Vector2d::Zero();    ///< the other end
+  double angleDeg = 0;                           ///< fold angle (degrees; 0 = flat)
+};
+
 struct ExportOptions {
   std::string profile = "laser";    ///< profile name or path to a profile .json
   std::string templatesDir;         ///< folder holding profiles/ (the CLI passes the install path)
@@ -132,6 +140,10 @@ struct ExportOptions {
   double tabGapMm = 1.5;            ///< gap between neighbouring tabs along the seam (mm)
   std::optional<TabSide> tabSide;   ///< which piece gets the glue tabs; unset: the profile's
   double kerfMm = -1;               ///< outward cut-path offset (mm); negative = the profile's
+  /// --score-folds: every fold of `folds` of at least this angle (degrees) becomes an optional
+  /// score line on its piece (SCORE layer, pattern.json); unset: none.
+  std::optional<double> scoreFoldsDeg;
+  std::vector<FoldToScore> folds;   ///< the body's folds; empty when the model knows none
   std::string jobName = "dform";    ///< printed in the title line and file metadata
   bool title = true;                ///< the title block and notes on each sheet (--no-title: none)
   /// Scale of the pattern (1 = true size): the pieces are scaled, tabs, ticks and labels keep

@@ -119,6 +119,13 @@ struct CreaseInfo {
   Polyline line;    ///< the crease (sheet mm), boundary to boundary
 };
 
+/// A fold of the body scored on the pattern (--score-folds), clipped to its piece.
+struct ScoredFoldInfo {
+  std::string id;                ///< "A-body-fold-3"
+  double angleDeg = 0;           ///< the fold angle (degrees)
+  std::vector<Polyline> lines;   ///< its parts inside the piece (sheet mm)
+};
+
 struct PieceInfo {
   std::string name;
   Polyline outline;  ///< seam polyline in seam order from seam[0] (sheet mm)
@@ -132,6 +139,7 @@ struct PieceInfo {
   std::vector<Polyline> cut;       ///< closed outer cut paths (outline with tabs, kerf applied)
   std::vector<Polyline> holeCuts;  ///< closed cut paths of the holes (cut before the outer ones)
   std::vector<CreaseInfo> creases;
+  std::vector<ScoredFoldInfo> scoredFolds;  ///< folds scored by --score-folds
   double perimeter = 0;    ///< flat seam length (mm)
   double rotationDeg = 0;  ///< rotation applied on the sheet (after flipping y)
   int sheet = 0;           ///< the sheet (page) it is on: an index into PatternBuild::sheets

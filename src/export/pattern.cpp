@@ -245,6 +245,7 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
     place[p].M = flipRotate(a.rot[p]);
     place[p].t = a.corner[p] - a.box[p].lo;
     out.pieces.push_back(placedPiece(flat, p, cuts[p], holeCuts[p], place[p], a, profile.bleedMm));
+    out.pieces.back().scoredFolds = scoredFolds(o, p, place[p], out.pieces.back());
   }
   out.ticks = placeTicks(tickS, seams, place);
   out.tabs = placeTabs(tabs, place);
@@ -256,6 +257,7 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
   describe(b.drawing(), o, profile, scale, perimeterText);
   drawPieceLabels(flat, place, profile, font, b, out, work);
   drawCreases(out.pieces, profile, b);
+  drawScoredFolds(out.pieces, b);
   drawTabFolds(out.tabs, flat.names, profile, b);
   drawCuts(out.pieces, flat.names, profile, b);
   const TitleText title{flat, o, scaleText, perimeterText, font};

@@ -262,6 +262,32 @@ void drawCreases(const std::vector<PieceInfo>& pieces, const Profile& profile, D
     }
 }
 
+std::vector<ScoredFoldInfo> scoredFolds(const ExportOptions& o, int p, const Placement& place,
+                                        const PieceInfo& info) {
+  std::vector<ScoredFoldInfo> out;
+  if (!o.scoreFoldsDeg) return out;
+  for (const FoldToScore& fold : o.folds) {
+    if (fold.piece != p || !(fold.angleDeg >= *o.scoreFoldsDeg)) continue;
+    std::vector<Polyline> lines =
+        clipToRegion(place.map(Polyline{fold.from, fold.to}), info.boundaries);
+    if (lines.empty()) continue;
+    out.push_back({info.name + "-body-fold-" + std::to_string(out.size() + 1), fold.angleDeg,
+                   std::move(lines)});
+  }
+  return out;
+}
+
+void drawScoredFolds(const std::vector<PieceInfo>& pieces, DrawingBuilder& b) {
+  for (const PieceInfo& info : pieces)
+    for (const ScoredFoldInfo& fold : info.scoredFolds) {
+      Path line;
+      line.id = fold.id;
+      line.parts = fold.lines;
+      if (Layer* cutter = b.cutterScore()) cutter->paths.push_back(scorePass(line));
+      b.score().paths.push_back(line);
+    }
+}
+
 // The cut paths, every hole before any outer cut (inner cuts first); then the printed tint.
 void drawCuts(const std::vector<PieceInfo>& pieces, const std::string names[2],
               const Profile& profile, DrawingBuilder& b) {

@@ -158,6 +158,14 @@ void drawPieceLabels(const FlatPieces& flat, const Placement place[2], const Pro
 // Crease fold lines: the profile's fold style, dashed by the fold's direction.
 void drawCreases(const std::vector<PieceInfo>& pieces, const Profile& profile, DrawingBuilder& b);
 
+// The body's folds of at least o.scoreFoldsDeg through piece p (o.folds, flat mm), placed on the
+// sheet and clipped to the piece's material; none without --score-folds.
+std::vector<ScoredFoldInfo> scoredFolds(const ExportOptions& o, int p, const Placement& place,
+                                        const PieceInfo& info);
+
+// The scored folds as solid lines on the score layer (and the cutter's score pass).
+void drawScoredFolds(const std::vector<PieceInfo>& pieces, DrawingBuilder& b);
+
 // The cut paths, every hole before any outer cut (inner cuts first); then the printed tint.
 void drawCuts(const std::vector<PieceInfo>& pieces, const std::string names[2],
               const Profile& profile, DrawingBuilder& b);

@@ -35,6 +35,27 @@ double overlapArea(const std::vector<Polyline>& a, const std::vector<Polyline>& 
   return std::max(area, 0.0) / (kClipScale * kClipScale);
 }
 
+std::vector<Polyline> clipToRegion(const Polyline& line, const std::vector<Polyline>& loops) {
+  ClipperLib::Path open;
+  for (const Vec2& q : line)
+    open.emplace_back(ClipperLib::cInt(std::llround(q.x() * kClipScale)),
+                      ClipperLib::cInt(std::llround(q.y() * kClipScale)));
+  ClipperLib::Clipper c;
+  c.AddPath(open, ClipperLib::ptSubject, false);
+  for (const Polyline& p : loops) c.AddPath(toClip(p), ClipperLib::ptClip, true);
+  ClipperLib::PolyTree tree;
+  c.Execute(ClipperLib::ctIntersection, tree, ClipperLib::pftEvenOdd, ClipperLib::pftEvenOdd);
+  ClipperLib::Paths parts;
+  ClipperLib::OpenPathsFromPolyTree(tree, parts);
+  std::vector<Polyline> out;
+  for (const auto& part : parts) {
+    Polyline q;
+    for (const auto& v : part) q.emplace_back(double(v.X) / kClipScale, double(v.Y) / kClipScale);
+    out.push_back(std::move(q));
+  }
+  return out;
+}
+
 double overlapArea(const Polyline& a, const Polyline& b) {
   return overlapArea(std::vector<Polyline>{a}, std::vector<Polyline>{b});
 }

@@ -30,6 +30,9 @@ double overlapArea(const Polyline& a, const Polyline& b);
 /// Whether q is inside the region (core's insidePolygon on each loop).
 bool insideRegion(const std::vector<Polyline>& loops, const Vec2& q);
 
+/// The parts of the open polyline `line` inside the region `loops` (even-odd).
+std::vector<Polyline> clipToRegion(const Polyline& line, const std::vector<Polyline>& loops);
+
 /// Distance from q to the nearest edge of the polylines, closed (`closed`) or open.
 double distanceToPolylines(const std::vector<Polyline>& lines, const Vec2& q, bool closed);
 

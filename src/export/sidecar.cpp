@@ -60,6 +60,10 @@ std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName)
                          {"max_angle_deg", c.fold.maxAngleDeg},
                          {"length_mm", c.fold.lengthMm},
                          {"line", polyline(c.line)}});
+    json scored = json::array();
+    for (const ScoredFoldInfo& f : p.scoredFolds)
+      scored.push_back(
+          {{"id", f.id}, {"kind", "fold"}, {"angle_deg", f.angleDeg}, {"lines", polylines(f.lines)}});
     pieces.push_back({{"name", p.name},
                       {"perimeter_mm", p.perimeter},
                       {"rotation_deg", p.rotationDeg},
@@ -71,6 +75,7 @@ std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName)
                       {"hole_cuts", polylines(p.holeCuts)},
                       {"bleed", polylines(p.bleed)},
                       {"creases", creases}});
+    if (!p.scoredFolds.empty()) pieces.back()["score_lines"] = scored;
   }
   j["pieces"] = pieces;
   json ticks = json::array();

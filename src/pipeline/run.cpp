@@ -56,7 +56,10 @@ Result<PreparedExport> prepareJudged(const Solved& solved, const std::string& na
     if (gate) gate->checks.push_back(notRunCheck("pattern_layout", 0, "no export (--no-export)"));
     return Status(ErrorCode::Internal, "no export");
   }
-  const Result<LaidOutExport> laidOut = layOut(solved.model(), *settings.exporting, name);
+  const ModelUsed& used = solved.forward ? solved.forward->modelUsed : solved.inverse->modelUsed;
+  const Result<LaidOutExport> laidOut = layOut(
+      solved.model(),
+      withFolds(*settings.exporting, foldsToScore(used, solved.model()), used.name, sink), name);
   Result<PreparedExport> prepared = laidOut.status();
   if (laidOut.isOk()) {
     if (gate) gate->checks.push_back(layoutCheck(laidOut.value().layout));

@@ -46,6 +46,7 @@ struct OutputOptions {
   std::optional<double> tickSpacingMm;  ///< --tick-spacing (mm); unset: the default
   bool gltfText = false;                ///< --gltf: dform.gltf (text) instead of dform.glb
   bool title = true;                    ///< the title block on the sheets (--no-title: none)
+  std::optional<double> scoreFoldsDeg;  ///< --score-folds (degrees); unset: no folds scored
   std::string gate = "default";  ///< gate name or file; "none" skips the gate
   bool exportAnyway = false;     ///< export even when the gate fails (files marked FAILED GATE)
   bool quiet = false;

@@ -122,6 +122,7 @@ Result<ExportOptions> exportOptions(const OutputOptions& output) {
     return Status(ErrorCode::Usage, "--page must be A4, Letter, A3, Tabloid or a size such as "
                                     "200x300mm, got '" + output.page + "'");
   options.page = output.page;
+  options.scoreFoldsDeg = output.scoreFoldsDeg;
   if (output.scale == "fit") {
     options.scaleToFit = true;
   } else if (!output.scale.empty()) {
@@ -152,6 +153,29 @@ Result<ExportOptions> exportOptions(const OutputOptions& output) {
     options.profileOverride = profile.value();
     options.useProfileOverride = true;
   }
+  return options;
+}
+
+std::vector<FoldToScore> foldsToScore(const ModelUsed& used, const DForm& model) {
+  constexpr double kDegree = 3.14159265358979323846 / 180.0;
+  std::vector<FoldToScore> out;
+  for (const BodyFold& f : used.folds) {
+    if (f.crease >= 0) continue;  // drawn already, as the piece's crease line
+    const Points2& flat = f.piece == 0 ? model.a.flat : model.b.flat;
+    out.push_back({f.piece, flat.row(f.from).transpose(), flat.row(f.to).transpose(),
+                   f.radians / kDegree});
+  }
+  return out;
+}
+
+ExportOptions withFolds(ExportOptions options, std::vector<FoldToScore> folds,
+                        const std::string& modelName, MessageSink& sink) {
+  if (!options.scoreFoldsDeg) return options;
+  if (folds.empty())
+    sink.warning("--score-folds: no folds known: the " +
+                 (modelName.empty() ? std::string("saved") : modelName + " model's") +
+                 " result has none; no score lines added");
+  options.folds = std::move(folds);
   return options;
 }
 

@@ -21,6 +21,14 @@ namespace dform {
 /// value; the profile is read now (when files are exported), not after the solve.
 Result<ExportOptions> exportOptions(const OutputOptions& output);
 
+/// The body's folds (`used`) in the flat frames of `model`, for --score-folds.
+std::vector<FoldToScore> foldsToScore(const ModelUsed& used, const DForm& model);
+
+/// `options` with the body's folds for --score-folds, and a warning through `sink` when the model
+/// that made the result (`modelName`) knows none; `options` as it is without --score-folds.
+ExportOptions withFolds(ExportOptions options, std::vector<FoldToScore> folds,
+                        const std::string& modelName, MessageSink& sink);
+
 /// Lays out the cutting patterns of `model` once, not yet rendered; the glTF preview will carry
 /// the curvature map the report shows.
 Result<LaidOutExport> layOut(const DForm& model, ExportOptions options,

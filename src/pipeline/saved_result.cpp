@@ -31,6 +31,36 @@ std::string savedJobName(const std::string& dir) {
   return fs::path(dir).filename().string();
 }
 
+// The body's folds report.json records (model.folds, flat mm), for --score-folds; entries that
+// are not a piece, two points and an angle are passed over. `modelName` gets model.name.
+std::vector<FoldToScore> savedFolds(const std::string& dir, std::string& modelName) {
+  std::ifstream in(fs::path(dir) / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(in, nullptr, false);
+  std::vector<FoldToScore> out;
+  if (!report.is_object() || !report.contains("model") || !report["model"].is_object()) return out;
+  const nlohmann::json& model = report["model"];
+  if (model.contains("name") && model["name"].is_string()) modelName = model["name"];
+  if (!model.contains("folds") || !model["folds"].is_array()) return out;
+  const auto point = [](const nlohmann::json& p, Eigen::Vector2d& q) {
+    if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number()) return false;
+    q = Eigen::Vector2d(p[0].get<double>(), p[1].get<double>());
+    return true;
+  };
+  for (const nlohmann::json& f : model["folds"]) {
+    FoldToScore fold;
+    if (!f.is_object() || !f.contains("piece") || !f.contains("from_mm") || !f.contains("to_mm") ||
+        !f.contains("angle_deg") || !f["angle_deg"].is_number() ||
+        !point(f["from_mm"], fold.from) || !point(f["to_mm"], fold.to) ||
+        !(f["piece"] == "A" || f["piece"] == "B"))
+      continue;
+    if (f.contains("crease") && f["crease"] == true) continue;  // drawn as the piece's crease line
+    fold.piece = f["piece"] == "A" ? 0 : 1;
+    fold.angleDeg = f["angle_deg"].get<double>();
+    out.push_back(fold);
+  }
+  return out;
+}
+
 // An inverse result's target curve, when the folder holds one, checked against the seam.
 Result<std::optional<Curve3>> readSavedTarget(const std::string& dir, const DForm& model) {
   const std::string curvePath = (fs::path(dir) / ModelFileNames::targetCurve).string();
@@ -93,8 +123,10 @@ Result<std::string> exportSavedResult(const std::string& dir, const OutputOption
                     "); nothing exported (--export-anyway exports it marked FAILED GATE)");
   }
   // Laid out once: a layout that fails is stamped as it is (the stamp is an overlay).
+  std::string modelName;
   const Result<LaidOutExport> laidOut =
-      layOut(model.value(), exporting.value(), savedJobName(dir));
+      layOut(model.value(), withFolds(exporting.value(), savedFolds(dir, modelName), modelName, sink),
+             savedJobName(dir));
   if (interrupted) return leftAsItWas(dir, "interrupted");
   if (!laidOut.isOk()) return laidOut.status();
   const LayoutFindings& layout = laidOut.value().layout;

@@ -51,6 +51,12 @@ class FailedGateRun : public testing::Test {
     job_.pieceA = sample("forward/ellipses-a.svg");
     job_.pieceB = sample("forward/ellipses-b.svg");
     job_.resolution = 30;
+    ASSERT_NO_FATAL_FAILURE(solve());
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Solves job_ into run_.
+  void solve() {
     Result<Shape2> a = readShape(job_.pieceA), b = readShape(job_.pieceB);
     ASSERT_TRUE(a.isOk() && b.isOk());
     MessageSink sink;
@@ -58,7 +64,6 @@ class FailedGateRun : public testing::Test {
     ASSERT_TRUE(run.isOk()) << run.status().message();
     run_ = run.value();
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   // Writes the run into `name` as `dform forward` does, counting the patterns laid out.
   WrittenResult write(const std::string& name, OutputOptions output, long* layouts) {
@@ -140,12 +145,7 @@ TEST_F(FailedGateRun, AFailedLayoutIsLaidOutOnceAndStampedAsItIs) {
 TEST_F(FailedGateRun, AFigureThatFailsStampsTheLayoutTheGateJudged) {
   // The paper model's result: an exact result's L_error is rounding and passes any limit.
   job_.model = ModelChoice::Paper;
-  Result<Shape2> a = readShape(job_.pieceA), b = readShape(job_.pieceB);
-  ASSERT_TRUE(a.isOk() && b.isOk());
-  MessageSink solveSink;
-  Result<ForwardRun> paper = makeDForm(a.value(), b.value(), job_, solveSink);
-  ASSERT_TRUE(paper.isOk()) << paper.status().message();
-  run_ = paper.value();
+  ASSERT_NO_FATAL_FAILURE(solve());
   const fs::path tight = dir_ / "tight.json";
   std::ofstream(tight) << R"({"version": 1, "name": "tight", "limits": {"L_error": 1e-9}})";
   OutputOptions output;
