@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cstdint>
 #include <cstring>
 #include <chrono>
 #include <condition_variable>
@@ -107,11 +108,12 @@ class EventReader {
 inline std::vector<double> decodeDoubles(const nlohmann::json& text) {
   const std::string in = text.get<std::string>();
   std::string bytes;
-  int bits = 0, value = 0;
+  int bits = 0;
+  std::uint32_t value = 0;  // unsigned: the shifted-out high bits wrap instead of overflowing
   for (char ch : in) {
     const auto pos = std::string("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/").find(ch);
     if (pos == std::string::npos) break;
-    value = (value << 6) | int(pos);
+    value = (value << 6) | std::uint32_t(pos);
     bits += 6;
     if (bits >= 8) {
       bits -= 8;
