@@ -383,6 +383,11 @@ int main(int argc, char** argv) {
     // Interrupted: 130 for Ctrl-C, 143 for SIGTERM, as a shell reports a process they ended.
     const int interruptedCode = dform::exitCode(dform::ErrorCode::Interrupted);
     return code == interruptedCode && stopSignal ? 128 + stopSignal : code;
+  } catch (const dform::Interrupted& stop) {
+    // A stop inside a computation no stage turned into a status: everything it held is undone
+    // by the unwinding (the folder's lock and staging among it).
+    dform::cli::Terminal::error(std::string("interrupted during ") + stop.stage());
+    return stopSignal ? 128 + stopSignal : dform::exitCode(dform::ErrorCode::Interrupted);
   } catch (const std::bad_alloc&) {
     // An allocation the memory check did not foresee (a limit it cannot see, another process
     // taking the memory meanwhile): the run needs more memory than it can get, a usage matter.

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <atomic>
+#include <exception>
 
 namespace dform {
 
@@ -12,5 +13,26 @@ std::atomic<bool>& interruptFlag();
 
 /// Whether a stop has been requested (interruptFlag() is set).
 inline bool interruptRequested() { return interruptFlag().load(std::memory_order_relaxed); }
+
+/// Thrown by throwIfInterrupted from inside a long set-up (a triangulation, a matrix assembly)
+/// that has no status to return: the entry point of the run's stage (solveDForm, solvePieces,
+/// triangulateDomain) catches it and returns ErrorCode::Interrupted, so no half-built value is
+/// ever used. Only ever thrown while a stop is requested.
+class Interrupted : public std::exception {
+ public:
+  explicit Interrupted(const char* stage) : stage_(stage) {}
+  const char* what() const noexcept override { return "interrupted"; }
+  /// The stage that was stopped, as a run's message names it ("the meshing", "the solve").
+  const char* stage() const { return stage_; }
+
+ private:
+  const char* stage_;
+};
+
+/// Throws Interrupted(stage) when a stop has been requested. Cheap (one relaxed load): loops poll
+/// it every few thousand iterations, so that any run stops within a fraction of a second.
+inline void throwIfInterrupted(const char* stage) {
+  if (interruptRequested()) throw Interrupted(stage);
+}
 
 }  // namespace dform

@@ -220,6 +220,7 @@ Result<std::array<Piece, 2>> meshLevel(const ForwardSettings& job, const SeamLay
     TriangulateOptions meshOptions;
     meshOptions.targetEdgeLength = job.interiorEdgeFactor * seamEdge;
     Result<FlatMesh> mesh = triangulateDomain(outline, holes, meshOptions, creases);
+    if (mesh.status().code() == ErrorCode::Interrupted) return mesh.status();  // names no file
     if (!mesh.isOk()) return Status(mesh.status().code(), path + ": " + mesh.status().message());
     Piece& out = pieces[p];
     out.name = p == 0 ? "A" : "B";
@@ -380,6 +381,8 @@ Result<SolvedDForm> solveDForm(Shape2 a, Shape2 b, const ForwardSettings& settin
   } catch (const std::bad_alloc&) {
     return outOfMemory(estimate, settings.resolution,
                        pieceLabel(a, "A") + " and " + pieceLabel(b, "B") + ": the run");
+  } catch (const Interrupted& stop) {
+    return detail::interruptedDuring(stop.stage());
   }
 }
 

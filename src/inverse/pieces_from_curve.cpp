@@ -185,6 +185,7 @@ Result<SolvedPieces> solveCurve(const Curve3& curve, const InverseSettings& job,
         // Meshing a fine level takes seconds per piece (2-3 s at resolution 1500).
         if (detail::stopRequested(hooks)) return detail::interruptedDuring("the meshing");
         Result<Piece> piece = refinePiece(*coarse, target, clockwise, edge, job.init);
+        if (piece.status().code() == ErrorCode::Interrupted) return piece.status();  // names no file
         if (!piece.isOk()) return Status(piece.status().code(), name + ": " + piece.status().message());
         *fine = std::move(piece).value();
       }
@@ -228,6 +229,8 @@ Result<SolvedPieces> solvePieces(const Curve3& curve, const InverseSettings& set
     return solveCurve(curve, settings, sink, hooks, estimate);
   } catch (const std::bad_alloc&) {
     return outOfMemory(estimate, settings.resolution, curveLabel(curve) + ": the run");
+  } catch (const Interrupted& stop) {
+    return detail::interruptedDuring(stop.stage());
   }
 }
 

@@ -2,6 +2,9 @@
 // the 3D convex hull. Exact predicates, inexact constructions throughout.
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Spatial_sort_traits_adapter_2.h>
+#include <CGAL/property_map.h>
+#include <CGAL/spatial_sort.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/convex_hull_3.h>
@@ -18,6 +21,7 @@
 #include <string>
 #include <utility>
 
+#include "core/interrupt.h"
 #include "meshing/cgal_backend.h"
 #include "meshing/convex_hull.h"
 
@@ -74,15 +78,30 @@ namespace meshing_detail {
 Result<Faces> constrainedDelaunay(const Points2& P, const std::vector<Loop>& loops,
                                   const std::vector<std::vector<int>>& chains) {
   const int n = int(P.rows());
-  std::vector<std::pair<K::Point_2, int>> points;
+  std::vector<K::Point_2> points;
   points.reserve(n);
-  for (int i = 0; i < n; ++i) points.emplace_back(K::Point_2(P(i, 0), P(i, 1)), i);
+  for (int i = 0; i < n; ++i) points.emplace_back(P(i, 0), P(i, 1));
 
+  // CGAL's range insertion (spatially sorted, each point located from the last one's face),
+  // written out so that a stop is polled while hundreds of thousands of points go in. The order,
+  // and so the triangulation of cocircular lattice points, is the one the range insertion makes.
+  std::vector<std::size_t> order(static_cast<std::size_t>(n));
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  using SortTraits = CGAL::Spatial_sort_traits_adapter_2<K, CGAL::Pointer_property_map<K::Point_2>::type>;
+  CGAL::spatial_sort(order.begin(), order.end(), SortTraits(CGAL::make_property_map(points)));
   Cdt cdt;
-  cdt.insert(points.begin(), points.end());  // spatially sorted insertion
+  std::vector<Cdt::Vertex_handle> vertex(static_cast<std::size_t>(n));
+  Cdt::Face_handle hint;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    if (k % 4096 == 0) throwIfInterrupted("the meshing");
+    const std::size_t i = order[k];
+    const Cdt::Vertex_handle v = cdt.insert(points[i], hint);
+    if (v == Cdt::Vertex_handle()) continue;
+    v->info() = int(i);
+    hint = v->face();
+  }
   if (int(cdt.number_of_vertices()) != n) return invalid("two points of the domain coincide");
-  std::vector<Cdt::Vertex_handle> vertex(n);
-  for (auto v : cdt.finite_vertex_handles()) vertex[v->info()] = v;
+  for (auto v : cdt.finite_vertex_handles()) vertex[std::size_t(v->info())] = v;
 
   std::vector<std::pair<int, int>> edges;  // every constraint, loops' first
   for (const Loop& loop : loops)

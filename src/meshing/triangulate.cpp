@@ -10,6 +10,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/interrupt.h"
 #include "core/polyline.h"
 #include "meshing/cgal_backend.h"
 
@@ -282,19 +283,23 @@ Result<FlatMesh> triangulateDomain(const Points2& boundary, const std::vector<Po
   for (std::size_t i = 0; i < interior.size(); ++i)
     mesh.V.row(fixedCount + Eigen::Index(i)) = interior[i];
 
-  Result<Faces> faces = meshing_detail::constrainedDelaunay(mesh.V, loops, chains);
-  if (!faces.isOk()) return faces.status();
-  for (int round = 0; round < kMaxSmoothingRounds && mesh.V.rows() > fixedCount; ++round) {
-    const double moved = smoothInterior(mesh.V, faces.value(), fixedCount);
-    faces = meshing_detail::constrainedDelaunay(mesh.V, loops, chains);
-    // Smoothing keeps points strictly inside the domain, so this cannot fail.
-    assert(faces.isOk() && "smoothing moved a point onto the boundary");
-    if (!faces.isOk()) return Status(ErrorCode::Internal, faces.status().message());
-    if (moved < kSettledMove * h &&
-        minInteriorAngle(mesh.V, faces.value(), fixedCount) >= options.minAngleDegrees)
-      break;
+  try {
+    Result<Faces> faces = meshing_detail::constrainedDelaunay(mesh.V, loops, chains);
+    if (!faces.isOk()) return faces.status();
+    for (int round = 0; round < kMaxSmoothingRounds && mesh.V.rows() > fixedCount; ++round) {
+      const double moved = smoothInterior(mesh.V, faces.value(), fixedCount);
+      faces = meshing_detail::constrainedDelaunay(mesh.V, loops, chains);
+      // Smoothing keeps points strictly inside the domain, so this cannot fail.
+      assert(faces.isOk() && "smoothing moved a point onto the boundary");
+      if (!faces.isOk()) return Status(ErrorCode::Internal, faces.status().message());
+      if (moved < kSettledMove * h &&
+          minInteriorAngle(mesh.V, faces.value(), fixedCount) >= options.minAngleDegrees)
+        break;
+    }
+    mesh.F = std::move(faces.value());
+  } catch (const Interrupted& stop) {
+    return Status(ErrorCode::Interrupted, std::string("interrupted during ") + stop.stage());
   }
-  mesh.F = std::move(faces.value());
   mesh.boundary.resize(std::size_t(boundary.rows()));
   for (Eigen::Index i = 0; i < boundary.rows(); ++i) mesh.boundary[std::size_t(i)] = int(i);
   mesh.lines = std::move(chains);

@@ -5,6 +5,8 @@
 #include <map>
 #include <utility>
 
+#include "core/interrupt.h"
+
 namespace dform {
 
 FoldGuard::FoldGuard(const VariableLayout& layout, const Piece& a, const Piece& b) {
@@ -19,6 +21,7 @@ FoldGuard::FoldGuard(const VariableLayout& layout, const Piece& a, const Piece& 
     std::map<Edge, int> firstFace;
     const int base = int(faces_.size());
     for (int f = 0; f < piece.F.rows(); ++f) {
+      if (f % 4096 == 0) throwIfInterrupted("the solve");
       Face face;
       for (int c = 0; c < 3; ++c) {
         face.x[c] = layout.x(p, piece.F(f, c));

@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "core/interrupt.h"
+#include "solver/gram_matrix.h"
 #include "solver/supernodal_cholesky.h"
 
 namespace dform {
@@ -34,15 +35,11 @@ class LocalGlobal {
     const int n = int(x0.size());
     // K = sum_t w_t M_t^T M_t + sum_e w_e D_e^T D_e + eps I. The eps I (with eps x_prev on the
     // right) is a proximal term: it fixes the free translation and vanishes at a fixed point.
-    // Each step of the set-up takes seconds on a fine mesh: a stop asked for meanwhile leaves
-    // the relaxation not ok (ok_ is false until splitByCoordinate), so it takes no step.
+    // Each step of the set-up takes up to a second on a fine mesh: a stop asked for meanwhile
+    // throws Interrupted between them (and inside the products and factorisations).
     SparseMatrix K(n, n);
-    for (const auto& [w, term] : quadratic) {
-      if (interruptRequested()) return;
-      const SparseMatrix M = term->matrix();
-      K += w * SparseMatrix(M.transpose() * M);
-    }
-    if (interruptRequested()) return;
+    for (const auto& [w, term] : quadratic) K += w * gramMatrix(term->matrix());
+    throwIfInterrupted("the solve");
     std::vector<Eigen::Triplet<double>> entries;
     for (std::size_t e = 0; e < edges.weight.size(); ++e) {
       const double w = edges.weight[e];
@@ -57,11 +54,11 @@ class LocalGlobal {
       addPair(edges.x[e][0], edges.x[e][1], 3);
       addPair(edges.u[e][0], edges.u[e][1], 2);
     }
-    if (interruptRequested()) return;
+    throwIfInterrupted("the solve");
     SparseMatrix edgePart(n, n);
     edgePart.setFromTriplets(entries.begin(), entries.end());
     K += edgePart;
-    if (interruptRequested()) return;
+    throwIfInterrupted("the solve");
     proximal_ = 1e-8 * K.diagonal().maxCoeff();
     SparseMatrix identity(n, n);
     identity.setIdentity();
@@ -72,16 +69,19 @@ class LocalGlobal {
     heldRhs_ = Eigen::VectorXd::Zero(n);
     heldValue_ = x0;
     if (!held.empty()) {
-      std::vector<Eigen::Triplet<double>> kept;
-      for (int c = 0; c < K.outerSize(); ++c)
-        for (SparseMatrix::InnerIterator it(K, c); it; ++it) {
-          const bool heldRow = held_[std::size_t(it.row())], heldCol = held_[std::size_t(c)];
-          if (heldCol && !heldRow) heldRhs_[it.row()] -= it.value() * x0[c];
-          if (!heldRow && !heldCol) kept.emplace_back(it.row(), c, it.value());
-        }
-      for (int i : held) kept.emplace_back(i, i, 1.0);
-      if (interruptRequested()) return;
-      K.setFromTriplets(kept.begin(), kept.end());
+      for (int c = 0; c < K.outerSize(); ++c) {
+        if (c % 65536 == 0) throwIfInterrupted("the solve");
+        if (!held_[std::size_t(c)]) continue;
+        for (SparseMatrix::InnerIterator it(K, c); it; ++it)
+          if (!held_[std::size_t(it.row())]) heldRhs_[it.row()] -= it.value() * x0[c];
+      }
+      throwIfInterrupted("the solve");
+      // The held rows and columns leave K but for their diagonal, which becomes 1 (the proximal
+      // term put every diagonal entry in K's pattern).
+      K.prune([&](Eigen::Index row, Eigen::Index col, double) {
+        return row == col || (!held_[std::size_t(row)] && !held_[std::size_t(col)]);
+      });
+      for (int i : held) K.coeffRef(i, i) = 1.0;
     }
     splitByCoordinate(K);
   }
@@ -219,13 +219,7 @@ class LocalGlobal {
         assert(it.row() % stride_ == j % stride_ && "the objective couples two coordinates");
     ok_ = true;
     for (int c = 0; c < stride_; ++c) {
-      // One factorisation of a fine mesh takes seconds (7 s at 210k vertices) and cannot be
-      // interrupted: a stop asked for meanwhile is honoured before the next one, leaving the
-      // relaxation not ok (it then takes no step; the caller sees the flag too).
-      if (interruptRequested()) {
-        ok_ = false;
-        return;
-      }
+      throwIfInterrupted("the solve");  // the factorisation polls between its supernodes too
       SparseMatrix block = coordinateBlock(K, c);
       auto same = std::find_if(groups_.begin(), groups_.end(), [&](const Group& other) {
         return (other.matrix - block).norm() == 0.0;

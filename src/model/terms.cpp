@@ -5,6 +5,8 @@
 #include <array>
 #include <cassert>
 
+#include "core/interrupt.h"
+
 namespace dform {
 
 namespace {
@@ -91,6 +93,7 @@ void addLaplacianRows(const CotangentWeights& w, const std::vector<bool>& onBoun
                       const std::vector<int>& offsets, int dim, int& row,
                       std::vector<Triplet>& entries) {
   for (std::size_t i = 0; i < w.neighbours.size(); ++i) {
+    if (i % 4096 == 0) throwIfInterrupted("the solve");
     if (onBoundary[i]) continue;
     for (int c = 0; c < dim; ++c) {
       double diagonal = 0.0;
@@ -217,6 +220,7 @@ CotangentWeights cotangentWeights(const Points2& V, const Faces& F) {
     w.neighbours[i].emplace_back(j, value);
   };
   for (int f = 0; f < F.rows(); ++f) {
+    if (f % 4096 == 0) throwIfInterrupted("the solve");
     for (int k = 0; k < 3; ++k) {
       // The angle at corner k is opposite edge (k+1, k+2).
       const int i = F(f, k), j = F(f, (k + 1) % 3), l = F(f, (k + 2) % 3);

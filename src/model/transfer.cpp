@@ -5,6 +5,8 @@
 #include <limits>
 #include <vector>
 
+#include "core/interrupt.h"
+
 namespace dform {
 
 namespace {
@@ -92,6 +94,7 @@ Points3 transferShape(const Piece& source, const Points2& points) {
   const TriangleGrid grid(source);
   Points3 out(points.rows(), 3);
   for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    if (i % 4096 == 0) throwIfInterrupted("the solve");
     auto [face, weights] = grid.locate(points.row(i).transpose());
     if (weights.minCoeff() < 0) {  // clamp onto the triangle
       weights = weights.cwiseMax(0.0);

@@ -2,6 +2,7 @@
 
 #include <new>
 
+#include "core/interrupt.h"
 #include "io/outline_reader.h"
 #include "model/resources.h"
 #include "model/run_control.h"
@@ -23,6 +24,8 @@ Result<ForwardRun> makeDForm(Shape2 a, Shape2 b, const ForwardSettings& settings
     run.metrics = computeMetrics(run.model);
   } catch (const std::bad_alloc&) {
     return outOfMemory({}, settings.resolution, pieces + ": measuring the run");
+  } catch (const Interrupted& stop) {
+    return Status(ErrorCode::Interrupted, std::string("interrupted during ") + stop.stage());
   }
   return run;
 }

@@ -7,6 +7,8 @@
 #include <mutex>
 #include <new>
 
+#include "core/interrupt.h"
+
 namespace dform {
 
 namespace {
@@ -181,6 +183,7 @@ bool SupernodalCholesky::factorize(const SparseLower& A, double shift) {
   const int nsuper = int(first_.size()) - 1;
   std::vector<int> head(nsuper, -1), next(nsuper, -1), position(nsuper, 0), local(n_, -1);
   for (int k = 0; k < nsuper; ++k) {
+    throwIfInterrupted("the solve");
     const int k1 = first_[k], k2 = first_[k + 1], cols = k2 - k1;
     const int* rows = rows_.data() + rowStart_[k];
     const int nrows = rowStart_[k + 1] - rowStart_[k];

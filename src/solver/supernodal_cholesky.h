@@ -39,6 +39,7 @@ class SupernodalCholesky {
 
   /// Factorises A + shift I, A given by its lower triangle with the analysed pattern (values
   /// outside it are an error). False when A + shift I is not numerically positive definite.
+  /// Throws Interrupted (core/interrupt.h) between supernodes when a stop has been requested.
   bool factorize(const SparseLower& A, double shift = 0.0);
 
   /// The solution Y of (A + shift I) Y = B for the last successful factorisation (one column
