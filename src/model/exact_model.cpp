@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <Eigen/Dense>
+#include <limits>
 #include <map>
+#include <optional>
+#include <set>
 #include <utility>
 
 #include "core/polyline.h"
@@ -89,6 +93,7 @@ struct PieceLines {
   std::vector<double> folds;                  ///< radians
   std::vector<std::pair<int, int>> places;    ///< each line's ends in the conforming seam
   std::vector<const exact::BodyEdge*> edges;  ///< the body edge each line follows
+  std::vector<std::pair<double, double>> along;  ///< how far along its edge each line's ends are, mm
 };
 
 // Whether the run between seam places i and j cuts off a single place m between them (an ear of
@@ -140,7 +145,112 @@ PieceLines pieceLines(const std::vector<const exact::BodyEdge*>& followed, int p
       out.folds.push_back(body->fold);
       out.places.emplace_back(i, j);
       out.edges.push_back(body);
+      out.along.emplace_back(run.fromLength, run.toLength);
     }
+  return out;
+}
+
+// The point a distance `along` from the first end of a body edge: on its straight segment in 3D.
+Eigen::Vector3d onEdge(const exact::ExactGluing& g, const exact::BodyEdge& edge, double along) {
+  const Eigen::Vector3d p = g.vertices.row(g.vertexOfSeam[std::size_t(edge.from)]).transpose();
+  const Eigen::Vector3d q = g.vertices.row(g.vertexOfSeam[std::size_t(edge.to)]).transpose();
+  return p + (along / edge.length) * (q - p);
+}
+
+// Where each place of the conforming seam is on the body, where the body tells it: its cone
+// points, and the places its followed edges pass (crossings of the seam, flat seam points).
+std::vector<std::optional<Eigen::Vector3d>> seamOnBody(const exact::ExactGluing& g, const ConformingSeam& seam,
+                                                       const std::vector<const exact::BodyEdge*>& followed) {
+  std::vector<std::optional<Eigen::Vector3d>> out(std::size_t(seam.size()));
+  for (int i = 0; i < seam.size(); ++i) {
+    const exact::SeamPlace place = seam.place(i);
+    if (place.isSeamPoint() && g.vertexOfSeam[std::size_t(place.chord)] >= 0)
+      out[std::size_t(i)] = g.vertices.row(g.vertexOfSeam[std::size_t(place.chord)]).transpose();
+  }
+  for (const exact::BodyEdge* edge : followed)
+    for (const exact::EdgeRun& run : edge->runs)
+      for (const auto& [place, along] : {std::pair{run.from, run.fromLength}, std::pair{run.to, run.toLength}}) {
+        std::optional<Eigen::Vector3d>& at = out[std::size_t(seam.indexOf(place))];
+        if (!at) at = onEdge(g, *edge, along);
+      }
+  return out;
+}
+
+// Each piece's triangles on the body. The followed folds cut the piece into regions that each lie
+// in one plane of the body; a region's vertices on its border whose place the body tells (cone
+// points, points of the folds it follows) give the rigid motion of its plane (least squares,
+// Kabsch), and every other vertex of the region is moved by it. Every triangle is so an isometric
+// copy of its flat one to rounding, and triangles on a fold share its points. NaN rows where a
+// region has fewer than three such vertices.
+Points3 placeOnFaces(const Points2& flat, const Faces& F, const std::vector<std::optional<Eigen::Vector3d>>& known,
+                     const std::vector<std::vector<int>>& constrained) {
+  const Eigen::Index nV = flat.rows(), nF = F.rows();
+  std::set<std::pair<int, int>> walls;
+  for (const std::vector<int>& line : constrained)
+    for (std::size_t k = 0; k + 1 < line.size(); ++k) walls.insert(std::minmax(line[k], line[k + 1]));
+  std::map<std::pair<int, int>, std::vector<Eigen::Index>> facesOf;
+  for (Eigen::Index f = 0; f < nF; ++f)
+    for (int c = 0; c < 3; ++c) facesOf[std::minmax(F(f, c), F(f, (c + 1) % 3))].push_back(f);
+  std::vector<int> region(std::size_t(nF), -1);
+  int regions = 0;
+  for (Eigen::Index seed = 0; seed < nF; ++seed) {
+    if (region[std::size_t(seed)] >= 0) continue;
+    std::vector<Eigen::Index> stack{seed};
+    region[std::size_t(seed)] = regions;
+    while (!stack.empty()) {
+      const Eigen::Index f = stack.back();
+      stack.pop_back();
+      for (int c = 0; c < 3; ++c) {
+        const auto side = std::minmax(F(f, c), F(f, (c + 1) % 3));
+        if (walls.count(side)) continue;
+        for (Eigen::Index other : facesOf[side])
+          if (region[std::size_t(other)] < 0) {
+            region[std::size_t(other)] = regions;
+            stack.push_back(other);
+          }
+      }
+    }
+    ++regions;
+  }
+  std::vector<std::vector<int>> members(static_cast<std::size_t>(regions));
+  for (Eigen::Index f = 0; f < nF; ++f)
+    for (int c = 0; c < 3; ++c) members[std::size_t(region[std::size_t(f)])].push_back(F(f, c));
+  Points3 out = Points3::Constant(nV, 3, std::numeric_limits<double>::quiet_NaN());
+  for (Eigen::Index v = 0; v < nV; ++v)
+    if (known[std::size_t(v)]) out.row(v) = known[std::size_t(v)]->transpose();
+  for (std::vector<int>& vertices : members) {
+    std::sort(vertices.begin(), vertices.end());
+    vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+    std::vector<int> anchors;
+    for (int v : vertices)
+      if (known[std::size_t(v)]) anchors.push_back(v);
+    if (anchors.size() < 3) continue;
+    Eigen::Vector2d c2 = Eigen::Vector2d::Zero();
+    Eigen::Vector3d c3 = Eigen::Vector3d::Zero();
+    for (int v : anchors) {
+      c2 += flat.row(v).transpose();
+      c3 += *known[std::size_t(v)];
+    }
+    c2 /= double(anchors.size());
+    c3 /= double(anchors.size());
+    Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+    for (int v : anchors) {
+      const Eigen::Vector2d p = flat.row(v).transpose() - c2;
+      H += Eigen::Vector3d(p.x(), p.y(), 0.0) * (*known[std::size_t(v)] - c3).transpose();
+    }
+    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(H, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Eigen::Matrix3d R = svd.matrixV() * svd.matrixU().transpose();
+    if (R.determinant() < 0) {
+      Eigen::Matrix3d V = svd.matrixV();
+      V.col(2) *= -1.0;
+      R = V * svd.matrixU().transpose();
+    }
+    for (int v : vertices) {
+      if (known[std::size_t(v)]) continue;
+      const Eigen::Vector2d p = flat.row(v).transpose() - c2;
+      out.row(v) = (R * Eigen::Vector3d(p.x(), p.y(), 0.0) + c3).transpose();
+    }
+  }
   return out;
 }
 
@@ -165,18 +275,20 @@ Result<DForm> exactDForm(exact::SeamPolygons polygons, double targetEdge, const 
   used.chordMoveMm = exact::equalizeChords(polygons);
   Result<exact::ExactGluing> glued = exact::glue(polygons);
   if (!glued.isOk()) return glued.status();
-  const exact::ExactGluing& g = glued.value();
+  exact::ExactGluing& g = glued.value();
   used.doublyCovered = g.doublyCovered;
   used.conePoints = g.doublyCovered ? 0 : g.triangulation.vertexCount();
   used.newtonSteps = g.embedding.iterations;
   used.maxCurvature = g.embedding.maxCurvature;
   Result<std::vector<exact::BodyEdge>> traced = exact::traceBodyEdges(g);
   if (!traced.isOk()) return traced.status();
+  exact::fitBodyToEdges(g, traced.value());
   std::vector<const exact::BodyEdge*> followed;
   for (const exact::BodyEdge& edge : traced.value())
     if (edge.fold >= kFollowedFold && !edge.runs.empty()) followed.push_back(&edge);
   const ConformingSeam seam(int(n), followed);
   const int N = seam.size();
+  const std::vector<std::optional<Eigen::Vector3d>> onBody = seamOnBody(g, seam, followed);
   const double creaseAngle = foundCreaseRadians(n);
   DForm model;
   Piece* pieces[2] = {&model.a, &model.b};
@@ -210,7 +322,21 @@ Result<DForm> exactDForm(exact::SeamPolygons polygons, double targetEdge, const 
                               (outline.row(line.from) - outline.row(line.to)).norm()});
       out.creases.push_back(mesh.value().lines[l]);
     }
-    out.shape = exact::placeOnBody(g, p, out.flat);
+    std::vector<std::optional<Eigen::Vector3d>> known(std::size_t(out.flat.rows()));
+    for (int k = 0; k < N; ++k) known[std::size_t(rowOf[std::size_t(k)])] = onBody[std::size_t(k)];
+    for (std::size_t l = 0; l < lines.lines.size(); ++l) {
+      const std::vector<int>& line = mesh.value().lines[l];
+      const Eigen::Vector2d from = out.flat.row(line.front()), to = out.flat.row(line.back());
+      const auto [fromAlong, toAlong] = lines.along[l];
+      for (std::size_t k = 1; k + 1 < line.size(); ++k) {
+        const double share = (out.flat.row(line[k]).transpose() - from).norm() / (to - from).norm();
+        known[std::size_t(line[k])] = onEdge(g, *lines.edges[l], fromAlong + share * (toAlong - fromAlong));
+      }
+    }
+    std::vector<std::vector<int>> walls = mesh.value().lines;
+    walls.push_back(mesh.value().boundary);
+    walls.back().push_back(mesh.value().boundary.front());
+    out.shape = placeOnFaces(out.flat, out.F, known, walls);
     if (!out.shape.allFinite())
       return Status(ErrorCode::SolveFailed, paths[p] + ": a mesh vertex could not be placed on the exact D-Form");
   }
