@@ -288,7 +288,8 @@ Result<DForm> exactDForm(exact::SeamPolygons polygons, double targetEdge, const 
     if (edge.fold >= kFollowedFold && !edge.runs.empty()) followed.push_back(&edge);
   const ConformingSeam seam(int(n), followed);
   const int N = seam.size();
-  const std::vector<std::optional<Eigen::Vector3d>> onBody = seamOnBody(g, seam, followed);
+  const std::vector<std::optional<Eigen::Vector3d>> onBody =
+      g.doublyCovered ? std::vector<std::optional<Eigen::Vector3d>>{} : seamOnBody(g, seam, followed);
   const double creaseAngle = foundCreaseRadians(n);
   DForm model;
   Piece* pieces[2] = {&model.a, &model.b};
@@ -321,6 +322,11 @@ Result<DForm> exactDForm(exact::SeamPolygons polygons, double targetEdge, const 
       used.creases.push_back({p, int(out.creases.size()), lines.folds[l] / kDegree,
                               (outline.row(line.from) - outline.row(line.to)).norm()});
       out.creases.push_back(mesh.value().lines[l]);
+    }
+    // Congruent pieces fold flat onto each other: the body is the doubly covered piece.
+    if (g.doublyCovered) {
+      out.shape = exact::placeOnBody(g, p, out.flat);
+      continue;
     }
     std::vector<std::optional<Eigen::Vector3d>> known(std::size_t(out.flat.rows()));
     for (int k = 0; k < N; ++k) known[std::size_t(rowOf[std::size_t(k)])] = onBody[std::size_t(k)];
