@@ -176,14 +176,18 @@ std::vector<std::optional<Eigen::Vector3d>> seamOnBody(const exact::ExactGluing&
   return out;
 }
 
+// Anchors of a region spread less than this (ratio of the spread's two eigenvalues: 1e-5 of its
+// size across) lie in a line for the fit.
+constexpr double kAnchorSpread = 1e-10;
+
 // Each piece's triangles on the body. The followed folds cut the piece into regions that each lie
 // in one plane of the body; a region's vertices on its border whose place the body tells (cone
 // points, points of the folds it follows) give the rigid motion of its plane (least squares,
 // Kabsch), and every other vertex of the region is moved by it. Every triangle is so an isometric
-// copy of its flat one to rounding, and triangles on a fold share its points. NaN rows where a
-// region has fewer than three such vertices.
-Points3 placeOnFaces(const Points2& flat, const Faces& F, const std::vector<std::optional<Eigen::Vector3d>>& known,
-                     const std::vector<std::vector<int>>& constrained) {
+// copy of its flat one to rounding, and triangles on a fold share its points. Sets the rows of
+// `out` not set yet that a region places; leaves the others (a region whose anchors lie in a line).
+void placeOnFaces(const Points2& flat, const Faces& F, const std::vector<std::optional<Eigen::Vector3d>>& known,
+                  const std::vector<std::vector<int>>& constrained, Points3& out) {
   const Eigen::Index nV = flat.rows(), nF = F.rows();
   std::set<std::pair<int, int>> walls;
   for (const std::vector<int>& line : constrained)
@@ -215,7 +219,6 @@ Points3 placeOnFaces(const Points2& flat, const Faces& F, const std::vector<std:
   std::vector<std::vector<int>> members(static_cast<std::size_t>(regions));
   for (Eigen::Index f = 0; f < nF; ++f)
     for (int c = 0; c < 3; ++c) members[std::size_t(region[std::size_t(f)])].push_back(F(f, c));
-  Points3 out = Points3::Constant(nV, 3, std::numeric_limits<double>::quiet_NaN());
   for (Eigen::Index v = 0; v < nV; ++v)
     if (known[std::size_t(v)]) out.row(v) = known[std::size_t(v)]->transpose();
   for (std::vector<int>& vertices : members) {
@@ -233,6 +236,12 @@ Points3 placeOnFaces(const Points2& flat, const Faces& F, const std::vector<std:
     }
     c2 /= double(anchors.size());
     c3 /= double(anchors.size());
+    // Anchors in a line (a region whose other corners are flat seam points) leave its plane's
+    // turn about that line open: the region waits for its seam points from the other piece.
+    Eigen::Matrix2d spread = Eigen::Matrix2d::Zero();
+    for (int v : anchors) spread += (flat.row(v).transpose() - c2) * (flat.row(v) - c2.transpose());
+    const Eigen::Vector2d spreads = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(spread).eigenvalues();
+    if (!(spreads[0] > kAnchorSpread * spreads[1])) continue;
     Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
     for (int v : anchors) {
       const Eigen::Vector2d p = flat.row(v).transpose() - c2;
@@ -246,12 +255,43 @@ Points3 placeOnFaces(const Points2& flat, const Faces& F, const std::vector<std:
       R = V * svd.matrixU().transpose();
     }
     for (int v : vertices) {
-      if (known[std::size_t(v)]) continue;
+      if (known[std::size_t(v)] || out.row(v).allFinite()) continue;
       const Eigen::Vector2d p = flat.row(v).transpose() - c2;
       out.row(v) = (R * Eigen::Vector3d(p.x(), p.y(), 0.0) + c3).transpose();
     }
   }
-  return out;
+}
+
+// Both pieces placed by placeOnFaces, a seam point placed in one piece then known in the other
+// (they are one point of the body): a region of one piece bounded by flat seam points takes its
+// plane from the other piece's region there. Vertices no region places are traced onto the body
+// from a cone point (exact::placeOnBody). False when a vertex cannot be placed.
+bool placeBothOnFaces(const exact::ExactGluing& g, Piece* pieces[2], std::vector<std::optional<Eigen::Vector3d>> known[2],
+                      const std::vector<std::vector<int>> walls[2]) {
+  for (int p = 0; p < 2; ++p)
+    pieces[p]->shape = Points3::Constant(pieces[p]->flat.rows(), 3, std::numeric_limits<double>::quiet_NaN());
+  for (int pass = 0; pass < 3; ++pass)
+    for (int p = 0; p < 2; ++p) {
+      const Piece& other = *pieces[1 - p];
+      for (std::size_t k = 0; k < pieces[p]->seam.size(); ++k) {
+        std::optional<Eigen::Vector3d>& at = known[p][std::size_t(pieces[p]->seam[k])];
+        if (!at && other.shape.row(other.seam[k]).allFinite()) at = other.shape.row(other.seam[k]).transpose();
+      }
+      placeOnFaces(pieces[p]->flat, pieces[p]->F, known[p], walls[p], pieces[p]->shape);
+    }
+  for (int p = 0; p < 2; ++p) {
+    Piece& piece = *pieces[p];
+    std::vector<Eigen::Index> missing;
+    for (Eigen::Index v = 0; v < piece.flat.rows(); ++v)
+      if (!piece.shape.row(v).allFinite()) missing.push_back(v);
+    if (missing.empty()) continue;
+    Points2 flat(Eigen::Index(missing.size()), 2);
+    for (std::size_t i = 0; i < missing.size(); ++i) flat.row(Eigen::Index(i)) = piece.flat.row(missing[i]);
+    const Points3 traced = exact::placeOnBody(g, p, flat);
+    for (std::size_t i = 0; i < missing.size(); ++i) piece.shape.row(missing[i]) = traced.row(Eigen::Index(i));
+    if (!piece.shape.allFinite()) return false;
+  }
+  return true;
 }
 
 // Every mesh edge on the body is a chord of a path as long as the flat edge, so never longer than
@@ -293,6 +333,8 @@ Result<DForm> exactDForm(exact::SeamPolygons polygons, double targetEdge, const 
   const double creaseAngle = foundCreaseRadians(n);
   DForm model;
   Piece* pieces[2] = {&model.a, &model.b};
+  std::vector<std::optional<Eigen::Vector3d>> known[2];
+  std::vector<std::vector<int>> walls[2];
   for (int p = 0; p < 2; ++p) {
     // The mesher takes the outline counter-clockwise: A's seam order, B's reversed.
     std::vector<int> rowOf(static_cast<std::size_t>(N));
@@ -328,24 +370,23 @@ Result<DForm> exactDForm(exact::SeamPolygons polygons, double targetEdge, const 
       out.shape = exact::placeOnBody(g, p, out.flat);
       continue;
     }
-    std::vector<std::optional<Eigen::Vector3d>> known(std::size_t(out.flat.rows()));
-    for (int k = 0; k < N; ++k) known[std::size_t(rowOf[std::size_t(k)])] = onBody[std::size_t(k)];
+    known[p].resize(std::size_t(out.flat.rows()));
+    for (int k = 0; k < N; ++k) known[p][std::size_t(rowOf[std::size_t(k)])] = onBody[std::size_t(k)];
     for (std::size_t l = 0; l < lines.lines.size(); ++l) {
       const std::vector<int>& line = mesh.value().lines[l];
       const Eigen::Vector2d from = out.flat.row(line.front()), to = out.flat.row(line.back());
       const auto [fromAlong, toAlong] = lines.along[l];
       for (std::size_t k = 1; k + 1 < line.size(); ++k) {
         const double share = (out.flat.row(line[k]).transpose() - from).norm() / (to - from).norm();
-        known[std::size_t(line[k])] = onEdge(g, *lines.edges[l], fromAlong + share * (toAlong - fromAlong));
+        known[p][std::size_t(line[k])] = onEdge(g, *lines.edges[l], fromAlong + share * (toAlong - fromAlong));
       }
     }
-    std::vector<std::vector<int>> walls = mesh.value().lines;
-    walls.push_back(mesh.value().boundary);
-    walls.back().push_back(mesh.value().boundary.front());
-    out.shape = placeOnFaces(out.flat, out.F, known, walls);
-    if (!out.shape.allFinite())
-      return Status(ErrorCode::SolveFailed, paths[p] + ": a mesh vertex could not be placed on the exact D-Form");
+    walls[p] = mesh.value().lines;
+    walls[p].push_back(mesh.value().boundary);
+    walls[p].back().push_back(mesh.value().boundary.front());
   }
+  if (!g.doublyCovered && !placeBothOnFaces(g, pieces, known, walls))
+    return Status(ErrorCode::SolveFailed, "a mesh vertex could not be placed on the exact D-Form");
   // Seam partners are one point of the body; placed from either side they differ by rounding.
   for (std::size_t k = 0; k < model.a.seam.size(); ++k)
     model.b.shape.row(model.b.seam[k]) = model.a.shape.row(model.a.seam[k]);
