@@ -89,10 +89,12 @@ Status Walker::trace(int h, double snap, BodyEdge& edge) const {
   const IntrinsicTriangulation& T = g_.triangulation;
   const int target = edge.to;
   const double length = T.length(h);
-  // An edge's length comes from flips (the law of cosines, chained), which round to ~1e-7 of it
-  // across a flat face triangulated many times over (circle + square: 1.2e-7); the edge is
-  // found from its ends, which are seam points, so the tolerance only tells them apart.
-  const double lengthTolerance = 1e-6 * length;
+  // An edge's length and signpost come from flips (the law of cosines, chained), which round to
+  // ~1e-7 of it across a flat face triangulated many times over, and the walk ends up to ~1e-6
+  // of it beside its far end (circle + square at n = 452: 1.1e-6); the edge is found from its
+  // ends, which are seam points a chord apart (over 1e-3 of any edge), so the tolerance only
+  // tells them apart. straighten() then draws it from its ends to rounding.
+  const double lengthTolerance = 1e-5 * length;
   auto fail = [&](const std::string& why) {
     return Status(ErrorCode::SolveFailed, "the body's edge from seam point " + std::to_string(edge.from) + " to " +
                                               std::to_string(target) + " " + why);
@@ -150,7 +152,8 @@ Status Walker::trace(int h, double snap, BodyEdge& edge) const {
       return Status::ok();
     }
     if (hit.chord < 0) return fail("leaves its piece");
-    if (hit.lambda > remaining) return fail("ends inside a piece");
+    if (hit.lambda > remaining)
+      return fail("ends inside a piece, " + std::to_string((x + remaining * d - point(piece, target)).norm()) + " mm from it");
     SeamPlace reached{hit.chord, hit.mu};
     if (hit.mu <= snap) reached = {hit.chord, 0.0};
     else if (hit.mu >= 1.0 - snap) reached = {wrap(hit.chord + 1), 0.0};
