@@ -186,44 +186,55 @@ constexpr double kAnchorSpread = 1e-10;
 // Kabsch), and every other vertex of the region is moved by it. Every triangle is so an isometric
 // copy of its flat one to rounding, and triangles on a fold share its points. Sets the rows of
 // `out` not set yet that a region places; leaves the others (a region whose anchors lie in a line).
-void placeOnFaces(const Points2& flat, const Faces& F, const std::vector<std::optional<Eigen::Vector3d>>& known,
-                  const std::vector<std::vector<int>>& constrained, Points3& out) {
-  const Eigen::Index nV = flat.rows(), nF = F.rows();
+// The regions of a piece between its constrained edges (followed folds, the seam): each region's
+// vertices, sorted.
+std::vector<std::vector<int>> regionsBetween(const Faces& F, const std::vector<std::vector<int>>& constrained) {
+  const Eigen::Index nF = F.rows();
   std::set<std::pair<int, int>> walls;
   for (const std::vector<int>& line : constrained)
     for (std::size_t k = 0; k + 1 < line.size(); ++k) walls.insert(std::minmax(line[k], line[k + 1]));
-  std::map<std::pair<int, int>, std::vector<Eigen::Index>> facesOf;
+  // Each face's three sides, sorted by their ends: a side's two faces are neighbours in the list.
+  std::vector<std::pair<std::pair<int, int>, Eigen::Index>> sides;
+  sides.reserve(std::size_t(3 * nF));
   for (Eigen::Index f = 0; f < nF; ++f)
-    for (int c = 0; c < 3; ++c) facesOf[std::minmax(F(f, c), F(f, (c + 1) % 3))].push_back(f);
+    for (int c = 0; c < 3; ++c) sides.push_back({std::minmax(F(f, c), F(f, (c + 1) % 3)), f});
+  std::sort(sides.begin(), sides.end());
+  std::vector<std::vector<Eigen::Index>> neighbours(static_cast<std::size_t>(nF));
+  for (std::size_t k = 0; k + 1 < sides.size(); ++k)
+    if (sides[k].first == sides[k + 1].first && !walls.count(sides[k].first)) {
+      neighbours[std::size_t(sides[k].second)].push_back(sides[k + 1].second);
+      neighbours[std::size_t(sides[k + 1].second)].push_back(sides[k].second);
+    }
   std::vector<int> region(std::size_t(nF), -1);
-  int regions = 0;
+  std::vector<std::vector<int>> members;
   for (Eigen::Index seed = 0; seed < nF; ++seed) {
     if (region[std::size_t(seed)] >= 0) continue;
+    const int id = int(members.size());
+    members.emplace_back();
     std::vector<Eigen::Index> stack{seed};
-    region[std::size_t(seed)] = regions;
+    region[std::size_t(seed)] = id;
     while (!stack.empty()) {
       const Eigen::Index f = stack.back();
       stack.pop_back();
-      for (int c = 0; c < 3; ++c) {
-        const auto side = std::minmax(F(f, c), F(f, (c + 1) % 3));
-        if (walls.count(side)) continue;
-        for (Eigen::Index other : facesOf[side])
-          if (region[std::size_t(other)] < 0) {
-            region[std::size_t(other)] = regions;
-            stack.push_back(other);
-          }
-      }
+      for (int c = 0; c < 3; ++c) members.back().push_back(F(f, c));
+      for (Eigen::Index other : neighbours[std::size_t(f)])
+        if (region[std::size_t(other)] < 0) {
+          region[std::size_t(other)] = id;
+          stack.push_back(other);
+        }
     }
-    ++regions;
+    std::sort(members.back().begin(), members.back().end());
+    members.back().erase(std::unique(members.back().begin(), members.back().end()), members.back().end());
   }
-  std::vector<std::vector<int>> members(static_cast<std::size_t>(regions));
-  for (Eigen::Index f = 0; f < nF; ++f)
-    for (int c = 0; c < 3; ++c) members[std::size_t(region[std::size_t(f)])].push_back(F(f, c));
+  return members;
+}
+
+void placeOnFaces(const Points2& flat, const std::vector<std::vector<int>>& regions,
+                  const std::vector<std::optional<Eigen::Vector3d>>& known, Points3& out) {
+  const Eigen::Index nV = flat.rows();
   for (Eigen::Index v = 0; v < nV; ++v)
     if (known[std::size_t(v)]) out.row(v) = known[std::size_t(v)]->transpose();
-  for (std::vector<int>& vertices : members) {
-    std::sort(vertices.begin(), vertices.end());
-    vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  for (const std::vector<int>& vertices : regions) {
     std::vector<int> anchors;
     for (int v : vertices)
       if (known[std::size_t(v)]) anchors.push_back(v);
@@ -268,16 +279,19 @@ void placeOnFaces(const Points2& flat, const Faces& F, const std::vector<std::op
 // from a cone point (exact::placeOnBody). False when a vertex cannot be placed.
 bool placeBothOnFaces(const exact::ExactGluing& g, Piece* pieces[2], std::vector<std::optional<Eigen::Vector3d>> known[2],
                       const std::vector<std::vector<int>> walls[2]) {
-  for (int p = 0; p < 2; ++p)
+  std::vector<std::vector<int>> regions[2];
+  for (int p = 0; p < 2; ++p) {
     pieces[p]->shape = Points3::Constant(pieces[p]->flat.rows(), 3, std::numeric_limits<double>::quiet_NaN());
-  for (int pass = 0; pass < 3; ++pass)
+    regions[p] = regionsBetween(pieces[p]->F, walls[p]);
+  }
+  for (int pass = 0; pass < 3 && !(pieces[0]->shape.allFinite() && pieces[1]->shape.allFinite()); ++pass)
     for (int p = 0; p < 2; ++p) {
       const Piece& other = *pieces[1 - p];
       for (std::size_t k = 0; k < pieces[p]->seam.size(); ++k) {
         std::optional<Eigen::Vector3d>& at = known[p][std::size_t(pieces[p]->seam[k])];
         if (!at && other.shape.row(other.seam[k]).allFinite()) at = other.shape.row(other.seam[k]).transpose();
       }
-      placeOnFaces(pieces[p]->flat, pieces[p]->F, known[p], walls[p], pieces[p]->shape);
+      placeOnFaces(pieces[p]->flat, regions[p], known[p], pieces[p]->shape);
     }
   for (int p = 0; p < 2; ++p) {
     Piece& piece = *pieces[p];
