@@ -99,8 +99,9 @@ std::optional<CurveInput> Session::curve() const {
   return curve_;
 }
 
-// The answer to the page: the result, or superseded, or the error. With gateNow the gate's
-// verdict is in it; else the worker sends it as a "gate" event unless newer input came first.
+// The answer to the page: the result, or superseded, or the error. With gateNow its figures and
+// the gate's verdict are in it; else the worker sends them as a "gate" event unless newer input
+// came first.
 json Session::finish(const Result<Solved>& result, const Latest::Ticket& ticket, long seq, bool preview,
                      bool gateNow) {
   if (!result.isOk()) {
@@ -112,11 +113,14 @@ json Session::finish(const Result<Solved>& result, const Latest::Ticket& ticket,
   out["preview"] = preview;
   out["refining"] = false;
   if (gateNow) {
-    out["gate"] = result.value().gate();
+    out.update(result.value().verdict());
   } else {
-    queue([this, gate = result.value().gate, ticket, seq, preview] {
+    queue([this, verdict = result.value().verdict, ticket, seq, preview] {
       if (!live_.current(ticket)) return;
-      events_.push({{"type", "gate"}, {"seq", seq}, {"preview", preview}, {"gate", gate()}});
+      json event = verdict();
+      if (!live_.current(ticket)) return;
+      event.update({{"type", "gate"}, {"seq", seq}, {"preview", preview}});
+      events_.push(event);
     }, Task::Gate);
   }
   return out;
@@ -195,7 +199,7 @@ void Session::startStrip(std::vector<std::pair<json, SolveAt>> starts, long seq)
       event["index"] = k;
       if (result.isOk()) {
         event["result"] = result.value().result;
-        event["result"]["gate"] = result.value().gate();
+        event["result"].update(result.value().verdict());
       } else {
         event["error"] = result.status().message();
       }

@@ -10,6 +10,7 @@
 
 #include "io/outline_reader.h"
 #include "pipeline/forward_pipeline.h"
+#include "pipeline/report.h"
 #include "studio/session.h"
 #include "studio/studio.h"
 #include "studio/wire.h"
@@ -150,11 +151,15 @@ TEST(StudioServer, ShapeEqualsTheInMemoryRunForTheSameStart) {
     for (Eigen::Index v = 0; v < expected.rows(); ++v)
       for (int k = 0; k < 3; ++k) EXPECT_EQ(got[std::size_t(3 * v + k)], expected(v, k));
   }
-  EXPECT_DOUBLE_EQ(r.second["figures"]["L_error"].get<double>(), direct.value().metrics.L_error);
-  // The gate's verdict follows the shape as an event.
+  // The shape comes alone; its figures (every one as makeDForm's, as report.json writes them) and
+  // the gate's verdict follow it as an event.
+  EXPECT_FALSE(r.second.contains("figures"));
+  EXPECT_FALSE(r.second.contains("gate"));
   const json gate = events.waitFor("gate", std::chrono::seconds(60));
   ASSERT_FALSE(gate.is_null());
   EXPECT_EQ(gate["seq"], 3);
+  EXPECT_EQ(gate["figures"], metricsJson(direct.value().metrics)) << gate["figures"];
+  EXPECT_DOUBLE_EQ(gate["figures"]["L_error"].get<double>(), direct.value().metrics.L_error);
   EXPECT_TRUE(gate["gate"]["passed"].get<bool>()) << gate;
   EXPECT_GE(gate["gate"]["checks"].size(), 10u);
   // Sent uncompressed even to a client that accepts compression (on loopback it only costs).
@@ -186,6 +191,7 @@ TEST(StudioServer, NewestInputWinsAndStaleRefinementsNeverArrive) {
   EXPECT_FALSE(result["preview"].get<bool>());
   EXPECT_EQ(result["pieces"][0]["seam"].size(), 60u);
   EXPECT_TRUE(result["gate"].contains("passed"));  // a refined result carries its verdict
+  EXPECT_TRUE(result["figures"].contains("L_error"));  // and its figures
   for (const json& e : events.seen()) EXPECT_NE(e.value("seq", 0) == 1 && e["type"] == "result", true) << e;
 }
 
