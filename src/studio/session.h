@@ -111,6 +111,9 @@ class Session {
 
   /// Seam vertices of a preview, and of the alternative-starts strip's cards.
   static constexpr int kPreviewResolution = 36;
+  /// The nice value of the session's worker thread (measuring, the gate, refinements, the strip):
+  /// on a busy machine it yields to the live solves and the page.
+  static constexpr int kWorkerNice = 5;
 
  private:
   void work();

@@ -2,7 +2,9 @@
 // limits, independent sessions, results equal to the pipeline's in memory, and newest-input-wins.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <nlohmann/json.hpp>
@@ -248,6 +250,43 @@ TEST(StudioServer, InverseShowsTheOnHullTestAndTheRoundTrip) {
   auto bad = c.post("/api/curve", {{"session", session}, {"name", "flat.obj"}, {"text", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 2 0\nl 1 2 3 4 5 1\n"}});
   EXPECT_EQ(bad.first, 400);
   EXPECT_NE(bad.second["error"].get<std::string>().find("flat.obj"), std::string::npos) << bad.second;
+}
+
+}  // namespace
+}  // namespace dform
+
+namespace dform {
+namespace {
+
+// The nice value of each thread of this process (/proc/self/task/TID/stat, field 19).
+std::vector<int> threadNiceValues() {
+  std::vector<int> out;
+  for (const auto& task : std::filesystem::directory_iterator("/proc/self/task")) {
+    std::ifstream in(task.path() / "stat");
+    std::string stat((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::istringstream fields(stat.substr(stat.rfind(')') + 2));  // after "pid (name) "
+    std::string field;
+    for (int k = 3; k <= 19 && fields >> field; ++k)
+      if (k == 19) out.push_back(std::stoi(field));
+  }
+  return out;
+}
+
+TEST(StudioSession, TheWorkerYieldsToTheLiveSolves) {
+  const auto workers = [] {
+    const std::vector<int> nice = threadNiceValues();
+    return std::count(nice.begin(), nice.end(), studio::Session::kWorkerNice);
+  };
+  const long before = workers();
+  studio::PieceInput a{"a.json", "", test::startEllipse(120, 70, "a.json")};
+  studio::PieceInput b{"b.json", "", test::startEllipse(110, 82.305579, "b.json")};
+  {
+    studio::Session session(a, b);
+    // Its worker lowers its own priority as it starts.
+    for (int k = 0; k < 500 && workers() == before; ++k) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    EXPECT_EQ(workers(), before + 1);
+  }
+  EXPECT_EQ(workers(), before);  // joined with the session
 }
 
 }  // namespace
