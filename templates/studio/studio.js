@@ -263,7 +263,7 @@
       $("checks").appendChild(li);
     });
     studio.gate = gate;
-    showFigures(r, (verdict && verdict.figures) || {});
+    showFigures(r, r.figures || {});  // an inverse answer has its figures before its verdict
   }
 
   function showFigures(r, f) {
