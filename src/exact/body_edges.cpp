@@ -1,6 +1,7 @@
 #include "exact/body_edges.h"
 
 #include <Eigen/Geometry>
+#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -77,6 +78,7 @@ class Walker {
   }
 
   Status trace(int halfedge, double snap, BodyEdge& edge) const;
+  void straighten(BodyEdge& edge) const;
 
  private:
   const ExactGluing& g_;
@@ -87,10 +89,12 @@ Status Walker::trace(int h, double snap, BodyEdge& edge) const {
   const IntrinsicTriangulation& T = g_.triangulation;
   const int target = edge.to;
   const double length = T.length(h);
-  // An edge's length comes from flips (the law of cosines, chained), which round to ~1e-7 of it
-  // across a flat face triangulated many times over (circle + square: 1.2e-7); the edge is
-  // found from its ends, which are seam points, so the tolerance only tells them apart.
-  const double lengthTolerance = 1e-6 * length;
+  // An edge's length and signpost come from flips (the law of cosines, chained), which round to
+  // ~1e-7 of it across a flat face triangulated many times over, and the walk ends up to ~1e-6
+  // of it beside its far end (circle + square at n = 452: 1.1e-6); the edge is found from its
+  // ends, which are seam points a chord apart (over 1e-3 of any edge), so the tolerance only
+  // tells them apart. straighten() then draws it from its ends to rounding.
+  const double lengthTolerance = 1e-5 * length;
   auto fail = [&](const std::string& why) {
     return Status(ErrorCode::SolveFailed, "the body's edge from seam point " + std::to_string(edge.from) + " to " +
                                               std::to_string(target) + " " + why);
@@ -120,6 +124,7 @@ Status Walker::trace(int h, double snap, BodyEdge& edge) const {
         walked += chordLength(along > 0 ? vertex : next);
         if (std::abs(walked - length) <= lengthTolerance) {
           if (next != target) return fail("ends at seam point " + std::to_string(next));
+          edge.length = walked;
           return Status::ok();
         }
         if (walked > length || g_.vertexOfSeam[next] >= 0) return fail("runs along the seam into a cone point");
@@ -147,7 +152,8 @@ Status Walker::trace(int h, double snap, BodyEdge& edge) const {
       return Status::ok();
     }
     if (hit.chord < 0) return fail("leaves its piece");
-    if (hit.lambda > remaining) return fail("ends inside a piece");
+    if (hit.lambda > remaining)
+      return fail("ends inside a piece, " + std::to_string((x + remaining * d - point(piece, target)).norm()) + " mm from it");
     SeamPlace reached{hit.chord, hit.mu};
     if (hit.mu <= snap) reached = {hit.chord, 0.0};
     else if (hit.mu >= 1.0 - snap) reached = {wrap(hit.chord + 1), 0.0};
@@ -172,6 +178,57 @@ Status Walker::trace(int h, double snap, BodyEdge& edge) const {
   return fail("does not end");
 }
 
+// The edge drawn straight in the plane of its first run: each later run's piece is laid into that
+// plane by the rigid motions that glue the chords it crossed (at a flat seam point passed, the
+// chord beside it: both glue alike there). Its length is then the distance from its first seam
+// point to its last one laid so, and each place where it meets the seam the point of that chord
+// the straight line crosses: both to rounding of the pieces' coordinates, where the walk that
+// found the edge followed a direction and a length that flips left off by up to ~1e-7.
+void Walker::straighten(BodyEdge& edge) const {
+  if (edge.runs.empty()) return;
+  // Row r: the rigid motion x -> R x + t from the plane of run r into the plane of run 0.
+  std::vector<Eigen::Matrix2d> R(edge.runs.size(), Eigen::Matrix2d::Identity());
+  std::vector<Eigen::Vector2d> t(edge.runs.size(), Eigen::Vector2d::Zero());
+  for (std::size_t r = 1; r < edge.runs.size(); ++r) {
+    const EdgeRun& before = edge.runs[r - 1];
+    const EdgeRun& run = edge.runs[r];
+    R[r] = R[r - 1];
+    t[r] = t[r - 1];
+    if (run.piece == before.piece) continue;
+    const int k = run.from.chord;
+    const Eigen::Vector2d from0 = point(run.piece, k), from1 = point(run.piece, k + 1);
+    const Eigen::Vector2d to0 = point(before.piece, k), to1 = point(before.piece, k + 1);
+    const Eigen::Vector2d u = (from1 - from0).normalized(), w = (to1 - to0).normalized();
+    Eigen::Matrix2d rot;
+    rot << u.dot(w), -cross(u, w), cross(u, w), u.dot(w);
+    // Each side's chord glued at its middle: the two are equally long to rounding.
+    const Eigen::Vector2d shift = 0.5 * (to0 + to1) - rot * (0.5 * (from0 + from1));
+    t[r] = R[r - 1] * shift + t[r - 1];
+    R[r] = R[r - 1] * rot;
+  }
+  const Eigen::Vector2d start = point(edge.runs.front().piece, edge.from);
+  const Eigen::Vector2d end = R.back() * point(edge.runs.back().piece, edge.to) + t.back();
+  const Eigen::Vector2d d = end - start;
+  edge.length = d.norm();
+  edge.runs.back().toLength = edge.length;
+  for (std::size_t r = 1; r < edge.runs.size(); ++r) {
+    SeamPlace& place = edge.runs[r].from;
+    const int piece = edge.runs[r].piece;
+    if (place.isSeamPoint()) {
+      const double along = (R[r] * point(piece, place.chord) + t[r] - start).norm();
+      edge.runs[r].fromLength = edge.runs[r - 1].toLength = along;
+      continue;
+    }
+    const Eigen::Vector2d p0 = R[r] * point(piece, place.chord) + t[r], p1 = R[r] * point(piece, place.chord + 1) + t[r];
+    // A line along the chord (parallel to rounding) keeps the place the walk found.
+    const double denom = cross(d, p1 - p0);
+    if (std::abs(denom) > 1e-15 * d.norm() * (p1 - p0).norm())
+      place.t = std::clamp(cross(start - p0, d) / -denom, std::nextafter(0.0, 1.0), std::nextafter(1.0, 0.0));
+    edge.runs[r - 1].to = place;
+    edge.runs[r].fromLength = edge.runs[r - 1].toLength = (p0 + place.t * (p1 - p0) - start).norm();
+  }
+}
+
 }  // namespace
 
 Eigen::Vector2d seamPlacePoint(const ExactGluing& g, int piece, const SeamPlace& place) {
@@ -181,15 +238,71 @@ Eigen::Vector2d seamPlacePoint(const ExactGluing& g, int piece, const SeamPlace&
   return place.isSeamPoint() ? p0 : Eigen::Vector2d(p0 + place.t * (p1 - p0));
 }
 
-Result<std::vector<BodyEdge>> traceBodyEdges(const ExactGluing& g, double snap) {
-  std::vector<BodyEdge> out;
-  if (g.doublyCovered) return out;
+namespace {
+
+double foldOf(const ExactGluing& g, int h) {
   const IntrinsicTriangulation& T = g.triangulation;
   auto normal = [&](int f) {
     const Eigen::Vector3d p0 = g.vertices.row(T.tail(3 * f)), p1 = g.vertices.row(T.tail(3 * f + 1)),
                           p2 = g.vertices.row(T.tail(3 * f + 2));
     return Eigen::Vector3d((p1 - p0).cross(p2 - p0).normalized());
   };
+  const Eigen::Vector3d n1 = normal(h / 3), n2 = normal(T.twin(h) / 3);
+  return std::atan2(n1.cross(n2).norm(), n1.dot(n2));
+}
+
+}  // namespace
+
+double fitBodyToEdges(ExactGluing& g, std::vector<BodyEdge>& edges) {
+  if (g.doublyCovered || edges.empty()) return 0.0;
+  const Eigen::Index unknowns = 3 * g.vertices.rows();
+  const Eigen::MatrixX3d start = g.vertices;
+  double residual = 0.0;
+  for (int iteration = 0; iteration < 4; ++iteration) {
+    std::vector<Eigen::Triplet<double>> entries;
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(unknowns);
+    residual = 0.0;
+    for (const BodyEdge& edge : edges) {
+      const int i = g.vertexOfSeam[std::size_t(edge.from)], j = g.vertexOfSeam[std::size_t(edge.to)];
+      const Eigen::Vector3d e = g.vertices.row(i) - g.vertices.row(j);
+      const double r = e.norm() - edge.length;
+      residual = std::max(residual, std::abs(r) / edge.length);
+      const Eigen::Vector3d u = e / e.norm();
+      for (int a = 0; a < 3; ++a) {
+        rhs[3 * i + a] -= r * u[a];
+        rhs[3 * j + a] += r * u[a];
+        for (int b = 0; b < 3; ++b) {
+          const double w = u[a] * u[b];
+          entries.emplace_back(3 * i + a, 3 * i + b, w);
+          entries.emplace_back(3 * j + a, 3 * j + b, w);
+          entries.emplace_back(3 * i + a, 3 * j + b, -w);
+          entries.emplace_back(3 * j + a, 3 * i + b, -w);
+        }
+      }
+    }
+    // Rounding of a length is ~1e-16 of it; stop an order above.
+    if (residual <= 1e-15) break;
+    // The six rigid motions leave every length as it is: a small damping keeps the step off them.
+    for (Eigen::Index k = 0; k < unknowns; ++k) entries.emplace_back(k, k, kRigidDamping);
+    Eigen::SparseMatrix<double> normal(unknowns, unknowns);
+    normal.setFromTriplets(entries.begin(), entries.end());
+    const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(normal);
+    if (solver.info() != Eigen::Success) break;
+    const Eigen::VectorXd step = solver.solve(rhs);
+    if (!step.allFinite()) break;
+    for (Eigen::Index v = 0; v < g.vertices.rows(); ++v) g.vertices.row(v) += step.segment<3>(3 * v).transpose();
+  }
+  const IntrinsicTriangulation& T = g.triangulation;
+  std::size_t e = 0;
+  for (int h = 0; h < T.halfedgeCount(); ++h)
+    if (h < T.twin(h)) edges[e++].fold = foldOf(g, h);
+  return (g.vertices - start).rowwise().norm().maxCoeff();
+}
+
+Result<std::vector<BodyEdge>> traceBodyEdges(const ExactGluing& g, double snap) {
+  std::vector<BodyEdge> out;
+  if (g.doublyCovered) return out;
+  const IntrinsicTriangulation& T = g.triangulation;
   const Walker walker(g);
   for (int h = 0; h < T.halfedgeCount(); ++h) {
     const int t = T.twin(h);
@@ -198,9 +311,9 @@ Result<std::vector<BodyEdge>> traceBodyEdges(const ExactGluing& g, double snap) 
     edge.from = g.seamOfVertex[T.tail(h)];
     edge.to = g.seamOfVertex[T.head(h)];
     edge.length = T.length(h);
-    const Eigen::Vector3d n1 = normal(h / 3), n2 = normal(t / 3);
-    edge.fold = std::atan2(n1.cross(n2).norm(), n1.dot(n2));
+    edge.fold = foldOf(g, h);
     if (Status s = walker.trace(h, snap, edge); !s.isOk()) return s;
+    walker.straighten(edge);
     out.push_back(std::move(edge));
   }
   return out;

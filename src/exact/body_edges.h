@@ -27,6 +27,7 @@ struct SeamPlace {
 struct EdgeRun {
   int piece = 0;  ///< 0 for A, 1 for B
   SeamPlace from, to;
+  double fromLength = 0, toLength = 0;  ///< how far along the edge its ends are, mm
 };
 
 /// An edge of the body with its fold and its course through the pieces.
@@ -44,6 +45,17 @@ struct BodyEdge {
 /// SolveFailed when an edge cannot be followed to its far end (it would leave the pieces or meet
 /// a cone point on its way), which sound input never causes.
 Result<std::vector<BodyEdge>> traceBodyEdges(const ExactGluing& gluing, double snap = 1e-9);
+
+/// Moves the body's vertices (Gauss-Newton on the edges' lengths) so that every edge is as long in
+/// 3D as it is in the pieces, drawn straight through them (`edges` as traced, in the order of
+/// traceBodyEdges), and sets each edge's fold again. The embedding meets the lengths its flips
+/// left, which the chained laws of cosines put off by up to ~1e-7 across a flat face triangulated
+/// many times over; the body is rigid (Cauchy, Dehn), so the lengths fix it. Returns the largest
+/// move, mm.
+double fitBodyToEdges(ExactGluing& gluing, std::vector<BodyEdge>& edges);
+
+/// Damping of fitBodyToEdges' normal equations (mm^0: the edges' rows are unit vectors).
+constexpr double kRigidDamping = 1e-10;
 
 /// The flat position in piece `piece` (0: A, 1: B) of a place on the seam.
 Eigen::Vector2d seamPlacePoint(const ExactGluing& gluing, int piece, const SeamPlace& place);

@@ -343,8 +343,12 @@ Points3 placeOnBody(const ExactGluing& g, int piece, const Points2& P) {
     const Eigen::Vector2d q = P.row(i).transpose();
     out.row(i).setConstant(std::numeric_limits<double>::quiet_NaN());
     for (std::size_t c = 0; c < cones.size(); ++c) byDistance[c] = {(row(polygon, cones[c]) - q).norm(), cones[c]};
-    std::sort(byDistance.begin(), byDistance.end());
-    for (const auto& [distance, k] : byDistance) {
+    // Nearest cone first, then the next nearest, each found when needed: the nearest one almost
+    // always places the point, and sorting every cone for every point would cost more than placing
+    // it.
+    for (auto untried = byDistance.begin(); untried != byDistance.end(); ++untried) {
+      std::iter_swap(untried, std::min_element(untried, byDistance.end()));
+      const auto [distance, k] = *untried;
       const int v = g.vertexOfSeam[k];
       if (distance <= 1e-12 * size) {
         out.row(i) = g.vertices.row(v);

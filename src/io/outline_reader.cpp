@@ -27,7 +27,7 @@ using io_detail::fmtPoint;
 constexpr double kZeroAreaFraction = 1e-12;
 
 /// The smallest outline or hole read, as the diagonal of its bounding box (mm). A smaller one is
-/// nothing a sheet can be cut to, and at the flatten and closing tolerances (0.01 mm) its drawn
+/// nothing a sheet can be cut to, and at the closing tolerance (0.01 mm) its drawn
 /// shape is no longer kept (a 0.01 mm square closes into a triangle): refused, not reshaped.
 constexpr double kMinOutlineSizeMm = 1.0;
 
@@ -204,9 +204,9 @@ Result<io_detail::Drawing> readJsonDrawing(const std::string& path, const std::s
 
 Result<Shape2> parseShape(std::string text, const std::string& source,
                           const OutlineReadOptions& options) {
-  if (!(options.flattenTolerance > 0.0) || !(options.maxCoordinate > 0.0))
+  if (!(options.flattenTolerance > 0.0) || !(options.maxCoordinate > 0.0) || !(options.closeTolerance >= 0.0))
     return Status{ErrorCode::Usage,
-                  source + ": the flatten tolerance and coordinate limit must be positive"};
+                  source + ": the flatten tolerance and coordinate limit must be positive, the closing tolerance not negative"};
   std::string ext = io_detail::lowerExtension(source);
   if (ext != "svg" && ext != "json") {  // sniff the content of files without a known extension
     const auto first = text.find_first_not_of(" \t\r\n\xef\xbb\xbf");

@@ -10,7 +10,13 @@
 namespace dform {
 
 struct OutlineReadOptions {
-  double flattenTolerance = 0.01;  ///< mm; largest chord deviation when curves are flattened
+  /// mm; largest chord deviation when curves are flattened. Fine enough that the seam's samples
+  /// never share a flattened chord up to the exact engine's 1000 (chords of 0.2 mm on a 40 mm
+  /// radius): samples on one straight chord make the exact body's faces meet the seam at
+  /// corners too thin to mesh (docs/exact.md).
+  double flattenTolerance = 1e-4;
+  /// mm; a subpath whose end is this close to its start is closed (a gap a designer cannot see).
+  double closeTolerance = 0.01;
   double maxCoordinate = 1.0e6;    ///< mm; larger coordinates are rejected as unreasonable
   /// Points in all outlines of a file together, after flattening; a file with more is refused as
   /// soon as that is known. No drawn piece needs as many, and reading stays under a second and

@@ -244,7 +244,8 @@ int elementDepth(const std::string& text) {
 /// State shared by all element contexts of one document.
 struct Document {
   svgpp::factory::length::unitless<> lengths;  // 96 px per inch by default, as CSS says
-  double tolerance = 0.01;                     // mm
+  double tolerance = 1e-4;                     // mm, flattening
+  double closeTolerance = 0.01;                // mm, a subpath's end this close to its start
   double maxCoordinate = 1e6;                  // mm
   std::size_t maxPoints = 0;                   // OutlineReadOptions::maxPoints
   std::map<std::string, int> elementCounts;    // per element name, for "path 2"
@@ -533,15 +534,15 @@ void SvgContext::finishSubpath(std::vector<Vec2>& points, bool closed, int index
   const std::string label =
       label_ + (subpathCount > 1 ? " (subpath " + std::to_string(index) + ")" : "");
   const double gap = (points.back() - points.front()).norm();
-  // A gap below the flatten tolerance is below the resolution we read at: the designer meant it
-  // closed, and dropping the end point moves the outline less than flattening already does.
-  const bool closedLoop = closed || gap <= document_->tolerance;
+  // A gap below the closing tolerance is below what a designer sees: they meant it closed, and
+  // dropping the end point moves the outline by less than that.
+  const bool closedLoop = closed || gap <= document_->closeTolerance;
   if (crease_ && closedLoop) {
     document_->currentLabel = label;
     throw SvgProblem{ErrorCode::InputInvalid,
                      "is a closed crease line (its ends meet); a crease runs from boundary to boundary"};
   }
-  if (!crease_ && gap <= document_->tolerance) {
+  if (!crease_ && gap <= document_->closeTolerance) {
     points.pop_back();
   } else if (!crease_ && !closed) {
     document_->currentLabel = label;
@@ -690,6 +691,7 @@ Result<Drawing> readSvgDrawing(const std::string& path, std::string text,
 
   Document document;
   document.tolerance = options.flattenTolerance;
+  document.closeTolerance = options.closeTolerance;
   document.maxCoordinate = options.maxCoordinate;
   document.maxPoints = options.maxPoints;
   const Vec2 size = viewport.value().userViewportSize;

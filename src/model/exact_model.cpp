@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <Eigen/Dense>
+#include <limits>
 #include <map>
+#include <optional>
+#include <set>
 #include <utility>
 
 #include "core/polyline.h"
@@ -89,6 +93,7 @@ struct PieceLines {
   std::vector<double> folds;                  ///< radians
   std::vector<std::pair<int, int>> places;    ///< each line's ends in the conforming seam
   std::vector<const exact::BodyEdge*> edges;  ///< the body edge each line follows
+  std::vector<std::pair<double, double>> along;  ///< how far along its edge each line's ends are, mm
 };
 
 // Whether the run between seam places i and j cuts off a single place m between them (an ear of
@@ -140,8 +145,167 @@ PieceLines pieceLines(const std::vector<const exact::BodyEdge*>& followed, int p
       out.folds.push_back(body->fold);
       out.places.emplace_back(i, j);
       out.edges.push_back(body);
+      out.along.emplace_back(run.fromLength, run.toLength);
     }
   return out;
+}
+
+// The point a distance `along` from the first end of a body edge: on its straight segment in 3D.
+Eigen::Vector3d onEdge(const exact::ExactGluing& g, const exact::BodyEdge& edge, double along) {
+  const Eigen::Vector3d p = g.vertices.row(g.vertexOfSeam[std::size_t(edge.from)]).transpose();
+  const Eigen::Vector3d q = g.vertices.row(g.vertexOfSeam[std::size_t(edge.to)]).transpose();
+  return p + (along / edge.length) * (q - p);
+}
+
+// Where each place of the conforming seam is on the body, where the body tells it: its cone
+// points, and the places its followed edges pass (crossings of the seam, flat seam points).
+std::vector<std::optional<Eigen::Vector3d>> seamOnBody(const exact::ExactGluing& g, const ConformingSeam& seam,
+                                                       const std::vector<const exact::BodyEdge*>& followed) {
+  std::vector<std::optional<Eigen::Vector3d>> out(std::size_t(seam.size()));
+  for (int i = 0; i < seam.size(); ++i) {
+    const exact::SeamPlace place = seam.place(i);
+    if (place.isSeamPoint() && g.vertexOfSeam[std::size_t(place.chord)] >= 0)
+      out[std::size_t(i)] = g.vertices.row(g.vertexOfSeam[std::size_t(place.chord)]).transpose();
+  }
+  for (const exact::BodyEdge* edge : followed)
+    for (const exact::EdgeRun& run : edge->runs)
+      for (const auto& [place, along] : {std::pair{run.from, run.fromLength}, std::pair{run.to, run.toLength}}) {
+        std::optional<Eigen::Vector3d>& at = out[std::size_t(seam.indexOf(place))];
+        if (!at) at = onEdge(g, *edge, along);
+      }
+  return out;
+}
+
+// Anchors of a region spread less than this (ratio of the spread's two eigenvalues: 1e-5 of its
+// size across) lie in a line for the fit.
+constexpr double kAnchorSpread = 1e-10;
+
+// Each piece's triangles on the body. The followed folds cut the piece into regions that each lie
+// in one plane of the body; a region's vertices on its border whose place the body tells (cone
+// points, points of the folds it follows) give the rigid motion of its plane (least squares,
+// Kabsch), and every other vertex of the region is moved by it. Every triangle is so an isometric
+// copy of its flat one to rounding, and triangles on a fold share its points. Sets the rows of
+// `out` not set yet that a region places; leaves the others (a region whose anchors lie in a line).
+// The regions of a piece between its constrained edges (followed folds, the seam): each region's
+// vertices, sorted.
+std::vector<std::vector<int>> regionsBetween(const Faces& F, const std::vector<std::vector<int>>& constrained) {
+  const Eigen::Index nF = F.rows();
+  std::set<std::pair<int, int>> walls;
+  for (const std::vector<int>& line : constrained)
+    for (std::size_t k = 0; k + 1 < line.size(); ++k) walls.insert(std::minmax(line[k], line[k + 1]));
+  // Each face's three sides, sorted by their ends: a side's two faces are neighbours in the list.
+  std::vector<std::pair<std::pair<int, int>, Eigen::Index>> sides;
+  sides.reserve(std::size_t(3 * nF));
+  for (Eigen::Index f = 0; f < nF; ++f)
+    for (int c = 0; c < 3; ++c) sides.push_back({std::minmax(F(f, c), F(f, (c + 1) % 3)), f});
+  std::sort(sides.begin(), sides.end());
+  std::vector<std::vector<Eigen::Index>> neighbours(static_cast<std::size_t>(nF));
+  for (std::size_t k = 0; k + 1 < sides.size(); ++k)
+    if (sides[k].first == sides[k + 1].first && !walls.count(sides[k].first)) {
+      neighbours[std::size_t(sides[k].second)].push_back(sides[k + 1].second);
+      neighbours[std::size_t(sides[k + 1].second)].push_back(sides[k].second);
+    }
+  std::vector<int> region(std::size_t(nF), -1);
+  std::vector<std::vector<int>> members;
+  for (Eigen::Index seed = 0; seed < nF; ++seed) {
+    if (region[std::size_t(seed)] >= 0) continue;
+    const int id = int(members.size());
+    members.emplace_back();
+    std::vector<Eigen::Index> stack{seed};
+    region[std::size_t(seed)] = id;
+    while (!stack.empty()) {
+      const Eigen::Index f = stack.back();
+      stack.pop_back();
+      for (int c = 0; c < 3; ++c) members.back().push_back(F(f, c));
+      for (Eigen::Index other : neighbours[std::size_t(f)])
+        if (region[std::size_t(other)] < 0) {
+          region[std::size_t(other)] = id;
+          stack.push_back(other);
+        }
+    }
+    std::sort(members.back().begin(), members.back().end());
+    members.back().erase(std::unique(members.back().begin(), members.back().end()), members.back().end());
+  }
+  return members;
+}
+
+void placeOnFaces(const Points2& flat, const std::vector<std::vector<int>>& regions,
+                  const std::vector<std::optional<Eigen::Vector3d>>& known, Points3& out) {
+  const Eigen::Index nV = flat.rows();
+  for (Eigen::Index v = 0; v < nV; ++v)
+    if (known[std::size_t(v)]) out.row(v) = known[std::size_t(v)]->transpose();
+  for (const std::vector<int>& vertices : regions) {
+    std::vector<int> anchors;
+    for (int v : vertices)
+      if (known[std::size_t(v)]) anchors.push_back(v);
+    if (anchors.size() < 3) continue;
+    Eigen::Vector2d c2 = Eigen::Vector2d::Zero();
+    Eigen::Vector3d c3 = Eigen::Vector3d::Zero();
+    for (int v : anchors) {
+      c2 += flat.row(v).transpose();
+      c3 += *known[std::size_t(v)];
+    }
+    c2 /= double(anchors.size());
+    c3 /= double(anchors.size());
+    // Anchors in a line (a region whose other corners are flat seam points) leave its plane's
+    // turn about that line open: the region waits for its seam points from the other piece.
+    Eigen::Matrix2d spread = Eigen::Matrix2d::Zero();
+    for (int v : anchors) spread += (flat.row(v).transpose() - c2) * (flat.row(v) - c2.transpose());
+    const Eigen::Vector2d spreads = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(spread).eigenvalues();
+    if (!(spreads[0] > kAnchorSpread * spreads[1])) continue;
+    Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+    for (int v : anchors) {
+      const Eigen::Vector2d p = flat.row(v).transpose() - c2;
+      H += Eigen::Vector3d(p.x(), p.y(), 0.0) * (*known[std::size_t(v)] - c3).transpose();
+    }
+    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(H, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Eigen::Matrix3d R = svd.matrixV() * svd.matrixU().transpose();
+    if (R.determinant() < 0) {
+      Eigen::Matrix3d V = svd.matrixV();
+      V.col(2) *= -1.0;
+      R = V * svd.matrixU().transpose();
+    }
+    for (int v : vertices) {
+      if (known[std::size_t(v)] || out.row(v).allFinite()) continue;
+      const Eigen::Vector2d p = flat.row(v).transpose() - c2;
+      out.row(v) = (R * Eigen::Vector3d(p.x(), p.y(), 0.0) + c3).transpose();
+    }
+  }
+}
+
+// Both pieces placed by placeOnFaces, a seam point placed in one piece then known in the other
+// (they are one point of the body): a region of one piece bounded by flat seam points takes its
+// plane from the other piece's region there. Vertices no region places are traced onto the body
+// from a cone point (exact::placeOnBody). False when a vertex cannot be placed.
+bool placeBothOnFaces(const exact::ExactGluing& g, Piece* pieces[2], std::vector<std::optional<Eigen::Vector3d>> known[2],
+                      const std::vector<std::vector<int>> walls[2]) {
+  std::vector<std::vector<int>> regions[2];
+  for (int p = 0; p < 2; ++p) {
+    pieces[p]->shape = Points3::Constant(pieces[p]->flat.rows(), 3, std::numeric_limits<double>::quiet_NaN());
+    regions[p] = regionsBetween(pieces[p]->F, walls[p]);
+  }
+  for (int pass = 0; pass < 3 && !(pieces[0]->shape.allFinite() && pieces[1]->shape.allFinite()); ++pass)
+    for (int p = 0; p < 2; ++p) {
+      const Piece& other = *pieces[1 - p];
+      for (std::size_t k = 0; k < pieces[p]->seam.size(); ++k) {
+        std::optional<Eigen::Vector3d>& at = known[p][std::size_t(pieces[p]->seam[k])];
+        if (!at && other.shape.row(other.seam[k]).allFinite()) at = other.shape.row(other.seam[k]).transpose();
+      }
+      placeOnFaces(pieces[p]->flat, regions[p], known[p], pieces[p]->shape);
+    }
+  for (int p = 0; p < 2; ++p) {
+    Piece& piece = *pieces[p];
+    std::vector<Eigen::Index> missing;
+    for (Eigen::Index v = 0; v < piece.flat.rows(); ++v)
+      if (!piece.shape.row(v).allFinite()) missing.push_back(v);
+    if (missing.empty()) continue;
+    Points2 flat(Eigen::Index(missing.size()), 2);
+    for (std::size_t i = 0; i < missing.size(); ++i) flat.row(Eigen::Index(i)) = piece.flat.row(missing[i]);
+    const Points3 traced = exact::placeOnBody(g, p, flat);
+    for (std::size_t i = 0; i < missing.size(); ++i) piece.shape.row(missing[i]) = traced.row(Eigen::Index(i));
+    if (!piece.shape.allFinite()) return false;
+  }
+  return true;
 }
 
 // Every mesh edge on the body is a chord of a path as long as the flat edge, so never longer than
@@ -165,21 +329,26 @@ Result<DForm> exactDForm(exact::SeamPolygons polygons, double targetEdge, const 
   used.chordMoveMm = exact::equalizeChords(polygons);
   Result<exact::ExactGluing> glued = exact::glue(polygons);
   if (!glued.isOk()) return glued.status();
-  const exact::ExactGluing& g = glued.value();
+  exact::ExactGluing& g = glued.value();
   used.doublyCovered = g.doublyCovered;
   used.conePoints = g.doublyCovered ? 0 : g.triangulation.vertexCount();
   used.newtonSteps = g.embedding.iterations;
   used.maxCurvature = g.embedding.maxCurvature;
   Result<std::vector<exact::BodyEdge>> traced = exact::traceBodyEdges(g);
   if (!traced.isOk()) return traced.status();
+  exact::fitBodyToEdges(g, traced.value());
   std::vector<const exact::BodyEdge*> followed;
   for (const exact::BodyEdge& edge : traced.value())
     if (edge.fold >= kFollowedFold && !edge.runs.empty()) followed.push_back(&edge);
   const ConformingSeam seam(int(n), followed);
   const int N = seam.size();
+  const std::vector<std::optional<Eigen::Vector3d>> onBody =
+      g.doublyCovered ? std::vector<std::optional<Eigen::Vector3d>>{} : seamOnBody(g, seam, followed);
   const double creaseAngle = foundCreaseRadians(n);
   DForm model;
   Piece* pieces[2] = {&model.a, &model.b};
+  std::vector<std::optional<Eigen::Vector3d>> known[2];
+  std::vector<std::vector<int>> walls[2];
   for (int p = 0; p < 2; ++p) {
     // The mesher takes the outline counter-clockwise: A's seam order, B's reversed.
     std::vector<int> rowOf(static_cast<std::size_t>(N));
@@ -210,10 +379,28 @@ Result<DForm> exactDForm(exact::SeamPolygons polygons, double targetEdge, const 
                               (outline.row(line.from) - outline.row(line.to)).norm()});
       out.creases.push_back(mesh.value().lines[l]);
     }
-    out.shape = exact::placeOnBody(g, p, out.flat);
-    if (!out.shape.allFinite())
-      return Status(ErrorCode::SolveFailed, paths[p] + ": a mesh vertex could not be placed on the exact D-Form");
+    // Congruent pieces fold flat onto each other: the body is the doubly covered piece.
+    if (g.doublyCovered) {
+      out.shape = exact::placeOnBody(g, p, out.flat);
+      continue;
+    }
+    known[p].resize(std::size_t(out.flat.rows()));
+    for (int k = 0; k < N; ++k) known[p][std::size_t(rowOf[std::size_t(k)])] = onBody[std::size_t(k)];
+    for (std::size_t l = 0; l < lines.lines.size(); ++l) {
+      const std::vector<int>& line = mesh.value().lines[l];
+      const Eigen::Vector2d from = out.flat.row(line.front()), to = out.flat.row(line.back());
+      const auto [fromAlong, toAlong] = lines.along[l];
+      for (std::size_t k = 1; k + 1 < line.size(); ++k) {
+        const double share = (out.flat.row(line[k]).transpose() - from).norm() / (to - from).norm();
+        known[p][std::size_t(line[k])] = onEdge(g, *lines.edges[l], fromAlong + share * (toAlong - fromAlong));
+      }
+    }
+    walls[p] = mesh.value().lines;
+    walls[p].push_back(mesh.value().boundary);
+    walls[p].back().push_back(mesh.value().boundary.front());
   }
+  if (!g.doublyCovered && !placeBothOnFaces(g, pieces, known, walls))
+    return Status(ErrorCode::SolveFailed, "a mesh vertex could not be placed on the exact D-Form");
   // Seam partners are one point of the body; placed from either side they differ by rounding.
   for (std::size_t k = 0; k < model.a.seam.size(); ++k)
     model.b.shape.row(model.b.seam[k]) = model.a.shape.row(model.a.seam[k]);

@@ -12,21 +12,33 @@ namespace dform {
 using detail::Clock;
 using detail::secondsSince;
 
-Result<ForwardRun> makeDForm(Shape2 a, Shape2 b, const ForwardSettings& settings,
-                             MessageSink& sink, const RunHooks& hooks) {
-  const std::string pieces = (a.outer.source.empty() ? "piece A" : a.outer.source) + " and " +
-                             (b.outer.source.empty() ? "piece B" : b.outer.source);
-  Result<SolvedDForm> solved = solveDForm(std::move(a), std::move(b), settings, sink, hooks);
-  if (!solved.isOk()) return solved.status();
-  ForwardRun run;
-  static_cast<SolvedDForm&>(run) = std::move(solved).value();
+Result<SolvedDForm> solveDFormShape(Shape2 a, Shape2 b, const ForwardSettings& settings,
+                                    MessageSink& sink, const RunHooks& hooks) {
+  return solveDForm(std::move(a), std::move(b), settings, sink, hooks);
+}
+
+Result<Metrics> measureDForm(const SolvedDForm& solved, const ForwardSettings& settings,
+                             const std::string& pieces) {
   try {
-    run.metrics = computeMetrics(run.model);
+    return computeMetrics(solved.model);
   } catch (const std::bad_alloc&) {
     return outOfMemory({}, settings.resolution, pieces + ": measuring the run");
   } catch (const Interrupted& stop) {
     return Status(ErrorCode::Interrupted, std::string("interrupted during ") + stop.stage());
   }
+}
+
+Result<ForwardRun> makeDForm(Shape2 a, Shape2 b, const ForwardSettings& settings,
+                             MessageSink& sink, const RunHooks& hooks) {
+  const std::string pieces = (a.outer.source.empty() ? "piece A" : a.outer.source) + " and " +
+                             (b.outer.source.empty() ? "piece B" : b.outer.source);
+  Result<SolvedDForm> solved = solveDFormShape(std::move(a), std::move(b), settings, sink, hooks);
+  if (!solved.isOk()) return solved.status();
+  Result<Metrics> metrics = measureDForm(solved.value(), settings, pieces);
+  if (!metrics.isOk()) return metrics.status();
+  ForwardRun run;
+  static_cast<SolvedDForm&>(run) = std::move(solved).value();
+  run.metrics = std::move(metrics).value();
   return run;
 }
 

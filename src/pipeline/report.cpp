@@ -16,25 +16,6 @@ namespace {
 using io_detail::numberOrNull;  // JSON has no NaN or infinity: such a figure is written as null
 using nlohmann::json;
 
-json metricsJson(const Metrics& m) {
-  return {{"L_error", numberOrNull(m.L_error)},
-          {"L_max", numberOrNull(m.L_max)},
-          {"B_error", numberOrNull(m.B_error)},
-          {"seam_gap_mm", numberOrNull(m.seam_gap_mm)},
-          {"gauss_max", numberOrNull(m.gauss_max)},
-          {"gauss_mean", numberOrNull(m.gauss_mean)},
-          {"flipped_2d", m.flipped_2d},
-          {"flipped_3d", m.flipped_3d},
-          {"degenerate_2d", m.degenerate_2d},
-          {"degenerate_3d", m.degenerate_3d},
-          {"seam_length_a_mm", numberOrNull(m.seam_length_a_mm)},
-          {"seam_length_b_mm", numberOrNull(m.seam_length_b_mm)},
-          {"seam_length_3d_mm", numberOrNull(m.seam_length_3d_mm)},
-          {"exact_distance_rms_rel", numberOrNull(m.exact_distance_rms_rel)},
-          {"exact_distance_max_rel", numberOrNull(m.exact_distance_max_rel)},
-          {"exact_note", m.exact_note}};
-}
-
 // The inverse figures measured against the target curve.
 void addCurveMatch(json& metrics, const CurveMatch& c) {
   metrics["D_error"] = numberOrNull(c.D_error);
@@ -224,6 +205,25 @@ Result<std::string> write(const std::string& dir, const json& report) {
 }
 
 }  // namespace
+
+json metricsJson(const Metrics& m) {
+  return {{"L_error", numberOrNull(m.L_error)},
+          {"L_max", numberOrNull(m.L_max)},
+          {"B_error", numberOrNull(m.B_error)},
+          {"seam_gap_mm", numberOrNull(m.seam_gap_mm)},
+          {"gauss_max", numberOrNull(m.gauss_max)},
+          {"gauss_mean", numberOrNull(m.gauss_mean)},
+          {"flipped_2d", m.flipped_2d},
+          {"flipped_3d", m.flipped_3d},
+          {"degenerate_2d", m.degenerate_2d},
+          {"degenerate_3d", m.degenerate_3d},
+          {"seam_length_a_mm", numberOrNull(m.seam_length_a_mm)},
+          {"seam_length_b_mm", numberOrNull(m.seam_length_b_mm)},
+          {"seam_length_3d_mm", numberOrNull(m.seam_length_3d_mm)},
+          {"exact_distance_rms_rel", numberOrNull(m.exact_distance_rms_rel)},
+          {"exact_distance_max_rel", numberOrNull(m.exact_distance_max_rel)},
+          {"exact_note", m.exact_note}};
+}
 
 std::string metricsJsonText(const Metrics& metrics, const CurveMatch* curve) {
   json figures = metricsJson(metrics);

@@ -2,6 +2,10 @@
 
 #include <chrono>
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 namespace dform::studio {
 
 using nlohmann::json;
@@ -99,8 +103,9 @@ std::optional<CurveInput> Session::curve() const {
   return curve_;
 }
 
-// The answer to the page: the result, or superseded, or the error. With gateNow the gate's
-// verdict is in it; else the worker sends it as a "gate" event unless newer input came first.
+// The answer to the page: the result, or superseded, or the error. With gateNow its figures and
+// the gate's verdict are in it; else the worker sends them as a "gate" event unless newer input
+// came first.
 json Session::finish(const Result<Solved>& result, const Latest::Ticket& ticket, long seq, bool preview,
                      bool gateNow) {
   if (!result.isOk()) {
@@ -112,11 +117,14 @@ json Session::finish(const Result<Solved>& result, const Latest::Ticket& ticket,
   out["preview"] = preview;
   out["refining"] = false;
   if (gateNow) {
-    out["gate"] = result.value().gate();
+    out.update(result.value().verdict());
   } else {
-    queue([this, gate = result.value().gate, ticket, seq, preview] {
+    queue([this, verdict = result.value().verdict, ticket, seq, preview] {
       if (!live_.current(ticket)) return;
-      events_.push({{"type", "gate"}, {"seq", seq}, {"preview", preview}, {"gate", gate()}});
+      json event = verdict();
+      if (!live_.current(ticket)) return;
+      event.update({{"type", "gate"}, {"seq", seq}, {"preview", preview}});
+      events_.push(event);
     }, Task::Gate);
   }
   return out;
@@ -195,7 +203,7 @@ void Session::startStrip(std::vector<std::pair<json, SolveAt>> starts, long seq)
       event["index"] = k;
       if (result.isOk()) {
         event["result"] = result.value().result;
-        event["result"]["gate"] = result.value().gate();
+        event["result"].update(result.value().verdict());
       } else {
         event["error"] = result.status().message();
       }
@@ -224,8 +232,11 @@ void Session::queue(std::function<void()> task, Task kind) {
 }
 
 // The worker: the newest shape's gate first, then the newest refinement, then the strip's starts
-// one at a time, so that neither waits for a whole strip.
+// one at a time, so that neither waits for a whole strip. Its thread runs at a lower priority
+// (Linux: a thread's own nice value) than the live solves, answered on the server's threads, and
+// the browser drawing them: on a busy machine a shape's measuring must not delay the next shape.
 void Session::work() {
+  setpriority(PRIO_PROCESS, id_t(syscall(SYS_gettid)), kWorkerNice);  // best effort: not fatal
   for (;;) {
     std::function<void()> task;
     {

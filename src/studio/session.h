@@ -72,11 +72,12 @@ class Latest {
   std::shared_ptr<std::atomic<bool>> cancel_;
 };
 
-/// A solve's answer for the page (wire.h) and its gate's verdict, which the live loop sends as
-/// an event after the shape (the gate's checks cost as much again as an exact solve).
+/// A solve's answer for the page (wire.h): its shape, and its figures with the gate's verdict on
+/// them ({"figures", "gate"}), which the live loop sends as an event after the shape (measuring
+/// the shape and the gate's checks cost as much again as an exact solve).
 struct Solved {
   nlohmann::json result;
-  std::function<nlohmann::json()> gate;
+  std::function<nlohmann::json()> verdict;
 };
 
 /// A solve at a seam resolution, or why it failed.
@@ -93,7 +94,8 @@ class Session {
   std::optional<CurveInput> curve() const;
 
   /// Solves at `resolution` for the request numbered `seq`; newer requests cancel it (answer
-  /// {"superseded": true}). The gate's verdict follows as a "gate" event. Where the solve turns out to need the paper model's optimisation
+  /// {"superseded": true}). The figures and the gate's verdict follow as a "gate" event,
+  /// sent only while no newer solve was asked for. Where the solve turns out to need the paper model's optimisation
   /// (or `optimises` says so, or the last solve of the same `design` did), the answer is a
   /// preview at kPreviewResolution with "refining": true, and the worker streams the full solve
   /// ("progress" and "result" events). `design` names what decides the model: the pieces and
@@ -109,6 +111,9 @@ class Session {
 
   /// Seam vertices of a preview, and of the alternative-starts strip's cards.
   static constexpr int kPreviewResolution = 36;
+  /// The nice value of the session's worker thread (measuring, the gate, refinements, the strip):
+  /// on a busy machine it yields to the live solves and the page.
+  static constexpr int kWorkerNice = 5;
 
  private:
   void work();

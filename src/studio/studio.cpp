@@ -82,6 +82,8 @@ std::string forwardDesign(const PieceInput& a, const PieceInput& b, const Forwar
          std::to_string(s.resolution) + (s.fitPerimeter ? "/fit" : "");
 }
 
+// The shape first; its figures and the gate's verdict when the session asks for them (after the
+// shape is on its way: measuring it costs as much again as the exact solve).
 studio::SolveAt forwardSolve(const PieceInput& a, const PieceInput& b, const ForwardSettings& settings,
                              const GateLimits& gate) {
   return [a = a.shape, b = b.shape, settings, gate](int resolution, const RunHooks& hooks) -> Result<studio::Solved> {
@@ -89,16 +91,18 @@ studio::SolveAt forwardSolve(const PieceInput& a, const PieceInput& b, const For
     s.resolution = resolution;
     MessageSink sink;
     const auto start = std::chrono::steady_clock::now();
-    Result<ForwardRun> made = makeDForm(a, b, s, sink, hooks);
+    Result<SolvedDForm> made = solveDFormShape(a, b, s, sink, hooks);
     if (!made.isOk()) return made.status();
-    auto run = std::make_shared<const ForwardRun>(std::move(made).value());
+    auto run = std::make_shared<const SolvedDForm>(std::move(made).value());
     const double madeMs = millisecondsSince(start);
     json out = studio::forwardResultJson(*run);
     out["warnings"] = warnings(sink);
     out["timings"]["made"] = madeMs / 1000;
     out["timings"]["answer"] = (millisecondsSince(start) - madeMs) / 1000;
-    return studio::Solved{out, [run, gate] {
-      return studio::gateJson(runGate(run->model, gate, run->metrics, nullptr, nullptr));
+    return studio::Solved{out, [run, s, gate]() -> json {
+      Result<Metrics> metrics = measureDForm(*run, s, "the pieces");
+      if (!metrics.isOk()) return {{"error", metrics.status().message()}};
+      return studio::verdictJson(metrics.value(), runGate(run->model, gate, metrics.value(), nullptr, nullptr));
     }};
   };
 }
@@ -114,7 +118,7 @@ studio::SolveAt inverseSolve(const CurveInput& curve, const InverseSettings& set
     json out = studio::inverseResultJson(*run);
     out["warnings"] = warnings(sink);
     return studio::Solved{out, [run, gate] {
-      return studio::gateJson(runGate(run->model, gate, run->metrics, &run->target, &run->curveMatch));
+      return studio::verdictJson(run->metrics, runGate(run->model, gate, run->metrics, &run->target, &run->curveMatch));
     }};
   };
 }

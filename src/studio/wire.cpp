@@ -5,6 +5,9 @@
 #include <cstring>
 #include <vector>
 
+#include "io/json_util.h"
+#include "pipeline/report.h"
+
 namespace dform::studio {
 
 using nlohmann::json;
@@ -64,34 +67,22 @@ json pieceJson(const Piece& piece) {
           {"creases", loops(piece.creases)}};
 }
 
-// A figure that may be NaN (no exact D-Form to compare with): null in JSON.
-json figure(double value) { return std::isfinite(value) ? json(value) : json(nullptr); }
-
-json metricsJson(const Metrics& m) {
-  return {{"L_error", figure(m.L_error)},
-          {"L_max", figure(m.L_max)},
-          {"B_error", figure(m.B_error)},
-          {"seam_gap_mm", figure(m.seam_gap_mm)},
-          {"gauss_max", figure(m.gauss_max)},
-          {"gauss_mean", figure(m.gauss_mean)},
-          {"flipped_2d", m.flipped_2d},
-          {"flipped_3d", m.flipped_3d},
-          {"seam_length_a_mm", figure(m.seam_length_a_mm)},
-          {"seam_length_b_mm", figure(m.seam_length_b_mm)},
-          {"seam_length_3d_mm", figure(m.seam_length_3d_mm)},
-          {"exact_distance_max_rel", figure(m.exact_distance_max_rel)},
-          {"exact_note", m.exact_note}};
-}
+using io_detail::numberOrNull;  // a figure that may be NaN (no exact D-Form to compare with)
 
 json gateChecks(const GateReport& gate) {
   json checks = json::array();
   for (const CheckResult& c : gate.checks)
     checks.push_back({{"name", c.name},
-                      {"value", figure(c.value)},
-                      {"limit", figure(c.limit)},
+                      {"value", numberOrNull(c.value)},
+                      {"limit", numberOrNull(c.limit)},
                       {"verdict", verdictName(c.verdict)},
                       {"detail", c.detail}});
   return checks;
+}
+
+// The gate's verdict: its name, passed, and every check.
+json gateJson(const GateReport& gate) {
+  return {{"name", gate.name}, {"passed", gate.passed()}, {"failed", gate.failed()}, {"checks", gateChecks(gate)}};
 }
 
 json modelJson(const ModelUsed& used) {
@@ -171,14 +162,13 @@ InverseSettings inverseSettingsFrom(const json& request, bool& forceClosed) {
   return s;
 }
 
-json gateJson(const GateReport& gate) {
-  return {{"name", gate.name}, {"passed", gate.passed()}, {"failed", gate.failed()}, {"checks", gateChecks(gate)}};
+json verdictJson(const Metrics& metrics, const GateReport& gate) {
+  return {{"figures", metricsJson(metrics)}, {"gate", gateJson(gate)}};
 }
 
-json forwardResultJson(const ForwardRun& run) {
+json forwardResultJson(const SolvedDForm& run) {
   return {{"mode", "forward"},
           {"model", modelJson(run.modelUsed)},
-          {"figures", metricsJson(run.metrics)},
           {"pieces", {pieceJson(run.model.a), pieceJson(run.model.b)}},
           {"start_a", run.startFractionA},
           {"start_b", run.startFractionB},
@@ -194,10 +184,10 @@ json inverseResultJson(const InverseRun& run) {
           {"model", modelJson(run.modelUsed)},
           {"figures", metricsJson(run.metrics)},
           {"pieces", {pieceJson(run.model.a), pieceJson(run.model.b)}},
-          {"curve_match", {{"D_error", figure(c.D_error)},
-                           {"curve_distance_max_mm", figure(c.curve_distance_max_mm)},
-                           {"roundtrip_rms_rel", figure(c.roundtrip_rms_rel)},
-                           {"roundtrip_max_rel", figure(c.roundtrip_max_rel)},
+          {"curve_match", {{"D_error", numberOrNull(c.D_error)},
+                           {"curve_distance_max_mm", numberOrNull(c.curve_distance_max_mm)},
+                           {"roundtrip_rms_rel", numberOrNull(c.roundtrip_rms_rel)},
+                           {"roundtrip_max_rel", numberOrNull(c.roundtrip_max_rel)},
                            {"roundtrip_note", c.roundtrip_note}}},
           {"on_hull", {{"on_hull", run.pre.onHull},
                        {"is_hull", run.pre.isHull},

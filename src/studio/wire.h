@@ -29,14 +29,17 @@ ForwardSettings forwardSettingsFrom(const nlohmann::json& request);
 /// A seam curve's settings ("resolution", "closed").
 InverseSettings inverseSettingsFrom(const nlohmann::json& request, bool& forceClosed);
 
-/// A solved forward run for the page: model and why, figures, both pieces.
-nlohmann::json forwardResultJson(const ForwardRun& run);
+/// A solved forward run's shape for the page: model and why, both pieces, the starts and scale
+/// (its figures follow with the gate's verdict: verdictJson).
+nlohmann::json forwardResultJson(const SolvedDForm& run);
 
-/// A solved inverse run: as forwardResultJson, plus the curve match and the on-hull test.
+/// A solved inverse run: as forwardResultJson, plus its figures, the curve match and the on-hull
+/// test.
 nlohmann::json inverseResultJson(const InverseRun& run);
 
-/// The gate's verdict: its name, passed, and every check.
-nlohmann::json gateJson(const GateReport& gate);
+/// A run's figures (as report.json's "metrics") and the gate's verdict on them: {"figures",
+/// "gate"}, the gate's name, passed, and every check.
+nlohmann::json verdictJson(const Metrics& metrics, const GateReport& gate);
 
 /// An outline as read, for drawing and the start handles: outer loop, holes, creases (flat
 /// [x0, y0, x1, y1, ...] arrays, mm, at most `maxPoints` points a loop), perimeters, bounds.

@@ -1,5 +1,6 @@
 #include "validate/exact_body.h"
 
+#include "exact/body_edges.h"
 #include "exact/exact_gluing.h"
 #include "forward/coarse_to_fine.h"
 
@@ -23,6 +24,10 @@ Result<Points3> exactBodySeam(const DForm& model) {
   exact::equalizeChords(seam);
   Result<exact::ExactGluing> glued = exact::glue(seam);
   if (!glued.isOk()) return glued.status();
+  // The body true to the pieces' lengths, as the exact model makes it.
+  Result<std::vector<exact::BodyEdge>> edges = exact::traceBodyEdges(glued.value());
+  if (!edges.isOk()) return edges.status();
+  exact::fitBodyToEdges(glued.value(), edges.value());
   Points3 out = exact::placeOnBody(glued.value(), 0, glued.value().seam.a);
   if (!out.allFinite()) return Status(ErrorCode::SolveFailed, "a seam point could not be placed on the exact body");
   return out;

@@ -247,12 +247,15 @@
   }
 
   function number(x, digits) { return x == null ? "—" : (+x).toPrecision(digits || 3); }
-  // The gate's verdict, which arrives with a refined result or as an event after the shape.
-  function showGate(gate, preview) {
-    var status = $("status");
-    status.className = "status " + (gate ? (gate.passed ? "pass" : "fail") : "");
-    status.textContent = (!gate ? "checking the gate…" : gate.passed ? "gate passed" : "gate failed: " + gate.failed + " check(s)") +
-      (preview ? " — preview at " + studio.previewResolution + " seam points, refining…" : "");
+  // A shape's figures and the gate's verdict on them ({figures, gate}, or {error}), which arrive
+  // with a refined result or as an event after the shape; none yet: still measuring.
+  function showVerdict(r, verdict) {
+    var gate = verdict && verdict.gate, status = $("status");
+    if (verdict) { r.figures = verdict.figures; r.gate = gate; }
+    status.className = "status " + (gate ? (gate.passed ? "pass" : "fail") : verdict && verdict.error ? "error" : "");
+    status.textContent = (verdict && verdict.error ? verdict.error : !gate ? "measuring, checking the gate…"
+                          : gate.passed ? "gate passed" : "gate failed: " + gate.failed + " check(s)") +
+      (r.preview ? " — preview at " + studio.previewResolution + " seam points, refining…" : "");
     $("checks").innerHTML = "";
     (gate ? gate.checks : []).forEach(function (c) {
       var li = document.createElement("li");
@@ -260,16 +263,13 @@
       $("checks").appendChild(li);
     });
     studio.gate = gate;
+    showFigures(r, r.figures || {});  // an inverse answer has its figures before its verdict
   }
 
-  var earlyGates = {};
-  function facts(r) {
-    showGate(r.gate || earlyGates[r.seq], r.preview);
-    earlyGates = {};
-    $("model").textContent = r.model.name + (r.model.found_creases.length ? ", " + r.model.found_creases.length + " found crease(s)" : "");
-    $("reason").textContent = r.model.reason;
-    var f = r.figures, rows = [
-      ["L_error", (100 * f.L_error).toFixed(3) + " %"], ["L_max", (100 * f.L_max).toFixed(3) + " %"],
+  function showFigures(r, f) {
+    var percent = function (x) { return x == null ? "—" : (100 * x).toFixed(3) + " %"; };
+    var rows = [
+      ["L_error", percent(f.L_error)], ["L_max", percent(f.L_max)],
       ["B_error", number(f.B_error)], ["seam gap", number(f.seam_gap_mm) + " mm"],
       ["curvature max", number(f.gauss_max) + " rad"], ["3D seam", number(f.seam_length_3d_mm, 5) + " mm"],
     ];
@@ -283,6 +283,15 @@
       row.forEach(function (cell) { var td = document.createElement("td"); td.textContent = cell; tr.appendChild(td); });
       $("figures").appendChild(tr);
     });
+  }
+
+  // Verdicts that came before their shape's answer, by seq; only the shown shape's is ever shown.
+  var earlyVerdicts = {};
+  function facts(r) {
+    showVerdict(r, r.gate ? { figures: r.figures, gate: r.gate } : earlyVerdicts[r.seq]);
+    earlyVerdicts = {};
+    $("model").textContent = r.model.name + (r.model.found_creases.length ? ", " + r.model.found_creases.length + " found crease(s)" : "");
+    $("reason").textContent = r.model.reason;
     $("warnings").textContent = (r.warnings || []).join("\n");
   }
 
@@ -401,8 +410,10 @@
       var e = JSON.parse(m.data);
       if (e.type === "progress" && e.seq === shownSeq) $("status").textContent = "refining: " + e.stage + " step " + e.iteration;
       if (e.type === "result" && e.seq >= shownSeq && pending == null && !inFlight) show(e);
-      if (e.type === "gate" && e.seq === shownSeq) showGate(e.gate, e.preview);
-      if (e.type === "gate" && e.seq > shownSeq) earlyGates[e.seq] = e.gate;  // before its shape's answer
+      // The shown shape's own verdict only: not a newer shape's, nor its preview's once refined.
+      var shown = studio.shown && studio.shown.result;
+      if (e.type === "gate" && shown && e.seq === shown.seq && !!e.preview === !!shown.preview) showVerdict(shown, e);
+      if (e.type === "gate" && e.seq > shownSeq) earlyVerdicts[e.seq] = e;  // before its shape's answer
       if (e.type === "strip") strip.add(e);
       if (e.type === "strip_done") strip.done(e);
     };

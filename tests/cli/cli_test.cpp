@@ -212,8 +212,8 @@ TEST_F(CliTest, UnequalPerimetersGiveBothInMillimetres) {
   const Outcome o = run("forward " + sample("forward/circle.svg") + " " +
                         sample("forward/ellipses-a.svg") + " -o " + path("out"));
   expectError(o, 4, "perimeters differ");
-  EXPECT_NE(o.err.find("799.9"), std::string::npos) << o.err;  // the circle's 800 mm, flattened
-  EXPECT_NE(o.err.find("607.2"), std::string::npos) << o.err;  // the ellipse's 607.28 mm
+  EXPECT_NE(o.err.find("800.000 mm"), std::string::npos) << o.err;  // the circle's 800 mm, flattened at 1e-4 mm
+  EXPECT_NE(o.err.find("607.28"), std::string::npos) << o.err;      // the ellipse's 607.282 mm
   EXPECT_FALSE(fs::exists(path("out")));
 }
 

@@ -141,7 +141,11 @@ def main():
         subprocess.run([dform, "run", os.path.join(job_dir, "job.json"), "-o", cli_dir, "-q"], check=True)
         with open(os.path.join(cli_dir, "report.json")) as f:
             report = json.load(f)
+        # The figures follow the shape with the gate's verdict, into the panel.
+        s.wait(lambda: s.js("return !!window.studio.shown.result.figures"), 60, "the shown shape's figures")
         figures = s.js("return window.studio.shown.result.figures")
+        check("%.3f %%" % (100 * figures["L_error"]) in s.js("return document.getElementById('figures').textContent"),
+              "the shape's figures are in the panel")
         same = all(report["metrics"][k] == figures[k] for k in ("L_error", "L_max", "B_error", "gauss_max"))
         check(same, "Save job + dform run reproduces the figures")
 

@@ -44,9 +44,12 @@ TEST_F(StudioDownloads, SavedJobRunsToTheSameFiguresAndExportToTheSameFiles) {
   ASSERT_EQ(c.post("/api/parametric", {{"session", session}, {"piece", "b"}, {"kind", "superellipse"},
                                         {"values", {{"a", 105}, {"b", 80}, {"exponent", 2.5}}}}).first, 200);
   const json settings = {{"session", session}, {"start_a", 0.05}, {"start_b", 0.3125}, {"flip", true}, {"resolution", 80}};
+  test::EventReader events(c, session);
   auto solved = c.post("/api/solve", settings);
   ASSERT_EQ(solved.first, 200);
   ASSERT_FALSE(solved.second.contains("error")) << solved.second;
+  const json verdict = events.waitFor("gate", std::chrono::seconds(120));  // the shape's figures
+  ASSERT_FALSE(verdict.is_null());
 
   auto job = c.raw().Post("/api/job", c.headers(), settings.dump(), "application/json");
   ASSERT_EQ(job->status, 200);
@@ -58,7 +61,7 @@ TEST_F(StudioDownloads, SavedJobRunsToTheSameFiguresAndExportToTheSameFiles) {
   ASSERT_EQ(std::system(run.c_str()), 0) << readAll(dir / "run.log");
   const json report = json::parse(readAll(dir / "cli" / "report.json"));
   for (const char* figure : {"L_error", "L_max", "B_error", "seam_gap_mm", "gauss_max", "seam_length_3d_mm"})
-    EXPECT_DOUBLE_EQ(report["metrics"][figure].get<double>(), solved.second["figures"][figure].get<double>()) << figure;
+    EXPECT_DOUBLE_EQ(report["metrics"][figure].get<double>(), verdict["figures"][figure].get<double>()) << figure;
 
   json exportRequest = settings;
   exportRequest["profile"] = "laser";

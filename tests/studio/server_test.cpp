@@ -2,7 +2,9 @@
 // limits, independent sessions, results equal to the pipeline's in memory, and newest-input-wins.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <nlohmann/json.hpp>
@@ -10,6 +12,7 @@
 
 #include "io/outline_reader.h"
 #include "pipeline/forward_pipeline.h"
+#include "pipeline/report.h"
 #include "studio/session.h"
 #include "studio/studio.h"
 #include "studio/wire.h"
@@ -150,11 +153,15 @@ TEST(StudioServer, ShapeEqualsTheInMemoryRunForTheSameStart) {
     for (Eigen::Index v = 0; v < expected.rows(); ++v)
       for (int k = 0; k < 3; ++k) EXPECT_EQ(got[std::size_t(3 * v + k)], expected(v, k));
   }
-  EXPECT_DOUBLE_EQ(r.second["figures"]["L_error"].get<double>(), direct.value().metrics.L_error);
-  // The gate's verdict follows the shape as an event.
+  // The shape comes alone; its figures (every one as makeDForm's, as report.json writes them) and
+  // the gate's verdict follow it as an event.
+  EXPECT_FALSE(r.second.contains("figures"));
+  EXPECT_FALSE(r.second.contains("gate"));
   const json gate = events.waitFor("gate", std::chrono::seconds(60));
   ASSERT_FALSE(gate.is_null());
   EXPECT_EQ(gate["seq"], 3);
+  EXPECT_EQ(gate["figures"], metricsJson(direct.value().metrics)) << gate["figures"];
+  EXPECT_DOUBLE_EQ(gate["figures"]["L_error"].get<double>(), direct.value().metrics.L_error);
   EXPECT_TRUE(gate["gate"]["passed"].get<bool>()) << gate;
   EXPECT_GE(gate["gate"]["checks"].size(), 10u);
   // Sent uncompressed even to a client that accepts compression (on loopback it only costs).
@@ -186,6 +193,7 @@ TEST(StudioServer, NewestInputWinsAndStaleRefinementsNeverArrive) {
   EXPECT_FALSE(result["preview"].get<bool>());
   EXPECT_EQ(result["pieces"][0]["seam"].size(), 60u);
   EXPECT_TRUE(result["gate"].contains("passed"));  // a refined result carries its verdict
+  EXPECT_TRUE(result["figures"].contains("L_error"));  // and its figures
   for (const json& e : events.seen()) EXPECT_NE(e.value("seq", 0) == 1 && e["type"] == "result", true) << e;
 }
 
@@ -242,6 +250,43 @@ TEST(StudioServer, InverseShowsTheOnHullTestAndTheRoundTrip) {
   auto bad = c.post("/api/curve", {{"session", session}, {"name", "flat.obj"}, {"text", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 2 0\nl 1 2 3 4 5 1\n"}});
   EXPECT_EQ(bad.first, 400);
   EXPECT_NE(bad.second["error"].get<std::string>().find("flat.obj"), std::string::npos) << bad.second;
+}
+
+}  // namespace
+}  // namespace dform
+
+namespace dform {
+namespace {
+
+// The nice value of each thread of this process (/proc/self/task/TID/stat, field 19).
+std::vector<int> threadNiceValues() {
+  std::vector<int> out;
+  for (const auto& task : std::filesystem::directory_iterator("/proc/self/task")) {
+    std::ifstream in(task.path() / "stat");
+    std::string stat((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::istringstream fields(stat.substr(stat.rfind(')') + 2));  // after "pid (name) "
+    std::string field;
+    for (int k = 3; k <= 19 && fields >> field; ++k)
+      if (k == 19) out.push_back(std::stoi(field));
+  }
+  return out;
+}
+
+TEST(StudioSession, TheWorkerYieldsToTheLiveSolves) {
+  const auto workers = [] {
+    const std::vector<int> nice = threadNiceValues();
+    return std::count(nice.begin(), nice.end(), studio::Session::kWorkerNice);
+  };
+  const long before = workers();
+  studio::PieceInput a{"a.json", "", test::startEllipse(120, 70, "a.json")};
+  studio::PieceInput b{"b.json", "", test::startEllipse(110, 82.305579, "b.json")};
+  {
+    studio::Session session(a, b);
+    // Its worker lowers its own priority as it starts.
+    for (int k = 0; k < 500 && workers() == before; ++k) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    EXPECT_EQ(workers(), before + 1);
+  }
+  EXPECT_EQ(workers(), before);  // joined with the session
 }
 
 }  // namespace
