@@ -2,7 +2,6 @@
 
 #include <new>
 
-#include "core/interrupt.h"
 #include "io/outline_reader.h"
 #include "model/resources.h"
 #include "model/run_control.h"
@@ -23,8 +22,6 @@ Result<Metrics> measureDForm(const SolvedDForm& solved, const ForwardSettings& s
     return computeMetrics(solved.model);
   } catch (const std::bad_alloc&) {
     return outOfMemory({}, settings.resolution, pieces + ": measuring the run");
-  } catch (const Interrupted& stop) {
-    return Status(ErrorCode::Interrupted, std::string("interrupted during ") + stop.stage());
   }
 }
 

@@ -2,7 +2,6 @@
 
 #include <new>
 
-#include "core/interrupt.h"
 #include "core/polyline.h"
 #include "io/curve_reader.h"
 #include "model/resources.h"
@@ -47,8 +46,6 @@ Result<InverseRun> makePieces(Curve3 curve, const InverseSettings& settings, Mes
     return measure(std::move(solved).value(), sink);
   } catch (const std::bad_alloc&) {
     return outOfMemory({}, settings.resolution, curveLabel(curve) + ": measuring the run");
-  } catch (const Interrupted& stop) {
-    return Status(ErrorCode::Interrupted, std::string("interrupted during ") + stop.stage());
   }
 }
 
