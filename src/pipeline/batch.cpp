@@ -247,7 +247,7 @@ Result<std::vector<BatchJob>> listBatchJobs(const std::string& input) {
         files.push_back(entry.path().string());
     if (ec) return Status(ErrorCode::InputUnreadable, input + ": cannot be read (" + ec.message() + ")");
     std::sort(files.begin(), files.end());
-    for (const std::string& f : files) jobs.push_back({0, f, ""});
+    for (const std::string& f : files) jobs.push_back({0, f, "", ""});
   } else {
     std::ifstream in(input);
     if (!in) return Status(ErrorCode::InputUnreadable, input + ": no such job list or folder");
@@ -258,7 +258,7 @@ Result<std::vector<BatchJob>> listBatchJobs(const std::string& input) {
       if (first == std::string::npos || line[first] == '#') continue;
       const auto last = line.find_last_not_of(" \t\r");
       const fs::path path = line.substr(first, last - first + 1);
-      jobs.push_back({0, (path.is_absolute() ? path : base / path).string(), ""});
+      jobs.push_back({0, (path.is_absolute() ? path : base / path).string(), "", ""});
     }
   }
   if (jobs.empty()) return Status(ErrorCode::InputInvalid, input + ": lists no job files");
