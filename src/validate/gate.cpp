@@ -420,14 +420,6 @@ CheckResult objectCheck(const char* name, double rms, double max, double limit, 
 
 }  // namespace
 
-GateReport runGate(const DForm& model, const GateLimits& limits, const Curve3* target) {
-  const size_t pairs = model.a.seam.size();
-  std::optional<CurveMatch> curve;
-  if (target && size_t(target->points.rows()) == pairs && pairs > 0)
-    curve = computeCurveMatch(model, *target);
-  return runGate(model, limits, computeMetrics(model), target, curve ? &*curve : nullptr);
-}
-
 GateReport runGate(const DForm& model, const GateLimits& limits, const Metrics& metrics,
                    const Curve3* target, const CurveMatch* curve) {
   GateReport report;

@@ -52,7 +52,7 @@ TEST(ExactModel, EllipsePairMeshesConformAndTheFiguresAreRounding) {
     ModelUsed used;
     Result<DForm> model = made(exact::testshapes::ellipsePair(n), used);
     ASSERT_TRUE(model.isOk()) << n << ": " << model.status().message();
-    expectRounding(computeMetrics(model.value()), "n = " + std::to_string(n));
+    expectRounding(computeMetrics(model.value(), {}), "n = " + std::to_string(n));
   }
 }
 
@@ -62,7 +62,7 @@ TEST(ExactModel, CircleAndSquareCreaseAndBendWithoutStretching) {
   ASSERT_TRUE(model.isOk()) << model.status().message();
   // The square's flat face is triangulated by many flips, whose chained laws of cosines leave its
   // edges' lengths off by ~2e-8; the body is fitted to the lengths drawn in the pieces.
-  expectRounding(computeMetrics(model.value()), "circle + square");
+  expectRounding(computeMetrics(model.value(), {}), "circle + square");
   EXPECT_EQ(used.creases.size(), 4u) << "the disc creases between the square's corners";
 }
 
@@ -232,7 +232,7 @@ TEST(ExactModelSweep, ConvexPairsAtEveryResolutionUpToTheEnginesLimit) {
       Result<DForm> model = exactDForm(polygons, 4.0, kPaths, used);
       const std::string what = name + " at n = " + std::to_string(n);
       ASSERT_TRUE(model.isOk()) << what << ": " << model.status().message();
-      expectRounding(computeMetrics(model.value()), what);
+      expectRounding(computeMetrics(model.value(), {}), what);
     }
   }
 }
