@@ -225,8 +225,7 @@ exact::SeamPolygons congruentCircles(int n) {
 // a square, two circles): every one glued exactly, meshed along its folds without a degenerate
 // triangle, and its figures rounding. The meshes' interior edges are 4 mm long whatever the
 // resolution (the folds are followed all the same), so that the sweep times the engine, not the
-// mesher. Circle + square stops at 800: at 1000 (250 seam points on each straight side) the embedding's start
-// is refused ("the starting triangulation is not weighted Delaunay"), a limit of the engine.
+// mesher.
 TEST(ExactModelSweep, ConvexPairsAtEveryResolutionUpToTheEnginesLimit) {
   for (int n : {52, 100, 200, 300, 452, 500, 600, 800, 1000}) {
     const std::pair<std::string, exact::SeamPolygons> pairs[4] = {
@@ -236,7 +235,6 @@ TEST(ExactModelSweep, ConvexPairsAtEveryResolutionUpToTheEnginesLimit) {
         {"circle + square", circleAndSquare(n / 4)},
         {"circle + circle", congruentCircles(n)}};
     for (const auto& [name, polygons] : pairs) {
-      if (name == "circle + square" && n > 800) continue;
       ModelUsed used;
       Result<DForm> model = exactDForm(polygons, 4.0, kPaths, used);
       const std::string what = name + " at n = " + std::to_string(n);
