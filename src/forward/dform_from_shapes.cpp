@@ -124,7 +124,7 @@ Status validateForwardJob(const ForwardSettings& job) {
       return usage("a start point must have finite coordinates");
   if (!(job.perimeterTolerance > 0.0 && job.perimeterTolerance < 1.0))
     return usage("the perimeter tolerance must be in (0, 1)");
-  if (!(job.interiorEdgeFactor >= 0.25 && job.interiorEdgeFactor <= 8.0))
+  if (!(job.interiorEdgeFactor >= kMinInteriorEdgeFactor && job.interiorEdgeFactor <= kMaxInteriorEdgeFactor))
     return usage("the interior edge factor (--interior-edge, interior_edge in a job file) must be in [0.25, 8]");
   if (std::string problem = settingsProblem(forwardTerms(), job.solve.weights, job.solve.solver); !problem.empty())
     return usage(problem);

@@ -49,6 +49,10 @@ enum class ModelChoice { Auto, Exact, Paper, General };
 const char* modelChoiceName(ModelChoice model);  ///< "auto", "exact", "paper" or "general"
 bool parseModelChoice(const std::string& text, ModelChoice& model);
 
+/// The range of ForwardSettings::interiorEdgeFactor: finer meshes cost more than they show, and
+/// coarser ones leave the paper model too few triangles to bend.
+constexpr double kMinInteriorEdgeFactor = 0.25, kMaxInteriorEdgeFactor = 8.0;
+
 /// Everything a forward run needs besides the two pieces: the model, which boundaries are
 /// zipped, the starting pair, the mesh and the solve.
 struct ForwardSettings {
@@ -59,7 +63,7 @@ struct ForwardSettings {
   bool flip = false;           ///< zip B turned over (its mirror image) instead
   bool fitPerimeter = false;   ///< scale B uniformly to A's perimeter
   double perimeterTolerance = 0.005;  ///< largest |pA - pB| / max(pA, pB) accepted as equal
-  double interiorEdgeFactor = 1.0;    ///< interior edge length / seam edge length
+  double interiorEdgeFactor = 1.0;    ///< interior edge length / seam edge length, in [kMinInteriorEdgeFactor, kMaxInteriorEdgeFactor]
   bool coarseToFine = true;           ///< start from solutions at 1/3, 1/9, ... of the resolution
   ForwardOptions solve;
   InextensibleOptions inextensible;  ///< the general engine's (ModelChoice::General)

@@ -11,11 +11,6 @@ namespace dform {
 using detail::Clock;
 using detail::secondsSince;
 
-Result<SolvedDForm> solveDFormShape(Shape2 a, Shape2 b, const ForwardSettings& settings,
-                                    MessageSink& sink, const RunHooks& hooks) {
-  return solveDForm(std::move(a), std::move(b), settings, sink, hooks);
-}
-
 Result<Metrics> measureDForm(const SolvedDForm& solved, const ForwardSettings& settings,
                              const std::string& pieces) {
   try {
@@ -29,7 +24,7 @@ Result<ForwardRun> makeDForm(Shape2 a, Shape2 b, const ForwardSettings& settings
                              MessageSink& sink, const RunHooks& hooks) {
   const std::string pieces = (a.outer.source.empty() ? "piece A" : a.outer.source) + " and " +
                              (b.outer.source.empty() ? "piece B" : b.outer.source);
-  Result<SolvedDForm> solved = solveDFormShape(std::move(a), std::move(b), settings, sink, hooks);
+  Result<SolvedDForm> solved = solveDForm(std::move(a), std::move(b), settings, sink, hooks);
   if (!solved.isOk()) return solved.status();
   Result<Metrics> metrics = measureDForm(solved.value(), settings, pieces);
   if (!metrics.isOk()) return metrics.status();

@@ -26,17 +26,13 @@ struct ForwardRun : SolvedDForm {
 Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const RunHooks& hooks = {});
 
 /// The D-Form of two shapes in memory, solved as forward's solveDForm does (the exact model or
-/// the paper's), and measured: measureDForm(solveDFormShape(...)).
+/// the paper's), and measured: measureDForm(solveDForm(...)).
 Result<ForwardRun> makeDForm(Shape2 a, Shape2 b, const ForwardSettings& settings,
                              MessageSink& sink, const RunHooks& hooks = {});
 
-/// makeDForm's two steps, for a front end that shows the shape before its figures: the solved
-/// D-Form (the same shape as makeDForm's), not yet measured.
-Result<SolvedDForm> solveDFormShape(Shape2 a, Shape2 b, const ForwardSettings& settings,
-                                    MessageSink& sink, const RunHooks& hooks = {});
-
-/// The figures makeDForm gives a solved D-Form; `settings` and `pieces` (the pieces' names) for
-/// the message when measuring runs out of memory.
+/// The figures makeDForm gives a solved D-Form, for a front end that shows the shape (solveDForm)
+/// before its figures; `settings` and `pieces` (the pieces' names) for the message when
+/// measuring runs out of memory.
 Result<Metrics> measureDForm(const SolvedDForm& solved, const ForwardSettings& settings,
                              const std::string& pieces);
 

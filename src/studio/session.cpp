@@ -103,11 +103,10 @@ std::optional<CurveInput> Session::curve() const {
   return curve_;
 }
 
-// The answer to the page: the result, or superseded, or the error. With gateNow its figures and
-// the gate's verdict are in it; else the worker sends them as a "gate" event unless newer input
-// came first.
+// The answer to the page: the result, or superseded, or the error, with its figures and the
+// gate's verdict where `verdict` says so.
 json Session::finish(const Result<Solved>& result, const Latest::Ticket& ticket, long seq, bool preview,
-                     bool gateNow) {
+                     Verdict verdict) {
   if (!result.isOk()) {
     if (ticket.cancel->load()) return {{"seq", seq}, {"superseded", true}};
     return {{"seq", seq}, {"error", result.status().message()}};
@@ -116,9 +115,8 @@ json Session::finish(const Result<Solved>& result, const Latest::Ticket& ticket,
   out["seq"] = seq;
   out["preview"] = preview;
   out["refining"] = false;
-  if (gateNow) {
-    out.update(result.value().verdict());
-  } else {
+  if (verdict == Verdict::InAnswer) out.update(result.value().verdict());
+  if (verdict == Verdict::AsEvent)
     queue([this, verdict = result.value().verdict, ticket, seq, preview] {
       if (!live_.current(ticket)) return;
       json event = verdict();
@@ -126,8 +124,29 @@ json Session::finish(const Result<Solved>& result, const Latest::Ticket& ticket,
       event.update({{"type", "gate"}, {"seq", seq}, {"preview", preview}});
       events_.push(event);
     }, Task::Gate);
-  }
   return out;
+}
+
+// The refinement does not take the session's solve lock: newer input cancels it (its hooks poll
+// the ticket), and on the worker's lower priority it yields the cores to the live solve anyway,
+// which would otherwise wait for a whole refinement and its measuring.
+void Session::queueRefinement(const SolveAt& solve, int resolution, const Latest::Ticket& ticket, long seq) {
+  queue([this, solve, resolution, ticket, seq] {
+    if (!live_.current(ticket)) return;
+    auto last = Clock::now();
+    RunHooks progress;
+    progress.interrupted = ticket.cancel.get();
+    progress.onIteration = [&](const char* stage, const IterationSummary& it) {
+      if (Clock::now() - last < std::chrono::milliseconds(50)) return;
+      last = Clock::now();
+      events_.push({{"type", "progress"}, {"seq", seq}, {"stage", stage},
+                    {"iteration", it.iteration}, {"cost", it.cost}});
+    };
+    json result = finish(solve(resolution, Interior::Job, progress), ticket, seq, false, Verdict::InAnswer);
+    if (result.contains("superseded") || !live_.current(ticket)) return;
+    result["type"] = "result";
+    events_.push(result);
+  }, Task::Refinement);
 }
 
 json Session::solveLive(const SolveAt& solve, int resolution, bool optimises, long seq,
@@ -150,33 +169,24 @@ json Session::solveLive(const SolveAt& solve, int resolution, bool optimises, lo
       if (preview < resolution) optimising = true;
       if (optimising || ticket.cancel->load()) stop = true;
     };
-    Result<Solved> full = solve(resolution, probe);
-    if (!optimising) return finish(full, ticket, seq, false, false);
+    Result<Solved> full = solve(resolution, Interior::Sparse, probe);
+    if (!optimising) {
+      if (!full.isOk() || !full.value().sparse) return finish(full, ticket, seq, false, Verdict::AsEvent);
+      // The job's shape, meshed sparsely: its mesh as the job says follows, measured and judged.
+      json out = finish(full, ticket, seq, false, Verdict::WithRefinement);
+      out["refining"] = true;
+      queueRefinement(solve, resolution, ticket, seq);
+      return out;
+    }
     optimisedDesign_ = design;
     refine = true;
   }
   RunHooks hooks;
   hooks.interrupted = ticket.cancel.get();
-  json out = finish(solve(preview, hooks), ticket, seq, true, false);
+  json out = finish(solve(preview, Interior::Job, hooks), ticket, seq, true, Verdict::AsEvent);
   if (!out.contains("error") && !out.contains("superseded")) {
     out["refining"] = true;
-    queue([this, solve, resolution, ticket, seq] {
-      std::unique_lock<std::mutex> solving = lockAfterLive();
-      if (!live_.current(ticket)) return;
-      auto last = Clock::now();
-      RunHooks progress;
-      progress.interrupted = ticket.cancel.get();
-      progress.onIteration = [&](const char* stage, const IterationSummary& it) {
-        if (Clock::now() - last < std::chrono::milliseconds(50)) return;
-        last = Clock::now();
-        events_.push({{"type", "progress"}, {"seq", seq}, {"stage", stage},
-                      {"iteration", it.iteration}, {"cost", it.cost}});
-      };
-      json result = finish(solve(resolution, progress), ticket, seq, false, true);
-      if (result.contains("superseded")) return;
-      result["type"] = "result";
-      events_.push(result);
-    }, Task::Refinement);
+    queueRefinement(solve, resolution, ticket, seq);
   }
   return out;
 }
@@ -195,7 +205,7 @@ void Session::startStrip(std::vector<std::pair<json, SolveAt>> starts, long seq)
       if (!strip_.current(ticket)) return;
       RunHooks hooks;
       hooks.interrupted = ticket.cancel.get();
-      Result<Solved> result = solve(kPreviewResolution, hooks);
+      Result<Solved> result = solve(kPreviewResolution, Interior::Job, hooks);
       if (!strip_.current(ticket)) return;
       json event = card;
       event["type"] = "strip";

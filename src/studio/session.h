@@ -1,6 +1,7 @@
 // One browser tab's design: its outlines (or seam curve), its solves and its event stream. Newest
-// input wins: a solve cancels the one before it, and a paper-model solve answers with a coarse
-// preview at once while a worker refines it and streams progress and the result as events.
+// input wins: a solve cancels the one before it. An exact solve answers with the shape meshed
+// sparsely, a paper-model solve with a coarse preview, and a worker streams the result as the
+// job makes it (progress, then the shape with its figures and verdict) as events.
 #pragma once
 
 #include <atomic>
@@ -78,10 +79,18 @@ class Latest {
 struct Solved {
   nlohmann::json result;
   std::function<nlohmann::json()> verdict;
+  /// The shape was meshed sparsely (Interior::Sparse) and is the job's shape all the same: the
+  /// exact model's body, which every mesh of it draws alike (its triangles follow the body's folds).
+  bool sparse = false;
 };
 
+/// How finely a solve meshes the pieces' interiors: as the job says, or as coarsely as the mesher
+/// allows where that shows the same shape (the exact model; any other model is meshed as the job
+/// says). A sparse answer is drawn at once and its mesh as the job says follows with the figures.
+enum class Interior { Job, Sparse };
+
 /// A solve at a seam resolution, or why it failed.
-using SolveAt = std::function<Result<Solved>(int resolution, const RunHooks& hooks)>;
+using SolveAt = std::function<Result<Solved>(int resolution, Interior interior, const RunHooks& hooks)>;
 
 class Session {
  public:
@@ -94,12 +103,14 @@ class Session {
   std::optional<CurveInput> curve() const;
 
   /// Solves at `resolution` for the request numbered `seq`; newer requests cancel it (answer
-  /// {"superseded": true}). The figures and the gate's verdict follow as a "gate" event,
-  /// sent only while no newer solve was asked for. Where the solve turns out to need the paper model's optimisation
+  /// {"superseded": true}). The figures and the gate's verdict follow as a "gate" event, sent
+  /// only while no newer solve was asked for. An exact result is answered meshed sparsely, with
+  /// "refining": true, and the worker streams it meshed as the job says with its figures and
+  /// verdict (a "result" event). Where the solve turns out to need the paper model's optimisation
   /// (or `optimises` says so, or the last solve of the same `design` did), the answer is a
-  /// preview at kPreviewResolution with "refining": true, and the worker streams the full solve
-  /// ("progress" and "result" events). `design` names what decides the model: the pieces and
-  /// every setting but the starts.
+  /// preview at kPreviewResolution with "preview" and "refining" true, and the worker streams the
+  /// full solve ("progress" and "result" events). `design` names what decides the model: the
+  /// pieces and every setting but the starts.
   nlohmann::json solveLive(const SolveAt& solve, int resolution, bool optimises, long seq,
                            const std::string& design);
 
@@ -119,14 +130,20 @@ class Session {
   void work();
   enum class Task { Gate, Refinement, Strip };
   void queue(std::function<void()> task, Task kind);
+  /// Where an answer's figures and verdict go: into it, as a "gate" event after it, or nowhere
+  /// (a refinement that carries its own follows it).
+  enum class Verdict { InAnswer, AsEvent, WithRefinement };
   nlohmann::json finish(const Result<Solved>& result, const Latest::Ticket& ticket, long seq,
-                        bool preview, bool gateNow);
+                        bool preview, Verdict verdict);
+  /// Queues the worker's solve of `resolution` meshed as the job says, streamed as a "result"
+  /// event with its figures and verdict unless newer input came first.
+  void queueRefinement(const SolveAt& solve, int resolution, const Latest::Ticket& ticket, long seq);
 
   mutable std::mutex inputMutex_;
   PieceInput pieces_[2];
   std::optional<CurveInput> curve_;
 
-  std::mutex solveMutex_;  ///< one solve at a time per session
+  std::mutex solveMutex_;  ///< one live or strip solve at a time per session
   /// Live solves waiting for solveMutex_: the worker's tasks let them go first (a mutex is not
   /// fair, and a strip's back-to-back solves would otherwise hold a drag for seconds).
   std::atomic<int> liveWaiting_{0};

@@ -83,15 +83,25 @@ std::string forwardDesign(const PieceInput& a, const PieceInput& b, const Forwar
 }
 
 // The shape first; its figures and the gate's verdict when the session asks for them (after the
-// shape is on its way: measuring it costs as much again as the exact solve).
+// shape is on its way: measuring it costs as much again as the exact solve). Asked for a sparse
+// interior, an exact result is meshed as coarsely as a job may be: the same body in fewer
+// triangles. Any other model is meshed as the job says.
 studio::SolveAt forwardSolve(const PieceInput& a, const PieceInput& b, const ForwardSettings& settings,
                              const GateLimits& gate) {
-  return [a = a.shape, b = b.shape, settings, gate](int resolution, const RunHooks& hooks) -> Result<studio::Solved> {
+  return [a = a.shape, b = b.shape, settings, gate](int resolution, studio::Interior interior,
+                                                    const RunHooks& hooks) -> Result<studio::Solved> {
     ForwardSettings s = settings;
     s.resolution = resolution;
+    const bool sparse = interior == studio::Interior::Sparse && s.interiorEdgeFactor < kMaxInteriorEdgeFactor;
+    if (sparse) s.interiorEdgeFactor = kMaxInteriorEdgeFactor;
     MessageSink sink;
     const auto start = std::chrono::steady_clock::now();
-    Result<SolvedDForm> made = solveDFormShape(a, b, s, sink, hooks);
+    Result<SolvedDForm> made = solveDForm(a, b, s, sink, hooks);
+    if (sparse && made.isOk() && made.value().modelUsed.name != "exact") {
+      s.interiorEdgeFactor = settings.interiorEdgeFactor;
+      sink = MessageSink();
+      made = solveDForm(a, b, s, sink, hooks);
+    }
     if (!made.isOk()) return made.status();
     auto run = std::make_shared<const SolvedDForm>(std::move(made).value());
     const double madeMs = millisecondsSince(start);
@@ -99,16 +109,18 @@ studio::SolveAt forwardSolve(const PieceInput& a, const PieceInput& b, const For
     out["warnings"] = warnings(sink);
     out["timings"]["made"] = madeMs / 1000;
     out["timings"]["answer"] = (millisecondsSince(start) - madeMs) / 1000;
+    const bool sparseExact = sparse && run->modelUsed.name == "exact";
     return studio::Solved{out, [run, s, gate]() -> json {
       Result<Metrics> metrics = measureDForm(*run, s, "the pieces");
       if (!metrics.isOk()) return {{"error", metrics.status().message()}};
       return studio::verdictJson(metrics.value(), runGate(run->model, gate, metrics.value(), nullptr, nullptr));
-    }};
+    }, sparseExact};
   };
 }
 
 studio::SolveAt inverseSolve(const CurveInput& curve, const InverseSettings& settings, const GateLimits& gate) {
-  return [curve = curve.curve, settings, gate](int resolution, const RunHooks& hooks) -> Result<studio::Solved> {
+  return [curve = curve.curve, settings, gate](int resolution, studio::Interior,
+                                               const RunHooks& hooks) -> Result<studio::Solved> {
     InverseSettings s = settings;
     s.resolution = resolution;
     MessageSink sink;
@@ -217,7 +229,7 @@ Status Studio::Impl::readStart() {
       startSettings = {{"start_a", f.startA.nearestToPoint ? 0.0 : f.startA.fraction},
                        {"start_b", f.startB.nearestToPoint ? 0.0 : f.startB.fraction},
                        {"flip", f.flip}, {"fit_perimeter", f.fitPerimeter}, {"resolution", f.resolution},
-                       {"model", modelChoiceName(f.model)},
+                       {"model", modelChoiceName(f.model)}, {"interior_edge", f.interiorEdgeFactor},
                        {"join", std::string(joinedBoundaryName(f.joinA)) + "," + joinedBoundaryName(f.joinB)}};
     } else {
       const InverseJob& i = job.value().inverse;

@@ -147,6 +147,7 @@ ForwardSettings forwardSettingsFrom(const json& request) {
     throw RequestError("join: must be outer,outer, inner,inner, outer,inner or inner,outer");
   if (!parseModelChoice(valueOr<std::string>(request, "model", "auto"), s.model))
     throw RequestError("model: must be auto, exact or paper");
+  s.interiorEdgeFactor = valueOr<double>(request, "interior_edge", 1.0);
   s.solve.weights = defaultWeights(s.joinA, s.joinB);
   if (Status ok = validateForwardJob(s); !ok.isOk()) throw RequestError(ok.message());
   return s;

@@ -111,14 +111,23 @@ PieceView.prototype.setFraction = function (f) { this.fraction = f; this.renderH
 
 // A result over the outline as read: the way its seam runs (ticks), its found creases and the
 // seam point that breaks convexity, its flat piece placed by `place` ({scale, offset}).
+// A new result redraws only what depends on it (the ticks' direction, the found creases and the
+// break point): the outline as read stays, so that a drag redraws little.
 PieceView.prototype.setResult = function (piece, direction, breakPoint, place) {
+  var turned = !this.result || this.result.direction !== direction;
   this.result = { piece: piece, direction: direction, breakPoint: breakPoint, scale: place.scale, offset: place.offset };
-  this.render();
+  if (!this.found) { this.render(); return; }
+  if (turned) {
+    while (this.ticks.firstChild) this.ticks.removeChild(this.ticks.firstChild);
+    this.renderTicks();
+  }
+  this.renderFound();
 };
 
 PieceView.prototype.render = function () {
   var svg = this.svg, shape = this.shape, u = this.unit;
   while (svg.firstChild) svg.removeChild(svg.firstChild);
+  this.found = null;
   if (!shape) return;
   var d = pathOf(shape.outer, true);
   shape.holes.forEach(function (h) { d += pathOf(h, true); });
@@ -127,6 +136,7 @@ PieceView.prototype.render = function () {
   svgNode("path", { d: pathOf(this.loop.points, true), class: "handle-target", "stroke-width": 14 * u }, svg);
   this.ticks = svgNode("g", { class: "ticks" }, svg);
   this.renderTicks();
+  this.found = svgNode("g", {}, svg);
   if (this.result) this.renderFound();
   if (this.fixed) { this.handle = null; return; }
   this.handle = svgNode("circle", { r: 7 * u, class: "handle handle-target", "stroke-width": 2 * u }, svg);
@@ -152,7 +162,8 @@ PieceView.prototype.renderTicks = function () {
 
 // Found creases, drawn where the result's flat piece lies over the outline as read.
 PieceView.prototype.renderFound = function () {
-  var r = this.result, flat = r.piece.flat, u = this.unit, svg = this.svg;
+  var r = this.result, flat = r.piece.flat, u = this.unit, svg = this.found;
+  while (svg.firstChild) svg.removeChild(svg.firstChild);
   r.piece.creases.forEach(function (c) {
     var pts = [];
     c.forEach(function (v) { pts.push(flat[2 * v] * r.scale[0] + r.offset[0], flat[2 * v + 1] * r.scale[1] + r.offset[1]); });

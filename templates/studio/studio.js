@@ -225,7 +225,7 @@
     studio.shown = { seq: r.seq, result: r, pieces: pieces, settings: Object.assign({}, state.settings) };
     var drawn = performance.now();
     requestAnimationFrame(function () {
-      if (time != null && !r.refining) {
+      if (time != null && !r.preview) {
         studio.latencies.push(performance.now() - time);
         if (r.arrival) studio.breakdown.push(breakdown(r, time, drawn, performance.now()));
       }

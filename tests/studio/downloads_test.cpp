@@ -48,7 +48,7 @@ TEST_F(StudioDownloads, SavedJobRunsToTheSameFiguresAndExportToTheSameFiles) {
   auto solved = c.post("/api/solve", settings);
   ASSERT_EQ(solved.first, 200);
   ASSERT_FALSE(solved.second.contains("error")) << solved.second;
-  const json verdict = events.waitFor("gate", std::chrono::seconds(120));  // the shape's figures
+  const json verdict = events.waitFor("result", std::chrono::seconds(120));  // the job's mesh, measured
   ASSERT_FALSE(verdict.is_null());
 
   auto job = c.raw().Post("/api/job", c.headers(), settings.dump(), "application/json");

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <thread>
 
 #include "io/outline_reader.h"
@@ -129,6 +130,28 @@ TEST(StudioServer, TwoSessionsAreIndependent) {
   EXPECT_EQ(again.second["pieces"][1]["flat"], b.second["pieces"][1]["flat"]);
 }
 
+// The 3D point of a piece's answer at a flat point: linear over the flat triangle holding it
+// (nullopt outside every triangle). Exact for a mesh whose triangles lie in the body's faces.
+std::optional<Eigen::Vector3d> pointAt(const json& piece, const Eigen::Vector2d& q) {
+  const std::vector<double> flat = test::decodeDoubles(piece["flat"]), shape = test::decodeDoubles(piece["shape"]);
+  const std::vector<std::uint32_t> faces = test::decodeIndices(piece["faces"]);
+  for (std::size_t f = 0; f + 2 < faces.size(); f += 3) {
+    const auto corner = [&](int k) { return Eigen::Vector2d(flat[2 * faces[f + k]], flat[2 * faces[f + k] + 1]); };
+    const Eigen::Vector2d a = corner(0), b = corner(1), c = corner(2);
+    const double area = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+    const double wb = ((q - a).x() * (c - a).y() - (q - a).y() * (c - a).x()) / area;
+    const double wc = ((b - a).x() * (q - a).y() - (b - a).y() * (q - a).x()) / area;
+    const double wa = 1 - wb - wc;
+    if (std::min({wa, wb, wc}) < -1e-9) continue;
+    Eigen::Vector3d p = Eigen::Vector3d::Zero();
+    const double w[3] = {wa, wb, wc};
+    for (int k = 0; k < 3; ++k)
+      p += w[k] * Eigen::Vector3d(shape[3 * faces[f + k]], shape[3 * faces[f + k] + 1], shape[3 * faces[f + k] + 2]);
+    return p;
+  }
+  return std::nullopt;
+}
+
 TEST(StudioServer, ShapeEqualsTheInMemoryRunForTheSameStart) {
   StudioClient c;
   const std::string session = c.session();
@@ -146,30 +169,69 @@ TEST(StudioServer, ShapeEqualsTheInMemoryRunForTheSameStart) {
   Result<ForwardRun> direct = makeDForm(test::startEllipse(120, 70, "ellipse-a.json"),
                                         test::startEllipse(110, 82.305579, "ellipse-b.json"), s, sink);
   ASSERT_TRUE(direct.isOk()) << direct.status().message();
+  // The answer is the exact body meshed sparsely, the job's mesh and its figures to follow: no
+  // figures yet, and fewer vertices drawing the same shape. Every vertex of the job's mesh,
+  // looked up in the answer's flat triangles, lands on its own 3D point.
+  EXPECT_FALSE(r.second["preview"].get<bool>());
+  EXPECT_TRUE(r.second["refining"].get<bool>());
+  EXPECT_FALSE(r.second.contains("figures"));
+  EXPECT_FALSE(r.second.contains("gate"));
+  const double diagonal = (direct.value().model.a.shape.colwise().maxCoeff() -
+                           direct.value().model.a.shape.colwise().minCoeff()).norm();
+  for (int piece = 0; piece < 2; ++piece) {
+    const Piece& job = piece == 0 ? direct.value().model.a : direct.value().model.b;
+    const json& sparse = r.second["pieces"][piece];
+    EXPECT_LT(test::decodeDoubles(sparse["shape"]).size(), std::size_t(job.shape.size()) / 4);
+    double worst = 0;
+    for (Eigen::Index v = 0; v < job.flat.rows(); ++v) {
+      const std::optional<Eigen::Vector3d> p = pointAt(sparse, job.flat.row(v).transpose());
+      ASSERT_TRUE(p) << "piece " << piece << " vertex " << v << " lies in no triangle of the answer";
+      worst = std::max(worst, (*p - job.shape.row(v).transpose()).norm());
+    }
+    EXPECT_LE(worst, 1e-9 * diagonal) << "piece " << piece;
+  }
+  // Then the job's mesh: every vertex as makeDForm's, with its figures (every one as makeDForm's,
+  // as report.json writes them) and the gate's verdict.
+  const json result = events.waitFor("result", std::chrono::seconds(60));
+  ASSERT_FALSE(result.is_null());
+  EXPECT_EQ(result["seq"], 3);
+  EXPECT_FALSE(result["refining"].get<bool>());
   for (int piece = 0; piece < 2; ++piece) {
     const Points3& expected = piece == 0 ? direct.value().model.a.shape : direct.value().model.b.shape;
-    const std::vector<double> got = test::decodeDoubles(r.second["pieces"][piece]["shape"]);
+    const std::vector<double> got = test::decodeDoubles(result["pieces"][piece]["shape"]);
     ASSERT_EQ(got.size(), std::size_t(expected.size()));
     for (Eigen::Index v = 0; v < expected.rows(); ++v)
       for (int k = 0; k < 3; ++k) EXPECT_EQ(got[std::size_t(3 * v + k)], expected(v, k));
   }
-  // The shape comes alone; its figures (every one as makeDForm's, as report.json writes them) and
-  // the gate's verdict follow it as an event.
-  EXPECT_FALSE(r.second.contains("figures"));
-  EXPECT_FALSE(r.second.contains("gate"));
-  const json gate = events.waitFor("gate", std::chrono::seconds(60));
-  ASSERT_FALSE(gate.is_null());
-  EXPECT_EQ(gate["seq"], 3);
-  EXPECT_EQ(gate["figures"], metricsJson(direct.value().metrics)) << gate["figures"];
-  EXPECT_DOUBLE_EQ(gate["figures"]["L_error"].get<double>(), direct.value().metrics.L_error);
-  EXPECT_TRUE(gate["gate"]["passed"].get<bool>()) << gate;
-  EXPECT_GE(gate["gate"]["checks"].size(), 10u);
+  EXPECT_EQ(result["figures"], metricsJson(direct.value().metrics)) << result["figures"];
+  EXPECT_DOUBLE_EQ(result["figures"]["L_error"].get<double>(), direct.value().metrics.L_error);
+  EXPECT_TRUE(result["gate"]["passed"].get<bool>()) << result["gate"];
+  EXPECT_GE(result["gate"]["checks"].size(), 10u);
+  for (const json& e : events.seen()) EXPECT_NE(e["type"], "gate") << "the sparse answer is not judged: " << e;
   // Sent uncompressed even to a client that accepts compression (on loopback it only costs).
   httplib::Headers accepting = c.headers();
   accepting.emplace("Accept-Encoding", "gzip, deflate, br");
   auto plain = c.raw().Post("/api/solve", accepting, json{{"session", session}, {"seq", 4}}.dump(), "application/json");
   ASSERT_TRUE(plain);
   EXPECT_EQ(plain->get_header_value("Content-Encoding"), "");
+}
+
+TEST(StudioServer, AJobMeshedAsSparselyAsAJobMayBeIsAnsweredInFull) {
+  StudioClient c;
+  const std::string session = c.session();
+  test::EventReader events(c, session);
+  // The job's mesh is the sparse one: the answer is final, and its verdict follows it.
+  auto sparsest = c.post("/api/solve", {{"session", session}, {"seq", 1}, {"interior_edge", kMaxInteriorEdgeFactor}});
+  ASSERT_EQ(sparsest.first, 200) << sparsest.second;
+  EXPECT_EQ(sparsest.second["model"]["name"], "exact");
+  EXPECT_FALSE(sparsest.second["refining"].get<bool>()) << sparsest.second;
+  const json gate = events.waitFor("gate", std::chrono::seconds(60));
+  ASSERT_FALSE(gate.is_null());
+  EXPECT_EQ(gate["seq"], 1);
+  EXPECT_TRUE(gate["gate"]["passed"].get<bool>()) << gate;
+  auto finer = c.post("/api/solve", {{"session", session}, {"seq", 2}, {"interior_edge", 0.1}});
+  EXPECT_EQ(finer.first, 400) << "an interior edge factor out of range is refused";
+  EXPECT_NE(finer.second["error"].get<std::string>().find("interior edge"), std::string::npos) << finer.second;
 }
 
 TEST(StudioServer, NewestInputWinsAndStaleRefinementsNeverArrive) {

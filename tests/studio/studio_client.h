@@ -105,7 +105,7 @@ class EventReader {
   std::thread thread_;
 };
 
-inline std::vector<double> decodeDoubles(const nlohmann::json& text) {
+inline std::string decodeBase64(const nlohmann::json& text) {
   const std::string in = text.get<std::string>();
   std::string bytes;
   int bits = 0;
@@ -120,8 +120,20 @@ inline std::vector<double> decodeDoubles(const nlohmann::json& text) {
       bytes += char((value >> bits) & 0xFF);
     }
   }
+  return bytes;
+}
+
+inline std::vector<double> decodeDoubles(const nlohmann::json& text) {
+  const std::string bytes = decodeBase64(text);
   std::vector<double> out(bytes.size() / sizeof(double));
   std::memcpy(out.data(), bytes.data(), out.size() * sizeof(double));
+  return out;
+}
+
+inline std::vector<std::uint32_t> decodeIndices(const nlohmann::json& text) {
+  const std::string bytes = decodeBase64(text);
+  std::vector<std::uint32_t> out(bytes.size() / sizeof(std::uint32_t));
+  std::memcpy(out.data(), bytes.data(), out.size() * sizeof(std::uint32_t));
   return out;
 }
 
