@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <set>
 
@@ -278,13 +279,60 @@ TEST(Gate, ConvexityIsJudgedWithinWhatSamplingAndSolvingMayMove) {
       << deep.detail;
 }
 
-TEST(Gate, FlatDoubleDiscHasNoHullAndTouchesItself) {
-  // Both pieces lie in z = 0 on top of each other: a degenerate D-Form. The closed surface
-  // touches itself everywhere and the planar seam has no hull: the gate must not pass it.
+TEST(Gate, FlatDoubleDiscTouchesItselfAndPasses) {
+  // Both pieces lie in z = 0 on top of each other: a doubly covered disc, a flat pouch zipped at
+  // its rim. Its sheets touch face to face without crossing (a buildable object); its planar seam
+  // has no hull.
   const GateReport report = measureAndGate(test::flatDoubleDisc(4, 24, 50.0), GateLimits{}, nullptr);
-  EXPECT_EQ(failed(report), Names{"self_intersection"}) << describe(report);
+  EXPECT_TRUE(failed(report).empty()) << describe(report);
+  EXPECT_EQ(report.find("self_intersection")->value, 0.0);
+  EXPECT_NE(report.find("self_intersection")->detail.find("face to face"), std::string::npos)
+      << report.find("self_intersection")->detail;
   EXPECT_EQ(report.find("hull_distance_rel")->verdict, Verdict::NotRun);
   EXPECT_NE(report.find("hull_distance_rel")->detail.find("planar"), std::string::npos);
+}
+
+// The flat double disc with the vertices of B (the lower sheet: its faces point down) off the
+// seam lifted by lift(x, y) mm.
+DForm liftedLowerSheet(const std::function<double(double, double)>& lift) {
+  DForm model = test::flatDoubleDisc(4, 24, 50.0);
+  std::vector<bool> onSeam(size_t(model.b.shape.rows()), false);
+  for (int v : model.b.seam) onSeam[size_t(v)] = true;
+  for (Eigen::Index v = 0; v < model.b.shape.rows(); ++v)
+    if (!onSeam[size_t(v)]) model.b.shape(v, 2) += lift(model.b.shape(v, 0), model.b.shape(v, 1));
+  return model;
+}
+
+TEST(Gate, LowerSheetOfAFlatPouchPushedThroughTheUpperOneIntersects) {
+  // B's centre pushed up by a micrometre: its middle triangles tilt up through A.
+  const auto centre = [](double height) {
+    return [height](double x, double y) { return x == 0.0 && y == 0.0 ? height : 0.0; };
+  };
+  const CheckResult through =
+      *measureAndGate(liftedLowerSheet(centre(1e-3)), GateLimits{}, nullptr).find("self_intersection");
+  EXPECT_EQ(through.verdict, Verdict::Fail) << through.detail;
+  EXPECT_GT(through.value, 0.0);
+  // Moved by a thousandth of the tolerance (1e-9 of the 141 mm diagonal) the sheets still touch.
+  const CheckResult touching =
+      *measureAndGate(liftedLowerSheet(centre(1e-12 * 141.0)), GateLimits{}, nullptr).find("self_intersection");
+  EXPECT_EQ(touching.verdict, Verdict::Pass) << touching.detail;
+  // Bulging away from A (downwards) the pouch opens: no contact, no crossing.
+  const CheckResult open = *measureAndGate(liftedLowerSheet([](double x, double y) {
+                                      return -5.0 * (1.0 - (x * x + y * y) / 2500.0);
+                                    }),
+                                    GateLimits{}, nullptr)
+                                .find("self_intersection");
+  EXPECT_EQ(open.value, 0.0) << open.detail;
+  EXPECT_EQ(open.detail.find("face to face"), std::string::npos) << open.detail;
+}
+
+TEST(Gate, FlatPouchTouchesWhicheverWayItsFacesAreWound) {
+  // B's faces listed the other way round (as a file may hold them): the check orients the closed
+  // surface by its seam before comparing which way the sheets face.
+  DForm model = test::flatDoubleDisc(4, 24, 50.0);
+  model.b.F.col(1).swap(model.b.F.col(2));
+  const CheckResult check = *measureAndGate(model, GateLimits{}, nullptr).find("self_intersection");
+  EXPECT_EQ(check.verdict, Verdict::Pass) << check.detail;
 }
 
 TEST(Gate, ExactCreasedDFormPassesWithItsHingesFoldedSharply) {
