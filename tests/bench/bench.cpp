@@ -186,8 +186,8 @@ int main(int argc, char** argv) {
       {"circle + square", "circle.svg", "square.svg", 125, 0.0},
       {"non-convex", "nonconvex-a.svg", "nonconvex-b.svg", 75, 0.0},
       {"non-convex", "nonconvex-a.svg", "nonconvex-b.svg", 125, 0.0},
-      // The paper model at the sizes of issue 17's bars: ~1k vertices for the ellipses, ~2.6k for
-      // the hard samples.
+      // The paper model at ~1k vertices for the ellipses and ~2.6k for the hard samples, the sizes
+      // whose solve times docs/benchmarks.md records.
       {"ellipses", "ellipses-a.svg", "ellipses-b.svg", 75, 0.0, ModelChoice::Paper},
       sampleJob("circle + square, mid side", "circle-square-mid-side.json", 125),
       sampleJob("non-convex, shifted", "nonconvex-shifted.json", 125),

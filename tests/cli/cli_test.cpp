@@ -915,7 +915,7 @@ TEST_F(CliTest, ARunTooLargeForTheMachineStopsAtOnceSayingWhatFits) {
               "between 8 and 20000");
 }
 
-// ---- The result folder as one transaction (issue 18) ----------------------------------------
+// ---- The result folder as one transaction ---------------------------------------------------
 
 // The hidden entries a run keeps beside its result folder while it works (the lock, the staging
 // folder, the old result): none may stay once it has ended, unless it was killed outright.

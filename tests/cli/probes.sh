@@ -1,5 +1,5 @@
 #!/bin/bash
-# Replays the hostile probes of issue 18 against build/dform: each must end with its documented
+# Replays hostile probes against build/dform: each must end with its documented
 # exit code and one escaped line on stderr naming the file or option, and leave an output folder
 # that holds exactly the old result or exactly the new one (it validates; or it is byte for byte
 # what it was). Run by ctest (cli_probes) with the dform binary, the samples folder and whether

@@ -50,8 +50,8 @@ TEST_P(InverseSamples, ReachThePapersFigures) {
   EXPECT_LE(run.metrics.L_error, 2 * lError);
   EXPECT_LE(run.metrics.L_max, 2 * lMax);
   EXPECT_EQ(run.metrics.flipped_2d + run.metrics.flipped_3d, 0);
-  // On its hull a curve comes back exactly when its pieces are zipped again (issue 14's bar);
-  // the pushed-in curve leaves its hull, and its pieces make no convex D-Form at all.
+  // On its hull a curve comes back exactly when its pieces are zipped again (within 1e-6 of the
+  // diagonal); the pushed-in curve leaves its hull, and its pieces make no convex D-Form at all.
   if (run.pre.isHull) {
     EXPECT_EQ(run.modelUsed.name, "exact");
     EXPECT_LE(run.curveMatch.roundtrip_max_rel, 1e-6);
@@ -67,7 +67,7 @@ TEST_P(InverseSamples, ReachThePapersFigures) {
     EXPECT_GT(run.curveMatch.roundtrip_max_rel, 1.05 * run.curveMatch.roundtrip_rms_rel);
   }
   // Flat outlines: simple polygons whose perimeters match the length of the curve as read (not
-  // only of its resampled polygon) within 0.1 %, issue 3's bar, even at 60 points.
+  // only of its resampled polygon) within 0.1 %, even at 60 points.
   const double curveLength = run.curveLength;
   for (const Piece* p : {&run.model.a, &run.model.b}) {
     Points2 outline(p->seam.size(), 2);
