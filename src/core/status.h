@@ -2,6 +2,7 @@
 // is a result with its summary; everything the user can fix is a Status naming the file and problem.
 #pragma once
 
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -35,7 +36,21 @@ class Status {
   std::string message_;
 };
 
-/// A value or the Status that explains why there is none.
+/// Thrown by Result::value() on a Result that holds an error, as std::expected throws
+/// bad_expected_access: reading a value that is not there is a bug of the caller, who checks
+/// isOk() first. what() names the error the Result held.
+class BadResultAccess : public std::logic_error {
+ public:
+  explicit BadResultAccess(Status status)
+      : std::logic_error("the value of a failed result was read: " + status.message()), status_(std::move(status)) {}
+  const Status& status() const { return status_; }
+
+ private:
+  Status status_;
+};
+
+/// A value or the Status that explains why there is none. value() on an error throws
+/// BadResultAccess, in every build.
 template <typename T>
 class Result {
  public:
@@ -44,11 +59,15 @@ class Result {
 
   bool isOk() const { return status_.isOk(); }
   const Status& status() const { return status_; }
-  const T& value() const& { return value_; }
-  T& value() & { return value_; }
-  T&& value() && { return std::move(value_); }
+  const T& value() const& { return checked(), value_; }
+  T& value() & { return checked(), value_; }
+  T&& value() && { return checked(), std::move(value_); }
 
  private:
+  void checked() const {
+    if (!isOk()) throw BadResultAccess(status_);
+  }
+
   T value_{};
   Status status_;
 };
