@@ -60,7 +60,10 @@ double fitChords(Points2& P, const Eigen::VectorXd& target) {
 }
 
 // Triangulates the simple counter-clockwise polygon whose vertices are `loop` (indices into P) by
-// clipping ears; only reflex vertices can spoil an ear, so a convex polygon takes linear time.
+// clipping ears. No vertex may lie in an ear or on its new diagonal, to within kFlatCurvature
+// seen from the diagonal's ends: the points of a straight side, which rounding leaves a little
+// convex or reflex, would otherwise let an ear's diagonal run along the side and leave a polygon
+// without area there.
 std::vector<Eigen::Vector3i> earClip(const Points2& P, std::vector<int> loop) {
   std::vector<Eigen::Vector3i> out;
   std::list<int> ring(loop.begin(), loop.end());
@@ -69,17 +72,18 @@ std::vector<Eigen::Vector3i> earClip(const Points2& P, std::vector<int> loop) {
     auto n = std::next(it);
     return n == ring.end() ? ring.begin() : n;
   };
-  auto reflex = [&](std::list<int>::iterator it) {
-    const Eigen::Vector2d a = P.row(*prevOf(it)), b = P.row(*it), c = P.row(*nextOf(it));
-    return cross(b - a, c - b) <= 0.0;
+  // Whether p lies left of the line from x to y, or on it to within kFlatCurvature seen from x.
+  auto leftOrOn = [](const Eigen::Vector2d& x, const Eigen::Vector2d& y, const Eigen::Vector2d& p) {
+    const double z = cross(y - x, p - x);
+    return z >= 0.0 || z >= -kFlatCurvature * (y - x).norm() * (p - x).norm();
   };
   auto isEar = [&](std::list<int>::iterator it) {
-    if (reflex(it)) return false;
     const Eigen::Vector2d a = P.row(*prevOf(it)), b = P.row(*it), c = P.row(*nextOf(it));
+    if (!(cross(b - a, c - b) > 0.0)) return false;
     for (auto jt = ring.begin(); jt != ring.end(); ++jt) {
-      if (jt == it || jt == prevOf(it) || jt == nextOf(it) || !reflex(jt)) continue;
+      if (jt == it || jt == prevOf(it) || jt == nextOf(it)) continue;
       const Eigen::Vector2d p = P.row(*jt);
-      if (cross(b - a, p - a) >= 0 && cross(c - b, p - b) >= 0 && cross(a - c, p - c) >= 0) return false;
+      if (leftOrOn(a, b, p) && leftOrOn(b, c, p) && leftOrOn(c, a, p)) return false;
     }
     return true;
   };

@@ -11,7 +11,7 @@ namespace dform {
 /// meshes a third of the seam points of the pieces' own flat seam polygons, so that the finest
 /// level starts from a coarser solution, and a large level is left to the relaxation. Pieces with
 /// a free boundary (a hole zipped) are solved in one level. Solved in one level, an inverse run's
-/// 99k-vertex pieces took 355 s to zip again; coarse to fine, about 16 s.
+/// 99k-vertex pieces need 355 s to zip again; coarse to fine, about 16 s.
 ForwardResult solveMeshedCoarseToFine(const Piece& a, const Piece& b, const ForwardOptions& options);
 
 namespace detail {

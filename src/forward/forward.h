@@ -16,7 +16,7 @@ struct ForwardOptions {
   /// Levenberg-Marquardt polishes the relaxation's shape on the paper's exact objective, and stops
   /// once a step lowers it by less than 1e-3 of it: past that it only drifts along the sheet's
   /// soft bending modes (measured on the samples: the figures agree to two digits with 1e-6, which
-  /// took 5-7 times longer on the non-convex pair and the anti and demi D-Forms; e.g. non-convex
+  /// takes 5-7 times longer on the non-convex pair and the anti and demi D-Forms; e.g. non-convex
   /// 0.53 s against 3.3 s of CPU, L_error 0.124 % against 0.122 %).
   SolverOptions solver = [] {
     SolverOptions o;

@@ -31,15 +31,15 @@ struct LocalGlobalOptions {
   /// 0 switches the relaxation off. Its steps cost a few back-substitutions each, so it may run
   /// long: a large shape change (an anti D-Form's brims swinging out) is far cheaper here than in
   /// Levenberg-Marquardt, whose steps the change's curvature keeps short. Stopping below 1e-7
-  /// runs it close to the minimum, so that Levenberg-Marquardt mostly polishes: at 1e-6 it
-  /// stopped early and LM crawled on from there (the demi sample: 8 LM iterations and 5
-  /// factorisations in 14 s, against 1 and 1 in 4 s; docs/benchmarks.md, "Issue 17").
+  /// runs it close to the minimum, so that Levenberg-Marquardt mostly polishes: stopped at 1e-6,
+  /// the demi sample leaves LM 8 iterations and 5 factorisations (14 s) where 1e-7 leaves it 1
+  /// and 1 (4 s).
   int maxIterations = 2000;
   /// Stop where a plain local-global step would lower the energy by less than this fraction of
   /// it. That gain is measured at the current point (the global step's own decrease, a lower
   /// bound on the whole step's), not read off the step taken: an accelerated step's decrease
-  /// depends on how far Anderson's extrapolation happened to jump, and stopping on it ended runs
-  /// wherever one jump fell short (docs/benchmarks.md, issue 17's third stop).
+  /// depends on how far Anderson's extrapolation happened to jump, and stopping on it would end
+  /// runs wherever one jump fell short.
   double relativeTolerance = 1e-7;
   int andersonDepth = 6;  ///< past iterates used by Anderson acceleration (0: plain)
   /// Where an accelerated step is refused, the plain step is tried 2, 4, ... 2^k times as long
@@ -73,7 +73,7 @@ struct LocalGlobalSummary {
 /// Coordinate blocks of at least this many vertices are factorised by dform's supernodal Cholesky
 /// (solver/supernodal_cholesky.h), smaller ones by CHOLMOD's simplicial factor; both round the
 /// same on every machine. The simplicial factor does scalar work: at 97k vertices its two
-/// factorisations took 5.9 and 4.3 s, the supernodal one's 1.0 and 0.7 s (plus 1.4 s of analysis),
+/// factorisations take 5.9 and 4.3 s, the supernodal one's 1.0 and 0.7 s (plus 1.4 s of analysis),
 /// while on small meshes, whose supernodes are mostly single columns, the simplicial factor
 /// solves 2.5 times faster. Measured crossover at about 10k vertices (docs/benchmarks.md, "Scale").
 constexpr int kSupernodalRelaxationVertices = 10000;

@@ -31,9 +31,9 @@ inline std::string format(const char* pattern, double a, double b = 0, double c 
 }
 
 /// Above this many vertices (both pieces) a problem is solved by the local-global relaxation
-/// alone: there one factorisation of J^T J costs seconds and hundreds of MB (measured: a forward
-/// level of 19k vertices took 14 s of CPU and 690 MB with Levenberg-Marquardt, 50k vertices 10 s
-/// and 430 MB without), while the relaxation's steps scale almost linearly (docs/benchmarks.md,
+/// alone: there one factorisation of J^T J costs seconds and hundreds of MB (a forward level of
+/// 19k vertices needs 14 s of CPU and 690 MB with Levenberg-Marquardt; 50k vertices 10 s and
+/// 430 MB without), while the relaxation's steps scale almost linearly (docs/benchmarks.md,
 /// "Scale").
 constexpr int kDirectSolveVertices = 10000;
 

@@ -5,6 +5,7 @@
 #include "io/outline_reader.h"
 #include "model/resources.h"
 #include "model/run_control.h"
+#include "pipeline/reference_seams.h"
 
 namespace dform {
 
@@ -14,7 +15,7 @@ using detail::secondsSince;
 Result<Metrics> measureDForm(const SolvedDForm& solved, const ForwardSettings& settings,
                              const std::string& pieces) {
   try {
-    return computeMetrics(solved.model);
+    return measureModel(solved.model);
   } catch (const std::bad_alloc&) {
     return outOfMemory({}, settings.resolution, pieces + ": measuring the run");
   }

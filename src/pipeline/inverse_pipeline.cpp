@@ -6,6 +6,7 @@
 #include "io/curve_reader.h"
 #include "model/resources.h"
 #include "model/run_control.h"
+#include "pipeline/reference_seams.h"
 
 namespace dform {
 
@@ -18,8 +19,8 @@ namespace {
 InverseRun measure(SolvedPieces solved, MessageSink& sink) {
   InverseRun run;
   static_cast<SolvedPieces&>(run) = std::move(solved);
-  run.metrics = computeMetrics(run.model);
-  run.curveMatch = computeCurveMatch(run.model, run.target);
+  run.metrics = measureModel(run.model);
+  run.curveMatch = measureCurveMatch(run.model, run.target);
   const std::string name = curveLabel(run.target);
   // A sheet folded over is what the gate rejects; where the curve leaves its hull, say why.
   if (run.metrics.flipped_3d > 0 && !run.pre.onHull)

@@ -48,13 +48,13 @@ GateReport gateSolved(const Solved& solved, const GateLimits& limits) {
 // that it comes before the verdict), then rendered, stamped FAILED GATE when the gate failed for
 // any reason: the stamp is an overlay, so the pattern judged is the pattern written. An export
 // that fails leaves the rest of the result to be written (a sheet too small: the export can be
-// redone alone).
-Result<PreparedExport> prepareJudged(const Solved& solved, const std::string& name,
+// redone alone). Nothing (nullopt) where no export was asked for.
+std::optional<Result<PreparedExport>> prepareJudged(const Solved& solved, const std::string& name,
                                      const OutputOptions& output, const RunSettings& settings,
                                      std::optional<GateReport>& gate, MessageSink& sink) {
   if (!output.exportFiles) {
     if (gate) gate->checks.push_back(notRunCheck("pattern_layout", 0, "no export (--no-export)"));
-    return Status(ErrorCode::Internal, "no export");
+    return std::nullopt;
   }
   const ModelUsed& used = solved.forward ? solved.forward->modelUsed : solved.inverse->modelUsed;
   const Result<LaidOutExport> laidOut = layOut(
@@ -94,7 +94,7 @@ Result<WrittenResult> writeSolved(const Job& job, const Solved& solved, ResultFo
   }
   if (interrupted) return leftAsItWas(output.outDir, "interrupted");
   const auto exportStart = Clock::now();
-  const Result<PreparedExport> prepared =
+  const std::optional<Result<PreparedExport>> prepared =
       prepareJudged(solved, jobName(job), output, settings, gate, sink);
   if (output.exportFiles) timings.exportFiles = secondsSince(exportStart);
   const bool gateFailed = gate && !gate->passed();
@@ -107,8 +107,8 @@ Result<WrittenResult> writeSolved(const Job& job, const Solved& solved, ResultFo
   if (written.isOk() && solved.inverse) written = writeTargetCurve(staging, solved.inverse->target);
   if (!written.isOk()) return folder.named(written);
   timings.write = secondsSince(writeStart);
-  const bool release = prepared.isOk() && (!gateFailed || output.exportAnyway);
-  if (release) noteExport(prepared.value(), sink);
+  const bool release = prepared && prepared->isOk() && (!gateFailed || output.exportAnyway);
+  if (release) noteExport(prepared->value(), sink);
   const GateReport* gateReport = gate ? &*gate : nullptr;
   const Result<std::string> reported =
       solved.forward ? writeForwardReport(staging, job, *solved.forward, sink.messages(),
@@ -117,10 +117,10 @@ Result<WrittenResult> writeSolved(const Job& job, const Solved& solved, ResultFo
                                           gateReport, timings);
   if (!reported.isOk()) return folder.named(reported.status());
   if (release)
-    if (Status s = writeExport(prepared.value(), staging).status(); !s.isOk())
+    if (Status s = writeExport(prepared->value(), staging).status(); !s.isOk())
       return folder.named(s);
   if (Status html = writeReportPage(staging, reported.value(), output.outDir + "/report.json",
-                                    release ? &prepared.value() : nullptr, solved.model());
+                                    release ? &prepared->value() : nullptr, solved.model());
       !html.isOk())
     return folder.named(html);
   if (Status s = commitUnlessInterrupted(folder, output.outDir, interrupted); !s.isOk())
@@ -131,7 +131,7 @@ Result<WrittenResult> writeSolved(const Job& job, const Solved& solved, ResultFo
                   output.outDir + ": interrupted; the new result was written completely");
   WrittenResult result;
   result.gate = gate;
-  result.exported = prepared.isOk() || !output.exportFiles ? Status::ok() : prepared.status();
+  result.exported = !prepared || prepared->isOk() ? Status::ok() : prepared->status();
   result.metrics = solved.forward ? solved.forward->metrics : solved.inverse->metrics;
   result.timings = solved.forward ? solved.forward->timings : solved.inverse->timings;
   if (solved.inverse) result.curve = solved.inverse->curveMatch;

@@ -8,6 +8,7 @@
 #include "core/result_folder.h"
 #include "io/curve_reader.h"
 #include "io/model_files.h"
+#include "pipeline/reference_seams.h"
 #include "pipeline/report.h"
 #include "pipeline/run_steps.h"
 #include "core/input_file.h"
@@ -109,7 +110,7 @@ Result<std::string> exportSavedResult(const std::string& dir, const OutputOption
   Result<GateLimits> limits = loadGate(gateName);
   if (!limits.isOk()) return limits.status();
   const GateReport gate =
-      runGate(model.value(), limits.value(), target.value() ? &*target.value() : nullptr);
+      measureAndGate(model.value(), limits.value(), target.value() ? &*target.value() : nullptr);
   if (interrupted) return leftAsItWas(dir, "interrupted");
   std::string failing;
   for (const CheckResult& c : gate.checks)
@@ -183,7 +184,7 @@ Result<SavedCheck> validateSavedResult(const std::string& dir, const std::string
   if (!target.isOk()) return target.status();
   SavedCheck check;
   check.gateName = limits.value().name;
-  check.gate = runGate(model.value(), limits.value(), target.value() ? &*target.value() : nullptr);
+  check.gate = measureAndGate(model.value(), limits.value(), target.value() ? &*target.value() : nullptr);
   check.gate.checks.push_back(notRunCheck(
       "pattern_layout", 0, "validate re-checks the meshes; `dform export` checks the layout"));
   // The figures are recomputed from the meshes, never taken from the report.

@@ -1,4 +1,4 @@
-// Design sweeps (issue 19): one forward job solved from N starting pairs evenly spaced along piece
+// Design sweeps: one forward job solved from N starting pairs evenly spaced along piece
 // B (and with B turned over), each into a subfolder of its own, gathered into sweep.json and
 // gallery.html. The sweep folder is written as one transaction (core/result_folder.h).
 #pragma once

@@ -8,9 +8,11 @@
 #include <CGAL/convex_hull_3.h>
 #include <CGAL/intersections.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <iterator>
+#include <limits>
 #include <numeric>
 #include <vector>
 
@@ -54,10 +56,40 @@ bool adjacentOverlap(const Points3& V, const Faces& F, int f, int g) {
          CGAL::do_intersect(Segment(point(V, rb[0]), point(V, rb[1])), ta);
 }
 
+// Whether triangles f and g lie face to face: each one's corners within `tolerance` of the
+// other's plane, their normals (from the faces' corner order) pointing opposite ways. Near-
+// coplanar pairs have normals near parallel or antiparallel, so the sign of the dot product is
+// far from rounding whenever the distances pass.
+bool faceToFace(const Points3& V, const Faces& F, int f, int g, double tolerance) {
+  auto corner = [&](int t, int k) -> Eigen::Vector3d { return V.row(F(t, k)).transpose(); };
+  auto normal = [&](int t) {
+    return (corner(t, 1) - corner(t, 0)).cross(corner(t, 2) - corner(t, 0)).normalized();
+  };
+  const Eigen::Vector3d nf = normal(f), ng = normal(g);
+  if (!(nf.dot(ng) < 0.0)) return false;
+  auto withinPlaneOf = [&](int t, const Eigen::Vector3d& n, int other) {
+    for (int k = 0; k < 3; ++k)
+      if (!(std::abs(n.dot(corner(other, k) - corner(t, 0))) <= tolerance)) return false;
+    return true;
+  };
+  return withinPlaneOf(f, nf, g) && withinPlaneOf(g, ng, f);
+}
+
 }  // namespace
 
 SelfIntersections findSelfIntersections(const Points3& V, const Faces& F) {
   SelfIntersections result;
+  std::vector<bool> used(size_t(V.rows()), false);
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) used[size_t(F(f, k))] = true;
+  Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d high = -low;
+  for (Eigen::Index i = 0; i < V.rows(); ++i)
+    if (used[size_t(i)]) {
+      low = low.cwiseMin(V.row(i).transpose());
+      high = high.cwiseMax(V.row(i).transpose());
+    }
+  const double contactTolerance = F.rows() > 0 ? kFaceToFaceTolerance * (high - low).norm() : 0.0;
   std::vector<Box> boxes;
   boxes.reserve(size_t(F.rows()));
   for (int f = 0; f < F.rows(); ++f) {
@@ -70,6 +102,10 @@ SelfIntersections findSelfIntersections(const Points3& V, const Faces& F) {
   }
   auto report = [&](const Box& x, const Box& y) {
     const int f = std::min(x.info(), y.info()), g = std::max(x.info(), y.info());
+    if (faceToFace(V, F, f, g, contactTolerance)) {
+      ++result.faceToFace;
+      return;
+    }
     bool shares = false;
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) shares = shares || F(f, i) == F(g, j);

@@ -12,14 +12,23 @@ namespace dform::detail {
 
 struct SelfIntersections {
   int pairs = 0;            ///< pairs of triangles that intersect beyond their shared vertices
+  int faceToFace = 0;       ///< nearby pairs (bounding boxes overlapping) that lie face to face
   int skippedDegenerate = 0;///< triangles left out because their corners are collinear
   std::string example;      ///< the first pair found, "triangles i and j", when any
 };
 
-/// Intersecting pairs of triangles of the soup (V, F). Triangles that share vertex indices are
-/// adjacent: they count only when they overlap beyond what they share (two triangles on one edge
-/// folded flat onto each other; two on one corner whose opposite edge pierces the other). Works on
-/// non-manifold soups. Exact predicates.
+/// Two triangles lie face to face when each one's corners are within this fraction of the soup's
+/// bounding-box diagonal of the other's plane and their normals point opposite ways.
+constexpr double kFaceToFaceTolerance = 1e-9;
+
+/// Intersecting pairs of triangles of the soup (V, F), whose faces are oriented consistently (a
+/// shared edge runs opposite ways in its two faces). Triangles that lie face to face (see
+/// kFaceToFaceTolerance) touch and never count: a sheet folded flat onto another (a 180-degree
+/// fold, a doubly covered body) is the limit of sheets that do not meet, while coplanar sheets
+/// facing the same way, or sheets meeting at any angle, cross. Triangles that share vertex indices
+/// are adjacent: they count only when they overlap beyond what they share (two triangles on one
+/// edge folded onto each other the same way up; two on one corner whose opposite edge pierces the
+/// other). Works on non-manifold soups. Exact predicates.
 SelfIntersections findSelfIntersections(const Points3& V, const Faces& F);
 
 /// Convex hull of the rows of P as a triangle mesh, outward-facing; nullopt when the points are

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <set>
+#include <utility>
 
 #include "core/piece_loops.h"
 #include "core/polyline.h"
@@ -141,6 +143,24 @@ CheckResult nonFiniteCheck(const char* name, double limit, const std::string& wh
   return judgeCheck(name, kNaN, limit, "not measured: " + where + " has a coordinate that is not a number");
 }
 
+// Reverses the faces from row `firstOfB` on when most welded edges they share with the faces
+// before it run the same way in both, so that the soup is oriented consistently: the test for
+// sheets lying face to face compares the faces' normals.
+void orientLikeFirstPiece(Faces& F, int firstOfB) {
+  std::set<std::pair<int, int>> edgesOfA;
+  for (int f = 0; f < firstOfB; ++f)
+    for (int k = 0; k < 3; ++k) edgesOfA.emplace(F(f, k), F(f, (k + 1) % 3));
+  int same = 0, opposite = 0;
+  for (int f = firstOfB; f < int(F.rows()); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int u = F(f, k), v = F(f, (k + 1) % 3);
+      same += int(edgesOfA.count({u, v}));
+      opposite += int(edgesOfA.count({v, u}));
+    }
+  if (same <= opposite) return;
+  for (int f = firstOfB; f < int(F.rows()); ++f) std::swap(F(f, 1), F(f, 2));
+}
+
 // Both pieces as one triangle soup, each seam pair welded into one vertex at its midpoint (the
 // gap itself is judged by seam_gap_mm), so that triangles meeting at the seam are adjacent.
 CheckResult selfIntersectionCheck(const DForm& model) {
@@ -159,10 +179,14 @@ CheckResult selfIntersectionCheck(const DForm& model) {
   }
   Faces F(a.F.rows() + b.F.rows(), 3);
   F << a.F, (b.F.array() + na).unaryExpr([&](int i) { return weld[i]; }).matrix();
+  orientLikeFirstPiece(F, int(a.F.rows()));
   const detail::SelfIntersections hits = detail::findSelfIntersections(V, F);
   std::string text = hits.pairs == 0 ? "no two triangles of the closed surface intersect"
                                      : std::to_string(hits.pairs) +
                                            " intersecting triangle pairs, first " + hits.example;
+  if (hits.faceToFace > 0)
+    text += "; " + std::to_string(hits.faceToFace) +
+            " nearby pairs lie face to face, facing opposite ways (sheets touching, not crossing)";
   if (hits.skippedDegenerate > 0)
     text += " (" + std::to_string(hits.skippedDegenerate) + " degenerate triangles not tested)";
   return judgeCheck("self_intersection", hits.pairs, 0, text);
@@ -419,14 +443,6 @@ CheckResult objectCheck(const char* name, double rms, double max, double limit, 
 }
 
 }  // namespace
-
-GateReport runGate(const DForm& model, const GateLimits& limits, const Curve3* target) {
-  const size_t pairs = model.a.seam.size();
-  std::optional<CurveMatch> curve;
-  if (target && size_t(target->points.rows()) == pairs && pairs > 0)
-    curve = computeCurveMatch(model, *target);
-  return runGate(model, limits, computeMetrics(model), target, curve ? &*curve : nullptr);
-}
 
 GateReport runGate(const DForm& model, const GateLimits& limits, const Metrics& metrics,
                    const Curve3* target, const CurveMatch* curve) {

@@ -74,14 +74,11 @@ struct GateReport {
   const CheckResult* find(const std::string& name) const;
 };
 
-/// Runs every check on `model`. With a `target` curve (inverse mode, one point per seam pair)
-/// D_error is checked, otherwise B_error. Pure: reads the meshes only.
-GateReport runGate(const DForm& model, const GateLimits& limits, const Curve3* target = nullptr);
-
-/// runGate with the figures the caller has measured on this very model: `metrics` is
-/// computeMetrics(model) and `curve` computeCurveMatch(model, *target) (nullptr without a target),
-/// so that a run measures its model once (the exact body and the round trip are the costly
-/// figures). Results read back from files go through runGate, which measures them again.
+/// Runs every check on `model` with the figures the caller measured on it: `metrics` is
+/// computeMetrics(model, ...) and `curve` computeCurveMatch(model, *target, ...) (nullptr without
+/// a target). With a `target` curve (inverse mode, one point per seam pair) D_error is checked,
+/// otherwise B_error. Pure: reads the meshes and the figures only (pipeline/reference_seams.h
+/// measures a model read back from files, then calls this).
 GateReport runGate(const DForm& model, const GateLimits& limits, const Metrics& metrics,
                    const Curve3* target, const CurveMatch* curve);
 

@@ -7,7 +7,6 @@
 
 #include "core/polyline.h"
 #include "exact/aligned_distance.h"
-#include "validate/exact_body.h"
 #include "validate/mesh_measures.h"
 
 namespace dform {
@@ -118,7 +117,7 @@ std::vector<CreaseFold> creaseFolds(const Piece& piece) {
   return folds;
 }
 
-Metrics computeMetrics(const DForm& model) {
+Metrics computeMetrics(const DForm& model, const ReferenceSeam& exactBody) {
   assert(model.a.seam.size() == model.b.seam.size() && "seam partners come in pairs");
   Metrics m;
   double sumSqDiff = 0.0, sumSqFlat = 0.0, sumAbsDefect = 0.0;
@@ -154,18 +153,17 @@ Metrics computeMetrics(const DForm& model) {
   m.seam_length_3d_mm = detail::seamLength(model.a.shape, sa);
   if (!sa.empty() && m.seam_length_3d_mm > 0.0)
     m.B_error = (sumGap / double(sa.size())) / m.seam_length_3d_mm;
-  const Result<Points3> exactSeam = exactBodySeam(model);
-  if (exactSeam.isOk()) {
-    const exact::AlignedDistance d = exact::alignedDistance(exactSeam.value(), seamShape(model.a));
+  if (exactBody.points.rows() > 0) {
+    const exact::AlignedDistance d = exact::alignedDistance(exactBody.points, seamShape(model.a));
     m.exact_distance_rms_rel = d.rmsRel;
     m.exact_distance_max_rel = d.maxRel;
   } else {
-    m.exact_note = exactSeam.status().message();
+    m.exact_note = exactBody.note;
   }
   return m;
 }
 
-CurveMatch computeCurveMatch(const DForm& model, const Curve3& target) {
+CurveMatch computeCurveMatch(const DForm& model, const Curve3& target, const ReferenceSeam& zippedAgain) {
   const std::vector<int>& sa = model.a.seam;
   const std::vector<int>& sb = model.b.seam;
   assert(sa.size() == sb.size() && size_t(target.points.rows()) == sa.size() &&
@@ -181,16 +179,12 @@ CurveMatch computeCurveMatch(const DForm& model, const Curve3& target) {
   const double curveLength = closedLength(target.points);
   if (!sa.empty() && curveLength > 0.0)
     match.D_error = (sum / (2.0 * double(sa.size()))) / curveLength;
-  std::string how;
-  const Result<Points3> zipped = zippedAgainSeam(model, how);
-  if (zipped.isOk()) {
-    const exact::AlignedDistance d = exact::alignedDistance(target.points, zipped.value());
+  if (zippedAgain.points.rows() > 0) {
+    const exact::AlignedDistance d = exact::alignedDistance(target.points, zippedAgain.points);
     match.roundtrip_rms_rel = d.rmsRel;
     match.roundtrip_max_rel = d.maxRel;
-    match.roundtrip_note = "zipped by " + how;
-  } else {
-    match.roundtrip_note = zipped.status().message();
   }
+  match.roundtrip_note = zippedAgain.note;
   return match;
 }
 

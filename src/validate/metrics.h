@@ -23,16 +23,26 @@ struct Metrics {
   double seam_length_a_mm = 0;   ///< flat seam length (perimeter) of piece A
   double seam_length_b_mm = 0;   ///< flat seam length of piece B
   double seam_length_3d_mm = 0;  ///< length of the 3D seam (piece A's side)
-  /// The 3D seam against the seam of the exact D-Form of the same flat pieces (exactBodySeam)
-  /// after rigid alignment: root mean square and largest distance over the seam's bounding-box
-  /// diagonal. NaN when there is no exact D-Form to compare with; exact_note then says why.
+  /// The 3D seam against the seam of the exact D-Form of the same flat pieces (the reference the
+  /// caller gives) after rigid alignment: root mean square and largest distance over the seam's
+  /// bounding-box diagonal. NaN when there is no exact D-Form to compare with; exact_note then
+  /// says why.
   double exact_distance_rms_rel = std::numeric_limits<double>::quiet_NaN();
   double exact_distance_max_rel = std::numeric_limits<double>::quiet_NaN();
   std::string exact_note;
 };
 
-/// Figures of `model`. Pure: reads the meshes, never the solver.
-Metrics computeMetrics(const DForm& model);
+/// A 3D seam that a result's figures compare it with (row k for seam point k), made by the
+/// caller (pipeline/reference_seams.h): none (no rows) where there is none, and `note` says why;
+/// else `note` says what made it.
+struct ReferenceSeam {
+  Points3 points;
+  std::string note;
+};
+
+/// Figures of `model`, its seam compared with `exactBody` (the exact D-Form of the same flat
+/// pieces). Pure: reads the meshes, never a solver.
+Metrics computeMetrics(const DForm& model, const ReferenceSeam& exactBody);
 
 /// The discrete Gaussian curvature of a piece's 3D shape: per vertex, its angle defect
 /// (radians) at interior vertices and 0 on the seam, the boundary and the creases, where the sheet
@@ -69,13 +79,13 @@ struct CurveMatch {
   double D_error = 0;
   double curve_distance_max_mm = 0;
   /// The round trip: the flat pieces zipped again (their exact D-Form, or the optimisation where
-  /// their metric is not convex: zippedAgainSeam) against the target curve after rigid
-  /// alignment, over the curve's bounding-box diagonal; roundtrip_note says which zipped them.
-  /// NaN when neither could (the note says why).
+  /// their metric is not convex; the reference the caller gives) against the target curve after
+  /// rigid alignment, over the curve's bounding-box diagonal; roundtrip_note says which zipped
+  /// them. NaN when neither could (the note says why).
   double roundtrip_rms_rel = std::numeric_limits<double>::quiet_NaN();
   double roundtrip_max_rel = std::numeric_limits<double>::quiet_NaN();
   std::string roundtrip_note;
 };
-CurveMatch computeCurveMatch(const DForm& model, const Curve3& target);
+CurveMatch computeCurveMatch(const DForm& model, const Curve3& target, const ReferenceSeam& zippedAgain);
 
 }  // namespace dform

@@ -28,7 +28,7 @@ ALLOWED = {
     "model": {"core", "solver", "meshing", "exact"},
     "forward": {"core", "solver", "meshing", "exact", "model"},
     "inverse": {"core", "solver", "meshing", "exact", "model"},
-    "validate": {"core", "exact", "forward"},
+    "validate": {"core", "exact"},
     "export": {"core", "validate"},
     "report": {"core", "validate"},
     "pipeline": {"core", "io", "meshing", "solver", "exact", "model", "forward", "inverse", "validate",

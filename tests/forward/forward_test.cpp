@@ -18,6 +18,7 @@
 #include "model/transfer.h"
 #include "validate/gate.h"
 #include "validate/metrics.h"
+#include "pipeline/reference_seams.h"
 
 namespace dform {
 namespace {
@@ -64,14 +65,14 @@ TEST(Forward, PillowStartIsClosedAndInflated) {
   // A's interior above the seam, B's below.
   EXPECT_GT(start.a.shape.col(2).maxCoeff(), 1.0);
   EXPECT_LT(start.b.shape.col(2).minCoeff(), -1.0);
-  EXPECT_EQ(computeMetrics(start).flipped_3d, 0);
+  EXPECT_EQ(computeMetrics(start, {}).flipped_3d, 0);
 }
 
 TEST(Forward, SolvesTwoEllipsesToThePapersFigures) {
   EllipsePair p;
   const ForwardResult r = solveForward(p.a, p.b, ForwardOptions{});
   ASSERT_TRUE(r.summary.usable()) << r.summary.message;
-  const Metrics m = computeMetrics(r.model);
+  const Metrics m = computeMetrics(r.model, {});
   EXPECT_LE(m.L_error, 0.005);
   EXPECT_LE(m.L_max, 0.03);
   EXPECT_LE(m.B_error, 1e-6);
@@ -86,7 +87,7 @@ TEST(Forward, SolvesTwoEllipsesToThePapersFigures) {
   EXPECT_GT(depth, 30.0);
   // Two convex outlines make the convex hull of their seam (Demaine and Price): every vertex
   // lies within 1 % of the seam's bounding-box diagonal of that hull.
-  const GateReport gate = runGate(r.model, GateLimits{});
+  const GateReport gate = measureAndGate(r.model, GateLimits{}, nullptr);
   const CheckResult* hull = gate.find("hull_distance_rel");
   ASSERT_NE(hull, nullptr);
   EXPECT_EQ(hull->verdict, CheckResult::Verdict::Pass) << hull->detail;
@@ -97,7 +98,7 @@ TEST(Forward, ADifferentStartingPairMakesADifferentDFormOfTheSameQuality) {
   EllipsePair p0(0.0), p1(0.25);
   const ForwardResult r0 = solveForward(p0.a, p0.b, ForwardOptions{});
   const ForwardResult r1 = solveForward(p1.a, p1.b, ForwardOptions{});
-  const Metrics m1 = computeMetrics(r1.model);
+  const Metrics m1 = computeMetrics(r1.model, {});
   EXPECT_LE(m1.L_error, 0.005);
   EXPECT_LE(m1.L_max, 0.03);
   EXPECT_LE(m1.B_error, 1e-6);
@@ -118,7 +119,7 @@ TEST(Forward, IdenticalEllipsesAQuarterTurnApartMakeTheClassicDForm) {
   const Points2 E = test::ellipse(120, 70);
   const Piece a = test::meshedPiece(E, 40, false), b = test::meshedPiece(E, 40, true, 0.25);
   const ForwardResult r = solveForward(a, b, ForwardOptions{});
-  const Metrics m = computeMetrics(r.model);
+  const Metrics m = computeMetrics(r.model, {});
   EXPECT_LE(m.L_error, 0.005);
   EXPECT_LE(m.L_max, 0.03);
   EXPECT_EQ(m.flipped_3d, 0);
@@ -330,7 +331,7 @@ TEST(Forward, FoldGuardCountsTheGatesFoldsAndRefusesOnlyNewOnes) {
   EllipsePair p;
   const ForwardResult r = solveForward(p.a, p.b, ForwardOptions{});
   const DForm folded = foldedEllipses(r.model);
-  ASSERT_GT(computeMetrics(folded).flipped_3d, 0);
+  ASSERT_GT(computeMetrics(folded, {}).flipped_3d, 0);
   const VariableLayout layout(int(p.a.flat.rows()), int(p.b.flat.rows()), p.a.seam, p.b.seam);
   const FoldGuard guard(layout, p.a, p.b);
   const Eigen::VectorXd clean = packVariables(layout, r.model.a, r.model.b);
@@ -344,7 +345,7 @@ TEST(Forward, FoldGuardCountsTheGatesFoldsAndRefusesOnlyNewOnes) {
   DForm flipped = r.model;
   const auto [v, w] = centralVertexAndNeighbour(flipped.a);
   flipped.a.flat.row(v) += 2.0 * (flipped.a.flat.row(w) - flipped.a.flat.row(v));
-  ASSERT_GT(computeMetrics(flipped).flipped_2d, 0);
+  ASSERT_GT(computeMetrics(flipped, {}).flipped_2d, 0);
   EXPECT_TRUE(guard.addsFold(clean, packVariables(layout, flipped.a, flipped.b)));
 }
 
@@ -352,10 +353,10 @@ TEST(Forward, AFoldedStartEndsUnfolded) {
   EllipsePair p;
   const ForwardResult solved = solveForward(p.a, p.b, ForwardOptions{});
   const DForm folded = foldedEllipses(solved.model);
-  ASSERT_GT(computeMetrics(folded).flipped_3d, 0);
+  ASSERT_GT(computeMetrics(folded, {}).flipped_3d, 0);
   const ForwardResult r = solveForward(folded.a, folded.b, ForwardOptions{});
   ASSERT_TRUE(r.summary.usable()) << r.summary.message;
-  const Metrics m = computeMetrics(r.model);
+  const Metrics m = computeMetrics(r.model, {});
   EXPECT_EQ(m.flipped_2d + m.flipped_3d, 0);
   EXPECT_LE(m.L_error, 0.005);
   EXPECT_LE(m.L_max, 0.03);
@@ -376,7 +377,7 @@ TEST(Forward, TransferIsExactOnTheSameMeshAndStartsAFinerSolve) {
     a.shape.row(a.seam[k]) = b.shape.row(b.seam[k]) =
         0.5 * (a.shape.row(a.seam[k]) + b.shape.row(b.seam[k]));
   const ForwardResult fine = solveForward(a, b, ForwardOptions{});
-  const Metrics m = computeMetrics(fine.model);
+  const Metrics m = computeMetrics(fine.model, {});
   EXPECT_LE(m.L_error, 0.005);
   EXPECT_LE(m.B_error, 1e-6);
   EXPECT_LE(fine.summary.factorisations, 3);

@@ -179,7 +179,7 @@ TEST(Terms, RolledRectangleIsIsometricUpToTheChordEffect) {
   for (Eigen::Index e = 0; e < E.rows(); ++e)
     longest = std::max(longest, (rolled.flat.row(E(e, 0)) - rolled.flat.row(E(e, 1))).norm());
   const double bound = longest * longest / (R * R) / 24.0;
-  const Metrics m = computeMetrics(DForm{rolled, rolled});
+  const Metrics m = computeMetrics(DForm{rolled, rolled}, {});
   EXPECT_LE(m.L_max, bound);
   EXPECT_LE(m.L_error, bound);
   EXPECT_LT(m.L_error, 2e-3);

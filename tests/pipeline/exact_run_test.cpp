@@ -10,6 +10,7 @@
 
 #include "pipeline/forward_pipeline.h"
 #include "validate/gate.h"
+#include "pipeline/reference_seams.h"
 
 namespace dform {
 namespace {
@@ -168,7 +169,7 @@ TEST(ExactRun, TheExactModelPassesTheStrictGateWithItsOwnFigures) {
   GateLimits strict;
   strict.L_error = 0.0018;
   strict.exact_distance_rel = 1e-6;
-  const GateReport gate = runGate(r.value().model, strict);
+  const GateReport gate = measureAndGate(r.value().model, strict, nullptr);
   const CheckResult* exact = gate.find("exact_distance_rel");
   ASSERT_NE(exact, nullptr);
   EXPECT_EQ(exact->verdict, CheckResult::Verdict::Pass) << exact->detail;

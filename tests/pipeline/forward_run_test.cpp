@@ -14,6 +14,7 @@
 #include "core/polyline.h"
 #include "pipeline/forward_pipeline.h"
 #include "validate/gate.h"
+#include "pipeline/reference_seams.h"
 
 namespace dform {
 namespace {
@@ -105,7 +106,7 @@ INSTANTIATE_TEST_SUITE_P(Samples, SampleRuns,
 
 TEST(ForwardRun, ConvexPairLiesOnItsSeamsHull) {
   const ForwardRun run = runOk(job("ellipses-a.svg", "ellipses-b.svg"));
-  const GateReport gate = runGate(run.model, GateLimits{});
+  const GateReport gate = measureAndGate(run.model, GateLimits{}, nullptr);
   const CheckResult* hull = gate.find("hull_distance_rel");
   ASSERT_NE(hull, nullptr);
   EXPECT_EQ(hull->verdict, CheckResult::Verdict::Pass) << hull->detail;
@@ -138,7 +139,7 @@ std::vector<Eigen::Vector2d> regularPolygon(int sides, double perimeter) {
 // The hull check of a convex pair, with both flat seams judged convex (never "not convex").
 CheckResult hullOfConvexPair(const ForwardJob& j) {
   const ForwardRun run = runOk(j);
-  const CheckResult hull = *runGate(run.model, GateLimits{}).find("hull_distance_rel");
+  const CheckResult hull = *measureAndGate(run.model, GateLimits{}, nullptr).find("hull_distance_rel");
   EXPECT_EQ(hull.detail.find("not convex"), std::string::npos) << hull.detail;
   return hull;
 }

@@ -14,6 +14,7 @@
 #include "pipeline/forward_pipeline.h"
 #include "pipeline/inverse_pipeline.h"
 #include "validate/gate.h"
+#include "pipeline/reference_seams.h"
 
 namespace dform {
 namespace {
@@ -206,7 +207,7 @@ TEST(InverseRun, TheGateOnTheRunsFiguresIsTheGateMeasuredAgain) {
   ASSERT_TRUE(ran.isOk()) << ran.status().message();
   const InverseRun& r = ran.value();
   ASSERT_FALSE(r.curveMatch.roundtrip_note.empty());
-  const GateReport again = runGate(r.model, GateLimits{}, &r.target);
+  const GateReport again = measureAndGate(r.model, GateLimits{}, &r.target);
   ASSERT_TRUE(again.curve.has_value());
   EXPECT_EQ(again.curve->roundtrip_rms_rel, r.curveMatch.roundtrip_rms_rel);
   expectSameGate(runGate(r.model, GateLimits{}, r.metrics, &r.target, &r.curveMatch), again);
@@ -218,7 +219,7 @@ TEST(InverseRun, TheGateOnTheRunsFiguresIsTheGateMeasuredAgain) {
   ASSERT_TRUE(solved.isOk()) << solved.status().message();
   const DForm& model = solved.value().model;
   expectSameGate(runGate(model, GateLimits{}, solved.value().metrics, nullptr, nullptr),
-                 runGate(model, GateLimits{}));
+                 measureAndGate(model, GateLimits{}, nullptr));
 }
 
 }  // namespace

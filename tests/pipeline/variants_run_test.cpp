@@ -13,6 +13,7 @@
 #include "pipeline/forward_pipeline.h"
 #include "validate/gate.h"
 #include "validate/metrics.h"
+#include "pipeline/reference_seams.h"
 
 namespace dform {
 namespace {
@@ -151,7 +152,7 @@ TEST(Variants, CreasedSquaricleFoldsSharplyAlongItsCreases) {
     EXPECT_GT(fold.angleDeg, 30.0);
     EXPECT_NEAR(fold.lengthMm, radius * std::sqrt(2.0), 2.0 * straddle(400.0 / 60, radius));
   }
-  const GateReport gate = runGate(run.model, GateLimits{});
+  const GateReport gate = measureAndGate(run.model, GateLimits{}, nullptr);
   const CheckResult* developable = gate.find("gauss_max_rad");
   ASSERT_NE(developable, nullptr);
   EXPECT_EQ(developable->verdict, CheckResult::Verdict::Pass) << developable->detail;

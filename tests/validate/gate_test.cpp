@@ -6,10 +6,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <set>
 
 #include "models.h"
+#include "pipeline/reference_seams.h"
 
 namespace dform {
 namespace {
@@ -44,7 +46,7 @@ TEST(Gate, AVertexOnTheSeamHullMeasuresZeroEveryRun) {
   // triangulates in an address-dependent order: on the hull is 0, not ~1e-13 of the diagonal that
   // changed from run to run (and made a run's gate differ from the same gate measured again).
   DForm model = test::tetraDForm(8);
-  const CheckResult onHull = *runGate(model, GateLimits{}).find("hull_distance_rel");
+  const CheckResult onHull = *measureAndGate(model, GateLimits{}, nullptr).find("hull_distance_rel");
   EXPECT_EQ(onHull.value, 0.0) << onHull.detail;
   EXPECT_NE(onHull.detail.find("at piece A vertex 0;"), std::string::npos) << onHull.detail;
   // The floor hides nothing larger: a vertex off the seam moved 1e-9 of the diagonal inwards
@@ -55,13 +57,13 @@ TEST(Gate, AVertexOnTheSeamHullMeasuresZeroEveryRun) {
   ASSERT_LT(inner, model.a.shape.rows());
   const double diagonal = 2.0 * std::sqrt(2.0) * 40.0;  // the seam's bounding box: 80 x 80 x 20 mm
   model.a.shape.row(inner) *= 1.0 - 1e-9 * diagonal / model.a.shape.row(inner).norm();
-  const CheckResult inside = *runGate(model, GateLimits{}).find("hull_distance_rel");
+  const CheckResult inside = *measureAndGate(model, GateLimits{}, nullptr).find("hull_distance_rel");
   EXPECT_GT(inside.value, 1e-10) << inside.detail;
   EXPECT_LT(inside.value, 2e-9) << inside.detail;
 }
 
 TEST(Gate, ExactConvexDFormPassesEveryCheck) {
-  const GateReport report = runGate(test::tetraDForm(8), GateLimits{});
+  const GateReport report = measureAndGate(test::tetraDForm(8), GateLimits{}, nullptr);
   Names names;
   for (const CheckResult& c : report.checks) names.insert(c.name);
   EXPECT_EQ(names, kForwardChecks);
@@ -78,7 +80,7 @@ TEST(Gate, StretchedShapeFailsLErrorAndTheExactDistance) {
   DForm model = test::tetraDForm(8);
   model.a.shape *= 1.01;
   model.b.shape *= 1.01;
-  const GateReport report = runGate(model, GateLimits{});
+  const GateReport report = measureAndGate(model, GateLimits{}, nullptr);
   // 1% on every edge: L_error (limit 0.5%) fails; L_max (limit 3%) holds; angles, seam, hull and
   // flat pieces are unchanged by a uniform scaling, but the shape is 1% larger than the one the
   // cut pieces make: its seam lies ~0.5% of the diagonal off it (limit 0.2%).
@@ -97,7 +99,7 @@ TEST(Gate, NaNFailsEveryCheckItReachesAndTheGate) {
   EXPECT_EQ(judgeCheck("x", 0.5, 1.0, "").verdict, Verdict::Pass);
   DForm model = test::tetraDForm(8);
   model.a.shape(0, 0) = nan;  // one coordinate of a corner of the seam
-  const GateReport report = runGate(model, GateLimits{});
+  const GateReport report = measureAndGate(model, GateLimits{}, nullptr);
   for (const CheckResult& c : report.checks) {
     if (std::isnan(c.value)) {
       EXPECT_NE(c.verdict, Verdict::Pass) << describe(report);
@@ -113,7 +115,7 @@ TEST(Gate, NaNFailsEveryCheckItReachesAndTheGate) {
   EXPECT_FALSE(report.passed());
   DForm flatNaN = test::tetraDForm(8);
   flatNaN.b.flat(3, 1) = std::numeric_limits<double>::infinity();
-  const GateReport flatReport = runGate(flatNaN, GateLimits{});
+  const GateReport flatReport = measureAndGate(flatNaN, GateLimits{}, nullptr);
   EXPECT_NE(flatReport.find("self_intersection")->detail.find("piece B's flat vertex 3"),
             std::string::npos) << describe(flatReport);
   EXPECT_FALSE(flatReport.passed());
@@ -123,7 +125,7 @@ TEST(Gate, FlatPieceOverlappingItselfFailsOnlyFlatSimple) {
   // 1.2 turns of a gently rising ribbon: the flat pieces wrap past 360 degrees and overlap, the 3D
   // ribbon clears itself by 2*pi*1.5 mm a turn.
   const DForm model = test::ribbonDForm(test::Ribbon{});
-  const GateReport report = runGate(model, GateLimits{});
+  const GateReport report = measureAndGate(model, GateLimits{}, nullptr);
   EXPECT_EQ(failed(report), Names{"flat_simple"}) << describe(report);
   EXPECT_NE(report.find("flat_simple")->detail.find("piece A: outline edges"), std::string::npos);
   // No vertex is away from the seam and the pieces are not convex: said so, not passed.
@@ -142,7 +144,7 @@ TEST(Gate, OverlappingFlatTrianglesInsideASimpleOutlineFailFlatSimple) {
   int f = 0;
   while (model.a.F(f, 0) != v) ++f;
   model.a.flat.row(v) += 2.5 * (model.a.flat.row(model.a.F(f, 1)) - model.a.flat.row(v));
-  const GateReport report = runGate(model, GateLimits{});
+  const GateReport report = measureAndGate(model, GateLimits{}, nullptr);
   const CheckResult* simple = report.find("flat_simple");
   EXPECT_EQ(simple->verdict, Verdict::Fail) << describe(report);
   EXPECT_NE(simple->detail.find("overlapping triangle pairs"), std::string::npos) << simple->detail;
@@ -153,7 +155,7 @@ TEST(Gate, OverlappingFlatTrianglesInsideASimpleOutlineFailFlatSimple) {
 TEST(Gate, OpenSeamFailsOnlyBErrorAndSeamGap) {
   DForm model = test::tetraDForm(8);
   model.b.shape.col(2).array() += 1.0;
-  const GateReport report = runGate(model, GateLimits{});
+  const GateReport report = measureAndGate(model, GateLimits{}, nullptr);
   EXPECT_EQ(failed(report), (Names{"B_error", "seam_gap_mm"})) << describe(report);
   EXPECT_NEAR(report.find("seam_gap_mm")->value, 1.0, 1e-12);
 }
@@ -165,7 +167,7 @@ TEST(Gate, SelfIntersectingShapeFailsOnlySelfIntersection) {
   ribbon.innerLift = 20.0;
   ribbon.outerRise = 1.0;
   ribbon.innerRise = -1.0;
-  const GateReport report = runGate(test::ribbonDForm(ribbon), GateLimits{});
+  const GateReport report = measureAndGate(test::ribbonDForm(ribbon), GateLimits{}, nullptr);
   EXPECT_EQ(failed(report), Names{"self_intersection"}) << describe(report);
   EXPECT_GT(report.find("self_intersection")->value, 0.0);
 }
@@ -178,7 +180,7 @@ TEST(Gate, VertexPushedThroughTheOtherPieceFailsTheHonestSet) {
   Eigen::Index v;
   model.a.shape.rowwise().squaredNorm().minCoeff(&v);
   model.a.shape(v, 2) += 30.0;
-  const GateReport report = runGate(model, GateLimits{});
+  const GateReport report = measureAndGate(model, GateLimits{}, nullptr);
   EXPECT_EQ(failed(report), (Names{"L_error", "L_max", "gauss_max_rad", "flipped",
                                    "self_intersection", "hull_distance_rel"}))
       << describe(report);
@@ -190,19 +192,19 @@ TEST(Gate, InverseModeChecksDErrorInsteadOfBError) {
   target.points.resize(Eigen::Index(model.a.seam.size()), 3);
   for (size_t i = 0; i < model.a.seam.size(); ++i)
     target.points.row(Eigen::Index(i)) = model.a.shape.row(model.a.seam[i]);
-  const GateReport exact = runGate(model, GateLimits{}, &target);
+  const GateReport exact = measureAndGate(model, GateLimits{}, &target);
   EXPECT_EQ(exact.find("B_error"), nullptr);
   ASSERT_NE(exact.find("D_error"), nullptr);
   EXPECT_TRUE(exact.passed()) << describe(exact);
   ASSERT_TRUE(exact.curve.has_value());
 
   target.points.col(0).array() += 1.0;  // the curve moved 1 mm away from both sides
-  const GateReport shifted = runGate(model, GateLimits{}, &target);
+  const GateReport shifted = measureAndGate(model, GateLimits{}, &target);
   EXPECT_EQ(failed(shifted), Names{"D_error"}) << describe(shifted);
   EXPECT_NEAR(shifted.curve->curve_distance_max_mm, 1.0, 1e-12);
 
   target.points.conservativeResize(target.points.rows() - 1, 3);
-  const GateReport mismatched = runGate(model, GateLimits{}, &target);
+  const GateReport mismatched = measureAndGate(model, GateLimits{}, &target);
   EXPECT_EQ(mismatched.find("D_error")->verdict, Verdict::NotRun);
   EXPECT_NE(mismatched.find("D_error")->detail.find("seam pairs"), std::string::npos);
 }
@@ -218,7 +220,7 @@ TEST(Gate, HullDistanceOfAVertexPushedOutOfTheHull) {
   (model.a.shape.rowwise() - inside.transpose()).rowwise().squaredNorm().minCoeff(&v);
   const double push = 1.5;
   model.a.shape.row(v) += push * normal.transpose();
-  const GateReport report = runGate(model, GateLimits{});
+  const GateReport report = measureAndGate(model, GateLimits{}, nullptr);
   const double diagonal = Eigen::Vector3d(80, 80, 20).norm();  // the seam's bounding box
   EXPECT_NEAR(report.find("hull_distance_rel")->value, push / diagonal, 1e-12) << describe(report);
   EXPECT_EQ(report.find("hull_distance_rel")->verdict, Verdict::Fail);  // 1.2% > 1%
@@ -242,7 +244,7 @@ TEST(Gate, HullDistanceOfAVertexDeepInsideIsItsNearestFacesPlane) {
   const int inner = int(std::find(onSeam.begin(), onSeam.end(), false) - onSeam.begin());
   model.a.shape.row(inner) = p.transpose();
   const double diagonal = Eigen::Vector3d(80, 80, 20).norm();
-  const CheckResult hull = *runGate(model, GateLimits{}).find("hull_distance_rel");
+  const CheckResult hull = *measureAndGate(model, GateLimits{}, nullptr).find("hull_distance_rel");
   EXPECT_NEAR(hull.value, nearest / diagonal, 1e-12) << hull.detail;
   EXPECT_NE(hull.detail.find("at piece A vertex " + std::to_string(inner) + ";"), std::string::npos) << hull.detail;
 }
@@ -262,7 +264,7 @@ TEST(Gate, ConvexityIsJudgedWithinWhatSamplingAndSolvingMayMove) {
   auto pushed = [&](double depth) {
     DForm model = exact;
     model.a.flat.row(model.a.seam[4]) += depth * inward.transpose();
-    return *runGate(model, GateLimits{}).find("hull_distance_rel");
+    return *measureAndGate(model, GateLimits{}, nullptr).find("hull_distance_rel");
   };
   // A pocket of a millionth of a millimetre turns the wrong way by far more than sin = 1e-9, yet
   // is sampling noise: judged convex, the check runs.
@@ -277,20 +279,67 @@ TEST(Gate, ConvexityIsJudgedWithinWhatSamplingAndSolvingMayMove) {
       << deep.detail;
 }
 
-TEST(Gate, FlatDoubleDiscHasNoHullAndTouchesItself) {
-  // Both pieces lie in z = 0 on top of each other: a degenerate D-Form. The closed surface
-  // touches itself everywhere and the planar seam has no hull: the gate must not pass it.
-  const GateReport report = runGate(test::flatDoubleDisc(4, 24, 50.0), GateLimits{});
-  EXPECT_EQ(failed(report), Names{"self_intersection"}) << describe(report);
+TEST(Gate, FlatDoubleDiscTouchesItselfAndPasses) {
+  // Both pieces lie in z = 0 on top of each other: a doubly covered disc, a flat pouch zipped at
+  // its rim. Its sheets touch face to face without crossing (a buildable object); its planar seam
+  // has no hull.
+  const GateReport report = measureAndGate(test::flatDoubleDisc(4, 24, 50.0), GateLimits{}, nullptr);
+  EXPECT_TRUE(failed(report).empty()) << describe(report);
+  EXPECT_EQ(report.find("self_intersection")->value, 0.0);
+  EXPECT_NE(report.find("self_intersection")->detail.find("face to face"), std::string::npos)
+      << report.find("self_intersection")->detail;
   EXPECT_EQ(report.find("hull_distance_rel")->verdict, Verdict::NotRun);
   EXPECT_NE(report.find("hull_distance_rel")->detail.find("planar"), std::string::npos);
 }
 
+// The flat double disc with the vertices of B (the lower sheet: its faces point down) off the
+// seam lifted by lift(x, y) mm.
+DForm liftedLowerSheet(const std::function<double(double, double)>& lift) {
+  DForm model = test::flatDoubleDisc(4, 24, 50.0);
+  std::vector<bool> onSeam(size_t(model.b.shape.rows()), false);
+  for (int v : model.b.seam) onSeam[size_t(v)] = true;
+  for (Eigen::Index v = 0; v < model.b.shape.rows(); ++v)
+    if (!onSeam[size_t(v)]) model.b.shape(v, 2) += lift(model.b.shape(v, 0), model.b.shape(v, 1));
+  return model;
+}
+
+TEST(Gate, LowerSheetOfAFlatPouchPushedThroughTheUpperOneIntersects) {
+  // B's centre pushed up by a micrometre: its middle triangles tilt up through A.
+  const auto centre = [](double height) {
+    return [height](double x, double y) { return x == 0.0 && y == 0.0 ? height : 0.0; };
+  };
+  const CheckResult through =
+      *measureAndGate(liftedLowerSheet(centre(1e-3)), GateLimits{}, nullptr).find("self_intersection");
+  EXPECT_EQ(through.verdict, Verdict::Fail) << through.detail;
+  EXPECT_GT(through.value, 0.0);
+  // Moved by a thousandth of the tolerance (1e-9 of the 141 mm diagonal) the sheets still touch.
+  const CheckResult touching =
+      *measureAndGate(liftedLowerSheet(centre(1e-12 * 141.0)), GateLimits{}, nullptr).find("self_intersection");
+  EXPECT_EQ(touching.verdict, Verdict::Pass) << touching.detail;
+  // Bulging away from A (downwards) the pouch opens: no contact, no crossing.
+  const CheckResult open = *measureAndGate(liftedLowerSheet([](double x, double y) {
+                                      return -5.0 * (1.0 - (x * x + y * y) / 2500.0);
+                                    }),
+                                    GateLimits{}, nullptr)
+                                .find("self_intersection");
+  EXPECT_EQ(open.value, 0.0) << open.detail;
+  EXPECT_EQ(open.detail.find("face to face"), std::string::npos) << open.detail;
+}
+
+TEST(Gate, FlatPouchTouchesWhicheverWayItsFacesAreWound) {
+  // B's faces listed the other way round (as a file may hold them): the check orients the closed
+  // surface by its seam before comparing which way the sheets face.
+  DForm model = test::flatDoubleDisc(4, 24, 50.0);
+  model.b.F.col(1).swap(model.b.F.col(2));
+  const CheckResult check = *measureAndGate(model, GateLimits{}, nullptr).find("self_intersection");
+  EXPECT_EQ(check.verdict, Verdict::Pass) << check.detail;
+}
+
 TEST(Gate, ExactCreasedDFormPassesWithItsHingesFoldedSharply) {
   // The hinges fold by 117 degrees: a fold-over without creases, a drawn fold with them.
-  const GateReport plain = runGate(test::tetraDForm(8, 40.0, 0.7), GateLimits{});
+  const GateReport plain = measureAndGate(test::tetraDForm(8, 40.0, 0.7), GateLimits{}, nullptr);
   EXPECT_EQ(plain.find("flipped")->verdict, Verdict::Fail);
-  const GateReport report = runGate(test::creasedTetraDForm(8, 40.0, 0.7), GateLimits{});
+  const GateReport report = measureAndGate(test::creasedTetraDForm(8, 40.0, 0.7), GateLimits{}, nullptr);
   EXPECT_TRUE(failed(report).empty()) << describe(report);
   EXPECT_EQ(notRun(report), Names{"hull_distance_rel"}) << describe(report);
   EXPECT_NE(report.find("hull_distance_rel")->detail.find("creases"), std::string::npos);
@@ -298,7 +347,7 @@ TEST(Gate, ExactCreasedDFormPassesWithItsHingesFoldedSharply) {
 }
 
 TEST(Gate, AntiDFormPassesAndHullIsNotRun) {
-  const GateReport report = runGate(test::annulusDForm(), GateLimits{});
+  const GateReport report = measureAndGate(test::annulusDForm(), GateLimits{}, nullptr);
   EXPECT_TRUE(failed(report).empty()) << describe(report);
   EXPECT_EQ(notRun(report), (Names{"exact_distance_rel", "hull_distance_rel"})) << describe(report);
   EXPECT_NE(report.find("hull_distance_rel")->detail.find("free boundary"), std::string::npos);
@@ -313,7 +362,7 @@ TEST(Gate, HoleMeetingTheOutlineFailsFlatSimple) {
   // Drag a hole vertex of A out across the outer outline (radius 20 -> 60).
   const int v = model.a.seam[5];
   model.a.flat.row(v) *= 3.0;
-  const GateReport report = runGate(model, GateLimits{});
+  const GateReport report = measureAndGate(model, GateLimits{}, nullptr);
   const CheckResult* simple = report.find("flat_simple");
   EXPECT_EQ(simple->verdict, Verdict::Fail) << describe(report);
   EXPECT_NE(simple->detail.find("piece A: seam loop edge"), std::string::npos) << simple->detail;
@@ -332,7 +381,7 @@ TEST(Gate, LoopsOutsideTheOutlineOrInsideAHoleFailFlatSimple) {
   a.shape.bottomRows(6).setZero();
   a.freeBoundaries.push_back({int(n), int(n) + 1, int(n) + 2});
   a.freeBoundaries.push_back({int(n) + 3, int(n) + 4, int(n) + 5});
-  const GateReport report = runGate(model, GateLimits{});
+  const GateReport report = measureAndGate(model, GateLimits{}, nullptr);
   const CheckResult* simple = report.find("flat_simple");
   EXPECT_EQ(simple->verdict, Verdict::Fail);
   EXPECT_NE(simple->detail.find("free boundary 2 lies outside the outer outline"),
@@ -349,7 +398,7 @@ TEST(Gate, AntiDFormPiercingItselfFailsSelfIntersection) {
   Eigen::Index v = 0;
   (model.b.flat.rowwise().norm().array() - 35.0).abs().minCoeff(&v);
   model.b.shape(v, 2) = 10.0;
-  const GateReport report = runGate(model, GateLimits{});
+  const GateReport report = measureAndGate(model, GateLimits{}, nullptr);
   EXPECT_EQ(report.find("self_intersection")->verdict, Verdict::Fail) << describe(report);
 }
 

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -23,7 +24,7 @@ double seam3dLength(const DForm& model) {
 
 TEST(Metrics, CylinderRolledExactlyFromARectangleHasNoError) {
   const DForm model = test::rolledCylinder(24, 6, 30.0, 50.0);
-  const Metrics m = computeMetrics(model);
+  const Metrics m = computeMetrics(model, {});
   EXPECT_LT(m.L_error, 1e-12);
   EXPECT_LT(m.L_max, 1e-12);
   EXPECT_LT(m.gauss_max, 1e-12);  // interior vertices lie on straight folds
@@ -42,7 +43,7 @@ TEST(Metrics, CylinderRolledExactlyFromARectangleHasNoError) {
 
 TEST(Metrics, FlatDoubleDiscIsExactAndFlat) {
   const DForm model = test::flatDoubleDisc(5, 24, 50.0);
-  const Metrics m = computeMetrics(model);
+  const Metrics m = computeMetrics(model, {});
   EXPECT_EQ(m.L_error, 0.0);
   EXPECT_EQ(m.L_max, 0.0);
   EXPECT_LT(m.gauss_max, 1e-12);
@@ -59,7 +60,7 @@ TEST(Metrics, FlatDoubleDiscIsExactAndFlat) {
 
 TEST(Metrics, TetraDFormIsExactlyDevelopable) {
   const DForm model = test::tetraDForm(6);
-  const Metrics m = computeMetrics(model);
+  const Metrics m = computeMetrics(model, {});
   EXPECT_LT(m.L_error, 1e-12);
   EXPECT_LT(m.L_max, 1e-12);
   EXPECT_LT(m.gauss_max, 1e-12);
@@ -73,7 +74,7 @@ TEST(Metrics, UniformStretchGivesItsFactor) {
   DForm model = test::tetraDForm(6);
   model.a.shape *= 1.01;
   model.b.shape *= 1.01;
-  const Metrics m = computeMetrics(model);
+  const Metrics m = computeMetrics(model, {});
   EXPECT_NEAR(m.L_error, 0.01, 1e-12);
   EXPECT_NEAR(m.L_max, 0.01, 1e-12);
   EXPECT_LT(m.gauss_max, 1e-12);  // scaling keeps every angle
@@ -96,7 +97,7 @@ TEST(Metrics, LMaxIsTheWorstEdgeOfANonUniformStretch) {
         const double shape = (piece->shape.row(u) - piece->shape.row(v)).norm();
         worst = std::max(worst, std::abs(shape - flat) / flat);
       }
-  const Metrics m = computeMetrics(model);
+  const Metrics m = computeMetrics(model, {});
   EXPECT_NEAR(m.L_max, worst, 1e-12);
   EXPECT_GT(m.L_max, m.L_error * (1 + 1e-3)) << "a non-uniform stretch: the worst edge is above the norm";
 }
@@ -126,7 +127,7 @@ TEST(Metrics, LErrorIsTheRelativeRootSumSquareOverEveryEdgeOnce) {
         ++edges;
       }
   }
-  const Metrics m = computeMetrics(model);
+  const Metrics m = computeMetrics(model, {});
   EXPECT_NEAR(m.L_error, std::sqrt(sumSqDiff / sumSqFlat), 1e-14);
   EXPECT_GT(std::abs(m.L_error - sumRel / edges), 1e-6) << "not the mean relative error";
 }
@@ -153,7 +154,7 @@ TEST(Metrics, PyramidApexDefectIsTwoPiMinusItsFaceAngles) {
   // Each face angle at the apex from the dot product of two slant edges.
   const double faceAngle = std::acos((r * r * std::cos(2 * M_PI / n) + H * H) / (r * r + H * H));
   const double defect = 2 * M_PI - n * faceAngle;
-  const Metrics m = computeMetrics(model);
+  const Metrics m = computeMetrics(model, {});
   EXPECT_NEAR(m.gauss_max, defect, 1e-12);
   EXPECT_NEAR(m.gauss_mean, defect, 1e-12);  // the apex is each piece's only interior vertex
 }
@@ -161,7 +162,7 @@ TEST(Metrics, PyramidApexDefectIsTwoPiMinusItsFaceAngles) {
 TEST(Metrics, OpenSeamGivesGapAndBError) {
   DForm model = test::tetraDForm(6);
   model.b.shape.col(2).array() += 1.0;
-  const Metrics m = computeMetrics(model);
+  const Metrics m = computeMetrics(model, {});
   EXPECT_NEAR(m.seam_gap_mm, 1.0, 1e-12);
   EXPECT_NEAR(m.B_error, 1.0 / seam3dLength(model), 1e-15);
   EXPECT_NEAR(m.seam_length_3d_mm, seam3dLength(model), 1e-12);
@@ -176,20 +177,53 @@ TEST(Metrics, CurveMatchForAKnownShift) {
     target.points.row(Eigen::Index(i)) =
         model.a.shape.row(model.a.seam[i]) + Eigen::RowVector3d(0, 0, delta);
   model.b.shape.col(2).array() += 2 * delta;  // B above the curve by delta, A below by delta
-  const CurveMatch match = computeCurveMatch(model, target);
+  const CurveMatch match = computeCurveMatch(model, target, {});
   EXPECT_NEAR(match.D_error, delta / closedLength(target.points), 1e-15);
   EXPECT_NEAR(match.curve_distance_max_mm, delta, 1e-12);
 
   model.b.shape.col(2).array() += 2 * delta;  // now 3 delta from the curve: mean 2 delta
-  const CurveMatch worse = computeCurveMatch(model, target);
+  const CurveMatch worse = computeCurveMatch(model, target, {});
   EXPECT_NEAR(worse.D_error, 2 * delta / closedLength(target.points), 1e-15);
   EXPECT_NEAR(worse.curve_distance_max_mm, 3 * delta, 1e-12);
+}
+
+// validate compares with the seams it is given and solves none: the figures follow the reference
+// handed in, whatever it is.
+TEST(Metrics, ExactDistanceIsToTheGivenReferenceSeam) {
+  const DForm model = test::tetraDForm(6);
+  Points3 seam(Eigen::Index(model.a.seam.size()), 3);
+  for (std::size_t k = 0; k < model.a.seam.size(); ++k) seam.row(Eigen::Index(k)) = model.a.shape.row(model.a.seam[k]);
+  // The same seam turned and moved: rigid alignment takes it back.
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Points3 moved = ((seam * turn.transpose()).rowwise() + Eigen::RowVector3d(5, -3, 2)).eval();
+  const Metrics same = computeMetrics(model, {moved, "turned"});
+  EXPECT_LE(same.exact_distance_max_rel, 1e-12);
+  EXPECT_TRUE(same.exact_note.empty());
+  // One seam point of the reference 10 % of the diagonal away: a largest distance above the RMS.
+  Points3 bent = seam;
+  const double diagonal = (seam.colwise().maxCoeff() - seam.colwise().minCoeff()).norm();
+  bent(0, 2) += 0.1 * diagonal;
+  const Metrics off = computeMetrics(model, {bent, "bent"});
+  EXPECT_GT(off.exact_distance_rms_rel, 1e-3);
+  EXPECT_GT(off.exact_distance_max_rel, off.exact_distance_rms_rel);
+  // None given: NaN, and the note says why.
+  const Metrics none = computeMetrics(model, {Points3(), "no body for this"});
+  EXPECT_TRUE(std::isnan(none.exact_distance_rms_rel));
+  EXPECT_TRUE(std::isnan(none.exact_distance_max_rel));
+  EXPECT_EQ(none.exact_note, "no body for this");
+  // The round trip likewise: the curve itself as the zipped seam is 0 away, none is NaN.
+  Curve3 target;
+  target.points = seam;
+  const CurveMatch back = computeCurveMatch(model, target, {moved, "zipped by a test"});
+  EXPECT_LE(back.roundtrip_max_rel, 1e-12);
+  EXPECT_EQ(back.roundtrip_note, "zipped by a test");
+  EXPECT_TRUE(std::isnan(computeCurveMatch(model, target, {Points3(), "none"}).roundtrip_rms_rel));
 }
 
 TEST(Metrics, ReversedFlatTriangleIsFlipped) {
   DForm model = test::tetraDForm(6);
   model.a.F.row(10) = Eigen::RowVector3i(model.a.F(10, 0), model.a.F(10, 2), model.a.F(10, 1));
-  const Metrics m = computeMetrics(model);
+  const Metrics m = computeMetrics(model, {});
   EXPECT_EQ(m.flipped_2d, 1);
   EXPECT_EQ(m.flipped_3d, 0);  // its flat neighbourhood is folded, so the 3D rule does not apply
 }
@@ -197,7 +231,7 @@ TEST(Metrics, ReversedFlatTriangleIsFlipped) {
 TEST(Metrics, HingeFoldedBeyondNinetyDegreesIsFoldedOver) {
   const int k = 5;
   // h = 0.7 folds each hinge by acos((1 - 4h^2)/(1 + 4h^2)) = 117 degrees.
-  const Metrics m = computeMetrics(test::tetraDForm(k, 40.0, 0.7));
+  const Metrics m = computeMetrics(test::tetraDForm(k, 40.0, 0.7), {});
   EXPECT_EQ(m.flipped_2d, 0);
   EXPECT_EQ(m.flipped_3d, 2 * 2 * k);  // per piece, the k triangles on each side of the hinge
   EXPECT_LT(m.L_error, 1e-12);
@@ -213,7 +247,7 @@ TEST(Metrics, CollapsedEdgeGivesDegenerateTriangles) {
   const int v = model.a.F(f, 0), w = model.a.F(f, 1);
   model.a.flat.row(v) = model.a.flat.row(w);
   model.a.shape.row(v) = model.a.shape.row(w);
-  const Metrics m = computeMetrics(model);
+  const Metrics m = computeMetrics(model, {});
   EXPECT_EQ(m.degenerate_2d, 2);  // the two triangles on edge v-w
   EXPECT_EQ(m.degenerate_3d, 2);
 }
@@ -264,15 +298,15 @@ TEST(Metrics, CreaseAnglesFollowTheOutsideOfTheDForm) {
 
 TEST(Metrics, ASharpCreaseIsNoFoldOver) {
   // The hinges fold by 117 degrees: folded over without creases, a drawn fold with them.
-  const Metrics creased = computeMetrics(test::creasedTetraDForm(5, 40.0, 0.7));
+  const Metrics creased = computeMetrics(test::creasedTetraDForm(5, 40.0, 0.7), {});
   EXPECT_EQ(creased.flipped_3d, 0);
   EXPECT_LT(creased.L_error, 1e-12);
 
   Piece square = test::foldedSquare(8, 40.0, {{4, 0, 4, 8, 150.0}});
   DForm model{square, test::mirroredCopy(square, "B")};
-  EXPECT_EQ(computeMetrics(model).flipped_3d, 0);
+  EXPECT_EQ(computeMetrics(model, {}).flipped_3d, 0);
   model.a.creases.clear();  // the same fold, not drawn: k triangles on each side of it per piece
-  EXPECT_EQ(computeMetrics(model).flipped_3d, 2 * 8);
+  EXPECT_EQ(computeMetrics(model, {}).flipped_3d, 2 * 8);
 }
 
 TEST(Metrics, ACreaseThroughAVertexTakesItsDefectOutOfTheFigures) {
@@ -293,10 +327,10 @@ TEST(Metrics, ACreaseThroughAVertexTakesItsDefectOutOfTheFigures) {
     a.seam.push_back(1 + j);
   }
   DForm model{a, test::mirroredCopy(a, "B")};
-  EXPECT_GT(computeMetrics(model).gauss_max, 0.1);
+  EXPECT_GT(computeMetrics(model, {}).gauss_max, 0.1);
   EXPECT_GT(curvatureMap(model.a)(0), 0.1);
   for (Piece* p : {&model.a, &model.b}) p->creases = {{1, 0, 1 + n / 2}};
-  const Metrics m = computeMetrics(model);
+  const Metrics m = computeMetrics(model, {});
   EXPECT_EQ(m.gauss_max, 0.0);
   EXPECT_EQ(m.gauss_mean, 0.0);
   EXPECT_EQ(curvatureMap(model.a)(0), 0.0);
@@ -304,7 +338,7 @@ TEST(Metrics, ACreaseThroughAVertexTakesItsDefectOutOfTheFigures) {
 
 TEST(Metrics, AntiDFormIsMeasuredOverEveryEdgeAndAlongItsHoles) {
   const DForm model = test::annulusDForm();
-  const Metrics m = computeMetrics(model);
+  const Metrics m = computeMetrics(model, {});
   // Piece A's cone keeps radial lengths and shortens circles by (rho - r)(1 - cos 5 deg) / rho,
   // at most 30 * 0.0038 / 50 at the outer edge.
   EXPECT_GT(m.L_max, 1e-4);

@@ -1,4 +1,6 @@
-#include "validate/exact_body.h"
+#include "pipeline/reference_seams.h"
+
+#include <optional>
 
 #include "exact/body_edges.h"
 #include "exact/exact_gluing.h"
@@ -6,7 +8,9 @@
 
 namespace dform {
 
-Result<Points3> exactBodySeam(const DForm& model) {
+namespace {
+
+Result<Points3> exactSeam(const DForm& model) {
   const std::size_t n = model.a.seam.size();
   if (!model.a.freeBoundaries.empty() || !model.b.freeBoundaries.empty())
     return Status(ErrorCode::InputInvalid,
@@ -33,23 +37,41 @@ Result<Points3> exactBodySeam(const DForm& model) {
   return out;
 }
 
-Result<Points3> zippedAgainSeam(const DForm& model, std::string& how) {
-  Result<Points3> exact = exactBodySeam(model);
-  if (exact.isOk()) {
-    how = "the exact D-Form of the pieces";
-    return exact;
-  }
+ReferenceSeam reference(const Result<Points3>& seam, const std::string& how) {
+  if (!seam.isOk()) return {Points3(), seam.status().message()};
+  return {seam.value(), how};
+}
+
+}  // namespace
+
+ReferenceSeam exactBodySeam(const DForm& model) { return reference(exactSeam(model), "the exact D-Form of the pieces"); }
+
+ReferenceSeam zippedAgainSeam(const DForm& model) {
+  Result<Points3> exact = exactSeam(model);
+  if (exact.isOk()) return reference(exact, "zipped by the exact D-Form of the pieces");
   // A non-convex metric: the optimisation says what shape the sheet takes instead. Other reasons
   // (a hole zipped, a seam too long to glue) are not the round trip's to work around.
-  if (exact.status().message().find("not convex") == std::string::npos) return exact.status();
+  if (exact.status().message().find("not convex") == std::string::npos) return reference(exact, "");
   const ForwardResult solved = solveMeshedCoarseToFine(model.a, model.b, ForwardOptions{});
   if (!solved.summary.usable())
-    return Status(ErrorCode::SolveFailed, exact.status().message() + "; and the optimisation failed: " + solved.summary.message);
-  how = "the paper's optimisation, since " + exact.status().message();
+    return {Points3(), exact.status().message() + "; and the optimisation failed: " + solved.summary.message};
   Points3 seam(Eigen::Index(model.a.seam.size()), 3);
   for (std::size_t k = 0; k < model.a.seam.size(); ++k)
     seam.row(Eigen::Index(k)) = solved.model.a.shape.row(solved.model.a.seam[k]);
-  return seam;
+  return {seam, "zipped by the paper's optimisation, since " + exact.status().message()};
+}
+
+Metrics measureModel(const DForm& model) { return computeMetrics(model, exactBodySeam(model)); }
+
+CurveMatch measureCurveMatch(const DForm& model, const Curve3& target) {
+  return computeCurveMatch(model, target, zippedAgainSeam(model));
+}
+
+GateReport measureAndGate(const DForm& model, const GateLimits& limits, const Curve3* target) {
+  const std::size_t pairs = model.a.seam.size();
+  std::optional<CurveMatch> curve;
+  if (target && std::size_t(target->points.rows()) == pairs && pairs > 0) curve = measureCurveMatch(model, *target);
+  return runGate(model, limits, measureModel(model), target, curve ? &*curve : nullptr);
 }
 
 }  // namespace dform
