@@ -35,55 +35,30 @@ class LocalGlobal {
     const int n = int(x0.size());
     // K = sum_t w_t M_t^T M_t + sum_e w_e D_e^T D_e + eps I. The eps I (with eps x_prev on the
     // right) is a proximal term: it fixes the free translation and vanishes at a fixed point.
-    // Each step of the set-up takes up to a second on a fine mesh: a stop asked for meanwhile
-    // throws Interrupted between them (and inside the products and factorisations).
-    SparseMatrix K(n, n);
-    for (const auto& [w, term] : quadratic) K += w * gramMatrix(term->matrix());
-    throwIfInterrupted("the solve");
-    std::vector<Eigen::Triplet<double>> entries;
-    for (std::size_t e = 0; e < edges.weight.size(); ++e) {
-      const double w = edges.weight[e];
-      auto addPair = [&](int a, int b, int dims) {
-        for (int c = 0; c < dims; ++c) {
-          entries.emplace_back(a + c, a + c, w);
-          entries.emplace_back(b + c, b + c, w);
-          entries.emplace_back(a + c, b + c, -w);
-          entries.emplace_back(b + c, a + c, -w);
-        }
-      };
-      addPair(edges.x[e][0], edges.x[e][1], 3);
-      addPair(edges.u[e][0], edges.u[e][1], 2);
+    // The objective never couples different coordinates (x with y, or u with v), so K is block
+    // diagonal by coordinate, and each block (#vertices square) is assembled on its own: every
+    // entry is the same sum, in the same order, as in K assembled whole, and a stop asked for
+    // meanwhile throws Interrupted between the steps (each a fraction of a second on a fine mesh).
+    std::vector<SparseMatrix> blocks;
+    double largestDiagonal = 0.0;
+    for (int c = 0; c < stride_; ++c) {
+      blocks.push_back(coordinateBlock(c, n / stride_));
+      largestDiagonal = std::max(largestDiagonal, blocks.back().diagonal().maxCoeff());
     }
-    throwIfInterrupted("the solve");
-    SparseMatrix edgePart(n, n);
-    edgePart.setFromTriplets(entries.begin(), entries.end());
-    K += edgePart;
-    throwIfInterrupted("the solve");
-    proximal_ = 1e-8 * K.diagonal().maxCoeff();
-    SparseMatrix identity(n, n);
-    identity.setIdentity();
-    K += proximal_ * identity;
+    proximal_ = 1e-8 * largestDiagonal;
     // Held unknowns: their rows become x_i = x0_i and their couplings move to the right side.
     held_.assign(std::size_t(n), false);
     for (int i : held) held_[std::size_t(i)] = true;
     heldRhs_ = Eigen::VectorXd::Zero(n);
     heldValue_ = x0;
-    if (!held.empty()) {
-      for (int c = 0; c < K.outerSize(); ++c) {
-        if (c % 65536 == 0) throwIfInterrupted("the solve");
-        if (!held_[std::size_t(c)]) continue;
-        for (SparseMatrix::InnerIterator it(K, c); it; ++it)
-          if (!held_[std::size_t(it.row())]) heldRhs_[it.row()] -= it.value() * x0[c];
-      }
+    for (int c = 0; c < stride_; ++c) {
+      SparseMatrix identity(blocks[c].rows(), blocks[c].cols());
+      identity.setIdentity();
+      blocks[c] += proximal_ * identity;
       throwIfInterrupted("the solve");
-      // The held rows and columns leave K but for their diagonal, which becomes 1 (the proximal
-      // term put every diagonal entry in K's pattern).
-      K.prune([&](Eigen::Index row, Eigen::Index col, double) {
-        return row == col || (!held_[std::size_t(row)] && !held_[std::size_t(col)]);
-      });
-      for (int i : held) K.coeffRef(i, i) = 1.0;
+      if (!held.empty()) holdUnknowns(blocks[c], c, x0);
     }
-    splitByCoordinate(K);
+    factorizeBlocks(std::move(blocks));
   }
 
   bool ok() const { return ok_; }
@@ -147,6 +122,7 @@ class LocalGlobal {
     Eigen::VectorXd out(rhs.size());
     Eigen::Map<RowMatrix> X(out.data(), vertices, stride_);
     for (const Group& group : groups_) {
+      throwIfInterrupted("the solve");
       Eigen::MatrixXd part(vertices, group.coordinates.size());
       for (std::size_t k = 0; k < group.coordinates.size(); ++k)
         part.col(k) = B.col(group.coordinates[k]);
@@ -199,28 +175,106 @@ class LocalGlobal {
     BlockFactor factor;
   };
 
-  // K restricted to coordinate c of every vertex (#vertices square).
-  SparseMatrix coordinateBlock(const SparseMatrix& K, int c) const {
+  // The vertex of unknown i, when i is coordinate c of its vertex.
+  int vertexOf(int i, int c) const {
+    assert(i % stride_ == c && "the objective couples two coordinates");
+    (void)c;
+    return i / stride_;
+  }
+
+  // Whether a row of M has entries in two coordinates (a check of the premise of the blocks).
+  bool couplesCoordinates(const SparseMatrix& M) const {
+    std::vector<int> coordinate(std::size_t(M.rows()), -1);
+    for (int j = 0; j < M.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(M, j); it; ++it) {
+        int& seen = coordinate[std::size_t(it.row())];
+        if (seen >= 0 && seen != j % stride_) return true;
+        seen = j % stride_;
+      }
+    return false;
+  }
+
+  // Columns c, c + stride, ... of M: the term's part acting on coordinate c of every vertex.
+  SparseMatrix coordinateColumns(const SparseMatrix& M, int c) const {
+    const int vertices = int(M.cols()) / stride_;
+    std::vector<int> outer(std::size_t(vertices) + 1, 0), inner;
+    std::vector<double> values;
+    for (int v = 0; v < vertices; ++v) {
+      if (v % 65536 == 0) throwIfInterrupted("the solve");
+      for (SparseMatrix::InnerIterator it(M, v * stride_ + c); it; ++it) {
+        inner.push_back(int(it.row()));
+        values.push_back(it.value());
+      }
+      outer[std::size_t(v) + 1] = int(inner.size());
+    }
+    return Eigen::Map<const SparseMatrix>(M.rows(), vertices, Eigen::Index(inner.size()), outer.data(),
+                                          inner.data(), values.data());
+  }
+
+  // K restricted to coordinate c of every vertex (#vertices square), but for the proximal term:
+  // the terms' Gram matrices summed in their order, then the edges' part.
+  SparseMatrix coordinateBlock(int c, int vertices) const {
+    SparseMatrix block(vertices, vertices);
+    for (const auto& [w, term] : quadratic_) {
+      assert((c > 0 || !couplesCoordinates(term->matrix())) && "the objective couples two coordinates");
+      block += w * gramMatrix(coordinateColumns(term->matrix(), c));
+      throwIfInterrupted("the solve");
+    }
+    // The edges' part from triplets in the order of K's whole assembly, so that repeated entries
+    // sum in the same order.
     std::vector<Eigen::Triplet<double>> entries;
-    for (int j = c; j < K.outerSize(); j += stride_)
-      for (SparseMatrix::InnerIterator it(K, j); it; ++it)
-        if (it.row() % stride_ == c) entries.emplace_back(it.row() / stride_, j / stride_, it.value());
-    SparseMatrix block(K.rows() / stride_, K.cols() / stride_);
-    block.setFromTriplets(entries.begin(), entries.end());
+    for (std::size_t e = 0; e < edges_.weight.size(); ++e) {
+      if (e % 65536 == 0) throwIfInterrupted("the solve");
+      const double w = edges_.weight[e];
+      auto addPair = [&](int a, int b, int dims) {
+        for (int k = 0; k < dims; ++k) {
+          if ((a + k) % stride_ != c) continue;
+          const int va = vertexOf(a + k, c), vb = vertexOf(b + k, c);
+          entries.emplace_back(va, va, w);
+          entries.emplace_back(vb, vb, w);
+          entries.emplace_back(va, vb, -w);
+          entries.emplace_back(vb, va, -w);
+        }
+      };
+      addPair(edges_.x[e][0], edges_.x[e][1], 3);
+      addPair(edges_.u[e][0], edges_.u[e][1], 2);
+    }
+    throwIfInterrupted("the solve");
+    SparseMatrix edgePart(vertices, vertices);
+    edgePart.setFromTriplets(entries.begin(), entries.end());
+    throwIfInterrupted("the solve");
+    block += edgePart;
+    throwIfInterrupted("the solve");
     return block;
   }
 
-  // The objective never couples different coordinates (x with y, or u with v), so K is block
-  // diagonal by coordinate; x, y, z share one block and u, v another. Factorising each distinct
-  // block once (#vertices square) is several times cheaper than factorising K.
-  void splitByCoordinate(const SparseMatrix& K) {
-    for (int j = 0; j < K.outerSize(); ++j)
-      for (SparseMatrix::InnerIterator it(K, j); it; ++it)
-        assert(it.row() % stride_ == j % stride_ && "the objective couples two coordinates");
+  // Replaces the rows and columns of coordinate c's held unknowns in its block by the identity's,
+  // their couplings moved to the right side (heldRhs_).
+  void holdUnknowns(SparseMatrix& block, int c, const Eigen::VectorXd& x0) {
+    auto isHeld = [&](Eigen::Index v) { return held_[std::size_t(v * stride_ + c)]; };
+    for (int v = 0; v < block.outerSize(); ++v) {
+      if (v % 65536 == 0) throwIfInterrupted("the solve");
+      if (!isHeld(v)) continue;
+      for (SparseMatrix::InnerIterator it(block, v); it; ++it)
+        if (!isHeld(it.row())) heldRhs_[it.row() * stride_ + c] -= it.value() * x0[v * stride_ + c];
+    }
+    throwIfInterrupted("the solve");
+    // The held rows and columns leave the block but for their diagonal, which becomes 1 (the
+    // proximal term put every diagonal entry in the block's pattern).
+    block.prune([&](Eigen::Index row, Eigen::Index col, double) {
+      return row == col || (!isHeld(row) && !isHeld(col));
+    });
+    for (int v = 0; v < block.outerSize(); ++v)
+      if (isHeld(v)) block.coeffRef(v, v) = 1.0;
+  }
+
+  // x, y, z share one block and u, v another: each distinct block is factorised once, several
+  // times cheaper than factorising K.
+  void factorizeBlocks(std::vector<SparseMatrix> blocks) {
     ok_ = true;
     for (int c = 0; c < stride_; ++c) {
       throwIfInterrupted("the solve");  // the factorisation polls between its supernodes too
-      SparseMatrix block = coordinateBlock(K, c);
+      SparseMatrix& block = blocks[std::size_t(c)];
       auto same = std::find_if(groups_.begin(), groups_.end(), [&](const Group& other) {
         return (other.matrix - block).norm() == 0.0;
       });
@@ -307,23 +361,30 @@ LocalGlobalSummary LocalGlobalRelaxation::relax(const LocalGlobalOptions& option
   summary.initialEnergy = summary.finalEnergy = energy;
   if (!lg.ok() || !std::isfinite(energy)) return summary;
   const Eigen::VectorXd constant = lg.targetRhs();
+  throwIfInterrupted("the solve");
 
   Anderson anderson(options.andersonDepth);
   Projections candidateProj, longerProj;
+  // On a fine mesh one iteration takes seconds (each solve, energy and extrapolation a fraction of
+  // one): a stop asked for meanwhile throws Interrupted between them, besides the callback's stop.
   for (int k = 1; k <= options.maxIterations; ++k) {
     summary.iterations = k;
     const Eigen::VectorXd g = lg.global(x, proj, constant);
+    throwIfInterrupted("the solve");
     const Eigen::VectorXd plainStep = g - x;
     const double plainGain = lg.globalStepDecrease(plainStep);
     Eigen::VectorXd candidate = options.andersonDepth > 0 ? anderson.next(g, plainStep) : g;
+    throwIfInterrupted("the solve");
     double candidateEnergy = lg.energy(candidate, candidateProj);
     // Plain steps never raise the energy; an accelerated one that does is replaced by the plain
     // one, taken further while that keeps lowering the energy.
     if (!(candidateEnergy <= energy) && options.andersonDepth > 0) {
       ++summary.andersonRejected;
+      throwIfInterrupted("the solve");
       candidate = g;
       candidateEnergy = lg.energy(candidate, candidateProj);
       for (int e = 1; e <= options.plainStepExtensions; ++e) {
+        throwIfInterrupted("the solve");
         Eigen::VectorXd longer = x + std::ldexp(1.0, e) * plainStep;
         const double longerEnergy = lg.energy(longer, longerProj);
         if (!(longerEnergy < candidateEnergy)) break;

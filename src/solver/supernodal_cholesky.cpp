@@ -3,9 +3,14 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cassert>
+#include <chrono>
 #include <cholmod.h>
+#include <condition_variable>
+#include <memory>
 #include <mutex>
 #include <new>
+#include <system_error>
+#include <thread>
 
 #include "core/interrupt.h"
 
@@ -58,6 +63,53 @@ cholmod_sparse patternView(int n, const int* outer, const int* inner) {
   return view;
 }
 
+// One CHOLMOD analysis of a symmetric pattern (its lower triangle), holding copies of all it reads.
+struct PendingAnalysis {
+  std::vector<int> outer, inner;
+  std::vector<int> ordering;  ///< the ordering to analyse with; empty: CHOLMOD's methods choose one
+  CholmodSession session;     ///< configured by the caller; holds the result
+  std::mutex mutex;
+  std::condition_variable done;
+  bool finished = false;
+
+  PendingAnalysis(int n, const int* outerIndex, const int* innerIndex)
+      : outer(outerIndex, outerIndex + n + 1), inner(innerIndex, innerIndex + outerIndex[n]) {}
+
+  void run() {
+    cholmod_sparse view = patternView(int(outer.size()) - 1, outer.data(), inner.data());
+    if (!ordering.empty()) {
+      session.factor = cholmod_analyze_p(&view, ordering.data(), nullptr, 0, &session.common);
+    } else {
+      const std::lock_guard<std::mutex> lock(cholmodAnalysisMutex());
+      session.factor = cholmod_analyze(&view, &session.common);
+    }
+  }
+};
+
+// Runs the analysis. It takes seconds on a fine mesh (AMD, METIS, the symbolic factorisation) and
+// cannot be stopped from outside, so it runs on a thread of its own while this one polls the stop
+// flag every 20 ms, as a file read does (core/input_file.cpp): a stop throws Interrupted and
+// leaves the thread to finish on its own copies, which it frees when it ends (the process is
+// stopping meanwhile). Where it runs changes nothing in what it computes.
+void analyzeWhilePolling(const std::shared_ptr<PendingAnalysis>& pending) {
+  throwIfInterrupted("the solve");
+  try {
+    std::thread([pending] {
+      pending->run();
+      const std::lock_guard<std::mutex> lock(pending->mutex);
+      pending->finished = true;
+      pending->done.notify_one();
+    }).detach();
+  } catch (const std::system_error&) {
+    pending->run();  // no thread to be had (a process or memory limit): analyse here
+    return;
+  }
+  constexpr std::chrono::milliseconds kPoll{20};
+  std::unique_lock<std::mutex> lock(pending->mutex);
+  while (!pending->done.wait_for(lock, kPoll, [&] { return pending->finished; }))
+    throwIfInterrupted("the solve");
+}
+
 // A fill-reducing ordering of the symmetric pattern whose lower triangle is `pattern`, found by
 // METIS on the graph of its blocks of `blockSize` unknowns (a vertex's x y z u v), each block
 // ordered as one. That graph is blockSize times smaller, and METIS takes a small fraction of
@@ -79,15 +131,12 @@ std::vector<int> blockOrdering(const Eigen::SparseMatrix<double, Eigen::ColMajor
     inner.insert(inner.end(), below[b].begin(), below[b].end());
     outer[b + 1] = int(inner.size());
   }
-  CholmodSession session;
+  const auto pending = std::make_shared<PendingAnalysis>(blocks, outer.data(), inner.data());
+  CholmodSession& session = pending->session;
   session.common.supernodal = CHOLMOD_SIMPLICIAL;  // only the ordering is wanted
   session.common.nmethods = 1;
   session.common.method[0].ordering = CHOLMOD_METIS;
-  cholmod_sparse view = patternView(blocks, outer.data(), inner.data());
-  {
-    const std::lock_guard<std::mutex> lock(cholmodAnalysisMutex());
-    session.factor = cholmod_analyze(&view, &session.common);
-  }
+  analyzeWhilePolling(pending);
   if (!session.factor || session.common.status < CHOLMOD_OK) throw std::bad_alloc();
   const int* blockOrder = static_cast<const int*>(session.factor->Perm);
   std::vector<int> order;
@@ -107,19 +156,16 @@ std::mutex& cholmodAnalysisMutex() {
 SupernodalCholesky::SupernodalCholesky(const SparseLower& pattern, int blockSize) {
   assert(pattern.rows() == pattern.cols() && pattern.isCompressed() && "a compressed square pattern");
   n_ = int(pattern.rows());
-  CholmodSession session;
+  const auto pending = std::make_shared<PendingAnalysis>(n_, pattern.outerIndexPtr(), pattern.innerIndexPtr());
+  CholmodSession& session = pending->session;
   cholmod_common& c = session.common;
   c.supernodal = CHOLMOD_SUPERNODAL;
-  cholmod_sparse view = patternView(n_, pattern.outerIndexPtr(), pattern.innerIndexPtr());
   if (blockSize > 1) {
-    std::vector<int> ordering = blockOrdering(pattern, blockSize);
+    pending->ordering = blockOrdering(pattern, blockSize);
     c.nmethods = 1;
     c.method[0].ordering = CHOLMOD_GIVEN;
-    session.factor = cholmod_analyze_p(&view, ordering.data(), nullptr, 0, &c);
-  } else {
-    const std::lock_guard<std::mutex> lock(cholmodAnalysisMutex());
-    session.factor = cholmod_analyze(&view, &c);
   }
+  analyzeWhilePolling(pending);
   if (!session.factor || c.status < CHOLMOD_OK || !session.factor->is_super) throw std::bad_alloc();
   const cholmod_factor& L = *session.factor;
   factorFlops_ = c.fl;
@@ -157,11 +203,13 @@ SupernodalCholesky::SupernodalCholesky(const SparseLower& pattern, int blockSize
     return valueStart_[k] + long(col - first_[k]) * long(rowStart_[k + 1] - rowStart_[k]) + position;
   };
   scatter_.reserve(std::size_t(pattern.nonZeros()));
-  for (int j = 0; j < n_; ++j)
+  for (int j = 0; j < n_; ++j) {
+    if (j % 65536 == 0) throwIfInterrupted("the solve");
     for (int p = pattern.outerIndexPtr()[j]; p < pattern.outerIndexPtr()[j + 1]; ++p) {
       const int ri = inverse[pattern.innerIndexPtr()[p]], rj = inverse[j];
       scatter_.push_back(slot(std::max(ri, rj), std::min(ri, rj)));
     }
+  }
   diagonal_.resize(n_);
   for (int k = 0; k < n_; ++k) diagonal_[k] = slot(k, k);
 }
@@ -190,6 +238,7 @@ bool SupernodalCholesky::factorize(const SparseLower& A, double shift) {
     for (int i = 0; i < nrows; ++i) local[rows[i]] = i;
     Block Lk(values_.data() + valueStart_[k], nrows, cols);
     for (int d = head[k]; d != -1;) {
+      throwIfInterrupted("the solve");  // the last supernodes gather thousands of updates each
       const int following = next[d];
       const int* drows = rows_.data() + rowStart_[d];
       const int dnrows = rowStart_[d + 1] - rowStart_[d];
@@ -240,7 +289,11 @@ Eigen::MatrixXd SupernodalCholesky::solve(const Eigen::MatrixXd& b) const {
     const int cols = first_[k + 1] - first_[k], nrows = rowStart_[k + 1] - rowStart_[k];
     return ConstBlock(values_.data() + valueStart_[k], nrows, cols);
   };
+  // A stop asked for meanwhile throws Interrupted every few thousand supernodes (a fine mesh's
+  // solve takes a second on a loaded machine).
+  constexpr int kPollSupernodes = 4096;
   for (int k = 0; k < nsuper; ++k) {  // L Z = P B
+    if (k % kPollSupernodes == 0) throwIfInterrupted("the solve");
     const ConstBlock Lk = supernode(k);
     const int cols = int(Lk.cols()), below = int(Lk.rows()) - cols;
     auto xk = x.middleRows(first_[k], cols);
@@ -251,6 +304,7 @@ Eigen::MatrixXd SupernodalCholesky::solve(const Eigen::MatrixXd& b) const {
     for (int i = 0; i < below; ++i) x.row(rows[i]) -= gathered.row(i);
   }
   for (int k = nsuper - 1; k >= 0; --k) {  // L^T W = Z
+    if (k % kPollSupernodes == 0) throwIfInterrupted("the solve");
     const ConstBlock Lk = supernode(k);
     const int cols = int(Lk.cols()), below = int(Lk.rows()) - cols;
     auto xk = x.middleRows(first_[k], cols);
