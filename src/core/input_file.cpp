@@ -4,15 +4,10 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <chrono>
-#include <condition_variable>
 #include <cstring>
 #include <filesystem>
 #include <memory>
-#include <mutex>
 #include <optional>
-#include <system_error>
-#include <thread>
 
 #include "core/interrupt.h"
 
@@ -84,32 +79,12 @@ Result<std::string> readInputFile(const std::string& path, std::size_t maxBytes)
   // The read runs on a thread of its own while this one polls the interrupt flag: an open or a
   // read can block for as long as a FIFO has no writer or a network mount does not answer, and
   // a signal that came just before the blocking call (or was delivered to another thread) would
-  // not interrupt it. An abandoned read keeps its state alive until it returns, if ever; the
-  // process is stopping meanwhile.
-  struct Pending {
-    std::mutex mutex;
-    std::condition_variable done;
-    std::optional<Result<std::string>> result;
-  };
-  auto pending = std::make_shared<Pending>();
-  try {
-    std::thread([pending, path, maxBytes] {
-      Result<std::string> result = readBlocking(path, maxBytes);
-      const std::lock_guard<std::mutex> lock(pending->mutex);
-      pending->result = std::move(result);
-      pending->done.notify_one();
-    }).detach();
-  } catch (const std::system_error&) {
-    // No thread to be had (a process or memory limit): read here, where a signal still
-    // interrupts a blocked call (EINTR).
-    return readBlocking(path, maxBytes);
-  }
-  // 20 ms: far below what a person notices, and a few hundred wake-ups over a long wait.
-  constexpr std::chrono::milliseconds kPoll{20};
-  std::unique_lock<std::mutex> lock(pending->mutex);
-  while (!pending->done.wait_for(lock, kPoll, [&] { return pending->result.has_value(); }))
-    if (interruptRequested()) return interruptedReading(path);
-  return std::move(*pending->result);
+  // not interrupt it. Without a thread, the read runs here, where a signal still interrupts a
+  // blocked call (EINTR).
+  auto result = std::make_shared<std::optional<Result<std::string>>>();
+  if (!runWhilePolling([result, path, maxBytes] { *result = readBlocking(path, maxBytes); }))
+    return interruptedReading(path);
+  return std::move(**result);
 }
 
 }  // namespace dform

@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <exception>
+#include <functional>
 
 namespace dform {
 
@@ -34,5 +35,13 @@ class Interrupted : public std::exception {
 inline void throwIfInterrupted(const char* stage) {
   if (interruptRequested()) throw Interrupted(stage);
 }
+
+/// Runs `work` on a thread of its own while this one polls interruptRequested() every 20 ms, for
+/// a call that may block or run for seconds and cannot be stopped from outside (an open or read
+/// of a FIFO or a silent network mount, CHOLMOD's analysis). Returns true once `work` has run,
+/// false on a stop: the thread is then left to finish on its own, so `work` must own (or share)
+/// everything it touches; the process is stopping meanwhile. Without a thread to be had (a
+/// process or memory limit) `work` runs here.
+bool runWhilePolling(std::function<void()> work);
 
 }  // namespace dform

@@ -3,14 +3,10 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cassert>
-#include <chrono>
 #include <cholmod.h>
-#include <condition_variable>
 #include <memory>
 #include <mutex>
 #include <new>
-#include <system_error>
-#include <thread>
 
 #include "core/interrupt.h"
 
@@ -68,9 +64,6 @@ struct PendingAnalysis {
   std::vector<int> outer, inner;
   std::vector<int> ordering;  ///< the ordering to analyse with; empty: CHOLMOD's methods choose one
   CholmodSession session;     ///< configured by the caller; holds the result
-  std::mutex mutex;
-  std::condition_variable done;
-  bool finished = false;
 
   PendingAnalysis(int n, const int* outerIndex, const int* innerIndex)
       : outer(outerIndex, outerIndex + n + 1), inner(innerIndex, innerIndex + outerIndex[n]) {}
@@ -88,26 +81,11 @@ struct PendingAnalysis {
 
 // Runs the analysis. It takes seconds on a fine mesh (AMD, METIS, the symbolic factorisation) and
 // cannot be stopped from outside, so it runs on a thread of its own while this one polls the stop
-// flag every 20 ms, as a file read does (core/input_file.cpp): a stop throws Interrupted and
-// leaves the thread to finish on its own copies, which it frees when it ends (the process is
-// stopping meanwhile). Where it runs changes nothing in what it computes.
+// flag (runWhilePolling): a stop throws Interrupted and leaves the thread to finish on its own
+// copies, which it frees when it ends. Where it runs changes nothing in what it computes.
 void analyzeWhilePolling(const std::shared_ptr<PendingAnalysis>& pending) {
   throwIfInterrupted("the solve");
-  try {
-    std::thread([pending] {
-      pending->run();
-      const std::lock_guard<std::mutex> lock(pending->mutex);
-      pending->finished = true;
-      pending->done.notify_one();
-    }).detach();
-  } catch (const std::system_error&) {
-    pending->run();  // no thread to be had (a process or memory limit): analyse here
-    return;
-  }
-  constexpr std::chrono::milliseconds kPoll{20};
-  std::unique_lock<std::mutex> lock(pending->mutex);
-  while (!pending->done.wait_for(lock, kPoll, [&] { return pending->finished; }))
-    throwIfInterrupted("the solve");
+  if (!runWhilePolling([pending] { pending->run(); })) throw Interrupted("the solve");
 }
 
 // A fill-reducing ordering of the symmetric pattern whose lower triangle is `pattern`, found by
