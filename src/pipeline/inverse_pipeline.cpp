@@ -19,8 +19,7 @@ namespace {
 InverseRun measure(SolvedPieces solved, MessageSink& sink) {
   InverseRun run;
   static_cast<SolvedPieces&>(run) = std::move(solved);
-  run.metrics = measureModel(run.model);
-  run.curveMatch = measureCurveMatch(run.model, run.target);
+  measureInverse(run.model, run.target, run.metrics, run.curveMatch);
   const std::string name = curveLabel(run.target);
   // A sheet folded over is what the gate rejects; where the curve leaves its hull, say why.
   if (run.metrics.flipped_3d > 0 && !run.pre.onHull)

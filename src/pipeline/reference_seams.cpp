@@ -1,7 +1,5 @@
 #include "pipeline/reference_seams.h"
 
-#include <optional>
-
 #include "exact/body_edges.h"
 #include "exact/exact_gluing.h"
 #include "forward/coarse_to_fine.h"
@@ -46,32 +44,36 @@ ReferenceSeam reference(const Result<Points3>& seam, const std::string& how) {
 
 ReferenceSeam exactBodySeam(const DForm& model) { return reference(exactSeam(model), "the exact D-Form of the pieces"); }
 
-ReferenceSeam zippedAgainSeam(const DForm& model) {
-  Result<Points3> exact = exactSeam(model);
-  if (exact.isOk()) return reference(exact, "zipped by the exact D-Form of the pieces");
+ReferenceSeam zippedAgainSeam(const DForm& model, const ReferenceSeam& exactBody) {
+  if (exactBody.points.rows() > 0) return {exactBody.points, "zipped by " + exactBody.note};
   // A non-convex metric: the optimisation says what shape the sheet takes instead. Other reasons
   // (a hole zipped, a seam too long to glue) are not the round trip's to work around.
-  if (exact.status().message().find("not convex") == std::string::npos) return reference(exact, "");
+  if (exactBody.note.find("not convex") == std::string::npos) return {Points3(), exactBody.note};
   const ForwardResult solved = solveMeshedCoarseToFine(model.a, model.b, ForwardOptions{});
   if (!solved.summary.usable())
-    return {Points3(), exact.status().message() + "; and the optimisation failed: " + solved.summary.message};
+    return {Points3(), exactBody.note + "; and the optimisation failed: " + solved.summary.message};
   Points3 seam(Eigen::Index(model.a.seam.size()), 3);
   for (std::size_t k = 0; k < model.a.seam.size(); ++k)
     seam.row(Eigen::Index(k)) = solved.model.a.shape.row(solved.model.a.seam[k]);
-  return {seam, "zipped by the paper's optimisation, since " + exact.status().message()};
+  return {seam, "zipped by the paper's optimisation, since " + exactBody.note};
 }
 
 Metrics measureModel(const DForm& model) { return computeMetrics(model, exactBodySeam(model)); }
 
-CurveMatch measureCurveMatch(const DForm& model, const Curve3& target) {
-  return computeCurveMatch(model, target, zippedAgainSeam(model));
+void measureInverse(const DForm& model, const Curve3& target, Metrics& metrics, CurveMatch& curve) {
+  const ReferenceSeam body = exactBodySeam(model);
+  metrics = computeMetrics(model, body);
+  curve = computeCurveMatch(model, target, zippedAgainSeam(model, body));
 }
 
 GateReport measureAndGate(const DForm& model, const GateLimits& limits, const Curve3* target) {
   const std::size_t pairs = model.a.seam.size();
-  std::optional<CurveMatch> curve;
-  if (target && std::size_t(target->points.rows()) == pairs && pairs > 0) curve = measureCurveMatch(model, *target);
-  return runGate(model, limits, measureModel(model), target, curve ? &*curve : nullptr);
+  if (!(target && std::size_t(target->points.rows()) == pairs && pairs > 0))
+    return runGate(model, limits, measureModel(model), target, nullptr);
+  Metrics metrics;
+  CurveMatch curve;
+  measureInverse(model, *target, metrics, curve);
+  return runGate(model, limits, metrics, target, &curve);
 }
 
 }  // namespace dform

@@ -17,16 +17,18 @@ namespace dform {
 ReferenceSeam exactBodySeam(const DForm& model);
 
 /// The seam the flat pieces of `model` take when zipped again, row k for seam point k: their
-/// exact D-Form where it exists, otherwise the paper's optimisation of the same meshes from its
-/// pillow start, coarse to fine as a forward run (a non-convex metric: no convex body exists, and
-/// the sheet takes some other shape). The note says which made it, or why neither could.
-ReferenceSeam zippedAgainSeam(const DForm& model);
+/// exact D-Form where it exists (`exactBody`, exactBodySeam(model)), otherwise the paper's
+/// optimisation of the same meshes from its pillow start, coarse to fine as a forward run (a
+/// non-convex metric: no convex body exists, and the sheet takes some other shape). The note says
+/// which made it, or why neither could.
+ReferenceSeam zippedAgainSeam(const DForm& model, const ReferenceSeam& exactBody);
 
 /// The figures of `model`: computeMetrics against its exact body's seam.
 Metrics measureModel(const DForm& model);
 
-/// The inverse figures of `model` against `target`: computeCurveMatch with the round trip.
-CurveMatch measureCurveMatch(const DForm& model, const Curve3& target);
+/// The figures of an inverse result `model` against its `target` curve, the exact body glued
+/// once for both (the distance from it, and the round trip).
+void measureInverse(const DForm& model, const Curve3& target, Metrics& metrics, CurveMatch& curve);
 
 /// The gate on a model read back from files, measured here first (a run hands runGate the figures
 /// it measured). With a `target` curve (one point per seam pair) the curve is matched too.
