@@ -18,8 +18,8 @@ inline int runChromium(const std::string& action, const std::string& url,
                        const std::string& log) {
   const std::string command =
       "chromium --headless=new --no-sandbox --use-angle=swiftshader --enable-unsafe-swiftshader "
-      "--enable-logging=stderr --v=0 --user-data-dir=" + profileDir + " " + action + " '" + url +
-      "' >" + out + " 2>" + log;
+      "--enable-logging=stderr --v=0 --user-data-dir=" +
+      profileDir + " " + action + " '" + url + "' >" + out + " 2>" + log;
   return std::system(command.c_str());
 }
 

@@ -94,13 +94,12 @@ SweepProgress progressLine(Terminal& terminal, const char* what) {
 }
 
 void printBatchRows(const std::vector<BatchRow>& rows) {
-  std::fprintf(stdout, "%-24s %-12s %4s %10s %12s %10s %8s\n", "job", "status", "exit",
-               "height_mm", "volume_cm3", "max_curv", "seconds");
+  std::fprintf(stdout, "%-24s %-12s %4s %10s %12s %10s %8s\n", "job", "status", "exit", "height_mm",
+               "volume_cm3", "max_curv", "seconds");
   for (const BatchRow& r : rows)
     std::fprintf(stdout, "%-24s %-12s %4d %10.2f %12.4g %10.4g %8.2f\n",
-                 printable(r.job.name, 40).c_str(),
-                 r.status.c_str(), r.exitCode, r.figures.heightMm, r.figures.volumeMm3 / 1000,
-                 r.figures.maxCurvature, r.seconds);
+                 printable(r.job.name, 40).c_str(), r.status.c_str(), r.exitCode,
+                 r.figures.heightMm, r.figures.volumeMm3 / 1000, r.figures.maxCurvature, r.seconds);
 }
 
 }  // namespace
@@ -122,13 +121,17 @@ int runSweepCommand(const Job& base, const SweepOptions& options, const OutputOp
     passed += r.solved && r.passed;
     std::fprintf(stdout, "%-16s %8.4f %10.2f %12.4g %10.4g %8s %8.2f\n", r.subfolder.c_str(),
                  r.startB, r.heightMm, r.volumeMm3 / 1000, r.maxCurvature,
-                 !r.solved ? "unsolved" : r.passed ? "passed" : "FAILED", r.seconds);
+                 !r.solved  ? "unsolved"
+                 : r.passed ? "passed"
+                            : "FAILED",
+                 r.seconds);
   }
   std::fprintf(stdout, "%d starts: %d passed the gate, %d failed; gallery in %s/gallery.html\n",
                int(rows.value().size()), passed, int(rows.value().size()) - passed,
                output.outDir.c_str());
   if (solved == 0) {
-    Terminal::error(output.outDir + ": no start was solved (first: " + rows.value()[0].reason + ")");
+    Terminal::error(output.outDir + ": no start was solved (first: " + rows.value()[0].reason +
+                    ")");
     return exitCode(ErrorCode::SolveFailed);
   }
   return 0;
@@ -196,23 +199,23 @@ int validateSaved(const std::string& dir, const std::string& gateName) {
     for (const std::string& line : check.differences)
       std::fprintf(stdout, "report.json differs: %s\n", line.c_str());
     Terminal::error(dir + "/report.json: " + std::to_string(check.differences.size()) +
-                    " entries differ from the saved result (first: " + check.differences[0] +
-                    ")");
+                    " entries differ from the saved result (first: " + check.differences[0] + ")");
     return exitCode(ErrorCode::GateFailed);
   }
-  std::fprintf(stdout, "report.json: its mode and mesh sizes agree, its figures match the meshes\n");
+  std::fprintf(stdout,
+               "report.json: its mode and mesh sizes agree, its figures match the meshes\n");
   if (!check.gate.passed())
     Terminal::error(dir + ": the result failed the quality gate '" + check.gateName + "'");
   return check.gate.passed() ? 0 : exitCode(ErrorCode::GateFailed);
 }
 
 int listProfiles() {
-  for (const std::string& name : exportProfileNames())
-    std::fprintf(stdout, "%s\n", name.c_str());
+  for (const std::string& name : exportProfileNames()) std::fprintf(stdout, "%s\n", name.c_str());
   return 0;
 }
 
-int runStudio(const StudioOptions& options, bool openBrowser, const std::atomic<bool>& interrupted) {
+int runStudio(const StudioOptions& options, bool openBrowser,
+              const std::atomic<bool>& interrupted) {
   // A browser that closes a connection mid-answer must not end the server.
   std::signal(SIGPIPE, SIG_IGN);
   Result<std::unique_ptr<Studio>> studio = Studio::start(options);

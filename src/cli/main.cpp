@@ -60,17 +60,31 @@ bool parsePoint(const std::string& text, StartPoint& start) {
 
 // The options of the cutting patterns and previews (forward, inverse, run and export).
 void addExportOptions(CLI::App* command, OutputOptions& out) {
-  command->add_option("--profile", out.profile, "export profile name or .json file (default laser)");
+  command->add_option("--profile", out.profile,
+                      "export profile name or .json file (default laser)");
   command->add_option("--sheet", out.sheet, "material sheet of a laser profile, e.g. 600x400mm");
-  command->add_option("--scale", out.scale, "pattern scale: 1 (true size, the default), 0.8 or 80%, or fit (the largest scale up to 1 at which every piece fits its page or sheet)");
-  command->add_option("--page", out.page, "paper of a print profile: A4, Letter, A3, Tabloid or WxHmm (default: the profile's)");
-  command->add_option("--tab-width", out.tabWidthMm, "glue tab width in mm, 0 for none (default 6)");
-  command->add_option("--tabs", out.tabs, "which piece gets the glue tabs: a, b, alternate or none (default: the profile's)");
-  command->add_option("--tick-spacing", out.tickSpacingMm, "seam length between numbered ticks in mm (default 20)");
-  command->add_option("--score-folds", out.scoreFoldsDeg, "score every fold of the solved body of at least DEG degrees on its piece (SCORE layer, pattern.json); 0 to 180")
+  command->add_option("--scale", out.scale,
+                      "pattern scale: 1 (true size, the default), 0.8 or 80%, or fit (the largest "
+                      "scale up to 1 at which every piece fits its page or sheet)");
+  command->add_option(
+      "--page", out.page,
+      "paper of a print profile: A4, Letter, A3, Tabloid or WxHmm (default: the profile's)");
+  command->add_option("--tab-width", out.tabWidthMm,
+                      "glue tab width in mm, 0 for none (default 6)");
+  command->add_option(
+      "--tabs", out.tabs,
+      "which piece gets the glue tabs: a, b, alternate or none (default: the profile's)");
+  command->add_option("--tick-spacing", out.tickSpacingMm,
+                      "seam length between numbered ticks in mm (default 20)");
+  command
+      ->add_option("--score-folds", out.scoreFoldsDeg,
+                   "score every fold of the solved body of at least DEG degrees on its piece "
+                   "(SCORE layer, pattern.json); 0 to 180")
       ->type_name("DEG");
-  command->add_flag("!--no-title", out.title, "leave the title block and notes off the pattern sheets");
-  command->add_flag("--gltf", out.gltfText, "write the 3D preview as text dform.gltf instead of dform.glb");
+  command->add_flag("!--no-title", out.title,
+                    "leave the title block and notes off the pattern sheets");
+  command->add_flag("--gltf", out.gltfText,
+                    "write the 3D preview as text dform.gltf instead of dform.glb");
 }
 
 void addOutputOptions(CLI::App* command, OutputOptions& out) {
@@ -78,11 +92,13 @@ void addOutputOptions(CLI::App* command, OutputOptions& out) {
       ->required();
   command->add_flag("!--no-export", out.exportFiles, "skip the cutting patterns and 3D previews");
   addExportOptions(command, out);
-  command->add_option("--gate", out.gate, "quality gate: default (the default), strict, lenient, a .json file, or none");
-  command->add_flag("--export-anyway", out.exportAnyway, "export even if the gate fails (marked FAILED GATE)");
+  command->add_option(
+      "--gate", out.gate,
+      "quality gate: default (the default), strict, lenient, a .json file, or none");
+  command->add_flag("--export-anyway", out.exportAnyway,
+                    "export even if the gate fails (marked FAILED GATE)");
   command->add_flag("-q,--quiet", out.quiet, "print only the figures, warnings and errors");
 }
-
 
 int failUsage(const Status& status) {
   cli::Terminal::error(status.message());
@@ -99,20 +115,32 @@ struct ForwardCommand {
 
   void add(CLI::App& app) {
     command = app.add_subcommand("forward", "two flat outlines -> the D-Form they make");
-    command->add_option("piece_a", job.forward.pieceA, "outline of piece A (.svg or .json)")->required();
-    command->add_option("piece_b", job.forward.pieceB, "outline of piece B (.svg or .json)")->required();
-    command->add_option("--resolution", job.forward.resolution, "seam vertices per piece (default 100)");
-    command->add_option("--interior-edge", job.forward.interiorEdgeFactor,
-                        "interior edge length over the seam's edge length, 0.25-8 (default 1): above 1 a "
-                        "coarser, faster mesh at the same seam resolution");
-    command->add_option("--start-a", job.forward.startA.fraction, "start of A's seam: arc-length fraction in [0, 1)");
-    command->add_option("--start-b", job.forward.startB.fraction, "start of B's seam: arc-length fraction in [0, 1)");
-    command->add_option("--start-a-near", startANear, "start of A's seam: the outline point nearest X,Y (mm)");
-    command->add_option("--start-b-near", startBNear, "start of B's seam: the outline point nearest X,Y (mm)");
-    command->add_option("--join", join, "boundaries zipped, A's then B's: outer,outer (default), inner,inner "
-                                        "(anti D-Form) or outer,inner (demi D-Form)");
+    command->add_option("piece_a", job.forward.pieceA, "outline of piece A (.svg or .json)")
+        ->required();
+    command->add_option("piece_b", job.forward.pieceB, "outline of piece B (.svg or .json)")
+        ->required();
+    command->add_option("--resolution", job.forward.resolution,
+                        "seam vertices per piece (default 100)");
+    command->add_option(
+        "--interior-edge", job.forward.interiorEdgeFactor,
+        "interior edge length over the seam's edge length, 0.25-8 (default 1): above 1 a "
+        "coarser, faster mesh at the same seam resolution");
+    command->add_option("--start-a", job.forward.startA.fraction,
+                        "start of A's seam: arc-length fraction in [0, 1)");
+    command->add_option("--start-b", job.forward.startB.fraction,
+                        "start of B's seam: arc-length fraction in [0, 1)");
+    command->add_option("--start-a-near", startANear,
+                        "start of A's seam: the outline point nearest X,Y (mm)");
+    command->add_option("--start-b-near", startBNear,
+                        "start of B's seam: the outline point nearest X,Y (mm)");
+    command->add_option("--join", join,
+                        "boundaries zipped, A's then B's: outer,outer (default), inner,inner "
+                        "(anti D-Form) or outer,inner (demi D-Form)");
     command->add_flag("--flip", job.forward.flip, "zip piece B turned over");
-    command->add_option("--model", model, "auto (default: exact where the pieces make a convex body, else paper), exact, paper or general (a stiff sheet at a stationary point of its energy)");
+    command->add_option(
+        "--model", model,
+        "auto (default: exact where the pieces make a convex body, else paper), exact, paper or "
+        "general (a stiff sheet at a stationary point of its energy)");
     command->add_flag("--fit-perimeter", job.forward.fitPerimeter,
                       "scale piece B to A's perimeter");
     command->add_option("--perimeter-tolerance", job.forward.perimeterTolerance,
@@ -128,7 +156,8 @@ struct ForwardCommand {
     if (!startBNear.empty() && !parsePoint(startBNear, job.forward.startB))
       return failUsage(Status(ErrorCode::Usage, "--start-b-near must look like X,Y"));
     if (!join.empty() && !parseJoin(join, job.forward.joinA, job.forward.joinB))
-      return failUsage(Status(ErrorCode::Usage, "--join must be outer,outer, inner,inner, outer,inner or inner,outer"));
+      return failUsage(Status(
+          ErrorCode::Usage, "--join must be outer,outer, inner,inner, outer,inner or inner,outer"));
     if (!model.empty() && !parseModelChoice(model, job.forward.model))
       return failUsage(Status(ErrorCode::Usage, "--model must be auto, exact, paper or general"));
     job.forward.solve.weights = defaultWeights(job.forward.joinA, job.forward.joinB);
@@ -174,17 +203,27 @@ struct SweepCommand {
 
   void add(CLI::App& app) {
     command = app.add_subcommand(
-        "sweep", "two outlines from many starting pairs -> a gallery of the D-Forms to choose from");
-    command->add_option("piece_a", job.forward.pieceA, "outline of piece A (.svg or .json)")->required();
-    command->add_option("piece_b", job.forward.pieceB, "outline of piece B (.svg or .json)")->required();
-    command->add_option("--starts", options.starts, "starting pairs: start_b = k/N, k = 0 .. N-1 (default 8)");
-    command->add_option("--flip", flip, "none (B as drawn, the default), flipped (B turned over) or both");
-    command->add_option("--start-a", job.forward.startA.fraction, "start of A's seam: arc-length fraction in [0, 1)");
+        "sweep",
+        "two outlines from many starting pairs -> a gallery of the D-Forms to choose from");
+    command->add_option("piece_a", job.forward.pieceA, "outline of piece A (.svg or .json)")
+        ->required();
+    command->add_option("piece_b", job.forward.pieceB, "outline of piece B (.svg or .json)")
+        ->required();
+    command->add_option("--starts", options.starts,
+                        "starting pairs: start_b = k/N, k = 0 .. N-1 (default 8)");
+    command->add_option("--flip", flip,
+                        "none (B as drawn, the default), flipped (B turned over) or both");
+    command->add_option("--start-a", job.forward.startA.fraction,
+                        "start of A's seam: arc-length fraction in [0, 1)");
     command->add_option("--model", model, "auto (default), exact, paper or general");
-    command->add_option("--resolution", job.forward.resolution, "seam vertices per piece (default 100)");
-    command->add_option("--interior-edge", job.forward.interiorEdgeFactor, "as for forward (default 1)");
-    command->add_flag("--fit-perimeter", job.forward.fitPerimeter, "scale piece B to A's perimeter");
-    command->add_option("--threads", options.threads, "starts solved at once (default: the machine's cores)");
+    command->add_option("--resolution", job.forward.resolution,
+                        "seam vertices per piece (default 100)");
+    command->add_option("--interior-edge", job.forward.interiorEdgeFactor,
+                        "as for forward (default 1)");
+    command->add_flag("--fit-perimeter", job.forward.fitPerimeter,
+                      "scale piece B to A's perimeter");
+    command->add_option("--threads", options.threads,
+                        "starts solved at once (default: the machine's cores)");
     addOutputOptions(command, out);
   }
   int run() {
@@ -195,7 +234,8 @@ struct SweepCommand {
     if (options.starts < 1 || options.starts > 4096)
       return failUsage(Status(ErrorCode::Usage, "--starts must be between 1 and 4096"));
     if (options.threads < 0)
-      return failUsage(Status(ErrorCode::Usage, "--threads must be 0 (the machine's cores) or more"));
+      return failUsage(
+          Status(ErrorCode::Usage, "--threads must be 0 (the machine's cores) or more"));
     job.forward.solve.weights = defaultWeights(job.forward.joinA, job.forward.joinB);
     job.forward.flip = flip == "flipped";
     options.bothFlips = flip == "both";
@@ -213,11 +253,16 @@ struct BatchCommand {
   void add(CLI::App& app) {
     command = app.add_subcommand(
         "batch", "many job files, each into OUT/<job name>/, with a resumable manifest batch.json");
-    command->add_option("jobs", input, "a text file listing job files (one a line), or a folder of *.json jobs");
+    command->add_option("jobs", input,
+                        "a text file listing job files (one a line), or a folder of *.json jobs");
     command->add_flag("--resume", options.resume, "skip the jobs the manifest has as finished");
-    command->add_option("--shard", shard, "run only slice I of N (job k goes to slice k % N + 1), e.g. 2/8");
-    command->add_option("--merge", mergeDir, "gather the shards' manifests in this folder into batch.json and gallery.html");
-    command->add_option("--threads", options.threads, "jobs run at once (default: the machine's cores)");
+    command->add_option("--shard", shard,
+                        "run only slice I of N (job k goes to slice k % N + 1), e.g. 2/8");
+    command->add_option(
+        "--merge", mergeDir,
+        "gather the shards' manifests in this folder into batch.json and gallery.html");
+    command->add_option("--threads", options.threads,
+                        "jobs run at once (default: the machine's cores)");
     addOutputOptions(command, out);
     command->get_option("--output")->required(false);
   }
@@ -228,11 +273,14 @@ struct BatchCommand {
       return cli::mergeBatchCommand(mergeDir);
     }
     if (input.empty() || out.outDir.empty())
-      return failUsage(Status(ErrorCode::Usage, "batch needs a job list or folder and -o OUT (or --merge OUT)"));
+      return failUsage(
+          Status(ErrorCode::Usage, "batch needs a job list or folder and -o OUT (or --merge OUT)"));
     if (!parseShard(shard, options.shard, options.shards))
-      return failUsage(Status(ErrorCode::Usage, "--shard must look like I/N with 1 <= I <= N, got '" + shard + "'"));
+      return failUsage(Status(ErrorCode::Usage,
+                              "--shard must look like I/N with 1 <= I <= N, got '" + shard + "'"));
     if (options.threads < 0)
-      return failUsage(Status(ErrorCode::Usage, "--threads must be 0 (the machine's cores) or more"));
+      return failUsage(
+          Status(ErrorCode::Usage, "--threads must be 0 (the machine's cores) or more"));
     Result<std::vector<BatchJob>> jobs = listBatchJobs(input);
     if (!jobs.isOk()) return failUsage(jobs.status());
     return cli::runBatchCommand(jobs.value(), options, out, interrupted);
@@ -267,11 +315,11 @@ struct ExportCommand {
     command->add_option("dir", dir, "a result folder written by forward, inverse or run");
     addExportOptions(command, out);
     command->add_option("-o,--output", out.outDir,
-                              "write the patterns into this folder (created if missing) instead of "
-                              "the result folder, which is left untouched");
+                        "write the patterns into this folder (created if missing) instead of "
+                        "the result folder, which is left untouched");
     command->add_flag("--export-anyway", out.exportAnyway,
-                            "export a result that failed its gate, or a pattern that does not lay "
-                            "out cleanly (marked FAILED GATE)");
+                      "export a result that failed its gate, or a pattern that does not lay "
+                      "out cleanly (marked FAILED GATE)");
     command->add_flag("--list-profiles", listOnly, "list the profiles and exit");
     command->add_flag("-q,--quiet", out.quiet, "print only warnings and errors");
   }
@@ -303,7 +351,8 @@ struct StudioCommand {
 
   void add(CLI::App& app) {
     command = app.add_subcommand("studio", "design a D-Form live in the browser");
-    command->add_option("inputs", inputs, "two outlines (A B) or a job file to start from (default: two ellipses)");
+    command->add_option("inputs", inputs,
+                        "two outlines (A B) or a job file to start from (default: two ellipses)");
     command->add_option("--port", options.port, "port on 127.0.0.1 (default: any free one)");
     command->add_flag("--no-browser", noBrowser, "print the address but do not open a browser");
   }
@@ -314,7 +363,8 @@ struct StudioCommand {
     } else if (inputs.size() == 1) {
       options.jobFile = inputs[0];
     } else if (!inputs.empty()) {
-      return failUsage(Status(ErrorCode::Usage, "studio takes two outlines (A B), a job file, or nothing"));
+      return failUsage(
+          Status(ErrorCode::Usage, "studio takes two outlines (A B), a job file, or nothing"));
     }
     return cli::runStudio(options, !noBrowser, interrupted);
   }
@@ -341,11 +391,13 @@ int run(int argc, char** argv) {
   validate.add(app);
   studio.add(app);
 
-  const std::set<std::string> commands = {"forward", "inverse", "run", "sweep", "batch", "export", "validate", "studio"};
+  const std::set<std::string> commands = {"forward", "inverse", "run",      "sweep",
+                                          "batch",   "export",  "validate", "studio"};
   if (argc > 1 && argv[1][0] != '-' && !commands.count(argv[1]))
-    return failUsage(Status(ErrorCode::Usage, "unknown command '" + std::string(argv[1]) +
-                                                  "' (commands: forward, inverse, run, sweep, "
-                                                  "batch, export, validate, studio; see dform --help)"));
+    return failUsage(
+        Status(ErrorCode::Usage, "unknown command '" + std::string(argv[1]) +
+                                     "' (commands: forward, inverse, run, sweep, "
+                                     "batch, export, validate, studio; see dform --help)"));
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -1,10 +1,11 @@
 #include "core/atomic_file.h"
 
+#include <unistd.h>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <unistd.h>
 
 namespace dform {
 
@@ -13,8 +14,7 @@ Status writeFileAtomically(const std::string& path, const std::string& content) 
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) {
-      return {ErrorCode::OutputFailed,
-              path + ": cannot write (" + std::strerror(errno) + ")"};
+      return {ErrorCode::OutputFailed, path + ": cannot write (" + std::strerror(errno) + ")"};
     }
     out.write(content.data(), std::streamsize(content.size()));
     out.flush();

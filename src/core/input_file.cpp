@@ -61,7 +61,8 @@ Result<std::string> readBlocking(const std::string& path, std::size_t maxBytes) 
       const int error = errno;
       ::close(fd);
       if (error == EINTR) return interruptedReading(path);
-      return Status{ErrorCode::InputUnreadable, path + ": read error (" + std::strerror(error) + ")"};
+      return Status{ErrorCode::InputUnreadable,
+                    path + ": read error (" + std::strerror(error) + ")"};
     }
     text.append(buffer, std::size_t(got));
     if (text.size() > maxBytes) {

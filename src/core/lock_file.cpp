@@ -14,7 +14,8 @@ namespace {
 
 // Whether `fd` is still the file at `path` (a holder that released it may have removed it).
 bool isFileAt(int fd, const std::string& path) {
-  struct stat held {}, atPath {};
+  struct stat held {
+  }, atPath{};
   return ::fstat(fd, &held) == 0 && ::stat(path.c_str(), &atPath) == 0 &&
          held.st_ino == atPath.st_ino && held.st_dev == atPath.st_dev;
 }
@@ -39,7 +40,8 @@ Status LockFile::acquire(const std::string& path, bool exclusive, const std::str
   for (int attempt = 0; attempt < 8 && fd_ < 0; ++attempt) {
     const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
     if (fd < 0)
-      return {ErrorCode::OutputFailed, what + ": cannot create " + path + " (" + std::strerror(errno) + ")"};
+      return {ErrorCode::OutputFailed,
+              what + ": cannot create " + path + " (" + std::strerror(errno) + ")"};
     if (::flock(fd, (exclusive ? LOCK_EX : LOCK_SH) | LOCK_NB) != 0) {
       const int error = errno;
       char pid[32] = "";
@@ -47,10 +49,13 @@ Status LockFile::acquire(const std::string& path, bool exclusive, const std::str
       pid[got > 0 ? got : 0] = '\0';
       ::close(fd);
       if (error == EWOULDBLOCK)
-        return {ErrorCode::OutputFailed,
-                what + ": another dform " + holder + (pid[0] ? " (process " + std::string(pid) + ")" : "") +
-                    " is writing this folder; nothing was written (run again when it has finished)"};
-      return {ErrorCode::OutputFailed, what + ": cannot lock " + path + " (" + std::strerror(error) + ")"};
+        return {
+            ErrorCode::OutputFailed,
+            what + ": another dform " + holder +
+                (pid[0] ? " (process " + std::string(pid) + ")" : "") +
+                " is writing this folder; nothing was written (run again when it has finished)"};
+      return {ErrorCode::OutputFailed,
+              what + ": cannot lock " + path + " (" + std::strerror(error) + ")"};
     }
     if (isFileAt(fd, path))
       fd_ = fd;
@@ -61,7 +66,8 @@ Status LockFile::acquire(const std::string& path, bool exclusive, const std::str
   if (exclusive) {
     const std::string pid = std::to_string(::getpid());
     if (::ftruncate(fd_, 0) != 0 || ::pwrite(fd_, pid.data(), pid.size(), 0) < 0)
-      return {ErrorCode::OutputFailed, what + ": cannot write " + path + " (" + std::strerror(errno) + ")"};
+      return {ErrorCode::OutputFailed,
+              what + ": cannot write " + path + " (" + std::strerror(errno) + ")"};
   }
   return Status::ok();
 }

@@ -14,7 +14,8 @@ namespace dform {
 std::string utf8Text(std::string_view text);
 
 /// `text` with control characters escaped (\n, \t, \r, else \xNN: an escape sequence of a
-/// terminal is shown as \x1b[...), bytes that are not UTF-8 as utf8Text shows them, cut after `maxBytes` (at a UTF-8 character boundary) with
+/// terminal is shown as \x1b[...), bytes that are not UTF-8 as utf8Text shows them, cut after
+/// `maxBytes` (at a UTF-8 character boundary) with
 /// "..." when longer.
 std::string printable(std::string_view text, std::size_t maxBytes = 60);
 

@@ -271,7 +271,8 @@ Eigen::Vector2d segmentsMeetingPoint(const Eigen::Vector2d& a, const Eigen::Vect
   return a;
 }
 
-double distanceToSegment(const Eigen::Vector2d& q, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+double distanceToSegment(const Eigen::Vector2d& q, const Eigen::Vector2d& a,
+                         const Eigen::Vector2d& b) {
   const Eigen::Vector2d ab = b - a;
   const double length2 = ab.squaredNorm();
   const double t = length2 > 0.0 ? std::clamp((q - a).dot(ab) / length2, 0.0, 1.0) : 0.0;

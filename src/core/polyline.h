@@ -80,7 +80,8 @@ Eigen::Vector2d segmentsMeetingPoint(const Eigen::Vector2d& a, const Eigen::Vect
                                      const Eigen::Vector2d& c, const Eigen::Vector2d& d);
 
 /// Distance from q to the segment [a, b].
-double distanceToSegment(const Eigen::Vector2d& q, const Eigen::Vector2d& a, const Eigen::Vector2d& b);
+double distanceToSegment(const Eigen::Vector2d& q, const Eigen::Vector2d& a,
+                         const Eigen::Vector2d& b);
 
 /// Whether q lies inside the closed polygon P (even-odd rule). Meant for points off P's edges;
 /// for a point on an edge the answer is either.

@@ -68,7 +68,8 @@ Status ResultFolder::lock(const std::string& dir, std::string& absolute, std::st
   // A symbolic link to a folder: the folder it names is replaced, the link kept.
   if (fs::is_symlink(fs::symlink_status(path, ec))) {
     const fs::path target = fs::canonical(path, ec);
-    if (ec) return outputFailed(dir + ": a symbolic link that leads nowhere (" + ec.message() + ")");
+    if (ec)
+      return outputFailed(dir + ": a symbolic link that leads nowhere (" + ec.message() + ")");
     path = target;
   }
   name = path.filename().string();
@@ -129,7 +130,8 @@ Status ResultFolder::begin(const std::string& dir, const std::set<std::string>& 
   // Staging and old folders of runs killed outright (SIGKILL, a second Ctrl-C, a power cut):
   // no run is using them while we hold the lock.
   std::error_code ec;
-  const std::string stagingPrefix = "." + name + ".dform-new.", oldPrefix = "." + name + ".dform-old.";
+  const std::string stagingPrefix = "." + name + ".dform-new.",
+                    oldPrefix = "." + name + ".dform-old.";
   for (const fs::directory_entry& entry : fs::directory_iterator(parent, ec)) {
     const std::string entryName = entry.path().filename().string();
     if (isLeftover(entryName, stagingPrefix) || isLeftover(entryName, oldPrefix))
@@ -154,8 +156,8 @@ Status ResultFolder::carryOver(const std::string& name) const {
   if (::link(from.c_str(), to.c_str()) == 0) return Status::ok();
   std::error_code ec;
   if (fs::copy_file(from, to, fs::copy_options::overwrite_existing, ec)) return Status::ok();
-  return outputFailed((fs::path(shownDir_) / name).string() + ": cannot be kept in the new result (" +
-                      ec.message() + ")");
+  return outputFailed((fs::path(shownDir_) / name).string() +
+                      ": cannot be kept in the new result (" + ec.message() + ")");
 }
 
 Status ResultFolder::named(const Status& status) const {
@@ -176,8 +178,8 @@ Status ResultFolder::commit() {
   const fs::file_status old = fs::status(dir_, ec);
   if (!fs::exists(old)) {
     if (std::rename(staging_.c_str(), dir_.c_str()) != 0)
-      return outputFailed(shownDir_ + ": cannot put the result in place (" +
-                          std::strerror(errno) + ")");
+      return outputFailed(shownDir_ + ": cannot put the result in place (" + std::strerror(errno) +
+                          ")");
   } else {
     fs::permissions(staging_, old.permissions(), ec);  // the folder keeps its permissions
     // One atomic exchange: at every instant the path holds the old result or the new one.

@@ -68,7 +68,8 @@ class ResultFolder {
   std::string shownDir_;  ///< as the user wrote it, for messages
   std::string staging_, lockPath_;
   LockFile lock_;
-  std::vector<std::string> createdFolders_;  ///< the lock's missing parents begin made, deepest first
+  std::vector<std::string>
+      createdFolders_;  ///< the lock's missing parents begin made, deepest first
   bool committed_ = false;
 };
 

@@ -44,7 +44,8 @@ PointClusters clusterPoints(const Eigen::MatrixXd& points, double cell) {
   std::vector<int> members;
   for (Eigen::Index v = 0; v < points.rows(); ++v) {
     std::array<long, 3> key{};
-    for (Eigen::Index d = 0; d < points.cols() && d < 3; ++d) key[size_t(d)] = long(std::floor(points(v, d) / cell));
+    for (Eigen::Index d = 0; d < points.cols() && d < 3; ++d)
+      key[size_t(d)] = long(std::floor(points(v, d) / cell));
     const auto [at, added] = cellCluster.emplace(key, int(sums.size()));
     if (added) sums.emplace_back(Eigen::VectorXd::Zero(points.cols())), members.push_back(0);
     clusters.of.push_back(at->second);
@@ -52,7 +53,8 @@ PointClusters clusterPoints(const Eigen::MatrixXd& points, double cell) {
     ++members[size_t(at->second)];
   }
   clusters.mean.resize(Eigen::Index(sums.size()), points.cols());
-  for (size_t c = 0; c < sums.size(); ++c) clusters.mean.row(Eigen::Index(c)) = sums[c].transpose() / double(members[c]);
+  for (size_t c = 0; c < sums.size(); ++c)
+    clusters.mean.row(Eigen::Index(c)) = sums[c].transpose() / double(members[c]);
   return clusters;
 }
 
@@ -69,7 +71,9 @@ PointClusters drawnShapeClusters(const DForm& model) {
   for (const Piece* p : {&model.a, &model.b})
     for (Eigen::Index f = 0; f < p->F.rows(); ++f) {
       const Eigen::Vector3d p0 = p->shape.row(p->F(f, 0)).transpose();
-      area += 0.5 * (p->shape.row(p->F(f, 1)).transpose() - p0).cross(p->shape.row(p->F(f, 2)).transpose() - p0).norm();
+      area += 0.5 * (p->shape.row(p->F(f, 1)).transpose() - p0)
+                        .cross(p->shape.row(p->F(f, 2)).transpose() - p0)
+                        .norm();
     }
   return clusterPoints(points, drawingCell(area, model.a.F.rows() + model.b.F.rows()));
 }

@@ -27,7 +27,8 @@ class ShapeCamera {
 };
 
 /// One triangle as seen: its piece (0 = A, 1 = B), face index, corners on the screen (x right,
-/// y up) and their depths, mean depth and Lambert shade in [0.35, 1] (a light from the upper left, both sides lit).
+/// y up) and their depths, mean depth and Lambert shade in [0.35, 1] (a light from the upper left,
+/// both sides lit).
 struct SeenFace {
   int piece = 0;
   int face = 0;

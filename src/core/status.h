@@ -1,5 +1,6 @@
 // Errors from bad user input. A broken invariant is a bug (assert); a solve that does not converge
-// is a result with its summary; everything the user can fix is a Status naming the file and problem.
+// is a result with its summary; everything the user can fix is a Status naming the file and
+// problem.
 #pragma once
 
 #include <stdexcept>
@@ -42,7 +43,8 @@ class Status {
 class BadResultAccess : public std::logic_error {
  public:
   explicit BadResultAccess(Status status)
-      : std::logic_error("the value of a failed result was read: " + status.message()), status_(std::move(status)) {}
+      : std::logic_error("the value of a failed result was read: " + status.message()),
+        status_(std::move(status)) {}
   const Status& status() const { return status_; }
 
  private:
@@ -54,7 +56,7 @@ class BadResultAccess : public std::logic_error {
 template <typename T>
 class Result {
  public:
-  Result(T value) : value_(std::move(value)) {}  // NOLINT: implicit by design
+  Result(T value) : value_(std::move(value)) {}          // NOLINT: implicit by design
   Result(Status status) : status_(std::move(status)) {}  // NOLINT: implicit by design
 
   bool isOk() const { return status_.isOk(); }

@@ -71,14 +71,16 @@ void radialDihedrals(const FaceLayout& L, const S r[3], S omega[3], S& h2) {
     const S cx = ap[1] * bp[2] - ap[2] * bp[1];
     const S cy = ap[2] * bp[0] - ap[0] * bp[2];
     const S cz = ap[0] * bp[1] - ap[1] * bp[0];
-    omega[c] = atan2(sqrt(cx * cx + cy * cy + cz * cz), ap[0] * bp[0] + ap[1] * bp[1] + ap[2] * bp[2]);
+    omega[c] =
+        atan2(sqrt(cx * cx + cy * cy + cz * cz), ap[0] * bp[0] + ap[1] * bp[1] + ap[2] * bp[2]);
   }
 }
 
 // Whether the edge of h is locally regular: the vertex across it lies outside the orthogonal
 // sphere of h's face, |q - v_l|^2 - r_l^2 >= |q - v_i|^2 - r_i^2 (for equal radii, Delaunay).
 // `slack` is how far past it (mm^2) still counts as regular.
-bool locallyRegular(const IntrinsicTriangulation& tri, const Eigen::VectorXd& r, int h, double slack) {
+bool locallyRegular(const IntrinsicTriangulation& tri, const Eigen::VectorXd& r, int h,
+                    double slack) {
   const int f = h / 3, c = h % 3;
   const FaceLayout L = layout(tri, f);
   double rr[3];
@@ -89,7 +91,8 @@ bool locallyRegular(const IntrinsicTriangulation& tri, const Eigen::VectorXd& r,
   const int t = tri.twin(h);
   const Eigen::Vector2d p = L.v[(c + 1) % 3], q = L.v[c];  // t runs p -> q
   const double pq = (q - p).norm();
-  const double lq = tri.length(IntrinsicTriangulation::next(t)), lp = tri.length(IntrinsicTriangulation::prev(t));
+  const double lq = tri.length(IntrinsicTriangulation::next(t)),
+               lp = tri.length(IntrinsicTriangulation::prev(t));
   const double x = (pq * pq + lp * lp - lq * lq) / (2.0 * pq);
   const double y = std::sqrt(std::max(0.0, lp * lp - x * x));
   const Eigen::Vector2d u = (q - p) / pq;
@@ -102,7 +105,8 @@ bool locallyRegular(const IntrinsicTriangulation& tri, const Eigen::VectorXd& r,
 }
 
 // The point X with |X| = rl, |X - A| = la, |X - B| = lb on the side where det(B, A, X) > 0.
-Eigen::Vector3d trilaterate(const Eigen::Vector3d& A, const Eigen::Vector3d& B, double rl, double la, double lb) {
+Eigen::Vector3d trilaterate(const Eigen::Vector3d& A, const Eigen::Vector3d& B, double rl,
+                            double la, double lb) {
   const double a = 0.5 * (rl * rl + A.squaredNorm() - la * la);
   const double b = 0.5 * (rl * rl + B.squaredNorm() - lb * lb);
   Eigen::Matrix2d G;
@@ -128,7 +132,8 @@ Eigen::MatrixX3d placeVertices(const IntrinsicTriangulation& tri, const Eigen::V
   for (int k = 0; k < 3; ++k) rr[k] = r[tri.tail(k)];
   apexFoot(L, rr, qx, qy, h2);
   for (int k = 0; k < 3; ++k) {
-    V.row(tri.tail(k)) = Eigen::RowVector3d(L.v[k].x() - qx, L.v[k].y() - qy, std::sqrt(std::max(0.0, h2)));
+    V.row(tri.tail(k)) =
+        Eigen::RowVector3d(L.v[k].x() - qx, L.v[k].y() - qy, std::sqrt(std::max(0.0, h2)));
     placed[tri.tail(k)] = true;
   }
   for (int left = tri.vertexCount() - 3; left > 0; --left) {
@@ -146,9 +151,11 @@ Eigen::MatrixX3d placeVertices(const IntrinsicTriangulation& tri, const Eigen::V
     }
     if (bestHalfedge < 0) break;  // a disconnected triangulation: left unplaced (at the origin)
     // The face (j, i, l) with t running j -> i.
-    const int t = bestHalfedge, j = tri.tail(t), i = tri.head(t), l = tri.tail(IntrinsicTriangulation::prev(t));
+    const int t = bestHalfedge, j = tri.tail(t), i = tri.head(t),
+              l = tri.tail(IntrinsicTriangulation::prev(t));
     V.row(l) = trilaterate(V.row(i).transpose(), V.row(j).transpose(), r[l],
-                           tri.length(IntrinsicTriangulation::next(t)), tri.length(IntrinsicTriangulation::prev(t)))
+                           tri.length(IntrinsicTriangulation::next(t)),
+                           tri.length(IntrinsicTriangulation::prev(t)))
                    .transpose();
     placed[l] = true;
   }
@@ -181,12 +188,14 @@ RadialCurvatures radialCurvatures(const IntrinsicTriangulation& tri, const Eigen
     radialDihedrals(L, rr, omega, h2);
     for (int k = 0; k < 3; ++k) {
       out.kappa[vertex[k]] -= omega[k].value();
-      for (int m = 0; m < 3; ++m) entries.emplace_back(vertex[k], vertex[m], -omega[k].derivatives()[m]);
+      for (int m = 0; m < 3; ++m)
+        entries.emplace_back(vertex[k], vertex[m], -omega[k].derivatives()[m]);
     }
   }
   out.jacobian.resize(n, n);
   out.jacobian.setFromTriplets(entries.begin(), entries.end());
-  out.valid = out.kappa.allFinite() && Eigen::VectorXd(out.jacobian * Eigen::VectorXd::Ones(n)).allFinite();
+  out.valid =
+      out.kappa.allFinite() && Eigen::VectorXd(out.jacobian * Eigen::VectorXd::Ones(n)).allFinite();
   return out;
 }
 
@@ -209,7 +218,8 @@ bool makeRegular(IntrinsicTriangulation& tri, const Eigen::VectorXd& r) {
       waiting.push_back(h);
       if (queue.empty()) {
         bool anyFlippable = false;
-        for (int w : waiting) anyFlippable = anyFlippable || (!locallyRegular(tri, r, w, slack) && tri.flippable(w));
+        for (int w : waiting)
+          anyFlippable = anyFlippable || (!locallyRegular(tri, r, w, slack) && tri.flippable(w));
         if (!anyFlippable) break;
         queue.insert(queue.end(), waiting.begin(), waiting.end());
         waiting.clear();
@@ -264,12 +274,14 @@ AlexandrovResult embedConvex(IntrinsicTriangulation& tri, const AlexandrovOption
       // Gauss-Newton with a damping far below J's spectrum: Newton's step while J is invertible,
       // and at t = 0, where moving the apex inside the body leaves every kappa at 0 (J has a
       // three-dimensional kernel), the least-norm step.
-      const Eigen::SparseMatrix<double> JtJ = Eigen::SparseMatrix<double>(current.jacobian.transpose()) * current.jacobian;
+      const Eigen::SparseMatrix<double> JtJ =
+          Eigen::SparseMatrix<double>(current.jacobian.transpose()) * current.jacobian;
       Eigen::SparseMatrix<double> damped = JtJ;
       const double mu = 1e-12 * JtJ.diagonal().sum() / double(JtJ.rows());
       for (int i = 0; i < damped.rows(); ++i) damped.coeffRef(i, i) += mu;
       const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(damped);
-      const Eigen::VectorXd delta = -solver.solve(Eigen::VectorXd(current.jacobian.transpose() * residual));
+      const Eigen::VectorXd delta =
+          -solver.solve(Eigen::VectorXd(current.jacobian.transpose() * residual));
       if (!delta.allFinite()) return false;
       bool moved = false;
       for (double alpha = 1.0; alpha > 1.0 / 1024 && !moved; alpha /= 2) {
@@ -297,7 +309,8 @@ AlexandrovResult embedConvex(IntrinsicTriangulation& tri, const AlexandrovOption
     const Eigen::VectorXd savedR = r;
     const RadialCurvatures saved = current;
     const bool last = next == 0.0;
-    const bool reached = newtonTo(next, last ? options.curvatureTolerance : 0.1 * dt * kappaStart.maxCoeff(), last ? 50 : 8);
+    const bool reached = newtonTo(
+        next, last ? options.curvatureTolerance : 0.1 * dt * kappaStart.maxCoeff(), last ? 50 : 8);
     if (reached || (last && current.kappa.cwiseAbs().maxCoeff() <= options.acceptedCurvature)) {
       t = next;
       dt = std::min(1.0, 1.5 * dt);
@@ -314,14 +327,16 @@ AlexandrovResult embedConvex(IntrinsicTriangulation& tri, const AlexandrovOption
   result.converged = t == 0.0 && result.maxCurvature <= options.acceptedCurvature;
   if (!result.converged) {
     char text[160];
-    std::snprintf(text, sizeof text, "the curvatures stalled at %.3g rad (deformation at t = %.3g) after %d steps",
+    std::snprintf(text, sizeof text,
+                  "the curvatures stalled at %.3g rad (deformation at t = %.3g) after %d steps",
                   result.maxCurvature, t, result.iterations);
     result.message = text;
   }
   result.vertices = placeVertices(tri, r);
   for (int h = 0; h < tri.halfedgeCount(); ++h) {
     const double l = (result.vertices.row(tri.tail(h)) - result.vertices.row(tri.head(h))).norm();
-    result.maxEdgeError = std::max(result.maxEdgeError, std::abs(l - tri.length(h)) / tri.length(h));
+    result.maxEdgeError =
+        std::max(result.maxEdgeError, std::abs(l - tri.length(h)) / tri.length(h));
   }
   return result;
 }

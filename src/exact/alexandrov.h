@@ -18,10 +18,10 @@ namespace dform::exact {
 
 /// Curvatures of the radial edges and their derivatives at radii r for the current triangulation.
 struct RadialCurvatures {
-  bool valid = false;          ///< every tetrahedron exists (the apex above every face)
-  Eigen::VectorXd kappa;       ///< 2 pi - sum of dihedral angles at each radial edge (radians)
+  bool valid = false;     ///< every tetrahedron exists (the apex above every face)
+  Eigen::VectorXd kappa;  ///< 2 pi - sum of dihedral angles at each radial edge (radians)
   Eigen::SparseMatrix<double> jacobian;  ///< d kappa_i / d r_j
-  double minHeightSquared = 0; ///< the smallest squared apex height over a face, mm^2
+  double minHeightSquared = 0;           ///< the smallest squared apex height over a face, mm^2
 };
 
 RadialCurvatures radialCurvatures(const IntrinsicTriangulation& tri, const Eigen::VectorXd& r);
@@ -43,12 +43,12 @@ struct AlexandrovOptions {
 
 struct AlexandrovResult {
   bool converged = false;
-  std::string message;            ///< why not, when it did not converge
+  std::string message;  ///< why not, when it did not converge
   int iterations = 0;
-  double maxCurvature = 0;        ///< max |kappa_i| reached, radians
-  Eigen::VectorXd radii;          ///< final r, mm
-  Eigen::MatrixX3d vertices;      ///< each vertex in 3D, mm, the apex at the origin
-  double maxEdgeError = 0;        ///< max | |V_i - V_j| - l_ij | / l_ij over the edges
+  double maxCurvature = 0;    ///< max |kappa_i| reached, radians
+  Eigen::VectorXd radii;      ///< final r, mm
+  Eigen::MatrixX3d vertices;  ///< each vertex in 3D, mm, the apex at the origin
+  double maxEdgeError = 0;    ///< max | |V_i - V_j| - l_ij | / l_ij over the edges
 };
 
 /// Embeds the convex metric of `tri` (every cone angle below 2 pi) as a convex polyhedron; `tri`

@@ -20,7 +20,8 @@ Eigen::Affine3d rigidFit(const Points3& from, const Points3& to) {
 
 AlignedDistance alignedDistance(const Points3& reference, const Points3& moved) {
   const Eigen::Affine3d motion = rigidFit(moved, reference);
-  const Points3 placed = (moved * motion.linear().transpose()).rowwise() + motion.translation().transpose();
+  const Points3 placed =
+      (moved * motion.linear().transpose()).rowwise() + motion.translation().transpose();
   const Eigen::VectorXd distance = (placed - reference).rowwise().norm();
   AlignedDistance out;
   out.diagonalMm = (reference.colwise().maxCoeff() - reference.colwise().minCoeff()).norm();

@@ -9,8 +9,8 @@
 namespace dform::exact {
 
 struct AlignedDistance {
-  double rmsRel = 0;   ///< root mean square distance / the reference's bounding-box diagonal
-  double maxRel = 0;   ///< largest distance / the same diagonal
+  double rmsRel = 0;  ///< root mean square distance / the reference's bounding-box diagonal
+  double maxRel = 0;  ///< largest distance / the same diagonal
   double diagonalMm = 0;
 };
 

@@ -62,7 +62,8 @@ class Walker {
 
   // The first chord of `piece` that the ray x + lambda d (lambda > 0) meets, leaving out the
   // chords `skip1`, `skip2` that hold x.
-  Hit cast(int piece, const Eigen::Vector2d& x, const Eigen::Vector2d& d, int skip1, int skip2, double scale) const {
+  Hit cast(int piece, const Eigen::Vector2d& x, const Eigen::Vector2d& d, int skip1, int skip2,
+           double scale) const {
     Hit best;
     for (int c = 0; c < n_; ++c) {
       if (c == skip1 || c == skip2) continue;
@@ -96,7 +97,8 @@ Status Walker::trace(int h, double snap, BodyEdge& edge) const {
   // tells them apart. straighten() then draws it from its ends to rounding.
   const double lengthTolerance = 1e-5 * length;
   auto fail = [&](const std::string& why) {
-    return Status(ErrorCode::SolveFailed, "the body's edge from seam point " + std::to_string(edge.from) + " to " +
+    return Status(ErrorCode::SolveFailed, "the body's edge from seam point " +
+                                              std::to_string(edge.from) + " to " +
                                               std::to_string(target) + " " + why);
   };
   // The walk: at a seam point with a signpost, or inside a piece at a place on the seam with a
@@ -117,8 +119,10 @@ Status Walker::trace(int h, double snap, BodyEdge& edge) const {
       // Along a seam chord: from the start of A's wedge (to k + 1), its end (to k - 1, where B's
       // wedge starts), or the end of B's (to k + 1 again).
       int along = 0;
-      if (sigma <= angularTolerance || sigma >= cone(vertex) - angularTolerance) along = +1;
-      else if (std::abs(sigma - alphaA) <= angularTolerance) along = -1;
+      if (sigma <= angularTolerance || sigma >= cone(vertex) - angularTolerance)
+        along = +1;
+      else if (std::abs(sigma - alphaA) <= angularTolerance)
+        along = -1;
       if (along != 0) {
         const int next = wrap(vertex + along);
         walked += chordLength(along > 0 ? vertex : next);
@@ -127,7 +131,8 @@ Status Walker::trace(int h, double snap, BodyEdge& edge) const {
           edge.length = walked;
           return Status::ok();
         }
-        if (walked > length || g_.vertexOfSeam[next] >= 0) return fail("runs along the seam into a cone point");
+        if (walked > length || g_.vertexOfSeam[next] >= 0)
+          return fail("runs along the seam into a cone point");
         // Straight on through the flat point: half its cone angle past the way back.
         const double back = along > 0 ? g_.angles.a[next] : 0.0;
         sigma = back + 0.5 * cone(next);
@@ -135,7 +140,8 @@ Status Walker::trace(int h, double snap, BodyEdge& edge) const {
         continue;
       }
       piece = sigma <= alphaA ? 0 : 1;
-      const Eigen::Vector2d base = piece == 0 ? point(0, vertex + 1) - point(0, vertex) : point(1, vertex - 1) - point(1, vertex);
+      const Eigen::Vector2d base = piece == 0 ? point(0, vertex + 1) - point(0, vertex)
+                                              : point(1, vertex - 1) - point(1, vertex);
       d = rotated(base.normalized(), piece == 0 ? sigma : sigma - alphaA);
       x = point(piece, vertex);
       place = {vertex, 0.0};
@@ -153,16 +159,21 @@ Status Walker::trace(int h, double snap, BodyEdge& edge) const {
     }
     if (hit.chord < 0) return fail("leaves its piece");
     if (hit.lambda > remaining)
-      return fail("ends inside a piece, " + std::to_string((x + remaining * d - point(piece, target)).norm()) + " mm from it");
+      return fail("ends inside a piece, " +
+                  std::to_string((x + remaining * d - point(piece, target)).norm()) +
+                  " mm from it");
     SeamPlace reached{hit.chord, hit.mu};
-    if (hit.mu <= snap) reached = {hit.chord, 0.0};
-    else if (hit.mu >= 1.0 - snap) reached = {wrap(hit.chord + 1), 0.0};
+    if (hit.mu <= snap)
+      reached = {hit.chord, 0.0};
+    else if (hit.mu >= 1.0 - snap)
+      reached = {wrap(hit.chord + 1), 0.0};
     edge.runs.push_back({piece, place, reached});
     walked += hit.lambda;
     if (reached.isSeamPoint()) {
       // Through a seam point: only a flat one (no vertex of the body) lets a geodesic pass.
       const int w = reached.chord;
-      if (g_.vertexOfSeam[w] >= 0) return fail("meets seam point " + std::to_string(w) + ", a cone point, on its way");
+      if (g_.vertexOfSeam[w] >= 0)
+        return fail("meets seam point " + std::to_string(w) + ", a cone point, on its way");
       sigma = signpostOf(piece, w, -d) + 0.5 * cone(w);
       vertex = w;
       atVertex = true;
@@ -219,11 +230,13 @@ void Walker::straighten(BodyEdge& edge) const {
       edge.runs[r].fromLength = edge.runs[r - 1].toLength = along;
       continue;
     }
-    const Eigen::Vector2d p0 = R[r] * point(piece, place.chord) + t[r], p1 = R[r] * point(piece, place.chord + 1) + t[r];
+    const Eigen::Vector2d p0 = R[r] * point(piece, place.chord) + t[r],
+                          p1 = R[r] * point(piece, place.chord + 1) + t[r];
     // A line along the chord (parallel to rounding) keeps the place the walk found.
     const double denom = cross(d, p1 - p0);
     if (std::abs(denom) > 1e-15 * d.norm() * (p1 - p0).norm())
-      place.t = std::clamp(cross(start - p0, d) / -denom, std::nextafter(0.0, 1.0), std::nextafter(1.0, 0.0));
+      place.t = std::clamp(cross(start - p0, d) / -denom, std::nextafter(0.0, 1.0),
+                           std::nextafter(1.0, 0.0));
     edge.runs[r - 1].to = place;
     edge.runs[r].fromLength = edge.runs[r - 1].toLength = (p0 + place.t * (p1 - p0) - start).norm();
   }
@@ -234,7 +247,8 @@ void Walker::straighten(BodyEdge& edge) const {
 Eigen::Vector2d seamPlacePoint(const ExactGluing& g, int piece, const SeamPlace& place) {
   const Points2& P = piece == 0 ? g.seam.a : g.seam.b;
   const long n = P.rows();
-  const Eigen::Vector2d p0 = P.row(place.chord).transpose(), p1 = P.row((place.chord + 1) % n).transpose();
+  const Eigen::Vector2d p0 = P.row(place.chord).transpose(),
+                        p1 = P.row((place.chord + 1) % n).transpose();
   return place.isSeamPoint() ? p0 : Eigen::Vector2d(p0 + place.t * (p1 - p0));
 }
 
@@ -243,7 +257,8 @@ namespace {
 double foldOf(const ExactGluing& g, int h) {
   const IntrinsicTriangulation& T = g.triangulation;
   auto normal = [&](int f) {
-    const Eigen::Vector3d p0 = g.vertices.row(T.tail(3 * f)), p1 = g.vertices.row(T.tail(3 * f + 1)),
+    const Eigen::Vector3d p0 = g.vertices.row(T.tail(3 * f)),
+                          p1 = g.vertices.row(T.tail(3 * f + 1)),
                           p2 = g.vertices.row(T.tail(3 * f + 2));
     return Eigen::Vector3d((p1 - p0).cross(p2 - p0).normalized());
   };
@@ -263,7 +278,8 @@ double fitBodyToEdges(ExactGluing& g, std::vector<BodyEdge>& edges) {
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(unknowns);
     residual = 0.0;
     for (const BodyEdge& edge : edges) {
-      const int i = g.vertexOfSeam[std::size_t(edge.from)], j = g.vertexOfSeam[std::size_t(edge.to)];
+      const int i = g.vertexOfSeam[std::size_t(edge.from)],
+                j = g.vertexOfSeam[std::size_t(edge.to)];
       const Eigen::Vector3d e = g.vertices.row(i) - g.vertices.row(j);
       const double r = e.norm() - edge.length;
       residual = std::max(residual, std::abs(r) / edge.length);
@@ -290,7 +306,8 @@ double fitBodyToEdges(ExactGluing& g, std::vector<BodyEdge>& edges) {
     if (solver.info() != Eigen::Success) break;
     const Eigen::VectorXd step = solver.solve(rhs);
     if (!step.allFinite()) break;
-    for (Eigen::Index v = 0; v < g.vertices.rows(); ++v) g.vertices.row(v) += step.segment<3>(3 * v).transpose();
+    for (Eigen::Index v = 0; v < g.vertices.rows(); ++v)
+      g.vertices.row(v) += step.segment<3>(3 * v).transpose();
   }
   const IntrinsicTriangulation& T = g.triangulation;
   std::size_t e = 0;

@@ -22,7 +22,9 @@ Eigen::Vector2d row(const Points2& P, long k) {
   return P.row(((k % n) + n) % n).transpose();
 }
 
-double bboxDiagonal(const Points2& P) { return (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm(); }
+double bboxDiagonal(const Points2& P) {
+  return (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm();
+}
 
 // Least-norm Gauss-Newton: moves P so that |P[k+1] - P[k]| = target[k].
 double fitChords(Points2& P, const Eigen::VectorXd& target) {
@@ -67,7 +69,9 @@ double fitChords(Points2& P, const Eigen::VectorXd& target) {
 std::vector<Eigen::Vector3i> earClip(const Points2& P, std::vector<int> loop) {
   std::vector<Eigen::Vector3i> out;
   std::list<int> ring(loop.begin(), loop.end());
-  auto prevOf = [&](std::list<int>::iterator it) { return it == ring.begin() ? std::prev(ring.end()) : std::prev(it); };
+  auto prevOf = [&](std::list<int>::iterator it) {
+    return it == ring.begin() ? std::prev(ring.end()) : std::prev(it);
+  };
   auto nextOf = [&](std::list<int>::iterator it) {
     auto n = std::next(it);
     return n == ring.end() ? ring.begin() : n;
@@ -110,7 +114,8 @@ std::vector<Eigen::Vector3i> earClip(const Points2& P, std::vector<int> loop) {
 
 // The orientation-reversing isometry of B's plane onto A's that maps every b_k onto a_k, if the
 // pieces are congruent that way to within `tolerance` mm.
-bool congruentMirror(const SeamPolygons& seam, double tolerance, Eigen::Matrix2d& M, Eigen::Vector2d& t) {
+bool congruentMirror(const SeamPolygons& seam, double tolerance, Eigen::Matrix2d& M,
+                     Eigen::Vector2d& t) {
   const Eigen::Matrix2d mirror = Eigen::Vector2d(1.0, -1.0).asDiagonal();
   const Points2 b = seam.b * mirror;
   const Eigen::RowVector2d ca = seam.a.colwise().mean(), cb = b.colwise().mean();
@@ -161,7 +166,8 @@ bool crossesBoundary(const Points2& P, int k, const Eigen::Vector2d& q) {
     const double eps = 1e-12 * std::max(scale, (p1 - p0).squaredNorm());
     const double o1 = cross(d, p0 - s), o2 = cross(d, p1 - s);
     const double o3 = cross(p1 - p0, s - p0), o4 = cross(p1 - p0, q - p0);
-    if (((o1 > eps && o2 < -eps) || (o1 < -eps && o2 > eps)) && ((o3 > eps && o4 < -eps) || (o3 < -eps && o4 > eps)))
+    if (((o1 > eps && o2 < -eps) || (o1 < -eps && o2 > eps)) &&
+        ((o3 > eps && o4 < -eps) || (o3 < -eps && o4 > eps)))
       return true;
   }
   return false;
@@ -176,21 +182,23 @@ double fitMeanChords(SeamPolygons& seam) {
   const long n = seam.a.rows();
   Eigen::VectorXd target(n);
   for (long k = 0; k < n; ++k)
-    target[k] = 0.5 * ((row(seam.a, k + 1) - row(seam.a, k)).norm() + (row(seam.b, k + 1) - row(seam.b, k)).norm());
+    target[k] = 0.5 * ((row(seam.a, k + 1) - row(seam.a, k)).norm() +
+                       (row(seam.b, k + 1) - row(seam.b, k)).norm());
   return std::max(fitChords(seam.a, target), fitChords(seam.b, target));
 }
 
 // Straightens, on both sides, every run of seam points where both pieces turn by at most
-// kSamplingExcess that holds one whose angle sum exceeds 2 pi by more than `from`: the run's points go onto the line
-// through the two points around it, which take its turn, where those two turn forwards by more
-// than the run turns backwards. Returns whether a point moved.
+// kSamplingExcess that holds one whose angle sum exceeds 2 pi by more than `from`: the run's points
+// go onto the line through the two points around it, which take its turn, where those two turn
+// forwards by more than the run turns backwards. Returns whether a point moved.
 bool straightenRuns(SeamPolygons& seam, double from) {
   const SeamAngles angles = seamAngles(seam);
   const long n = seam.a.rows();
   // Nearly straight on both sides (each piece turns by at most kSamplingExcess there).
   auto small = [&](long k) {
     const long i = (k % n + n) % n;
-    return std::abs(angles.a[i] - kPi) <= kSamplingExcess && std::abs(angles.b[i] - kPi) <= kSamplingExcess;
+    return std::abs(angles.a[i] - kPi) <= kSamplingExcess &&
+           std::abs(angles.b[i] - kPi) <= kSamplingExcess;
   };
   std::vector<bool> done(std::size_t(n), false);
   bool moved = false;
@@ -230,9 +238,11 @@ double equalizeChords(SeamPolygons& seam) {
   // points around it; a real saddle is left for glue to refuse. Equal chords again leave the run
   // off its line by ~1e-8 rad, so it is put back once more without refitting (the chords change
   // by ~angle^2 x chord, below rounding).
-  for (int round = 0; round < 4 && straightenRuns(seam, kFlatCurvature); ++round) fitMeanChords(seam);
+  for (int round = 0; round < 4 && straightenRuns(seam, kFlatCurvature); ++round)
+    fitMeanChords(seam);
   straightenRuns(seam, kFlatCurvature);
-  return std::max((seam.a - start.a).rowwise().norm().maxCoeff(), (seam.b - start.b).rowwise().norm().maxCoeff());
+  return std::max((seam.a - start.a).rowwise().norm().maxCoeff(),
+                  (seam.b - start.b).rowwise().norm().maxCoeff());
 }
 
 SeamAngles seamAngles(const SeamPolygons& seam) {
@@ -258,8 +268,10 @@ Result<ExactGluing> glue(const SeamPolygons& seam, const ExactOptions& options) 
   if (g.angles.firstNonConvex >= 0) {
     const int k = g.angles.firstNonConvex;
     return Status(ErrorCode::InputInvalid,
-                  "the glued metric is not convex: at seam point " + std::to_string(k) + " the two pieces' angles sum to " +
-                      std::to_string((g.angles.a[k] + g.angles.b[k]) * 180.0 / kPi) + " degrees, more than 360");
+                  "the glued metric is not convex: at seam point " + std::to_string(k) +
+                      " the two pieces' angles sum to " +
+                      std::to_string((g.angles.a[k] + g.angles.b[k]) * 180.0 / kPi) +
+                      " degrees, more than 360");
   }
   // Congruent pieces zipped point to point fold flat: Alexandrov's body is the doubly covered
   // piece, with no inside for an apex. Congruent to rounding of the coordinates.
@@ -276,11 +288,13 @@ Result<ExactGluing> glue(const SeamPolygons& seam, const ExactOptions& options) 
   for (int k = 0; k < n; ++k)
     if (!(straight(g.angles.a[k]) && straight(g.angles.b[k]))) loopA.push_back(k);
   const int m = int(loopA.size());
-  if (m < 4) return Status(ErrorCode::InputInvalid, "the glued surface has fewer than four cone points");
+  if (m < 4)
+    return Status(ErrorCode::InputInvalid, "the glued surface has fewer than four cone points");
   loopB.assign(loopA.rbegin(), loopA.rend());  // B counter-clockwise in its plane
   std::vector<int> nextKept(n);
   for (int i = 0; i < m; ++i) nextKept[loopA[i]] = loopA[(i + 1) % m];
-  const std::vector<Eigen::Vector3i> facesA = earClip(seam.a, loopA), facesB = earClip(seam.b, loopB);
+  const std::vector<Eigen::Vector3i> facesA = earClip(seam.a, loopA),
+                                     facesB = earClip(seam.b, loopB);
   if (int(facesA.size()) != m - 2 || int(facesB.size()) != m - 2)
     return Status(ErrorCode::InputInvalid, "a piece's seam polygon is not simple");
   const int nF = 2 * m - 4;
@@ -302,7 +316,8 @@ Result<ExactGluing> glue(const SeamPolygons& seam, const ExactOptions& options) 
       // A chord's two sides get one length (equal after equalizeChords up to rounding).
       if (nextKept[i] == j || nextKept[j] == i) {
         const int k = nextKept[i] == j ? i : j, l = nextKept[k];
-        L(f, c) = 0.5 * ((row(seam.a, l) - row(seam.a, k)).norm() + (row(seam.b, l) - row(seam.b, k)).norm());
+        L(f, c) = 0.5 * ((row(seam.a, l) - row(seam.a, k)).norm() +
+                         (row(seam.b, l) - row(seam.b, k)).norm());
       }
     }
   }
@@ -311,18 +326,21 @@ Result<ExactGluing> glue(const SeamPolygons& seam, const ExactOptions& options) 
   IntrinsicTriangulation tri(F, L, S, cones, pieceOfFace);
   for (int k : loopA)
     if (std::abs(g.angles.curvature[k]) <= kFlatCurvature && !tri.removeFlatVertex(k))
-      return Status(ErrorCode::SolveFailed, "seam point " + std::to_string(k) + " is flat but could not be removed");
+      return Status(ErrorCode::SolveFailed,
+                    "seam point " + std::to_string(k) + " is flat but could not be removed");
   g.vertexOfSeam = tri.compact();
   g.seamOfVertex.assign(tri.vertexCount(), -1);
   for (int k = 0; k < n; ++k)
     if (g.vertexOfSeam[k] >= 0) g.seamOfVertex[g.vertexOfSeam[k]] = k;
   g.embedding = embedConvex(tri, options.embedding);
   if (!g.embedding.converged)
-    return Status(ErrorCode::SolveFailed, "the exact gluing did not converge: " + g.embedding.message);
+    return Status(ErrorCode::SolveFailed,
+                  "the exact gluing did not converge: " + g.embedding.message);
   // Laid out in 3D, every edge keeps its length to ~1e-10 where the layout is sound (tests/exact).
   if (!(g.embedding.maxEdgeError <= 1e-6))
-    return Status(ErrorCode::SolveFailed, "the exact body's vertices could not be laid out consistently (an edge off by " +
-                                              std::to_string(100 * g.embedding.maxEdgeError) + " %)");
+    return Status(ErrorCode::SolveFailed,
+                  "the exact body's vertices could not be laid out consistently (an edge off by " +
+                      std::to_string(100 * g.embedding.maxEdgeError) + " %)");
   g.vertices = g.embedding.vertices;
   g.triangulation = std::move(tri);
   return g;
@@ -333,7 +351,8 @@ Points3 placeOnBody(const ExactGluing& g, int piece, const Points2& P) {
   Points3 out(P.rows(), 3);
   if (g.doublyCovered) {
     for (Eigen::Index i = 0; i < P.rows(); ++i) {
-      const Eigen::Vector2d q = piece == 0 ? Eigen::Vector2d(P.row(i)) : g.flatRotation * P.row(i).transpose() + g.flatShift;
+      const Eigen::Vector2d q = piece == 0 ? Eigen::Vector2d(P.row(i))
+                                           : g.flatRotation * P.row(i).transpose() + g.flatShift;
       out.row(i) << q.x(), q.y(), 0.0;
     }
     return out;
@@ -346,7 +365,8 @@ Points3 placeOnBody(const ExactGluing& g, int piece, const Points2& P) {
   for (Eigen::Index i = 0; i < P.rows(); ++i) {
     const Eigen::Vector2d q = P.row(i).transpose();
     out.row(i).setConstant(std::numeric_limits<double>::quiet_NaN());
-    for (std::size_t c = 0; c < cones.size(); ++c) byDistance[c] = {(row(polygon, cones[c]) - q).norm(), cones[c]};
+    for (std::size_t c = 0; c < cones.size(); ++c)
+      byDistance[c] = {(row(polygon, cones[c]) - q).norm(), cones[c]};
     // Nearest cone first, then the next nearest, each found when needed: the nearest one almost
     // always places the point, and sorting every cone for every point would cost more than placing
     // it.
@@ -363,7 +383,8 @@ Points3 placeOnBody(const ExactGluing& g, int piece, const Points2& P) {
       const SurfacePoint at = g.triangulation.trace(v, angle, distance);
       if (at.face < 0) continue;
       Eigen::RowVector3d x = Eigen::RowVector3d::Zero();
-      for (int c = 0; c < 3; ++c) x += at.bary[c] * g.vertices.row(g.triangulation.tail(3 * at.face + c));
+      for (int c = 0; c < 3; ++c)
+        x += at.bary[c] * g.vertices.row(g.triangulation.tail(3 * at.face + c));
       out.row(i) = x;
       break;
     }

@@ -56,7 +56,7 @@ constexpr int kMaxExactSeam = 1000;
 
 /// The glued surface embedded in 3D.
 struct ExactGluing {
-  SeamPolygons seam;                  ///< the polygons glued (after equalizeChords)
+  SeamPolygons seam;  ///< the polygons glued (after equalizeChords)
   SeamAngles angles;
   /// The pieces are congruent and zipped point to point: the body is piece A doubly covered, and
   /// flatRotation * b + flatShift maps piece B's plane onto A's.
@@ -64,9 +64,9 @@ struct ExactGluing {
   Eigen::Matrix2d flatRotation = Eigen::Matrix2d::Identity();
   Eigen::Vector2d flatShift = Eigen::Vector2d::Zero();
   IntrinsicTriangulation triangulation;  ///< of the cone points: the body's faces
-  std::vector<int> vertexOfSeam;      ///< seam point -> triangulation vertex, -1 if flat
-  std::vector<int> seamOfVertex;      ///< triangulation vertex -> seam point
-  Eigen::MatrixX3d vertices;          ///< 3D position of each triangulation vertex, mm
+  std::vector<int> vertexOfSeam;         ///< seam point -> triangulation vertex, -1 if flat
+  std::vector<int> seamOfVertex;         ///< triangulation vertex -> seam point
+  Eigen::MatrixX3d vertices;             ///< 3D position of each triangulation vertex, mm
   AlexandrovResult embedding;
 };
 

@@ -11,10 +11,13 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 // The third corner of a counter-clockwise triangle (p, q, r) given p, q and |q r|, |r p|.
-Eigen::Vector2d thirdCorner(const Eigen::Vector2d& p, const Eigen::Vector2d& q, double qr, double rp) {
+Eigen::Vector2d thirdCorner(const Eigen::Vector2d& p, const Eigen::Vector2d& q, double qr,
+                            double rp) {
   const Eigen::Vector2d e = q - p;
   const double pq = e.norm();
   const double x = (pq * pq + rp * rp - qr * qr) / (2.0 * pq);
@@ -26,7 +29,9 @@ Eigen::Vector2d thirdCorner(const Eigen::Vector2d& p, const Eigen::Vector2d& q, 
 // Barycentric coordinates of t in the triangle (p0, p1, p2).
 Eigen::Vector3d barycentric(const Eigen::Vector2d P[3], const Eigen::Vector2d& t) {
   const double area = cross(P[1] - P[0], P[2] - P[0]);
-  return Eigen::Vector3d(cross(P[1] - t, P[2] - t), cross(P[2] - t, P[0] - t), cross(P[0] - t, P[1] - t)) / area;
+  return Eigen::Vector3d(cross(P[1] - t, P[2] - t), cross(P[2] - t, P[0] - t),
+                         cross(P[0] - t, P[1] - t)) /
+         area;
 }
 
 }  // namespace
@@ -36,8 +41,10 @@ double triangleAngle(double ab, double bc, double ca) {
   return std::acos(std::clamp(c, -1.0, 1.0));
 }
 
-IntrinsicTriangulation::IntrinsicTriangulation(const Eigen::MatrixX3i& faces, const Eigen::MatrixX3d& lengths,
-                                               const Eigen::MatrixX3d& signposts, std::vector<double> coneAngles,
+IntrinsicTriangulation::IntrinsicTriangulation(const Eigen::MatrixX3i& faces,
+                                               const Eigen::MatrixX3d& lengths,
+                                               const Eigen::MatrixX3d& signposts,
+                                               std::vector<double> coneAngles,
                                                const std::vector<int>& groups)
     : coneAngle_(std::move(coneAngles)) {
   const int nF = int(faces.rows());
@@ -148,7 +155,8 @@ bool IntrinsicTriangulation::removeFlatVertex(int v) {
   for (;;) {
     const std::vector<int> around = outgoing(v);
     if (around.size() <= 3) break;
-    auto flippableEdge = std::find_if(around.begin(), around.end(), [&](int h) { return flippable(h); });
+    auto flippableEdge =
+        std::find_if(around.begin(), around.end(), [&](int h) { return flippable(h); });
     if (flippableEdge == around.end()) return false;
     flip(*flippableEdge);
   }
@@ -166,7 +174,8 @@ bool IntrinsicTriangulation::removeFlatVertex(int v) {
     double length, signpost;
   };
   Side sides[3];
-  for (int k = 0; k < 3; ++k) sides[k] = {tail_[outer[k]], twin_[outer[k]], length_[outer[k]], signpost_[outer[k]]};
+  for (int k = 0; k < 3; ++k)
+    sides[k] = {tail_[outer[k]], twin_[outer[k]], length_[outer[k]], signpost_[outer[k]]};
   for (int k = 1; k < 3; ++k)
     for (int c = 0; c < 3; ++c) tail_[3 * (around[k] / 3) + c] = -1;
   for (int k = 0; k < 3; ++k) {
@@ -262,7 +271,8 @@ SurfacePoint IntrinsicTriangulation::trace(int v, double direction, double dista
   int f = start / 3;
   P[corner0] = Eigen::Vector2d(0, 0);
   P[(corner0 + 1) % 3] = Eigen::Vector2d(length_[start], 0);
-  P[(corner0 + 2) % 3] = thirdCorner(P[corner0], P[(corner0 + 1) % 3], length_[next(start)], length_[prev(start)]);
+  P[(corner0 + 2) % 3] =
+      thirdCorner(P[corner0], P[(corner0 + 1) % 3], length_[next(start)], length_[prev(start)]);
   const Eigen::Vector2d u(std::cos(offset), std::sin(offset));
   const Eigen::Vector2d target = distance * u;
   int entry = -1;  // the halfedge of f the ray came in through (-1: it starts at v)

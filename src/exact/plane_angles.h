@@ -8,7 +8,9 @@ namespace dform::exact::plane {
 
 constexpr double kPi = 3.14159265358979323846;
 
-inline double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+inline double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 /// The angle from u to w turning counter-clockwise, in [0, 2 pi).
 inline double ccwAngle(const Eigen::Vector2d& u, const Eigen::Vector2d& w) {

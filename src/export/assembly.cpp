@@ -81,7 +81,8 @@ struct Fit {
   Vec2 from = Vec2::Zero(), to = Vec2::Zero();
   bool flipY = false;
   Fit(const Box& content, const Box& area, bool flip) : flipY(flip) {
-    scale = std::min(area.w() / std::max(content.w(), 1e-9), area.h() / std::max(content.h(), 1e-9));
+    scale =
+        std::min(area.w() / std::max(content.w(), 1e-9), area.h() / std::max(content.h(), 1e-9));
     from = 0.5 * (content.lo + content.hi);
     to = 0.5 * (area.lo + area.hi);
   }
@@ -120,8 +121,8 @@ std::vector<std::string> steps(const PatternBuild& pattern) {
     cut += "; crease each tab's fold line and fold the tab back, away from the " + face + " side.";
   else
     cut += ". There are no glue tabs: join the edges with tape on the inside.";
-  std::string join = "Join " + a + "'s tick 0 to " + b + "'s tick 0, edge to edge, " + face +
-                     " sides out";
+  std::string join =
+      "Join " + a + "'s tick 0 to " + b + "'s tick 0, edge to edge, " + face + " sides out";
   if (tabsOn[0] && tabsOn[1])
     join += "; the tabs alternate between the pieces and go inside, under the other edge.";
   else if (tabsOn[0] || tabsOn[1])
@@ -344,9 +345,9 @@ Drawing assemblyPage(const DForm& model, const PatternBuild& pattern, const Expo
   d.height = letter ? 11.0 * 25.4 : 297.0;
   d.title = o.jobName + " - assembly";
   d.description = "How to glue the pieces: dform assembly page, mm";
-  d.layers = {makeLayer("Shape", "#000000", 0.1),  makeLayer("Hidden", "#999999", 0.25),
-              makeLayer("Seam", "#C2185B", 0.5),   makeLayer("Pieces", "#333333", 0.3),
-              makeLayer("Marks", "#C2185B", 0.6),  makeLayer("Text", "#000000", 0.3)};
+  d.layers = {makeLayer("Shape", "#000000", 0.1), makeLayer("Hidden", "#999999", 0.25),
+              makeLayer("Seam", "#C2185B", 0.5),  makeLayer("Pieces", "#333333", 0.3),
+              makeLayer("Marks", "#C2185B", 0.6), makeLayer("Text", "#000000", 0.3)};
   AssemblyLayers layers{d.layers[0], d.layers[1], d.layers[2],
                         d.layers[3], d.layers[4], d.layers[5]};
   const double W = d.width, H = d.height;

@@ -141,7 +141,7 @@ std::string dxfDocument(const Drawing& full) {
   dw.dxfString(9, "$INSUNITS");
   dw.dxfInt(70, 4);  // millimetres
   dw.dxfString(9, "$MEASUREMENT");
-  dw.dxfInt(70, 1);  // metric
+  dw.dxfInt(70, 1);                    // metric
   writeVariable(dw, "$LIMMIN", 0, 0);  // the sheet
   writeVariable(dw, "$LIMMAX", drawing.width, drawing.height);
   writeVariable(dw, "$EXTMIN", extents.lo.x(), extents.lo.y());  // what is drawn on it

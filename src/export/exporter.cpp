@@ -143,10 +143,18 @@ Result<ExportSummary> writeExport(const PreparedExport& prepared, const std::str
 
 std::vector<std::string> exportFileNames() {
   // A D-Form has two pieces, so a pattern takes at most two sheets.
-  return {"pattern.svg",           "pattern.dxf",           "pattern.pdf",
-          "assembly.svg",          "pattern.json",          "dform.stl",
-          "dform.glb",             "dform.gltf",            sheetFileName(1, "svg"),
-          sheetFileName(2, "svg"), sheetFileName(1, "dxf"), sheetFileName(2, "dxf")};
+  return {"pattern.svg",
+          "pattern.dxf",
+          "pattern.pdf",
+          "assembly.svg",
+          "pattern.json",
+          "dform.stl",
+          "dform.glb",
+          "dform.gltf",
+          sheetFileName(1, "svg"),
+          sheetFileName(2, "svg"),
+          sheetFileName(1, "dxf"),
+          sheetFileName(2, "dxf")};
 }
 
 Result<ExportSummary> exportAll(const DForm& model, const ExportOptions& options,

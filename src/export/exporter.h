@@ -73,9 +73,9 @@ struct Profile {
   double perforationGapMm = 1.0;  ///< perforated fold: length of each bridge (mm)
   double dashMm = 3.0;            ///< dashed fold: dash and gap length (mm)
   double marginMm = 5.0;          ///< clear margin at the sheet/page edges and between pieces (mm)
-  std::string page;  ///< "" = the sheet from ExportOptions; a page name (pageSizeMm) otherwise
-  bool tile = false;              ///< page profiles: tile a pattern larger than a page
-  double tileOverlapMm = 10.0;    ///< overlap between neighbouring tiles (mm)
+  std::string page;   ///< "" = the sheet from ExportOptions; a page name (pageSizeMm) otherwise
+  bool tile = false;  ///< page profiles: tile a pattern larger than a page
+  double tileOverlapMm = 10.0;  ///< overlap between neighbouring tiles (mm)
   Registration registration = Registration::None;
   /// Silhouette: clear space (mm) between the artwork and the marks' inner edges (the square's
   /// far side, 15 mm from the edges), so the artwork keeps 15 mm + this from every page edge.
@@ -87,9 +87,9 @@ struct Profile {
   double bleedMm = 0.0;
   std::string fillColorA = "#FFE6CC";  ///< piece A's tint, #RRGGBB (the 3D preview's A)
   std::string fillColorB = "#CCE6FF";  ///< piece B's tint, #RRGGBB (the 3D preview's B)
-  double labelHeightMm = 3.0;   ///< cap height of tick numbers (mm); piece names are 3x
-  double kerfMm = 0.0;          ///< outward offset of the closed cut path (mm, half the kerf)
-  TabSide tabs = TabSide::A;    ///< which piece gets the glue tabs
+  double labelHeightMm = 3.0;          ///< cap height of tick numbers (mm); piece names are 3x
+  double kerfMm = 0.0;        ///< outward offset of the closed cut path (mm, half the kerf)
+  TabSide tabs = TabSide::A;  ///< which piece gets the glue tabs
 };
 
 /// Reads a profile: `nameOrPath` is a profile name (looked up as
@@ -115,10 +115,10 @@ std::string sheetFileName(int sheet, const std::string& extension);
 
 /// A fold of the solved body through a flat piece (report.json's model.folds), to score.
 struct FoldToScore {
-  int piece = 0;                                 ///< 0 = A, 1 = B
+  int piece = 0;                                   ///< 0 = A, 1 = B
   Eigen::Vector2d from = Eigen::Vector2d::Zero();  ///< one end in the piece's flat frame (mm)
   Eigen::Vector2d to = Eigen::Vector2d::Zero();    ///< the other end
-  double angleDeg = 0;                           ///< fold angle (degrees; 0 = flat)
+  double angleDeg = 0;                             ///< fold angle (degrees; 0 = flat)
 };
 
 struct ExportOptions {
@@ -132,20 +132,20 @@ struct ExportOptions {
   bool sheetGiven = false;
   /// Page profiles: the page (a pageSizeMm name) instead of the profile's; "" = the profile's.
   std::string page;
-  double tickSpacingMm = 20;        ///< seam arc length between numbered ticks (mm)
-  double tabWidthMm = 6;            ///< glue tab width (mm); 0 = no tabs
-  double tabAngleDeg = 45;          ///< angle of the tab ends against the fold line (degrees)
-  double tabMaxTurnDeg = 25;        ///< max turning of the seam along one tab (degrees)
-  double tabMaxLengthMm = 40;       ///< max length of one tab along the seam (mm)
-  double tabGapMm = 1.5;            ///< gap between neighbouring tabs along the seam (mm)
-  std::optional<TabSide> tabSide;   ///< which piece gets the glue tabs; unset: the profile's
-  double kerfMm = -1;               ///< outward cut-path offset (mm); negative = the profile's
+  double tickSpacingMm = 20;       ///< seam arc length between numbered ticks (mm)
+  double tabWidthMm = 6;           ///< glue tab width (mm); 0 = no tabs
+  double tabAngleDeg = 45;         ///< angle of the tab ends against the fold line (degrees)
+  double tabMaxTurnDeg = 25;       ///< max turning of the seam along one tab (degrees)
+  double tabMaxLengthMm = 40;      ///< max length of one tab along the seam (mm)
+  double tabGapMm = 1.5;           ///< gap between neighbouring tabs along the seam (mm)
+  std::optional<TabSide> tabSide;  ///< which piece gets the glue tabs; unset: the profile's
+  double kerfMm = -1;              ///< outward cut-path offset (mm); negative = the profile's
   /// --score-folds: every fold of `folds` of at least this angle (degrees) becomes an optional
   /// score line on its piece (SCORE layer, pattern.json); unset: none.
   std::optional<double> scoreFoldsDeg;
-  std::vector<FoldToScore> folds;   ///< the body's folds; empty when the model knows none
-  std::string jobName = "dform";    ///< printed in the title line and file metadata
-  bool title = true;                ///< the title block and notes on each sheet (--no-title: none)
+  std::vector<FoldToScore> folds;  ///< the body's folds; empty when the model knows none
+  std::string jobName = "dform";   ///< printed in the title line and file metadata
+  bool title = true;               ///< the title block and notes on each sheet (--no-title: none)
   /// Scale of the pattern (1 = true size): the pieces are scaled, tabs, ticks and labels keep
   /// their size; the scale is printed in the title line and written in pattern.json.
   double scale = 1.0;
@@ -157,8 +157,8 @@ struct ExportOptions {
   /// Optional per-vertex Gaussian curvature of A for the glTF's COLOR_0, in any unit (the map is
   /// scaled by its 95th percentile), e.g. validate's curvatureMap (angle defect, radians).
   std::vector<double> curvatureA;
-  std::vector<double> curvatureB;   ///< the same for B
-  bool gltfBinary = true;           ///< dform.glb (true) or dform.gltf with embedded buffer
+  std::vector<double> curvatureB;  ///< the same for B
+  bool gltfBinary = true;          ///< dform.glb (true) or dform.gltf with embedded buffer
   std::string fontPath = "/usr/share/hershey-fonts/futural.jhf";  ///< Hershey single-stroke font
 };
 
@@ -176,9 +176,9 @@ struct ExportSummary {
   int ticks = 0;                               ///< tick pairs
   int tabs = 0;                                ///< glue tabs on both pieces
   int creases = 0;                             ///< crease fold lines on both pieces
-  int pages = 0;  ///< pattern pages (more than 1 when tiled or one piece per page); the PDF has
-                  ///< the assembly page after them
-  int triangles = 0;                           ///< triangles in the STL (both pieces)
+  int pages = 0;      ///< pattern pages (more than 1 when tiled or one piece per page); the PDF has
+                      ///< the assembly page after them
+  int triangles = 0;  ///< triangles in the STL (both pieces)
 };
 
 /// What the layout check measured on the laid-out pattern (the fabrication part of the quality
@@ -195,7 +195,7 @@ struct LayoutFindings {
   /// Closed cut loops beyond one per boundary loop of each piece (its outline and its holes): a
   /// glue tab or a sliver the cutter would cut free of its piece
   int extraCutLoops = 0;
-  std::string example;        ///< the first problem found, in words; empty when none
+  std::string example;  ///< the first problem found, in words; empty when none
   int problems() const {
     return outsideSheet + overlappingTabs + tabsOverPieces + overlappingPieces + labelsOutside +
            overlappingLabels + titleOverlaps + extraCutLoops;

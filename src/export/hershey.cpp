@@ -10,9 +10,9 @@
 namespace dform::fab {
 
 namespace {
-constexpr int kFirstChar = 32;           // the .jhf files list ASCII 32..126 in order
-constexpr double kCapTop = -12.0;        // font units
-constexpr double kBaseline = 9.0;        // font units
+constexpr int kFirstChar = 32;     // the .jhf files list ASCII 32..126 in order
+constexpr double kCapTop = -12.0;  // font units
+constexpr double kBaseline = 9.0;  // font units
 constexpr double kCapHeight = kBaseline - kCapTop;
 }  // namespace
 
@@ -20,8 +20,9 @@ Result<StrokeFont> StrokeFont::load(const std::string& path) {
   std::ifstream in(path);
   if (!in) {
     return Status{ErrorCode::InputUnreadable,
-                  path + ": cannot read the Hershey font (install the Debian package "
-                         "hershey-fonts-data; scripts/install-deps does)"};
+                  path +
+                      ": cannot read the Hershey font (install the Debian package "
+                      "hershey-fonts-data; scripts/install-deps does)"};
   }
   StrokeFont font;
   std::string line;

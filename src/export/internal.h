@@ -54,11 +54,11 @@ inline Box boxOf(const std::vector<Polyline>& parts) {
 struct Path {
   std::string id;
   std::vector<Polyline> parts;
-  bool closed = false;       ///< every part is a closed loop
+  bool closed = false;  ///< every part is a closed loop
   /// Filled, no stroke (registration square, piece tint, shaded faces), by the non-zero rule: a
   /// hole winds the other way round, parts of one winding add up.
   bool filled = false;
-  std::string fill;          ///< filled: its colour (#RRGGBB) instead of the layer's
+  std::string fill;  ///< filled: its colour (#RRGGBB) instead of the layer's
   /// Filled and stroked in the fill colour at the layer's width, so that neighbouring shaded faces
   /// meet without the hairline gaps antialiasing leaves between them.
   bool sealed = false;
@@ -121,9 +121,9 @@ struct CreaseInfo {
 
 /// A fold of the body scored on the pattern (--score-folds), clipped to its piece.
 struct ScoredFoldInfo {
-  std::string id;                ///< "A-body-fold-3"
-  double angleDeg = 0;           ///< the fold angle (degrees)
-  std::vector<Polyline> lines;   ///< its parts inside the piece (sheet mm)
+  std::string id;               ///< "A-body-fold-3"
+  double angleDeg = 0;          ///< the fold angle (degrees)
+  std::vector<Polyline> lines;  ///< its parts inside the piece (sheet mm)
 };
 
 struct PieceInfo {
@@ -132,7 +132,7 @@ struct PieceInfo {
   /// Every boundary loop (sheet mm), the outer outline first: the piece's material by the
   /// even-odd rule. Just the seam for a classic piece.
   std::vector<Polyline> boundaries;
-  bool seamIsHole = false;         ///< the seam is a hole's loop (anti and demi D-Forms)
+  bool seamIsHole = false;  ///< the seam is a hole's loop (anti and demi D-Forms)
   /// The printed tint's loops (sheet mm; holes wind against the outer loops): the cut region grown
   /// by the profile's bleed; empty without a bleed.
   std::vector<Polyline> bleed;
@@ -140,9 +140,9 @@ struct PieceInfo {
   std::vector<Polyline> holeCuts;  ///< closed cut paths of the holes (cut before the outer ones)
   std::vector<CreaseInfo> creases;
   std::vector<ScoredFoldInfo> scoredFolds;  ///< folds scored by --score-folds
-  double perimeter = 0;    ///< flat seam length (mm)
-  double rotationDeg = 0;  ///< rotation applied on the sheet (after flipping y)
-  int sheet = 0;           ///< the sheet (page) it is on: an index into PatternBuild::sheets
+  double perimeter = 0;                     ///< flat seam length (mm)
+  double rotationDeg = 0;                   ///< rotation applied on the sheet (after flipping y)
+  int sheet = 0;  ///< the sheet (page) it is on: an index into PatternBuild::sheets
 };
 
 struct PatternBuild {

@@ -1,13 +1,13 @@
 // 3D previews: binary STL (millimetres, as slicers assume) and glTF 2.0 through tinygltf (metres,
 // +Y up, as the specification requires). The model's 3D frame is taken as +Z up (docs/export.md),
 // so glTF gets (x, z, -y) / 1000, a rotation that keeps the triangles' winding.
+#include <tiny_gltf.h>
+
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <sstream>
-
-#include <Eigen/Geometry>
-#include <tiny_gltf.h>
 
 #include "export/internal.h"
 
@@ -159,10 +159,9 @@ Result<std::string> gltfDocument(const DForm& model, const ExportOptions& o) {
   const bool colored = !o.curvatureA.empty() || !o.curvatureB.empty();
   if (colored && (o.curvatureA.size() != size_t(model.a.shape.rows()) ||
                   o.curvatureB.size() != size_t(model.b.shape.rows()))) {
-    return Status{ErrorCode::Usage,
-                  "curvature colours need one value per vertex of each piece (" +
-                      std::to_string(model.a.shape.rows()) + " and " +
-                      std::to_string(model.b.shape.rows()) + ")"};
+    return Status{ErrorCode::Usage, "curvature colours need one value per vertex of each piece (" +
+                                        std::to_string(model.a.shape.rows()) + " and " +
+                                        std::to_string(model.b.shape.rows()) + ")"};
   }
   // Colour scale: the largest |K| over both pieces, never below 1e-3 (in validate's unit,
   // radians: rounding noise on an exactly developable shape stays white), the scale of
@@ -217,7 +216,8 @@ Result<std::string> gltfDocument(const DForm& model, const ExportOptions& o) {
   }
   {  // The seam as a line loop drawn with LINES (piece A's side of each seam pair).
     std::vector<Eigen::Vector3f> pos;
-    for (int v : model.a.seam) pos.push_back(toGltf(model.a.shape.row(v).transpose()).cast<float>());
+    for (int v : model.a.seam)
+      pos.push_back(toGltf(model.a.shape.row(v).transpose()).cast<float>());
     std::vector<uint32_t> idx;
     for (size_t i = 0; i < pos.size(); ++i) {
       const size_t j = (i + 1) % pos.size();

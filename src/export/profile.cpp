@@ -105,16 +105,33 @@ struct FieldReader {
 
 constexpr TabSide kTabSides[] = {TabSide::A, TabSide::B, TabSide::Alternate, TabSide::None};
 
-const char* kKnownFields[] = {"version",        "name",           "description",
-                              "kind",           "cut_color",      "score_color",
-                              "engrave_color",  "cut_width_mm",   "score_width_mm",
-                              "engrave_width_mm", "fold",         "perforation_cut_mm",
-                              "perforation_gap_mm", "dash_mm",    "margin_mm",
-                              "page",           "tile",           "tile_overlap_mm",
-                              "registration",   "registration_clear_mm",
-                              "calibration_bar", "label_height_mm",
-                              "kerf_mm",        "tabs",
-                              "bleed_mm",       "fill_color_a",   "fill_color_b"};
+const char* kKnownFields[] = {"version",
+                              "name",
+                              "description",
+                              "kind",
+                              "cut_color",
+                              "score_color",
+                              "engrave_color",
+                              "cut_width_mm",
+                              "score_width_mm",
+                              "engrave_width_mm",
+                              "fold",
+                              "perforation_cut_mm",
+                              "perforation_gap_mm",
+                              "dash_mm",
+                              "margin_mm",
+                              "page",
+                              "tile",
+                              "tile_overlap_mm",
+                              "registration",
+                              "registration_clear_mm",
+                              "calibration_bar",
+                              "label_height_mm",
+                              "kerf_mm",
+                              "tabs",
+                              "bleed_mm",
+                              "fill_color_a",
+                              "fill_color_b"};
 
 }  // namespace
 
@@ -205,7 +222,8 @@ std::optional<std::pair<double, double>> pageSizeMm(const std::string& name) {
   const std::string u = unit;
   const double scale = u == "mm" ? 1.0 : u == "cm" ? 10.0 : u == "in" ? 25.4 : 0.0;
   // A page smaller than 50 mm holds no piece with its marks; over 2 m is a sheet, not a page.
-  if (scale == 0.0 || !(w * scale >= 50 && h * scale >= 50 && w * scale <= 2000 && h * scale <= 2000))
+  if (scale == 0.0 ||
+      !(w * scale >= 50 && h * scale >= 50 && w * scale <= 2000 && h * scale <= 2000))
     return std::nullopt;
   return std::pair{w * scale, h * scale};
 }

@@ -57,9 +57,8 @@ Status SheetFit::tooLarge(const std::string& what, const std::vector<Vec2>& size
   return Status{ErrorCode::Usage, what + " does not fit the " + area + ": it needs at least " +
                                       formatMm(need.x()) + " x " + formatMm(need.y()) + " mm (" +
                                       formatMm(size.x()) + " x " + formatMm(size.y()) + " mm of " +
-                                      contents + ", plus margins); the " +
-                                      sheetWord + " is " + formatMm(pageW) + " x " +
-                                      formatMm(pageH) + " mm"};
+                                      contents + ", plus margins); the " + sheetWord + " is " +
+                                      formatMm(pageW) + " x " + formatMm(pageH) + " mm"};
 }
 
 Vec2 SheetFit::tiledExtent(const Vec2& size) const {

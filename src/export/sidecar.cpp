@@ -62,8 +62,10 @@ std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName)
                          {"line", polyline(c.line)}});
     json scored = json::array();
     for (const ScoredFoldInfo& f : p.scoredFolds)
-      scored.push_back(
-          {{"id", f.id}, {"kind", "fold"}, {"angle_deg", f.angleDeg}, {"lines", polylines(f.lines)}});
+      scored.push_back({{"id", f.id},
+                        {"kind", "fold"},
+                        {"angle_deg", f.angleDeg},
+                        {"lines", polylines(f.lines)}});
     pieces.push_back({{"name", p.name},
                       {"perimeter_mm", p.perimeter},
                       {"rotation_deg", p.rotationDeg},

@@ -105,7 +105,7 @@ void drawCalibrationBar(size_t k, const TitleBlock& block, double textH, const S
   // Smaller where the block is too short for it beside the bar (a narrow tiled piece).
   const double h = std::min(textH, (block.length - 54) / std::max(1.0, font.width(text, 1.0)));
   layer.paths.push_back(textPath(font, onPage("calibration-label", k), text,
-                                     at(54 + 0.5 * font.width(text, h), vb - 1.5), block.along, h));
+                                 at(54 + 0.5 * font.width(text, h), vb - 1.5), block.along, h));
 }
 
 // Silhouette type-1 registration marks in the corners of sheet k.

@@ -23,7 +23,8 @@ Result<std::array<Piece, 2>> coarserPieces(const Piece& a, const Piece& b, int m
     Points2 outline(m, 2);
     for (int k = 0; k < m; ++k) {
       rowOf[std::size_t(k)] = p == 0 ? k : (m - k) % m;
-      outline.row(rowOf[std::size_t(k)]) = fine[p]->flat.row(fine[p]->seam[std::size_t(long(k) * n / m)]);
+      outline.row(rowOf[std::size_t(k)]) =
+          fine[p]->flat.row(fine[p]->seam[std::size_t(long(k) * n / m)]);
     }
     TriangulateOptions meshOptions;
     meshOptions.targetEdgeLength = closedLength(outline) / double(m);
@@ -53,7 +54,8 @@ ForwardOptions levelOptions(ForwardOptions options, bool finest, long vertices) 
 
 }  // namespace detail
 
-ForwardResult solveMeshedCoarseToFine(const Piece& a, const Piece& b, const ForwardOptions& options) {
+ForwardResult solveMeshedCoarseToFine(const Piece& a, const Piece& b,
+                                      const ForwardOptions& options) {
   const bool discs = a.freeBoundaries.empty() && b.freeBoundaries.empty();
   const std::vector<int> levels = detail::seamLevels(int(a.seam.size()), discs);
   ForwardResult solved;
@@ -70,10 +72,12 @@ ForwardResult solveMeshedCoarseToFine(const Piece& a, const Piece& b, const Forw
     const bool haveCoarser = solved.model.a.shape.rows() > 0;
     for (Piece& piece : pieces) piece.shape.resize(0, 3);  // from the pillow, or:
     if (haveCoarser) startFromCoarser(solved.model, pieces[0], pieces[1]);
-    solved = solveForward(pieces[0], pieces[1],
-                          detail::levelOptions(options, finest, pieces[0].flat.rows() + pieces[1].flat.rows()));
+    solved = solveForward(
+        pieces[0], pieces[1],
+        detail::levelOptions(options, finest, pieces[0].flat.rows() + pieces[1].flat.rows()));
     if (finest || solved.summary.usable()) continue;
-    solved = ForwardResult{};  // a failed coarse level starts nothing: the next one starts from the pillow
+    solved = ForwardResult{};  // a failed coarse level starts nothing: the next one starts from the
+                               // pillow
   }
   return solved;
 }

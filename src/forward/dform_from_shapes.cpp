@@ -1,12 +1,12 @@
 #include "forward/dform_from_shapes.h"
 
 #include <algorithm>
-#include <set>
 #include <array>
 #include <cmath>
 #include <new>
 #include <numeric>
 #include <optional>
+#include <set>
 
 #include "core/polyline.h"
 #include "exact/exact_gluing.h"
@@ -45,14 +45,16 @@ InteriorLine creaseLine(const Points2& crease, const Points2& fixed, double edge
 
 // Why the exact model cannot make this job, or "" when it can (the glued metric's convexity is
 // checked when the seam is sampled).
-std::string exactModelRefusal(const ForwardSettings& job, const DrawnPiece& A, const DrawnPiece& B) {
+std::string exactModelRefusal(const ForwardSettings& job, const DrawnPiece& A,
+                              const DrawnPiece& B) {
   if (job.joinA != JoinedBoundary::Outer || job.joinB != JoinedBoundary::Outer)
-    return "a piece is zipped along a hole (anti or demi D-Form): the glued pieces make no closed convex body";
+    return "a piece is zipped along a hole (anti or demi D-Form): the glued pieces make no closed "
+           "convex body";
   if (!A.creases.empty() || !B.creases.empty())
     return "creases are drawn: the exact D-Form folds only where the glued pieces make it fold";
   if (job.resolution > exact::kMaxExactSeam)
-    return "the seam has " + std::to_string(job.resolution) + " points, more than the exact engine's " +
-           std::to_string(exact::kMaxExactSeam);
+    return "the seam has " + std::to_string(job.resolution) +
+           " points, more than the exact engine's " + std::to_string(exact::kMaxExactSeam);
   return "";
 }
 
@@ -62,7 +64,8 @@ bool startOnExactBody(const exact::ExactGluing& g, Piece pieces[2]) {
   const Points3 seam = exact::placeOnBody(g, 0, g.seam.a);
   for (int p = 0; p < 2; ++p) {
     Points3 shape = exact::placeOnBody(g, p, pieces[p].flat);
-    for (std::size_t k = 0; k < pieces[p].seam.size(); ++k) shape.row(pieces[p].seam[k]) = seam.row(Eigen::Index(k));
+    for (std::size_t k = 0; k < pieces[p].seam.size(); ++k)
+      shape.row(pieces[p].seam[k]) = seam.row(Eigen::Index(k));
     if (!shape.allFinite()) return false;
     pieces[p].shape = std::move(shape);
   }
@@ -82,7 +85,8 @@ const char* modelChoiceName(ModelChoice model) {
 }
 
 bool parseModelChoice(const std::string& text, ModelChoice& model) {
-  for (ModelChoice m : {ModelChoice::Auto, ModelChoice::Exact, ModelChoice::Paper, ModelChoice::General})
+  for (ModelChoice m :
+       {ModelChoice::Auto, ModelChoice::Exact, ModelChoice::Paper, ModelChoice::General})
     if (text == modelChoiceName(m)) {
       model = m;
       return true;
@@ -124,9 +128,13 @@ Status validateForwardJob(const ForwardSettings& job) {
       return usage("a start point must have finite coordinates");
   if (!(job.perimeterTolerance > 0.0 && job.perimeterTolerance < 1.0))
     return usage("the perimeter tolerance must be in (0, 1)");
-  if (!(job.interiorEdgeFactor >= kMinInteriorEdgeFactor && job.interiorEdgeFactor <= kMaxInteriorEdgeFactor))
-    return usage("the interior edge factor (--interior-edge, interior_edge in a job file) must be in [0.25, 8]");
-  if (std::string problem = settingsProblem(forwardTerms(), job.solve.weights, job.solve.solver); !problem.empty())
+  if (!(job.interiorEdgeFactor >= kMinInteriorEdgeFactor &&
+        job.interiorEdgeFactor <= kMaxInteriorEdgeFactor))
+    return usage(
+        "the interior edge factor (--interior-edge, interior_edge in a job file) must be in [0.25, "
+        "8]");
+  if (std::string problem = settingsProblem(forwardTerms(), job.solve.weights, job.solve.solver);
+      !problem.empty())
     return usage(problem);
   return Status::ok();
 }
@@ -135,12 +143,14 @@ namespace {
 
 // The exact D-Form where it applies and was not declined: the finished run, or nothing with
 // `refusal` saying why not (an error where --model exact asked for it).
-Result<std::optional<SolvedDForm>> tryExactModel(const ForwardSettings& job, const SeamLayout& layout,
-                                                SolvedDForm& run, std::string& refusal,
-                                                MessageSink& sink, const RunHooks& hooks) {
+Result<std::optional<SolvedDForm>> tryExactModel(const ForwardSettings& job,
+                                                 const SeamLayout& layout, SolvedDForm& run,
+                                                 std::string& refusal, MessageSink& sink,
+                                                 const RunHooks& hooks) {
   const std::string both = layout.bothPaths();
   refusal = exactModelRefusal(job, layout.pieces[0], layout.pieces[1]);
-  if (job.model == ModelChoice::Paper || job.model == ModelChoice::General) return std::optional<SolvedDForm>();
+  if (job.model == ModelChoice::Paper || job.model == ModelChoice::General)
+    return std::optional<SolvedDForm>();
   if (!refusal.empty()) {
     if (job.model == ModelChoice::Exact)
       return Status(ErrorCode::InputInvalid, both + ": --model exact: " + refusal);
@@ -159,20 +169,23 @@ Result<std::optional<SolvedDForm>> tryExactModel(const ForwardSettings& job, con
     if (job.model == ModelChoice::Exact)
       return Status(exactModel.status().code(), both + ": --model exact: " + refusal);
     if (exactModel.status().code() == ErrorCode::SolveFailed) {
-      sink.warning("the exact model failed (" + refusal + "); the paper model makes the shape instead");
+      sink.warning("the exact model failed (" + refusal +
+                   "); the paper model makes the shape instead");
       refusal = "it failed: " + refusal;
     }
     return std::optional<SolvedDForm>();
   }
   used.name = "exact";
-  used.reason = used.doublyCovered
-                    ? "the pieces are congruent and zipped point to point: they fold flat onto each other"
-                    : "two discs zipped along their outlines whose glued metric is convex (every seam point's "
-                      "angle sum at most 360 degrees): the D-Form is that metric's unique convex body";
+  used.reason =
+      used.doublyCovered
+          ? "the pieces are congruent and zipped point to point: they fold flat onto each other"
+          : "two discs zipped along their outlines whose glued metric is convex (every seam "
+            "point's "
+            "angle sum at most 360 degrees): the D-Form is that metric's unique convex body";
   sink.info("exact model: " + std::to_string(used.conePoints) + " cone points, " +
             std::to_string(used.newtonSteps) + " Newton steps" +
-            format(", curvature left %.2g rad, chords equalised by moving points at most %.2g mm", used.maxCurvature,
-                   used.chordMoveMm));
+            format(", curvature left %.2g rad, chords equalised by moving points at most %.2g mm",
+                   used.maxCurvature, used.chordMoveMm));
   // Each crease once: the exact body may find one line in several pieces of the same fold.
   std::set<std::string> reported;
   for (const FoundCrease& c : used.creases) {
@@ -187,8 +200,8 @@ Result<std::optional<SolvedDForm>> tryExactModel(const ForwardSettings& job, con
 }
 
 // Both pieces meshed for a level of n seam vertices, seam rows listed in seam order.
-Result<std::array<Piece, 2>> meshLevel(const ForwardSettings& job, const SeamLayout& layout,
-                                       int n, double perimeterA, const RunHooks& hooks) {
+Result<std::array<Piece, 2>> meshLevel(const ForwardSettings& job, const SeamLayout& layout, int n,
+                                       double perimeterA, const RunHooks& hooks) {
   const std::vector<double> t = seamFractions(n, layout.seamCorners);
   const double seamEdge = perimeterA / n;
   std::array<Piece, 2> pieces;
@@ -197,7 +210,8 @@ Result<std::array<Piece, 2>> meshLevel(const ForwardSettings& job, const SeamLay
     if (detail::stopRequested(hooks)) return detail::interruptedDuring("the meshing");
     const DrawnPiece& piece = layout.pieces[p];
     const std::string& path = layout.paths[p];
-    const LoopSamples seam = sampleLoop(piece.joined, t, layout.startFraction[p], layout.direction[p]);
+    const LoopSamples seam =
+        sampleLoop(piece.joined, t, layout.startFraction[p], layout.direction[p]);
     // The mesher's fixed points: the outline, then the hole. The joined boundary is the outline
     // of a disc and the hole of an annulus-like piece, whose outline is sampled about as
     // densely as the seam.
@@ -207,15 +221,18 @@ Result<std::array<Piece, 2>> meshLevel(const ForwardSettings& job, const SeamLay
     if (piece.freeOutline) {
       const int m = std::max(3, int(std::lround(closedLength(*piece.freeOutline) / seamEdge)));
       outline = sampleLoop(*piece.freeOutline, seamFractions(m, layout.freeCorners[p]),
-                           layout.freeStart[p], 1).rows;
+                           layout.freeStart[p], 1)
+                    .rows;
       holes.push_back(seam.rows);
       seamFirstRow = int(outline.rows());
     }
-    Points2 fixed(outline.rows() + seam.rows.rows() * Eigen::Index(piece.freeOutline.has_value()), 2);
+    Points2 fixed(outline.rows() + seam.rows.rows() * Eigen::Index(piece.freeOutline.has_value()),
+                  2);
     fixed.topRows(outline.rows()) = outline;
     if (piece.freeOutline) fixed.bottomRows(seam.rows.rows()) = seam.rows;
     std::vector<InteriorLine> creases;
-    for (const Points2& crease : piece.creases) creases.push_back(creaseLine(crease, fixed, seamEdge));
+    for (const Points2& crease : piece.creases)
+      creases.push_back(creaseLine(crease, fixed, seamEdge));
 
     TriangulateOptions meshOptions;
     meshOptions.targetEdgeLength = job.interiorEdgeFactor * seamEdge;
@@ -253,8 +270,9 @@ Status solvePaperModel(const ForwardSettings& job, const SeamLayout& layout, Sol
   const bool creased = !layout.pieces[0].creases.empty() || !layout.pieces[1].creases.empty();
   std::optional<exact::ExactGluing> exactStart;
   if (classic && creased && job.resolution <= exact::kMaxExactSeam) {
-    exact::SeamPolygons polygons = seamPolygons(layout.pieces, layout.startFraction, layout.direction,
-                                                seamFractions(job.resolution, layout.seamCorners));
+    exact::SeamPolygons polygons =
+        seamPolygons(layout.pieces, layout.startFraction, layout.direction,
+                     seamFractions(job.resolution, layout.seamCorners));
     exact::equalizeChords(polygons);
     Result<exact::ExactGluing> glued = exact::glue(polygons);
     if (glued.isOk() && !glued.value().doublyCovered) {
@@ -271,13 +289,16 @@ Status solvePaperModel(const ForwardSettings& job, const SeamLayout& layout, Sol
   for (std::size_t level = 0; level < levels.size(); ++level) {
     const bool finest = level + 1 == levels.size();
     const auto meshStart = Clock::now();
-    Result<std::array<Piece, 2>> meshed = meshLevel(job, layout, levels[level], run.perimeterA, hooks);
+    Result<std::array<Piece, 2>> meshed =
+        meshLevel(job, layout, levels[level], run.perimeterA, hooks);
     if (!meshed.isOk()) return meshed.status();
     Piece* pieces = meshed.value().data();
     if (level > 0) startFromCoarser(solved.model, pieces[0], pieces[1]);
     if (exactStart && finest && !startOnExactBody(*exactStart, pieces)) {
       for (Piece& piece : meshed.value()) piece.shape.resize(0, 3);
-      sink.warning("paper model: a vertex could not be placed on the exact D-Form; starting from the pillow");
+      sink.warning(
+          "paper model: a vertex could not be placed on the exact D-Form; starting from the "
+          "pillow");
     }
     run.timings.mesh += secondsSince(meshStart);
     // The finest level is what the user asked for; coarser ones are details for the log.
@@ -289,8 +310,9 @@ Status solvePaperModel(const ForwardSettings& job, const SeamLayout& layout, Sol
                           std::to_string(pieces[1].F.rows()));
 
     const auto solveStart = Clock::now();
-    solved = solveForward(pieces[0], pieces[1],
-                          detail::levelOptions(options, finest, pieces[0].flat.rows() + pieces[1].flat.rows()));
+    solved = solveForward(
+        pieces[0], pieces[1],
+        detail::levelOptions(options, finest, pieces[0].flat.rows() + pieces[1].flat.rows()));
     run.timings.solve += secondsSince(solveStart);
     if (detail::stopRequested(hooks)) return detail::interruptedDuring("the solve");
     if (!solved.summary.usable())
@@ -313,7 +335,8 @@ Status solvePaperModel(const ForwardSettings& job, const SeamLayout& layout, Sol
 // makeDForm, which turns a failed allocation into the resolution that fits; `estimate` is what
 // the memory check allowed for.
 Result<SolvedDForm> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSettings& job,
-                               MessageSink& sink, const RunHooks& hooks, MemoryEstimate& estimate) {
+                                MessageSink& sink, const RunHooks& hooks,
+                                MemoryEstimate& estimate) {
   if (Status s = validateForwardJob(job); !s.isOk()) return s;
   const auto start = Clock::now();
   SolvedDForm run;
@@ -348,8 +371,9 @@ Result<SolvedDForm> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSet
   const bool general = job.model == ModelChoice::General;
   run.modelUsed.name = general ? "general" : "paper";
   run.modelUsed.reason = general ? "asked for (--model general)"
-                         : job.model == ModelChoice::Paper ? "asked for (--model paper)"
-                                                           : "the exact model does not apply: " + refusal;
+                         : job.model == ModelChoice::Paper
+                             ? "asked for (--model paper)"
+                             : "the exact model does not apply: " + refusal;
   sink.info(run.modelUsed.name + " model: " + run.modelUsed.reason);
   if (Status s = solvePaperModel(job, layout, run, sink, hooks); !s.isOk()) return s;
   if (general) {
@@ -362,8 +386,9 @@ Result<SolvedDForm> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSet
     run.modelUsed.stiffness = job.inextensible.stiffness;
     run.modelUsed.newtonSteps = sheet.summary.steps;
     sink.info("general model: " + std::to_string(sheet.summary.steps) + " Newton steps" +
-              format(", stationarity %.2g, bending energy %.4g, stretching energy %.4g", sheet.summary.stationarity,
-                     sheet.summary.bendingEnergy, sheet.summary.stretchingEnergy) +
+              format(", stationarity %.2g, bending energy %.4g, stretching energy %.4g",
+                     sheet.summary.stationarity, sheet.summary.bendingEnergy,
+                     sheet.summary.stretchingEnergy) +
               format(" in %.3f s", sheet.summary.seconds));
     if (!sheet.summary.converged) sink.warning("general model: " + sheet.summary.message);
   }
@@ -373,8 +398,8 @@ Result<SolvedDForm> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSet
 
 }  // namespace
 
-Result<SolvedDForm> solveDForm(Shape2 a, Shape2 b, const ForwardSettings& settings, MessageSink& sink,
-                               const RunHooks& hooks) {
+Result<SolvedDForm> solveDForm(Shape2 a, Shape2 b, const ForwardSettings& settings,
+                               MessageSink& sink, const RunHooks& hooks) {
   MemoryEstimate estimate;
   try {
     return solveShapes(a, b, settings, sink, hooks, estimate);

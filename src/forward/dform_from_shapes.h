@@ -58,12 +58,13 @@ constexpr double kMinInteriorEdgeFactor = 0.25, kMaxInteriorEdgeFactor = 8.0;
 struct ForwardSettings {
   ModelChoice model = ModelChoice::Auto;
   JoinedBoundary joinA = JoinedBoundary::Outer, joinB = JoinedBoundary::Outer;
-  StartPoint startA, startB;   ///< the starting pair (paper Definition 3), on the joined boundaries
-  int resolution = 100;        ///< seam vertices per piece
-  bool flip = false;           ///< zip B turned over (its mirror image) instead
-  bool fitPerimeter = false;   ///< scale B uniformly to A's perimeter
+  StartPoint startA, startB;  ///< the starting pair (paper Definition 3), on the joined boundaries
+  int resolution = 100;       ///< seam vertices per piece
+  bool flip = false;          ///< zip B turned over (its mirror image) instead
+  bool fitPerimeter = false;  ///< scale B uniformly to A's perimeter
   double perimeterTolerance = 0.005;  ///< largest |pA - pB| / max(pA, pB) accepted as equal
-  double interiorEdgeFactor = 1.0;    ///< interior edge length / seam edge length, in [kMinInteriorEdgeFactor, kMaxInteriorEdgeFactor]
+  double interiorEdgeFactor = 1.0;    ///< interior edge length / seam edge length, in
+                                      ///< [kMinInteriorEdgeFactor, kMaxInteriorEdgeFactor]
   bool coarseToFine = true;           ///< start from solutions at 1/3, 1/9, ... of the resolution
   ForwardOptions solve;
   InextensibleOptions inextensible;  ///< the general engine's (ModelChoice::General)
@@ -77,9 +78,9 @@ struct SolvedDForm {
   SolverSummary summary;          ///< the Levenberg-Marquardt solve
   int constraintRounds = 0;       ///< multiplier rounds that closed the seam and fixed the outlines
   Timings timings;
-  double perimeterA = 0, perimeterB = 0;  ///< the joined boundaries' lengths as read, mm
-  std::string sha256A, sha256B;           ///< SHA-256 of each input file's bytes as read
-  double scaleB = 1.0;                    ///< applied by fitPerimeter
+  double perimeterA = 0, perimeterB = 0;          ///< the joined boundaries' lengths as read, mm
+  std::string sha256A, sha256B;                   ///< SHA-256 of each input file's bytes as read
+  double scaleB = 1.0;                            ///< applied by fitPerimeter
   double startFractionA = 0, startFractionB = 0;  ///< resolved starting pair
 };
 
@@ -90,7 +91,7 @@ Status validateForwardJob(const ForwardSettings& job);
 /// checked (lengths, joins, the memory the run needs), meshed and solved by the exact model or the
 /// paper's. Messages and errors name a piece by its outline's `source` (a file path), else
 /// "piece A" / "piece B". A failed allocation is an error with the resolution that fits.
-Result<SolvedDForm> solveDForm(Shape2 a, Shape2 b, const ForwardSettings& settings, MessageSink& sink,
-                               const RunHooks& hooks = {});
+Result<SolvedDForm> solveDForm(Shape2 a, Shape2 b, const ForwardSettings& settings,
+                               MessageSink& sink, const RunHooks& hooks = {});
 
 }  // namespace dform

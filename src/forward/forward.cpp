@@ -191,7 +191,8 @@ DForm pillowInitialGuess(const Piece& a, const Piece& b) {
   for (int p = 0; p < 2; ++p) {
     const auto E = meshEdges(pieces[p]->F);
     EdgeData& d = edges[p];
-    d.rest2.resize(E.rows()), d.xy2.resize(E.rows()), d.dphi.resize(E.rows()), d.dlift.resize(E.rows());
+    d.rest2.resize(E.rows()), d.xy2.resize(E.rows()), d.dphi.resize(E.rows()),
+        d.dlift.resize(E.rows());
     for (int e = 0; e < E.rows(); ++e) {
       const int i = E(e, 0), j = E(e, 1);
       d.rest2[e] = (pieces[p]->flat.row(i) - pieces[p]->flat.row(j)).squaredNorm();
@@ -260,7 +261,8 @@ DForm pillowInitialGuess(const Piece& a, const Piece& b) {
 
 double relaxationSmoothing(double smooth3d, const ForwardOptions& options) {
   const double stiffest = options.continuationSmoothing;
-  if (options.smoothingContinuation <= 1.0 || options.solver.maxIterations == 0 || smooth3d >= stiffest)
+  if (options.smoothingContinuation <= 1.0 || options.solver.maxIterations == 0 ||
+      smooth3d >= stiffest)
     return smooth3d;
   return std::min(stiffest, options.smoothingContinuation * smooth3d);
 }
@@ -277,16 +279,17 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
   scaleLengths(start, 1.0 / unit);
   const ForwardWeights& w = options.weights;
   // The seam is closed exactly (shared 3D unknowns) whenever the alignment term is on at all.
-  const VariableLayout layout = w.alignment > 0
-                                    ? VariableLayout(int(a.flat.rows()), int(b.flat.rows()), a.seam, b.seam)
-                                    : VariableLayout(int(a.flat.rows()), int(b.flat.rows()));
+  const VariableLayout layout =
+      w.alignment > 0 ? VariableLayout(int(a.flat.rows()), int(b.flat.rows()), a.seam, b.seam)
+                      : VariableLayout(int(a.flat.rows()), int(b.flat.rows()));
   EdgeLengthPairs edges = meshEdgePairs(layout, a.F, b.F);
   // Drawn lines stay where they were drawn: held exactly, except at seam corners, which only the
   // boundary-fix term holds (to outlineTolerance, by multiplier rounds below).
   const std::vector<int> drawnA = drawnVertices(start.a), drawnB = drawnVertices(start.b);
   const std::vector<bool> room = seamCornerRoom(start.a, start.b);
   std::vector<int> movableA, movableB, held;
-  for (const auto& [p, drawn, movable] : {std::tuple{0, &drawnA, &movableA}, std::tuple{1, &drawnB, &movableB}})
+  for (const auto& [p, drawn, movable] :
+       {std::tuple{0, &drawnA, &movableA}, std::tuple{1, &drawnB, &movableB}})
     for (std::size_t k = 0; k < drawn->size(); ++k) {
       const int v = (*drawn)[k];
       if (w.boundaryFix > 0 && !(k < room.size() && room[k])) {  // drawn lists start with the seam
@@ -306,7 +309,8 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
   weightByFlatLength(edges, x, w.isometry);
   ForwardWeights relaxationWeights = w;
   relaxationWeights.smooth3d = relaxationSmoothing(w.smooth3d, options);
-  const LocalGlobalRelaxation relaxation(linearTerms(table, terms, relaxationWeights), edges, x, held);
+  const LocalGlobalRelaxation relaxation(linearTerms(table, terms, relaxationWeights), edges, x,
+                                         held);
   // No Levenberg-Marquardt step folds a triangle over that stood upright before it
   // (model/injectivity.h). The relaxation is not guarded: its path to the shape may pass
   // through folds (guarded, it stalled on the anti and Squaricle samples).
@@ -322,8 +326,9 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
   std::vector<Constraint> constraints;
   if (w.boundaryFix > 0 && anchorTerm->numResiduals() > 0)
     constraints.push_back({anchorTerm, 2, options.outlineTolerance * perimeter});
-  SolveSequenceSummary solved = relaxThenSolve(relaxation, options.relaxation, problem, options.solver,
-                                               guard, constraints, options.constraintRounds, x);
+  SolveSequenceSummary solved =
+      relaxThenSolve(relaxation, options.relaxation, problem, options.solver, guard, constraints,
+                     options.constraintRounds, x);
   result.relaxation = std::move(solved.relaxation);
   result.summary = std::move(solved.summary);
   result.constraintRounds = solved.constraintRounds;

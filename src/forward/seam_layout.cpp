@@ -30,7 +30,8 @@ std::vector<double> seamFractions(int n, std::vector<double> corners) {
     for (int j = 0; j < m; ++j) {
       const double gap = lengths[j] * n - counts[j];  // > 0: the stretch wants more vertices
       const bool eligible = assigned < n || counts[j] > 1;
-      if (eligible && (pick < 0 || (assigned < n ? gap > bestGap : gap < bestGap))) pick = j, bestGap = gap;
+      if (eligible && (pick < 0 || (assigned < n ? gap > bestGap : gap < bestGap)))
+        pick = j, bestGap = gap;
     }
     counts[pick] += assigned < n ? 1 : -1;
     assigned += assigned < n ? 1 : -1;
@@ -40,7 +41,6 @@ std::vector<double> seamFractions(int n, std::vector<double> corners) {
     for (int i = 0; i < counts[j]; ++i) fractions.push_back(breaks[j] + lengths[j] * i / counts[j]);
   return fractions;
 }
-
 
 namespace forward_detail {
 
@@ -65,23 +65,23 @@ void mapPiece(DrawnPiece& piece, F f) {
   for (Points2& crease : piece.creases) crease = f(crease);
 }
 
-// Piece B turned over: mirrored in x, loops reordered counter-clockwise. `start` follows the mirror.
+// Piece B turned over: mirrored in x, loops reordered counter-clockwise. `start` follows the
+// mirror.
 void mirror(DrawnPiece& piece, StartPoint& start) {
   const Eigen::Vector2d startPoint =
       start.nearestToPoint ? start.point : pointAtFraction(piece.joined, start.fraction);
-  mapPiece(piece, [](const Points2& P) { return Points2(P * Eigen::Vector2d(-1.0, 1.0).asDiagonal()); });
+  mapPiece(piece,
+           [](const Points2& P) { return Points2(P * Eigen::Vector2d(-1.0, 1.0).asDiagonal()); });
   piece.joined = piece.joined.colwise().reverse().eval();
   if (piece.freeOutline) piece.freeOutline = piece.freeOutline->colwise().reverse().eval();
   start.nearestToPoint = true;
   start.point = Eigen::Vector2d(-startPoint.x(), startPoint.y());
 }
 
-
 // Loop fraction c as a fraction of the way from `start` in `direction`.
 double fractionFrom(double c, double start, int direction) {
   return std::fmod(direction * (c - start) + 2.0, 1.0);
 }
-
 
 }  // namespace
 
@@ -93,19 +93,21 @@ Result<DrawnPiece> drawnPiece(Shape2& shape, JoinedBoundary join, const std::str
                               MessageSink& sink) {
   const std::string path = pieceLabel(shape, name.c_str());
   const std::size_t holes = shape.holes.size();
-  std::string found =
-      "piece " + name + " (" + path + "): outline " + format("%.3f mm", closedLength(shape.outer.points));
-  for (const Outline2& hole : shape.holes) found += format(", hole %.3f mm", closedLength(hole.points));
+  std::string found = "piece " + name + " (" + path + "): outline " +
+                      format("%.3f mm", closedLength(shape.outer.points));
+  for (const Outline2& hole : shape.holes)
+    found += format(", hole %.3f mm", closedLength(hole.points));
   if (!shape.creases.empty()) found += ", " + std::to_string(shape.creases.size()) + " crease(s)";
   DrawnPiece piece;
   piece.sha256 = shape.sha256;
   for (CreaseLine& crease : shape.creases) piece.creases.push_back(std::move(crease.points));
   if (join == JoinedBoundary::Outer) {
     if (holes != 0)
-      return Status(ErrorCode::InputInvalid,
-                    path + ": the outline has " + std::to_string(holes) +
-                        " hole(s); a classic D-Form piece must be a disc without holes (to zip a "
-                        "hole, as in anti and demi D-Forms, choose it with --join, e.g. --join inner,inner)");
+      return Status(
+          ErrorCode::InputInvalid,
+          path + ": the outline has " + std::to_string(holes) +
+              " hole(s); a classic D-Form piece must be a disc without holes (to zip a "
+              "hole, as in anti and demi D-Forms, choose it with --join, e.g. --join inner,inner)");
     piece.joined = std::move(shape.outer.points);
     sink.info(found + "; joining its outline");
   } else {
@@ -120,7 +122,8 @@ Result<DrawnPiece> drawnPiece(Shape2& shape, JoinedBoundary join, const std::str
   return piece;
 }
 
-LoopSamples sampleLoop(const Points2& P, const std::vector<double>& fractions, double start, int direction) {
+LoopSamples sampleLoop(const Points2& P, const std::vector<double>& fractions, double start,
+                       int direction) {
   const int n = int(fractions.size());
   std::vector<double> at(n);
   LoopSamples samples;
@@ -136,13 +139,14 @@ LoopSamples sampleLoop(const Points2& P, const std::vector<double>& fractions, d
   return samples;
 }
 
-exact::SeamPolygons seamPolygons(const DrawnPiece pieces[2], const double startFraction[2], const int direction[2],
-                                 const std::vector<double>& fractions) {
+exact::SeamPolygons seamPolygons(const DrawnPiece pieces[2], const double startFraction[2],
+                                 const int direction[2], const std::vector<double>& fractions) {
   const Eigen::Index n = Eigen::Index(fractions.size());
   exact::SeamPolygons polygons;
   Points2* sides[2] = {&polygons.a, &polygons.b};
   for (int p = 0; p < 2; ++p) {
-    const LoopSamples seam = sampleLoop(pieces[p].joined, fractions, startFraction[p], direction[p]);
+    const LoopSamples seam =
+        sampleLoop(pieces[p].joined, fractions, startFraction[p], direction[p]);
     sides[p]->resize(n, 2);
     for (Eigen::Index k = 0; k < n; ++k) sides[p]->row(k) = seam.rows.row(seam.order[k]);
   }
@@ -172,9 +176,11 @@ Status matchPieces(const ForwardSettings& job, SeamLayout& layout, SolvedDForm& 
   if (job.fitPerimeter) {
     run.scaleB = run.perimeterA / run.perimeterB;
     const Eigen::RowVector2d centre = B.joined.colwise().mean();
-    mapPiece(B, [&](const Points2& P) { return Points2(((P.rowwise() - centre) * run.scaleB).rowwise() + centre); });
-    sink.info(format("piece B scaled by %.6f to match piece A's joined length (%.3f mm)", run.scaleB,
-                     run.perimeterA));
+    mapPiece(B, [&](const Points2& P) {
+      return Points2(((P.rowwise() - centre) * run.scaleB).rowwise() + centre);
+    });
+    sink.info(format("piece B scaled by %.6f to match piece A's joined length (%.3f mm)",
+                     run.scaleB, run.perimeterA));
   }
   StartPoint startB = job.startB;
   if (job.flip) {
@@ -192,8 +198,9 @@ double finestVertices(const ForwardSettings& job, const SeamLayout& layout, doub
   const double h = job.interiorEdgeFactor * perimeterA / job.resolution;
   double area = 0.0;
   for (const DrawnPiece& piece : layout.pieces)
-    area += piece.freeOutline ? std::abs(signedArea(*piece.freeOutline)) - std::abs(signedArea(piece.joined))
-                              : std::abs(signedArea(piece.joined));
+    area += piece.freeOutline
+                ? std::abs(signedArea(*piece.freeOutline)) - std::abs(signedArea(piece.joined))
+                : std::abs(signedArea(piece.joined));
   return 2.0 * area / (std::sqrt(3.0) * h * h) + 2.0 * job.resolution;
 }
 
@@ -229,7 +236,6 @@ void layOutSeam(const ForwardSettings& job, const SolvedDForm& run, SeamLayout& 
       }
   }
 }
-
 
 }  // namespace forward_detail
 

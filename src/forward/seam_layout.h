@@ -49,7 +49,8 @@ struct LoopSamples {
   Points2 rows;
   std::vector<int> order;
 };
-LoopSamples sampleLoop(const Points2& P, const std::vector<double>& fractions, double start, int direction);
+LoopSamples sampleLoop(const Points2& P, const std::vector<double>& fractions, double start,
+                       int direction);
 
 /// The two pieces as the seam is laid out on them: which boundary is zipped, where the seam starts
 /// and which way it runs, and the points every level must sample: corners of both joined
@@ -69,7 +70,8 @@ struct SeamLayout {
 
 /// Checks the joined lengths (fitting B to A when asked), turns B over when asked and resolves
 /// the starting pair: what reading left to do before the seam is laid out.
-Status matchPieces(const ForwardSettings& job, SeamLayout& layout, SolvedDForm& run, MessageSink& sink);
+Status matchPieces(const ForwardSettings& job, SeamLayout& layout, SolvedDForm& run,
+                   MessageSink& sink);
 
 /// The finest mesh's vertices, for the memory check.
 double finestVertices(const ForwardSettings& job, const SeamLayout& layout, double perimeterA);
@@ -79,8 +81,8 @@ void layOutSeam(const ForwardSettings& job, const SolvedDForm& run, SeamLayout& 
 
 /// The two sides of the seam sampled at `fractions` (A's counter-clockwise, B's clockwise from
 /// the starting pair), row k of each at seam point k: what the exact engine glues.
-exact::SeamPolygons seamPolygons(const DrawnPiece pieces[2], const double startFraction[2], const int direction[2],
-                                 const std::vector<double>& fractions);
+exact::SeamPolygons seamPolygons(const DrawnPiece pieces[2], const double startFraction[2],
+                                 const int direction[2], const std::vector<double>& fractions);
 
 }  // namespace forward_detail
 

@@ -9,7 +9,8 @@
 
 namespace dform {
 
-InverseResult solveInverse(const DForm& start, const Points3& curve, const InverseOptions& options) {
+InverseResult solveInverse(const DForm& start, const Points3& curve,
+                           const InverseOptions& options) {
   assert(start.a.seam.size() == start.b.seam.size() &&
          start.a.seam.size() == std::size_t(curve.rows()) && "one seam pair per curve point");
   InverseResult result;

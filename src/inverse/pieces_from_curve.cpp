@@ -1,7 +1,6 @@
 #include "inverse/pieces_from_curve.h"
 
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <cmath>
 #include <new>
@@ -31,7 +30,8 @@ Status validateInverseJob(const InverseSettings& job) {
   if (job.resolution < 8 || job.resolution > 20000)
     return usage("resolution must be between 8 and 20000 curve points, got " +
                  std::to_string(job.resolution));
-  if (std::string problem = settingsProblem(inverseTerms(), job.solve.weights, job.solve.solver); !problem.empty())
+  if (std::string problem = settingsProblem(inverseTerms(), job.solve.weights, job.solve.solver);
+      !problem.empty())
     return usage(problem);
   return Status::ok();
 }
@@ -48,8 +48,8 @@ Points2 catmullRom(const Points2& P, int m) {
     const double t = double(j) * n / m;
     const int k = int(std::floor(t));
     const double u = t - k, u2 = u * u, u3 = u2 * u;
-    const Eigen::RowVector2d p0 = P.row((k + n - 1) % n), p1 = P.row(k % n), p2 = P.row((k + 1) % n),
-                             p3 = P.row((k + 2) % n);
+    const Eigen::RowVector2d p0 = P.row((k + n - 1) % n), p1 = P.row(k % n),
+                             p2 = P.row((k + 1) % n), p3 = P.row((k + 2) % n);
     out.row(j) = 0.5 * ((2.0 * p1) + (p2 - p0) * u + (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) * u2 +
                         (3.0 * p1 - p0 - 3.0 * p2 + p3) * u3);
   }
@@ -61,14 +61,16 @@ Points2 catmullRom(const Points2& P, int m) {
 // like the pre-D-Form pieces, and its 3D shape is carried over by barycentric transfer, with the
 // seam on the finer curve. Seam convention as InverseInit's: A's seam counter-clockwise in rows
 // 0..m-1, B's clockwise.
-Result<Piece> refinePiece(const Piece& coarse, const Points3& curve, bool clockwiseSeam, double edgeLength,
-                          const InverseInitOptions& init) {
+Result<Piece> refinePiece(const Piece& coarse, const Points3& curve, bool clockwiseSeam,
+                          double edgeLength, const InverseInitOptions& init) {
   const int m = int(curve.rows());
   Points2 seam(Eigen::Index(coarse.seam.size()), 2);
-  for (std::size_t k = 0; k < coarse.seam.size(); ++k) seam.row(Eigen::Index(k)) = coarse.flat.row(coarse.seam[k]);
+  for (std::size_t k = 0; k < coarse.seam.size(); ++k)
+    seam.row(Eigen::Index(k)) = coarse.flat.row(coarse.seam[k]);
   const Points2 fineSeam = catmullRom(seam, m);  // in seam order
-  Points2 outline(m, 2);  // counter-clockwise rows
-  for (int row = 0; row < m; ++row) outline.row(row) = fineSeam.row(clockwiseSeam ? (m - row) % m : row);
+  Points2 outline(m, 2);                         // counter-clockwise rows
+  for (int row = 0; row < m; ++row)
+    outline.row(row) = fineSeam.row(clockwiseSeam ? (m - row) % m : row);
   TriangulateOptions options;
   options.targetEdgeLength = edgeLength * init.edgeLengthFactor;
   options.minAngleDegrees = init.minAngleDegrees;
@@ -100,19 +102,24 @@ Result<DForm> exactInverse(const InverseInit& init, const Points3& target, const
   // A fold of the body that crossed the seam would have become a seam vertex with no point of the
   // curve to pair with (on-hull curves have none: their chords are edges of the hull).
   if (Eigen::Index(model.a.seam.size()) != n)
-    return Status(ErrorCode::SolveFailed, "a fold of the exact D-Form crosses the seam between curve points");
+    return Status(ErrorCode::SolveFailed,
+                  "a fold of the exact D-Form crosses the seam between curve points");
   Points3 seam(n, 3);
-  for (Eigen::Index k = 0; k < n; ++k) seam.row(k) = model.a.shape.row(model.a.seam[std::size_t(k)]);
+  for (Eigen::Index k = 0; k < n; ++k)
+    seam.row(k) = model.a.shape.row(model.a.seam[std::size_t(k)]);
   const Eigen::Affine3d onCurve = exact::rigidFit(seam, target);
-  for (Piece* p : {&model.a, &model.b}) p->shape = (p->shape * onCurve.linear().transpose()).rowwise() + onCurve.translation().transpose();
+  for (Piece* p : {&model.a, &model.b})
+    p->shape =
+        (p->shape * onCurve.linear().transpose()).rowwise() + onCurve.translation().transpose();
   used.name = "exact";
-  used.reason = "the curve lies on its convex hull: the hull's two sides unfolded are the pieces, and zipped "
-                "they make the hull again (Alexandrov)";
+  used.reason =
+      "the curve lies on its convex hull: the hull's two sides unfolded are the pieces, and zipped "
+      "they make the hull again (Alexandrov)";
   return model;
 }
 
 Result<SolvedPieces> solveCurve(const Curve3& curve, const InverseSettings& job, MessageSink& sink,
-                              const RunHooks& hooks, MemoryEstimate& estimate) {
+                                const RunHooks& hooks, MemoryEstimate& estimate) {
   if (Status s = validateInverseJob(job); !s.isOk()) return s;
   const auto start = Clock::now();
   SolvedPieces run;
@@ -132,13 +139,14 @@ Result<SolvedPieces> solveCurve(const Curve3& curve, const InverseSettings& job,
   // bytes, n the coarsest level's points.
   const double n = job.resolution, coarsest = levels.front();
   estimate = {0.2 * n * n, 37.0 * coarsest * coarsest};
-  if (Status fits = checkMemory(estimate, job.resolution, name + ": the run"); !fits.isOk()) return fits;
+  if (Status fits = checkMemory(estimate, job.resolution, name + ": the run"); !fits.isOk())
+    return fits;
   run.curveLength = closedLength(curve.points);
   run.target.source = curve.source;
   run.target.sha256 = curve.sha256;
   run.timings.read = secondsSince(start);
-  sink.info(format("curve: %.0f points, length %.3f mm", double(curve.points.rows()),
-                   run.curveLength));
+  sink.info(
+      format("curve: %.0f points, length %.3f mm", double(curve.points.rows()), run.curveLength));
 
   InverseOptions options = job.solve;
   detail::connectHooks(options.relaxation, options.solver, hooks);
@@ -162,21 +170,24 @@ Result<SolvedPieces> solveCurve(const Curve3& curve, const InverseSettings& job,
         Result<DForm> exact = exactInverse(init.value(), target, name, job, run.modelUsed);
         run.timings.mesh += secondsSince(meshStart);
         if (exact.isOk()) {
-          sink.info("exact model: the pieces are the curve's convex hull cut along it and unfolded");
+          sink.info(
+              "exact model: the pieces are the curve's convex hull cut along it and unfolded");
           run.model = std::move(exact).value();
           run.target.points = target;
           run.timings.total = secondsSince(start);
           return run;
         }
-        sink.warning(name + ": the exact model failed (" + exact.status().message() + "); optimising instead");
+        sink.warning(name + ": the exact model failed (" + exact.status().message() +
+                     "); optimising instead");
       }
       run.modelUsed.name = "paper";
-      run.modelUsed.reason = !finest ? "the curve has more points than the exact inverse unfolds in one piece (" +
-                                           std::to_string(kMaxPreDFormPoints) + ")"
-                             : run.pre.isHull ? "the exact model failed"
-                                              : "the curve leaves its convex hull: the pieces are optimised from the "
-                                                "filled pre-D-Form, and zipped they take a convex shape (the round "
-                                                "trip says how far from the curve)";
+      run.modelUsed.reason =
+          !finest ? "the curve has more points than the exact inverse unfolds in one piece (" +
+                        std::to_string(kMaxPreDFormPoints) + ")"
+          : run.pre.isHull ? "the exact model failed"
+                           : "the curve leaves its convex hull: the pieces are optimised from the "
+                             "filled pre-D-Form, and zipped they take a convex shape (the round "
+                             "trip says how far from the curve)";
       startModel = std::move(init.value().model);
     } else {
       const double edge = closedLength(target) / double(target.rows());
@@ -185,8 +196,10 @@ Result<SolvedPieces> solveCurve(const Curve3& curve, const InverseSettings& job,
         // Meshing a fine level takes seconds per piece (2-3 s at resolution 1500).
         if (detail::stopRequested(hooks)) return detail::interruptedDuring("the meshing");
         Result<Piece> piece = refinePiece(*coarse, target, clockwise, edge, job.init);
-        if (piece.status().code() == ErrorCode::Interrupted) return piece.status();  // names no file
-        if (!piece.isOk()) return Status(piece.status().code(), name + ": " + piece.status().message());
+        if (piece.status().code() == ErrorCode::Interrupted)
+          return piece.status();  // names no file
+        if (!piece.isOk())
+          return Status(piece.status().code(), name + ": " + piece.status().message());
         *fine = std::move(piece).value();
       }
     }
@@ -199,14 +212,15 @@ Result<SolvedPieces> solveCurve(const Curve3& curve, const InverseSettings& job,
     if (detail::stopRequested(hooks)) return detail::interruptedDuring("the meshing");
     const auto solveStart = Clock::now();
     InverseOptions levelOptions = options;
-    detail::relaxOnlyIfLarge(startModel.a.flat.rows() + startModel.b.flat.rows(), levelOptions.solver,
-                             levelOptions.relaxation);
+    detail::relaxOnlyIfLarge(startModel.a.flat.rows() + startModel.b.flat.rows(),
+                             levelOptions.solver, levelOptions.relaxation);
     if (level > 0) levelOptions.relaxation.relativeTolerance = detail::kRefinedRelaxationTolerance;
     solved = solveInverse(startModel, target, levelOptions);
     run.timings.solve += secondsSince(solveStart);
     if (detail::stopRequested(hooks)) return detail::interruptedDuring("the solve");
     if (!solved.summary.usable())
-      return Status(ErrorCode::SolveFailed, name + ": the solver failed: " + solved.summary.message);
+      return Status(ErrorCode::SolveFailed,
+                    name + ": the solver failed: " + solved.summary.message);
     sink.emit(Level::Debug, format("local-global start: %.0f iterations, energy %.4g -> %.4g",
                                    solved.relaxation.iterations, solved.relaxation.initialEnergy,
                                    solved.relaxation.finalEnergy));
@@ -222,8 +236,8 @@ Result<SolvedPieces> solveCurve(const Curve3& curve, const InverseSettings& job,
 
 }  // namespace
 
-Result<SolvedPieces> solvePieces(const Curve3& curve, const InverseSettings& settings, MessageSink& sink,
-                                 const RunHooks& hooks) {
+Result<SolvedPieces> solvePieces(const Curve3& curve, const InverseSettings& settings,
+                                 MessageSink& sink, const RunHooks& hooks) {
   MemoryEstimate estimate;
   try {
     return solveCurve(curve, settings, sink, hooks, estimate);

@@ -17,7 +17,7 @@ namespace dform {
 
 /// Everything an inverse run needs besides the curve.
 struct InverseSettings {
-  int resolution = 100;     ///< seam vertices
+  int resolution = 100;  ///< seam vertices
   InverseInitOptions init;
   InverseOptions solve;
 };
@@ -28,8 +28,8 @@ struct SolvedPieces {
   /// exact: the curve lies on its convex hull and the pieces are the hull's two sides unfolded,
   /// zipped by the exact engine; paper: the optimisation from the pre-D-Form.
   ModelUsed modelUsed;
-  Curve3 target;           ///< the resampled curve the seam follows (mm)
-  PreDForm pre;            ///< how the start was built (on-hull or not)
+  Curve3 target;  ///< the resampled curve the seam follows (mm)
+  PreDForm pre;   ///< how the start was built (on-hull or not)
   LocalGlobalSummary relaxation;
   SolverSummary summary;
   double curveLength = 0;  ///< length of the curve as read (mm)
@@ -43,8 +43,8 @@ Status validateInverseJob(const InverseSettings& job);
 /// the curve lies on its convex hull) and optimised. Messages and errors name the curve by its
 /// `source` (a file path), else "the curve". A failed allocation is an error with the resolution
 /// that fits.
-Result<SolvedPieces> solvePieces(const Curve3& curve, const InverseSettings& settings, MessageSink& sink,
-                                 const RunHooks& hooks = {});
+Result<SolvedPieces> solvePieces(const Curve3& curve, const InverseSettings& settings,
+                                 MessageSink& sink, const RunHooks& hooks = {});
 
 /// What messages and errors call the curve: its file, else "the curve".
 std::string curveLabel(const Curve3& curve);

@@ -1,7 +1,6 @@
 #include "inverse/pre_dform.h"
 
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -86,7 +85,8 @@ class HullFacets {
           const int u = hullF(f, e), v = hullF(f, (e + 1) % 3);
           member_.back()[std::size_t(u)] = 1;
           for (int g : facesOfEdge[{std::min(u, v), std::max(u, v)}]) {
-            if (facetOfFace[std::size_t(g)] >= 0 || faceNormal[std::size_t(g)].dot(n) <= 0.0) continue;
+            if (facetOfFace[std::size_t(g)] >= 0 || faceNormal[std::size_t(g)].dot(n) <= 0.0)
+              continue;
             bool inPlane = true;
             for (int c = 0; c < 3; ++c)
               inPlane = inPlane && std::abs(n.dot(Vec3(C.row(hullF(g, c)))) - offset) <= coplanar;
@@ -108,7 +108,8 @@ class HullFacets {
       const std::vector<char>& in = member_[std::size_t(facet)];
       if (!in[std::size_t(k)] || !in[std::size_t(j)]) continue;
       const Vec3 a = C_.row(i);
-      const double facing = (Vec3(C_.row(k)) - a).cross(Vec3(C_.row(j)) - a).dot(normal_[std::size_t(facet)]);
+      const double facing =
+          (Vec3(C_.row(k)) - a).cross(Vec3(C_.row(j)) - a).dot(normal_[std::size_t(facet)]);
       return facing > 0.0 ? 1 : facing < 0.0 ? -1 : 0;
     }
     return 0;
@@ -131,9 +132,10 @@ long long triangleKey(int n, int i, int k, int j) {
 struct DiscCosts {
   const Points3* C = nullptr;
   const HullFacets* hull = nullptr;
-  double areaScale = 1.0;         // the hull's surface area: filled area is measured in it
+  double areaScale = 1.0;  // the hull's surface area: filled area is measured in it
   double foldWeight = 1.0;
-  double degeneratePenalty = 1.0; // dwarfs every other cost: a degenerate triangle is a last resort
+  double degeneratePenalty =
+      1.0;  // dwarfs every other cost: a degenerate triangle is a last resort
   const std::unordered_set<long long>* banned = nullptr;  // triangles found crossing: as degenerate
 };
 
@@ -223,7 +225,8 @@ std::vector<char> chordsOf(const DiscSolution& disc, int n) {
   for (const auto& t : disc.triangles) {
     const std::array<std::pair<int, int>, 3> edges{{{t[0], t[1]}, {t[1], t[2]}, {t[0], t[2]}}};
     for (const auto& [u, v] : edges)
-      if (v - u >= 2 && !(u == 0 && v == n - 1)) chords[std::size_t(u) * std::size_t(n) + std::size_t(v)] = 1;
+      if (v - u >= 2 && !(u == 0 && v == n - 1))
+        chords[std::size_t(u) * std::size_t(n) + std::size_t(v)] = 1;
   }
   return chords;
 }
@@ -259,8 +262,10 @@ std::vector<std::pair<int, int>> findCrossingTriangles(const Points3& V, const F
       int shared = 0, restF = 0, restG = 0;
       std::array<int, 3> otherF{}, otherG{};
       for (int x : tf) {
-        if (std::find(tg.begin(), tg.end(), x) != tg.end()) of[std::size_t(shared++)] = x;
-        else otherF[std::size_t(restF++)] = x;
+        if (std::find(tg.begin(), tg.end(), x) != tg.end())
+          of[std::size_t(shared++)] = x;
+        else
+          otherF[std::size_t(restF++)] = x;
       }
       for (int x : tg)
         if (std::find(tf.begin(), tf.end(), x) == tf.end()) otherG[std::size_t(restG++)] = x;
@@ -269,12 +274,13 @@ std::vector<std::pair<int, int>> findCrossingTriangles(const Points3& V, const F
       if (shared == 2) {
         const Vec3 u = P(of[0]), v = P(of[1]), a = P(otherF[0]), b = P(otherG[0]);
         const Vec3 na = (v - u).cross(a - u), nb = (v - u).cross(b - u);
-        crossing = std::abs(orient(u, v, a, b)) <= 1e-12 * na.norm() * (b - u).norm() &&
-                   na.dot(nb) > 0.0;
+        crossing =
+            std::abs(orient(u, v, a, b)) <= 1e-12 * na.norm() * (b - u).norm() && na.dot(nb) > 0.0;
       } else if (shared == 1) {
         const Vec3 v = P(of[0]);
         crossing =
-            segmentCrossesTriangle(P(otherF[0]), P(otherF[1]), v, P(otherG[0]), P(otherG[1]), tol) ||
+            segmentCrossesTriangle(P(otherF[0]), P(otherF[1]), v, P(otherG[0]), P(otherG[1]),
+                                   tol) ||
             segmentCrossesTriangle(P(otherG[0]), P(otherG[1]), v, P(otherF[0]), P(otherF[1]), tol);
       } else if (shared == 0) {
         for (int e = 0; e < 3 && !crossing; ++e) {
@@ -305,7 +311,9 @@ Status prefixed(const Status& status, const std::string& source) {
 
 Result<PreDForm> buildPreDForm(const Points3& C, const InverseInitOptions& options) {
   const int n = int(C.rows());
-  if (n < 4) return invalid("the curve needs at least 4 points to enclose a volume; it has " + std::to_string(n));
+  if (n < 4)
+    return invalid("the curve needs at least 4 points to enclose a volume; it has " +
+                   std::to_string(n));
   if (!C.allFinite()) return invalid("the curve has a non-finite coordinate");
   const double diagonal = (C.colwise().maxCoeff() - C.colwise().minCoeff()).norm();
   // Points closer than the hull's flatness tolerance (1e-9 of the size) are the same point.
@@ -389,7 +397,9 @@ Result<PreDForm> buildPreDForm(const Points3& C, const InverseInitOptions& optio
       bestB = first == 1 ? two : one;
     }
     if (!(bestCost < kInf))
-      return invalid("the curve cannot be split into two discs: no two triangulations of it share only the curve");
+      return invalid(
+          "the curve cannot be split into two discs: no two triangulations of it share only the "
+          "curve");
 
     // Disc A's triangles run the curve forwards, disc B's backwards. If that closed surface is
     // inside out (possible only far from the hull), the sides swap.
@@ -423,17 +433,21 @@ Result<PreDForm> buildPreDForm(const Points3& C, const InverseInitOptions& optio
 
   for (Eigen::Index f = 0; f < all.rows(); ++f)
     if (degenerate(C.row(all(f, 0)), C.row(all(f, 1)), C.row(all(f, 2))))
-      return invalid("the curve cannot be split into two discs without a degenerate triangle: "
-                     "curve points " + triangleName(all, int(f)) + " are collinear");
+      return invalid(
+          "the curve cannot be split into two discs without a degenerate triangle: "
+          "curve points " +
+          triangleName(all, int(f)) + " are collinear");
   if (!crossings.empty())
-    return invalid("the curve cannot be split into two discs: the pre-D-Form built on it crosses "
-                   "itself (triangles on curve points " + triangleName(all, crossings[0].first) +
-                   " and " + triangleName(all, crossings[0].second) +
-                   "); the curve may be knotted or wind around itself");
+    return invalid(
+        "the curve cannot be split into two discs: the pre-D-Form built on it crosses "
+        "itself (triangles on curve points " +
+        triangleName(all, crossings[0].first) + " and " + triangleName(all, crossings[0].second) +
+        "); the curve may be knotted or wind around itself");
 
   const std::string faces = std::to_string(all.rows()) + " triangles";
   if (pre.isHull)
-    pre.summary = "on-hull curve: the pre-D-Form is its convex hull cut along the curve (" + faces + ")";
+    pre.summary =
+        "on-hull curve: the pre-D-Form is its convex hull cut along the curve (" + faces + ")";
   else if (pre.onHull)
     pre.summary = "on-hull curve, but not every curve edge is a hull edge: " +
                   std::to_string(pre.hullTriangles) + " hull triangles kept, " +
@@ -484,7 +498,8 @@ Result<InverseInit> initialiseInverse(const Points3& C, const InverseInitOptions
 
     Result<FlatMesh> mesh = triangulateDomain(outline, {}, meshing);
     if (!mesh.isOk())
-      return Status(mesh.status().code(), "piece " + name + " cannot be meshed: " + mesh.status().message());
+      return Status(mesh.status().code(),
+                    "piece " + name + " cannot be meshed: " + mesh.status().message());
     Piece& piece = isA ? init.model.a : init.model.b;
     piece.name = name;
     piece.flat = mesh.value().V;

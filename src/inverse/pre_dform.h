@@ -32,12 +32,12 @@ struct PreDForm {
   Faces discA;
   /// The other disc, triangles outward-facing, so they run the curve backwards: piece B.
   Faces discB;
-  bool onHull = false;               ///< every curve point is a vertex of the convex hull (paper)
-  std::vector<int> insideVertices;   ///< curve points that are not hull vertices, ascending
-  bool isHull = false;               ///< every triangle lies on the convex hull: the pre-D-Form is the hull
-  int hullTriangles = 0;             ///< triangles of discA + discB that are hull faces
-  int filledTriangles = 0;           ///< triangles of discA + discB that are not
-  std::string summary;               ///< one line describing the case, for the run's messages
+  bool onHull = false;              ///< every curve point is a vertex of the convex hull (paper)
+  std::vector<int> insideVertices;  ///< curve points that are not hull vertices, ascending
+  bool isHull = false;      ///< every triangle lies on the convex hull: the pre-D-Form is the hull
+  int hullTriangles = 0;    ///< triangles of discA + discB that are hull faces
+  int filledTriangles = 0;  ///< triangles of discA + discB that are not
+  std::string summary;      ///< one line describing the case, for the run's messages
 };
 
 /// Builds the pre-D-Form of the closed curve C (#n by 3, n >= 4, any frame and scale): the

@@ -15,7 +15,9 @@ namespace {
 
 Status invalid(std::string message) { return {ErrorCode::InputInvalid, std::move(message)}; }
 
-double cross2(const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); }
+double cross2(const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
+  return u.x() * v.y() - u.y() * v.x();
+}
 
 // Places w to the left of the directed segment p -> q at distance a from p and b from q.
 Eigen::Vector2d placeLeft(const Eigen::Vector2d& p, const Eigen::Vector2d& q, double a, double b) {
@@ -49,7 +51,8 @@ Result<Points2> unfoldDisc(const Points3& V, const Faces& F) {
       used[std::size_t(u)] = true;
     }
   for (Eigen::Index v = 0; v < nV; ++v)
-    if (!used[std::size_t(v)]) return invalid("cannot unfold: vertex " + std::to_string(v) + " is unused");
+    if (!used[std::size_t(v)])
+      return invalid("cannot unfold: vertex " + std::to_string(v) + " is unused");
 
   auto edgeLength = [&](int u, int v) { return (V.row(u) - V.row(v)).norm(); };
   Points2 flat = Points2::Zero(nV, 2);

@@ -1,13 +1,12 @@
 #include "io/io_util.h"
 
-#include <vector>
-
 #include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <vector>
 
 namespace dform::io_detail {
 
@@ -19,12 +18,13 @@ std::string lowerExtension(const std::string& path) {
   return ext;
 }
 
-Eigen::Matrix<double, Eigen::Dynamic, 2> dropRepeatedPoints(const Eigen::Matrix<double, Eigen::Dynamic, 2>& P,
-                                                            bool closed) {
+Eigen::Matrix<double, Eigen::Dynamic, 2> dropRepeatedPoints(
+    const Eigen::Matrix<double, Eigen::Dynamic, 2>& P, bool closed) {
   std::vector<Eigen::Index> keep;
   for (Eigen::Index i = 0; i < P.rows(); ++i)
     if (keep.empty() || (P.row(i) - P.row(keep.back())).norm() > kSamePointMm) keep.push_back(i);
-  while (closed && keep.size() > 1 && (P.row(keep.back()) - P.row(keep.front())).norm() <= kSamePointMm)
+  while (closed && keep.size() > 1 &&
+         (P.row(keep.back()) - P.row(keep.front())).norm() <= kSamePointMm)
     keep.pop_back();
   Eigen::Matrix<double, Eigen::Dynamic, 2> out(Eigen::Index(keep.size()), 2);
   for (std::size_t k = 0; k < keep.size(); ++k) out.row(Eigen::Index(k)) = P.row(keep[k]);

@@ -16,8 +16,8 @@ constexpr double kSamePointMm = 1e-9;
 
 /// P (#P by 2) without points within kSamePointMm of the previous one (and, when `closed`, without
 /// last points that repeat the first).
-Eigen::Matrix<double, Eigen::Dynamic, 2> dropRepeatedPoints(const Eigen::Matrix<double, Eigen::Dynamic, 2>& P,
-                                                            bool closed);
+Eigen::Matrix<double, Eigen::Dynamic, 2> dropRepeatedPoints(
+    const Eigen::Matrix<double, Eigen::Dynamic, 2>& P, bool closed);
 /// Lower-case extension without the dot ("svg"), empty when there is none.
 std::string lowerExtension(const std::string& path);
 

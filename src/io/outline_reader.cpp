@@ -52,18 +52,21 @@ std::optional<Vec2> crossingPoint(const Points2& A, const Points2& B) {
   const auto edges = findCrossing(A, B);
   if (!edges) return std::nullopt;
   const auto [i, j] = *edges;
-  return segmentsMeetingPoint(A.row(i), A.row((i + 1) % A.rows()), B.row(j), B.row((j + 1) % B.rows()));
+  return segmentsMeetingPoint(A.row(i), A.row((i + 1) % A.rows()), B.row(j),
+                              B.row((j + 1) % B.rows()));
 }
 
 /// Cleans one loop (range check, duplicates removed) and checks it is a simple polygon of
 /// positive area; returns it counter-clockwise.
-Result<Points2> cleanLoop(const std::string& path, const DrawnLine& loop, const OutlineReadOptions& options) {
+Result<Points2> cleanLoop(const std::string& path, const DrawnLine& loop,
+                          const OutlineReadOptions& options) {
   auto fail = [&](const std::string& what) {
     return Status{ErrorCode::InputInvalid, path + ": " + loop.label + " " + what};
   };
   if (const auto bad = io_detail::findBadCoordinate(loop.points, options.maxCoordinate))
     return fail("has a coordinate that " +
-                io_detail::describeBadCoordinate(loop.points(bad->first, bad->second), options.maxCoordinate));
+                io_detail::describeBadCoordinate(loop.points(bad->first, bad->second),
+                                                 options.maxCoordinate));
   Points2 P = io_detail::dropRepeatedPoints(loop.points, true);
   if (P.rows() < 3) return fail("has fewer than 3 distinct points");
   if (const double size = (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm();
@@ -79,7 +82,8 @@ Result<Points2> cleanLoop(const std::string& path, const DrawnLine& loop, const 
   if (const auto hit = findSelfIntersection(P)) {
     const auto [e, f] = *hit;
     const Eigen::Index n = P.rows();
-    const Vec2 where = segmentsMeetingPoint(P.row(e), P.row((e + 1) % n), P.row(f), P.row((f + 1) % n));
+    const Vec2 where =
+        segmentsMeetingPoint(P.row(e), P.row((e + 1) % n), P.row(f), P.row((f + 1) % n));
     return fail("crosses itself near " + fmtPoint(where.transpose()) + " mm");
   }
   const double diagonal = (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm();
@@ -87,7 +91,8 @@ Result<Points2> cleanLoop(const std::string& path, const DrawnLine& loop, const 
   if (std::abs(area) <= kZeroAreaFraction * diagonal * diagonal) return fail("has zero area");
   // Turned counter-clockwise about its first point: start fractions are measured from the point
   // the path was drawn from, whichever way it was drawn.
-  if (area < 0.0) P.bottomRows(P.rows() - 1) = P.bottomRows(P.rows() - 1).colwise().reverse().eval();
+  if (area < 0.0)
+    P.bottomRows(P.rows() - 1) = P.bottomRows(P.rows() - 1).colwise().reverse().eval();
   return P;
 }
 
@@ -126,8 +131,9 @@ Result<Shape2> assembleShape(const std::string& path, const std::vector<DrawnLin
       const std::size_t j = order[m];
       if (!boxes[i].overlaps(boxes[j])) continue;
       if (const auto where = crossingPoint(clean[i], clean[j]))
-        return Status{ErrorCode::InputInvalid, path + ": " + loops[i].label + " and " + loops[j].label +
-                                                   " touch or cross near " + fmtPoint(where->transpose()) + " mm"};
+        return Status{ErrorCode::InputInvalid, path + ": " + loops[i].label + " and " +
+                                                   loops[j].label + " touch or cross near " +
+                                                   fmtPoint(where->transpose()) + " mm"};
       if (insidePolygon(clean[j], clean[i].row(0).transpose())) depth[i] = depth[j] + 1;
     }
     pieces += depth[i] % 2 == 0;
@@ -149,16 +155,16 @@ Result<Shape2> assembleShape(const std::string& path, const std::vector<DrawnLin
 // ---- JSON -------------------------------------------------------------------------------------
 
 /// Reads a JSON list of 2D points scaled to mm, as an open line.
-Result<Points2> jsonLine(const std::string& path, const nlohmann::json& list, const std::string& what,
-                         double scale) {
+Result<Points2> jsonLine(const std::string& path, const nlohmann::json& list,
+                         const std::string& what, double scale) {
   Result<Eigen::MatrixXd> rows = io_detail::jsonPointList(path, list, what, 2, scale);
   if (!rows.isOk()) return rows.status();
   return Points2(rows.value());
 }
 
 /// Reads a JSON outline list scaled to mm; a repeated closing point is dropped.
-Result<Points2> jsonLoop(const std::string& path, const nlohmann::json& list, const std::string& what,
-                         double scale) {
+Result<Points2> jsonLoop(const std::string& path, const nlohmann::json& list,
+                         const std::string& what, double scale) {
   Result<Points2> P = jsonLine(path, list, what, scale);
   if (P.isOk() && P.value().rows() > 1 && P.value().row(0) == P.value().row(P.value().rows() - 1))
     P.value().conservativeResize(P.value().rows() - 1, 2);
@@ -177,7 +183,8 @@ Result<io_detail::Drawing> readJsonDrawing(const std::string& path, const std::s
   const Result<double> scale = io_detail::jsonUnitScale(path, doc);
   if (!scale.isOk()) return scale.status();
   io_detail::Drawing drawing;
-  Result<Points2> outline = jsonLoop(path, doc.is_object() ? doc["points"] : doc, "the outline", scale.value());
+  Result<Points2> outline =
+      jsonLoop(path, doc.is_object() ? doc["points"] : doc, "the outline", scale.value());
   if (!outline.isOk()) return outline.status();
   std::size_t points = std::size_t(outline.value().rows());
   drawing.loops.push_back({std::move(outline).value(), "the outline"});
@@ -185,7 +192,8 @@ Result<io_detail::Drawing> readJsonDrawing(const std::string& path, const std::s
     if (!doc.is_object() || !doc.contains(key)) continue;
     const nlohmann::json& lists = doc[key];
     if (!lists.is_array())
-      return Status{ErrorCode::InputUnreadable, path + ": \"" + key + "\" is not a list of point lists"};
+      return Status{ErrorCode::InputUnreadable,
+                    path + ": \"" + key + "\" is not a list of point lists"};
     const bool holes = std::string(key) == "holes";
     for (std::size_t k = 0; k < lists.size(); ++k) {
       const std::string name = (holes ? "hole " : "crease ") + std::to_string(k + 1);
@@ -204,9 +212,11 @@ Result<io_detail::Drawing> readJsonDrawing(const std::string& path, const std::s
 
 Result<Shape2> parseShape(std::string text, const std::string& source,
                           const OutlineReadOptions& options) {
-  if (!(options.flattenTolerance > 0.0) || !(options.maxCoordinate > 0.0) || !(options.closeTolerance >= 0.0))
-    return Status{ErrorCode::Usage,
-                  source + ": the flatten tolerance and coordinate limit must be positive, the closing tolerance not negative"};
+  if (!(options.flattenTolerance > 0.0) || !(options.maxCoordinate > 0.0) ||
+      !(options.closeTolerance >= 0.0))
+    return Status{ErrorCode::Usage, source +
+                                        ": the flatten tolerance and coordinate limit must be "
+                                        "positive, the closing tolerance not negative"};
   std::string ext = io_detail::lowerExtension(source);
   if (ext != "svg" && ext != "json") {  // sniff the content of files without a known extension
     const auto first = text.find_first_not_of(" \t\r\n\xef\xbb\xbf");
@@ -220,7 +230,8 @@ Result<Shape2> parseShape(std::string text, const std::string& source,
   if (!drawing.isOk()) return drawing.status();
   Result<Shape2> shape = assembleShape(source, drawing.value().loops, options);
   if (!shape.isOk()) return shape;
-  if (Status s = io_detail::fitCreases(source, drawing.value().creases, options, shape.value()); !s.isOk())
+  if (Status s = io_detail::fitCreases(source, drawing.value().creases, options, shape.value());
+      !s.isOk())
     return s;
   return shape;
 }

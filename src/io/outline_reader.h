@@ -17,7 +17,7 @@ struct OutlineReadOptions {
   double flattenTolerance = 1e-4;
   /// mm; a subpath whose end is this close to its start is closed (a gap a designer cannot see).
   double closeTolerance = 0.01;
-  double maxCoordinate = 1.0e6;    ///< mm; larger coordinates are rejected as unreasonable
+  double maxCoordinate = 1.0e6;  ///< mm; larger coordinates are rejected as unreasonable
   /// Points in all outlines of a file together, after flattening; a file with more is refused as
   /// soon as that is known. No drawn piece needs as many, and reading stays under a second and
   /// a few hundred MB (docs/io.md, "Limits").

@@ -28,11 +28,9 @@ namespace {
 
 using Vec2 = Eigen::Vector2d;
 
-
 /// Deeper element nesting is refused before parsing: rapidxml and svgpp recurse per level, and no
 /// drawing needs it.
 constexpr int kMaxElementDepth = 256;
-
 
 /// A problem found during the traversal; the catch site adds the file and element names.
 struct SvgProblem {
@@ -340,8 +338,9 @@ void SvgContext::finishSubpath(std::vector<Vec2>& points, bool closed, int index
   const bool closedLoop = closed || gap <= document_->closeTolerance;
   if (crease_ && closedLoop) {
     document_->currentLabel = label;
-    throw SvgProblem{ErrorCode::InputInvalid,
-                     "is a closed crease line (its ends meet); a crease runs from boundary to boundary"};
+    throw SvgProblem{
+        ErrorCode::InputInvalid,
+        "is a closed crease line (its ends meet); a crease runs from boundary to boundary"};
   }
   if (!crease_ && gap <= document_->closeTolerance) {
     points.pop_back();
@@ -352,7 +351,8 @@ void SvgContext::finishSubpath(std::vector<Vec2>& points, bool closed, int index
   }
   DrawnLine line;
   line.points.resize(Eigen::Index(points.size()), 2);
-  for (std::size_t i = 0; i < points.size(); ++i) line.points.row(Eigen::Index(i)) = points[i].transpose();
+  for (std::size_t i = 0; i < points.size(); ++i)
+    line.points.row(Eigen::Index(i)) = points[i].transpose();
   line.label = label;
   document_->totalPoints += points.size();
   (crease_ ? document_->drawing.creases : document_->drawing.loops).push_back(std::move(line));

@@ -67,8 +67,9 @@ std::optional<std::string> nonFiniteNumber(const std::string& text) {
     char* end = nullptr;
     const double value = std::strtod(token.c_str(), &end);
     // A unit may follow ("1e999mm").
-    const bool unitOnly = std::all_of(static_cast<const char*>(end), token.c_str() + token.size(),
-                                      [](char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '%'; });
+    const bool unitOnly =
+        std::all_of(static_cast<const char*>(end), token.c_str() + token.size(),
+                    [](char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '%'; });
     if (end != token.c_str() && unitOnly && !std::isfinite(value)) return token;
   }
   return std::nullopt;
@@ -78,8 +79,8 @@ Result<RootViewport> rootViewport(const XmlNode* svg) {
   for (const char* name : {"width", "height", "viewBox"})
     if (const auto text = attributeValue(svg, name))
       if (const auto token = nonFiniteNumber(std::string(*text)))
-        return Status{ErrorCode::InputInvalid, "has a non-finite number '" + *token + "' in its '" +
-                                                   name + "' attribute"};
+        return Status{ErrorCode::InputInvalid,
+                      "has a non-finite number '" + *token + "' in its '" + name + "' attribute"};
   // A root size in a unit that is not a length (a typo, "300furlong", or a percentage of a
   // viewport the file does not have) gives no size in mm: refused like an element's unknown unit,
   // not read as px.

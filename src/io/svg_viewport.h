@@ -49,8 +49,8 @@ std::optional<std::array<double, 4>> parseViewBox(std::optional<std::string_view
 std::optional<std::string> nonFiniteNumber(const std::string& text);
 
 struct RootViewport {
-  Affine userToPage;                    // user units to page mm, y down (as SVG draws)
-  std::optional<double> pageHeight;     // mm, when the document says how tall it is
+  Affine userToPage;                               // user units to page mm, y down (as SVG draws)
+  std::optional<double> pageHeight;                // mm, when the document says how tall it is
   Eigen::Vector2d userViewportSize{100.0, 100.0};  // user units, for percentage lengths
 };
 

@@ -3,14 +3,13 @@
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Spatial_sort_traits_adapter_2.h>
-#include <CGAL/property_map.h>
-#include <CGAL/spatial_sort.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/convex_hull_3.h>
+#include <CGAL/property_map.h>
+#include <CGAL/spatial_sort.h>
 
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -29,12 +28,13 @@ namespace dform {
 namespace {
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;          // input row
-using Fbi = CGAL::Triangulation_face_base_with_info_2<int, K>;           // nesting level
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;  // input row
+using Fbi = CGAL::Triangulation_face_base_with_info_2<int, K>;   // nesting level
 using Fb = CGAL::Constrained_triangulation_face_base_2<K, Fbi>;
 using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
 // Any crossing of constraints, even through a vertex, throws: the caller's loops must be disjoint.
-using Cdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::No_constraint_intersection_tag>;
+using Cdt =
+    CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::No_constraint_intersection_tag>;
 
 Status invalid(std::string message) { return {ErrorCode::InputInvalid, std::move(message)}; }
 
@@ -42,7 +42,8 @@ Status invalid(std::string message) { return {ErrorCode::InputInvalid, std::move
 // (the memory check before meshing could not foresee it), a usage matter like a resolution too
 // large for the machine (README "Exit codes").
 Status outOfMemory(const char* what) {
-  return {ErrorCode::Usage, std::string("out of memory while ") + what + "; try a lower --resolution"};
+  return {ErrorCode::Usage,
+          std::string("out of memory while ") + what + "; try a lower --resolution"};
 }
 
 // Level 0 is the unbounded region; crossing a loop's edge enters the next level (`isChainEdge`
@@ -63,7 +64,7 @@ void markNestingLevels(Cdt& cdt, IsChainEdge isChainEdge) {
         const Cdt::Face_handle g = f->neighbor(i);
         if (g->info() != -1) continue;
         const bool bounds = f->is_constrained(i) && !isChainEdge(f->vertex(Cdt::cw(i))->info(),
-                                                                  f->vertex(Cdt::ccw(i))->info());
+                                                                 f->vertex(Cdt::ccw(i))->info());
         (bounds ? across : stack).push_back(g);
       }
     }
@@ -87,7 +88,8 @@ Result<Faces> constrainedDelaunay(const Points2& P, const std::vector<Loop>& loo
   // and so the triangulation of cocircular lattice points, is the one the range insertion makes.
   std::vector<std::size_t> order(static_cast<std::size_t>(n));
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  using SortTraits = CGAL::Spatial_sort_traits_adapter_2<K, CGAL::Pointer_property_map<K::Point_2>::type>;
+  using SortTraits =
+      CGAL::Spatial_sort_traits_adapter_2<K, CGAL::Pointer_property_map<K::Point_2>::type>;
   CGAL::spatial_sort(order.begin(), order.end(), SortTraits(CGAL::make_property_map(points)));
   Cdt cdt;
   std::vector<Cdt::Vertex_handle> vertex(static_cast<std::size_t>(n));
@@ -105,13 +107,15 @@ Result<Faces> constrainedDelaunay(const Points2& P, const std::vector<Loop>& loo
 
   std::vector<std::pair<int, int>> edges;  // every constraint, loops' first
   for (const Loop& loop : loops)
-    for (int k = 0; k < loop.count; ++k) edges.emplace_back(loop.first + k, loop.first + (k + 1) % loop.count);
+    for (int k = 0; k < loop.count; ++k)
+      edges.emplace_back(loop.first + k, loop.first + (k + 1) % loop.count);
   const std::size_t loopEdges = edges.size();
   for (const std::vector<int>& chain : chains)
     for (std::size_t k = 0; k + 1 < chain.size(); ++k) edges.emplace_back(chain[k], chain[k + 1]);
   std::vector<std::pair<int, int>> chainEdges;
   for (std::size_t e = loopEdges; e < edges.size(); ++e)
-    chainEdges.emplace_back(std::min(edges[e].first, edges[e].second), std::max(edges[e].first, edges[e].second));
+    chainEdges.emplace_back(std::min(edges[e].first, edges[e].second),
+                            std::max(edges[e].first, edges[e].second));
   std::sort(chainEdges.begin(), chainEdges.end());
 
   const char* const kTouching =
@@ -130,7 +134,8 @@ Result<Faces> constrainedDelaunay(const Points2& P, const std::vector<Loop>& loo
     if (!cdt.is_edge(vertex[a], vertex[b])) return invalid(kTouching);
 
   markNestingLevels(cdt, [&](int a, int b) {
-    return std::binary_search(chainEdges.begin(), chainEdges.end(), std::make_pair(std::min(a, b), std::max(a, b)));
+    return std::binary_search(chainEdges.begin(), chainEdges.end(),
+                              std::make_pair(std::min(a, b), std::max(a, b)));
   });
   for (std::size_t e = loopEdges; e < edges.size(); ++e) {  // a chain runs inside the domain
     Cdt::Face_handle face;
@@ -230,7 +235,8 @@ Result<ConvexHull3> convexHull3(const Points3& P) {
                             c = P.row(hull.F(f, 2));
       const Eigen::Vector3d normal = (b - a).cross(c - a);
       const double length = normal.norm();
-      if (length > 0.0) nearest = std::min(nearest, normal.dot(a - Eigen::Vector3d(P.row(i))) / length);
+      if (length > 0.0)
+        nearest = std::min(nearest, normal.dot(a - Eigen::Vector3d(P.row(i))) / length);
     }
     hull.distanceToHull[std::size_t(i)] = std::max(0.0, nearest);
   }

@@ -9,8 +9,8 @@
 namespace dform {
 
 struct ConvexHull3 {
-  Faces F;                    ///< #H by 3 indices into the input points, outward-facing
-  std::vector<bool> onHull;   ///< per input point: is it a vertex of the hull
+  Faces F;                   ///< #H by 3 indices into the input points, outward-facing
+  std::vector<bool> onHull;  ///< per input point: is it a vertex of the hull
   /// Per input point: distance to the hull's surface (input units). 0 for hull vertices; a point
   /// on a hull face but not a vertex has a distance near 0 and onHull false.
   std::vector<double> distanceToHull;

@@ -49,7 +49,8 @@ Status checkLoop(const Points2& P, const std::string& name) {
 // edge" looks at the 3 by 3 cells around q only.
 class EdgeGrid {
  public:
-  EdgeGrid(const Points2& P, const std::vector<std::pair<int, int>>& edges, double h) : P_(P), h_(h) {
+  EdgeGrid(const Points2& P, const std::vector<std::pair<int, int>>& edges, double h)
+      : P_(P), h_(h) {
     lo_ = P.colwise().minCoeff().transpose();
     nx_ = int(std::floor((P.col(0).maxCoeff() - lo_.x()) / h)) + 1;
     ny_ = int(std::floor((P.col(1).maxCoeff() - lo_.y()) / h)) + 1;
@@ -62,7 +63,8 @@ class EdgeGrid {
       const int steps = int(std::ceil((pb - pa).norm() / (0.5 * h))) + 1;
       for (int s = 0; s <= steps; ++s) {
         std::vector<int>& cell = cells_[index(pa + (pb - pa) * (double(s) / steps))];
-        if (cell.empty() || cell.back() != int(edges_.size()) - 1) cell.push_back(int(edges_.size()) - 1);
+        if (cell.empty() || cell.back() != int(edges_.size()) - 1)
+          cell.push_back(int(edges_.size()) - 1);
       }
     }
   }
@@ -100,7 +102,8 @@ class EdgeGrid {
 // Points of a hexagonal lattice of spacing h inside the domain (even-odd over all loops) and at
 // least kClearance * h from every constraint edge (loops' and interior lines').
 std::vector<Eigen::Vector2d> latticePoints(const Points2& P, const std::vector<Loop>& loops,
-                                           const std::vector<std::pair<int, int>>& constraintEdges, double h) {
+                                           const std::vector<std::pair<int, int>>& constraintEdges,
+                                           double h) {
   const double rowStep = h * std::sqrt(3.0) / 2.0;
   const double x0 = P.col(0).minCoeff(), y0 = P.col(1).minCoeff();
   const int rows = int(std::floor((P.col(1).maxCoeff() - y0) / rowStep)) + 1;
@@ -116,7 +119,8 @@ std::vector<Eigen::Vector2d> latticePoints(const Points2& P, const std::vector<L
       for (int j = jLo; j <= jHi; ++j) {
         const double y = rowY(j);
         if ((a.y() > y) != (b.y() > y))  // half-open, so a vertex on the row counts once
-          crossings[std::size_t(j)].push_back(a.x() + (y - a.y()) * (b.x() - a.x()) / (b.y() - a.y()));
+          crossings[std::size_t(j)].push_back(a.x() +
+                                              (y - a.y()) * (b.x() - a.x()) / (b.y() - a.y()));
       }
     }
   const EdgeGrid grid(P, constraintEdges, h);
@@ -130,7 +134,8 @@ std::vector<Eigen::Vector2d> latticePoints(const Points2& P, const std::vector<L
       const int iHi = int(std::floor((xs[s + 1] - x0) / h - shift));
       for (int i = iLo; i <= iHi; ++i) {
         const Eigen::Vector2d q(x0 + (i + shift) * h, rowY(j));
-        if (q.x() > xs[s] && q.x() < xs[s + 1] && !grid.near(q, kClearance * h)) points.push_back(q);
+        if (q.x() > xs[s] && q.x() < xs[s + 1] && !grid.near(q, kClearance * h))
+          points.push_back(q);
       }
     }
   }
@@ -146,7 +151,8 @@ Eigen::Vector2d circumcentre(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
   const Eigen::Vector2d u = b - a, v = c - a;
   const double d = 2.0 * (u.x() * v.y() - u.y() * v.x());
   return a + Eigen::Vector2d(v.y() * u.squaredNorm() - u.y() * v.squaredNorm(),
-                             u.x() * v.squaredNorm() - v.x() * u.squaredNorm()) / d;
+                             u.x() * v.squaredNorm() - v.x() * u.squaredNorm()) /
+                 d;
 }
 
 // One Gauss-Seidel sweep moving each free vertex (index >= fixedCount) to its optimal-Delaunay
@@ -186,7 +192,8 @@ double smoothInterior(Points2& V, const Faces& F, int fixedCount) {
     if (!(area > 0.0)) continue;
     // Clearly counter-clockwise: each triangle keeps at least 1% of the star's mean area.
     const double minArea = 0.01 * area / double(link.size());
-    for (const Eigen::Vector2d& target : {Eigen::Vector2d(odt / area), Eigen::Vector2d(centroid / area)}) {
+    for (const Eigen::Vector2d& target :
+         {Eigen::Vector2d(odt / area), Eigen::Vector2d(centroid / area)}) {
       if (!target.allFinite()) continue;
       const bool valid = std::all_of(link.begin(), link.end(), [&](const std::pair<int, int>& e) {
         return twiceArea(target, V.row(e.first), V.row(e.second)) > minArea;
@@ -218,7 +225,8 @@ double minInteriorAngle(const Points2& V, const Faces& F, int fixedCount) {
 }  // namespace
 
 Result<FlatMesh> triangulateDomain(const Points2& boundary, const std::vector<Points2>& holes,
-                                   const TriangulateOptions& options, const std::vector<InteriorLine>& lines) {
+                                   const TriangulateOptions& options,
+                                   const std::vector<InteriorLine>& lines) {
   const double h = options.targetEdgeLength;
   if (!std::isfinite(h) || h <= 0.0)
     return Status(ErrorCode::Usage, "the target edge length must be positive");
@@ -260,12 +268,14 @@ Result<FlatMesh> triangulateDomain(const Points2& boundary, const std::vector<Po
   for (std::size_t k = 0; k < lines.size(); ++k) {
     const InteriorLine& line = lines[k];
     if (line.from < 0 || line.from >= loopPoints || line.to < 0 || line.to >= loopPoints ||
-        line.interior.cols() != 2 || !line.interior.allFinite() || (line.from == line.to && line.interior.rows() == 0))
+        line.interior.cols() != 2 || !line.interior.allFinite() ||
+        (line.from == line.to && line.interior.rows() == 0))
       return invalid("crease line " + std::to_string(k) + " does not join two boundary points");
     std::vector<int> chain{line.from};
     for (Eigen::Index i = 0; i < line.interior.rows(); ++i) chain.push_back(fixedCount++);
     chain.push_back(line.to);
-    for (std::size_t i = 0; i + 1 < chain.size(); ++i) constraintEdges.emplace_back(chain[i], chain[i + 1]);
+    for (std::size_t i = 0; i + 1 < chain.size(); ++i)
+      constraintEdges.emplace_back(chain[i], chain[i + 1]);
     chains.push_back(std::move(chain));
   }
   Points2 fixed(fixedCount, 2);

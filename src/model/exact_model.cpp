@@ -1,8 +1,8 @@
 #include "model/exact_model.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <Eigen/Dense>
 #include <limits>
 #include <map>
 #include <optional>
@@ -29,7 +29,8 @@ double foundCreaseRadians(long n) { return std::max(20.0, 6.0 * 360.0 / double(n
 // cross the seam (the same places on both pieces), in seam order.
 class ConformingSeam {
  public:
-  ConformingSeam(int n, const std::vector<const exact::BodyEdge*>& edges) : crossings_(std::size_t(n)) {
+  ConformingSeam(int n, const std::vector<const exact::BodyEdge*>& edges)
+      : crossings_(std::size_t(n)) {
     for (const exact::BodyEdge* edge : edges)
       for (const exact::EdgeRun& run : edge->runs)
         for (const exact::SeamPlace& place : {run.from, run.to})
@@ -93,7 +94,8 @@ struct PieceLines {
   std::vector<double> folds;                  ///< radians
   std::vector<std::pair<int, int>> places;    ///< each line's ends in the conforming seam
   std::vector<const exact::BodyEdge*> edges;  ///< the body edge each line follows
-  std::vector<std::pair<double, double>> along;  ///< how far along its edge each line's ends are, mm
+  std::vector<std::pair<double, double>>
+      along;  ///< how far along its edge each line's ends are, mm
 };
 
 // Whether the run between seam places i and j cuts off a single place m between them (an ear of
@@ -108,7 +110,8 @@ bool hugsTheSeam(const Points2& outline, const std::vector<int>& rowOf, int i, i
   const int N = int(rowOf.size());
   for (const auto& [from, to] : {std::pair{i, j}, std::pair{j, i}}) {
     if ((from + 2) % N != to) continue;
-    const Eigen::Vector2d p = outline.row(rowOf[std::size_t(from)]), q = outline.row(rowOf[std::size_t(to)]),
+    const Eigen::Vector2d p = outline.row(rowOf[std::size_t(from)]),
+                          q = outline.row(rowOf[std::size_t(to)]),
                           m = outline.row(rowOf[std::size_t((from + 1) % N)]);
     const Eigen::Vector2d u = (q - p).normalized();
     if (std::abs(u.x() * (m - p).y() - u.y() * (m - p).x()) < kSliver * (q - p).norm()) return true;
@@ -116,8 +119,9 @@ bool hugsTheSeam(const Points2& outline, const std::vector<int>& rowOf, int i, i
   return false;
 }
 
-PieceLines pieceLines(const std::vector<const exact::BodyEdge*>& followed, int piece, const ConformingSeam& seam,
-                      const std::vector<int>& rowOf, const Points2& outline, double edge) {
+PieceLines pieceLines(const std::vector<const exact::BodyEdge*>& followed, int piece,
+                      const ConformingSeam& seam, const std::vector<int>& rowOf,
+                      const Points2& outline, double edge) {
   PieceLines out;
   const int N = seam.size();
   std::map<std::pair<int, int>, std::size_t> seen;
@@ -159,8 +163,9 @@ Eigen::Vector3d onEdge(const exact::ExactGluing& g, const exact::BodyEdge& edge,
 
 // Where each place of the conforming seam is on the body, where the body tells it: its cone
 // points, and the places its followed edges pass (crossings of the seam, flat seam points).
-std::vector<std::optional<Eigen::Vector3d>> seamOnBody(const exact::ExactGluing& g, const ConformingSeam& seam,
-                                                       const std::vector<const exact::BodyEdge*>& followed) {
+std::vector<std::optional<Eigen::Vector3d>> seamOnBody(
+    const exact::ExactGluing& g, const ConformingSeam& seam,
+    const std::vector<const exact::BodyEdge*>& followed) {
   std::vector<std::optional<Eigen::Vector3d>> out(std::size_t(seam.size()));
   for (int i = 0; i < seam.size(); ++i) {
     const exact::SeamPlace place = seam.place(i);
@@ -169,7 +174,8 @@ std::vector<std::optional<Eigen::Vector3d>> seamOnBody(const exact::ExactGluing&
   }
   for (const exact::BodyEdge* edge : followed)
     for (const exact::EdgeRun& run : edge->runs)
-      for (const auto& [place, along] : {std::pair{run.from, run.fromLength}, std::pair{run.to, run.toLength}}) {
+      for (const auto& [place, along] :
+           {std::pair{run.from, run.fromLength}, std::pair{run.to, run.toLength}}) {
         std::optional<Eigen::Vector3d>& at = out[std::size_t(seam.indexOf(place))];
         if (!at) at = onEdge(g, *edge, along);
       }
@@ -188,11 +194,13 @@ constexpr double kAnchorSpread = 1e-10;
 // `out` not set yet that a region places; leaves the others (a region whose anchors lie in a line).
 // The regions of a piece between its constrained edges (followed folds, the seam): each region's
 // vertices, sorted.
-std::vector<std::vector<int>> regionsBetween(const Faces& F, const std::vector<std::vector<int>>& constrained) {
+std::vector<std::vector<int>> regionsBetween(const Faces& F,
+                                             const std::vector<std::vector<int>>& constrained) {
   const Eigen::Index nF = F.rows();
   std::set<std::pair<int, int>> walls;
   for (const std::vector<int>& line : constrained)
-    for (std::size_t k = 0; k + 1 < line.size(); ++k) walls.insert(std::minmax(line[k], line[k + 1]));
+    for (std::size_t k = 0; k + 1 < line.size(); ++k)
+      walls.insert(std::minmax(line[k], line[k + 1]));
   // Each face's three sides, sorted by their ends: a side's two faces are neighbours in the list.
   std::vector<std::pair<std::pair<int, int>, Eigen::Index>> sides;
   sides.reserve(std::size_t(3 * nF));
@@ -224,7 +232,8 @@ std::vector<std::vector<int>> regionsBetween(const Faces& F, const std::vector<s
         }
     }
     std::sort(members.back().begin(), members.back().end());
-    members.back().erase(std::unique(members.back().begin(), members.back().end()), members.back().end());
+    members.back().erase(std::unique(members.back().begin(), members.back().end()),
+                         members.back().end());
   }
   return members;
 }
@@ -251,7 +260,8 @@ void placeOnFaces(const Points2& flat, const std::vector<std::vector<int>>& regi
     // turn about that line open: the region waits for its seam points from the other piece.
     Eigen::Matrix2d spread = Eigen::Matrix2d::Zero();
     for (int v : anchors) spread += (flat.row(v).transpose() - c2) * (flat.row(v) - c2.transpose());
-    const Eigen::Vector2d spreads = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(spread).eigenvalues();
+    const Eigen::Vector2d spreads =
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(spread).eigenvalues();
     if (!(spreads[0] > kAnchorSpread * spreads[1])) continue;
     Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
     for (int v : anchors) {
@@ -277,19 +287,23 @@ void placeOnFaces(const Points2& flat, const std::vector<std::vector<int>>& regi
 // (they are one point of the body): a region of one piece bounded by flat seam points takes its
 // plane from the other piece's region there. Vertices no region places are traced onto the body
 // from a cone point (exact::placeOnBody). False when a vertex cannot be placed.
-bool placeBothOnFaces(const exact::ExactGluing& g, Piece* pieces[2], std::vector<std::optional<Eigen::Vector3d>> known[2],
+bool placeBothOnFaces(const exact::ExactGluing& g, Piece* pieces[2],
+                      std::vector<std::optional<Eigen::Vector3d>> known[2],
                       const std::vector<std::vector<int>> walls[2]) {
   std::vector<std::vector<int>> regions[2];
   for (int p = 0; p < 2; ++p) {
-    pieces[p]->shape = Points3::Constant(pieces[p]->flat.rows(), 3, std::numeric_limits<double>::quiet_NaN());
+    pieces[p]->shape =
+        Points3::Constant(pieces[p]->flat.rows(), 3, std::numeric_limits<double>::quiet_NaN());
     regions[p] = regionsBetween(pieces[p]->F, walls[p]);
   }
-  for (int pass = 0; pass < 3 && !(pieces[0]->shape.allFinite() && pieces[1]->shape.allFinite()); ++pass)
+  for (int pass = 0; pass < 3 && !(pieces[0]->shape.allFinite() && pieces[1]->shape.allFinite());
+       ++pass)
     for (int p = 0; p < 2; ++p) {
       const Piece& other = *pieces[1 - p];
       for (std::size_t k = 0; k < pieces[p]->seam.size(); ++k) {
         std::optional<Eigen::Vector3d>& at = known[p][std::size_t(pieces[p]->seam[k])];
-        if (!at && other.shape.row(other.seam[k]).allFinite()) at = other.shape.row(other.seam[k]).transpose();
+        if (!at && other.shape.row(other.seam[k]).allFinite())
+          at = other.shape.row(other.seam[k]).transpose();
       }
       placeOnFaces(pieces[p]->flat, regions[p], known[p], pieces[p]->shape);
     }
@@ -300,9 +314,11 @@ bool placeBothOnFaces(const exact::ExactGluing& g, Piece* pieces[2], std::vector
       if (!piece.shape.row(v).allFinite()) missing.push_back(v);
     if (missing.empty()) continue;
     Points2 flat(Eigen::Index(missing.size()), 2);
-    for (std::size_t i = 0; i < missing.size(); ++i) flat.row(Eigen::Index(i)) = piece.flat.row(missing[i]);
+    for (std::size_t i = 0; i < missing.size(); ++i)
+      flat.row(Eigen::Index(i)) = piece.flat.row(missing[i]);
     const Points3 traced = exact::placeOnBody(g, p, flat);
-    for (std::size_t i = 0; i < missing.size(); ++i) piece.shape.row(missing[i]) = traced.row(Eigen::Index(i));
+    for (std::size_t i = 0; i < missing.size(); ++i)
+      piece.shape.row(missing[i]) = traced.row(Eigen::Index(i));
     if (!piece.shape.allFinite()) return false;
   }
   return true;
@@ -323,8 +339,8 @@ double longestStretch(const Piece& piece) {
 
 }  // namespace
 
-Result<DForm> exactDForm(exact::SeamPolygons polygons, double targetEdge, const std::string paths[2],
-                         ModelUsed& used) {
+Result<DForm> exactDForm(exact::SeamPolygons polygons, double targetEdge,
+                         const std::string paths[2], ModelUsed& used) {
   const Eigen::Index n = polygons.a.rows();
   used.chordMoveMm = exact::equalizeChords(polygons);
   Result<exact::ExactGluing> glued = exact::glue(polygons);
@@ -343,7 +359,8 @@ Result<DForm> exactDForm(exact::SeamPolygons polygons, double targetEdge, const 
   const ConformingSeam seam(int(n), followed);
   const int N = seam.size();
   const std::vector<std::optional<Eigen::Vector3d>> onBody =
-      g.doublyCovered ? std::vector<std::optional<Eigen::Vector3d>>{} : seamOnBody(g, seam, followed);
+      g.doublyCovered ? std::vector<std::optional<Eigen::Vector3d>>{}
+                      : seamOnBody(g, seam, followed);
   const double creaseAngle = foundCreaseRadians(n);
   DForm model;
   Piece* pieces[2] = {&model.a, &model.b};
@@ -362,7 +379,8 @@ Result<DForm> exactDForm(exact::SeamPolygons polygons, double targetEdge, const 
     meshOptions.targetEdgeLength = targetEdge;
     Result<FlatMesh> mesh = triangulateDomain(outline, {}, meshOptions, lines.lines);
     if (!mesh.isOk())
-      return Status(ErrorCode::SolveFailed, paths[p] + ": the body's folds could not be meshed: " + mesh.status().message());
+      return Status(ErrorCode::SolveFailed, paths[p] + ": the body's folds could not be meshed: " +
+                                                mesh.status().message());
     Piece& out = *pieces[p];
     out.name = p == 0 ? "A" : "B";
     out.flat = std::move(mesh.value().V);
@@ -370,10 +388,13 @@ Result<DForm> exactDForm(exact::SeamPolygons polygons, double targetEdge, const 
     out.seam = rowOf;
     for (std::size_t l = 0; l < lines.lines.size(); ++l) {
       const InteriorLine& line = lines.lines[l];
-      const auto seamPointAt = [&](int i) { return seam.place(i).isSeamPoint() ? seam.place(i).chord : -1; };
+      const auto seamPointAt = [&](int i) {
+        return seam.place(i).isSeamPoint() ? seam.place(i).chord : -1;
+      };
       used.folds.push_back({p, line.from, line.to, seamPointAt(lines.places[l].first),
-                            seamPointAt(lines.places[l].second), lines.edges[l]->from, lines.edges[l]->to,
-                            lines.folds[l], lines.folds[l] > creaseAngle ? int(out.creases.size()) : -1});
+                            seamPointAt(lines.places[l].second), lines.edges[l]->from,
+                            lines.edges[l]->to, lines.folds[l],
+                            lines.folds[l] > creaseAngle ? int(out.creases.size()) : -1});
       if (lines.folds[l] <= creaseAngle) continue;
       used.creases.push_back({p, int(out.creases.size()), lines.folds[l] / kDegree,
                               (outline.row(line.from) - outline.row(line.to)).norm()});
@@ -385,14 +406,16 @@ Result<DForm> exactDForm(exact::SeamPolygons polygons, double targetEdge, const 
       continue;
     }
     known[p].resize(std::size_t(out.flat.rows()));
-    for (int k = 0; k < N; ++k) known[p][std::size_t(rowOf[std::size_t(k)])] = onBody[std::size_t(k)];
+    for (int k = 0; k < N; ++k)
+      known[p][std::size_t(rowOf[std::size_t(k)])] = onBody[std::size_t(k)];
     for (std::size_t l = 0; l < lines.lines.size(); ++l) {
       const std::vector<int>& line = mesh.value().lines[l];
       const Eigen::Vector2d from = out.flat.row(line.front()), to = out.flat.row(line.back());
       const auto [fromAlong, toAlong] = lines.along[l];
       for (std::size_t k = 1; k + 1 < line.size(); ++k) {
         const double share = (out.flat.row(line[k]).transpose() - from).norm() / (to - from).norm();
-        known[p][std::size_t(line[k])] = onEdge(g, *lines.edges[l], fromAlong + share * (toAlong - fromAlong));
+        known[p][std::size_t(line[k])] =
+            onEdge(g, *lines.edges[l], fromAlong + share * (toAlong - fromAlong));
       }
     }
     walls[p] = mesh.value().lines;
@@ -410,8 +433,11 @@ Result<DForm> exactDForm(exact::SeamPolygons polygons, double targetEdge, const 
   // of an edge (seen: 174 %).
   for (int p = 0; p < 2; ++p)
     if (const double longest = longestStretch(*pieces[p]); longest > 1e-4)
-      return Status(ErrorCode::SolveFailed, paths[p] + ": a mesh vertex was placed off the exact D-Form (an edge came "
-                                                      "out longer than it is flat, by " + std::to_string(100 * longest) + " %)");
+      return Status(ErrorCode::SolveFailed,
+                    paths[p] +
+                        ": a mesh vertex was placed off the exact D-Form (an edge came "
+                        "out longer than it is flat, by " +
+                        std::to_string(100 * longest) + " %)");
   return model;
 }
 

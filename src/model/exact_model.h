@@ -16,7 +16,7 @@ namespace dform {
 /// the body through a piece become mesh lines and the piece's creases) and every vertex placed on
 /// the body. Piece A's seam is rows 0..n-1 of its mesh, B's the same polygon counter-clockwise.
 /// `paths` name the pieces in errors; `used` gets what the engine did.
-Result<DForm> exactDForm(exact::SeamPolygons polygons, double targetEdge, const std::string paths[2],
-                         ModelUsed& used);
+Result<DForm> exactDForm(exact::SeamPolygons polygons, double targetEdge,
+                         const std::string paths[2], ModelUsed& used);
 
 }  // namespace dform

@@ -23,12 +23,12 @@ using Triplet = Eigen::Triplet<double, int>;
 // at 3v .. 3v + 2 of x; A's vertices come first, then B's that are not on the seam.
 struct Sheet {
   int vertices = 0;
-  std::array<std::vector<int>, 2> unknownOf;   ///< per piece: its vertex -> unknown vertex
-  std::vector<std::array<int, 2>> edges;       ///< unknown vertices of each stretched edge
-  std::vector<double> restSquared, area;       ///< L_e^2 and a_e of each, unit sqrt(area)
-  std::vector<Triplet> bendingHessian;         ///< the constant Hessian of E_bend, 3n by 3n
-  Sparse bending;                              ///< the same as a matrix
-  double unit = 1.0;                           ///< mm per unit length
+  std::array<std::vector<int>, 2> unknownOf;  ///< per piece: its vertex -> unknown vertex
+  std::vector<std::array<int, 2>> edges;      ///< unknown vertices of each stretched edge
+  std::vector<double> restSquared, area;      ///< L_e^2 and a_e of each, unit sqrt(area)
+  std::vector<Triplet> bendingHessian;        ///< the constant Hessian of E_bend, 3n by 3n
+  Sparse bending;                             ///< the same as a matrix
+  double unit = 1.0;                          ///< mm per unit length
 };
 
 double triangleArea(const Points2& p, int a, int b, int c) {
@@ -78,7 +78,7 @@ void addPiece(const Piece& piece, int p, double unit, Sheet& sheet,
   const std::vector<int>& to = sheet.unknownOf[p];
   for (const auto& [edge, faces] : edgeFaces) {
     sheet.edges.push_back({to[edge.first], to[edge.second]});
-    sheet.restSquared.push_back((flat.row(edge.first) - flat.row(edge.second)).squaredNorm() );
+    sheet.restSquared.push_back((flat.row(edge.first) - flat.row(edge.second)).squaredNorm());
     sheet.area.push_back(faces.second);
     if (faces.first.size() != 2 || creaseEdges.count(edge)) continue;
     const std::array<int, 4> v{edge.first, edge.second, faces.first[0], faces.first[1]};
@@ -106,14 +106,16 @@ Sheet buildSheet(const DForm& start) {
   for (Eigen::Index v = 0; v < start.a.flat.rows(); ++v) sheet.unknownOf[0][v] = int(v);
   int next = int(start.a.flat.rows());
   sheet.unknownOf[1].assign(start.b.flat.rows(), -1);
-  for (std::size_t i = 0; i < start.b.seam.size(); ++i) sheet.unknownOf[1][start.b.seam[i]] = start.a.seam[i];
+  for (std::size_t i = 0; i < start.b.seam.size(); ++i)
+    sheet.unknownOf[1][start.b.seam[i]] = start.a.seam[i];
   for (int& u : sheet.unknownOf[1])
     if (u < 0) u = next++;
   sheet.vertices = next;
   std::vector<Triplet> scalar;
   for (int p = 0; p < 2; ++p) addPiece(*pieces[p], p, sheet.unit, sheet, scalar);
   for (const Triplet& t : scalar)
-    for (int c = 0; c < 3; ++c) sheet.bendingHessian.emplace_back(3 * t.row() + c, 3 * t.col() + c, t.value());
+    for (int c = 0; c < 3; ++c)
+      sheet.bendingHessian.emplace_back(3 * t.row() + c, 3 * t.col() + c, t.value());
   sheet.bending.resize(3 * next, 3 * next);
   sheet.bending.setFromTriplets(sheet.bendingHessian.begin(), sheet.bendingHessian.end());
   return sheet;
@@ -134,7 +136,8 @@ double strain(const Sheet& sheet, const Eigen::VectorXd& x, std::size_t e) {
 
 double energyAt(const Sheet& sheet, double k, const Eigen::VectorXd& x) {
   double stretching = 0;
-  for (std::size_t e = 0; e < sheet.edges.size(); ++e) stretching += sheet.area[e] * std::pow(strain(sheet, x, e), 2);
+  for (std::size_t e = 0; e < sheet.edges.size(); ++e)
+    stretching += sheet.area[e] * std::pow(strain(sheet, x, e), 2);
   return 0.5 * x.dot(sheet.bending * x) + 0.5 * k * stretching;
 }
 
@@ -147,7 +150,8 @@ Evaluation evaluate(const Sheet& sheet, double k, const Eigen::VectorXd& x) {
     const int i = sheet.edges[e][0], j = sheet.edges[e][1];
     const double eps = strain(sheet, x, e);
     out.stretching += 0.5 * k * sheet.area[e] * eps * eps;
-    const Eigen::Vector3d g = k * sheet.area[e] * eps / sheet.restSquared[e] * (position(x, i) - position(x, j));
+    const Eigen::Vector3d g =
+        k * sheet.area[e] * eps / sheet.restSquared[e] * (position(x, i) - position(x, j));
     out.stretchingGradient.segment<3>(3 * i) += g;
     out.stretchingGradient.segment<3>(3 * j) -= g;
   }
@@ -174,7 +178,8 @@ Sparse hessian(const Sheet& sheet, double k, const Eigen::VectorXd& x) {
     for (int a = 0; a < 2; ++a)
       for (int b = 0; b < 2; ++b)
         for (int r = 0; r < 3; ++r)
-          for (int c = 0; c < 3; ++c) t.emplace_back(3 * v[a] + r, 3 * v[b] + c, (a == b ? 1 : -1) * block(r, c));
+          for (int c = 0; c < 3; ++c)
+            t.emplace_back(3 * v[a] + r, 3 * v[b] + c, (a == b ? 1 : -1) * block(r, c));
   }
   Sparse h(3 * sheet.vertices, 3 * sheet.vertices);
   h.setFromTriplets(t.begin(), t.end());
@@ -187,7 +192,8 @@ Eigen::VectorXd startPositions(const Sheet& sheet, const DForm& model) {
   const Piece* pieces[2] = {&model.b, &model.a};
   for (int p = 0; p < 2; ++p)
     for (Eigen::Index v = 0; v < pieces[p]->shape.rows(); ++v)
-      x.segment<3>(3 * sheet.unknownOf[1 - p][v]) = pieces[p]->shape.row(v).transpose() / sheet.unit;
+      x.segment<3>(3 * sheet.unknownOf[1 - p][v]) =
+          pieces[p]->shape.row(v).transpose() / sheet.unit;
   return x;
 }
 
@@ -248,7 +254,9 @@ InextensibleResult solveInextensible(const DForm& start, const InextensibleOptio
           break;
         }
       } else {
-        while (alpha > 1e-10 && !(energyAt(sheet, k, x + alpha * step) <= e0 + 1e-4 * alpha * slope)) alpha *= 0.5;
+        while (alpha > 1e-10 &&
+               !(energyAt(sheet, k, x + alpha * step) <= e0 + 1e-4 * alpha * slope))
+          alpha *= 0.5;
       }
       if (alpha <= 1e-10) {
         if (shift > 1e12 * floorShift) {
@@ -264,7 +272,8 @@ InextensibleResult solveInextensible(const DForm& start, const InextensibleOptio
     if (!summary.message.empty() && !summary.converged) break;
   }
   if (summary.converged && summary.message.empty())
-    summary.message = "stationary to " + std::to_string(summary.stationarity) + " in " + std::to_string(summary.steps) + " Newton steps";
+    summary.message = "stationary to " + std::to_string(summary.stationarity) + " in " +
+                      std::to_string(summary.steps) + " Newton steps";
 
   result.model = start;
   Piece* out[2] = {&result.model.a, &result.model.b};

@@ -26,20 +26,21 @@
 namespace dform {
 
 struct InextensibleOptions {
-  double stiffness = 1e9;      ///< k: stretching over bending, unit sqrt(area) (see above)
-  int continuation = 1;        ///< k starts at stiffness / 10^continuation, x10 per stage
-  double tolerance = 1e-9;     ///< relative stationarity |grad E| / (|grad E_bend| + |k grad E_stretch|) to stop on
-  int maxSteps = 200;          ///< Newton steps over all stages
+  double stiffness = 1e9;  ///< k: stretching over bending, unit sqrt(area) (see above)
+  int continuation = 1;    ///< k starts at stiffness / 10^continuation, x10 per stage
+  double tolerance =
+      1e-9;  ///< relative stationarity |grad E| / (|grad E_bend| + |k grad E_stretch|) to stop on
+  int maxSteps = 200;  ///< Newton steps over all stages
 };
 
 struct InextensibleSummary {
-  bool converged = false;        ///< the last stage reached the tolerance
-  int steps = 0;                 ///< Newton steps over all stages
-  double stationarity = 0;       ///< |grad E| / (|grad E_bend| + |k grad E_stretch|) at the answer
-  double bendingEnergy = 0;      ///< E_bend at the answer (dimensionless)
-  double stretchingEnergy = 0;   ///< k E_stretch at the answer (unit sqrt(area))
+  bool converged = false;       ///< the last stage reached the tolerance
+  int steps = 0;                ///< Newton steps over all stages
+  double stationarity = 0;      ///< |grad E| / (|grad E_bend| + |k grad E_stretch|) at the answer
+  double bendingEnergy = 0;     ///< E_bend at the answer (dimensionless)
+  double stretchingEnergy = 0;  ///< k E_stretch at the answer (unit sqrt(area))
   double seconds = 0;
-  std::string message;           ///< why it stopped
+  std::string message;  ///< why it stopped
 };
 
 struct InextensibleResult {

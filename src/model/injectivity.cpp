@@ -59,8 +59,8 @@ FoldGuard::Orientations FoldGuard::orientations(const Eigen::VectorXd& x) const 
     const Eigen::Vector3d x0 = x.segment<3>(t.x[0]), d1 = x.segment<3>(t.x[1]) - x0,
                           d2 = x.segment<3>(t.x[2]) - x0;
     normal[f] = d1.cross(d2);
-    wellShaped[f] =
-        normal[f].norm() >= kSliver * (d1.squaredNorm() + d2.squaredNorm() + (d2 - d1).squaredNorm());
+    wellShaped[f] = normal[f].norm() >=
+                    kSliver * (d1.squaredNorm() + d2.squaredNorm() + (d2 - d1).squaredNorm());
   }
   for (std::size_t k = 0; k < neighbours_.size(); ++k) {
     const auto [f, g] = neighbours_[k];
@@ -75,7 +75,8 @@ int FoldGuard::count(const Eigen::VectorXd& x) const {
   // validate's test: a flat triangle with area <= 0, a 3D pair with a negative dot product.
   const std::vector<double> value = orientations(x).value;
   int n = 0;
-  for (std::size_t k = 0; k < value.size(); ++k) n += k < faces_.size() ? value[k] <= 0.0 : value[k] < 0.0;
+  for (std::size_t k = 0; k < value.size(); ++k)
+    n += k < faces_.size() ? value[k] <= 0.0 : value[k] < 0.0;
   return n;
 }
 

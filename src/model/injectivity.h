@@ -29,8 +29,9 @@ class FoldGuard {
 
  private:
   struct Orientations {
-    std::vector<double> value;  ///< per flat triangle twice its signed area, per pair the normals' dot
-    std::vector<bool> clear;    ///< whether it stands upright and is no sliver (see the .cpp)
+    std::vector<double>
+        value;  ///< per flat triangle twice its signed area, per pair the normals' dot
+    std::vector<bool> clear;  ///< whether it stands upright and is no sliver (see the .cpp)
   };
   Orientations orientations(const Eigen::VectorXd& x) const;
 

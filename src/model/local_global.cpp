@@ -3,10 +3,10 @@
 #include <Eigen/CholmodSupport>
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
-#include <cassert>
-#include <cmath>
-#include <chrono>
 #include <algorithm>
+#include <cassert>
+#include <chrono>
+#include <cmath>
 #include <deque>
 #include <memory>
 
@@ -31,7 +31,10 @@ class LocalGlobal {
   LocalGlobal(const std::vector<std::pair<double, const LinearResidual*>>& quadratic,
               const EdgeLengthPairs& edges, const Eigen::VectorXd& x0, const std::vector<int>& held,
               int supernodalFrom)
-      : quadratic_(quadratic), edges_(edges), stride_(edges.stride), supernodalFrom_(supernodalFrom) {
+      : quadratic_(quadratic),
+        edges_(edges),
+        stride_(edges.stride),
+        supernodalFrom_(supernodalFrom) {
     const int n = int(x0.size());
     // K = sum_t w_t M_t^T M_t + sum_e w_e D_e^T D_e + eps I. The eps I (with eps x_prev on the
     // right) is a proximal term: it fixes the free translation and vanishes at a fixed point.
@@ -99,13 +102,15 @@ class LocalGlobal {
   // sum_t w_t M_t^T b_t, read from the terms' current targets.
   Eigen::VectorXd targetRhs() const {
     Eigen::VectorXd rhs = heldRhs_;
-    for (const auto& [w, term] : quadratic_) rhs += w * (term->matrix().transpose() * term->target());
+    for (const auto& [w, term] : quadratic_)
+      rhs += w * (term->matrix().transpose() * term->target());
     return rhs;
   }
 
   // The global step: the x minimising the energy for fixed projections (plus the proximal term);
   // `constant` is targetRhs().
-  Eigen::VectorXd global(const Eigen::VectorXd& x, const Projections& proj, const Eigen::VectorXd& constant) const {
+  Eigen::VectorXd global(const Eigen::VectorXd& x, const Projections& proj,
+                         const Eigen::VectorXd& constant) const {
     Eigen::VectorXd rhs = constant + proximal_ * x;
     for (std::size_t e = 0; e < edges_.weight.size(); ++e) {
       const double w = edges_.weight[e];
@@ -207,8 +212,8 @@ class LocalGlobal {
       }
       outer[std::size_t(v) + 1] = int(inner.size());
     }
-    return Eigen::Map<const SparseMatrix>(M.rows(), vertices, Eigen::Index(inner.size()), outer.data(),
-                                          inner.data(), values.data());
+    return Eigen::Map<const SparseMatrix>(M.rows(), vertices, Eigen::Index(inner.size()),
+                                          outer.data(), inner.data(), values.data());
   }
 
   // K restricted to coordinate c of every vertex (#vertices square), but for the proximal term:
@@ -216,7 +221,8 @@ class LocalGlobal {
   SparseMatrix coordinateBlock(int c, int vertices) const {
     SparseMatrix block(vertices, vertices);
     for (const auto& [w, term] : quadratic_) {
-      assert((c > 0 || !couplesCoordinates(term->matrix())) && "the objective couples two coordinates");
+      assert((c > 0 || !couplesCoordinates(term->matrix())) &&
+             "the objective couples two coordinates");
       block += w * gramMatrix(coordinateColumns(term->matrix(), c));
       throwIfInterrupted("the solve");
     }
@@ -342,16 +348,17 @@ struct LocalGlobalRelaxation::Impl {
       : quadratic(std::move(q)), lg(quadratic, edges, x0, held, supernodalFrom) {}
 };
 
-LocalGlobalRelaxation::LocalGlobalRelaxation(std::vector<std::pair<double, const LinearResidual*>> quadratic,
-                                             const EdgeLengthPairs& edges, const Eigen::VectorXd& x0,
-                                             const std::vector<int>& held, int supernodalFrom) {
+LocalGlobalRelaxation::LocalGlobalRelaxation(
+    std::vector<std::pair<double, const LinearResidual*>> quadratic, const EdgeLengthPairs& edges,
+    const Eigen::VectorXd& x0, const std::vector<int>& held, int supernodalFrom) {
   assert(edges.x.size() == edges.weight.size() && edges.u.size() == edges.weight.size());
   impl_ = std::make_unique<Impl>(std::move(quadratic), edges, x0, held, supernodalFrom);
 }
 
 LocalGlobalRelaxation::~LocalGlobalRelaxation() = default;
 
-LocalGlobalSummary LocalGlobalRelaxation::relax(const LocalGlobalOptions& options, Eigen::VectorXd& x) const {
+LocalGlobalSummary LocalGlobalRelaxation::relax(const LocalGlobalOptions& options,
+                                                Eigen::VectorXd& x) const {
   const auto start = std::chrono::steady_clock::now();
   const LocalGlobal& lg = impl_->lg;
   LocalGlobalSummary summary;
@@ -403,7 +410,8 @@ LocalGlobalSummary LocalGlobalRelaxation::relax(const LocalGlobalOptions& option
       it.cost = energy;
       it.costChange = decrease;
       it.accepted = true;
-      it.cumulativeSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      it.cumulativeSeconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       if (!options.callback(it)) {
         summary.stopped = true;
         break;
@@ -412,8 +420,7 @@ LocalGlobalSummary LocalGlobalRelaxation::relax(const LocalGlobalOptions& option
     if (plainGain < options.relativeTolerance * energy) break;
   }
   summary.finalEnergy = energy;
-  summary.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }
 

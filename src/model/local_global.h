@@ -89,7 +89,8 @@ class LocalGlobalRelaxation {
   /// held unknowns of one coordinate group must belong to the same vertices (e.g. u and v both).
   /// Blocks of `supernodalFrom` vertices or more are factorised supernodally.
   LocalGlobalRelaxation(std::vector<std::pair<double, const LinearResidual*>> quadratic,
-                        const EdgeLengthPairs& edges, const Eigen::VectorXd& x0, const std::vector<int>& held = {},
+                        const EdgeLengthPairs& edges, const Eigen::VectorXd& x0,
+                        const std::vector<int>& held = {},
                         int supernodalFrom = kSupernodalRelaxationVertices);
   ~LocalGlobalRelaxation();
   LocalGlobalRelaxation(const LocalGlobalRelaxation&) = delete;

@@ -3,10 +3,11 @@
 namespace dform {
 
 SolveSequenceSummary relaxThenSolve(const LocalGlobalRelaxation& relaxation,
-                                    const LocalGlobalOptions& relaxationOptions, const Problem& problem,
-                                    const SolverOptions& solver, const FoldGuard& guard,
-                                    const std::vector<Constraint>& constraints, int maxConstraintRounds,
-                                    Eigen::VectorXd& x) {
+                                    const LocalGlobalOptions& relaxationOptions,
+                                    const Problem& problem, const SolverOptions& solver,
+                                    const FoldGuard& guard,
+                                    const std::vector<Constraint>& constraints,
+                                    int maxConstraintRounds, Eigen::VectorXd& x) {
   SolveSequenceSummary result;
   SolverOptions solverOptions = solver;
   refuseNewFolds(guard, solverOptions);
@@ -25,7 +26,8 @@ SolveSequenceSummary relaxThenSolve(const LocalGlobalRelaxation& relaxation,
   } else {
     LeastSquaresSolver lm(problem, solverOptions);
     result.summary = lm.solve(x);
-    result.constraintRounds = enforceByMultipliers(lm, constraints, maxConstraintRounds, x, result.summary);
+    result.constraintRounds =
+        enforceByMultipliers(lm, constraints, maxConstraintRounds, x, result.summary);
   }
   return result;
 }

@@ -29,9 +29,10 @@ struct SolveSequenceSummary {
 ///   `guard` saw upright, and each multiplier round solves again.
 /// At most maxConstraintRounds rounds either way.
 SolveSequenceSummary relaxThenSolve(const LocalGlobalRelaxation& relaxation,
-                                    const LocalGlobalOptions& relaxationOptions, const Problem& problem,
-                                    const SolverOptions& solver, const FoldGuard& guard,
-                                    const std::vector<Constraint>& constraints, int maxConstraintRounds,
-                                    Eigen::VectorXd& x);
+                                    const LocalGlobalOptions& relaxationOptions,
+                                    const Problem& problem, const SolverOptions& solver,
+                                    const FoldGuard& guard,
+                                    const std::vector<Constraint>& constraints,
+                                    int maxConstraintRounds, Eigen::VectorXd& x);
 
 }  // namespace dform

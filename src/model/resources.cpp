@@ -33,8 +33,8 @@ double readNumber(const std::string& path, const std::string& key = "") {
 }
 
 constexpr double kProgramBytes = 64.0 * (1 << 20);
-constexpr double kBytesPerVertexDirect = 36.0 * 1024;   // measured: 690 MB at 19k vertices
-constexpr double kBytesPerVertexRelaxed = 9.0 * 1024;   // measured: 790 MB at 97k vertices
+constexpr double kBytesPerVertexDirect = 36.0 * 1024;  // measured: 690 MB at 19k vertices
+constexpr double kBytesPerVertexRelaxed = 9.0 * 1024;  // measured: 790 MB at 97k vertices
 constexpr double kUsableFraction = 0.8;
 
 // This process's cgroup folder (cgroup v2: the "0::/path" line of /proc/self/cgroup).
@@ -62,7 +62,8 @@ void letOtherThreadsSettle() {
       std::string stat;
       std::getline(in, stat);
       const std::size_t name = stat.rfind(')');  // "tid (name) state ...": the name may hold ')'
-      running = running || (name != std::string::npos && name + 2 < stat.size() && stat[name + 2] == 'R');
+      running =
+          running || (name != std::string::npos && name + 2 < stat.size() && stat[name + 2] == 'R');
     }
     if (!running) return;
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -115,7 +116,9 @@ int resolutionFitting(const MemoryEstimate& estimate, int resolution, double bud
   int fits = resolution;
   while (fits > 8) {
     const double s = double(fits) / double(resolution);
-    if (double(estimatedPeakBytes(estimate.vertices * s * s, estimate.extraBytes * s * s)) <= budget) break;
+    if (double(estimatedPeakBytes(estimate.vertices * s * s, estimate.extraBytes * s * s)) <=
+        budget)
+      break;
     fits = std::max(8, int(fits * 0.95));
   }
   return fits;
@@ -147,11 +150,12 @@ Status outOfMemory(const MemoryEstimate& estimate, int resolution, const std::st
   const int fits = estimate.vertices > 0 ? resolutionFitting(estimate, resolution, budget)
                                          : std::max(8, int(resolution / std::sqrt(2.0)));
   char text[320];
-  std::snprintf(text, sizeof text,
-                "%s at resolution %d ran out of memory (more than its estimate: the machine or its "
-                "limits, e.g. ulimit -v, gave it less than it needed); a resolution of %d or less fits "
-                "in half the memory",
-                what.c_str(), resolution, fits);
+  std::snprintf(
+      text, sizeof text,
+      "%s at resolution %d ran out of memory (more than its estimate: the machine or its "
+      "limits, e.g. ulimit -v, gave it less than it needed); a resolution of %d or less fits "
+      "in half the memory",
+      what.c_str(), resolution, fits);
   return Status(ErrorCode::Usage, text);
 }
 

@@ -38,8 +38,8 @@ inline std::string format(const char* pattern, double a, double b = 0, double c 
 constexpr int kDirectSolveVertices = 10000;
 
 /// A level that starts from a coarser level's solution and is solved by the relaxation alone
-/// stops once a plain step would lower the energy by less than 1e-3 of it: what it still does then is
-/// smooth the shape, not fit it. Measured: forward at 97k vertices L_error 0.014 %, L_max 0.35 %
+/// stops once a plain step would lower the energy by less than 1e-3 of it: what it still does then
+/// is smooth the shape, not fit it. Measured: forward at 97k vertices L_error 0.014 %, L_max 0.35 %
 /// in 26 steps; the inverse saddle at 300 points L_max 0.16 % in 25 steps, against 0.06 % in 300
 /// at 1e-4 (the bars are 0.5 % and 3 %).
 constexpr double kRefinedRelaxationTolerance = 1e-3;
@@ -65,7 +65,8 @@ constexpr int kCoarseIterations = 30;
 /// coarseToFine is off).
 inline std::vector<int> seamLevels(int resolution, bool coarseToFine) {
   std::vector<int> levels{resolution};
-  while (coarseToFine && levels.back() / kLevelRatio >= kCoarsestSeam) levels.push_back(levels.back() / kLevelRatio);
+  while (coarseToFine && levels.back() / kLevelRatio >= kCoarsestSeam)
+    levels.push_back(levels.back() / kLevelRatio);
   std::reverse(levels.begin(), levels.end());
   return levels;
 }
@@ -83,7 +84,8 @@ inline Status interruptedDuring(const std::string& stage) {
 
 /// Routes the relaxation's and the solver's iterations to the run's hooks, and stops them (the
 /// relaxation stops, the solver ends with UserAbort) when the caller asks the run to stop.
-inline void connectHooks(LocalGlobalOptions& relaxation, SolverOptions& solver, const RunHooks& hooks) {
+inline void connectHooks(LocalGlobalOptions& relaxation, SolverOptions& solver,
+                         const RunHooks& hooks) {
   auto callback = [&hooks](const char* stage) {
     return [&hooks, stage](const IterationSummary& it) {
       if (hooks.onIteration) hooks.onIteration(stage, it);

@@ -19,9 +19,9 @@ struct Timings {
 /// Folds of the exact D-Form through a piece that nobody drew: each is returned as one of the
 /// piece's creases (Piece::creases) and listed here.
 struct FoundCrease {
-  int piece = 0;           ///< 0 for A, 1 for B
-  int crease = 0;          ///< its index in that piece's creases
-  double angleDeg = 0;     ///< its fold angle (0 = flat)
+  int piece = 0;        ///< 0 for A, 1 for B
+  int crease = 0;       ///< its index in that piece's creases
+  double angleDeg = 0;  ///< its fold angle (0 = flat)
   double lengthMm = 0;
 };
 
@@ -29,26 +29,26 @@ struct FoundCrease {
 /// two places on the piece's seam, with the angle between the two faces that meet along it.
 /// Folds steeper than the found-crease angle are the piece's creases; gentler ones are listed too.
 struct BodyFold {
-  int piece = 0;                   ///< 0 for A, 1 for B
-  int from = 0, to = 0;            ///< the mesh vertices (rows of the piece's flat) at its ends
-  int fromSeamPoint = -1;          ///< the seam point at `from`, -1 where it crosses a chord
-  int toSeamPoint = -1;            ///< likewise at `to`
-  int edgeFrom = 0, edgeTo = 0;    ///< the seam points the body edge joins (its ends on the body)
-  double radians = 0;              ///< fold angle: between the two faces' normals (0 = flat)
-  int crease = -1;                 ///< its index in the piece's creases, -1 for a gentle fold
+  int piece = 0;                 ///< 0 for A, 1 for B
+  int from = 0, to = 0;          ///< the mesh vertices (rows of the piece's flat) at its ends
+  int fromSeamPoint = -1;        ///< the seam point at `from`, -1 where it crosses a chord
+  int toSeamPoint = -1;          ///< likewise at `to`
+  int edgeFrom = 0, edgeTo = 0;  ///< the seam points the body edge joins (its ends on the body)
+  double radians = 0;            ///< fold angle: between the two faces' normals (0 = flat)
+  int crease = -1;               ///< its index in the piece's creases, -1 for a gentle fold
 };
 
 /// Which model ran, and why the other did not.
 struct ModelUsed {
-  std::string name;    ///< "exact", "paper" or "general"
-  std::string reason;  ///< why this one: the exact model's conditions met, or which failed
-  int conePoints = 0;          ///< exact: seam points that are vertices of the body
-  int newtonSteps = 0;         ///< exact: steps of the deformation; general: Newton steps of the sheet
-  double maxCurvature = 0;     ///< exact: largest |curvature| left at a cone point (radians)
-  double chordMoveMm = 0;      ///< exact: the most a seam point moved to make paired chords equal
+  std::string name;         ///< "exact", "paper" or "general"
+  std::string reason;       ///< why this one: the exact model's conditions met, or which failed
+  int conePoints = 0;       ///< exact: seam points that are vertices of the body
+  int newtonSteps = 0;      ///< exact: steps of the deformation; general: Newton steps of the sheet
+  double maxCurvature = 0;  ///< exact: largest |curvature| left at a cone point (radians)
+  double chordMoveMm = 0;   ///< exact: the most a seam point moved to make paired chords equal
   bool doublyCovered = false;  ///< exact: the pieces fold flat onto each other
   double stationarity = 0;     ///< general: relative first-order residual at the answer
-  double stiffness = 0;        ///< general: stretching over bending stiffness (model/inextensible.h)
+  double stiffness = 0;  ///< general: stretching over bending stiffness (model/inextensible.h)
   std::vector<FoundCrease> creases;
   std::vector<BodyFold> folds;  ///< exact: every fold through a piece (the paper model knows none)
 };

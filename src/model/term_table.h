@@ -110,7 +110,8 @@ const TermRow<Weights>* findTerm(const TermTable<Weights>& table, const std::str
 /// Why a job's weights and solver options cannot be used, or "" when they can: a weight that is
 /// negative or not finite, or solver options that are not valid. Forward and inverse jobs share it.
 template <typename Weights>
-std::string settingsProblem(const TermTable<Weights>& table, const Weights& weights, const SolverOptions& solver) {
+std::string settingsProblem(const TermTable<Weights>& table, const Weights& weights,
+                            const SolverOptions& solver) {
   for (const TermRow<Weights>& row : table) {
     const double weight = weights.*row.weight;
     if (!(weight >= 0.0 && std::isfinite(weight))) return "weights must be finite and >= 0";

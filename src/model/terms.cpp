@@ -43,7 +43,8 @@ std::vector<bool> boundaryMask(int n, const Faces& F) {
 // Residuals |x_i - x_j|^2 - |u_i - u_j|^2 for a list of vertex-index pairs in the layout.
 class IsometryResidual : public ResidualTerm {
  public:
-  IsometryResidual(std::vector<std::array<int, 2>> xOffsets, std::vector<std::array<int, 2>> uOffsets)
+  IsometryResidual(std::vector<std::array<int, 2>> xOffsets,
+                   std::vector<std::array<int, 2>> uOffsets)
       : x_(std::move(xOffsets)), u_(std::move(uOffsets)) {}
 
   int numResiduals() const override { return int(x_.size()); }
@@ -61,7 +62,8 @@ class IsometryResidual : public ResidualTerm {
   }
 
   // The residual is a quadratic form in x, so along v it curves by 2 (|dv_x|^2 - |dv_u|^2).
-  void secondDirectionalDerivative(const Eigen::VectorXd&, const Eigen::VectorXd& v, double* rvv) const override {
+  void secondDirectionalDerivative(const Eigen::VectorXd&, const Eigen::VectorXd& v,
+                                   double* rvv) const override {
     for (std::size_t e = 0; e < x_.size(); ++e)
       rvv[e] = 2.0 * ((v.segment<3>(x_[e][0]) - v.segment<3>(x_[e][1])).squaredNorm() -
                       (v.segment<2>(u_[e][0]) - v.segment<2>(u_[e][1])).squaredNorm());

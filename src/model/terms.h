@@ -20,12 +20,14 @@ class VariableLayout {
  public:
   static constexpr int kPerVertex = 5;
   VariableLayout(int verticesA, int verticesB) : nA_(verticesA), nB_(verticesB) {}
-  VariableLayout(int verticesA, int verticesB, const std::vector<int>& seamA, const std::vector<int>& seamB);
+  VariableLayout(int verticesA, int verticesB, const std::vector<int>& seamA,
+                 const std::vector<int>& seamB);
   int numVariables() const { return kPerVertex * (nA_ + nB_); }
   int vertex(int piece, int i) const { return piece == 0 ? i : nA_ + i; }
   int x(int piece, int i) const {  ///< 3D, 3 values
-    return piece == 1 && !sharedWithA_.empty() && sharedWithA_[i] >= 0 ? x(0, sharedWithA_[i])
-                                                                       : kPerVertex * vertex(piece, i);
+    return piece == 1 && !sharedWithA_.empty() && sharedWithA_[i] >= 0
+               ? x(0, sharedWithA_[i])
+               : kPerVertex * vertex(piece, i);
   }
   int u(int piece, int i) const { return kPerVertex * vertex(piece, i) + 3; }  ///< flat, 2 values
   int verticesOf(int piece) const { return piece == 0 ? nA_ : nB_; }

@@ -41,7 +41,8 @@ class TriangleGrid {
         fHi = fHi.cwiseMax(source.flat.row(source.F(f, k)).transpose());
       }
       for (int y = cellY(fLo.y()); y <= cellY(fHi.y()); ++y)
-        for (int x = cellX(fLo.x()); x <= cellX(fHi.x()); ++x) buckets_[index(x, y)].push_back(int(f));
+        for (int x = cellX(fLo.x()); x <= cellX(fHi.x()); ++x)
+          buckets_[index(x, y)].push_back(int(f));
     }
   }
 
@@ -77,9 +78,15 @@ class TriangleGrid {
   }
 
  private:
-  int cellX(double x) const { return std::clamp(int(std::floor((x - lo_.x()) / cell_)), 0, nx_ - 1); }
-  int cellY(double y) const { return std::clamp(int(std::floor((y - lo_.y()) / cell_)), 0, ny_ - 1); }
-  std::size_t index(int x, int y) const { return std::size_t(y) * std::size_t(nx_) + std::size_t(x); }
+  int cellX(double x) const {
+    return std::clamp(int(std::floor((x - lo_.x()) / cell_)), 0, nx_ - 1);
+  }
+  int cellY(double y) const {
+    return std::clamp(int(std::floor((y - lo_.y()) / cell_)), 0, ny_ - 1);
+  }
+  std::size_t index(int x, int y) const {
+    return std::size_t(y) * std::size_t(nx_) + std::size_t(x);
+  }
 
   const Piece& source_;
   Eigen::Vector2d lo_;

@@ -134,7 +134,8 @@ Result<Manifest> readManifest(const fs::path& path) {
   }
   const auto jobs = manifest.find("jobs");
   if (jobs != manifest.end() && jobs->is_object() && jobs->contains("count") &&
-      (*jobs)["count"].is_number_integer() && jobs->contains("sha256") && (*jobs)["sha256"].is_string()) {
+      (*jobs)["count"].is_number_integer() && jobs->contains("sha256") &&
+      (*jobs)["sha256"].is_string()) {
     read.jobs.count = (*jobs)["count"].get<int>();
     read.jobs.sha256 = (*jobs)["sha256"].get<std::string>();
   }
@@ -142,11 +143,13 @@ Result<Manifest> readManifest(const fs::path& path) {
 }
 
 // "PREFIX<digits>-of-<digits>SUFFIX": a shard's manifest or gallery.
-bool isShardFileName(const std::string& name, const std::string& prefix, const std::string& suffix) {
+bool isShardFileName(const std::string& name, const std::string& prefix,
+                     const std::string& suffix) {
   if (name.size() <= prefix.size() + suffix.size() || name.compare(0, prefix.size(), prefix) != 0 ||
       name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
     return false;
-  const std::string middle = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  const std::string middle =
+      name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
   const std::size_t of = middle.find("-of-");
   const auto digits = [](const std::string& t) {
     return !t.empty() && t.find_first_not_of("0123456789") == std::string::npos;
@@ -198,9 +201,9 @@ struct BatchLock {
         !s.isOk())
       return s;
     if (alone) return Status::ok();
-    return manifest.acquire((fs::path(outDir) / ("." + manifestName(options) + ".dform-lock")).string(),
-                            true, outDir, "batch shard " + std::to_string(options.shard) + "/" +
-                                              std::to_string(options.shards));
+    return manifest.acquire(
+        (fs::path(outDir) / ("." + manifestName(options) + ".dform-lock")).string(), true, outDir,
+        "batch shard " + std::to_string(options.shard) + "/" + std::to_string(options.shards));
   }
 };
 
@@ -245,7 +248,8 @@ Result<std::vector<BatchJob>> listBatchJobs(const std::string& input) {
     for (const fs::directory_entry& entry : fs::directory_iterator(input, ec))
       if (entry.path().extension() == ".json" && entry.is_regular_file(ec))
         files.push_back(entry.path().string());
-    if (ec) return Status(ErrorCode::InputUnreadable, input + ": cannot be read (" + ec.message() + ")");
+    if (ec)
+      return Status(ErrorCode::InputUnreadable, input + ": cannot be read (" + ec.message() + ")");
     std::sort(files.begin(), files.end());
     for (const std::string& f : files) jobs.push_back({0, f, "", ""});
   } else {
@@ -268,14 +272,16 @@ Result<std::vector<BatchJob>> listBatchJobs(const std::string& input) {
     jobs[k].name = fs::path(jobs[k].path).stem().string();
     if (!isJobName(jobs[k].name))
       return Status(ErrorCode::InputInvalid,
-                    input + ": " + printable(jobs[k].path, 200) + " cannot have its result in OUT/" +
-                        printable(jobs[k].name, 200) + "/ (a hidden name, one longer than 255 bytes, or one of the "
-                                       "batch's own files: batch.json, gallery.html, their shards'); "
-                                       "nothing was run (rename the job file)");
+                    input + ": " + printable(jobs[k].path, 200) +
+                        " cannot have its result in OUT/" + printable(jobs[k].name, 200) +
+                        "/ (a hidden name, one longer than 255 bytes, or one of the "
+                        "batch's own files: batch.json, gallery.html, their shards'); "
+                        "nothing was run (rename the job file)");
     const auto [at, inserted] = byName.emplace(jobs[k].name, jobs[k].path);
     if (!inserted)
       return Status(ErrorCode::InputInvalid, input + ": " + printable(at->second, 200) + " and " +
-                                                 printable(jobs[k].path, 200) + " would both write " +
+                                                 printable(jobs[k].path, 200) +
+                                                 " would both write " +
                                                  printable(jobs[k].name, 200) + "/");
   }
   for (BatchJob& job : jobs) job.sha256 = jobSha256(job.path);
@@ -294,7 +300,8 @@ bool parseShard(const std::string& text, int& shard, int& shards) {
   if (slash == std::string::npos) return false;
   // Decimal digits only, at most 7 of them: no sign, no space, no overflow to wrap around.
   const auto number = [](const std::string& digits, int& value) {
-    if (digits.empty() || digits.size() > 7 || digits.find_first_not_of("0123456789") != std::string::npos)
+    if (digits.empty() || digits.size() > 7 ||
+        digits.find_first_not_of("0123456789") != std::string::npos)
       return false;
     value = std::stoi(digits);
     return true;
@@ -327,7 +334,8 @@ Result<std::vector<BatchRow>> runBatch(const std::vector<BatchJob>& jobs,
   std::error_code ec;
   fs::create_directories(outDir, ec);
   if (!fs::is_directory(outDir, ec))
-    return Status(ErrorCode::OutputFailed, outDir + ": cannot create the folder (" + ec.message() + ")");
+    return Status(ErrorCode::OutputFailed,
+                  outDir + ": cannot create the folder (" + ec.message() + ")");
   BatchLock lock;
   if (Status s = lock.acquire(outDir, options, false); !s.isOk()) return s;
   const JobList list = jobListOf(jobs);
@@ -395,7 +403,8 @@ Result<std::vector<BatchRow>> runBatch(const std::vector<BatchJob>& jobs,
         ++done;
         failed += outcome.exitCode != 0;
         if (written.isOk())
-          written = writeFileAtomically(manifest.string(), manifestText(rows, options, list, false));
+          written =
+              writeFileAtomically(manifest.string(), manifestText(rows, options, list, false));
         if (progress)
           progress(done, failed, int(pending.size()),
                    std::chrono::duration<double>(Clock::now() - begun).count());
@@ -403,9 +412,9 @@ Result<std::vector<BatchRow>> runBatch(const std::vector<BatchJob>& jobs,
       interrupted);
   if (!written.isOk()) return written;
   if (interrupted)
-    return Status(ErrorCode::Interrupted,
-                  outDir + ": interrupted; " + manifest.filename().string() +
-                      " lists the finished jobs (--resume runs the rest)");
+    return Status(ErrorCode::Interrupted, outDir + ": interrupted; " +
+                                              manifest.filename().string() +
+                                              " lists the finished jobs (--resume runs the rest)");
   if (Status s = writeGallery(outDir, rows, galleryName(options)); !s.isOk()) return s;
   return rows;
 }
@@ -416,8 +425,9 @@ Result<std::vector<BatchRow>> mergeBatch(const std::string& outDir) {
   for (const fs::directory_entry& entry : fs::directory_iterator(outDir, ec))
     if (isManifestName(entry.path().filename().string())) manifests.push_back(entry.path());
   if (manifests.empty())
-    return Status(ErrorCode::InputUnreadable, outDir + ": holds no batch manifest (batch.json or "
-                                                       "batch-shard-I-of-N.json)");
+    return Status(ErrorCode::InputUnreadable, outDir +
+                                                  ": holds no batch manifest (batch.json or "
+                                                  "batch-shard-I-of-N.json)");
   BatchLock lock;
   if (Status s = lock.acquire(outDir, {}, true); !s.isOk()) return s;
   // Oldest first, so that a job in several manifests keeps its latest row.
@@ -434,7 +444,8 @@ Result<std::vector<BatchRow>> mergeBatch(const std::string& outDir) {
   const auto mismatch = [&](const fs::path& a, const fs::path& b, const std::string& what) {
     return Status(ErrorCode::InputInvalid,
                   a.string() + " and " + b.filename().string() + " were run from different job " +
-                      "lists (" + what + "); nothing was merged (run the shards again from one list)");
+                      "lists (" + what +
+                      "); nothing was merged (run the shards again from one list)");
   };
   for (const fs::path& path : manifests) {
     Result<Manifest> read = readManifest(path);
@@ -442,9 +453,10 @@ Result<std::vector<BatchRow>> mergeBatch(const std::string& outDir) {
     const JobList& jobs = read.value().jobs;
     if (jobs.count >= 0) {
       if (list.count >= 0 && (jobs.count != list.count || jobs.sha256 != list.sha256))
-        return mismatch(listedBy, path, jobs.count != list.count ? "another number of jobs"
-                                                                 : "other jobs, another order or "
-                                                                   "edited files");
+        return mismatch(listedBy, path,
+                        jobs.count != list.count ? "another number of jobs"
+                                                 : "other jobs, another order or "
+                                                   "edited files");
       if (list.count < 0) {
         list = jobs;
         listedBy = path;
@@ -453,9 +465,9 @@ Result<std::vector<BatchRow>> mergeBatch(const std::string& outDir) {
     for (BatchRow& r : read.value().rows) {
       const auto named = nameAt.emplace(r.job.index, r.job.name);
       if (!named.second && named.first->second != r.job.name)
-        return mismatch(manifests.front(), path, "job " + std::to_string(r.job.index) + " is " +
-                                                     named.first->second + " in one, " +
-                                                     r.job.name + " in the other");
+        return mismatch(manifests.front(), path,
+                        "job " + std::to_string(r.job.index) + " is " + named.first->second +
+                            " in one, " + r.job.name + " in the other");
       byName[r.job.name] = std::move(r);
     }
   }
@@ -469,8 +481,8 @@ Result<std::vector<BatchRow>> mergeBatch(const std::string& outDir) {
                       rows[k - 1].job.name + " and " + rows[k].job.name + " are both job " +
                           std::to_string(rows[k].job.index));
   const fs::path base = fs::path(outDir);
-  if (Status s = writeFileAtomically((base / "batch.json").string(),
-                                     manifestText(rows, {}, list, true));
+  if (Status s =
+          writeFileAtomically((base / "batch.json").string(), manifestText(rows, {}, list, true));
       !s.isOk())
     return s;
   if (Status s = writeGallery(outDir, rows, "gallery.html"); !s.isOk()) return s;

@@ -29,7 +29,7 @@ std::string jobSha256(const std::string& jobPath);
 /// The identity of a batch's job list: how many jobs, and one SHA-256 of every job's name and
 /// jobSha256 in list order. Shards run from the same list and the same files agree on it.
 struct JobList {
-  int count = -1;      ///< -1: not recorded
+  int count = -1;  ///< -1: not recorded
   std::string sha256;
 };
 JobList jobListOf(const std::vector<BatchJob>& jobs);
@@ -55,10 +55,10 @@ bool parseShard(const std::string& text, int& shard, int& shards);
 /// A finished job: what happened and what its saved result measures.
 struct BatchRow {
   BatchJob job;
-  std::string status;  ///< "done", "gate failed" (result written), "failed" (no result)
-  int exitCode = 0;    ///< as `dform run` of the job would exit
-  std::string message; ///< the error, for a job that failed
-  SweepRow figures;    ///< measured on OUT/<name>/ when a result was written
+  std::string status;   ///< "done", "gate failed" (result written), "failed" (no result)
+  int exitCode = 0;     ///< as `dform run` of the job would exit
+  std::string message;  ///< the error, for a job that failed
+  SweepRow figures;     ///< measured on OUT/<name>/ when a result was written
   double seconds = 0;
 };
 

@@ -21,8 +21,8 @@ Result<Metrics> measureDForm(const SolvedDForm& solved, const ForwardSettings& s
   }
 }
 
-Result<ForwardRun> makeDForm(Shape2 a, Shape2 b, const ForwardSettings& settings,
-                             MessageSink& sink, const RunHooks& hooks) {
+Result<ForwardRun> makeDForm(Shape2 a, Shape2 b, const ForwardSettings& settings, MessageSink& sink,
+                             const RunHooks& hooks) {
   const std::string pieces = (a.outer.source.empty() ? "piece A" : a.outer.source) + " and " +
                              (b.outer.source.empty() ? "piece B" : b.outer.source);
   Result<SolvedDForm> solved = solveDForm(std::move(a), std::move(b), settings, sink, hooks);

@@ -27,8 +27,8 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
 
 /// The D-Form of two shapes in memory, solved as forward's solveDForm does (the exact model or
 /// the paper's), and measured: measureDForm(solveDForm(...)).
-Result<ForwardRun> makeDForm(Shape2 a, Shape2 b, const ForwardSettings& settings,
-                             MessageSink& sink, const RunHooks& hooks = {});
+Result<ForwardRun> makeDForm(Shape2 a, Shape2 b, const ForwardSettings& settings, MessageSink& sink,
+                             const RunHooks& hooks = {});
 
 /// The figures makeDForm gives a solved D-Form, for a front end that shows the shape (solveDForm)
 /// before its figures; `settings` and `pieces` (the pieces' names) for the message when

@@ -20,9 +20,9 @@ struct Key {
   const char* attribute;
   const char* label;
 };
-constexpr Key kKeys[] = {{"order", "order"},         {"height", "height"},
-                         {"volume", "volume"},       {"curvature", "max |curvature|"},
-                         {"passed", "gate"},         {"seconds", "time"}};
+constexpr Key kKeys[] = {{"order", "order"},   {"height", "height"},
+                         {"volume", "volume"}, {"curvature", "max |curvature|"},
+                         {"passed", "gate"},   {"seconds", "time"}};
 
 constexpr const char* kStyle = R"(
 body{font-family:system-ui,sans-serif;margin:1.5em;color:#222}
@@ -65,13 +65,14 @@ constexpr const char* kScript = R"(
 
 std::string galleryHtml(const std::string& title, const std::vector<SweepRow>& rows) {
   std::string html = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>" +
-                     escapeXml(utf8Text(title)) + "</title>\n<style>" + kStyle + "</style></head>\n<body>\n<h1>" +
-                     escapeXml(utf8Text(title)) + "</h1>\n<p>" + std::to_string(rows.size()) +
+                     escapeXml(utf8Text(title)) + "</title>\n<style>" + kStyle +
+                     "</style></head>\n<body>\n<h1>" + escapeXml(utf8Text(title)) + "</h1>\n<p>" +
+                     std::to_string(rows.size()) +
                      " results; click a card for its report, a button to sort.</p>\n"
                      "<div class=\"sort\">sort by ";
   for (const Key& key : kKeys)
-    html += std::string("<button type=\"button\" data-key=\"") + key.attribute + "\">" +
-            key.label + "</button>";
+    html += std::string("<button type=\"button\" data-key=\"") + key.attribute + "\">" + key.label +
+            "</button>";
   html += "</div>\n<div class=\"grid\" id=\"cards\">\n";
   for (std::size_t k = 0; k < rows.size(); ++k) {
     const SweepRow& r = rows[k];

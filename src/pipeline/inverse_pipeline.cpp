@@ -23,15 +23,17 @@ InverseRun measure(SolvedPieces solved, MessageSink& sink) {
   const std::string name = curveLabel(run.target);
   // A sheet folded over is what the gate rejects; where the curve leaves its hull, say why.
   if (run.metrics.flipped_3d > 0 && !run.pre.onHull)
-    sink.warning(name + ": the shape folds over itself (" + std::to_string(run.metrics.flipped_3d) +
-                 " triangles): the stretch of the curve inside its convex hull (" + run.pre.summary +
-                 ") is too deep to bend into a D-Form from the filled pre-D-Form; a shallower dent, or one "
-                 "spread along more of the curve, can be made (docs/inverse.md, Limits)");
+    sink.warning(
+        name + ": the shape folds over itself (" + std::to_string(run.metrics.flipped_3d) +
+        " triangles): the stretch of the curve inside its convex hull (" + run.pre.summary +
+        ") is too deep to bend into a D-Form from the filled pre-D-Form; a shallower dent, or one "
+        "spread along more of the curve, can be made (docs/inverse.md, Limits)");
   for (const Piece* p : {&run.model.a, &run.model.b}) {
     Points2 outline(p->seam.size(), 2);
     for (std::size_t k = 0; k < p->seam.size(); ++k) outline.row(k) = p->flat.row(p->seam[k]);
     if (findSelfIntersection(outline))
-      sink.warning("piece " + p->name + "'s flat outline overlaps itself: it cannot be cut from one sheet");
+      sink.warning("piece " + p->name +
+                   "'s flat outline overlaps itself: it cannot be cut from one sheet");
   }
   return run;
 }

@@ -13,14 +13,14 @@ namespace dform {
 
 /// An inverse job: the settings and the curve's file.
 struct InverseJob : InverseSettings {
-  std::string curve;        ///< seam curve file (OBJ polyline, JSON points or Bezier)
-  bool forceClosed = false; ///< an open OBJ polyline is closed (`--closed`)
+  std::string curve;         ///< seam curve file (OBJ polyline, JSON points or Bezier)
+  bool forceClosed = false;  ///< an open OBJ polyline is closed (`--closed`)
 };
 
 /// An inverse run's result: the solved pieces, their figures and how near the seam is to the curve.
 struct InverseRun : SolvedPieces {
   Metrics metrics;
-  CurveMatch curveMatch;   ///< D_error and the largest seam-to-curve distance
+  CurveMatch curveMatch;  ///< D_error and the largest seam-to-curve distance
 };
 
 /// Reads the curve, then makes and measures its pieces as makePieces does. Errors name the file

@@ -104,14 +104,17 @@ Job parse(const json& root, const std::string& baseDir) {
   const std::string mode = root["mode"].get<std::string>();
   Job job;
   if (mode == "forward") {
-    onlyKeys(root, {"mode", "model", "piece_a", "piece_b", "join", "start_a", "start_b", "resolution", "interior_edge",
-                    "flip", "fit_perimeter", "perimeter_tolerance", "weights", "solver"}, "");
+    onlyKeys(root,
+             {"mode", "model", "piece_a", "piece_b", "join", "start_a", "start_b", "resolution",
+              "interior_edge", "flip", "fit_perimeter", "perimeter_tolerance", "weights", "solver"},
+             "");
     ForwardJob& f = job.forward;
     f.pieceA = path(root, "piece_a", baseDir);
     f.pieceB = path(root, "piece_b", baseDir);
     if (root.contains("join") &&
         !(root["join"].is_string() && parseJoin(root["join"].get<std::string>(), f.joinA, f.joinB)))
-      throw KeyError{"join", "must be \"outer,outer\", \"inner,inner\", \"outer,inner\" or \"inner,outer\""};
+      throw KeyError{
+          "join", "must be \"outer,outer\", \"inner,inner\", \"outer,inner\" or \"inner,outer\""};
     f.solve.weights = defaultWeights(f.joinA, f.joinB);
     if (root.contains("model") &&
         !(root["model"].is_string() && parseModelChoice(root["model"].get<std::string>(), f.model)))

@@ -11,11 +11,13 @@ namespace {
 Result<Points3> exactSeam(const DForm& model) {
   const std::size_t n = model.a.seam.size();
   if (!model.a.freeBoundaries.empty() || !model.b.freeBoundaries.empty())
-    return Status(ErrorCode::InputInvalid,
-                  "a piece is zipped along a hole (anti or demi D-Form): its pieces glue no sphere");
+    return Status(
+        ErrorCode::InputInvalid,
+        "a piece is zipped along a hole (anti or demi D-Form): its pieces glue no sphere");
   if (n > std::size_t(exact::kMaxExactSeam))
-    return Status(ErrorCode::InputInvalid, "the seam has " + std::to_string(n) + " points, more than the " +
-                                               std::to_string(exact::kMaxExactSeam) + " glued exactly for a figure");
+    return Status(ErrorCode::InputInvalid,
+                  "the seam has " + std::to_string(n) + " points, more than the " +
+                      std::to_string(exact::kMaxExactSeam) + " glued exactly for a figure");
   exact::SeamPolygons seam;
   seam.a.resize(Eigen::Index(n), 2);
   seam.b.resize(Eigen::Index(n), 2);
@@ -31,7 +33,8 @@ Result<Points3> exactSeam(const DForm& model) {
   if (!edges.isOk()) return edges.status();
   exact::fitBodyToEdges(glued.value(), edges.value());
   Points3 out = exact::placeOnBody(glued.value(), 0, glued.value().seam.a);
-  if (!out.allFinite()) return Status(ErrorCode::SolveFailed, "a seam point could not be placed on the exact body");
+  if (!out.allFinite())
+    return Status(ErrorCode::SolveFailed, "a seam point could not be placed on the exact body");
   return out;
 }
 
@@ -42,7 +45,9 @@ ReferenceSeam reference(const Result<Points3>& seam, const std::string& how) {
 
 }  // namespace
 
-ReferenceSeam exactBodySeam(const DForm& model) { return reference(exactSeam(model), "the exact D-Form of the pieces"); }
+ReferenceSeam exactBodySeam(const DForm& model) {
+  return reference(exactSeam(model), "the exact D-Form of the pieces");
+}
 
 ReferenceSeam zippedAgainSeam(const DForm& model, const ReferenceSeam& exactBody) {
   if (exactBody.points.rows() > 0) return {exactBody.points, "zipped by " + exactBody.note};

@@ -34,7 +34,9 @@ json foldsJson(const ModelUsed& used, const DForm& model) {
   json out = json::array();
   for (const BodyFold& f : used.folds) {
     const Points2& flat = f.piece == 0 ? model.a.flat : model.b.flat;
-    const auto at = [&](int v) { return json::array({numberOrNull(flat(v, 0)), numberOrNull(flat(v, 1))}); };
+    const auto at = [&](int v) {
+      return json::array({numberOrNull(flat(v, 0)), numberOrNull(flat(v, 1))});
+    };
     json fold = {{"piece", f.piece == 0 ? "A" : "B"},
                  {"from_mm", at(f.from)},
                  {"to_mm", at(f.to)},
@@ -135,7 +137,9 @@ json meshJson(const DForm& model) {
 json timingsJson(const Timings& t, const CommandTimings& command,
                  std::chrono::steady_clock::time_point reportStart) {
   const auto now = std::chrono::steady_clock::now();
-  const auto seconds = [](auto duration) { return std::chrono::duration<double>(duration).count(); };
+  const auto seconds = [](auto duration) {
+    return std::chrono::duration<double>(duration).count();
+  };
   return {{"read", numberOrNull(t.read)},
           {"mesh", numberOrNull(t.mesh)},
           {"solve", numberOrNull(t.solve)},
@@ -231,8 +235,8 @@ std::string metricsJsonText(const Metrics& metrics, const CurveMatch* curve) {
   return figures.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
-Result<std::string> writeForwardReport(const std::string& dir, const Job& job, const ForwardRun& run,
-                                       const std::vector<Message>& messages,
+Result<std::string> writeForwardReport(const std::string& dir, const Job& job,
+                                       const ForwardRun& run, const std::vector<Message>& messages,
                                        const GateReport* gate, const CommandTimings& command) {
   const auto reportStart = std::chrono::steady_clock::now();
   json report = header(job, "forward");
@@ -254,8 +258,8 @@ Result<std::string> writeForwardReport(const std::string& dir, const Job& job, c
   return write(dir, report);
 }
 
-Result<std::string> writeInverseReport(const std::string& dir, const Job& job, const InverseRun& run,
-                                       const std::vector<Message>& messages,
+Result<std::string> writeInverseReport(const std::string& dir, const Job& job,
+                                       const InverseRun& run, const std::vector<Message>& messages,
                                        const GateReport* gate, const CommandTimings& command) {
   const auto reportStart = std::chrono::steady_clock::now();
   json report = header(job, "inverse");
@@ -337,10 +341,11 @@ void compareSavedJob(const json& report, const Metrics& metrics, const CurveMatc
     differ("model.name: report.json says exact, but the saved shape is " +
            describeJsonValue(json(exactDistance)) + " of its size from the exact one");
   const json job = at(report, "job"), inputs = at(report, "inputs");
-  const std::vector<std::string> names = curve ? std::vector<std::string>{"curve"}
-                                               : std::vector<std::string>{"piece_a", "piece_b"};
+  const std::vector<std::string> names =
+      curve ? std::vector<std::string>{"curve"} : std::vector<std::string>{"piece_a", "piece_b"};
   for (const std::string& name : names) {
-    const json input = at(inputs, name.c_str()), path = at(input, "path"), hash = at(input, "sha256");
+    const json input = at(inputs, name.c_str()), path = at(input, "path"),
+               hash = at(input, "sha256");
     const json named = at(job, name.c_str());
     // A shape or curve given in memory (the Python module, the studio) has no bytes to hash.
     const bool hashed = hash.is_string() && hash.get<std::string>().size() == 64;
@@ -369,19 +374,20 @@ Result<std::vector<std::string>> compareWithReport(const std::string& dir, const
   if (!report.is_object()) return std::vector<std::string>{"report.json is not a JSON object"};
   std::vector<std::string> differences;
   // An entry of report.json next to the value the saved result gives.
-  const auto compare = [&differences](const std::string& name, const json& saved,
-                                      const json& now) {
+  const auto compare = [&differences](const std::string& name, const json& saved, const json& now) {
     const bool bothNumbers = saved.is_number() && now.is_number();
     const bool same = bothNumbers ? std::abs(saved.get<double>() - now.get<double>()) <=
                                         1e-9 * std::max(1.0, std::abs(now.get<double>()))
                                   : saved == now;
     if (!same)
-      differences.push_back(name + ": report.json says " +
-                            (saved.is_discarded() ? std::string("nothing") : describeJsonValue(saved)) +
-                            ", the saved result gives " + describeJsonValue(now));
+      differences.push_back(
+          name + ": report.json says " +
+          (saved.is_discarded() ? std::string("nothing") : describeJsonValue(saved)) +
+          ", the saved result gives " + describeJsonValue(now));
   };
   const auto entry = [](const json& object, const std::string& key) {
-    return object.is_object() && object.contains(key) ? object[key] : json(json::value_t::discarded);
+    return object.is_object() && object.contains(key) ? object[key]
+                                                      : json(json::value_t::discarded);
   };
   compare("mode (inverse when the folder holds target-curve.obj)", entry(report, "mode"),
           curve ? "inverse" : "forward");

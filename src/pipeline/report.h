@@ -21,7 +21,7 @@ constexpr int kReportSchemaVersion = 2;
 
 /// The command's stages around the pipeline's run, for report.json's timings (seconds).
 struct CommandTimings {
-  std::chrono::steady_clock::time_point start;  ///< when the command began
+  std::chrono::steady_clock::time_point start;             ///< when the command began
   double gate = std::numeric_limits<double>::quiet_NaN();  ///< running the gate; NaN: no gate
   double write = 0;  ///< writing the meshes (and an inverse run's target curve)
   /// laying out and rendering the cutting files in memory (they are written after report.json,
@@ -32,13 +32,13 @@ struct CommandTimings {
 /// Writes `dir`/report.json (atomically) for a forward run and returns its text (for report.html).
 /// `gate` may be null (no gate ran). Its timings add the command's stages, the making of
 /// report.json itself, and the total from `command.start` to the moment report.json is made.
-Result<std::string> writeForwardReport(const std::string& dir, const Job& job, const ForwardRun& run,
-                                       const std::vector<Message>& messages,
+Result<std::string> writeForwardReport(const std::string& dir, const Job& job,
+                                       const ForwardRun& run, const std::vector<Message>& messages,
                                        const GateReport* gate, const CommandTimings& command);
 
 /// The same for an inverse run; its metrics add D_error and curve_distance_max_mm.
-Result<std::string> writeInverseReport(const std::string& dir, const Job& job, const InverseRun& run,
-                                       const std::vector<Message>& messages,
+Result<std::string> writeInverseReport(const std::string& dir, const Job& job,
+                                       const InverseRun& run, const std::vector<Message>& messages,
                                        const GateReport* gate, const CommandTimings& command);
 
 /// The figures as report.json records them under "metrics" (NaN and infinity as null), for
@@ -54,8 +54,7 @@ std::string metricsJsonText(const Metrics& metrics, const CurveMatch* curve);
 /// round-trip exactly). Returns one line per entry that differs or is missing, empty when all
 /// agree. InputUnreadable when report.json is missing, unreadable or not JSON.
 Result<std::vector<std::string>> compareWithReport(const std::string& dir, const DForm& model,
-                                                   const Metrics& metrics,
-                                                   const CurveMatch* curve);
+                                                   const Metrics& metrics, const CurveMatch* curve);
 
 /// The name of the gate `dir`/report.json recorded; InputInvalid when it records none.
 Result<std::string> savedGateName(const std::string& dir);

@@ -50,8 +50,10 @@ GateReport gateSolved(const Solved& solved, const GateLimits& limits) {
 // that fails leaves the rest of the result to be written (a sheet too small: the export can be
 // redone alone). Nothing (nullopt) where no export was asked for.
 std::optional<Result<PreparedExport>> prepareJudged(const Solved& solved, const std::string& name,
-                                     const OutputOptions& output, const RunSettings& settings,
-                                     std::optional<GateReport>& gate, MessageSink& sink) {
+                                                    const OutputOptions& output,
+                                                    const RunSettings& settings,
+                                                    std::optional<GateReport>& gate,
+                                                    MessageSink& sink) {
   if (!output.exportFiles) {
     if (gate) gate->checks.push_back(notRunCheck("pattern_layout", 0, "no export (--no-export)"));
     return std::nullopt;
@@ -111,10 +113,9 @@ Result<WrittenResult> writeSolved(const Job& job, const Solved& solved, ResultFo
   if (release) noteExport(prepared->value(), sink);
   const GateReport* gateReport = gate ? &*gate : nullptr;
   const Result<std::string> reported =
-      solved.forward ? writeForwardReport(staging, job, *solved.forward, sink.messages(),
-                                          gateReport, timings)
-                     : writeInverseReport(staging, job, *solved.inverse, sink.messages(),
-                                          gateReport, timings);
+      solved.forward
+          ? writeForwardReport(staging, job, *solved.forward, sink.messages(), gateReport, timings)
+          : writeInverseReport(staging, job, *solved.inverse, sink.messages(), gateReport, timings);
   if (!reported.isOk()) return folder.named(reported.status());
   if (release)
     if (Status s = writeExport(prepared->value(), staging).status(); !s.isOk())
@@ -123,8 +124,7 @@ Result<WrittenResult> writeSolved(const Job& job, const Solved& solved, ResultFo
                                     release ? &prepared->value() : nullptr, solved.model());
       !html.isOk())
     return folder.named(html);
-  if (Status s = commitUnlessInterrupted(folder, output.outDir, interrupted); !s.isOk())
-    return s;
+  if (Status s = commitUnlessInterrupted(folder, output.outDir, interrupted); !s.isOk()) return s;
   // A signal held back during the swap is delivered now: the new result is in place.
   if (interrupted)
     return Status(ErrorCode::Interrupted,

@@ -36,19 +36,19 @@ std::vector<std::string> exportProfileNames();
 /// What to do with a run's result.
 struct OutputOptions {
   std::string outDir;
-  bool exportFiles = true;       ///< write the cutting patterns and previews
-  std::string profile = "laser"; ///< export profile name or file
-  std::string sheet;             ///< "WxH" in mm (e.g. 600x400mm); empty: the exporter's default
-  std::string page;              ///< --page A4|Letter|A3|Tabloid|WxHmm; empty: the profile's
-  std::string scale;             ///< --scale 0.8 | 80% | fit; empty: true size
+  bool exportFiles = true;        ///< write the cutting patterns and previews
+  std::string profile = "laser";  ///< export profile name or file
+  std::string sheet;              ///< "WxH" in mm (e.g. 600x400mm); empty: the exporter's default
+  std::string page;               ///< --page A4|Letter|A3|Tabloid|WxHmm; empty: the profile's
+  std::string scale;              ///< --scale 0.8 | 80% | fit; empty: true size
   std::optional<double> tabWidthMm;     ///< --tab-width (mm; 0 = no tabs); unset: the default
   std::string tabs;                     ///< --tabs a|b|alternate|none; empty: the profile's
   std::optional<double> tickSpacingMm;  ///< --tick-spacing (mm); unset: the default
   bool gltfText = false;                ///< --gltf: dform.gltf (text) instead of dform.glb
   bool title = true;                    ///< the title block on the sheets (--no-title: none)
   std::optional<double> scoreFoldsDeg;  ///< --score-folds (degrees); unset: no folds scored
-  std::string gate = "default";  ///< gate name or file; "none" skips the gate
-  bool exportAnyway = false;     ///< export even when the gate fails (files marked FAILED GATE)
+  std::string gate = "default";         ///< gate name or file; "none" skips the gate
+  bool exportAnyway = false;  ///< export even when the gate fails (files marked FAILED GATE)
   bool quiet = false;
 };
 

@@ -92,15 +92,16 @@ Result<GateLimits> loadGate(const std::string& nameOrPath) {
         if (entry.path().extension() == ".json") names.insert(entry.path().stem().string());
       std::string known;
       for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
-      return Status(ErrorCode::Usage, "--gate: unknown gate \"" + nameOrPath + "\" (known: " +
-                                          known + ", or a gate .json file)");
+      return Status(ErrorCode::Usage, "--gate: unknown gate \"" + nameOrPath +
+                                          "\" (known: " + known + ", or a gate .json file)");
     }
     return readGateFile(file.string());
   }
   // "gates/strict.json" as the docs write it: a path relative to templates/ when not one here.
   const std::string inTemplates = templatesDir() + "/" + nameOrPath;
   std::error_code ec;
-  if (!fs::exists(nameOrPath, ec) && fs::path(nameOrPath).is_relative() && fs::exists(inTemplates, ec))
+  if (!fs::exists(nameOrPath, ec) && fs::path(nameOrPath).is_relative() &&
+      fs::exists(inTemplates, ec))
     return readGateFile(inTemplates);
   return readGateFile(nameOrPath);
 }
@@ -119,8 +120,10 @@ Result<ExportOptions> exportOptions(const OutputOptions& output) {
     options.sheetGiven = true;
   }
   if (!output.page.empty() && !pageSizeMm(output.page))
-    return Status(ErrorCode::Usage, "--page must be A4, Letter, A3, Tabloid or a size such as "
-                                    "200x300mm, got '" + output.page + "'");
+    return Status(ErrorCode::Usage,
+                  "--page must be A4, Letter, A3, Tabloid or a size such as "
+                  "200x300mm, got '" +
+                      output.page + "'");
   options.page = output.page;
   options.scoreFoldsDeg = output.scoreFoldsDeg;
   if (output.scale == "fit") {
@@ -131,9 +134,9 @@ Result<ExportOptions> exportOptions(const OutputOptions& output) {
     const int n = std::sscanf(output.scale.c_str(), "%lf%3s", &value, rest);
     const std::string unit = rest;
     if (n < 1 || !(unit.empty() || unit == "%"))
-      return Status(ErrorCode::Usage,
-                    "--scale must be a number (0.8), a percentage (80%) or fit, got '" +
-                        output.scale + "'");
+      return Status(
+          ErrorCode::Usage,
+          "--scale must be a number (0.8), a percentage (80%) or fit, got '" + output.scale + "'");
     options.scale = unit == "%" ? value / 100 : value;
   }
   if (output.tabWidthMm) options.tabWidthMm = *output.tabWidthMm;
@@ -162,8 +165,8 @@ std::vector<FoldToScore> foldsToScore(const ModelUsed& used, const DForm& model)
   for (const BodyFold& f : used.folds) {
     if (f.crease >= 0) continue;  // drawn already, as the piece's crease line
     const Points2& flat = f.piece == 0 ? model.a.flat : model.b.flat;
-    out.push_back({f.piece, flat.row(f.from).transpose(), flat.row(f.to).transpose(),
-                   f.radians / kDegree});
+    out.push_back(
+        {f.piece, flat.row(f.from).transpose(), flat.row(f.to).transpose(), f.radians / kDegree});
   }
   return out;
 }
@@ -184,7 +187,7 @@ ExportOptions withFolds(ExportOptions options, std::vector<FoldToScore> folds,
 Result<LaidOutExport> layOut(const DForm& model, ExportOptions options,
                              const std::string& jobName) {
   options.jobName = utf8Text(jobName);  // Cairo's PDF metadata and the SVG title take UTF-8 only
-  options.failedGateMark = false;  // stamped, if at all, once the gate is known (render)
+  options.failedGateMark = false;       // stamped, if at all, once the gate is known (render)
   const Eigen::VectorXd curvature[2] = {curvatureMap(model.a), curvatureMap(model.b)};
   options.curvatureA.assign(curvature[0].data(), curvature[0].data() + curvature[0].size());
   options.curvatureB.assign(curvature[1].data(), curvature[1].data() + curvature[1].size());
@@ -206,16 +209,17 @@ std::string jobName(const Job& job) {
 // The gate's fabrication check: the laid-out pattern fits the sheet and nothing on it overlaps.
 CheckResult layoutCheck(const LayoutFindings& f) {
   const std::string detail =
-      f.problems() == 0 ? "every path on the sheet; tabs, pieces and labels clear of each other"
-                        : std::to_string(f.outsideSheet) + " off the sheet, " +
-                              std::to_string(f.overlappingTabs) + " overlapping tab pairs, " +
-                              std::to_string(f.tabsOverPieces) + " tabs over a piece, " +
-                              std::to_string(f.overlappingPieces) + " overlapping pieces, " +
-                              std::to_string(f.labelsOutside) + " labels outside their piece, " +
-                              std::to_string(f.overlappingLabels) + " overlapping label pairs, " +
-                              std::to_string(f.titleOverlaps) + " title lines over a piece or mark, " +
-                              std::to_string(f.extraCutLoops) +
-                              " cut loops cut free of their piece; first: " + f.example;
+      f.problems() == 0
+          ? "every path on the sheet; tabs, pieces and labels clear of each other"
+          : std::to_string(f.outsideSheet) + " off the sheet, " +
+                std::to_string(f.overlappingTabs) + " overlapping tab pairs, " +
+                std::to_string(f.tabsOverPieces) + " tabs over a piece, " +
+                std::to_string(f.overlappingPieces) + " overlapping pieces, " +
+                std::to_string(f.labelsOutside) + " labels outside their piece, " +
+                std::to_string(f.overlappingLabels) + " overlapping label pairs, " +
+                std::to_string(f.titleOverlaps) + " title lines over a piece or mark, " +
+                std::to_string(f.extraCutLoops) +
+                " cut loops cut free of their piece; first: " + f.example;
   return judgeCheck("pattern_layout", f.problems(), 0, detail);
 }
 
@@ -247,9 +251,9 @@ Status writeReportPage(const std::string& dir, const std::string& reportJson,
 // Every file a run or an export writes into a result folder: the only files a folder that is
 // replaced as a whole may hold.
 std::set<std::string> resultFileNames() {
-  std::set<std::string> names = {ModelFileNames::aFlat, ModelFileNames::a3d,
-                                 ModelFileNames::bFlat, ModelFileNames::b3d,
-                                 ModelFileNames::targetCurve, "report.json", "report.html"};
+  std::set<std::string> names = {
+      ModelFileNames::aFlat,       ModelFileNames::a3d, ModelFileNames::bFlat, ModelFileNames::b3d,
+      ModelFileNames::targetCurve, "report.json",       "report.html"};
   for (const std::string& name : exportFileNames()) names.insert(name);
   return names;
 }

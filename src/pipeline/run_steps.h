@@ -31,8 +31,7 @@ ExportOptions withFolds(ExportOptions options, std::vector<FoldToScore> folds,
 
 /// Lays out the cutting patterns of `model` once, not yet rendered; the glTF preview will carry
 /// the curvature map the report shows.
-Result<LaidOutExport> layOut(const DForm& model, ExportOptions options,
-                             const std::string& jobName);
+Result<LaidOutExport> layOut(const DForm& model, ExportOptions options, const std::string& jobName);
 
 /// Renders a laid-out pattern of `model` and its previews, not yet written, stamped FAILED GATE
 /// (an overlay: nothing moves) when `failedGate`.

@@ -5,13 +5,13 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "core/input_file.h"
 #include "core/result_folder.h"
 #include "io/curve_reader.h"
 #include "io/model_files.h"
 #include "pipeline/reference_seams.h"
 #include "pipeline/report.h"
 #include "pipeline/run_steps.h"
-#include "core/input_file.h"
 
 namespace dform {
 
@@ -26,7 +26,9 @@ std::string savedJobName(const std::string& dir) {
   std::ifstream in(path);
   const nlohmann::json report = nlohmann::json::parse(in, nullptr, false);
   if (report.is_object() && report.contains("job")) {
-    Result<Job> job = parseJobJson(report["job"].dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), path.string(), dir);
+    Result<Job> job =
+        parseJobJson(report["job"].dump(-1, ' ', false, nlohmann::json::error_handler_t::replace),
+                     path.string(), dir);
     if (job.isOk()) return jobName(job.value());
   }
   return fs::path(dir).filename().string();
@@ -104,7 +106,8 @@ Result<std::string> exportSavedResult(const std::string& dir, const OutputOption
     if (!verdict.isOk()) return verdict.status();
     failedGate = verdict.value() == false;
     const Result<std::string> recorded = savedGateName(dir);
-    if (recorded.isOk() && fs::exists(fs::path(templatesDir()) / "gates" / (recorded.value() + ".json")))
+    if (recorded.isOk() &&
+        fs::exists(fs::path(templatesDir()) / "gates" / (recorded.value() + ".json")))
       gateName = recorded.value();
   }
   Result<GateLimits> limits = loadGate(gateName);
@@ -119,15 +122,15 @@ Result<std::string> exportSavedResult(const std::string& dir, const OutputOption
   if (failedGate && !output.exportAnyway) {
     return Status(ErrorCode::GateFailed,
                   dir + ": the result failed its quality gate '" + gateName +
-                    "' (checked again on the meshes: " +
-                    (failing.empty() ? "report.json records a failure" : failing + " fail") +
-                    "); nothing exported (--export-anyway exports it marked FAILED GATE)");
+                      "' (checked again on the meshes: " +
+                      (failing.empty() ? "report.json records a failure" : failing + " fail") +
+                      "); nothing exported (--export-anyway exports it marked FAILED GATE)");
   }
   // Laid out once: a layout that fails is stamped as it is (the stamp is an overlay).
   std::string modelName;
-  const Result<LaidOutExport> laidOut =
-      layOut(model.value(), withFolds(exporting.value(), savedFolds(dir, modelName), modelName, sink),
-             savedJobName(dir));
+  const Result<LaidOutExport> laidOut = layOut(
+      model.value(), withFolds(exporting.value(), savedFolds(dir, modelName), modelName, sink),
+      savedJobName(dir));
   if (interrupted) return leftAsItWas(dir, "interrupted");
   if (!laidOut.isOk()) return laidOut.status();
   const LayoutFindings& layout = laidOut.value().layout;
@@ -146,7 +149,8 @@ Result<std::string> exportSavedResult(const std::string& dir, const OutputOption
   if (!output.outDir.empty()) {
     ResultFolder out;
     if (Status s = out.begin(output.outDir, resultFileNames()); !s.isOk()) return s;
-    if (Status s = writeExport(prepared.value(), out.staging()).status(); !s.isOk()) return out.named(s);
+    if (Status s = writeExport(prepared.value(), out.staging()).status(); !s.isOk())
+      return out.named(s);
     if (Status s = commitUnlessInterrupted(out, output.outDir, interrupted); !s.isOk()) return s;
     return output.outDir;
   }
@@ -170,7 +174,7 @@ Result<std::string> exportSavedResult(const std::string& dir, const OutputOption
   if (Status s = commitUnlessInterrupted(folder, dir, interrupted); !s.isOk()) return s;
   if (interrupted)
     return Status(ErrorCode::Interrupted,
-                       dir + ": interrupted; the new export was written completely");
+                  dir + ": interrupted; the new export was written completely");
   return dir;
 }
 
@@ -184,7 +188,8 @@ Result<SavedCheck> validateSavedResult(const std::string& dir, const std::string
   if (!target.isOk()) return target.status();
   SavedCheck check;
   check.gateName = limits.value().name;
-  check.gate = measureAndGate(model.value(), limits.value(), target.value() ? &*target.value() : nullptr);
+  check.gate =
+      measureAndGate(model.value(), limits.value(), target.value() ? &*target.value() : nullptr);
   check.gate.checks.push_back(notRunCheck(
       "pattern_layout", 0, "validate re-checks the meshes; `dform export` checks the layout"));
   // The figures are recomputed from the meshes, never taken from the report.

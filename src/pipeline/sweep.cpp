@@ -5,10 +5,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <memory>
-#include <exception>
 #include <mutex>
 #include <new>
 #include <nlohmann/json.hpp>
@@ -17,9 +17,9 @@
 #include "core/atomic_file.h"
 #include "core/message_text.h"
 #include "core/result_folder.h"
-#include "pipeline/run_steps.h"
 #include "io/json_util.h"
 #include "io/model_files.h"
+#include "pipeline/run_steps.h"
 #include "report/views.h"
 #include "validate/metrics.h"
 
@@ -52,8 +52,9 @@ Status runGuarded(const std::function<Status()>& run) {
   try {
     return run();
   } catch (const std::bad_alloc&) {
-    return Status(ErrorCode::Usage, "out of memory (the machine or its limits give this run less "
-                                    "than it needs); try a lower resolution");
+    return Status(ErrorCode::Usage,
+                  "out of memory (the machine or its limits give this run less "
+                  "than it needs); try a lower resolution");
   } catch (const std::exception& e) {
     return Status(ErrorCode::Internal, std::string("internal error: ") + printable(e.what(), 200));
   } catch (...) {
@@ -89,13 +90,15 @@ SweepRow measureResult(const std::string& dir) {
   const json report = json::parse(in, nullptr, false);
   Result<DForm> model = readModel(dir);
   if (!report.is_object() || !model.isOk()) {
-    row.reason = model.isOk() ? dir + "/report.json: missing or not JSON" : model.status().message();
+    row.reason =
+        model.isOk() ? dir + "/report.json: missing or not JSON" : model.status().message();
     return row;
   }
   row.solved = true;
   const DForm& m = model.value();
   row.model = report.value("/model/name"_json_pointer, std::string());
-  const Eigen::Vector3d apex = (m.a.shape.colwise().mean() + m.b.shape.colwise().mean()).transpose() / 2;
+  const Eigen::Vector3d apex =
+      (m.a.shape.colwise().mean() + m.b.shape.colwise().mean()).transpose() / 2;
   row.volumeMm3 = coneVolume(m.a, apex) + coneVolume(m.b, apex);
   const double zMax = std::max(m.a.shape.col(2).maxCoeff(), m.b.shape.col(2).maxCoeff());
   const double zMin = std::min(m.a.shape.col(2).minCoeff(), m.b.shape.col(2).minCoeff());
@@ -108,8 +111,8 @@ SweepRow measureResult(const std::string& dir) {
     for (const json& check : gate.value("checks", json::array()))
       if (check.value("verdict", std::string()) == "fail") {
         row.failing.push_back(check.value("name", std::string()));
-        row.reason += (row.reason.empty() ? "" : "; ") + check.value("name", std::string()) +
-                      ": " + check.value("detail", std::string());
+        row.reason += (row.reason.empty() ? "" : "; ") + check.value("name", std::string()) + ": " +
+                      check.value("detail", std::string());
       }
     if (!row.passed && row.reason.empty()) row.reason = "the gate did not pass";
   } else {
@@ -169,7 +172,8 @@ Result<std::vector<SweepRow>> runSweep(const Job& base, const SweepOptions& opti
   std::error_code ec;
   std::vector<std::string> earlierStarts;
   for (const fs::directory_entry& entry : fs::directory_iterator(outDir, ec))
-    if (isStartFolder(entry.path().filename().string())) earlierStarts.push_back(entry.path().filename().string());
+    if (isStartFolder(entry.path().filename().string()))
+      earlierStarts.push_back(entry.path().filename().string());
   std::sort(earlierStarts.begin(), earlierStarts.end());
   for (const std::string& name : earlierStarts) {
     heldStarts.push_back(std::make_unique<ResultFolder>());
@@ -197,7 +201,8 @@ Result<std::vector<SweepRow>> runSweep(const Job& base, const SweepOptions& opti
     row.flip = start.flip;
     row.subfolder = start.subfolder;
     char label[48];
-    std::snprintf(label, sizeof label, "start B %.4f%s", start.startB, start.flip ? " flipped" : "");
+    std::snprintf(label, sizeof label, "start B %.4f%s", start.startB,
+                  start.flip ? " flipped" : "");
     row.label = label;
     if (!row.solved) row.seconds = std::chrono::duration<double>(Clock::now() - jobBegun).count();
     const std::lock_guard<std::mutex> lock(mutex);
@@ -213,10 +218,10 @@ Result<std::vector<SweepRow>> runSweep(const Job& base, const SweepOptions& opti
     return Status(ErrorCode::Interrupted, outDir + ": interrupted; the folder was left as it was");
   for (const auto& [name, text] :
        {std::pair<const char*, std::string>{"sweep.json", sweepJson(base, options, rows)},
-        {"gallery.html", galleryHtml("D-Form sweep: " +
-                                         fs::path(base.forward.pieceA).filename().string() + " + " +
-                                         fs::path(base.forward.pieceB).filename().string(),
-                                     rows)}})
+        {"gallery.html",
+         galleryHtml("D-Form sweep: " + fs::path(base.forward.pieceA).filename().string() + " + " +
+                         fs::path(base.forward.pieceB).filename().string(),
+                     rows)}})
     if (Status s = writeFileAtomically((fs::path(folder.staging()) / name).string(), text);
         !s.isOk())
       return folder.named(s);
@@ -230,7 +235,9 @@ std::string sweepJson(const Job& base, const SweepOptions& options,
               {"schema_version", 1},
               {"job", json::parse(jobToJson(base))},
               {"starts", options.starts},
-              {"flip", options.bothFlips ? "both" : base.forward.flip ? "flipped" : "as drawn"}};
+              {"flip", options.bothFlips   ? "both"
+                       : base.forward.flip ? "flipped"
+                                           : "as drawn"}};
   json list = json::array();
   for (const SweepRow& r : rows)
     list.push_back({{"start_b", r.startB},

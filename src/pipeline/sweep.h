@@ -37,32 +37,33 @@ struct SweepRow {
   double startB = 0;
   bool flip = false;
   std::string subfolder;
-  std::string label;         ///< the card's first line: "start B 0.1250 flipped", a job's name
-  bool solved = false;       ///< the run wrote a result (else `reason` says why not)
-  std::string model;         ///< "exact" or "paper", as report.json records it
-  double heightMm = 0;       ///< z extent of the 3D shape as solved (both pieces)
-  double volumeMm3 = 0;      ///< signed volume enclosed by the closed 3D mesh (A and B)
-  double maxCurvature = 0;   ///< largest |curvature| (angle defect, rad) of either piece
-  bool passed = false;       ///< the gate passed (false without a gate)
+  std::string label;        ///< the card's first line: "start B 0.1250 flipped", a job's name
+  bool solved = false;      ///< the run wrote a result (else `reason` says why not)
+  std::string model;        ///< "exact" or "paper", as report.json records it
+  double heightMm = 0;      ///< z extent of the 3D shape as solved (both pieces)
+  double volumeMm3 = 0;     ///< signed volume enclosed by the closed 3D mesh (A and B)
+  double maxCurvature = 0;  ///< largest |curvature| (angle defect, rad) of either piece
+  bool passed = false;      ///< the gate passed (false without a gate)
   std::vector<std::string> failing;  ///< names of the failed gate checks
-  std::string reason;        ///< why the row failed: the run's error, or the failed checks' details
-  double seconds = 0;        ///< the run's wall time, start to commit
-  std::string svg;           ///< the 3D shape from the gallery's camera (empty when not solved)
+  std::string reason;  ///< why the row failed: the run's error, or the failed checks' details
+  double seconds = 0;  ///< the run's wall time, start to commit
+  std::string svg;     ///< the 3D shape from the gallery's camera (empty when not solved)
 };
 
 /// Runs one start: writes a complete result into `dir` (a fresh folder) or returns why not.
 /// Called from several threads at once, each with its own sink.
-using SweepRunner = std::function<Status(const Job& job, const std::string& dir, MessageSink& sink)>;
+using SweepRunner =
+    std::function<Status(const Job& job, const std::string& dir, MessageSink& sink)>;
 
 /// Progress after each finished start: done (of total), failed (not solved or gate failed), and
 /// the seconds since the sweep began.
 using SweepProgress = std::function<void(int done, int failed, int total, double seconds)>;
 
 /// Locks and stages `outDir` (which must be missing or empty, or hold only an earlier sweep:
-/// sweep.json, gallery.html and start-K[-flip] folders, all replaced), runs every start with `run` on a pool of threads, measures
-/// each saved result, writes sweep.json and gallery.html, and swaps the folder in. Interrupted
-/// when `interrupted` is set meanwhile (the folder is left as it was); OutputFailed naming the
-/// file. `progress` is called under a lock, one call at a time.
+/// sweep.json, gallery.html and start-K[-flip] folders, all replaced), runs every start with `run`
+/// on a pool of threads, measures each saved result, writes sweep.json and gallery.html, and swaps
+/// the folder in. Interrupted when `interrupted` is set meanwhile (the folder is left as it was);
+/// OutputFailed naming the file. `progress` is called under a lock, one call at a time.
 Result<std::vector<SweepRow>> runSweep(const Job& base, const SweepOptions& options,
                                        const std::string& outDir, const SweepRunner& run,
                                        const SweepProgress& progress,

@@ -160,10 +160,9 @@ py::dict exportMade(const Made& made, const std::string& outDir, const std::stri
   py::list checks;
   if (written.gate)
     for (const CheckResult& c : written.gate->checks)
-      checks.append(py::dict(py::arg("name") = c.name, py::arg("value") = c.value,
-                             py::arg("limit") = c.limit,
-                             py::arg("verdict") = verdictName(c.verdict),
-                             py::arg("detail") = c.detail));
+      checks.append(
+          py::dict(py::arg("name") = c.name, py::arg("value") = c.value, py::arg("limit") = c.limit,
+                   py::arg("verdict") = verdictName(c.verdict), py::arg("detail") = c.detail));
   outcome["checks"] = checks;
   outcome["cutting_files"] = exportFiles && written.exported.isOk() &&
                              (!written.gate || written.gate->passed() || exportAnyway);
@@ -191,8 +190,10 @@ Made forward(const RowPoints& outlineA, const RowPoints& outlineB,
   if (!parseModelChoice(model, job.model))
     raise({ErrorCode::Usage, "model must be auto, exact, paper or general, got '" + model + "'"});
   if (!parseJoin(join, job.joinA, job.joinB))
-    raise({ErrorCode::Usage, "join must be 'outer,outer', 'inner,inner', 'outer,inner' or "
-                             "'inner,outer', got '" + join + "'"});
+    raise({ErrorCode::Usage,
+           "join must be 'outer,outer', 'inner,inner', 'outer,inner' or "
+           "'inner,outer', got '" +
+               join + "'"});
   job.solve.weights = defaultWeights(job.joinA, job.joinB);
   for (const auto& [name, value] : weights)
     if (!setNamedWeight(made.job, name, value))
@@ -256,20 +257,23 @@ PYBIND11_MODULE(dform, m) {
   errorType = error.ptr();
 
   py::class_<Made>(m, "Result", "a solved D-Form: its pieces, figures and messages")
-      .def_property_readonly("model", [](const Made& r) { return r.modelUsed().name; },
-                             "'exact' or 'paper': which model made the shape")
+      .def_property_readonly(
+          "model", [](const Made& r) { return r.modelUsed().name; },
+          "'exact' or 'paper': which model made the shape")
       .def_property_readonly("model_reason", [](const Made& r) { return r.modelUsed().reason; })
-      .def_property_readonly("piece_a", [](const Made& r) { return pieceDict(r.model().a); },
-                             "dict: name, flat (n, 2) mm, shape (n, 3) mm, faces (m, 3), seam")
+      .def_property_readonly(
+          "piece_a", [](const Made& r) { return pieceDict(r.model().a); },
+          "dict: name, flat (n, 2) mm, shape (n, 3) mm, faces (m, 3), seam")
       .def_property_readonly("piece_b", [](const Made& r) { return pieceDict(r.model().b); })
       .def_property_readonly("figures", &figures, "the figures report.json records ('metrics')")
       .def_property_readonly("messages", &messageList, "[(level, text)] as the run said them")
-      .def_property_readonly("target",
-                             [](const Made& r) -> std::optional<Points3> {
-                               if (!r.inverse) return std::nullopt;
-                               return r.inverse->target.points;
-                             },
-                             "inverse: the resampled curve the seam follows (n, 3), else None")
+      .def_property_readonly(
+          "target",
+          [](const Made& r) -> std::optional<Points3> {
+            if (!r.inverse) return std::nullopt;
+            return r.inverse->target.points;
+          },
+          "inverse: the resampled curve the seam follows (n, 3), else None")
       .def("export", &exportMade, arg("out_dir"), py::kw_only(), arg("profile") = "laser",
            arg("gate") = "default", arg("export_anyway") = false, arg("cutting_files") = true,
            arg("sheet") = "", arg("page") = "", arg("scale") = "",
@@ -279,11 +283,10 @@ PYBIND11_MODULE(dform, m) {
   m.def("forward", &forward, arg("outline_a"), arg("outline_b"), py::kw_only(),
         arg("holes_a") = std::vector<RowPoints>(), arg("holes_b") = std::vector<RowPoints>(),
         arg("creases_a") = std::vector<RowPoints>(), arg("creases_b") = std::vector<RowPoints>(),
-        arg("resolution") = 100, arg("model") = "auto", arg("start_a") = 0.0,
-        arg("start_b") = 0.0, arg("flip") = false, arg("fit_perimeter") = false,
-        arg("interior_edge") = 1.0, arg("join") = "outer,outer",
-        arg("weights") = std::map<std::string, double>(), arg("name_a") = "piece A",
-        arg("name_b") = "piece B",
+        arg("resolution") = 100, arg("model") = "auto", arg("start_a") = 0.0, arg("start_b") = 0.0,
+        arg("flip") = false, arg("fit_perimeter") = false, arg("interior_edge") = 1.0,
+        arg("join") = "outer,outer", arg("weights") = std::map<std::string, double>(),
+        arg("name_a") = "piece A", arg("name_b") = "piece B",
         "two flat outlines (n, 2) in mm -> the D-Form they make (docs/python.md)");
   m.def("inverse", &inverse, arg("curve"), py::kw_only(), arg("resolution") = 100,
         arg("weights") = std::map<std::string, double>(), arg("name") = "curve",

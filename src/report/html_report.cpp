@@ -28,7 +28,8 @@ std::string show(const json& v) {
     std::snprintf(text, sizeof text, "%.4g", v.get<double>());
     return text;
   }
-  return v.is_string() ? v.get<std::string>() : v.dump(-1, ' ', false, json::error_handler_t::replace);
+  return v.is_string() ? v.get<std::string>()
+                       : v.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
 // {key, value} rows of a JSON object, for a two-column table.
@@ -114,9 +115,12 @@ std::vector<FlatFold> flatFolds(const json& report) {
   if (!report.contains("model") || !report["model"].contains("folds")) return out;
   for (const json& f : report["model"]["folds"]) {
     const json &from = f["from_mm"], &to = f["to_mm"];
-    if (!from[0].is_number() || !from[1].is_number() || !to[0].is_number() || !to[1].is_number()) continue;
-    out.push_back({f["piece"] == "A" ? 0 : 1, {from[0].get<double>(), from[1].get<double>()},
-                   {to[0].get<double>(), to[1].get<double>()}, f["crease"].get<bool>()});
+    if (!from[0].is_number() || !from[1].is_number() || !to[0].is_number() || !to[1].is_number())
+      continue;
+    out.push_back({f["piece"] == "A" ? 0 : 1,
+                   {from[0].get<double>(), from[1].get<double>()},
+                   {to[0].get<double>(), to[1].get<double>()},
+                   f["crease"].get<bool>()});
   }
   return out;
 }
@@ -186,7 +190,8 @@ Result<std::string> renderReportHtml(const ReportSources& sources, const DForm& 
 
   // Which model made the shape and how far it is from the one the cut pieces make.
   const json& model_ = report.contains("model") ? report["model"] : json();
-  page.set("has_model", model_.is_object() ? data(data::type::bool_true) : data(data::type::bool_false));
+  page.set("has_model",
+           model_.is_object() ? data(data::type::bool_true) : data(data::type::bool_false));
   if (model_.is_object()) {
     page.set("model_name", show(model_["name"]));
     page.set("model_reason", show(model_["reason"]));
@@ -196,14 +201,17 @@ Result<std::string> renderReportHtml(const ReportSources& sources, const DForm& 
     const json& max = inverse ? m["roundtrip_max_rel"] : m["exact_distance_max_rel"];
     page.set("object_figure",
              rms.is_number()
-                 ? std::string(inverse ? "The pieces zipped again lie " : "The shape lies ") + show(rms) +
-                       " (RMS, largest " + show(max) + ") of the seam's bounding-box diagonal from " +
+                 ? std::string(inverse ? "The pieces zipped again lie " : "The shape lies ") +
+                       show(rms) + " (RMS, largest " + show(max) +
+                       ") of the seam's bounding-box diagonal from " +
                        (inverse ? "the curve asked for." : "the exact D-Form the cut pieces make.")
-                 : "No exact D-Form to compare with: " + show(inverse ? m["roundtrip_note"] : m["exact_note"]) + ".");
+                 : "No exact D-Form to compare with: " +
+                       show(inverse ? m["roundtrip_note"] : m["exact_note"]) + ".");
     const std::size_t found = model_.contains("found_creases") ? model_["found_creases"].size() : 0;
     page.set("found_creases", found == 0 ? std::string()
-                                         : std::to_string(found) + " crease(s) found by the exact model, drawn on the "
-                                                                   "pattern like drawn ones.");
+                                         : std::to_string(found) +
+                                               " crease(s) found by the exact model, drawn on the "
+                                               "pattern like drawn ones.");
   }
 
   page.set("views", stillViews(model));
@@ -215,23 +223,24 @@ Result<std::string> renderReportHtml(const ReportSources& sources, const DForm& 
   const std::vector<FlatFold> folds = flatFolds(report);
   page.set("curvature_flat", flatCurvatureSvg(model, 520, &maps, folds));
   page.set("fold_legend", folds.empty() ? std::string()
-                                        : ". Faint lines: the folds of the exact body (" + std::to_string(folds.size()) +
+                                        : ". Faint lines: the folds of the exact body (" +
+                                              std::to_string(folds.size()) +
                                               "), darker where one is a found crease.");
   char scale[32];
   std::snprintf(scale, sizeof scale, "%.3g", maps.scale);
   page.set("curvature_scale", scale);
   page.set("viewer_model", viewerModelJson(model, maps, sources.seamTicks));
   page.set("viewer_js", viewerScript.value());
-  page.set("has_ticks", sources.seamTicks.empty() ? data(data::type::bool_false)
-                                                  : data(data::type::bool_true));
+  page.set("has_ticks",
+           sources.seamTicks.empty() ? data(data::type::bool_false) : data(data::type::bool_true));
   page.set("creases", creaseRows(model));
   page.set("has_creases", model.a.creases.empty() && model.b.creases.empty()
                               ? data(data::type::bool_false)
                               : data(data::type::bool_true));
 
   // The export's pictures, inline when the result has them: has_<key> and <key>_svg.
-  for (const auto& [svg, key] : {std::pair{&sources.patternSvg, "pattern"},
-                                 {&sources.assemblySvg, "assembly"}}) {
+  for (const auto& [svg, key] :
+       {std::pair{&sources.patternSvg, "pattern"}, {&sources.assemblySvg, "assembly"}}) {
     page.set(std::string("has_") + key,
              svg->empty() ? data(data::type::bool_false) : data(data::type::bool_true));
     page.set(std::string(key) + "_svg", inlineSvg(*svg));

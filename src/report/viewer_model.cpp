@@ -17,7 +17,8 @@ using nlohmann::json;
 // Steps per millimetre to round coordinates to: a power of ten, so that they print short, for a
 // step below a ten-thousandth of the shape's bounding-box diagonal.
 double roundingSteps(const DForm& model) {
-  Eigen::RowVector3d lo = model.a.shape.colwise().minCoeff(), hi = model.a.shape.colwise().maxCoeff();
+  Eigen::RowVector3d lo = model.a.shape.colwise().minCoeff(),
+                     hi = model.a.shape.colwise().maxCoeff();
   lo = lo.cwiseMin(model.b.shape.colwise().minCoeff());
   hi = hi.cwiseMax(model.b.shape.colwise().maxCoeff());
   const double size = std::max((hi - lo).norm(), 1e-9);
@@ -84,7 +85,8 @@ std::string viewerModelJson(const DForm& model, const CurvatureMaps& maps,
     coordinates(at, t.at);
     tickList.push_back({{"label", t.label}, {"at", at}});
   }
-  return json{{"pieces", pieces}, {"seam", seam}, {"ticks", tickList}}.dump(-1, ' ', false, json::error_handler_t::replace);
+  return json{{"pieces", pieces}, {"seam", seam}, {"ticks", tickList}}.dump(
+      -1, ' ', false, json::error_handler_t::replace);
 }
 
 }  // namespace dform

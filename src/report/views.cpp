@@ -79,8 +79,7 @@ std::string shapeSvg(const DForm& model, const View& view, const CurvatureMaps* 
                            height - margin - (s.y() - lo.y()) * scale);
   };
   auto toScreen = [&](const Eigen::Vector3d& p) { return camera.screen(p).head<2>().eval(); };
-  const CurvatureMaps measured =
-      view.curvature && !maps ? curvatureMaps(model) : CurvatureMaps{};
+  const CurvatureMaps measured = view.curvature && !maps ? curvatureMaps(model) : CurvatureMaps{};
   const CurvatureMaps& K = maps ? *maps : measured;
 
   std::string svg = svg::open(view.widthPx, height);
@@ -162,9 +161,11 @@ std::string flatCurvatureSvg(const DForm& model, double widthPx, const Curvature
       std::array<int, 3> c{};
       for (int j = 0; j < 3; ++j) c[size_t(j)] = drawn.of[size_t(p.F(f, j))];
       if (!kept.draws(c)) continue;
-      const std::string fill = divergingColour((k(p.F(f, 0)) + k(p.F(f, 1)) + k(p.F(f, 2))) / 3.0 / K.scale);
-      svg += "<polygon points='" + pixelAt(drawn.mean.row(c[0])) + " " + pixelAt(drawn.mean.row(c[1])) + " " +
-             pixelAt(drawn.mean.row(c[2])) + "' fill='" + fill + "' stroke='" + fill + "' stroke-width='0.4'/>";
+      const std::string fill =
+          divergingColour((k(p.F(f, 0)) + k(p.F(f, 1)) + k(p.F(f, 2))) / 3.0 / K.scale);
+      svg += "<polygon points='" + pixelAt(drawn.mean.row(c[0])) + " " +
+             pixelAt(drawn.mean.row(c[1])) + " " + pixelAt(drawn.mean.row(c[2])) + "' fill='" +
+             fill + "' stroke='" + fill + "' stroke-width='0.4'/>";
     }
     // Every boundary loop outlined (the seam, the free outlines and holes; a hole has no
     // triangles, so it stays empty), then the creases.
@@ -181,7 +182,9 @@ std::string flatCurvatureSvg(const DForm& model, double widthPx, const Curvature
                number(height - margin - (fold.from.y() - origin.y()) * scale) + "' x2='" +
                number(margin + (fold.to.x() - origin.x() + offset) * scale) + "' y2='" +
                number(height - margin - (fold.to.y() - origin.y()) * scale) + "' stroke='#333' " +
-               (fold.crease ? "stroke-opacity='0.7' stroke-width='1'" : "stroke-opacity='0.3' stroke-width='0.5'") + "/>";
+               (fold.crease ? "stroke-opacity='0.7' stroke-width='1'"
+                            : "stroke-opacity='0.3' stroke-width='0.5'") +
+               "/>";
     svg += creaseLines(p, [&](int v) { return pixel(v); });
   }
   return svg + "</svg>";

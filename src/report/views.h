@@ -46,7 +46,8 @@ struct FlatFold {
 /// Both flat pieces side by side at the same scale, coloured by their 3D curvature, every boundary
 /// loop outlined (holes stay empty), the body's folds (if any) drawn faintly (class 'fold gentle'
 /// or 'fold steep', a found crease stronger), the creases drawn as in shapeSvg.
-std::string flatCurvatureSvg(const DForm& model, double widthPx, const CurvatureMaps* maps = nullptr,
+std::string flatCurvatureSvg(const DForm& model, double widthPx,
+                             const CurvatureMaps* maps = nullptr,
                              const std::vector<FlatFold>& folds = {});
 
 /// The curvature scale used by both (radians of angle defect at full colour): curvatureMaps' scale.

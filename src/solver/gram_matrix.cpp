@@ -37,7 +37,8 @@ Eigen::SparseMatrix<double> gramMatrix(const Eigen::SparseMatrix<double>& M) {
   for (const Eigen::SparseMatrix<double>& block : blocks) {
     std::copy_n(block.innerIndexPtr(), block.nonZeros(), gram.innerIndexPtr() + offset);
     std::copy_n(block.valuePtr(), block.nonZeros(), gram.valuePtr() + offset);
-    for (Eigen::Index j = 0; j < block.cols(); ++j) gram.outerIndexPtr()[column + j] = int(offset) + block.outerIndexPtr()[j];
+    for (Eigen::Index j = 0; j < block.cols(); ++j)
+      gram.outerIndexPtr()[column + j] = int(offset) + block.outerIndexPtr()[j];
     column += block.cols();
     offset += block.nonZeros();
   }

@@ -3,8 +3,8 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <algorithm>
 #include <Eigen/SparseCore>
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -48,7 +48,8 @@ class LinearResidual : public ResidualTerm {
   int numResiduals() const override { return int(M_.rows()); }
   void evaluate(const Eigen::VectorXd& x, double* r, double* J) const override;
   bool isLinear() const override { return true; }
-  void secondDirectionalDerivative(const Eigen::VectorXd&, const Eigen::VectorXd&, double* rvv) const override {
+  void secondDirectionalDerivative(const Eigen::VectorXd&, const Eigen::VectorXd&,
+                                   double* rvv) const override {
     std::fill(rvv, rvv + M_.rows(), 0.0);
   }
 

@@ -1,7 +1,5 @@
 #include "solver/solver.h"
 
-#include "solver/supernodal_cholesky.h"
-
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cassert>
@@ -9,6 +7,8 @@
 #include <cmath>
 #include <cstdio>
 #include <numeric>
+
+#include "solver/supernodal_cholesky.h"
 
 namespace dform {
 
@@ -76,7 +76,8 @@ using SparseLower = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 // A = J^T J (lower triangle, fixed pattern) and g = J^T r.
 class NormalEquations {
  public:
-  explicit NormalEquations(const Problem& problem) : problem_(problem), constant_(problem.constantMask()) {
+  explicit NormalEquations(const Problem& problem)
+      : problem_(problem), constant_(problem.constantMask()) {
     const int n = problem.numVariables();
     // Stack the terms' patterns.
     for (int t = 0; t < problem.numTerms(); ++t) {
@@ -334,7 +335,10 @@ class StepSolver {
 
 struct LeastSquaresSolver::Impl {
   Impl(const Problem& p, SolverOptions o)
-      : problem(p), options(std::move(o)), normal(p), stepSolver(normal.A(), p.blockSize(), options) {}
+      : problem(p),
+        options(std::move(o)),
+        normal(p),
+        stepSolver(normal.A(), p.blockSize(), options) {}
   const Problem& problem;
   const SolverOptions options;
   NormalEquations normal;
@@ -355,13 +359,16 @@ SolverSummary summaryWithoutSteps(const Problem& problem, const Eigen::VectorXd&
   SolverSummary summary;
   for (int t = 0; t < problem.numTerms(); ++t) summary.termNames.push_back(problem.termName(t));
   summary.numVariables = problem.numVariables();
-  for (int t = 0; t < problem.numTerms(); ++t) summary.numResiduals += problem.term(t).numResiduals();
+  for (int t = 0; t < problem.numTerms(); ++t)
+    summary.numResiduals += problem.term(t).numResiduals();
   summary.initialTermCosts = summary.finalTermCosts = problem.termCosts(x);
   summary.initialCost = summary.finalCost =
       std::accumulate(summary.finalTermCosts.begin(), summary.finalTermCosts.end(), 0.0);
-  summary.termination = std::isfinite(summary.finalCost) ? Termination::NoConvergence : Termination::Failure;
-  summary.message = std::isfinite(summary.finalCost) ? "the iteration cap is 0: no step was taken"
-                                                     : "the objective is not finite at the starting point";
+  summary.termination =
+      std::isfinite(summary.finalCost) ? Termination::NoConvergence : Termination::Failure;
+  summary.message = std::isfinite(summary.finalCost)
+                        ? "the iteration cap is 0: no step was taken"
+                        : "the objective is not finite at the starting point";
   return summary;
 }
 
@@ -450,12 +457,13 @@ SolverSummary LeastSquaresSolver::solve(Eigen::VectorXd& x) {
     if (options.geodesicAcceleration &&
         stepSolver.solveAgain(normal.A(), mu, normal.curvatureGradient(x, dx), acceleration, it)) {
       it.acceleration = 2.0 * acceleration.norm() / std::max(it.stepNorm, 1e-300);
-      if (it.acceleration > options.maxAccelerationRatio) t = options.maxAccelerationRatio / it.acceleration;
+      if (it.acceleration > options.maxAccelerationRatio)
+        t = options.maxAccelerationRatio / it.acceleration;
       step = t * dx + (0.5 * t * t) * acceleration;
     }
     // Predicted decrease of the model m(t dx) = f + 2 t g.dx + t^2 dx.A.dx.
-    const double predicted =
-        -(2.0 * t * normal.g().dot(dx) + t * t * dx.dot(normal.A().selfadjointView<Eigen::Lower>() * dx));
+    const double predicted = -(2.0 * t * normal.g().dot(dx) +
+                               t * t * dx.dot(normal.A().selfadjointView<Eigen::Lower>() * dx));
     const Eigen::VectorXd xTrial = x + step;
     const double trialCost = normal.evaluate(xTrial, false);
     const double actual = cost - trialCost;
@@ -469,7 +477,9 @@ SolverSummary LeastSquaresSolver::solve(Eigen::VectorXd& x) {
       it.costChange = actual;
       const double previous = cost;
       cost = trialCost;
-      mu = t < 1.0 ? mu / t : std::max(muFloor, mu * std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3)));
+      mu = t < 1.0
+               ? mu / t
+               : std::max(muFloor, mu * std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3)));
       nu = 2.0;
       it.cost = cost;
       it.termCosts = normal.termCosts();
@@ -507,7 +517,8 @@ SolverSummary LeastSquaresSolver::solve(Eigen::VectorXd& x) {
 }
 
 int enforceByMultipliers(const std::function<bool(Eigen::VectorXd&)>& resolve,
-                         const std::vector<Constraint>& constraints, int maxRounds, Eigen::VectorXd& x) {
+                         const std::vector<Constraint>& constraints, int maxRounds,
+                         Eigen::VectorXd& x) {
   std::vector<Eigen::VectorXd> targets;
   for (const Constraint& c : constraints) targets.push_back(c.term->target());
   auto met = [](const Constraint& c, const Eigen::VectorXd& r) {

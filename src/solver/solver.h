@@ -18,18 +18,18 @@ namespace dform {
 
 struct IterationSummary {
   int iteration = 0;
-  double cost = 0;                  ///< f(x) after this iteration
-  std::vector<double> termCosts;    ///< w_t ||r_t||^2 after this iteration, per term
-  double costChange = 0;            ///< f before - f after (0 for a rejected step)
-  double gradientMaxNorm = 0;       ///< max |J^T r| at the start of the iteration
-  double stepNorm = 0;              ///< ||dx|| of the step tried
-  double damping = 0;               ///< mu used for the step
-  bool accepted = false;            ///< whether the step lowered f
-  bool refactorised = false;        ///< whether a numeric factorisation was computed
-  int cgIterations = 0;             ///< preconditioned CG iterations (0 for a direct solve)
-  double acceleration = 0;          ///< 2 |a| / |v| of the geodesic acceleration (0 when off)
-  double seconds = 0;               ///< wall time of this iteration
-  double cumulativeSeconds = 0;     ///< wall time since the solve started
+  double cost = 0;                ///< f(x) after this iteration
+  std::vector<double> termCosts;  ///< w_t ||r_t||^2 after this iteration, per term
+  double costChange = 0;          ///< f before - f after (0 for a rejected step)
+  double gradientMaxNorm = 0;     ///< max |J^T r| at the start of the iteration
+  double stepNorm = 0;            ///< ||dx|| of the step tried
+  double damping = 0;             ///< mu used for the step
+  bool accepted = false;          ///< whether the step lowered f
+  bool refactorised = false;      ///< whether a numeric factorisation was computed
+  int cgIterations = 0;           ///< preconditioned CG iterations (0 for a direct solve)
+  double acceleration = 0;        ///< 2 |a| / |v| of the geodesic acceleration (0 when off)
+  double seconds = 0;             ///< wall time of this iteration
+  double cumulativeSeconds = 0;   ///< wall time since the solve started
 };
 
 enum class Termination {
@@ -62,10 +62,10 @@ struct SolverOptions {
   /// Geodesic acceleration (Transtrum and Sethna, 2012): each step v gets the second-order
   /// correction a/2, a = -(J^T J + mu I)^-1 J^T r''[v, v], so that it follows a curved valley of
   /// the objective instead of leaving it (bending a sheet isometrically is such a valley). A step
-  /// whose correction is large, 2 |a| / |v| > maxAccelerationRatio, is too long for the valley: it is
-  /// taken shortened along it, t v + t^2 a / 2 with t = maxAccelerationRatio / (2 |a| / |v|), and
-  /// the damping rises by 1 / t (refusing it instead raised the damping 64-fold in three refusals,
-  /// and the anti D-Form's solve crawled).
+  /// whose correction is large, 2 |a| / |v| > maxAccelerationRatio, is too long for the valley: it
+  /// is taken shortened along it, t v + t^2 a / 2 with t = maxAccelerationRatio / (2 |a| / |v|),
+  /// and the damping rises by 1 / t (refusing it instead raised the damping 64-fold in three
+  /// refusals, and the anti D-Form's solve crawled).
   bool geodesicAcceleration = true;
   double maxAccelerationRatio = 0.75;
   /// Called after every iteration; return false to stop the solve (Termination::UserAbort).
@@ -137,7 +137,8 @@ struct Constraint {
 /// rounds (a failed solve). The weights stay as the caller chose them. Returns the rounds used;
 /// the terms' targets are left shifted.
 int enforceByMultipliers(const std::function<bool(Eigen::VectorXd&)>& resolve,
-                         const std::vector<Constraint>& constraints, int maxRounds, Eigen::VectorXd& x);
+                         const std::vector<Constraint>& constraints, int maxRounds,
+                         Eigen::VectorXd& x);
 
 /// The same rounds with `solver` re-solving its own problem: each solve is appended to `summary`,
 /// and no round starts once `summary` cannot continue (a failed solve, or one the callback

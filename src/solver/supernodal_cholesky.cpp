@@ -1,9 +1,10 @@
 #include "solver/supernodal_cholesky.h"
 
+#include <cholmod.h>
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cassert>
-#include <cholmod.h>
 #include <memory>
 #include <mutex>
 #include <new>
@@ -25,7 +26,8 @@ using ConstBlock = Eigen::Map<const Matrix>;
 // main (one thread), and set again only if some code has changed them since, under a lock.
 constexpr std::ptrdiff_t kL1 = 32 * 1024, kL2 = 1024 * 1024, kL3 = 8 * 1024 * 1024;
 void pinProductBlocking() {
-  if (Eigen::l1CacheSize() == kL1 && Eigen::l2CacheSize() == kL2 && Eigen::l3CacheSize() == kL3) return;
+  if (Eigen::l1CacheSize() == kL1 && Eigen::l2CacheSize() == kL2 && Eigen::l3CacheSize() == kL3)
+    return;
   static std::mutex mutex;
   const std::lock_guard<std::mutex> lock(mutex);
   Eigen::setCpuCacheSizes(kL1, kL2, kL3);
@@ -93,7 +95,8 @@ void analyzeWhilePolling(const std::shared_ptr<PendingAnalysis>& pending) {
 // ordered as one. That graph is blockSize times smaller, and METIS takes a small fraction of
 // the time it took on the unknowns' graph (at 13k unknowns as long as a factorisation), for
 // about the same fill.
-std::vector<int> blockOrdering(const Eigen::SparseMatrix<double, Eigen::ColMajor, int>& pattern, int blockSize) {
+std::vector<int> blockOrdering(const Eigen::SparseMatrix<double, Eigen::ColMajor, int>& pattern,
+                               int blockSize) {
   const int n = int(pattern.rows()), blocks = (n + blockSize - 1) / blockSize;
   std::vector<std::vector<int>> below(blocks);  // lower triangle of the block graph
   for (int j = 0; j < n; ++j)
@@ -120,7 +123,8 @@ std::vector<int> blockOrdering(const Eigen::SparseMatrix<double, Eigen::ColMajor
   std::vector<int> order;
   order.reserve(n);
   for (int k = 0; k < blocks; ++k)
-    for (int u = blockOrder[k] * blockSize; u < std::min(n, (blockOrder[k] + 1) * blockSize); ++u) order.push_back(u);
+    for (int u = blockOrder[k] * blockSize; u < std::min(n, (blockOrder[k] + 1) * blockSize); ++u)
+      order.push_back(u);
   return order;
 }
 
@@ -132,9 +136,11 @@ std::mutex& cholmodAnalysisMutex() {
 }
 
 SupernodalCholesky::SupernodalCholesky(const SparseLower& pattern, int blockSize) {
-  assert(pattern.rows() == pattern.cols() && pattern.isCompressed() && "a compressed square pattern");
+  assert(pattern.rows() == pattern.cols() && pattern.isCompressed() &&
+         "a compressed square pattern");
   n_ = int(pattern.rows());
-  const auto pending = std::make_shared<PendingAnalysis>(n_, pattern.outerIndexPtr(), pattern.innerIndexPtr());
+  const auto pending =
+      std::make_shared<PendingAnalysis>(n_, pattern.outerIndexPtr(), pattern.innerIndexPtr());
   CholmodSession& session = pending->session;
   cholmod_common& c = session.common;
   c.supernodal = CHOLMOD_SUPERNODAL;
@@ -165,7 +171,8 @@ SupernodalCholesky::SupernodalCholesky(const SparseLower& pattern, int blockSize
     std::fill(superOf_.begin() + first_[k], superOf_.begin() + first_[k + 1], k);
     // The supernode's own columns come first; the rows below them are sorted here so that the
     // rows a descendant updates in one ancestor are contiguous (CHOLMOD lists them ascending).
-    std::sort(rows_.begin() + rowStart_[k] + (first_[k + 1] - first_[k]), rows_.begin() + rowStart_[k + 1]);
+    std::sort(rows_.begin() + rowStart_[k] + (first_[k + 1] - first_[k]),
+              rows_.begin() + rowStart_[k + 1]);
   }
   values_.assign(std::size_t(valueStart_[nsuper]), 0.0);
 
@@ -177,8 +184,10 @@ SupernodalCholesky::SupernodalCholesky(const SparseLower& pattern, int blockSize
     const auto begin = rows_.begin() + rowStart_[k], end = rows_.begin() + rowStart_[k + 1];
     const auto at = std::lower_bound(begin + (first_[k + 1] - first_[k]), end, r);
     const long position = r < first_[k + 1] ? r - first_[k] : long(at - begin);
-    assert((r < first_[k + 1] || (at != end && *at == r)) && "an entry outside the analysed pattern");
-    return valueStart_[k] + long(col - first_[k]) * long(rowStart_[k + 1] - rowStart_[k]) + position;
+    assert((r < first_[k + 1] || (at != end && *at == r)) &&
+           "an entry outside the analysed pattern");
+    return valueStart_[k] + long(col - first_[k]) * long(rowStart_[k + 1] - rowStart_[k]) +
+           position;
   };
   scatter_.reserve(std::size_t(pattern.nonZeros()));
   for (int j = 0; j < n_; ++j) {
@@ -226,7 +235,8 @@ bool SupernodalCholesky::factorize(const SparseLower& A, double shift) {
       while (p2 < dnrows && drows[p2] < k2) ++p2;
       const int m = p2 - p1, rest = dnrows - p1;
       // CHOLMOD's analysis bounds every update (maxcsize); the buffer grows should one exceed it.
-      if (std::size_t(rest) * std::size_t(m) > updateBuffer_.size()) updateBuffer_.resize(std::size_t(rest) * std::size_t(m));
+      if (std::size_t(rest) * std::size_t(m) > updateBuffer_.size())
+        updateBuffer_.resize(std::size_t(rest) * std::size_t(m));
       Block update(updateBuffer_.data(), rest, m);
       update.noalias() = Ld.middleRows(p1, rest) * Ld.middleRows(p1, m).transpose();
       for (int j = 0; j < m; ++j) {
@@ -246,7 +256,8 @@ bool SupernodalCholesky::factorize(const SparseLower& A, double shift) {
     if (llt.info() != Eigen::Success || !diagonalBlock.diagonal().allFinite()) return false;
     if (nrows > cols) {
       auto below = Lk.bottomRows(nrows - cols);
-      diagonalBlock.transpose().triangularView<Eigen::Upper>().solveInPlace<Eigen::OnTheRight>(below);
+      diagonalBlock.transpose().triangularView<Eigen::Upper>().solveInPlace<Eigen::OnTheRight>(
+          below);
       const int t = superOf_[rows[cols]];
       position[k] = cols;
       next[k] = head[t];
@@ -258,7 +269,8 @@ bool SupernodalCholesky::factorize(const SparseLower& A, double shift) {
 }
 
 Eigen::MatrixXd SupernodalCholesky::solve(const Eigen::MatrixXd& b) const {
-  assert(factored_ && b.rows() == n_ && "solve needs a factorisation and right-hand sides of n rows");
+  assert(factored_ && b.rows() == n_ &&
+         "solve needs a factorisation and right-hand sides of n rows");
   pinProductBlocking();  // several right-hand sides make its products matrix products
   Matrix x(n_, b.cols()), gathered;
   for (int k = 0; k < n_; ++k) x.row(k) = b.row(perm_[k]);

@@ -58,9 +58,9 @@ class SupernodalCholesky {
   int n_ = 0;
   std::vector<int> first_, rowStart_, rows_, superOf_;
   std::vector<long> valueStart_;
-  std::vector<int> perm_;         ///< row k of P A P^T is row perm_[k] of A
-  std::vector<long> scatter_;     ///< where each stored entry of A lands in values_
-  std::vector<long> diagonal_;    ///< where each diagonal entry of L lands (for the shift)
+  std::vector<int> perm_;       ///< row k of P A P^T is row perm_[k] of A
+  std::vector<long> scatter_;   ///< where each stored entry of A lands in values_
+  std::vector<long> diagonal_;  ///< where each diagonal entry of L lands (for the shift)
   std::vector<double> values_;
   std::vector<double> updateBuffer_;  ///< one supernode's update of another (the largest fits)
   double factorFlops_ = 0, factorNonZeros_ = 0;

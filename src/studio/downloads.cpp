@@ -21,7 +21,8 @@ namespace {
 
 // jobToJson records an input that exists as a file by its absolute path; the saved job names
 // its inputs beside it instead, whatever the server's working folder holds.
-std::string withInputs(const Job& job, const std::vector<std::pair<const char*, std::string>>& inputs) {
+std::string withInputs(const Job& job,
+                       const std::vector<std::pair<const char*, std::string>>& inputs) {
   json text = json::parse(jobToJson(job));
   for (const auto& [key, name] : inputs) text[key] = name;
   return text.dump(2) + "\n";
@@ -87,11 +88,13 @@ Files inverseJobFiles(const CurveInput& curve, const InverseSettings& settings, 
   return {{"job.json", withInputs(job, {{"curve", curve.name}})}, {curve.name, curve.text}};
 }
 
-std::string savedForwardJob(const PieceInput& a, const PieceInput& b, const ForwardSettings& settings) {
+std::string savedForwardJob(const PieceInput& a, const PieceInput& b,
+                            const ForwardSettings& settings) {
   return storedZip(forwardJobFiles(a, b, settings));
 }
 
-std::string savedInverseJob(const CurveInput& curve, const InverseSettings& settings, bool forceClosed) {
+std::string savedInverseJob(const CurveInput& curve, const InverseSettings& settings,
+                            bool forceClosed) {
   return storedZip(inverseJobFiles(curve, settings, forceClosed));
 }
 
@@ -134,9 +137,11 @@ Result<std::string> exportedResult(const Files& jobFiles, const ExportRequest& r
   Result<RunSettings> settings = checkOutput(output);
   if (!settings.isOk()) return settings.status();
   MessageSink sink;
-  Result<WrittenResult> written = runAndWrite(job.value(), output, settings.value(), sink, RunHooks{});
+  Result<WrittenResult> written =
+      runAndWrite(job.value(), output, settings.value(), sink, RunHooks{});
   if (!fs::is_directory(output.outDir))
-    return written.isOk() ? Status(ErrorCode::OutputFailed, "the export wrote nothing") : written.status();
+    return written.isOk() ? Status(ErrorCode::OutputFailed, "the export wrote nothing")
+                          : written.status();
   return storedZip(filesUnder(output.outDir));
 }
 

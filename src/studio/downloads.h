@@ -13,10 +13,12 @@
 namespace dform::studio {
 
 /// The zip of job.json and the two outline files it names (forward).
-std::string savedForwardJob(const PieceInput& a, const PieceInput& b, const ForwardSettings& settings);
+std::string savedForwardJob(const PieceInput& a, const PieceInput& b,
+                            const ForwardSettings& settings);
 
 /// The zip of job.json and the curve file it names (inverse).
-std::string savedInverseJob(const CurveInput& curve, const InverseSettings& settings, bool forceClosed);
+std::string savedInverseJob(const CurveInput& curve, const InverseSettings& settings,
+                            bool forceClosed);
 
 /// What "Export" asks for: the pattern's options as the command line spells them.
 struct ExportRequest {
@@ -34,7 +36,8 @@ Result<std::string> exportedResult(const std::vector<std::pair<std::string, std:
                                    const ExportRequest& request);
 
 /// The files of savedForwardJob / savedInverseJob before zipping.
-std::vector<std::pair<std::string, std::string>> forwardJobFiles(const PieceInput& a, const PieceInput& b,
+std::vector<std::pair<std::string, std::string>> forwardJobFiles(const PieceInput& a,
+                                                                 const PieceInput& b,
                                                                  const ForwardSettings& settings);
 std::vector<std::pair<std::string, std::string>> inverseJobFiles(const CurveInput& curve,
                                                                  const InverseSettings& settings,

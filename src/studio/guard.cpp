@@ -62,7 +62,8 @@ std::string randomToken() {
 
 std::string safeFileName(const std::string& name, const std::vector<std::string>& extensions,
                          const std::string& fallback) {
-  std::string base = name.substr(name.find_last_of("/\\") == std::string::npos ? 0 : name.find_last_of("/\\") + 1);
+  std::string base =
+      name.substr(name.find_last_of("/\\") == std::string::npos ? 0 : name.find_last_of("/\\") + 1);
   for (char& c : base)
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '-' && c != '_') c = '-';
   if (base.size() > 80) base = base.substr(base.size() - 80);

@@ -10,12 +10,12 @@ namespace dform::studio {
 
 /// What the guard sees of a request: its headers and its token query parameter.
 struct RequestFacts {
-  std::string host;          ///< the Host header
-  std::string origin;        ///< the Origin header ("" when absent)
-  std::string fetchSite;     ///< the Sec-Fetch-Site header ("" when absent)
-  std::string queryToken;    ///< ?token=
-  std::string headerToken;   ///< X-Dform-Token
-  std::string cookie;        ///< the Cookie header
+  std::string host;         ///< the Host header
+  std::string origin;       ///< the Origin header ("" when absent)
+  std::string fetchSite;    ///< the Sec-Fetch-Site header ("" when absent)
+  std::string queryToken;   ///< ?token=
+  std::string headerToken;  ///< X-Dform-Token
+  std::string cookie;       ///< the Cookie header
 };
 
 /// Why a request is refused ("" when it may be served).

@@ -52,7 +52,8 @@ Loop polygon(int n, double radius) {
 // A Reuleaux polygon (n odd): each side an arc centred on the opposite vertex.
 Loop reuleaux(int n, double radius) {
   const Loop corners = polygon(n, radius);
-  const double width = std::hypot(corners[0][0] - corners[n / 2][0], corners[0][1] - corners[n / 2][1]);
+  const double width =
+      std::hypot(corners[0][0] - corners[n / 2][0], corners[0][1] - corners[n / 2][1]);
   const int arc = kSmoothPoints / n;
   Loop loop;
   for (int i = 0; i < n; ++i) {
@@ -83,23 +84,31 @@ Loop lobed(double radius, int lobes, double amplitude) {
 const std::vector<OutlineKind>& outlineKinds() {
   static const std::vector<OutlineKind> kinds = {
       {"ellipse", "Ellipse", {{"a", 10, 300, 120}, {"b", 10, 300, 70}}},
-      {"superellipse", "Superellipse", {{"a", 10, 300, 100}, {"b", 10, 300, 80}, {"exponent", 1.2, 8, 3}}},
-      {"rounded_rectangle", "Rounded rectangle", {{"width", 20, 500, 200}, {"height", 20, 500, 140}, {"radius", 1, 150, 30}}},
+      {"superellipse",
+       "Superellipse",
+       {{"a", 10, 300, 100}, {"b", 10, 300, 80}, {"exponent", 1.2, 8, 3}}},
+      {"rounded_rectangle",
+       "Rounded rectangle",
+       {{"width", 20, 500, 200}, {"height", 20, 500, 140}, {"radius", 1, 150, 30}}},
       {"polygon", "Regular polygon", {{"sides", 3, 12, 6}, {"radius", 10, 300, 100}}},
       {"reuleaux", "Reuleaux polygon", {{"sides", 3, 11, 3}, {"radius", 10, 300, 100}}},
-      {"lobed", "Lobed circle", {{"radius", 10, 300, 90}, {"lobes", 2, 12, 4}, {"amplitude", 0, 0.3, 0.12}}},
+      {"lobed",
+       "Lobed circle",
+       {{"radius", 10, 300, 90}, {"lobes", 2, 12, 4}, {"amplitude", 0, 0.3, 0.12}}},
   };
   return kinds;
 }
 
-std::string parametricOutline(const std::string& kind, const std::map<std::string, double>& values) {
+std::string parametricOutline(const std::string& kind,
+                              const std::map<std::string, double>& values) {
   const auto found = std::find_if(outlineKinds().begin(), outlineKinds().end(),
                                   [&](const OutlineKind& k) { return k.name == kind; });
   if (found == outlineKinds().end()) return "";
   std::map<std::string, double> v;
   for (const Parameter& p : found->parameters) {
     const auto given = values.find(p.name);
-    const double x = given != values.end() && std::isfinite(given->second) ? given->second : p.value;
+    const double x =
+        given != values.end() && std::isfinite(given->second) ? given->second : p.value;
     v[p.name] = std::clamp(x, p.min, p.max);
   }
   auto count = [&](const char* name) { return int(std::lround(v[name])); };

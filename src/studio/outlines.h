@@ -11,13 +11,14 @@ namespace dform::studio {
 
 /// One slider of a parametric outline.
 struct Parameter {
-  std::string name;   ///< as the request and the page name it
+  std::string name;        ///< as the request and the page name it
   double min, max, value;  ///< range and default (mm, or a count, or a ratio)
 };
 
 /// A kind of outline and its sliders.
 struct OutlineKind {
-  std::string name;   ///< "ellipse", "superellipse", "rounded_rectangle", "polygon", "reuleaux", "lobed"
+  std::string
+      name;  ///< "ellipse", "superellipse", "rounded_rectangle", "polygon", "reuleaux", "lobed"
   std::string label;  ///< shown on the page
   std::vector<Parameter> parameters;
 };

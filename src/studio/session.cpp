@@ -1,10 +1,10 @@
 #include "studio/session.h"
 
-#include <chrono>
-
 #include <sys/resource.h>
 #include <sys/syscall.h>
 #include <unistd.h>
+
+#include <chrono>
 
 namespace dform::studio {
 
@@ -105,8 +105,8 @@ std::optional<CurveInput> Session::curve() const {
 
 // The answer to the page: the result, or superseded, or the error, with its figures and the
 // gate's verdict where `verdict` says so.
-json Session::finish(const Result<Solved>& result, const Latest::Ticket& ticket, long seq, bool preview,
-                     Verdict verdict) {
+json Session::finish(const Result<Solved>& result, const Latest::Ticket& ticket, long seq,
+                     bool preview, Verdict verdict) {
   if (!result.isOk()) {
     if (ticket.cancel->load()) return {{"seq", seq}, {"superseded", true}};
     return {{"seq", seq}, {"error", result.status().message()}};
@@ -117,36 +117,45 @@ json Session::finish(const Result<Solved>& result, const Latest::Ticket& ticket,
   out["refining"] = false;
   if (verdict == Verdict::InAnswer) out.update(result.value().verdict());
   if (verdict == Verdict::AsEvent)
-    queue([this, verdict = result.value().verdict, ticket, seq, preview] {
-      if (!live_.current(ticket)) return;
-      json event = verdict();
-      if (!live_.current(ticket)) return;
-      event.update({{"type", "gate"}, {"seq", seq}, {"preview", preview}});
-      events_.push(event);
-    }, Task::Gate);
+    queue(
+        [this, verdict = result.value().verdict, ticket, seq, preview] {
+          if (!live_.current(ticket)) return;
+          json event = verdict();
+          if (!live_.current(ticket)) return;
+          event.update({{"type", "gate"}, {"seq", seq}, {"preview", preview}});
+          events_.push(event);
+        },
+        Task::Gate);
   return out;
 }
 
 // The refinement does not take the session's solve lock: newer input cancels it (its hooks poll
 // the ticket), and on the worker's lower priority it yields the cores to the live solve anyway,
 // which would otherwise wait for a whole refinement and its measuring.
-void Session::queueRefinement(const SolveAt& solve, int resolution, const Latest::Ticket& ticket, long seq) {
-  queue([this, solve, resolution, ticket, seq] {
-    if (!live_.current(ticket)) return;
-    auto last = Clock::now();
-    RunHooks progress;
-    progress.interrupted = ticket.cancel.get();
-    progress.onIteration = [&](const char* stage, const IterationSummary& it) {
-      if (Clock::now() - last < std::chrono::milliseconds(50)) return;
-      last = Clock::now();
-      events_.push({{"type", "progress"}, {"seq", seq}, {"stage", stage},
-                    {"iteration", it.iteration}, {"cost", it.cost}});
-    };
-    json result = finish(solve(resolution, Interior::Job, progress), ticket, seq, false, Verdict::InAnswer);
-    if (result.contains("superseded") || !live_.current(ticket)) return;
-    result["type"] = "result";
-    events_.push(result);
-  }, Task::Refinement);
+void Session::queueRefinement(const SolveAt& solve, int resolution, const Latest::Ticket& ticket,
+                              long seq) {
+  queue(
+      [this, solve, resolution, ticket, seq] {
+        if (!live_.current(ticket)) return;
+        auto last = Clock::now();
+        RunHooks progress;
+        progress.interrupted = ticket.cancel.get();
+        progress.onIteration = [&](const char* stage, const IterationSummary& it) {
+          if (Clock::now() - last < std::chrono::milliseconds(50)) return;
+          last = Clock::now();
+          events_.push({{"type", "progress"},
+                        {"seq", seq},
+                        {"stage", stage},
+                        {"iteration", it.iteration},
+                        {"cost", it.cost}});
+        };
+        json result = finish(solve(resolution, Interior::Job, progress), ticket, seq, false,
+                             Verdict::InAnswer);
+        if (result.contains("superseded") || !live_.current(ticket)) return;
+        result["type"] = "result";
+        events_.push(result);
+      },
+      Task::Refinement);
 }
 
 json Session::solveLive(const SolveAt& solve, int resolution, bool optimises, long seq,
@@ -171,7 +180,8 @@ json Session::solveLive(const SolveAt& solve, int resolution, bool optimises, lo
     };
     Result<Solved> full = solve(resolution, Interior::Sparse, probe);
     if (!optimising) {
-      if (!full.isOk() || !full.value().sparse) return finish(full, ticket, seq, false, Verdict::AsEvent);
+      if (!full.isOk() || !full.value().sparse)
+        return finish(full, ticket, seq, false, Verdict::AsEvent);
       // The job's shape, meshed sparsely: its mesh as the job says follows, measured and judged.
       json out = finish(full, ticket, seq, false, Verdict::WithRefinement);
       out["refining"] = true;
@@ -200,26 +210,28 @@ void Session::startStrip(std::vector<std::pair<json, SolveAt>> starts, long seq)
   const int count = int(starts.size());
   for (int k = 0; k < count; ++k) {
     auto [card, solve] = std::move(starts[std::size_t(k)]);
-    queue([this, card = std::move(card), solve = std::move(solve), ticket, seq, k, count] {
-      std::unique_lock<std::mutex> solving = lockAfterLive();
-      if (!strip_.current(ticket)) return;
-      RunHooks hooks;
-      hooks.interrupted = ticket.cancel.get();
-      Result<Solved> result = solve(kPreviewResolution, Interior::Job, hooks);
-      if (!strip_.current(ticket)) return;
-      json event = card;
-      event["type"] = "strip";
-      event["seq"] = seq;
-      event["index"] = k;
-      if (result.isOk()) {
-        event["result"] = result.value().result;
-        event["result"].update(result.value().verdict());
-      } else {
-        event["error"] = result.status().message();
-      }
-      events_.push(event);
-      if (k + 1 == count) events_.push({{"type", "strip_done"}, {"seq", seq}});
-    }, Task::Strip);
+    queue(
+        [this, card = std::move(card), solve = std::move(solve), ticket, seq, k, count] {
+          std::unique_lock<std::mutex> solving = lockAfterLive();
+          if (!strip_.current(ticket)) return;
+          RunHooks hooks;
+          hooks.interrupted = ticket.cancel.get();
+          Result<Solved> result = solve(kPreviewResolution, Interior::Job, hooks);
+          if (!strip_.current(ticket)) return;
+          json event = card;
+          event["type"] = "strip";
+          event["seq"] = seq;
+          event["index"] = k;
+          if (result.isOk()) {
+            event["result"] = result.value().result;
+            event["result"].update(result.value().verdict());
+          } else {
+            event["error"] = result.status().message();
+          }
+          events_.push(event);
+          if (k + 1 == count) events_.push({{"type", "strip_done"}, {"seq", seq}});
+        },
+        Task::Strip);
   }
 }
 
@@ -251,7 +263,8 @@ void Session::work() {
     std::function<void()> task;
     {
       std::unique_lock<std::mutex> lock(workMutex_);
-      workReady_.wait(lock, [&] { return stopping_ || gate_ || refinement_ || !stripTasks_.empty(); });
+      workReady_.wait(lock,
+                      [&] { return stopping_ || gate_ || refinement_ || !stripTasks_.empty(); });
       if (stopping_) return;
       if (gate_) {
         task = std::move(*gate_);

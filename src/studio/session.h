@@ -80,7 +80,8 @@ struct Solved {
   nlohmann::json result;
   std::function<nlohmann::json()> verdict;
   /// The shape was meshed sparsely (Interior::Sparse) and is the job's shape all the same: the
-  /// exact model's body, which every mesh of it draws alike (its triangles follow the body's folds).
+  /// exact model's body, which every mesh of it draws alike (its triangles follow the body's
+  /// folds).
   bool sparse = false;
 };
 
@@ -90,7 +91,8 @@ struct Solved {
 enum class Interior { Job, Sparse };
 
 /// A solve at a seam resolution, or why it failed.
-using SolveAt = std::function<Result<Solved>(int resolution, Interior interior, const RunHooks& hooks)>;
+using SolveAt =
+    std::function<Result<Solved>(int resolution, Interior interior, const RunHooks& hooks)>;
 
 class Session {
  public:
@@ -137,7 +139,8 @@ class Session {
                         bool preview, Verdict verdict);
   /// Queues the worker's solve of `resolution` meshed as the job says, streamed as a "result"
   /// event with its figures and verdict unless newer input came first.
-  void queueRefinement(const SolveAt& solve, int resolution, const Latest::Ticket& ticket, long seq);
+  void queueRefinement(const SolveAt& solve, int resolution, const Latest::Ticket& ticket,
+                       long seq);
 
   mutable std::mutex inputMutex_;
   PieceInput pieces_[2];

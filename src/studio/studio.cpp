@@ -32,7 +32,8 @@ namespace {
 
 const std::vector<std::string> kOutlineExtensions = {".svg", ".json"};
 const std::vector<std::string> kCurveExtensions = {".obj", ".json"};
-const char* const kAssets[] = {"index.html", "studio.js", "studio.css", "view3d.js", "pieces.js", "strip.js"};
+const char* const kAssets[] = {"index.html", "studio.js", "studio.css",
+                               "view3d.js",  "pieces.js", "strip.js"};
 
 // JSON answers. The charset parameter also keeps cpp-httplib from compressing them (it
 // compresses a bare "application/json" for a browser that accepts gzip or brotli): on loopback
@@ -43,7 +44,8 @@ void reply(httplib::Response& res, int status, const json& body) {
 }
 
 double millisecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
 }
 
 std::vector<std::string> warnings(const MessageSink& sink) {
@@ -77,48 +79,56 @@ json pieceSummary(const PieceInput& piece) {
 // What decides whether a forward solve optimises: the pieces and every setting but the starts.
 std::string forwardDesign(const PieceInput& a, const PieceInput& b, const ForwardSettings& s) {
   const std::hash<std::string> hash;
-  return std::to_string(hash(a.text)) + "/" + std::to_string(hash(b.text)) + "/" + joinedBoundaryName(s.joinA) +
-         joinedBoundaryName(s.joinB) + (s.flip ? "/flip/" : "/") + modelChoiceName(s.model) + "/" +
-         std::to_string(s.resolution) + (s.fitPerimeter ? "/fit" : "");
+  return std::to_string(hash(a.text)) + "/" + std::to_string(hash(b.text)) + "/" +
+         joinedBoundaryName(s.joinA) + joinedBoundaryName(s.joinB) + (s.flip ? "/flip/" : "/") +
+         modelChoiceName(s.model) + "/" + std::to_string(s.resolution) +
+         (s.fitPerimeter ? "/fit" : "");
 }
 
 // The shape first; its figures and the gate's verdict when the session asks for them (after the
 // shape is on its way: measuring it costs as much again as the exact solve). Asked for a sparse
 // interior, an exact result is meshed as coarsely as a job may be: the same body in fewer
 // triangles. Any other model is meshed as the job says.
-studio::SolveAt forwardSolve(const PieceInput& a, const PieceInput& b, const ForwardSettings& settings,
-                             const GateLimits& gate) {
-  return [a = a.shape, b = b.shape, settings, gate](int resolution, studio::Interior interior,
-                                                    const RunHooks& hooks) -> Result<studio::Solved> {
-    ForwardSettings s = settings;
-    s.resolution = resolution;
-    const bool sparse = interior == studio::Interior::Sparse && s.interiorEdgeFactor < kMaxInteriorEdgeFactor;
-    if (sparse) s.interiorEdgeFactor = kMaxInteriorEdgeFactor;
-    MessageSink sink;
-    const auto start = std::chrono::steady_clock::now();
-    Result<SolvedDForm> made = solveDForm(a, b, s, sink, hooks);
-    if (sparse && made.isOk() && made.value().modelUsed.name != "exact") {
-      s.interiorEdgeFactor = settings.interiorEdgeFactor;
-      sink = MessageSink();
-      made = solveDForm(a, b, s, sink, hooks);
-    }
-    if (!made.isOk()) return made.status();
-    auto run = std::make_shared<const SolvedDForm>(std::move(made).value());
-    const double madeMs = millisecondsSince(start);
-    json out = studio::forwardResultJson(*run);
-    out["warnings"] = warnings(sink);
-    out["timings"]["made"] = madeMs / 1000;
-    out["timings"]["answer"] = (millisecondsSince(start) - madeMs) / 1000;
-    const bool sparseExact = sparse && run->modelUsed.name == "exact";
-    return studio::Solved{out, [run, s, gate]() -> json {
-      Result<Metrics> metrics = measureDForm(*run, s, "the pieces");
-      if (!metrics.isOk()) return {{"error", metrics.status().message()}};
-      return studio::verdictJson(metrics.value(), runGate(run->model, gate, metrics.value(), nullptr, nullptr));
-    }, sparseExact};
-  };
+studio::SolveAt forwardSolve(const PieceInput& a, const PieceInput& b,
+                             const ForwardSettings& settings, const GateLimits& gate) {
+  return
+      [a = a.shape, b = b.shape, settings, gate](int resolution, studio::Interior interior,
+                                                 const RunHooks& hooks) -> Result<studio::Solved> {
+        ForwardSettings s = settings;
+        s.resolution = resolution;
+        const bool sparse =
+            interior == studio::Interior::Sparse && s.interiorEdgeFactor < kMaxInteriorEdgeFactor;
+        if (sparse) s.interiorEdgeFactor = kMaxInteriorEdgeFactor;
+        MessageSink sink;
+        const auto start = std::chrono::steady_clock::now();
+        Result<SolvedDForm> made = solveDForm(a, b, s, sink, hooks);
+        if (sparse && made.isOk() && made.value().modelUsed.name != "exact") {
+          s.interiorEdgeFactor = settings.interiorEdgeFactor;
+          sink = MessageSink();
+          made = solveDForm(a, b, s, sink, hooks);
+        }
+        if (!made.isOk()) return made.status();
+        auto run = std::make_shared<const SolvedDForm>(std::move(made).value());
+        const double madeMs = millisecondsSince(start);
+        json out = studio::forwardResultJson(*run);
+        out["warnings"] = warnings(sink);
+        out["timings"]["made"] = madeMs / 1000;
+        out["timings"]["answer"] = (millisecondsSince(start) - madeMs) / 1000;
+        const bool sparseExact = sparse && run->modelUsed.name == "exact";
+        return studio::Solved{out,
+                              [run, s, gate]() -> json {
+                                Result<Metrics> metrics = measureDForm(*run, s, "the pieces");
+                                if (!metrics.isOk()) return {{"error", metrics.status().message()}};
+                                return studio::verdictJson(
+                                    metrics.value(),
+                                    runGate(run->model, gate, metrics.value(), nullptr, nullptr));
+                              },
+                              sparseExact};
+      };
 }
 
-studio::SolveAt inverseSolve(const CurveInput& curve, const InverseSettings& settings, const GateLimits& gate) {
+studio::SolveAt inverseSolve(const CurveInput& curve, const InverseSettings& settings,
+                             const GateLimits& gate) {
   return [curve = curve.curve, settings, gate](int resolution, studio::Interior,
                                                const RunHooks& hooks) -> Result<studio::Solved> {
     InverseSettings s = settings;
@@ -130,13 +140,16 @@ studio::SolveAt inverseSolve(const CurveInput& curve, const InverseSettings& set
     json out = studio::inverseResultJson(*run);
     out["warnings"] = warnings(sink);
     return studio::Solved{out, [run, gate] {
-      return studio::verdictJson(run->metrics, runGate(run->model, gate, run->metrics, &run->target, &run->curveMatch));
-    }};
+                            return studio::verdictJson(
+                                run->metrics, runGate(run->model, gate, run->metrics, &run->target,
+                                                      &run->curveMatch));
+                          }};
   };
 }
 
 std::string requiredText(const json& body, const char* key) {
-  if (!body.contains(key) || !body.at(key).is_string()) throw RequestError(std::string(key) + ": must be a string");
+  if (!body.contains(key) || !body.at(key).is_string())
+    throw RequestError(std::string(key) + ": must be a string");
   return body.at(key).get<std::string>();
 }
 
@@ -170,7 +183,8 @@ struct Studio::Impl {
   std::optional<CurveInput> startCurve;
 
   std::mutex sessionsMutex;
-  std::map<std::string, std::pair<std::shared_ptr<Session>, std::chrono::steady_clock::time_point>> sessions;
+  std::map<std::string, std::pair<std::shared_ptr<Session>, std::chrono::steady_clock::time_point>>
+      sessions;
   std::atomic<bool> stopping{false};
   httplib::Server v4, v6;
   std::thread listen4, listen6;
@@ -204,6 +218,8 @@ struct Studio::Impl {
   Status readStart();
   void guard(httplib::Server& server);
   void routes(httplib::Server& server);
+  void pageRoutes(httplib::Server& server);
+  void solveRoutes(httplib::Server& server);
   void api(httplib::Server& server, const char* path,
            std::function<void(const json&, Session&, httplib::Response&)> handle);
 };
@@ -216,7 +232,8 @@ Status Studio::Impl::readStart() {
     if (!text.isOk()) return text.status();
     Result<Shape2> shape = parseShape(text.value(), path);
     if (!shape.isOk()) return shape.status();
-    return PieceInput{studio::safeFileName(path, kOutlineExtensions, fallback), text.value(), shape.value()};
+    return PieceInput{studio::safeFileName(path, kOutlineExtensions, fallback), text.value(),
+                      shape.value()};
   };
   std::string a = options.pieceA, b = options.pieceB;
   if (!options.jobFile.empty()) {
@@ -226,18 +243,22 @@ Status Studio::Impl::readStart() {
       const ForwardJob& f = job.value().forward;
       a = f.pieceA;
       b = f.pieceB;
-      startSettings = {{"start_a", f.startA.nearestToPoint ? 0.0 : f.startA.fraction},
-                       {"start_b", f.startB.nearestToPoint ? 0.0 : f.startB.fraction},
-                       {"flip", f.flip}, {"fit_perimeter", f.fitPerimeter}, {"resolution", f.resolution},
-                       {"model", modelChoiceName(f.model)}, {"interior_edge", f.interiorEdgeFactor},
-                       {"join", std::string(joinedBoundaryName(f.joinA)) + "," + joinedBoundaryName(f.joinB)}};
+      startSettings = {
+          {"start_a", f.startA.nearestToPoint ? 0.0 : f.startA.fraction},
+          {"start_b", f.startB.nearestToPoint ? 0.0 : f.startB.fraction},
+          {"flip", f.flip},
+          {"fit_perimeter", f.fitPerimeter},
+          {"resolution", f.resolution},
+          {"model", modelChoiceName(f.model)},
+          {"interior_edge", f.interiorEdgeFactor},
+          {"join", std::string(joinedBoundaryName(f.joinA)) + "," + joinedBoundaryName(f.joinB)}};
     } else {
       const InverseJob& i = job.value().inverse;
       Result<std::string> text = readInputFile(i.curve);
       if (!text.isOk()) return text.status();
       try {
-        startCurve = readCurveInput(studio::safeFileName(i.curve, kCurveExtensions, "curve.json"), text.value(),
-                                    i.forceClosed);
+        startCurve = readCurveInput(studio::safeFileName(i.curve, kCurveExtensions, "curve.json"),
+                                    text.value(), i.forceClosed);
       } catch (const RequestError& e) {
         return Status(ErrorCode::InputInvalid, e.what());
       }
@@ -245,8 +266,10 @@ Status Studio::Impl::readStart() {
     }
   }
   if (a.empty()) {
-    startA = readPiece("ellipse-a.json", studio::parametricOutline("ellipse", {{"a", 120}, {"b", 70}}));
-    startB = readPiece("ellipse-b.json", studio::parametricOutline("ellipse", {{"a", 110}, {"b", 82.305579}}));
+    startA =
+        readPiece("ellipse-a.json", studio::parametricOutline("ellipse", {{"a", 120}, {"b", 70}}));
+    startB = readPiece("ellipse-b.json",
+                       studio::parametricOutline("ellipse", {{"a", 110}, {"b", 82.305579}}));
     return Status::ok();
   }
   Result<PieceInput> readA = piece(a, "piece-a.svg"), readB = piece(b, "piece-b.svg");
@@ -261,9 +284,10 @@ Status Studio::Impl::readStart() {
 // Every request: Host, Origin and token checked before anything is routed.
 void Studio::Impl::guard(httplib::Server& server) {
   server.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
-    studio::RequestFacts facts{req.get_header_value("Host"), req.get_header_value("Origin"),
-                               req.get_header_value("Sec-Fetch-Site"), req.get_param_value("token"),
-                               req.get_header_value("X-Dform-Token"), req.get_header_value("Cookie")};
+    studio::RequestFacts facts{
+        req.get_header_value("Host"),           req.get_header_value("Origin"),
+        req.get_header_value("Sec-Fetch-Site"), req.get_param_value("token"),
+        req.get_header_value("X-Dform-Token"),  req.get_header_value("Cookie")};
     const std::string why = studio::refusal(facts, port, token);
     if (why.empty()) return httplib::Server::HandlerResponse::Unhandled;
     reply(res, 403, {{"error", why}});
@@ -271,15 +295,17 @@ void Studio::Impl::guard(httplib::Server& server) {
   });
   server.set_error_handler([this](const httplib::Request&, httplib::Response& res) {
     if (!res.body.empty()) return;
-    const std::string why = res.status == 413 ? "the request is larger than " +
-                                                    std::to_string(options.maxUploadBytes) + " bytes"
-                            : res.status == 404 ? "no such page or API"
-                                                : "HTTP " + std::to_string(res.status);
+    const std::string why =
+        res.status == 413
+            ? "the request is larger than " + std::to_string(options.maxUploadBytes) + " bytes"
+        : res.status == 404 ? "no such page or API"
+                            : "HTTP " + std::to_string(res.status);
     reply(res, res.status, {{"error", why}});
   });
-  server.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
-    reply(res, 500, {{"error", "internal error"}});
-  });
+  server.set_exception_handler(
+      [](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
+        reply(res, 500, {{"error", "internal error"}});
+      });
   server.set_payload_max_length(options.maxUploadBytes);
   // An answer goes out as its headers, then its body: with Nagle's algorithm the body's last
   // partial segment waits for the client's delayed acknowledgement of the ones before.
@@ -305,9 +331,10 @@ void Studio::Impl::api(httplib::Server& server, const char* path,
       if (!found) throw RequestError("unknown session (reload the page)");
       handle(body, *found, res);
       const double handled = millisecondsSince(start);
-      res.set_header("Server-Timing", "parse;dur=" + std::to_string(parsed) + ", handle;dur=" +
-                                          std::to_string(handled - parsed) + ", total;dur=" +
-                                          std::to_string(millisecondsSince(start)));
+      res.set_header("Server-Timing",
+                     "parse;dur=" + std::to_string(parsed) +
+                         ", handle;dur=" + std::to_string(handled - parsed) +
+                         ", total;dur=" + std::to_string(millisecondsSince(start)));
     } catch (const json::parse_error&) {
       reply(res, 400, {{"error", "the request is not JSON"}});
     } catch (const RequestError& e) {
@@ -321,11 +348,18 @@ void Studio::Impl::api(httplib::Server& server, const char* path,
 }
 
 void Studio::Impl::routes(httplib::Server& server) {
+  pageRoutes(server);
+  solveRoutes(server);
+}
+
+/// The page, its assets, a new session and the session's event stream.
+void Studio::Impl::pageRoutes(httplib::Server& server) {
   server.Get("/", [this](const httplib::Request&, httplib::Response& res) {
     std::string page = assets["index.html"];
     const std::string mark = "{{token}}";
     page.replace(page.find(mark), mark.size(), token);
-    res.set_header("Set-Cookie", studio::tokenCookieName(port) + "=" + token + "; Path=/; HttpOnly; SameSite=Strict");
+    res.set_header("Set-Cookie", studio::tokenCookieName(port) + "=" + token +
+                                     "; Path=/; HttpOnly; SameSite=Strict");
     res.set_header("Content-Security-Policy",
                    "default-src 'self'; img-src 'self' data: blob:; frame-ancestors 'none'");
     res.set_header("Cache-Control", "no-store");
@@ -333,26 +367,53 @@ void Studio::Impl::routes(httplib::Server& server) {
   });
   for (const char* name : kAssets) {
     if (std::string(name) == "index.html") continue;
-    server.Get(std::string("/") + name, [this, name = std::string(name)](const httplib::Request&, httplib::Response& res) {
-      const bool js = name.size() > 3 && name.compare(name.size() - 3, 3, ".js") == 0;
-      res.set_content(assets[name], js ? "text/javascript; charset=utf-8" : "text/css; charset=utf-8");
-    });
+    server.Get(std::string("/") + name,
+               [this, name = std::string(name)](const httplib::Request&, httplib::Response& res) {
+                 const bool js = name.size() > 3 && name.compare(name.size() - 3, 3, ".js") == 0;
+                 res.set_content(assets[name],
+                                 js ? "text/javascript; charset=utf-8" : "text/css; charset=utf-8");
+               });
   }
   server.Post("/api/session", [this](const httplib::Request&, httplib::Response& res) {
     json kinds = json::array();
     for (const studio::OutlineKind& k : studio::outlineKinds()) {
       json parameters = json::array();
       for (const studio::Parameter& p : k.parameters)
-        parameters.push_back({{"name", p.name}, {"min", p.min}, {"max", p.max}, {"value", p.value}});
+        parameters.push_back(
+            {{"name", p.name}, {"min", p.min}, {"max", p.max}, {"value", p.value}});
       kinds.push_back({{"name", k.name}, {"label", k.label}, {"parameters", parameters}});
     }
-    json out = {{"session", newSession()}, {"kinds", kinds}, {"settings", startSettings},
+    json out = {{"session", newSession()},
+                {"kinds", kinds},
+                {"settings", startSettings},
                 {"pieces", {pieceSummary(startA), pieceSummary(startB)}},
-                {"profiles", exportProfileNames()}, {"preview_resolution", Session::kPreviewResolution}};
-    for (int i = 0; i < 2; ++i) out["pieces"][i]["text"] = (i == 0 ? startA : startB).text;  // for undo
+                {"profiles", exportProfileNames()},
+                {"preview_resolution", Session::kPreviewResolution}};
+    for (int i = 0; i < 2; ++i)
+      out["pieces"][i]["text"] = (i == 0 ? startA : startB).text;  // for undo
     if (startCurve) out["curve"] = studio::curveJson(startCurve->curve);
     reply(res, 200, out);
   });
+  server.Get("/api/events", [this](const httplib::Request& req, httplib::Response& res) {
+    std::shared_ptr<Session> found = session(req.get_param_value("session"));
+    if (!found) return reply(res, 400, {{"error", "unknown session (reload the page)"}});
+    res.set_header("Cache-Control", "no-store");
+    res.set_chunked_content_provider(
+        "text/event-stream", [this, found, position = found->events().end()](
+                                 std::size_t, httplib::DataSink& sink) mutable {
+          if (stopping || found->events().closed()) {
+            sink.done();
+            return true;
+          }
+          std::string text = found->events().waitAfter(position, std::chrono::milliseconds(500));
+          if (text.empty()) text = ": alive\n\n";  // a comment: finds a closed connection
+          return sink.write(text.data(), text.size());
+        });
+  });
+}
+
+/// The requests that change a session's inputs, solve, and make files from them.
+void Studio::Impl::solveRoutes(httplib::Server& server) {
   api(server, "/api/outline", [](const json& body, Session& s, httplib::Response& res) {
     const int which = pieceIndex(body);
     std::string name = studio::safeFileName(requiredText(body, "name"), kOutlineExtensions,
@@ -378,8 +439,10 @@ void Studio::Impl::routes(httplib::Server& server) {
   api(server, "/api/solve", [this](const json& body, Session& s, httplib::Response& res) {
     const ForwardSettings settings = studio::forwardSettingsFrom(body);
     const PieceInput a = s.piece(0), b = s.piece(1);
-    reply(res, 200, s.solveLive(forwardSolve(a, b, settings, gate), settings.resolution,
-                                settings.model == ModelChoice::Paper, sequence(body), forwardDesign(a, b, settings)));
+    reply(res, 200,
+          s.solveLive(forwardSolve(a, b, settings, gate), settings.resolution,
+                      settings.model == ModelChoice::Paper, sequence(body),
+                      forwardDesign(a, b, settings)));
   });
   api(server, "/api/strip", [this](const json& body, Session& s, httplib::Response& res) {
     const ForwardSettings settings = studio::forwardSettingsFrom(body);
@@ -402,8 +465,9 @@ void Studio::Impl::routes(httplib::Server& server) {
     reply(res, 200, {{"queued", starts * (bothFlips ? 2 : 1)}, {"seq", sequence(body)}});
   });
   api(server, "/api/curve", [](const json& body, Session& s, httplib::Response& res) {
-    CurveInput curve = readCurveInput(studio::safeFileName(requiredText(body, "name"), kCurveExtensions, "curve.obj"),
-                                      requiredText(body, "text"), body.value("closed", false));
+    CurveInput curve = readCurveInput(
+        studio::safeFileName(requiredText(body, "name"), kCurveExtensions, "curve.obj"),
+        requiredText(body, "text"), body.value("closed", false));
     json out = studio::curveJson(curve.curve);
     out["name"] = curve.name;
     s.setCurve(std::move(curve));
@@ -414,9 +478,11 @@ void Studio::Impl::routes(httplib::Server& server) {
     const InverseSettings settings = studio::inverseSettingsFrom(body, closed);
     std::optional<CurveInput> curve = s.curve();
     if (!curve) throw RequestError("no seam curve loaded");
-    reply(res, 200, s.solveLive(inverseSolve(*curve, settings, gate), settings.resolution, false, sequence(body),
-                                std::to_string(std::hash<std::string>()(curve->text)) + "/" +
-                                    std::to_string(settings.resolution)));
+    reply(res, 200,
+          s.solveLive(inverseSolve(*curve, settings, gate), settings.resolution, false,
+                      sequence(body),
+                      std::to_string(std::hash<std::string>()(curve->text)) + "/" +
+                          std::to_string(settings.resolution)));
   });
   api(server, "/api/job", [](const json& body, Session& s, httplib::Response& res) {
     if (body.value("mode", "forward") == "inverse") {
@@ -446,22 +512,6 @@ void Studio::Impl::routes(httplib::Server& server) {
     if (!zip.isOk()) throw RequestError(zip.status().message());
     sendZip(res, zip.value(), "dform-export.zip");
   });
-  server.Get("/api/events", [this](const httplib::Request& req, httplib::Response& res) {
-    std::shared_ptr<Session> found = session(req.get_param_value("session"));
-    if (!found) return reply(res, 400, {{"error", "unknown session (reload the page)"}});
-    res.set_header("Cache-Control", "no-store");
-    res.set_chunked_content_provider(
-        "text/event-stream",
-        [this, found, position = found->events().end()](std::size_t, httplib::DataSink& sink) mutable {
-          if (stopping || found->events().closed()) {
-            sink.done();
-            return true;
-          }
-          std::string text = found->events().waitAfter(position, std::chrono::milliseconds(500));
-          if (text.empty()) text = ": alive\n\n";  // a comment: finds a closed connection
-          return sink.write(text.data(), text.size());
-        });
-  });
 }
 
 Studio::Studio(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -488,8 +538,9 @@ Result<std::unique_ptr<Studio>> Studio::start(const StudioOptions& options) {
     impl->guard(*server);
     impl->routes(*server);
   }
-  impl->port = options.port == 0 ? impl->v4.bind_to_any_port("127.0.0.1")
-                                 : (impl->v4.bind_to_port("127.0.0.1", options.port) ? options.port : -1);
+  impl->port = options.port == 0
+                   ? impl->v4.bind_to_any_port("127.0.0.1")
+                   : (impl->v4.bind_to_port("127.0.0.1", options.port) ? options.port : -1);
   if (impl->port <= 0)
     return Status(ErrorCode::OutputFailed, "127.0.0.1:" + std::to_string(options.port) +
                                                ": cannot listen (the port is taken?)");

@@ -13,12 +13,14 @@
 namespace dform {
 
 struct StudioOptions {
-  int port = 0;                 ///< TCP port on 127.0.0.1 (and ::1); 0: any free one
-  std::string pieceA, pieceB;   ///< outline files the first design starts from (empty: built-in ellipses)
-  std::string jobFile;          ///< a forward job file to start from instead (its outlines and settings)
-  std::size_t maxUploadBytes = std::size_t(8) << 20;  ///< largest request body (an outline, a curve)
-  int maxSessions = 32;         ///< browser tabs served at once; the least recently used is dropped
-  std::string token;            ///< the run's token; empty: 32 random hexadecimal digits
+  int port = 0;  ///< TCP port on 127.0.0.1 (and ::1); 0: any free one
+  std::string pieceA,
+      pieceB;           ///< outline files the first design starts from (empty: built-in ellipses)
+  std::string jobFile;  ///< a forward job file to start from instead (its outlines and settings)
+  std::size_t maxUploadBytes = std::size_t(8)
+                               << 20;  ///< largest request body (an outline, a curve)
+  int maxSessions = 32;  ///< browser tabs served at once; the least recently used is dropped
+  std::string token;     ///< the run's token; empty: 32 random hexadecimal digits
 };
 
 /// A running studio. Requests are served on a pool of threads until stop() (or destruction).

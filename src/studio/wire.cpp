@@ -59,12 +59,9 @@ json loops(const std::vector<std::vector<int>>& lines) {
 }
 
 json pieceJson(const Piece& piece) {
-  return {{"flat", rowsBase64(piece.flat)},
-          {"shape", rowsBase64(piece.shape)},
-          {"faces", facesBase64(piece.F)},
-          {"seam", piece.seam},
-          {"free", loops(piece.freeBoundaries)},
-          {"creases", loops(piece.creases)}};
+  return {{"flat", rowsBase64(piece.flat)},      {"shape", rowsBase64(piece.shape)},
+          {"faces", facesBase64(piece.F)},       {"seam", piece.seam},
+          {"free", loops(piece.freeBoundaries)}, {"creases", loops(piece.creases)}};
 }
 
 using io_detail::numberOrNull;  // a figure that may be NaN (no exact D-Form to compare with)
@@ -82,16 +79,24 @@ json gateChecks(const GateReport& gate) {
 
 // The gate's verdict: its name, passed, and every check.
 json gateJson(const GateReport& gate) {
-  return {{"name", gate.name}, {"passed", gate.passed()}, {"failed", gate.failed()}, {"checks", gateChecks(gate)}};
+  return {{"name", gate.name},
+          {"passed", gate.passed()},
+          {"failed", gate.failed()},
+          {"checks", gateChecks(gate)}};
 }
 
 json modelJson(const ModelUsed& used) {
   json creases = json::array();
   for (const FoundCrease& c : used.creases)
-    creases.push_back({{"piece", c.piece}, {"crease", c.crease}, {"angle_deg", c.angleDeg},
+    creases.push_back({{"piece", c.piece},
+                       {"crease", c.crease},
+                       {"angle_deg", c.angleDeg},
                        {"length_mm", c.lengthMm}});
-  return {{"name", used.name}, {"reason", used.reason}, {"cone_points", used.conePoints},
-          {"doubly_covered", used.doublyCovered}, {"found_creases", creases}};
+  return {{"name", used.name},
+          {"reason", used.reason},
+          {"cone_points", used.conePoints},
+          {"doubly_covered", used.doublyCovered},
+          {"found_creases", creases}};
 }
 
 json timingsJson(const Timings& t) {
@@ -126,7 +131,8 @@ std::vector<double> flatPoints(const Matrix& points, int maxPoints) {
 
 double loopLength(const Points2& p) {
   double length = 0;
-  for (Eigen::Index i = 0; i < p.rows(); ++i) length += (p.row((i + 1) % p.rows()) - p.row(i)).norm();
+  for (Eigen::Index i = 0; i < p.rows(); ++i)
+    length += (p.row((i + 1) % p.rows()) - p.row(i)).norm();
   return length;
 }
 
@@ -142,7 +148,8 @@ ForwardSettings forwardSettingsFrom(const json& request) {
   s.flip = valueOr<bool>(request, "flip", false);
   s.fitPerimeter = valueOr<bool>(request, "fit_perimeter", true);
   s.resolution = valueOr<int>(request, "resolution", 100);
-  if (s.resolution < 8 || s.resolution > 1000) throw RequestError("resolution: must be in [8, 1000]");
+  if (s.resolution < 8 || s.resolution > 1000)
+    throw RequestError("resolution: must be in [8, 1000]");
   if (!parseJoin(valueOr<std::string>(request, "join", "outer,outer"), s.joinA, s.joinB))
     throw RequestError("join: must be outer,outer, inner,inner, outer,inner or inner,outer");
   if (!parseModelChoice(valueOr<std::string>(request, "model", "auto"), s.model))
@@ -157,7 +164,8 @@ InverseSettings inverseSettingsFrom(const json& request, bool& forceClosed) {
   if (!request.is_object()) throw RequestError("the request must be a JSON object");
   InverseSettings s;
   s.resolution = valueOr<int>(request, "resolution", s.resolution);
-  if (s.resolution < 8 || s.resolution > 1000) throw RequestError("resolution: must be in [8, 1000]");
+  if (s.resolution < 8 || s.resolution > 1000)
+    throw RequestError("resolution: must be in [8, 1000]");
   forceClosed = valueOr<bool>(request, "closed", false);
   if (Status ok = validateInverseJob(s); !ok.isOk()) throw RequestError(ok.message());
   return s;
@@ -185,15 +193,17 @@ json inverseResultJson(const InverseRun& run) {
           {"model", modelJson(run.modelUsed)},
           {"figures", metricsJson(run.metrics)},
           {"pieces", {pieceJson(run.model.a), pieceJson(run.model.b)}},
-          {"curve_match", {{"D_error", numberOrNull(c.D_error)},
-                           {"curve_distance_max_mm", numberOrNull(c.curve_distance_max_mm)},
-                           {"roundtrip_rms_rel", numberOrNull(c.roundtrip_rms_rel)},
-                           {"roundtrip_max_rel", numberOrNull(c.roundtrip_max_rel)},
-                           {"roundtrip_note", c.roundtrip_note}}},
-          {"on_hull", {{"on_hull", run.pre.onHull},
-                       {"is_hull", run.pre.isHull},
-                       {"inside_points", run.pre.insideVertices},
-                       {"summary", run.pre.summary}}},
+          {"curve_match",
+           {{"D_error", numberOrNull(c.D_error)},
+            {"curve_distance_max_mm", numberOrNull(c.curve_distance_max_mm)},
+            {"roundtrip_rms_rel", numberOrNull(c.roundtrip_rms_rel)},
+            {"roundtrip_max_rel", numberOrNull(c.roundtrip_max_rel)},
+            {"roundtrip_note", c.roundtrip_note}}},
+          {"on_hull",
+           {{"on_hull", run.pre.onHull},
+            {"is_hull", run.pre.isHull},
+            {"inside_points", run.pre.insideVertices},
+            {"summary", run.pre.summary}}},
           {"target", rowsBase64(run.target.points)},
           {"curve_length", run.curveLength},
           {"timings", timingsJson(run.timings)}};
@@ -219,7 +229,8 @@ json shapeJson(const Shape2& shape, int maxPoints) {
 json curveJson(const Curve3& curve, int maxPoints) {
   double length = 0;
   const Points3& p = curve.points;
-  for (Eigen::Index i = 0; i < p.rows(); ++i) length += (p.row((i + 1) % p.rows()) - p.row(i)).norm();
+  for (Eigen::Index i = 0; i < p.rows(); ++i)
+    length += (p.row((i + 1) % p.rows()) - p.row(i)).norm();
   return {{"points", flatPoints(p, maxPoints)}, {"length", length}};
 }
 

@@ -62,10 +62,10 @@ std::string storedZip(const std::vector<std::pair<std::string, std::string>>& fi
     put32(directory, 0x02014b50);
     put16(directory, 0x0314);  // made by: Unix, 2.0
     commonFields(directory, crc, std::uint32_t(content.size()), name.size());
-    put16(directory, 0);  // extra field
-    put16(directory, 0);  // comment
-    put16(directory, 0);  // disk
-    put16(directory, 0);  // internal attributes
+    put16(directory, 0);               // extra field
+    put16(directory, 0);               // comment
+    put16(directory, 0);               // disk
+    put16(directory, 0);               // internal attributes
     put32(directory, 0100644u << 16);  // external: a regular file, rw-r--r--
     put32(directory, offset);
     directory += name;

@@ -1,12 +1,12 @@
 #include "validate/cgal_checks.h"
 
+#include <CGAL/Convex_hull_traits_adapter_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/box_intersection_d.h>
 #include <CGAL/convex_hull_2.h>
-#include <CGAL/Convex_hull_traits_adapter_2.h>
-#include <CGAL/property_map.h>
 #include <CGAL/convex_hull_3.h>
 #include <CGAL/intersections.h>
+#include <CGAL/property_map.h>
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -110,9 +110,10 @@ SelfIntersections findSelfIntersections(const Points3& V, const Faces& F) {
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) shares = shares || F(f, i) == F(g, j);
     const bool hit =
-        shares ? adjacentOverlap(V, F, f, g)
-               : CGAL::do_intersect(Triangle(point(V, F(f, 0)), point(V, F(f, 1)), point(V, F(f, 2))),
-                                    Triangle(point(V, F(g, 0)), point(V, F(g, 1)), point(V, F(g, 2))));
+        shares
+            ? adjacentOverlap(V, F, f, g)
+            : CGAL::do_intersect(Triangle(point(V, F(f, 0)), point(V, F(f, 1)), point(V, F(f, 2))),
+                                 Triangle(point(V, F(g, 0)), point(V, F(g, 1)), point(V, F(g, 2))));
     if (!hit) return;
     if (result.pairs == 0)
       result.example = "triangles " + std::to_string(f) + " and " + std::to_string(g);

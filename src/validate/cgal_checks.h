@@ -11,10 +11,10 @@
 namespace dform::detail {
 
 struct SelfIntersections {
-  int pairs = 0;            ///< pairs of triangles that intersect beyond their shared vertices
-  int faceToFace = 0;       ///< nearby pairs (bounding boxes overlapping) that lie face to face
-  int skippedDegenerate = 0;///< triangles left out because their corners are collinear
-  std::string example;      ///< the first pair found, "triangles i and j", when any
+  int pairs = 0;              ///< pairs of triangles that intersect beyond their shared vertices
+  int faceToFace = 0;         ///< nearby pairs (bounding boxes overlapping) that lie face to face
+  int skippedDegenerate = 0;  ///< triangles left out because their corners are collinear
+  std::string example;        ///< the first pair found, "triangles i and j", when any
 };
 
 /// Two triangles lie face to face when each one's corners are within this fraction of the soup's

@@ -140,7 +140,8 @@ std::string nonFiniteCoordinate(const DForm& model) {
 }
 
 CheckResult nonFiniteCheck(const char* name, double limit, const std::string& where) {
-  return judgeCheck(name, kNaN, limit, "not measured: " + where + " has a coordinate that is not a number");
+  return judgeCheck(name, kNaN, limit,
+                    "not measured: " + where + " has a coordinate that is not a number");
 }
 
 // Reverses the faces from row `firstOfB` on when most welded edges they share with the faces
@@ -291,7 +292,8 @@ std::optional<HullDistance> distanceToSeamHull(const DForm& model) {
   Eigen::Matrix<double, 4, Eigen::Dynamic> planes(4, faces);  // unit outward normal, offset
   Eigen::Index planeCount = 0;
   for (Eigen::Index h = 0; h < faces; ++h) {
-    const Eigen::Vector3d a = hull->V.row(hull->F(h, 0)), b = hull->V.row(hull->F(h, 1)), c = hull->V.row(hull->F(h, 2));
+    const Eigen::Vector3d a = hull->V.row(hull->F(h, 0)), b = hull->V.row(hull->F(h, 1)),
+                          c = hull->V.row(hull->F(h, 2));
     const Eigen::Vector3d normal = (b - a).cross(c - a);
     if (!(normal.norm() > 1e-12 * result.diagonalMm * result.diagonalMm)) continue;
     const Eigen::Vector3d unit = normal.normalized();
@@ -306,8 +308,9 @@ std::optional<HullDistance> distanceToSeamHull(const DForm& model) {
       if (!(d > 0.0)) {
         d = std::numeric_limits<double>::infinity();
         for (Eigen::Index h = 0; h < faces; ++h)
-          d = std::min(d, pointTriangleDistance(p->shape.row(v), hull->V.row(hull->F(h, 0)),
-                                                hull->V.row(hull->F(h, 1)), hull->V.row(hull->F(h, 2))));
+          d = std::min(
+              d, pointTriangleDistance(p->shape.row(v), hull->V.row(hull->F(h, 0)),
+                                       hull->V.row(hull->F(h, 1)), hull->V.row(hull->F(h, 2))));
       }
       if (d < onHullMm) d = 0.0;
       if (d > result.worstMm || result.where.empty()) {
@@ -436,8 +439,8 @@ const CheckResult* GateReport::find(const std::string& name) const {
 namespace {
 
 // A figure of the object a user builds (the exact D-Form of the pieces), or why it has none.
-CheckResult objectCheck(const char* name, double rms, double max, double limit, const std::string& note,
-                        const std::string& what) {
+CheckResult objectCheck(const char* name, double rms, double max, double limit,
+                        const std::string& note, const std::string& what) {
   if (std::isnan(rms)) return notRunCheck(name, limit, "no exact D-Form to compare with: " + note);
   return judgeCheck(name, rms, limit, what + " / the bounding-box diagonal; largest " + num(max));
 }
@@ -497,12 +500,14 @@ GateReport runGate(const DForm& model, const GateLimits& limits, const Metrics& 
         "flat seams " + num(m.seam_length_a_mm) + " mm and " + num(m.seam_length_b_mm) + " mm"));
   checks.push_back(selfIntersectionCheck(model));
   checks.push_back(hullCheck(model, limits));
-  checks.push_back(objectCheck("exact_distance_rel", m.exact_distance_rms_rel, m.exact_distance_max_rel,
-                               limits.exact_distance_rel, m.exact_note,
-                               "RMS distance of the 3D seam from the exact D-Form of these flat pieces"));
+  checks.push_back(
+      objectCheck("exact_distance_rel", m.exact_distance_rms_rel, m.exact_distance_max_rel,
+                  limits.exact_distance_rel, m.exact_note,
+                  "RMS distance of the 3D seam from the exact D-Form of these flat pieces"));
   if (report.curve)
-    checks.push_back(objectCheck("roundtrip_rel", report.curve->roundtrip_rms_rel, report.curve->roundtrip_max_rel,
-                                 limits.roundtrip_rel, report.curve->roundtrip_note,
+    checks.push_back(objectCheck("roundtrip_rel", report.curve->roundtrip_rms_rel,
+                                 report.curve->roundtrip_max_rel, limits.roundtrip_rel,
+                                 report.curve->roundtrip_note,
                                  "RMS distance from the target curve of the pieces zipped again (" +
                                      report.curve->roundtrip_note + ")"));
   return report;

@@ -30,8 +30,8 @@ struct GateLimits {
   /// inverse mode: max RMS distance of the zipped pieces' exact D-Form from the target curve /
   /// the curve's bbox diagonal
   double roundtrip_rel = 2e-3;
-  int flipped = 0;                  ///< max flipped triangles (flat and 3D together)
-  int degenerate = 0;               ///< max degenerate triangles (flat and 3D together)
+  int flipped = 0;     ///< max flipped triangles (flat and 3D together)
+  int degenerate = 0;  ///< max degenerate triangles (flat and 3D together)
 };
 
 /// Reads a gate file: {"version": 1, "name": ..., "description": ..., "limits": {...}}.

@@ -2,15 +2,13 @@
 // may be left out to keep its default (GateLimits); nothing unknown is accepted, so that a typo
 // never silently keeps a default.
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "core/input_file.h"
 #include "core/message_text.h"
-#include <cmath>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
-
 #include "validate/gate.h"
 
 namespace dform {

@@ -163,7 +163,8 @@ Metrics computeMetrics(const DForm& model, const ReferenceSeam& exactBody) {
   return m;
 }
 
-CurveMatch computeCurveMatch(const DForm& model, const Curve3& target, const ReferenceSeam& zippedAgain) {
+CurveMatch computeCurveMatch(const DForm& model, const Curve3& target,
+                             const ReferenceSeam& zippedAgain) {
   const std::vector<int>& sa = model.a.seam;
   const std::vector<int>& sb = model.b.seam;
   assert(sa.size() == sb.size() && size_t(target.points.rows()) == sa.size() &&

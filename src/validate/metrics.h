@@ -86,6 +86,7 @@ struct CurveMatch {
   double roundtrip_max_rel = std::numeric_limits<double>::quiet_NaN();
   std::string roundtrip_note;
 };
-CurveMatch computeCurveMatch(const DForm& model, const Curve3& target, const ReferenceSeam& zippedAgain);
+CurveMatch computeCurveMatch(const DForm& model, const Curve3& target,
+                             const ReferenceSeam& zippedAgain);
 
 }  // namespace dform

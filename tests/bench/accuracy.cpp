@@ -39,7 +39,8 @@ bool writeAccuracyPlot(const std::string& path, const std::vector<Point>& points
                   {},
                   goalSeconds,
                   goalDistance};
-  PlotSeries rms{"#1f77b4", "RMS (labels: w_3D)", {}, {}, {}}, max{"#ff7f0e", "largest", {}, {}, {}};
+  PlotSeries rms{"#1f77b4", "RMS (labels: w_3D)", {}, {}, {}},
+      max{"#ff7f0e", "largest", {}, {}, {}};
   for (const Point& p : points) {
     char label[32];
     std::snprintf(label, sizeof label, "%g", p.weight);
@@ -56,14 +57,16 @@ int runAccuracy(int repeats, const std::string& plotPath, bool smoke) {
   // Resolution 75 meshes the pair with about 1k vertices (both pieces), the bar's size. The sweep
   // brackets the default w_3D, 0.01: below it the sheet bends more freely, nearer the exact shape.
   const std::vector<double> weights =
-      smoke ? std::vector<double>{0.01} : std::vector<double>{0.03, 0.01, 0.003, 0.001, 0.0005, 0.0003, 0.0001};
+      smoke ? std::vector<double>{0.01}
+            : std::vector<double>{0.03, 0.01, 0.003, 0.001, 0.0005, 0.0003, 0.0001};
   ForwardJob job;
   job.pieceA = std::string(DFORM_SAMPLES_DIR) + "/forward/ellipses-a.svg";
   job.pieceB = std::string(DFORM_SAMPLES_DIR) + "/forward/ellipses-b.svg";
   job.resolution = smoke ? 30 : 75;
   job.model = ModelChoice::Paper;
-  std::printf("| w_3D | vertices | solve s | LM iters | factorisations | exact distance (RMS) | "
-              "exact distance (max) | L_error %% | L_max %% | flipped |\n");
+  std::printf(
+      "| w_3D | vertices | solve s | LM iters | factorisations | exact distance (RMS) | "
+      "exact distance (max) | L_error %% | L_max %% | flipped |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
   std::vector<Point> points;
   for (const double weight : weights) {
@@ -82,14 +85,17 @@ int runAccuracy(int repeats, const std::string& plotPath, bool smoke) {
     }
     const Metrics& m = last.metrics;
     if (std::isnan(m.exact_distance_rms_rel)) {
-      std::fprintf(stderr, "dform_bench: no exact D-Form to compare with: %s\n", m.exact_note.c_str());
+      std::fprintf(stderr, "dform_bench: no exact D-Form to compare with: %s\n",
+                   m.exact_note.c_str());
       return 1;
     }
-    points.push_back({weight, median(solveSeconds), m.exact_distance_rms_rel, m.exact_distance_max_rel});
+    points.push_back(
+        {weight, median(solveSeconds), m.exact_distance_rms_rel, m.exact_distance_max_rel});
     std::printf("| %g | %ld | %.3f | %zu | %d | %.1e | %.1e | %.3f | %.3f | %d |\n", weight,
-                long(last.model.a.flat.rows() + last.model.b.flat.rows()), points.back().solveSeconds,
-                last.summary.iterations.size(), last.summary.factorisations, m.exact_distance_rms_rel,
-                m.exact_distance_max_rel, 100 * m.L_error, 100 * m.L_max, m.flipped_2d + m.flipped_3d);
+                long(last.model.a.flat.rows() + last.model.b.flat.rows()),
+                points.back().solveSeconds, last.summary.iterations.size(),
+                last.summary.factorisations, m.exact_distance_rms_rel, m.exact_distance_max_rel,
+                100 * m.L_error, 100 * m.L_max, m.flipped_2d + m.flipped_3d);
     std::fflush(stdout);
   }
   if (!plotPath.empty() && !writeAccuracyPlot(plotPath, points)) {

@@ -164,7 +164,8 @@ int main(int argc, char** argv) {
       repeats = std::max(1, std::atoi(argv[++i]));
     } else {
       std::fprintf(stderr,
-                   "usage: dform_bench [--repeats N] [--smoke] [--export] | --scale [--repeats N] [--plot FILE.svg]"
+                   "usage: dform_bench [--repeats N] [--smoke] [--export] | --scale [--repeats N] "
+                   "[--plot FILE.svg]"
                    " | --accuracy [--repeats N] [--plot FILE.svg]\n");
       return 2;
     }
@@ -201,7 +202,8 @@ int main(int argc, char** argv) {
       {"non-convex", "nonconvex-a.svg", "nonconvex-b.svg", 100, 0.0, ModelChoice::General},
   };
   if (smoke)  // a tiny sample job too, so that the job-file rows keep working
-    cases = {{"ellipses", "ellipses-a.svg", "ellipses-b.svg", 30, 0.0}, sampleJob("anti", "anti.json", 20)};
+    cases = {{"ellipses", "ellipses-a.svg", "ellipses-b.svg", 30, 0.0},
+             sampleJob("anti", "anti.json", 20)};
 
   // Per process: benches of other checkouts on the same machine use the temporary folder too.
   const auto exportDir =
@@ -212,9 +214,10 @@ int main(int argc, char** argv) {
     std::filesystem::remove_all(exportDir);
     return status;
   }
-  std::printf("| case | model | seam n | vertices | mesh s | solve s | run s | export s | LM iters | "
-              "factorisations | L_error %% | L_max %% | B_error | flipped | exact distance (RMS) | "
-              "exact distance (max) |\n");
+  std::printf(
+      "| case | model | seam n | vertices | mesh s | solve s | run s | export s | LM iters | "
+      "factorisations | L_error %% | L_max %% | B_error | flipped | exact distance (RMS) | "
+      "exact distance (max) |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Case& c : cases) {
     std::vector<double> mesh, solveSeconds, total, exportSeconds;
@@ -233,24 +236,31 @@ int main(int argc, char** argv) {
       if (exportSeconds.back() < 0) return 1;
     }
     const Metrics& m = last.metrics;
-    std::printf("| %s | %s | %d | %ld | %.3f | %.3f | %.3f | %.3f | %zu | %d | %.3f | %.3f | %.1e | %d | %s | %s |\n",
-                c.name, last.modelUsed.name.c_str(), c.resolution,
-                long(last.model.a.flat.rows() + last.model.b.flat.rows()), median(mesh), median(solveSeconds),
-                median(total), median(exportSeconds), last.summary.iterations.size(), last.summary.factorisations,
-                100 * m.L_error, 100 * m.L_max, m.B_error, m.flipped_2d + m.flipped_3d,
-                exactDistance(m.exact_distance_rms_rel).c_str(), exactDistance(m.exact_distance_max_rel).c_str());
+    std::printf(
+        "| %s | %s | %d | %ld | %.3f | %.3f | %.3f | %.3f | %zu | %d | %.3f | %.3f | %.1e | %d | "
+        "%s | %s |\n",
+        c.name, last.modelUsed.name.c_str(), c.resolution,
+        long(last.model.a.flat.rows() + last.model.b.flat.rows()), median(mesh),
+        median(solveSeconds), median(total), median(exportSeconds), last.summary.iterations.size(),
+        last.summary.factorisations, 100 * m.L_error, 100 * m.L_max, m.B_error,
+        m.flipped_2d + m.flipped_3d, exactDistance(m.exact_distance_rms_rel).c_str(),
+        exactDistance(m.exact_distance_max_rel).c_str());
     std::fflush(stdout);
   }
   std::filesystem::remove_all(exportDir);
 
   // Inverse modelling: the whole run (read, pre-D-Form, solve, figures) per seam curve.
-  std::printf("\n| curve | model | seam n | vertices | init s | solve s | run s | LM iters | factorisations | "
-              "D_error | L_error %% | L_max %% | round trip (RMS) |\n");
+  std::printf(
+      "\n| curve | model | seam n | vertices | init s | solve s | run s | LM iters | "
+      "factorisations | "
+      "D_error | L_error %% | L_max %% | round trip (RMS) |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   const std::vector<std::pair<const char*, int>> curves =
       smoke ? std::vector<std::pair<const char*, int>>{{"tennis-ball.obj", 40}}
-            : std::vector<std::pair<const char*, int>>{{"tennis-ball.obj", 100}, {"saddle.obj", 100},
-                                                       {"pushed-in.obj", 100}, {"rotated.json", 100}};
+            : std::vector<std::pair<const char*, int>>{{"tennis-ball.obj", 100},
+                                                       {"saddle.obj", 100},
+                                                       {"pushed-in.obj", 100},
+                                                       {"rotated.json", 100}};
   for (const auto& [curve, n] : curves) {
     InverseJob job;
     job.curve = std::string(DFORM_SAMPLES_DIR) + "/inverse/" + curve;
@@ -269,11 +279,13 @@ int main(int argc, char** argv) {
       solve.push_back(last.timings.solve);
       total.push_back(last.timings.total);
     }
-    std::printf("| %s | %s | %d | %ld | %.3f | %.3f | %.3f | %zu | %d | %.1e | %.3f | %.3f | %.1e |\n", curve,
-                last.modelUsed.name.c_str(), n, long(last.model.a.flat.rows() + last.model.b.flat.rows()),
-                median(init), median(solve), median(total), last.summary.iterations.size(),
-                last.summary.factorisations, last.curveMatch.D_error, 100 * last.metrics.L_error,
-                100 * last.metrics.L_max, last.curveMatch.roundtrip_rms_rel);
+    std::printf(
+        "| %s | %s | %d | %ld | %.3f | %.3f | %.3f | %zu | %d | %.1e | %.3f | %.3f | %.1e |\n",
+        curve, last.modelUsed.name.c_str(), n,
+        long(last.model.a.flat.rows() + last.model.b.flat.rows()), median(init), median(solve),
+        median(total), last.summary.iterations.size(), last.summary.factorisations,
+        last.curveMatch.D_error, 100 * last.metrics.L_error, 100 * last.metrics.L_max,
+        last.curveMatch.roundtrip_rms_rel);
     std::fflush(stdout);
   }
   if (smoke) {

@@ -58,7 +58,8 @@ void runCase(const Case& c, int fd) {
     take(runInverse(job, sink));
   }
   char line[256];
-  const int n = std::snprintf(line, sizeof line, "%ld %.6f %.6f %.9g %.9g\n", vertices, solve, run, lError, lMax);
+  const int n = std::snprintf(line, sizeof line, "%ld %.6f %.6f %.9g %.9g\n", vertices, solve, run,
+                              lError, lMax);
   if (write(fd, line, std::size_t(n)) != n) _exit(1);
 }
 
@@ -76,28 +77,35 @@ bool measure(const Case& c, Measured& out) {
   close(fds[1]);
   std::string text;
   char buffer[256];
-  for (ssize_t got; (got = read(fds[0], buffer, sizeof buffer)) > 0;) text.append(buffer, std::size_t(got));
+  for (ssize_t got; (got = read(fds[0], buffer, sizeof buffer)) > 0;)
+    text.append(buffer, std::size_t(got));
   close(fds[0]);
   int status = 0;
   rusage usage{};
-  if (wait4(child, &status, 0, &usage) != child || !WIFEXITED(status) || WEXITSTATUS(status) != 0) return false;
+  if (wait4(child, &status, 0, &usage) != child || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    return false;
   out.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out.peakMb = double(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KB on Linux
-  return std::sscanf(text.c_str(), "%ld %lf %lf %lf %lf", &out.vertices, &out.solveSeconds, &out.runSeconds,
-                     &out.lError, &out.lMax) == 5;
+  return std::sscanf(text.c_str(), "%ld %lf %lf %lf %lf", &out.vertices, &out.solveSeconds,
+                     &out.runSeconds, &out.lError, &out.lMax) == 5;
 }
 
 // Two panels, seconds and MB against thousands of vertices, forward and inverse series.
-bool writeScalePlot(const std::string& path, const std::vector<Case>& cases, const std::vector<Measured>& rows) {
+bool writeScalePlot(const std::string& path, const std::vector<Case>& cases,
+                    const std::vector<Measured>& rows) {
   double maxV = 0, maxT = 20, maxM = 0;
-  for (const Measured& m : rows) maxV = std::max(maxV, m.vertices / 1000.0), maxT = std::max(maxT, m.wallSeconds),
-                                 maxM = std::max(maxM, m.peakMb);
+  for (const Measured& m : rows)
+    maxV = std::max(maxV, m.vertices / 1000.0), maxT = std::max(maxT, m.wallSeconds),
+    maxM = std::max(maxM, m.peakMb);
   const PlotAxis vertices{"vertices", 20 * std::ceil(maxV / 20), 0, "k"};
-  PlotPanel time{"Wall time (median), s", vertices, {"seconds", 10 * std::ceil(maxT / 10), 0, ""}, {}, 0, 20};
-  PlotPanel memory{"Peak memory, MB", vertices, {"MB", 500 * std::ceil(maxM / 500), 0, ""}, {}, 0, 2048};
+  PlotPanel time{
+      "Wall time (median), s", vertices, {"seconds", 10 * std::ceil(maxT / 10), 0, ""}, {}, 0, 20};
+  PlotPanel memory{
+      "Peak memory, MB", vertices, {"MB", 500 * std::ceil(maxM / 500), 0, ""}, {}, 0, 2048};
   for (const bool forward : {true, false}) {
     const std::string colour = forward ? "#1f77b4" : "#ff7f0e";
-    PlotSeries wall{colour, forward ? "forward (two ellipses)" : "inverse (saddle curve)", {}, {}, {}};
+    PlotSeries wall{
+        colour, forward ? "forward (two ellipses)" : "inverse (saddle curve)", {}, {}, {}};
     PlotSeries peak = wall;
     for (std::size_t i = 0; i < rows.size(); ++i) {
       if (cases[i].forward != forward) continue;
@@ -116,7 +124,9 @@ int runScale(int repeats, const std::string& plotPath) {
   // 0.17 n^2 vertices, the saddle 0.17 n^2 too.
   const std::vector<Case> cases = {{true, 75},  {true, 240},  {true, 530},  {true, 750},
                                    {false, 75}, {false, 240}, {false, 540}, {false, 760}};
-  std::printf("| run | resolution | vertices | solve s | run s | process wall s | peak MB | L_error %% | L_max %% |\n");
+  std::printf(
+      "| run | resolution | vertices | solve s | run s | process wall s | peak MB | L_error %% | "
+      "L_max %% |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|\n");
   std::vector<Measured> rows;
   for (const Case& c : cases) {
@@ -124,8 +134,8 @@ int runScale(int repeats, const std::string& plotPath) {
     Measured m;
     for (int r = 0; r < repeats; ++r) {
       if (!measure(c, m)) {
-        std::fprintf(stderr, "dform_bench: the %s case at resolution %d failed\n", c.forward ? "forward" : "inverse",
-                     c.resolution);
+        std::fprintf(stderr, "dform_bench: the %s case at resolution %d failed\n",
+                     c.forward ? "forward" : "inverse", c.resolution);
         return 1;
       }
       solve.push_back(m.solveSeconds), run.push_back(m.runSeconds), wall.push_back(m.wallSeconds),
@@ -133,9 +143,9 @@ int runScale(int repeats, const std::string& plotPath) {
     }
     m.solveSeconds = median(solve), m.runSeconds = median(run), m.wallSeconds = median(wall);
     m.peakMb = *std::max_element(peak.begin(), peak.end());
-    std::printf("| %s | %d | %ld | %.2f | %.2f | %.2f | %.0f | %.4f | %.3f |\n", c.forward ? "forward" : "inverse",
-                c.resolution, m.vertices, m.solveSeconds, m.runSeconds, m.wallSeconds, m.peakMb, 100 * m.lError,
-                100 * m.lMax);
+    std::printf("| %s | %d | %ld | %.2f | %.2f | %.2f | %.0f | %.4f | %.3f |\n",
+                c.forward ? "forward" : "inverse", c.resolution, m.vertices, m.solveSeconds,
+                m.runSeconds, m.wallSeconds, m.peakMb, 100 * m.lError, 100 * m.lMax);
     std::fflush(stdout);
     rows.push_back(m);
   }

@@ -32,9 +32,9 @@ class BatchTest : public ::testing::Test {
 
   // Runs dform with `args`; the exit code, the output in `log_`.
   int dform(const std::string& args) {
-    const int status = std::system((std::string(DFORM_EXE) + " " + args + " >" +
-                                    (dir_ / "log.txt").string() + " 2>&1")
-                                       .c_str());
+    const int status = std::system(
+        (std::string(DFORM_EXE) + " " + args + " >" + (dir_ / "log.txt").string() + " 2>&1")
+            .c_str());
     log_ = readText(dir_ / "log.txt");
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   }
@@ -47,8 +47,8 @@ class BatchTest : public ::testing::Test {
 
 // The same job measured twice agrees to rounding (the solver's sums may run in another order).
 void expectSameRow(const json& a, const json& b) {
-  for (const char* key : {"index", "job", "name", "status", "exit_code", "model", "gate_passed",
-                          "failing_checks"})
+  for (const char* key :
+       {"index", "job", "name", "status", "exit_code", "model", "gate_passed", "failing_checks"})
     EXPECT_EQ(a[key], b[key]) << a["name"] << " " << key;
   for (const char* key : {"height_mm", "volume_mm3", "max_curvature"}) {
     ASSERT_EQ(a[key].is_null(), b[key].is_null()) << a["name"] << " " << key;
@@ -66,8 +66,8 @@ fs::path writeJobFolder(const fs::path& dir) {
   auto job = [&](const std::string& name, const std::string& a, const std::string& b,
                  const std::string& extra) {
     std::ofstream(dir / (name + ".json"))
-        << "{\"mode\": \"forward\", \"piece_a\": \"" << svg + a << "\", \"piece_b\": \""
-        << svg + b << "\", \"resolution\": 40" << extra << "}\n";
+        << "{\"mode\": \"forward\", \"piece_a\": \"" << svg + a << "\", \"piece_b\": \"" << svg + b
+        << "\", \"resolution\": 40" << extra << "}\n";
   };
   fs::create_directories(dir);
   job("twin", "ellipses-a.svg", "ellipses-a.svg", ", \"start_b\": 0.25");
@@ -83,9 +83,11 @@ fs::path writeJobFolder(const fs::path& dir) {
 // Runs the jobs at `jobs` whole and in three shards merged: every result validates with its row's
 // verdict, the batch exits with the first failure's code, and the merged table and gallery equal
 // the whole batch's. The whole batch's rows.
-json expectShardsMergeToTheWhole(BatchTest& t, const fs::path& jobs, const fs::path& dir, int jobCount) {
+json expectShardsMergeToTheWhole(BatchTest& t, const fs::path& jobs, const fs::path& dir,
+                                 int jobCount) {
   const fs::path whole = dir / "whole", sharded = dir / "sharded";
-  const int wholeCode = t.dform("batch " + jobs.string() + " -o " + whole.string() + " --no-export -q");
+  const int wholeCode =
+      t.dform("batch " + jobs.string() + " -o " + whole.string() + " --no-export -q");
   const std::string wholeLog = t.log_;
   const json all = BatchTest::rows(whole / "batch.json");
   EXPECT_EQ(int(all.size()), jobCount) << wholeLog;
@@ -107,14 +109,16 @@ json expectShardsMergeToTheWhole(BatchTest& t, const fs::path& jobs, const fs::p
     const std::string shard = std::to_string(i) + "-of-3";
     const json slice = BatchTest::rows(sharded / ("batch-shard-" + shard + ".json"));
     for (const json& row : slice) EXPECT_EQ(row["index"].get<int>() % 3 + 1, i) << t.log_;
-    EXPECT_EQ(occurrences(readText(sharded / ("gallery-shard-" + shard + ".html")), "<div class=\"card"),
-              int(slice.size()));
+    EXPECT_EQ(
+        occurrences(readText(sharded / ("gallery-shard-" + shard + ".html")), "<div class=\"card"),
+        int(slice.size()));
   }
   EXPECT_FALSE(fs::exists(sharded / "gallery.html"));  // drawn by --merge
   EXPECT_EQ(t.dform("batch --merge " + sharded.string()), 0) << t.log_;
   const json merged = BatchTest::rows(sharded / "batch.json");
   EXPECT_EQ(merged.size(), all.size());
-  for (std::size_t k = 0; k < std::min(all.size(), merged.size()); ++k) expectSameRow(all[k], merged[k]);
+  for (std::size_t k = 0; k < std::min(all.size(), merged.size()); ++k)
+    expectSameRow(all[k], merged[k]);
   // The merged gallery has a card per job.
   const std::string gallery = readText(sharded / "gallery.html");
   EXPECT_EQ(occurrences(gallery, "<div class=\"card"), jobCount);
@@ -124,7 +128,8 @@ json expectShardsMergeToTheWhole(BatchTest& t, const fs::path& jobs, const fs::p
 // Every shipped job (the Release suite; minutes under the sanitizers, which run the next test).
 TEST_F(BatchTest, ShardsMergedEqualTheWholeBatch) {
   int jobs = 0;
-  for (const auto& entry : fs::directory_iterator(samples())) jobs += entry.path().extension() == ".json";
+  for (const auto& entry : fs::directory_iterator(samples()))
+    jobs += entry.path().extension() == ".json";
   ASSERT_GE(jobs, 7);
   expectShardsMergeToTheWhole(*this, samples(), dir_, jobs);
 }
@@ -180,9 +185,11 @@ Stamp stamp(const fs::path& path) {
 TEST_F(BatchTest, ResumeFinishesTheRestAndRedoesNothingFinished) {
   // A job list as a lab writes one: comments, a blank line, paths relative to the list.
   const fs::path list = dir_ / "jobs.txt";
-  std::ofstream(list) << "# three quick jobs\n" << samples() << "/ellipse-twin.json\n\n"
+  std::ofstream(list) << "# three quick jobs\n"
+                      << samples() << "/ellipse-twin.json\n\n"
                       << fs::relative(samples() + "/ellipses-quarter-turn.json", dir_).string()
-                      << "\n" << samples() << "/squaricle.json\n";
+                      << "\n"
+                      << samples() << "/squaricle.json\n";
   const fs::path out = dir_ / "out";
   ASSERT_EQ(dform("batch " + list.string() + " -o " + out.string() + " -q"), 0) << log_;
   json manifest = json::parse(readText(out / "batch.json"));
@@ -193,7 +200,8 @@ TEST_F(BatchTest, ResumeFinishesTheRestAndRedoesNothingFinished) {
   std::ofstream(out / "batch.json") << manifest.dump(2);
   fs::remove_all(out / "ellipses-quarter-turn");
   std::map<std::string, Stamp> before;
-  for (const char* name : {"ellipse-twin", "squaricle"}) before[name] = stamp(out / name / "report.json");
+  for (const char* name : {"ellipse-twin", "squaricle"})
+    before[name] = stamp(out / name / "report.json");
 
   ASSERT_EQ(dform("batch " + list.string() + " -o " + out.string() + " -q --resume"), 0) << log_;
   const json resumed = rows(out / "batch.json");
@@ -221,7 +229,9 @@ TEST_F(BatchTest, TheDemiJobGivesTheSameFiguresAloneAndInAThreeThreadBatch) {
   const json alone = json::parse(readText(dir_ / "alone" / "report.json"))["metrics"];
   ASSERT_TRUE(alone.is_object());
   const fs::path list = dir_ / "jobs.txt";
-  std::ofstream(list) << samples() << "/squaricle.json\n" << demi << "\n" << samples() << "/nonconvex-shifted.json\n";
+  std::ofstream(list) << samples() << "/squaricle.json\n"
+                      << demi << "\n"
+                      << samples() << "/nonconvex-shifted.json\n";
   for (int round = 0; round < 5; ++round) {
     const fs::path out = dir_ / ("batch-" + std::to_string(round));
     dform("batch " + list.string() + " --threads 3 --no-export -q -o " + out.string());

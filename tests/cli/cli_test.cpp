@@ -6,8 +6,8 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -15,9 +15,9 @@
 #include <fstream>
 #include <functional>
 #include <map>
-#include <set>
 #include <nlohmann/json.hpp>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -151,28 +151,34 @@ TEST_F(CliTest, UnreadableInputsEvenForRoot) {
   expectError(run("forward " + path("folder.svg") + " " + circle + " -o " + path("out")), 3,
               path("folder.svg") + ": is a folder");
   const std::string file = write("a-file", "x");
-  expectError(run("forward " + file + "/inner.svg " + circle + " -o " + path("out")), 3, file + "/inner.svg");
+  expectError(run("forward " + file + "/inner.svg " + circle + " -o " + path("out")), 3,
+              file + "/inner.svg");
   fs::create_symlink(path("loop-b.svg"), path("loop-a.svg"));
   fs::create_symlink(path("loop-a.svg"), path("loop-b.svg"));
   expectError(run("forward " + path("loop-a.svg") + " " + circle + " -o " + path("out")), 3,
               path("loop-a.svg") + ": cannot be read (Too many levels of symbolic links)");
   fs::create_directory(path("folder.obj"));
-  expectError(run("inverse " + path("folder.obj") + " -o " + path("out")), 3, path("folder.obj") + ": is a folder");
+  expectError(run("inverse " + path("folder.obj") + " -o " + path("out")), 3,
+              path("folder.obj") + ": is a folder");
   fs::create_directory(path("job.json"));
-  expectError(run("run " + path("job.json") + " -o " + path("out")), 3, path("job.json") + ": is a folder");
+  expectError(run("run " + path("job.json") + " -o " + path("out")), 3,
+              path("job.json") + ": is a folder");
   fs::create_directory(path("gate.json"));
-  expectError(run("forward " + circle + " " + circle + " -o " + path("out") + " --gate " + path("gate.json")), 3,
-              path("gate.json") + ": is a folder");
+  expectError(run("forward " + circle + " " + circle + " -o " + path("out") + " --gate " +
+                  path("gate.json")),
+              3, path("gate.json") + ": is a folder");
   EXPECT_FALSE(fs::exists(path("out"))) << "nothing is written for input that cannot be read";
 }
 
 // Outputs that cannot be put in place whoever runs the tests: a result file's name taken by a
 // folder that is not empty (no rename replaces it, not even root's). Exit 6, naming the file.
 TEST_F(CliTest, OutputsThatCannotBePutInPlaceEvenForRoot) {
-  const std::string pair = sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  const std::string pair =
+      sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
   const std::string out = path("out");
   fs::create_directories(fs::path(out) / "report.json" / "keep");
-  expectError(run("forward " + pair + " --resolution 30 --no-export -q -o " + out), 6, out + "/report.json");
+  expectError(run("forward " + pair + " --resolution 30 --no-export -q -o " + out), 6,
+              out + "/report.json");
   // A saved result exported where pattern.svg's name is taken.
   const std::string saved = path("saved");
   ASSERT_EQ(run("forward " + pair + " --resolution 30 --no-export -q -o " + saved).exitCode, 0);
@@ -212,8 +218,9 @@ TEST_F(CliTest, UnequalPerimetersGiveBothInMillimetres) {
   const Outcome o = run("forward " + sample("forward/circle.svg") + " " +
                         sample("forward/ellipses-a.svg") + " -o " + path("out"));
   expectError(o, 4, "perimeters differ");
-  EXPECT_NE(o.err.find("800.000 mm"), std::string::npos) << o.err;  // the circle's 800 mm, flattened at 1e-4 mm
-  EXPECT_NE(o.err.find("607.28"), std::string::npos) << o.err;      // the ellipse's 607.282 mm
+  EXPECT_NE(o.err.find("800.000 mm"), std::string::npos)
+      << o.err;  // the circle's 800 mm, flattened at 1e-4 mm
+  EXPECT_NE(o.err.find("607.28"), std::string::npos) << o.err;  // the ellipse's 607.282 mm
   EXPECT_FALSE(fs::exists(path("out")));
 }
 
@@ -222,13 +229,17 @@ TEST_F(CliTest, HugeAndNonFiniteCoordinatesAreInvalid) {
   expectError(run("forward " + huge + " " + sample("forward/circle.svg") + " -o " + path("out")), 4,
               huge);
   const std::string inf = write("inf.svg", svg("<rect width='1e999' height='10'/>"));
-  expectError(run("forward " + inf + " " + sample("forward/circle.svg") + " -o " + path("out")), 4, inf);
+  expectError(run("forward " + inf + " " + sample("forward/circle.svg") + " -o " + path("out")), 4,
+              inf);
   // NaN is bad content (4), as the README says; a number that is not one is an unreadable file (3).
   const std::string nan = write("nan.svg", svg("<polygon points='10,10 NaN,100 100,10'/>"));
-  expectError(run("forward " + nan + " " + sample("forward/circle.svg") + " -o " + path("out")), 4, "non-finite number 'NaN'");
+  expectError(run("forward " + nan + " " + sample("forward/circle.svg") + " -o " + path("out")), 4,
+              "non-finite number 'NaN'");
   const std::string word = write("word.svg", svg("<polygon points='10,10 ten,100 100,10'/>"));
-  expectError(run("forward " + word + " " + sample("forward/circle.svg") + " -o " + path("out")), 3, "malformed 'points'");
-  const std::string objNan = write("nan.obj", "v nan 0 0\nv 10 0 1\nv 10 10 0\nv 0 10 1\nv -5 5 2\nl 1 2 3 4 5 1\n");
+  expectError(run("forward " + word + " " + sample("forward/circle.svg") + " -o " + path("out")), 3,
+              "malformed 'points'");
+  const std::string objNan =
+      write("nan.obj", "v nan 0 0\nv 10 0 1\nv 10 10 0\nv 0 10 1\nv -5 5 2\nl 1 2 3 4 5 1\n");
   expectError(run("inverse " + objNan + " -o " + path("out")), 4, objNan);
   EXPECT_FALSE(fs::exists(path("out")));
 }
@@ -254,9 +265,10 @@ TEST_F(CliTest, BadOptionsAreUsageErrors) {
   const Outcome gate = run("forward " + pair + " -o " + path("out") + " --gate bogus");
   expectError(gate, 2, "unknown gate \"bogus\" (known: default, lenient, strict");
   EXPECT_FALSE(fs::exists(path("out")));
-  expectError(run("forward " + pair + " -o " + path("out") + " --gate " + path("missing.json")), 3, path("missing.json"));
-  expectError(run("forward " + pair + " -o " + path("out") + " --resolution 20 -q --profile bogus"), 2,
-              "unknown profile \"bogus\"");
+  expectError(run("forward " + pair + " -o " + path("out") + " --gate " + path("missing.json")), 3,
+              path("missing.json"));
+  expectError(run("forward " + pair + " -o " + path("out") + " --resolution 20 -q --profile bogus"),
+              2, "unknown profile \"bogus\"");
   expectError(run("validate " + path("out") + " --gate bogus"), 2, "unknown gate");
 }
 
@@ -290,13 +302,15 @@ TEST_F(CliTest, ForwardWritesEveryFileAndValidates) {
     EXPECT_GE(t[key].get<double>(), 0.0) << key;
     stages += t[key].get<double>();
   }
-  EXPECT_GE(t["run"].get<double>(), t["read"].get<double>() + t["mesh"].get<double>() + t["solve"].get<double>());
+  EXPECT_GE(t["run"].get<double>(),
+            t["read"].get<double>() + t["mesh"].get<double>() + t["solve"].get<double>());
   EXPECT_GE(t["total"].get<double>(), stages) << t.dump();
   EXPECT_LE(report["metrics"]["L_error"].get<double>(), 0.005);
   EXPECT_EQ(schemaCheck((fs::path(out) / "report.json").string()), 0);
   // The glTF preview carries the curvature map by default; the pattern is fit to cut.
   EXPECT_NE(readText(fs::path(out) / "dform.glb").find("\"COLOR_0\""), std::string::npos);
-  const nlohmann::json pattern = nlohmann::json::parse(std::ifstream(fs::path(out) / "pattern.json"));
+  const nlohmann::json pattern =
+      nlohmann::json::parse(std::ifstream(fs::path(out) / "pattern.json"));
   EXPECT_FALSE(pattern["failed_gate"].get<bool>());
   EXPECT_EQ(pattern["job"], "ellipses-a");
   const std::string html = expectSelfContainedReport(out, report);
@@ -322,8 +336,10 @@ TEST_F(CliTest, ForwardWritesEveryFileAndValidates) {
 
 TEST_F(CliTest, ProgressOnlyOnATerminalAndNotWhenQuiet) {
   const std::string args = "forward " + sample("forward/ellipses-a.svg") + " " +
-                           sample("forward/ellipses-b.svg") + " --resolution 30 --no-export --model paper";
-  // The paper model iterates (the exact one answers in one go). util-linux `script` runs the command on a pseudo-terminal and copies what it shows.
+                           sample("forward/ellipses-b.svg") +
+                           " --resolution 30 --no-export --model paper";
+  // The paper model iterates (the exact one answers in one go). util-linux `script` runs the
+  // command on a pseudo-terminal and copies what it shows.
   auto onTerminal = [&](const std::string& more, const std::string& out) {
     const std::string command = "script -qec '" + std::string(DFORM_EXE) + " " + args + more +
                                 " -o " + path(out) + "' /dev/null > " + path(out + ".txt") +
@@ -357,8 +373,8 @@ TEST_F(CliTest, AFailedGateKeepsTheReportAndReleasesNothing) {
   // (L_error <= 1e-9; an exact result's L_error is rounding).
   const std::string tight =
       write("tight.json", R"({"version": 1, "name": "tight", "limits": {"L_error": 1e-9}})");
-  const Outcome failed = run("forward " + pieces + " --resolution 30 --model paper -q --gate " +
-                             tight + " -o " + out);
+  const Outcome failed =
+      run("forward " + pieces + " --resolution 30 --model paper -q --gate " + tight + " -o " + out);
   expectError(failed, 7, "no cutting files");
   EXPECT_NE(failed.out.find("gate: FAILED (tight: "), std::string::npos) << failed.out;
   for (const char* name :
@@ -380,7 +396,8 @@ TEST_F(CliTest, AFailedGateKeepsTheReportAndReleasesNothing) {
   std::ostringstream svg;
   svg << std::ifstream(fs::path(out) / "pattern.svg").rdbuf();
   EXPECT_NE(svg.str().find("FAILED GATE"), std::string::npos);
-  const nlohmann::json reexported = nlohmann::json::parse(std::ifstream(fs::path(out) / "pattern.json"));
+  const nlohmann::json reexported =
+      nlohmann::json::parse(std::ifstream(fs::path(out) / "pattern.json"));
   EXPECT_TRUE(reexported["failed_gate"].get<bool>());
   EXPECT_EQ(reexported["job"], "ellipses-a") << "the job's name, not the folder's";
   std::ostringstream page;
@@ -404,17 +421,20 @@ TEST_F(CliTest, AFailedGateKeepsTheReportAndReleasesNothing) {
       nlohmann::json::parse(std::ifstream(fs::path(anyway) / "report.json"));
   EXPECT_EQ(markedReport["gate"]["checks"].back()["name"], "pattern_layout");
   EXPECT_EQ(markedReport["gate"]["checks"].back()["verdict"], "pass");
-  const nlohmann::json markedPattern = nlohmann::json::parse(std::ifstream(fs::path(anyway) / "pattern.json"));
+  const nlohmann::json markedPattern =
+      nlohmann::json::parse(std::ifstream(fs::path(anyway) / "pattern.json"));
   EXPECT_TRUE(markedPattern["failed_gate"].get<bool>());
 }
 
 TEST_F(CliTest, ExportOptionsOnTheCommandLine) {
-  const std::string pieces = sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  const std::string pieces =
+      sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
   const std::string out = path("out");
   const Outcome o = run("forward " + pieces + " --resolution 30 -q --tabs alternate --tab-width 8" +
                         " --tick-spacing 25 --gltf -o " + out);
   ASSERT_EQ(o.exitCode, 0) << o.err;
-  const nlohmann::json pattern = nlohmann::json::parse(std::ifstream(fs::path(out) / "pattern.json"));
+  const nlohmann::json pattern =
+      nlohmann::json::parse(std::ifstream(fs::path(out) / "pattern.json"));
   EXPECT_EQ(pattern["tabs_on"], "alternate");
   EXPECT_EQ(pattern["tick_spacing_mm"].get<double>(), 25.0);
   int onB = 0;
@@ -438,7 +458,8 @@ TEST_F(CliTest, ExportOptionsOnTheCommandLine) {
 
   // Bad values are usage errors, found before anything is solved or written.
   const std::string bad = path("bad");
-  expectError(run("forward " + pieces + " --tabs both -o " + bad), 2, "--tabs must be a, b, alternate or none");
+  expectError(run("forward " + pieces + " --tabs both -o " + bad), 2,
+              "--tabs must be a, b, alternate or none");
   expectError(run("forward " + pieces + " --tab-width 60 -o " + bad), 2, "tab width");
   expectError(run("forward " + pieces + " --tab-width wide -o " + bad), 2, "--tab-width");
   expectError(run("forward " + pieces + " --tick-spacing 0.5 -o " + bad), 2, "tick spacing");
@@ -454,9 +475,11 @@ TEST_F(CliTest, PrintAndCutPutsEachPieceOnItsOwnPage) {
   const std::string a = write("a.svg", svg("<ellipse cx='150' cy='150' rx='80' ry='50'/>"));
   const std::string b = write("b.svg", svg("<circle cx='150' cy='150' r='65.86'/>"));
   const std::string out = path("out");
-  const Outcome o = run("forward " + a + " " + b + " --resolution 30 -q --profile print-and-cut -o " + out);
+  const Outcome o =
+      run("forward " + a + " " + b + " --resolution 30 -q --profile print-and-cut -o " + out);
   ASSERT_EQ(o.exitCode, 0) << o.err;
-  const nlohmann::json pattern = nlohmann::json::parse(std::ifstream(fs::path(out) / "pattern.json"));
+  const nlohmann::json pattern =
+      nlohmann::json::parse(std::ifstream(fs::path(out) / "pattern.json"));
   ASSERT_EQ(pattern["pages"].size(), 2u);
   EXPECT_EQ(pattern["pages"][1]["origin"][0].get<double>(), 210.0);
   const std::string svgText = readText(fs::path(out) / "pattern.svg");
@@ -481,7 +504,8 @@ TEST_F(CliTest, AFolderWhoseFileNamesAreTakenIsRefusedBeforeTheSolve) {
 // Occurrences of `needle` in `text`.
 std::size_t countOf(const std::string& text, const std::string& needle) {
   std::size_t count = 0;
-  for (std::size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++count;
+  for (std::size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1))
+    ++count;
   return count;
 }
 
@@ -498,7 +522,8 @@ TEST_F(CliTest, TheFoldMapIsListedAndDrawnOnTheFlatPieces) {
   ASSERT_EQ(report["model"]["name"], "exact");
   std::size_t creases = 0, gentle = 0;
   for (const nlohmann::json& fold : report["model"]["folds"]) {
-    EXPECT_NEAR(fold["angle_rad"].get<double>() * 180.0 / std::acos(-1.0), fold["angle_deg"].get<double>(), 1e-9);
+    EXPECT_NEAR(fold["angle_rad"].get<double>() * 180.0 / std::acos(-1.0),
+                fold["angle_deg"].get<double>(), 1e-9);
     if (fold["crease"].get<bool>()) {
       ++creases;
       EXPECT_NEAR(fold["angle_deg"].get<double>(), 66.7, 0.5);
@@ -513,7 +538,8 @@ TEST_F(CliTest, TheFoldMapIsListedAndDrawnOnTheFlatPieces) {
   const std::string html = readText(fs::path(out) / "report.html");
   EXPECT_EQ(countOf(html, "class='fold steep'"), creases);
   EXPECT_EQ(countOf(html, "class='fold gentle'"), gentle);
-  EXPECT_NE(html.find("Faint lines: the folds of the exact body (" + std::to_string(creases + gentle) + ")"),
+  EXPECT_NE(html.find("Faint lines: the folds of the exact body (" +
+                      std::to_string(creases + gentle) + ")"),
             std::string::npos);
   // The schema takes the fold map and refuses a fold without its angle or its piece.
   EXPECT_EQ(schemaCheck((fs::path(out) / "report.json").string()), 0);
@@ -531,10 +557,11 @@ TEST_F(CliTest, TheFoldMapIsListedAndDrawnOnTheFlatPieces) {
 
 TEST_F(CliTest, TheGeneralModelReportsHowStationaryItsAnswerIs) {
   const std::string out = path("general");
-  ASSERT_EQ(run("forward " + sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg") +
-                " --model general --resolution 30 --no-export -q -o " + out)
-                .exitCode,
-            0);
+  ASSERT_EQ(
+      run("forward " + sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg") +
+          " --model general --resolution 30 --no-export -q -o " + out)
+          .exitCode,
+      0);
   EXPECT_EQ(schemaCheck((fs::path(out) / "report.json").string()), 0);
   const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
   EXPECT_EQ(report["model"]["name"], "general");
@@ -542,8 +569,9 @@ TEST_F(CliTest, TheGeneralModelReportsHowStationaryItsAnswerIs) {
   EXPECT_LE(report["model"]["stationarity"].get<double>(), 1e-6);
   EXPECT_GT(report["model"]["newton_steps"].get<int>(), 0);
   EXPECT_EQ(run("validate " + out).exitCode, 0);
-  const Outcome bad = run("forward " + sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg") +
-                            " --model generic -q -o " + path("generic"));
+  const Outcome bad =
+      run("forward " + sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg") +
+          " --model generic -q -o " + path("generic"));
   EXPECT_EQ(bad.exitCode, 2);
   EXPECT_NE(bad.err.find("auto, exact, paper or general"), std::string::npos) << bad.err;
 }
@@ -592,8 +620,10 @@ TEST_F(CliTest, ReportsFollowTheirSchema) {
   };
   using J = nlohmann::json;
   failsWhen(1, "inverse without D_error", [](J& r) { r["metrics"].erase("D_error"); });
-  failsWhen(1, "inverse without curve_distance_max_mm", [](J& r) { r["metrics"].erase("curve_distance_max_mm"); });
-  failsWhen(1, "inverse without curve_length_mm", [](J& r) { r["metrics"].erase("curve_length_mm"); });
+  failsWhen(1, "inverse without curve_distance_max_mm",
+            [](J& r) { r["metrics"].erase("curve_distance_max_mm"); });
+  failsWhen(1, "inverse without curve_length_mm",
+            [](J& r) { r["metrics"].erase("curve_length_mm"); });
   failsWhen(1, "inverse without pre_dform", [](J& r) { r.erase("pre_dform"); });
   failsWhen(1, "inverse with empty inputs", [](J& r) { r["inputs"] = J::object(); });
   failsWhen(1, "inverse claiming forward", [](J& r) { r["mode"] = "forward"; });
@@ -601,7 +631,8 @@ TEST_F(CliTest, ReportsFollowTheirSchema) {
   failsWhen(0, "forward without B_error", [](J& r) { r["metrics"].erase("B_error"); });
   failsWhen(0, "forward without piece_b", [](J& r) { r["inputs"].erase("piece_b"); });
   failsWhen(0, "forward with empty inputs", [](J& r) { r["inputs"] = J::object(); });
-  failsWhen(0, "forward with a curve input", [&](J& r) { r["inputs"]["curve"] = saved[1]["inputs"]["curve"]; });
+  failsWhen(0, "forward with a curve input",
+            [&](J& r) { r["inputs"]["curve"] = saved[1]["inputs"]["curve"]; });
   failsWhen(0, "forward with D_error", [](J& r) { r["metrics"]["D_error"] = 0.0; });
   failsWhen(0, "forward claiming inverse", [](J& r) { r["mode"] = "inverse"; });
   failsWhen(0, "forward with a pre-D-Form", [&](J& r) { r["pre_dform"] = saved[1]["pre_dform"]; });
@@ -665,7 +696,8 @@ TEST_P(SampleOnEveryKernel, GivesTheSameFiguresAndVerdicts) {
   const std::pair<std::string, std::string> settings[] = {
       {"native", "env -u OPENBLAS_CORETYPE"},
       {"haswell", "env OPENBLAS_CORETYPE=Haswell OPENBLAS_NUM_THREADS=2 OMP_NUM_THREADS=2"},
-      {"sandybridge", "env OPENBLAS_CORETYPE=Sandybridge OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"}};
+      {"sandybridge",
+       "env OPENBLAS_CORETYPE=Sandybridge OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"}};
   std::vector<nlohmann::json> reports;
   std::vector<int> codes;
   for (const auto& [name, environment] : settings) {
@@ -690,7 +722,8 @@ TEST_P(SampleOnEveryKernel, GivesTheSameFiguresAndVerdicts) {
     for (const auto& [key, value] : first["metrics"].items()) {
       ASSERT_TRUE(other["metrics"].contains(key)) << name << ": " << key;
       if (value.is_number())
-        EXPECT_PRED2(agree, value.get<double>(), other["metrics"][key].get<double>()) << name << ": " << key;
+        EXPECT_PRED2(agree, value.get<double>(), other["metrics"][key].get<double>())
+            << name << ": " << key;
       else
         EXPECT_EQ(value, other["metrics"][key]) << name << ": " << key;
     }
@@ -698,7 +731,8 @@ TEST_P(SampleOnEveryKernel, GivesTheSameFiguresAndVerdicts) {
     const nlohmann::json &checks = first["gate"]["checks"], &otherChecks = other["gate"]["checks"];
     ASSERT_EQ(checks.size(), otherChecks.size()) << name;
     for (std::size_t c = 0; c < checks.size(); ++c)
-      EXPECT_EQ(checks[c]["verdict"], otherChecks[c]["verdict"]) << name << ": " << checks[c]["name"];
+      EXPECT_EQ(checks[c]["verdict"], otherChecks[c]["verdict"])
+          << name << ": " << checks[c]["name"];
   }
 }
 
@@ -722,9 +756,10 @@ TEST_F(CliTest, AFailedExportStillSavesTheResult) {
 
 TEST_F(CliTest, JobFileReproducesTheRun) {
   const std::string out = path("out");
-  const std::string job = write("job.json", R"({"mode": "forward", "piece_a": ")" + sample("forward/circle.svg") +
-                                                R"(", "piece_b": ")" + sample("forward/square.svg") +
-                                                R"(", "start_b": 0.125, "resolution": 60})");
+  const std::string job =
+      write("job.json", R"({"mode": "forward", "piece_a": ")" + sample("forward/circle.svg") +
+                            R"(", "piece_b": ")" + sample("forward/square.svg") +
+                            R"(", "start_b": 0.125, "resolution": 60})");
   const Outcome o = run("run " + job + " --no-export -q -o " + out);
   ASSERT_EQ(o.exitCode, 0) << o.err;
   EXPECT_FALSE(fs::exists(fs::path(out) / "pattern.svg"));
@@ -732,8 +767,10 @@ TEST_F(CliTest, JobFileReproducesTheRun) {
   EXPECT_TRUE(report["timings"]["export"].is_null()) << "nothing exported, nothing timed";
   EXPECT_EQ(report["job"]["start_b"].get<double>(), 0.125);
   // The inputs are named by content too: a result can be traced to the exact files.
-  EXPECT_EQ(report["inputs"]["piece_a"]["sha256"], sha256Hex(readText(sample("forward/circle.svg"))));
-  EXPECT_EQ(report["inputs"]["piece_b"]["sha256"], sha256Hex(readText(sample("forward/square.svg"))));
+  EXPECT_EQ(report["inputs"]["piece_a"]["sha256"],
+            sha256Hex(readText(sample("forward/circle.svg"))));
+  EXPECT_EQ(report["inputs"]["piece_b"]["sha256"],
+            sha256Hex(readText(sample("forward/square.svg"))));
   EXPECT_EQ(report["job"]["resolution"].get<int>(), 60);
   // The recorded job runs again to the same figures.
   const std::string again = write("again.json", report["job"].dump());
@@ -810,7 +847,8 @@ TEST_F(CliTest, InterruptedRunExitsWithoutTouchingTheOutputFolder) {
     ASSERT_GE(pid, 0);
     if (pid == 0) {
       const std::string command = "exec " + std::string(DFORM_EXE) + " forward " + pair +
-                                  " --resolution 250 --model paper -o " + out + " >/dev/null 2>" + err;
+                                  " --resolution 250 --model paper -o " + out + " >/dev/null 2>" +
+                                  err;
       execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
       _exit(127);
     }
@@ -830,7 +868,8 @@ TEST_F(CliTest, InterruptedRunExitsWithoutTouchingTheOutputFolder) {
     EXPECT_EQ(WEXITSTATUS(status), signal == SIGINT ? 130 : 143);
     std::ostringstream text;
     text << std::ifstream(err).rdbuf();
-    EXPECT_NE(text.str().find("dform: error: " + out + ": interrupted"), std::string::npos) << text.str();
+    EXPECT_NE(text.str().find("dform: error: " + out + ": interrupted"), std::string::npos)
+        << text.str();
     // Nothing written, nothing half-written, no temporary file: the earlier result, unchanged.
     EXPECT_TRUE(folderContents(out) == before);
   }
@@ -867,25 +906,31 @@ TEST_F(CliTest, FitPerimeterScalesPieceB) {
   double perimeter = 0.0;
   for (int k = 0; k < 100000; ++k) {
     const double t0 = 2 * M_PI * k / 100000, t1 = 2 * M_PI * (k + 1) / 100000;
-    perimeter += std::hypot(130 * (std::cos(t1) - std::cos(t0)), 127 * (std::sin(t1) - std::sin(t0)));
+    perimeter +=
+        std::hypot(130 * (std::cos(t1) - std::cos(t0)), 127 * (std::sin(t1) - std::sin(t0)));
   }
   const std::string out = path("out");
-  const Outcome o = run("forward " + sample("forward/circle.svg") + " " + big + " --fit-perimeter --resolution 30 --no-export -q -o " + out);
+  const Outcome o = run("forward " + sample("forward/circle.svg") + " " + big +
+                        " --fit-perimeter --resolution 30 --no-export -q -o " + out);
   ASSERT_EQ(o.exitCode, 0) << o.err;
   const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
   EXPECT_NEAR(report["fit_perimeter_scale"].get<double>(), 800.0 / perimeter, 1e-4);
   // Both flat seams then measure 800 mm, to 1e-4 of it (a tenth of the default gate's limit).
-  EXPECT_NEAR(report["metrics"]["seam_length_a_mm"].get<double>(), report["metrics"]["seam_length_b_mm"].get<double>(), 0.08);
+  EXPECT_NEAR(report["metrics"]["seam_length_a_mm"].get<double>(),
+              report["metrics"]["seam_length_b_mm"].get<double>(), 0.08);
 }
 
 TEST_F(CliTest, AntiDFormFromTheCommandLineCutsItsHolesAndValidatesAgain) {
   const std::string out = path("anti");
-  const Outcome o = run("forward " + sample("forward/anti-a.svg") + " " + sample("forward/anti-b.svg") +
-                        " --join inner,inner --resolution 30 -o " + out);
+  const Outcome o =
+      run("forward " + sample("forward/anti-a.svg") + " " + sample("forward/anti-b.svg") +
+          " --join inner,inner --resolution 30 -o " + out);
   ASSERT_EQ(o.exitCode, 0) << o.err;
-  EXPECT_NE((o.out + o.err).find("joining its hole, its outline stays free"), std::string::npos) << o.err;
+  EXPECT_NE((o.out + o.err).find("joining its hole, its outline stays free"), std::string::npos)
+      << o.err;
   std::ifstream svgFile(fs::path(out) / "pattern.svg");
-  const std::string pattern((std::istreambuf_iterator<char>(svgFile)), std::istreambuf_iterator<char>());
+  const std::string pattern((std::istreambuf_iterator<char>(svgFile)),
+                            std::istreambuf_iterator<char>());
   EXPECT_NE(pattern.find("id=\"A-cut-hole-1\""), std::string::npos);
   EXPECT_NE(pattern.find("id=\"B-cut-hole-1\""), std::string::npos);
   const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
@@ -904,15 +949,18 @@ TEST_F(CliTest, AntiDFormFromTheCommandLineCutsItsHolesAndValidatesAgain) {
 TEST_F(CliTest, ARunTooLargeForTheMachineStopsAtOnceSayingWhatFits) {
   // About 69 million vertices: hundreds of GB, far beyond any machine this runs on. The run
   // must refuse before meshing (so at once), as a usage error naming the resolution that fits.
-  const Outcome forward = run("forward " + sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg") +
-                              " --resolution 20000 -o " + path("huge"));
+  const Outcome forward =
+      run("forward " + sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg") +
+          " --resolution 20000 -o " + path("huge"));
   expectError(forward, 2, "GB of memory");
   EXPECT_NE(forward.err.find("a resolution of "), std::string::npos) << forward.err;
   EXPECT_FALSE(fs::exists(fs::path(path("huge")) / "report.json"));
-  expectError(run("inverse " + sample("inverse/saddle.obj") + " --resolution 20000 -o " + path("huge2")), 2,
-              "GB of memory");
-  expectError(run("inverse " + sample("inverse/saddle.obj") + " --resolution 20001 -o " + path("huge3")), 2,
-              "between 8 and 20000");
+  expectError(
+      run("inverse " + sample("inverse/saddle.obj") + " --resolution 20000 -o " + path("huge2")), 2,
+      "GB of memory");
+  expectError(
+      run("inverse " + sample("inverse/saddle.obj") + " --resolution 20001 -o " + path("huge3")), 2,
+      "between 8 and 20000");
 }
 
 // ---- The result folder as one transaction ---------------------------------------------------
@@ -959,8 +1007,10 @@ bool waitForText(const std::string& file, const std::string& text) {
 
 TEST_F(CliTest, AResultFolderIsReplacedWholeAndNothingElseIsTouched) {
   const std::string out = path("out");
-  const std::string pair = sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
-  ASSERT_EQ(run("inverse " + sample("inverse/saddle.obj") + " --resolution 30 -q -o " + out).exitCode, 0);
+  const std::string pair =
+      sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  ASSERT_EQ(
+      run("inverse " + sample("inverse/saddle.obj") + " --resolution 30 -q -o " + out).exitCode, 0);
   ASSERT_TRUE(fs::exists(fs::path(out) / "target-curve.obj"));
   ASSERT_TRUE(fs::exists(fs::path(out) / "pattern.svg"));
   // A forward run into it: none of the inverse result's files stays (its target curve would make
@@ -992,7 +1042,8 @@ TEST_F(CliTest, AResultFolderIsReplacedWholeAndNothingElseIsTouched) {
 // old result, whichever file it was.
 TEST_F(CliTest, AFailedWriteLeavesExactlyTheOldResult) {
   const std::string out = path("out");
-  const std::string pair = sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  const std::string pair =
+      sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
   ASSERT_EQ(run("forward " + pair + " --resolution 30 -q -o " + out).exitCode, 0);
   const std::map<std::string, std::string> before = folderContents(out);
   std::size_t largest = 0;
@@ -1014,7 +1065,8 @@ TEST_F(CliTest, AFailedWriteLeavesExactlyTheOldResult) {
     o.exitCode = waitFor(pid);
     o.err = readText(err);
     expectError(o, 6, out + "/");
-    EXPECT_EQ(o.err.find(".dform-new"), std::string::npos) << "named as the user knows it: " << o.err;
+    EXPECT_EQ(o.err.find(".dform-new"), std::string::npos)
+        << "named as the user knows it: " << o.err;
     failedFiles.insert(o.err.substr(o.err.find(out + "/")));
     EXPECT_TRUE(folderContents(out) == before);
     EXPECT_TRUE(leftoversBeside(out).empty());
@@ -1027,7 +1079,8 @@ TEST_F(CliTest, AFailedWriteLeavesExactlyTheOldResult) {
 // and touches nothing; the first then stops on SIGTERM, leaving the old result.
 TEST_F(CliTest, ASecondRunOnTheSameFolderFailsWhileTheFirstHoldsIt) {
   const std::string out = path("out");
-  const std::string pair = sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  const std::string pair =
+      sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
   ASSERT_EQ(run("forward " + pair + " --resolution 30 -q -o " + out).exitCode, 0);
   const std::map<std::string, std::string> before = folderContents(out);
   const std::string err = path("first.txt");
@@ -1043,7 +1096,8 @@ TEST_F(CliTest, ASecondRunOnTheSameFolderFailsWhileTheFirstHoldsIt) {
   EXPECT_TRUE(folderContents(out) == before);
   EXPECT_TRUE(leftoversBeside(out).empty());
   // Free again.
-  EXPECT_EQ(run("inverse " + sample("inverse/saddle.obj") + " --resolution 30 -q -o " + out).exitCode, 0);
+  EXPECT_EQ(
+      run("inverse " + sample("inverse/saddle.obj") + " --resolution 30 -q -o " + out).exitCode, 0);
 }
 
 // Signals while the result is being written: SIGTERM leaves the old or the new result (exit 143;
@@ -1051,12 +1105,16 @@ TEST_F(CliTest, ASecondRunOnTheSameFolderFailsWhileTheFirstHoldsIt) {
 // killed one left beside the folder. Never a mixture.
 TEST_F(CliTest, SignalsDuringTheWriteLeaveTheOldOrTheNewResult) {
   const std::string out = path("out");
-  const std::string pair = sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  const std::string pair =
+      sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
   // The two results the trials alternate between, and their meshes.
   std::map<std::string, std::string> meshes[2];
   const int resolutions[2] = {30, 34};
   for (int k : {1, 0}) {
-    ASSERT_EQ(run("forward " + pair + " --resolution " + std::to_string(resolutions[k]) + " -q -o " + out).exitCode, 0);
+    ASSERT_EQ(
+        run("forward " + pair + " --resolution " + std::to_string(resolutions[k]) + " -q -o " + out)
+            .exitCode,
+        0);
     for (const auto& [name, bytes] : folderContents(out))
       if (name.find(".obj") != std::string::npos) meshes[k][name] = bytes;
   }
@@ -1111,7 +1169,8 @@ TEST_F(CliTest, SignalsDuringTheWriteLeaveTheOldOrTheNewResult) {
 // nothing. It runs the gate again on the meshes rather than trusting report.json's verdict.
 TEST_F(CliTest, ExportIsOneTransactionAndChecksTheGateItself) {
   const std::string out = path("out");
-  const std::string pair = sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  const std::string pair =
+      sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
   ASSERT_EQ(run("forward " + pair + " --resolution 30 -q -o " + out).exitCode, 0);
   ASSERT_TRUE(fs::exists(fs::path(out) / "dform.glb"));
   ASSERT_EQ(run("export " + out + " --gltf -q").exitCode, 0);
@@ -1132,9 +1191,12 @@ TEST_F(CliTest, ExportIsOneTransactionAndChecksTheGateItself) {
     EXPECT_EQ(code, 143);
     EXPECT_TRUE(folderContents(out) == beforeSignal);
   } else {
-    EXPECT_TRUE(code == 0 || said.find(out + ": interrupted; the new export was written completely") != std::string::npos)
+    EXPECT_TRUE(code == 0 ||
+                said.find(out + ": interrupted; the new export was written completely") !=
+                    std::string::npos)
         << code << said;
-    EXPECT_TRUE(fs::exists(fs::path(out) / "dform.glb") && !fs::exists(fs::path(out) / "dform.gltf"));
+    EXPECT_TRUE(fs::exists(fs::path(out) / "dform.glb") &&
+                !fs::exists(fs::path(out) / "dform.gltf"));
     EXPECT_EQ(run("validate " + out).exitCode, 0);
   }
   EXPECT_TRUE(leftoversBeside(out).empty());
@@ -1154,7 +1216,10 @@ TEST_F(CliTest, ExportIsOneTransactionAndChecksTheGateItself) {
   std::ofstream(fs::path(out) / "piece-a-3d.obj") << stretched;
   const std::map<std::string, std::string> before = folderContents(out);
   const Outcome o = run("export " + out + " -q");
-  expectError(o, 7, out + ": the result failed its quality gate 'default' (checked again on the meshes: L_error, ");
+  expectError(
+      o, 7,
+      out +
+          ": the result failed its quality gate 'default' (checked again on the meshes: L_error, ");
   EXPECT_TRUE(folderContents(out) == before);
 }
 
@@ -1163,13 +1228,15 @@ TEST_F(CliTest, ExportIsOneTransactionAndChecksTheGateItself) {
 // result stays as it was.
 TEST_F(CliTest, OptionsAndTheOutputFolderAreCheckedBeforeTheSolve) {
   const std::string out = path("out");
-  const std::string pair = sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  const std::string pair =
+      sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
   ASSERT_EQ(run("forward " + pair + " --resolution 30 -q -o " + out).exitCode, 0);
   const std::map<std::string, std::string> before = folderContents(out);
   // At resolution 20000 a solve would take hours or be refused for memory: these fail first.
   const std::string big = "forward " + pair + " --resolution 250 -q -o " + out;
   expectError(run(big + " --profile nope"), 2, "unknown profile \"nope\"");
-  expectError(run(big + " --profile " + path("missing-profile.json")), 3, path("missing-profile.json"));
+  expectError(run(big + " --profile " + path("missing-profile.json")), 3,
+              path("missing-profile.json"));
   expectError(run(big + " --gate " + path("missing-gate.json")), 3, path("missing-gate.json"));
   expectError(run(big + " --sheet 600x400furlong"), 2, "--sheet");
   EXPECT_TRUE(folderContents(out) == before);
@@ -1182,9 +1249,14 @@ TEST_F(CliTest, OptionsAndTheOutputFolderAreCheckedBeforeTheSolve) {
 // inverse result without its target curve fails.
 TEST_F(CliTest, ValidateFailsAReportThatIsMissingIncompleteOrWrong) {
   const std::string fwd = path("fwd"), inv = path("inv");
-  ASSERT_EQ(run("forward " + sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg") +
-                " --resolution 30 --no-export -q -o " + fwd).exitCode, 0);
-  ASSERT_EQ(run("inverse " + sample("inverse/saddle.obj") + " --resolution 30 --no-export -q -o " + inv).exitCode, 0);
+  ASSERT_EQ(run("forward " + sample("forward/ellipses-a.svg") + " " +
+                sample("forward/ellipses-b.svg") + " --resolution 30 --no-export -q -o " + fwd)
+                .exitCode,
+            0);
+  ASSERT_EQ(
+      run("inverse " + sample("inverse/saddle.obj") + " --resolution 30 --no-export -q -o " + inv)
+          .exitCode,
+      0);
   const fs::path report = fs::path(fwd) / "report.json";
   const std::string good = readText(report);
   const nlohmann::json saved = nlohmann::json::parse(good);
@@ -1218,7 +1290,8 @@ TEST_F(CliTest, ValidateFailsAReportThatIsMissingIncompleteOrWrong) {
 // Messages are one printable line whatever the names and values hold.
 TEST_F(CliTest, MessagesAreOneEscapedLineNamingTheFile) {
   const std::string strange = path("a\nb\x1b[31m.svg");
-  const Outcome o = run("forward '" + strange + "' " + sample("forward/circle.svg") + " -o " + path("out"));
+  const Outcome o =
+      run("forward '" + strange + "' " + sample("forward/circle.svg") + " -o " + path("out"));
   expectError(o, 3, path("a\\nb\\x1b[31m.svg") + ": no such file");
   EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
   EXPECT_EQ(o.err.find('\x1b'), std::string::npos);
@@ -1235,15 +1308,19 @@ TEST_F(CliTest, MessagesAreOneEscapedLineNamingTheFile) {
 TEST_F(CliTest, UnitsRangesAndSizesHaveTheirExitCodes) {
   const std::string circle = sample("forward/circle.svg");
   for (const char* size : {"300furlong", "100%"}) {
-    const std::string file = write("root.svg", "<svg xmlns='http://www.w3.org/2000/svg' width='" +
-                                                   std::string(size) + "' height='300mm' viewBox='0 0 300 300'>"
-                                                   "<rect x='10' y='10' width='100' height='100'/></svg>");
+    const std::string file =
+        write("root.svg", "<svg xmlns='http://www.w3.org/2000/svg' width='" + std::string(size) +
+                              "' height='300mm' viewBox='0 0 300 300'>"
+                              "<rect x='10' y='10' width='100' height='100'/></svg>");
     expectError(run("forward " + file + " " + circle + " -o " + path("out")), 3,
                 file + ": has an unknown unit in its 'width' attribute '" + size + "'");
   }
-  const std::string obj = write("far.obj", "v 0 0 0\nv 1e999 0 0\nv 1 1 0\nv 0 1 1\nv 2 2 2\nl 1 2 3 4 5 1\n");
-  expectError(run("inverse " + obj + " -o " + path("out")), 4, obj + ": line 2: '1e999' is out of range");
-  const std::string tiny = write("tiny.svg", svg("<rect x='10' y='10' width='0.01' height='0.01'/>"));
+  const std::string obj =
+      write("far.obj", "v 0 0 0\nv 1e999 0 0\nv 1 1 0\nv 0 1 1\nv 2 2 2\nl 1 2 3 4 5 1\n");
+  expectError(run("inverse " + obj + " -o " + path("out")), 4,
+              obj + ": line 2: '1e999' is out of range");
+  const std::string tiny =
+      write("tiny.svg", svg("<rect x='10' y='10' width='0.01' height='0.01'/>"));
   expectError(run("forward " + tiny + " " + circle + " -o " + path("out")), 4,
               "mm across; outlines and holes must be at least 1 mm across");
   EXPECT_FALSE(fs::exists(path("out")));
@@ -1285,15 +1362,15 @@ TEST_F(CliTest, AnAddressSpaceLimitIsHonoured) {
 #endif
   const auto limited = [this](int resolution, const std::string& out) {
     const std::string err = path("err.txt");
-    const pid_t pid = spawn(std::string(DFORM_EXE) + " forward " + sample("forward/ellipses-a.svg") +
-                                " " + sample("forward/ellipses-b.svg") + " --resolution " +
-                                std::to_string(resolution) + " --no-export -q -o " + out +
-                                " >/dev/null 2>" + err,
-                            [] {
-                              const rlim_t limit = rlim_t(400000) * 1024;  // ulimit -v 400000
-                              const struct rlimit as = {limit, limit};
-                              setrlimit(RLIMIT_AS, &as);
-                            });
+    const pid_t pid =
+        spawn(std::string(DFORM_EXE) + " forward " + sample("forward/ellipses-a.svg") + " " +
+                  sample("forward/ellipses-b.svg") + " --resolution " + std::to_string(resolution) +
+                  " --no-export -q -o " + out + " >/dev/null 2>" + err,
+              [] {
+                const rlim_t limit = rlim_t(400000) * 1024;  // ulimit -v 400000
+                const struct rlimit as = {limit, limit};
+                setrlimit(RLIMIT_AS, &as);
+              });
     Outcome o;
     o.exitCode = waitFor(pid);
     o.err = readText(err);
@@ -1327,7 +1404,8 @@ TEST_F(CliTest, InverseRunAndItsBadInputs) {
       write("planar.obj", "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\nv -5 5 0\nl 1 2 3 4 5 1\n");
   expectError(run("inverse " + planar + " -o " + path("o2")), 4, planar);
   const std::string faces = write("faces.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-  expectError(run("inverse " + faces + " -o " + path("o3")), 4, faces + ": has faces but no polyline");
+  expectError(run("inverse " + faces + " -o " + path("o3")), 4,
+              faces + ": has faces but no polyline");
   const std::string open =
       write("open.obj", "v 0 0 0\nv 10 0 1\nv 10 10 0\nv 0 10 1\nv -5 5 2\nl 1 2 3 4 5\n");
   expectError(run("inverse " + open + " -o " + path("o4")), 4, open);

@@ -13,10 +13,10 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "cli/text_files.h"
 #include "headless_chromium.h"
-#include <vector>
 
 namespace dform {
 namespace {
@@ -68,9 +68,7 @@ class SweepTest : public ::testing::Test {
   static std::string sample(const std::string& name) {
     return std::string(DFORM_SAMPLES_DIR) + "/forward/" + name;
   }
-  static json sweepJson() {
-    return json::parse(readText(dir_ / "sweep" / "sweep.json"));
-  }
+  static json sweepJson() { return json::parse(readText(dir_ / "sweep" / "sweep.json")); }
 
   static fs::path dir_;
   static int exit_;
@@ -96,8 +94,8 @@ TEST_F(SweepTest, EveryStartIsACompleteResultThatValidates) {
     // validate recomputes every figure from the meshes and checks report.json against them; its
     // verdict is the row's.
     const int code = shell(exe() + " validate " + result.string(), dir_ / "validate.log");
-    EXPECT_EQ(code, row["gate_passed"].get<bool>() ? 0 : 7) << sub << ": "
-                                                           << readText(dir_ / "validate.log");
+    EXPECT_EQ(code, row["gate_passed"].get<bool>() ? 0 : 7)
+        << sub << ": " << readText(dir_ / "validate.log");
     // The row's start is the start the result records.
     const json report = json::parse(readText(result / "report.json"));
     EXPECT_NEAR(report["start_fraction_b"].get<double>(), k / 8.0, 1e-12) << sub;
@@ -147,7 +145,8 @@ TEST_F(SweepTest, ARowIsTheSingleForwardRunOfItsStart) {
       << readText(dir_ / "single.log");
   const fs::path swept = dir_ / "sweep" / row["subfolder"].get<std::string>();
   // The same solve: the same meshes to the byte, the same figures and verdict.
-  for (const char* mesh : {"piece-a-3d.obj", "piece-b-3d.obj", "piece-a-flat.obj", "piece-b-flat.obj"})
+  for (const char* mesh :
+       {"piece-a-3d.obj", "piece-b-3d.obj", "piece-a-flat.obj", "piece-b-flat.obj"})
     EXPECT_EQ(readText(single / mesh), readText(swept / mesh)) << mesh;
   const json a = json::parse(readText(single / "report.json"));
   const json b = json::parse(readText(swept / "report.json"));
@@ -164,12 +163,14 @@ TEST_F(SweepTest, ASecondSweepReplacesTheFirstWhole) {
   const fs::path again = dir_ / "again";
   fs::copy(dir_ / "sweep", again, fs::copy_options::recursive);
   const std::string command = exe() + " sweep " + sample("ellipses-a.svg") + " " +
-                              sample("ellipses-b.svg") + " --starts 2 --flip flipped -q --no-export -o " +
-                              again.string();
+                              sample("ellipses-b.svg") +
+                              " --starts 2 --flip flipped -q --no-export -o " + again.string();
   ASSERT_EQ(shell(command, dir_ / "again.log"), 0) << readText(dir_ / "again.log");
   std::set<std::string> names;
-  for (const auto& entry : fs::directory_iterator(again)) names.insert(entry.path().filename().string());
-  EXPECT_EQ(names, (std::set<std::string>{"gallery.html", "start-0-flip", "start-1-flip", "sweep.json"}));
+  for (const auto& entry : fs::directory_iterator(again))
+    names.insert(entry.path().filename().string());
+  EXPECT_EQ(names,
+            (std::set<std::string>{"gallery.html", "start-0-flip", "start-1-flip", "sweep.json"}));
   const json rows = json::parse(readText(again / "sweep.json"))["rows"];
   ASSERT_EQ(rows.size(), 2u);
   EXPECT_TRUE(rows[1]["flip"].get<bool>());

@@ -17,7 +17,8 @@ inline std::filesystem::path freshTestFolder(const std::string& prefix) {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() /
-      (prefix + (info ? std::string("_") + info->name() : std::string()) + "_" + std::to_string(getpid()));
+      (prefix + (info ? std::string("_") + info->name() : std::string()) + "_" +
+       std::to_string(getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

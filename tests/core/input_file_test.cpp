@@ -102,7 +102,8 @@ TEST_F(InputFile, IsReadWithoutAThreadWhereNoneCanBeStarted) {
   int status = 0;
   ASSERT_EQ(::waitpid(pid, &status, 0), pid);
   ASSERT_TRUE(WIFEXITED(status)) << "the child died of signal " << WTERMSIG(status);
-  EXPECT_EQ(WEXITSTATUS(status), 0) << "1: not read, 2: no limit set, 3: a thread could still start";
+  EXPECT_EQ(WEXITSTATUS(status), 0)
+      << "1: not read, 2: no limit set, 3: a thread could still start";
 }
 
 // A FIFO with no writer blocks its reader's open: a stop ends the read however it arrives.

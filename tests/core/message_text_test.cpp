@@ -25,7 +25,8 @@ TEST(MessageText, AMessageIsOneLineWithLongTokensCut) {
   EXPECT_EQ(shown.find('\x1b'), std::string::npos);
   EXPECT_EQ(shown.rfind("x\\n\\x1b[31m.svg: '", 0), 0u) << shown;
   // The number is cut to kMaxTokenBytes with "...", the words around it are kept.
-  EXPECT_EQ(shown, "x\\n\\x1b[31m.svg: '" + digits.substr(0, kMaxTokenBytes - 1) + "... is too large");
+  EXPECT_EQ(shown,
+            "x\\n\\x1b[31m.svg: '" + digits.substr(0, kMaxTokenBytes - 1) + "... is too large");
 }
 
 TEST(MessageText, ParserReasonDropsTheTag) {

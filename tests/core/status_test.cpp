@@ -25,7 +25,8 @@ TEST(Result, ReadingTheValueOfAnErrorThrowsWithItsStatus) {
     FAIL() << "value() of an error returned";
   } catch (const BadResultAccess& e) {
     EXPECT_EQ(e.status().code(), ErrorCode::InputInvalid);
-    EXPECT_NE(std::string(e.what()).find("a.svg: the outline is open"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("a.svg: the outline is open"), std::string::npos)
+        << e.what();
   }
   const Result<std::string>& constant = r;
   EXPECT_THROW((void)constant.value(), BadResultAccess);

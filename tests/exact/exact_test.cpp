@@ -46,18 +46,21 @@ TEST(Exact, TwoRhombiMakeARegularTetrahedron) {
   // Every dihedral angle of the regular tetrahedron is arccos(1/3).
   for (int h = 0; h < T.halfedgeCount(); ++h) {
     auto normal = [&](int f) {
-      const Eigen::Vector3d p0 = g.vertices.row(T.tail(3 * f)), p1 = g.vertices.row(T.tail(3 * f + 1)),
+      const Eigen::Vector3d p0 = g.vertices.row(T.tail(3 * f)),
+                            p1 = g.vertices.row(T.tail(3 * f + 1)),
                             p2 = g.vertices.row(T.tail(3 * f + 2));
       return Eigen::Vector3d((p1 - p0).cross(p2 - p0).normalized());
     };
-    const double interior = kPi - std::acos(std::clamp(normal(h / 3).dot(normal(T.twin(h) / 3)), -1.0, 1.0));
+    const double interior =
+        kPi - std::acos(std::clamp(normal(h / 3).dot(normal(T.twin(h) / 3)), -1.0, 1.0));
     EXPECT_NEAR(interior / std::acos(1.0 / 3.0), 1.0, 1e-6);
   }
   // Points along the sides land on the tetrahedron's edges, at their flat distances.
   const Points3 onBody = seamOnBody(g);
   ASSERT_TRUE(onBody.allFinite());
   for (int k = 0; k < onBody.rows(); ++k)
-    EXPECT_NEAR((onBody.row((k + 1) % onBody.rows()) - onBody.row(k)).norm(), 100.0 / perSide, 1e-6);
+    EXPECT_NEAR((onBody.row((k + 1) % onBody.rows()) - onBody.row(k)).norm(), 100.0 / perSide,
+                1e-6);
 }
 
 TEST(Exact, CongruentPiecesPointToPointFoldFlat) {
@@ -67,7 +70,8 @@ TEST(Exact, CongruentPiecesPointToPointFoldFlat) {
   Result<ExactGluing> glued = glue(seam);
   ASSERT_TRUE(glued.isOk()) << glued.status().message();
   EXPECT_TRUE(glued.value().doublyCovered);
-  const Points3 a = placeOnBody(glued.value(), 0, seam.a), b = placeOnBody(glued.value(), 1, seam.b);
+  const Points3 a = placeOnBody(glued.value(), 0, seam.a),
+                b = placeOnBody(glued.value(), 1, seam.b);
   EXPECT_LT((a - b).rowwise().norm().maxCoeff(), 1e-9);
   EXPECT_LT(a.col(2).cwiseAbs().maxCoeff(), 1e-12);
 }
@@ -84,7 +88,8 @@ TEST(Exact, NonConvexMetricNamesItsFirstSeamPoint) {
   Result<ExactGluing> glued = glue(seam);
   ASSERT_FALSE(glued.isOk());
   EXPECT_EQ(glued.status().code(), ErrorCode::InputInvalid);
-  EXPECT_NE(glued.status().message().find("seam point 6"), std::string::npos) << glued.status().message();
+  EXPECT_NE(glued.status().message().find("seam point 6"), std::string::npos)
+      << glued.status().message();
 }
 
 // Two 100 mm squares, B's seam started mid-side: side points meet side points (flat) and
@@ -92,7 +97,8 @@ TEST(Exact, NonConvexMetricNamesItsFirstSeamPoint) {
 // it turns backwards (angle sum above 2 pi) and the corner and point 2 take its turn.
 SeamPolygons squaresWithADent(double depth) {
   const int perSide = 25;
-  const Points2 square = testshapes::polygonSampled({{0, 0}, {100, 0}, {100, 100}, {0, 100}}, perSide);
+  const Points2 square =
+      testshapes::polygonSampled({{0, 0}, {100, 0}, {100, 100}, {0, 100}}, perSide);
   SeamPolygons seam = seamOf(square, square, perSide / 2);
   seam.a(1, 1) += depth;
   return seam;
@@ -135,7 +141,8 @@ TEST(Exact, CurvatureJacobianMatchesFiniteDifferences) {
     Eigen::VectorXd up = r, down = r;
     up[j] += step;
     down[j] -= step;
-    const Eigen::VectorXd fd = (radialCurvatures(T, up).kappa - radialCurvatures(T, down).kappa) / (2 * step);
+    const Eigen::VectorXd fd =
+        (radialCurvatures(T, up).kappa - radialCurvatures(T, down).kappa) / (2 * step);
     worst = std::max(worst, (fd - Eigen::VectorXd(at.jacobian.col(j))).cwiseAbs().maxCoeff());
   }
   EXPECT_LT(worst, 1e-6 * Eigen::MatrixXd(at.jacobian).cwiseAbs().maxCoeff());
@@ -151,11 +158,13 @@ TEST(Exact, EllipsePairIsConvexExactAndConvergesWithTheSeam) {
     const ExactGluing& g = glued.value();
     EXPECT_LT(g.embedding.maxEdgeError, 1e-9);
     // Convex: no vertex above the plane of any face.
-    const double diagonal = (g.vertices.colwise().maxCoeff() - g.vertices.colwise().minCoeff()).norm();
+    const double diagonal =
+        (g.vertices.colwise().maxCoeff() - g.vertices.colwise().minCoeff()).norm();
     const IntrinsicTriangulation& T = g.triangulation;
     double above = -1;
     for (int f = 0; f < T.faceCount(); ++f) {
-      const Eigen::Vector3d p0 = g.vertices.row(T.tail(3 * f)), p1 = g.vertices.row(T.tail(3 * f + 1)),
+      const Eigen::Vector3d p0 = g.vertices.row(T.tail(3 * f)),
+                            p1 = g.vertices.row(T.tail(3 * f + 1)),
                             p2 = g.vertices.row(T.tail(3 * f + 2));
       const Eigen::Vector3d n = (p1 - p0).cross(p2 - p0).normalized();
       above = std::max(above, ((g.vertices.rowwise() - p0.transpose()) * n).maxCoeff());
@@ -241,7 +250,8 @@ TEST(Exact, EveryStartingPairIsLaidOutAndPlacedConsistently) {
     double longest = 0;
     for (int i = 0; i < ring.rows(); ++i) {
       const int j = (i + 1) % int(ring.rows());
-      longest = std::max(longest, (onBody.row(j) - onBody.row(i)).norm() / (ring.row(j) - ring.row(i)).norm());
+      longest = std::max(
+          longest, (onBody.row(j) - onBody.row(i)).norm() / (ring.row(j) - ring.row(i)).norm());
     }
     EXPECT_LE(longest, 1 + 1e-6) << "shift " << shift;
   }

@@ -16,7 +16,8 @@ inline Points2 polygonSampled(const std::vector<Eigen::Vector2d>& corners, int p
   Points2 P(m * perSide, 2);
   for (int c = 0; c < m; ++c)
     for (int s = 0; s < perSide; ++s)
-      P.row(c * perSide + s) = (corners[c] + (corners[(c + 1) % m] - corners[c]) * double(s) / perSide).transpose();
+      P.row(c * perSide + s) =
+          (corners[c] + (corners[(c + 1) % m] - corners[c]) * double(s) / perSide).transpose();
   return P;
 }
 

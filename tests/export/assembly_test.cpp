@@ -61,8 +61,8 @@ Assembly exportAssembly(const std::string& name, const std::string& profile) {
 }
 
 TEST(Assembly, IsThePdfsLastPageAndAFileOfItsOwn) {
-  for (const auto& [profile, W, H] : {std::tuple{"laser", 210.0, 297.0},
-                                      std::tuple{"print-letter", 215.9, 279.4}}) {
+  for (const auto& [profile, W, H] :
+       {std::tuple{"laser", 210.0, 297.0}, std::tuple{"print-letter", 215.9, 279.4}}) {
     const Assembly a = exportAssembly(std::string("asm-pages-") + profile, profile);
     EXPECT_DOUBLE_EQ(parseMm(a.page.width), W) << profile;
     EXPECT_DOUBLE_EQ(parseMm(a.page.height), H) << profile;
@@ -181,7 +181,8 @@ TEST(Assembly, StepsAreNumberedAndKeepOffThePictures) {
       EXPECT_TRUE(lo.x() >= 10 && lo.y() >= 10 && hi.x() <= W - 10 && hi.y() <= H - 10)
           << profile << ": " << p.id;
       if (p.id.rfind("step-", 0) == 0) lines.emplace_back(lo, hi);
-      if (p.id.rfind("view-", 0) == 0 || p.id.rfind("thumb-", 0) == 0) pictures.emplace_back(lo, hi);
+      if (p.id.rfind("view-", 0) == 0 || p.id.rfind("thumb-", 0) == 0)
+        pictures.emplace_back(lo, hi);
     }
     for (const auto& [llo, lhi] : lines)
       for (const auto& [plo, phi] : pictures)

@@ -98,9 +98,10 @@ TEST(ExportPattern, LaserUsesOnlyTheThreeOperationColoursAndHairlines) {
     const std::set<std::string> colours{p.cutColor, p.scoreColor, p.engraveColor};
     EXPECT_EQ(colours.size(), 3u) << profile << ": one colour per operation";
     const Exported e = exportTo("colours-" + profile, model, options(profile));
-    const std::map<std::string, std::string> layerColour{
-        {"Cut", p.cutColor}, {"Score", p.scoreColor}, {"Engrave", p.engraveColor},
-        {"Title", p.engraveColor}};
+    const std::map<std::string, std::string> layerColour{{"Cut", p.cutColor},
+                                                         {"Score", p.scoreColor},
+                                                         {"Engrave", p.engraveColor},
+                                                         {"Title", p.engraveColor}};
     for (const auto& path : e.svg.paths) {
       EXPECT_EQ(path.fill, "none") << profile << " " << path.id;
       EXPECT_EQ(path.stroke, layerColour.at(path.layer)) << profile << " " << path.id;
@@ -450,7 +451,8 @@ TEST(ExportPattern, PrintedPdfRendersAtTrueScale) {
   for (const SvgPath& path : e.svg.paths)
     for (const Polyline& part : path.parts)
       for (const Vec2& q : part)
-        if (q.x() >= xFrom / 10.0 && q.x() <= xTo / 10.0 && q.y() >= yFrom / 10.0 && q.y() <= yTo / 10.0) {
+        if (q.x() >= xFrom / 10.0 && q.x() <= xTo / 10.0 && q.y() >= yFrom / 10.0 &&
+            q.y() <= yTo / 10.0) {
           const Vec2 half = Vec2::Constant(path.strokeWidth / 2);
           drawnLo = drawnLo.cwiseMin(q - half);
           drawnHi = drawnHi.cwiseMax(q + half);
@@ -491,8 +493,8 @@ TEST(ExportPattern, LargePatternIsTiledAcrossA4PagesWithMarks) {
 TEST(ExportPattern, PrintAndCutHasSilhouetteMarksAndSeparateLayers) {
   const DForm model = ellipseCircleDForm(64, 8, 48, 30, 18);
   const Exported e = exportTo("pnc", model, options("print-and-cut"));
-  EXPECT_EQ(e.svg.layers, (std::vector<std::string>{"Title", "Regmarks", "Bleed", "Print", "Score",
-                                                    "Cut"}));
+  EXPECT_EQ(e.svg.layers,
+            (std::vector<std::string>{"Title", "Regmarks", "Bleed", "Print", "Score", "Cut"}));
   EXPECT_DOUBLE_EQ(parseMm(e.svg.width), 210);
   const SvgPath* square = e.svg.find("regmark-square");
   ASSERT_NE(square, nullptr);
@@ -747,8 +749,8 @@ TEST(ExportPattern, LaserPiecesThatDoNotFitOneSheetTogetherGetASheetEach) {
     ASSERT_NE(svg.find(mine), nullptr) << file;
     EXPECT_EQ(svg.find(other), nullptr) << file;
     EXPECT_NE(svg.find(k == 0 ? "title" : "title-page-2"), nullptr) << file << ": its own title";
-    EXPECT_NEAR(length(svg.find(mine)->parts[0], true),
-                length(e.svg.find(mine)->parts[0], true), 1e-3);
+    EXPECT_NEAR(length(svg.find(mine)->parts[0], true), length(e.svg.find(mine)->parts[0], true),
+                1e-3);
     for (const SvgPath& path : svg.paths)
       for (const Polyline& part : path.parts)
         for (const Vec2& q : part) {

@@ -207,7 +207,8 @@ TEST(ExportLayout, TheTitleBlockOverAPieceOrAMarkIsCounted) {
   ASSERT_NE(title, nullptr);
   ASSERT_NE(square, nullptr);
   fab::Box box = fab::boxOf(title->parts);
-  const Vec2 onSquare = square->parts[0][0] + Vec2(1, 1) - Vec2(box.lo.x(), 0.5 * (box.lo.y() + box.hi.y()));
+  const Vec2 onSquare =
+      square->parts[0][0] + Vec2(1, 1) - Vec2(box.lo.x(), 0.5 * (box.lo.y() + box.hi.y()));
   for (Polyline& part : title->parts) translate(part, onSquare);
   const LayoutFindings g = fab::checkLayout(pnc);
   EXPECT_GE(g.titleOverlaps, 1) << g.example;
@@ -231,8 +232,8 @@ TEST(ExportLayout, TheTitleBlockOnAPrintedBleedIsCounted) {
     const Vec2 low = *std::max_element(cut.begin(), cut.end(),
                                        [](const Vec2& a, const Vec2& b) { return a.y() < b.y(); });
     const int sheet = pnc.pieces[1].sheet;  // the bar of B's own page
-    fab::Path* bar =
-        findPath(pnc, sheet == 0 ? "calibration-bar" : "calibration-bar-page-" + std::to_string(sheet + 1));
+    fab::Path* bar = findPath(
+        pnc, sheet == 0 ? "calibration-bar" : "calibration-bar-page-" + std::to_string(sheet + 1));
     ASSERT_NE(bar, nullptr);
     const fab::Box box = fab::boxOf(bar->parts);
     const Vec2 by = low + Vec2(0, 0.5) - Vec2(0.5 * (box.lo.x() + box.hi.x()), box.lo.y());
@@ -241,8 +242,7 @@ TEST(ExportLayout, TheTitleBlockOnAPrintedBleedIsCounted) {
     EXPECT_EQ(f.titleOverlaps, bleed ? 1 : 0) << f.example;
     EXPECT_EQ(f.problems(), f.titleOverlaps) << f.example;
     if (bleed) {  // braces: EXPECT_NE expands to an if-else of its own
-      EXPECT_NE(f.example.find(bar->id + " overlaps piece B's printed bleed"),
-                std::string::npos)
+      EXPECT_NE(f.example.find(bar->id + " overlaps piece B's printed bleed"), std::string::npos)
           << f.example;
     }
   }
@@ -260,16 +260,17 @@ TEST(ExportLayout, TightTickSpacingThinsTheNumbersAndKeepsEveryTick) {
     for (const fab::Layer& layer : pattern.drawing.layers)
       for (const fab::Path& path : layer.paths) {
         if (path.id.rfind(std::string(piece) + "-tick-", 0) != 0) continue;
-        const bool label = path.id.size() > 6 && path.id.compare(path.id.size() - 6, 6, "-label") == 0;
+        const bool label =
+            path.id.size() > 6 && path.id.compare(path.id.size() - 6, 6, "-label") == 0;
         (label ? numbers : ticks) += 1;
       }
     EXPECT_EQ(ticks, int(pattern.ticks.size())) << piece << ": every tick is drawn";
     EXPECT_LT(numbers, ticks) << piece << ": some numbers thinned out";
     EXPECT_GT(numbers, ticks / 4) << piece << ": most of every other number kept";
   }
-  EXPECT_TRUE(std::any_of(pattern.messages.begin(), pattern.messages.end(), [](const std::string& m) {
-    return m.find("thinned") != std::string::npos;
-  }));
+  EXPECT_TRUE(
+      std::any_of(pattern.messages.begin(), pattern.messages.end(),
+                  [](const std::string& m) { return m.find("thinned") != std::string::npos; }));
 }
 
 TEST(ExportLayout, CornerTickNumbersAreMovedInwardNotDropped) {

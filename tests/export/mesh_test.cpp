@@ -52,7 +52,8 @@ TEST(ExportMesh, StlHasEveryTriangleOutwardInMillimetres) {
     Eigen::Vector3d normal, v[3];
     for (int k = 0; k < 3; ++k) normal[k] = get<float>(stl, at + 4 * size_t(k));
     for (int c = 0; c < 3; ++c)
-      for (int k = 0; k < 3; ++k) v[c][k] = get<float>(stl, at + 12 + 12 * size_t(c) + 4 * size_t(k));
+      for (int k = 0; k < 3; ++k)
+        v[c][k] = get<float>(stl, at + 12 + 12 * size_t(c) + 4 * size_t(k));
     const Eigen::Vector3d cross = (v[1] - v[0]).cross(v[2] - v[0]);
     EXPECT_GT(normal.dot(cross.normalized()), 0.999) << "normal follows the right-hand rule";
     volume += v[0].dot(v[1].cross(v[2])) / 6;
@@ -62,8 +63,10 @@ TEST(ExportMesh, StlHasEveryTriangleOutwardInMillimetres) {
     }
   }
   EXPECT_GT(volume, 0);
-  Eigen::Vector3d mlo = model.a.shape.colwise().minCoeff().cwiseMin(model.b.shape.colwise().minCoeff());
-  Eigen::Vector3d mhi = model.a.shape.colwise().maxCoeff().cwiseMax(model.b.shape.colwise().maxCoeff());
+  Eigen::Vector3d mlo =
+      model.a.shape.colwise().minCoeff().cwiseMin(model.b.shape.colwise().minCoeff());
+  Eigen::Vector3d mhi =
+      model.a.shape.colwise().maxCoeff().cwiseMax(model.b.shape.colwise().maxCoeff());
   EXPECT_LT((lo - mlo).norm(), 1e-4);  // float precision at 100 mm
   EXPECT_LT((hi - mhi).norm(), 1e-4);
 }
@@ -104,15 +107,19 @@ TEST(ExportMesh, GltfHasBothPiecesTheSeamAndMetresYUp) {
 void validate(const std::string& file, int triangles) {
   const std::string node = DFORM_NODE, modules = DFORM_NODE_PATH;
   if (node.empty() || !fs::exists(modules + "/gltf-validator"))
-    GTEST_SKIP() << "node or the gltf-validator npm package is not available (the build installs it "
-                    "into build/node when npm can reach the registry)";
+    GTEST_SKIP()
+        << "node or the gltf-validator npm package is not available (the build installs it "
+           "into build/node when npm can reach the registry)";
   std::string out;
-  const int rc = run("NODE_PATH='" + modules + "' '" + node + "' '" DFORM_GLTF_VALIDATE_SCRIPT "' '" + file + "'", &out);
+  const int rc = run(
+      "NODE_PATH='" + modules + "' '" + node + "' '" DFORM_GLTF_VALIDATE_SCRIPT "' '" + file + "'",
+      &out);
   EXPECT_EQ(rc, 0) << out;
   // Clean, not only valid: no error, no warning, no info (hints are style advice).
   for (const char* count : {"\"numErrors\": 0,", "\"numWarnings\": 0,", "\"numInfos\": 0,"})
     EXPECT_NE(out.find(count), std::string::npos) << count << "\n" << out;
-  EXPECT_NE(out.find("\"totalTriangleCount\": " + std::to_string(triangles)), std::string::npos) << out;
+  EXPECT_NE(out.find("\"totalTriangleCount\": " + std::to_string(triangles)), std::string::npos)
+      << out;
 }
 
 // The curvature colours the command line exports: validate's curvature map of each piece.
@@ -140,7 +147,8 @@ TEST(ExportMesh, PiecesHaveTheirOwnColourAndTheCurvatureMapTheReportsScale) {
     if (!curvature) continue;
     // report.html's scale: the largest |angle defect| of either piece, at least 1e-3 rad.
     double top = 1e-3;
-    for (const Piece* p : {&model.a, &model.b}) top = std::max(top, curvatureMap(*p).cwiseAbs().maxCoeff());
+    for (const Piece* p : {&model.a, &model.b})
+      top = std::max(top, curvatureMap(*p).cwiseAbs().maxCoeff());
     EXPECT_NEAR(m.asset.extras.Get("curvatureColourScale").GetNumberAsDouble(), top, 1e-12 * top);
   }
 }

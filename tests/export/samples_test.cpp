@@ -21,8 +21,8 @@ namespace dform::test {
 namespace {
 
 namespace fs = std::filesystem;
-using nlohmann::json;
 using fab::Box;
+using nlohmann::json;
 
 constexpr double kMmTol = 0.1;  // the bar for cut and printed lengths
 
@@ -133,9 +133,9 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
         bool within = false;
         for (const auto& s : sheets) {
           const Vec2 lo = toPolyline(json::array({s["origin"]}))[0];
-          within = within || Box::spanning(lo, lo + Vec2(s["width"].get<double>(),
-                                                         s["height"].get<double>()))
-                                 .contains(shown, 1e-6);
+          within = within ||
+                   Box::spanning(lo, lo + Vec2(s["width"].get<double>(), s["height"].get<double>()))
+                       .contains(shown, 1e-6);
         }
         EXPECT_TRUE(within) << page["kind"] << " page shows more than one sheet";
       }
@@ -154,8 +154,8 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
         const json& piece = pattern["pieces"][p];
         const json& onSheet = sheets[piece["sheet"].get<size_t>()];
         const Vec2 lo = toPolyline(json::array({onSheet["origin"]}))[0];
-        const Box sheetBox =
-            Box::spanning(lo, lo + Vec2(onSheet["width"].get<double>(), onSheet["height"].get<double>()));
+        const Box sheetBox = Box::spanning(
+            lo, lo + Vec2(onSheet["width"].get<double>(), onSheet["height"].get<double>()));
         const Box cut = boxOfJson(piece["cut"]);
         EXPECT_TRUE(sheetBox.contains(cut, 1e-6)) << "piece " << p << " runs off its sheet";
         extent[p] = Vec2(cut.w(), cut.h()) + Vec2::Constant(2 * 1.5);  // ticks stick out 1.5 mm
@@ -180,7 +180,8 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
       };
       // The block drawn is up to a line's leading less deep than the room kept for it (4 mm at
       // the largest title height); a case within that of the edge is not judged.
-      // A first sheet without its title (on a cover page, or a tiled piece's page map) is not judged.
+      // A first sheet without its title (on a cover page, or a tiled piece's page map) is not
+      // judged.
       if (title.w() >= 0 && together(depth) == together(depth + 4)) {
         EXPECT_EQ(sheets.size(), together(depth) ? 1u : 2u);
         ++judged;
@@ -210,8 +211,8 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
       if (scale < 1.0) {
         char larger[16];
         std::snprintf(larger, sizeof larger, "%.2f", scale + 0.01);
-        EXPECT_EQ(run(dform() + " export " + solved + " -o " + freshDir("larger") +
-                          " -q --scale " + larger + " --profile " + profileName + paperOption,
+        EXPECT_EQ(run(dform() + " export " + solved + " -o " + freshDir("larger") + " -q --scale " +
+                          larger + " --profile " + profileName + paperOption,
                       &out),
                   2)
             << out;
@@ -221,9 +222,8 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
       // cut path is its seam (no shipped profile has a kerf).
       if (profileName == "laser" || profileName == "print-and-cut") {
         const std::string bare = freshDir("bare");
-        ASSERT_EQ(run(dform() + " export " + solved + " -o " + bare +
-                          " -q --tabs none --scale " + std::to_string(scale) + " --profile " +
-                          profileName + paperOption,
+        ASSERT_EQ(run(dform() + " export " + solved + " -o " + bare + " -q --tabs none --scale " +
+                          std::to_string(scale) + " --profile " + profileName + paperOption,
                       &out),
                   0)
             << out;
@@ -232,9 +232,9 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
         const json barePattern = readJson(bare + "/pattern.json");
         for (int p = 0; p < 2; ++p) {
           // A seam that is a hole's loop (anti and demi D-Forms) is cut as the piece's hole.
-          const std::string id = std::string(p == 0 ? "A" : "B") +
-                                 (barePattern["pieces"][p]["seam_is_hole"].get<bool>() ? "-cut-hole-1"
-                                                                                         : "-cut");
+          const std::string id =
+              std::string(p == 0 ? "A" : "B") +
+              (barePattern["pieces"][p]["seam_is_hole"].get<bool>() ? "-cut-hole-1" : "-cut");
           const SvgPath* seamCut = svg.find(id);
           ASSERT_NE(seamCut, nullptr) << id;
           EXPECT_NEAR(length(seamCut->parts[0], true), scale * seam[p], kMmTol) << id;
@@ -262,15 +262,16 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
 // The files of a folder and their contents.
 std::map<std::string, std::string> snapshot(const std::string& dir) {
   std::map<std::string, std::string> files;
-  for (const auto& entry : fs::directory_iterator(dir)) files[entry.path().filename()] = readText(entry.path());
+  for (const auto& entry : fs::directory_iterator(dir))
+    files[entry.path().filename()] = readText(entry.path());
   return files;
 }
 
 TEST(SampleExport, IntoAnotherFolderLeavesTheResultAsItWasAndProfilesSitSideBySide) {
   const std::string solved = freshDir("solved-ellipses");
   std::string out;
-  ASSERT_EQ(run(dform() + " run " + DFORM_SAMPLES_DIR + "/forward/ellipses-quarter-turn.json -q -o " +
-                    solved,
+  ASSERT_EQ(run(dform() + " run " + DFORM_SAMPLES_DIR +
+                    "/forward/ellipses-quarter-turn.json -q -o " + solved,
                 &out),
             0)
       << out;
@@ -278,9 +279,10 @@ TEST(SampleExport, IntoAnotherFolderLeavesTheResultAsItWasAndProfilesSitSideBySi
   const std::string laser = freshDir("side") + "/laser", print = freshDir("side") + "/print";
   ASSERT_EQ(run(dform() + " export " + solved + " -o " + laser + " -q --profile laser", &out), 0)
       << out;
-  ASSERT_EQ(run(dform() + " export " + solved + " -o " + print + " -q --profile print --page Letter",
-                &out),
-            0)
+  ASSERT_EQ(
+      run(dform() + " export " + solved + " -o " + print + " -q --profile print --page Letter",
+          &out),
+      0)
       << out;
   EXPECT_EQ(snapshot(solved), before) << "the result folder is untouched";
   EXPECT_EQ(readJson(laser + "/pattern.json")["profile"], "laser");

@@ -10,7 +10,9 @@ constexpr double kPi = 3.14159265358979323846;
 
 DForm ellipseCircleDForm(int sectors, int rings, double ax, double by, double height) {
   const int nv = 1 + rings * sectors;
-  auto vid = [&](int ring, int j) { return 1 + (ring - 1) * sectors + ((j % sectors) + sectors) % sectors; };
+  auto vid = [&](int ring, int j) {
+    return 1 + (ring - 1) * sectors + ((j % sectors) + sectors) % sectors;
+  };
   // Seam of A and its cumulative polygon arc length.
   std::vector<Eigen::Vector2d> seamA(static_cast<size_t>(sectors));
   for (int j = 0; j < sectors; ++j) {
@@ -19,12 +21,14 @@ DForm ellipseCircleDForm(int sectors, int rings, double ax, double by, double he
   }
   std::vector<double> cum(size_t(sectors) + 1, 0.0);
   for (int j = 0; j < sectors; ++j)
-    cum[size_t(j) + 1] = cum[size_t(j)] + (seamA[size_t((j + 1) % sectors)] - seamA[size_t(j)]).norm();
+    cum[size_t(j) + 1] =
+        cum[size_t(j)] + (seamA[size_t((j + 1) % sectors)] - seamA[size_t(j)]).norm();
   const double L = cum.back();
   // B: a circle, clockwise, vertex j at the angle of A's arc-length fraction; radius such that
   // the polygon's perimeter is exactly L.
   double chordSum = 0;
-  for (int j = 0; j < sectors; ++j) chordSum += 2 * std::sin(kPi * (cum[size_t(j) + 1] - cum[size_t(j)]) / L);
+  for (int j = 0; j < sectors; ++j)
+    chordSum += 2 * std::sin(kPi * (cum[size_t(j) + 1] - cum[size_t(j)]) / L);
   const double r = L / chordSum;
 
   DForm d;
@@ -72,7 +76,8 @@ DForm ellipseCircleDForm(int sectors, int rings, double ax, double by, double he
 std::vector<double> fakeCurvature(const Piece& piece) {
   std::vector<double> k;
   const double h = piece.shape.col(2).cwiseAbs().maxCoeff();
-  for (Eigen::Index v = 0; v < piece.shape.rows(); ++v) k.push_back(piece.shape(v, 2) / (h > 0 ? h : 1));
+  for (Eigen::Index v = 0; v < piece.shape.rows(); ++v)
+    k.push_back(piece.shape(v, 2) / (h > 0 ? h : 1));
   return k;
 }
 

@@ -229,9 +229,12 @@ std::vector<std::string> contentTokens(const std::string& text) {
     } else if (c == '(') {  // a string, with nesting and escapes
       int depth = 0;
       for (; i < text.size(); ++i) {
-        if (text[i] == '\\') ++i;
-        else if (text[i] == '(') ++depth;
-        else if (text[i] == ')' && --depth == 0) break;
+        if (text[i] == '\\')
+          ++i;
+        else if (text[i] == '(')
+          ++depth;
+        else if (text[i] == ')' && --depth == 0)
+          break;
       }
       ++i;
       tokens.push_back("?");
@@ -292,8 +295,8 @@ std::vector<PdfPath> readPdfPaths(const std::string& pdf) {
     run("qpdf --show-object=" + std::to_string(pageContents[p].first) + " " + pdf, &page);
     double box[4] = {0, 0, 0, 0};
     const size_t at = page.find("/MediaBox");
-    if (at == std::string::npos ||
-        std::sscanf(page.c_str() + at, "/MediaBox [ %lf %lf %lf %lf", &box[0], &box[1], &box[2], &box[3]) != 4) {
+    if (at == std::string::npos || std::sscanf(page.c_str() + at, "/MediaBox [ %lf %lf %lf %lf",
+                                               &box[0], &box[1], &box[2], &box[3]) != 4) {
       ADD_FAILURE() << pdf << " page " << p + 1 << " has no MediaBox: " << page;
       return {};
     }
@@ -314,7 +317,8 @@ std::vector<PdfPath> readPdfPaths(const std::string& pdf) {
     };
     for (int object : pageContents[p].second) {
       std::string content;
-      run("qpdf --show-object=" + std::to_string(object) + " --filtered-stream-data " + pdf, &content);
+      run("qpdf --show-object=" + std::to_string(object) + " --filtered-stream-data " + pdf,
+          &content);
       for (const std::string& token : contentTokens(content)) {
         char* end = nullptr;
         const double value = std::strtod(token.c_str(), &end);
@@ -346,13 +350,15 @@ std::vector<PdfPath> readPdfPaths(const std::string& pdf) {
           current.back().closed = true;
         } else if ((token == "RG" || token == "rg") && n >= 3) {
           (token == "RG" ? strokeColor : fillColor) = Eigen::Vector3d(o[n - 3], o[n - 2], o[n - 1]);
-        } else if (std::string(" S s f F f* B B* b b* n ").find(" " + token + " ") != std::string::npos) {
+        } else if (std::string(" S s f F f* B B* b b* n ").find(" " + token + " ") !=
+                   std::string::npos) {
           const bool stroked = token == "S" || token == "s" || token[0] == 'B' || token[0] == 'b';
           for (PdfPath& path : current) {
             path.color = stroked ? strokeColor : fillColor;
             if (token == "s" || token == "b" || token == "b*") path.closed = true;
             // A closed subpath drawn back to its start: the start once.
-            if (path.points.size() > 2 && (path.points.front() - path.points.back()).norm() < 1e-9) {
+            if (path.points.size() > 2 &&
+                (path.points.front() - path.points.back()).norm() < 1e-9) {
               path.points.pop_back();
               path.closed = true;
             }
@@ -376,7 +382,8 @@ double farthestFrom(const Polyline& from, const Polyline& to) {
     double nearest = std::numeric_limits<double>::infinity();
     for (size_t k = 0; k < to.size(); ++k) {
       const Vec2 a = to[k], d = to[(k + 1) % to.size()] - a;
-      const double t = d.squaredNorm() > 0 ? std::clamp((q - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+      const double t =
+          d.squaredNorm() > 0 ? std::clamp((q - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
       nearest = std::min(nearest, (a + t * d - q).norm());
     }
     worst = std::max(worst, nearest);
@@ -422,9 +429,8 @@ int run(const std::string& command, std::string* out) {
 }
 
 int checkDxf(const std::string& dir, std::string* out, const std::string& extra) {
-  const int code = run(std::string(DFORM_PYTHON3) + " '" + DFORM_DXF_CHECKER + "' '" + dir +
-                           "' " + extra,
-                       out);
+  const int code =
+      run(std::string(DFORM_PYTHON3) + " '" + DFORM_DXF_CHECKER + "' '" + dir + "' " + extra, out);
   ::testing::Test::RecordProperty("check_dxf", *out);
   return code;
 }

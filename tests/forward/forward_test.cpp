@@ -1,12 +1,10 @@
 // Forward modelling end to end on small inputs: the start, the local-global stage, the solve.
 #include "forward/forward.h"
 
-#include <Eigen/Eigenvalues>
-
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
-
 #include <random>
 
 #include "exact/aligned_distance.h"
@@ -16,9 +14,9 @@
 #include "model/terms.h"
 #include "model/test_meshes.h"
 #include "model/transfer.h"
+#include "pipeline/reference_seams.h"
 #include "validate/gate.h"
 #include "validate/metrics.h"
-#include "pipeline/reference_seams.h"
 
 namespace dform {
 namespace {
@@ -53,7 +51,8 @@ TEST(Forward, MeshedPiecesZipCoarseToFineToTheOneLevelShape) {
     for (std::size_t k = 0; k < p.seam.size(); ++k) s.row(Eigen::Index(k)) = p.shape.row(p.seam[k]);
     return s;
   };
-  const exact::AlignedDistance d = exact::alignedDistance(seam(oneLevel.model.a), seam(levels.model.a));
+  const exact::AlignedDistance d =
+      exact::alignedDistance(seam(oneLevel.model.a), seam(levels.model.a));
   EXPECT_LT(d.maxRel, 1e-4);
 }
 
@@ -81,7 +80,8 @@ TEST(Forward, SolvesTwoEllipsesToThePapersFigures) {
   // The flat outlines stay where they were drawn (within the outline tolerance).
   const double perimeter = closedLength(test::ellipse(120, 70));
   for (std::size_t k = 0; k < p.a.seam.size(); ++k)
-    EXPECT_LT((r.model.a.flat.row(p.a.seam[k]) - p.a.flat.row(p.a.seam[k])).norm(), 3e-4 * perimeter);
+    EXPECT_LT((r.model.a.flat.row(p.a.seam[k]) - p.a.flat.row(p.a.seam[k])).norm(),
+              3e-4 * perimeter);
   // Not a flat double disc: the shape has depth comparable to its size.
   const double depth = r.model.a.shape.col(2).maxCoeff() - r.model.b.shape.col(2).minCoeff();
   EXPECT_GT(depth, 30.0);
@@ -230,8 +230,10 @@ TEST(Forward, TheRelaxationStepsAlikeWithEitherFactor) {
   for (std::size_t e = 0; e < simplicial.edges.x.size(); ++e) {
     const auto [i, j] = simplicial.edges.x[e];
     const auto [k, l] = simplicial.edges.u[e];
-    edgeDifference = std::max({edgeDifference, ((x.segment<3>(i) - x.segment<3>(j)) - (y.segment<3>(i) - y.segment<3>(j))).norm(),
-                               ((x.segment<2>(k) - x.segment<2>(l)) - (y.segment<2>(k) - y.segment<2>(l))).norm()});
+    edgeDifference = std::max(
+        {edgeDifference,
+         ((x.segment<3>(i) - x.segment<3>(j)) - (y.segment<3>(i) - y.segment<3>(j))).norm(),
+         ((x.segment<2>(k) - x.segment<2>(l)) - (y.segment<2>(k) - y.segment<2>(l))).norm()});
     longest = std::max(longest, (x.segment<3>(i) - x.segment<3>(j)).norm());
   }
   EXPECT_LT(edgeDifference, 1e-10 * longest);
@@ -270,7 +272,8 @@ TEST(Forward, TheRelaxationRunsStifferBelowTheDefaultSmoothing) {
   EXPECT_DOUBLE_EQ(relaxationSmoothing(0.0001, o), 0.0006);
   EXPECT_DOUBLE_EQ(relaxationSmoothing(0.004, o), 0.01) << "never stiffer than the default";
   EXPECT_DOUBLE_EQ(relaxationSmoothing(0.01, o), 0.01);
-  EXPECT_DOUBLE_EQ(relaxationSmoothing(0.05, o), 0.05) << "a stiffer sheet relaxes at its own weight";
+  EXPECT_DOUBLE_EQ(relaxationSmoothing(0.05, o), 0.05)
+      << "a stiffer sheet relaxes at its own weight";
   ForwardOptions off = o;
   off.smoothingContinuation = 1.0;
   EXPECT_DOUBLE_EQ(relaxationSmoothing(0.0005, off), 0.0005);

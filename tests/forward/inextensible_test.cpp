@@ -1,14 +1,14 @@
 // The general engine's sheet: its energy against closed forms, and its answer stationary by
 // central differences of that energy (independent of the engine's own gradient).
+#include "model/inextensible.h"
+
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <random>
 
-#include <Eigen/Geometry>
-
 #include "forward/forward.h"
-#include "model/inextensible.h"
 #include "model/test_meshes.h"
 
 namespace dform {
@@ -70,7 +70,8 @@ double energySlope(const DForm& model, double k, unsigned seed, double h) {
   std::normal_distribution<double> normal;
   DForm plus = model, minus = model;
   for (Eigen::Index v = 0; v < model.a.shape.rows(); ++v) {
-    const Eigen::RowVector3d d = Eigen::RowVector3d(normal(random), normal(random), normal(random)).normalized();
+    const Eigen::RowVector3d d =
+        Eigen::RowVector3d(normal(random), normal(random), normal(random)).normalized();
     plus.a.shape.row(v) += h * d;
     minus.a.shape.row(v) -= h * d;
   }
@@ -83,7 +84,8 @@ double energySlope(const DForm& model, double k, unsigned seed, double h) {
   }
   for (Eigen::Index v = 0; v < model.b.shape.rows(); ++v) {
     if (onSeam[v]) continue;
-    const Eigen::RowVector3d d = Eigen::RowVector3d(normal(random), normal(random), normal(random)).normalized();
+    const Eigen::RowVector3d d =
+        Eigen::RowVector3d(normal(random), normal(random), normal(random)).normalized();
     plus.b.shape.row(v) += h * d;
     minus.b.shape.row(v) -= h * d;
   }
@@ -108,7 +110,8 @@ TEST(Inextensible, TheAnswerIsStationaryByCentralDifferencesOfTheEnergy) {
   for (unsigned seed = 1; seed <= 4; ++seed) {
     const double before = energySlope(start, options.stiffness, seed, h);
     const double after = energySlope(solved.model, options.stiffness, seed, h);
-    EXPECT_LE(std::abs(after), 1e-6 * std::abs(before)) << "seed " << seed << ": " << before << " -> " << after;
+    EXPECT_LE(std::abs(after), 1e-6 * std::abs(before))
+        << "seed " << seed << ": " << before << " -> " << after;
   }
 }
 

@@ -20,7 +20,9 @@ TEST(SeamLayout, EveryCornerIsAVertexAndStretchesAreUniform) {
   EXPECT_EQ(t[0], 0.0);
   EXPECT_TRUE(std::is_sorted(t.begin(), t.end()));
   for (double c : corners)
-    EXPECT_NE(std::find_if(t.begin(), t.end(), [&](double v) { return std::abs(v - c) < 1e-15; }), t.end()) << c;
+    EXPECT_NE(std::find_if(t.begin(), t.end(), [&](double v) { return std::abs(v - c) < 1e-15; }),
+              t.end())
+        << c;
   // Spacing is constant between consecutive corners and close to the uniform 1/n.
   for (int k = 0; k + 1 < 100; ++k) EXPECT_NEAR(t[k + 1] - t[k], 0.01, 0.0026);
 }

@@ -45,7 +45,8 @@ inline ::testing::AssertionResult regressionsHold(
   std::sort(listed.begin(), listed.end());
 
   std::ostringstream problems;
-  if (files != listed) problems << "\n" << dir.string() << ": every file needs its expected outcome in the test";
+  if (files != listed)
+    problems << "\n" << dir.string() << ": every file needs its expected outcome in the test";
   for (const Regression& r : expected) {
     const std::string source = (dir / r.file).string();
     std::ifstream in(source, std::ios::binary);
@@ -59,7 +60,8 @@ inline ::testing::AssertionResult regressionsHold(
     const std::string& m = status.message();
     if (status.code() != r.code) problems << "\n" << source << ": wrong code: " << m;
     if (status.isOk()) continue;
-    if (m.rfind(source + ": ", 0) != 0) problems << "\n" << source << ": does not start the message: " << m;
+    if (m.rfind(source + ": ", 0) != 0)
+      problems << "\n" << source << ": does not start the message: " << m;
     if (m.find(r.mentions) == std::string::npos)
       problems << "\n" << source << ": message does not mention \"" << r.mentions << "\": " << m;
     if (std::any_of(m.begin(), m.end(),

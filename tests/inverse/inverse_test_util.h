@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-
 #include <cmath>
 #include <functional>
 #include <string>
@@ -17,7 +16,8 @@ namespace dform::test {
 
 inline const double kPi = std::acos(-1.0);
 
-/// A sample seam from samples/inverse/, read with io's readCurve and resampled uniformly to n points.
+/// A sample seam from samples/inverse/, read with io's readCurve and resampled uniformly to n
+/// points.
 inline Points3 sampleCurve(const std::string& name, int n) {
   const std::string path = std::string(DFORM_SAMPLES_DIR) + "/inverse/" + name;
   Result<Curve3> curve = readCurve(path);

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <map>
 #include <set>
-#include <tuple>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include "inverse_test_util.h"
@@ -37,15 +37,16 @@ void checkDisc(const Faces& F, int n, bool forwards, const std::string& name) {
     EXPECT_EQ(count, 1) << "edge " << e.first << "-" << e.second << " twice the same way";
     undirected.insert({std::min(e.first, e.second), std::max(e.first, e.second)});
   }
-  EXPECT_EQ(int(vertices.size()) - int(undirected.size()) + int(F.rows()), 1) << "Euler characteristic";
+  EXPECT_EQ(int(vertices.size()) - int(undirected.size()) + int(F.rows()), 1)
+      << "Euler characteristic";
   // Boundary edges (one face) are exactly the curve edges, in the disc's direction.
   int boundary = 0;
   for (const auto& [e, count] : directed) {
     if (directed.count({e.second, e.first})) continue;
     ++boundary;
     const int expectedNext = forwards ? (e.first + 1) % n : (e.first + n - 1) % n;
-    EXPECT_EQ(e.second, expectedNext) << "boundary edge " << e.first << "-" << e.second
-                                      << " is not a curve edge in order";
+    EXPECT_EQ(e.second, expectedNext)
+        << "boundary edge " << e.first << "-" << e.second << " is not a curve edge in order";
   }
   EXPECT_EQ(boundary, n);
 }
@@ -69,8 +70,10 @@ void checkPreDForm(const Points3& C, const PreDForm& pre) {
       for (int k = 0; k < 3; ++k) ++directed[{(*F)(f, k), (*F)(f, (k + 1) % 3)}];
     }
   for (const auto& [e, count] : directed) {
-    EXPECT_EQ(count, 1) << "edge " << e.first << "-" << e.second << " in both discs: they share more than the curve";
-    EXPECT_EQ(directed.count({e.second, e.first}), 1u) << "open edge " << e.first << "-" << e.second;
+    EXPECT_EQ(count, 1) << "edge " << e.first << "-" << e.second
+                        << " in both discs: they share more than the curve";
+    EXPECT_EQ(directed.count({e.second, e.first}), 1u)
+        << "open edge " << e.first << "-" << e.second;
   }
   EXPECT_GT(volume, 0.0) << "faces point inwards";
   EXPECT_EQ(pre.hullTriangles + pre.filledTriangles, 2 * n - 4);
@@ -115,8 +118,10 @@ TEST_P(Samples, PreDFormIsTwoDiscsOnTheCurve) {
       const double diagonal = (C.colwise().maxCoeff() - C.colwise().minCoeff()).norm();
       for (Eigen::Index f = 0; f < F.rows(); ++f) {
         const Eigen::RowVector3d a = C.row(F(f, 0));
-        const Eigen::RowVector3d normal = (C.row(F(f, 1)) - a).cross(C.row(F(f, 2)) - a).normalized();
-        EXPECT_LE(((C.rowwise() - a) * normal.transpose()).maxCoeff(), 1e-9 * diagonal) << "face " << f;
+        const Eigen::RowVector3d normal =
+            (C.row(F(f, 1)) - a).cross(C.row(F(f, 2)) - a).normalized();
+        EXPECT_LE(((C.rowwise() - a) * normal.transpose()).maxCoeff(), 1e-9 * diagonal)
+            << "face " << f;
       }
     } else {
       EXPECT_FALSE(pre.value().isHull);
@@ -151,7 +156,8 @@ TEST(PreDForm, PushedInStretchIsReportedInside) {
   EXPECT_EQ(pre.value().insideVertices, expected);
   ASSERT_FALSE(expected.empty());
   EXPECT_EQ(expected.back() - expected.front() + 1, int(expected.size())) << "one stretch";
-  const double angle = std::atan2(C(expected[expected.size() / 2], 1), C(expected[expected.size() / 2], 0));
+  const double angle =
+      std::atan2(C(expected[expected.size() / 2], 1), C(expected[expected.size() / 2], 0));
   EXPECT_NEAR(angle, kPi / 4, 0.15);
 }
 
@@ -218,7 +224,8 @@ TEST(PreDForm, HarderCurvesStillSplit) {
   };
   // A tennis ball with a lobe pushed deep inside.
   const Curve dented = [&](double t) {
-    const Eigen::Vector3d p(40 * std::cos(t) + 20 * std::cos(3 * t), 40 * std::sin(t) - 20 * std::sin(3 * t),
+    const Eigen::Vector3d p(40 * std::cos(t) + 20 * std::cos(3 * t),
+                            40 * std::sin(t) - 20 * std::sin(3 * t),
                             2 * std::sqrt(800.0) * std::sin(2 * t));
     return Eigen::Vector3d(p * (1.0 - 0.4 * bump(t, kPi / 4, 0.6)));
   };
@@ -235,7 +242,8 @@ TEST(PreDForm, HarderCurvesStillSplit) {
   const Curve peanut = [](double t) {
     const Eigen::Vector3d u = Eigen::Vector3d(40 * std::cos(t) + 20 * std::cos(3 * t),
                                               40 * std::sin(t) - 20 * std::sin(3 * t),
-                                              2 * std::sqrt(800.0) * std::sin(2 * t)).normalized();
+                                              2 * std::sqrt(800.0) * std::sin(2 * t))
+                                  .normalized();
     return Eigen::Vector3d(60 * (1 - 0.4 * (1 - u.z() * u.z())) * u);
   };
   // A crown with five waves (on-hull), also too coarse for every curve edge to be a hull edge.
@@ -247,12 +255,14 @@ TEST(PreDForm, HarderCurvesStillSplit) {
   const Curve helixBand = [](double t) {
     const double s = t / (2 * kPi), turns = 1.3;
     const double angle = 2 * kPi * turns * (s < 0.5 ? 2 * s : 2 - 2 * s);
-    return Eigen::Vector3d(60 * std::cos(angle), 60 * std::sin(angle), 20 * angle + (s < 0.5 ? 0.0 : 60.0));
+    return Eigen::Vector3d(60 * std::cos(angle), 60 * std::sin(angle),
+                           20 * angle + (s < 0.5 ? 0.0 : 60.0));
   };
   const std::vector<std::tuple<const char*, Curve, int>> cases{
-      {"dented", dented, 100},         {"deep saddle", deepSaddle, 200}, {"two dents", twoDents, 200},
-      {"peanut", peanut, 100},         {"crown", crown, 100},            {"coarse crown", crown, 24},
-      {"bean", beanCurve, 120},        {"helix band", helixBand, 100}};
+      {"dented", dented, 100},      {"deep saddle", deepSaddle, 200},
+      {"two dents", twoDents, 200}, {"peanut", peanut, 100},
+      {"crown", crown, 100},        {"coarse crown", crown, 24},
+      {"bean", beanCurve, 120},     {"helix band", helixBand, 100}};
   for (const auto& [name, f, n] : cases) {
     SCOPED_TRACE(name);
     const Points3 C = test::parametricCurve(f, n);
@@ -308,7 +318,8 @@ TEST(PreDForm, FileNamePrefixesErrors) {
   curve.source = "flat.obj";
   Result<InverseInit> init = initialiseInverse(curve);
   ASSERT_FALSE(init.isOk());
-  EXPECT_EQ(init.status().message().rfind("flat.obj: the curve is planar", 0), 0u) << init.status().message();
+  EXPECT_EQ(init.status().message().rfind("flat.obj: the curve is planar", 0), 0u)
+      << init.status().message();
 }
 
 }  // namespace

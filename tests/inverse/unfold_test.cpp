@@ -18,7 +18,9 @@ using test::kPi;
 // Rounding only: lengths are recomputed from coordinates ~1e2 mm with ~1e-16 relative error.
 constexpr double kExact = 1e-12;
 
-double relativeError(double a, double b) { return std::abs(a - b) / std::max(std::abs(a), std::abs(b)); }
+double relativeError(double a, double b) {
+  return std::abs(a - b) / std::max(std::abs(a), std::abs(b));
+}
 
 // Every edge of F has the same length flat as in 3D, and every flat triangle is counter-clockwise.
 void expectIsometric(const Points3& V, const Points2& flat, const Faces& F) {
@@ -26,12 +28,14 @@ void expectIsometric(const Points3& V, const Points2& flat, const Faces& F) {
   for (Eigen::Index f = 0; f < F.rows(); ++f) {
     for (int c = 0; c < 3; ++c) {
       const int u = F(f, c), v = F(f, (c + 1) % 3);
-      EXPECT_LE(relativeError((flat.row(u) - flat.row(v)).norm(), (V.row(u) - V.row(v)).norm()), kExact)
+      EXPECT_LE(relativeError((flat.row(u) - flat.row(v)).norm(), (V.row(u) - V.row(v)).norm()),
+                kExact)
           << "edge " << u << "-" << v;
     }
     const Eigen::Vector2d a = flat.row(F(f, 0)), b = flat.row(F(f, 1)), c = flat.row(F(f, 2));
     const double twiceArea = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
-    const double area3 = (V.row(F(f, 1)) - V.row(F(f, 0))).cross(V.row(F(f, 2)) - V.row(F(f, 0))).norm();
+    const double area3 =
+        (V.row(F(f, 1)) - V.row(F(f, 0))).cross(V.row(F(f, 2)) - V.row(F(f, 0))).norm();
     EXPECT_GT(twiceArea, 0.0) << "face " << f << " is not counter-clockwise";
     EXPECT_NEAR(twiceArea, area3, 1e-9 * area3) << "face " << f;
   }
@@ -62,12 +66,13 @@ TEST_P(SampleInit, UnfoldRemeshAndMapBack) {
     Points2 outline(n, 2);
     for (int j = 0; j < n; ++j) outline.row(j) = pre->V.row(pre->boundary[std::size_t(j)]);
     EXPECT_GT(signedArea(outline), 0.0);
-    for (int j = 0; j < n; ++j)
-      EXPECT_EQ(pre->boundary[std::size_t(j)], isA ? j : (n - j) % n);
+    for (int j = 0; j < n; ++j) EXPECT_EQ(pre->boundary[std::size_t(j)], isA ? j : (n - j) % n);
     // Flat area = 3D area of the disc.
     double area3 = 0.0;
     for (Eigen::Index f = 0; f < pre->F.rows(); ++f)
-      area3 += 0.5 * (C.row(pre->F(f, 1)) - C.row(pre->F(f, 0))).cross(C.row(pre->F(f, 2)) - C.row(pre->F(f, 0))).norm();
+      area3 += 0.5 * (C.row(pre->F(f, 1)) - C.row(pre->F(f, 0)))
+                         .cross(C.row(pre->F(f, 2)) - C.row(pre->F(f, 0)))
+                         .norm();
     EXPECT_NEAR(signedArea(outline), area3, 1e-9 * area3);
     // The barycentric map sends every old vertex exactly onto its curve point.
     const Points3 back = mapBarycentric(pre->V, C, pre->F, pre->V);
@@ -100,7 +105,8 @@ TEST_P(SampleInit, UnfoldRemeshAndMapBack) {
     double edgeSum = 0.0;
     int edges = 0;
     for (Eigen::Index f = 0; f < piece->F.rows(); ++f) {
-      const Eigen::Vector2d a = piece->flat.row(piece->F(f, 0)), b = piece->flat.row(piece->F(f, 1)),
+      const Eigen::Vector2d a = piece->flat.row(piece->F(f, 0)),
+                            b = piece->flat.row(piece->F(f, 1)),
                             c = piece->flat.row(piece->F(f, 2));
       EXPECT_GT((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x(), 0.0);
       edgeSum += (b - a).norm() + (c - b).norm() + (a - c).norm();
@@ -123,7 +129,8 @@ TEST_P(SampleInit, UnfoldRemeshAndMapBack) {
   double volume = 0.0;
   for (const Piece* piece : {&init.model.a, &init.model.b})
     for (Eigen::Index f = 0; f < piece->F.rows(); ++f) {
-      const Eigen::RowVector3d a = piece->shape.row(piece->F(f, 0)), b = piece->shape.row(piece->F(f, 1)),
+      const Eigen::RowVector3d a = piece->shape.row(piece->F(f, 0)),
+                               b = piece->shape.row(piece->F(f, 1)),
                                c = piece->shape.row(piece->F(f, 2));
       volume += a.dot(b.cross(c)) / 6.0;
     }
@@ -132,7 +139,8 @@ TEST_P(SampleInit, UnfoldRemeshAndMapBack) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Inverse, SampleInit,
-                         ::testing::Values("tennis-ball.obj", "saddle.obj", "pushed-in.obj", "rotated.json"),
+                         ::testing::Values("tennis-ball.obj", "saddle.obj", "pushed-in.obj",
+                                           "rotated.json"),
                          [](const auto& info) {
                            std::string name = info.param;
                            name = name.substr(0, name.find('.'));
@@ -152,7 +160,8 @@ TEST(Unfold, BarycentricMapIsExactAtVerticesAndLinearInside) {
     flat.row(2 * k) << 7.3 * k + unit(random), unit(random);
     flat.row(2 * k + 1) << 7.3 * k + unit(random), 9.0 + unit(random);
     for (int s = 0; s < 2; ++s)
-      shape.row(2 * k + s) << flat(2 * k + s, 0), flat(2 * k + s, 1) * std::cos(0.1 * k), 13.0 * std::sin(0.3 * k + s);
+      shape.row(2 * k + s) << flat(2 * k + s, 0), flat(2 * k + s, 1) * std::cos(0.1 * k),
+          13.0 * std::sin(0.3 * k + s);
     if (k + 1 < m) {
       F.row(2 * k) << 2 * k, 2 * k + 2, 2 * k + 1;
       F.row(2 * k + 1) << 2 * k + 1, 2 * k + 2, 2 * k + 3;
@@ -165,8 +174,10 @@ TEST(Unfold, BarycentricMapIsExactAtVerticesAndLinearInside) {
   for (Eigen::Index f = 0; f < F.rows(); ++f) {
     double l1 = unit(random), l2 = unit(random);
     if (l1 + l2 > 1.0) l1 = 1.0 - l1, l2 = 1.0 - l2;
-    query.row(f) = (1 - l1 - l2) * flat.row(F(f, 0)) + l1 * flat.row(F(f, 1)) + l2 * flat.row(F(f, 2));
-    expected.row(f) = (1 - l1 - l2) * shape.row(F(f, 0)) + l1 * shape.row(F(f, 1)) + l2 * shape.row(F(f, 2));
+    query.row(f) =
+        (1 - l1 - l2) * flat.row(F(f, 0)) + l1 * flat.row(F(f, 1)) + l2 * flat.row(F(f, 2));
+    expected.row(f) =
+        (1 - l1 - l2) * shape.row(F(f, 0)) + l1 * shape.row(F(f, 1)) + l2 * shape.row(F(f, 2));
   }
   EXPECT_LE((mapBarycentric(flat, shape, F, query) - expected).cwiseAbs().maxCoeff(), 1e-10);
 }
@@ -195,7 +206,8 @@ TEST(Unfold, FanOfMoreThanAFullTurnCannotBeCut) {
   const Status sheet = checkSheet(flat.value(), "B");
   ASSERT_FALSE(sheet.isOk());
   EXPECT_EQ(sheet.code(), ErrorCode::InputInvalid);
-  EXPECT_EQ(sheet.message().rfind("piece B unfolds onto itself near curve points ", 0), 0u) << sheet.message();
+  EXPECT_EQ(sheet.message().rfind("piece B unfolds onto itself near curve points ", 0), 0u)
+      << sheet.message();
   EXPECT_NE(sheet.message().find("cannot be cut from one sheet"), std::string::npos);
   // The first five triangles (300 degrees) unfold to a simple outline.
   Result<Points2> five = unfoldDisc(V.topRows(7), F.topRows(5));

@@ -1,12 +1,13 @@
 // Seam curves: OBJ polylines (index forms, closing), JSON points and closed cubic Beziers, and
 // every bad input.
+#include "io/curve_reader.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 
 #include "core/polyline.h"
-#include "io/curve_reader.h"
 #include "test_util.h"
 
 namespace dform {
@@ -29,7 +30,9 @@ std::string vertices(int n, Curve c, double phase = 0.0) {
 
 /// A saddle-shaped closed curve: x, y on a circle of radius 50, z = 10 cos 2t.
 std::string saddleVertices(int n) {
-  return vertices(n, [](double t) { return Eigen::Vector3d(50 * std::cos(t), 50 * std::sin(t), 10 * std::cos(2 * t)); });
+  return vertices(n, [](double t) {
+    return Eigen::Vector3d(50 * std::cos(t), 50 * std::sin(t), 10 * std::cos(2 * t));
+  });
 }
 
 std::string indexList(int n, bool repeatFirst) {
@@ -40,7 +43,8 @@ std::string indexList(int n, bool repeatFirst) {
 
 TEST(CurveObj, ClosedByRepeatedIndex) {
   test::ScratchDir dir;
-  const std::string path = dir.write("seam.obj", "# seam\no seam\n" + saddleVertices(64) + indexList(64, true));
+  const std::string path =
+      dir.write("seam.obj", "# seam\no seam\n" + saddleVertices(64) + indexList(64, true));
   const Result<Curve3> curve = readCurve(path);
   ASSERT_TRUE(curve.isOk()) << curve.status().message();
   EXPECT_EQ(curve.value().points.rows(), 64);  // the closing index is not repeated
@@ -51,7 +55,8 @@ TEST(CurveObj, ClosedByRepeatedIndex) {
 TEST(CurveObj, NegativeAndSlashIndices) {
   test::ScratchDir dir;
   // Relative indices count back from the latest vertex; "i/t" forms use the vertex index.
-  const std::string path = dir.write("rel.obj", saddleVertices(6) + "l -6/1 -5 -4 -3//2 -2 -1 -6\n");
+  const std::string path =
+      dir.write("rel.obj", saddleVertices(6) + "l -6/1 -5 -4 -3//2 -2 -1 -6\n");
   const Result<Curve3> curve = readCurve(path);
   ASSERT_TRUE(curve.isOk()) << curve.status().message();
   EXPECT_EQ(curve.value().points.rows(), 6);
@@ -72,7 +77,8 @@ TEST(CurveObj, OpenUnlessForcedClosed) {
 TEST(CurveObj, FacesButNoPolyline) {
   test::ScratchDir dir;
   const std::string path = dir.write("mesh.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-  EXPECT_TRUE(failsWith(readCurve(path).status(), ErrorCode::InputInvalid, path, "faces but no polyline"));
+  EXPECT_TRUE(
+      failsWith(readCurve(path).status(), ErrorCode::InputInvalid, path, "faces but no polyline"));
 }
 
 TEST(CurveObj, SeveralPolylines) {
@@ -86,13 +92,15 @@ TEST(CurveObj, MalformedLineNamesLineNumber) {
   const std::string path = dir.write("bad.obj", "v 0 0 0\nv 1 0 0\nv 1 one 0\n");
   EXPECT_TRUE(failsWith(readCurve(path).status(), ErrorCode::InputUnreadable, path, "line 3"));
   const std::string shortVertex = dir.write("short.obj", "v 0 0\n");
-  EXPECT_TRUE(failsWith(readCurve(shortVertex).status(), ErrorCode::InputUnreadable, shortVertex, "line 1"));
+  EXPECT_TRUE(failsWith(readCurve(shortVertex).status(), ErrorCode::InputUnreadable, shortVertex,
+                        "line 1"));
 }
 
 TEST(CurveObj, IndexOutOfRangeOrZero) {
   test::ScratchDir dir;
   const std::string high = dir.write("high.obj", saddleVertices(5) + "l 1 2 3 4 9 1\n");
-  EXPECT_TRUE(failsWith(readCurve(high).status(), ErrorCode::InputUnreadable, high, "out of range"));
+  EXPECT_TRUE(
+      failsWith(readCurve(high).status(), ErrorCode::InputUnreadable, high, "out of range"));
   const std::string zero = dir.write("zero.obj", saddleVertices(5) + "l 0 1 2 3 4 0\n");
   EXPECT_TRUE(failsWith(readCurve(zero).status(), ErrorCode::InputUnreadable, zero, "line 6"));
   const std::string back = dir.write("back.obj", saddleVertices(5) + "l -7 1 2\n");
@@ -101,39 +109,46 @@ TEST(CurveObj, IndexOutOfRangeOrZero) {
 
 TEST(CurveObj, NotANumberCoordinate) {
   test::ScratchDir dir;
-  const std::string path = dir.write("nan.obj", saddleVertices(6) + "v nan 0 0\nl 1 2 3 7 4 5 6 1\n");
-  EXPECT_TRUE(failsWith(readCurve(path).status(), ErrorCode::InputInvalid, path, "polyline point 4 (vertex 7) has a coordinate that is not a number"));
-  const std::string inf = dir.write("inf.obj", saddleVertices(6) + "v 0 inf 0\nl 1 2 3 7 4 5 6 1\n");
+  const std::string path =
+      dir.write("nan.obj", saddleVertices(6) + "v nan 0 0\nl 1 2 3 7 4 5 6 1\n");
+  EXPECT_TRUE(failsWith(readCurve(path).status(), ErrorCode::InputInvalid, path,
+                        "polyline point 4 (vertex 7) has a coordinate that is not a number"));
+  const std::string inf =
+      dir.write("inf.obj", saddleVertices(6) + "v 0 inf 0\nl 1 2 3 7 4 5 6 1\n");
   EXPECT_TRUE(failsWith(readCurve(inf).status(), ErrorCode::InputInvalid, inf, "infinite"));
 }
 
 TEST(CurveObj, HugeCoordinate) {
   test::ScratchDir dir;
-  const std::string path = dir.write("huge.obj", saddleVertices(6) + "v 0 0 5e6\nl 1 2 3 7 4 5 6 1\n");
+  const std::string path =
+      dir.write("huge.obj", saddleVertices(6) + "v 0 0 5e6\nl 1 2 3 7 4 5 6 1\n");
   EXPECT_TRUE(failsWith(readCurve(path).status(), ErrorCode::InputInvalid, path, "too large"));
 }
 
 TEST(CurveObj, RepeatedConsecutivePointsAreNamed) {
   test::ScratchDir dir;
   const std::string path = dir.write("dup.obj", saddleVertices(8) + "l 1 2 3 3 4 5 6 7 8 1\n");
-  EXPECT_TRUE(failsWith(readCurve(path).status(), ErrorCode::InputInvalid, path,
-                        "polyline point 3 (vertex 3) and polyline point 4 (vertex 3) are the same point"));
+  EXPECT_TRUE(
+      failsWith(readCurve(path).status(), ErrorCode::InputInvalid, path,
+                "polyline point 3 (vertex 3) and polyline point 4 (vertex 3) are the same point"));
 }
 
 TEST(CurveObj, FewerThanFiveDistinctPoints) {
   test::ScratchDir dir;
   const std::string path = dir.write("four.obj", saddleVertices(4) + indexList(4, true));
-  EXPECT_TRUE(failsWith(readCurve(path).status(), ErrorCode::InputInvalid, path, "fewer than 5 distinct points"));
+  EXPECT_TRUE(failsWith(readCurve(path).status(), ErrorCode::InputInvalid, path,
+                        "fewer than 5 distinct points"));
 }
 
 TEST(CurveObj, SelfIntersectingFigureEight) {
   test::ScratchDir dir;
   // A lemniscate crosses itself at the origin.
   const int n = 101;
-  const std::string text =
-      vertices(n, [](double t) { return Eigen::Vector3d(40 * std::cos(t), 20 * std::sin(2 * t), 3); }, 0.5);
+  const std::string text = vertices(
+      n, [](double t) { return Eigen::Vector3d(40 * std::cos(t), 20 * std::sin(2 * t), 3); }, 0.5);
   const std::string path = dir.write("eight.obj", text + indexList(n, true));
-  EXPECT_TRUE(failsWith(readCurve(path).status(), ErrorCode::InputInvalid, path, "crosses or touches itself near ("));
+  EXPECT_TRUE(failsWith(readCurve(path).status(), ErrorCode::InputInvalid, path,
+                        "crosses or touches itself near ("));
 }
 
 TEST(CurveObj, SkewCurvesThatComeCloseButDoNotTouchAreFine) {
@@ -141,7 +156,9 @@ TEST(CurveObj, SkewCurvesThatComeCloseButDoNotTouchAreFine) {
   // The same figure eight bent out of plane so the branches pass 2 mm apart at the crossing.
   const int n = 101;
   const std::string text = vertices(
-      n, [](double t) { return Eigen::Vector3d(40 * std::cos(t), 20 * std::sin(2 * t), std::sin(t)); }, 0.5);
+      n,
+      [](double t) { return Eigen::Vector3d(40 * std::cos(t), 20 * std::sin(2 * t), std::sin(t)); },
+      0.5);
   const std::string path = dir.write("knot.obj", text + indexList(n, true));
   const Result<Curve3> curve = readCurve(path);
   EXPECT_TRUE(curve.isOk()) << curve.status().message();
@@ -151,8 +168,8 @@ TEST(CurveObj, PlanarCurveInAxisPlaneIsChecked) {
   test::ScratchDir dir;
   // All x equal: the sweep must still prune (and find no crossing) on a large circle.
   const int n = 20000;
-  const std::string text =
-      vertices(n, [](double t) { return Eigen::Vector3d(0, 100 * std::cos(t), 100 * std::sin(t)); });
+  const std::string text = vertices(
+      n, [](double t) { return Eigen::Vector3d(0, 100 * std::cos(t), 100 * std::sin(t)); });
   const std::string path = dir.write("yz.obj", text + indexList(n, true));
   const Result<Curve3> curve = readCurve(path);
   ASSERT_TRUE(curve.isOk()) << curve.status().message();
@@ -168,25 +185,29 @@ TEST(CurveFiles, UnknownExtension) {
 TEST(CurveFiles, MissingFile) {
   test::ScratchDir dir;
   const std::string path = dir.path() + "/none.obj";
-  EXPECT_TRUE(failsWith(readCurve(path).status(), ErrorCode::InputUnreadable, path, "no such file"));
+  EXPECT_TRUE(
+      failsWith(readCurve(path).status(), ErrorCode::InputUnreadable, path, "no such file"));
 }
 
 TEST(CurveJson, PointsClosedByRepeat) {
   test::ScratchDir dir;
-  const std::string path = dir.write("seam.json", R"({"points": [[0,0,0],[10,0,1],[10,10,0],[0,10,1],[-5,5,2],[0,0,0]]})");
+  const std::string path = dir.write(
+      "seam.json", R"({"points": [[0,0,0],[10,0,1],[10,10,0],[0,10,1],[-5,5,2],[0,0,0]]})");
   const Result<Curve3> curve = readCurve(path);
   ASSERT_TRUE(curve.isOk()) << curve.status().message();
   EXPECT_EQ(curve.value().points.rows(), 5);
-  const std::string open = dir.write("open.json", R"({"points": [[0,0,0],[10,0,1],[10,10,0],[0,10,1],[-5,5,2]]})");
+  const std::string open =
+      dir.write("open.json", R"({"points": [[0,0,0],[10,0,1],[10,10,0],[0,10,1],[-5,5,2]]})");
   EXPECT_TRUE(failsWith(readCurve(open).status(), ErrorCode::InputInvalid, open, "open"));
-  const std::string flat = dir.write("flat.json", R"({"points": [[0,0],[10,0],[10,10],[0,10],[-5,5],[0,0]]})");
+  const std::string flat =
+      dir.write("flat.json", R"({"points": [[0,0],[10,0],[10,10],[0,10],[-5,5],[0,0]]})");
   EXPECT_TRUE(failsWith(readCurve(flat).status(), ErrorCode::InputUnreadable, flat, "point 1"));
 }
 
 /// A circle of radius r as 4 cubic Beziers (control distance kappa r), tilted out of the plane.
 std::string bezierCircle(double r) {
   const double k = 4.0 / 3.0 * (std::sqrt(2.0) - 1.0) * r;
-  const double pts[12][2] = {{r, 0},  {r, k},  {k, r},  {0, r},  {-k, r}, {-r, k},
+  const double pts[12][2] = {{r, 0},  {r, k},   {k, r},   {0, r},  {-k, r}, {-r, k},
                              {-r, 0}, {-r, -k}, {-k, -r}, {0, -r}, {k, -r}, {r, -k}};
   std::string text = R"({"units": "mm", "bezier": [)";
   char item[96];
@@ -216,20 +237,25 @@ TEST(CurveJson, BezierCircleLength) {
 
 TEST(CurveJson, BezierNeedsThreePointsPerSegment) {
   test::ScratchDir dir;
-  const std::string path = dir.write("bad.json", R"({"bezier": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]]})");
-  EXPECT_TRUE(failsWith(readCurve(path).status(), ErrorCode::InputInvalid, path, "3 control points per segment"));
+  const std::string path =
+      dir.write("bad.json", R"({"bezier": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]]})");
+  EXPECT_TRUE(failsWith(readCurve(path).status(), ErrorCode::InputInvalid, path,
+                        "3 control points per segment"));
 }
 
 TEST(CurveJson, BezierHugeControlPoint) {
   test::ScratchDir dir;
-  const std::string path = dir.write("huge.json", R"({"bezier": [[0,0,0],[1e12,0,0],[1,1,0],[0,1,0],[0,2,0],[-1,1,0]]})");
-  EXPECT_TRUE(failsWith(readCurve(path).status(), ErrorCode::InputInvalid, path, "control point 2"));
+  const std::string path = dir.write(
+      "huge.json", R"({"bezier": [[0,0,0],[1e12,0,0],[1,1,0],[0,1,0],[0,2,0],[-1,1,0]]})");
+  EXPECT_TRUE(
+      failsWith(readCurve(path).status(), ErrorCode::InputInvalid, path, "control point 2"));
 }
 
 TEST(CurveJson, NotJson) {
   test::ScratchDir dir;
   const std::string path = dir.write("bad.json", "{\"points\": ");
-  EXPECT_TRUE(failsWith(readCurve(path).status(), ErrorCode::InputUnreadable, path, "not valid JSON"));
+  EXPECT_TRUE(
+      failsWith(readCurve(path).status(), ErrorCode::InputUnreadable, path, "not valid JSON"));
 }
 
 }  // namespace

@@ -31,7 +31,8 @@ TEST(FuzzRegressions, CurveObj) {
   EXPECT_TRUE(test::regressionsHold(
       "curve_obj",
       {{"control-character-in-token.obj", ErrorCode::InputUnreadable, "is not a number"},
-       {"index-past-int-in-message.obj", ErrorCode::InputUnreadable, "vertex index 2147483648 is out of range"}},
+       {"index-past-int-in-message.obj", ErrorCode::InputUnreadable,
+        "vertex index 2147483648 is out of range"}},
       readCurveText));
 }
 

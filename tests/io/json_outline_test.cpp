@@ -42,7 +42,8 @@ TEST(JsonOutline, BareArrayIsMillimetres) {
 
 TEST(JsonOutline, InchesAndContentSniffedWithoutExtension) {
   test::ScratchDir dir;
-  const std::string path = dir.write("outline", R"({"units": "in", "points": [[0,0],[1,0],[1,1],[0,1]]})");
+  const std::string path =
+      dir.write("outline", R"({"units": "in", "points": [[0,0],[1,0],[1,1],[0,1]]})");
   const Result<Shape2> shape = readShape(path);
   ASSERT_TRUE(shape.isOk()) << shape.status().message();
   EXPECT_NEAR(closedLength(shape.value().outer.points), 4 * 25.4, 1e-12);
@@ -51,50 +52,58 @@ TEST(JsonOutline, InchesAndContentSniffedWithoutExtension) {
 TEST(JsonOutline, NotJson) {
   test::ScratchDir dir;
   const std::string path = dir.write("bad.json", "{\"points\": [[0,0], [1,");
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputUnreadable, path, "not valid JSON"));
+  EXPECT_TRUE(
+      failsWith(readShape(path).status(), ErrorCode::InputUnreadable, path, "not valid JSON"));
 }
 
 TEST(JsonOutline, WrongStructure) {
   test::ScratchDir dir;
   const std::string noPoints = dir.write("nopoints.json", R"({"outline": []})");
-  EXPECT_TRUE(failsWith(readShape(noPoints).status(), ErrorCode::InputUnreadable, noPoints, "\"points\""));
+  EXPECT_TRUE(
+      failsWith(readShape(noPoints).status(), ErrorCode::InputUnreadable, noPoints, "\"points\""));
   const std::string triple = dir.write("triple.json", R"({"points": [[0,0],[1,0,0],[1,1]]})");
   EXPECT_TRUE(failsWith(readShape(triple).status(), ErrorCode::InputUnreadable, triple, "point 2"));
   const std::string text = dir.write("text.json", R"([[0,0],["1",0],[1,1]])");
   EXPECT_TRUE(failsWith(readShape(text).status(), ErrorCode::InputUnreadable, text, "point 2"));
-  const std::string holes = dir.write("holes.json", R"({"points": [[0,0],[1,0],[1,1]], "holes": 3})");
+  const std::string holes =
+      dir.write("holes.json", R"({"points": [[0,0],[1,0],[1,1]], "holes": 3})");
   EXPECT_TRUE(failsWith(readShape(holes).status(), ErrorCode::InputUnreadable, holes, "holes"));
 }
 
 TEST(JsonOutline, UnknownUnits) {
   test::ScratchDir dir;
-  const std::string path = dir.write("furlong.json", R"({"units": "furlong", "points": [[0,0],[1,0],[1,1]]})");
+  const std::string path =
+      dir.write("furlong.json", R"({"units": "furlong", "points": [[0,0],[1,0],[1,1]]})");
   EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputUnreadable, path, "units"));
 }
 
 TEST(JsonOutline, HugeNumber) {
   test::ScratchDir dir;
   const std::string path = dir.write("huge.json", "[[0,0],[1e9,0],[0,1]]");
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path, "the outline has a coordinate that is too large"));
+  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path,
+                        "the outline has a coordinate that is too large"));
 }
 
 TEST(JsonOutline, SelfIntersecting) {
   test::ScratchDir dir;
   const std::string path = dir.write("bowtie.json", "[[0,0],[10,10],[10,0],[0,10]]");
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path, "crosses itself near (5, 5) mm"));
+  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path,
+                        "crosses itself near (5, 5) mm"));
 }
 
 TEST(JsonOutline, HoleOutsideIsASecondOutline) {
   test::ScratchDir dir;
   const std::string path = dir.write("outside.json", R"({"points": [[0,0],[10,0],[10,10],[0,10]],
                                                            "holes": [[[20,0],[30,0],[30,10]]]})");
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path, "2 separate outlines"));
+  EXPECT_TRUE(
+      failsWith(readShape(path).status(), ErrorCode::InputInvalid, path, "2 separate outlines"));
 }
 
 TEST(JsonOutline, TooFewPoints) {
   test::ScratchDir dir;
   const std::string path = dir.write("two.json", "[[0,0],[10,0]]");
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path, "fewer than 3 distinct points"));
+  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path,
+                        "fewer than 3 distinct points"));
 }
 
 TEST(JsonOutline, DeeplyNestedJsonDoesNotCrash) {
@@ -103,7 +112,8 @@ TEST(JsonOutline, DeeplyNestedJsonDoesNotCrash) {
   const std::string nested = std::string(depth, '[') + std::string(depth, ']');
   const std::string path = dir.write("deep.json", nested);
   EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputUnreadable, path, "point 1"));
-  const std::string units = dir.write("units.json", R"({"points": [[0,0],[1,0],[1,1]], "units": )" + nested + "}");
+  const std::string units =
+      dir.write("units.json", R"({"points": [[0,0],[1,0],[1,1]], "units": )" + nested + "}");
   EXPECT_TRUE(failsWith(readShape(units).status(), ErrorCode::InputUnreadable, units, "units"));
 }
 

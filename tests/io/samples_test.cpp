@@ -47,7 +47,9 @@ double perimeterOf(const Joined& piece, double tolerance) {
 double hullArea(const Points2& P) {
   std::vector<Eigen::Vector2d> pts;
   for (Eigen::Index i = 0; i < P.rows(); ++i) pts.push_back(P.row(i).transpose());
-  std::sort(pts.begin(), pts.end(), [](const auto& a, const auto& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
+  std::sort(pts.begin(), pts.end(), [](const auto& a, const auto& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
   auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
     return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
   };
@@ -74,7 +76,8 @@ TEST(Samples, PairsHaveEqualPerimeters) {
     EXPECT_NEAR(pa / pb, 1.0, 1e-3) << a.file << " " << pa << " vs " << b.file << " " << pb;
     // Finely flattened, the designed sizes agree far better (chord deficit <= 2 pi x tolerance).
     const double fineA = perimeterOf(a, 1e-4), fineB = perimeterOf(b, 1e-4);
-    EXPECT_NEAR(fineA / fineB, 1.0, 1e-5) << a.file << " " << fineA << " vs " << b.file << " " << fineB;
+    EXPECT_NEAR(fineA / fineB, 1.0, 1e-5)
+        << a.file << " " << fineA << " vs " << b.file << " " << fineB;
   }
 }
 
@@ -105,9 +108,11 @@ TEST(Samples, SquaricleDiscHasFourCreasesJoiningItsQuarterPoints) {
     // A quarter chord, its ends on the circle as flattened (within the flatten tolerance of it
     // across the circle, so within sqrt(2) times that along the chord, which meets it at 45°).
     const double tolerance = OutlineReadOptions{}.flattenTolerance;
-    EXPECT_NEAR(openLength(crease.points), radius * std::sqrt(2.0), 2 * std::sqrt(2.0) * tolerance) << crease.label;
+    EXPECT_NEAR(openLength(crease.points), radius * std::sqrt(2.0), 2 * std::sqrt(2.0) * tolerance)
+        << crease.label;
     for (const Eigen::Index end : {Eigen::Index(0), crease.points.rows() - 1})
-      EXPECT_NEAR((crease.points.row(end) - Eigen::RowVector2d(80, 80)).norm(), radius, tolerance) << crease.label;
+      EXPECT_NEAR((crease.points.row(end) - Eigen::RowVector2d(80, 80)).norm(), radius, tolerance)
+          << crease.label;
   }
 }
 

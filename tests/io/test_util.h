@@ -42,14 +42,17 @@ class ScratchDir {
 };
 
 /// The status has `code`, a one-line message that starts with the file path, and mentions `part`.
-inline ::testing::AssertionResult failsWith(const Status& status, ErrorCode code, const std::string& path,
-                                            const std::string& part = "") {
+inline ::testing::AssertionResult failsWith(const Status& status, ErrorCode code,
+                                            const std::string& path, const std::string& part = "") {
   if (status.isOk()) return ::testing::AssertionFailure() << "expected an error, got Ok";
   const std::string& m = status.message();
   if (status.code() != code)
-    return ::testing::AssertionFailure() << "code " << int(status.code()) << " instead of " << int(code) << ": " << m;
-  if (m.rfind(path + ": ", 0) != 0) return ::testing::AssertionFailure() << "message does not start with the path: " << m;
-  if (m.find('\n') != std::string::npos) return ::testing::AssertionFailure() << "message has several lines: " << m;
+    return ::testing::AssertionFailure()
+           << "code " << int(status.code()) << " instead of " << int(code) << ": " << m;
+  if (m.rfind(path + ": ", 0) != 0)
+    return ::testing::AssertionFailure() << "message does not start with the path: " << m;
+  if (m.find('\n') != std::string::npos)
+    return ::testing::AssertionFailure() << "message has several lines: " << m;
   if (m.find(part) == std::string::npos)
     return ::testing::AssertionFailure() << "message lacks \"" << part << "\": " << m;
   return ::testing::AssertionSuccess() << m;

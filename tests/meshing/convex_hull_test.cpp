@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-
 #include <cmath>
 #include <map>
 #include <random>
@@ -23,7 +22,8 @@ double checkClosedOutward(const ConvexHull3& hull, const Points3& P) {
   std::set<int> vertices;
   double volume = 0.0;
   for (Eigen::Index f = 0; f < hull.F.rows(); ++f) {
-    const Eigen::RowVector3d a = P.row(hull.F(f, 0)), b = P.row(hull.F(f, 1)), c = P.row(hull.F(f, 2));
+    const Eigen::RowVector3d a = P.row(hull.F(f, 0)), b = P.row(hull.F(f, 1)),
+                             c = P.row(hull.F(f, 2));
     const Eigen::RowVector3d normal = (b - a).cross(c - a);
     EXPECT_GT(normal.dot((a + b + c) / 3.0 - centre), 0.0) << "face " << f << " faces inward";
     volume += normal.dot(a - centre) / 6.0;
@@ -35,8 +35,8 @@ double checkClosedOutward(const ConvexHull3& hull, const Points3& P) {
   }
   for (const auto& [e, count] : directed) {
     EXPECT_EQ(count, 1) << "edge " << e.first << "-" << e.second << " used twice the same way";
-    EXPECT_EQ(directed.count({e.second, e.first}), 1u) << "edge " << e.first << "-" << e.second
-                                                        << " has no opposite: hull not closed";
+    EXPECT_EQ(directed.count({e.second, e.first}), 1u)
+        << "edge " << e.first << "-" << e.second << " has no opposite: hull not closed";
   }
   const long euler = long(vertices.size()) - long(directed.size() / 2) + long(hull.F.rows());
   EXPECT_EQ(euler, 2);
@@ -108,7 +108,8 @@ TEST(ConvexHull3, PlanarAndDegenerateCurvesAreInvalid) {
     const double t = 2.0 * kPi * i / n;
     flat.row(i) << 30 * std::cos(t), 20 * std::sin(t), 5.0;
     // In a tilted plane: rounding leaves it a sliver, not exactly coplanar.
-    tilted.row(i) = (Eigen::Vector3d(7, -3, 11) + 30 * std::cos(t) * u + 20 * std::sin(t) * v).transpose();
+    tilted.row(i) =
+        (Eigen::Vector3d(7, -3, 11) + 30 * std::cos(t) * u + 20 * std::sin(t) * v).transpose();
     line.row(i) = (double(i) * u).transpose();
   }
   expectPlanar(flat, "the curve is planar: its convex hull has no inside");

@@ -41,10 +41,12 @@ Points2 resampleTo(const Points2& P, double h) {
 }
 
 Points2 circle(double r, double cx = 0.0, double cy = 0.0) {
-  return sampleCurve([&](double t) { return Eigen::RowVector2d(cx + r * std::cos(t), cy + r * std::sin(t)); });
+  return sampleCurve(
+      [&](double t) { return Eigen::RowVector2d(cx + r * std::cos(t), cy + r * std::sin(t)); });
 }
 
-double minAngleDegrees(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+double minAngleDegrees(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                       const Eigen::Vector2d& c) {
   auto angle = [](const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& r) {
     const Eigen::Vector2d u = q - p, v = r - p;
     return std::atan2(std::abs(u.x() * v.y() - u.y() * v.x()), u.dot(v)) * 180.0 / kPi;
@@ -105,7 +107,8 @@ MeshStats checkMesh(const FlatMesh& mesh, const Points2& boundary,
   double expectedArea = signedArea(boundary);
   for (const Points2& hole : holes) expectedArea -= std::abs(signedArea(hole));
   EXPECT_NEAR(area, expectedArea, 1e-9 * expectedArea);
-  for (std::size_t v = 0; v < uses.size(); ++v) EXPECT_GT(uses[v], 0) << "vertex " << v << " unused";
+  for (std::size_t v = 0; v < uses.size(); ++v)
+    EXPECT_GT(uses[v], 0) << "vertex " << v << " unused";
 
   // Manifold: loop edges in exactly one triangle (so none was split), every other edge in two
   // with opposite directions; Euler characteristic 1 for a disc, 0 for an annulus.
@@ -157,10 +160,11 @@ FlatMesh meshAndCheck(const Case& c, bool checkQuality = true) {
   const FlatMesh& mesh = result.value();
   SCOPED_TRACE(c.name);
   const MeshStats stats = checkMesh(mesh, c.boundary, c.holes);
-  std::printf("  %-14s V=%5d F=%5d boundary=%4d  min angle %5.1f (all) %5.1f (interior)  "
-              "mean edge/h %.3f  %.2f ms\n",
-              c.name.c_str(), int(mesh.V.rows()), int(mesh.F.rows()), int(c.boundary.rows()),
-              stats.minAngleAll, stats.minAngleInterior, stats.meanInteriorEdge / c.h, ms);
+  std::printf(
+      "  %-14s V=%5d F=%5d boundary=%4d  min angle %5.1f (all) %5.1f (interior)  "
+      "mean edge/h %.3f  %.2f ms\n",
+      c.name.c_str(), int(mesh.V.rows()), int(mesh.F.rows()), int(c.boundary.rows()),
+      stats.minAngleAll, stats.minAngleInterior, stats.meanInteriorEdge / c.h, ms);
   if (checkQuality) {
     EXPECT_GE(stats.minAngleInterior, options.minAngleDegrees - 5.0);
     EXPECT_NEAR(stats.meanInteriorEdge / c.h, 1.0, 0.25);
@@ -181,15 +185,23 @@ TEST(TriangulateDomain, StandardShapesKeepTheirBoundaryAndMeetTheAims) {
   const double h = 0.5;
   const std::vector<Case> cases = {
       {"circle", resampleTo(circle(10.0), h), {}, h},
-      {"ellipse", resampleTo(sampleCurve([](double t) {
-                               return Eigen::RowVector2d(12.0 * std::cos(t), 6.0 * std::sin(t));
-                             }), h), {}, h},
+      {"ellipse",
+       resampleTo(sampleCurve([](double t) {
+                    return Eigen::RowVector2d(12.0 * std::cos(t), 6.0 * std::sin(t));
+                  }),
+                  h),
+       {},
+       h},
       {"square", resampleTo(polygon({{0, 0}, {10, 0}, {10, 10}, {0, 10}}), h), {}, h},
       {"star", resampleTo(star(), h), {}, h},
-      {"kidney", resampleTo(sampleCurve([](double t) {
-                              const double r = 8.0 + 2.5 * std::cos(t) - 1.5 * std::cos(2.0 * t);
-                              return Eigen::RowVector2d(r * std::cos(t), 0.8 * r * std::sin(t));
-                            }), h), {}, h},
+      {"kidney",
+       resampleTo(sampleCurve([](double t) {
+                    const double r = 8.0 + 2.5 * std::cos(t) - 1.5 * std::cos(2.0 * t);
+                    return Eigen::RowVector2d(r * std::cos(t), 0.8 * r * std::sin(t));
+                  }),
+                  h),
+       {},
+       h},
       {"L-shape", resampleTo(lShape(), h), {}, h},
       {"thin 20:1", resampleTo(polygon({{0, 0}, {20, 0}, {20, 1}, {0, 1}}), 0.1), {}, 0.1},
       {"annulus", resampleTo(circle(10.0), h), {resampleTo(circle(4.0), h)}, h},
@@ -204,8 +216,10 @@ TEST(TriangulateDomain, HoleOrientationDoesNotMatter) {
   const Points2 clockwiseHole = hole.colwise().reverse();
   meshAndCheck({"hole ccw", resampleTo(circle(10.0), h), {hole}, h});
   meshAndCheck({"hole cw", resampleTo(circle(10.0), h), {clockwiseHole}, h});
-  meshAndCheck({"two holes", resampleTo(circle(10.0), h),
-                {resampleTo(circle(2.5, -4.0, 0.0), h), resampleTo(circle(2.5, 4.0, 0.0), h)}, h});
+  meshAndCheck({"two holes",
+                resampleTo(circle(10.0), h),
+                {resampleTo(circle(2.5, -4.0, 0.0), h), resampleTo(circle(2.5, 4.0, 0.0), h)},
+                h});
 }
 
 // Sharp reflex corners, spikes and a channel narrower than h: the boundary must survive anyway.
@@ -214,16 +228,45 @@ TEST(TriangulateDomain, HoleOrientationDoesNotMatter) {
 TEST(TriangulateDomain, SharpCornersAndThinPartsNeverSplitTheBoundary) {
   const double h = 0.5;
   const std::vector<Case> cases = {
-      {"comb", resampleTo(polygon({{0, 0}, {12, 0}, {12, 8}, {11.1, 8}, {11, 1}, {10.9, 8},
-                                   {6.1, 8}, {6, 1}, {5.9, 8}, {0, 8}}), h), {}, h},
-      {"dumbbell", resampleTo(polygon({{0, 0}, {6, 0}, {6, 2.8}, {14, 2.8}, {14, 0}, {20, 0},
-                                       {20, 6}, {14, 6}, {14, 3.1}, {6, 3.1}, {6, 6}, {0, 6}}), h),
-       {}, h},
+      {"comb",
+       resampleTo(polygon({{0, 0},
+                           {12, 0},
+                           {12, 8},
+                           {11.1, 8},
+                           {11, 1},
+                           {10.9, 8},
+                           {6.1, 8},
+                           {6, 1},
+                           {5.9, 8},
+                           {0, 8}}),
+                  h),
+       {},
+       h},
+      {"dumbbell",
+       resampleTo(polygon({{0, 0},
+                           {6, 0},
+                           {6, 2.8},
+                           {14, 2.8},
+                           {14, 0},
+                           {20, 0},
+                           {20, 6},
+                           {14, 6},
+                           {14, 3.1},
+                           {6, 3.1},
+                           {6, 6},
+                           {0, 6}}),
+                  h),
+       {},
+       h},
       {"sliver 1:200", resampleTo(polygon({{0, 0}, {20, 0}, {20, 0.1}, {0, 0.1}}), h), {}, h},
-      {"spiky star", resampleTo(sampleCurve([](double t) {
-                                  const double r = 6.0 + 5.0 * std::pow(std::cos(4.0 * t), 8);
-                                  return Eigen::RowVector2d(r * std::cos(t), r * std::sin(t));
-                                }), h), {}, h},
+      {"spiky star",
+       resampleTo(sampleCurve([](double t) {
+                    const double r = 6.0 + 5.0 * std::pow(std::cos(4.0 * t), 8);
+                    return Eigen::RowVector2d(r * std::cos(t), r * std::sin(t));
+                  }),
+                  h),
+       {},
+       h},
       {"raw L", lShape(), {}, 2.0},  // corners only: few, long boundary edges
   };
   std::printf("\n");
@@ -325,11 +368,14 @@ TEST(TriangulateDomain, RejectsBadInput) {
                 "hole 0 is not wholly inside the outline");  // crossing, first point outside
   expectInvalid(square, {resampleTo(circle(2.0, 1.0, 5.0), 0.5)}, ErrorCode::InputInvalid,
                 "cross or touch");  // crossing, first point inside
-  expectInvalid(square, {resampleTo(circle(3.0, 5.0, 5.0), 0.5), resampleTo(circle(1.0, 5.0, 5.0), 0.5)},
+  expectInvalid(square,
+                {resampleTo(circle(3.0, 5.0, 5.0), 0.5), resampleTo(circle(1.0, 5.0, 5.0), 0.5)},
                 ErrorCode::InputInvalid, "hole 1 overlaps hole 0");
-  expectInvalid(square, {resampleTo(circle(2.0, 4.0, 5.0), 0.5), resampleTo(circle(2.0, 6.0, 5.0), 0.5)},
+  expectInvalid(square,
+                {resampleTo(circle(2.0, 4.0, 5.0), 0.5), resampleTo(circle(2.0, 6.0, 5.0), 0.5)},
                 ErrorCode::InputInvalid, "hole 0 overlaps hole 1");
-  expectInvalid(square, {resampleTo(circle(1.0, 4.0, 5.0), 0.5), resampleTo(circle(1.0, 4.0, 6.9), 0.5)},
+  expectInvalid(square,
+                {resampleTo(circle(1.0, 4.0, 5.0), 0.5), resampleTo(circle(1.0, 4.0, 6.9), 0.5)},
                 ErrorCode::InputInvalid, "cross or touch");  // crossing, first points outside
   // A hole touching the outline at one of its points.
   expectInvalid(polygon({{0, 0}, {10, 0}, {10, 10}, {0, 10}}), {polygon({{5, 0}, {6, 2}, {4, 2}})},
@@ -376,7 +422,8 @@ TEST(TriangulateDomain, CreaseLinesAreMeshEdgesWithTrianglesOnBothSides) {
     EXPECT_EQ(line.back(), c.lines[k].to);
     for (std::size_t i = 1; i + 1 < line.size(); ++i) {
       EXPECT_EQ(line[i], next++);
-      EXPECT_TRUE(Eigen::RowVector2d(mesh.V.row(line[i])) == c.lines[k].interior.row(Eigen::Index(i) - 1));
+      EXPECT_TRUE(Eigen::RowVector2d(mesh.V.row(line[i])) ==
+                  c.lines[k].interior.row(Eigen::Index(i) - 1));
     }
     for (std::size_t i = 0; i + 1 < line.size(); ++i)  // a triangle on each side of every edge
       EXPECT_TRUE(directed.count({line[i], line[i + 1]}) && directed.count({line[i + 1], line[i]}))
@@ -387,16 +434,18 @@ TEST(TriangulateDomain, CreaseLinesAreMeshEdgesWithTrianglesOnBothSides) {
 TEST(TriangulateDomain, RejectsCreasesThatDoNotStayInside) {
   TriangulateOptions options;
   options.targetEdgeLength = 0.5;
-  auto expectBad = [&](const Points2& outline, const std::vector<Points2>& holes, const InteriorLine& line,
-                       const std::string& words) {
+  auto expectBad = [&](const Points2& outline, const std::vector<Points2>& holes,
+                       const InteriorLine& line, const std::string& words) {
     const Result<FlatMesh> result = triangulateDomain(outline, holes, options, {line});
     ASSERT_FALSE(result.isOk()) << words;
     EXPECT_EQ(result.status().code(), ErrorCode::InputInvalid);
-    EXPECT_NE(result.status().message().find(words), std::string::npos) << result.status().message();
+    EXPECT_NE(result.status().message().find(words), std::string::npos)
+        << result.status().message();
   };
   CreasedSquare c;
   c.addCrease(10, 50);  // (5, 0) to (5, 10) across the hole below
-  expectBad(c.outline, {resampleTo(circle(1.5, 5.0, 5.0), 0.5)}, c.lines[0], "crease lines cross or touch");
+  expectBad(c.outline, {resampleTo(circle(1.5, 5.0, 5.0), 0.5)}, c.lines[0],
+            "crease lines cross or touch");
   expectBad(c.outline, {}, {0, 80, {}}, "does not join two boundary points");
   expectBad(c.outline, {}, {3, 3, {}}, "does not join two boundary points");
   // In the L shape the chord from (10, 4) to (4, 10) runs outside it, touching it at its ends only.

@@ -1,22 +1,22 @@
 // The exact model's meshes follow the body's folds: every triangle lies in one face of the body
 // and maps onto it isometrically, so the figures of an exact result are rounding, at every
 // resolution, and no triangle of a piece straddles a fold.
+#include "model/exact_model.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-
 #include <cmath>
 #include <map>
+#include <string>
 #include <utility>
 #include <vector>
-#include <string>
 
 #include "exact/body_edges.h"
 #include "exact/shapes.h"
-#include "model/exact_model.h"
+#include "pipeline/reference_seams.h"
 #include "validate/gate.h"
 #include "validate/metrics.h"
-#include "pipeline/reference_seams.h"
 
 namespace dform {
 namespace {
@@ -43,9 +43,11 @@ exact::SeamPolygons circleAndSquare(int perSide = 25) {
   exact::SeamPolygons seam;
   const double radius = 200.0 / std::acos(-1.0);
   seam.a = exact::testshapes::ellipse(radius, radius, 4 * perSide);
-  const Points2 square = exact::testshapes::polygonSampled({{0, 0}, {100, 0}, {100, 100}, {0, 100}}, perSide);
+  const Points2 square =
+      exact::testshapes::polygonSampled({{0, 0}, {100, 0}, {100, 100}, {0, 100}}, perSide);
   seam.b.resize(square.rows(), 2);
-  for (Eigen::Index k = 0; k < square.rows(); ++k) seam.b.row(k) = square.row((square.rows() - k + perSide / 2) % square.rows());
+  for (Eigen::Index k = 0; k < square.rows(); ++k)
+    seam.b.row(k) = square.row((square.rows() - k + perSide / 2) % square.rows());
   return seam;
 }
 
@@ -81,7 +83,8 @@ bool straddles(const Eigen::Vector2d t[3], const Eigen::Vector2d& p, const Eigen
     along[c] = r.dot(d);
   }
   const double length = (q - p).norm(), slack = 1e-9 * length;
-  const bool within = std::max({along[0], along[1], along[2]}) > slack && std::min({along[0], along[1], along[2]}) < length - slack;
+  const bool within = std::max({along[0], along[1], along[2]}) > slack &&
+                      std::min({along[0], along[1], along[2]}) < length - slack;
   return lo < -slack && hi > slack && within;
 }
 
@@ -107,8 +110,9 @@ TEST(ExactModel, NoTriangleStraddlesAFoldOfTheBody) {
       for (Eigen::Index f = 0; f < piece.F.rows(); ++f) {
         const Eigen::Vector2d t[3] = {piece.flat.row(piece.F(f, 0)), piece.flat.row(piece.F(f, 1)),
                                       piece.flat.row(piece.F(f, 2))};
-        ASSERT_FALSE(straddles(t, p, q)) << "triangle " << f << " of piece " << run.piece << " straddles the fold from seam point "
-                                         << edge.from << " to " << edge.to;
+        ASSERT_FALSE(straddles(t, p, q))
+            << "triangle " << f << " of piece " << run.piece
+            << " straddles the fold from seam point " << edge.from << " to " << edge.to;
       }
     }
   }
@@ -123,7 +127,8 @@ std::map<std::pair<int, int>, double> meshFolds(const Piece& piece) {
     const Eigen::Vector3d a = piece.shape.row(piece.F(f, 0)), b = piece.shape.row(piece.F(f, 1)),
                           c = piece.shape.row(piece.F(f, 2));
     const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();
-    for (int k = 0; k < 3; ++k) normals[std::minmax(piece.F(f, k), piece.F(f, (k + 1) % 3))].push_back(normal);
+    for (int k = 0; k < 3; ++k)
+      normals[std::minmax(piece.F(f, k), piece.F(f, (k + 1) % 3))].push_back(normal);
   }
   std::map<std::pair<int, int>, double> out;
   for (const auto& [edge, ns] : normals)
@@ -132,7 +137,8 @@ std::map<std::pair<int, int>, double> meshFolds(const Piece& piece) {
 }
 
 // Whether flat point x lies on the segment p-q, within `tol` mm.
-bool onSegment(const Eigen::Vector2d& x, const Eigen::Vector2d& p, const Eigen::Vector2d& q, double tol) {
+bool onSegment(const Eigen::Vector2d& x, const Eigen::Vector2d& p, const Eigen::Vector2d& q,
+               double tol) {
   const Eigen::Vector2d d = q - p;
   const double t = (x - p).dot(d) / d.squaredNorm();
   return t >= -1e-9 && t <= 1 + 1e-9 && (p + t * d - x).norm() <= tol;
@@ -150,20 +156,24 @@ void expectFoldMapMatchesTheMesh(const DForm& model, const ModelUsed& used, doub
       const Eigen::Vector2d from = piece.flat.row(fold.from), to = piece.flat.row(fold.to);
       double covered = 0;
       for (auto it = dihedral.begin(); it != dihedral.end();) {
-        const Eigen::Vector2d u = piece.flat.row(it->first.first), v = piece.flat.row(it->first.second);
+        const Eigen::Vector2d u = piece.flat.row(it->first.first),
+                              v = piece.flat.row(it->first.second);
         if (onSegment(u, from, to, 1e-7) && onSegment(v, from, to, 1e-7)) {
-          EXPECT_NEAR(it->second, fold.radians, tolRad) << "piece " << p << " fold " << fold.from << "-" << fold.to;
+          EXPECT_NEAR(it->second, fold.radians, tolRad)
+              << "piece " << p << " fold " << fold.from << "-" << fold.to;
           covered += (u - v).norm();
           it = dihedral.erase(it);
         } else {
           ++it;
         }
       }
-      EXPECT_NEAR(covered, (from - to).norm(), 1e-7) << "the fold's mesh edges run its whole length";
+      EXPECT_NEAR(covered, (from - to).norm(), 1e-7)
+          << "the fold's mesh edges run its whole length";
     }
     double steepestUnlisted = 0;
     for (const auto& [edge, angle] : dihedral) steepestUnlisted = std::max(steepestUnlisted, angle);
-    EXPECT_LE(steepestUnlisted, tolRad) << "piece " << p << ": a fold of the mesh is missing from the fold map";
+    EXPECT_LE(steepestUnlisted, tolRad)
+        << "piece " << p << ": a fold of the mesh is missing from the fold map";
   }
 }
 
@@ -193,7 +203,8 @@ TEST(ExactModel, CircleAndSquareFoldMapHoldsFourCreasesAndTheGentleFolds) {
       const Piece& piece = fold.piece == 0 ? model.value().a : model.value().b;
       ASSERT_LT(std::size_t(fold.crease), piece.creases.size());
       const std::vector<int>& line = piece.creases[std::size_t(fold.crease)];
-      EXPECT_TRUE((line.front() == fold.from && line.back() == fold.to) || (line.front() == fold.to && line.back() == fold.from));
+      EXPECT_TRUE((line.front() == fold.from && line.back() == fold.to) ||
+                  (line.front() == fold.to && line.back() == fold.from));
     } else {
       ++gentle;
       EXPECT_LT(degrees, 20.0);
@@ -232,7 +243,8 @@ TEST(ExactModelSweep, ConvexPairsAtEveryResolutionUpToTheEnginesLimit) {
     const std::pair<std::string, exact::SeamPolygons> pairs[4] = {
         {"ellipses", exact::testshapes::ellipsePair(n)},
         {"circle + ellipse",
-         {exact::testshapes::ellipseOfPerimeter400(1.0, n), reversed(exact::testshapes::ellipseOfPerimeter400(1.3, n))}},
+         {exact::testshapes::ellipseOfPerimeter400(1.0, n),
+          reversed(exact::testshapes::ellipseOfPerimeter400(1.3, n))}},
         {"circle + square", circleAndSquare(n / 4)},
         {"circle + circle", congruentCircles(n)}};
     for (const auto& [name, polygons] : pairs) {
@@ -260,10 +272,13 @@ TEST(ExactModelSweep, CongruentCirclesFoldFlatAndPassTheStrictGate) {
     EXPECT_TRUE(used.doublyCovered) << what;
     const GateReport gate = measureAndGate(model.value(), strict.value(), nullptr);
     for (const CheckResult& check : gate.checks) {
-      const auto expected = check.name == "hull_distance_rel" ? CheckResult::Verdict::NotRun : CheckResult::Verdict::Pass;
-      EXPECT_EQ(check.verdict, expected) << what << ": " << check.name << " " << check.value << " (" << check.detail << ")";
+      const auto expected = check.name == "hull_distance_rel" ? CheckResult::Verdict::NotRun
+                                                              : CheckResult::Verdict::Pass;
+      EXPECT_EQ(check.verdict, expected)
+          << what << ": " << check.name << " " << check.value << " (" << check.detail << ")";
     }
-    EXPECT_NE(gate.find("self_intersection")->detail.find("face to face"), std::string::npos) << what;
+    EXPECT_NE(gate.find("self_intersection")->detail.find("face to face"), std::string::npos)
+        << what;
   }
 }
 

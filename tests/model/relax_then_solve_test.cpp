@@ -30,8 +30,8 @@ struct SolveFixture {
 
   SolveFixture() {
     weightByFlatLength(pieces.edges, x0, weights.isometry);
-    relaxation = std::make_unique<LocalGlobalRelaxation>(linearTerms(forwardTerms(), terms, weights),
-                                                         pieces.edges, x0);
+    relaxation = std::make_unique<LocalGlobalRelaxation>(
+        linearTerms(forwardTerms(), terms, weights), pieces.edges, x0);
     addTerms(problem, forwardTerms(), terms, weights);
     problem.setBlockSize(VariableLayout::kPerVertex);
   }
@@ -68,8 +68,8 @@ TEST(RelaxThenSolve, AStoppedRelaxationEndsTheSolveAsUserAbort) {
   LocalGlobalOptions relax = fewSteps();
   relax.callback = [](const IterationSummary&) { return false; };  // a Ctrl-C at the first step
   Eigen::VectorXd x = f.x0;
-  const SolveSequenceSummary s = relaxThenSolve(*f.relaxation, relax, f.problem, SolverOptions{}, f.guard,
-                                                {{f.anchors, 2, 1e-12}}, 8, x);
+  const SolveSequenceSummary s = relaxThenSolve(*f.relaxation, relax, f.problem, SolverOptions{},
+                                                f.guard, {{f.anchors, 2, 1e-12}}, 8, x);
   EXPECT_TRUE(s.relaxation.stopped);
   EXPECT_EQ(s.summary.termination, Termination::UserAbort);
   EXPECT_TRUE(s.summary.iterations.empty()) << "no Levenberg-Marquardt step after a stop";
@@ -98,7 +98,8 @@ TEST(RelaxThenSolve, WithoutLevenbergMarquardtEachMultiplierRoundRelaxesAgain) {
   EXPECT_NE(x, f.relaxedAlone(relax)) << "the rounds moved x on";
   // Without constraints the relaxation's shape is the result.
   Eigen::VectorXd y = f.x0;
-  const SolveSequenceSummary plain = relaxThenSolve(*f.relaxation, relax, f.problem, off, f.guard, {}, 3, y);
+  const SolveSequenceSummary plain =
+      relaxThenSolve(*f.relaxation, relax, f.problem, off, f.guard, {}, 3, y);
   EXPECT_EQ(plain.constraintRounds, 0);
   EXPECT_EQ(y, f.relaxedAlone(relax));
 }
@@ -110,7 +111,8 @@ TEST(RelaxThenSolve, LevenbergMarquardtGoesOnFromTheRelaxedShapeWithoutNewFolds)
   SolverOptions lm;
   lm.maxIterations = 30;
   Eigen::VectorXd x = f.x0;
-  const SolveSequenceSummary s = relaxThenSolve(*f.relaxation, relax, f.problem, lm, f.guard, {}, 0, x);
+  const SolveSequenceSummary s =
+      relaxThenSolve(*f.relaxation, relax, f.problem, lm, f.guard, {}, 0, x);
   ASSERT_TRUE(s.summary.usable()) << s.summary.message;
   EXPECT_FALSE(s.summary.iterations.empty());
   // Its first cost is the relaxed shape's: it started there.

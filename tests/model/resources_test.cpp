@@ -1,9 +1,9 @@
 // The memory check that stops a run too large for the machine before it meshes anything.
+#include "model/resources.h"
+
 #include <gtest/gtest.h>
 
 #include <regex>
-
-#include "model/resources.h"
 
 namespace dform {
 namespace {
@@ -29,11 +29,13 @@ TEST(Resources, ATooLargeRunIsAUsageErrorWhoseSuggestedResolutionFits) {
   const Status refused = checkMemory({vertices, 0.0}, resolution, "piece.svg: the run");
   ASSERT_FALSE(refused.isOk());
   EXPECT_EQ(refused.code(), ErrorCode::Usage);
-  EXPECT_EQ(refused.message().rfind("piece.svg: the run at resolution 1000 would need about ", 0), 0u)
+  EXPECT_EQ(refused.message().rfind("piece.svg: the run at resolution 1000 would need about ", 0),
+            0u)
       << refused.message();
   std::smatch suggestion;
   const std::string message = refused.message();
-  ASSERT_TRUE(std::regex_search(message, suggestion, std::regex("a resolution of ([0-9]+) or less fits")));
+  ASSERT_TRUE(
+      std::regex_search(message, suggestion, std::regex("a resolution of ([0-9]+) or less fits")));
   const int fits = std::stoi(suggestion[1]);
   EXPECT_LT(fits, resolution / 2);  // a quarter of the vertices at most: half the resolution
   const double s = double(fits) / resolution;
@@ -51,7 +53,8 @@ TEST(Resources, ARunOutOfMemoryOffersTheResolutionOfHalfItsEstimate) {
       << failed.message();
   std::smatch offered;
   const std::string message = failed.message();
-  ASSERT_TRUE(std::regex_search(message, offered, std::regex("a resolution of ([0-9]+) or less fits")));
+  ASSERT_TRUE(
+      std::regex_search(message, offered, std::regex("a resolution of ([0-9]+) or less fits")));
   const int fits = std::stoi(offered[1]);
   const auto peakAt = [&run](int resolution) {
     const double s = resolution / 400.0;

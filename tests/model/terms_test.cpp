@@ -1,10 +1,11 @@
 // Every term of the objective against finite differences, and the helpers around them.
+#include "model/terms.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 #include <random>
 
-#include "model/terms.h"
 #include "solver/gradient_check.h"
 #include "test_meshes.h"
 #include "validate/metrics.h"
@@ -20,8 +21,8 @@ struct TwoPieces {
 
 void expectExactJacobian(const ResidualTerm& term, const Eigen::VectorXd& x, const char* name) {
   const JacobianCheck check = checkJacobian(term, x);
-  EXPECT_LT(check.maxRelativeError, 1e-6) << name << " row " << check.worstRow << " column "
-                                          << check.worstColumn;
+  EXPECT_LT(check.maxRelativeError, 1e-6)
+      << name << " row " << check.worstRow << " column " << check.worstColumn;
   EXPECT_TRUE(check.outsidePatternIsZero) << name;
 }
 
@@ -34,7 +35,8 @@ TEST(Terms, EveryJacobianMatchesFiniteDifferences) {
   Points2 targetsA = Points2::Random(16, 2), targetsB = Points2::Random(16, 2);
 
   expectExactJacobian(*makeIsometryTerm(meshEdgePairs(m.layout, m.a.F, m.b.F)), x, "isometry");
-  expectExactJacobian(*makeFlatAnchorTerm(m.layout, m.a.seam, targetsA, m.b.seam, targetsB), x, "boundary fix");
+  expectExactJacobian(*makeFlatAnchorTerm(m.layout, m.a.seam, targetsA, m.b.seam, targetsB), x,
+                      "boundary fix");
   expectExactJacobian(*makeSmoothnessTerm(m.layout, m.a, m.b, true), x, "smooth 3D");
   expectExactJacobian(*makeSmoothnessTerm(m.layout, m.a, m.b, false), x, "smooth 2D");
   expectExactJacobian(*makeSeamSmoothnessTerm(m.layout, m.a.seam, m.b.seam), x, "seam");
@@ -58,8 +60,10 @@ TEST(Terms, SharedSeamIsOneSetOfUnknownsAndKeepsExactJacobians) {
   TwoPieces m;
   const VariableLayout shared(int(m.a.flat.rows()), int(m.b.flat.rows()), m.a.seam, m.b.seam);
   ASSERT_TRUE(shared.sharesSeam());
-  for (std::size_t k = 0; k < m.a.seam.size(); ++k) EXPECT_EQ(shared.x(1, m.b.seam[k]), shared.x(0, m.a.seam[k]));
-  EXPECT_EQ(shared.x(1, m.b.flat.rows() - 1), m.layout.x(1, m.b.flat.rows() - 1));  // interior: its own
+  for (std::size_t k = 0; k < m.a.seam.size(); ++k)
+    EXPECT_EQ(shared.x(1, m.b.seam[k]), shared.x(0, m.a.seam[k]));
+  EXPECT_EQ(shared.x(1, m.b.flat.rows() - 1),
+            m.layout.x(1, m.b.flat.rows() - 1));                    // interior: its own
   EXPECT_EQ(shared.u(1, m.b.seam[3]), m.layout.u(1, m.b.seam[3]));  // flat positions stay per piece
 
   // Unpacked, both sides of the seam sit at A's positions: the seam is closed exactly.
@@ -69,11 +73,13 @@ TEST(Terms, SharedSeamIsOneSetOfUnknownsAndKeepsExactJacobians) {
   Piece a = m.a, b = m.b;
   unpackVariables(shared, x, a, b);
   EXPECT_EQ(a.shape, m.a.shape);
-  for (std::size_t k = 0; k < m.a.seam.size(); ++k) EXPECT_EQ(b.shape.row(m.b.seam[k]), m.a.shape.row(m.a.seam[k]));
+  for (std::size_t k = 0; k < m.a.seam.size(); ++k)
+    EXPECT_EQ(b.shape.row(m.b.seam[k]), m.a.shape.row(m.a.seam[k]));
   EXPECT_EQ(b.shape.row(b.flat.rows() - 1), m.b.shape.row(m.b.flat.rows() - 1));
 
   Eigen::VectorXd y = Eigen::VectorXd::Random(shared.numVariables());
-  expectExactJacobian(*makeIsometryTerm(meshEdgePairs(shared, m.a.F, m.b.F)), y, "isometry, shared");
+  expectExactJacobian(*makeIsometryTerm(meshEdgePairs(shared, m.a.F, m.b.F)), y,
+                      "isometry, shared");
   expectExactJacobian(*makeSmoothnessTerm(shared, m.a, m.b, true), y, "smooth 3D, shared");
   expectExactJacobian(*makeSeamSmoothnessTerm(shared, m.a.seam, m.b.seam), y, "seam, shared");
 }
@@ -131,7 +137,8 @@ TEST(Terms, SmoothnessVanishesOnAffineMapsAndIsometryOnRigidMotions) {
   // and a rotation keeps every edge length.
   Eigen::Matrix<double, 3, 2> affine;
   affine << 0.3, -1.1, 0.8, 0.4, -0.2, 0.9;
-  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   Piece a = m.a, b = m.b;
   a.shape = (a.flat * affine.transpose()).rowwise() + Eigen::RowVector3d(1, 2, 3);
   b.shape = b.flat * affine.transpose();

@@ -1,23 +1,24 @@
 // Forward runs on the exact engine: the model choice, the start where it was drawn, the creases
 // the exact D-Form finds, and the figures of the object against the paper model's.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 
-#include <unistd.h>
-
 #include "pipeline/forward_pipeline.h"
-#include "validate/gate.h"
 #include "pipeline/reference_seams.h"
+#include "validate/gate.h"
 
 namespace dform {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string sample(const std::string& name) { return std::string(DFORM_SAMPLES_DIR) + "/forward/" + name; }
+std::string sample(const std::string& name) {
+  return std::string(DFORM_SAMPLES_DIR) + "/forward/" + name;
+}
 
 Result<ForwardRun> run(const ForwardJob& job) {
   MessageSink sink;
@@ -45,8 +46,10 @@ struct Scratch {
 
 TEST(ExactRun, TheSeamStartsWhereThePathWasDrawnInEitherDirection) {
   Scratch scratch;
-  const std::string ccw = scratch.write("ccw.json", R"({"points": [[0, 0], [100, 0], [100, 100], [0, 100]]})");
-  const std::string cw = scratch.write("cw.json", R"({"points": [[0, 0], [0, 100], [100, 100], [100, 0]]})");
+  const std::string ccw =
+      scratch.write("ccw.json", R"({"points": [[0, 0], [100, 0], [100, 100], [0, 100]]})");
+  const std::string cw =
+      scratch.write("cw.json", R"({"points": [[0, 0], [0, 100], [100, 100], [100, 0]]})");
   // Counter-clockwise from the first point: fraction 0.25 is a side (100 mm) along, 0.5 two.
   const Eigen::RowVector2d expected[] = {{0, 0}, {100, 0}, {100, 100}};
   const double fractions[] = {0.0, 0.25, 0.5};
@@ -64,11 +67,13 @@ TEST(ExactRun, TheSeamStartsWhereThePathWasDrawnInEitherDirection) {
       ASSERT_TRUE(r.isOk()) << r.status().message();
       EXPECT_EQ(r.value().modelUsed.name, "exact") << r.value().modelUsed.reason;
       const Piece& a = r.value().model.a;
-      EXPECT_LT((a.flat.row(a.seam[0]) - expected[f]).norm(), 1e-9) << path << " at " << fractions[f];
+      EXPECT_LT((a.flat.row(a.seam[0]) - expected[f]).norm(), 1e-9)
+          << path << " at " << fractions[f];
       shapes[d++] = a.shape;
     }
     ASSERT_EQ(shapes[0].rows(), shapes[1].rows());
-    EXPECT_LT((shapes[0] - shapes[1]).cwiseAbs().maxCoeff(), 1e-9) << "both directions make one D-Form";
+    EXPECT_LT((shapes[0] - shapes[1]).cwiseAbs().maxCoeff(), 1e-9)
+        << "both directions make one D-Form";
   }
 }
 
@@ -143,8 +148,10 @@ TEST(ExactRun, NonConvexPiecesGoToThePaperModelNamingTheSeamPoint) {
   Result<ForwardRun> r = run(job("nonconvex-a.svg", "nonconvex-b.svg"));
   ASSERT_TRUE(r.isOk()) << r.status().message();
   EXPECT_EQ(r.value().modelUsed.name, "paper");
-  EXPECT_NE(r.value().modelUsed.reason.find("seam point"), std::string::npos) << r.value().modelUsed.reason;
-  EXPECT_NE(r.value().modelUsed.reason.find("more than 360"), std::string::npos) << r.value().modelUsed.reason;
+  EXPECT_NE(r.value().modelUsed.reason.find("seam point"), std::string::npos)
+      << r.value().modelUsed.reason;
+  EXPECT_NE(r.value().modelUsed.reason.find("more than 360"), std::string::npos)
+      << r.value().modelUsed.reason;
   EXPECT_TRUE(std::isnan(r.value().metrics.exact_distance_rms_rel));
   EXPECT_FALSE(r.value().metrics.exact_note.empty());
 

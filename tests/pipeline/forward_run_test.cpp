@@ -13,13 +13,15 @@
 
 #include "core/polyline.h"
 #include "pipeline/forward_pipeline.h"
-#include "validate/gate.h"
 #include "pipeline/reference_seams.h"
+#include "validate/gate.h"
 
 namespace dform {
 namespace {
 
-std::string sample(const std::string& name) { return std::string(DFORM_SAMPLES_DIR) + "/forward/" + name; }
+std::string sample(const std::string& name) {
+  return std::string(DFORM_SAMPLES_DIR) + "/forward/" + name;
+}
 
 ForwardRun runOk(const ForwardJob& job) {
   MessageSink sink;
@@ -28,7 +30,8 @@ ForwardRun runOk(const ForwardJob& job) {
   return run.isOk() ? std::move(run).value() : ForwardRun{};
 }
 
-ForwardJob job(const std::string& a, const std::string& b, int resolution = 60, double startB = 0.0) {
+ForwardJob job(const std::string& a, const std::string& b, int resolution = 60,
+               double startB = 0.0) {
   ForwardJob j;
   j.pieceA = sample(a);
   j.pieceB = sample(b);
@@ -44,9 +47,11 @@ void expectPapersFigures(const ForwardRun& run, const std::string& what) {
   EXPECT_LE(m.B_error, 1e-6) << what;
   EXPECT_EQ(m.flipped_2d + m.flipped_3d, 0) << what;
   // A D-Form, not a flat double disc: its depth is a good part of its width.
-  const double depth = std::max(run.model.a.shape.col(2).maxCoeff(), run.model.b.shape.col(2).maxCoeff()) -
-                       std::min(run.model.a.shape.col(2).minCoeff(), run.model.b.shape.col(2).minCoeff());
-  const double width = (run.model.a.shape.colwise().maxCoeff() - run.model.a.shape.colwise().minCoeff()).maxCoeff();
+  const double depth =
+      std::max(run.model.a.shape.col(2).maxCoeff(), run.model.b.shape.col(2).maxCoeff()) -
+      std::min(run.model.a.shape.col(2).minCoeff(), run.model.b.shape.col(2).minCoeff());
+  const double width =
+      (run.model.a.shape.colwise().maxCoeff() - run.model.a.shape.colwise().minCoeff()).maxCoeff();
   EXPECT_GT(depth, 0.15 * width) << what;
 }
 
@@ -85,24 +90,25 @@ TEST_P(SampleRuns, ReachThePapersFigures) {
   EXPECT_GE(run.timings.total, run.timings.solve);
 }
 
-INSTANTIATE_TEST_SUITE_P(Samples, SampleRuns,
-                         ::testing::Values(
-                             Case{"ellipses-a.svg", "ellipses-b.svg", 0.0, 3.605e-4, 2.010e-3, 5.931e-3},
-                             Case{"ellipses-a.svg", "ellipses-b.svg", 0.25, 3.864e-4, 2.382e-3, 5.853e-3},
-                             Case{"ellipses-a.svg", "ellipses-a.svg", 0.25, 3.892e-4, 2.391e-3, 5.454e-3},
-                             Case{"circle.svg", "square.svg", 0.0, 2.021e-3, 1.649e-2, 2.838e-2},
-                             Case{"circle.svg", "square.svg", 0.125, 2.084e-3, 1.674e-2, 2.634e-2},
-                             Case{"nonconvex-a.svg", "nonconvex-b.svg", 0.0, 2.010e-3, 1.331e-2, 3.857e-2},
-                             Case{"nonconvex-a.svg", "nonconvex-b.svg", 0.3, 2.036e-3, 1.370e-2, 3.399e-2}),
-                         [](const ::testing::TestParamInfo<Case>& info) {
-                           // "circle_square_at_125": the two files and B's starting fraction in 1/1000.
-                           std::string name = std::filesystem::path(info.param.a).stem().string() + "_" +
-                                              std::filesystem::path(info.param.b).stem().string() + "_at_" +
-                                              std::to_string(int(info.param.startB * 1000));
-                           for (char& c : name)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Samples, SampleRuns,
+    ::testing::Values(Case{"ellipses-a.svg", "ellipses-b.svg", 0.0, 3.605e-4, 2.010e-3, 5.931e-3},
+                      Case{"ellipses-a.svg", "ellipses-b.svg", 0.25, 3.864e-4, 2.382e-3, 5.853e-3},
+                      Case{"ellipses-a.svg", "ellipses-a.svg", 0.25, 3.892e-4, 2.391e-3, 5.454e-3},
+                      Case{"circle.svg", "square.svg", 0.0, 2.021e-3, 1.649e-2, 2.838e-2},
+                      Case{"circle.svg", "square.svg", 0.125, 2.084e-3, 1.674e-2, 2.634e-2},
+                      Case{"nonconvex-a.svg", "nonconvex-b.svg", 0.0, 2.010e-3, 1.331e-2, 3.857e-2},
+                      Case{"nonconvex-a.svg", "nonconvex-b.svg", 0.3, 2.036e-3, 1.370e-2,
+                           3.399e-2}),
+    [](const ::testing::TestParamInfo<Case>& info) {
+      // "circle_square_at_125": the two files and B's starting fraction in 1/1000.
+      std::string name = std::filesystem::path(info.param.a).stem().string() + "_" +
+                         std::filesystem::path(info.param.b).stem().string() + "_at_" +
+                         std::to_string(int(info.param.startB * 1000));
+      for (char& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+      return name;
+    });
 
 TEST(ForwardRun, ConvexPairLiesOnItsSeamsHull) {
   const ForwardRun run = runOk(job("ellipses-a.svg", "ellipses-b.svg"));
@@ -115,8 +121,8 @@ TEST(ForwardRun, ConvexPairLiesOnItsSeamsHull) {
 
 // A closed polygon as a JSON outline file in the test's scratch folder (mm).
 std::string polygonFile(const std::string& name, const std::vector<Eigen::Vector2d>& corners) {
-  const auto path = std::filesystem::temp_directory_path() /
-                    (name + "-" + std::to_string(::getpid()) + ".json");
+  const auto path =
+      std::filesystem::temp_directory_path() / (name + "-" + std::to_string(::getpid()) + ".json");
   std::ofstream out(path);
   out << "{\"points\": [";
   for (size_t i = 0; i < corners.size(); ++i)
@@ -139,7 +145,8 @@ std::vector<Eigen::Vector2d> regularPolygon(int sides, double perimeter) {
 // The hull check of a convex pair, with both flat seams judged convex (never "not convex").
 CheckResult hullOfConvexPair(const ForwardJob& j) {
   const ForwardRun run = runOk(j);
-  const CheckResult hull = *measureAndGate(run.model, GateLimits{}, nullptr).find("hull_distance_rel");
+  const CheckResult hull =
+      *measureAndGate(run.model, GateLimits{}, nullptr).find("hull_distance_rel");
   EXPECT_EQ(hull.detail.find("not convex"), std::string::npos) << hull.detail;
   return hull;
 }
@@ -153,8 +160,10 @@ TEST(ForwardRun, CornersMeetingSmoothPointsMustCreaseSoTheHullIsNotJudged) {
   squaricle.model = ModelChoice::Paper;
   const CheckResult square = hullOfConvexPair(squaricle);
   EXPECT_EQ(square.verdict, CheckResult::Verdict::NotRun);
-  EXPECT_NE(square.detail.find("piece B's corners at seam pairs "), std::string::npos) << square.detail;
-  EXPECT_NE(square.detail.find("meet smooth points of piece A"), std::string::npos) << square.detail;
+  EXPECT_NE(square.detail.find("piece B's corners at seam pairs "), std::string::npos)
+      << square.detail;
+  EXPECT_NE(square.detail.find("meet smooth points of piece A"), std::string::npos)
+      << square.detail;
   EXPECT_NE(square.detail.find("largest distance to the seam's convex hull"), std::string::npos)
       << square.detail;
 
@@ -189,7 +198,7 @@ TEST(ForwardRun, SquareCornersStayOnTheCutPattern) {
   const ForwardRun run = runOk(job("circle.svg", "square.svg", 60, 0.125));
   const Piece& b = run.model.b;
   for (const Eigen::Vector2d& corner : {Eigen::Vector2d(50, 50), Eigen::Vector2d(250, 50),
-                                       Eigen::Vector2d(250, 250), Eigen::Vector2d(50, 250)}) {
+                                        Eigen::Vector2d(250, 250), Eigen::Vector2d(50, 250)}) {
     double nearest = 1e9;
     for (int v : b.seam) nearest = std::min(nearest, (b.flat.row(v).transpose() - corner).norm());
     EXPECT_LT(nearest, 0.3) << corner.transpose();
@@ -226,7 +235,8 @@ TEST(ForwardRun, UnequalPerimetersStopOrFit) {
   unequal.fitPerimeter = true;
   const ForwardRun fitted = runOk(unequal);
   EXPECT_NEAR(fitted.scaleB, fitted.perimeterA / fitted.perimeterB, 1e-12);
-  EXPECT_NEAR(fitted.metrics.seam_length_a_mm, fitted.metrics.seam_length_b_mm, 1e-3 * fitted.perimeterA);
+  EXPECT_NEAR(fitted.metrics.seam_length_a_mm, fitted.metrics.seam_length_b_mm,
+              1e-3 * fitted.perimeterA);
 }
 
 TEST(ForwardRun, RunsAreReproducible) {
@@ -261,11 +271,15 @@ TEST(ForwardRun, TheInteriorEdgeFactorCoarsensTheInteriorOnly) {
   ASSERT_EQ(fine.modelUsed.name, "exact");
   ASSERT_EQ(coarse.modelUsed.name, "exact");
   ASSERT_EQ(coarse.model.a.seam.size(), fine.model.a.seam.size());
-  const double interiorFine = double(fine.model.a.flat.rows()) - 60, interiorCoarse = double(coarse.model.a.flat.rows()) - 60;
+  const double interiorFine = double(fine.model.a.flat.rows()) - 60,
+               interiorCoarse = double(coarse.model.a.flat.rows()) - 60;
   EXPECT_GT(interiorCoarse / interiorFine, 0.15);
   EXPECT_LT(interiorCoarse / interiorFine, 0.55);
   for (size_t i = 0; i < fine.model.a.seam.size(); ++i)
-    EXPECT_LT((coarse.model.a.shape.row(coarse.model.a.seam[i]) - fine.model.a.shape.row(fine.model.a.seam[i])).norm(), 1e-9)
+    EXPECT_LT((coarse.model.a.shape.row(coarse.model.a.seam[i]) -
+               fine.model.a.shape.row(fine.model.a.seam[i]))
+                  .norm(),
+              1e-9)
         << "seam vertex " << i;
   MessageSink sink;
   for (double factor : {0.2, 9.0, std::nan("")}) {
@@ -301,7 +315,8 @@ TEST(ForwardRun, InterruptionStopsTheSolve) {
   EXPECT_EQ(early.status().message(), "interrupted during the meshing");
   EXPECT_TRUE(stages.empty());
   // The exact engine has no iterations to report, and its result is not kept either.
-  const Result<ForwardRun> exact = runForward(job("ellipses-a.svg", "ellipses-b.svg", 40), sink, hooks);
+  const Result<ForwardRun> exact =
+      runForward(job("ellipses-a.svg", "ellipses-b.svg", 40), sink, hooks);
   ASSERT_FALSE(exact.isOk());
   EXPECT_EQ(exact.status().code(), ErrorCode::Interrupted);
   EXPECT_TRUE(stages.empty());
@@ -318,10 +333,14 @@ TEST(ForwardRun, AFailedAllocationOffersALowerResolution) {
   const Result<ForwardRun> run = runForward(paper, sink, hooks);
   EXPECT_EQ(run.status().code(), ErrorCode::Usage);
   const std::string message = run.status().message();
-  EXPECT_EQ(message.rfind(paper.pieceA + " and " + paper.pieceB + ": the run at resolution 60 ran out of memory", 0), 0u)
+  EXPECT_EQ(message.rfind(paper.pieceA + " and " + paper.pieceB +
+                              ": the run at resolution 60 ran out of memory",
+                          0),
+            0u)
       << message;
   std::smatch offered;
-  ASSERT_TRUE(std::regex_search(message, offered, std::regex("a resolution of ([0-9]+) or less fits")));
+  ASSERT_TRUE(
+      std::regex_search(message, offered, std::regex("a resolution of ([0-9]+) or less fits")));
   EXPECT_LT(std::stoi(offered[1]), 60);
 }
 

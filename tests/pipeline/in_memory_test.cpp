@@ -57,10 +57,12 @@ TEST(InMemory, PiecesWithoutAFileAreNamedByTheirRole) {
       << unequal.status().message();
 
   settings.fitPerimeter = true;  // B scaled to A: the D-Form of two equal circles
-  const Result<ForwardRun> fitted = makeDForm(ellipse(40, 40, 400), ellipse(45, 45, 400), settings, sink);
+  const Result<ForwardRun> fitted =
+      makeDForm(ellipse(40, 40, 400), ellipse(45, 45, 400), settings, sink);
   ASSERT_TRUE(fitted.isOk()) << fitted.status().message();
   EXPECT_NEAR(fitted.value().scaleB, 40.0 / 45.0, 1e-9);
-  EXPECT_NEAR(fitted.value().metrics.seam_length_a_mm, fitted.value().metrics.seam_length_b_mm, 1e-9);
+  EXPECT_NEAR(fitted.value().metrics.seam_length_a_mm, fitted.value().metrics.seam_length_b_mm,
+              1e-9);
 }
 
 TEST(InMemory, ACurveGivesThePiecesItsFileGives) {

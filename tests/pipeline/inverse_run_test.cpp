@@ -2,7 +2,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -13,13 +12,15 @@
 #include "core/polyline.h"
 #include "pipeline/forward_pipeline.h"
 #include "pipeline/inverse_pipeline.h"
-#include "validate/gate.h"
 #include "pipeline/reference_seams.h"
+#include "validate/gate.h"
 
 namespace dform {
 namespace {
 
-std::string sample(const std::string& name) { return std::string(DFORM_SAMPLES_DIR) + "/inverse/" + name; }
+std::string sample(const std::string& name) {
+  return std::string(DFORM_SAMPLES_DIR) + "/inverse/" + name;
+}
 
 class InverseSamples : public ::testing::TestWithParam<const char*> {};
 
@@ -78,7 +79,8 @@ TEST_P(InverseSamples, ReachThePapersFigures) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Samples, InverseSamples,
-                         ::testing::Values("tennis-ball.obj", "saddle.obj", "pushed-in.obj", "rotated.json"),
+                         ::testing::Values("tennis-ball.obj", "saddle.obj", "pushed-in.obj",
+                                           "rotated.json"),
                          [](const ::testing::TestParamInfo<const char*>& info) {
                            std::string name = info.param;  // "pushed-in.obj" -> "pushed_in_obj"
                            for (char& c : name)
@@ -112,7 +114,8 @@ TEST(InverseRun, ALongCurveIsSolvedCoarseToFineAndMeetsTheSameBars) {
     // The seam lies on the finest level's curve points, to the rounding of the solver's unit.
     double off = 0.0;
     for (std::size_t k = 0; k < p->seam.size(); ++k)
-      off = std::max(off, (p->shape.row(p->seam[k]) - run.target.points.row(Eigen::Index(k))).norm());
+      off =
+          std::max(off, (p->shape.row(p->seam[k]) - run.target.points.row(Eigen::Index(k))).norm());
     EXPECT_LT(off, 1e-9) << p->name;
   }
 }
@@ -121,7 +124,8 @@ TEST(InverseRun, ATooDeepDentIsNamedAsTheCauseOfTheFold) {
   // The pushed-in saddle (samples/inverse/generate.py) dented to 70 % of its radius: its filled
   // pre-D-Form cannot bend into a D-Form without folding (docs/inverse.md, Limits). The run says
   // so, naming the stretch inside the hull, and its figures show the fold for the gate.
-  const auto dir = std::filesystem::temp_directory_path() / ("dform_inverse_dent_" + std::to_string(getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("dform_inverse_dent_" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   const std::string path = (dir / "dent70.obj").string();
   {
@@ -131,7 +135,8 @@ TEST(InverseRun, ATooDeepDentIsNamedAsTheCauseOfTheFold) {
       const double t = 2 * M_PI * i / n, d = std::abs(std::remainder(t - M_PI / 4, 2 * M_PI));
       const double w = d < M_PI / 5 ? std::pow(std::cos(0.5 * M_PI * d / (M_PI / 5)), 2) : 0.0;
       const double r = 80.0 * (1.0 - 0.7 * w);
-      out << "v " << r * std::cos(t) << " " << r * std::sin(t) << " " << 40.0 * std::cos(2 * t) << "\n";
+      out << "v " << r * std::cos(t) << " " << r * std::sin(t) << " " << 40.0 * std::cos(2 * t)
+          << "\n";
     }
     out << "l";
     for (int i = 1; i <= n; ++i) out << " " << i;
@@ -145,15 +150,18 @@ TEST(InverseRun, ATooDeepDentIsNamedAsTheCauseOfTheFold) {
   ASSERT_TRUE(result.isOk()) << result.status().message();
   EXPECT_GT(result.value().metrics.flipped_3d, 0);
   EXPECT_FALSE(result.value().pre.onHull);
-  const auto named = std::find_if(sink.messages().begin(), sink.messages().end(), [](const Message& m) {
-    return m.level == Level::Warning && m.text.find("too deep to bend into a D-Form") != std::string::npos;
-  });
+  const auto named =
+      std::find_if(sink.messages().begin(), sink.messages().end(), [](const Message& m) {
+        return m.level == Level::Warning &&
+               m.text.find("too deep to bend into a D-Form") != std::string::npos;
+      });
   ASSERT_NE(named, sink.messages().end());
   EXPECT_NE(named->text.find("curve points 6-25"), std::string::npos) << named->text;
 }
 
 TEST(InverseRun, BadCurvesAreInputErrorsNamingTheFile) {
-  const auto dir = std::filesystem::temp_directory_path() / ("dform_inverse_bad_" + std::to_string(getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("dform_inverse_bad_" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   auto write = [&](const std::string& name, const std::string& text) {
     std::ofstream((dir / name).string()) << text;
@@ -163,7 +171,8 @@ TEST(InverseRun, BadCurvesAreInputErrorsNamingTheFile) {
       {"open.obj", "v 0 0 0\nv 10 0 1\nv 10 10 0\nv 0 10 1\nv -5 5 2\nl 1 2 3 4 5\n"},
       {"few.obj", "v 0 0 0\nv 10 0 1\nv 10 10 0\nl 1 2 3 1\n"},
       {"nan.json", R"({"points": [[0,0,0],[10,0,1],[10,10,"nan"],[0,10,1],[-5,5,2],[0,0,0]]})"},
-      {"repeated.obj", "v 0 0 0\nv 10 0 1\nv 10 0 1\nv 10 10 0\nv 0 10 1\nv -5 5 2\nl 1 2 3 4 5 6 1\n"},
+      {"repeated.obj",
+       "v 0 0 0\nv 10 0 1\nv 10 0 1\nv 10 10 0\nv 0 10 1\nv -5 5 2\nl 1 2 3 4 5 6 1\n"},
       {"crossing.obj", "v 0 0 0\nv 10 10 0\nv 10 0 0\nv 0 10 0\nv 5 5 0\nl 1 2 3 4 1\n"},
       {"planar.obj", "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\nv -5 5 0\nl 1 2 3 4 5 1\n"},
       {"faces.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\n"},

@@ -64,16 +64,16 @@ TEST(JobFile, NamedWeightsRoundTripThroughTheTables) {
   Job forward;
   forward.forward.pieceA = "a.svg";
   forward.forward.pieceB = "b.svg";
-  expectNamedWeightsRoundTrip(forward, forwardTerms(), +[](Job& job) -> ForwardWeights& {
-    return job.forward.solve.weights;
-  });
+  expectNamedWeightsRoundTrip(
+      forward, forwardTerms(),
+      +[](Job& job) -> ForwardWeights& { return job.forward.solve.weights; });
   EXPECT_FALSE(setNamedWeight(forward, "closeness", 1.0));
   Job inverse;
   inverse.mode = Job::Mode::Inverse;
   inverse.inverse.curve = "c.obj";
-  expectNamedWeightsRoundTrip(inverse, inverseTerms(), +[](Job& job) -> InverseWeights& {
-    return job.inverse.solve.weights;
-  });
+  expectNamedWeightsRoundTrip(
+      inverse, inverseTerms(),
+      +[](Job& job) -> InverseWeights& { return job.inverse.solve.weights; });
   EXPECT_FALSE(setNamedWeight(inverse, "seam", 1.0));
 }
 
@@ -81,17 +81,19 @@ TEST(JobFile, NamedWeightsRoundTripThroughTheTables) {
 // rows whose names were swapped fail here even though every table check above still holds.
 TEST(JobFile, EachWeightNameSetsItsOwnWeight) {
   const std::vector<std::pair<std::string, double ForwardWeights::*>> forwardNames = {
-      {"isometry", &ForwardWeights::isometry},   {"alignment", &ForwardWeights::alignment},
+      {"isometry", &ForwardWeights::isometry},        {"alignment", &ForwardWeights::alignment},
       {"boundary_fix", &ForwardWeights::boundaryFix}, {"smooth_3d", &ForwardWeights::smooth3d},
-      {"smooth_2d", &ForwardWeights::smooth2d},  {"seam", &ForwardWeights::seam}};
+      {"smooth_2d", &ForwardWeights::smooth2d},       {"seam", &ForwardWeights::seam}};
   for (const auto& [name, member] : forwardNames) {
     Job forward;  // a fresh one each time: a weight set by another name must not pass here
     ASSERT_TRUE(setNamedWeight(forward, name, 123.5)) << name;
     EXPECT_EQ(forward.forward.solve.weights.*member, 123.5) << name;
   }
   const std::vector<std::pair<std::string, double InverseWeights::*>> inverseNames = {
-      {"isometry", &InverseWeights::isometry}, {"closeness", &InverseWeights::closeness},
-      {"smooth_3d", &InverseWeights::smooth3d}, {"smooth_2d", &InverseWeights::smooth2d}};
+      {"isometry", &InverseWeights::isometry},
+      {"closeness", &InverseWeights::closeness},
+      {"smooth_3d", &InverseWeights::smooth3d},
+      {"smooth_2d", &InverseWeights::smooth2d}};
   for (const auto& [name, member] : inverseNames) {
     Job inverse;
     inverse.mode = Job::Mode::Inverse;

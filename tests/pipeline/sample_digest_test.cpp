@@ -98,7 +98,8 @@ TEST_P(SampleDigest, MatchesTheStoredDigest) {
   const fs::path out = dir_ / "out";
   const std::string command = std::string(DFORM_EXE) + (forward ? " run " : " inverse ") +
                               DFORM_SAMPLES_DIR + "/" + sample + " -q -o " + out.string() + " >" +
-                              (dir_ / "stdout.txt").string() + " 2>" + (dir_ / "stderr.txt").string();
+                              (dir_ / "stdout.txt").string() + " 2>" +
+                              (dir_ / "stderr.txt").string();
   const int status = std::system(command.c_str());
   ASSERT_TRUE(WIFEXITED(status)) << command;
   ASSERT_TRUE(fs::exists(out / "report.json")) << test::readText(dir_ / "stderr.txt");
@@ -106,13 +107,15 @@ TEST_P(SampleDigest, MatchesTheStoredDigest) {
   digest["exit_code"] = WEXITSTATUS(status);
 
   const fs::path stored = fs::path(DFORM_TEST_DATA_DIR) / "sample_digests" / digestName(sample);
-  if (const char* refresh = std::getenv("DFORM_REFRESH_DIGESTS"); refresh && std::string(refresh) == "1") {
+  if (const char* refresh = std::getenv("DFORM_REFRESH_DIGESTS");
+      refresh && std::string(refresh) == "1") {
     fs::create_directories(stored.parent_path());
     std::ofstream(stored) << digest.dump(2) << "\n";
     std::cout << "refreshed " << stored << "\n";
     return;
   }
-  ASSERT_TRUE(fs::exists(stored)) << stored << " is missing: refresh the digests (this file's header)";
+  ASSERT_TRUE(fs::exists(stored)) << stored
+                                  << " is missing: refresh the digests (this file's header)";
   const json expected = json::parse(std::ifstream(stored));
   EXPECT_EQ(digest["exit_code"], expected["exit_code"]);
   EXPECT_EQ(digest["gate_passed"], expected["gate_passed"]);
@@ -135,7 +138,8 @@ std::string testName(const ::testing::TestParamInfo<std::string>& info) {
   return name;
 }
 
-INSTANTIATE_TEST_SUITE_P(Shipped, SampleDigest, ::testing::ValuesIn(test::shippedSamples()), testName);
+INSTANTIATE_TEST_SUITE_P(Shipped, SampleDigest, ::testing::ValuesIn(test::shippedSamples()),
+                         testName);
 
 }  // namespace
 }  // namespace dform

@@ -11,14 +11,16 @@
 #include "core/polyline.h"
 #include "io/outline_reader.h"
 #include "pipeline/forward_pipeline.h"
+#include "pipeline/reference_seams.h"
 #include "validate/gate.h"
 #include "validate/metrics.h"
-#include "pipeline/reference_seams.h"
 
 namespace dform {
 namespace {
 
-std::string sample(const std::string& name) { return std::string(DFORM_SAMPLES_DIR) + "/forward/" + name; }
+std::string sample(const std::string& name) {
+  return std::string(DFORM_SAMPLES_DIR) + "/forward/" + name;
+}
 
 ForwardJob variantJob(const char* a, const char* b, JoinedBoundary joinA, JoinedBoundary joinB) {
   ForwardJob job;
@@ -48,8 +50,9 @@ double offDrawnLine(const Piece& piece, const std::vector<int>& loop, const Poin
   for (int v : loop) {
     double nearest = INFINITY;
     for (Eigen::Index i = 0; i < P.rows(); ++i)
-      nearest = std::min(nearest, distanceToSegment(Eigen::Vector2d(piece.flat.row(v)), Eigen::Vector2d(P.row(i)),
-                                                    Eigen::Vector2d(P.row((i + 1) % P.rows()))));
+      nearest = std::min(
+          nearest, distanceToSegment(Eigen::Vector2d(piece.flat.row(v)), Eigen::Vector2d(P.row(i)),
+                                     Eigen::Vector2d(P.row((i + 1) % P.rows()))));
     worst = std::max(worst, nearest);
   }
   return worst;
@@ -57,7 +60,9 @@ double offDrawnLine(const Piece& piece, const std::vector<int>& loop, const Poin
 
 // How far chord-loss compensated samples (spacing h) may straddle a drawn line whose tightest bend
 // has radius rMin: kappa h^2 / 24 (core/polyline.h), plus the flatten tolerance of the reading.
-double straddle(double h, double rMin) { return h * h / (24.0 * rMin) + OutlineReadOptions{}.flattenTolerance; }
+double straddle(double h, double rMin) {
+  return h * h / (24.0 * rMin) + OutlineReadOptions{}.flattenTolerance;
+}
 
 // The piece zips exactly the boundary the job chose, its other boundary stays free and uncut by
 // the seam, and both keep the drawn lines and lengths. `rMin` is the tightest bend of the joined
@@ -73,15 +78,18 @@ void expectJoined(const Piece& piece, const std::string& file, bool hole, double
   EXPECT_LT(offDrawnLine(piece, piece.seam, joined), straddle(h, rMin));
   // The joined boundary (a hole, for these variants) survives into the flat pattern with its
   // drawn length; so does the free outline.
-  EXPECT_NEAR(closedLength(loopPoints(piece.flat, piece.seam)), closedLength(joined), 2e-4 * closedLength(joined));
+  EXPECT_NEAR(closedLength(loopPoints(piece.flat, piece.seam)), closedLength(joined),
+              2e-4 * closedLength(joined));
   if (hole) {
     const Points2& outline = drawn.value().outer.points;
     const double edge = closedLength(outline) / double(piece.freeBoundaries[0].size());
-    EXPECT_LT(offDrawnLine(piece, piece.freeBoundaries[0], outline), straddle(edge, 80.0));  // circles of 80, 90 mm
-    EXPECT_NEAR(closedLength(loopPoints(piece.flat, piece.freeBoundaries[0])), closedLength(outline),
-                2e-4 * closedLength(outline));
+    EXPECT_LT(offDrawnLine(piece, piece.freeBoundaries[0], outline),
+              straddle(edge, 80.0));  // circles of 80, 90 mm
+    EXPECT_NEAR(closedLength(loopPoints(piece.flat, piece.freeBoundaries[0])),
+                closedLength(outline), 2e-4 * closedLength(outline));
     const std::set<int> seam(piece.seam.begin(), piece.seam.end());
-    for (int v : piece.freeBoundaries[0]) EXPECT_EQ(seam.count(v), 0u) << "the free outline is not zipped";
+    for (int v : piece.freeBoundaries[0])
+      EXPECT_EQ(seam.count(v), 0u) << "the free outline is not zipped";
   }
 }
 
@@ -95,23 +103,26 @@ void expectBars(const ForwardRun& run, double maxLmax) {
 
 TEST(Variants, AntiDFormZipsTheTwoHolesAndLeavesTheOutlinesFree) {
   MessageSink sink;
-  const ForwardRun run =
-      runOk(variantJob("anti-a.svg", "anti-b.svg", JoinedBoundary::Inner, JoinedBoundary::Inner), sink);
+  const ForwardRun run = runOk(
+      variantJob("anti-a.svg", "anti-b.svg", JoinedBoundary::Inner, JoinedBoundary::Inner), sink);
   expectBars(run, 0.03);
   // The holes' tightest bends: 25^2 / 50 mm at the ends of their long axes.
   expectJoined(run.model.a, sample("anti-a.svg"), true, 12.5);
   expectJoined(run.model.b, sample("anti-b.svg"), true, 12.5);
-  EXPECT_TRUE(said(sink, "outline 502.655 mm, hole 242.211 mm; joining its hole, its outline stays free"));
+  EXPECT_TRUE(
+      said(sink, "outline 502.655 mm, hole 242.211 mm; joining its hole, its outline stays free"));
   // The brims swing out of the plane: no flat washer pair.
-  const double depth = std::max(run.model.a.shape.col(2).maxCoeff(), run.model.b.shape.col(2).maxCoeff()) -
-                       std::min(run.model.a.shape.col(2).minCoeff(), run.model.b.shape.col(2).minCoeff());
+  const double depth =
+      std::max(run.model.a.shape.col(2).maxCoeff(), run.model.b.shape.col(2).maxCoeff()) -
+      std::min(run.model.a.shape.col(2).minCoeff(), run.model.b.shape.col(2).minCoeff());
   EXPECT_GT(depth, 20.0);
 }
 
 TEST(Variants, DemiDFormZipsADiscIntoAHole) {
   MessageSink sink;
-  const ForwardRun run =
-      runOk(variantJob("demi-disc.svg", "demi-ring.svg", JoinedBoundary::Outer, JoinedBoundary::Inner), sink);
+  const ForwardRun run = runOk(
+      variantJob("demi-disc.svg", "demi-ring.svg", JoinedBoundary::Outer, JoinedBoundary::Inner),
+      sink);
   expectBars(run, 0.05);
   expectJoined(run.model.a, sample("demi-disc.svg"), false, 43.4);
   expectJoined(run.model.b, sample("demi-ring.svg"), true, 30.0 * 30.0 / 55.0);
@@ -123,7 +134,8 @@ TEST(Variants, DemiDFormZipsADiscIntoAHole) {
 
 TEST(Variants, CreasedSquaricleFoldsSharplyAlongItsCreases) {
   MessageSink sink;
-  ForwardJob job = variantJob("squaricle-disc.svg", "squaricle-square.svg", JoinedBoundary::Outer, JoinedBoundary::Outer);
+  ForwardJob job = variantJob("squaricle-disc.svg", "squaricle-square.svg", JoinedBoundary::Outer,
+                              JoinedBoundary::Outer);
   job.resolution = 60;  // at 40 the disc's flaps are too coarse for the curvature limit
   job.startA.nearestToPoint = job.startB.nearestToPoint = true;
   job.startA.point = {125.015816, 125.015816};  // a crease end
@@ -165,7 +177,8 @@ TEST(Variants, TheJoinMustFitThePieces) {
   Result<ForwardRun> run = runForward(holeOfADisc, sink);
   ASSERT_FALSE(run.isOk());
   EXPECT_EQ(run.status().code(), ErrorCode::InputInvalid);
-  EXPECT_NE(run.status().message().find("demi-disc.svg: --join inner needs a piece with exactly one hole"),
+  EXPECT_NE(run.status().message().find(
+                "demi-disc.svg: --join inner needs a piece with exactly one hole"),
             std::string::npos)
       << run.status().message();
 
@@ -173,15 +186,18 @@ TEST(Variants, TheJoinMustFitThePieces) {
       variantJob("demi-disc.svg", "demi-ring.svg", JoinedBoundary::Outer, JoinedBoundary::Outer);
   run = runForward(outlineOfARing, sink);
   ASSERT_FALSE(run.isOk());
-  EXPECT_NE(run.status().message().find("demi-ring.svg: the outline has 1 hole(s)"), std::string::npos);
+  EXPECT_NE(run.status().message().find("demi-ring.svg: the outline has 1 hole(s)"),
+            std::string::npos);
   EXPECT_NE(run.status().message().find("--join"), std::string::npos);
 
   // Joined boundaries of unequal length: the anti ring's hole is 242 mm, the demi disc 273 mm.
-  const ForwardJob unequal = variantJob("demi-disc.svg", "anti-b.svg", JoinedBoundary::Outer, JoinedBoundary::Inner);
+  const ForwardJob unequal =
+      variantJob("demi-disc.svg", "anti-b.svg", JoinedBoundary::Outer, JoinedBoundary::Inner);
   run = runForward(unequal, sink);
   ASSERT_FALSE(run.isOk());
   EXPECT_EQ(run.status().code(), ErrorCode::InputInvalid);
-  EXPECT_NE(run.status().message().find("the joined boundaries' lengths differ (272.8"), std::string::npos)
+  EXPECT_NE(run.status().message().find("the joined boundaries' lengths differ (272.8"),
+            std::string::npos)
       << run.status().message();
 }
 
@@ -192,7 +208,8 @@ TEST(Variants, JoinTextAndDefaultWeights) {
   EXPECT_EQ(b, JoinedBoundary::Outer);
   for (const char* bad : {"inner", "inner,", "outer,middle", "outer,inner,outer", ""})
     EXPECT_FALSE(parseJoin(bad, a, b)) << bad;
-  EXPECT_EQ(defaultWeights(JoinedBoundary::Outer, JoinedBoundary::Outer).smooth3d, ForwardWeights{}.smooth3d);
+  EXPECT_EQ(defaultWeights(JoinedBoundary::Outer, JoinedBoundary::Outer).smooth3d,
+            ForwardWeights{}.smooth3d);
   EXPECT_EQ(defaultWeights(JoinedBoundary::Outer, JoinedBoundary::Inner).smooth3d, 0.001);
 }
 

@@ -1,8 +1,8 @@
 // report.html's pictures, read back as numbers: the 3D view's projection and scale, the
 // curvature colours, and the convergence plot's log axis.
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <iterator>
 #include <regex>
@@ -11,10 +11,10 @@
 #include <utility>
 #include <vector>
 
+#include "core/shape_projection.h"
 #include "minimal_report.h"
 #include "models.h"
 #include "report/convergence_plot.h"
-#include "core/shape_projection.h"
 #include "report/html_report.h"
 #include "report/views.h"
 #include "validate/metrics.h"
@@ -91,7 +91,7 @@ TEST(ReportViews, AClosedShapeDrawsOnlyTheFacesTurnedToTheViewer) {
 // 2 S / c^2 = 20k for its area S), its outline within a cell of the solved one's; a coarse mesh
 // has every face drawn, on its own vertices.
 TEST(ReportViews, AFineMeshIsDrawnOnAboutTwentyThousandFaces) {
-  DForm fine = test::tetraDForm(150);  // 90k faces
+  DForm fine = test::tetraDForm(150);                                          // 90k faces
   fine.a.freeBoundaries = {{fine.a.seam[0], fine.a.seam[1], fine.a.seam[2]}};  // open: all drawn
   const ShapeCamera camera(30, 25);
   const std::vector<SeenFace> drawn = paintersFaces(fine, camera);
@@ -102,8 +102,11 @@ TEST(ReportViews, AFineMeshIsDrawnOnAboutTwentyThousandFaces) {
   for (const Piece* p : {&fine.a, &fine.b})
     for (Eigen::Index f = 0; f < p->F.rows(); ++f) {
       const Eigen::Vector3d q0 = p->shape.row(p->F(f, 0)).transpose();
-      area += 0.5 * (p->shape.row(p->F(f, 1)).transpose() - q0).cross(p->shape.row(p->F(f, 2)).transpose() - q0).norm();
-      for (int k = 0; k < 3; ++k) solved.extend(camera.screen(p->shape.row(p->F(f, k)).transpose()).head<2>());
+      area += 0.5 * (p->shape.row(p->F(f, 1)).transpose() - q0)
+                        .cross(p->shape.row(p->F(f, 2)).transpose() - q0)
+                        .norm();
+      for (int k = 0; k < 3; ++k)
+        solved.extend(camera.screen(p->shape.row(p->F(f, k)).transpose()).head<2>());
     }
   for (const SeenFace& f : drawn)
     for (const Eigen::Vector2d& c : f.corners) seen.extend(c);
@@ -271,7 +274,8 @@ TEST(ReportHtml, ANotJsonReportIsAnUnreadableInputNamingIt) {
   ReportSources sources;
   sources.reportJson = "{\"mode\": ";
   sources.reportPath = "out/report.json";
-  const Result<std::string> html = renderReportHtml(sources, test::tetraDForm(6), DFORM_TEMPLATES_DIR);
+  const Result<std::string> html =
+      renderReportHtml(sources, test::tetraDForm(6), DFORM_TEMPLATES_DIR);
   ASSERT_FALSE(html.isOk());
   EXPECT_EQ(html.status().code(), ErrorCode::InputUnreadable);
   EXPECT_EQ(html.status().message().rfind("out/report.json: not valid JSON", 0), 0u)
@@ -306,8 +310,7 @@ TEST(ReportHtml, ShowsTheAssemblyPageWhenTheResultHasOne) {
             std::string::npos)
       << "the page inline, without its XML declaration";
   EXPECT_EQ(html.find("<?xml"), std::string::npos);
-  EXPECT_EQ(reportHtml(test::tetraDForm(6)).find("<h2>Assembly</h2>"),
-            std::string::npos);
+  EXPECT_EQ(reportHtml(test::tetraDForm(6)).find("<h2>Assembly</h2>"), std::string::npos);
 }
 
 TEST(ReportPlot, DecadesAreEvenlySpacedAndZerosAreLeftOut) {

@@ -33,7 +33,7 @@ namespace fs = std::filesystem;
 using test::readText;
 
 constexpr int kWidth = 800, kHeight = 480;  // the window: the view fills it (#view3d)
-constexpr int kBar = 40;                     // the buttons along its bottom, left out of the count
+constexpr int kBar = 40;                    // the buttons along its bottom, left out of the count
 
 // A tall disphenoid (both pieces in the first view) with B puffed out, the more the farther from
 // its seam: B is coloured by curvature, A white.
@@ -43,7 +43,8 @@ DForm curvedModel() {
   Eigen::VectorXd fromSeam(b.flat.rows());
   for (Eigen::Index v = 0; v < b.flat.rows(); ++v) {
     fromSeam(v) = std::numeric_limits<double>::infinity();
-    for (int s : b.seam) fromSeam(v) = std::min(fromSeam(v), (b.flat.row(v) - b.flat.row(s)).norm());
+    for (int s : b.seam)
+      fromSeam(v) = std::min(fromSeam(v), (b.flat.row(v) - b.flat.row(s)).norm());
   }
   for (Eigen::Index v = 0; v < b.flat.rows(); ++v)
     b.shape.row(v) *= 1.0 + 0.2 * std::sin(0.5 * M_PI * fromSeam(v) / fromSeam.maxCoeff());
@@ -94,12 +95,14 @@ Reference rasterise(const DForm& model) {
         z[k] = view.camera.screen(q).z();
         t[k] = maps.piece[piece](p.F(f, k)) / maps.scale;
       }
-      const double det = (c[1] - c[0]).x() * (c[2] - c[0]).y() - (c[1] - c[0]).y() * (c[2] - c[0]).x();
+      const double det =
+          (c[1] - c[0]).x() * (c[2] - c[0]).y() - (c[1] - c[0]).y() * (c[2] - c[0]).x();
       if (std::abs(det) < 1e-12) continue;
       const int x0 = std::max(0, int(std::floor(std::min({c[0].x(), c[1].x(), c[2].x()}))));
       const int x1 = std::min(kWidth - 1, int(std::ceil(std::max({c[0].x(), c[1].x(), c[2].x()}))));
       const int y0 = std::max(0, int(std::floor(std::min({c[0].y(), c[1].y(), c[2].y()}))));
-      const int y1 = std::min(kHeight - 1, int(std::ceil(std::max({c[0].y(), c[1].y(), c[2].y()}))));
+      const int y1 =
+          std::min(kHeight - 1, int(std::ceil(std::max({c[0].y(), c[1].y(), c[2].y()}))));
       for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x) {
           const Eigen::Vector2d w = Eigen::Vector2d(x + 0.5, y + 0.5) - c[0];
@@ -174,10 +177,10 @@ class ViewerTest : public ::testing::Test {
   // Chromium on report.html + `hash` with `action`; its output. Fails on any console message.
   std::string chromium(const std::string& action, const std::string& hash) {
     const fs::path out = dir_ / "out.txt", log = dir_ / "chromium.log";
-    const int code = test::runChromium(action + " --window-size=" + std::to_string(kWidth) + "," +
-                                           std::to_string(kHeight),
-                                       "file://" + (dir_ / "report.html").string() + hash,
-                                       (dir_ / "profile").string(), out.string(), log.string());
+    const int code = test::runChromium(
+        action + " --window-size=" + std::to_string(kWidth) + "," + std::to_string(kHeight),
+        "file://" + (dir_ / "report.html").string() + hash, (dir_ / "profile").string(),
+        out.string(), log.string());
     EXPECT_EQ(code, 0) << readText(log);
     EXPECT_EQ(readText(log).find("CONSOLE"), std::string::npos) << readText(log);
     return readText(out);
@@ -187,9 +190,11 @@ class ViewerTest : public ::testing::Test {
   // buttons: the surface's pixels where the reference has the surface (and no others), and their
   // warmth (+1 warm, -1 cool, 0 neutral) as `expected` says for the reference's piece and t there,
   // judged for each warmth apart, so that a small coloured region counts as much as a large white
-  // one. `skip`: no expectation at that pixel. Returns how many pixels of each warmth were compared.
-  std::array<long, 3> compareScreenshot(const std::string& hash, const Reference& reference,
-                         const std::function<int(int piece, double t, bool& skip)>& expected) {
+  // one. `skip`: no expectation at that pixel. Returns how many pixels of each warmth were
+  // compared.
+  std::array<long, 3> compareScreenshot(
+      const std::string& hash, const Reference& reference,
+      const std::function<int(int piece, double t, bool& skip)>& expected) {
     const fs::path png = dir_ / ("screenshot-" + hash.substr(1) + ".png");
     chromium("--screenshot=" + png.string(), hash);
     int width = 0, height = 0;
@@ -232,16 +237,14 @@ TEST_F(ViewerTest, FirstViewMatchesTheReferenceInPieceAndCurvatureColours) {
   writeReport(model, {});
   const std::string dom = chromium("--dump-dom", "#view3d");
   std::smatch status;
-  ASSERT_TRUE(std::regex_search(dom, status, std::regex("data-viewer=\"([^\"]*)\""))) << dom.substr(0, 500);
-  EXPECT_EQ(status[1].str(),
-            "ok triangles=" + std::to_string(model.a.F.rows() + model.b.F.rows()) +
-                " ticks=0 colours=curvature");
+  ASSERT_TRUE(std::regex_search(dom, status, std::regex("data-viewer=\"([^\"]*)\"")))
+      << dom.substr(0, 500);
+  EXPECT_EQ(status[1].str(), "ok triangles=" + std::to_string(model.a.F.rows() + model.b.F.rows()) +
+                                 " ticks=0 colours=curvature");
 
   // Enough of each kind in sight that a view without them fails: A and B; white and red.
-  const std::array<long, 3> pieces =
-      compareScreenshot("#view3d-pieces", reference, [](int piece, double, bool&) {
-        return piece == 0 ? 1 : -1;
-      });
+  const std::array<long, 3> pieces = compareScreenshot(
+      "#view3d-pieces", reference, [](int piece, double, bool&) { return piece == 0 ? 1 : -1; });
   EXPECT_GT(pieces[0], 2000);
   EXPECT_GT(pieces[2], 2000);
   const std::array<long, 3> curvature =
@@ -265,11 +268,14 @@ TEST_F(ViewerTest, TickNumbersSitAtTheirSeamPoints) {
   EXPECT_NE(dom.find("ticks=4 "), std::string::npos);
   // --dump-dom lays the page out in a window shorter than --window-size: the canvas says how big.
   std::smatch size;
-  ASSERT_TRUE(std::regex_search(dom, size, std::regex("id=\"viewer-canvas\" width=\"([0-9]+)\" height=\"([0-9]+)\"")));
+  ASSERT_TRUE(std::regex_search(
+      dom, size, std::regex("id=\"viewer-canvas\" width=\"([0-9]+)\" height=\"([0-9]+)\"")));
   const Projection view(model, std::stoi(size[1]), std::stoi(size[2]));
-  const std::regex label("<span class=\"[a-z]*\" style=\"left: ([-0-9.]+)px; top: ([-0-9.]+)px;\">([^<]*)</span>");
+  const std::regex label(
+      "<span class=\"[a-z]*\" style=\"left: ([-0-9.]+)px; top: ([-0-9.]+)px;\">([^<]*)</span>");
   size_t found = 0;
-  for (auto it = std::sregex_iterator(dom.begin(), dom.end(), label); it != std::sregex_iterator(); ++it, ++found) {
+  for (auto it = std::sregex_iterator(dom.begin(), dom.end(), label); it != std::sregex_iterator();
+       ++it, ++found) {
     ASSERT_LT(found, ticks.size());
     EXPECT_EQ((*it)[3].str(), ticks[found].label);
     const Eigen::Vector2d expected = view.pixel(ticks[found].at);

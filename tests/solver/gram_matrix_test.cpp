@@ -17,7 +17,8 @@ Eigen::SparseMatrix<double> randomSparse(int rows, int cols, int perRow, unsigne
   std::uniform_real_distribution<double> value(-1.0, 1.0);
   std::vector<Eigen::Triplet<double>> entries;
   for (int r = 0; r < rows; ++r)
-    for (int k = 0; k < perRow; ++k) entries.emplace_back(r, int(rng() % unsigned(cols)), value(rng));
+    for (int k = 0; k < perRow; ++k)
+      entries.emplace_back(r, int(rng() % unsigned(cols)), value(rng));
   Eigen::SparseMatrix<double> M(rows, cols);
   M.setFromTriplets(entries.begin(), entries.end());
   return M;
@@ -35,9 +36,12 @@ TEST(GramMatrix, IsEigensProductBitForBit) {
     ASSERT_TRUE(gram.isCompressed());
     ASSERT_EQ(gram.rows(), cols);
     ASSERT_EQ(gram.nonZeros(), expected.nonZeros());
-    EXPECT_EQ(0, std::memcmp(gram.outerIndexPtr(), expected.outerIndexPtr(), sizeof(int) * std::size_t(cols + 1)));
-    EXPECT_EQ(0, std::memcmp(gram.innerIndexPtr(), expected.innerIndexPtr(), sizeof(int) * std::size_t(gram.nonZeros())));
-    EXPECT_EQ(0, std::memcmp(gram.valuePtr(), expected.valuePtr(), sizeof(double) * std::size_t(gram.nonZeros())));
+    EXPECT_EQ(0, std::memcmp(gram.outerIndexPtr(), expected.outerIndexPtr(),
+                             sizeof(int) * std::size_t(cols + 1)));
+    EXPECT_EQ(0, std::memcmp(gram.innerIndexPtr(), expected.innerIndexPtr(),
+                             sizeof(int) * std::size_t(gram.nonZeros())));
+    EXPECT_EQ(0, std::memcmp(gram.valuePtr(), expected.valuePtr(),
+                             sizeof(double) * std::size_t(gram.nonZeros())));
   }
 }
 

@@ -181,7 +181,8 @@ TEST(Solver, AStepTooLongForTheValleyIsShortenedAlongItNotRefused) {
     if (!(it.acceleration > options.maxAccelerationRatio) || !it.accepted) continue;
     ++shortened;
     EXPECT_GT(it.costChange, 0.0);
-    EXPECT_NEAR(summary.iterations[i + 1].damping, it.damping * it.acceleration / options.maxAccelerationRatio,
+    EXPECT_NEAR(summary.iterations[i + 1].damping,
+                it.damping * it.acceleration / options.maxAccelerationRatio,
                 1e-12 * summary.iterations[i + 1].damping);
   }
   EXPECT_GT(shortened, 0);
@@ -204,7 +205,8 @@ TEST(Solver, ARefusedStepIsNeverTakenAndTheSolveStopsAtTheBoundary) {
   EXPECT_GT(asked, 0);
   EXPECT_EQ(fromOutside, 0);
   EXPECT_LE(x[0], 0.5);
-  // It got close to the boundary: the cost at the constrained minimum (x[0] = 0.5, y = 0.25) is 0.25.
+  // It got close to the boundary: the cost at the constrained minimum (x[0] = 0.5, y = 0.25) is
+  // 0.25.
   EXPECT_LT(summary.finalCost, 0.25 + 0.05);
   // Unconstrained, the same solve crosses the boundary to the minimum.
   Eigen::VectorXd free = rosenbrockStart();

@@ -51,8 +51,8 @@ SparseLower lowerOf(const Eigen::SparseMatrix<double>& A) {
   return lower;
 }
 
-double relativeResidual(const Eigen::SparseMatrix<double>& A, double shift, const Eigen::MatrixXd& X,
-                        const Eigen::MatrixXd& B) {
+double relativeResidual(const Eigen::SparseMatrix<double>& A, double shift,
+                        const Eigen::MatrixXd& X, const Eigen::MatrixXd& B) {
   return (A * X + shift * X - B).norm() / B.norm();
 }
 
@@ -71,7 +71,8 @@ TEST(SupernodalCholesky, SolvesAMeshShapedSystemToRounding) {
     const Eigen::MatrixXd X = factor.solve(B);
     EXPECT_LT(relativeResidual(A, 0.0, X, B), 1e-10);
     // One column at a time gives the same answer as the three together.
-    for (int c = 0; c < 3; ++c) EXPECT_LT((factor.solve(B.col(c)) - X.col(c)).norm(), 1e-12 * X.norm());
+    for (int c = 0; c < 3; ++c)
+      EXPECT_LT((factor.solve(B.col(c)) - X.col(c)).norm(), 1e-12 * X.norm());
     EXPECT_GT(factor.factorFlops(), 0.0);
     EXPECT_GE(factor.factorNonZeros(), double(lower.nonZeros()));
   }

@@ -25,14 +25,17 @@ std::string readAll(const fs::path& path) {
 void unzip(const std::string& zip, const fs::path& dir) {
   fs::create_directories(dir);
   std::ofstream(dir / "download.zip", std::ios::binary) << zip;
-  const std::string command = std::string(DFORM_PYTHON3) + " -c \"import zipfile,sys; zipfile.ZipFile(sys.argv[1]).extractall(sys.argv[2])\" " +
-                              (dir / "download.zip").string() + " " + dir.string();
+  const std::string command =
+      std::string(DFORM_PYTHON3) +
+      " -c \"import zipfile,sys; zipfile.ZipFile(sys.argv[1]).extractall(sys.argv[2])\" " +
+      (dir / "download.zip").string() + " " + dir.string();
   ASSERT_EQ(std::system(command.c_str()), 0);
   fs::remove(dir / "download.zip");
 }
 
 struct StudioDownloads : ::testing::Test {
-  fs::path dir = fs::temp_directory_path() / ("dform-studio-downloads-" + std::to_string(::getpid()));
+  fs::path dir =
+      fs::temp_directory_path() / ("dform-studio-downloads-" + std::to_string(::getpid()));
   void SetUp() override { fs::remove_all(dir); }
   void TearDown() override { fs::remove_all(dir); }
 };
@@ -41,14 +44,23 @@ TEST_F(StudioDownloads, SavedJobRunsToTheSameFiguresAndExportToTheSameFiles) {
   test::StudioClient c;
   const std::string session = c.session();
   // Piece B a rounded rectangle: the zip carries its generated text, which the run reads.
-  ASSERT_EQ(c.post("/api/parametric", {{"session", session}, {"piece", "b"}, {"kind", "superellipse"},
-                                        {"values", {{"a", 105}, {"b", 80}, {"exponent", 2.5}}}}).first, 200);
-  const json settings = {{"session", session}, {"start_a", 0.05}, {"start_b", 0.3125}, {"flip", true}, {"resolution", 80}};
+  ASSERT_EQ(c.post("/api/parametric", {{"session", session},
+                                       {"piece", "b"},
+                                       {"kind", "superellipse"},
+                                       {"values", {{"a", 105}, {"b", 80}, {"exponent", 2.5}}}})
+                .first,
+            200);
+  const json settings = {{"session", session},
+                         {"start_a", 0.05},
+                         {"start_b", 0.3125},
+                         {"flip", true},
+                         {"resolution", 80}};
   test::EventReader events(c, session);
   auto solved = c.post("/api/solve", settings);
   ASSERT_EQ(solved.first, 200);
   ASSERT_FALSE(solved.second.contains("error")) << solved.second;
-  const json verdict = events.waitFor("result", std::chrono::seconds(120));  // the job's mesh, measured
+  const json verdict =
+      events.waitFor("result", std::chrono::seconds(120));  // the job's mesh, measured
   ASSERT_FALSE(verdict.is_null());
 
   auto job = c.raw().Post("/api/job", c.headers(), settings.dump(), "application/json");
@@ -56,21 +68,27 @@ TEST_F(StudioDownloads, SavedJobRunsToTheSameFiguresAndExportToTheSameFiles) {
   EXPECT_EQ(job->get_header_value("Content-Type"), "application/zip");
   unzip(job->body, dir / "job");
   ASSERT_TRUE(fs::exists(dir / "job" / "job.json"));
-  const std::string run = std::string(DFORM_BINARY) + " run " + (dir / "job" / "job.json").string() + " -o " +
-                          (dir / "cli").string() + " --quiet > " + (dir / "run.log").string() + " 2>&1";
+  const std::string run = std::string(DFORM_BINARY) + " run " +
+                          (dir / "job" / "job.json").string() + " -o " + (dir / "cli").string() +
+                          " --quiet > " + (dir / "run.log").string() + " 2>&1";
   ASSERT_EQ(std::system(run.c_str()), 0) << readAll(dir / "run.log");
   const json report = json::parse(readAll(dir / "cli" / "report.json"));
-  for (const char* figure : {"L_error", "L_max", "B_error", "seam_gap_mm", "gauss_max", "seam_length_3d_mm"})
-    EXPECT_DOUBLE_EQ(report["metrics"][figure].get<double>(), verdict["figures"][figure].get<double>()) << figure;
+  for (const char* figure :
+       {"L_error", "L_max", "B_error", "seam_gap_mm", "gauss_max", "seam_length_3d_mm"})
+    EXPECT_DOUBLE_EQ(report["metrics"][figure].get<double>(),
+                     verdict["figures"][figure].get<double>())
+        << figure;
 
   json exportRequest = settings;
   exportRequest["profile"] = "laser";
-  auto exported = c.raw().Post("/api/export", c.headers(), exportRequest.dump(), "application/json");
+  auto exported =
+      c.raw().Post("/api/export", c.headers(), exportRequest.dump(), "application/json");
   ASSERT_EQ(exported->status, 200) << exported->body;
   unzip(exported->body, dir / "export");
   for (const char* file : {"pattern.svg", "pattern.dxf", "assembly.svg", "pattern.json"}) {
     ASSERT_TRUE(fs::exists(dir / "export" / file)) << file;
-    EXPECT_EQ(readAll(dir / "export" / file), readAll(dir / "cli" / file)) << file << " differs from the CLI's";
+    EXPECT_EQ(readAll(dir / "export" / file), readAll(dir / "cli" / file))
+        << file << " differs from the CLI's";
   }
   EXPECT_TRUE(fs::exists(dir / "export" / "report.html"));
   EXPECT_TRUE(fs::exists(dir / "export" / "pattern.pdf"));
@@ -81,7 +99,8 @@ TEST_F(StudioDownloads, ExportRefusesUnknownProfilesWithAJsonError) {
   auto r = c.post("/api/export", {{"session", c.session()}, {"profile", "../../etc/passwd"}});
   EXPECT_EQ(r.first, 400);
   EXPECT_TRUE(r.second.contains("error"));
-  auto page = c.post("/api/export", {{"session", c.session()}, {"profile", "print"}, {"page", "Z9"}});
+  auto page =
+      c.post("/api/export", {{"session", c.session()}, {"profile", "print"}, {"page", "Z9"}});
   EXPECT_EQ(page.first, 400);
   EXPECT_NE(page.second["error"].get<std::string>().find("page"), std::string::npos) << page.second;
 }

@@ -19,14 +19,16 @@ namespace fs = std::filesystem;
 
 TEST(StudioZip, PythonReadsTheArchiveBack) {
   const std::string binary("\x00\x01\xff\r\n", 5);
-  const std::string zip = studio::storedZip({{"job.json", "{}\n"}, {"result/pattern.svg", "<svg/>"}, {"bin", binary}});
+  const std::string zip =
+      studio::storedZip({{"job.json", "{}\n"}, {"result/pattern.svg", "<svg/>"}, {"bin", binary}});
   const fs::path path = fs::temp_directory_path() / "dform-studio-zip-test.zip";
   std::ofstream(path, std::ios::binary) << zip;
-  const std::string check = std::string(DFORM_PYTHON3) +
-                            " -c \"import zipfile,sys; z=zipfile.ZipFile(sys.argv[1]); assert z.testzip() is None; "
-                            "assert z.namelist()==['job.json','result/pattern.svg','bin'], z.namelist(); "
-                            "assert z.read('bin')==bytes([0,1,255,13,10]); assert z.read('job.json')==b'{}\\\\n'\" " +
-                            path.string();
+  const std::string check =
+      std::string(DFORM_PYTHON3) +
+      " -c \"import zipfile,sys; z=zipfile.ZipFile(sys.argv[1]); assert z.testzip() is None; "
+      "assert z.namelist()==['job.json','result/pattern.svg','bin'], z.namelist(); "
+      "assert z.read('bin')==bytes([0,1,255,13,10]); assert z.read('job.json')==b'{}\\\\n'\" " +
+      path.string();
   EXPECT_EQ(std::system(check.c_str()), 0);
   fs::remove(path);
 }
@@ -48,9 +50,21 @@ TEST(StudioGuard, TokenHostAndOrigin) {
   EXPECT_NE(with([](auto& r) { r.queryToken = ""; }), "");
   EXPECT_NE(with([&](auto& r) { r.queryToken = token.substr(1) + "0"; }), "");
   EXPECT_NE(with([&](auto& r) { r.queryToken = token + "0"; }), "");
-  EXPECT_EQ(with([&](auto& r) { r.queryToken = ""; r.headerToken = token; }), "");
-  EXPECT_EQ(with([&](auto& r) { r.queryToken = ""; r.cookie = "a=b; dform_studio_8000=" + token; }), "");
-  EXPECT_NE(with([&](auto& r) { r.queryToken = ""; r.cookie = "dform_studio_8001=" + token; }), "");
+  EXPECT_EQ(with([&](auto& r) {
+              r.queryToken = "";
+              r.headerToken = token;
+            }),
+            "");
+  EXPECT_EQ(with([&](auto& r) {
+              r.queryToken = "";
+              r.cookie = "a=b; dform_studio_8000=" + token;
+            }),
+            "");
+  EXPECT_NE(with([&](auto& r) {
+              r.queryToken = "";
+              r.cookie = "dform_studio_8001=" + token;
+            }),
+            "");
   EXPECT_EQ(with([](auto& r) { r.host = "localhost:8000"; }), "");
   EXPECT_EQ(with([](auto& r) { r.host = "[::1]:8000"; }), "");
   EXPECT_NE(with([](auto& r) { r.host = "127.0.0.1"; }), "");
@@ -90,14 +104,17 @@ TEST(StudioOutlines, EveryKindReadsAtEveryExtreme) {
       settings.push_back({{p.name, p.max}});
     }
     for (const auto& values : settings) {
-      Result<Shape2> shape = parseShape(studio::parametricOutline(kind.name, values), kind.name + ".json");
+      Result<Shape2> shape =
+          parseShape(studio::parametricOutline(kind.name, values), kind.name + ".json");
       EXPECT_TRUE(shape.isOk()) << kind.name << ": " << shape.status().message();
     }
   }
   auto perimeter = [](const std::string& kind, std::map<std::string, double> values) {
-    const Points2 p = parseShape(studio::parametricOutline(kind, values), "x.json").value().outer.points;
+    const Points2 p =
+        parseShape(studio::parametricOutline(kind, values), "x.json").value().outer.points;
     double length = 0;
-    for (Eigen::Index i = 0; i < p.rows(); ++i) length += (p.row((i + 1) % p.rows()) - p.row(i)).norm();
+    for (Eigen::Index i = 0; i < p.rows(); ++i)
+      length += (p.row((i + 1) % p.rows()) - p.row(i)).norm();
     return length;
   };
   const double pi = std::acos(-1.0);

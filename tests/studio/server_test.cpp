@@ -6,9 +6,9 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <sstream>
 #include <thread>
 
 #include "io/outline_reader.h"
@@ -18,7 +18,10 @@
 #include "studio/studio.h"
 #include "studio/wire.h"
 #include "studio_client.h"
+
+// clang-format off
 #include <httplib.h>  // last: its resolv.h defines _res, a name Eigen uses
+// clang-format on
 
 namespace dform {
 namespace {
@@ -43,7 +46,8 @@ TEST(StudioServer, RefusesRequestsWithoutTheToken) {
   EXPECT_EQ(good->status, 200);
   EXPECT_NE(good->body.find(c.studio().token()), std::string::npos);
   EXPECT_NE(good->get_header_value("Set-Cookie").find("HttpOnly"), std::string::npos);
-  httplib::Headers cookie = {{"Cookie", "dform_studio_" + std::to_string(c.studio().port()) + "=" + c.studio().token()}};
+  httplib::Headers cookie = {
+      {"Cookie", "dform_studio_" + std::to_string(c.studio().port()) + "=" + c.studio().token()}};
   auto script = c.raw().Get("/studio.js", cookie);
   EXPECT_EQ(script->status, 200);
 }
@@ -69,14 +73,16 @@ TEST(StudioServer, RefusesForeignOriginAndHost) {
 TEST(StudioServer, MalformedRequestsGetJsonErrorsAndTheServerKeepsServing) {
   StudioClient c;
   const std::string session = c.session();
-  for (const char* body : {"{not json", "[]", "42", "{}", "{\"session\": 7}", "{\"session\": \"nope\"}"}) {
+  for (const char* body :
+       {"{not json", "[]", "42", "{}", "{\"session\": 7}", "{\"session\": \"nope\"}"}) {
     auto r = c.raw().Post("/api/solve", c.headers(), body, "application/json");
     ASSERT_TRUE(r) << body;
     EXPECT_EQ(r->status, 400) << body;
     EXPECT_TRUE(json::parse(r->body).contains("error")) << body;
   }
-  for (const json& bad : {json{{"start_a", 1.5}}, json{{"resolution", "many"}}, json{{"join", "sideways"}},
-                          json{{"model", "magic"}}, json{{"resolution", 3}}, json{{"flip", 1}}}) {
+  for (const json& bad :
+       {json{{"start_a", 1.5}}, json{{"resolution", "many"}}, json{{"join", "sideways"}},
+        json{{"model", "magic"}}, json{{"resolution", 3}}, json{{"flip", 1}}}) {
     json body = bad;
     body["session"] = session;
     auto r = c.post("/api/solve", body);
@@ -94,19 +100,30 @@ TEST(StudioServer, UploadsAreSizeLimitedAndReadAsContent) {
   options.maxUploadBytes = 64 * 1024;
   StudioClient c(options);
   const std::string session = c.session();
-  json big = {{"session", session}, {"piece", "a"}, {"name", "big.svg"}, {"text", std::string(70 * 1024, ' ')}};
+  json big = {{"session", session},
+              {"piece", "a"},
+              {"name", "big.svg"},
+              {"text", std::string(70 * 1024, ' ')}};
   auto r = c.raw().Post("/api/outline", c.headers(), big.dump(), "application/json");
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 413);
   EXPECT_TRUE(json::parse(r->body).contains("error"));
   // A name that looks like a path is only a name: the text is what is read.
-  auto bad = c.post("/api/outline", {{"session", session}, {"piece", "a"}, {"name", "../../etc/passwd.svg"},
-                                     {"text", "<svg xmlns='http://www.w3.org/2000/svg'><rect/></svg>"}});
+  auto bad =
+      c.post("/api/outline", {{"session", session},
+                              {"piece", "a"},
+                              {"name", "../../etc/passwd.svg"},
+                              {"text", "<svg xmlns='http://www.w3.org/2000/svg'><rect/></svg>"}});
   EXPECT_EQ(bad.first, 400);
-  EXPECT_NE(bad.second["error"].get<std::string>().find("passwd.svg"), std::string::npos) << bad.second;
+  EXPECT_NE(bad.second["error"].get<std::string>().find("passwd.svg"), std::string::npos)
+      << bad.second;
   EXPECT_EQ(bad.second["error"].get<std::string>().find("../"), std::string::npos) << bad.second;
-  auto good = c.post("/api/outline", {{"session", session}, {"piece", "a"}, {"name", "/etc/hosts.json"},
-                                      {"text", "{\"points\": [[0,0],[100,0],[100,80],[0,80]], \"units\": \"mm\"}"}});
+  auto good =
+      c.post("/api/outline",
+             {{"session", session},
+              {"piece", "a"},
+              {"name", "/etc/hosts.json"},
+              {"text", "{\"points\": [[0,0],[100,0],[100,80],[0,80]], \"units\": \"mm\"}"}});
   EXPECT_EQ(good.first, 200) << good.second;
   EXPECT_EQ(good.second["name"], "hosts.json");
   EXPECT_NEAR(good.second["perimeter"].get<double>(), 360.0, 1e-9);
@@ -116,8 +133,10 @@ TEST(StudioServer, TwoSessionsAreIndependent) {
   StudioClient c;
   const std::string one = c.session(), two = c.session();
   ASSERT_NE(one, two);
-  auto square = c.post("/api/parametric", {{"session", one}, {"piece", "b"}, {"kind", "polygon"},
-                                            {"values", {{"sides", 4}, {"radius", 96}}}});
+  auto square = c.post("/api/parametric", {{"session", one},
+                                           {"piece", "b"},
+                                           {"kind", "polygon"},
+                                           {"values", {{"sides", 4}, {"radius", 96}}}});
   ASSERT_EQ(square.first, 200) << square.second;
   auto a = c.post("/api/solve", {{"session", one}, {"seq", 1}});
   auto b = c.post("/api/solve", {{"session", two}, {"seq", 1}});
@@ -133,10 +152,13 @@ TEST(StudioServer, TwoSessionsAreIndependent) {
 // The 3D point of a piece's answer at a flat point: linear over the flat triangle holding it
 // (nullopt outside every triangle). Exact for a mesh whose triangles lie in the body's faces.
 std::optional<Eigen::Vector3d> pointAt(const json& piece, const Eigen::Vector2d& q) {
-  const std::vector<double> flat = test::decodeDoubles(piece["flat"]), shape = test::decodeDoubles(piece["shape"]);
+  const std::vector<double> flat = test::decodeDoubles(piece["flat"]),
+                            shape = test::decodeDoubles(piece["shape"]);
   const std::vector<std::uint32_t> faces = test::decodeIndices(piece["faces"]);
   for (std::size_t f = 0; f + 2 < faces.size(); f += 3) {
-    const auto corner = [&](int k) { return Eigen::Vector2d(flat[2 * faces[f + k]], flat[2 * faces[f + k] + 1]); };
+    const auto corner = [&](int k) {
+      return Eigen::Vector2d(flat[2 * faces[f + k]], flat[2 * faces[f + k] + 1]);
+    };
     const Eigen::Vector2d a = corner(0), b = corner(1), c = corner(2);
     const double area = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
     const double wb = ((q - a).x() * (c - a).y() - (q - a).y() * (c - a).x()) / area;
@@ -146,7 +168,8 @@ std::optional<Eigen::Vector3d> pointAt(const json& piece, const Eigen::Vector2d&
     Eigen::Vector3d p = Eigen::Vector3d::Zero();
     const double w[3] = {wa, wb, wc};
     for (int k = 0; k < 3; ++k)
-      p += w[k] * Eigen::Vector3d(shape[3 * faces[f + k]], shape[3 * faces[f + k] + 1], shape[3 * faces[f + k] + 2]);
+      p += w[k] * Eigen::Vector3d(shape[3 * faces[f + k]], shape[3 * faces[f + k] + 1],
+                                  shape[3 * faces[f + k] + 2]);
     return p;
   }
   return std::nullopt;
@@ -156,7 +179,8 @@ TEST(StudioServer, ShapeEqualsTheInMemoryRunForTheSameStart) {
   StudioClient c;
   const std::string session = c.session();
   test::EventReader events(c, session);
-  auto r = c.post("/api/solve", {{"session", session}, {"seq", 3}, {"start_a", 0.1}, {"start_b", 0.37}});
+  auto r =
+      c.post("/api/solve", {{"session", session}, {"seq", 3}, {"start_a", 0.1}, {"start_b", 0.37}});
   ASSERT_EQ(r.first, 200) << r.second;
   ASSERT_FALSE(r.second.contains("error")) << r.second;
   EXPECT_EQ(r.second["seq"], 3);
@@ -166,8 +190,9 @@ TEST(StudioServer, ShapeEqualsTheInMemoryRunForTheSameStart) {
   s.startB.fraction = 0.37;
   s.fitPerimeter = true;
   MessageSink sink;
-  Result<ForwardRun> direct = makeDForm(test::startEllipse(120, 70, "ellipse-a.json"),
-                                        test::startEllipse(110, 82.305579, "ellipse-b.json"), s, sink);
+  Result<ForwardRun> direct =
+      makeDForm(test::startEllipse(120, 70, "ellipse-a.json"),
+                test::startEllipse(110, 82.305579, "ellipse-b.json"), s, sink);
   ASSERT_TRUE(direct.isOk()) << direct.status().message();
   // The answer is the exact body meshed sparsely, the job's mesh and its figures to follow: no
   // figures yet, and fewer vertices drawing the same shape. Every vertex of the job's mesh,
@@ -177,7 +202,8 @@ TEST(StudioServer, ShapeEqualsTheInMemoryRunForTheSameStart) {
   EXPECT_FALSE(r.second.contains("figures"));
   EXPECT_FALSE(r.second.contains("gate"));
   const double diagonal = (direct.value().model.a.shape.colwise().maxCoeff() -
-                           direct.value().model.a.shape.colwise().minCoeff()).norm();
+                           direct.value().model.a.shape.colwise().minCoeff())
+                              .norm();
   for (int piece = 0; piece < 2; ++piece) {
     const Piece& job = piece == 0 ? direct.value().model.a : direct.value().model.b;
     const json& sparse = r.second["pieces"][piece];
@@ -185,7 +211,8 @@ TEST(StudioServer, ShapeEqualsTheInMemoryRunForTheSameStart) {
     double worst = 0;
     for (Eigen::Index v = 0; v < job.flat.rows(); ++v) {
       const std::optional<Eigen::Vector3d> p = pointAt(sparse, job.flat.row(v).transpose());
-      ASSERT_TRUE(p) << "piece " << piece << " vertex " << v << " lies in no triangle of the answer";
+      ASSERT_TRUE(p) << "piece " << piece << " vertex " << v
+                     << " lies in no triangle of the answer";
       worst = std::max(worst, (*p - job.shape.row(v).transpose()).norm());
     }
     EXPECT_LE(worst, 1e-9 * diagonal) << "piece " << piece;
@@ -197,7 +224,8 @@ TEST(StudioServer, ShapeEqualsTheInMemoryRunForTheSameStart) {
   EXPECT_EQ(result["seq"], 3);
   EXPECT_FALSE(result["refining"].get<bool>());
   for (int piece = 0; piece < 2; ++piece) {
-    const Points3& expected = piece == 0 ? direct.value().model.a.shape : direct.value().model.b.shape;
+    const Points3& expected =
+        piece == 0 ? direct.value().model.a.shape : direct.value().model.b.shape;
     const std::vector<double> got = test::decodeDoubles(result["pieces"][piece]["shape"]);
     ASSERT_EQ(got.size(), std::size_t(expected.size()));
     for (Eigen::Index v = 0; v < expected.rows(); ++v)
@@ -207,11 +235,13 @@ TEST(StudioServer, ShapeEqualsTheInMemoryRunForTheSameStart) {
   EXPECT_DOUBLE_EQ(result["figures"]["L_error"].get<double>(), direct.value().metrics.L_error);
   EXPECT_TRUE(result["gate"]["passed"].get<bool>()) << result["gate"];
   EXPECT_GE(result["gate"]["checks"].size(), 10u);
-  for (const json& e : events.seen()) EXPECT_NE(e["type"], "gate") << "the sparse answer is not judged: " << e;
+  for (const json& e : events.seen())
+    EXPECT_NE(e["type"], "gate") << "the sparse answer is not judged: " << e;
   // Sent uncompressed even to a client that accepts compression (on loopback it only costs).
   httplib::Headers accepting = c.headers();
   accepting.emplace("Accept-Encoding", "gzip, deflate, br");
-  auto plain = c.raw().Post("/api/solve", accepting, json{{"session", session}, {"seq", 4}}.dump(), "application/json");
+  auto plain = c.raw().Post("/api/solve", accepting, json{{"session", session}, {"seq", 4}}.dump(),
+                            "application/json");
   ASSERT_TRUE(plain);
   EXPECT_EQ(plain->get_header_value("Content-Encoding"), "");
 }
@@ -221,7 +251,8 @@ TEST(StudioServer, AJobMeshedAsSparselyAsAJobMayBeIsAnsweredInFull) {
   const std::string session = c.session();
   test::EventReader events(c, session);
   // The job's mesh is the sparse one: the answer is final, and its verdict follows it.
-  auto sparsest = c.post("/api/solve", {{"session", session}, {"seq", 1}, {"interior_edge", kMaxInteriorEdgeFactor}});
+  auto sparsest = c.post(
+      "/api/solve", {{"session", session}, {"seq", 1}, {"interior_edge", kMaxInteriorEdgeFactor}});
   ASSERT_EQ(sparsest.first, 200) << sparsest.second;
   EXPECT_EQ(sparsest.second["model"]["name"], "exact");
   EXPECT_FALSE(sparsest.second["refining"].get<bool>()) << sparsest.second;
@@ -231,7 +262,8 @@ TEST(StudioServer, AJobMeshedAsSparselyAsAJobMayBeIsAnsweredInFull) {
   EXPECT_TRUE(gate["gate"]["passed"].get<bool>()) << gate;
   auto finer = c.post("/api/solve", {{"session", session}, {"seq", 2}, {"interior_edge", 0.1}});
   EXPECT_EQ(finer.first, 400) << "an interior edge factor out of range is refused";
-  EXPECT_NE(finer.second["error"].get<std::string>().find("interior edge"), std::string::npos) << finer.second;
+  EXPECT_NE(finer.second["error"].get<std::string>().find("interior edge"), std::string::npos)
+      << finer.second;
 }
 
 TEST(StudioServer, NewestInputWinsAndStaleRefinementsNeverArrive) {
@@ -254,9 +286,10 @@ TEST(StudioServer, NewestInputWinsAndStaleRefinementsNeverArrive) {
   EXPECT_EQ(result["seq"], 2);
   EXPECT_FALSE(result["preview"].get<bool>());
   EXPECT_EQ(result["pieces"][0]["seam"].size(), 60u);
-  EXPECT_TRUE(result["gate"].contains("passed"));  // a refined result carries its verdict
+  EXPECT_TRUE(result["gate"].contains("passed"));      // a refined result carries its verdict
   EXPECT_TRUE(result["figures"].contains("L_error"));  // and its figures
-  for (const json& e : events.seen()) EXPECT_NE(e.value("seq", 0) == 1 && e["type"] == "result", true) << e;
+  for (const json& e : events.seen())
+    EXPECT_NE(e.value("seq", 0) == 1 && e["type"] == "result", true) << e;
 }
 
 TEST(StudioServer, LatestTicketCancelsTheOneBefore) {
@@ -291,7 +324,9 @@ TEST(StudioServer, InverseShowsTheOnHullTestAndTheRoundTrip) {
   const std::string session = c.session();
   auto missing = c.post("/api/inverse", {{"session", session}, {"seq", 1}});
   EXPECT_EQ(missing.first, 400);
-  auto curve = c.post("/api/curve", {{"session", session}, {"name", "tennis-ball.obj"}, {"text", sampleText("tennis-ball.obj")}});
+  auto curve = c.post(
+      "/api/curve",
+      {{"session", session}, {"name", "tennis-ball.obj"}, {"text", sampleText("tennis-ball.obj")}});
   ASSERT_EQ(curve.first, 200) << curve.second;
   EXPECT_GT(curve.second["length"].get<double>(), 100.0);
   auto ball = c.post("/api/inverse", {{"session", session}, {"seq", 2}, {"resolution", 60}});
@@ -302,16 +337,24 @@ TEST(StudioServer, InverseShowsTheOnHullTestAndTheRoundTrip) {
   EXPECT_LT(ball.second["curve_match"]["roundtrip_max_rel"].get<double>(), 0.01);
   EXPECT_EQ(test::decodeDoubles(ball.second["target"]).size(), 60u * 3);
 
-  ASSERT_EQ(c.post("/api/curve", {{"session", session}, {"name", "pushed-in.obj"}, {"text", sampleText("pushed-in.obj")}}).first, 200);
+  ASSERT_EQ(c.post("/api/curve", {{"session", session},
+                                  {"name", "pushed-in.obj"},
+                                  {"text", sampleText("pushed-in.obj")}})
+                .first,
+            200);
   auto pushed = c.post("/api/inverse", {{"session", session}, {"seq", 3}, {"resolution", 60}});
   ASSERT_EQ(pushed.first, 200) << pushed.second;
   EXPECT_FALSE(pushed.second["on_hull"]["on_hull"].get<bool>()) << pushed.second["on_hull"];
   EXPECT_FALSE(pushed.second["on_hull"]["inside_points"].empty());
   EXPECT_FALSE(pushed.second["on_hull"]["summary"].get<std::string>().empty());
 
-  auto bad = c.post("/api/curve", {{"session", session}, {"name", "flat.obj"}, {"text", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 2 0\nl 1 2 3 4 5 1\n"}});
+  auto bad = c.post("/api/curve",
+                    {{"session", session},
+                     {"name", "flat.obj"},
+                     {"text", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 2 0\nl 1 2 3 4 5 1\n"}});
   EXPECT_EQ(bad.first, 400);
-  EXPECT_NE(bad.second["error"].get<std::string>().find("flat.obj"), std::string::npos) << bad.second;
+  EXPECT_NE(bad.second["error"].get<std::string>().find("flat.obj"), std::string::npos)
+      << bad.second;
 }
 
 }  // namespace
@@ -345,7 +388,8 @@ TEST(StudioSession, TheWorkerYieldsToTheLiveSolves) {
   {
     studio::Session session(a, b);
     // Its worker lowers its own priority as it starts.
-    for (int k = 0; k < 500 && workers() == before; ++k) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    for (int k = 0; k < 500 && workers() == before; ++k)
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
     EXPECT_EQ(workers(), before + 1);
   }
   EXPECT_EQ(workers(), before);  // joined with the session

@@ -29,7 +29,8 @@ void sendRaw(int port, const std::string& bytes) {
     static_cast<void>(::send(fd, bytes.data(), bytes.size(), MSG_NOSIGNAL));
     ::shutdown(fd, SHUT_WR);
     char buffer[4096];
-    while (::recv(fd, buffer, sizeof buffer, 0) > 0) {}
+    while (::recv(fd, buffer, sizeof buffer, 0) > 0) {
+    }
   }
   ::close(fd);
 }
@@ -47,14 +48,24 @@ TEST(StudioSoak, ThousandRandomAndMalformedRequestsLeaveItServing) {
     for (int i = 0; i < length; ++i) s += char(random() & 0xFF);
     return s;
   };
-  const char* paths[] = {"/api/solve", "/api/outline", "/api/parametric", "/api/strip", "/api/curve",
-                         "/api/inverse", "/api/job", "/api/session", "/api/events", "/", "/studio.js", "/x"};
+  const char* paths[] = {
+      "/api/solve", "/api/outline", "/api/parametric", "/api/strip", "/api/curve", "/api/inverse",
+      "/api/job",   "/api/session", "/api/events",     "/",          "/studio.js", "/x"};
   const json bodies[] = {
       {{"session", session}, {"seq", 1}, {"start_b", 0.2}, {"resolution", 24}},
-      {{"session", session}, {"piece", "a"}, {"name", "x.svg"}, {"text", "<svg><path d='M 0 0 L 10'/></svg>"}},
-      {{"session", session}, {"piece", "b"}, {"name", "x.json"}, {"text", "{\"points\": [[0,0],[1e308,0],[0,1]]}"}},
+      {{"session", session},
+       {"piece", "a"},
+       {"name", "x.svg"},
+       {"text", "<svg><path d='M 0 0 L 10'/></svg>"}},
+      {{"session", session},
+       {"piece", "b"},
+       {"name", "x.json"},
+       {"text", "{\"points\": [[0,0],[1e308,0],[0,1]]}"}},
       {{"session", session}, {"piece", "c"}, {"kind", "ellipse"}},
-      {{"session", session}, {"piece", "a"}, {"kind", "lobed"}, {"values", {{"lobes", -1e9}, {"amplitude", "x"}}}},
+      {{"session", session},
+       {"piece", "a"},
+       {"kind", "lobed"},
+       {"values", {{"lobes", -1e9}, {"amplitude", "x"}}}},
       {{"session", session}, {"name", "c.obj"}, {"text", "v 0 0 0\nv 1 1 1\nl 1 2 1\n"}},
       {{"session", session}, {"seq", "x"}},
       {{"session", session}, {"resolution", 1e9}},
@@ -65,9 +76,10 @@ TEST(StudioSoak, ThousandRandomAndMalformedRequestsLeaveItServing) {
   for (int i = 0; i < 1000; ++i) {
     const int kind = pick(5);
     if (kind == 0) {  // raw garbage or a broken request line
-      const std::string garbage[] = {junk(pick(200)), "GET / HTTP/1.1\r\nHost: 127.0.0.1\r\n" + junk(50),
-                                     "POST /api/solve HTTP/1.1\r\nContent-Length: 99999999\r\n\r\n{",
-                                     "GET /" + std::string(9000, 'a') + " HTTP/1.1\r\n\r\n"};
+      const std::string garbage[] = {
+          junk(pick(200)), "GET / HTTP/1.1\r\nHost: 127.0.0.1\r\n" + junk(50),
+          "POST /api/solve HTTP/1.1\r\nContent-Length: 99999999\r\n\r\n{",
+          "GET /" + std::string(9000, 'a') + " HTTP/1.1\r\n\r\n"};
       sendRaw(c.studio().port(), garbage[pick(4)]);
       continue;
     }
@@ -79,7 +91,8 @@ TEST(StudioSoak, ThousandRandomAndMalformedRequestsLeaveItServing) {
     if (path == "/api/events" || path == "/" || path == "/studio.js" || path == "/x") {
       if (path == "/api/events") continue;  // a stream: covered by the session tests
       if (c.raw().Get(path.c_str(), headers)) ++answered;
-    } else if (c.raw().Post(path.c_str(), headers, body, kind == 3 ? "text/plain" : "application/json")) {
+    } else if (c.raw().Post(path.c_str(), headers, body,
+                            kind == 3 ? "text/plain" : "application/json")) {
       ++answered;
     }
   }

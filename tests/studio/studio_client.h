@@ -4,10 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
-#include <cstdint>
-#include <cstring>
 #include <chrono>
 #include <condition_variable>
+#include <cstdint>
+#include <cstring>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <thread>
@@ -16,7 +16,10 @@
 #include "io/outline_reader.h"
 #include "studio/outlines.h"
 #include "studio/studio.h"
+
+// clang-format off
 #include <httplib.h>  // last: its resolv.h defines _res, a name Eigen uses
+// clang-format on
 
 namespace dform::test {
 
@@ -58,17 +61,19 @@ class EventReader {
     client_.set_read_timeout(5);
     thread_ = std::thread([this, session] {
       while (!stop_) {
-        client_.Get(("/api/events?session=" + session).c_str(), headers_, [this](const char* data, std::size_t n) {
-          std::lock_guard<std::mutex> lock(mutex_);
-          buffer_.append(data, n);
-          for (std::size_t end; (end = buffer_.find("\n\n")) != std::string::npos;) {
-            const std::string event = buffer_.substr(0, end);
-            buffer_.erase(0, end + 2);
-            if (event.rfind("data: ", 0) == 0) events_.push_back(nlohmann::json::parse(event.substr(6)));
-          }
-          changed_.notify_all();
-          return !stop_.load();
-        });
+        client_.Get(("/api/events?session=" + session).c_str(), headers_,
+                    [this](const char* data, std::size_t n) {
+                      std::lock_guard<std::mutex> lock(mutex_);
+                      buffer_.append(data, n);
+                      for (std::size_t end; (end = buffer_.find("\n\n")) != std::string::npos;) {
+                        const std::string event = buffer_.substr(0, end);
+                        buffer_.erase(0, end + 2);
+                        if (event.rfind("data: ", 0) == 0)
+                          events_.push_back(nlohmann::json::parse(event.substr(6)));
+                      }
+                      changed_.notify_all();
+                      return !stop_.load();
+                    });
       }
     });
     std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the stream is open
@@ -111,7 +116,8 @@ inline std::string decodeBase64(const nlohmann::json& text) {
   int bits = 0;
   std::uint32_t value = 0;  // unsigned: the shifted-out high bits wrap instead of overflowing
   for (char ch : in) {
-    const auto pos = std::string("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/").find(ch);
+    const auto pos =
+        std::string("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/").find(ch);
     if (pos == std::string::npos) break;
     value = (value << 6) | std::uint32_t(pos);
     bits += 6;

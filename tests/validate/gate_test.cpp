@@ -36,17 +36,20 @@ std::string describe(const GateReport& report) {
   return text;
 }
 
-const Names kForwardChecks = {
-    "L_error",          "L_max",      "B_error",     "seam_gap_mm",     "gauss_max_rad",
-    "flipped",          "degenerate", "flat_simple", "seam_length_rel", "self_intersection",
-    "hull_distance_rel", "exact_distance_rel"};
+const Names kForwardChecks = {"L_error",           "L_max",
+                              "B_error",           "seam_gap_mm",
+                              "gauss_max_rad",     "flipped",
+                              "degenerate",        "flat_simple",
+                              "seam_length_rel",   "self_intersection",
+                              "hull_distance_rel", "exact_distance_rel"};
 
 TEST(Gate, AVertexOnTheSeamHullMeasuresZeroEveryRun) {
   // The tetrahedral D-Form's faces are the hull's facets, many seam points to each, which CGAL
   // triangulates in an address-dependent order: on the hull is 0, not ~1e-13 of the diagonal that
   // changed from run to run (and made a run's gate differ from the same gate measured again).
   DForm model = test::tetraDForm(8);
-  const CheckResult onHull = *measureAndGate(model, GateLimits{}, nullptr).find("hull_distance_rel");
+  const CheckResult onHull =
+      *measureAndGate(model, GateLimits{}, nullptr).find("hull_distance_rel");
   EXPECT_EQ(onHull.value, 0.0) << onHull.detail;
   EXPECT_NE(onHull.detail.find("at piece A vertex 0;"), std::string::npos) << onHull.detail;
   // The floor hides nothing larger: a vertex off the seam moved 1e-9 of the diagonal inwards
@@ -57,7 +60,8 @@ TEST(Gate, AVertexOnTheSeamHullMeasuresZeroEveryRun) {
   ASSERT_LT(inner, model.a.shape.rows());
   const double diagonal = 2.0 * std::sqrt(2.0) * 40.0;  // the seam's bounding box: 80 x 80 x 20 mm
   model.a.shape.row(inner) *= 1.0 - 1e-9 * diagonal / model.a.shape.row(inner).norm();
-  const CheckResult inside = *measureAndGate(model, GateLimits{}, nullptr).find("hull_distance_rel");
+  const CheckResult inside =
+      *measureAndGate(model, GateLimits{}, nullptr).find("hull_distance_rel");
   EXPECT_GT(inside.value, 1e-10) << inside.detail;
   EXPECT_LT(inside.value, 2e-9) << inside.detail;
 }
@@ -117,7 +121,8 @@ TEST(Gate, NaNFailsEveryCheckItReachesAndTheGate) {
   flatNaN.b.flat(3, 1) = std::numeric_limits<double>::infinity();
   const GateReport flatReport = measureAndGate(flatNaN, GateLimits{}, nullptr);
   EXPECT_NE(flatReport.find("self_intersection")->detail.find("piece B's flat vertex 3"),
-            std::string::npos) << describe(flatReport);
+            std::string::npos)
+      << describe(flatReport);
   EXPECT_FALSE(flatReport.passed());
 }
 
@@ -233,7 +238,8 @@ TEST(Gate, HullDistanceOfAVertexDeepInsideIsItsNearestFacesPlane) {
   const Eigen::Vector3d A(-40, 0, -10), B(0, -40, 10), C(40, 0, -10), D(0, 40, 10);
   const Eigen::Vector3d p(6, -3, 2);
   double nearest = std::numeric_limits<double>::infinity(), farthest = 0.0;
-  for (const auto& [a, b, c] : {std::array{A, B, C}, std::array{A, C, D}, std::array{A, B, D}, std::array{B, C, D}}) {
+  for (const auto& [a, b, c] :
+       {std::array{A, B, C}, std::array{A, C, D}, std::array{A, B, D}, std::array{B, C, D}}) {
     const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();
     nearest = std::min(nearest, std::abs(normal.dot(p - a)));
     farthest = std::max(farthest, std::abs(normal.dot(p - a)));
@@ -246,7 +252,8 @@ TEST(Gate, HullDistanceOfAVertexDeepInsideIsItsNearestFacesPlane) {
   const double diagonal = Eigen::Vector3d(80, 80, 20).norm();
   const CheckResult hull = *measureAndGate(model, GateLimits{}, nullptr).find("hull_distance_rel");
   EXPECT_NEAR(hull.value, nearest / diagonal, 1e-12) << hull.detail;
-  EXPECT_NE(hull.detail.find("at piece A vertex " + std::to_string(inner) + ";"), std::string::npos) << hull.detail;
+  EXPECT_NE(hull.detail.find("at piece A vertex " + std::to_string(inner) + ";"), std::string::npos)
+      << hull.detail;
 }
 
 TEST(Gate, ConvexityIsJudgedWithinWhatSamplingAndSolvingMayMove) {
@@ -283,7 +290,8 @@ TEST(Gate, FlatDoubleDiscTouchesItselfAndPasses) {
   // Both pieces lie in z = 0 on top of each other: a doubly covered disc, a flat pouch zipped at
   // its rim. Its sheets touch face to face without crossing (a buildable object); its planar seam
   // has no hull.
-  const GateReport report = measureAndGate(test::flatDoubleDisc(4, 24, 50.0), GateLimits{}, nullptr);
+  const GateReport report =
+      measureAndGate(test::flatDoubleDisc(4, 24, 50.0), GateLimits{}, nullptr);
   EXPECT_TRUE(failed(report).empty()) << describe(report);
   EXPECT_EQ(report.find("self_intersection")->value, 0.0);
   EXPECT_NE(report.find("self_intersection")->detail.find("face to face"), std::string::npos)
@@ -308,19 +316,20 @@ TEST(Gate, LowerSheetOfAFlatPouchPushedThroughTheUpperOneIntersects) {
   const auto centre = [](double height) {
     return [height](double x, double y) { return x == 0.0 && y == 0.0 ? height : 0.0; };
   };
-  const CheckResult through =
-      *measureAndGate(liftedLowerSheet(centre(1e-3)), GateLimits{}, nullptr).find("self_intersection");
+  const CheckResult through = *measureAndGate(liftedLowerSheet(centre(1e-3)), GateLimits{}, nullptr)
+                                   .find("self_intersection");
   EXPECT_EQ(through.verdict, Verdict::Fail) << through.detail;
   EXPECT_GT(through.value, 0.0);
   // Moved by a thousandth of the tolerance (1e-9 of the 141 mm diagonal) the sheets still touch.
   const CheckResult touching =
-      *measureAndGate(liftedLowerSheet(centre(1e-12 * 141.0)), GateLimits{}, nullptr).find("self_intersection");
+      *measureAndGate(liftedLowerSheet(centre(1e-12 * 141.0)), GateLimits{}, nullptr)
+           .find("self_intersection");
   EXPECT_EQ(touching.verdict, Verdict::Pass) << touching.detail;
   // Bulging away from A (downwards) the pouch opens: no contact, no crossing.
   const CheckResult open = *measureAndGate(liftedLowerSheet([](double x, double y) {
-                                      return -5.0 * (1.0 - (x * x + y * y) / 2500.0);
-                                    }),
-                                    GateLimits{}, nullptr)
+                                             return -5.0 * (1.0 - (x * x + y * y) / 2500.0);
+                                           }),
+                                           GateLimits{}, nullptr)
                                 .find("self_intersection");
   EXPECT_EQ(open.value, 0.0) << open.detail;
   EXPECT_EQ(open.detail.find("face to face"), std::string::npos) << open.detail;
@@ -339,7 +348,8 @@ TEST(Gate, ExactCreasedDFormPassesWithItsHingesFoldedSharply) {
   // The hinges fold by 117 degrees: a fold-over without creases, a drawn fold with them.
   const GateReport plain = measureAndGate(test::tetraDForm(8, 40.0, 0.7), GateLimits{}, nullptr);
   EXPECT_EQ(plain.find("flipped")->verdict, Verdict::Fail);
-  const GateReport report = measureAndGate(test::creasedTetraDForm(8, 40.0, 0.7), GateLimits{}, nullptr);
+  const GateReport report =
+      measureAndGate(test::creasedTetraDForm(8, 40.0, 0.7), GateLimits{}, nullptr);
   EXPECT_TRUE(failed(report).empty()) << describe(report);
   EXPECT_EQ(notRun(report), Names{"hull_distance_rel"}) << describe(report);
   EXPECT_NE(report.find("hull_distance_rel")->detail.find("creases"), std::string::npos);

@@ -99,7 +99,8 @@ TEST(Metrics, LMaxIsTheWorstEdgeOfANonUniformStretch) {
       }
   const Metrics m = computeMetrics(model, {});
   EXPECT_NEAR(m.L_max, worst, 1e-12);
-  EXPECT_GT(m.L_max, m.L_error * (1 + 1e-3)) << "a non-uniform stretch: the worst edge is above the norm";
+  EXPECT_GT(m.L_max, m.L_error * (1 + 1e-3))
+      << "a non-uniform stretch: the worst edge is above the norm";
 }
 
 // L_error is the relative root-sum-square over every edge of both pieces, each edge once:
@@ -192,9 +193,11 @@ TEST(Metrics, CurveMatchForAKnownShift) {
 TEST(Metrics, ExactDistanceIsToTheGivenReferenceSeam) {
   const DForm model = test::tetraDForm(6);
   Points3 seam(Eigen::Index(model.a.seam.size()), 3);
-  for (std::size_t k = 0; k < model.a.seam.size(); ++k) seam.row(Eigen::Index(k)) = model.a.shape.row(model.a.seam[k]);
+  for (std::size_t k = 0; k < model.a.seam.size(); ++k)
+    seam.row(Eigen::Index(k)) = model.a.shape.row(model.a.seam[k]);
   // The same seam turned and moved: rigid alignment takes it back.
-  const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d turn =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   const Points3 moved = ((seam * turn.transpose()).rowwise() + Eigen::RowVector3d(5, -3, 2)).eval();
   const Metrics same = computeMetrics(model, {moved, "turned"});
   EXPECT_LE(same.exact_distance_max_rel, 1e-12);
