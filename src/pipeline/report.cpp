@@ -22,7 +22,7 @@ void addCurveMatch(json& metrics, const CurveMatch& c) {
   metrics["curve_distance_max_mm"] = numberOrNull(c.curveDistanceMaxMm);
   metrics["roundtrip_rms_rel"] = numberOrNull(c.roundtripRmsRel);
   metrics["roundtrip_max_rel"] = numberOrNull(c.roundtripMaxRel);
-  metrics["roundtrip_note"] = c.roundtrip_note;
+  metrics["roundtrip_note"] = c.roundtripNote;
 }
 
 // A seam point's index, or null where a fold crosses a chord between seam points.
@@ -226,7 +226,7 @@ json metricsJson(const Metrics& m) {
           {"seam_length_3d_mm", numberOrNull(m.seamLength3dMm)},
           {"exact_distance_rms_rel", numberOrNull(m.exactDistanceRmsRel)},
           {"exact_distance_max_rel", numberOrNull(m.exactDistanceMaxRel)},
-          {"exact_note", m.exact_note}};
+          {"exact_note", m.exactNote}};
 }
 
 std::string metricsJsonText(const Metrics& metrics, const CurveMatch* curve) {

@@ -198,7 +198,7 @@ json inverseResultJson(const InverseRun& run) {
             {"curve_distance_max_mm", numberOrNull(c.curveDistanceMaxMm)},
             {"roundtrip_rms_rel", numberOrNull(c.roundtripRmsRel)},
             {"roundtrip_max_rel", numberOrNull(c.roundtripMaxRel)},
-            {"roundtrip_note", c.roundtrip_note}}},
+            {"roundtrip_note", c.roundtripNote}}},
           {"on_hull",
            {{"on_hull", run.pre.onHull},
             {"is_hull", run.pre.isHull},

@@ -501,13 +501,13 @@ GateReport runGate(const DForm& model, const GateLimits& limits, const Metrics& 
   checks.push_back(hullCheck(model, limits));
   checks.push_back(objectCheck(
       "exact_distance_rel", m.exactDistanceRmsRel, m.exactDistanceMaxRel, limits.exactDistanceRel,
-      m.exact_note, "RMS distance of the 3D seam from the exact D-Form of these flat pieces"));
+      m.exactNote, "RMS distance of the 3D seam from the exact D-Form of these flat pieces"));
   if (report.curve)
     checks.push_back(objectCheck("roundtrip_rel", report.curve->roundtripRmsRel,
                                  report.curve->roundtripMaxRel, limits.roundtripRel,
-                                 report.curve->roundtrip_note,
+                                 report.curve->roundtripNote,
                                  "RMS distance from the target curve of the pieces zipped again (" +
-                                     report.curve->roundtrip_note + ")"));
+                                     report.curve->roundtripNote + ")"));
   return report;
 }
 

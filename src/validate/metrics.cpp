@@ -158,7 +158,7 @@ Metrics computeMetrics(const DForm& model, const ReferenceSeam& exactBody) {
     m.exactDistanceRmsRel = d.rmsRel;
     m.exactDistanceMaxRel = d.maxRel;
   } else {
-    m.exact_note = exactBody.note;
+    m.exactNote = exactBody.note;
   }
   return m;
 }
@@ -185,7 +185,7 @@ CurveMatch computeCurveMatch(const DForm& model, const Curve3& target,
     match.roundtripRmsRel = d.rmsRel;
     match.roundtripMaxRel = d.maxRel;
   }
-  match.roundtrip_note = zippedAgain.note;
+  match.roundtripNote = zippedAgain.note;
   return match;
 }
 

@@ -25,11 +25,11 @@ struct Metrics {
   double seamLength3dMm = 0;  ///< length of the 3D seam (piece A's side)
   /// The 3D seam against the seam of the exact D-Form of the same flat pieces (the reference the
   /// caller gives) after rigid alignment: root mean square and largest distance over the seam's
-  /// bounding-box diagonal. NaN when there is no exact D-Form to compare with; exact_note then
+  /// bounding-box diagonal. NaN when there is no exact D-Form to compare with; exactNote then
   /// says why.
   double exactDistanceRmsRel = std::numeric_limits<double>::quiet_NaN();
   double exactDistanceMaxRel = std::numeric_limits<double>::quiet_NaN();
-  std::string exact_note;
+  std::string exactNote;
 };
 
 /// A 3D seam that a result's figures compare it with (row k for seam point k), made by the
@@ -80,11 +80,11 @@ struct CurveMatch {
   double curveDistanceMaxMm = 0;
   /// The round trip: the flat pieces zipped again (their exact D-Form, or the optimisation where
   /// their metric is not convex; the reference the caller gives) against the target curve after
-  /// rigid alignment, over the curve's bounding-box diagonal; roundtrip_note says which zipped
+  /// rigid alignment, over the curve's bounding-box diagonal; roundtripNote says which zipped
   /// them. NaN when neither could (the note says why).
   double roundtripRmsRel = std::numeric_limits<double>::quiet_NaN();
   double roundtripMaxRel = std::numeric_limits<double>::quiet_NaN();
-  std::string roundtrip_note;
+  std::string roundtripNote;
 };
 CurveMatch computeCurveMatch(const DForm& model, const Curve3& target,
                              const ReferenceSeam& zippedAgain);

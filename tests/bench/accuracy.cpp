@@ -86,7 +86,7 @@ int runAccuracy(int repeats, const std::string& plotPath, bool smoke) {
     const Metrics& m = last.metrics;
     if (std::isnan(m.exactDistanceRmsRel)) {
       std::fprintf(stderr, "dform_bench: no exact D-Form to compare with: %s\n",
-                   m.exact_note.c_str());
+                   m.exactNote.c_str());
       return 1;
     }
     points.push_back({weight, median(solveSeconds), m.exactDistanceRmsRel, m.exactDistanceMaxRel});

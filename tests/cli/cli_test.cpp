@@ -1273,7 +1273,7 @@ TEST_F(CliTest, ValidateFailsAReportThatIsMissingIncompleteOrWrong) {
   edited.erase("metrics");
   const Outcome noMetrics = validateWith(edited.dump());
   expectError(noMetrics, 7, "report.json says nothing");
-  EXPECT_NE(noMetrics.out.find("metrics.lengthError: report.json says nothing"), std::string::npos)
+  EXPECT_NE(noMetrics.out.find("metrics.L_error: report.json says nothing"), std::string::npos)
       << noMetrics.out;
   edited = saved;
   edited["mesh"]["vertices_a"] = saved["mesh"]["vertices_a"].get<int>() + 1;

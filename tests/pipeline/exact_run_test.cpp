@@ -153,7 +153,7 @@ TEST(ExactRun, NonConvexPiecesGoToThePaperModelNamingTheSeamPoint) {
   EXPECT_NE(r.value().modelUsed.reason.find("more than 360"), std::string::npos)
       << r.value().modelUsed.reason;
   EXPECT_TRUE(std::isnan(r.value().metrics.exactDistanceRmsRel));
-  EXPECT_FALSE(r.value().metrics.exact_note.empty());
+  EXPECT_FALSE(r.value().metrics.exactNote.empty());
 
   ForwardJob exactOnly = job("nonconvex-a.svg", "nonconvex-b.svg", ModelChoice::Exact);
   Result<ForwardRun> refused = run(exactOnly);

@@ -60,7 +60,7 @@ TEST_P(InverseSamples, ReachThePapersFigures) {
     // Its pieces' metric is not convex, so no convex D-Form exists: zipped again by the
     // optimisation they take another shape, and the figure says how far off the curve it is.
     EXPECT_EQ(run.modelUsed.name, "paper");
-    const std::string& note = run.curveMatch.roundtrip_note;
+    const std::string& note = run.curveMatch.roundtripNote;
     EXPECT_NE(note.find("optimisation"), std::string::npos) << note;
     EXPECT_NE(note.find("not convex"), std::string::npos) << note;
     EXPECT_GT(run.curveMatch.roundtripRmsRel, 1e-4);
@@ -215,7 +215,7 @@ TEST(InverseRun, TheGateOnTheRunsFiguresIsTheGateMeasuredAgain) {
   const Result<InverseRun> ran = runInverse(inverse, sink);
   ASSERT_TRUE(ran.isOk()) << ran.status().message();
   const InverseRun& r = ran.value();
-  ASSERT_FALSE(r.curveMatch.roundtrip_note.empty());
+  ASSERT_FALSE(r.curveMatch.roundtripNote.empty());
   const GateReport again = measureAndGate(r.model, GateLimits{}, &r.target);
   ASSERT_TRUE(again.curve.has_value());
   EXPECT_EQ(again.curve->roundtripRmsRel, r.curveMatch.roundtripRmsRel);

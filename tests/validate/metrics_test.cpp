@@ -201,7 +201,7 @@ TEST(Metrics, ExactDistanceIsToTheGivenReferenceSeam) {
   const Points3 moved = ((seam * turn.transpose()).rowwise() + Eigen::RowVector3d(5, -3, 2)).eval();
   const Metrics same = computeMetrics(model, {moved, "turned"});
   EXPECT_LE(same.exactDistanceMaxRel, 1e-12);
-  EXPECT_TRUE(same.exact_note.empty());
+  EXPECT_TRUE(same.exactNote.empty());
   // One seam point of the reference 10 % of the diagonal away: a largest distance above the RMS.
   Points3 bent = seam;
   const double diagonal = (seam.colwise().maxCoeff() - seam.colwise().minCoeff()).norm();
@@ -213,13 +213,13 @@ TEST(Metrics, ExactDistanceIsToTheGivenReferenceSeam) {
   const Metrics none = computeMetrics(model, {Points3(), "no body for this"});
   EXPECT_TRUE(std::isnan(none.exactDistanceRmsRel));
   EXPECT_TRUE(std::isnan(none.exactDistanceMaxRel));
-  EXPECT_EQ(none.exact_note, "no body for this");
+  EXPECT_EQ(none.exactNote, "no body for this");
   // The round trip likewise: the curve itself as the zipped seam is 0 away, none is NaN.
   Curve3 target;
   target.points = seam;
   const CurveMatch back = computeCurveMatch(model, target, {moved, "zipped by a test"});
   EXPECT_LE(back.roundtripMaxRel, 1e-12);
-  EXPECT_EQ(back.roundtrip_note, "zipped by a test");
+  EXPECT_EQ(back.roundtripNote, "zipped by a test");
   EXPECT_TRUE(std::isnan(computeCurveMatch(model, target, {Points3(), "none"}).roundtripRmsRel));
 }
 
