@@ -173,12 +173,13 @@ Status checkMemory(const MemoryAtResolution& estimateAt, int resolution, const s
 }
 
 Status outOfMemory(const MemoryAtResolution& estimateAt, int resolution, const std::string& what) {
-  // The run needed more than its estimate: the resolution offered is held to half the estimate
-  // and to what checkMemory would let a run use now (without an estimate, the resolution of half
-  // the vertices).
+  // The run needed more than its estimate: the resolution offered is held to half of what the
+  // estimate adds to the program's own memory, and to what checkMemory would let a run use now
+  // (without an estimate, the resolution of half the vertices).
   int fits = std::max(kLowestResolution, int(resolution / std::sqrt(2.0)));
   if (estimateAt) {
-    double budget = 0.5 * peakAt(estimateAt, resolution);
+    const double program = double(estimatedPeakBytes(0.0));
+    double budget = program + 0.5 * (peakAt(estimateAt, resolution) - program);
     if (const double available = double(availableMemoryBytes()); available > 0)
       budget = std::min(budget, kUsableFraction * available);
     fits = highestFitting(estimateAt, resolution, budget);

@@ -41,8 +41,9 @@ Status checkMemory(const MemoryAtResolution& estimateAt, int resolution, const s
 
 /// Usage error for a run that ran out of memory although checkMemory let it start (a limit it
 /// cannot see, another process taking memory meanwhile, a shape the estimate undershoots),
-/// offering the highest resolution whose estimate is half this run's and fits what checkMemory
-/// allows now (without an estimate, an empty `estimateAt`: the resolution of half the vertices).
+/// offering the highest resolution whose estimate adds half of what this run's adds to the
+/// program's own memory and fits what checkMemory allows now (without an estimate, an empty
+/// `estimateAt`: the resolution of half the vertices).
 Status outOfMemory(const MemoryAtResolution& estimateAt, int resolution, const std::string& what);
 
 }  // namespace dform
