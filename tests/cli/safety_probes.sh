@@ -226,6 +226,19 @@ python3 - R/a/report.json <<'EOF' || fail "--resume kept the result of a job fil
 import json, sys
 assert json.load(open(sys.argv[1]))["job"]["resolution"] == 36
 EOF
+# --resume reruns a job whose input file changed since (its hash in the manifest).
+mkdir ijobs
+cp "$fwd/ellipses-a.svg" "$fwd/ellipses-b.svg" ijobs/
+printf '{"mode": "forward", "piece_a": "%s", "piece_b": "%s", "resolution": 30}\n' \
+  "$work/ijobs/ellipses-a.svg" "$work/ijobs/ellipses-b.svg" >ijobs/i.json
+"$dform" batch ijobs --no-export -q -o I >/dev/null 2>&1 || fail "the batch whose input changes"
+sed -i 's/stroke-width="0.3"/stroke-width="0.4"/' ijobs/ellipses-b.svg
+"$dform" batch ijobs --no-export -q --resume -o I >/dev/null 2>&1 || fail "the batch resumed after its input changed"
+python3 - I/i/report.json "$(sha256sum ijobs/ellipses-b.svg | cut -d' ' -f1)" <<'EOF' ||
+import json, sys
+assert json.load(open(sys.argv[1]))["inputs"]["piece_b"]["sha256"] == sys.argv[2]
+EOF
+  fail "--resume kept the result of a job whose input changed since"
 # A failing batch ends with one error line.
 mkdir fjobs
 printf '{"mode": "forward", "piece_a": "nowhere.svg", "piece_b": "x.svg"}' >fjobs/lost.json
