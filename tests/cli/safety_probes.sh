@@ -142,6 +142,8 @@ for kind in latin control long; do
   expect "batch, $kind name" 3 "dform: error:" -- "$dform" batch "$name.txt" -q -o o-$kind
   expect "export, $kind name" 3 "dform: error:" -- "$dform" export "$name" -q
   expect "validate, $kind name" 3 "dform: error:" -- "$dform" validate "$name"
+  # The studio reads its files before it serves anything (a timeout, should it serve instead).
+  expect "studio, $kind name" 3 "dform: error:" -- timeout 20 "$dform" studio "$name.svg" "$fwd/circle.svg" --no-browser
   [ -e o-$kind ] && fail "$kind name: a failed run created o-$kind"
 done
 # The same names inside files: a job naming them, a list of them, a list of random bytes.
