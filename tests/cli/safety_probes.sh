@@ -285,6 +285,15 @@ for edit in 'r["model"]["name"] = "exact"' 'r["schema_version"] = 99' 'r["metric
   [ "$got" = 7 ] || fail "validate of a report.json with $edit: exit $got"
 done
 cp paper-report.json paper/report.json
+# An exact result relabelled paper or general keeps the exact engine's entries: refused too.
+"$dform" forward $pair --resolution 30 --no-export -q -o exact >/dev/null 2>&1 || fail "the exact run"
+cp exact/report.json exact-report.json
+for name in paper general; do
+  python3 -c "import json; r = json.load(open('exact-report.json')); r['model']['name'] = '$name'; json.dump(r, open('exact/report.json', 'w'))"
+  run "$dform" validate exact
+  [ "$got" = 7 ] || fail "validate of an exact result relabelled $name: exit $got"
+done
+cp exact-report.json exact/report.json
 no_leftovers "edges"
 
 if [ "$failures" -gt 0 ]; then
