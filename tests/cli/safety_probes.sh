@@ -274,6 +274,15 @@ done
 # A failed run creates nothing: not its folder, not the folder's parents.
 expect "a failed run in new folders" 3 "nowhere.svg" -- "$dform" forward nowhere.svg "$fwd/circle.svg" -q -o new/deeper/out
 [ -e new ] && fail "a failed run created new/deeper"
+# A sweep that solves no start fails as forward does (unequal perimeters: 4), creates nothing
+# and leaves an earlier sweep where it was.
+expect "a sweep solving no start" 4 "the perimeters differ" -- \
+  "$dform" sweep "$fwd/circle.svg" "$fwd/ellipses-a.svg" --starts 2 -q -o new/deeper/sweep
+[ -e new ] && fail "a sweep that solved nothing created new/deeper"
+before=$(find W -type f -exec sha256sum {} + | sort)
+expect "a sweep solving no start over an earlier sweep" 4 "the perimeters differ" -- \
+  "$dform" sweep "$fwd/circle.svg" "$fwd/ellipses-a.svg" --starts 2 -q -o W
+[ "$(find W -type f -exec sha256sum {} + | sort)" = "$before" ] || fail "a sweep that solved nothing replaced W"
 # validate checks what report.json says of how the result was made.
 "$dform" forward $pair --resolution 30 --model paper --no-export -q -o paper >/dev/null 2>&1 || fail "the paper run"
 cp paper/report.json paper-report.json
