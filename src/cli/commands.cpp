@@ -21,16 +21,17 @@ int fail(const Status& status) {
 
 void printFigures(const Metrics& m, const CurveMatch* curve, const Timings& t,
                   const std::string& dir) {
-  std::fprintf(stdout, "L_error %.4f %%   L_max %.3f %%   ", 100 * m.L_error, 100 * m.L_max);
+  std::fprintf(stdout, "L_error %.4f %%   L_max %.3f %%   ", 100 * m.lengthError,
+               100 * m.lengthErrorMax);
   if (curve)
-    std::fprintf(stdout, "D_error %.2e   curve distance max %.2e mm\n", curve->D_error,
-                 curve->curve_distance_max_mm);
+    std::fprintf(stdout, "D_error %.2e   curve distance max %.2e mm\n", curve->curveError,
+                 curve->curveDistanceMaxMm);
   else
-    std::fprintf(stdout, "B_error %.2e   seam gap %.2e mm\n", m.B_error, m.seam_gap_mm);
+    std::fprintf(stdout, "B_error %.2e   seam gap %.2e mm\n", m.seamError, m.seamGapMm);
   std::fprintf(stdout,
                "gauss_max %.4f rad   flipped %d   degenerate %d   seam lengths %.3f / %.3f mm\n",
-               m.gauss_max, m.flipped_2d + m.flipped_3d, m.degenerate_2d + m.degenerate_3d,
-               m.seam_length_a_mm, m.seam_length_b_mm);
+               m.gaussMax, m.flipped2d + m.flipped3d, m.degenerate2d + m.degenerate3d,
+               m.seamLengthAMm, m.seamLengthBMm);
   std::fprintf(stdout, "solved in %.3f s (read %.3f, mesh %.3f, solve %.3f); results in %s\n",
                t.total, t.read, t.mesh, t.solve, dir.c_str());
 }

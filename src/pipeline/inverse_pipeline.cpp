@@ -22,9 +22,9 @@ InverseRun measure(SolvedPieces solved, MessageSink& sink) {
   measureInverse(run.model, run.target, run.metrics, run.curveMatch);
   const std::string name = curveLabel(run.target);
   // A sheet folded over is what the gate rejects; where the curve leaves its hull, say why.
-  if (run.metrics.flipped_3d > 0 && !run.pre.onHull)
+  if (run.metrics.flipped3d > 0 && !run.pre.onHull)
     sink.warning(
-        name + ": the shape folds over itself (" + std::to_string(run.metrics.flipped_3d) +
+        name + ": the shape folds over itself (" + std::to_string(run.metrics.flipped3d) +
         " triangles): the stretch of the curve inside its convex hull (" + run.pre.summary +
         ") is too deep to bend into a D-Form from the filled pre-D-Form; a shallower dent, or one "
         "spread along more of the curve, can be made (docs/inverse.md, Limits)");

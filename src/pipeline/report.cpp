@@ -18,11 +18,11 @@ using nlohmann::json;
 
 // The inverse figures measured against the target curve.
 void addCurveMatch(json& metrics, const CurveMatch& c) {
-  metrics["D_error"] = numberOrNull(c.D_error);
-  metrics["curve_distance_max_mm"] = numberOrNull(c.curve_distance_max_mm);
-  metrics["roundtrip_rms_rel"] = numberOrNull(c.roundtrip_rms_rel);
-  metrics["roundtrip_max_rel"] = numberOrNull(c.roundtrip_max_rel);
-  metrics["roundtrip_note"] = c.roundtrip_note;
+  metrics["D_error"] = numberOrNull(c.curveError);
+  metrics["curve_distance_max_mm"] = numberOrNull(c.curveDistanceMaxMm);
+  metrics["roundtrip_rms_rel"] = numberOrNull(c.roundtripRmsRel);
+  metrics["roundtrip_max_rel"] = numberOrNull(c.roundtripMaxRel);
+  metrics["roundtrip_note"] = c.roundtripNote;
 }
 
 // A seam point's index, or null where a fold crosses a chord between seam points.
@@ -211,22 +211,22 @@ Result<std::string> write(const std::string& dir, const json& report) {
 }  // namespace
 
 json metricsJson(const Metrics& m) {
-  return {{"L_error", numberOrNull(m.L_error)},
-          {"L_max", numberOrNull(m.L_max)},
-          {"B_error", numberOrNull(m.B_error)},
-          {"seam_gap_mm", numberOrNull(m.seam_gap_mm)},
-          {"gauss_max", numberOrNull(m.gauss_max)},
-          {"gauss_mean", numberOrNull(m.gauss_mean)},
-          {"flipped_2d", m.flipped_2d},
-          {"flipped_3d", m.flipped_3d},
-          {"degenerate_2d", m.degenerate_2d},
-          {"degenerate_3d", m.degenerate_3d},
-          {"seam_length_a_mm", numberOrNull(m.seam_length_a_mm)},
-          {"seam_length_b_mm", numberOrNull(m.seam_length_b_mm)},
-          {"seam_length_3d_mm", numberOrNull(m.seam_length_3d_mm)},
-          {"exact_distance_rms_rel", numberOrNull(m.exact_distance_rms_rel)},
-          {"exact_distance_max_rel", numberOrNull(m.exact_distance_max_rel)},
-          {"exact_note", m.exact_note}};
+  return {{"L_error", numberOrNull(m.lengthError)},
+          {"L_max", numberOrNull(m.lengthErrorMax)},
+          {"B_error", numberOrNull(m.seamError)},
+          {"seam_gap_mm", numberOrNull(m.seamGapMm)},
+          {"gauss_max", numberOrNull(m.gaussMax)},
+          {"gauss_mean", numberOrNull(m.gaussMean)},
+          {"flipped_2d", m.flipped2d},
+          {"flipped_3d", m.flipped3d},
+          {"degenerate_2d", m.degenerate2d},
+          {"degenerate_3d", m.degenerate3d},
+          {"seam_length_a_mm", numberOrNull(m.seamLengthAMm)},
+          {"seam_length_b_mm", numberOrNull(m.seamLengthBMm)},
+          {"seam_length_3d_mm", numberOrNull(m.seamLength3dMm)},
+          {"exact_distance_rms_rel", numberOrNull(m.exactDistanceRmsRel)},
+          {"exact_distance_max_rel", numberOrNull(m.exactDistanceMaxRel)},
+          {"exact_note", m.exactNote}};
 }
 
 std::string metricsJsonText(const Metrics& metrics, const CurveMatch* curve) {
@@ -351,7 +351,7 @@ void compareSavedJob(const json& report, const Metrics& metrics, const CurveMatc
            describeJsonValue(at(report, "schema_version")) + ", dform writes \"" + kReportSchema +
            "\" version " + std::to_string(kReportSchemaVersion));
   const json model = at(at(report, "model"), "name");
-  const double exactDistance = curve ? curve->roundtrip_max_rel : metrics.exact_distance_max_rel;
+  const double exactDistance = curve ? curve->roundtripMaxRel : metrics.exactDistanceMaxRel;
   if (model != "exact" && model != "paper" && model != "general")
     differ("model.name: report.json says " + describeJsonValue(model) +
            ", not exact, paper or general");

@@ -54,10 +54,10 @@ CheckResult gaussCheck(const DForm& model, const GateLimits& limits) {
     }
   }
   if (counted == 0)
-    return notRunCheck("gauss_max_rad", limits.gauss_max_rad,
+    return notRunCheck("gauss_max_rad", limits.gaussMaxRad,
                        "no interior vertex away from the seam" +
                            std::string(creased ? ", the boundary and the creases" : ""));
-  return judgeCheck("gauss_max_rad", worst, limits.gauss_max_rad,
+  return judgeCheck("gauss_max_rad", worst, limits.gaussMaxRad,
                     "largest |angle defect| over " + std::to_string(counted) +
                         " vertices away from the seam" +
                         (creased ? ", the boundary and the creases" : "") + ", at " + where);
@@ -351,29 +351,29 @@ std::string cornersMeetingSmoothPoints(const DForm& model) {
 CheckResult hullCheck(const DForm& model, const GateLimits& limits) {
   const char* name = "hull_distance_rel";
   if (const std::string where = nonFiniteCoordinate(model); !where.empty())
-    return nonFiniteCheck(name, limits.hull_distance_rel, where);
+    return nonFiniteCheck(name, limits.hullDistanceRel, where);
   std::string convexity;
   for (const Piece* p : {&model.a, &model.b}) {
     if (!p->freeBoundaries.empty())
-      return notRunCheck(name, limits.hull_distance_rel,
+      return notRunCheck(name, limits.hullDistanceRel,
                          "piece " + p->name +
                              " has a free boundary (an anti or demi D-Form): the convex-hull "
                              "property holds for two convex discs zipped along their outlines");
     if (!p->creases.empty())
-      return notRunCheck(name, limits.hull_distance_rel,
+      return notRunCheck(name, limits.hullDistanceRel,
                          "piece " + p->name +
                              " has creases: the convex-hull property holds for crease-free "
                              "convex pieces only");
     if (p->seam.size() < 3)
-      return notRunCheck(name, limits.hull_distance_rel,
+      return notRunCheck(name, limits.hullDistanceRel,
                          "piece " + p->name + " has fewer than 3 seam vertices");
     const Points2 seam = loopPoints(p->flat, p->seam);
     if (findSelfIntersection(seam))
-      return notRunCheck(name, limits.hull_distance_rel,
+      return notRunCheck(name, limits.hullDistanceRel,
                          "piece " + p->name + " is not convex: its flat seam is not simple");
     const Convexity c = flatConvexity(seam);
     if (c.pocketMm > c.toleranceMm)
-      return notRunCheck(name, limits.hull_distance_rel,
+      return notRunCheck(name, limits.hullDistanceRel,
                          "piece " + p->name + " is not convex: its flat seam has a pocket " +
                              num(c.pocketMm) + " mm deep, more than the " + num(c.toleranceMm) +
                              " mm a convex outline may gain from its sampling and from the "
@@ -382,19 +382,18 @@ CheckResult hullCheck(const DForm& model, const GateLimits& limits) {
   }
   const std::optional<HullDistance> d = distanceToSeamHull(model);
   if (!d)
-    return notRunCheck(name, limits.hull_distance_rel,
-                       "the seam is planar: its hull has no inside");
+    return notRunCheck(name, limits.hullDistanceRel, "the seam is planar: its hull has no inside");
   const std::string measured = "largest distance to the seam's convex hull " + num(d->worstMm) +
                                " mm (" + num(d->worstMm / d->diagonalMm) + " of the seam's " +
                                num(d->diagonalMm) + " mm bounding-box diagonal) at " + d->where;
   if (const std::string unmatched = cornersMeetingSmoothPoints(model); !unmatched.empty())
-    return notRunCheck(name, limits.hull_distance_rel,
+    return notRunCheck(name, limits.hullDistanceRel,
                        unmatched +
                            ": the real D-Form creases from there and is its seam's hull with "
                            "those creases as edges; this model has none and bends instead, so it "
                            "cannot be the hull (" +
                            measured + "); draw the creases to model them");
-  return judgeCheck(name, d->worstMm / d->diagonalMm, limits.hull_distance_rel,
+  return judgeCheck(name, d->worstMm / d->diagonalMm, limits.hullDistanceRel,
                     measured + "; both pieces convex (deepest flat-seam pocket " + convexity + ")");
 }
 
@@ -455,61 +454,60 @@ GateReport runGate(const DForm& model, const GateLimits& limits, const Metrics& 
   auto& checks = report.checks;
   const size_t pairs = model.a.seam.size();
 
-  checks.push_back(judgeCheck("L_error", m.L_error, limits.L_error,
+  checks.push_back(judgeCheck("L_error", m.lengthError, limits.lengthError,
                               "relative edge-length error over both pieces"));
-  checks.push_back(
-      judgeCheck("L_max", m.L_max, limits.L_max, "largest relative error of one edge"));
+  checks.push_back(judgeCheck("L_max", m.lengthErrorMax, limits.lengthErrorMax,
+                              "largest relative error of one edge"));
   if (target) {
     if (size_t(target->points.rows()) != pairs || pairs == 0 || !curve) {
-      checks.push_back(notRunCheck("D_error", limits.D_error,
+      checks.push_back(notRunCheck("D_error", limits.curveError,
                                    "the target curve has " + std::to_string(target->points.rows()) +
                                        " points for " + std::to_string(pairs) + " seam pairs"));
     } else {
       report.curve = *curve;
-      checks.push_back(judgeCheck("D_error", report.curve->D_error, limits.D_error,
+      checks.push_back(judgeCheck("D_error", report.curve->curveError, limits.curveError,
                                   "mean seam-to-curve distance / curve length; largest distance " +
-                                      num(report.curve->curve_distance_max_mm) + " mm"));
+                                      num(report.curve->curveDistanceMaxMm) + " mm"));
     }
   } else if (pairs == 0) {
-    checks.push_back(notRunCheck("B_error", limits.B_error, "the model has no seam pairs"));
+    checks.push_back(notRunCheck("B_error", limits.seamError, "the model has no seam pairs"));
   } else {
-    checks.push_back(judgeCheck("B_error", m.B_error, limits.B_error,
+    checks.push_back(judgeCheck("B_error", m.seamError, limits.seamError,
                                 "mean seam-partner distance / 3D seam length"));
   }
   if (pairs == 0)
-    checks.push_back(notRunCheck("seam_gap_mm", limits.seam_gap_mm, "the model has no seam pairs"));
+    checks.push_back(notRunCheck("seam_gap_mm", limits.seamGapMm, "the model has no seam pairs"));
   else
-    checks.push_back(judgeCheck("seam_gap_mm", m.seam_gap_mm, limits.seam_gap_mm,
+    checks.push_back(judgeCheck("seam_gap_mm", m.seamGapMm, limits.seamGapMm,
                                 "largest seam-partner distance (mm)"));
   checks.push_back(gaussCheck(model, limits));
-  checks.push_back(judgeCheck("flipped", m.flipped_2d + m.flipped_3d, limits.flipped,
-                              std::to_string(m.flipped_2d) + " flipped flat, " +
-                                  std::to_string(m.flipped_3d) + " folded-over 3D triangles"));
-  checks.push_back(judgeCheck("degenerate", m.degenerate_2d + m.degenerate_3d, limits.degenerate,
-                              std::to_string(m.degenerate_2d) + " flat, " +
-                                  std::to_string(m.degenerate_3d) + " 3D degenerate triangles"));
+  checks.push_back(judgeCheck("flipped", m.flipped2d + m.flipped3d, limits.flipped,
+                              std::to_string(m.flipped2d) + " flipped flat, " +
+                                  std::to_string(m.flipped3d) + " folded-over 3D triangles"));
+  checks.push_back(judgeCheck("degenerate", m.degenerate2d + m.degenerate3d, limits.degenerate,
+                              std::to_string(m.degenerate2d) + " flat, " +
+                                  std::to_string(m.degenerate3d) + " 3D degenerate triangles"));
   checks.push_back(flatSimpleCheck(model));
-  const double longer = std::max(m.seam_length_a_mm, m.seam_length_b_mm);
+  const double longer = std::max(m.seamLengthAMm, m.seamLengthBMm);
   if (longer <= 0.0)
     checks.push_back(
-        notRunCheck("seam_length_rel", limits.seam_length_rel, "the flat seams have no length"));
+        notRunCheck("seam_length_rel", limits.seamLengthRel, "the flat seams have no length"));
   else
     checks.push_back(judgeCheck(
-        "seam_length_rel", std::abs(m.seam_length_a_mm - m.seam_length_b_mm) / longer,
-        limits.seam_length_rel,
-        "flat seams " + num(m.seam_length_a_mm) + " mm and " + num(m.seam_length_b_mm) + " mm"));
+        "seam_length_rel", std::abs(m.seamLengthAMm - m.seamLengthBMm) / longer,
+        limits.seamLengthRel,
+        "flat seams " + num(m.seamLengthAMm) + " mm and " + num(m.seamLengthBMm) + " mm"));
   checks.push_back(selfIntersectionCheck(model));
   checks.push_back(hullCheck(model, limits));
-  checks.push_back(
-      objectCheck("exact_distance_rel", m.exact_distance_rms_rel, m.exact_distance_max_rel,
-                  limits.exact_distance_rel, m.exact_note,
-                  "RMS distance of the 3D seam from the exact D-Form of these flat pieces"));
+  checks.push_back(objectCheck(
+      "exact_distance_rel", m.exactDistanceRmsRel, m.exactDistanceMaxRel, limits.exactDistanceRel,
+      m.exactNote, "RMS distance of the 3D seam from the exact D-Form of these flat pieces"));
   if (report.curve)
-    checks.push_back(objectCheck("roundtrip_rel", report.curve->roundtrip_rms_rel,
-                                 report.curve->roundtrip_max_rel, limits.roundtrip_rel,
-                                 report.curve->roundtrip_note,
+    checks.push_back(objectCheck("roundtrip_rel", report.curve->roundtripRmsRel,
+                                 report.curve->roundtripMaxRel, limits.roundtripRel,
+                                 report.curve->roundtripNote,
                                  "RMS distance from the target curve of the pieces zipped again (" +
-                                     report.curve->roundtrip_note + ")"));
+                                     report.curve->roundtripNote + ")"));
   return report;
 }
 

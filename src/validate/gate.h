@@ -15,21 +15,21 @@ namespace dform {
 /// Limits of the gate. The defaults are templates/gates/default.json (the paper's figures);
 /// a gate file may leave any field out to keep its default.
 struct GateLimits {
-  std::string name = "default";     ///< the preset's name, for the report
-  double L_error = 0.005;           ///< max L_error (fraction): every Table 1 example is below 0.5%
-  double L_max = 0.03;              ///< max per-edge relative length error (fraction), paper: < 3%
-  double B_error = 1e-6;            ///< max B_error (fraction of the 3D seam length), forward mode
-  double D_error = 1e-6;            ///< max D_error (fraction of the curve length), inverse mode
-  double seam_gap_mm = 0.1;         ///< max distance between seam partners (mm)
-  double gauss_max_rad = 0.05;      ///< max |angle defect| away from the seam (radians)
-  double seam_length_rel = 2e-3;    ///< max |flat seam A - flat seam B| / max of both (fraction)
-  double hull_distance_rel = 0.01;  ///< max distance to the seam's hull / seam bbox diagonal
+  std::string name = "default";   ///< the preset's name, for the report
+  double lengthError = 0.005;     ///< max L_error (fraction): every Table 1 example is below 0.5%
+  double lengthErrorMax = 0.03;   ///< max per-edge relative length error (fraction), paper: < 3%
+  double seamError = 1e-6;        ///< max B_error (fraction of the 3D seam length), forward mode
+  double curveError = 1e-6;       ///< max D_error (fraction of the curve length), inverse mode
+  double seamGapMm = 0.1;         ///< max distance between seam partners (mm)
+  double gaussMaxRad = 0.05;      ///< max |angle defect| away from the seam (radians)
+  double seamLengthRel = 2e-3;    ///< max |flat seam A - flat seam B| / max of both (fraction)
+  double hullDistanceRel = 0.01;  ///< max distance to the seam's hull / seam bbox diagonal
   /// max RMS seam distance from the exact D-Form of the same pieces / seam bbox diagonal: how far
   /// the shape shown is from the shape the cut pieces make
-  double exact_distance_rel = 2e-3;
+  double exactDistanceRel = 2e-3;
   /// inverse mode: max RMS distance of the zipped pieces' exact D-Form from the target curve /
   /// the curve's bbox diagonal
-  double roundtrip_rel = 2e-3;
+  double roundtripRel = 2e-3;
   int flipped = 0;     ///< max flipped triangles (flat and 3D together)
   int degenerate = 0;  ///< max degenerate triangles (flat and 3D together)
 };

@@ -62,16 +62,16 @@ Result<GateLimits> parseGateJson(const std::string& text, const std::string& sou
     double* field;
   };
   const Real reals[] = {
-      {"L_error", &limits.L_error},
-      {"L_max", &limits.L_max},
-      {"B_error", &limits.B_error},
-      {"D_error", &limits.D_error},
-      {"seam_gap_mm", &limits.seam_gap_mm},
-      {"gauss_max_rad", &limits.gauss_max_rad},
-      {"seam_length_rel", &limits.seam_length_rel},
-      {"hull_distance_rel", &limits.hull_distance_rel},
-      {"exact_distance_rel", &limits.exact_distance_rel},
-      {"roundtrip_rel", &limits.roundtrip_rel},
+      {"L_error", &limits.lengthError},
+      {"L_max", &limits.lengthErrorMax},
+      {"B_error", &limits.seamError},
+      {"D_error", &limits.curveError},
+      {"seam_gap_mm", &limits.seamGapMm},
+      {"gauss_max_rad", &limits.gaussMaxRad},
+      {"seam_length_rel", &limits.seamLengthRel},
+      {"hull_distance_rel", &limits.hullDistanceRel},
+      {"exact_distance_rel", &limits.exactDistanceRel},
+      {"roundtrip_rel", &limits.roundtripRel},
   };
   struct Count {
     const char* key;

@@ -125,20 +125,20 @@ Metrics computeMetrics(const DForm& model, const ReferenceSeam& exactBody) {
   for (const Piece* p : {&model.a, &model.b}) {
     assert(p->flat.rows() == p->shape.rows() && "flat and 3D layouts share their vertices");
     const detail::EdgeTopology topology = detail::edgeTopology(p->F);
-    addEdgeLengths(*p, topology, sumSqDiff, sumSqFlat, m.L_max);
-    addDefects(*p, topology, m.gauss_max, sumAbsDefect, interiorCount);
-    for (int f = 0; f < p->F.rows(); ++f) m.flipped_2d += detail::isFlippedFlat(p->flat, p->F, f);
+    addEdgeLengths(*p, topology, sumSqDiff, sumSqFlat, m.lengthErrorMax);
+    addDefects(*p, topology, m.gaussMax, sumAbsDefect, interiorCount);
+    for (int f = 0; f < p->F.rows(); ++f) m.flipped2d += detail::isFlippedFlat(p->flat, p->F, f);
     // Folded over: across an interior edge whose two flat triangles are both counter-clockwise
     // (flat dihedral 0), the 3D unit normals have a negative dot product (a turn of more than 90
     // degrees); each triangle counts once. Crease edges may fold sharply and are not looked at.
     // Details in mesh_measures.cpp.
-    m.flipped_3d +=
+    m.flipped3d +=
         detail::countFolded(p->flat, p->shape, p->F, topology, detail::creaseEdges(*p, topology));
-    m.degenerate_2d += detail::countDegenerate(detail::lift(p->flat), p->F, topology);
-    m.degenerate_3d += detail::countDegenerate(p->shape, p->F, topology);
+    m.degenerate2d += detail::countDegenerate(detail::lift(p->flat), p->F, topology);
+    m.degenerate3d += detail::countDegenerate(p->shape, p->F, topology);
   }
-  m.L_error = sumSqFlat > 0.0 ? std::sqrt(sumSqDiff / sumSqFlat) : 0.0;
-  m.gauss_mean = interiorCount > 0 ? sumAbsDefect / interiorCount : 0.0;
+  m.lengthError = sumSqFlat > 0.0 ? std::sqrt(sumSqDiff / sumSqFlat) : 0.0;
+  m.gaussMean = interiorCount > 0 ? sumAbsDefect / interiorCount : 0.0;
 
   const std::vector<int>& sa = model.a.seam;
   const std::vector<int>& sb = model.b.seam;
@@ -146,19 +146,19 @@ Metrics computeMetrics(const DForm& model, const ReferenceSeam& exactBody) {
   for (size_t i = 0; i < sa.size(); ++i) {
     const double gap = (model.a.shape.row(sa[i]) - model.b.shape.row(sb[i])).norm();
     sumGap += gap;
-    m.seam_gap_mm = std::max(m.seam_gap_mm, gap);
+    m.seamGapMm = std::max(m.seamGapMm, gap);
   }
-  m.seam_length_a_mm = detail::seamLength(model.a.flat, sa);
-  m.seam_length_b_mm = detail::seamLength(model.b.flat, sb);
-  m.seam_length_3d_mm = detail::seamLength(model.a.shape, sa);
-  if (!sa.empty() && m.seam_length_3d_mm > 0.0)
-    m.B_error = (sumGap / double(sa.size())) / m.seam_length_3d_mm;
+  m.seamLengthAMm = detail::seamLength(model.a.flat, sa);
+  m.seamLengthBMm = detail::seamLength(model.b.flat, sb);
+  m.seamLength3dMm = detail::seamLength(model.a.shape, sa);
+  if (!sa.empty() && m.seamLength3dMm > 0.0)
+    m.seamError = (sumGap / double(sa.size())) / m.seamLength3dMm;
   if (exactBody.points.rows() > 0) {
     const exact::AlignedDistance d = exact::alignedDistance(exactBody.points, seamShape(model.a));
-    m.exact_distance_rms_rel = d.rmsRel;
-    m.exact_distance_max_rel = d.maxRel;
+    m.exactDistanceRmsRel = d.rmsRel;
+    m.exactDistanceMaxRel = d.maxRel;
   } else {
-    m.exact_note = exactBody.note;
+    m.exactNote = exactBody.note;
   }
   return m;
 }
@@ -175,17 +175,17 @@ CurveMatch computeCurveMatch(const DForm& model, const Curve3& target,
     const double da = (model.a.shape.row(sa[i]) - target.points.row(Eigen::Index(i))).norm();
     const double db = (model.b.shape.row(sb[i]) - target.points.row(Eigen::Index(i))).norm();
     sum += da + db;
-    match.curve_distance_max_mm = std::max({match.curve_distance_max_mm, da, db});
+    match.curveDistanceMaxMm = std::max({match.curveDistanceMaxMm, da, db});
   }
   const double curveLength = closedLength(target.points);
   if (!sa.empty() && curveLength > 0.0)
-    match.D_error = (sum / (2.0 * double(sa.size()))) / curveLength;
+    match.curveError = (sum / (2.0 * double(sa.size()))) / curveLength;
   if (zippedAgain.points.rows() > 0) {
     const exact::AlignedDistance d = exact::alignedDistance(target.points, zippedAgain.points);
-    match.roundtrip_rms_rel = d.rmsRel;
-    match.roundtrip_max_rel = d.maxRel;
+    match.roundtripRmsRel = d.rmsRel;
+    match.roundtripMaxRel = d.maxRel;
   }
-  match.roundtrip_note = zippedAgain.note;
+  match.roundtripNote = zippedAgain.note;
   return match;
 }
 

@@ -10,26 +10,26 @@
 namespace dform {
 
 struct Metrics {
-  double L_error = 0;            ///< |L3 - L2| / |L2| over all edges of both pieces (fraction)
-  double L_max = 0;              ///< max_i |L3_i - L2_i| / L2_i (fraction)
-  double B_error = 0;            ///< mean distance between seam partners / seam length (fraction)
-  double seam_gap_mm = 0;        ///< largest distance between seam partners (mm)
-  double gauss_max = 0;          ///< largest |angle defect| at interior vertices (radians)
-  double gauss_mean = 0;         ///< mean |angle defect| at interior vertices (radians)
-  int flipped_2d = 0;            ///< flat triangles with non-positive signed area
-  int flipped_3d = 0;            ///< 3D triangles whose normal opposes its neighbours' (see .cpp)
-  int degenerate_2d = 0;         ///< flat triangles with an angle below 1e-3 rad or zero area
-  int degenerate_3d = 0;         ///< 3D triangles with an angle below 1e-3 rad or zero area
-  double seam_length_a_mm = 0;   ///< flat seam length (perimeter) of piece A
-  double seam_length_b_mm = 0;   ///< flat seam length of piece B
-  double seam_length_3d_mm = 0;  ///< length of the 3D seam (piece A's side)
+  double lengthError = 0;     ///< |L3 - L2| / |L2| over all edges of both pieces (fraction)
+  double lengthErrorMax = 0;  ///< max_i |L3_i - L2_i| / L2_i (fraction)
+  double seamError = 0;       ///< mean distance between seam partners / seam length (fraction)
+  double seamGapMm = 0;       ///< largest distance between seam partners (mm)
+  double gaussMax = 0;        ///< largest |angle defect| at interior vertices (radians)
+  double gaussMean = 0;       ///< mean |angle defect| at interior vertices (radians)
+  int flipped2d = 0;          ///< flat triangles with non-positive signed area
+  int flipped3d = 0;          ///< 3D triangles whose normal opposes its neighbours' (see .cpp)
+  int degenerate2d = 0;       ///< flat triangles with an angle below 1e-3 rad or zero area
+  int degenerate3d = 0;       ///< 3D triangles with an angle below 1e-3 rad or zero area
+  double seamLengthAMm = 0;   ///< flat seam length (perimeter) of piece A
+  double seamLengthBMm = 0;   ///< flat seam length of piece B
+  double seamLength3dMm = 0;  ///< length of the 3D seam (piece A's side)
   /// The 3D seam against the seam of the exact D-Form of the same flat pieces (the reference the
   /// caller gives) after rigid alignment: root mean square and largest distance over the seam's
-  /// bounding-box diagonal. NaN when there is no exact D-Form to compare with; exact_note then
+  /// bounding-box diagonal. NaN when there is no exact D-Form to compare with; exactNote then
   /// says why.
-  double exact_distance_rms_rel = std::numeric_limits<double>::quiet_NaN();
-  double exact_distance_max_rel = std::numeric_limits<double>::quiet_NaN();
-  std::string exact_note;
+  double exactDistanceRmsRel = std::numeric_limits<double>::quiet_NaN();
+  double exactDistanceMaxRel = std::numeric_limits<double>::quiet_NaN();
+  std::string exactNote;
 };
 
 /// A 3D seam that a result's figures compare it with (row k for seam point k), made by the
@@ -76,15 +76,15 @@ std::vector<CreaseFold> creaseFolds(const Piece& piece);
 /// Inverse mode: D_error (paper Eq. 7, fraction) and the largest seam-to-curve distance (mm),
 /// where curve.points.row(i) is the target of a.seam[i] and b.seam[i].
 struct CurveMatch {
-  double D_error = 0;
-  double curve_distance_max_mm = 0;
+  double curveError = 0;
+  double curveDistanceMaxMm = 0;
   /// The round trip: the flat pieces zipped again (their exact D-Form, or the optimisation where
   /// their metric is not convex; the reference the caller gives) against the target curve after
-  /// rigid alignment, over the curve's bounding-box diagonal; roundtrip_note says which zipped
+  /// rigid alignment, over the curve's bounding-box diagonal; roundtripNote says which zipped
   /// them. NaN when neither could (the note says why).
-  double roundtrip_rms_rel = std::numeric_limits<double>::quiet_NaN();
-  double roundtrip_max_rel = std::numeric_limits<double>::quiet_NaN();
-  std::string roundtrip_note;
+  double roundtripRmsRel = std::numeric_limits<double>::quiet_NaN();
+  double roundtripMaxRel = std::numeric_limits<double>::quiet_NaN();
+  std::string roundtripNote;
 };
 CurveMatch computeCurveMatch(const DForm& model, const Curve3& target,
                              const ReferenceSeam& zippedAgain);

@@ -84,18 +84,17 @@ int runAccuracy(int repeats, const std::string& plotPath, bool smoke) {
       solveSeconds.push_back(last.timings.solve);
     }
     const Metrics& m = last.metrics;
-    if (std::isnan(m.exact_distance_rms_rel)) {
+    if (std::isnan(m.exactDistanceRmsRel)) {
       std::fprintf(stderr, "dform_bench: no exact D-Form to compare with: %s\n",
-                   m.exact_note.c_str());
+                   m.exactNote.c_str());
       return 1;
     }
-    points.push_back(
-        {weight, median(solveSeconds), m.exact_distance_rms_rel, m.exact_distance_max_rel});
+    points.push_back({weight, median(solveSeconds), m.exactDistanceRmsRel, m.exactDistanceMaxRel});
     std::printf("| %g | %ld | %.3f | %zu | %d | %.1e | %.1e | %.3f | %.3f | %d |\n", weight,
                 long(last.model.a.flat.rows() + last.model.b.flat.rows()),
                 points.back().solveSeconds, last.summary.iterations.size(),
-                last.summary.factorisations, m.exact_distance_rms_rel, m.exact_distance_max_rel,
-                100 * m.L_error, 100 * m.L_max, m.flipped_2d + m.flipped_3d);
+                last.summary.factorisations, m.exactDistanceRmsRel, m.exactDistanceMaxRel,
+                100 * m.lengthError, 100 * m.lengthErrorMax, m.flipped2d + m.flipped3d);
     std::fflush(stdout);
   }
   if (!plotPath.empty() && !writeAccuracyPlot(plotPath, points)) {

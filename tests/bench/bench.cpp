@@ -242,9 +242,9 @@ int main(int argc, char** argv) {
         c.name, last.modelUsed.name.c_str(), c.resolution,
         long(last.model.a.flat.rows() + last.model.b.flat.rows()), median(mesh),
         median(solveSeconds), median(total), median(exportSeconds), last.summary.iterations.size(),
-        last.summary.factorisations, 100 * m.L_error, 100 * m.L_max, m.B_error,
-        m.flipped_2d + m.flipped_3d, exactDistance(m.exact_distance_rms_rel).c_str(),
-        exactDistance(m.exact_distance_max_rel).c_str());
+        last.summary.factorisations, 100 * m.lengthError, 100 * m.lengthErrorMax, m.seamError,
+        m.flipped2d + m.flipped3d, exactDistance(m.exactDistanceRmsRel).c_str(),
+        exactDistance(m.exactDistanceMaxRel).c_str());
     std::fflush(stdout);
   }
   std::filesystem::remove_all(exportDir);
@@ -284,8 +284,8 @@ int main(int argc, char** argv) {
         curve, last.modelUsed.name.c_str(), n,
         long(last.model.a.flat.rows() + last.model.b.flat.rows()), median(init), median(solve),
         median(total), last.summary.iterations.size(), last.summary.factorisations,
-        last.curveMatch.D_error, 100 * last.metrics.L_error, 100 * last.metrics.L_max,
-        last.curveMatch.roundtrip_rms_rel);
+        last.curveMatch.curveError, 100 * last.metrics.lengthError,
+        100 * last.metrics.lengthErrorMax, last.curveMatch.roundtripRmsRel);
     std::fflush(stdout);
   }
   if (smoke) {

@@ -43,7 +43,7 @@ void runCase(const Case& c, int fd) {
     if (!r.isOk()) _exit(1);
     vertices = long(r.value().model.a.flat.rows() + r.value().model.b.flat.rows());
     solve = r.value().timings.solve, run = r.value().timings.total;
-    lError = r.value().metrics.L_error, lMax = r.value().metrics.L_max;
+    lError = r.value().metrics.lengthError, lMax = r.value().metrics.lengthErrorMax;
   };
   if (c.forward) {
     ForwardJob job;

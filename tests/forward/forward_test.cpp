@@ -64,7 +64,7 @@ TEST(Forward, PillowStartIsClosedAndInflated) {
   // A's interior above the seam, B's below.
   EXPECT_GT(start.a.shape.col(2).maxCoeff(), 1.0);
   EXPECT_LT(start.b.shape.col(2).minCoeff(), -1.0);
-  EXPECT_EQ(computeMetrics(start, {}).flipped_3d, 0);
+  EXPECT_EQ(computeMetrics(start, {}).flipped3d, 0);
 }
 
 TEST(Forward, SolvesTwoEllipsesToThePapersFigures) {
@@ -72,11 +72,11 @@ TEST(Forward, SolvesTwoEllipsesToThePapersFigures) {
   const ForwardResult r = solveForward(p.a, p.b, ForwardOptions{});
   ASSERT_TRUE(r.summary.usable()) << r.summary.message;
   const Metrics m = computeMetrics(r.model, {});
-  EXPECT_LE(m.L_error, 0.005);
-  EXPECT_LE(m.L_max, 0.03);
-  EXPECT_LE(m.B_error, 1e-6);
-  EXPECT_EQ(m.flipped_2d + m.flipped_3d, 0);
-  EXPECT_EQ(m.degenerate_2d + m.degenerate_3d, 0);
+  EXPECT_LE(m.lengthError, 0.005);
+  EXPECT_LE(m.lengthErrorMax, 0.03);
+  EXPECT_LE(m.seamError, 1e-6);
+  EXPECT_EQ(m.flipped2d + m.flipped3d, 0);
+  EXPECT_EQ(m.degenerate2d + m.degenerate3d, 0);
   // The flat outlines stay where they were drawn (within the outline tolerance).
   const double perimeter = closedLength(test::ellipse(120, 70));
   for (std::size_t k = 0; k < p.a.seam.size(); ++k)
@@ -99,9 +99,9 @@ TEST(Forward, ADifferentStartingPairMakesADifferentDFormOfTheSameQuality) {
   const ForwardResult r0 = solveForward(p0.a, p0.b, ForwardOptions{});
   const ForwardResult r1 = solveForward(p1.a, p1.b, ForwardOptions{});
   const Metrics m1 = computeMetrics(r1.model, {});
-  EXPECT_LE(m1.L_error, 0.005);
-  EXPECT_LE(m1.L_max, 0.03);
-  EXPECT_LE(m1.B_error, 1e-6);
+  EXPECT_LE(m1.lengthError, 0.005);
+  EXPECT_LE(m1.lengthErrorMax, 0.03);
+  EXPECT_LE(m1.seamError, 1e-6);
   // Compare rotation-free sizes: the spread of the 3D seam around its centroid.
   auto extent = [](const Piece& a) {
     Points3 S(a.seam.size(), 3);
@@ -120,9 +120,9 @@ TEST(Forward, IdenticalEllipsesAQuarterTurnApartMakeTheClassicDForm) {
   const Piece a = test::meshedPiece(E, 40, false), b = test::meshedPiece(E, 40, true, 0.25);
   const ForwardResult r = solveForward(a, b, ForwardOptions{});
   const Metrics m = computeMetrics(r.model, {});
-  EXPECT_LE(m.L_error, 0.005);
-  EXPECT_LE(m.L_max, 0.03);
-  EXPECT_EQ(m.flipped_3d, 0);
+  EXPECT_LE(m.lengthError, 0.005);
+  EXPECT_LE(m.lengthErrorMax, 0.03);
+  EXPECT_EQ(m.flipped3d, 0);
   const double depth = r.model.a.shape.col(2).maxCoeff() - r.model.b.shape.col(2).minCoeff();
   EXPECT_GT(depth, 40.0);
 }
@@ -334,7 +334,7 @@ TEST(Forward, FoldGuardCountsTheGatesFoldsAndRefusesOnlyNewOnes) {
   EllipsePair p;
   const ForwardResult r = solveForward(p.a, p.b, ForwardOptions{});
   const DForm folded = foldedEllipses(r.model);
-  ASSERT_GT(computeMetrics(folded, {}).flipped_3d, 0);
+  ASSERT_GT(computeMetrics(folded, {}).flipped3d, 0);
   const VariableLayout layout(int(p.a.flat.rows()), int(p.b.flat.rows()), p.a.seam, p.b.seam);
   const FoldGuard guard(layout, p.a, p.b);
   const Eigen::VectorXd clean = packVariables(layout, r.model.a, r.model.b);
@@ -348,7 +348,7 @@ TEST(Forward, FoldGuardCountsTheGatesFoldsAndRefusesOnlyNewOnes) {
   DForm flipped = r.model;
   const auto [v, w] = centralVertexAndNeighbour(flipped.a);
   flipped.a.flat.row(v) += 2.0 * (flipped.a.flat.row(w) - flipped.a.flat.row(v));
-  ASSERT_GT(computeMetrics(flipped, {}).flipped_2d, 0);
+  ASSERT_GT(computeMetrics(flipped, {}).flipped2d, 0);
   EXPECT_TRUE(guard.addsFold(clean, packVariables(layout, flipped.a, flipped.b)));
 }
 
@@ -356,13 +356,13 @@ TEST(Forward, AFoldedStartEndsUnfolded) {
   EllipsePair p;
   const ForwardResult solved = solveForward(p.a, p.b, ForwardOptions{});
   const DForm folded = foldedEllipses(solved.model);
-  ASSERT_GT(computeMetrics(folded, {}).flipped_3d, 0);
+  ASSERT_GT(computeMetrics(folded, {}).flipped3d, 0);
   const ForwardResult r = solveForward(folded.a, folded.b, ForwardOptions{});
   ASSERT_TRUE(r.summary.usable()) << r.summary.message;
   const Metrics m = computeMetrics(r.model, {});
-  EXPECT_EQ(m.flipped_2d + m.flipped_3d, 0);
-  EXPECT_LE(m.L_error, 0.005);
-  EXPECT_LE(m.L_max, 0.03);
+  EXPECT_EQ(m.flipped2d + m.flipped3d, 0);
+  EXPECT_LE(m.lengthError, 0.005);
+  EXPECT_LE(m.lengthErrorMax, 0.03);
 }
 
 TEST(Forward, TransferIsExactOnTheSameMeshAndStartsAFinerSolve) {
@@ -381,8 +381,8 @@ TEST(Forward, TransferIsExactOnTheSameMeshAndStartsAFinerSolve) {
         0.5 * (a.shape.row(a.seam[k]) + b.shape.row(b.seam[k]));
   const ForwardResult fine = solveForward(a, b, ForwardOptions{});
   const Metrics m = computeMetrics(fine.model, {});
-  EXPECT_LE(m.L_error, 0.005);
-  EXPECT_LE(m.B_error, 1e-6);
+  EXPECT_LE(m.lengthError, 0.005);
+  EXPECT_LE(m.seamError, 1e-6);
   EXPECT_LE(fine.summary.factorisations, 3);
 }
 

@@ -30,11 +30,11 @@ Result<DForm> made(const exact::SeamPolygons& polygons, ModelUsed& used) {
 
 // The figures that judge the object: with conforming meshes they are rounding.
 void expectRounding(const Metrics& m, const std::string& what) {
-  EXPECT_LE(m.L_max, 1e-8) << what;
-  EXPECT_LE(m.L_error, 1e-9) << what;
-  EXPECT_LE(m.gauss_max, 1e-8) << what;
-  EXPECT_EQ(m.degenerate_2d + m.degenerate_3d, 0) << what;
-  EXPECT_EQ(m.flipped_2d + m.flipped_3d, 0) << what;
+  EXPECT_LE(m.lengthErrorMax, 1e-8) << what;
+  EXPECT_LE(m.lengthError, 1e-9) << what;
+  EXPECT_LE(m.gaussMax, 1e-8) << what;
+  EXPECT_EQ(m.degenerate2d + m.degenerate3d, 0) << what;
+  EXPECT_EQ(m.flipped2d + m.flipped3d, 0) << what;
 }
 
 // A circle and a square of 400 mm perimeter, 25 seam points a side, the square's corners midway

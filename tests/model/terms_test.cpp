@@ -187,10 +187,10 @@ TEST(Terms, RolledRectangleIsIsometricUpToTheChordEffect) {
     longest = std::max(longest, (rolled.flat.row(E(e, 0)) - rolled.flat.row(E(e, 1))).norm());
   const double bound = longest * longest / (R * R) / 24.0;
   const Metrics m = computeMetrics(DForm{rolled, rolled}, {});
-  EXPECT_LE(m.L_max, bound);
-  EXPECT_LE(m.L_error, bound);
-  EXPECT_LT(m.L_error, 2e-3);
-  EXPECT_EQ(m.flipped_3d, 0);
+  EXPECT_LE(m.lengthErrorMax, bound);
+  EXPECT_LE(m.lengthError, bound);
+  EXPECT_LT(m.lengthError, 2e-3);
+  EXPECT_EQ(m.flipped3d, 0);
   // The same edges through the isometry term: |x|^2 - |u|^2 relative to |u|^2.
   const VariableLayout layout(int(rolled.flat.rows()), int(rolled.flat.rows()));
   const auto iso = makeIsometryTerm(meshEdgePairs(layout, rolled.F, rolled.F));

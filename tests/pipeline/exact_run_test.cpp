@@ -82,11 +82,11 @@ TEST(ExactRun, AutoTakesTheExactModelForConvexPiecesAndThePaperModelIsMeasuredAg
   ASSERT_TRUE(exact.isOk()) << exact.status().message();
   EXPECT_EQ(exact.value().modelUsed.name, "exact");
   const Metrics& e = exact.value().metrics;
-  EXPECT_LT(e.exact_distance_max_rel, 1e-9);
-  EXPECT_LT(e.B_error, 1e-12);
-  EXPECT_EQ(e.flipped_2d + e.flipped_3d, 0);
+  EXPECT_LT(e.exactDistanceMaxRel, 1e-9);
+  EXPECT_LT(e.seamError, 1e-12);
+  EXPECT_EQ(e.flipped2d + e.flipped3d, 0);
   // The flat pieces as cut keep the drawn perimeters (the seam polygons moved by micrometres).
-  EXPECT_NEAR(e.seam_length_a_mm, exact.value().perimeterA, 2e-3 * exact.value().perimeterA);
+  EXPECT_NEAR(e.seamLengthAMm, exact.value().perimeterA, 2e-3 * exact.value().perimeterA);
   EXPECT_LT(exact.value().modelUsed.chordMoveMm, 0.01);
 
   Result<ForwardRun> paper = run(job("ellipses-a.svg", "ellipses-b.svg", ModelChoice::Paper));
@@ -94,12 +94,12 @@ TEST(ExactRun, AutoTakesTheExactModelForConvexPiecesAndThePaperModelIsMeasuredAg
   EXPECT_EQ(paper.value().modelUsed.name, "paper");
   const Metrics& p = paper.value().metrics;
   // The paper's model is close to the physical D-Form, but measurably not it.
-  EXPECT_GT(p.exact_distance_rms_rel, 1e-5);
-  EXPECT_LT(p.exact_distance_rms_rel, 2e-3);
+  EXPECT_GT(p.exactDistanceRmsRel, 1e-5);
+  EXPECT_LT(p.exactDistanceRmsRel, 2e-3);
   // Its distance from the exact shape varies along the seam: the largest point's is above the
   // root mean square (a max reported as the RMS, or the other way round, fails here).
-  EXPECT_GT(p.exact_distance_max_rel, 1.05 * p.exact_distance_rms_rel);
-  EXPECT_LT(p.exact_distance_max_rel, 20 * p.exact_distance_rms_rel);
+  EXPECT_GT(p.exactDistanceMaxRel, 1.05 * p.exactDistanceRmsRel);
+  EXPECT_LT(p.exactDistanceMaxRel, 20 * p.exactDistanceRmsRel);
 }
 
 TEST(ExactRun, TheGeneralEngineConvergesToTheExactBodyOnAConvexPair) {
@@ -119,11 +119,11 @@ TEST(ExactRun, TheGeneralEngineConvergesToTheExactBodyOnAConvexPair) {
   ASSERT_TRUE(paper.isOk()) << paper.status().message();
   const Metrics& g = general.value().metrics;
   const Metrics& p = paper.value().metrics;
-  EXPECT_LT(g.exact_distance_rms_rel, 1e-4);
-  EXPECT_LT(g.exact_distance_rms_rel, 0.5 * p.exact_distance_rms_rel);
-  EXPECT_LT(g.L_max, 0.002);
-  EXPECT_LT(g.L_max, 0.5 * p.L_max);
-  EXPECT_EQ(g.flipped_2d + g.flipped_3d, 0);
+  EXPECT_LT(g.exactDistanceRmsRel, 1e-4);
+  EXPECT_LT(g.exactDistanceRmsRel, 0.5 * p.exactDistanceRmsRel);
+  EXPECT_LT(g.lengthErrorMax, 0.002);
+  EXPECT_LT(g.lengthErrorMax, 0.5 * p.lengthErrorMax);
+  EXPECT_EQ(g.flipped2d + g.flipped3d, 0);
 }
 
 TEST(ExactRun, TheCircleAndTheSquareCreaseBetweenTheSquaresCorners) {
@@ -140,8 +140,8 @@ TEST(ExactRun, TheCircleAndTheSquareCreaseBetweenTheSquaresCorners) {
   EXPECT_TRUE(r.value().model.b.creases.empty());
   // Both pieces bend without stretching: mesh edges keep their flat lengths up to the chord of
   // a fold they cross.
-  EXPECT_LT(r.value().metrics.L_error, 1e-3);
-  EXPECT_LT(r.value().metrics.L_max, 1e-2);
+  EXPECT_LT(r.value().metrics.lengthError, 1e-3);
+  EXPECT_LT(r.value().metrics.lengthErrorMax, 1e-2);
 }
 
 TEST(ExactRun, NonConvexPiecesGoToThePaperModelNamingTheSeamPoint) {
@@ -152,8 +152,8 @@ TEST(ExactRun, NonConvexPiecesGoToThePaperModelNamingTheSeamPoint) {
       << r.value().modelUsed.reason;
   EXPECT_NE(r.value().modelUsed.reason.find("more than 360"), std::string::npos)
       << r.value().modelUsed.reason;
-  EXPECT_TRUE(std::isnan(r.value().metrics.exact_distance_rms_rel));
-  EXPECT_FALSE(r.value().metrics.exact_note.empty());
+  EXPECT_TRUE(std::isnan(r.value().metrics.exactDistanceRmsRel));
+  EXPECT_FALSE(r.value().metrics.exactNote.empty());
 
   ForwardJob exactOnly = job("nonconvex-a.svg", "nonconvex-b.svg", ModelChoice::Exact);
   Result<ForwardRun> refused = run(exactOnly);
@@ -174,8 +174,8 @@ TEST(ExactRun, TheExactModelPassesTheStrictGateWithItsOwnFigures) {
   Result<ForwardRun> r = run(job("ellipses-a.svg", "ellipses-b.svg"));
   ASSERT_TRUE(r.isOk());
   GateLimits strict;
-  strict.L_error = 0.0018;
-  strict.exact_distance_rel = 1e-6;
+  strict.lengthError = 0.0018;
+  strict.exactDistanceRel = 1e-6;
   const GateReport gate = measureAndGate(r.value().model, strict, nullptr);
   const CheckResult* exact = gate.find("exact_distance_rel");
   ASSERT_NE(exact, nullptr);

@@ -42,10 +42,10 @@ ForwardJob job(const std::string& a, const std::string& b, int resolution = 60,
 
 void expectPapersFigures(const ForwardRun& run, const std::string& what) {
   const Metrics& m = run.metrics;
-  EXPECT_LE(m.L_error, 0.005) << what;
-  EXPECT_LE(m.L_max, 0.03) << what;
-  EXPECT_LE(m.B_error, 1e-6) << what;
-  EXPECT_EQ(m.flipped_2d + m.flipped_3d, 0) << what;
+  EXPECT_LE(m.lengthError, 0.005) << what;
+  EXPECT_LE(m.lengthErrorMax, 0.03) << what;
+  EXPECT_LE(m.seamError, 1e-6) << what;
+  EXPECT_EQ(m.flipped2d + m.flipped3d, 0) << what;
   // A D-Form, not a flat double disc: its depth is a good part of its width.
   const double depth =
       std::max(run.model.a.shape.col(2).maxCoeff(), run.model.b.shape.col(2).maxCoeff()) -
@@ -78,14 +78,14 @@ TEST_P(SampleRuns, ReachThePapersFigures) {
   // smoothness term (w = 0.01) costs isometry (without it L_error falls 5 to 9 times on these
   // pairs), so a much lower figure means the objective is no longer the paper's.
   const Metrics& m = run.metrics;
-  EXPECT_LE(m.L_error, 2 * c.lError);
-  EXPECT_GE(m.L_error, 0.5 * c.lError);
-  EXPECT_LE(m.L_max, 2 * c.lMax);
-  EXPECT_LE(m.gauss_max, 2 * c.gaussMax);
+  EXPECT_LE(m.lengthError, 2 * c.lError);
+  EXPECT_GE(m.lengthError, 0.5 * c.lError);
+  EXPECT_LE(m.lengthErrorMax, 2 * c.lMax);
+  EXPECT_LE(m.gaussMax, 2 * c.gaussMax);
   // Seams pair one to one and the flat outlines keep their drawn perimeters (chords of n = 60).
   EXPECT_EQ(run.model.a.seam.size(), 60u);
-  EXPECT_NEAR(run.metrics.seam_length_a_mm, run.perimeterA, 2e-3 * run.perimeterA);
-  EXPECT_NEAR(run.metrics.seam_length_b_mm, run.perimeterB, 2e-3 * run.perimeterB);
+  EXPECT_NEAR(run.metrics.seamLengthAMm, run.perimeterA, 2e-3 * run.perimeterA);
+  EXPECT_NEAR(run.metrics.seamLengthBMm, run.perimeterB, 2e-3 * run.perimeterB);
   EXPECT_GT(run.timings.total, 0.0);
   EXPECT_GE(run.timings.total, run.timings.solve);
 }
@@ -235,14 +235,13 @@ TEST(ForwardRun, UnequalPerimetersStopOrFit) {
   unequal.fitPerimeter = true;
   const ForwardRun fitted = runOk(unequal);
   EXPECT_NEAR(fitted.scaleB, fitted.perimeterA / fitted.perimeterB, 1e-12);
-  EXPECT_NEAR(fitted.metrics.seam_length_a_mm, fitted.metrics.seam_length_b_mm,
-              1e-3 * fitted.perimeterA);
+  EXPECT_NEAR(fitted.metrics.seamLengthAMm, fitted.metrics.seamLengthBMm, 1e-3 * fitted.perimeterA);
 }
 
 TEST(ForwardRun, RunsAreReproducible) {
   const ForwardRun one = runOk(job("nonconvex-a.svg", "nonconvex-b.svg", 40));
   const ForwardRun two = runOk(job("nonconvex-a.svg", "nonconvex-b.svg", 40));
-  EXPECT_EQ(one.metrics.L_error, two.metrics.L_error);
+  EXPECT_EQ(one.metrics.lengthError, two.metrics.lengthError);
   EXPECT_EQ(one.model.a.shape, two.model.a.shape);
 }
 

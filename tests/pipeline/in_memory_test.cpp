@@ -41,7 +41,7 @@ TEST(InMemory, ShapesGiveTheDFormTheirFilesGive) {
   // The same solve on the same numbers: bit for bit.
   EXPECT_EQ(fromMemory.value().model.a.shape, fromFiles.value().model.a.shape);
   EXPECT_EQ(fromMemory.value().model.b.flat, fromFiles.value().model.b.flat);
-  EXPECT_EQ(fromMemory.value().metrics.L_max, fromFiles.value().metrics.L_max);
+  EXPECT_EQ(fromMemory.value().metrics.lengthErrorMax, fromFiles.value().metrics.lengthErrorMax);
 }
 
 TEST(InMemory, PiecesWithoutAFileAreNamedByTheirRole) {
@@ -61,8 +61,7 @@ TEST(InMemory, PiecesWithoutAFileAreNamedByTheirRole) {
       makeDForm(ellipse(40, 40, 400), ellipse(45, 45, 400), settings, sink);
   ASSERT_TRUE(fitted.isOk()) << fitted.status().message();
   EXPECT_NEAR(fitted.value().scaleB, 40.0 / 45.0, 1e-9);
-  EXPECT_NEAR(fitted.value().metrics.seam_length_a_mm, fitted.value().metrics.seam_length_b_mm,
-              1e-9);
+  EXPECT_NEAR(fitted.value().metrics.seamLengthAMm, fitted.value().metrics.seamLengthBMm, 1e-9);
 }
 
 TEST(InMemory, ACurveGivesThePiecesItsFileGives) {
@@ -78,7 +77,7 @@ TEST(InMemory, ACurveGivesThePiecesItsFileGives) {
   const Result<InverseRun> fromMemory = makePieces(curve.value(), settings, memorySink);
   ASSERT_TRUE(fromMemory.isOk()) << fromMemory.status().message();
   EXPECT_EQ(fromMemory.value().model.a.flat, fromFile.value().model.a.flat);
-  EXPECT_EQ(fromMemory.value().curveMatch.D_error, fromFile.value().curveMatch.D_error);
+  EXPECT_EQ(fromMemory.value().curveMatch.curveError, fromFile.value().curveMatch.curveError);
 
   InverseSettings tooFine = settings;
   tooFine.resolution = 3;

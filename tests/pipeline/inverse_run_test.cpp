@@ -45,27 +45,27 @@ TEST_P(InverseSamples, ReachThePapersFigures) {
   const Result<InverseRun> result = runInverse(job, sink);
   ASSERT_TRUE(result.isOk()) << result.status().message();
   const InverseRun& run = result.value();
-  EXPECT_LE(run.curveMatch.D_error, 1e-6);
+  EXPECT_LE(run.curveMatch.curveError, 1e-6);
   // Twice the measured figures, so that a weaker solve fails here.
   const auto [lError, lMax] = measuredFigures(GetParam());
-  EXPECT_LE(run.metrics.L_error, 2 * lError);
-  EXPECT_LE(run.metrics.L_max, 2 * lMax);
-  EXPECT_EQ(run.metrics.flipped_2d + run.metrics.flipped_3d, 0);
+  EXPECT_LE(run.metrics.lengthError, 2 * lError);
+  EXPECT_LE(run.metrics.lengthErrorMax, 2 * lMax);
+  EXPECT_EQ(run.metrics.flipped2d + run.metrics.flipped3d, 0);
   // On its hull a curve comes back exactly when its pieces are zipped again (within 1e-6 of the
   // diagonal); the pushed-in curve leaves its hull, and its pieces make no convex D-Form at all.
   if (run.pre.isHull) {
     EXPECT_EQ(run.modelUsed.name, "exact");
-    EXPECT_LE(run.curveMatch.roundtrip_max_rel, 1e-6);
+    EXPECT_LE(run.curveMatch.roundtripMaxRel, 1e-6);
   } else {
     // Its pieces' metric is not convex, so no convex D-Form exists: zipped again by the
     // optimisation they take another shape, and the figure says how far off the curve it is.
     EXPECT_EQ(run.modelUsed.name, "paper");
-    const std::string& note = run.curveMatch.roundtrip_note;
+    const std::string& note = run.curveMatch.roundtripNote;
     EXPECT_NE(note.find("optimisation"), std::string::npos) << note;
     EXPECT_NE(note.find("not convex"), std::string::npos) << note;
-    EXPECT_GT(run.curveMatch.roundtrip_rms_rel, 1e-4);
+    EXPECT_GT(run.curveMatch.roundtripRmsRel, 1e-4);
     // The round trip's distance varies along the curve: its largest is above its RMS.
-    EXPECT_GT(run.curveMatch.roundtrip_max_rel, 1.05 * run.curveMatch.roundtrip_rms_rel);
+    EXPECT_GT(run.curveMatch.roundtripMaxRel, 1.05 * run.curveMatch.roundtripRmsRel);
   }
   // Flat outlines: simple polygons whose perimeters match the length of the curve as read (not
   // only of its resampled polygon) within 0.1 %, even at 60 points.
@@ -102,10 +102,10 @@ TEST(InverseRun, ALongCurveIsSolvedCoarseToFineAndMeetsTheSameBars) {
   EXPECT_TRUE(std::any_of(sink.messages().begin(), sink.messages().end(), [](const Message& m) {
     return m.text.rfind("coarse level: piece A with ", 0) == 0;
   }));
-  EXPECT_LE(run.curveMatch.D_error, 1e-6);
-  EXPECT_LE(run.metrics.L_error, 0.005);
-  EXPECT_LE(run.metrics.L_max, 0.03);
-  EXPECT_EQ(run.metrics.flipped_2d + run.metrics.flipped_3d, 0);
+  EXPECT_LE(run.curveMatch.curveError, 1e-6);
+  EXPECT_LE(run.metrics.lengthError, 0.005);
+  EXPECT_LE(run.metrics.lengthErrorMax, 0.03);
+  EXPECT_EQ(run.metrics.flipped2d + run.metrics.flipped3d, 0);
   for (const Piece* p : {&run.model.a, &run.model.b}) {
     Points2 outline(p->seam.size(), 2);
     for (std::size_t k = 0; k < p->seam.size(); ++k) outline.row(k) = p->flat.row(p->seam[k]);
@@ -148,7 +148,7 @@ TEST(InverseRun, ATooDeepDentIsNamedAsTheCauseOfTheFold) {
   const Result<InverseRun> result = runInverse(job, sink);
   std::filesystem::remove_all(dir);
   ASSERT_TRUE(result.isOk()) << result.status().message();
-  EXPECT_GT(result.value().metrics.flipped_3d, 0);
+  EXPECT_GT(result.value().metrics.flipped3d, 0);
   EXPECT_FALSE(result.value().pre.onHull);
   const auto named =
       std::find_if(sink.messages().begin(), sink.messages().end(), [](const Message& m) {
@@ -215,10 +215,10 @@ TEST(InverseRun, TheGateOnTheRunsFiguresIsTheGateMeasuredAgain) {
   const Result<InverseRun> ran = runInverse(inverse, sink);
   ASSERT_TRUE(ran.isOk()) << ran.status().message();
   const InverseRun& r = ran.value();
-  ASSERT_FALSE(r.curveMatch.roundtrip_note.empty());
+  ASSERT_FALSE(r.curveMatch.roundtripNote.empty());
   const GateReport again = measureAndGate(r.model, GateLimits{}, &r.target);
   ASSERT_TRUE(again.curve.has_value());
-  EXPECT_EQ(again.curve->roundtrip_rms_rel, r.curveMatch.roundtrip_rms_rel);
+  EXPECT_EQ(again.curve->roundtripRmsRel, r.curveMatch.roundtripRmsRel);
   expectSameGate(runGate(r.model, GateLimits{}, r.metrics, &r.target, &r.curveMatch), again);
 
   ForwardJob forward;

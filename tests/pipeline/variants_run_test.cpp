@@ -94,11 +94,11 @@ void expectJoined(const Piece& piece, const std::string& file, bool hole, double
 }
 
 void expectBars(const ForwardRun& run, double maxLmax) {
-  EXPECT_LE(run.metrics.L_error, 0.005);
-  EXPECT_LE(run.metrics.L_max, maxLmax);
-  EXPECT_LE(run.metrics.seam_gap_mm, 1e-6 * run.perimeterA);
-  EXPECT_EQ(run.metrics.flipped_2d + run.metrics.flipped_3d, 0);
-  EXPECT_EQ(run.metrics.degenerate_2d + run.metrics.degenerate_3d, 0);
+  EXPECT_LE(run.metrics.lengthError, 0.005);
+  EXPECT_LE(run.metrics.lengthErrorMax, maxLmax);
+  EXPECT_LE(run.metrics.seamGapMm, 1e-6 * run.perimeterA);
+  EXPECT_EQ(run.metrics.flipped2d + run.metrics.flipped3d, 0);
+  EXPECT_EQ(run.metrics.degenerate2d + run.metrics.degenerate3d, 0);
 }
 
 TEST(Variants, AntiDFormZipsTheTwoHolesAndLeavesTheOutlinesFree) {

@@ -232,7 +232,7 @@ TEST(StudioServer, ShapeEqualsTheInMemoryRunForTheSameStart) {
       for (int k = 0; k < 3; ++k) EXPECT_EQ(got[std::size_t(3 * v + k)], expected(v, k));
   }
   EXPECT_EQ(result["figures"], metricsJson(direct.value().metrics)) << result["figures"];
-  EXPECT_DOUBLE_EQ(result["figures"]["L_error"].get<double>(), direct.value().metrics.L_error);
+  EXPECT_DOUBLE_EQ(result["figures"]["L_error"].get<double>(), direct.value().metrics.lengthError);
   EXPECT_TRUE(result["gate"]["passed"].get<bool>()) << result["gate"];
   EXPECT_GE(result["gate"]["checks"].size(), 10u);
   for (const json& e : events.seen())

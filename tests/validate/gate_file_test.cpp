@@ -16,10 +16,8 @@ std::string preset(const std::string& name) {
 
 // Every limit of a gate, in one list so that the comparisons below cover each field.
 std::vector<double> fields(const GateLimits& g) {
-  return {g.L_error,         g.L_max,
-          g.B_error,         g.D_error,
-          g.seam_gap_mm,     g.gauss_max_rad,
-          g.seam_length_rel, g.hull_distance_rel,
+  return {g.lengthError,     g.lengthErrorMax,    g.seamError,     g.curveError,
+          g.seamGapMm,       g.gaussMaxRad,       g.seamLengthRel, g.hullDistanceRel,
           double(g.flipped), double(g.degenerate)};
 }
 
@@ -61,9 +59,9 @@ TEST(GateFile, LeftOutLimitsKeepTheirDefaults) {
   const Result<GateLimits> gate =
       parseGateJson(R"({"version": 1, "limits": {"L_error": 0.02, "flipped": 3}})", "g.json");
   ASSERT_TRUE(gate.isOk()) << gate.status().message();
-  EXPECT_EQ(gate.value().L_error, 0.02);
+  EXPECT_EQ(gate.value().lengthError, 0.02);
   EXPECT_EQ(gate.value().flipped, 3);
-  EXPECT_EQ(gate.value().L_max, GateLimits{}.L_max);
+  EXPECT_EQ(gate.value().lengthErrorMax, GateLimits{}.lengthErrorMax);
   EXPECT_EQ(gate.value().name, GateLimits{}.name);
 }
 

@@ -77,7 +77,7 @@ TEST(Gate, ExactConvexDFormPassesEveryCheck) {
   EXPECT_LT(report.find("hull_distance_rel")->value, 1e-12);  // the surface is its seam's hull
   // ... and the exact engine, which knows only the flat pieces, makes that very shape.
   EXPECT_LT(report.find("exact_distance_rel")->value, 1e-9);
-  EXPECT_LT(report.metrics.exact_distance_max_rel, 1e-9);
+  EXPECT_LT(report.metrics.exactDistanceMaxRel, 1e-9);
 }
 
 TEST(Gate, StretchedShapeFailsLErrorAndTheExactDistance) {
@@ -206,7 +206,7 @@ TEST(Gate, InverseModeChecksDErrorInsteadOfBError) {
   target.points.col(0).array() += 1.0;  // the curve moved 1 mm away from both sides
   const GateReport shifted = measureAndGate(model, GateLimits{}, &target);
   EXPECT_EQ(failed(shifted), Names{"D_error"}) << describe(shifted);
-  EXPECT_NEAR(shifted.curve->curve_distance_max_mm, 1.0, 1e-12);
+  EXPECT_NEAR(shifted.curve->curveDistanceMaxMm, 1.0, 1e-12);
 
   target.points.conservativeResize(target.points.rows() - 1, 3);
   const GateReport mismatched = measureAndGate(model, GateLimits{}, &target);

@@ -25,49 +25,49 @@ double seam3dLength(const DForm& model) {
 TEST(Metrics, CylinderRolledExactlyFromARectangleHasNoError) {
   const DForm model = test::rolledCylinder(24, 6, 30.0, 50.0);
   const Metrics m = computeMetrics(model, {});
-  EXPECT_LT(m.L_error, 1e-12);
-  EXPECT_LT(m.L_max, 1e-12);
-  EXPECT_LT(m.gauss_max, 1e-12);  // interior vertices lie on straight folds
-  EXPECT_EQ(m.flipped_2d, 0);
-  EXPECT_EQ(m.flipped_3d, 0);
-  EXPECT_EQ(m.degenerate_2d, 0);
-  EXPECT_EQ(m.degenerate_3d, 0);
-  EXPECT_EQ(m.B_error, 0.0);
-  EXPECT_EQ(m.seam_gap_mm, 0.0);
+  EXPECT_LT(m.lengthError, 1e-12);
+  EXPECT_LT(m.lengthErrorMax, 1e-12);
+  EXPECT_LT(m.gaussMax, 1e-12);  // interior vertices lie on straight folds
+  EXPECT_EQ(m.flipped2d, 0);
+  EXPECT_EQ(m.flipped3d, 0);
+  EXPECT_EQ(m.degenerate2d, 0);
+  EXPECT_EQ(m.degenerate3d, 0);
+  EXPECT_EQ(m.seamError, 0.0);
+  EXPECT_EQ(m.seamGapMm, 0.0);
   // The flat seam is the rectangle's perimeter; the 3D seam has the same edges.
   const double chord = 2 * 30.0 * std::sin(1.5 * M_PI / 24 / 2);
-  EXPECT_NEAR(m.seam_length_a_mm, 2 * (24 * chord + 50.0), 1e-9);
-  EXPECT_NEAR(m.seam_length_b_mm, m.seam_length_a_mm, 1e-9);
-  EXPECT_NEAR(m.seam_length_3d_mm, m.seam_length_a_mm, 1e-9);
+  EXPECT_NEAR(m.seamLengthAMm, 2 * (24 * chord + 50.0), 1e-9);
+  EXPECT_NEAR(m.seamLengthBMm, m.seamLengthAMm, 1e-9);
+  EXPECT_NEAR(m.seamLength3dMm, m.seamLengthAMm, 1e-9);
 }
 
 TEST(Metrics, FlatDoubleDiscIsExactAndFlat) {
   const DForm model = test::flatDoubleDisc(5, 24, 50.0);
   const Metrics m = computeMetrics(model, {});
-  EXPECT_EQ(m.L_error, 0.0);
-  EXPECT_EQ(m.L_max, 0.0);
-  EXPECT_LT(m.gauss_max, 1e-12);
-  EXPECT_LT(m.gauss_mean, 1e-12);
-  EXPECT_EQ(m.B_error, 0.0);
-  EXPECT_EQ(m.flipped_2d, 0);
-  EXPECT_EQ(m.flipped_3d, 0);  // flat: every dihedral is 0
-  EXPECT_EQ(m.degenerate_2d + m.degenerate_3d, 0);
+  EXPECT_EQ(m.lengthError, 0.0);
+  EXPECT_EQ(m.lengthErrorMax, 0.0);
+  EXPECT_LT(m.gaussMax, 1e-12);
+  EXPECT_LT(m.gaussMean, 1e-12);
+  EXPECT_EQ(m.seamError, 0.0);
+  EXPECT_EQ(m.flipped2d, 0);
+  EXPECT_EQ(m.flipped3d, 0);  // flat: every dihedral is 0
+  EXPECT_EQ(m.degenerate2d + m.degenerate3d, 0);
   const double perimeter = 24 * 2 * 50.0 * std::sin(M_PI / 24);
-  EXPECT_NEAR(m.seam_length_a_mm, perimeter, 1e-9);
-  EXPECT_NEAR(m.seam_length_b_mm, perimeter, 1e-9);
-  EXPECT_NEAR(m.seam_length_3d_mm, perimeter, 1e-9);
+  EXPECT_NEAR(m.seamLengthAMm, perimeter, 1e-9);
+  EXPECT_NEAR(m.seamLengthBMm, perimeter, 1e-9);
+  EXPECT_NEAR(m.seamLength3dMm, perimeter, 1e-9);
 }
 
 TEST(Metrics, TetraDFormIsExactlyDevelopable) {
   const DForm model = test::tetraDForm(6);
   const Metrics m = computeMetrics(model, {});
-  EXPECT_LT(m.L_error, 1e-12);
-  EXPECT_LT(m.L_max, 1e-12);
-  EXPECT_LT(m.gauss_max, 1e-12);
-  EXPECT_LT(m.B_error, 1e-15);
-  EXPECT_EQ(m.flipped_2d + m.flipped_3d + m.degenerate_2d + m.degenerate_3d, 0);
-  EXPECT_NEAR(m.seam_length_a_mm, m.seam_length_3d_mm, 1e-9);
-  EXPECT_NEAR(m.seam_length_b_mm, m.seam_length_3d_mm, 1e-9);
+  EXPECT_LT(m.lengthError, 1e-12);
+  EXPECT_LT(m.lengthErrorMax, 1e-12);
+  EXPECT_LT(m.gaussMax, 1e-12);
+  EXPECT_LT(m.seamError, 1e-15);
+  EXPECT_EQ(m.flipped2d + m.flipped3d + m.degenerate2d + m.degenerate3d, 0);
+  EXPECT_NEAR(m.seamLengthAMm, m.seamLength3dMm, 1e-9);
+  EXPECT_NEAR(m.seamLengthBMm, m.seamLength3dMm, 1e-9);
 }
 
 TEST(Metrics, UniformStretchGivesItsFactor) {
@@ -75,9 +75,9 @@ TEST(Metrics, UniformStretchGivesItsFactor) {
   model.a.shape *= 1.01;
   model.b.shape *= 1.01;
   const Metrics m = computeMetrics(model, {});
-  EXPECT_NEAR(m.L_error, 0.01, 1e-12);
-  EXPECT_NEAR(m.L_max, 0.01, 1e-12);
-  EXPECT_LT(m.gauss_max, 1e-12);  // scaling keeps every angle
+  EXPECT_NEAR(m.lengthError, 0.01, 1e-12);
+  EXPECT_NEAR(m.lengthErrorMax, 0.01, 1e-12);
+  EXPECT_LT(m.gaussMax, 1e-12);  // scaling keeps every angle
 }
 
 // L_max is the largest single edge's error, not an average: on a stretch that differs from edge
@@ -98,8 +98,8 @@ TEST(Metrics, LMaxIsTheWorstEdgeOfANonUniformStretch) {
         worst = std::max(worst, std::abs(shape - flat) / flat);
       }
   const Metrics m = computeMetrics(model, {});
-  EXPECT_NEAR(m.L_max, worst, 1e-12);
-  EXPECT_GT(m.L_max, m.L_error * (1 + 1e-3))
+  EXPECT_NEAR(m.lengthErrorMax, worst, 1e-12);
+  EXPECT_GT(m.lengthErrorMax, m.lengthError * (1 + 1e-3))
       << "a non-uniform stretch: the worst edge is above the norm";
 }
 
@@ -129,8 +129,8 @@ TEST(Metrics, LErrorIsTheRelativeRootSumSquareOverEveryEdgeOnce) {
       }
   }
   const Metrics m = computeMetrics(model, {});
-  EXPECT_NEAR(m.L_error, std::sqrt(sumSqDiff / sumSqFlat), 1e-14);
-  EXPECT_GT(std::abs(m.L_error - sumRel / edges), 1e-6) << "not the mean relative error";
+  EXPECT_NEAR(m.lengthError, std::sqrt(sumSqDiff / sumSqFlat), 1e-14);
+  EXPECT_GT(std::abs(m.lengthError - sumRel / edges), 1e-6) << "not the mean relative error";
 }
 
 // A pyramid of n faces and height H: the angle defect at its apex, 2 pi less its face angles.
@@ -162,17 +162,17 @@ TEST(Metrics, PyramidApexDefectIsTwoPiMinusItsFaceAngles) {
   model.a = pyramid(n, r, H, "A");
   model.b = test::mirroredCopy(model.a, "B");
   const Metrics m = computeMetrics(model, {});
-  EXPECT_NEAR(m.gauss_max, apexDefect(n, r, H), 1e-12);
-  EXPECT_NEAR(m.gauss_mean, apexDefect(n, r, H), 1e-12);  // each piece's only interior vertex
+  EXPECT_NEAR(m.gaussMax, apexDefect(n, r, H), 1e-12);
+  EXPECT_NEAR(m.gaussMean, apexDefect(n, r, H), 1e-12);  // each piece's only interior vertex
 }
 
 TEST(Metrics, OpenSeamGivesGapAndBError) {
   DForm model = test::tetraDForm(6);
   model.b.shape.col(2).array() += 1.0;
   const Metrics m = computeMetrics(model, {});
-  EXPECT_NEAR(m.seam_gap_mm, 1.0, 1e-12);
-  EXPECT_NEAR(m.B_error, 1.0 / seam3dLength(model), 1e-15);
-  EXPECT_NEAR(m.seam_length_3d_mm, seam3dLength(model), 1e-12);
+  EXPECT_NEAR(m.seamGapMm, 1.0, 1e-12);
+  EXPECT_NEAR(m.seamError, 1.0 / seam3dLength(model), 1e-15);
+  EXPECT_NEAR(m.seamLength3dMm, seam3dLength(model), 1e-12);
 }
 
 TEST(Metrics, CurveMatchForAKnownShift) {
@@ -185,13 +185,13 @@ TEST(Metrics, CurveMatchForAKnownShift) {
         model.a.shape.row(model.a.seam[i]) + Eigen::RowVector3d(0, 0, delta);
   model.b.shape.col(2).array() += 2 * delta;  // B above the curve by delta, A below by delta
   const CurveMatch match = computeCurveMatch(model, target, {});
-  EXPECT_NEAR(match.D_error, delta / closedLength(target.points), 1e-15);
-  EXPECT_NEAR(match.curve_distance_max_mm, delta, 1e-12);
+  EXPECT_NEAR(match.curveError, delta / closedLength(target.points), 1e-15);
+  EXPECT_NEAR(match.curveDistanceMaxMm, delta, 1e-12);
 
   model.b.shape.col(2).array() += 2 * delta;  // now 3 delta from the curve: mean 2 delta
   const CurveMatch worse = computeCurveMatch(model, target, {});
-  EXPECT_NEAR(worse.D_error, 2 * delta / closedLength(target.points), 1e-15);
-  EXPECT_NEAR(worse.curve_distance_max_mm, 3 * delta, 1e-12);
+  EXPECT_NEAR(worse.curveError, 2 * delta / closedLength(target.points), 1e-15);
+  EXPECT_NEAR(worse.curveDistanceMaxMm, 3 * delta, 1e-12);
 }
 
 // validate compares with the seams it is given and solves none: the figures follow the reference
@@ -206,27 +206,27 @@ TEST(Metrics, ExactDistanceIsToTheGivenReferenceSeam) {
       Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   const Points3 moved = ((seam * turn.transpose()).rowwise() + Eigen::RowVector3d(5, -3, 2)).eval();
   const Metrics same = computeMetrics(model, {moved, "turned"});
-  EXPECT_LE(same.exact_distance_max_rel, 1e-12);
-  EXPECT_TRUE(same.exact_note.empty());
+  EXPECT_LE(same.exactDistanceMaxRel, 1e-12);
+  EXPECT_TRUE(same.exactNote.empty());
   // One seam point of the reference 10 % of the diagonal away: a largest distance above the RMS.
   Points3 bent = seam;
   const double diagonal = (seam.colwise().maxCoeff() - seam.colwise().minCoeff()).norm();
   bent(0, 2) += 0.1 * diagonal;
   const Metrics off = computeMetrics(model, {bent, "bent"});
-  EXPECT_GT(off.exact_distance_rms_rel, 1e-3);
-  EXPECT_GT(off.exact_distance_max_rel, off.exact_distance_rms_rel);
+  EXPECT_GT(off.exactDistanceRmsRel, 1e-3);
+  EXPECT_GT(off.exactDistanceMaxRel, off.exactDistanceRmsRel);
   // None given: NaN, and the note says why.
   const Metrics none = computeMetrics(model, {Points3(), "no body for this"});
-  EXPECT_TRUE(std::isnan(none.exact_distance_rms_rel));
-  EXPECT_TRUE(std::isnan(none.exact_distance_max_rel));
-  EXPECT_EQ(none.exact_note, "no body for this");
+  EXPECT_TRUE(std::isnan(none.exactDistanceRmsRel));
+  EXPECT_TRUE(std::isnan(none.exactDistanceMaxRel));
+  EXPECT_EQ(none.exactNote, "no body for this");
   // The round trip likewise: the curve itself as the zipped seam is 0 away, none is NaN.
   Curve3 target;
   target.points = seam;
   const CurveMatch back = computeCurveMatch(model, target, {moved, "zipped by a test"});
-  EXPECT_LE(back.roundtrip_max_rel, 1e-12);
-  EXPECT_EQ(back.roundtrip_note, "zipped by a test");
-  EXPECT_TRUE(std::isnan(computeCurveMatch(model, target, {Points3(), "none"}).roundtrip_rms_rel));
+  EXPECT_LE(back.roundtripMaxRel, 1e-12);
+  EXPECT_EQ(back.roundtripNote, "zipped by a test");
+  EXPECT_TRUE(std::isnan(computeCurveMatch(model, target, {Points3(), "none"}).roundtripRmsRel));
 }
 
 // A unit ring of n points and a copy whose points move e cos(2 theta) out of its plane: the
@@ -259,8 +259,8 @@ TEST(Metrics, ExactDistanceMaxAndRmsAreTheWorstAndTheRootMeanSquareSeamPoint) {
   for (std::size_t k = 0; k < model.a.seam.size(); ++k)
     model.a.shape.row(model.a.seam[k]) = r.wave.row(Eigen::Index(k));  // A's 3D seam is the wave
   const Metrics m = computeMetrics(model, {r.ring, "the ring"});
-  EXPECT_NEAR(m.exact_distance_max_rel, r.e / r.diagonal, 1e-9 * r.e);
-  EXPECT_NEAR(m.exact_distance_rms_rel, r.e / std::sqrt(2.0) / r.diagonal, 1e-9 * r.e);
+  EXPECT_NEAR(m.exactDistanceMaxRel, r.e / r.diagonal, 1e-9 * r.e);
+  EXPECT_NEAR(m.exactDistanceRmsRel, r.e / std::sqrt(2.0) / r.diagonal, 1e-9 * r.e);
 }
 
 // The round trip likewise, the target curve against the pieces zipped again: roundtrip_max_rel
@@ -271,8 +271,8 @@ TEST(Metrics, RoundTripMaxAndRmsAreTheWorstAndTheRootMeanSquareCurvePoint) {
   Curve3 target;
   target.points = r.ring;
   const CurveMatch match = computeCurveMatch(model, target, {r.wave, "zipped by a test"});
-  EXPECT_NEAR(match.roundtrip_max_rel, r.e / r.diagonal, 1e-9 * r.e);
-  EXPECT_NEAR(match.roundtrip_rms_rel, r.e / std::sqrt(2.0) / r.diagonal, 1e-9 * r.e);
+  EXPECT_NEAR(match.roundtripMaxRel, r.e / r.diagonal, 1e-9 * r.e);
+  EXPECT_NEAR(match.roundtripRmsRel, r.e / std::sqrt(2.0) / r.diagonal, 1e-9 * r.e);
 }
 
 // seam_gap_mm is the largest distance between seam partners, B_error their mean over the 3D
@@ -282,9 +282,9 @@ TEST(Metrics, SeamGapIsTheWorstPartnerAndBErrorTheMeanOverTheSeamLength) {
   const std::size_t n = model.b.seam.size();
   for (std::size_t k = 0; k < n; ++k) model.b.shape(model.b.seam[k], 2) += k == 2 ? 3.0 : 1.0;
   const Metrics m = computeMetrics(model, {});
-  EXPECT_NEAR(m.seam_gap_mm, 3.0, 1e-12);
+  EXPECT_NEAR(m.seamGapMm, 3.0, 1e-12);
   const double meanGap = (3.0 + double(n - 1)) / double(n);
-  EXPECT_NEAR(m.B_error, meanGap / seam3dLength(model), 1e-15);
+  EXPECT_NEAR(m.seamError, meanGap / seam3dLength(model), 1e-15);
 }
 
 // gauss_max is the largest |angle defect|, gauss_mean the mean: two apexes of different heights.
@@ -295,25 +295,25 @@ TEST(Metrics, GaussMaxIsTheSharperApexAndGaussMeanTheMeanOfBoth) {
   const double sharp = apexDefect(n, r, 9.0), blunt = apexDefect(n, r, 4.0);
   ASSERT_GT(sharp, 1.5 * blunt);
   const Metrics m = computeMetrics(model, {});
-  EXPECT_NEAR(m.gauss_max, sharp, 1e-12);
-  EXPECT_NEAR(m.gauss_mean, 0.5 * (sharp + blunt), 1e-12);
+  EXPECT_NEAR(m.gaussMax, sharp, 1e-12);
+  EXPECT_NEAR(m.gaussMean, 0.5 * (sharp + blunt), 1e-12);
 }
 
 TEST(Metrics, ReversedFlatTriangleIsFlipped) {
   DForm model = test::tetraDForm(6);
   model.a.F.row(10) = Eigen::RowVector3i(model.a.F(10, 0), model.a.F(10, 2), model.a.F(10, 1));
   const Metrics m = computeMetrics(model, {});
-  EXPECT_EQ(m.flipped_2d, 1);
-  EXPECT_EQ(m.flipped_3d, 0);  // its flat neighbourhood is folded, so the 3D rule does not apply
+  EXPECT_EQ(m.flipped2d, 1);
+  EXPECT_EQ(m.flipped3d, 0);  // its flat neighbourhood is folded, so the 3D rule does not apply
 }
 
 TEST(Metrics, HingeFoldedBeyondNinetyDegreesIsFoldedOver) {
   const int k = 5;
   // h = 0.7 folds each hinge by acos((1 - 4h^2)/(1 + 4h^2)) = 117 degrees.
   const Metrics m = computeMetrics(test::tetraDForm(k, 40.0, 0.7), {});
-  EXPECT_EQ(m.flipped_2d, 0);
-  EXPECT_EQ(m.flipped_3d, 2 * 2 * k);  // per piece, the k triangles on each side of the hinge
-  EXPECT_LT(m.L_error, 1e-12);
+  EXPECT_EQ(m.flipped2d, 0);
+  EXPECT_EQ(m.flipped3d, 2 * 2 * k);  // per piece, the k triangles on each side of the hinge
+  EXPECT_LT(m.lengthError, 1e-12);
 }
 
 TEST(Metrics, CollapsedEdgeGivesDegenerateTriangles) {
@@ -327,8 +327,8 @@ TEST(Metrics, CollapsedEdgeGivesDegenerateTriangles) {
   model.a.flat.row(v) = model.a.flat.row(w);
   model.a.shape.row(v) = model.a.shape.row(w);
   const Metrics m = computeMetrics(model, {});
-  EXPECT_EQ(m.degenerate_2d, 2);  // the two triangles on edge v-w
-  EXPECT_EQ(m.degenerate_3d, 2);
+  EXPECT_EQ(m.degenerate2d, 2);  // the two triangles on edge v-w
+  EXPECT_EQ(m.degenerate3d, 2);
 }
 
 // The fold angle of a tetraDForm hinge: the angle between the normals of its two faces.
@@ -378,14 +378,14 @@ TEST(Metrics, CreaseAnglesFollowTheOutsideOfTheDForm) {
 TEST(Metrics, ASharpCreaseIsNoFoldOver) {
   // The hinges fold by 117 degrees: folded over without creases, a drawn fold with them.
   const Metrics creased = computeMetrics(test::creasedTetraDForm(5, 40.0, 0.7), {});
-  EXPECT_EQ(creased.flipped_3d, 0);
-  EXPECT_LT(creased.L_error, 1e-12);
+  EXPECT_EQ(creased.flipped3d, 0);
+  EXPECT_LT(creased.lengthError, 1e-12);
 
   Piece square = test::foldedSquare(8, 40.0, {{4, 0, 4, 8, 150.0}});
   DForm model{square, test::mirroredCopy(square, "B")};
-  EXPECT_EQ(computeMetrics(model, {}).flipped_3d, 0);
+  EXPECT_EQ(computeMetrics(model, {}).flipped3d, 0);
   model.a.creases.clear();  // the same fold, not drawn: k triangles on each side of it per piece
-  EXPECT_EQ(computeMetrics(model, {}).flipped_3d, 2 * 8);
+  EXPECT_EQ(computeMetrics(model, {}).flipped3d, 2 * 8);
 }
 
 TEST(Metrics, ACreaseThroughAVertexTakesItsDefectOutOfTheFigures) {
@@ -393,12 +393,12 @@ TEST(Metrics, ACreaseThroughAVertexTakesItsDefectOutOfTheFigures) {
   const int n = 8;
   const Piece a = pyramid(n, 20.0, 9.0, "A");
   DForm model{a, test::mirroredCopy(a, "B")};
-  EXPECT_GT(computeMetrics(model, {}).gauss_max, 0.1);
+  EXPECT_GT(computeMetrics(model, {}).gaussMax, 0.1);
   EXPECT_GT(curvatureMap(model.a)(0), 0.1);
   for (Piece* p : {&model.a, &model.b}) p->creases = {{1, 0, 1 + n / 2}};
   const Metrics m = computeMetrics(model, {});
-  EXPECT_EQ(m.gauss_max, 0.0);
-  EXPECT_EQ(m.gauss_mean, 0.0);
+  EXPECT_EQ(m.gaussMax, 0.0);
+  EXPECT_EQ(m.gaussMean, 0.0);
   EXPECT_EQ(curvatureMap(model.a)(0), 0.0);
 }
 
@@ -444,12 +444,12 @@ TEST(Metrics, AntiDFormIsMeasuredOverEveryEdgeAndAlongItsHoles) {
   const Metrics m = computeMetrics(model, {});
   // Piece A's cone keeps radial lengths and shortens circles by (rho - r)(1 - cos 5 deg) / rho,
   // at most 30 * 0.0038 / 50 at the outer edge.
-  EXPECT_GT(m.L_max, 1e-4);
-  EXPECT_LT(m.L_max, 30.0 * (1 - std::cos(5 * M_PI / 180)) / 50.0 + 1e-9);
-  EXPECT_LT(m.seam_gap_mm, 1e-12);  // both sides of the hole at z = 0 up to round-off
-  EXPECT_NEAR(m.seam_length_a_mm, 48 * 2 * 20.0 * std::sin(M_PI / 48), 1e-9);  // the hole's polygon
-  EXPECT_NEAR(m.seam_length_b_mm, m.seam_length_a_mm, 1e-9);
-  EXPECT_EQ(m.flipped_2d + m.flipped_3d, 0);
+  EXPECT_GT(m.lengthErrorMax, 1e-4);
+  EXPECT_LT(m.lengthErrorMax, 30.0 * (1 - std::cos(5 * M_PI / 180)) / 50.0 + 1e-9);
+  EXPECT_LT(m.seamGapMm, 1e-12);  // both sides of the hole at z = 0 up to round-off
+  EXPECT_NEAR(m.seamLengthAMm, 48 * 2 * 20.0 * std::sin(M_PI / 48), 1e-9);  // the hole's polygon
+  EXPECT_NEAR(m.seamLengthBMm, m.seamLengthAMm, 1e-9);
+  EXPECT_EQ(m.flipped2d + m.flipped3d, 0);
 }
 
 }  // namespace
