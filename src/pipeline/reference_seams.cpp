@@ -54,7 +54,7 @@ ReferenceSeam zippedAgainSeam(const DForm& model, const ReferenceSeam& exactBody
   // A non-convex metric: the optimisation says what shape the sheet takes instead. Other reasons
   // (a hole zipped, a seam too long to glue) are not the round trip's to work around.
   if (exactBody.note.find("not convex") == std::string::npos) return {Points3(), exactBody.note};
-  const ForwardResult solved = solveMeshedCoarseToFine(model.a, model.b, ForwardOptions{});
+  const ForwardResult solved = solveMeshedCoarseToFine(model.a, model.b, ForwardSettings{});
   if (!solved.summary.usable())
     return {Points3(), exactBody.note + "; and the optimisation failed: " + solved.summary.message};
   Points3 seam(Eigen::Index(model.a.seam.size()), 3);
