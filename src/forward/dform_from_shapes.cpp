@@ -332,11 +332,11 @@ Status solvePaperModel(const ForwardSettings& job, const SeamLayout& layout, Sol
   return Status::ok();
 }
 
-// makeDForm, which turns a failed allocation into the resolution that fits; `estimate` is what
-// the memory check allowed for.
+// makeDForm, which turns a failed allocation into the resolution that fits; `estimateAt` is
+// the formula the memory check held the run to.
 Result<SolvedDForm> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSettings& job,
                                 MessageSink& sink, const RunHooks& hooks,
-                                MemoryEstimate& estimate) {
+                                MemoryAtResolution& estimateAt) {
   if (Status s = validateForwardJob(job); !s.isOk()) return s;
   const auto start = Clock::now();
   SolvedDForm run;
@@ -354,8 +354,11 @@ Result<SolvedDForm> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSet
   if (Status s = matchPieces(job, layout, run, sink); !s.isOk()) return s;
   run.timings.read = secondsSince(start);
 
-  estimate.vertices = finestVertices(job, layout, run.perimeterA);
-  if (Status fits = checkMemory(estimate, job.resolution, layout.bothPaths() + ": the run");
+  estimateAt = [at = job, layout, perimeterA = run.perimeterA](int resolution) mutable {
+    at.resolution = resolution;
+    return MemoryEstimate{finestVertices(at, layout, perimeterA), 0.0};
+  };
+  if (Status fits = checkMemory(estimateAt, job.resolution, layout.bothPaths() + ": the run");
       !fits.isOk())
     return fits;
   layOutSeam(job, run, layout);
@@ -400,11 +403,11 @@ Result<SolvedDForm> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSet
 
 Result<SolvedDForm> solveDForm(Shape2 a, Shape2 b, const ForwardSettings& settings,
                                MessageSink& sink, const RunHooks& hooks) {
-  MemoryEstimate estimate;
+  MemoryAtResolution estimateAt;
   try {
-    return solveShapes(a, b, settings, sink, hooks, estimate);
+    return solveShapes(a, b, settings, sink, hooks, estimateAt);
   } catch (const std::bad_alloc&) {
-    return outOfMemory(estimate, settings.resolution,
+    return outOfMemory(estimateAt, settings.resolution,
                        pieceLabel(a, "A") + " and " + pieceLabel(b, "B") + ": the run");
   } catch (const Interrupted& stop) {
     return detail::interruptedDuring(stop.stage());

@@ -118,28 +118,36 @@ Result<DForm> exactInverse(const InverseInit& init, const Points3& target, const
   return model;
 }
 
+// Coarse to fine, as in forward runs: the pre-D-Form's search is cubic in the curve's points and
+// the relaxation smooths its facets slowly on a fine mesh, so a curve of more than
+// kMaxPreDFormPoints is solved first at a third of its points (recursively), each finer level
+// starting from the coarser solution.
+constexpr int kMaxPreDFormPoints = 200;
+
+// The levels' points, coarsest first.
+std::vector<int> curveLevels(int resolution) {
+  std::vector<int> levels{resolution};
+  while (levels.back() > kMaxPreDFormPoints) levels.push_back(levels.back() / 3);
+  std::reverse(levels.begin(), levels.end());
+  return levels;
+}
+
+// Measured on the samples, a curve of n points gives pieces of 0.10 n^2 to 0.18 n^2 vertices
+// together; the pre-D-Form's tables (cost, apex, normal, side per pair of points) hold 37 n^2
+// bytes, n the coarsest level's points.
+MemoryEstimate inverseMemory(int resolution) {
+  const double n = resolution, coarsest = curveLevels(resolution).front();
+  return {0.2 * n * n, 37.0 * coarsest * coarsest};
+}
+
 Result<SolvedPieces> solveCurve(const Curve3& curve, const InverseSettings& job, MessageSink& sink,
-                                const RunHooks& hooks, MemoryEstimate& estimate) {
+                                const RunHooks& hooks) {
   if (Status s = validateInverseJob(job); !s.isOk()) return s;
   const auto start = Clock::now();
   SolvedPieces run;
   const std::string name = curveLabel(curve);
-
-  // Coarse to fine, as in forward runs: the pre-D-Form's search is cubic in the curve's points and
-  // the relaxation smooths its facets slowly on a fine mesh, so a curve of more than
-  // kMaxPreDFormPoints is solved first at a third of its points (recursively), each finer level
-  // starting from the coarser solution.
-  constexpr int kMaxPreDFormPoints = 200;
-  std::vector<int> levels{job.resolution};
-  while (levels.back() > kMaxPreDFormPoints) levels.push_back(levels.back() / 3);
-  std::reverse(levels.begin(), levels.end());
-
-  // Measured on the samples, a curve of n points gives pieces of 0.10 n^2 to 0.18 n^2 vertices
-  // together; the pre-D-Form's tables (cost, apex, normal, side per pair of points) hold 37 n^2
-  // bytes, n the coarsest level's points.
-  const double n = job.resolution, coarsest = levels.front();
-  estimate = {0.2 * n * n, 37.0 * coarsest * coarsest};
-  if (Status fits = checkMemory(estimate, job.resolution, name + ": the run"); !fits.isOk())
+  const std::vector<int> levels = curveLevels(job.resolution);
+  if (Status fits = checkMemory(inverseMemory, job.resolution, name + ": the run"); !fits.isOk())
     return fits;
   run.curveLength = closedLength(curve.points);
   run.target.source = curve.source;
@@ -238,11 +246,10 @@ Result<SolvedPieces> solveCurve(const Curve3& curve, const InverseSettings& job,
 
 Result<SolvedPieces> solvePieces(const Curve3& curve, const InverseSettings& settings,
                                  MessageSink& sink, const RunHooks& hooks) {
-  MemoryEstimate estimate;
   try {
-    return solveCurve(curve, settings, sink, hooks, estimate);
+    return solveCurve(curve, settings, sink, hooks);
   } catch (const std::bad_alloc&) {
-    return outOfMemory(estimate, settings.resolution, curveLabel(curve) + ": the run");
+    return outOfMemory(inverseMemory, settings.resolution, curveLabel(curve) + ": the run");
   } catch (const Interrupted& stop) {
     return detail::interruptedDuring(stop.stage());
   }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -70,15 +71,25 @@ void letOtherThreadsSettle() {
   }
 }
 
+// The address space this process had mapped as it started, under an address-space limit (kB,
+// /proc/self/status VmSize once the libraries' threads have settled; 0 without a limit). Read
+// once, before any thread of dform's runs: what is mapped later depends on the scheduler (a
+// finished thread's 8 MB stack is reused, or a new one mapped when the next thread starts before
+// the kernel has let the old one go), and the room, and the resolution offered, would with it.
+// What the run maps since is in the estimate (its 64 MB for the program itself).
+const double startMappedKb = [] {
+  struct rlimit limit {};
+  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return 0.0;
+  letOtherThreadsSettle();
+  return std::max(0.0, readNumber("/proc/self/status", "VmSize:"));
+}();
+
 // Bytes of address space this process may still map under RLIMIT_AS (ulimit -v), or -1 when
-// unlimited: the limit less what is mapped once the other threads have settled
-// (/proc/self/status VmSize, kB).
+// unlimited: the limit less what was mapped as it started.
 double addressSpaceRoom() {
   struct rlimit limit {};
   if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return -1.0;
-  letOtherThreadsSettle();
-  const double mappedKb = readNumber("/proc/self/status", "VmSize:");
-  return std::max(0.0, double(limit.rlim_cur) - std::max(0.0, mappedKb) * 1024.0);
+  return std::max(0.0, double(limit.rlim_cur) - startMappedKb * 1024.0);
 }
 
 }  // namespace
@@ -105,58 +116,79 @@ std::size_t estimatedPeakBytes(double vertices, double extraBytes) {
 
 namespace {
 
-// Vertices and the pre-D-Form's tables both grow with the square of the resolution, the seam's
-// vertices only linearly, so the square underestimates a lower resolution's count: the
-// resolution offered is held to 85 % of the budget (the seam is at most ~10 % of the vertices
-// at the resolutions this refuses), so that it is really accepted when tried.
-constexpr double kOfferedFraction = 0.85;
+// The lowest resolution a run takes.
+constexpr int kLowestResolution = 8;
 
-// The highest resolution (down to 8, in 5 % steps) whose estimated peak stays within `budget`.
-int resolutionFitting(const MemoryEstimate& estimate, int resolution, double budget) {
-  int fits = resolution;
-  while (fits > 8) {
-    const double s = double(fits) / double(resolution);
-    if (double(estimatedPeakBytes(estimate.vertices * s * s, estimate.extraBytes * s * s)) <=
-        budget)
-      break;
-    fits = std::max(8, int(fits * 0.95));
-  }
-  return fits;
+// Bytes as a person reads them, in MB below a gigabyte (to 0.1 MB) and in GB above (to 0.01 GB),
+// rounded up or down: a need rounded up and a limit rounded down never print alike where the
+// need exceeds the limit.
+std::string bytesText(double bytes, bool roundUp) {
+  const bool gigabytes = bytes >= 1e9;
+  const double step = gigabytes ? 1e7 : 1e5, units = bytes / step;
+  const double rounded = (roundUp ? std::ceil(units) : std::floor(units)) * step;
+  char text[32];
+  if (gigabytes)
+    std::snprintf(text, sizeof text, "%.2f GB", rounded / 1e9);
+  else
+    std::snprintf(text, sizeof text, "%.1f MB", rounded / 1e6);
+  return text;
+}
+
+double peakAt(const MemoryAtResolution& estimateAt, int resolution) {
+  const MemoryEstimate at = estimateAt(resolution);
+  return double(estimatedPeakBytes(at.vertices, at.extraBytes));
+}
+
+// The highest resolution below `resolution` whose estimate, by the run's own formula, stays
+// within `budget`; 0 when not even the lowest does. Every one is tried (the formula is a few
+// operations each): the pre-D-Form's tables do not grow monotonically with the resolution.
+int highestFitting(const MemoryAtResolution& estimateAt, int resolution, double budget) {
+  for (int fits = resolution - 1; fits >= kLowestResolution; --fits)
+    if (peakAt(estimateAt, fits) <= budget) return fits;
+  return 0;
+}
+
+std::string offerText(int fits) {
+  return fits > 0 ? "a resolution of " + std::to_string(fits) + " or less fits"
+                  : "no resolution fits";
 }
 
 }  // namespace
 
-Status checkMemory(const MemoryEstimate& estimate, int resolution, const std::string& what) {
+Status checkMemory(const MemoryAtResolution& estimateAt, int resolution, const std::string& what) {
   const double available = double(availableMemoryBytes());
   if (available <= 0) return Status::ok();  // unknown: nothing to hold the run to
   const double budget = kUsableFraction * available;
-  const double needed = double(estimatedPeakBytes(estimate.vertices, estimate.extraBytes));
+  const double needed = peakAt(estimateAt, resolution);
   if (needed <= budget) return Status::ok();
-  const int fits = resolutionFitting(estimate, resolution, kOfferedFraction * budget);
-  char text[320];
-  std::snprintf(text, sizeof text,
-                "%s at resolution %d would need about %.1f GB of memory (about %.0f vertices) and "
-                "%.1f GB is available to it; a resolution of %d or less fits",
-                what.c_str(), resolution, needed / 1e9, estimate.vertices, available / 1e9, fits);
-  return Status(ErrorCode::Usage, text);
+  char vertices[32], share[8];
+  std::snprintf(vertices, sizeof vertices, "%.0f", estimateAt(resolution).vertices);
+  std::snprintf(share, sizeof share, "%.0f %%", 100 * kUsableFraction);
+  return Status(ErrorCode::Usage,
+                what + " at resolution " + std::to_string(resolution) + " would need about " +
+                    bytesText(needed, true) + " of memory (about " + vertices +
+                    " vertices), more than the " + bytesText(budget, false) + " a run may use (" +
+                    share + " of the " + bytesText(available, false) + " available to it); " +
+                    offerText(highestFitting(estimateAt, resolution, budget)));
 }
 
-Status outOfMemory(const MemoryEstimate& estimate, int resolution, const std::string& what) {
-  // The run needed more than its estimate: the resolution offered is held to half the estimate
-  // (half the vertices where nothing was estimated yet) and to what is available now.
-  double budget = 0.5 * double(estimatedPeakBytes(estimate.vertices, estimate.extraBytes));
-  if (const double available = double(availableMemoryBytes()); available > 0)
-    budget = std::min(budget, kOfferedFraction * kUsableFraction * available);
-  const int fits = estimate.vertices > 0 ? resolutionFitting(estimate, resolution, budget)
-                                         : std::max(8, int(resolution / std::sqrt(2.0)));
-  char text[320];
-  std::snprintf(
-      text, sizeof text,
-      "%s at resolution %d ran out of memory (more than its estimate: the machine or its "
-      "limits, e.g. ulimit -v, gave it less than it needed); a resolution of %d or less fits "
-      "in half the memory",
-      what.c_str(), resolution, fits);
-  return Status(ErrorCode::Usage, text);
+Status outOfMemory(const MemoryAtResolution& estimateAt, int resolution, const std::string& what) {
+  // The run needed more than its estimate: the resolution offered is held to half of what the
+  // estimate adds to the program's own memory, and to what checkMemory would let a run use now
+  // (without an estimate, the resolution of half the vertices).
+  int fits = std::max(kLowestResolution, int(resolution / std::sqrt(2.0)));
+  if (estimateAt) {
+    const double program = double(estimatedPeakBytes(0.0));
+    double budget = program + 0.5 * (peakAt(estimateAt, resolution) - program);
+    if (const double available = double(availableMemoryBytes()); available > 0)
+      budget = std::min(budget, kUsableFraction * available);
+    fits = highestFitting(estimateAt, resolution, budget);
+  }
+  return Status(ErrorCode::Usage,
+                what + " at resolution " + std::to_string(resolution) +
+                    " ran out of memory (more than its estimate: the machine or its limits, e.g. "
+                    "ulimit -v, gave it less than it needed); " +
+                    offerText(fits) + " in half the memory");
 }
 
 }  // namespace dform

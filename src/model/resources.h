@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <string>
 
 #include "core/status.h"
@@ -28,15 +29,21 @@ struct MemoryEstimate {
   double extraBytes = 0;
 };
 
-/// Usage error when the estimate exceeds 80 % of the available memory (the rest for the system
-/// and the files written), saying how much is needed and which resolution would fit (the vertex
-/// count grows with its square). `what` names the run for the message.
-Status checkMemory(const MemoryEstimate& estimate, int resolution, const std::string& what);
+/// A run's estimate at any resolution: the formula the run itself is checked with, so that the
+/// resolution a refusal offers is the one the same check accepts.
+using MemoryAtResolution = std::function<MemoryEstimate(int resolution)>;
+
+/// Usage error when the estimate at `resolution` exceeds 80 % of the available memory (the rest
+/// for the system and the files written), saying how much is needed, what a run may use, and the
+/// highest resolution (down to 8) whose estimate stays within it: a run at that resolution, on
+/// the same machine, passes this check. `what` names the run for the message.
+Status checkMemory(const MemoryAtResolution& estimateAt, int resolution, const std::string& what);
 
 /// Usage error for a run that ran out of memory although checkMemory let it start (a limit it
 /// cannot see, another process taking memory meanwhile, a shape the estimate undershoots),
-/// offering the resolution whose estimate is half this run's and fits what is available now
-/// (without an estimate, the resolution of half the vertices).
-Status outOfMemory(const MemoryEstimate& estimate, int resolution, const std::string& what);
+/// offering the highest resolution whose estimate adds half of what this run's adds to the
+/// program's own memory and fits what checkMemory allows now (without an estimate, an empty
+/// `estimateAt`: the resolution of half the vertices).
+Status outOfMemory(const MemoryAtResolution& estimateAt, int resolution, const std::string& what);
 
 }  // namespace dform

@@ -17,7 +17,7 @@ Result<Metrics> measureDForm(const SolvedDForm& solved, const ForwardSettings& s
   try {
     return measureModel(solved.model);
   } catch (const std::bad_alloc&) {
-    return outOfMemory({}, settings.resolution, pieces + ": measuring the run");
+    return outOfMemory(nullptr, settings.resolution, pieces + ": measuring the run");
   }
 }
 

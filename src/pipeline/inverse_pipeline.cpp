@@ -46,7 +46,7 @@ Result<InverseRun> makePieces(Curve3 curve, const InverseSettings& settings, Mes
   try {
     return measure(std::move(solved).value(), sink);
   } catch (const std::bad_alloc&) {
-    return outOfMemory({}, settings.resolution, curveLabel(curve) + ": measuring the run");
+    return outOfMemory(nullptr, settings.resolution, curveLabel(curve) + ": measuring the run");
   }
 }
 

@@ -8,16 +8,22 @@ namespace dform {
 
 namespace {
 
-Result<Points3> exactSeam(const DForm& model) {
+using Missing = ReferenceSeam::Missing;
+
+ReferenceSeam missing(Missing why, std::string note) { return {Points3(), std::move(note), why}; }
+
+}  // namespace
+
+ReferenceSeam exactBodySeam(const DForm& model) {
   const std::size_t n = model.a.seam.size();
   if (!model.a.freeBoundaries.empty() || !model.b.freeBoundaries.empty())
-    return Status(
-        ErrorCode::InputInvalid,
+    return missing(
+        Missing::HoleZipped,
         "a piece is zipped along a hole (anti or demi D-Form): its pieces glue no sphere");
   if (n > std::size_t(exact::kMaxExactSeam))
-    return Status(ErrorCode::InputInvalid,
-                  "the seam has " + std::to_string(n) + " points, more than the " +
-                      std::to_string(exact::kMaxExactSeam) + " glued exactly for a figure");
+    return missing(Missing::SeamTooLong,
+                   "the seam has " + std::to_string(n) + " points, more than the " +
+                       std::to_string(exact::kMaxExactSeam) + " glued exactly for a figure");
   exact::SeamPolygons seam;
   seam.a.resize(Eigen::Index(n), 2);
   seam.b.resize(Eigen::Index(n), 2);
@@ -27,40 +33,34 @@ Result<Points3> exactSeam(const DForm& model) {
   }
   exact::equalizeChords(seam);
   Result<exact::ExactGluing> glued = exact::glue(seam);
-  if (!glued.isOk()) return glued.status();
+  if (!glued.isOk())
+    return missing(
+        exact::seamAngles(seam).firstNonConvex >= 0 ? Missing::NotConvex : Missing::EngineFailed,
+        glued.status().message());
   // The body true to the pieces' lengths, as the exact model makes it.
   Result<std::vector<exact::BodyEdge>> edges = exact::traceBodyEdges(glued.value());
-  if (!edges.isOk()) return edges.status();
+  if (!edges.isOk()) return missing(Missing::EngineFailed, edges.status().message());
   exact::fitBodyToEdges(glued.value(), edges.value());
   Points3 out = exact::placeOnBody(glued.value(), 0, glued.value().seam.a);
   if (!out.allFinite())
-    return Status(ErrorCode::SolveFailed, "a seam point could not be placed on the exact body");
-  return out;
-}
-
-ReferenceSeam reference(const Result<Points3>& seam, const std::string& how) {
-  if (!seam.isOk()) return {Points3(), seam.status().message()};
-  return {seam.value(), how};
-}
-
-}  // namespace
-
-ReferenceSeam exactBodySeam(const DForm& model) {
-  return reference(exactSeam(model), "the exact D-Form of the pieces");
+    return missing(Missing::EngineFailed, "a seam point could not be placed on the exact body");
+  return {out, "the exact D-Form of the pieces", Missing::None};
 }
 
 ReferenceSeam zippedAgainSeam(const DForm& model, const ReferenceSeam& exactBody) {
-  if (exactBody.points.rows() > 0) return {exactBody.points, "zipped by " + exactBody.note};
+  if (exactBody.missing == Missing::None)
+    return {exactBody.points, "zipped by " + exactBody.note, Missing::None};
   // A non-convex metric: the optimisation says what shape the sheet takes instead. Other reasons
   // (a hole zipped, a seam too long to glue) are not the round trip's to work around.
-  if (exactBody.note.find("not convex") == std::string::npos) return {Points3(), exactBody.note};
+  if (exactBody.missing != Missing::NotConvex) return exactBody;
   const ForwardResult solved = solveMeshedCoarseToFine(model.a, model.b, ForwardSettings{});
   if (!solved.summary.usable())
-    return {Points3(), exactBody.note + "; and the optimisation failed: " + solved.summary.message};
+    return missing(Missing::EngineFailed,
+                   exactBody.note + "; and the optimisation failed: " + solved.summary.message);
   Points3 seam(Eigen::Index(model.a.seam.size()), 3);
   for (std::size_t k = 0; k < model.a.seam.size(); ++k)
     seam.row(Eigen::Index(k)) = solved.model.a.shape.row(solved.model.a.seam[k]);
-  return {seam, "zipped by the paper's optimisation, since " + exactBody.note};
+  return {seam, "zipped by the paper's optimisation, since " + exactBody.note, Missing::None};
 }
 
 Metrics measureModel(const DForm& model) { return computeMetrics(model, exactBodySeam(model)); }

@@ -319,6 +319,24 @@ Result<std::string> savedGateName(const std::string& dir) {
 
 namespace {
 
+// The model's entry in report.json holds the entries dform writes for the model it names, no
+// more and no fewer: an exact result relabelled paper keeps the exact engine's cone points and
+// folds, a paper one relabelled general lacks the sheet's stiffness.
+void compareModelEntries(const json& saved, const std::string& name,
+                         std::vector<std::string>& differences) {
+  ModelUsed named;
+  named.name = name;
+  const json written = modelJson(named, DForm{});
+  for (const auto& [key, value] : written.items())
+    if (!saved.contains(key))
+      differences.push_back("model." + key + ": report.json has none, which the " + name +
+                            " model writes");
+  for (const auto& [key, value] : saved.items())
+    if (!written.contains(key))
+      differences.push_back("model." + key + ": report.json says " + describeJsonValue(value) +
+                            ", which the " + name + " model does not write");
+}
+
 // What report.json says of how the result was made, against the result: its schema, the model
 // it names (an exact result lies on the exact shape: its seam within 1e-6 of the diagonal of
 // it, or of its curve zipped again), the inputs it records and the job's resolution.
@@ -340,6 +358,8 @@ void compareSavedJob(const json& report, const Metrics& metrics, const CurveMatc
   else if (model == "exact" && !(exactDistance <= 1e-6))
     differ("model.name: report.json says exact, but the saved shape is " +
            describeJsonValue(json(exactDistance)) + " of its size from the exact one");
+  else
+    compareModelEntries(at(report, "model"), model.get<std::string>(), differences);
   const json job = at(report, "job"), inputs = at(report, "inputs");
   const std::vector<std::string> names =
       curve ? std::vector<std::string>{"curve"} : std::vector<std::string>{"piece_a", "piece_b"};

@@ -194,7 +194,7 @@ Result<WrittenResult> runAndWrite(const Job& job, const OutputOptions& output,
     // Past the solve (which says this itself, with its estimate): exporting, measuring, writing.
     const int resolution =
         job.mode == Job::Mode::Forward ? job.forward.resolution : job.inverse.resolution;
-    return outOfMemory({}, resolution, output.outDir + ": the run");
+    return outOfMemory(nullptr, resolution, output.outDir + ": the run");
   }
 }
 

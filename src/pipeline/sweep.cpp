@@ -183,6 +183,7 @@ Result<std::vector<SweepRow>> runSweep(const Job& base, const SweepOptions& opti
   }
   const auto begun = Clock::now();
   std::vector<SweepRow> rows(starts.size());
+  std::vector<Status> outcomes(starts.size());
   std::mutex mutex;
   int done = 0, failed = 0;
   const auto work = [&](std::size_t k) {
@@ -209,6 +210,7 @@ Result<std::vector<SweepRow>> runSweep(const Job& base, const SweepOptions& opti
     ++done;
     if (!row.solved || !row.passed) ++failed;
     rows[k] = std::move(row);
+    outcomes[k] = status;
     if (progress)
       progress(done, failed, int(starts.size()),
                std::chrono::duration<double>(Clock::now() - begun).count());
@@ -216,6 +218,15 @@ Result<std::vector<SweepRow>> runSweep(const Job& base, const SweepOptions& opti
   parallelFor(starts.size(), options.threads, work, interrupted);
   if (interrupted)
     return Status(ErrorCode::Interrupted, outDir + ": interrupted; the folder was left as it was");
+  // A sweep that solved no start made nothing to keep: it fails as its first start failed (an
+  // input every start shares, unequal perimeters say, with the code a single run gives it), and
+  // the folder keeps what it held, no folder made for it.
+  if (std::none_of(rows.begin(), rows.end(), [](const SweepRow& r) { return r.solved; })) {
+    const auto first =
+        std::find_if(outcomes.begin(), outcomes.end(), [](const Status& s) { return !s.isOk(); });
+    return Status(first != outcomes.end() ? first->code() : ErrorCode::SolveFailed,
+                  outDir + ": no start was solved (first: " + rows.at(0).reason + ")");
+  }
   for (const auto& [name, text] :
        {std::pair<const char*, std::string>{"sweep.json", sweepJson(base, options, rows)},
         {"gallery.html",

@@ -36,8 +36,17 @@ struct Metrics {
 /// caller (pipeline/reference_seams.h): none (no rows) where there is none, and `note` says why;
 /// else `note` says what made it.
 struct ReferenceSeam {
+  /// Why a reference is missing, for a caller that chooses another way to make one.
+  enum class Missing {
+    None,          ///< `points` holds the reference
+    HoleZipped,    ///< a piece is zipped along a hole (anti or demi D-Form): no sphere is glued
+    SeamTooLong,   ///< more seam points than the exact engine glues for a figure
+    NotConvex,     ///< the glued metric is not convex: no convex D-Form exists
+    EngineFailed,  ///< the exact engine or the optimisation failed on it
+  };
   Points3 points;
-  std::string note;
+  std::string note;  ///< what made the reference, or why there is none
+  Missing missing = Missing::None;
 };
 
 /// Figures of `model`, its seam compared with `exactBody` (the exact D-Form of the same flat

@@ -6,6 +6,10 @@ may not use (or every module the CLI links besides the pipeline) and exits 1, el
     layering.py SRC_DIR
     layering.py --cli-links "LINK;LIBRARIES"   (the dform target's LINK_LIBRARIES property)
     layering.py --core-copies SRC_DIR   (export defines none of core/polyline.h's 2D helpers again)
+    layering.py --docs SRC_DIR DOCS_DIR   (docs/architecture.md's table and docs/conventions.md's
+                                          module list say what ALLOWED and src/ say; each
+                                          src/<module>/CMakeLists.txt links only what ALLOWED lets
+                                          its module include)
     layering.py --self-test   (a planted upward include or link must be found, a clean tree pass)
 """
 import os
@@ -105,6 +109,52 @@ def core_helper_copies(src, module="export", header="core/polyline.h"):
     return found
 
 
+# A module's row in docs/architecture.md: | module | target | what it does | may use |
+TABLE_ROW = re.compile(r"^\|\s*([a-z_]+)\s*\|.*\|\s*([^|]*?)\s*\|\s*$")
+CONVENTIONS_LIST = re.compile(r"`src/<module>/` holds one stage: (.*?)\. Each folder", re.S)
+LINKED = re.compile(r"dform::([a-z_]+)")
+
+
+def modules(src):
+    return sorted(m for m in os.listdir(src) if os.path.isdir(os.path.join(src, m)))
+
+
+def doc_violations(src, docs):
+    """Where the docs or a module's CMakeLists.txt disagree with ALLOWED and the folders of src/."""
+    found = []
+    names = set(ALLOWED)
+    with open(os.path.join(docs, "architecture.md"), encoding="utf-8") as f:
+        rows = [m.groups() for m in map(TABLE_ROW.match, f) if m and m.group(1) in names]
+    said = dict(rows)
+    for module in modules(src):
+        if module not in said:
+            found.append(f"architecture.md: no row for the module {module}")
+            continue
+        if said[module] == "everything above":
+            used = set(m for m, _ in rows[:[m for m, _ in rows].index(module)])
+        else:
+            used = {w for w in re.findall(r"[a-z_]+", said[module]) if w in names} - {module}
+        if used != ALLOWED[module]:
+            found.append(f"architecture.md: {module} may use {', '.join(sorted(used)) or 'nothing'}"
+                         f" by its table, {', '.join(sorted(ALLOWED[module])) or 'nothing'} by the"
+                         f" layering test")
+    with open(os.path.join(docs, "conventions.md"), encoding="utf-8") as f:
+        m = CONVENTIONS_LIST.search(f.read())
+    listed = sorted(re.findall(r"`([a-z_]+)`", m.group(1))) if m else []
+    if listed != modules(src):
+        found.append(f"conventions.md: lists the modules {', '.join(listed)}; src/ has "
+                     f"{', '.join(modules(src))}")
+    for module in modules(src):
+        path = os.path.join(src, module, "CMakeLists.txt")
+        if not os.path.exists(path):
+            continue
+        with open(path, encoding="utf-8") as f:
+            linked = set(LINKED.findall(f.read())) - {module}
+        for other in sorted(linked - ALLOWED.get(module, set())):
+            found.append(f"{module}/CMakeLists.txt links dform::{other}, which {module} may not use")
+    return found
+
+
 def self_test():
     with tempfile.TemporaryDirectory() as src:
         def write(path, text):
@@ -143,6 +193,29 @@ def self_test():
                                  "                           int k) {\n  return 0;\n}\n}\n")
         found = core_helper_copies(src)
         assert found == ["export/copy.cpp:2: export defines closedLength, which core/polyline.h has"], found
+    with tempfile.TemporaryDirectory() as root:
+        src, docs = os.path.join(root, "src"), os.path.join(root, "docs")
+        for module in ("core", "io"):
+            os.makedirs(os.path.join(src, module))
+        os.makedirs(docs)
+        def write_docs(io_uses, listed):
+            with open(os.path.join(docs, "architecture.md"), "w", encoding="utf-8") as f:
+                f.write("| module | target | what it does | may use |\n|---|---|---|---|\n"
+                        "| core | `dform::core` | types | Eigen |\n"
+                        f"| io | `dform::io` | files | {io_uses} |\n")
+            with open(os.path.join(docs, "conventions.md"), "w", encoding="utf-8") as f:
+                f.write(f"- `src/<module>/` holds one stage: {listed}. Each folder defines\n")
+        write_docs("core; svgpp privately", "`core`, `io`")
+        assert doc_violations(src, docs) == [], doc_violations(src, docs)
+        write_docs("core, meshing", "`core`, `io`")
+        assert len(doc_violations(src, docs)) == 1, doc_violations(src, docs)
+        write_docs("core", "`core`")
+        assert len(doc_violations(src, docs)) == 1, doc_violations(src, docs)
+        write_docs("core", "`core`, `io`")
+        with open(os.path.join(src, "io", "CMakeLists.txt"), "w", encoding="utf-8") as f:
+            f.write("target_link_libraries(dform_io PUBLIC dform::core PRIVATE dform::export)\n")
+        found = doc_violations(src, docs)
+        assert found == ["io/CMakeLists.txt links dform::export, which io may not use"], found
     assert cli_link_violations("dform::pipeline;dform::studio;CLI11::CLI11;dform_warnings") == []
     found = cli_link_violations("dform::pipeline;dform::export;CLI11::CLI11;dform_report")
     assert len(found) == 2 and "dform::export" in found[0] and "dform_report" in found[1], found
@@ -158,6 +231,12 @@ def main():
         for v in found:
             print(v)
         print(f"cli links: {sys.argv[2]}")
+        return 1 if found else 0
+    if len(sys.argv) == 4 and sys.argv[1] == "--docs":
+        found = doc_violations(sys.argv[2], sys.argv[3])
+        for v in found:
+            print(v)
+        print(f"docs and CMake links against the layering: {len(found)} difference(s)")
         return 1 if found else 0
     if len(sys.argv) == 3 and sys.argv[1] == "--core-copies":
         found = core_helper_copies(sys.argv[2])

@@ -100,6 +100,22 @@ else
   got=$?
   [ "$got" = 2 ] || fail "ulimit -v: exit $got: $(head -c 300 "$work/err.txt")"
   check_error "ulimit -v" "a resolution of "
+  # The same refusal offers the same resolution every time, and a run at that resolution passes
+  # the check and runs to its end under the same limit.
+  offers=$(for _ in 1 2 3 4 5; do
+    (ulimit -v 400000; exec "$dform" forward $pair --resolution 200 --model paper -q --no-export -o big) 2>&1 |
+      grep -o 'a resolution of [0-9]* or less fits'
+  done | sort | uniq -c)
+  [ "$(echo "$offers" | wc -l)" = 1 ] || fail "ulimit -v: different offers on identical runs: $offers"
+  offer=$(echo "$offers" | grep -o 'of [0-9]*' | head -1 | cut -c4-)
+  if [ -n "$offer" ]; then
+    (ulimit -v 400000; exec "$dform" forward $pair --resolution "$offer" --model paper -q --no-export -o big) \
+      >/dev/null 2>"$work/err.txt"
+    got=$?
+    [ "$got" = 0 ] || fail "ulimit -v: the offered resolution $offer: exit $got: $(head -c 300 "$work/err.txt")"
+  else
+    fail "ulimit -v: resolution 200 offered none: $offers"
+  fi
 fi
 
 # A FIFO nobody writes: SIGTERM ends the run, naming it.

@@ -142,6 +142,8 @@ for kind in latin control long; do
   expect "batch, $kind name" 3 "dform: error:" -- "$dform" batch "$name.txt" -q -o o-$kind
   expect "export, $kind name" 3 "dform: error:" -- "$dform" export "$name" -q
   expect "validate, $kind name" 3 "dform: error:" -- "$dform" validate "$name"
+  # The studio reads its files before it serves anything (a timeout, should it serve instead).
+  expect "studio, $kind name" 3 "dform: error:" -- timeout 20 "$dform" studio "$name.svg" "$fwd/circle.svg" --no-browser
   [ -e o-$kind ] && fail "$kind name: a failed run created o-$kind"
 done
 # The same names inside files: a job naming them, a list of them, a list of random bytes.
@@ -226,6 +228,19 @@ python3 - R/a/report.json <<'EOF' || fail "--resume kept the result of a job fil
 import json, sys
 assert json.load(open(sys.argv[1]))["job"]["resolution"] == 36
 EOF
+# --resume reruns a job whose input file changed since (its hash in the manifest).
+mkdir ijobs
+cp "$fwd/ellipses-a.svg" "$fwd/ellipses-b.svg" ijobs/
+printf '{"mode": "forward", "piece_a": "%s", "piece_b": "%s", "resolution": 30}\n' \
+  "$work/ijobs/ellipses-a.svg" "$work/ijobs/ellipses-b.svg" >ijobs/i.json
+"$dform" batch ijobs --no-export -q -o I >/dev/null 2>&1 || fail "the batch whose input changes"
+sed -i 's/stroke-width="0.3"/stroke-width="0.4"/' ijobs/ellipses-b.svg
+"$dform" batch ijobs --no-export -q --resume -o I >/dev/null 2>&1 || fail "the batch resumed after its input changed"
+python3 - I/i/report.json "$(sha256sum ijobs/ellipses-b.svg | cut -d' ' -f1)" <<'EOF' ||
+import json, sys
+assert json.load(open(sys.argv[1]))["inputs"]["piece_b"]["sha256"] == sys.argv[2]
+EOF
+  fail "--resume kept the result of a job whose input changed since"
 # A failing batch ends with one error line.
 mkdir fjobs
 printf '{"mode": "forward", "piece_a": "nowhere.svg", "piece_b": "x.svg"}' >fjobs/lost.json
@@ -259,6 +274,15 @@ done
 # A failed run creates nothing: not its folder, not the folder's parents.
 expect "a failed run in new folders" 3 "nowhere.svg" -- "$dform" forward nowhere.svg "$fwd/circle.svg" -q -o new/deeper/out
 [ -e new ] && fail "a failed run created new/deeper"
+# A sweep that solves no start fails as forward does (unequal perimeters: 4), creates nothing
+# and leaves an earlier sweep where it was.
+expect "a sweep solving no start" 4 "the perimeters differ" -- \
+  "$dform" sweep "$fwd/circle.svg" "$fwd/ellipses-a.svg" --starts 2 -q -o new/deeper/sweep
+[ -e new ] && fail "a sweep that solved nothing created new/deeper"
+before=$(find W -type f -exec sha256sum {} + | sort)
+expect "a sweep solving no start over an earlier sweep" 4 "the perimeters differ" -- \
+  "$dform" sweep "$fwd/circle.svg" "$fwd/ellipses-a.svg" --starts 2 -q -o W
+[ "$(find W -type f -exec sha256sum {} + | sort)" = "$before" ] || fail "a sweep that solved nothing replaced W"
 # validate checks what report.json says of how the result was made.
 "$dform" forward $pair --resolution 30 --model paper --no-export -q -o paper >/dev/null 2>&1 || fail "the paper run"
 cp paper/report.json paper-report.json
@@ -270,6 +294,15 @@ for edit in 'r["model"]["name"] = "exact"' 'r["schema_version"] = 99' 'r["metric
   [ "$got" = 7 ] || fail "validate of a report.json with $edit: exit $got"
 done
 cp paper-report.json paper/report.json
+# An exact result relabelled paper or general keeps the exact engine's entries: refused too.
+"$dform" forward $pair --resolution 30 --no-export -q -o exact >/dev/null 2>&1 || fail "the exact run"
+cp exact/report.json exact-report.json
+for name in paper general; do
+  python3 -c "import json; r = json.load(open('exact-report.json')); r['model']['name'] = '$name'; json.dump(r, open('exact/report.json', 'w'))"
+  run "$dform" validate exact
+  [ "$got" = 7 ] || fail "validate of an exact result relabelled $name: exit $got"
+done
+cp exact-report.json exact/report.json
 no_leftovers "edges"
 
 if [ "$failures" -gt 0 ]; then

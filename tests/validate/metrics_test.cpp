@@ -133,12 +133,10 @@ TEST(Metrics, LErrorIsTheRelativeRootSumSquareOverEveryEdgeOnce) {
   EXPECT_GT(std::abs(m.lengthError - sumRel / edges), 1e-6) << "not the mean relative error";
 }
 
-TEST(Metrics, PyramidApexDefectIsTwoPiMinusItsFaceAngles) {
-  const int n = 7;
-  const double r = 20.0, H = 9.0;
-  DForm model;
-  Piece& a = model.a;
-  a.name = "A";
+// A pyramid of n faces and height H: the angle defect at its apex, 2 pi less its face angles.
+Piece pyramid(int n, double r, double H, const std::string& name) {
+  Piece a;
+  a.name = name;
   a.shape.resize(n + 1, 3);
   a.flat.resize(n + 1, 2);
   a.shape.row(0) << 0, 0, H;
@@ -151,13 +149,21 @@ TEST(Metrics, PyramidApexDefectIsTwoPiMinusItsFaceAngles) {
     a.F.row(j) << 0, 1 + j, 1 + (j + 1) % n;
     a.seam.push_back(1 + j);
   }
-  model.b = test::mirroredCopy(a, "B");
-  // Each face angle at the apex from the dot product of two slant edges.
-  const double faceAngle = std::acos((r * r * std::cos(2 * M_PI / n) + H * H) / (r * r + H * H));
-  const double defect = 2 * M_PI - n * faceAngle;
+  return a;
+}
+double apexDefect(int n, double r, double H) {
+  return 2 * M_PI - n * std::acos((r * r * std::cos(2 * M_PI / n) + H * H) / (r * r + H * H));
+}
+
+TEST(Metrics, PyramidApexDefectIsTwoPiMinusItsFaceAngles) {
+  const int n = 7;
+  const double r = 20.0, H = 9.0;
+  DForm model;
+  model.a = pyramid(n, r, H, "A");
+  model.b = test::mirroredCopy(model.a, "B");
   const Metrics m = computeMetrics(model, {});
-  EXPECT_NEAR(m.gaussMax, defect, 1e-12);
-  EXPECT_NEAR(m.gaussMean, defect, 1e-12);  // the apex is each piece's only interior vertex
+  EXPECT_NEAR(m.gaussMax, apexDefect(n, r, H), 1e-12);
+  EXPECT_NEAR(m.gaussMean, apexDefect(n, r, H), 1e-12);  // each piece's only interior vertex
 }
 
 TEST(Metrics, OpenSeamGivesGapAndBError) {
@@ -221,6 +227,76 @@ TEST(Metrics, ExactDistanceIsToTheGivenReferenceSeam) {
   EXPECT_LE(back.roundtripMaxRel, 1e-12);
   EXPECT_EQ(back.roundtripNote, "zipped by a test");
   EXPECT_TRUE(std::isnan(computeCurveMatch(model, target, {Points3(), "none"}).roundtripRmsRel));
+}
+
+// A unit ring of n points and a copy whose points move e cos(2 theta) out of its plane: the
+// move is orthogonal to every rigid motion (translations and tilts are frequencies 0 and 1; the
+// ring's symmetries pin the best fit to the identity), so aligned, point i lies e |cos(2 theta_i)|
+// from the ring: the largest e, the root mean square e / sqrt 2, the mean 2 e / pi. Over the
+// ring's bounding-box diagonal 2 sqrt 2.
+struct RingAndWave {
+  Points3 ring, wave;
+  double e = 1e-2, diagonal = 2 * std::sqrt(2.0);
+};
+RingAndWave ringAndWave(Eigen::Index n) {
+  RingAndWave out;
+  out.ring.resize(n, 3);
+  out.wave.resize(n, 3);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double theta = 2 * M_PI * double(i) / double(n);
+    out.ring.row(i) << std::cos(theta), std::sin(theta), 0;
+    out.wave.row(i) << std::cos(theta), std::sin(theta), out.e * std::cos(2 * theta);
+  }
+  return out;
+}
+
+// exact_distance_max_rel is the seam point farthest from the exact body's, exact_distance_rms_rel
+// the root mean square over the seam points, both over the body seam's diagonal: a max reported
+// as the RMS (or the mean), or the RMS as the max or the mean, fails here.
+TEST(Metrics, ExactDistanceMaxAndRmsAreTheWorstAndTheRootMeanSquareSeamPoint) {
+  DForm model = test::tetraDForm(6);
+  const RingAndWave r = ringAndWave(Eigen::Index(model.a.seam.size()));
+  for (std::size_t k = 0; k < model.a.seam.size(); ++k)
+    model.a.shape.row(model.a.seam[k]) = r.wave.row(Eigen::Index(k));  // A's 3D seam is the wave
+  const Metrics m = computeMetrics(model, {r.ring, "the ring"});
+  EXPECT_NEAR(m.exactDistanceMaxRel, r.e / r.diagonal, 1e-9 * r.e);
+  EXPECT_NEAR(m.exactDistanceRmsRel, r.e / std::sqrt(2.0) / r.diagonal, 1e-9 * r.e);
+}
+
+// The round trip likewise, the target curve against the pieces zipped again: roundtrip_max_rel
+// the largest distance, roundtrip_rms_rel the root mean square, over the curve's diagonal.
+TEST(Metrics, RoundTripMaxAndRmsAreTheWorstAndTheRootMeanSquareCurvePoint) {
+  const DForm model = test::tetraDForm(6);
+  const RingAndWave r = ringAndWave(Eigen::Index(model.a.seam.size()));
+  Curve3 target;
+  target.points = r.ring;
+  const CurveMatch match = computeCurveMatch(model, target, {r.wave, "zipped by a test"});
+  EXPECT_NEAR(match.roundtripMaxRel, r.e / r.diagonal, 1e-9 * r.e);
+  EXPECT_NEAR(match.roundtripRmsRel, r.e / std::sqrt(2.0) / r.diagonal, 1e-9 * r.e);
+}
+
+// seam_gap_mm is the largest distance between seam partners, B_error their mean over the 3D
+// seam's length: with one partner 3 mm off and the others 1 mm, the two differ by a clear margin.
+TEST(Metrics, SeamGapIsTheWorstPartnerAndBErrorTheMeanOverTheSeamLength) {
+  DForm model = test::tetraDForm(6);
+  const std::size_t n = model.b.seam.size();
+  for (std::size_t k = 0; k < n; ++k) model.b.shape(model.b.seam[k], 2) += k == 2 ? 3.0 : 1.0;
+  const Metrics m = computeMetrics(model, {});
+  EXPECT_NEAR(m.seamGapMm, 3.0, 1e-12);
+  const double meanGap = (3.0 + double(n - 1)) / double(n);
+  EXPECT_NEAR(m.seamError, meanGap / seam3dLength(model), 1e-15);
+}
+
+// gauss_max is the largest |angle defect|, gauss_mean the mean: two apexes of different heights.
+TEST(Metrics, GaussMaxIsTheSharperApexAndGaussMeanTheMeanOfBoth) {
+  const int n = 7;
+  const double r = 20.0;
+  DForm model{pyramid(n, r, 9.0, "A"), test::mirroredCopy(pyramid(n, r, 4.0, "A"), "B")};
+  const double sharp = apexDefect(n, r, 9.0), blunt = apexDefect(n, r, 4.0);
+  ASSERT_GT(sharp, 1.5 * blunt);
+  const Metrics m = computeMetrics(model, {});
+  EXPECT_NEAR(m.gaussMax, sharp, 1e-12);
+  EXPECT_NEAR(m.gaussMean, 0.5 * (sharp + blunt), 1e-12);
 }
 
 TEST(Metrics, ReversedFlatTriangleIsFlipped) {
@@ -315,20 +391,7 @@ TEST(Metrics, ASharpCreaseIsNoFoldOver) {
 TEST(Metrics, ACreaseThroughAVertexTakesItsDefectOutOfTheFigures) {
   // A pyramid's apex has the only defect; a crease drawn through it leaves no interior vertex.
   const int n = 8;
-  Piece a;
-  a.name = "A";
-  a.shape.resize(n + 1, 3);
-  a.flat.resize(n + 1, 2);
-  a.shape.row(0) << 0, 0, 9.0;
-  a.flat.row(0) << 0, 0;
-  a.F.resize(n, 3);
-  for (int j = 0; j < n; ++j) {
-    const double t = 2 * M_PI * j / n;
-    a.shape.row(1 + j) << 20 * std::cos(t), 20 * std::sin(t), 0;
-    a.flat.row(1 + j) << 20 * std::cos(t), 20 * std::sin(t);
-    a.F.row(j) << 0, 1 + j, 1 + (j + 1) % n;
-    a.seam.push_back(1 + j);
-  }
+  const Piece a = pyramid(n, 20.0, 9.0, "A");
   DForm model{a, test::mirroredCopy(a, "B")};
   EXPECT_GT(computeMetrics(model, {}).gaussMax, 0.1);
   EXPECT_GT(curvatureMap(model.a)(0), 0.1);
@@ -337,6 +400,43 @@ TEST(Metrics, ACreaseThroughAVertexTakesItsDefectOutOfTheFigures) {
   EXPECT_EQ(m.gaussMax, 0.0);
   EXPECT_EQ(m.gaussMean, 0.0);
   EXPECT_EQ(curvatureMap(model.a)(0), 0.0);
+}
+
+// A crease whose edges fold by different angles: along the y axis, edges of 10 and 30 mm, each
+// the hinge of its own pair of triangles, the left one flat in z = 0 and the right one turned up
+// about the axis by its edge's angle (20 and 60 degrees). Seen from the faces' side (+z) the
+// folds are grooves: valleys. Its angle is the length-weighted mean, (10 * 20 + 30 * 60) / 40 = 50
+// degrees (40 unweighted), its smallest and largest edges' -60 and -20: a mean taken unweighted,
+// or the largest edge's angle reported as the crease's, fails here.
+TEST(Metrics, ACreaseFoldIsTheLengthWeightedMeanOfItsEdgesWithTheirExtremes) {
+  const double d = 15.0, y[3] = {0.0, 10.0, 40.0}, turn[2] = {20.0, 60.0};
+  Piece p;
+  p.name = "A";
+  p.flat.resize(7, 2);
+  p.shape.resize(7, 3);
+  p.F.resize(4, 3);
+  for (int k = 0; k < 3; ++k) {  // the crease's vertices 0, 1, 2
+    p.flat.row(k) << 0, y[k];
+    p.shape.row(k) << 0, y[k], 0;
+  }
+  for (int k = 0; k < 2; ++k) {
+    const double middle = 0.5 * (y[k] + y[k + 1]), angle = turn[k] * M_PI / 180.0;
+    const int left = 3 + k, right = 5 + k;
+    p.flat.row(left) << -d, middle;
+    p.shape.row(left) << -d, middle, 0;
+    p.flat.row(right) << d, middle;
+    p.shape.row(right) << d * std::cos(angle), middle, d * std::sin(angle);
+    p.F.row(2 * k) << k, k + 1, left;  // counter-clockwise in the flat layout
+    p.F.row(2 * k + 1) << k + 1, k, right;
+  }
+  p.creases = {{0, 1, 2}};
+  const std::vector<CreaseFold> folds = creaseFolds(p);
+  ASSERT_EQ(folds.size(), 1u);
+  EXPECT_EQ(folds[0].direction, FoldDirection::Valley);
+  EXPECT_NEAR(folds[0].angleDeg, 50.0, 1e-9);
+  EXPECT_NEAR(folds[0].minAngleDeg, -60.0, 1e-9);
+  EXPECT_NEAR(folds[0].maxAngleDeg, -20.0, 1e-9);
+  EXPECT_NEAR(folds[0].lengthMm, 40.0, 1e-12);
 }
 
 TEST(Metrics, AntiDFormIsMeasuredOverEveryEdgeAndAlongItsHoles) {
