@@ -146,7 +146,7 @@ struct ForwardCommand {
     command->add_option("--perimeter-tolerance", job.forward.perimeterTolerance,
                         "largest relative perimeter difference (default 0.005)");
     command->add_option("--weight", weights, "term weight, e.g. smooth_3d=0.02 (repeatable)");
-    command->add_option("--max-iterations", job.forward.solve.solver.maxIterations,
+    command->add_option("--max-iterations", job.forward.solver.maxIterations,
                         "Levenberg-Marquardt iteration cap");
     addOutputOptions(command, out);
   }
@@ -160,7 +160,7 @@ struct ForwardCommand {
           ErrorCode::Usage, "--join must be outer,outer, inner,inner, outer,inner or inner,outer"));
     if (!model.empty() && !parseModelChoice(model, job.forward.model))
       return failUsage(Status(ErrorCode::Usage, "--model must be auto, exact, paper or general"));
-    job.forward.solve.weights = defaultWeights(job.forward.joinA, job.forward.joinB);
+    job.forward.weights = defaultWeights(job.forward.joinA, job.forward.joinB);
     for (const std::string& w : weights)
       if (Status s = setWeight(job, w); !s.isOk()) return failUsage(s);
     if (Status s = validateForwardJob(job.forward); !s.isOk()) return failUsage(s);
@@ -182,7 +182,7 @@ struct InverseCommand {
     command->add_option("--resolution", job.inverse.resolution, "seam vertices (default 100)");
     command->add_flag("--closed", job.inverse.forceClosed, "close an open OBJ polyline");
     command->add_option("--weight", weights, "term weight, e.g. smooth_3d=0.005 (repeatable)");
-    command->add_option("--max-iterations", job.inverse.solve.solver.maxIterations,
+    command->add_option("--max-iterations", job.inverse.solver.maxIterations,
                         "Levenberg-Marquardt iteration cap");
     addOutputOptions(command, out);
   }
@@ -236,7 +236,7 @@ struct SweepCommand {
     if (options.threads < 0)
       return failUsage(
           Status(ErrorCode::Usage, "--threads must be 0 (the machine's cores) or more"));
-    job.forward.solve.weights = defaultWeights(job.forward.joinA, job.forward.joinB);
+    job.forward.weights = defaultWeights(job.forward.joinA, job.forward.joinB);
     job.forward.flip = flip == "flipped";
     options.bothFlips = flip == "both";
     if (Status s = validateForwardJob(job.forward); !s.isOk()) return failUsage(s);

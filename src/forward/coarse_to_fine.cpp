@@ -43,19 +43,19 @@ Result<std::array<Piece, 2>> coarserPieces(const Piece& a, const Piece& b, int m
 
 namespace detail {
 
-ForwardOptions levelOptions(ForwardOptions options, bool finest, long vertices) {
+ForwardSettings levelSettings(ForwardSettings settings, bool finest, long vertices) {
   if (!finest) {
-    options.solver.maxIterations = std::min(options.solver.maxIterations, kCoarseIterations);
-    options.constraintRounds = 0;
+    settings.solver.maxIterations = std::min(settings.solver.maxIterations, kCoarseIterations);
+    settings.constraintRounds = 0;
   }
-  relaxOnlyIfLarge(vertices, options.solver, options.relaxation);
-  return options;
+  relaxOnlyIfLarge(vertices, settings.solver, settings.relaxation);
+  return settings;
 }
 
 }  // namespace detail
 
 ForwardResult solveMeshedCoarseToFine(const Piece& a, const Piece& b,
-                                      const ForwardOptions& options) {
+                                      const ForwardSettings& settings) {
   const bool discs = a.freeBoundaries.empty() && b.freeBoundaries.empty();
   const std::vector<int> levels = detail::seamLevels(int(a.seam.size()), discs);
   ForwardResult solved;
@@ -74,7 +74,7 @@ ForwardResult solveMeshedCoarseToFine(const Piece& a, const Piece& b,
     if (haveCoarser) startFromCoarser(solved.model, pieces[0], pieces[1]);
     solved = solveForward(
         pieces[0], pieces[1],
-        detail::levelOptions(options, finest, pieces[0].flat.rows() + pieces[1].flat.rows()));
+        detail::levelSettings(settings, finest, pieces[0].flat.rows() + pieces[1].flat.rows()));
     if (finest || solved.summary.usable()) continue;
     solved = ForwardResult{};  // a failed coarse level starts nothing: the next one starts from the
                                // pillow

@@ -133,7 +133,7 @@ Status validateForwardJob(const ForwardSettings& job) {
     return usage(
         "the interior edge factor (--interior-edge, interior_edge in a job file) must be in [0.25, "
         "8]");
-  if (std::string problem = settingsProblem(forwardTerms(), job.solve.weights, job.solve.solver);
+  if (std::string problem = settingsProblem(forwardTerms(), job.weights, job.solver);
       !problem.empty())
     return usage(problem);
   return Status::ok();
@@ -282,9 +282,9 @@ Status solvePaperModel(const ForwardSettings& job, const SeamLayout& layout, Sol
     }
   }
 
-  ForwardOptions options = job.solve;
-  options.continuationSmoothing = defaultWeights(job.joinA, job.joinB).smooth3d;
-  detail::connectHooks(options.relaxation, options.solver, hooks);
+  ForwardSettings hooked = job;
+  hooked.continuationSmoothing = defaultWeights(job.joinA, job.joinB).smooth3d;
+  detail::connectHooks(hooked.relaxation, hooked.solver, hooks);
   ForwardResult solved;
   for (std::size_t level = 0; level < levels.size(); ++level) {
     const bool finest = level + 1 == levels.size();
@@ -312,7 +312,7 @@ Status solvePaperModel(const ForwardSettings& job, const SeamLayout& layout, Sol
     const auto solveStart = Clock::now();
     solved = solveForward(
         pieces[0], pieces[1],
-        detail::levelOptions(options, finest, pieces[0].flat.rows() + pieces[1].flat.rows()));
+        detail::levelSettings(hooked, finest, pieces[0].flat.rows() + pieces[1].flat.rows()));
     run.timings.solve += secondsSince(solveStart);
     if (detail::stopRequested(hooks)) return detail::interruptedDuring("the solve");
     if (!solved.summary.usable())

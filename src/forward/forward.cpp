@@ -259,15 +259,15 @@ DForm pillowInitialGuess(const Piece& a, const Piece& b) {
   return model;
 }
 
-double relaxationSmoothing(double smooth3d, const ForwardOptions& options) {
-  const double stiffest = options.continuationSmoothing;
-  if (options.smoothingContinuation <= 1.0 || options.solver.maxIterations == 0 ||
+double relaxationSmoothing(double smooth3d, const ForwardSettings& settings) {
+  const double stiffest = settings.continuationSmoothing;
+  if (settings.smoothingContinuation <= 1.0 || settings.solver.maxIterations == 0 ||
       smooth3d >= stiffest)
     return smooth3d;
-  return std::min(stiffest, options.smoothingContinuation * smooth3d);
+  return std::min(stiffest, settings.smoothingContinuation * smooth3d);
 }
 
-ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions& options) {
+ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardSettings& settings) {
   assert(a.seam.size() == b.seam.size() && a.seam.size() >= 3 && "seams must pair one to one");
   ForwardResult result;
   // Internal unit: the mean flat seam edge length, as in the paper (section 4.1).
@@ -277,7 +277,7 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
   const bool haveShapes = a.shape.rows() == a.flat.rows() && b.shape.rows() == b.flat.rows();
   DForm start = haveShapes ? DForm{a, b} : pillowInitialGuess(a, b);
   scaleLengths(start, 1.0 / unit);
-  const ForwardWeights& w = options.weights;
+  const ForwardWeights& w = settings.weights;
   // The seam is closed exactly (shared 3D unknowns) whenever the alignment term is on at all.
   const VariableLayout layout =
       w.alignment > 0 ? VariableLayout(int(a.flat.rows()), int(b.flat.rows()), a.seam, b.seam)
@@ -308,7 +308,7 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
 
   weightByFlatLength(edges, x, w.isometry);
   ForwardWeights relaxationWeights = w;
-  relaxationWeights.smooth3d = relaxationSmoothing(w.smooth3d, options);
+  relaxationWeights.smooth3d = relaxationSmoothing(w.smooth3d, settings);
   const LocalGlobalRelaxation relaxation(linearTerms(table, terms, relaxationWeights), edges, x,
                                          held);
   // No Levenberg-Marquardt step folds a triangle over that stood upright before it
@@ -325,10 +325,10 @@ ForwardResult solveForward(const Piece& a, const Piece& b, const ForwardOptions&
   const double perimeter = double(a.seam.size());
   std::vector<Constraint> constraints;
   if (w.boundaryFix > 0 && anchorTerm->numResiduals() > 0)
-    constraints.push_back({anchorTerm, 2, options.outlineTolerance * perimeter});
+    constraints.push_back({anchorTerm, 2, settings.outlineTolerance * perimeter});
   SolveSequenceSummary solved =
-      relaxThenSolve(relaxation, options.relaxation, problem, options.solver, guard, constraints,
-                     options.constraintRounds, x);
+      relaxThenSolve(relaxation, settings.relaxation, problem, settings.solver, guard, constraints,
+                     settings.constraintRounds, x);
   result.relaxation = std::move(solved.relaxation);
   result.summary = std::move(solved.summary);
   result.constraintRounds = solved.constraintRounds;

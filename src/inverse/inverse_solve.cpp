@@ -10,7 +10,7 @@
 namespace dform {
 
 InverseResult solveInverse(const DForm& start, const Points3& curve,
-                           const InverseOptions& options) {
+                           const InverseSettings& settings) {
   assert(start.a.seam.size() == start.b.seam.size() &&
          start.a.seam.size() == std::size_t(curve.rows()) && "one seam pair per curve point");
   InverseResult result;
@@ -24,7 +24,7 @@ InverseResult solveInverse(const DForm& start, const Points3& curve,
   // Both sides of the seam are one curve in 3D: shared unknowns, as in forward modelling.
   const VariableLayout layout(int(scaled.a.flat.rows()), int(scaled.b.flat.rows()), scaled.a.seam,
                               scaled.b.seam);
-  const InverseWeights& w = options.weights;
+  const InverseWeights& w = settings.weights;
   EdgeLengthPairs edges = meshEdgePairs(layout, scaled.a.F, scaled.b.F);
   const TermTable<InverseWeights>& table = inverseTerms();
   // The flat boundaries are free: no vertex is anchored.
@@ -53,7 +53,7 @@ InverseResult solveInverse(const DForm& start, const Points3& curve,
   problem.setBlockSize(VariableLayout::kPerVertex);
   // The seam is held on the curve exactly: no constraint is left to multiplier rounds.
   SolveSequenceSummary solved =
-      relaxThenSolve(relaxation, options.relaxation, problem, options.solver, guard, {}, 0, x);
+      relaxThenSolve(relaxation, settings.relaxation, problem, settings.solver, guard, {}, 0, x);
   result.relaxation = std::move(solved.relaxation);
   result.summary = std::move(solved.summary);
 

@@ -30,7 +30,7 @@ Status validateInverseJob(const InverseSettings& job) {
   if (job.resolution < 8 || job.resolution > 20000)
     return usage("resolution must be between 8 and 20000 curve points, got " +
                  std::to_string(job.resolution));
-  if (std::string problem = settingsProblem(inverseTerms(), job.solve.weights, job.solve.solver);
+  if (std::string problem = settingsProblem(inverseTerms(), job.weights, job.solver);
       !problem.empty())
     return usage(problem);
   return Status::ok();
@@ -156,8 +156,8 @@ Result<SolvedPieces> solveCurve(const Curve3& curve, const InverseSettings& job,
   sink.info(
       format("curve: %.0f points, length %.3f mm", double(curve.points.rows()), run.curveLength));
 
-  InverseOptions options = job.solve;
-  detail::connectHooks(options.relaxation, options.solver, hooks);
+  InverseSettings hooked = job;
+  detail::connectHooks(hooked.relaxation, hooked.solver, hooks);
   InverseResult solved;
   for (std::size_t level = 0; level < levels.size(); ++level) {
     const bool finest = level + 1 == levels.size();
@@ -219,11 +219,11 @@ Result<SolvedPieces> solveCurve(const Curve3& curve, const InverseSettings& job,
 
     if (detail::stopRequested(hooks)) return detail::interruptedDuring("the meshing");
     const auto solveStart = Clock::now();
-    InverseOptions levelOptions = options;
+    InverseSettings levelSettings = hooked;
     detail::relaxOnlyIfLarge(startModel.a.flat.rows() + startModel.b.flat.rows(),
-                             levelOptions.solver, levelOptions.relaxation);
-    if (level > 0) levelOptions.relaxation.relativeTolerance = detail::kRefinedRelaxationTolerance;
-    solved = solveInverse(startModel, target, levelOptions);
+                             levelSettings.solver, levelSettings.relaxation);
+    if (level > 0) levelSettings.relaxation.relativeTolerance = detail::kRefinedRelaxationTolerance;
+    solved = solveInverse(startModel, target, levelSettings);
     run.timings.solve += secondsSince(solveStart);
     if (detail::stopRequested(hooks)) return detail::interruptedDuring("the solve");
     if (!solved.summary.usable())

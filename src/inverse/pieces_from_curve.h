@@ -11,16 +11,10 @@
 #include "core/types.h"
 #include "inverse/inverse_solve.h"
 #include "inverse/pre_dform.h"
+#include "inverse/settings.h"
 #include "model/run_types.h"
 
 namespace dform {
-
-/// Everything an inverse run needs besides the curve.
-struct InverseSettings {
-  int resolution = 100;  ///< seam vertices
-  InverseInitOptions init;
-  InverseOptions solve;
-};
 
 /// A solved inverse job: the pieces, which model made them and how the solve went.
 struct SolvedPieces {

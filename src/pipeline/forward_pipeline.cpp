@@ -29,10 +29,7 @@ Result<ForwardRun> makeDForm(Shape2 a, Shape2 b, const ForwardSettings& settings
   if (!solved.isOk()) return solved.status();
   Result<Metrics> metrics = measureDForm(solved.value(), settings, pieces);
   if (!metrics.isOk()) return metrics.status();
-  ForwardRun run;
-  static_cast<SolvedDForm&>(run) = std::move(solved).value();
-  run.metrics = std::move(metrics).value();
-  return run;
+  return ForwardRun{std::move(solved).value(), std::move(metrics).value()};
 }
 
 Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const RunHooks& hooks) {

@@ -17,8 +17,7 @@ namespace {
 
 // The figures of solved pieces, and what they say a designer should know.
 InverseRun measure(SolvedPieces solved, MessageSink& sink) {
-  InverseRun run;
-  static_cast<SolvedPieces&>(run) = std::move(solved);
+  InverseRun run{std::move(solved), {}, {}};
   measureInverse(run.model, run.target, run.metrics, run.curveMatch);
   const std::string name = curveLabel(run.target);
   // A sheet folded over is what the gate rejects; where the curve leaves its hull, say why.

@@ -115,7 +115,7 @@ Job parse(const json& root, const std::string& baseDir) {
         !(root["join"].is_string() && parseJoin(root["join"].get<std::string>(), f.joinA, f.joinB)))
       throw KeyError{
           "join", "must be \"outer,outer\", \"inner,inner\", \"outer,inner\" or \"inner,outer\""};
-    f.solve.weights = defaultWeights(f.joinA, f.joinB);
+    f.weights = defaultWeights(f.joinA, f.joinB);
     if (root.contains("model") &&
         !(root["model"].is_string() && parseModelChoice(root["model"].get<std::string>(), f.model)))
       throw KeyError{"model", "must be \"auto\", \"exact\" or \"paper\""};
@@ -127,8 +127,8 @@ Job parse(const json& root, const std::string& baseDir) {
     if (root.contains("fit_perimeter")) f.fitPerimeter = flag(root, "fit_perimeter");
     if (root.contains("perimeter_tolerance"))
       f.perimeterTolerance = number(root, "perimeter_tolerance", "");
-    if (root.contains("weights")) readWeights(root["weights"], forwardTerms(), f.solve.weights);
-    if (root.contains("solver")) readSolver(root["solver"], f.solve.solver);
+    if (root.contains("weights")) readWeights(root["weights"], forwardTerms(), f.weights);
+    if (root.contains("solver")) readSolver(root["solver"], f.solver);
   } else if (mode == "inverse") {
     job.mode = Job::Mode::Inverse;
     onlyKeys(root, {"mode", "curve", "closed", "resolution", "weights", "solver"}, "");
@@ -136,8 +136,8 @@ Job parse(const json& root, const std::string& baseDir) {
     i.curve = path(root, "curve", baseDir);
     if (root.contains("closed")) i.forceClosed = flag(root, "closed");
     if (root.contains("resolution")) i.resolution = integer(root, "resolution");
-    if (root.contains("weights")) readWeights(root["weights"], inverseTerms(), i.solve.weights);
-    if (root.contains("solver")) readSolver(root["solver"], i.solve.solver);
+    if (root.contains("weights")) readWeights(root["weights"], inverseTerms(), i.weights);
+    if (root.contains("solver")) readSolver(root["solver"], i.solver);
   } else {
     throw KeyError{"mode", "must be \"forward\" or \"inverse\", not \"" + printable(mode) + "\""};
   }
@@ -199,8 +199,8 @@ bool setNamedWeight(Job& job, const std::string& name, double value) {
     if (row) weights.*row->weight = value;
     return row != nullptr;
   };
-  return job.mode == Job::Mode::Forward ? set(forwardTerms(), job.forward.solve.weights)
-                                        : set(inverseTerms(), job.inverse.solve.weights);
+  return job.mode == Job::Mode::Forward ? set(forwardTerms(), job.forward.weights)
+                                        : set(inverseTerms(), job.inverse.weights);
 }
 
 namespace {
@@ -232,16 +232,16 @@ std::string jobToJson(const Job& job) {
            {"flip", f.flip},
            {"fit_perimeter", f.fitPerimeter},
            {"perimeter_tolerance", f.perimeterTolerance},
-           {"weights", weightsJson(forwardTerms(), f.solve.weights)},
-           {"solver", solverJson(f.solve.solver)}};
+           {"weights", weightsJson(forwardTerms(), f.weights)},
+           {"solver", solverJson(f.solver)}};
   } else {
     const InverseJob& i = job.inverse;
     out = {{"mode", "inverse"},
            {"curve", recordedInput(i.curve)},
            {"closed", i.forceClosed},
            {"resolution", i.resolution},
-           {"weights", weightsJson(inverseTerms(), i.solve.weights)},
-           {"solver", solverJson(i.solve.solver)}};
+           {"weights", weightsJson(inverseTerms(), i.weights)},
+           {"solver", solverJson(i.solver)}};
   }
   return out.dump(2, ' ', false, json::error_handler_t::replace);
 }

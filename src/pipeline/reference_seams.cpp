@@ -53,7 +53,7 @@ ReferenceSeam zippedAgainSeam(const DForm& model, const ReferenceSeam& exactBody
   // A non-convex metric: the optimisation says what shape the sheet takes instead. Other reasons
   // (a hole zipped, a seam too long to glue) are not the round trip's to work around.
   if (exactBody.missing != Missing::NotConvex) return exactBody;
-  const ForwardResult solved = solveMeshedCoarseToFine(model.a, model.b, ForwardOptions{});
+  const ForwardResult solved = solveMeshedCoarseToFine(model.a, model.b, ForwardSettings{});
   if (!solved.summary.usable())
     return missing(Missing::EngineFailed,
                    exactBody.note + "; and the optimisation failed: " + solved.summary.message);

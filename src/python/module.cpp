@@ -194,7 +194,7 @@ Made forward(const RowPoints& outlineA, const RowPoints& outlineB,
            "join must be 'outer,outer', 'inner,inner', 'outer,inner' or "
            "'inner,outer', got '" +
                join + "'"});
-  job.solve.weights = defaultWeights(job.joinA, job.joinB);
+  job.weights = defaultWeights(job.joinA, job.joinB);
   for (const auto& [name, value] : weights)
     if (!setNamedWeight(made.job, name, value))
       raise({ErrorCode::Usage, "unknown weight '" + name + "'"});

@@ -71,9 +71,7 @@ std::string text(const json& request, const char* key) {
 Files forwardJobFiles(const PieceInput& a, const PieceInput& b, const ForwardSettings& settings) {
   Job job;
   job.mode = Job::Mode::Forward;
-  static_cast<ForwardSettings&>(job.forward) = settings;
-  job.forward.pieceA = a.name;
-  job.forward.pieceB = b.name;
+  job.forward = ForwardJob{settings, a.name, b.name};
   return {{"job.json", withInputs(job, {{"piece_a", a.name}, {"piece_b", b.name}})},
           {a.name, a.text},
           {b.name, b.text}};
@@ -82,9 +80,7 @@ Files forwardJobFiles(const PieceInput& a, const PieceInput& b, const ForwardSet
 Files inverseJobFiles(const CurveInput& curve, const InverseSettings& settings, bool forceClosed) {
   Job job;
   job.mode = Job::Mode::Inverse;
-  static_cast<InverseSettings&>(job.inverse) = settings;
-  job.inverse.curve = curve.name;
-  job.inverse.forceClosed = forceClosed;
+  job.inverse = InverseJob{settings, curve.name, forceClosed};
   return {{"job.json", withInputs(job, {{"curve", curve.name}})}, {curve.name, curve.text}};
 }
 

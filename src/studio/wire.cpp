@@ -155,7 +155,7 @@ ForwardSettings forwardSettingsFrom(const json& request) {
   if (!parseModelChoice(valueOr<std::string>(request, "model", "auto"), s.model))
     throw RequestError("model: must be auto, exact or paper");
   s.interiorEdgeFactor = valueOr<double>(request, "interior_edge", 1.0);
-  s.solve.weights = defaultWeights(s.joinA, s.joinB);
+  s.weights = defaultWeights(s.joinA, s.joinB);
   if (Status ok = validateForwardJob(s); !ok.isOk()) throw RequestError(ok.message());
   return s;
 }

@@ -194,7 +194,7 @@ CheckResult selfIntersectionCheck(const DForm& model) {
 }
 
 // How far the solve may leave a seam corner from where it was drawn, as a fraction of the seam's
-// length: ForwardOptions::outlineTolerance, the tolerance its constraint rounds meet (validate
+// length: ForwardSettings::outlineTolerance, the tolerance its constraint rounds meet (validate
 // reads meshes only and does not depend on forward).
 constexpr double kSeamCornerSlack = 3e-4;
 

@@ -70,7 +70,7 @@ int runAccuracy(int repeats, const std::string& plotPath, bool smoke) {
   std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
   std::vector<Point> points;
   for (const double weight : weights) {
-    job.solve.weights.smooth3d = weight;
+    job.weights.smooth3d = weight;
     std::vector<double> solveSeconds;
     ForwardRun last;
     for (int r = 0; r < repeats; ++r) {

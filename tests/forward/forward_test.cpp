@@ -38,7 +38,7 @@ TEST(Forward, MeshedPiecesZipCoarseToFineToTheOneLevelShape) {
   // the pillow or from a wrong shape).
   const Points2 A = test::ellipse(120, 70), B = test::ellipse(110, 82.305579);
   const Piece a = test::meshedPiece(A, 90, false), b = test::meshedPiece(B, 90, true);
-  ForwardOptions o;
+  ForwardSettings o;
   o.solver.functionTolerance = 1e-10;
   const ForwardResult oneLevel = solveForward(a, b, o);
   const ForwardResult levels = solveMeshedCoarseToFine(a, b, o);
@@ -69,7 +69,7 @@ TEST(Forward, PillowStartIsClosedAndInflated) {
 
 TEST(Forward, SolvesTwoEllipsesToThePapersFigures) {
   EllipsePair p;
-  const ForwardResult r = solveForward(p.a, p.b, ForwardOptions{});
+  const ForwardResult r = solveForward(p.a, p.b, ForwardSettings{});
   ASSERT_TRUE(r.summary.usable()) << r.summary.message;
   const Metrics m = computeMetrics(r.model, {});
   EXPECT_LE(m.lengthError, 0.005);
@@ -96,8 +96,8 @@ TEST(Forward, SolvesTwoEllipsesToThePapersFigures) {
 
 TEST(Forward, ADifferentStartingPairMakesADifferentDFormOfTheSameQuality) {
   EllipsePair p0(0.0), p1(0.25);
-  const ForwardResult r0 = solveForward(p0.a, p0.b, ForwardOptions{});
-  const ForwardResult r1 = solveForward(p1.a, p1.b, ForwardOptions{});
+  const ForwardResult r0 = solveForward(p0.a, p0.b, ForwardSettings{});
+  const ForwardResult r1 = solveForward(p1.a, p1.b, ForwardSettings{});
   const Metrics m1 = computeMetrics(r1.model, {});
   EXPECT_LE(m1.lengthError, 0.005);
   EXPECT_LE(m1.lengthErrorMax, 0.03);
@@ -118,7 +118,7 @@ TEST(Forward, IdenticalEllipsesAQuarterTurnApartMakeTheClassicDForm) {
   // must leave the flat state (the seam lift) for the solve to find the D-Form.
   const Points2 E = test::ellipse(120, 70);
   const Piece a = test::meshedPiece(E, 40, false), b = test::meshedPiece(E, 40, true, 0.25);
-  const ForwardResult r = solveForward(a, b, ForwardOptions{});
+  const ForwardResult r = solveForward(a, b, ForwardSettings{});
   const Metrics m = computeMetrics(r.model, {});
   EXPECT_LE(m.lengthError, 0.005);
   EXPECT_LE(m.lengthErrorMax, 0.03);
@@ -129,7 +129,7 @@ TEST(Forward, IdenticalEllipsesAQuarterTurnApartMakeTheClassicDForm) {
 
 TEST(Forward, LocalGlobalNeverRaisesItsEnergy) {
   EllipsePair p;
-  ForwardOptions plain, none;
+  ForwardSettings plain, none;
   none.relaxation.maxIterations = 0;
   none.solver.maxIterations = 0;
   none.constraintRounds = 0;
@@ -145,7 +145,7 @@ TEST(Forward, LocalGlobalNeverRaisesItsEnergy) {
 
 TEST(Forward, TheRelaxationNeverRaisesItsEnergyFromStepToStep) {
   EllipsePair p;
-  ForwardOptions o;
+  ForwardSettings o;
   o.solver.maxIterations = 0;
   o.constraintRounds = 0;
   std::vector<double> energies;
@@ -267,20 +267,20 @@ TEST(Forward, TheRelaxationStopsWhereAPlainStepGainsLittle) {
 }
 
 TEST(Forward, TheRelaxationRunsStifferBelowTheDefaultSmoothing) {
-  ForwardOptions o;  // continuation 6
+  ForwardSettings o;  // continuation 6
   EXPECT_DOUBLE_EQ(relaxationSmoothing(0.0005, o), 0.003);
   EXPECT_DOUBLE_EQ(relaxationSmoothing(0.0001, o), 0.0006);
   EXPECT_DOUBLE_EQ(relaxationSmoothing(0.004, o), 0.01) << "never stiffer than the default";
   EXPECT_DOUBLE_EQ(relaxationSmoothing(0.01, o), 0.01);
   EXPECT_DOUBLE_EQ(relaxationSmoothing(0.05, o), 0.05)
       << "a stiffer sheet relaxes at its own weight";
-  ForwardOptions off = o;
+  ForwardSettings off = o;
   off.smoothingContinuation = 1.0;
   EXPECT_DOUBLE_EQ(relaxationSmoothing(0.0005, off), 0.0005);
-  ForwardOptions relaxationOnly = o;  // nothing would continue from the relaxation's shape
+  ForwardSettings relaxationOnly = o;  // nothing would continue from the relaxation's shape
   relaxationOnly.solver.maxIterations = 0;
   EXPECT_DOUBLE_EQ(relaxationSmoothing(0.0005, relaxationOnly), 0.0005);
-  ForwardOptions hole = o;  // an anti or demi D-Form is tuned for 0.001
+  ForwardSettings hole = o;  // an anti or demi D-Form is tuned for 0.001
   hole.continuationSmoothing = 0.001;
   EXPECT_DOUBLE_EQ(relaxationSmoothing(0.001, hole), 0.001);
   EXPECT_DOUBLE_EQ(relaxationSmoothing(0.0001, hole), 0.0006);
@@ -292,12 +292,12 @@ TEST(Forward, AContinuationInTheSmoothingEndsOnTheDirectSolvesMinimum) {
   // run to convergence: they must end on the same shape of the same objective, the continued
   // one after fewer relaxation steps.
   EllipsePair p;
-  ForwardOptions continued;
+  ForwardSettings continued;
   continued.weights.smooth3d = 0.0005;
   continued.solver.functionTolerance = 1e-12;
   continued.solver.gradientTolerance = 1e-9;
   continued.solver.maxIterations = 200;
-  ForwardOptions direct = continued;
+  ForwardSettings direct = continued;
   direct.smoothingContinuation = 0.0;
   const ForwardResult c = solveForward(p.a, p.b, continued), d = solveForward(p.a, p.b, direct);
   ASSERT_TRUE(c.summary.usable() && d.summary.usable());
@@ -332,7 +332,7 @@ DForm foldedEllipses(const DForm& solved) {
 
 TEST(Forward, FoldGuardCountsTheGatesFoldsAndRefusesOnlyNewOnes) {
   EllipsePair p;
-  const ForwardResult r = solveForward(p.a, p.b, ForwardOptions{});
+  const ForwardResult r = solveForward(p.a, p.b, ForwardSettings{});
   const DForm folded = foldedEllipses(r.model);
   ASSERT_GT(computeMetrics(folded, {}).flipped3d, 0);
   const VariableLayout layout(int(p.a.flat.rows()), int(p.b.flat.rows()), p.a.seam, p.b.seam);
@@ -354,10 +354,10 @@ TEST(Forward, FoldGuardCountsTheGatesFoldsAndRefusesOnlyNewOnes) {
 
 TEST(Forward, AFoldedStartEndsUnfolded) {
   EllipsePair p;
-  const ForwardResult solved = solveForward(p.a, p.b, ForwardOptions{});
+  const ForwardResult solved = solveForward(p.a, p.b, ForwardSettings{});
   const DForm folded = foldedEllipses(solved.model);
   ASSERT_GT(computeMetrics(folded, {}).flipped3d, 0);
-  const ForwardResult r = solveForward(folded.a, folded.b, ForwardOptions{});
+  const ForwardResult r = solveForward(folded.a, folded.b, ForwardSettings{});
   ASSERT_TRUE(r.summary.usable()) << r.summary.message;
   const Metrics m = computeMetrics(r.model, {});
   EXPECT_EQ(m.flipped2d + m.flipped3d, 0);
@@ -367,7 +367,7 @@ TEST(Forward, AFoldedStartEndsUnfolded) {
 
 TEST(Forward, TransferIsExactOnTheSameMeshAndStartsAFinerSolve) {
   EllipsePair coarse;
-  const ForwardResult r = solveForward(coarse.a, coarse.b, ForwardOptions{});
+  const ForwardResult r = solveForward(coarse.a, coarse.b, ForwardSettings{});
   // The same mesh: barycentric transfer gives the vertices back.
   const Points3 same = transferShape(r.model.a, r.model.a.flat);
   EXPECT_LT((same - r.model.a.shape).cwiseAbs().maxCoeff(), 1e-9);
@@ -379,7 +379,7 @@ TEST(Forward, TransferIsExactOnTheSameMeshAndStartsAFinerSolve) {
   for (std::size_t k = 0; k < a.seam.size(); ++k)
     a.shape.row(a.seam[k]) = b.shape.row(b.seam[k]) =
         0.5 * (a.shape.row(a.seam[k]) + b.shape.row(b.seam[k]));
-  const ForwardResult fine = solveForward(a, b, ForwardOptions{});
+  const ForwardResult fine = solveForward(a, b, ForwardSettings{});
   const Metrics m = computeMetrics(fine.model, {});
   EXPECT_LE(m.lengthError, 0.005);
   EXPECT_LE(m.seamError, 1e-6);

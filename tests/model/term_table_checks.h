@@ -98,7 +98,7 @@ void expectValidationRefusesEveryBadWeight(const TermTable<Weights>& table,
     for (double bad : {-1.0, std::numeric_limits<double>::quiet_NaN(),
                        std::numeric_limits<double>::infinity()}) {
       Settings job;
-      job.solve.weights.*row.weight = bad;
+      job.weights.*row.weight = bad;
       const Status status = validate(job);
       EXPECT_FALSE(status.isOk()) << row.name << " = " << bad;
       EXPECT_EQ(status.message(), "weights must be finite and >= 0") << row.name;

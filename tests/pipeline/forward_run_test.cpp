@@ -253,7 +253,7 @@ TEST(ForwardRun, BadJobsAreUsageErrors) {
   bad.startA.fraction = 1.0;
   EXPECT_EQ(runForward(bad, sink).status().code(), ErrorCode::Usage);
   bad = job("circle.svg", "square.svg");
-  bad.solve.weights.isometry = -1;
+  bad.weights.isometry = -1;
   EXPECT_EQ(runForward(bad, sink).status().code(), ErrorCode::Usage);
 }
 

@@ -28,9 +28,9 @@ TEST(JobFile, ForwardJobRoundTrips) {
   EXPECT_EQ(f.resolution, 80);
   EXPECT_DOUBLE_EQ(f.interiorEdgeFactor, 1.5);
   EXPECT_TRUE(f.flip && f.fitPerimeter);
-  EXPECT_DOUBLE_EQ(f.solve.weights.smooth3d, 0.02);
-  EXPECT_DOUBLE_EQ(f.solve.weights.isometry, 1.0);
-  EXPECT_EQ(f.solve.solver.maxIterations, 30);
+  EXPECT_DOUBLE_EQ(f.weights.smooth3d, 0.02);
+  EXPECT_DOUBLE_EQ(f.weights.isometry, 1.0);
+  EXPECT_EQ(f.solver.maxIterations, 30);
 
   const Result<Job> again = parseJobJson(jobToJson(job.value()), "again.json", "/elsewhere");
   ASSERT_TRUE(again.isOk()) << again.status().message();
@@ -65,15 +65,13 @@ TEST(JobFile, NamedWeightsRoundTripThroughTheTables) {
   forward.forward.pieceA = "a.svg";
   forward.forward.pieceB = "b.svg";
   expectNamedWeightsRoundTrip(
-      forward, forwardTerms(),
-      +[](Job& job) -> ForwardWeights& { return job.forward.solve.weights; });
+      forward, forwardTerms(), +[](Job& job) -> ForwardWeights& { return job.forward.weights; });
   EXPECT_FALSE(setNamedWeight(forward, "closeness", 1.0));
   Job inverse;
   inverse.mode = Job::Mode::Inverse;
   inverse.inverse.curve = "c.obj";
   expectNamedWeightsRoundTrip(
-      inverse, inverseTerms(),
-      +[](Job& job) -> InverseWeights& { return job.inverse.solve.weights; });
+      inverse, inverseTerms(), +[](Job& job) -> InverseWeights& { return job.inverse.weights; });
   EXPECT_FALSE(setNamedWeight(inverse, "seam", 1.0));
 }
 
@@ -87,7 +85,7 @@ TEST(JobFile, EachWeightNameSetsItsOwnWeight) {
   for (const auto& [name, member] : forwardNames) {
     Job forward;  // a fresh one each time: a weight set by another name must not pass here
     ASSERT_TRUE(setNamedWeight(forward, name, 123.5)) << name;
-    EXPECT_EQ(forward.forward.solve.weights.*member, 123.5) << name;
+    EXPECT_EQ(forward.forward.weights.*member, 123.5) << name;
   }
   const std::vector<std::pair<std::string, double InverseWeights::*>> inverseNames = {
       {"isometry", &InverseWeights::isometry},
@@ -98,7 +96,7 @@ TEST(JobFile, EachWeightNameSetsItsOwnWeight) {
     Job inverse;
     inverse.mode = Job::Mode::Inverse;
     ASSERT_TRUE(setNamedWeight(inverse, name, 0.25)) << name;
-    EXPECT_EQ(inverse.inverse.solve.weights.*member, 0.25) << name;
+    EXPECT_EQ(inverse.inverse.weights.*member, 0.25) << name;
   }
 }
 
@@ -110,7 +108,7 @@ TEST(JobFile, InverseJobRoundTrips) {
   EXPECT_EQ(job.value().mode, Job::Mode::Inverse);
   EXPECT_EQ(job.value().inverse.curve, "/base/seam.obj");
   EXPECT_TRUE(job.value().inverse.forceClosed);
-  EXPECT_DOUBLE_EQ(job.value().inverse.solve.weights.closeness, 2.0);
+  EXPECT_DOUBLE_EQ(job.value().inverse.weights.closeness, 2.0);
   const Result<Job> again = parseJobJson(jobToJson(job.value()), "again.json", "/x");
   ASSERT_TRUE(again.isOk());
   EXPECT_EQ(jobToJson(again.value()), jobToJson(job.value()));

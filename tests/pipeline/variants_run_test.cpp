@@ -28,7 +28,7 @@ ForwardJob variantJob(const char* a, const char* b, JoinedBoundary joinA, Joined
   job.pieceB = sample(b);
   job.joinA = joinA;
   job.joinB = joinB;
-  job.solve.weights = defaultWeights(joinA, joinB);
+  job.weights = defaultWeights(joinA, joinB);
   job.resolution = 40;
   return job;
 }
