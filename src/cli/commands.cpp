@@ -1,6 +1,7 @@
 #include "cli/commands.h"
 
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -84,23 +85,43 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
 
 namespace {
 
-// A progress line for many jobs: done of total, failed, and the time left at the pace so far.
-SweepProgress progressLine(Terminal& terminal, const char* what) {
-  return [&terminal, what](int done, int failed, int total, double seconds) {
+// A progress line for many jobs: done of total, failed, and the time left (NaN: not known yet).
+BatchProgress progressLine(Terminal& terminal, const char* what) {
+  return [&terminal, what](int done, int failed, int total, double secondsLeft) {
     char line[160];
-    std::snprintf(line, sizeof line, "%s: %d of %d done, %d failed, about %.0f s left", what, done,
-                  total, failed, seconds / done * (total - done));
+    if (std::isfinite(secondsLeft))
+      std::snprintf(line, sizeof line, "%s: %d of %d done, %d failed, about %.0f s left", what,
+                    done, total, failed, secondsLeft);
+    else
+      std::snprintf(line, sizeof line, "%s: %d of %d done, %d failed", what, done, total, failed);
     terminal.status(line);
   };
+}
+
+// `value` printed with `format` in `width` columns, or "-" there when it is not a number (a job
+// that failed has no figures).
+std::string figure(const char* format, int width, double value) {
+  char text[64];
+  if (std::isfinite(value))
+    std::snprintf(text, sizeof text, format, width, value);
+  else
+    std::snprintf(text, sizeof text, "%*s", width, "-");
+  return text;
 }
 
 void printBatchRows(const std::vector<BatchRow>& rows) {
   std::fprintf(stdout, "%-24s %-12s %4s %10s %12s %10s %8s\n", "job", "status", "exit", "height_mm",
                "volume_cm3", "max_curv", "seconds");
-  for (const BatchRow& r : rows)
-    std::fprintf(stdout, "%-24s %-12s %4d %10.2f %12.4g %10.4g %8.2f\n",
-                 printable(r.job.name, 40).c_str(), r.status.c_str(), r.exitCode,
-                 r.figures.heightMm, r.figures.volumeMm3 / 1000, r.figures.maxCurvature, r.seconds);
+  for (const BatchRow& r : rows) {
+    const SweepRow& f = r.figures;
+    const double none = NAN;
+    std::fprintf(stdout, "%-24s %-12s %4d %s %s %s %s\n", printable(r.job.name, 40).c_str(),
+                 r.status.c_str(), r.exitCode,
+                 figure("%*.2f", 10, f.solved ? f.heightMm : none).c_str(),
+                 figure("%*.4g", 12, f.solved ? f.volumeMm3 / 1000 : none).c_str(),
+                 figure("%*.4g", 10, f.solved ? f.maxCurvature : none).c_str(),
+                 figure("%*.2f", 8, r.seconds).c_str());
+  }
 }
 
 }  // namespace
@@ -111,7 +132,11 @@ int runSweepCommand(const Job& base, const SweepOptions& options, const OutputOp
   const Result<RunSettings> settings = checkOutput(output);
   if (!settings.isOk()) return fail(settings.status());
   const Result<std::vector<SweepRow>> rows = sweepAndWrite(
-      base, options, output, settings.value(), progressLine(terminal, "sweep"), interrupted);
+      base, options, output, settings.value(),
+      [line = progressLine(terminal, "sweep")](int done, int failed, int total, double seconds) {
+        line(done, failed, total, estimateSecondsLeft(seconds, done, total - done));
+      },
+      interrupted);
   terminal.clearProgress();
   if (!rows.isOk()) return fail(rows.status());
   int passed = 0;
@@ -163,12 +188,26 @@ int runBatchCommand(const std::vector<BatchJob>& jobs, const BatchOptions& optio
   return worst;
 }
 
-int mergeBatchCommand(const std::string& dir) {
-  const Result<std::vector<BatchRow>> rows = mergeBatch(dir);
-  if (!rows.isOk()) return fail(rows.status());
-  printBatchRows(rows.value());
-  std::fprintf(stdout, "%d jobs merged into %s/batch.json and %s/gallery.html\n",
-               int(rows.value().size()), dir.c_str(), dir.c_str());
+int mergeBatchCommand(const std::string& dir, bool allowPartial) {
+  const Result<MergedBatch> merged = mergeBatch(dir, allowPartial);
+  if (!merged.isOk()) return fail(merged.status());
+  const MergedBatch& m = merged.value();
+  printBatchRows(m.rows);
+  const std::string into = printable(dir, 300);
+  if (m.jobCount < 0)
+    std::fprintf(stdout,
+                 "%d jobs merged into %s/batch.json and %s/gallery.html (the manifests do not "
+                 "record how many the list has)\n",
+                 int(m.rows.size()), into.c_str(), into.c_str());
+  else if (m.missingCount > 0)
+    std::fprintf(stdout,
+                 "%d of %d jobs merged into %s/batch.json and %s/gallery.html; %d have not "
+                 "finished: %s\n",
+                 m.jobCount - m.missingCount, m.jobCount, into.c_str(), into.c_str(),
+                 m.missingCount, missingText(m).c_str());
+  else
+    std::fprintf(stdout, "%d of %d jobs merged into %s/batch.json and %s/gallery.html\n",
+                 m.jobCount, m.jobCount, into.c_str(), into.c_str());
   return 0;
 }
 

@@ -20,8 +20,9 @@ int runSweepCommand(const Job& base, const SweepOptions& options, const OutputOp
 /// it, into output.outDir/<job name>/, with the manifest (docs/batch.md).
 int runBatchCommand(const std::vector<BatchJob>& jobs, const BatchOptions& options,
                     const OutputOptions& output, const std::atomic<bool>& interrupted);
-/// `dform batch --merge DIR`: the shards' manifests gathered into batch.json and gallery.html.
-int mergeBatchCommand(const std::string& dir);
+/// `dform batch --merge DIR`: the shards' manifests gathered into batch.json and gallery.html;
+/// refused (exit 5) while a job of the list has not finished, unless `allowPartial`.
+int mergeBatchCommand(const std::string& dir, bool allowPartial);
 int exportSaved(const std::string& dir, const OutputOptions& output,
                 const std::atomic<bool>& interrupted);
 int validateSaved(const std::string& dir, const std::string& gate);

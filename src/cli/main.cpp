@@ -246,6 +246,7 @@ struct SweepCommand {
 
 struct BatchCommand {
   std::string input, shard = "1/1", mergeDir;
+  bool allowPartial = false;
   BatchOptions options;
   OutputOptions out;
   CLI::App* command = nullptr;
@@ -260,7 +261,10 @@ struct BatchCommand {
                         "run only slice I of N (job k goes to slice k % N + 1), e.g. 2/8");
     command->add_option(
         "--merge", mergeDir,
-        "gather the shards' manifests in this folder into batch.json and gallery.html");
+        "gather the shards' manifests in this folder into batch.json and gallery.html "
+        "(refused while a job has not finished)");
+    command->add_flag("--allow-partial", allowPartial,
+                      "with --merge: merge the finished jobs although others have not finished");
     command->add_option("--threads", options.threads,
                         "jobs run at once (default: the machine's cores)");
     addOutputOptions(command, out);
@@ -270,8 +274,10 @@ struct BatchCommand {
     if (!mergeDir.empty()) {
       if (!input.empty() || !out.outDir.empty())
         return failUsage(Status(ErrorCode::Usage, "batch --merge DIR takes no job list and no -o"));
-      return cli::mergeBatchCommand(mergeDir);
+      return cli::mergeBatchCommand(mergeDir, allowPartial);
     }
+    if (allowPartial)
+      return failUsage(Status(ErrorCode::Usage, "--allow-partial goes with --merge DIR"));
     if (input.empty() || out.outDir.empty())
       return failUsage(
           Status(ErrorCode::Usage, "batch needs a job list or folder and -o OUT (or --merge OUT)"));

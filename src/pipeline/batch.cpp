@@ -74,6 +74,7 @@ bool rowFromJson(const json& j, BatchRow& r) {
   r.job.name = j["name"].get<std::string>();
   r.job.sha256 = text(j, "sha256");
   r.status = j["status"].get<std::string>();
+  if (r.status == "gate failed") r.status = "gate-failed";  // a manifest of schema version 2
   const auto code = j.find("exit_code");
   r.exitCode = code != j.end() && code->is_number_integer() ? code->get<int>() : 1;
   r.message = text(j, "message");
@@ -95,17 +96,30 @@ bool rowFromJson(const json& j, BatchRow& r) {
   return true;
 }
 
+// The jobs a manifest was to run, by their place in the list: their names, so that a merge can
+// name the jobs that did not finish.
+using ListedJobs = std::map<int, std::string>;
+
+ListedJobs listedJobs(const std::vector<BatchJob>& jobs) {
+  ListedJobs listed;
+  for (const BatchJob& job : jobs) listed[job.index] = job.name;
+  return listed;
+}
+
 std::string manifestText(const std::vector<BatchRow>& rows, const BatchOptions& options,
-                         const JobList& jobs, bool merged) {
+                         const JobList& jobs, const ListedJobs& listed, bool merged) {
   json list = json::array();
   for (const BatchRow& r : rows) list.push_back(rowJson(r));
+  json slice = json::array();
+  for (const auto& [index, name] : listed) slice.push_back({index, utf8Text(name)});
   json out = {{"schema", "dform-batch"},
-              {"schema_version", 2},
+              {"schema_version", 3},
               {"jobs", {{"count", jobs.count}, {"sha256", jobs.sha256}}}};
   if (merged)
     out["merged"] = true;
   else
     out["shard"] = {options.shard, options.shards};
+  out["slice"] = slice;
   out["rows"] = list;
   return out.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
 }
@@ -115,6 +129,7 @@ std::string manifestText(const std::vector<BatchRow>& rows, const BatchOptions& 
 struct Manifest {
   std::vector<BatchRow> rows;
   JobList jobs;
+  ListedJobs listed;  ///< empty for a manifest that does not record its slice
 };
 
 // The rows of one manifest file; InputInvalid naming it when it is not one.
@@ -139,6 +154,12 @@ Result<Manifest> readManifest(const fs::path& path) {
     read.jobs.count = (*jobs)["count"].get<int>();
     read.jobs.sha256 = (*jobs)["sha256"].get<std::string>();
   }
+  const auto slice = manifest.find("slice");
+  if (slice != manifest.end() && slice->is_array())
+    for (const json& entry : *slice)
+      if (entry.is_array() && entry.size() == 2 && entry[0].is_number_integer() &&
+          entry[1].is_string())
+        read.listed[entry[0].get<int>()] = entry[1].get<std::string>();
   return read;
 }
 
@@ -234,6 +255,28 @@ std::string jobSha256(const std::string& jobPath) {
   return sha256Hex(hashes);
 }
 
+double jobSize(const std::string& jobPath) {
+  const Result<Job> job = readJobFile(jobPath);
+  if (!job.isOk()) return 1;
+  const double resolution = job.value().mode == Job::Mode::Forward ? job.value().forward.resolution
+                                                                   : job.value().inverse.resolution;
+  return resolution * resolution;
+}
+
+double estimateSecondsLeft(double elapsed, double doneSize, double remainingSize) {
+  if (!(doneSize > 0) || !(elapsed >= 0) || !(remainingSize >= 0)) return NAN;
+  return elapsed * remainingSize / doneSize;
+}
+
+std::string missingText(const MergedBatch& merged) {
+  std::string text;
+  for (std::size_t k = 0; k < merged.firstMissing.size(); ++k)
+    text += (k ? ", " : "") + printable(merged.firstMissing[k], 60);
+  const int more = merged.missingCount - int(merged.firstMissing.size());
+  if (more > 0) text += " and " + std::to_string(more) + " more";
+  return text;
+}
+
 JobList jobListOf(const std::vector<BatchJob>& jobs) {
   std::string all;
   for (const BatchJob& job : jobs) all += sha256Hex(job.name) + " " + job.sha256 + "\n";
@@ -284,7 +327,10 @@ Result<std::vector<BatchJob>> listBatchJobs(const std::string& input) {
                                                  " would both write " +
                                                  printable(jobs[k].name, 200) + "/");
   }
-  for (BatchJob& job : jobs) job.sha256 = jobSha256(job.path);
+  for (BatchJob& job : jobs) {
+    job.sha256 = jobSha256(job.path);
+    job.size = jobSize(job.path);
+  }
   return jobs;
 }
 
@@ -329,7 +375,7 @@ std::string galleryName(const BatchOptions& options) {
 
 Result<std::vector<BatchRow>> runBatch(const std::vector<BatchJob>& jobs,
                                        const BatchOptions& options, const std::string& outDir,
-                                       const BatchRunner& run, const SweepProgress& progress,
+                                       const BatchRunner& run, const BatchProgress& progress,
                                        const std::atomic<bool>& interrupted) {
   std::error_code ec;
   fs::create_directories(outDir, ec);
@@ -341,6 +387,7 @@ Result<std::vector<BatchRow>> runBatch(const std::vector<BatchJob>& jobs,
   const JobList list = jobListOf(jobs);
   const fs::path manifest = fs::path(outDir) / manifestName(options);
   const std::vector<BatchJob> slice = shardOf(jobs, options.shard, options.shards);
+  const ListedJobs listed = listedJobs(slice);
   // Resumed: a job the manifest has as finished, made from the same job file and inputs as now,
   // with its result still in place, is kept.
   std::map<std::string, BatchRow> kept;
@@ -364,10 +411,13 @@ Result<std::vector<BatchRow>> runBatch(const std::vector<BatchJob>& jobs,
     }
   }
   std::mutex mutex;
-  Status written = writeFileAtomically(manifest.string(), manifestText(rows, options, list, false));
+  Status written =
+      writeFileAtomically(manifest.string(), manifestText(rows, options, list, listed, false));
   if (!written.isOk()) return written;
   const auto begun = Clock::now();
   int done = 0, failed = 0;
+  double doneSize = 0, remainingSize = 0;
+  for (const BatchJob& job : pending) remainingSize += job.size;
   parallelFor(
       pending.size(), options.threads,
       [&](std::size_t k) {
@@ -393,7 +443,7 @@ Result<std::vector<BatchRow>> runBatch(const std::vector<BatchJob>& jobs,
         row.figures.subfolder = row.figures.label = job.name;
         if (!outcome.message.empty()) row.figures.reason = outcome.message;
         if (row.message.empty()) row.message = row.figures.reason;  // a failed gate's checks
-        row.status = !saved ? "failed" : outcome.exitCode == 0 ? "done" : "gate failed";
+        row.status = !saved ? "failed" : outcome.exitCode == 0 ? "done" : "gate-failed";
         row.seconds = std::chrono::duration<double>(Clock::now() - jobBegun).count();
         row.figures.seconds = row.seconds;
         const std::lock_guard<std::mutex> held(mutex);
@@ -402,12 +452,15 @@ Result<std::vector<BatchRow>> runBatch(const std::vector<BatchJob>& jobs,
                   [](const BatchRow& a, const BatchRow& b) { return a.job.index < b.job.index; });
         ++done;
         failed += outcome.exitCode != 0;
+        doneSize += job.size;
+        remainingSize -= job.size;
         if (written.isOk())
-          written =
-              writeFileAtomically(manifest.string(), manifestText(rows, options, list, false));
+          written = writeFileAtomically(manifest.string(),
+                                        manifestText(rows, options, list, listed, false));
         if (progress)
           progress(done, failed, int(pending.size()),
-                   std::chrono::duration<double>(Clock::now() - begun).count());
+                   estimateSecondsLeft(std::chrono::duration<double>(Clock::now() - begun).count(),
+                                       doneSize, std::max(0.0, remainingSize)));
       },
       interrupted);
   if (!written.isOk()) return written;
@@ -419,7 +472,7 @@ Result<std::vector<BatchRow>> runBatch(const std::vector<BatchJob>& jobs,
   return rows;
 }
 
-Result<std::vector<BatchRow>> mergeBatch(const std::string& outDir) {
+Result<MergedBatch> mergeBatch(const std::string& outDir, bool allowPartial) {
   std::vector<fs::path> manifests;
   std::error_code ec;
   for (const fs::directory_entry& entry : fs::directory_iterator(outDir, ec))
@@ -439,6 +492,7 @@ Result<std::vector<BatchRow>> mergeBatch(const std::string& outDir) {
   // after a job file or an input was edited would merge into a table that matches no list.
   std::map<std::string, BatchRow> byName;
   std::map<int, std::string> nameAt;
+  ListedJobs listed;
   JobList list;
   fs::path listedBy;
   const auto mismatch = [&](const fs::path& a, const fs::path& b, const std::string& what) {
@@ -451,6 +505,7 @@ Result<std::vector<BatchRow>> mergeBatch(const std::string& outDir) {
     Result<Manifest> read = readManifest(path);
     if (!read.isOk()) return read.status();
     const JobList& jobs = read.value().jobs;
+    listed.insert(read.value().listed.begin(), read.value().listed.end());
     if (jobs.count >= 0) {
       if (list.count >= 0 && (jobs.count != list.count || jobs.sha256 != list.sha256))
         return mismatch(listedBy, path,
@@ -480,13 +535,40 @@ Result<std::vector<BatchRow>> mergeBatch(const std::string& outDir) {
       return mismatch(manifests.front(), manifests.back(),
                       rows[k - 1].job.name + " and " + rows[k].job.name + " are both job " +
                           std::to_string(rows[k].job.index));
+  // Every job of the list must have finished somewhere: a shard missing, killed part way or
+  // never started would otherwise merge into a table that looks whole.
+  MergedBatch merged;
+  merged.jobCount = list.count;
+  if (list.count < 0 && !allowPartial)
+    return Status(ErrorCode::SolveFailed,
+                  outDir + ": the manifests do not record their job list, so whether every job " +
+                      "finished cannot be told; nothing was merged (--allow-partial merges them " +
+                      "all the same)");
+  for (const BatchRow& r : rows) listed[r.job.index] = r.job.name;
+  std::set<int> finished;
+  for (const BatchRow& r : rows)
+    if (r.job.index >= 0 && r.job.index < list.count) finished.insert(r.job.index);
+  merged.missingCount = std::max(0, list.count - int(finished.size()));
+  for (int k = 0; k < list.count && int(merged.firstMissing.size()) < kMissingNamed; ++k)
+    if (!finished.count(k)) {
+      const auto name = listed.find(k);
+      merged.firstMissing.push_back(name != listed.end() ? name->second : "#" + std::to_string(k));
+    }
+  if (merged.missingCount > 0 && !allowPartial)
+    return Status(ErrorCode::SolveFailed,
+                  outDir + ": " + std::to_string(merged.missingCount) + " of " +
+                      std::to_string(list.count) + " jobs have not finished in any manifest (" +
+                      missingText(merged) +
+                      "); nothing was merged (run their shards, --resume finishes a shard cut " +
+                      "short; --allow-partial merges what is there)");
   const fs::path base = fs::path(outDir);
-  if (Status s =
-          writeFileAtomically((base / "batch.json").string(), manifestText(rows, {}, list, true));
+  if (Status s = writeFileAtomically((base / "batch.json").string(),
+                                     manifestText(rows, {}, list, listed, true));
       !s.isOk())
     return s;
   if (Status s = writeGallery(outDir, rows, "gallery.html"); !s.isOk()) return s;
-  return rows;
+  merged.rows = std::move(rows);
+  return merged;
 }
 
 }  // namespace dform

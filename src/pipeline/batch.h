@@ -19,7 +19,18 @@ struct BatchJob {
   std::string path;    ///< the job file, as listed (relative paths of a list file: from its folder)
   std::string name;    ///< OUT/<name>/
   std::string sha256;  ///< jobSha256 of the job when the batch listed it
+  double size = 1;     ///< its share of the batch's work, for the time left: resolution² of
+                       ///< its job file (vertices grow with it), 1 for a job file unreadable
 };
+
+/// A job's size for the time left: the square of its job file's resolution (forward or
+/// inverse), 1 when the job file cannot be read.
+double jobSize(const std::string& jobPath);
+
+/// Seconds left at the pace so far: `elapsed` seconds finished jobs of total size `doneSize`,
+/// so jobs of total size `remainingSize` take elapsed * remainingSize / doneSize. NaN (unknown)
+/// until a job of some size has finished.
+double estimateSecondsLeft(double elapsed, double doneSize, double remainingSize);
 
 /// What a job's result is made from, as one SHA-256: the job file's bytes and those of the
 /// inputs it names (the pieces, or the curve). A job file or an input edited since gives
@@ -55,7 +66,7 @@ bool parseShard(const std::string& text, int& shard, int& shards);
 /// A finished job: what happened and what its saved result measures.
 struct BatchRow {
   BatchJob job;
-  std::string status;   ///< "done", "gate failed" (result written), "failed" (no result)
+  std::string status;   ///< "done", "gate-failed" (result written), "failed" (no result)
   int exitCode = 0;     ///< as `dform run` of the job would exit
   std::string message;  ///< the error, for a job that failed
   SweepRow figures;     ///< measured on OUT/<name>/ when a result was written
@@ -70,6 +81,10 @@ struct JobOutcome {
 
 /// Runs one job into `dir`; called from several threads at once.
 using BatchRunner = std::function<JobOutcome(const std::string& jobPath, const std::string& dir)>;
+
+/// Progress after each finished job: done (of total, this run's), failed, and the seconds left by
+/// estimateSecondsLeft over the jobs' sizes (NaN: unknown).
+using BatchProgress = std::function<void(int done, int failed, int total, double secondsLeft)>;
 
 struct BatchOptions {
   int shard = 1, shards = 1;  ///< run only this slice
@@ -94,14 +109,31 @@ std::string galleryName(const BatchOptions& options);
 /// OutputFailed naming the file.
 Result<std::vector<BatchRow>> runBatch(const std::vector<BatchJob>& jobs,
                                        const BatchOptions& options, const std::string& outDir,
-                                       const BatchRunner& run, const SweepProgress& progress,
+                                       const BatchRunner& run, const BatchProgress& progress,
                                        const std::atomic<bool>& interrupted);
 
+/// A merge: the rows gathered, how many jobs the list has (-1: not recorded), and the jobs with
+/// no row in any manifest: how many, and the first kMissingNamed of them in list order (by name
+/// where a manifest lists it, else "#K", K its place in the list from 0).
+constexpr int kMissingNamed = 5;
+struct MergedBatch {
+  std::vector<BatchRow> rows;
+  int jobCount = 0;
+  int missingCount = 0;
+  std::vector<std::string> firstMissing;
+};
+
+/// The missing jobs for a message: "a, b, #7, d, e and 3 more".
+std::string missingText(const MergedBatch& merged);
+
 /// Gathers every manifest in `outDir` (batch.json and the shards') into batch.json, one row per
-/// job (the latest where several have it), in job order, and gallery.html. Returns the rows.
-/// InputUnreadable when there is no manifest, InputInvalid naming a manifest that is not one, or
-/// the manifests that were run from different job lists (another order, other jobs, a job or an
-/// input edited in between): nothing is written then. OutputFailed while a batch runs in `outDir`.
-Result<std::vector<BatchRow>> mergeBatch(const std::string& outDir);
+/// job (the latest where several have it), in job order, and gallery.html. A job is finished when
+/// a manifest has its row (done, gate-failed or failed); a job interrupted or never run has none.
+/// SolveFailed (exit 5) listing the missing jobs unless every job of the list has finished or
+/// `allowPartial`; InputUnreadable when there is no manifest, InputInvalid naming a manifest that
+/// is not one, or the manifests that were run from different job lists (another order, other
+/// jobs, a job or an input edited in between): nothing is written then. OutputFailed while a
+/// batch runs in `outDir`.
+Result<MergedBatch> mergeBatch(const std::string& outDir, bool allowPartial);
 
 }  // namespace dform

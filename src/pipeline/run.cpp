@@ -240,7 +240,7 @@ Result<std::vector<BatchRow>> batchAndWrite(const std::vector<BatchJob>& jobs,
                                             const BatchOptions& options,
                                             const OutputOptions& output,
                                             const RunSettings& settings,
-                                            const SweepProgress& progress,
+                                            const BatchProgress& progress,
                                             const std::atomic<bool>& interrupted) {
   // Each job as `dform run` runs it; its messages are kept in its report.json.
   const BatchRunner run = [&](const std::string& path, const std::string& dir) -> JobOutcome {

@@ -106,7 +106,7 @@ Result<std::vector<BatchRow>> batchAndWrite(const std::vector<BatchJob>& jobs,
                                             const BatchOptions& options,
                                             const OutputOptions& output,
                                             const RunSettings& settings,
-                                            const SweepProgress& progress,
+                                            const BatchProgress& progress,
                                             const std::atomic<bool>& interrupted);
 
 }  // namespace dform

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "cli/text_files.h"
 
@@ -141,7 +142,7 @@ TEST_F(BatchTest, ShardsOfMixedOutcomesMergeToTheWhole) {
     ++statuses[row["status"].get<std::string>()];
     if (row["status"] != "failed") ++models[row["model"].get<std::string>()];
   }
-  EXPECT_EQ(statuses, (std::map<std::string, int>{{"done", 5}, {"failed", 1}, {"gate failed", 1}}));
+  EXPECT_EQ(statuses, (std::map<std::string, int>{{"done", 5}, {"failed", 1}, {"gate-failed", 1}}));
   EXPECT_EQ(models, (std::map<std::string, int>{{"exact", 4}, {"paper", 2}}));
 }
 
@@ -239,6 +240,140 @@ TEST_F(BatchTest, TheDemiJobGivesTheSameFiguresAloneAndInAThreeThreadBatch) {
     ASSERT_FALSE(report.empty()) << log_;
     EXPECT_EQ(json::parse(report)["metrics"].dump(), alone.dump()) << "round " << round;
   }
+}
+
+// Quick batches (jobs that fail at once, a twin at resolution 40): the fast label.
+class BatchMergeTest : public BatchTest {
+ public:
+  // `count` jobs j00, j01, ... whose piece is missing (each fails at once with its row), listed
+  // in jobs.txt.
+  fs::path failingJobs(int count) {
+    fs::create_directories(dir_ / "jobs");
+    std::ofstream list(dir_ / "jobs.txt");
+    for (int k = 0; k < count; ++k) {
+      const std::string name = (k < 10 ? "j0" : "j") + std::to_string(k);
+      std::ofstream(dir_ / "jobs" / (name + ".json"))
+          << R"({"mode": "forward", "piece_a": "nowhere.svg", "piece_b": "x.svg"})";
+      list << "jobs/" << name << ".json\n";
+    }
+    return dir_ / "jobs.txt";
+  }
+  // Runs shard `shard` of `shards` of `list` into `out`.
+  void runShard(const fs::path& list, const fs::path& out, int shard, int shards) {
+    EXPECT_EQ(dform("batch " + list.string() + " -q --no-export -o " + out.string() + " --shard " +
+                    std::to_string(shard) + "/" + std::to_string(shards)),
+              3)
+        << log_;
+  }
+  // A refused merge: exit 5, one error line naming what is missing, nothing written.
+  void expectRefused(const fs::path& out, const std::string& missing) {
+    EXPECT_EQ(dform("batch --merge " + out.string()), 5) << log_;
+    EXPECT_EQ(log_.rfind("dform: error: " + out.string() + ": " + missing, 0), 0u) << log_;
+    EXPECT_EQ(occurrences(log_, "\n"), 1) << log_;
+    EXPECT_FALSE(fs::exists(out / "batch.json"));
+    EXPECT_FALSE(fs::exists(out / "gallery.html"));
+  }
+};
+
+TEST_F(BatchMergeTest, AShardMissingIsRefusedUnlessAllowPartial) {
+  const fs::path list = failingJobs(12), out = dir_ / "out";
+  runShard(list, out, 2, 3);
+  runShard(list, out, 3, 3);
+  // Shard 1 never ran: its jobs are named by their place, no manifest lists their names.
+  expectRefused(out, "4 of 12 jobs have not finished in any manifest (#0, #3, #6, #9); nothing");
+  EXPECT_NE(log_.find("--allow-partial"), std::string::npos) << log_;
+  ASSERT_EQ(dform("batch --merge " + out.string() + " --allow-partial"), 0) << log_;
+  EXPECT_NE(log_.find("8 of 12 jobs merged into"), std::string::npos) << log_;
+  EXPECT_NE(log_.find("4 have not finished: #0, #3, #6, #9"), std::string::npos) << log_;
+  EXPECT_EQ(rows(out / "batch.json").size(), 8u);
+  // With shard 1 run, the partial merge and the shards merge whole.
+  runShard(list, out, 1, 3);
+  ASSERT_EQ(dform("batch --merge " + out.string()), 0) << log_;
+  EXPECT_NE(log_.find("12 of 12 jobs merged into"), std::string::npos) << log_;
+  EXPECT_EQ(rows(out / "batch.json").size(), 12u);
+  // --allow-partial belongs to --merge.
+  EXPECT_EQ(dform("batch " + list.string() + " -o " + (dir_ / "o2").string() + " --allow-partial"),
+            2);
+  EXPECT_NE(log_.find("--allow-partial goes with --merge"), std::string::npos) << log_;
+}
+
+TEST_F(BatchMergeTest, AShardKilledPartWayIsRefusedNamingItsUnfinishedJobs) {
+  const fs::path list = failingJobs(18), out = dir_ / "out";
+  for (int shard = 1; shard <= 3; ++shard) runShard(list, out, shard, 3);
+  // Shard 2 killed after 4 of its 6 jobs: its manifest lacks the last two rows; a folder the
+  // killed job had begun holds no finished result.
+  const fs::path manifest = out / "batch-shard-2-of-3.json";
+  json killed = json::parse(readText(manifest));
+  ASSERT_EQ(killed["rows"].size(), 6u);
+  killed["rows"].erase(5);
+  killed["rows"].erase(4);
+  std::ofstream(manifest) << killed.dump(2);
+  fs::create_directories(out / "j13");
+  expectRefused(out, "2 of 18 jobs have not finished in any manifest (j13, j16); nothing");
+  ASSERT_EQ(dform("batch --merge " + out.string() + " --allow-partial"), 0) << log_;
+  EXPECT_NE(log_.find("16 of 18 jobs merged"), std::string::npos) << log_;
+  EXPECT_EQ(rows(out / "batch.json").size(), 16u);
+}
+
+TEST_F(BatchMergeTest, OnlyTheLastShardIsRefusedWithTheListShortened) {
+  const fs::path list = failingJobs(12), out = dir_ / "out";
+  runShard(list, out, 8, 8);
+  expectRefused(out,
+                "11 of 12 jobs have not finished in any manifest (#0, #1, #2, #3, #4 and 6 "
+                "more); nothing");
+}
+
+// A row of a schema-version-2 manifest, "gate failed", merges as the one word "gate-failed".
+TEST_F(BatchMergeTest, AnOlderManifestsGateFailedStatusMergesAsOneWord) {
+  const fs::path list = failingJobs(2), out = dir_ / "out";
+  EXPECT_EQ(dform("batch " + list.string() + " -q --no-export -o " + out.string()), 3) << log_;
+  json older = json::parse(readText(out / "batch.json"));
+  older["schema_version"] = 2;
+  older.erase("slice");
+  older["rows"][1]["status"] = "gate failed";
+  std::ofstream(out / "batch.json") << older.dump(2);
+  ASSERT_EQ(dform("batch --merge " + out.string()), 0) << log_;
+  EXPECT_EQ(rows(out / "batch.json")[1]["status"], "gate-failed");
+  EXPECT_NE(log_.find("j01                      gate-failed"), std::string::npos) << log_;
+}
+
+// A failed row has no figures: "-" in the run's table and the merge's, never 0 or nan.
+TEST_F(BatchMergeTest, AFailedRowShowsDashesInBothTables) {
+  const fs::path jobs = dir_ / "jobs";
+  fs::create_directories(jobs);
+  std::ofstream(jobs / "lost.json") << R"({"mode": "forward", "piece_a": "nowhere.svg", )"
+                                    << R"("piece_b": "x.svg"})";
+  std::ofstream(jobs / "twin.json")
+      << R"({"mode": "forward", "piece_a": ")" << samples() << R"(/ellipses-a.svg", "piece_b": ")"
+      << samples() << R"(/ellipses-a.svg", "resolution": 40, "start_b": 0.25})";
+  const auto expectDashes = [&](const std::string& table) {
+    std::istringstream lines(table);
+    std::string line, lost, twin;
+    while (std::getline(lines, line)) {
+      if (line.rfind("lost ", 0) == 0) lost = line;
+      if (line.rfind("twin ", 0) == 0) twin = line;
+    }
+    std::istringstream lostFields(lost), twinFields(twin);
+    std::vector<std::string> l, t;
+    for (std::string f; lostFields >> f;) l.push_back(f);
+    for (std::string f; twinFields >> f;) t.push_back(f);
+    ASSERT_EQ(l.size(), 7u) << table;
+    ASSERT_EQ(t.size(), 7u) << table;
+    EXPECT_EQ(l[1], "failed");
+    EXPECT_EQ(l[2], "3");
+    for (int k = 3; k < 6; ++k) EXPECT_EQ(l[k], "-") << table;  // height, volume, curvature
+    EXPECT_TRUE(std::isfinite(std::stod(l[6]))) << table;       // its wall time
+    EXPECT_EQ(t[1], "done");
+    EXPECT_GT(std::stod(t[3]), 100) << table;  // the twin's height, about 137 mm
+    EXPECT_EQ(table.find("nan"), std::string::npos) << table;
+  };
+  EXPECT_EQ(dform("batch " + jobs.string() + " --no-export -o " + (dir_ / "whole").string()), 3);
+  expectDashes(log_);
+  for (int shard = 1; shard <= 2; ++shard)
+    dform("batch " + jobs.string() + " --no-export -q -o " + (dir_ / "sharded").string() +
+          " --shard " + std::to_string(shard) + "/2");
+  ASSERT_EQ(dform("batch --merge " + (dir_ / "sharded").string()), 0) << log_;
+  expectDashes(log_);
 }
 
 TEST_F(BatchTest, BadShardIsAUsageErrorAMissingListUnreadable) {
