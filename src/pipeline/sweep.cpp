@@ -222,9 +222,8 @@ Result<std::vector<SweepRow>> runSweep(const Job& base, const SweepOptions& opti
   // input every start shares, unequal perimeters say, with the code a single run gives it), and
   // the folder keeps what it held, no folder made for it.
   if (std::none_of(rows.begin(), rows.end(), [](const SweepRow& r) { return r.solved; })) {
-    const auto first =
-        std::find_if(outcomes.begin(), outcomes.end(), [](const Status& s) { return !s.isOk(); });
-    return Status(first != outcomes.end() ? first->code() : ErrorCode::SolveFailed,
+    const Status& first = outcomes.at(0);
+    return Status(first.isOk() ? ErrorCode::SolveFailed : first.code(),
                   outDir + ": no start was solved (first: " + rows.at(0).reason + ")");
   }
   for (const auto& [name, text] :

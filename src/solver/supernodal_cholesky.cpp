@@ -128,6 +128,63 @@ std::vector<int> blockOrdering(const Eigen::SparseMatrix<double, Eigen::ColMajor
   return order;
 }
 
+// The dense work on a supernode comes in tiles of at most kTileRows x kPanel results, each one
+// Eigen call: a stop is seen between two tiles (the last supernodes of a fine mesh have thousands
+// of columns, and one call on a whole block of them took over a second), and every tile's shape,
+// so its rounding, follows from the sizes alone.
+constexpr int kPanel = 128, kTileRows = 512;
+
+// Subtracts from a supernode's columns Lk (its first column is k1; `local` maps a row of L to
+// Lk's) the update of a descendant whose columns are Ld and rows drows: the product of Ld's rows
+// p1.. (all those that reach this supernode or a later one) with its rows p1 .. p1 + m - 1 (those
+// among this supernode's columns), only the entries on or below the diagonal, in tiles computed
+// in `tile` (room for kTileRows x kPanel).
+void subtractUpdate(const ConstBlock& Ld, const int* drows, int p1, int m, const int* local, int k1,
+                    Block& Lk, double* tile) {
+  const int rest = int(Ld.rows()) - p1;
+  for (int j0 = 0; j0 < m; j0 += kPanel) {
+    const int q = std::min(kPanel, m - j0);
+    for (int i0 = j0; i0 < rest; i0 += kTileRows) {
+      throwIfInterrupted("the solve");
+      const int p = std::min(kTileRows, rest - i0);
+      Block update(tile, p, q);
+      update.noalias() = Ld.middleRows(p1 + i0, p) * Ld.middleRows(p1 + j0, q).transpose();
+      for (int j = 0; j < q; ++j) {
+        const int col = drows[p1 + j0 + j] - k1;
+        for (int i = std::max(0, j0 + j - i0); i < p; ++i)
+          Lk(local[drows[p1 + i0 + i]], col) -= update(i, j);
+      }
+    }
+  }
+}
+
+// Factorises a supernode whose updates are all in: its columns [L11; L21] become L11 (Cholesky
+// factor of the top block, lower triangle) and L21 L11^-T, panel by panel, left-looking. The
+// strict upper triangle of the top block is left holding no meaning. False when the top block is
+// not numerically positive definite.
+bool factorSupernode(Block& L) {
+  const int nrows = int(L.rows()), cols = int(L.cols());
+  for (int j0 = 0; j0 < cols; j0 += kPanel) {
+    const int q = std::min(kPanel, cols - j0);
+    if (j0 > 0)
+      for (int i0 = j0; i0 < nrows; i0 += kTileRows) {
+        throwIfInterrupted("the solve");
+        const int p = std::min(kTileRows, nrows - i0);
+        L.block(i0, j0, p, q).noalias() -=
+            L.block(i0, 0, p, j0) * L.block(j0, 0, q, j0).transpose();
+      }
+    auto diagonal = L.block(j0, j0, q, q);
+    Eigen::LLT<Eigen::Ref<Matrix>> llt(diagonal);
+    if (llt.info() != Eigen::Success || !diagonal.diagonal().allFinite()) return false;
+    for (int i0 = j0 + q; i0 < nrows; i0 += kTileRows) {
+      throwIfInterrupted("the solve");
+      auto below = L.block(i0, j0, std::min(kTileRows, nrows - i0), q);
+      diagonal.transpose().triangularView<Eigen::Upper>().solveInPlace<Eigen::OnTheRight>(below);
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 std::mutex& cholmodAnalysisMutex() {
@@ -154,7 +211,6 @@ SupernodalCholesky::SupernodalCholesky(const SparseLower& pattern, int blockSize
   const cholmod_factor& L = *session.factor;
   factorFlops_ = c.fl;
   factorNonZeros_ = c.lnz;
-  updateBuffer_.resize(L.maxcsize);
 
   const int nsuper = int(L.nsuper);
   const int* super = static_cast<const int*>(L.super);
@@ -217,6 +273,7 @@ bool SupernodalCholesky::factorize(const SparseLower& A, double shift) {
   // `position` the first of its rows not yet used.
   const int nsuper = int(first_.size()) - 1;
   std::vector<int> head(nsuper, -1), next(nsuper, -1), position(nsuper, 0), local(n_, -1);
+  std::vector<double> tile(std::size_t(kTileRows) * kPanel);
   for (int k = 0; k < nsuper; ++k) {
     throwIfInterrupted("the solve");
     const int k1 = first_[k], k2 = first_[k + 1], cols = k2 - k1;
@@ -225,7 +282,6 @@ bool SupernodalCholesky::factorize(const SparseLower& A, double shift) {
     for (int i = 0; i < nrows; ++i) local[rows[i]] = i;
     Block Lk(values_.data() + valueStart_[k], nrows, cols);
     for (int d = head[k]; d != -1;) {
-      throwIfInterrupted("the solve");  // the last supernodes gather thousands of updates each
       const int following = next[d];
       const int* drows = rows_.data() + rowStart_[d];
       const int dnrows = rowStart_[d + 1] - rowStart_[d];
@@ -233,16 +289,7 @@ bool SupernodalCholesky::factorize(const SparseLower& A, double shift) {
       const int p1 = position[d];
       int p2 = p1;
       while (p2 < dnrows && drows[p2] < k2) ++p2;
-      const int m = p2 - p1, rest = dnrows - p1;
-      // CHOLMOD's analysis bounds every update (maxcsize); the buffer grows should one exceed it.
-      if (std::size_t(rest) * std::size_t(m) > updateBuffer_.size())
-        updateBuffer_.resize(std::size_t(rest) * std::size_t(m));
-      Block update(updateBuffer_.data(), rest, m);
-      update.noalias() = Ld.middleRows(p1, rest) * Ld.middleRows(p1, m).transpose();
-      for (int j = 0; j < m; ++j) {
-        const int col = drows[p1 + j] - k1;
-        for (int i = j; i < rest; ++i) Lk(local[drows[p1 + i]], col) -= update(i, j);
-      }
+      subtractUpdate(Ld, drows, p1, p2 - p1, local.data(), k1, Lk, tile.data());
       position[d] = p2;
       if (p2 < dnrows) {
         const int t = superOf_[drows[p2]];
@@ -251,13 +298,8 @@ bool SupernodalCholesky::factorize(const SparseLower& A, double shift) {
       }
       d = following;
     }
-    auto diagonalBlock = Lk.topRows(cols);
-    Eigen::LLT<Eigen::Ref<Matrix>> llt(diagonalBlock);
-    if (llt.info() != Eigen::Success || !diagonalBlock.diagonal().allFinite()) return false;
+    if (!factorSupernode(Lk)) return false;
     if (nrows > cols) {
-      auto below = Lk.bottomRows(nrows - cols);
-      diagonalBlock.transpose().triangularView<Eigen::Upper>().solveInPlace<Eigen::OnTheRight>(
-          below);
       const int t = superOf_[rows[cols]];
       position[k] = cols;
       next[k] = head[t];

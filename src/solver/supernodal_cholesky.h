@@ -62,7 +62,6 @@ class SupernodalCholesky {
   std::vector<long> scatter_;   ///< where each stored entry of A lands in values_
   std::vector<long> diagonal_;  ///< where each diagonal entry of L lands (for the shift)
   std::vector<double> values_;
-  std::vector<double> updateBuffer_;  ///< one supernode's update of another (the largest fits)
   double factorFlops_ = 0, factorNonZeros_ = 0;
   bool factored_ = false;
 };

@@ -45,6 +45,33 @@ Eigen::SparseMatrix<double> gridMatrix(int side, int unknowns, double diagonal, 
   return A;
 }
 
+// Two dense blocks of `block` unknowns, coupled to each other only through a dense border of
+// `border` unknowns that is eliminated last: its supernode has several panels of columns and
+// tiles of rows, and each block's update of it is larger than one tile both ways. Random,
+// diagonally dominant, so positive definite.
+Eigen::SparseMatrix<double> arrowMatrix(int block, int border, unsigned seed = 3) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  const int n = 2 * block + border;
+  std::vector<Eigen::Triplet<double>> entries;
+  auto couple = [&](int i, int j) {
+    const double v = value(rng);
+    entries.emplace_back(i, j, v);
+    entries.emplace_back(j, i, v);
+  };
+  for (int b = 0; b < 2; ++b)
+    for (int i = b * block; i < (b + 1) * block; ++i) {
+      for (int j = b * block; j < i; ++j) couple(i, j);
+      for (int j = 2 * block; j < n; ++j) couple(i, j);
+    }
+  for (int i = 2 * block; i < n; ++i)
+    for (int j = 2 * block; j < i; ++j) couple(i, j);
+  for (int k = 0; k < n; ++k) entries.emplace_back(k, k, double(n));
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(entries.begin(), entries.end());
+  return A;
+}
+
 SparseLower lowerOf(const Eigen::SparseMatrix<double>& A) {
   SparseLower lower = A.triangularView<Eigen::Lower>();
   lower.makeCompressed();
@@ -75,6 +102,26 @@ TEST(SupernodalCholesky, SolvesAMeshShapedSystemToRounding) {
       EXPECT_LT((factor.solve(B.col(c)) - X.col(c)).norm(), 1e-12 * X.norm());
     EXPECT_GT(factor.factorFlops(), 0.0);
     EXPECT_GE(factor.factorNonZeros(), double(lower.nonZeros()));
+  }
+}
+
+// The dense work on a large supernode is done in panels of columns and tiles of rows (so that a
+// stop is seen between them); the factor is the one dense LLT gives, whichever way the border's
+// columns fall into panels and its rows into tiles.
+TEST(SupernodalCholesky, FactorisesSupernodesOfManyPanelsAndTiles) {
+  for (const auto& [block, border] : {std::pair{600, 700}, std::pair{300, 1100}}) {
+    SCOPED_TRACE(border);
+    const Eigen::SparseMatrix<double> A = arrowMatrix(block, border);
+    const SparseLower lower = lowerOf(A);
+    SupernodalCholesky factor(lower);
+    ASSERT_TRUE(factor.factorize(lower, 0.5));
+    const Eigen::MatrixXd B = Eigen::MatrixXd::Random(A.rows(), 2);
+    const Eigen::MatrixXd X = factor.solve(B);
+    EXPECT_LT(relativeResidual(A, 0.5, X, B), 1e-13);
+    Eigen::MatrixXd dense = Eigen::MatrixXd(A);
+    dense.diagonal().array() += 0.5;
+    const Eigen::MatrixXd reference = dense.llt().solve(B);
+    EXPECT_LT((X - reference).norm(), 1e-12 * reference.norm());
   }
 }
 
@@ -124,21 +171,22 @@ TEST(SupernodalCholesky, SolvesADiagonalAndAOneByOneSystem) {
 // Eigen sizes its product's panels from the CPU's caches, and other panels sum in another order.
 // The factor pins them, so what Eigen believes about the caches beforehand changes no bit.
 TEST(SupernodalCholesky, RoundsTheSameWhateverCachesTheMachineReports) {
-  const Eigen::SparseMatrix<double> A = gridMatrix(30, 5, 1e-3, 7);
-  const SparseLower lower = lowerOf(A);
-  const Eigen::MatrixXd B = Eigen::MatrixXd::Random(A.rows(), 2);
-  Eigen::MatrixXd X[2];
   const std::ptrdiff_t caches[2][3] = {{4 * 1024, 16 * 1024, 64 * 1024},
                                        {512 * 1024, 32 * 1024 * 1024, 256 * 1024 * 1024}};
-  for (int run = 0; run < 2; ++run) {
-    Eigen::setCpuCacheSizes(caches[run][0], caches[run][1], caches[run][2]);
-    SupernodalCholesky factor(lower);
-    ASSERT_TRUE(factor.factorize(lower, 1e-6));
-    X[run] = factor.solve(B);
+  for (const Eigen::SparseMatrix<double>& A : {gridMatrix(30, 5, 1e-3, 7), arrowMatrix(300, 700)}) {
+    const SparseLower lower = lowerOf(A);
+    const Eigen::MatrixXd B = Eigen::MatrixXd::Random(A.rows(), 2);
+    Eigen::MatrixXd X[2];
+    for (int run = 0; run < 2; ++run) {
+      Eigen::setCpuCacheSizes(caches[run][0], caches[run][1], caches[run][2]);
+      SupernodalCholesky factor(lower);
+      ASSERT_TRUE(factor.factorize(lower, 1e-6));
+      X[run] = factor.solve(B);
+    }
+    EXPECT_LT(relativeResidual(A, 1e-6, X[0], B), 1e-9);
+    EXPECT_EQ(0, std::memcmp(X[0].data(), X[1].data(), sizeof(double) * std::size_t(X[0].size())))
+        << "largest difference " << (X[0] - X[1]).cwiseAbs().maxCoeff();
   }
-  EXPECT_LT(relativeResidual(A, 1e-6, X[0], B), 1e-9);
-  EXPECT_EQ(0, std::memcmp(X[0].data(), X[1].data(), sizeof(double) * std::size_t(X[0].size())))
-      << "largest difference " << (X[0] - X[1]).cwiseAbs().maxCoeff();
 }
 
 // METIS, which orders the blocks here, draws from the C library's one rand() state: analyses on

@@ -1,0 +1,200 @@
+#!/usr/bin/env python3
+"""The CLI's tables of docs/benchmarks.md: runs `dform` as a user does and prints each table in
+Markdown, figures from the runs' report.json, times as stated in each table's heading.
+
+    cli_tables.py BUILD/dform SAMPLES_DIR [--repeats 3] [--only exact,samples,inverse,sweep,general]
+
+Every run writes into a temporary folder that is removed at the end. A table's times are the
+median of --repeats runs where its heading says so, else one run's.
+"""
+import argparse
+import json
+import os
+import re
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+
+class Runner:
+    def __init__(self, dform, samples, work):
+        self.dform, self.samples, self.work, self.count = dform, samples, work, 0
+
+    def sample(self, *parts):
+        return os.path.join(self.samples, *parts)
+
+    def run(self, args):
+        """Runs dform ARGS -q -o FOLDER: (report or None, exit code, wall s, peak RSS MB)."""
+        self.count += 1
+        out = os.path.join(self.work, f"run{self.count}")
+        begun = time.perf_counter()
+        process = subprocess.Popen([self.dform, *args, "-q", "-o", out], stdout=subprocess.DEVNULL,
+                                   stderr=subprocess.DEVNULL)
+        _, status, usage = os.wait4(process.pid, 0)
+        wall = time.perf_counter() - begun
+        report_path = os.path.join(out, "report.json")
+        report = json.load(open(report_path)) if os.path.exists(report_path) else None
+        return report, os.waitstatus_to_exitcode(status), wall, usage.ru_maxrss / 1024.0
+
+
+def ellipses(r):
+    return [r.sample("forward", "ellipses-a.svg"), r.sample("forward", "ellipses-b.svg")]
+
+
+def circle_square(r):
+    return [r.sample("forward", "circle.svg"), r.sample("forward", "square.svg")]
+
+
+def vertices(report):
+    mesh = report["mesh"]
+    return mesh["vertices_a"] + mesh["vertices_b"]
+
+
+def general_figures(report):
+    """(Newton steps, stationarity) from the general model's message, or blanks."""
+    for message in report["messages"]:
+        found = re.search(r"general model: (\d+) Newton steps, stationarity ([0-9.e+-]+)",
+                          message["text"])
+        if found:
+            return found.group(1), found.group(2)
+    return "", ""
+
+
+def percent(value):
+    return f"{100 * value:.4g}"
+
+
+def row(*cells):
+    print("| " + " | ".join(str(c) for c in cells) + " |")
+
+
+def exact_tables(r, repeats):
+    print("\n### exact: solve time (report.json timings.solve, median of %d)\n" % (repeats * 2))
+    row("N", "solve s, median", "min")
+    row(*["---"] * 3)
+    for n in (100, 200):
+        times = [r.run(["forward", *ellipses(r), "--resolution", str(n), "--model", "exact",
+                        "--no-export", "--gate", "none"])[0]["timings"]["solve"]
+                 for _ in range(repeats * 2)]
+        row(n, f"{statistics.median(times):.3f}", f"{min(times):.3f}")
+    print("\n### exact: figures under the strict gate (one run each)\n")
+    row("case", "N", "L_max", "gauss_max rad", "exact_distance_max_rel", "run s", "gate")
+    row(*["---"] * 7)
+    cases = [("ellipses", ["forward", *ellipses(r)], n)
+             for n in (50, 100, 200, 400, 450, 500, 800, 1000)]
+    cases.append(("circle + square", ["forward", *circle_square(r)], 100))
+    for name, args, n in cases:
+        report, code, _, _ = r.run([*args, "--resolution", str(n), "--model", "exact",
+                                    "--gate", "strict", "--no-export"])
+        m = report["metrics"]
+        row(name, n, f"{m['L_max']:.2g}", f"{m['gauss_max']:.2g}",
+            f"{m['exact_distance_max_rel']:.2g}", f"{report['timings']['run']:.3f}",
+            "passes strict" if report["gate"]["passed"] else f"fails (exit {code})")
+    for curve in ("three-lobed.obj", "tennis-ball.obj", "saddle.obj"):
+        report, code, _, _ = r.run(["inverse", r.sample("inverse", curve), "--gate", "strict",
+                                    "--no-export"])
+        m = report["metrics"]
+        row(curve + " (inverse)", report["mesh"]["seam_vertices"], f"{m['L_max']:.2g}",
+            f"{m['gauss_max']:.2g}", f"{m.get('roundtrip_max_rel', float('nan')):.2g} (round trip)",
+            f"{report['timings']['run']:.3f}",
+            "passes strict" if report["gate"]["passed"] else f"fails (exit {code})")
+
+
+def samples_table(r, repeats):
+    print("\n### shipped forward samples, paper model (solve s: median of %d)\n" % repeats)
+    row("sample", "vertices", "relaxation steps", "LM iters", "factorisations", "L_error %",
+        "L_max %", "cost", "flipped 3D", "solve s")
+    row(*["---"] * 10)
+    for job in ("ellipse-twin", "ellipses-quarter-turn", "circle-square-mid-side",
+                "nonconvex-shifted", "squaricle", "demi", "anti"):
+        runs = [r.run(["run", r.sample("forward", job + ".json"), "--model", "paper",
+                       "--no-export"]) for _ in range(repeats)]
+        report = runs[0][0]
+        s, m = report["solver"], report["metrics"]
+        row(job, vertices(report), s["local_global"]["iterations"], len(s.get("iterations", [])),
+            s["factorisations"], percent(m["L_error"]), percent(m["L_max"]),
+            f"{s['final_cost']:.5f}", m["flipped_3d"],
+            f"{statistics.median(run[0]['timings']['solve'] for run in runs):.2f}")
+
+
+def inverse_table(r, repeats):
+    print("\n### inverse samples as a fresh CLI process (gate, export, report; median of %d)\n"
+          % repeats)
+    row("curve", "model", "seam n", "vertices", "L_max %", "round trip RMS", "CLI wall s",
+        "peak RSS MB", "exit")
+    row(*["---"] * 9)
+    for curve in ("tennis-ball.obj", "saddle.obj", "three-lobed.obj", "pushed-in.obj",
+                  "rotated.json"):
+        runs = [r.run(["inverse", r.sample("inverse", curve)]) for _ in range(repeats)]
+        report, code = runs[0][0], runs[0][1]
+        m = report["metrics"]
+        row(curve, report["model"]["name"], report["mesh"]["seam_vertices"], vertices(report),
+            percent(m["L_max"]), f"{m.get('roundtrip_rms_rel', float('nan')):.2g}",
+            f"{statistics.median(run[2] for run in runs):.2f}",
+            f"{statistics.median(run[3] for run in runs):.0f}", code)
+
+
+def sweep_table(r, repeats):
+    print("\n### sweep of 64 starts (ellipses, exact, every start exported; median of %d)\n"
+          % repeats)
+    walls = [r.run(["sweep", *ellipses(r), "--starts", "64"])[2] for _ in range(repeats)]
+    print(f"wall s: {', '.join(f'{w:.2f}' for w in walls)}; median {statistics.median(walls):.2f}")
+
+
+def general_tables(r):
+    print("\n### general engine (one run each; default gate)\n")
+    row("case", "n", "model", "vertices", "L_error %", "L_max %", "exact distance RMS (max)",
+        "stationarity", "Newton steps", "gate", "solve s")
+    row(*["---"] * 11)
+    cases = [("ellipses", ["forward", *ellipses(r)], n, model)
+             for n, model in ((40, "paper"), (40, "general"), (100, "exact"), (100, "paper"),
+                              (100, "general"), (200, "general"))]
+    cases += [("circle + square", ["forward", *circle_square(r)], 100, model)
+              for model in ("exact", "general")]
+    cases += [("non-convex", ["forward", r.sample("forward", "nonconvex-a.svg"),
+                              r.sample("forward", "nonconvex-b.svg")], n, "general")
+              for n in (100, 200)]
+    cases += [(job + " (sample)", ["run", r.sample("forward", job + ".json")], None, "general")
+              for job in ("ellipse-twin", "ellipses-quarter-turn", "circle-square-mid-side",
+                          "nonconvex-shifted", "squaricle", "demi", "anti")]
+    for name, args, n, model in cases:
+        extra = ["--resolution", str(n)] if n else []
+        report, code, _, _ = r.run([*args, *extra, "--model", model, "--no-export"])
+        if report is None:
+            row(name, n or "", model, "", "", "", "", "", "", f"exit {code}", "")
+            continue
+        m = report["metrics"]
+        steps, stationarity = general_figures(report)
+        distance = (f"{m['exact_distance_rms_rel']:.2g} ({m['exact_distance_max_rel']:.2g})"
+                    if m.get("exact_note", "") == "" and "exact_distance_rms_rel" in m
+                    else "(" + (m.get("exact_note") or "none") + ")")
+        row(name, n or report["mesh"]["seam_vertices"], model, vertices(report),
+            percent(m["L_error"]), percent(m["L_max"]), distance, stationarity, steps,
+            "passed" if report["gate"]["passed"] else "failed", f"{report['timings']['solve']:.2f}")
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("dform")
+    parser.add_argument("samples")
+    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--only", default="exact,samples,inverse,sweep,general")
+    args = parser.parse_args()
+    tables = {"exact": lambda r: exact_tables(r, args.repeats),
+              "samples": lambda r: samples_table(r, args.repeats),
+              "inverse": lambda r: inverse_table(r, args.repeats),
+              "sweep": lambda r: sweep_table(r, args.repeats),
+              "general": general_tables}
+    with tempfile.TemporaryDirectory() as work:
+        runner = Runner(os.path.abspath(args.dform), os.path.abspath(args.samples), work)
+        for name in args.only.split(","):
+            print(f"\nload average before {name}: {os.getloadavg()[0]:.1f}")
+            tables[name](runner)
+            sys.stdout.flush()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

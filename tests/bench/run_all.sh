@@ -1,0 +1,40 @@
+#!/bin/sh
+# Runs every benchmark of docs/benchmarks.md on one build and writes their raw output to OUT
+# (machine, commit, load average before and after each), and the two plots to docs/images/.
+#
+#   tests/bench/run_all.sh BUILD OUT      e.g. tests/bench/run_all.sh build /tmp/bench
+#
+# About 40 minutes on a 2-core machine; run it on a quiet machine, nothing else building. A
+# benchmark that fails leaves its message in its file and the others still run.
+set -u
+root=$(cd "$(dirname "$0")/../.." && pwd)
+build=$(cd "$1" && pwd)
+out=$2
+mkdir -p "$out"
+bench=$build/tests/bench/dform_bench
+load() { echo "$1: $(cut -d' ' -f1-3 /proc/loadavg)" >>"$out/load.txt"; }
+{
+  git -C "$root" log -1 --format='commit %h %cs %s'
+  lscpu | grep -E '^Model name|^CPU\(s\)'
+  grep MemTotal /proc/meminfo
+  echo "kernel $(uname -r); $(g++ --version | head -1)"
+} >"$out/machine.txt"
+: >"$out/load.txt"
+load "start"
+"$bench" --repeats 3 >"$out/rows.txt" 2>&1; load "rows"
+"$bench" --export --repeats 3 >"$out/export.txt" 2>&1; load "export"
+"$bench" --scale --repeats 3 --plot "$root/docs/images/scaling.svg" >"$out/scale.txt" 2>&1
+load "scale"
+"$bench" --accuracy --repeats 3 --plot "$root/docs/images/accuracy-per-second.svg" \
+  >"$out/accuracy.txt" 2>&1
+load "accuracy"
+python3 "$root/tests/bench/cli_tables.py" "$build/dform" "$root/samples" >"$out/cli.txt" 2>&1
+load "cli tables"
+python3 "$root/tests/bench/stop_latency.py" "$build/dform" "$root/samples" >"$out/stop.txt" 2>&1
+load "stop latency"
+python3 "$root/tests/bench/studio_latency.py" "$build/dform" "$root/samples" >"$out/studio.txt" 2>&1
+load "studio latency"
+python3 "$root/tests/bench/studio_latency.py" "$build/dform" "$root/samples" --paper \
+  --positions 50 --pause 0.1 >"$out/studio-paper.txt" 2>&1
+load "studio latency, paper model"
+echo "done: $out"
