@@ -36,6 +36,11 @@ inline void throwIfInterrupted(const char* stage) {
   if (interruptRequested()) throw Interrupted(stage);
 }
 
+/// How often a loop over a fine mesh's elements (faces, vertices, candidate pairs) polls: once per
+/// this many, a few milliseconds of work, so that a stop during the figures or the pictures of a
+/// 400k-vertex result is seen at once, not after the seconds they take.
+constexpr int kPollInterval = 4096;
+
 /// Runs `work` on a thread of its own while this one polls interruptRequested() every 20 ms, for
 /// a call that may block or run for seconds and cannot be stopped from outside (an open or read
 /// of a FIFO or a silent network mount, CHOLMOD's analysis). Returns true once `work` has run,

@@ -7,6 +7,8 @@
 #include <map>
 #include <numeric>
 
+#include "core/interrupt.h"
+
 namespace dform {
 
 ShapeCamera::ShapeCamera(double azimuthDeg, double elevationDeg) {
@@ -43,6 +45,7 @@ PointClusters clusterPoints(const Eigen::MatrixXd& points, double cell) {
   std::vector<Eigen::VectorXd> sums;
   std::vector<int> members;
   for (Eigen::Index v = 0; v < points.rows(); ++v) {
+    if (v % kPollInterval == 0) throwIfInterrupted("the pictures");
     std::array<long, 3> key{};
     for (Eigen::Index d = 0; d < points.cols() && d < 3; ++d)
       key[size_t(d)] = long(std::floor(points(v, d) / cell));
@@ -92,6 +95,7 @@ std::vector<SeenFace> paintersFaces(const DForm& model, const ShapeCamera& camer
     const Piece& p = *pieces[piece];
     const Eigen::Index first = piece == 0 ? 0 : model.a.shape.rows();
     for (Eigen::Index f = 0; f < p.F.rows(); ++f) {
+      if (f % kPollInterval == 0) throwIfInterrupted("the pictures");
       // Turned away or not by the face as solved: a face drawn on clusters may tip over.
       const Eigen::Vector3d p0 = p.shape.row(p.F(f, 0)).transpose();
       const Eigen::Vector3d outward =

@@ -16,6 +16,8 @@
 #include <numeric>
 #include <vector>
 
+#include "core/interrupt.h"
+
 namespace dform::detail {
 namespace {
 
@@ -93,6 +95,7 @@ SelfIntersections findSelfIntersections(const Points3& V, const Faces& F) {
   std::vector<Box> boxes;
   boxes.reserve(size_t(F.rows()));
   for (int f = 0; f < F.rows(); ++f) {
+    if (f % kPollInterval == 0) throwIfInterrupted("the figures");
     const Point p = point(V, F(f, 0)), q = point(V, F(f, 1)), r = point(V, F(f, 2));
     if (CGAL::collinear(p, q, r)) {  // no plane: the degenerate-triangle check reports it
       ++result.skippedDegenerate;
@@ -100,7 +103,9 @@ SelfIntersections findSelfIntersections(const Points3& V, const Faces& F) {
     }
     boxes.emplace_back(p.bbox() + q.bbox() + r.bbox(), f);
   }
+  long candidates = 0;
   auto report = [&](const Box& x, const Box& y) {
+    if (++candidates % kPollInterval == 0) throwIfInterrupted("the figures");
     const int f = std::min(x.info(), y.info()), g = std::max(x.info(), y.info());
     if (faceToFace(V, F, f, g, contactTolerance)) {
       ++result.faceToFace;

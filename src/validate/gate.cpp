@@ -8,6 +8,7 @@
 #include <set>
 #include <utility>
 
+#include "core/interrupt.h"
 #include "core/piece_loops.h"
 #include "core/polyline.h"
 #include "validate/cgal_checks.h"
@@ -303,6 +304,7 @@ std::optional<HullDistance> distanceToSeamHull(const DForm& model) {
   planes.conservativeResize(4, planeCount);
   for (const Piece* p : {&model.a, &model.b})
     for (int v = 0; v < p->shape.rows(); ++v) {
+      if (v % kPollInterval == 0) throwIfInterrupted("the figures");
       const Eigen::Vector4d q(p->shape(v, 0), p->shape(v, 1), p->shape(v, 2), 1.0);
       double d = -(planes.transpose() * q).maxCoeff();  // the nearest plane, when inside them all
       if (!(d > 0.0)) {

@@ -6,6 +6,8 @@
 #include <numeric>
 #include <tuple>
 
+#include "core/interrupt.h"
+
 namespace dform::detail {
 namespace {
 
@@ -29,7 +31,9 @@ EdgeTopology edgeTopology(const Faces& F) {
       const int i = F(f, k), j = F(f, (k + 1) % 3);
       halfEdges.emplace_back(std::min(i, j), std::max(i, j), f);
     }
+  throwIfInterrupted("the figures");
   std::sort(halfEdges.begin(), halfEdges.end());
+  throwIfInterrupted("the figures");
   EdgeTopology t;
   for (size_t h = 0; h < halfEdges.size();) {
     const auto [i, j, f] = halfEdges[h];
@@ -77,11 +81,13 @@ double cornerAngle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eig
 
 Eigen::VectorXd angleDefects(const Points3& V, const Faces& F) {
   Eigen::VectorXd defect = Eigen::VectorXd::Constant(V.rows(), 2.0 * M_PI);
-  for (int f = 0; f < F.rows(); ++f)
+  for (int f = 0; f < F.rows(); ++f) {
+    if (f % kPollInterval == 0) throwIfInterrupted("the figures");
     for (int k = 0; k < 3; ++k) {
       const int a = F(f, k), b = F(f, (k + 1) % 3), c = F(f, (k + 2) % 3);
       defect(a) -= cornerAngle(row3(V, a), row3(V, b), row3(V, c));
     }
+  }
   return defect;
 }
 
@@ -184,6 +190,7 @@ int countFlatOverlaps(const Points2& P, const Faces& F, std::string* example) {
   std::sort(order.begin(), order.end(), [&](int a, int b) { return lo[a].x() < lo[b].x(); });
   int count = 0;
   for (int oi = 0; oi < n; ++oi) {
+    if (oi % kPollInterval == 0) throwIfInterrupted("the figures");
     const int f = order[oi];
     for (int oj = oi + 1; oj < n && lo[order[oj]].x() < hi[f].x(); ++oj) {
       const int g = order[oj];

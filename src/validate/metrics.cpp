@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/interrupt.h"
 #include "core/polyline.h"
 #include "exact/aligned_distance.h"
 #include "validate/mesh_measures.h"
@@ -123,6 +124,7 @@ Metrics computeMetrics(const DForm& model, const ReferenceSeam& exactBody) {
   double sumSqDiff = 0.0, sumSqFlat = 0.0, sumAbsDefect = 0.0;
   int interiorCount = 0;
   for (const Piece* p : {&model.a, &model.b}) {
+    throwIfInterrupted("the figures");
     assert(p->flat.rows() == p->shape.rows() && "flat and 3D layouts share their vertices");
     const detail::EdgeTopology topology = detail::edgeTopology(p->F);
     addEdgeLengths(*p, topology, sumSqDiff, sumSqFlat, m.lengthErrorMax);
