@@ -51,7 +51,9 @@ long fab::patternsLaidOut() { return layoutsMade.load(); }
 
 bool LaidOutExport::failedGate() const { return pattern && pattern->build.failedGate; }
 
-Result<LaidOutExport> layOutExport(const DForm& model, const ExportOptions& options) {
+namespace {
+
+Result<LaidOutExport> layOutOrThrow(const DForm& model, const ExportOptions& options) {
   auto profile = fab::resolveProfile(options);
   if (!profile.isOk()) return profile.status();
   ++layoutsMade;
@@ -68,6 +70,18 @@ Result<LaidOutExport> layOutExport(const DForm& model, const ExportOptions& opti
   return laidOut;
 }
 
+}  // namespace
+
+// A stop inside the layout's or the rendering's pictures (they poll the stop flag and throw) ends
+// the export as a stop between its steps does.
+Result<LaidOutExport> layOutExport(const DForm& model, const ExportOptions& options) {
+  try {
+    return layOutOrThrow(model, options);
+  } catch (const Interrupted&) {
+    return stopped();
+  }
+}
+
 LaidOutExport markFailedGate(const LaidOutExport& laidOut) {
   if (!laidOut.pattern || laidOut.failedGate()) return laidOut;
   auto marked = std::make_shared<fab::LaidOutPattern>(*laidOut.pattern);
@@ -77,7 +91,9 @@ LaidOutExport markFailedGate(const LaidOutExport& laidOut) {
   return out;
 }
 
-Result<PreparedExport> renderExport(const DForm& model, const LaidOutExport& laidOut) {
+namespace {
+
+Result<PreparedExport> renderOrThrow(const DForm& model, const LaidOutExport& laidOut) {
   if (!laidOut.pattern) return Status(ErrorCode::Internal, "renderExport: nothing laid out");
   const fab::PatternBuild& pat = laidOut.pattern->build;
   ExportOptions options = laidOut.pattern->options;
@@ -121,6 +137,16 @@ Result<PreparedExport> renderExport(const DForm& model, const LaidOutExport& lai
   summary.pages = int(pat.pages.size());
   summary.triangles = int(model.a.F.rows() + model.b.F.rows());
   return prepared;
+}
+
+}  // namespace
+
+Result<PreparedExport> renderExport(const DForm& model, const LaidOutExport& laidOut) {
+  try {
+    return renderOrThrow(model, laidOut);
+  } catch (const Interrupted&) {
+    return stopped();
+  }
 }
 
 Result<PreparedExport> prepareExport(const DForm& model, const ExportOptions& options) {

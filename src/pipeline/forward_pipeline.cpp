@@ -2,6 +2,7 @@
 
 #include <new>
 
+#include "core/interrupt.h"
 #include "io/outline_reader.h"
 #include "model/resources.h"
 #include "model/run_control.h"
@@ -16,6 +17,8 @@ Result<Metrics> measureDForm(const SolvedDForm& solved, const ForwardSettings& s
                              const std::string& pieces) {
   try {
     return measureModel(solved.model);
+  } catch (const Interrupted& stop) {
+    return Status(ErrorCode::Interrupted, std::string("interrupted during ") + stop.stage());
   } catch (const std::bad_alloc&) {
     return outOfMemory(nullptr, settings.resolution, pieces + ": measuring the run");
   }

@@ -2,6 +2,7 @@
 
 #include <new>
 
+#include "core/interrupt.h"
 #include "core/polyline.h"
 #include "io/curve_reader.h"
 #include "model/resources.h"
@@ -45,6 +46,8 @@ Result<InverseRun> makePieces(Curve3 curve, const InverseSettings& settings, Mes
   if (!solved.isOk()) return solved.status();
   try {
     return measure(std::move(solved).value(), sink);
+  } catch (const Interrupted& stop) {
+    return Status(ErrorCode::Interrupted, std::string("interrupted during ") + stop.stage());
   } catch (const std::bad_alloc&) {
     return outOfMemory(nullptr, settings.resolution, curveLabel(curve) + ": measuring the run");
   }

@@ -4,6 +4,7 @@
 #include <new>
 
 #include "core/input_file.h"
+#include "core/interrupt.h"
 #include "core/result_folder.h"
 #include "io/model_files.h"
 #include "model/resources.h"
@@ -84,10 +85,10 @@ std::optional<Result<PreparedExport>> prepareJudged(const Solved& solved, const 
 // in: meshes, report.json (the gate's verdict, measured on the export prepared in memory), the
 // cutting files when released, report.html. Any failure drops it and leaves the output folder
 // as it was.
-Result<WrittenResult> writeSolved(const Job& job, const Solved& solved, ResultFolder& folder,
-                                  const OutputOptions& output, const RunSettings& settings,
-                                  MessageSink& sink, const std::atomic<bool>& interrupted,
-                                  CommandTimings timings) {
+Result<WrittenResult> gateAndWrite(const Job& job, const Solved& solved, ResultFolder& folder,
+                                   const OutputOptions& output, const RunSettings& settings,
+                                   MessageSink& sink, const std::atomic<bool>& interrupted,
+                                   CommandTimings timings) {
   std::optional<GateReport> gate;
   if (settings.limits) {
     const auto gateStart = Clock::now();
@@ -136,6 +137,19 @@ Result<WrittenResult> writeSolved(const Job& job, const Solved& solved, ResultFo
   result.timings = solved.forward ? solved.forward->timings : solved.inverse->timings;
   if (solved.inverse) result.curve = solved.inverse->curveMatch;
   return result;
+}
+
+// gateAndWrite, with a stop inside its figures, pictures or export (which poll the stop flag and
+// throw) ending the run as a stop between its steps does.
+Result<WrittenResult> writeSolved(const Job& job, const Solved& solved, ResultFolder& folder,
+                                  const OutputOptions& output, const RunSettings& settings,
+                                  MessageSink& sink, const std::atomic<bool>& interrupted,
+                                  CommandTimings timings) {
+  try {
+    return gateAndWrite(job, solved, folder, output, settings, sink, interrupted, timings);
+  } catch (const Interrupted& stop) {
+    return leftAsItWas(output.outDir, std::string("interrupted during ") + stop.stage());
+  }
 }
 
 // The output folder is locked and checked before anything is solved; nothing is written for a
