@@ -5,12 +5,18 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <set>
 #include <utility>
 #include <vector>
 
+#include "core/interrupt.h"
 #include "core/polyline.h"
+#include "core/shape_projection.h"
 #include "models.h"
+#include "validate/cgal_checks.h"
+#include "validate/gate.h"
+#include "validate/mesh_measures.h"
 
 namespace dform {
 namespace {
@@ -450,6 +456,36 @@ TEST(Metrics, AntiDFormIsMeasuredOverEveryEdgeAndAlongItsHoles) {
   EXPECT_NEAR(m.seamLengthAMm, 48 * 2 * 20.0 * std::sin(M_PI / 48), 1e-9);  // the hole's polygon
   EXPECT_NEAR(m.seamLengthBMm, m.seamLengthAMm, 1e-9);
   EXPECT_EQ(m.flipped2d + m.flipped3d, 0);
+}
+
+// The figures of a fine mesh take seconds (11.7 s at 385k vertices): each of their long loops
+// polls the stop flag, so that Ctrl-C after the solve is seen at once. With a stop requested,
+// each throws Interrupted naming its stage, and the gate and the figures as a whole do too.
+TEST(Metrics, EachLongLoopOfTheFiguresSeesAStop) {
+  const DForm model = test::tetraDForm(6);
+  struct StopRequested {
+    StopRequested() { interruptFlag() = true; }
+    ~StopRequested() { interruptFlag() = false; }
+  };
+  const auto stage = [](const std::function<void()>& figure) -> std::string {
+    const StopRequested stop;
+    try {
+      figure();
+    } catch (const Interrupted& stopped) {
+      return stopped.stage();
+    }
+    return "no stop seen";
+  };
+  EXPECT_EQ(stage([&] { detail::countFlatOverlaps(model.a.flat, model.a.F, nullptr); }),
+            "the figures");
+  EXPECT_EQ(stage([&] { detail::findSelfIntersections(model.a.shape, model.a.F); }), "the figures");
+  EXPECT_EQ(stage([&] { detail::angleDefects(model.a.shape, model.a.F); }), "the figures");
+  EXPECT_EQ(stage([&] { detail::edgeTopology(model.a.F); }), "the figures");
+  EXPECT_EQ(stage([&] { computeMetrics(model, {}); }), "the figures");
+  const Metrics figures = computeMetrics(model, {});
+  EXPECT_EQ(stage([&] { runGate(model, GateLimits{}, figures, nullptr, nullptr); }), "the figures");
+  EXPECT_EQ(stage([&] { clusterPoints(model.a.shape, 1.0); }), "the pictures");
+  EXPECT_NO_THROW(runGate(model, GateLimits{}, figures, nullptr, nullptr)) << "the stop is over";
 }
 
 }  // namespace
