@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "core/input_file.h"
+#include "core/interrupt.h"
 #include "core/result_folder.h"
 #include "io/curve_reader.h"
 #include "io/model_files.h"
@@ -77,10 +78,8 @@ Result<std::optional<Curve3>> readSavedTarget(const std::string& dir, const DFor
   return std::optional<Curve3>(curve.value());
 }
 
-}  // namespace
-
-Result<std::string> exportSavedResult(const std::string& dir, const OutputOptions& output,
-                                      MessageSink& sink, const std::atomic<bool>& interrupted) {
+Result<std::string> exportSavedOrThrow(const std::string& dir, const OutputOptions& output,
+                                       MessageSink& sink, const std::atomic<bool>& interrupted) {
   const Result<ExportOptions> exporting = exportOptions(output);
   if (!exporting.isOk()) return exporting.status();
   std::error_code ec;
@@ -176,6 +175,17 @@ Result<std::string> exportSavedResult(const std::string& dir, const OutputOption
     return Status(ErrorCode::Interrupted,
                   dir + ": interrupted; the new export was written completely");
   return dir;
+}
+
+}  // namespace
+
+Result<std::string> exportSavedResult(const std::string& dir, const OutputOptions& output,
+                                      MessageSink& sink, const std::atomic<bool>& interrupted) {
+  try {
+    return exportSavedOrThrow(dir, output, sink, interrupted);
+  } catch (const Interrupted&) {  // inside the figures or the report page's pictures
+    return leftAsItWas(dir, "interrupted");
+  }
 }
 
 Result<SavedCheck> validateSavedResult(const std::string& dir, const std::string& gateName) {
