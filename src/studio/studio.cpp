@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "core/input_file.h"
+#include "core/interrupt.h"
 #include "io/curve_reader.h"
 #include "io/outline_reader.h"
 #include "pipeline/job_file.h"
@@ -70,6 +71,16 @@ CurveInput readCurveInput(const std::string& name, std::string text, bool forceC
   return {name, std::move(text), std::move(curve).value(), forceClosed};
 }
 
+// The gate's verdict on a solved shape, or an error once the studio is being stopped (Ctrl-C):
+// the figures poll the stop flag and throw, and the worker that asked must not end the process.
+json verdictUnlessStopped(const std::function<json()>& judge) {
+  try {
+    return judge();
+  } catch (const Interrupted& stop) {
+    return {{"error", std::string("interrupted during ") + stop.stage()}};
+  }
+}
+
 json pieceSummary(const PieceInput& piece) {
   json out = studio::shapeJson(piece.shape);
   out["name"] = piece.name;
@@ -119,9 +130,11 @@ studio::SolveAt forwardSolve(const PieceInput& a, const PieceInput& b,
                               [run, s, gate]() -> json {
                                 Result<Metrics> metrics = measureDForm(*run, s, "the pieces");
                                 if (!metrics.isOk()) return {{"error", metrics.status().message()}};
-                                return studio::verdictJson(
-                                    metrics.value(),
-                                    runGate(run->model, gate, metrics.value(), nullptr, nullptr));
+                                return verdictUnlessStopped([&] {
+                                  return studio::verdictJson(
+                                      metrics.value(),
+                                      runGate(run->model, gate, metrics.value(), nullptr, nullptr));
+                                });
                               },
                               sparseExact};
       };
@@ -140,9 +153,11 @@ studio::SolveAt inverseSolve(const CurveInput& curve, const InverseSettings& set
     json out = studio::inverseResultJson(*run);
     out["warnings"] = warnings(sink);
     return studio::Solved{out, [run, gate] {
-                            return studio::verdictJson(
-                                run->metrics, runGate(run->model, gate, run->metrics, &run->target,
-                                                      &run->curveMatch));
+                            return verdictUnlessStopped([&] {
+                              return studio::verdictJson(run->metrics,
+                                                         runGate(run->model, gate, run->metrics,
+                                                                 &run->target, &run->curveMatch));
+                            });
                           }};
   };
 }
