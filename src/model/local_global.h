@@ -75,7 +75,7 @@ struct LocalGlobalSummary {
 /// same on every machine. The simplicial factor does scalar work: at 97k vertices its two
 /// factorisations take 5.9 and 4.3 s, the supernodal one's 1.0 and 0.7 s (plus 1.4 s of analysis),
 /// while on small meshes, whose supernodes are mostly single columns, the simplicial factor
-/// solves 2.5 times faster. Measured crossover at about 10k vertices (docs/benchmarks.md, "Scale").
+/// solves 2.5 times faster. Measured crossover at about 10k vertices (docs/solver-design.md).
 constexpr int kSupernodalRelaxationVertices = 10000;
 
 /// Minimises sum_t w_t ||M_t x - b_t||^2 + sum_e w_e (|x_a - x_b| - |u_a - u_b|)^2 / 2 over x by

@@ -17,9 +17,10 @@ namespace dform {
 std::size_t availableMemoryBytes();
 
 /// Peak memory of a solve of `vertices` vertices (both pieces), from measurements on this code
-/// (docs/benchmarks.md, "Scale"): about 36 KB per vertex where Levenberg-Marquardt runs (up to
-/// kDirectSolveVertices: its factorisation), about 9 KB per vertex where the relaxation alone
-/// does, plus `extraBytes` (the inverse's pre-D-Form tables) and 64 MB for the program itself.
+/// (resources.cpp; docs/benchmarks.md, "Scale"): about 36 KB per vertex where Levenberg-Marquardt
+/// runs (up to kDirectSolveVertices: its factorisation), about 9 KB per vertex where the relaxation
+/// alone does, plus `extraBytes` (the inverse's pre-D-Form tables) and 64 MB for the program
+/// itself.
 std::size_t estimatedPeakBytes(double vertices, double extraBytes = 0.0);
 
 /// What a run is estimated to hold at its peak: vertices of both pieces and bytes beside them

@@ -324,7 +324,7 @@ class StepSolver {
   // Not CHOLMOD's supernodal factor: it hands its dense blocks to whichever kernel OpenBLAS picks
   // for the CPU (AVX-512, Haswell, ...), and those round differently; a solve that ends on a flat
   // objective then took other steps per machine (the Squaricle sample folded with one kernel and
-  // not with another, docs/benchmarks.md "Same result on every machine").
+  // not with another, docs/solver-design.md "Same result on every machine").
   SupernodalCholesky factor_;
   bool haveFactor_ = false;
   int factorisations_ = 0;

@@ -130,8 +130,8 @@ std::vector<int> blockOrdering(const Eigen::SparseMatrix<double, Eigen::ColMajor
 
 // The dense work on a supernode comes in tiles of at most kTileRows x kPanel results, each one
 // Eigen call: a stop is seen between two tiles (the last supernodes of a fine mesh have thousands
-// of columns, and one call on a whole block of them took over a second), and every tile's shape,
-// so its rounding, follows from the sizes alone.
+// of columns, and one call on a whole block of them runs for over a second), and every tile's
+// shape, so its rounding, follows from the sizes alone.
 constexpr int kPanel = 128, kTileRows = 512;
 
 // Subtracts from a supernode's columns Lk (its first column is k1; `local` maps a row of L to

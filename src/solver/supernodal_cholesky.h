@@ -3,7 +3,7 @@
 //
 // CHOLMOD's supernodal factor hands its dense blocks to the BLAS, and OpenBLAS picks a kernel per
 // CPU (AVX-512, Haswell, Sandybridge, ...) that sums in another order; its simplicial factor is
-// reproducible but does scalar work (about 1.8 GFlop/s here, docs/benchmarks.md). This class keeps
+// reproducible but does scalar work (about 1.8 GFlop/s, docs/solver-design.md). This class keeps
 // CHOLMOD's symbolic analysis (ordering, supernodes, which involve no floating-point rounding) and
 // does the numeric work itself, left-looking over the supernodes, with Eigen's dense kernels.
 // Those are compiled into this binary (no run-time kernel choice) and their only machine-dependent
@@ -39,7 +39,8 @@ class SupernodalCholesky {
 
   /// Factorises A + shift I, A given by its lower triangle with the analysed pattern (values
   /// outside it are an error). False when A + shift I is not numerically positive definite.
-  /// Throws Interrupted (core/interrupt.h) between supernodes when a stop has been requested.
+  /// Throws Interrupted (core/interrupt.h) between tiles of its dense work (see the .cpp) when a
+  /// stop has been requested.
   bool factorize(const SparseLower& A, double shift = 0.0);
 
   /// The solution Y of (A + shift I) Y = B for the last successful factorisation (one column

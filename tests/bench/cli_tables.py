@@ -39,6 +39,19 @@ class Runner:
         return report, os.waitstatus_to_exitcode(status), wall, usage.ru_maxrss / 1024.0
 
 
+def job_with_model(r, job, model):
+    """A copy of samples/forward/JOB.json that runs MODEL, its outline paths made absolute."""
+    source = r.sample("forward", job + ".json")
+    settings = json.load(open(source))
+    for key in ("piece_a", "piece_b"):
+        settings[key] = os.path.join(os.path.dirname(source), settings[key])
+    settings["model"] = model
+    path = os.path.join(r.work, f"{job}-{model}.json")
+    with open(path, "w") as f:
+        json.dump(settings, f)
+    return path
+
+
 def ellipses(r):
     return [r.sample("forward", "ellipses-a.svg"), r.sample("forward", "ellipses-b.svg")]
 
@@ -109,9 +122,12 @@ def samples_table(r, repeats):
     row(*["---"] * 10)
     for job in ("ellipse-twin", "ellipses-quarter-turn", "circle-square-mid-side",
                 "nonconvex-shifted", "squaricle", "demi", "anti"):
-        runs = [r.run(["run", r.sample("forward", job + ".json"), "--model", "paper",
-                       "--no-export"]) for _ in range(repeats)]
+        runs = [r.run(["run", job_with_model(r, job, "paper"), "--no-export"])
+                for _ in range(repeats)]
         report = runs[0][0]
+        if report is None:
+            row(job, *[""] * 8, f"exit {runs[0][1]}")
+            continue
         s, m = report["solver"], report["metrics"]
         row(job, vertices(report), s["local_global"]["iterations"], len(s.get("iterations", [])),
             s["factorisations"], percent(m["L_error"]), percent(m["L_max"]),
@@ -156,14 +172,15 @@ def general_tables(r):
     cases += [("non-convex", ["forward", r.sample("forward", "nonconvex-a.svg"),
                               r.sample("forward", "nonconvex-b.svg")], n, "general")
               for n in (100, 200)]
-    cases += [(job + " (sample)", ["run", r.sample("forward", job + ".json")], None, "general")
+    cases += [(job + " (sample)", ["run", job_with_model(r, job, "general")], None, None)
               for job in ("ellipse-twin", "ellipses-quarter-turn", "circle-square-mid-side",
                           "nonconvex-shifted", "squaricle", "demi", "anti")]
     for name, args, n, model in cases:
-        extra = ["--resolution", str(n)] if n else []
-        report, code, _, _ = r.run([*args, *extra, "--model", model, "--no-export"])
+        extra = ["--resolution", str(n), "--model", model] if n else []
+        report, code, _, _ = r.run([*args, *extra, "--no-export"])
+        model = report["model"]["name"] if report else model
         if report is None:
-            row(name, n or "", model, "", "", "", "", "", "", f"exit {code}", "")
+            row(name, n or "", model or "", "", "", "", "", "", "", f"exit {code}", "")
             continue
         m = report["metrics"]
         steps, stationarity = general_figures(report)
