@@ -4,7 +4,7 @@
 #
 #   tests/bench/run_all.sh BUILD OUT      e.g. tests/bench/run_all.sh build /tmp/bench
 #
-# About 40 minutes on a 2-core machine; run it on a quiet machine, nothing else building. A
+# About 45 minutes on a 2-core machine; run it on a quiet machine, nothing else building. A
 # benchmark that fails leaves its message in its file and the others still run.
 set -u
 root=$(cd "$(dirname "$0")/../.." && pwd)
