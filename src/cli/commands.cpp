@@ -1,4 +1,4 @@
-#include "cli/commands.h"
+#include "dform/cli/commands.h"
 
 #include <chrono>
 #include <cmath>
@@ -7,9 +7,9 @@
 #include <cstdlib>
 #include <thread>
 
-#include "cli/terminal.h"
-#include "core/message_text.h"
-#include "pipeline/saved_result.h"
+#include "dform/cli/terminal.h"
+#include "dform/core/message_text.h"
+#include "dform/pipeline/saved_result.h"
 
 namespace dform::cli {
 
@@ -244,6 +244,10 @@ int validateSaved(const std::string& dir, const std::string& gateName) {
 }
 
 int listProfiles() {
+  if (const Result<std::string> templates = templatesDir(); !templates.isOk()) {
+    Terminal::error(templates.status().message());
+    return exitCode(templates.status().code());
+  }
   for (const std::string& name : exportProfileNames()) std::fprintf(stdout, "%s\n", name.c_str());
   return 0;
 }

@@ -4,8 +4,8 @@
 #include <atomic>
 #include <string>
 
-#include "pipeline/run.h"
-#include "studio/studio.h"
+#include "dform/pipeline/run.h"
+#include "dform/studio/studio.h"
 
 namespace dform::cli {
 

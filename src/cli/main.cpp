@@ -9,10 +9,10 @@
 #include <set>
 #include <string>
 
-#include "cli/commands.h"
-#include "cli/terminal.h"
-#include "core/allocator.h"
-#include "core/interrupt.h"
+#include "dform/cli/commands.h"
+#include "dform/cli/terminal.h"
+#include "dform/core/allocator.h"
+#include "dform/core/interrupt.h"
 
 namespace {
 

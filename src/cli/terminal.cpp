@@ -1,10 +1,10 @@
-#include "cli/terminal.h"
+#include "dform/cli/terminal.h"
 
 #include <unistd.h>
 
 #include <cstdio>
 
-#include "core/message_text.h"
+#include "dform/core/message_text.h"
 
 namespace dform::cli {
 

@@ -3,8 +3,8 @@
 
 #include <string>
 
-#include "core/messages.h"
-#include "pipeline/forward_pipeline.h"
+#include "dform/core/messages.h"
+#include "dform/pipeline/forward_pipeline.h"
 
 namespace dform::cli {
 

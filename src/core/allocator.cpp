@@ -1,4 +1,4 @@
-#include "core/allocator.h"
+#include "dform/core/allocator.h"
 
 #if defined(__GLIBC__)
 #include <malloc.h>

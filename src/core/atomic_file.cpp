@@ -1,4 +1,4 @@
-#include "core/atomic_file.h"
+#include "dform/core/atomic_file.h"
 
 #include <unistd.h>
 

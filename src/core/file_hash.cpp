@@ -1,4 +1,4 @@
-#include "core/file_hash.h"
+#include "dform/core/file_hash.h"
 
 #include <openssl/evp.h>
 

@@ -1,4 +1,4 @@
-#include "core/input_file.h"
+#include "dform/core/input_file.h"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -9,7 +9,7 @@
 #include <memory>
 #include <optional>
 
-#include "core/interrupt.h"
+#include "dform/core/interrupt.h"
 
 namespace dform {
 

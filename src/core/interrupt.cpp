@@ -1,4 +1,4 @@
-#include "core/interrupt.h"
+#include "dform/core/interrupt.h"
 
 #include <chrono>
 #include <condition_variable>

@@ -1,4 +1,4 @@
-#include "core/lock_file.h"
+#include "dform/core/lock_file.h"
 
 #include <fcntl.h>
 #include <sys/file.h>

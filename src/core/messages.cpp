@@ -1,4 +1,4 @@
-#include "core/messages.h"
+#include "dform/core/messages.h"
 
 namespace dform {
 

@@ -1,8 +1,8 @@
-#include "core/piece_loops.h"
+#include "dform/core/piece_loops.h"
 
 #include <cmath>
 
-#include "core/polyline.h"
+#include "dform/core/polyline.h"
 
 namespace dform {
 

@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "core/types.h"
+#include "dform/core/types.h"
 
 namespace dform {
 

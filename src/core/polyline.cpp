@@ -1,4 +1,4 @@
-#include "core/polyline.h"
+#include "dform/core/polyline.h"
 
 #include <algorithm>
 #include <cassert>

@@ -1,4 +1,4 @@
-#include "core/result_folder.h"
+#include "dform/core/result_folder.h"
 
 #include <fcntl.h>
 #include <unistd.h>

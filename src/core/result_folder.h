@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "core/lock_file.h"
-#include "core/status.h"
+#include "dform/core/lock_file.h"
+#include "dform/core/status.h"
 
 namespace dform {
 

@@ -1,4 +1,4 @@
-#include "core/shape_projection.h"
+#include "dform/core/shape_projection.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -7,7 +7,7 @@
 #include <map>
 #include <numeric>
 
-#include "core/interrupt.h"
+#include "dform/core/interrupt.h"
 
 namespace dform {
 

@@ -8,7 +8,7 @@
 #include <set>
 #include <vector>
 
-#include "core/types.h"
+#include "dform/core/types.h"
 
 namespace dform {
 

@@ -32,7 +32,7 @@ struct Shape2 {
   Outline2 outer;
   std::vector<Outline2> holes;
   std::vector<CreaseLine> creases;
-  std::string sha256;  ///< of the file's bytes as read (readShape); empty when not read from one
+  std::string sha256;  ///< of the file's bytes as read (readOutline); empty when not read from one
 };
 
 /// A closed space curve in mm: #P by 3, the first point not repeated at the end.

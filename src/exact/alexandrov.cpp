@@ -1,4 +1,4 @@
-#include "exact/alexandrov.h"
+#include "dform/exact/alexandrov.h"
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>

@@ -12,7 +12,7 @@
 #include <Eigen/SparseCore>
 #include <string>
 
-#include "exact/intrinsic_triangulation.h"
+#include "dform/exact/intrinsic_triangulation.h"
 
 namespace dform::exact {
 

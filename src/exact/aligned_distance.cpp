@@ -1,4 +1,4 @@
-#include "exact/aligned_distance.h"
+#include "dform/exact/aligned_distance.h"
 
 #include <Eigen/Dense>
 #include <cassert>

@@ -4,7 +4,7 @@
 
 #include <Eigen/Geometry>
 
-#include "core/types.h"
+#include "dform/core/types.h"
 
 namespace dform::exact {
 

@@ -1,4 +1,4 @@
-#include "exact/body_edges.h"
+#include "dform/exact/body_edges.h"
 
 #include <Eigen/Geometry>
 #include <Eigen/SparseCholesky>
@@ -7,7 +7,7 @@
 #include <limits>
 #include <string>
 
-#include "exact/plane_angles.h"
+#include "dform/exact/plane_angles.h"
 
 namespace dform::exact {
 

@@ -8,8 +8,8 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "core/status.h"
-#include "exact/exact_gluing.h"
+#include "dform/core/status.h"
+#include "dform/exact/exact_gluing.h"
 
 namespace dform::exact {
 

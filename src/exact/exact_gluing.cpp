@@ -1,4 +1,4 @@
-#include "exact/exact_gluing.h"
+#include "dform/exact/exact_gluing.h"
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
@@ -7,7 +7,7 @@
 #include <list>
 #include <numeric>
 
-#include "exact/plane_angles.h"
+#include "dform/exact/plane_angles.h"
 
 namespace dform::exact {
 

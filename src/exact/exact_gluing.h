@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "core/status.h"
-#include "core/types.h"
-#include "exact/alexandrov.h"
-#include "exact/intrinsic_triangulation.h"
+#include "dform/core/status.h"
+#include "dform/core/types.h"
+#include "dform/exact/alexandrov.h"
+#include "dform/exact/intrinsic_triangulation.h"
 
 namespace dform::exact {
 

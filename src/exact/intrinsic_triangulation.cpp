@@ -1,4 +1,4 @@
-#include "exact/intrinsic_triangulation.h"
+#include "dform/exact/intrinsic_triangulation.h"
 
 #include <algorithm>
 #include <cassert>

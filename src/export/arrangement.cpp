@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "export/pattern_layout.h"
+#include "dform/export/pattern_layout.h"
 
 namespace dform::fab {
 

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/shape_projection.h"
-#include "export/internal.h"
-#include "export/plane_geometry.h"
+#include "dform/core/shape_projection.h"
+#include "dform/export/internal.h"
+#include "dform/export/plane_geometry.h"
 
 namespace dform::fab {
 

@@ -7,7 +7,7 @@
 #include <memory>
 #include <vector>
 
-#include "export/internal.h"
+#include "dform/export/internal.h"
 
 namespace dform::fab {
 

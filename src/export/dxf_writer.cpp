@@ -16,7 +16,7 @@
 #include <cstdio>
 #include <string>
 
-#include "export/internal.h"
+#include "dform/export/internal.h"
 
 namespace dform::fab {
 

@@ -1,14 +1,14 @@
 // exportAll: the pattern laid out once, stamped FAILED GATE when asked (an overlay: nothing moves),
 // every output rendered to memory, then each file written atomically, so that a failed run leaves
 // no half-written file.
-#include "export/exporter.h"
+#include "dform/export/exporter.h"
 
 #include <atomic>
 #include <filesystem>
 
-#include "core/atomic_file.h"
-#include "core/interrupt.h"
-#include "export/internal.h"
+#include "dform/core/atomic_file.h"
+#include "dform/core/interrupt.h"
+#include "dform/export/internal.h"
 
 namespace dform {
 

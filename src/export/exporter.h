@@ -11,8 +11,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/status.h"
-#include "core/types.h"
+#include "dform/core/status.h"
+#include "dform/core/types.h"
 
 namespace dform {
 

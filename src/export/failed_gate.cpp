@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cctype>
 
-#include "export/internal.h"
+#include "dform/export/internal.h"
 
 namespace dform::fab {
 

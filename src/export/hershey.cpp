@@ -5,7 +5,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "export/internal.h"
+#include "dform/export/internal.h"
 
 namespace dform::fab {
 

@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "core/status.h"
-#include "core/types.h"
-#include "export/exporter.h"
-#include "validate/metrics.h"
+#include "dform/core/status.h"
+#include "dform/core/types.h"
+#include "dform/export/exporter.h"
+#include "dform/validate/metrics.h"
 
 namespace dform::fab {
 

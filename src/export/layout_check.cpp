@@ -8,8 +8,8 @@
 #include <cctype>
 #include <string>
 
-#include "export/internal.h"
-#include "export/plane_geometry.h"
+#include "dform/export/internal.h"
+#include "dform/export/plane_geometry.h"
 
 namespace dform::fab {
 

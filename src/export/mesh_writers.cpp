@@ -9,7 +9,7 @@
 #include <cstring>
 #include <sstream>
 
-#include "export/internal.h"
+#include "dform/export/internal.h"
 
 namespace dform::fab {
 

@@ -9,8 +9,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "export/pattern_layout.h"
-#include "export/plane_geometry.h"
+#include "dform/export/pattern_layout.h"
+#include "dform/export/plane_geometry.h"
 
 namespace dform::fab {
 

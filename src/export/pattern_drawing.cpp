@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "export/pattern_layout.h"
-#include "export/plane_geometry.h"
+#include "dform/export/pattern_layout.h"
+#include "dform/export/plane_geometry.h"
 
 namespace dform::fab {
 

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "export/pattern_parts.h"
+#include "dform/export/pattern_parts.h"
 
 namespace dform::fab {
 

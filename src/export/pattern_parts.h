@@ -11,9 +11,9 @@
 #include <utility>
 #include <vector>
 
-#include "core/piece_loops.h"
-#include "core/polyline.h"
-#include "export/internal.h"
+#include "dform/core/piece_loops.h"
+#include "dform/core/polyline.h"
+#include "dform/export/internal.h"
 
 namespace dform::fab {
 

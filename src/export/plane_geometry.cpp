@@ -1,9 +1,9 @@
-#include "export/plane_geometry.h"
+#include "dform/export/plane_geometry.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/polyline.h"
+#include "dform/core/polyline.h"
 
 namespace dform::fab {
 

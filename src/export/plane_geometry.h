@@ -7,7 +7,7 @@
 #include <polyclipping/clipper.hpp>
 #include <unordered_map>
 
-#include "export/internal.h"
+#include "dform/export/internal.h"
 
 namespace dform::fab {
 

@@ -7,9 +7,9 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "core/input_file.h"
-#include "core/message_text.h"
-#include "export/internal.h"
+#include "dform/core/input_file.h"
+#include "dform/core/message_text.h"
+#include "dform/export/internal.h"
 
 namespace dform {
 

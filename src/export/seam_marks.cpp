@@ -1,7 +1,7 @@
 // The seam marks: numbered ticks at matching seam points on both pieces, across each piece's
 // outline, the start tick longer with an arrow along the zip direction.
-#include "export/pattern_parts.h"
-#include "export/plane_geometry.h"
+#include "dform/export/pattern_parts.h"
+#include "dform/export/plane_geometry.h"
 
 namespace dform::fab {
 

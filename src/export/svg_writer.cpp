@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <sstream>
 
-#include "core/message_text.h"
-#include "export/internal.h"
+#include "dform/core/message_text.h"
+#include "dform/export/internal.h"
 
 namespace dform::fab {
 

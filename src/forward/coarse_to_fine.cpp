@@ -1,11 +1,11 @@
-#include "forward/coarse_to_fine.h"
+#include "dform/forward/coarse_to_fine.h"
 
 #include <array>
 
-#include "core/polyline.h"
-#include "meshing/triangulate.h"
-#include "model/run_control.h"
-#include "model/transfer.h"
+#include "dform/core/polyline.h"
+#include "dform/meshing/triangulate.h"
+#include "dform/model/run_control.h"
+#include "dform/model/transfer.h"
 
 namespace dform {
 

@@ -1,8 +1,8 @@
 // Zipping two meshed pieces as a forward run zips drawn ones: coarse to fine.
 #pragma once
 
-#include "core/types.h"
-#include "forward/forward.h"
+#include "dform/core/types.h"
+#include "dform/forward/forward.h"
 
 namespace dform {
 

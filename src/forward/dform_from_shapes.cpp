@@ -1,4 +1,4 @@
-#include "forward/dform_from_shapes.h"
+#include "dform/forward/dform_from_shapes.h"
 
 #include <algorithm>
 #include <array>
@@ -8,16 +8,16 @@
 #include <optional>
 #include <set>
 
-#include "core/polyline.h"
-#include "exact/exact_gluing.h"
-#include "forward/coarse_to_fine.h"
-#include "forward/seam_layout.h"
-#include "meshing/triangulate.h"
-#include "model/exact_model.h"
-#include "model/resources.h"
-#include "model/run_control.h"
-#include "model/term_table.h"
-#include "model/transfer.h"
+#include "dform/core/polyline.h"
+#include "dform/exact/exact_gluing.h"
+#include "dform/forward/coarse_to_fine.h"
+#include "dform/forward/seam_layout.h"
+#include "dform/meshing/triangulate.h"
+#include "dform/model/exact_model.h"
+#include "dform/model/resources.h"
+#include "dform/model/run_control.h"
+#include "dform/model/term_table.h"
+#include "dform/model/transfer.h"
 
 namespace dform {
 

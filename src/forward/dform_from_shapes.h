@@ -5,12 +5,12 @@
 
 #include <string>
 
-#include "core/messages.h"
-#include "core/status.h"
-#include "core/types.h"
-#include "forward/forward.h"
-#include "forward/settings.h"
-#include "model/run_types.h"
+#include "dform/core/messages.h"
+#include "dform/core/status.h"
+#include "dform/core/types.h"
+#include "dform/forward/forward.h"
+#include "dform/forward/settings.h"
+#include "dform/model/run_types.h"
 
 namespace dform {
 
@@ -46,9 +46,9 @@ struct SolvedDForm {
 /// Checks a job's numbers before any work is done (Usage errors).
 Status validateForwardJob(const ForwardSettings& job);
 
-/// The D-Form of two shapes in memory (mm, counter-clockwise loops, as io's readShape gives them):
-/// checked (lengths, joins, the memory the run needs), meshed and solved by the exact model or the
-/// paper's. Messages and errors name a piece by its outline's `source` (a file path), else
+/// The D-Form of two shapes in memory (mm, counter-clockwise loops, as io's readOutline gives
+/// them): checked (lengths, joins, the memory the run needs), meshed and solved by the exact model
+/// or the paper's. Messages and errors name a piece by its outline's `source` (a file path), else
 /// "piece A" / "piece B". A failed allocation is an error with the resolution that fits.
 Result<SolvedDForm> solveDForm(Shape2 a, Shape2 b, const ForwardSettings& settings,
                                MessageSink& sink, const RunHooks& hooks = {});

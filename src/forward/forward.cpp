@@ -1,4 +1,4 @@
-#include "forward/forward.h"
+#include "dform/forward/forward.h"
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
@@ -6,11 +6,11 @@
 #include <cmath>
 #include <tuple>
 
-#include "core/polyline.h"
-#include "model/injectivity.h"
-#include "model/relax_then_solve.h"
-#include "model/term_table.h"
-#include "model/terms.h"
+#include "dform/core/polyline.h"
+#include "dform/model/injectivity.h"
+#include "dform/model/relax_then_solve.h"
+#include "dform/model/term_table.h"
+#include "dform/model/terms.h"
 
 namespace dform {
 

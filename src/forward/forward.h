@@ -1,10 +1,10 @@
 // Forward modelling (paper section 4): two triangulated flat pieces in, the D-Form they make out.
 #pragma once
 
-#include "core/types.h"
-#include "forward/settings.h"
-#include "model/local_global.h"
-#include "solver/solver.h"
+#include "dform/core/types.h"
+#include "dform/forward/settings.h"
+#include "dform/model/local_global.h"
+#include "dform/solver/solver.h"
 
 namespace dform {
 

@@ -1,10 +1,10 @@
-#include "forward/seam_layout.h"
+#include "dform/forward/seam_layout.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/polyline.h"
-#include "model/run_control.h"
+#include "dform/core/polyline.h"
+#include "dform/model/run_control.h"
 
 namespace dform {
 

@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "core/messages.h"
-#include "core/status.h"
-#include "core/types.h"
-#include "exact/exact_gluing.h"
-#include "forward/dform_from_shapes.h"
+#include "dform/core/messages.h"
+#include "dform/core/status.h"
+#include "dform/core/types.h"
+#include "dform/exact/exact_gluing.h"
+#include "dform/forward/dform_from_shapes.h"
 
 namespace dform {
 

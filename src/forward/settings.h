@@ -5,10 +5,10 @@
 
 #include <Eigen/Core>
 
-#include "model/inextensible.h"
-#include "model/local_global.h"
-#include "model/weights.h"
-#include "solver/solver.h"
+#include "dform/model/inextensible.h"
+#include "dform/model/local_global.h"
+#include "dform/model/weights.h"
+#include "dform/solver/solver.h"
 
 namespace dform {
 

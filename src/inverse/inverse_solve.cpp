@@ -1,11 +1,11 @@
-#include "inverse/inverse_solve.h"
+#include "dform/inverse/inverse_solve.h"
 
 #include <cassert>
 
-#include "core/polyline.h"
-#include "model/relax_then_solve.h"
-#include "model/term_table.h"
-#include "model/terms.h"
+#include "dform/core/polyline.h"
+#include "dform/model/relax_then_solve.h"
+#include "dform/model/term_table.h"
+#include "dform/model/terms.h"
 
 namespace dform {
 

@@ -2,10 +2,10 @@
 // and their 3D shapes whose seam runs along the target curve, with the flat boundaries free.
 #pragma once
 
-#include "core/types.h"
-#include "inverse/settings.h"
-#include "model/local_global.h"
-#include "solver/solver.h"
+#include "dform/core/types.h"
+#include "dform/inverse/settings.h"
+#include "dform/model/local_global.h"
+#include "dform/solver/solver.h"
 
 namespace dform {
 

@@ -1,4 +1,4 @@
-#include "inverse/pieces_from_curve.h"
+#include "dform/inverse/pieces_from_curve.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -6,14 +6,14 @@
 #include <new>
 #include <tuple>
 
-#include "core/polyline.h"
-#include "exact/aligned_distance.h"
-#include "meshing/triangulate.h"
-#include "model/exact_model.h"
-#include "model/resources.h"
-#include "model/run_control.h"
-#include "model/term_table.h"
-#include "model/transfer.h"
+#include "dform/core/polyline.h"
+#include "dform/exact/aligned_distance.h"
+#include "dform/meshing/triangulate.h"
+#include "dform/model/exact_model.h"
+#include "dform/model/resources.h"
+#include "dform/model/run_control.h"
+#include "dform/model/term_table.h"
+#include "dform/model/transfer.h"
 
 namespace dform {
 

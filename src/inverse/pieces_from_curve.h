@@ -6,13 +6,13 @@
 
 #include <string>
 
-#include "core/messages.h"
-#include "core/status.h"
-#include "core/types.h"
-#include "inverse/inverse_solve.h"
-#include "inverse/pre_dform.h"
-#include "inverse/settings.h"
-#include "model/run_types.h"
+#include "dform/core/messages.h"
+#include "dform/core/status.h"
+#include "dform/core/types.h"
+#include "dform/inverse/inverse_solve.h"
+#include "dform/inverse/pre_dform.h"
+#include "dform/inverse/settings.h"
+#include "dform/model/run_types.h"
 
 namespace dform {
 

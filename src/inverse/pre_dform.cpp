@@ -1,4 +1,4 @@
-#include "inverse/pre_dform.h"
+#include "dform/inverse/pre_dform.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -9,10 +9,10 @@
 #include <unordered_set>
 #include <utility>
 
-#include "core/polyline.h"
-#include "inverse/unfold.h"
-#include "meshing/convex_hull.h"
-#include "meshing/triangulate.h"
+#include "dform/core/polyline.h"
+#include "dform/inverse/unfold.h"
+#include "dform/meshing/convex_hull.h"
+#include "dform/meshing/triangulate.h"
 
 namespace dform {
 namespace {

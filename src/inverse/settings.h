@@ -3,10 +3,10 @@
 // fields from the same struct.
 #pragma once
 
-#include "inverse/pre_dform.h"
-#include "model/local_global.h"
-#include "model/weights.h"
-#include "solver/solver.h"
+#include "dform/inverse/pre_dform.h"
+#include "dform/model/local_global.h"
+#include "dform/model/weights.h"
+#include "dform/solver/solver.h"
 
 namespace dform {
 

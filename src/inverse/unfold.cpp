@@ -1,4 +1,4 @@
-#include "inverse/unfold.h"
+#include "dform/inverse/unfold.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/polyline.h"
+#include "dform/core/polyline.h"
 
 namespace dform {
 namespace {

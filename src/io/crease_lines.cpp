@@ -1,12 +1,12 @@
-#include "io/crease_lines.h"
+#include "dform/io/crease_lines.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
 
-#include "core/polyline.h"
-#include "io/io_util.h"
+#include "dform/core/polyline.h"
+#include "dform/io/io_util.h"
 
 namespace dform::io_detail {
 namespace {
@@ -101,7 +101,68 @@ std::optional<Vec2> crossingAwayFromEnds(const Points2& P, const Points2& Q) {
   return std::nullopt;
 }
 
+/// The line with repeated points dropped, or why it is no crease: a bad coordinate, fewer than
+/// 2 distinct points, or a crossing of itself.
+Result<Points2> simpleLine(const std::string& path, const DrawnLine& line,
+                           const OutlineReadOptions& options) {
+  auto fail = [&](const std::string& what) {
+    return Status{ErrorCode::InputInvalid, path + ": crease " + line.label + " " + what};
+  };
+  if (const auto bad = findBadCoordinate(line.points, options.maxCoordinate))
+    return fail("has a coordinate that " +
+                describeBadCoordinate(line.points(bad->first, bad->second), options.maxCoordinate));
+  Points2 P = dropRepeatedPoints(line.points, false);
+  if (P.rows() < 2) return fail("has fewer than 2 distinct points");
+  if (const auto hit = findSelfIntersection(P, false)) {
+    const auto [e, f] = *hit;
+    return fail(
+        "crosses itself near " +
+        fmtPoint(segmentsMeetingPoint(P.row(e), P.row(e + 1), P.row(f), P.row(f + 1)).transpose()) +
+        " mm");
+  }
+  return P;
+}
+
+Status noCreasesCross(const std::string& path, const Shape2& shape) {
+  for (std::size_t i = 0; i < shape.creases.size(); ++i)
+    for (std::size_t j = i + 1; j < shape.creases.size(); ++j)
+      if (const auto p = crossingAwayFromEnds(shape.creases[i].points, shape.creases[j].points))
+        return Status{ErrorCode::InputInvalid, path + ": creases " + shape.creases[i].label +
+                                                   " and " + shape.creases[j].label +
+                                                   " cross near " + fmtPoint(p->transpose()) +
+                                                   " mm; creases may only meet on the boundary"};
+  return Status::ok();
+}
+
 }  // namespace
+
+Status checkFittedCreases(const std::string& path, const Shape2& shape,
+                          const OutlineReadOptions& options) {
+  const PieceBoundary boundary(shape);
+  for (const CreaseLine& crease : shape.creases) {
+    const DrawnLine line{crease.points, crease.label};
+    auto fail = [&](const std::string& what) {
+      return Status{ErrorCode::InputInvalid, path + ": crease " + line.label + " " + what};
+    };
+    Result<Points2> checked = simpleLine(path, line, options);
+    if (!checked.isOk()) return checked.status();
+    const Points2& P = checked.value();
+    for (Eigen::Index i = 0; i + 1 < P.rows(); ++i) {
+      const Vec2 middle = 0.5 * (P.row(i) + P.row(i + 1)).transpose();
+      if (!boundary.inside(middle))
+        return fail("leaves the piece near " + fmtPoint(middle.transpose()) +
+                    " mm; a crease runs inside the piece from boundary to boundary");
+    }
+    for (const Eigen::Index end : {Eigen::Index(0), P.rows() - 1}) {
+      const Vec2 q = P.row(end);
+      const double gap = (boundary.nearest(q) - q).norm();
+      if (gap > kCreaseEndSnapMm)
+        return fail("ends " + fmt(gap) + " mm inside the piece near " + fmtPoint(q.transpose()) +
+                    " mm; a crease runs from boundary to boundary");
+    }
+  }
+  return noCreasesCross(path, shape);
+}
 
 Status fitCreases(const std::string& path, const std::vector<DrawnLine>& lines,
                   const OutlineReadOptions& options, Shape2& shape) {
@@ -110,20 +171,9 @@ Status fitCreases(const std::string& path, const std::vector<DrawnLine>& lines,
     auto fail = [&](const std::string& what) {
       return Status{ErrorCode::InputInvalid, path + ": crease " + line.label + " " + what};
     };
-    if (const auto bad = findBadCoordinate(line.points, options.maxCoordinate))
-      return fail(
-          "has a coordinate that " +
-          describeBadCoordinate(line.points(bad->first, bad->second), options.maxCoordinate));
-    const Points2 P = dropRepeatedPoints(line.points, false);
-    if (P.rows() < 2) return fail("has fewer than 2 distinct points");
-    if (const auto hit = findSelfIntersection(P, false)) {
-      const auto [e, f] = *hit;
-      return fail(
-          "crosses itself near " +
-          fmtPoint(
-              segmentsMeetingPoint(P.row(e), P.row(e + 1), P.row(f), P.row(f + 1)).transpose()) +
-          " mm");
-    }
+    Result<Points2> checked = simpleLine(path, line, options);
+    if (!checked.isOk()) return checked.status();
+    const Points2& P = checked.value();
 
     // Cut the line wherever it meets the boundary; the parts inside the piece are creases.
     std::vector<Cut> cuts{{0.0, P.row(0)}};
@@ -157,14 +207,7 @@ Status fitCreases(const std::string& path, const std::vector<DrawnLine>& lines,
            line.label + (parts.size() > 1 ? " (part " + std::to_string(k + 1) + ")" : "")});
   }
 
-  for (std::size_t i = 0; i < shape.creases.size(); ++i)
-    for (std::size_t j = i + 1; j < shape.creases.size(); ++j)
-      if (const auto p = crossingAwayFromEnds(shape.creases[i].points, shape.creases[j].points))
-        return Status{ErrorCode::InputInvalid, path + ": creases " + shape.creases[i].label +
-                                                   " and " + shape.creases[j].label +
-                                                   " cross near " + fmtPoint(p->transpose()) +
-                                                   " mm; creases may only meet on the boundary"};
-  return Status::ok();
+  return noCreasesCross(path, shape);
 }
 
 }  // namespace dform::io_detail

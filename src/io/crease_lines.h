@@ -1,12 +1,13 @@
-// Internal: fitting drawn crease lines to the piece they are drawn on (part of readShape).
+// Internal: fitting drawn crease lines to the piece they are drawn on (part of readOutline), and
+// checking creases given with their piece (part of checkOutline).
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "core/status.h"
-#include "io/outline_reader.h"
-#include "io/svg_outline.h"
+#include "dform/core/status.h"
+#include "dform/io/outline_reader.h"
+#include "dform/io/svg_outline.h"
 
 namespace dform::io_detail {
 
@@ -23,5 +24,12 @@ constexpr double kCreaseEndSnapMm = 1.0;
 /// inside it, or crosses another crease away from the boundary.
 Status fitCreases(const std::string& path, const std::vector<DrawnLine>& lines,
                   const OutlineReadOptions& options, Shape2& shape);
+
+/// Checks creases given with their piece (a shape made in memory) as fitCreases leaves them,
+/// without moving them: each has good coordinates and at least 2 distinct points, does not cross
+/// itself, stays inside the piece, ends within kCreaseEndSnapMm of its boundary at both ends, and
+/// crosses no other crease away from the boundary. The same messages as fitCreases, naming `path`.
+Status checkFittedCreases(const std::string& path, const Shape2& shape,
+                          const OutlineReadOptions& options);
 
 }  // namespace dform::io_detail

@@ -1,17 +1,17 @@
-#include "io/curve_reader.h"
+#include "dform/io/curve_reader.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <optional>
 
-#include "core/file_hash.h"
-#include "core/input_file.h"
-#include "core/polyline.h"
-#include "io/flatten.h"
-#include "io/io_util.h"
-#include "io/json_util.h"
-#include "io/obj_format.h"
+#include "dform/core/file_hash.h"
+#include "dform/core/input_file.h"
+#include "dform/core/polyline.h"
+#include "dform/io/flatten.h"
+#include "dform/io/io_util.h"
+#include "dform/io/json_util.h"
+#include "dform/io/obj_format.h"
 
 namespace dform {
 namespace {
@@ -266,6 +266,22 @@ Result<Curve3> parseCurve(const std::string& text, const std::string& source,
   }
   return format.value() == "obj" ? readObjCurve(source, text, options)
                                  : readJsonCurve(source, text, options);
+}
+
+Result<Curve3> checkCurve(const Curve3& curve, const std::string& name,
+                          const CurveReadOptions& options) {
+  if (curve.points.cols() != 3)
+    return Status{ErrorCode::InputInvalid, name + ": the curve has " +
+                                               std::to_string(curve.points.cols()) +
+                                               " coordinates per point; expected 3 (x, y, z)"};
+  CurveReadOptions closed = options;  // a curve in memory is closed by its type
+  closed.forceClosed = true;
+  Points3 P = curve.points;
+  if (Status s = closeCurve(name, P, false, closed); !s.isOk()) return s;
+  const Status valid = validateCurve(
+      name, P, options, [](Eigen::Index i) { return "point " + std::to_string(i + 1); });
+  if (!valid.isOk()) return valid;
+  return Curve3{std::move(P), curve.source, curve.sha256};
 }
 
 Result<Curve3> readCurve(const std::string& path, const CurveReadOptions& options) {

@@ -3,8 +3,8 @@
 
 #include <string>
 
-#include "core/status.h"
-#include "core/types.h"
+#include "dform/core/status.h"
+#include "dform/core/types.h"
 
 namespace dform {
 
@@ -26,6 +26,12 @@ Result<Curve3> readCurve(const std::string& path, const CurveReadOptions& option
 /// The same from the file's text; `source` names it in messages and its extension (.obj or
 /// .json) gives the format, or else a text that is a JSON object is read as JSON.
 Result<Curve3> parseCurve(const std::string& text, const std::string& source,
+                          const CurveReadOptions& options = {});
+
+/// A curve made in memory (#P by 3, mm, closed: a repeated closing point is dropped), checked as
+/// readCurve checks a file's, with the same codes and messages, `name` in the place of the file
+/// ("curve: the curve has fewer than 5 distinct points"). Its `source` and `sha256` are kept.
+Result<Curve3> checkCurve(const Curve3& curve, const std::string& name,
                           const CurveReadOptions& options = {});
 
 }  // namespace dform

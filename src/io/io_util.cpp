@@ -1,4 +1,4 @@
-#include "io/io_util.h"
+#include "dform/io/io_util.h"
 
 #include <algorithm>
 #include <cctype>

@@ -1,12 +1,12 @@
-#include "io/json_util.h"
+#include "dform/io/json_util.h"
 
 #include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
 
-#include "core/message_text.h"
-#include "io/io_util.h"
+#include "dform/core/message_text.h"
+#include "dform/io/io_util.h"
 
 namespace dform::io_detail {
 

@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "core/status.h"
+#include "dform/core/status.h"
 
 namespace dform::io_detail {
 

@@ -1,4 +1,4 @@
-#include "io/model_files.h"
+#include "dform/io/model_files.h"
 
 #include <cassert>
 #include <cmath>
@@ -6,10 +6,10 @@
 #include <set>
 #include <utility>
 
-#include "core/atomic_file.h"
-#include "core/input_file.h"
-#include "io/io_util.h"
-#include "io/obj_format.h"
+#include "dform/core/atomic_file.h"
+#include "dform/core/input_file.h"
+#include "dform/io/io_util.h"
+#include "dform/io/obj_format.h"
 
 namespace dform {
 namespace {
@@ -209,21 +209,25 @@ Result<Piece> readPiece(const std::string& dir, const char* flatName, const char
 
 }  // namespace
 
+Status writeObj(const std::string& path, const Piece& piece, PieceForm form) {
+  assert(piece.flat.rows() == piece.shape.rows() && "flat and 3D vertex counts differ");
+  return writeFileAtomically(path, form == PieceForm::Flat
+                                       ? objText(piece, piece.flat, "flat layout")
+                                       : objText(piece, piece.shape, "3D shape"));
+}
+
 Status writeModel(const std::string& dir, const DForm& model) {
   struct Output {
     const char* name;
     const Piece& piece;
-    bool flat;
+    PieceForm form;
   };
-  const Output outputs[] = {{ModelFileNames::aFlat, model.a, true},
-                            {ModelFileNames::a3d, model.a, false},
-                            {ModelFileNames::bFlat, model.b, true},
-                            {ModelFileNames::b3d, model.b, false}};
+  const Output outputs[] = {{ModelFileNames::aFlat, model.a, PieceForm::Flat},
+                            {ModelFileNames::a3d, model.a, PieceForm::Shape3D},
+                            {ModelFileNames::bFlat, model.b, PieceForm::Flat},
+                            {ModelFileNames::b3d, model.b, PieceForm::Shape3D}};
   for (const Output& out : outputs) {
-    assert(out.piece.flat.rows() == out.piece.shape.rows() && "flat and 3D vertex counts differ");
-    const std::string text = out.flat ? objText(out.piece, out.piece.flat, "flat layout")
-                                      : objText(out.piece, out.piece.shape, "3D shape");
-    const Status written = writeFileAtomically(joinPath(dir, out.name), text);
+    const Status written = writeObj(joinPath(dir, out.name), out.piece, out.form);
     if (!written.isOk()) return written;
   }
   return Status::ok();

@@ -5,8 +5,8 @@
 
 #include <string>
 
-#include "core/status.h"
-#include "core/types.h"
+#include "dform/core/status.h"
+#include "dform/core/types.h"
 
 namespace dform {
 
@@ -19,7 +19,15 @@ struct ModelFileNames {
   static constexpr const char* targetCurve = "target-curve.obj";  ///< inverse results only
 };
 
-/// Writes the four OBJ files into `dir` (which must exist), each atomically.
+/// Which of a piece's two embeddings an OBJ file holds: the flat layout (z = 0) or the 3D shape.
+enum class PieceForm { Flat, Shape3D };
+
+/// Writes one piece as an OBJ file at `path`, atomically: its vertices in `form` (mm), its
+/// triangles, then its seam, free boundary loops and creases as `l` polylines in groups `seam`,
+/// `boundary` and `crease`. OutputFailed naming the file when it cannot be written.
+Status writeObj(const std::string& path, const Piece& piece, PieceForm form);
+
+/// Writes the four OBJ files of ModelFileNames into `dir` (which must exist) with writeObj.
 Status writeModel(const std::string& dir, const DForm& model);
 
 /// Writes an inverse result's target seam curve into `dir` as a closed OBJ polyline (atomically),

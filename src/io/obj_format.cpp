@@ -1,4 +1,4 @@
-#include "io/obj_format.h"
+#include "dform/io/obj_format.h"
 
 #include <charconv>
 #include <cstdint>
@@ -6,8 +6,8 @@
 #include <optional>
 #include <sstream>
 
-#include "core/message_text.h"
-#include "io/io_util.h"
+#include "dform/core/message_text.h"
+#include "dform/io/io_util.h"
 
 namespace dform::io_detail {
 namespace {

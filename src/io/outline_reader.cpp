@@ -1,17 +1,17 @@
-#include "io/outline_reader.h"
+#include "dform/io/outline_reader.h"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <optional>
 
-#include "core/file_hash.h"
-#include "core/input_file.h"
-#include "core/polyline.h"
-#include "io/crease_lines.h"
-#include "io/io_util.h"
-#include "io/json_util.h"
-#include "io/svg_outline.h"
+#include "dform/core/file_hash.h"
+#include "dform/core/input_file.h"
+#include "dform/core/polyline.h"
+#include "dform/io/crease_lines.h"
+#include "dform/io/io_util.h"
+#include "dform/io/json_util.h"
+#include "dform/io/svg_outline.h"
 
 namespace dform {
 namespace {
@@ -202,7 +202,9 @@ Result<io_detail::Drawing> readJsonDrawing(const std::string& path, const std::s
       if (!P.isOk()) return P.status();
       points += std::size_t(P.value().rows());
       if (points > maxPoints) return io_detail::tooManyPoints(path, "the outlines have", maxPoints);
-      (holes ? drawing.loops : drawing.creases).push_back({std::move(P).value(), name});
+      // fitCreases names a crease "crease <label>".
+      (holes ? drawing.loops : drawing.creases)
+          .push_back({std::move(P).value(), holes ? name : std::to_string(k + 1)});
     }
   }
   return drawing;
@@ -210,8 +212,8 @@ Result<io_detail::Drawing> readJsonDrawing(const std::string& path, const std::s
 
 }  // namespace
 
-Result<Shape2> parseShape(std::string text, const std::string& source,
-                          const OutlineReadOptions& options) {
+Result<Shape2> parseOutline(std::string text, const std::string& source,
+                            const OutlineReadOptions& options) {
   if (!(options.flattenTolerance > 0.0) || !(options.maxCoordinate > 0.0) ||
       !(options.closeTolerance >= 0.0))
     return Status{ErrorCode::Usage, source +
@@ -236,11 +238,29 @@ Result<Shape2> parseShape(std::string text, const std::string& source,
   return shape;
 }
 
-Result<Shape2> readShape(const std::string& path, const OutlineReadOptions& options) {
+Result<Shape2> checkOutline(const Shape2& shape, const std::string& name,
+                            const OutlineReadOptions& options) {
+  std::vector<DrawnLine> loops{{shape.outer.points, "the outline"}};
+  for (std::size_t k = 0; k < shape.holes.size(); ++k)
+    loops.push_back({shape.holes[k].points, "hole " + std::to_string(k + 1)});
+  Result<Shape2> checked = assembleShape(name, loops, options);
+  if (!checked.isOk()) return checked;
+  for (std::size_t k = 0; k < shape.creases.size(); ++k)
+    checked.value().creases.push_back({shape.creases[k].points, shape.creases[k].label.empty()
+                                                                    ? std::to_string(k + 1)
+                                                                    : shape.creases[k].label});
+  if (Status s = io_detail::checkFittedCreases(name, checked.value(), options); !s.isOk()) return s;
+  checked.value().outer.source = shape.outer.source;
+  for (Outline2& hole : checked.value().holes) hole.source = shape.outer.source;
+  checked.value().sha256 = shape.sha256;
+  return checked;
+}
+
+Result<Shape2> readOutline(const std::string& path, const OutlineReadOptions& options) {
   Result<std::string> text = readInputFile(path);
   if (!text.isOk()) return text.status();
   std::string sha256 = sha256Hex(text.value());
-  Result<Shape2> shape = parseShape(std::move(text).value(), path, options);
+  Result<Shape2> shape = parseOutline(std::move(text).value(), path, options);
   if (shape.isOk()) shape.value().sha256 = std::move(sha256);
   return shape;
 }

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "core/status.h"
-#include "core/types.h"
+#include "dform/core/status.h"
+#include "dform/core/types.h"
 
 namespace dform {
 
@@ -39,11 +39,22 @@ struct OutlineReadOptions {
 /// or InputInvalid (no closed outline, open path, self-intersecting outline, NaN or huge
 /// coordinates, too few points, several separate outlines, a crease that does not run from
 /// boundary to boundary or crosses another).
-Result<Shape2> readShape(const std::string& path, const OutlineReadOptions& options = {});
+Result<Shape2> readOutline(const std::string& path, const OutlineReadOptions& options = {});
 
 /// The same from the file's text: `source` names it in messages, and its extension (or else the
 /// first character of `text`) says whether it is SVG or JSON.
-Result<Shape2> parseShape(std::string text, const std::string& source,
-                          const OutlineReadOptions& options = {});
+Result<Shape2> parseOutline(std::string text, const std::string& source,
+                            const OutlineReadOptions& options = {});
+
+/// A shape made in memory, checked as readOutline checks a file's, with the same codes and
+/// messages and `name` in the place of the file ("piece A: the outline has fewer than 3 distinct
+/// points"): the outline and each hole ("hole 1", ...) go through the same cleaning and nesting;
+/// creases must already run inside the piece from boundary to boundary (within 1 mm), as
+/// readOutline leaves them, and are checked, not moved. Returns the shape as readOutline gives
+/// one: repeated points dropped, loops counter-clockwise, the largest loop the outline and the
+/// others its holes; its creases, `source` and `sha256` kept. A shape readOutline gave passes
+/// unchanged.
+Result<Shape2> checkOutline(const Shape2& shape, const std::string& name,
+                            const OutlineReadOptions& options = {});
 
 }  // namespace dform

@@ -1,7 +1,7 @@
 // The only translation unit that includes svgpp (expensive to compile). svgpp walks the document,
 // resolves element transforms, lengths and basic shapes into absolute path commands; this file
 // records them per element and flattens them in millimetres once the element's transform is known.
-#include "io/svg_outline.h"
+#include "dform/io/svg_outline.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -18,10 +18,10 @@
 #include <svgpp/policy/xml/rapidxml_ns.hpp>
 #include <svgpp/svgpp.hpp>
 
-#include "core/message_text.h"
-#include "io/flatten.h"
-#include "io/io_util.h"
-#include "io/svg_viewport.h"
+#include "dform/core/message_text.h"
+#include "dform/io/flatten.h"
+#include "dform/io/io_util.h"
+#include "dform/io/svg_viewport.h"
 
 namespace dform::io_detail {
 namespace {

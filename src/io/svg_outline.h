@@ -1,13 +1,13 @@
-// Internal: the SVG part of readShape. svgpp is confined to svg_outline.cpp because one translation
-// unit that includes it costs ~17 s to compile.
+// Internal: the SVG part of readOutline. svgpp is confined to svg_outline.cpp because one
+// translation unit that includes it costs ~17 s to compile.
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "core/status.h"
-#include "core/types.h"
-#include "io/outline_reader.h"
+#include "dform/core/status.h"
+#include "dform/core/types.h"
+#include "dform/io/outline_reader.h"
 
 namespace dform::io_detail {
 

@@ -1,4 +1,4 @@
-#include "io/svg_viewport.h"
+#include "dform/io/svg_viewport.h"
 
 #include <algorithm>
 #include <cctype>
@@ -8,8 +8,8 @@
 #include <map>
 #include <utility>
 
-#include "core/message_text.h"
-#include "io/io_util.h"
+#include "dform/core/message_text.h"
+#include "dform/io/io_util.h"
 
 namespace dform::io_detail {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <string_view>
 
-#include "core/status.h"
+#include "dform/core/status.h"
 
 namespace dform::io_detail {
 

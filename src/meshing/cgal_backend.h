@@ -5,8 +5,8 @@
 
 #include <vector>
 
-#include "core/status.h"
-#include "core/types.h"
+#include "dform/core/status.h"
+#include "dform/core/types.h"
 
 namespace dform::meshing_detail {
 

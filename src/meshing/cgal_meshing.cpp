@@ -20,9 +20,9 @@
 #include <string>
 #include <utility>
 
-#include "core/interrupt.h"
-#include "meshing/cgal_backend.h"
-#include "meshing/convex_hull.h"
+#include "dform/core/interrupt.h"
+#include "dform/meshing/cgal_backend.h"
+#include "dform/meshing/convex_hull.h"
 
 namespace dform {
 namespace {

@@ -3,16 +3,16 @@
 // boundary points, and a few rounds of interior-only smoothing and re-triangulation even out the
 // triangles. Refinement never touches a boundary edge, so both pieces of a D-Form keep the same
 // boundary vertices one to one (CGAL's Delaunay_mesher_2 would split encroached boundary edges).
-#include "meshing/triangulate.h"
+#include "dform/meshing/triangulate.h"
 
 #include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <string>
 
-#include "core/interrupt.h"
-#include "core/polyline.h"
-#include "meshing/cgal_backend.h"
+#include "dform/core/interrupt.h"
+#include "dform/core/polyline.h"
+#include "dform/meshing/cgal_backend.h"
 
 namespace dform {
 namespace {

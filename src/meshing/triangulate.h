@@ -3,8 +3,8 @@
 
 #include <vector>
 
-#include "core/status.h"
-#include "core/types.h"
+#include "dform/core/status.h"
+#include "dform/core/types.h"
 
 namespace dform {
 

@@ -1,4 +1,4 @@
-#include "model/exact_model.h"
+#include "dform/model/exact_model.h"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -9,9 +9,9 @@
 #include <set>
 #include <utility>
 
-#include "core/polyline.h"
-#include "exact/body_edges.h"
-#include "meshing/triangulate.h"
+#include "dform/core/polyline.h"
+#include "dform/exact/body_edges.h"
+#include "dform/meshing/triangulate.h"
 
 namespace dform {
 

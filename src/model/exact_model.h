@@ -4,10 +4,10 @@
 
 #include <string>
 
-#include "core/status.h"
-#include "core/types.h"
-#include "exact/exact_gluing.h"
-#include "model/run_types.h"
+#include "dform/core/status.h"
+#include "dform/core/types.h"
+#include "dform/exact/exact_gluing.h"
+#include "dform/model/run_types.h"
 
 namespace dform {
 

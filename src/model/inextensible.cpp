@@ -1,4 +1,4 @@
-#include "model/inextensible.h"
+#include "dform/model/inextensible.h"
 
 #include <Eigen/SparseCore>
 #include <algorithm>
@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "solver/supernodal_cholesky.h"
+#include "dform/solver/supernodal_cholesky.h"
 
 namespace dform {
 

@@ -21,7 +21,7 @@
 
 #include <string>
 
-#include "core/types.h"
+#include "dform/core/types.h"
 
 namespace dform {
 

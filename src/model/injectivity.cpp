@@ -1,11 +1,11 @@
-#include "model/injectivity.h"
+#include "dform/model/injectivity.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <map>
 #include <utility>
 
-#include "core/interrupt.h"
+#include "dform/core/interrupt.h"
 
 namespace dform {
 

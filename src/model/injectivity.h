@@ -7,9 +7,9 @@
 #include <array>
 #include <vector>
 
-#include "core/types.h"
-#include "model/terms.h"
-#include "solver/solver.h"
+#include "dform/core/types.h"
+#include "dform/model/terms.h"
+#include "dform/solver/solver.h"
 
 namespace dform {
 

@@ -1,4 +1,4 @@
-#include "model/local_global.h"
+#include "dform/model/local_global.h"
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/Dense>
@@ -10,9 +10,9 @@
 #include <deque>
 #include <memory>
 
-#include "core/interrupt.h"
-#include "solver/gram_matrix.h"
-#include "solver/supernodal_cholesky.h"
+#include "dform/core/interrupt.h"
+#include "dform/solver/gram_matrix.h"
+#include "dform/solver/supernodal_cholesky.h"
 
 namespace dform {
 

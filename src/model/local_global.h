@@ -12,8 +12,8 @@
 #include <utility>
 #include <vector>
 
-#include "solver/problem.h"
-#include "solver/solver.h"
+#include "dform/solver/problem.h"
+#include "dform/solver/solver.h"
 
 namespace dform {
 

@@ -1,4 +1,4 @@
-#include "model/relax_then_solve.h"
+#include "dform/model/relax_then_solve.h"
 
 namespace dform {
 

@@ -6,10 +6,10 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "model/injectivity.h"
-#include "model/local_global.h"
-#include "solver/problem.h"
-#include "solver/solver.h"
+#include "dform/model/injectivity.h"
+#include "dform/model/local_global.h"
+#include "dform/solver/problem.h"
+#include "dform/solver/solver.h"
 
 namespace dform {
 

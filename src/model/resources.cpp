@@ -1,4 +1,4 @@
-#include "model/resources.h"
+#include "dform/model/resources.h"
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -13,7 +13,7 @@
 #include <string>
 #include <thread>
 
-#include "model/run_control.h"
+#include "dform/model/run_control.h"
 
 namespace dform {
 

@@ -7,7 +7,7 @@
 #include <functional>
 #include <string>
 
-#include "core/status.h"
+#include "dform/core/status.h"
 
 namespace dform {
 

@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "core/interrupt.h"
-#include "core/status.h"
-#include "model/local_global.h"
-#include "model/run_types.h"
-#include "solver/solver.h"
+#include "dform/core/interrupt.h"
+#include "dform/core/status.h"
+#include "dform/model/local_global.h"
+#include "dform/model/run_types.h"
+#include "dform/solver/solver.h"
 
 namespace dform::detail {
 

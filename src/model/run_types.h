@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/solver.h"
+#include "dform/solver/solver.h"
 
 namespace dform {
 

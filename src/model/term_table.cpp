@@ -1,4 +1,4 @@
-#include "model/term_table.h"
+#include "dform/model/term_table.h"
 
 namespace dform {
 

@@ -14,10 +14,10 @@
 #include <utility>
 #include <vector>
 
-#include "model/terms.h"
-#include "model/weights.h"
-#include "solver/problem.h"
-#include "solver/solver.h"
+#include "dform/model/terms.h"
+#include "dform/model/weights.h"
+#include "dform/solver/problem.h"
+#include "dform/solver/solver.h"
 
 namespace dform {
 

@@ -1,11 +1,11 @@
-#include "model/terms.h"
+#include "dform/model/terms.h"
 
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <array>
 #include <cassert>
 
-#include "core/interrupt.h"
+#include "dform/core/interrupt.h"
 
 namespace dform {
 

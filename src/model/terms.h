@@ -5,9 +5,9 @@
 #include <memory>
 #include <vector>
 
-#include "core/types.h"
-#include "model/local_global.h"
-#include "solver/problem.h"
+#include "dform/core/types.h"
+#include "dform/model/local_global.h"
+#include "dform/solver/problem.h"
 
 namespace dform {
 

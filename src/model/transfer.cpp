@@ -1,11 +1,11 @@
-#include "model/transfer.h"
+#include "dform/model/transfer.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
 
-#include "core/interrupt.h"
+#include "dform/core/interrupt.h"
 
 namespace dform {
 

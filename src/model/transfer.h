@@ -1,7 +1,7 @@
 // Carrying a solved shape from one triangulation of a flat piece to another (coarse to fine).
 #pragma once
 
-#include "core/types.h"
+#include "dform/core/types.h"
 
 namespace dform {
 

@@ -1,4 +1,4 @@
-#include "pipeline/batch.h"
+#include "dform/pipeline/batch.h"
 
 #include <algorithm>
 #include <chrono>
@@ -12,14 +12,14 @@
 #include <set>
 #include <sstream>
 
-#include "core/atomic_file.h"
-#include "core/file_hash.h"
-#include "core/input_file.h"
-#include "core/lock_file.h"
-#include "core/message_text.h"
-#include "io/json_util.h"
-#include "pipeline/job_file.h"
-#include "pipeline/run.h"
+#include "dform/core/atomic_file.h"
+#include "dform/core/file_hash.h"
+#include "dform/core/input_file.h"
+#include "dform/core/lock_file.h"
+#include "dform/core/message_text.h"
+#include "dform/io/json_util.h"
+#include "dform/pipeline/job_file.h"
+#include "dform/pipeline/run.h"
 
 namespace dform {
 

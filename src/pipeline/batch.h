@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "core/status.h"
-#include "pipeline/sweep.h"
+#include "dform/core/status.h"
+#include "dform/pipeline/sweep.h"
 
 namespace dform {
 

@@ -1,12 +1,12 @@
-#include "pipeline/forward_pipeline.h"
+#include "dform/pipeline/forward_pipeline.h"
 
 #include <new>
 
-#include "core/interrupt.h"
-#include "io/outline_reader.h"
-#include "model/resources.h"
-#include "model/run_control.h"
-#include "pipeline/reference_seams.h"
+#include "dform/core/interrupt.h"
+#include "dform/io/outline_reader.h"
+#include "dform/model/resources.h"
+#include "dform/model/run_control.h"
+#include "dform/pipeline/reference_seams.h"
 
 namespace dform {
 
@@ -24,10 +24,17 @@ Result<Metrics> measureDForm(const SolvedDForm& solved, const ForwardSettings& s
   }
 }
 
-Result<ForwardRun> makeDForm(Shape2 a, Shape2 b, const ForwardSettings& settings, MessageSink& sink,
-                             const RunHooks& hooks) {
-  const std::string pieces = (a.outer.source.empty() ? "piece A" : a.outer.source) + " and " +
-                             (b.outer.source.empty() ? "piece B" : b.outer.source);
+namespace {
+
+// What messages call a piece: its outline's source (a file), else its role.
+std::string pieceName(const Shape2& shape, const char* role) {
+  return shape.outer.source.empty() ? role : shape.outer.source;
+}
+
+// makeDForm's solve and figures, for shapes already checked (read from files, or checkOutline's).
+Result<ForwardRun> solveAndMeasure(Shape2 a, Shape2 b, const ForwardSettings& settings,
+                                   MessageSink& sink, const RunHooks& hooks) {
+  const std::string pieces = pieceName(a, "piece A") + " and " + pieceName(b, "piece B");
   Result<SolvedDForm> solved = solveDForm(std::move(a), std::move(b), settings, sink, hooks);
   if (!solved.isOk()) return solved.status();
   Result<Metrics> metrics = measureDForm(solved.value(), settings, pieces);
@@ -35,18 +42,33 @@ Result<ForwardRun> makeDForm(Shape2 a, Shape2 b, const ForwardSettings& settings
   return ForwardRun{std::move(solved).value(), std::move(metrics).value()};
 }
 
+}  // namespace
+
+Result<ForwardRun> makeDForm(Shape2 a, Shape2 b, const ForwardSettings& settings, MessageSink& sink,
+                             const RunHooks& hooks) {
+  // As a run from files: the numbers first, then each shape as its file would be read.
+  if (Status s = validateForwardJob(settings); !s.isOk()) return s;
+  Result<Shape2> checkedA = checkOutline(a, pieceName(a, "piece A"));
+  if (!checkedA.isOk()) return checkedA.status();
+  Result<Shape2> checkedB = checkOutline(b, pieceName(b, "piece B"));
+  if (!checkedB.isOk()) return checkedB.status();
+  return solveAndMeasure(std::move(checkedA).value(), std::move(checkedB).value(), settings, sink,
+                         hooks);
+}
+
 Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const RunHooks& hooks) {
   // The job's numbers first: a bad one costs no reading.
   if (Status s = validateForwardJob(job); !s.isOk()) return s;
   const auto start = Clock::now();
-  Result<Shape2> a = readShape(job.pieceA);
+  Result<Shape2> a = readOutline(job.pieceA);
   if (!a.isOk()) return a.status();
-  Result<Shape2> b = readShape(job.pieceB);
+  Result<Shape2> b = readOutline(job.pieceB);
   if (!b.isOk()) return b.status();
   const double read = secondsSince(start);
   a.value().outer.source = job.pieceA;
   b.value().outer.source = job.pieceB;
-  Result<ForwardRun> run = makeDForm(std::move(a).value(), std::move(b).value(), job, sink, hooks);
+  Result<ForwardRun> run =
+      solveAndMeasure(std::move(a).value(), std::move(b).value(), job, sink, hooks);
   if (!run.isOk()) return run;
   run.value().timings.read += read;
   run.value().timings.total = secondsSince(start);

@@ -3,11 +3,11 @@
 
 #include <string>
 
-#include "core/messages.h"
-#include "core/status.h"
-#include "core/types.h"
-#include "forward/dform_from_shapes.h"
-#include "validate/metrics.h"
+#include "dform/core/messages.h"
+#include "dform/core/status.h"
+#include "dform/core/types.h"
+#include "dform/forward/dform_from_shapes.h"
+#include "dform/validate/metrics.h"
 
 namespace dform {
 
@@ -25,8 +25,10 @@ struct ForwardRun : SolvedDForm {
 /// file and the problem.
 Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const RunHooks& hooks = {});
 
-/// The D-Form of two shapes in memory, solved as forward's solveDForm does (the exact model or
-/// the paper's), and measured: measureDForm(solveDForm(...)).
+/// The D-Form of two shapes in memory, checked as a run from files checks its job and files
+/// (validateForwardJob, then io's checkOutline: the same codes and messages, a piece named by
+/// its outline's `source`, else "piece A" / "piece B"), solved as forward's solveDForm does (the
+/// exact model or the paper's), and measured: measureDForm(solveDForm(...)).
 Result<ForwardRun> makeDForm(Shape2 a, Shape2 b, const ForwardSettings& settings, MessageSink& sink,
                              const RunHooks& hooks = {});
 

@@ -2,8 +2,8 @@
 #include <cstdio>
 #include <string>
 
-#include "core/message_text.h"
-#include "pipeline/sweep.h"
+#include "dform/core/message_text.h"
+#include "dform/pipeline/sweep.h"
 
 namespace dform {
 

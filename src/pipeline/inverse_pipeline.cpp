@@ -1,13 +1,13 @@
-#include "pipeline/inverse_pipeline.h"
+#include "dform/pipeline/inverse_pipeline.h"
 
 #include <new>
 
-#include "core/interrupt.h"
-#include "core/polyline.h"
-#include "io/curve_reader.h"
-#include "model/resources.h"
-#include "model/run_control.h"
-#include "pipeline/reference_seams.h"
+#include "dform/core/interrupt.h"
+#include "dform/core/polyline.h"
+#include "dform/io/curve_reader.h"
+#include "dform/model/resources.h"
+#include "dform/model/run_control.h"
+#include "dform/pipeline/reference_seams.h"
 
 namespace dform {
 
@@ -38,10 +38,9 @@ InverseRun measure(SolvedPieces solved, MessageSink& sink) {
   return run;
 }
 
-}  // namespace
-
-Result<InverseRun> makePieces(Curve3 curve, const InverseSettings& settings, MessageSink& sink,
-                              const RunHooks& hooks) {
+// makePieces' solve and figures, for a curve already checked (read from a file, or checkCurve's).
+Result<InverseRun> solveAndMeasure(Curve3 curve, const InverseSettings& settings, MessageSink& sink,
+                                   const RunHooks& hooks) {
   Result<SolvedPieces> solved = solvePieces(curve, settings, sink, hooks);
   if (!solved.isOk()) return solved.status();
   try {
@@ -51,6 +50,17 @@ Result<InverseRun> makePieces(Curve3 curve, const InverseSettings& settings, Mes
   } catch (const std::bad_alloc&) {
     return outOfMemory(nullptr, settings.resolution, curveLabel(curve) + ": measuring the run");
   }
+}
+
+}  // namespace
+
+Result<InverseRun> makePieces(Curve3 curve, const InverseSettings& settings, MessageSink& sink,
+                              const RunHooks& hooks) {
+  // As a run from a file: the numbers first, then the curve as its file would be read.
+  if (Status s = validateInverseJob(settings); !s.isOk()) return s;
+  Result<Curve3> checked = checkCurve(curve, curveLabel(curve));
+  if (!checked.isOk()) return checked.status();
+  return solveAndMeasure(std::move(checked).value(), settings, sink, hooks);
 }
 
 Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const RunHooks& hooks) {
@@ -63,7 +73,7 @@ Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const Ru
   if (!curve.isOk()) return curve.status();
   curve.value().source = job.curve;
   const double read = secondsSince(start);
-  Result<InverseRun> run = makePieces(std::move(curve).value(), job, sink, hooks);
+  Result<InverseRun> run = solveAndMeasure(std::move(curve).value(), job, sink, hooks);
   if (!run.isOk()) return run;
   run.value().timings.read += read;
   run.value().timings.total = secondsSince(start);

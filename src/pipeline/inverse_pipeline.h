@@ -3,11 +3,11 @@
 
 #include <string>
 
-#include "core/messages.h"
-#include "core/status.h"
-#include "core/types.h"
-#include "inverse/pieces_from_curve.h"
-#include "validate/metrics.h"
+#include "dform/core/messages.h"
+#include "dform/core/status.h"
+#include "dform/core/types.h"
+#include "dform/inverse/pieces_from_curve.h"
+#include "dform/validate/metrics.h"
 
 namespace dform {
 
@@ -27,8 +27,10 @@ struct InverseRun : SolvedPieces {
 /// and the problem.
 Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const RunHooks& hooks = {});
 
-/// The two flat pieces whose D-Form has `curve` (mm, closed, in memory) as its seam, solved as
-/// inverse's solvePieces does, and measured.
+/// The two flat pieces whose D-Form has `curve` (mm, closed, in memory) as its seam, checked as
+/// a run from a file checks its job and file (validateInverseJob, then io's checkCurve: the same
+/// codes and messages, the curve named by its `source`, else "the curve"), solved as inverse's
+/// solvePieces does, and measured.
 Result<InverseRun> makePieces(Curve3 curve, const InverseSettings& settings, MessageSink& sink,
                               const RunHooks& hooks = {});
 

@@ -1,4 +1,4 @@
-#include "pipeline/job_file.h"
+#include "dform/pipeline/job_file.h"
 
 #include <cmath>
 #include <cstdint>
@@ -7,9 +7,9 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "core/input_file.h"
-#include "core/message_text.h"
-#include "model/term_table.h"
+#include "dform/core/input_file.h"
+#include "dform/core/message_text.h"
+#include "dform/model/term_table.h"
 
 namespace dform {
 

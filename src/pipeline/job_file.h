@@ -4,9 +4,9 @@
 
 #include <string>
 
-#include "core/status.h"
-#include "pipeline/forward_pipeline.h"
-#include "pipeline/inverse_pipeline.h"
+#include "dform/core/status.h"
+#include "dform/pipeline/forward_pipeline.h"
+#include "dform/pipeline/inverse_pipeline.h"
 
 namespace dform {
 

@@ -1,8 +1,8 @@
-#include "pipeline/reference_seams.h"
+#include "dform/pipeline/reference_seams.h"
 
-#include "exact/body_edges.h"
-#include "exact/exact_gluing.h"
-#include "forward/coarse_to_fine.h"
+#include "dform/exact/body_edges.h"
+#include "dform/exact/exact_gluing.h"
+#include "dform/forward/coarse_to_fine.h"
 
 namespace dform {
 

@@ -4,9 +4,9 @@
 // to it.
 #pragma once
 
-#include "core/types.h"
-#include "validate/gate.h"
-#include "validate/metrics.h"
+#include "dform/core/types.h"
+#include "dform/validate/gate.h"
+#include "dform/validate/metrics.h"
 
 namespace dform {
 

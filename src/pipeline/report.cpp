@@ -1,13 +1,13 @@
-#include "pipeline/report.h"
+#include "dform/pipeline/report.h"
 
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "core/atomic_file.h"
-#include "core/input_file.h"
-#include "core/message_text.h"
-#include "io/json_util.h"
+#include "dform/core/atomic_file.h"
+#include "dform/core/input_file.h"
+#include "dform/core/message_text.h"
+#include "dform/io/json_util.h"
 
 namespace dform {
 

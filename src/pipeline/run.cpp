@@ -1,15 +1,15 @@
-#include "pipeline/run.h"
+#include "dform/pipeline/run.h"
 
 #include <chrono>
 #include <new>
 
-#include "core/input_file.h"
-#include "core/interrupt.h"
-#include "core/result_folder.h"
-#include "io/model_files.h"
-#include "model/resources.h"
-#include "pipeline/report.h"
-#include "pipeline/run_steps.h"
+#include "dform/core/input_file.h"
+#include "dform/core/interrupt.h"
+#include "dform/core/result_folder.h"
+#include "dform/io/model_files.h"
+#include "dform/model/resources.h"
+#include "dform/pipeline/report.h"
+#include "dform/pipeline/run_steps.h"
 
 namespace dform {
 

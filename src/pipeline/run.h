@@ -10,14 +10,14 @@
 #include <string>
 #include <vector>
 
-#include "core/messages.h"
-#include "core/status.h"
-#include "pipeline/batch.h"
-#include "pipeline/forward_pipeline.h"
-#include "pipeline/job_file.h"
-#include "pipeline/sweep.h"
-#include "validate/gate.h"
-#include "validate/metrics.h"
+#include "dform/core/messages.h"
+#include "dform/core/status.h"
+#include "dform/pipeline/batch.h"
+#include "dform/pipeline/forward_pipeline.h"
+#include "dform/pipeline/job_file.h"
+#include "dform/pipeline/sweep.h"
+#include "dform/validate/gate.h"
+#include "dform/validate/metrics.h"
 
 namespace dform {
 
@@ -26,11 +26,15 @@ struct ExportOptions;
 /// The documented exit code of an error kind (README "Exit codes"); batch manifests record it.
 int exitCode(ErrorCode code);
 
-/// The templates folder: $DFORM_TEMPLATES, else the source tree's templates/, else the one
-/// `cmake --install` put under the configured prefix (share/dform/templates).
-std::string templatesDir();
+/// The templates folder (export profiles, gate presets, the report page and the studio's page):
+/// $DFORM_TEMPLATES, else share/dform/templates under the running program's prefix (an installed
+/// or moved dform), else the source tree's templates/, else the one `cmake --install` put under
+/// the configured prefix. A folder counts when it has gates/, profiles/ and report/.
+/// InputUnreadable when $DFORM_TEMPLATES is set to anything else, or no folder is found.
+Result<std::string> templatesDir();
 
-/// The export profiles a run can name (templates/profiles/*.json), sorted.
+/// The export profiles a run can name (templates/profiles/*.json), sorted; none without a
+/// templates folder.
 std::vector<std::string> exportProfileNames();
 
 /// What to do with a run's result.

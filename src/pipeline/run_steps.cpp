@@ -1,4 +1,4 @@
-#include "pipeline/run_steps.h"
+#include "dform/pipeline/run_steps.h"
 
 #include <signal.h>
 
@@ -7,11 +7,11 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "core/atomic_file.h"
-#include "core/message_text.h"
-#include "io/model_files.h"
-#include "report/html_report.h"
-#include "validate/metrics.h"
+#include "dform/core/atomic_file.h"
+#include "dform/core/message_text.h"
+#include "dform/io/model_files.h"
+#include "dform/report/html_report.h"
+#include "dform/validate/metrics.h"
 
 namespace dform {
 
@@ -68,15 +68,45 @@ int exitCode(ErrorCode code) {
   return 1;
 }
 
-std::string templatesDir() {
-  const char* env = std::getenv("DFORM_TEMPLATES");
-  if (env && *env) return env;
+namespace {
+
+// A dform templates folder holds the gate presets, the export profiles and the report page.
+bool isTemplatesFolder(const fs::path& dir) {
   std::error_code ec;
-  return fs::is_directory(DFORM_TEMPLATES_DIR, ec) ? DFORM_TEMPLATES_DIR
-                                                   : DFORM_INSTALLED_TEMPLATES_DIR;
+  for (const char* part : {"gates", "profiles", "report"})
+    if (!fs::is_directory(dir / part, ec)) return false;
+  return true;
 }
 
-std::vector<std::string> exportProfileNames() { return listProfiles(templatesDir()); }
+}  // namespace
+
+Result<std::string> templatesDir() {
+  if (const char* env = std::getenv("DFORM_TEMPLATES"); env && *env) {
+    if (isTemplatesFolder(env)) return std::string(env);
+    return Status(ErrorCode::InputUnreadable,
+                  std::string("DFORM_TEMPLATES=") + env +
+                      " is not a dform templates folder (it has no gates/, profiles/ or report/)");
+  }
+  // The running program's own prefix first (an installed or relocated dform, the Debian
+  // package), then the source tree it was built from, then the configured install prefix.
+  std::error_code ec;
+  const fs::path program = fs::read_symlink("/proc/self/exe", ec);
+  std::vector<fs::path> candidates;
+  if (!ec) candidates.push_back(program.parent_path().parent_path() / "share/dform/templates");
+  candidates.push_back(DFORM_TEMPLATES_DIR);
+  candidates.push_back(DFORM_INSTALLED_TEMPLATES_DIR);
+  for (const fs::path& dir : candidates)
+    if (isTemplatesFolder(dir)) return dir.string();
+  std::string tried;
+  for (const fs::path& dir : candidates) tried += (tried.empty() ? "" : ", ") + dir.string();
+  return Status(ErrorCode::InputUnreadable, "no dform templates folder found (tried " + tried +
+                                                "): set DFORM_TEMPLATES to one");
+}
+
+std::vector<std::string> exportProfileNames() {
+  const Result<std::string> dir = templatesDir();
+  return dir.isOk() ? listProfiles(dir.value()) : std::vector<std::string>{};
+}
 
 Result<GateLimits> loadGate(const std::string& nameOrPath) {
   const bool preset =
@@ -84,11 +114,13 @@ Result<GateLimits> loadGate(const std::string& nameOrPath) {
   if (preset) {
     // A preset name that is not one is a usage mistake (2), as an unknown export profile is; a
     // gate file that cannot be read is unreadable input (3).
-    const fs::path file = fs::path(templatesDir()) / "gates" / (nameOrPath + ".json");
+    const Result<std::string> templates = templatesDir();
+    if (!templates.isOk()) return templates.status();
+    const fs::path file = fs::path(templates.value()) / "gates" / (nameOrPath + ".json");
     std::error_code missing;
     if (!fs::exists(file, missing)) {
       std::set<std::string> names;
-      for (const auto& entry : fs::directory_iterator(file.parent_path()))
+      for (const auto& entry : fs::directory_iterator(file.parent_path(), missing))
         if (entry.path().extension() == ".json") names.insert(entry.path().stem().string());
       std::string known;
       for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
@@ -98,11 +130,12 @@ Result<GateLimits> loadGate(const std::string& nameOrPath) {
     return readGateFile(file.string());
   }
   // "gates/strict.json" as the docs write it: a path relative to templates/ when not one here.
-  const std::string inTemplates = templatesDir() + "/" + nameOrPath;
   std::error_code ec;
-  if (!fs::exists(nameOrPath, ec) && fs::path(nameOrPath).is_relative() &&
-      fs::exists(inTemplates, ec))
-    return readGateFile(inTemplates);
+  if (!fs::exists(nameOrPath, ec) && fs::path(nameOrPath).is_relative()) {
+    const Result<std::string> templates = templatesDir();
+    const std::string inTemplates = templates.isOk() ? templates.value() + "/" + nameOrPath : "";
+    if (templates.isOk() && fs::exists(inTemplates, ec)) return readGateFile(inTemplates);
+  }
   return readGateFile(nameOrPath);
 }
 
@@ -111,7 +144,9 @@ Result<GateLimits> loadGate(const std::string& nameOrPath) {
 Result<ExportOptions> exportOptions(const OutputOptions& output) {
   ExportOptions options;
   options.profile = output.profile;
-  options.templatesDir = templatesDir();
+  const Result<std::string> templates = templatesDir();
+  if (!templates.isOk()) return templates.status();
+  options.templatesDir = templates.value();
   if (!output.sheet.empty()) {
     Result<std::pair<double, double>> sheet = parseSheet(output.sheet);
     if (!sheet.isOk()) return sheet.status();
@@ -243,7 +278,9 @@ Status writeReportPage(const std::string& dir, const std::string& reportJson,
     }
     sources.seamTicks = exported->ticks;
   }
-  const Result<std::string> html = renderReportHtml(sources, model, templatesDir());
+  const Result<std::string> templates = templatesDir();
+  if (!templates.isOk()) return templates.status();
+  const Result<std::string> html = renderReportHtml(sources, model, templates.value());
   if (!html.isOk()) return html.status();
   return writeFileAtomically((fs::path(dir) / "report.html").string(), html.value());
 }

@@ -7,13 +7,13 @@
 #include <set>
 #include <string>
 
-#include "core/messages.h"
-#include "core/result_folder.h"
-#include "core/status.h"
-#include "export/exporter.h"
-#include "pipeline/job_file.h"
-#include "pipeline/run.h"
-#include "validate/gate.h"
+#include "dform/core/messages.h"
+#include "dform/core/result_folder.h"
+#include "dform/core/status.h"
+#include "dform/export/exporter.h"
+#include "dform/pipeline/job_file.h"
+#include "dform/pipeline/run.h"
+#include "dform/validate/gate.h"
 
 namespace dform {
 

@@ -1,18 +1,18 @@
-#include "pipeline/saved_result.h"
+#include "dform/pipeline/saved_result.h"
 
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "core/input_file.h"
-#include "core/interrupt.h"
-#include "core/result_folder.h"
-#include "io/curve_reader.h"
-#include "io/model_files.h"
-#include "pipeline/reference_seams.h"
-#include "pipeline/report.h"
-#include "pipeline/run_steps.h"
+#include "dform/core/input_file.h"
+#include "dform/core/interrupt.h"
+#include "dform/core/result_folder.h"
+#include "dform/io/curve_reader.h"
+#include "dform/io/model_files.h"
+#include "dform/pipeline/reference_seams.h"
+#include "dform/pipeline/report.h"
+#include "dform/pipeline/run_steps.h"
 
 namespace dform {
 
@@ -105,8 +105,10 @@ Result<std::string> exportSavedOrThrow(const std::string& dir, const OutputOptio
     if (!verdict.isOk()) return verdict.status();
     failedGate = verdict.value() == false;
     const Result<std::string> recorded = savedGateName(dir);
+    const Result<std::string> templates = templatesDir();
+    if (!templates.isOk()) return templates.status();
     if (recorded.isOk() &&
-        fs::exists(fs::path(templatesDir()) / "gates" / (recorded.value() + ".json")))
+        fs::exists(fs::path(templates.value()) / "gates" / (recorded.value() + ".json")))
       gateName = recorded.value();
   }
   Result<GateLimits> limits = loadGate(gateName);

@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "core/messages.h"
-#include "core/status.h"
-#include "pipeline/run.h"
-#include "validate/gate.h"
+#include "dform/core/messages.h"
+#include "dform/core/status.h"
+#include "dform/pipeline/run.h"
+#include "dform/validate/gate.h"
 
 namespace dform {
 

@@ -1,4 +1,4 @@
-#include "pipeline/sweep.h"
+#include "dform/pipeline/sweep.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -14,14 +14,14 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "core/atomic_file.h"
-#include "core/message_text.h"
-#include "core/result_folder.h"
-#include "io/json_util.h"
-#include "io/model_files.h"
-#include "pipeline/run_steps.h"
-#include "report/views.h"
-#include "validate/metrics.h"
+#include "dform/core/atomic_file.h"
+#include "dform/core/message_text.h"
+#include "dform/core/result_folder.h"
+#include "dform/io/json_util.h"
+#include "dform/io/model_files.h"
+#include "dform/pipeline/run_steps.h"
+#include "dform/report/views.h"
+#include "dform/validate/metrics.h"
 
 namespace dform {
 

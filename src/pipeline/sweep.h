@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "core/messages.h"
-#include "core/status.h"
-#include "pipeline/job_file.h"
+#include "dform/core/messages.h"
+#include "dform/core/status.h"
+#include "dform/pipeline/job_file.h"
 
 namespace dform {
 

@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
-#include "io/curve_reader.h"
-#include "io/outline_reader.h"
-#include "pipeline/report.h"
-#include "pipeline/run.h"
+#include "dform/io/curve_reader.h"
+#include "dform/io/outline_reader.h"
+#include "dform/pipeline/report.h"
+#include "dform/pipeline/run.h"
 
 namespace py = pybind11;
 
@@ -77,7 +77,7 @@ Shape2 shapeFromArrays(const RowPoints& outline, const std::vector<RowPoints>& h
   const std::string text = "{\"points\": " + jsonPoints(outline, 2, name + " outline") +
                            ", \"holes\": " + jsonPointLists(holes, name + " hole") +
                            ", \"creases\": " + jsonPointLists(creases, name + " crease") + "}";
-  Shape2 shape = valueOrRaise(parseShape(text, name));
+  Shape2 shape = valueOrRaise(parseOutline(text, name));
   shape.outer.source = name;
   return shape;
 }
@@ -232,8 +232,8 @@ Made inverse(const RowPoints& points, int resolution, const std::map<std::string
   return made;
 }
 
-py::dict readOutline(const std::string& path) {
-  const Shape2 shape = valueOrRaise(readShape(path));
+py::dict readOutlineAsDict(const std::string& path) {
+  const Shape2 shape = valueOrRaise(readOutline(path));
   py::dict d;
   d["outline"] = shape.outer.points;
   py::list holes, creases;
@@ -291,7 +291,7 @@ PYBIND11_MODULE(dform, m) {
   m.def("inverse", &inverse, arg("curve"), py::kw_only(), arg("resolution") = 100,
         arg("weights") = std::map<std::string, double>(), arg("name") = "curve",
         "a closed 3D seam curve (n, 3) in mm -> the two flat pieces that make it");
-  m.def("read_outline", &readOutline, arg("path"),
+  m.def("read_outline", &readOutlineAsDict, arg("path"),
         "an SVG or JSON outline file -> {'outline', 'holes', 'creases'} in mm");
   m.def("read_curve", &readCurvePoints, arg("path"),
         "an OBJ, JSON or Bezier curve file -> its points (n, 3) in mm");

@@ -1,10 +1,10 @@
-#include "report/convergence_plot.h"
+#include "dform/report/convergence_plot.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "report/svg_text.h"
+#include "dform/report/svg_text.h"
 
 namespace dform {
 

@@ -1,4 +1,4 @@
-#include "report/html_report.h"
+#include "dform/report/html_report.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -6,12 +6,12 @@
 #include <kainjow/mustache.hpp>
 #include <nlohmann/json.hpp>
 
-#include "core/input_file.h"
-#include "core/message_text.h"
-#include "report/convergence_plot.h"
-#include "report/viewer_model.h"
-#include "report/views.h"
-#include "validate/metrics.h"
+#include "dform/core/input_file.h"
+#include "dform/core/message_text.h"
+#include "dform/report/convergence_plot.h"
+#include "dform/report/viewer_model.h"
+#include "dform/report/views.h"
+#include "dform/validate/metrics.h"
 
 namespace dform {
 

@@ -1,4 +1,4 @@
-#include "report/viewer_model.h"
+#include "dform/report/viewer_model.h"
 
 #include <algorithm>
 #include <array>
@@ -6,7 +6,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "core/shape_projection.h"
+#include "dform/core/shape_projection.h"
 
 namespace dform {
 

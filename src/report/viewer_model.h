@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "core/types.h"
-#include "report/views.h"
+#include "dform/core/types.h"
+#include "dform/report/views.h"
 
 namespace dform {
 

@@ -1,4 +1,4 @@
-#include "report/views.h"
+#include "dform/report/views.h"
 
 #include <algorithm>
 #include <array>
@@ -6,10 +6,10 @@
 #include <cstdio>
 #include <vector>
 
-#include "core/piece_loops.h"
-#include "core/shape_projection.h"
-#include "report/svg_text.h"
-#include "validate/metrics.h"
+#include "dform/core/piece_loops.h"
+#include "dform/core/shape_projection.h"
+#include "dform/report/svg_text.h"
+#include "dform/validate/metrics.h"
 
 namespace dform {
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "core/types.h"
+#include "dform/core/types.h"
 
 namespace dform {
 

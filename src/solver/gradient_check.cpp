@@ -1,4 +1,4 @@
-#include "solver/gradient_check.h"
+#include "dform/solver/gradient_check.h"
 
 #include <algorithm>
 #include <cmath>

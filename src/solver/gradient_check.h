@@ -4,7 +4,7 @@
 
 #include <Eigen/Core>
 
-#include "solver/problem.h"
+#include "dform/solver/problem.h"
 
 namespace dform {
 

@@ -1,9 +1,9 @@
-#include "solver/gram_matrix.h"
+#include "dform/solver/gram_matrix.h"
 
 #include <algorithm>
 #include <vector>
 
-#include "core/interrupt.h"
+#include "dform/core/interrupt.h"
 
 namespace dform {
 

@@ -1,4 +1,4 @@
-#include "solver/problem.h"
+#include "dform/solver/problem.h"
 
 #include <cassert>
 #include <vector>

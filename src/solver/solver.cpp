@@ -1,4 +1,4 @@
-#include "solver/solver.h"
+#include "dform/solver/solver.h"
 
 #include <Eigen/SparseCore>
 #include <algorithm>
@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <numeric>
 
-#include "solver/supernodal_cholesky.h"
+#include "dform/solver/supernodal_cholesky.h"
 
 namespace dform {
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/problem.h"
+#include "dform/solver/problem.h"
 
 namespace dform {
 

@@ -1,4 +1,4 @@
-#include "solver/supernodal_cholesky.h"
+#include "dform/solver/supernodal_cholesky.h"
 
 #include <cholmod.h>
 
@@ -9,7 +9,7 @@
 #include <mutex>
 #include <new>
 
-#include "core/interrupt.h"
+#include "dform/core/interrupt.h"
 
 namespace dform {
 

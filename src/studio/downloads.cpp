@@ -1,4 +1,4 @@
-#include "studio/downloads.h"
+#include "dform/studio/downloads.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -6,10 +6,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "pipeline/job_file.h"
-#include "pipeline/run.h"
-#include "studio/wire.h"
-#include "studio/zip.h"
+#include "dform/pipeline/job_file.h"
+#include "dform/pipeline/run.h"
+#include "dform/studio/wire.h"
+#include "dform/studio/zip.h"
 
 namespace dform::studio {
 

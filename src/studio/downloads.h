@@ -6,9 +6,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "core/status.h"
-#include "pipeline/inverse_pipeline.h"
-#include "studio/session.h"
+#include "dform/core/status.h"
+#include "dform/pipeline/inverse_pipeline.h"
+#include "dform/studio/session.h"
 
 namespace dform::studio {
 

@@ -1,4 +1,4 @@
-#include "studio/guard.h"
+#include "dform/studio/guard.h"
 
 #include <cctype>
 #include <random>

@@ -1,4 +1,4 @@
-#include "studio/outlines.h"
+#include "dform/studio/outlines.h"
 
 #include <algorithm>
 #include <cmath>

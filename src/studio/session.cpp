@@ -1,4 +1,4 @@
-#include "studio/session.h"
+#include "dform/studio/session.h"
 
 #include <sys/resource.h>
 #include <sys/syscall.h>

@@ -16,9 +16,9 @@
 #include <thread>
 #include <vector>
 
-#include "core/status.h"
-#include "core/types.h"
-#include "pipeline/forward_pipeline.h"
+#include "dform/core/status.h"
+#include "dform/core/types.h"
+#include "dform/pipeline/forward_pipeline.h"
 
 namespace dform::studio {
 

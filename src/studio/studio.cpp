@@ -1,21 +1,21 @@
-#include "studio/studio.h"
+#include "dform/studio/studio.h"
 
 #include <chrono>
 #include <map>
 #include <mutex>
 #include <thread>
 
-#include "core/input_file.h"
-#include "core/interrupt.h"
-#include "io/curve_reader.h"
-#include "io/outline_reader.h"
-#include "pipeline/job_file.h"
-#include "pipeline/run.h"
-#include "studio/downloads.h"
-#include "studio/guard.h"
-#include "studio/outlines.h"
-#include "studio/session.h"
-#include "studio/wire.h"
+#include "dform/core/input_file.h"
+#include "dform/core/interrupt.h"
+#include "dform/io/curve_reader.h"
+#include "dform/io/outline_reader.h"
+#include "dform/pipeline/job_file.h"
+#include "dform/pipeline/run.h"
+#include "dform/studio/downloads.h"
+#include "dform/studio/guard.h"
+#include "dform/studio/outlines.h"
+#include "dform/studio/session.h"
+#include "dform/studio/wire.h"
 
 // Last: glibc's resolv.h, which it includes, defines _res, a name Eigen's headers use.
 #include <httplib.h>
@@ -58,7 +58,7 @@ std::vector<std::string> warnings(const MessageSink& sink) {
 
 // A piece's outline, read from its text as the command line reads its file.
 PieceInput readPiece(const std::string& name, std::string text) {
-  Result<Shape2> shape = parseShape(text, name);
+  Result<Shape2> shape = parseOutline(text, name);
   if (!shape.isOk()) throw RequestError(shape.status().message());
   return {name, std::move(text), std::move(shape).value()};
 }
@@ -245,7 +245,7 @@ Status Studio::Impl::readStart() {
   auto piece = [](const std::string& path, const char* fallback) -> Result<PieceInput> {
     Result<std::string> text = readInputFile(path);
     if (!text.isOk()) return text.status();
-    Result<Shape2> shape = parseShape(text.value(), path);
+    Result<Shape2> shape = parseOutline(text.value(), path);
     if (!shape.isOk()) return shape.status();
     return PieceInput{studio::safeFileName(path, kOutlineExtensions, fallback), text.value(),
                       shape.value()};
@@ -543,7 +543,9 @@ Result<std::unique_ptr<Studio>> Studio::start(const StudioOptions& options) {
   Result<GateLimits> gate = loadGate("default");
   if (!gate.isOk()) return gate.status();
   impl->gate = gate.value();
-  const fs::path assets = fs::path(templatesDir()) / "studio";
+  const Result<std::string> templates = templatesDir();
+  if (!templates.isOk()) return templates.status();
+  const fs::path assets = fs::path(templates.value()) / "studio";
   for (const char* name : kAssets) {
     Result<std::string> text = readInputFile((assets / name).string());
     if (!text.isOk()) return text.status();

@@ -1,12 +1,12 @@
-#include "studio/wire.h"
+#include "dform/studio/wire.h"
 
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <vector>
 
-#include "io/json_util.h"
-#include "pipeline/report.h"
+#include "dform/io/json_util.h"
+#include "dform/pipeline/report.h"
 
 namespace dform::studio {
 

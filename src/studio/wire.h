@@ -7,9 +7,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "pipeline/forward_pipeline.h"
-#include "pipeline/inverse_pipeline.h"
-#include "validate/gate.h"
+#include "dform/pipeline/forward_pipeline.h"
+#include "dform/pipeline/inverse_pipeline.h"
+#include "dform/validate/gate.h"
 
 namespace dform::studio {
 

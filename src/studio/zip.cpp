@@ -1,4 +1,4 @@
-#include "studio/zip.h"
+#include "dform/studio/zip.h"
 
 #include <array>
 #include <cstdint>

@@ -1,4 +1,4 @@
-#include "validate/cgal_checks.h"
+#include "dform/validate/cgal_checks.h"
 
 #include <CGAL/Convex_hull_traits_adapter_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -16,7 +16,7 @@
 #include <numeric>
 #include <vector>
 
-#include "core/interrupt.h"
+#include "dform/core/interrupt.h"
 
 namespace dform::detail {
 namespace {

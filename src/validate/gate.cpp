@@ -1,4 +1,4 @@
-#include "validate/gate.h"
+#include "dform/validate/gate.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -8,11 +8,11 @@
 #include <set>
 #include <utility>
 
-#include "core/interrupt.h"
-#include "core/piece_loops.h"
-#include "core/polyline.h"
-#include "validate/cgal_checks.h"
-#include "validate/mesh_measures.h"
+#include "dform/core/interrupt.h"
+#include "dform/core/piece_loops.h"
+#include "dform/core/polyline.h"
+#include "dform/validate/cgal_checks.h"
+#include "dform/validate/mesh_measures.h"
 
 namespace dform {
 

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "core/status.h"
-#include "core/types.h"
-#include "validate/metrics.h"
+#include "dform/core/status.h"
+#include "dform/core/types.h"
+#include "dform/validate/metrics.h"
 
 namespace dform {
 

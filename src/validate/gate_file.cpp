@@ -7,9 +7,9 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "core/input_file.h"
-#include "core/message_text.h"
-#include "validate/gate.h"
+#include "dform/core/input_file.h"
+#include "dform/core/message_text.h"
+#include "dform/validate/gate.h"
 
 namespace dform {
 

@@ -1,4 +1,4 @@
-#include "validate/mesh_measures.h"
+#include "dform/validate/mesh_measures.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -6,7 +6,7 @@
 #include <numeric>
 #include <tuple>
 
-#include "core/interrupt.h"
+#include "dform/core/interrupt.h"
 
 namespace dform::detail {
 namespace {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/types.h"
+#include "dform/core/types.h"
 
 namespace dform::detail {
 

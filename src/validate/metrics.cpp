@@ -1,14 +1,14 @@
-#include "validate/metrics.h"
+#include "dform/validate/metrics.h"
 
 #include <Eigen/Geometry>
 #include <cassert>
 #include <cmath>
 #include <limits>
 
-#include "core/interrupt.h"
-#include "core/polyline.h"
-#include "exact/aligned_distance.h"
-#include "validate/mesh_measures.h"
+#include "dform/core/interrupt.h"
+#include "dform/core/polyline.h"
+#include "dform/exact/aligned_distance.h"
+#include "dform/validate/mesh_measures.h"
 
 namespace dform {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "core/types.h"
+#include "dform/core/types.h"
 
 namespace dform {
 

@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """The modules of src/ depend one way (docs/architecture.md): each may include only the modules
-below it, and the command line links the pipeline alone. Lists every #include of a module a file
-may not use (or every module the CLI links besides the pipeline) and exits 1, else 0.
+below it, and the command line links the pipeline alone. Includes are written as an installed
+project reads them, "dform/<module>/<header>.h". Lists every #include of a module a file may not
+use or written without the dform/ prefix (or every module the CLI links besides the pipeline) and
+exits 1, else 0.
 
     layering.py SRC_DIR
     layering.py --cli-links "LINK;LIBRARIES"   (the dform target's LINK_LIBRARIES property)
@@ -44,7 +46,8 @@ ALLOWED = {
     "studio": {"core", "io", "pipeline", "validate"},
 }
 
-INCLUDE = re.compile(r'^\s*#\s*include\s+"([a-z_]+)/')
+INCLUDE = re.compile(r'^\s*#\s*include\s+"dform/([a-z_]+)/')
+UNPREFIXED = re.compile(r'^\s*#\s*include\s+[<"](' + "|".join(ALLOWED) + r')/')
 
 
 def violations(src):
@@ -63,6 +66,10 @@ def violations(src):
                 path = os.path.join(root, name)
                 with open(path, encoding="utf-8") as f:
                     for number, line in enumerate(f, 1):
+                        bare = UNPREFIXED.match(line)
+                        if bare:
+                            found.append(f"{os.path.relpath(path, src)}:{number}: includes "
+                                         f"{bare.group(1)}/ without the dform/ prefix")
                         m = INCLUDE.match(line)
                         if m and m.group(1) != module and m.group(1) not in ALLOWED[module]:
                             found.append(f"{os.path.relpath(path, src)}:{number}: {module} includes "
@@ -161,28 +168,35 @@ def self_test():
             os.makedirs(os.path.dirname(os.path.join(src, path)), exist_ok=True)
             with open(os.path.join(src, path), "w", encoding="utf-8") as f:
                 f.write(text)
-        write("io/reader.cpp", '#include "io/reader.h"\n#include "core/status.h"\n')
-        write("pipeline/run.cpp", '#include "io/reader.h"\n#include "validate/gate.h"\n')
+        write("io/reader.cpp", '#include "dform/io/reader.h"\n#include "dform/core/status.h"\n')
+        write("pipeline/run.cpp", '#include "dform/io/reader.h"\n#include "dform/validate/gate.h"\n')
         assert violations(src) == [], violations(src)
-        write("io/bad.cpp", '#include "core/status.h"\n  #include "pipeline/run.h"\n')
+        write("io/bad.cpp", '#include "dform/core/status.h"\n  #include "dform/pipeline/run.h"\n')
         found = violations(src)
         assert len(found) == 1 and found[0].startswith("io/bad.cpp:2: io includes pipeline/"), found
-        write("core/worse.h", '#include "export/exporter.h"\n')
+        write("core/worse.h", '#include "dform/export/exporter.h"\n')
         assert len(violations(src)) == 2, violations(src)
+        # A module included without the prefix is found even where the module is allowed.
+        write("io/bare.cpp", '#include "core/status.h"\n#include <io/reader.h>\n')
+        found = violations(src)
+        assert [f for f in found if f.startswith("io/bare.cpp")] == [
+            "io/bare.cpp:1: includes core/ without the dform/ prefix",
+            "io/bare.cpp:2: includes io/ without the dform/ prefix"], found
+        os.remove(os.path.join(src, "io/bare.cpp"))
         # forward and inverse share the model below them and use neither the other; validate
         # judges meshes and uses no solver.
-        write("inverse/solve.cpp", '#include "model/terms.h"\n#include "forward/forward.h"\n')
-        write("forward/solve.cpp", '#include "model/terms.h"\n#include "inverse/pre_dform.h"\n')
-        write("model/terms.h", '#include "solver/problem.h"\n#include "forward/forward.h"\n')
-        write("validate/metrics.cpp", '#include "core/types.h"\n#include "solver/problem.h"\n')
+        write("inverse/solve.cpp", '#include "dform/model/terms.h"\n#include "dform/forward/forward.h"\n')
+        write("forward/solve.cpp", '#include "dform/model/terms.h"\n#include "dform/inverse/pre_dform.h"\n')
+        write("model/terms.h", '#include "dform/solver/problem.h"\n#include "dform/forward/forward.h"\n')
+        write("validate/metrics.cpp", '#include "dform/core/types.h"\n#include "dform/solver/problem.h"\n')
         found = violations(src)
         assert [f.split(": ")[0] for f in found] == [
             "core/worse.h:1", "forward/solve.cpp:2", "inverse/solve.cpp:2", "io/bad.cpp:2",
             "model/terms.h:2", "validate/metrics.cpp:2"], found
         # The studio uses the pipeline, io and validate, nothing else of the stages.
-        write("studio/server.cpp", '#include "pipeline/run.h"\n#include "io/outline_reader.h"\n')
+        write("studio/server.cpp", '#include "dform/pipeline/run.h"\n#include "dform/io/outline_reader.h"\n')
         assert len(violations(src)) == 6, violations(src)
-        write("studio/worse.cpp", '#include "export/exporter.h"\n')
+        write("studio/worse.cpp", '#include "dform/export/exporter.h"\n')
         found = violations(src)
         assert len(found) == 7 and any(f.startswith("studio/worse.cpp:1: studio includes export/") for f in found), found
         write("core/polyline.h", "double closedLength(const Eigen::MatrixXd& P);\n"

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "dform/pipeline/forward_pipeline.h"
 #include "median.h"
-#include "pipeline/forward_pipeline.h"
 #include "plot.h"
 
 namespace {

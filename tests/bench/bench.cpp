@@ -21,13 +21,13 @@
 #include <vector>
 
 #include "accuracy.h"
-#include "core/allocator.h"
-#include "export/exporter.h"
+#include "dform/core/allocator.h"
+#include "dform/export/exporter.h"
+#include "dform/pipeline/forward_pipeline.h"
+#include "dform/pipeline/inverse_pipeline.h"
+#include "dform/pipeline/job_file.h"
 #include "median.h"
 #include "models.h"
-#include "pipeline/forward_pipeline.h"
-#include "pipeline/inverse_pipeline.h"
-#include "pipeline/job_file.h"
 #include "scale.h"
 
 namespace {

@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
+#include "dform/pipeline/forward_pipeline.h"
+#include "dform/pipeline/inverse_pipeline.h"
 #include "median.h"
-#include "pipeline/forward_pipeline.h"
-#include "pipeline/inverse_pipeline.h"
 #include "plot.h"
 
 namespace {

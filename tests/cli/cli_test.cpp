@@ -24,8 +24,8 @@
 #include <vector>
 
 #include "cli/text_files.h"
-#include "core/file_hash.h"
-#include "io/model_files.h"
+#include "dform/core/file_hash.h"
+#include "dform/io/model_files.h"
 #include "shipped_samples.h"
 
 namespace dform {
@@ -56,8 +56,8 @@ class CliTest : public ::testing::Test {
            body + "</svg>";
   }
 
-  // Runs dform with `args`, capturing stdout and stderr.
-  // Runs dform with `args`; `environment` (e.g. "env NAME=value") is put before the command.
+  // Runs dform with `args`, capturing stdout and stderr; `environment` (e.g. "env NAME=value") is
+  // put before the command.
   Outcome run(const std::string& args, const std::string& environment = "") const {
     const std::string out = path("stdout.txt"), err = path("stderr.txt");
     const std::string command =
@@ -270,6 +270,28 @@ TEST_F(CliTest, BadOptionsAreUsageErrors) {
   expectError(run("forward " + pair + " -o " + path("out") + " --resolution 20 -q --profile bogus"),
               2, "unknown profile \"bogus\"");
   expectError(run("validate " + path("out") + " --gate bogus"), 2, "unknown gate");
+}
+
+TEST_F(CliTest, ATemplatesFolderThatIsNotOneIsUnreadableInput) {
+  // $DFORM_TEMPLATES set to a folder without gates/ (a user's typo, a half-copied install): one
+  // line naming it, exit 3, before any work and for every command that reads templates.
+  fs::create_directories(path("templates/profiles"));
+  const std::string env = "env DFORM_TEMPLATES=" + path("templates");
+  const std::string pair =
+      sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  for (const std::string& args :
+       {"forward " + pair + " -q -o " + path("out"), std::string("export --list-profiles"),
+        "forward " + pair + " -q -o " + path("out") + " --gate strict"}) {
+    SCOPED_TRACE(args);
+    expectError(run(args, env), 3, "DFORM_TEMPLATES=" + path("templates") + " is not a dform");
+  }
+  EXPECT_FALSE(fs::exists(path("out")));
+  // The same folder completed is one.
+  fs::create_directories(path("templates/gates"));
+  fs::create_directories(path("templates/report"));
+  const Outcome listed = run("export --list-profiles", env);
+  EXPECT_EQ(listed.exitCode, 0) << listed.err;
+  EXPECT_EQ(listed.out, "");
 }
 
 TEST_F(CliTest, UnwritableOutputIsAnOutputError) {

@@ -1,5 +1,5 @@
 // SHA-256 against the FIPS 180-2 test vectors.
-#include "core/file_hash.h"
+#include "dform/core/file_hash.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "core/input_file.h"
+#include "dform/core/input_file.h"
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
@@ -15,7 +15,7 @@
 #include <thread>
 #include <vector>
 
-#include "core/interrupt.h"
+#include "dform/core/interrupt.h"
 
 namespace dform {
 namespace {

@@ -1,4 +1,4 @@
-#include "core/message_text.h"
+#include "dform/core/message_text.h"
 
 #include <gtest/gtest.h>
 

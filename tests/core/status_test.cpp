@@ -1,6 +1,6 @@
 // Result<T>: a value, or the Status that says why there is none; reading the value of an error is
 // a checked failure in every build, as std::expected's.
-#include "core/status.h"
+#include "dform/core/status.h"
 
 #include <gtest/gtest.h>
 

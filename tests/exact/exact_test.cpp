@@ -5,9 +5,9 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "core/polyline.h"
-#include "exact/aligned_distance.h"
-#include "exact/exact_gluing.h"
+#include "dform/core/polyline.h"
+#include "dform/exact/aligned_distance.h"
+#include "dform/exact/exact_gluing.h"
 #include "exact/shapes.h"
 
 namespace dform::exact {

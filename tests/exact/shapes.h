@@ -4,8 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include "core/polyline.h"
-#include "exact/exact_gluing.h"
+#include "dform/core/polyline.h"
+#include "dform/exact/exact_gluing.h"
 
 namespace dform::exact::testshapes {
 

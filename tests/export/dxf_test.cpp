@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "core/atomic_file.h"
-#include "export/exporter.h"
-#include "export/internal.h"
+#include "dform/core/atomic_file.h"
+#include "dform/export/exporter.h"
+#include "dform/export/internal.h"
 #include "models.h"
 #include "synthetic.h"
 #include "test_util.h"

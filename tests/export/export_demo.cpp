@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "export/exporter.h"
+#include "dform/export/exporter.h"
 #include "models.h"
 #include "synthetic.h"
 

@@ -10,10 +10,10 @@
 #include <polyclipping/clipper.hpp>
 #include <set>
 
-#include "core/interrupt.h"
-#include "core/polyline.h"
-#include "export/exporter.h"
-#include "export/plane_geometry.h"
+#include "dform/core/interrupt.h"
+#include "dform/core/polyline.h"
+#include "dform/export/exporter.h"
+#include "dform/export/plane_geometry.h"
 #include "synthetic.h"
 #include "test_util.h"
 

@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <functional>
 
-#include "export/exporter.h"
-#include "export/internal.h"
+#include "dform/export/exporter.h"
+#include "dform/export/internal.h"
 #include "synthetic.h"
 #include "test_util.h"
 

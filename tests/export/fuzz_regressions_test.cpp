@@ -1,6 +1,6 @@
 // Inputs that once crashed the export-profile fuzz target (tests/fuzz/regressions/profile/): each
 // now gives a proper Status. What each one found is in docs/hardening.md.
-#include "export/exporter.h"
+#include "dform/export/exporter.h"
 #include "fuzz/regressions.h"
 
 namespace dform {

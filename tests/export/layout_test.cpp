@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <functional>
 
-#include "export/exporter.h"
-#include "export/internal.h"
+#include "dform/export/exporter.h"
+#include "dform/export/internal.h"
 #include "models.h"
 #include "synthetic.h"
 #include "test_util.h"

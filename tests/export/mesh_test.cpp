@@ -7,10 +7,10 @@
 #include <cstring>
 #include <filesystem>
 
-#include "export/exporter.h"
+#include "dform/export/exporter.h"
+#include "dform/validate/metrics.h"
 #include "synthetic.h"
 #include "test_util.h"
-#include "validate/metrics.h"
 
 namespace dform::test {
 namespace {

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "export/exporter.h"
+#include "dform/export/exporter.h"
 #include "synthetic.h"
 #include "test_util.h"
 

@@ -5,8 +5,8 @@
 
 #include <regex>
 
-#include "export/exporter.h"
-#include "export/internal.h"
+#include "dform/export/exporter.h"
+#include "dform/export/internal.h"
 #include "models.h"
 #include "test_util.h"
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "export/exporter.h"
-#include "export/internal.h"
+#include "dform/export/exporter.h"
+#include "dform/export/internal.h"
 
 namespace dform::test {
 

@@ -8,13 +8,13 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "core/polyline.h"
-#include "export/exporter.h"
-#include "export/internal.h"
-#include "export/plane_geometry.h"
+#include "dform/core/polyline.h"
+#include "dform/export/exporter.h"
+#include "dform/export/internal.h"
+#include "dform/export/plane_geometry.h"
+#include "dform/validate/metrics.h"
 #include "models.h"
 #include "test_util.h"
-#include "validate/metrics.h"
 
 namespace dform::test {
 namespace {

@@ -1,5 +1,5 @@
 // Forward modelling end to end on small inputs: the start, the local-global stage, the solve.
-#include "forward/forward.h"
+#include "dform/forward/forward.h"
 
 #include <gtest/gtest.h>
 
@@ -7,16 +7,16 @@
 #include <cmath>
 #include <random>
 
-#include "exact/aligned_distance.h"
-#include "forward/coarse_to_fine.h"
-#include "model/injectivity.h"
-#include "model/term_table.h"
-#include "model/terms.h"
+#include "dform/exact/aligned_distance.h"
+#include "dform/forward/coarse_to_fine.h"
+#include "dform/model/injectivity.h"
+#include "dform/model/term_table.h"
+#include "dform/model/terms.h"
+#include "dform/model/transfer.h"
+#include "dform/pipeline/reference_seams.h"
+#include "dform/validate/gate.h"
+#include "dform/validate/metrics.h"
 #include "model/test_meshes.h"
-#include "model/transfer.h"
-#include "pipeline/reference_seams.h"
-#include "validate/gate.h"
-#include "validate/metrics.h"
 
 namespace dform {
 namespace {

@@ -1,6 +1,6 @@
 // The general engine's sheet: its energy against closed forms, and its answer stationary by
 // central differences of that energy (independent of the engine's own gradient).
-#include "model/inextensible.h"
+#include "dform/model/inextensible.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <cmath>
 #include <random>
 
-#include "forward/forward.h"
+#include "dform/forward/forward.h"
 #include "model/test_meshes.h"
 
 namespace dform {

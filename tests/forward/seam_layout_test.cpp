@@ -1,4 +1,4 @@
-#include "forward/seam_layout.h"
+#include "dform/forward/seam_layout.h"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 // forwardTerms: the forward objective's one table of terms and weights.
-#include "model/term_table.h"
+#include "dform/model/term_table.h"
 
 #include <gtest/gtest.h>
 
-#include "forward/dform_from_shapes.h"
+#include "dform/forward/dform_from_shapes.h"
 #include "model/term_table_checks.h"
 
 namespace dform {

@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "core/status.h"
+#include "dform/core/status.h"
 
 namespace dform::fuzz {
 

@@ -1,7 +1,7 @@
 // Fuzzes the seam-curve reader (OBJ or JSON, by DFORM_FUZZ_SOURCE's extension), both as the file
 // says and forced closed (`--closed`). A curve it accepts must be what the inverse run relies on.
+#include "dform/io/curve_reader.h"
 #include "fuzz_check.h"
-#include "io/curve_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const unsigned char* data, std::size_t size) {
   using namespace dform;

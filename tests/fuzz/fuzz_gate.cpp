@@ -1,8 +1,8 @@
 // Fuzzes the gate-file reader. Limits it accepts must be usable: finite and non-negative.
 #include <cmath>
 
+#include "dform/validate/gate.h"
 #include "fuzz_check.h"
-#include "validate/gate.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const unsigned char* data, std::size_t size) {
   using namespace dform;

@@ -1,7 +1,7 @@
 // Fuzzes the job-file reader. A job it accepts must be valid and survive the trip through
 // report.json unchanged (jobToJson, then read again), since that is how a run is repeated.
+#include "dform/pipeline/job_file.h"
 #include "fuzz_check.h"
-#include "pipeline/job_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const unsigned char* data, std::size_t size) {
   using namespace dform;

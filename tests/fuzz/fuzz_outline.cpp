@@ -2,9 +2,9 @@
 // shape assembly. A shape it accepts must be what the pipeline relies on.
 #include <cmath>
 
-#include "core/polyline.h"
+#include "dform/core/polyline.h"
+#include "dform/io/outline_reader.h"
 #include "fuzz_check.h"
-#include "io/outline_reader.h"
 
 namespace {
 
@@ -24,7 +24,7 @@ void checkOutline(const Outline2& outline) {
 extern "C" int LLVMFuzzerTestOneInput(const unsigned char* data, std::size_t size) {
   const Result<Shape2> shape = fuzz::parseChecked(data, size, DFORM_FUZZ_SOURCE,
                                                   [](std::string text, const std::string& source) {
-                                                    return parseShape(std::move(text), source);
+                                                    return parseOutline(std::move(text), source);
                                                   });
   if (!shape.isOk()) return 0;
   checkOutline(shape.value().outer);

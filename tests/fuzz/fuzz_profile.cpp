@@ -1,7 +1,7 @@
 // Fuzzes the export-profile reader. A profile it accepts must be one the exporter can draw with.
 #include <cmath>
 
-#include "export/exporter.h"
+#include "dform/export/exporter.h"
 #include "fuzz_check.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const unsigned char* data, std::size_t size) {

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "core/status.h"
+#include "dform/core/status.h"
 
 namespace dform::test {
 

@@ -1,8 +1,8 @@
 // inverseTerms: the inverse objective's one table of terms and weights.
 #include <gtest/gtest.h>
 
-#include "inverse/pieces_from_curve.h"
-#include "model/term_table.h"
+#include "dform/inverse/pieces_from_curve.h"
+#include "dform/model/term_table.h"
 #include "model/term_table_checks.h"
 
 namespace dform {

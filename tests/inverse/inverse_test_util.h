@@ -8,9 +8,9 @@
 #include <functional>
 #include <string>
 
-#include "core/polyline.h"
-#include "core/types.h"
-#include "io/curve_reader.h"
+#include "dform/core/polyline.h"
+#include "dform/core/types.h"
+#include "dform/io/curve_reader.h"
 
 namespace dform::test {
 

@@ -1,4 +1,4 @@
-#include "inverse/pre_dform.h"
+#include "dform/inverse/pre_dform.h"
 
 #include <gtest/gtest.h>
 
@@ -9,8 +9,8 @@
 #include <tuple>
 #include <utility>
 
+#include "dform/meshing/convex_hull.h"
 #include "inverse_test_util.h"
-#include "meshing/convex_hull.h"
 
 namespace dform {
 namespace {

@@ -1,4 +1,4 @@
-#include "inverse/unfold.h"
+#include "dform/inverse/unfold.h"
 
 #include <gtest/gtest.h>
 
@@ -6,8 +6,8 @@
 #include <set>
 #include <string>
 
-#include "core/polyline.h"
-#include "inverse/pre_dform.h"
+#include "dform/core/polyline.h"
+#include "dform/inverse/pre_dform.h"
 #include "inverse_test_util.h"
 
 namespace dform {

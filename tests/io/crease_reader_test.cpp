@@ -2,8 +2,8 @@
 // boundary, and every way a crease can be drawn wrong.
 #include <gtest/gtest.h>
 
-#include "core/polyline.h"
-#include "io/outline_reader.h"
+#include "dform/core/polyline.h"
+#include "dform/io/outline_reader.h"
 #include "test_util.h"
 
 namespace dform {
@@ -21,7 +21,7 @@ std::string page(const std::string& body) {
 const char* kSquare = "<rect x='10' y='10' width='80' height='80'/>";  // page frame: 10..90
 
 Shape2 readOk(const std::string& path) {
-  Result<Shape2> shape = readShape(path);
+  Result<Shape2> shape = readOutline(path);
   EXPECT_TRUE(shape.isOk()) << shape.status().message();
   return shape.isOk() ? shape.value() : Shape2{};
 }
@@ -62,7 +62,8 @@ TEST(CreaseReader, UnmarkedOpenPathIsStillAnError) {
   test::ScratchDir dir;
   const std::string path =
       dir.write("a.svg", page(std::string(kSquare) + "<path d='M 10 50 L 90 50'/>"));
-  EXPECT_TRUE(test::failsWith(readShape(path).status(), ErrorCode::InputInvalid, path, "is open"));
+  EXPECT_TRUE(
+      test::failsWith(readOutline(path).status(), ErrorCode::InputInvalid, path, "is open"));
 }
 
 TEST(CreaseReader, LineDrawnAcrossTheOutlineIsClippedToThePiece) {
@@ -141,16 +142,18 @@ TEST(CreaseReader, BadCreasesAreNamedErrors) {
   };
   for (const Case& c : cases) {
     const std::string path = dir.write(c.name, page(std::string(kSquare) + c.body));
-    EXPECT_TRUE(test::failsWith(readShape(path).status(), ErrorCode::InputInvalid, path, c.message))
+    EXPECT_TRUE(
+        test::failsWith(readOutline(path).status(), ErrorCode::InputInvalid, path, c.message))
         << c.name;
   }
   const std::string dot =
       dir.write("dot.json", R"({"points": [[0,0],[8,0],[8,8]], "creases": [[[0,0],[0,0]]]})");
-  EXPECT_TRUE(test::failsWith(readShape(dot).status(), ErrorCode::InputInvalid, dot,
+  EXPECT_TRUE(test::failsWith(readOutline(dot).status(), ErrorCode::InputInvalid, dot,
                               "fewer than 2 distinct points"));
   const std::string nan =
       dir.write("nan.json", R"({"points": [[0,0],[8,0],[8,8]], "creases": [[[0,0],[1e300,1]]]})");
-  EXPECT_TRUE(test::failsWith(readShape(nan).status(), ErrorCode::InputInvalid, nan, "too large"));
+  EXPECT_TRUE(
+      test::failsWith(readOutline(nan).status(), ErrorCode::InputInvalid, nan, "too large"));
 }
 
 }  // namespace

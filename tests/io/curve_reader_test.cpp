@@ -1,13 +1,13 @@
 // Seam curves: OBJ polylines (index forms, closing), JSON points and closed cubic Beziers, and
 // every bad input.
-#include "io/curve_reader.h"
+#include "dform/io/curve_reader.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 
-#include "core/polyline.h"
+#include "dform/core/polyline.h"
 #include "test_util.h"
 
 namespace dform {

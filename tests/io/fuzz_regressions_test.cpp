@@ -1,14 +1,14 @@
 // Inputs that once crashed the io fuzz targets (tests/fuzz/regressions/): each now gives a proper
 // Status. What each one found is in docs/hardening.md.
+#include "dform/io/curve_reader.h"
+#include "dform/io/outline_reader.h"
 #include "fuzz/regressions.h"
-#include "io/curve_reader.h"
-#include "io/outline_reader.h"
 
 namespace dform {
 namespace {
 
-Status readShapeText(const std::string& text, const std::string& source) {
-  return parseShape(text, source).status();
+Status readOutlineText(const std::string& text, const std::string& source) {
+  return parseOutline(text, source).status();
 }
 
 Status readCurveText(const std::string& text, const std::string& source) {
@@ -17,14 +17,14 @@ Status readCurveText(const std::string& text, const std::string& source) {
 
 TEST(FuzzRegressions, Svg) {
   EXPECT_TRUE(test::regressionsHold(
-      "svg", {{"near-touch-depends-on-direction.svg", ErrorCode::Ok, ""}}, readShapeText));
+      "svg", {{"near-touch-depends-on-direction.svg", ErrorCode::Ok, ""}}, readOutlineText));
 }
 
 TEST(FuzzRegressions, OutlineJson) {
   EXPECT_TRUE(test::regressionsHold(
       "outline_json",
       {{"control-character-in-parse-error.json", ErrorCode::InputUnreadable, "not valid JSON"}},
-      readShapeText));
+      readOutlineText));
 }
 
 TEST(FuzzRegressions, CurveObj) {

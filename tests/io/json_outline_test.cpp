@@ -1,8 +1,8 @@
 // JSON outlines: object and bare-array forms, units, holes, and malformed files.
 #include <gtest/gtest.h>
 
-#include "core/polyline.h"
-#include "io/outline_reader.h"
+#include "dform/core/polyline.h"
+#include "dform/io/outline_reader.h"
 #include "test_util.h"
 
 namespace dform {
@@ -18,7 +18,7 @@ TEST(JsonOutline, ObjectWithUnitsAndHole) {
     "points": [[0, 0], [0, 5], [10, 5], [10, 0], [0, 0]],
     "holes": [[[2, 1], [4, 1], [4, 3]]]
   })");
-  const Result<Shape2> shape = readShape(path);
+  const Result<Shape2> shape = readOutline(path);
   ASSERT_TRUE(shape.isOk()) << shape.status().message();
   const Points2& P = shape.value().outer.points;
   EXPECT_EQ(P.rows(), 4);
@@ -35,7 +35,7 @@ TEST(JsonOutline, ObjectWithUnitsAndHole) {
 TEST(JsonOutline, BareArrayIsMillimetres) {
   test::ScratchDir dir;
   const std::string path = dir.write("bare.json", "[[0,0],[100,0],[100,50],[0,50]]");
-  const Result<Shape2> shape = readShape(path);
+  const Result<Shape2> shape = readOutline(path);
   ASSERT_TRUE(shape.isOk()) << shape.status().message();
   EXPECT_NEAR(closedLength(shape.value().outer.points), 300.0, 1e-12);
 }
@@ -44,7 +44,7 @@ TEST(JsonOutline, InchesAndContentSniffedWithoutExtension) {
   test::ScratchDir dir;
   const std::string path =
       dir.write("outline", R"({"units": "in", "points": [[0,0],[1,0],[1,1],[0,1]]})");
-  const Result<Shape2> shape = readShape(path);
+  const Result<Shape2> shape = readOutline(path);
   ASSERT_TRUE(shape.isOk()) << shape.status().message();
   EXPECT_NEAR(closedLength(shape.value().outer.points), 4 * 25.4, 1e-12);
 }
@@ -53,41 +53,42 @@ TEST(JsonOutline, NotJson) {
   test::ScratchDir dir;
   const std::string path = dir.write("bad.json", "{\"points\": [[0,0], [1,");
   EXPECT_TRUE(
-      failsWith(readShape(path).status(), ErrorCode::InputUnreadable, path, "not valid JSON"));
+      failsWith(readOutline(path).status(), ErrorCode::InputUnreadable, path, "not valid JSON"));
 }
 
 TEST(JsonOutline, WrongStructure) {
   test::ScratchDir dir;
   const std::string noPoints = dir.write("nopoints.json", R"({"outline": []})");
-  EXPECT_TRUE(
-      failsWith(readShape(noPoints).status(), ErrorCode::InputUnreadable, noPoints, "\"points\""));
+  EXPECT_TRUE(failsWith(readOutline(noPoints).status(), ErrorCode::InputUnreadable, noPoints,
+                        "\"points\""));
   const std::string triple = dir.write("triple.json", R"({"points": [[0,0],[1,0,0],[1,1]]})");
-  EXPECT_TRUE(failsWith(readShape(triple).status(), ErrorCode::InputUnreadable, triple, "point 2"));
+  EXPECT_TRUE(
+      failsWith(readOutline(triple).status(), ErrorCode::InputUnreadable, triple, "point 2"));
   const std::string text = dir.write("text.json", R"([[0,0],["1",0],[1,1]])");
-  EXPECT_TRUE(failsWith(readShape(text).status(), ErrorCode::InputUnreadable, text, "point 2"));
+  EXPECT_TRUE(failsWith(readOutline(text).status(), ErrorCode::InputUnreadable, text, "point 2"));
   const std::string holes =
       dir.write("holes.json", R"({"points": [[0,0],[1,0],[1,1]], "holes": 3})");
-  EXPECT_TRUE(failsWith(readShape(holes).status(), ErrorCode::InputUnreadable, holes, "holes"));
+  EXPECT_TRUE(failsWith(readOutline(holes).status(), ErrorCode::InputUnreadable, holes, "holes"));
 }
 
 TEST(JsonOutline, UnknownUnits) {
   test::ScratchDir dir;
   const std::string path =
       dir.write("furlong.json", R"({"units": "furlong", "points": [[0,0],[1,0],[1,1]]})");
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputUnreadable, path, "units"));
+  EXPECT_TRUE(failsWith(readOutline(path).status(), ErrorCode::InputUnreadable, path, "units"));
 }
 
 TEST(JsonOutline, HugeNumber) {
   test::ScratchDir dir;
   const std::string path = dir.write("huge.json", "[[0,0],[1e9,0],[0,1]]");
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path,
+  EXPECT_TRUE(failsWith(readOutline(path).status(), ErrorCode::InputInvalid, path,
                         "the outline has a coordinate that is too large"));
 }
 
 TEST(JsonOutline, SelfIntersecting) {
   test::ScratchDir dir;
   const std::string path = dir.write("bowtie.json", "[[0,0],[10,10],[10,0],[0,10]]");
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path,
+  EXPECT_TRUE(failsWith(readOutline(path).status(), ErrorCode::InputInvalid, path,
                         "crosses itself near (5, 5) mm"));
 }
 
@@ -96,13 +97,13 @@ TEST(JsonOutline, HoleOutsideIsASecondOutline) {
   const std::string path = dir.write("outside.json", R"({"points": [[0,0],[10,0],[10,10],[0,10]],
                                                            "holes": [[[20,0],[30,0],[30,10]]]})");
   EXPECT_TRUE(
-      failsWith(readShape(path).status(), ErrorCode::InputInvalid, path, "2 separate outlines"));
+      failsWith(readOutline(path).status(), ErrorCode::InputInvalid, path, "2 separate outlines"));
 }
 
 TEST(JsonOutline, TooFewPoints) {
   test::ScratchDir dir;
   const std::string path = dir.write("two.json", "[[0,0],[10,0]]");
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path,
+  EXPECT_TRUE(failsWith(readOutline(path).status(), ErrorCode::InputInvalid, path,
                         "fewer than 3 distinct points"));
 }
 
@@ -111,10 +112,10 @@ TEST(JsonOutline, DeeplyNestedJsonDoesNotCrash) {
   const int depth = 200000;
   const std::string nested = std::string(depth, '[') + std::string(depth, ']');
   const std::string path = dir.write("deep.json", nested);
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputUnreadable, path, "point 1"));
+  EXPECT_TRUE(failsWith(readOutline(path).status(), ErrorCode::InputUnreadable, path, "point 1"));
   const std::string units =
       dir.write("units.json", R"({"points": [[0,0],[1,0],[1,1]], "units": )" + nested + "}");
-  EXPECT_TRUE(failsWith(readShape(units).status(), ErrorCode::InputUnreadable, units, "units"));
+  EXPECT_TRUE(failsWith(readOutline(units).status(), ErrorCode::InputUnreadable, units, "units"));
 }
 
 }  // namespace

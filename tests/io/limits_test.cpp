@@ -6,8 +6,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "io/curve_reader.h"
-#include "io/outline_reader.h"
+#include "dform/io/curve_reader.h"
+#include "dform/io/outline_reader.h"
 #include "test_util.h"
 
 namespace dform {
@@ -118,28 +118,29 @@ TEST(PointLimits, SvgOutlinesCountTogether) {
            body + "</svg>";
   };
   const std::string one = "<polygon points='" + polygon(100, true) + "'/>";
-  EXPECT_TRUE(parseShape(svg(one), "piece.svg", outlineLimitedTo(100)).isOk());
+  EXPECT_TRUE(parseOutline(svg(one), "piece.svg", outlineLimitedTo(100)).isOk());
   // Stopped while the 101st command is recorded, before anything is flattened.
-  EXPECT_TRUE(failsWith(parseShape(svg("<polygon points='" + polygon(101, true) + "'/>"),
-                                   "piece.svg", outlineLimitedTo(100))
+  EXPECT_TRUE(failsWith(parseOutline(svg("<polygon points='" + polygon(101, true) + "'/>"),
+                                     "piece.svg", outlineLimitedTo(100))
                             .status(),
                         ErrorCode::InputInvalid, "piece.svg",
                         "polygon 1 brings the outlines to more than 100 points (the limit)"));
   // A hole's points count with the outline's.
   const std::string hole = "<rect x='90' y='90' width='20' height='20'/>";
-  EXPECT_TRUE(failsWith(parseShape(svg(one + hole), "piece.svg", outlineLimitedTo(100)).status(),
+  EXPECT_TRUE(failsWith(parseOutline(svg(one + hole), "piece.svg", outlineLimitedTo(100)).status(),
                         ErrorCode::InputInvalid, "piece.svg", "rect 1 brings the outlines"));
   // Commands that draw nothing take memory too.
   std::string moves = "<path d='";
   for (int i = 0; i < 150; ++i) moves += "M 1 1 ";
-  EXPECT_TRUE(failsWith(parseShape(svg(moves + "'/>"), "piece.svg", outlineLimitedTo(100)).status(),
-                        ErrorCode::InputInvalid, "piece.svg",
-                        "path 1 has more than 100 moveto and closepath commands (the limit)"));
+  EXPECT_TRUE(
+      failsWith(parseOutline(svg(moves + "'/>"), "piece.svg", outlineLimitedTo(100)).status(),
+                ErrorCode::InputInvalid, "piece.svg",
+                "path 1 has more than 100 moveto and closepath commands (the limit)"));
   // A circle flattened finer than the limit allows.
   OutlineReadOptions fine = outlineLimitedTo(1000);
   fine.flattenTolerance = 1e-6;
   EXPECT_TRUE(
-      failsWith(parseShape(svg("<circle cx='100' cy='100' r='90'/>"), "piece.svg", fine).status(),
+      failsWith(parseOutline(svg("<circle cx='100' cy='100' r='90'/>"), "piece.svg", fine).status(),
                 ErrorCode::InputInvalid, "piece.svg",
                 "more than 1000 points (the limit) at a flatten tolerance of 1e-06 mm"));
 }
@@ -147,10 +148,10 @@ TEST(PointLimits, SvgOutlinesCountTogether) {
 TEST(PointLimits, JsonOutlinesCountTogether) {
   const std::string outline = "[" + polygon(100, false) + "]";
   EXPECT_TRUE(
-      parseShape("{\"points\": " + outline + "}", "piece.json", outlineLimitedTo(100)).isOk());
+      parseOutline("{\"points\": " + outline + "}", "piece.json", outlineLimitedTo(100)).isOk());
   const std::string withHole =
       "{\"points\": " + outline + ", \"holes\": [[[95, 95], [105, 95], [100, 105]]]}";
-  EXPECT_TRUE(failsWith(parseShape(withHole, "piece.json", outlineLimitedTo(100)).status(),
+  EXPECT_TRUE(failsWith(parseOutline(withHole, "piece.json", outlineLimitedTo(100)).status(),
                         ErrorCode::InputInvalid, "piece.json",
                         "the outlines have more than 100 points (the limit)"));
 }

@@ -1,5 +1,5 @@
 // Result models on disk: exact write/read round trip and consistency checks on reading.
-#include "io/model_files.h"
+#include "dform/io/model_files.h"
 
 #include <gtest/gtest.h>
 

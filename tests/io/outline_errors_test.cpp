@@ -3,7 +3,7 @@
 
 #include <filesystem>
 
-#include "io/outline_reader.h"
+#include "dform/io/outline_reader.h"
 #include "test_util.h"
 
 namespace dform {
@@ -21,63 +21,63 @@ TEST(OutlineErrors, MissingFile) {
   test::ScratchDir dir;
   const std::string path = dir.path() + "/nothing.svg";
   EXPECT_TRUE(
-      failsWith(readShape(path).status(), ErrorCode::InputUnreadable, path, "no such file"));
+      failsWith(readOutline(path).status(), ErrorCode::InputUnreadable, path, "no such file"));
 }
 
 TEST(OutlineErrors, FolderInsteadOfFile) {
   test::ScratchDir dir;
-  EXPECT_TRUE(
-      failsWith(readShape(dir.path()).status(), ErrorCode::InputUnreadable, dir.path(), "folder"));
+  EXPECT_TRUE(failsWith(readOutline(dir.path()).status(), ErrorCode::InputUnreadable, dir.path(),
+                        "folder"));
 }
 
 TEST(OutlineErrors, FileTooLarge) {
   test::ScratchDir dir;
   const std::string path = dir.write("huge.svg", "");
   std::filesystem::resize_file(path, (std::uintmax_t(64) << 20) + 1);  // sparse: nothing is written
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputUnreadable, path, "too large"));
+  EXPECT_TRUE(failsWith(readOutline(path).status(), ErrorCode::InputUnreadable, path, "too large"));
 }
 
 TEST(OutlineErrors, NotSvgOrJson) {
   test::ScratchDir dir;
   const std::string path = dir.write("notes.txt", "just some notes\n");
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputUnreadable, path,
+  EXPECT_TRUE(failsWith(readOutline(path).status(), ErrorCode::InputUnreadable, path,
                         "not an SVG or JSON file"));
   const std::string binary = dir.write("picture.png", std::string("\x89PNG\r\n\x1a\n\0\0", 10));
-  EXPECT_TRUE(failsWith(readShape(binary).status(), ErrorCode::InputUnreadable, binary));
+  EXPECT_TRUE(failsWith(readOutline(binary).status(), ErrorCode::InputUnreadable, binary));
 }
 
 TEST(OutlineErrors, SvgThatIsNotXml) {
   test::ScratchDir dir;
   const std::string path = dir.write("text.svg", "this is not xml");
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputUnreadable, path));
+  EXPECT_TRUE(failsWith(readOutline(path).status(), ErrorCode::InputUnreadable, path));
 }
 
 TEST(OutlineErrors, MalformedXml) {
   test::ScratchDir dir;
   const std::string path =
       dir.write("broken.svg", "<svg xmlns='http://www.w3.org/2000/svg'><rect width='10'</svg>");
-  EXPECT_TRUE(
-      failsWith(readShape(path).status(), ErrorCode::InputUnreadable, path, "not well-formed XML"));
+  EXPECT_TRUE(failsWith(readOutline(path).status(), ErrorCode::InputUnreadable, path,
+                        "not well-formed XML"));
 }
 
 TEST(OutlineErrors, XmlThatIsNotSvg) {
   test::ScratchDir dir;
   const std::string path = dir.write("page.svg", "<html><body/></html>");
   EXPECT_TRUE(
-      failsWith(readShape(path).status(), ErrorCode::InputUnreadable, path, "no <svg> root"));
+      failsWith(readOutline(path).status(), ErrorCode::InputUnreadable, path, "no <svg> root"));
 }
 
 TEST(OutlineErrors, MalformedPathData) {
   test::ScratchDir dir;
   const std::string path = dir.write("bad-d.svg", svg("<path d='M 0 0 L 10 x 20 Z'/>"));
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputUnreadable, path, "path 1"));
+  EXPECT_TRUE(failsWith(readOutline(path).status(), ErrorCode::InputUnreadable, path, "path 1"));
 }
 
 TEST(OutlineErrors, MalformedViewBox) {
   test::ScratchDir dir;
   const std::string path =
       dir.write("bad-vb.svg", "<svg xmlns='http://www.w3.org/2000/svg' viewBox='0 0 wide'/>");
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputUnreadable, path, "viewBox"));
+  EXPECT_TRUE(failsWith(readOutline(path).status(), ErrorCode::InputUnreadable, path, "viewBox"));
 }
 
 TEST(OutlineErrors, DeepNestingRefused) {
@@ -86,14 +86,14 @@ TEST(OutlineErrors, DeepNestingRefused) {
   for (int i = 0; i < 100000; ++i) body += "<g>";
   for (int i = 0; i < 100000; ++i) body += "</g>";
   const std::string path = dir.write("deep.svg", svg(body));
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputUnreadable, path, "nested"));
+  EXPECT_TRUE(failsWith(readOutline(path).status(), ErrorCode::InputUnreadable, path, "nested"));
 }
 
 TEST(OutlineErrors, NoClosedOutline) {
   test::ScratchDir dir;
   const std::string path = dir.write("empty.svg", svg("<text x='1' y='1'>nothing to cut</text>"));
   EXPECT_TRUE(
-      failsWith(readShape(path).status(), ErrorCode::InputInvalid, path, "no closed outline"));
+      failsWith(readOutline(path).status(), ErrorCode::InputInvalid, path, "no closed outline"));
 }
 
 TEST(OutlineErrors, OpenPathSaysHowFarItsEndsAre) {
@@ -101,7 +101,7 @@ TEST(OutlineErrors, OpenPathSaysHowFarItsEndsAre) {
   const std::string path =
       dir.write("open.svg",
                 svg("<rect x='150' width='10' height='10'/><path d='M10 10 H50 V50 H10 V13.2'/>"));
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path,
+  EXPECT_TRUE(failsWith(readOutline(path).status(), ErrorCode::InputInvalid, path,
                         "path 1 is open (its end is 3.2 mm from its start)"));
 }
 
@@ -109,7 +109,7 @@ TEST(OutlineErrors, OpenSubpathIsNamed) {
   test::ScratchDir dir;
   const std::string path =
       dir.write("open2.svg", svg("<path d='M10 10 H90 V90 H10 Z M20 20 H30 V30'/>"));
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path,
+  EXPECT_TRUE(failsWith(readOutline(path).status(), ErrorCode::InputInvalid, path,
                         "path 1 (subpath 2) is open"));
 }
 
@@ -118,14 +118,15 @@ TEST(OutlineErrors, OpenPolyline) {
   const std::string path =
       dir.write("polyline.svg", svg("<polyline id='cut\nout' points='10,10 90,10 90,90 10,90'/>"));
   // The id's line break does not break the one-line message.
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path,
+  EXPECT_TRUE(failsWith(readOutline(path).status(), ErrorCode::InputInvalid, path,
                         "polyline 1 (id \"cut out\") is open"));
 }
 
 TEST(OutlineErrors, LineIsOpen) {
   test::ScratchDir dir;
   const std::string path = dir.write("line.svg", svg("<line x1='0' y1='0' x2='10' y2='0'/>"));
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path, "line 1 is open"));
+  EXPECT_TRUE(
+      failsWith(readOutline(path).status(), ErrorCode::InputInvalid, path, "line 1 is open"));
 }
 
 TEST(OutlineErrors, SelfIntersectingSaysWhere) {
@@ -133,7 +134,7 @@ TEST(OutlineErrors, SelfIntersectingSaysWhere) {
   const std::string path =
       dir.write("bowtie.svg", svg("<polygon points='0,0 100,100 100,0 0,100'/>"));
   // The crossing is at (50, 50) in the SVG and at (50, 200 - 50) in the y-up page frame.
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path,
+  EXPECT_TRUE(failsWith(readOutline(path).status(), ErrorCode::InputInvalid, path,
                         "crosses itself near (50, 150) mm"));
 }
 
@@ -141,7 +142,7 @@ TEST(OutlineErrors, InfiniteCoordinate) {
   test::ScratchDir dir;
   const std::string path =
       dir.write("inf.svg", svg("<path transform='scale(1e300)' d='M0 0 L1e300 0 L0 1e300 Z'/>"));
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path, "infinite"));
+  EXPECT_TRUE(failsWith(readOutline(path).status(), ErrorCode::InputInvalid, path, "infinite"));
 }
 
 TEST(OutlineErrors, NonFiniteNumbersInAttributesAreInvalidNotUnreadable) {
@@ -163,36 +164,36 @@ TEST(OutlineErrors, NonFiniteNumbersInAttributesAreInvalidNotUnreadable) {
        "'inf' in its 'viewBox'"}};
   for (const auto& [text, says] : cases) {
     const std::string path = dir.write("nonfinite.svg", text);
-    EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path, says)) << text;
+    EXPECT_TRUE(failsWith(readOutline(path).status(), ErrorCode::InputInvalid, path, says)) << text;
   }
   const std::string misspelt =
       dir.write("misspelt.svg", svg("<polygon points='10,10 abc,100 100,10'/>"));
-  EXPECT_TRUE(failsWith(readShape(misspelt).status(), ErrorCode::InputUnreadable, misspelt,
+  EXPECT_TRUE(failsWith(readOutline(misspelt).status(), ErrorCode::InputUnreadable, misspelt,
                         "malformed 'points'"));
 }
 
 TEST(OutlineErrors, HugeCoordinate) {
   test::ScratchDir dir;
   const std::string path = dir.write("huge.svg", svg("<rect width='2e7' height='10'/>"));
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path, "too large"));
+  EXPECT_TRUE(failsWith(readOutline(path).status(), ErrorCode::InputInvalid, path, "too large"));
   OutlineReadOptions tight;
   tight.maxCoordinate = 100;
   const std::string small = dir.write("small.svg", svg("<rect width='150' height='10'/>"));
-  EXPECT_TRUE(failsWith(readShape(small, tight).status(), ErrorCode::InputInvalid, small,
+  EXPECT_TRUE(failsWith(readOutline(small, tight).status(), ErrorCode::InputInvalid, small,
                         "rect 1 has a coordinate"));
 }
 
 TEST(OutlineErrors, FewerThanThreeDistinctPoints) {
   test::ScratchDir dir;
   const std::string path = dir.write("two.svg", svg("<polygon points='10,10 50,50 10,10'/>"));
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path,
+  EXPECT_TRUE(failsWith(readOutline(path).status(), ErrorCode::InputInvalid, path,
                         "fewer than 3 distinct points"));
 }
 
 TEST(OutlineErrors, ZeroArea) {
   test::ScratchDir dir;
   const std::string path = dir.write("flat.svg", svg("<polygon points='10,10 50,10 90,10'/>"));
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path, "zero area"));
+  EXPECT_TRUE(failsWith(readOutline(path).status(), ErrorCode::InputInvalid, path, "zero area"));
 }
 
 TEST(OutlineErrors, TwoSeparateOutlines) {
@@ -200,7 +201,7 @@ TEST(OutlineErrors, TwoSeparateOutlines) {
   const std::string path =
       dir.write("two-pieces.svg", svg("<rect x='10' y='10' width='50' height='50'/>"
                                       "<circle cx='120' cy='40' r='20'/>"));
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path,
+  EXPECT_TRUE(failsWith(readOutline(path).status(), ErrorCode::InputInvalid, path,
                         "2 separate outlines; expected one piece"));
 }
 
@@ -211,7 +212,7 @@ TEST(OutlineErrors, IslandInsideHoleIsASeparatePiece) {
                                   "<rect x='40' y='40' width='120' height='120'/>"
                                   "<rect x='80' y='80' width='40' height='40'/>"));
   EXPECT_TRUE(
-      failsWith(readShape(path).status(), ErrorCode::InputInvalid, path, "2 separate outlines"));
+      failsWith(readOutline(path).status(), ErrorCode::InputInvalid, path, "2 separate outlines"));
 }
 
 TEST(OutlineErrors, OverlappingOutlines) {
@@ -219,18 +220,19 @@ TEST(OutlineErrors, OverlappingOutlines) {
   const std::string path =
       dir.write("overlap.svg", svg("<rect x='10' y='10' width='100' height='100'/>"
                                    "<circle cx='110' cy='60' r='20'/>"));
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path, "touch or cross"));
+  EXPECT_TRUE(
+      failsWith(readOutline(path).status(), ErrorCode::InputInvalid, path, "touch or cross"));
   // Side by side, sharing the edge x = 50: they touch somewhere on it.
   const std::string touching = dir.write(
       "touching.svg", svg("<rect width='50' height='50'/><rect x='50' width='50' height='50'/>"));
-  EXPECT_TRUE(failsWith(readShape(touching).status(), ErrorCode::InputInvalid, touching,
+  EXPECT_TRUE(failsWith(readOutline(touching).status(), ErrorCode::InputInvalid, touching,
                         "touch or cross near (50, "));
 }
 
 TEST(OutlineErrors, NegativeRadius) {
   test::ScratchDir dir;
   const std::string path = dir.write("neg.svg", svg("<circle cx='50' cy='50' r='-5'/>"));
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path,
+  EXPECT_TRUE(failsWith(readOutline(path).status(), ErrorCode::InputInvalid, path,
                         "circle 1 has a negative 'r'"));
 }
 
@@ -238,7 +240,7 @@ TEST(OutlineErrors, NestedSvgUnsupported) {
   test::ScratchDir dir;
   const std::string path =
       dir.write("nested.svg", svg("<svg x='10'><rect width='10' height='10'/></svg>"));
-  EXPECT_TRUE(failsWith(readShape(path).status(), ErrorCode::InputInvalid, path, "nested <svg>"));
+  EXPECT_TRUE(failsWith(readOutline(path).status(), ErrorCode::InputInvalid, path, "nested <svg>"));
 }
 
 TEST(OutlineErrors, AbsurdToleranceIsRefusedNotHung) {
@@ -246,10 +248,10 @@ TEST(OutlineErrors, AbsurdToleranceIsRefusedNotHung) {
   OutlineReadOptions options;
   options.flattenTolerance = 1e-12;
   const std::string path = dir.write("circle.svg", svg("<circle cx='100' cy='100' r='90'/>"));
-  EXPECT_TRUE(failsWith(readShape(path, options).status(), ErrorCode::InputInvalid, path,
+  EXPECT_TRUE(failsWith(readOutline(path, options).status(), ErrorCode::InputInvalid, path,
                         "flatten tolerance"));
   options.flattenTolerance = 0;
-  EXPECT_TRUE(failsWith(readShape(path, options).status(), ErrorCode::Usage, path));
+  EXPECT_TRUE(failsWith(readOutline(path, options).status(), ErrorCode::Usage, path));
 }
 
 TEST(OutlineErrors, TruncatedAndCorruptedFilesNeverCrash) {
@@ -261,7 +263,7 @@ TEST(OutlineErrors, TruncatedAndCorruptedFilesNeverCrash) {
           "<circle cx='50' cy='60' r='10'/></g>");
   for (std::size_t cut = 0; cut < text.size(); cut += 3) {
     const std::string path = dir.write("cut.svg", text.substr(0, cut));
-    const Result<Shape2> shape = readShape(path);
+    const Result<Shape2> shape = readOutline(path);
     if (!shape.isOk()) {
       EXPECT_EQ(shape.status().message().rfind(path + ": ", 0), 0u) << shape.status().message();
     }
@@ -270,7 +272,7 @@ TEST(OutlineErrors, TruncatedAndCorruptedFilesNeverCrash) {
     std::string corrupted = text;
     corrupted[at] = "<>/\"'0-.e "[at % 10];
     const std::string path = dir.write("corrupt.svg", corrupted);
-    const Result<Shape2> shape = readShape(path);
+    const Result<Shape2> shape = readOutline(path);
     if (!shape.isOk()) {
       EXPECT_EQ(shape.status().message().rfind(path + ": ", 0), 0u) << shape.status().message();
     }

@@ -9,8 +9,8 @@
 #include <filesystem>
 #include <set>
 
-#include "core/polyline.h"
-#include "io/outline_reader.h"
+#include "dform/core/polyline.h"
+#include "dform/io/outline_reader.h"
 
 namespace dform {
 namespace {
@@ -34,7 +34,7 @@ const std::pair<Joined, Joined> kPairs[] = {
 double perimeterOf(const Joined& piece, double tolerance) {
   OutlineReadOptions options;
   options.flattenTolerance = tolerance;
-  const Result<Shape2> shape = readShape(kSamples + piece.file, options);
+  const Result<Shape2> shape = readOutline(kSamples + piece.file, options);
   EXPECT_TRUE(shape.isOk()) << shape.status().message();
   if (!shape.isOk()) return 0.0;
   EXPECT_EQ(shape.value().holes.size(), piece.hole ? 1u : 0u) << piece.file;
@@ -92,7 +92,7 @@ TEST(Samples, EveryForwardSampleIsInAPair) {
 
 TEST(Samples, NonConvexSamplesAreNonConvex) {
   for (const char* name : {"nonconvex-a.svg", "nonconvex-b.svg"}) {
-    const Result<Shape2> shape = readShape(kSamples + name);
+    const Result<Shape2> shape = readOutline(kSamples + name);
     ASSERT_TRUE(shape.isOk()) << shape.status().message();
     const Points2& P = shape.value().outer.points;
     EXPECT_GT(hullArea(P), 1.002 * signedArea(P)) << name;
@@ -100,7 +100,7 @@ TEST(Samples, NonConvexSamplesAreNonConvex) {
 }
 
 TEST(Samples, SquaricleDiscHasFourCreasesJoiningItsQuarterPoints) {
-  const Result<Shape2> shape = readShape(kSamples + "squaricle-disc.svg");
+  const Result<Shape2> shape = readOutline(kSamples + "squaricle-disc.svg");
   ASSERT_TRUE(shape.isOk()) << shape.status().message();
   ASSERT_EQ(shape.value().creases.size(), 4u);
   const double radius = 200.0 / M_PI;

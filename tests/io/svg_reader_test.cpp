@@ -5,8 +5,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/polyline.h"
-#include "io/outline_reader.h"
+#include "dform/core/polyline.h"
+#include "dform/io/outline_reader.h"
 #include "test_util.h"
 
 namespace dform {
@@ -28,7 +28,7 @@ std::string svgDocument(const std::string& rootAttributes, const std::string& bo
 
 /// Reads a shape that must be valid.
 Shape2 readOk(const std::string& path, const OutlineReadOptions& options = {}) {
-  Result<Shape2> shape = readShape(path, options);
+  Result<Shape2> shape = readOutline(path, options);
   EXPECT_TRUE(shape.isOk()) << shape.status().message();
   return shape.isOk() ? shape.value() : Shape2{};
 }

@@ -1,4 +1,4 @@
-#include "meshing/convex_hull.h"
+#include "dform/meshing/convex_hull.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "meshing/triangulate.h"
+#include "dform/meshing/triangulate.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include <string>
 #include <utility>
 
-#include "core/polyline.h"
+#include "dform/core/polyline.h"
 
 namespace dform {
 namespace {

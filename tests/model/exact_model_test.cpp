@@ -1,7 +1,7 @@
 // The exact model's meshes follow the body's folds: every triangle lies in one face of the body
 // and maps onto it isometrically, so the figures of an exact result are rounding, at every
 // resolution, and no triangle of a piece straddles a fold.
-#include "model/exact_model.h"
+#include "dform/model/exact_model.h"
 
 #include <gtest/gtest.h>
 
@@ -12,11 +12,11 @@
 #include <utility>
 #include <vector>
 
-#include "exact/body_edges.h"
+#include "dform/exact/body_edges.h"
+#include "dform/pipeline/reference_seams.h"
+#include "dform/validate/gate.h"
+#include "dform/validate/metrics.h"
 #include "exact/shapes.h"
-#include "pipeline/reference_seams.h"
-#include "validate/gate.h"
-#include "validate/metrics.h"
 
 namespace dform {
 namespace {

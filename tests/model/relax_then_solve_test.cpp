@@ -1,6 +1,6 @@
 // relaxThenSolve: the relaxation, then Levenberg-Marquardt or the relaxation's multiplier rounds,
 // as forward and inverse modelling both run it.
-#include "model/relax_then_solve.h"
+#include "dform/model/relax_then_solve.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "model/term_table.h"
+#include "dform/model/term_table.h"
 #include "term_table_checks.h"
 
 namespace dform {

@@ -1,5 +1,5 @@
 // The memory check that stops a run too large for the machine before it meshes anything.
-#include "model/resources.h"
+#include "dform/model/resources.h"
 
 #include <gtest/gtest.h>
 

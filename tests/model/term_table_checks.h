@@ -10,7 +10,7 @@
 #include <set>
 #include <vector>
 
-#include "model/term_table.h"
+#include "dform/model/term_table.h"
 #include "test_meshes.h"
 
 namespace dform::test {

@@ -1,14 +1,14 @@
 // Every term of the objective against finite differences, and the helpers around them.
-#include "model/terms.h"
+#include "dform/model/terms.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 #include <random>
 
-#include "solver/gradient_check.h"
+#include "dform/solver/gradient_check.h"
+#include "dform/validate/metrics.h"
 #include "test_meshes.h"
-#include "validate/metrics.h"
 
 namespace dform {
 namespace {

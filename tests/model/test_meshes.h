@@ -3,9 +3,9 @@
 
 #include <cmath>
 
-#include "core/polyline.h"
-#include "core/types.h"
-#include "meshing/triangulate.h"
+#include "dform/core/polyline.h"
+#include "dform/core/types.h"
+#include "dform/meshing/triangulate.h"
 
 namespace dform::test {
 

@@ -11,7 +11,7 @@
 #include <thread>
 #include <vector>
 
-#include "pipeline/batch.h"
+#include "dform/pipeline/batch.h"
 
 namespace dform {
 namespace {

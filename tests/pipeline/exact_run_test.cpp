@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "pipeline/forward_pipeline.h"
-#include "pipeline/reference_seams.h"
-#include "validate/gate.h"
+#include "dform/pipeline/forward_pipeline.h"
+#include "dform/pipeline/reference_seams.h"
+#include "dform/validate/gate.h"
 
 namespace dform {
 namespace {

@@ -9,12 +9,12 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "export/exporter.h"
-#include "export/internal.h"
-#include "io/outline_reader.h"
-#include "pipeline/forward_pipeline.h"
-#include "pipeline/run.h"
-#include "pipeline/saved_result.h"
+#include "dform/export/exporter.h"
+#include "dform/export/internal.h"
+#include "dform/io/outline_reader.h"
+#include "dform/pipeline/forward_pipeline.h"
+#include "dform/pipeline/run.h"
+#include "dform/pipeline/saved_result.h"
 
 namespace dform {
 namespace {
@@ -57,7 +57,7 @@ class FailedGateRun : public testing::Test {
 
   // Solves job_ into run_.
   void solve() {
-    Result<Shape2> a = readShape(job_.pieceA), b = readShape(job_.pieceB);
+    Result<Shape2> a = readOutline(job_.pieceA), b = readOutline(job_.pieceB);
     ASSERT_TRUE(a.isOk() && b.isOk());
     MessageSink sink;
     Result<ForwardRun> run = makeDForm(a.value(), b.value(), job_, sink);

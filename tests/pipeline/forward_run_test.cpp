@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "core/polyline.h"
-#include "pipeline/forward_pipeline.h"
-#include "pipeline/reference_seams.h"
-#include "validate/gate.h"
+#include "dform/core/polyline.h"
+#include "dform/pipeline/forward_pipeline.h"
+#include "dform/pipeline/reference_seams.h"
+#include "dform/validate/gate.h"
 
 namespace dform {
 namespace {

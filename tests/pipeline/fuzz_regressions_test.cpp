@@ -1,7 +1,7 @@
 // Inputs that once crashed the job-file fuzz target (tests/fuzz/regressions/job/): each now gives
 // a proper Status. What each one found is in docs/hardening.md.
+#include "dform/pipeline/job_file.h"
 #include "fuzz/regressions.h"
-#include "pipeline/job_file.h"
 
 namespace dform {
 namespace {

@@ -9,11 +9,11 @@
 #include <map>
 #include <utility>
 
-#include "core/polyline.h"
-#include "pipeline/forward_pipeline.h"
-#include "pipeline/inverse_pipeline.h"
-#include "pipeline/reference_seams.h"
-#include "validate/gate.h"
+#include "dform/core/polyline.h"
+#include "dform/pipeline/forward_pipeline.h"
+#include "dform/pipeline/inverse_pipeline.h"
+#include "dform/pipeline/reference_seams.h"
+#include "dform/validate/gate.h"
 
 namespace dform {
 namespace {

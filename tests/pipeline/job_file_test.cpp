@@ -1,4 +1,4 @@
-#include "pipeline/job_file.h"
+#include "dform/pipeline/job_file.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -7,7 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "model/term_table.h"
+#include "dform/model/term_table.h"
 
 namespace dform {
 namespace {

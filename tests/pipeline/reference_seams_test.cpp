@@ -1,13 +1,13 @@
 // The references a result's figures are measured against (pipeline/reference_seams.h): the exact
 // body where the glued metric is convex, and for each reason there is none, that reason as a
 // value the round trip chooses its way by.
-#include "pipeline/reference_seams.h"
+#include "dform/pipeline/reference_seams.h"
 
 #include <gtest/gtest.h>
 
-#include "exact/exact_gluing.h"
-#include "io/outline_reader.h"
-#include "pipeline/forward_pipeline.h"
+#include "dform/exact/exact_gluing.h"
+#include "dform/io/outline_reader.h"
+#include "dform/pipeline/forward_pipeline.h"
 
 namespace dform {
 namespace {
@@ -17,7 +17,7 @@ using Missing = ReferenceSeam::Missing;
 std::string sample(const std::string& name) { return std::string(DFORM_SAMPLES_DIR) + "/" + name; }
 
 DForm solvedPair(const std::string& a, const std::string& b, ModelChoice model) {
-  Result<Shape2> shapeA = readShape(sample(a)), shapeB = readShape(sample(b));
+  Result<Shape2> shapeA = readOutline(sample(a)), shapeB = readOutline(sample(b));
   EXPECT_TRUE(shapeA.isOk() && shapeB.isOk());
   ForwardSettings settings;
   settings.model = model;

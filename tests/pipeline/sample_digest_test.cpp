@@ -27,7 +27,7 @@
 #include <string>
 
 #include "cli/text_files.h"
-#include "core/file_hash.h"
+#include "dform/core/file_hash.h"
 #include "shipped_samples.h"
 
 namespace dform {

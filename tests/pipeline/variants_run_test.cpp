@@ -7,13 +7,13 @@
 #include <cmath>
 #include <set>
 
-#include "core/piece_loops.h"
-#include "core/polyline.h"
-#include "io/outline_reader.h"
-#include "pipeline/forward_pipeline.h"
-#include "pipeline/reference_seams.h"
-#include "validate/gate.h"
-#include "validate/metrics.h"
+#include "dform/core/piece_loops.h"
+#include "dform/core/polyline.h"
+#include "dform/io/outline_reader.h"
+#include "dform/pipeline/forward_pipeline.h"
+#include "dform/pipeline/reference_seams.h"
+#include "dform/validate/gate.h"
+#include "dform/validate/metrics.h"
 
 namespace dform {
 namespace {
@@ -69,7 +69,7 @@ double straddle(double h, double rMin) {
 // boundary (mm).
 void expectJoined(const Piece& piece, const std::string& file, bool hole, double rMin) {
   SCOPED_TRACE(file);
-  const Result<Shape2> drawn = readShape(file);
+  const Result<Shape2> drawn = readOutline(file);
   ASSERT_TRUE(drawn.isOk());
   const Points2& joined = hole ? drawn.value().holes[0].points : drawn.value().outer.points;
   EXPECT_EQ(seamIsHole(piece), hole);

@@ -1,7 +1,7 @@
 // What renderReportHtml needs besides the model, for tests that render report.html of a test model.
 #pragma once
 
-#include "report/html_report.h"
+#include "dform/report/html_report.h"
 
 namespace dform::test {
 

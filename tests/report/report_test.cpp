@@ -11,13 +11,13 @@
 #include <utility>
 #include <vector>
 
-#include "core/shape_projection.h"
+#include "dform/core/shape_projection.h"
+#include "dform/report/convergence_plot.h"
+#include "dform/report/html_report.h"
+#include "dform/report/views.h"
+#include "dform/validate/metrics.h"
 #include "minimal_report.h"
 #include "models.h"
-#include "report/convergence_plot.h"
-#include "report/html_report.h"
-#include "report/views.h"
-#include "validate/metrics.h"
 
 namespace dform {
 namespace {

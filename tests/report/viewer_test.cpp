@@ -18,13 +18,13 @@
 #include <vector>
 
 #include "cli/text_files.h"
-#include "core/shape_projection.h"
+#include "dform/core/shape_projection.h"
+#include "dform/report/html_report.h"
+#include "dform/report/views.h"
+#include "dform/validate/metrics.h"
 #include "headless_chromium.h"
 #include "minimal_report.h"
 #include "models.h"
-#include "report/html_report.h"
-#include "report/views.h"
-#include "validate/metrics.h"
 
 namespace dform {
 namespace {

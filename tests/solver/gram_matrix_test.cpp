@@ -1,4 +1,4 @@
-#include "solver/gram_matrix.h"
+#include "dform/solver/gram_matrix.h"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "core/interrupt.h"
+#include "dform/core/interrupt.h"
 
 namespace dform {
 namespace {

@@ -1,4 +1,4 @@
-#include "solver/solver.h"
+#include "dform/solver/solver.h"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <random>
 
-#include "solver/gradient_check.h"
+#include "dform/solver/gradient_check.h"
 
 namespace dform {
 namespace {

@@ -1,4 +1,4 @@
-#include "solver/supernodal_cholesky.h"
+#include "dform/solver/supernodal_cholesky.h"
 
 #include <gtest/gtest.h>
 

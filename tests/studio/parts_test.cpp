@@ -7,10 +7,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "io/outline_reader.h"
-#include "studio/guard.h"
-#include "studio/outlines.h"
-#include "studio/zip.h"
+#include "dform/io/outline_reader.h"
+#include "dform/studio/guard.h"
+#include "dform/studio/outlines.h"
+#include "dform/studio/zip.h"
 
 namespace dform {
 namespace {
@@ -105,13 +105,13 @@ TEST(StudioOutlines, EveryKindReadsAtEveryExtreme) {
     }
     for (const auto& values : settings) {
       Result<Shape2> shape =
-          parseShape(studio::parametricOutline(kind.name, values), kind.name + ".json");
+          parseOutline(studio::parametricOutline(kind.name, values), kind.name + ".json");
       EXPECT_TRUE(shape.isOk()) << kind.name << ": " << shape.status().message();
     }
   }
   auto perimeter = [](const std::string& kind, std::map<std::string, double> values) {
     const Points2 p =
-        parseShape(studio::parametricOutline(kind, values), "x.json").value().outer.points;
+        parseOutline(studio::parametricOutline(kind, values), "x.json").value().outer.points;
     double length = 0;
     for (Eigen::Index i = 0; i < p.rows(); ++i)
       length += (p.row((i + 1) % p.rows()) - p.row(i)).norm();

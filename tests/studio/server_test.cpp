@@ -11,12 +11,12 @@
 #include <sstream>
 #include <thread>
 
-#include "io/outline_reader.h"
-#include "pipeline/forward_pipeline.h"
-#include "pipeline/report.h"
-#include "studio/session.h"
-#include "studio/studio.h"
-#include "studio/wire.h"
+#include "dform/io/outline_reader.h"
+#include "dform/pipeline/forward_pipeline.h"
+#include "dform/pipeline/report.h"
+#include "dform/studio/session.h"
+#include "dform/studio/studio.h"
+#include "dform/studio/wire.h"
 #include "studio_client.h"
 
 // clang-format off

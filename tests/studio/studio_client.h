@@ -13,9 +13,9 @@
 #include <thread>
 #include <vector>
 
-#include "io/outline_reader.h"
-#include "studio/outlines.h"
-#include "studio/studio.h"
+#include "dform/io/outline_reader.h"
+#include "dform/studio/outlines.h"
+#include "dform/studio/studio.h"
 
 // clang-format off
 #include <httplib.h>  // last: its resolv.h defines _res, a name Eigen uses
@@ -145,7 +145,7 @@ inline std::vector<std::uint32_t> decodeIndices(const nlohmann::json& text) {
 
 /// The studio's built-in starting ellipse of semi-axes a, b, read as the studio reads it.
 inline Shape2 startEllipse(double a, double b, const std::string& name) {
-  return parseShape(studio::parametricOutline("ellipse", {{"a", a}, {"b", b}}), name).value();
+  return parseOutline(studio::parametricOutline("ellipse", {{"a", a}, {"b", b}}), name).value();
 }
 
 }  // namespace dform::test

@@ -1,7 +1,7 @@
 // Inputs that once crashed the gate-file fuzz target (tests/fuzz/regressions/gate/): each now
 // gives a proper Status. What each one found is in docs/hardening.md.
+#include "dform/validate/gate.h"
 #include "fuzz/regressions.h"
-#include "validate/gate.h"
 
 namespace dform {
 namespace {

@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "validate/gate.h"
+#include "dform/validate/gate.h"
 
 namespace dform {
 namespace {

@@ -1,4 +1,4 @@
-#include "validate/metrics.h"
+#include "dform/validate/metrics.h"
 
 #include <gtest/gtest.h>
 
@@ -10,13 +10,13 @@
 #include <utility>
 #include <vector>
 
-#include "core/interrupt.h"
-#include "core/polyline.h"
-#include "core/shape_projection.h"
+#include "dform/core/interrupt.h"
+#include "dform/core/polyline.h"
+#include "dform/core/shape_projection.h"
+#include "dform/validate/cgal_checks.h"
+#include "dform/validate/gate.h"
+#include "dform/validate/mesh_measures.h"
 #include "models.h"
-#include "validate/cgal_checks.h"
-#include "validate/gate.h"
-#include "validate/mesh_measures.h"
 
 namespace dform {
 namespace {

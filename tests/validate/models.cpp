@@ -7,7 +7,7 @@
 #include <tuple>
 #include <vector>
 
-#include "meshing/triangulate.h"
+#include "dform/meshing/triangulate.h"
 
 namespace dform::test {
 
