@@ -1,0 +1,125 @@
+#!/usr/bin/env python3
+"""The man page and the bash completion of dform, made from the command's own --help texts, so
+that neither can describe options the command does not have.
+
+    help_pages.py DFORM OUT_DIR    writes OUT_DIR/dform.1.gz and OUT_DIR/dform.bash
+
+dform --help lists the subcommands; each `dform SUB --help` gives its usage, positionals and
+options (CLI11's layout: a section title ending in ':', then one entry per line, the name padded
+to a column and its description).
+"""
+import datetime
+import gzip
+import os
+import re
+import subprocess
+import sys
+
+ENTRY = re.compile(r"^  (\S.*?)(?:\s{2,}(.*))?$")
+
+
+def help_text(dform, *args):
+    out = subprocess.run([dform, *args, "--help"], check=True, capture_output=True, text=True)
+    return out.stdout
+
+
+def sections(text):
+    """{title: [(name, description), ...]} and the lines before the first section."""
+    found, intro, current = {}, [], None
+    for line in text.splitlines():
+        if re.match(r"^[A-Z][A-Za-z ]*:$", line):
+            current = line[:-1]
+            found[current] = []
+        elif current and line.startswith("  "):
+            m = ENTRY.match(line)
+            if m and not line.startswith("   "):
+                found[current].append([m.group(1).strip(), (m.group(2) or "").strip()])
+            elif found[current]:  # a description wrapped onto the next line
+                found[current][-1][1] += " " + line.strip()
+        elif current is None and line.strip():
+            intro.append(line.strip())
+    return found, intro
+
+
+def option_names(entry):
+    """'-o,--output TEXT REQUIRED' -> ['-o', '--output']."""
+    return [n for n in re.split(r"[ ,]", entry) if n.startswith("-")]
+
+
+def roff(text):
+    return text.replace("\\", "\\e").replace("-", "\\-").replace("'", "\\(aq")
+
+
+def man_page(dform, version, commands):
+    top, intro = sections(help_text(dform))
+    date = datetime.date.fromtimestamp(os.stat(dform).st_mtime).isoformat()
+    lines = [f'.TH DFORM 1 "{date}" "dform {version}" "User Commands"', ".SH NAME",
+             "dform \\- " + roff(intro[0].split(": ", 1)[-1]), ".SH SYNOPSIS",
+             "\\fBdform\\fR \\fISUBCOMMAND\\fR [\\fIOPTIONS\\fR] [\\fIFILES\\fR]",
+             ".SH DESCRIPTION",
+             "A D-Form is made by cutting two flat pieces with the same perimeter and zipping "
+             "their edges together. Each subcommand below has its own options; "
+             "\\fBdform\\fR \\fISUBCOMMAND\\fR \\fB\\-\\-help\\fR prints them.", ".SH COMMANDS"]
+    for name, summary in top.get("Subcommands", []):
+        lines += [".SS " + roff(name), roff(summary) + "."]
+        found, usage = commands[name]
+        lines += [".PP", "Usage: dform " + roff(" ".join(usage[-1].split()[2:]) if usage else name)]
+        for title in ("Positionals", "Options"):
+            for entry, description in found.get(title, []):
+                lines += [".TP", "\\fB" + roff(entry) + "\\fR", roff(description)]
+    lines += [".SH EXIT STATUS", "0 success; 1 internal error; 2 usage; 3 unreadable input; "
+              "4 invalid input; 5 solve failed; 6 output failed; 7 quality gate failed; "
+              "130 interrupted (143 on SIGTERM).", ".SH SEE ALSO",
+              "The documentation in the source tree: README.md and docs/ (docs/cli.md for every "
+              "command)."]
+    return "\n".join(lines) + "\n"
+
+
+def completion(top, commands):
+    cases = []
+    for name, _ in top.get("Subcommands", []):
+        found, _ = commands[name]
+        options = sorted({n for entry, _ in found.get("Options", []) for n in option_names(entry)})
+        cases.append(f'    {name}) options="{" ".join(options)}" ;;')
+    subcommands = " ".join(name for name, _ in top.get("Subcommands", []))
+    return f"""# bash completion for dform, made from its --help texts (help_pages.py)
+_dform() {{
+  local current=${{COMP_WORDS[COMP_CWORD]}} previous=${{COMP_WORDS[COMP_CWORD-1]}} options
+  if [ "$COMP_CWORD" -eq 1 ]; then
+    COMPREPLY=($(compgen -W "{subcommands} --help --version" -- "$current"))
+    return
+  fi
+  case "${{COMP_WORDS[1]}}" in
+{chr(10).join(cases)}
+    *) options="" ;;
+  esac
+  if [ "$previous" = --profile ]; then
+    COMPREPLY=($(compgen -W "$(dform export --list-profiles 2>/dev/null)" -- "$current"))
+  elif [[ "$current" == -* ]]; then
+    COMPREPLY=($(compgen -W "$options" -- "$current"))
+  else
+    COMPREPLY=($(compgen -f -- "$current"))
+  fi
+}}
+complete -o filenames -F _dform dform
+"""
+
+
+def main():
+    dform, out = sys.argv[1], sys.argv[2]
+    version = subprocess.run([dform, "--version"], check=True, capture_output=True,
+                             text=True).stdout.split()[-1]
+    top, _ = sections(help_text(dform))
+    commands = {}
+    for name, _ in top.get("Subcommands", []):
+        text = help_text(dform, name)
+        found, _ = sections(text)
+        commands[name] = (found, [l for l in text.splitlines() if l.startswith("Usage:")])
+    with gzip.GzipFile(os.path.join(out, "dform.1.gz"), "wb", mtime=0) as f:
+        f.write(man_page(dform, version, commands).encode())
+    with open(os.path.join(out, "dform.bash"), "w", encoding="utf-8") as f:
+        f.write(completion(top, commands))
+
+
+if __name__ == "__main__":
+    main()
