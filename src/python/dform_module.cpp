@@ -1,9 +1,12 @@
-// The Python module `dform` (docs/python.md): forward and inverse runs from numpy arrays, their
-// meshes and figures back as numpy arrays and dicts, and the whole result folder written as the
-// command writes it. A thin shell like the cli: the pipeline does the work, errors become
-// dform.Error with the command's exit code, Ctrl-C stops a solve.
+// The compiled part `dform._dform` of the Python package `dform` (docs/python.md; dform/__init__.py
+// wraps its runs into picklable results): forward and inverse runs from numpy arrays, their meshes
+// and figures back as numpy arrays and dicts, and the whole result folder written as the command
+// writes it. A thin shell like the cli: the pipeline does the work, errors become dform.Error with
+// the command's exit code and a message that names the Python keyword, not the command's option;
+// Ctrl-C stops a solve.
 #include <Python.h>
 #include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
@@ -12,6 +15,7 @@
 #include <cstdio>
 #include <map>
 #include <optional>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -30,8 +34,33 @@ using RowPoints = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::R
 // dform.Error, raised for every Status that is not ok.
 PyObject* errorType = nullptr;
 
+// A message of the pipeline in Python terms: each command-line option it names becomes the
+// keyword argument of dform.forward, dform.inverse or Result.export that sets the same thing.
+std::string inPythonTerms(std::string text) {
+  static const std::vector<std::pair<std::regex, std::string>> keywords = [] {
+    std::vector<std::pair<std::regex, std::string>> k;
+    for (const auto& [option, keyword] : std::vector<std::pair<std::string, std::string>>{
+             {"--fit-perimeter", "fit_perimeter=True"},
+             {"--flip", "flip=True"},
+             {"--interior-edge, interior_edge in a job file", "interior_edge"},
+             {"--model ([a-z]+)", "model=\"$1\""},
+             {"--join ([a-z]+(,[a-z]+)?)", "join=\"$1\""},
+             {"--join", "join"},
+             {"--sheet WxHmm", "sheet=\"WxHmm\""},
+             {"--sheet", "sheet"},
+             {"--page", "page"},
+             {"--scale", "scale"},
+             {"--gate", "gate"},
+             {"--no-export", "cutting_files=False"}})
+      k.emplace_back(std::regex(option + "\\b"), keyword);
+    return k;
+  }();
+  for (const auto& [option, keyword] : keywords) text = std::regex_replace(text, option, keyword);
+  return text;
+}
+
 [[noreturn]] void raise(const Status& status) {
-  py::object error = py::reinterpret_borrow<py::object>(errorType)(status.message());
+  py::object error = py::reinterpret_borrow<py::object>(errorType)(inPythonTerms(status.message()));
   error.attr("exit_code") = exitCode(status.code());
   PyErr_SetObject(errorType, error.ptr());
   throw py::error_already_set();
@@ -107,7 +136,7 @@ py::dict pieceDict(const Piece& piece) {
   d["flat"] = Points2(piece.flat);
   d["shape"] = Points3(piece.shape);
   d["faces"] = Faces(piece.F);
-  d["seam"] = piece.seam;
+  d["seam"] = py::array_t<int>(static_cast<py::ssize_t>(piece.seam.size()), piece.seam.data());
   return d;
 }
 
@@ -131,7 +160,8 @@ py::dict figures(const Made& made) {
 
 py::list messageList(const Made& made) {
   py::list list;
-  for (const Message& m : made.messages) list.append(py::make_tuple(levelName(m.level), m.text));
+  for (const Message& m : made.messages)
+    list.append(py::make_tuple(levelName(m.level), inPythonTerms(m.text)));
   return list;
 }
 
@@ -160,13 +190,14 @@ py::dict exportMade(const Made& made, const std::string& outDir, const std::stri
   py::list checks;
   if (written.gate)
     for (const CheckResult& c : written.gate->checks)
-      checks.append(
-          py::dict(py::arg("name") = c.name, py::arg("value") = c.value, py::arg("limit") = c.limit,
-                   py::arg("verdict") = verdictName(c.verdict), py::arg("detail") = c.detail));
+      checks.append(py::dict(py::arg("name") = c.name, py::arg("value") = c.value,
+                             py::arg("limit") = c.limit,
+                             py::arg("verdict") = verdictName(c.verdict),
+                             py::arg("detail") = inPythonTerms(c.detail)));
   outcome["checks"] = checks;
   outcome["cutting_files"] = exportFiles && written.exported.isOk() &&
                              (!written.gate || written.gate->passed() || exportAnyway);
-  if (!written.exported.isOk()) outcome["export_error"] = written.exported.message();
+  if (!written.exported.isOk()) outcome["export_error"] = inPythonTerms(written.exported.message());
   return outcome;
 }
 
@@ -249,18 +280,21 @@ RowPoints readCurvePoints(const std::string& path) { return valueOrRaise(readCur
 }  // namespace
 }  // namespace dform
 
-PYBIND11_MODULE(dform, m) {
+PYBIND11_MODULE(_dform, m) {
   using namespace dform;
   using py::arg;
   m.doc() = "D-Forms: two flat pieces zipped along their boundaries, and the 3D shape they make";
+  m.attr("__version__") = DFORM_VERSION;
   static py::exception<std::runtime_error> error(m, "Error");
+  error.attr("__module__") = "dform";
   errorType = error.ptr();
 
-  py::class_<Made>(m, "Result", "a solved D-Form: its pieces, figures and messages")
+  py::class_<Made>(m, "Run", "a solved D-Form as the pipeline made it (dform.Result wraps it)")
       .def_property_readonly(
           "model", [](const Made& r) { return r.modelUsed().name; },
           "'exact' or 'paper': which model made the shape")
-      .def_property_readonly("model_reason", [](const Made& r) { return r.modelUsed().reason; })
+      .def_property_readonly("model_reason",
+                             [](const Made& r) { return inPythonTerms(r.modelUsed().reason); })
       .def_property_readonly(
           "piece_a", [](const Made& r) { return pieceDict(r.model().a); },
           "dict: name, flat (n, 2) mm, shape (n, 3) mm, faces (m, 3), seam")
