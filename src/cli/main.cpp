@@ -1,6 +1,7 @@
 // dform: forward and inverse D-Form modelling, export and validation from the command line.
 // Thin: parses options into jobs, calls the pipeline, prints. Exit codes: README "Exit codes".
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -12,6 +13,7 @@
 #include "dform/cli/commands.h"
 #include "dform/cli/terminal.h"
 #include "dform/core/allocator.h"
+#include "dform/core/input_file.h"
 #include "dform/core/interrupt.h"
 
 namespace {
@@ -121,6 +123,13 @@ int failUsage(const Status& status) {
   return exitCode(status.code());
 }
 
+// "-" (standard input) may stand for one input of a command, not two.
+Status oneStandardInput(const std::vector<std::string>& inputs) {
+  if (std::count(inputs.begin(), inputs.end(), kStandardInput) > 1)
+    return Status(ErrorCode::Usage, "only one input can be read from stdin ('-')");
+  return Status::ok();
+}
+
 // Each subcommand: its options as parsed (`add` declares them) and what it runs.
 struct ForwardCommand {
   Job job;
@@ -178,6 +187,8 @@ struct ForwardCommand {
           ErrorCode::Usage, "--join must be outer,outer, inner,inner, outer,inner or inner,outer"));
     if (!model.empty() && !parseModelChoice(model, job.forward.model))
       return failUsage(Status(ErrorCode::Usage, "--model must be auto, exact, paper or general"));
+    if (Status s = oneStandardInput({job.forward.pieceA, job.forward.pieceB}); !s.isOk())
+      return failUsage(s);
     job.forward.weights = defaultWeights(job.forward.joinA, job.forward.joinB);
     for (const std::string& w : weights)
       if (Status s = setWeight(job, w); !s.isOk()) return failUsage(s);
@@ -257,6 +268,10 @@ struct SweepCommand {
       return failUsage(
           Status(ErrorCode::Usage, "--threads must be 0 (the machine's cores) or more"));
     job.forward.weights = defaultWeights(job.forward.joinA, job.forward.joinB);
+    // Every start reads the outlines again; standard input can be read only once.
+    if (job.forward.pieceA == kStandardInput || job.forward.pieceB == kStandardInput)
+      return failUsage(
+          Status(ErrorCode::Usage, "sweep reads its outlines once per start: give files, not '-'"));
     job.forward.flip = flip == "flipped";
     options.bothFlips = flip == "both";
     if (Status s = validateForwardJob(job.forward); !s.isOk()) return failUsage(s);
@@ -327,7 +342,11 @@ struct RunCommand {
   int run() {
     Result<Job> job = readJobFile(jobPath);
     if (!job.isOk()) return failUsage(job.status());
-
+    const Job& read = job.value();
+    if (Status s = oneStandardInput(
+            {jobPath, read.forward.pieceA, read.forward.pieceB, read.inverse.curve});
+        !s.isOk())
+      return failUsage(s);
     return cli::runJob(job.value(), out, json, interrupted);
   }
 };

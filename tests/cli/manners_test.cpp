@@ -1,6 +1,7 @@
-// The command line's manners: repeatable options that leave the file arguments alone, --quiet
-// that prints nothing but errors, --json that prints one object and nothing else, one name and
-// unit per figure in the summary, the gate table, --json and report.json, clean --help.
+// The command line's manners: "-" for standard input, repeatable options that leave the file
+// arguments alone, --quiet that prints nothing but errors, --json that prints one object and
+// nothing else, one name and unit per figure in the summary, the gate table, --json and
+// report.json, clean --help.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -15,6 +16,7 @@
 #include <string>
 
 #include "cli/text_files.h"
+#include "dform/core/file_hash.h"
 
 namespace dform {
 namespace {
@@ -237,6 +239,42 @@ TEST_F(CliMannersTest, JsonOnInverseRunAndAFailedGate) {
   EXPECT_EQ(parsed["exit_code"], 7);
   EXPECT_EQ(parsed["gate"]["passed"], false);
   EXPECT_NE(o.err.find("dform: error: "), std::string::npos) << "the verdict also on stderr";
+}
+
+// "-" reads standard input: its format told by its content, named "stdin" in messages, recorded
+// in report.json as "-" with the SHA-256 of what was read.
+TEST_F(CliMannersTest, ADashReadsStandardInput) {
+  const std::string a = sample("forward/ellipses-a.svg"), b = sample("forward/ellipses-b.svg");
+  Outcome o = run("forward - " + b + " --resolution 30 --no-export -q -o " + path("f") + " < " + a);
+  ASSERT_EQ(o.exitCode, 0) << o.err;
+  json input = report("f")["inputs"]["piece_a"];
+  EXPECT_EQ(input["path"], "-");
+  EXPECT_EQ(input["sha256"], sha256Hex(readText(a)));
+  // A seam curve from stdin: an OBJ told from its opening lines.
+  const std::string curve = sample("inverse/saddle.obj");
+  o = run("inverse - --resolution 30 --no-export -q -o " + path("i") + " < " + curve);
+  ASSERT_EQ(o.exitCode, 0) << o.err;
+  EXPECT_EQ(report("i")["inputs"]["curve"]["path"], "-");
+  EXPECT_EQ(report("i")["inputs"]["curve"]["sha256"], sha256Hex(readText(curve)));
+  // A job file from stdin, whose outlines are files.
+  std::ofstream(path("job.json"))
+      << json({{"mode", "forward"}, {"piece_a", a}, {"piece_b", b}, {"resolution", 30}}).dump();
+  o = run("run - --no-export -q -o " + path("r") + " < " + path("job.json"));
+  ASSERT_EQ(o.exitCode, 0) << o.err;
+  EXPECT_EQ(report("r")["job"]["resolution"], 30);
+  // Bad input on stdin is named "stdin"; two inputs from one stdin are a usage error.
+  std::ofstream(path("junk.txt")) << "hello\n";
+  o = run("forward - " + b + " -o " + path("x") + " < " + path("junk.txt"));
+  EXPECT_EQ(o.exitCode, 3);
+  EXPECT_EQ(o.err.rfind("dform: error: stdin: ", 0), 0u) << o.err;
+  o = run("inverse - -o " + path("x") + " < " + path("junk.txt"));
+  EXPECT_EQ(o.exitCode, 3);
+  EXPECT_EQ(o.err.rfind("dform: error: stdin: ", 0), 0u) << o.err;
+  o = run("forward - - -o " + path("x") + " < " + a);
+  EXPECT_EQ(o.exitCode, 2);
+  EXPECT_NE(o.err.find("stdin"), std::string::npos) << o.err;
+  EXPECT_EQ(run("sweep - " + b + " -o " + path("x") + " < " + a).exitCode, 2);
+  EXPECT_FALSE(fs::exists(path("x")));
 }
 
 TEST_F(CliMannersTest, HelpShowsNoFlagDefaults) {
