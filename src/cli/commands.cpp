@@ -147,6 +147,7 @@ int runJob(const Job& job, const OutputOptions& output, bool json,
   hooks.onIteration = [&](const char* stage, const IterationSummary& it) {
     terminal.progress(forward ? stage : std::string(stage) + " (inverse)", it);
   };
+  hooks.onLevel = [&](const LevelStart& start) { terminal.level(start); };
   const Result<RunSettings> settings = checkOutput(output);
   if (!settings.isOk()) return fail(settings.status());
   const Result<WrittenResult> result = runAndWrite(job, output, settings.value(), sink, hooks);
