@@ -6,6 +6,9 @@
 #include <atomic>
 #include <exception>
 #include <functional>
+#include <string>
+
+#include "dform/core/status.h"
 
 namespace dform {
 
@@ -29,6 +32,12 @@ class Interrupted : public std::exception {
  private:
   const char* stage_;
 };
+
+/// The Interrupted status of a run or a step that stopped at `stage` ("the solve", "the meshing",
+/// "the figures"): the one wording of a stop, whether it was polled or thrown.
+inline Status interruptedDuring(const std::string& stage) {
+  return Status(ErrorCode::Interrupted, "interrupted during " + stage);
+}
 
 /// Throws Interrupted(stage) when a stop has been requested. Cheap (one relaxed load): loops poll
 /// it every few thousand iterations, so that any run stops within a fraction of a second.

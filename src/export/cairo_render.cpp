@@ -4,7 +4,10 @@
 #include <cairo-pdf.h>
 #include <cairo.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "dform/export/internal.h"
@@ -96,6 +99,48 @@ Status cairoError(cairo_status_t status, const std::string& what) {
           what + ": Cairo failed (" + cairo_status_to_string(status) + ")"};
 }
 
+/// The number after `key` in `text` from `from` on ("/Root 11 0 R" -> 11), or -1.
+long numberAfter(const std::string& text, const std::string& key, std::size_t from) {
+  const std::size_t at = text.find(key, from);
+  if (at == std::string::npos) return -1;
+  return std::strtol(text.c_str() + at + key.size(), nullptr, 10);
+}
+
+/// `pdf` with /ViewerPreferences << /PrintScaling /None >> in its catalog, so that a viewer's
+/// print dialog prints at 100 % instead of fitting the page to the paper: a pattern printed
+/// shrunk is cut wrong. Added as an incremental update (the catalog again, a cross-reference
+/// section for it and a trailer pointing back to Cairo's), so Cairo's bytes stay as they are.
+/// InternalError when Cairo's output is not laid out as expected.
+Result<std::string> withPrintScalingNone(std::string pdf) {
+  const std::size_t trailer = pdf.rfind("trailer");
+  const std::size_t startxref = pdf.rfind("startxref");
+  if (trailer == std::string::npos || startxref == std::string::npos || startxref < trailer)
+    return Status(ErrorCode::Internal, "pattern.pdf: Cairo wrote no trailer");
+  const long root = numberAfter(pdf, "/Root ", trailer), size = numberAfter(pdf, "/Size ", trailer),
+             info = numberAfter(pdf, "/Info ", trailer),
+             previous = numberAfter(pdf, "startxref", startxref);
+  const std::string header = "\n" + std::to_string(root) + " 0 obj\n";
+  const std::size_t object = pdf.rfind(header, trailer);  // after the pages' content streams
+  const std::size_t end = object == std::string::npos ? object : pdf.find("endobj", object);
+  const std::size_t open = object == std::string::npos ? object : pdf.find("<<", object);
+  const std::size_t close = end == std::string::npos ? end : pdf.rfind(">>", end);
+  if (root < 0 || size < 0 || previous < 0 || end == std::string::npos || open > close)
+    return Status(ErrorCode::Internal,
+                  "pattern.pdf: Cairo's catalog or trailer is not as expected");
+  std::string catalog = pdf.substr(open, close + 2 - open);
+  catalog.insert(2, " /ViewerPreferences << /PrintScaling /None >>");
+  const std::size_t at = pdf.size() + 1;  // after the newline below
+  pdf += "\n" + std::to_string(root) + " 0 obj\n" + catalog + "\nendobj\n";
+  const std::size_t xref = pdf.size();
+  char entry[32];
+  std::snprintf(entry, sizeof entry, "%010zu 00000 n \n", at);
+  pdf += "xref\n" + std::to_string(root) + " 1\n" + entry + "trailer\n<< /Size " +
+         std::to_string(size) + " /Root " + std::to_string(root) + " 0 R" +
+         (info >= 0 ? " /Info " + std::to_string(info) + " 0 R" : std::string()) + " /Prev " +
+         std::to_string(previous) + " >>\nstartxref\n" + std::to_string(xref) + "\n%%EOF\n";
+  return pdf;
+}
+
 }  // namespace
 
 Result<std::string> pdfDocument(const PatternBuild& pattern) {
@@ -132,7 +177,7 @@ Result<std::string> pdfDocument(const PatternBuild& pattern) {
   cairo_surface_finish(surface.get());
   if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS)
     return cairoError(cairo_surface_status(surface.get()), "pattern.pdf");
-  return bytes;
+  return withPrintScalingNone(std::move(bytes));
 }
 
 Result<std::string> pngImage(const PatternBuild& pattern, int pageIndex, double dpi) {

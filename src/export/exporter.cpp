@@ -27,7 +27,7 @@ std::atomic<long> layoutsMade{0};
 
 // Each stage takes seconds on a fine mesh (420k triangles: the pattern with its assembly page
 // 4 s, the PDF 4 s): a stop asked for meanwhile is honoured between them.
-Status stopped() { return Status(ErrorCode::Interrupted, "interrupted during the export"); }
+Status stopped() { return interruptedDuring("the export"); }
 
 }  // namespace
 

@@ -163,7 +163,7 @@ Result<std::optional<SolvedDForm>> tryExactModel(const ForwardSettings& job,
                               seamFractions(job.resolution, layout.seamCorners)),
                  job.interiorEdgeFactor * run.perimeterA / job.resolution, layout.paths, used);
   run.timings.solve = secondsSince(solveStart);
-  if (detail::stopRequested(hooks)) return detail::interruptedDuring("the solve");
+  if (detail::stopRequested(hooks)) return interruptedDuring("the solve");
   if (!exactModel.isOk()) {
     refusal = exactModel.status().message();
     if (job.model == ModelChoice::Exact)
@@ -207,7 +207,7 @@ Result<std::array<Piece, 2>> meshLevel(const ForwardSettings& job, const SeamLay
   std::array<Piece, 2> pieces;
   for (int p = 0; p < 2; ++p) {
     // Meshing a fine level takes seconds per piece.
-    if (detail::stopRequested(hooks)) return detail::interruptedDuring("the meshing");
+    if (detail::stopRequested(hooks)) return interruptedDuring("the meshing");
     const DrawnPiece& piece = layout.pieces[p];
     const std::string& path = layout.paths[p];
     const LoopSamples seam =
@@ -317,7 +317,7 @@ Status solvePaperModel(const ForwardSettings& job, const SeamLayout& layout, Sol
                      levelJob.solver.maxIterations});
     solved = solveForward(pieces[0], pieces[1], levelJob);
     run.timings.solve += secondsSince(solveStart);
-    if (detail::stopRequested(hooks)) return detail::interruptedDuring("the solve");
+    if (detail::stopRequested(hooks)) return interruptedDuring("the solve");
     if (!solved.summary.usable())
       return Status(ErrorCode::SolveFailed, "the solver failed: " + solved.summary.message);
     sink.emit(Level::Debug, format("local-global start: %.0f iterations, energy %.4g -> %.4g",
@@ -386,7 +386,7 @@ Result<SolvedDForm> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSet
     const auto solveStart = Clock::now();
     InextensibleResult sheet = solveInextensible(run.model, job.inextensible);
     run.timings.solve += secondsSince(solveStart);
-    if (detail::stopRequested(hooks)) return detail::interruptedDuring("the solve");
+    if (detail::stopRequested(hooks)) return interruptedDuring("the solve");
     run.model = std::move(sheet.model);
     run.modelUsed.stationarity = sheet.summary.stationarity;
     run.modelUsed.stiffness = job.inextensible.stiffness;
@@ -413,7 +413,7 @@ Result<SolvedDForm> solveDForm(Shape2 a, Shape2 b, const ForwardSettings& settin
     return outOfMemory(estimateAt, settings.resolution,
                        pieceLabel(a, "A") + " and " + pieceLabel(b, "B") + ": the run");
   } catch (const Interrupted& stop) {
-    return detail::interruptedDuring(stop.stage());
+    return interruptedDuring(stop.stage());
   }
 }
 

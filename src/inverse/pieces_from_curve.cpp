@@ -202,7 +202,7 @@ Result<SolvedPieces> solveCurve(const Curve3& curve, const InverseSettings& job,
       for (auto [coarse, fine, clockwise] : {std::tuple{&solved.model.a, &startModel.a, false},
                                              std::tuple{&solved.model.b, &startModel.b, true}}) {
         // Meshing a fine level takes seconds per piece (2-3 s at resolution 1500).
-        if (detail::stopRequested(hooks)) return detail::interruptedDuring("the meshing");
+        if (detail::stopRequested(hooks)) return interruptedDuring("the meshing");
         Result<Piece> piece = refinePiece(*coarse, target, clockwise, edge, job.init);
         if (piece.status().code() == ErrorCode::Interrupted)
           return piece.status();  // names no file
@@ -217,7 +217,7 @@ Result<SolvedPieces> solveCurve(const Curve3& curve, const InverseSettings& job,
                           std::to_string(startModel.a.flat.rows()) + " vertices, piece B with " +
                           std::to_string(startModel.b.flat.rows()));
 
-    if (detail::stopRequested(hooks)) return detail::interruptedDuring("the meshing");
+    if (detail::stopRequested(hooks)) return interruptedDuring("the meshing");
     const auto solveStart = Clock::now();
     InverseSettings levelSettings = hooked;
     detail::relaxOnlyIfLarge(startModel.a.flat.rows() + startModel.b.flat.rows(),
@@ -225,7 +225,7 @@ Result<SolvedPieces> solveCurve(const Curve3& curve, const InverseSettings& job,
     if (level > 0) levelSettings.relaxation.relativeTolerance = detail::kRefinedRelaxationTolerance;
     solved = solveInverse(startModel, target, levelSettings);
     run.timings.solve += secondsSince(solveStart);
-    if (detail::stopRequested(hooks)) return detail::interruptedDuring("the solve");
+    if (detail::stopRequested(hooks)) return interruptedDuring("the solve");
     if (!solved.summary.usable())
       return Status(ErrorCode::SolveFailed,
                     name + ": the solver failed: " + solved.summary.message);
@@ -251,7 +251,7 @@ Result<SolvedPieces> solvePieces(const Curve3& curve, const InverseSettings& set
   } catch (const std::bad_alloc&) {
     return outOfMemory(inverseMemory, settings.resolution, curveLabel(curve) + ": the run");
   } catch (const Interrupted& stop) {
-    return detail::interruptedDuring(stop.stage());
+    return interruptedDuring(stop.stage());
   }
 }
 

@@ -277,10 +277,6 @@ Result<Curve3> parseCurve(const std::string& text, const std::string& source,
 
 Result<Curve3> checkCurve(const Curve3& curve, const std::string& name,
                           const CurveReadOptions& options) {
-  if (curve.points.cols() != 3)
-    return Status{ErrorCode::InputInvalid, name + ": the curve has " +
-                                               std::to_string(curve.points.cols()) +
-                                               " coordinates per point; expected 3 (x, y, z)"};
   CurveReadOptions closed = options;  // a curve in memory is closed by its type
   closed.forceClosed = true;
   Points3 P = curve.points;

@@ -308,7 +308,7 @@ Result<FlatMesh> triangulateDomain(const Points2& boundary, const std::vector<Po
     }
     mesh.F = std::move(faces.value());
   } catch (const Interrupted& stop) {
-    return Status(ErrorCode::Interrupted, std::string("interrupted during ") + stop.stage());
+    return interruptedDuring(stop.stage());
   }
   mesh.boundary.resize(std::size_t(boundary.rows()));
   for (Eigen::Index i = 0; i < boundary.rows(); ++i) mesh.boundary[std::size_t(i)] = int(i);

@@ -77,11 +77,6 @@ inline bool stopRequested(const RunHooks& hooks) {
   return (hooks.interrupted && hooks.interrupted->load()) || interruptRequested();
 }
 
-/// The Interrupted status of a run that stopped at `stage` ("the solve", "the meshing").
-inline Status interruptedDuring(const std::string& stage) {
-  return Status(ErrorCode::Interrupted, "interrupted during " + stage);
-}
-
 /// Routes the relaxation's and the solver's iterations to the run's hooks, and stops them (the
 /// relaxation stops, the solver ends with UserAbort) when the caller asks the run to stop.
 inline void connectHooks(LocalGlobalOptions& relaxation, SolverOptions& solver,

@@ -19,7 +19,7 @@ Result<Metrics> measureDForm(const SolvedDForm& solved, const ForwardSettings& s
   try {
     return measureModel(solved.model);
   } catch (const Interrupted& stop) {
-    return Status(ErrorCode::Interrupted, std::string("interrupted during ") + stop.stage());
+    return interruptedDuring(stop.stage());
   } catch (const std::bad_alloc&) {
     return outOfMemory(nullptr, settings.resolution, pieces + ": measuring the run");
   }

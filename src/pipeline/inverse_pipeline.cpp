@@ -47,7 +47,7 @@ Result<InverseRun> solveAndMeasure(Curve3 curve, const InverseSettings& settings
   try {
     return measure(std::move(solved).value(), sink);
   } catch (const Interrupted& stop) {
-    return Status(ErrorCode::Interrupted, std::string("interrupted during ") + stop.stage());
+    return interruptedDuring(stop.stage());
   } catch (const std::bad_alloc&) {
     return outOfMemory(nullptr, settings.resolution, curveLabel(curve) + ": measuring the run");
   }

@@ -148,7 +148,7 @@ Result<WrittenResult> writeSolved(const Job& job, const Solved& solved, ResultFo
   try {
     return gateAndWrite(job, solved, folder, output, settings, sink, interrupted, timings);
   } catch (const Interrupted& stop) {
-    return leftAsItWas(output.outDir, std::string("interrupted during ") + stop.stage());
+    return leftAsItWas(output.outDir, interruptedDuring(stop.stage()).message());
   }
 }
 

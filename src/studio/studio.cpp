@@ -77,7 +77,7 @@ json verdictUnlessStopped(const std::function<json()>& judge) {
   try {
     return judge();
   } catch (const Interrupted& stop) {
-    return {{"error", std::string("interrupted during ") + stop.stage()}};
+    return {{"error", interruptedDuring(stop.stage()).message()}};
   }
 }
 

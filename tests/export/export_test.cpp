@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <polyclipping/clipper.hpp>
+#include <regex>
 #include <set>
 
 #include "dform/core/interrupt.h"
@@ -382,6 +383,13 @@ TEST(ExportPattern, PdfPagesHaveTheSheetSizeAndRender) {
   const std::string pdf = e.dir + "/pattern.pdf";
   std::string out;
   EXPECT_EQ(run("qpdf --check '" + pdf + "'", &out), 0) << out;
+  // Viewers print it at 100 %: the catalog a reader resolves asks for no scaling.
+  ASSERT_EQ(run("qpdf --show-object=trailer '" + pdf + "'", &out), 0) << out;
+  std::smatch match;
+  ASSERT_TRUE(std::regex_search(out, match, std::regex("/Root (\\d+) 0 R"))) << out;
+  const std::string root = match.str(1);
+  ASSERT_EQ(run("qpdf --show-object=" + root + " '" + pdf + "'", &out), 0) << out;
+  EXPECT_NE(out.find("/ViewerPreferences << /PrintScaling /None >>"), std::string::npos) << out;
   ASSERT_EQ(run("pdfinfo '" + pdf + "'", &out), 0) << out;
   const double pt = 72 / 25.4;
   const auto [w, h] = pdfPageSize(out);

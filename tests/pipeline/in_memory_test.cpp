@@ -156,6 +156,13 @@ TEST(InMemory, ABadShapeIsRefusedAsItsFileIs) {
   EXPECT_EQ(stubbed.status().message().rfind("piece A: crease 1 ends 40 mm inside the piece", 0),
             0u)
       << stubbed.status().message();
+  Points2 outside(3, 2);
+  outside << -50, 0, 55, 0, 55, 10;
+  creased.creases = {{outside, "fold"}};
+  const Result<ForwardRun> leaving = makeDForm(creased, other, settings, sink);
+  ASSERT_FALSE(leaving.isOk());
+  EXPECT_EQ(leaving.status().message().rfind("piece A: crease fold leaves the piece near", 0), 0u)
+      << leaving.status().message();
 }
 
 TEST(InMemory, AClockwiseShapeIsTurnedAsItsFileIs) {
