@@ -1,10 +1,14 @@
 #include "dform/cli/commands.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <thread>
 
 #include "dform/cli/terminal.h"
@@ -20,24 +24,57 @@ int fail(const Status& status) {
   return exitCode(status.code());
 }
 
-void printFigures(const Metrics& m, const CurveMatch* curve, const Timings& t,
-                  const std::string& dir) {
-  std::fprintf(stdout, "L_error %.4f %%   L_max %.3f %%   ", 100 * m.lengthError,
-               100 * m.lengthErrorMax);
-  if (curve)
-    std::fprintf(stdout, "D_error %.2e   curve distance max %.2e mm\n", curve->curveError,
-                 curve->curveDistanceMaxMm);
-  else
-    std::fprintf(stdout, "B_error %.2e   seam gap %.2e mm\n", m.seamError, m.seamGapMm);
-  std::fprintf(stdout,
-               "gauss_max %.4f rad   flipped %d   degenerate %d   seam lengths %.3f / %.3f mm\n",
-               m.gaussMax, m.flipped2d + m.flipped3d, m.degenerate2d + m.degenerate3d,
-               m.seamLengthAMm, m.seamLengthBMm);
+// One figure of the summary, named and measured as the gate file and report.json name it
+// (fractions unless the name ends in _mm or _rad).
+struct Figure {
+  std::string name;
+  double value;
+};
+
+// The figures a result is judged on, in the gate's units. gauss_max_rad is the gate's own
+// (vertices away from the seam; report.json's metrics.gauss_max takes every interior vertex),
+// so it is listed only when a gate ran.
+std::vector<Figure> summaryFigures(const WrittenResult& written) {
+  const Metrics& m = written.metrics;
+  std::vector<Figure> figures = {{"L_error", m.lengthError}, {"L_max", m.lengthErrorMax}};
+  if (written.curve) {
+    figures.push_back({"D_error", written.curve->curveError});
+    figures.push_back({"curve_distance_max_mm", written.curve->curveDistanceMaxMm});
+  } else {
+    figures.push_back({"B_error", m.seamError});
+    figures.push_back({"seam_gap_mm", m.seamGapMm});
+  }
+  if (written.gate)
+    for (const CheckResult& c : written.gate->checks)
+      if (c.name == "gauss_max_rad") figures.push_back({c.name, c.value});
+  figures.push_back({"flipped", double(m.flipped2d + m.flipped3d)});
+  figures.push_back({"degenerate", double(m.degenerate2d + m.degenerate3d)});
+  figures.push_back({"seam_length_a_mm", m.seamLengthAMm});
+  figures.push_back({"seam_length_b_mm", m.seamLengthBMm});
+  return figures;
+}
+
+void printFigures(const std::vector<Figure>& figures, const Timings& t, const std::string& dir) {
+  std::string line;
+  for (const Figure& f : figures) {
+    char text[96];
+    std::snprintf(text, sizeof text, "%s %.4g", f.name.c_str(), f.value);
+    line += (line.empty() ? "" : "   ") + std::string(text);
+  }
+  std::fprintf(stdout, "%s\n", line.c_str());
   std::fprintf(stdout, "solved in %.3f s (read %.3f, mesh %.3f, solve %.3f); results in %s\n",
                t.total, t.read, t.mesh, t.solve, dir.c_str());
 }
 
-void printGate(const GateReport& gate) {
+// The gate's table; `judged` false (--gate none): the figures only, no limits and no verdict.
+void printGate(const GateReport& gate, bool judged = true) {
+  if (!judged) {
+    std::fprintf(stdout, "%-20s %12s\n", "check", "value");
+    for (const CheckResult& c : gate.checks)
+      std::fprintf(stdout, "%-20s %12.4g\n", c.name.c_str(), c.value);
+    std::fprintf(stdout, "gate: none (figures measured, not judged)\n");
+    return;
+  }
   std::fprintf(stdout, "%-20s %12s %12s  %s\n", "check", "value", "limit", "verdict");
   for (const CheckResult& c : gate.checks)
     std::fprintf(stdout, "%-20s %12.4g %12.4g  %s%s%s\n", c.name.c_str(), c.value, c.limit,
@@ -48,9 +85,60 @@ void printGate(const GateReport& gate) {
                gate.notRun());
 }
 
+// A number, or null where it is not one (a check not run), as report.json writes them.
+nlohmann::json number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(); }
+
+nlohmann::json gateJson(const GateReport& gate, bool judged) {
+  nlohmann::json checks = nlohmann::json::array();
+  for (const CheckResult& c : gate.checks) {
+    nlohmann::json check = {{"name", c.name}, {"value", number(c.value)}};
+    if (judged) {
+      check["limit"] = number(c.limit);
+      check["verdict"] = verdictName(c.verdict);
+      check["detail"] = c.detail;
+    }
+    checks.push_back(check);
+  }
+  nlohmann::json out = {{"name", judged ? gate.name : "none"}, {"checks", checks}};
+  out["passed"] = judged ? nlohmann::json(gate.passed()) : nlohmann::json();
+  return out;
+}
+
+// The files of a result folder, by name.
+nlohmann::json folderFiles(const std::string& dir) {
+  std::vector<std::string> names;
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, error))
+    if (entry.is_regular_file(error)) names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// --json: the run's summary as one object on stdout (docs/cli.md "Machine-readable summary").
+void printRunJson(const Job& job, const WrittenResult& written, const OutputOptions& output,
+                  int code) {
+  nlohmann::json summary;
+  summary["command"] = job.mode == Job::Mode::Forward ? "forward" : "inverse";
+  // The model the run used, as report.json names it (the one record of that choice).
+  std::ifstream reportFile(std::filesystem::path(output.outDir) / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(reportFile, nullptr, false);
+  summary["model"] = report.is_object() && report.contains("model") && report["model"].is_object()
+                         ? report["model"].value("name", nlohmann::json())
+                         : nlohmann::json();
+  nlohmann::json figures = nlohmann::json::object();
+  for (const Figure& f : summaryFigures(written)) figures[f.name] = number(f.value);
+  summary["figures"] = figures;
+  summary["gate"] = written.gate ? gateJson(*written.gate, true) : nlohmann::json();
+  summary["output"] = output.outDir;
+  summary["files"] = folderFiles(output.outDir);
+  summary["exit_code"] = code;
+  std::fprintf(stdout, "%s\n", summary.dump(2).c_str());
+}
+
 }  // namespace
 
-int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>& interrupted) {
+int runJob(const Job& job, const OutputOptions& output, bool json,
+           const std::atomic<bool>& interrupted) {
   Terminal terminal(output.quiet);
   MessageSink sink(terminal.listener());
   const bool forward = job.mode == Job::Mode::Forward;
@@ -59,6 +147,7 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
   hooks.onIteration = [&](const char* stage, const IterationSummary& it) {
     terminal.progress(forward ? stage : std::string(stage) + " (inverse)", it);
   };
+  hooks.onLevel = [&](const LevelStart& start) { terminal.level(start); };
   const Result<RunSettings> settings = checkOutput(output);
   if (!settings.isOk()) return fail(settings.status());
   const Result<WrittenResult> result = runAndWrite(job, output, settings.value(), sink, hooks);
@@ -66,21 +155,21 @@ int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>&
   if (!result.isOk()) return fail(result.status());
   const WrittenResult& written = result.value();
   if (!written.exported.isOk()) return exitCode(written.exported.code());
-  printFigures(written.metrics, written.curve ? &*written.curve : nullptr, written.timings,
-               output.outDir);
   const std::optional<GateReport>& gate = written.gate;
   const bool gateFailed = gate && !gate->passed();
-  if (gate) {
-    printGate(*gate);
-    if (gateFailed) {
-      Terminal::error(output.outDir + ": the result failed the quality gate '" +
-                      settings.value().limits->name + "'" +
-                      (output.exportAnyway ? " (exported anyway, marked FAILED GATE)"
-                                           : "; no cutting files were written"));
-      return exitCode(ErrorCode::GateFailed);
-    }
+  const int code = gateFailed ? exitCode(ErrorCode::GateFailed) : 0;
+  if (json) {
+    printRunJson(job, written, output, code);
+  } else if (!output.quiet) {
+    printFigures(summaryFigures(written), written.timings, output.outDir);
+    if (gate) printGate(*gate);
   }
-  return 0;
+  if (gateFailed)
+    Terminal::error(output.outDir + ": the result failed the quality gate '" +
+                    settings.value().limits->name + "'" +
+                    (output.exportAnyway ? " (exported anyway, marked FAILED GATE)"
+                                         : "; no cutting files were written"));
+  return code;
 }
 
 namespace {
@@ -139,6 +228,7 @@ int runSweepCommand(const Job& base, const SweepOptions& options, const OutputOp
       interrupted);
   terminal.clearProgress();
   if (!rows.isOk()) return fail(rows.status());
+  if (output.quiet) return 0;
   int passed = 0;
   std::fprintf(stdout, "%-16s %8s %10s %12s %10s %8s %8s\n", "start", "start_b", "height_mm",
                "volume_cm3", "max_curv", "gate", "seconds");
@@ -166,7 +256,7 @@ int runBatchCommand(const std::vector<BatchJob>& jobs, const BatchOptions& optio
       jobs, options, output, settings.value(), progressLine(terminal, "batch"), interrupted);
   terminal.clearProgress();
   if (!rows.isOk()) return fail(rows.status());
-  printBatchRows(rows.value());
+  if (!output.quiet) printBatchRows(rows.value());
   int worst = 0, failed = 0;
   const BatchRow* first = nullptr;
   for (const BatchRow& r : rows.value()) {
@@ -176,10 +266,11 @@ int runBatchCommand(const std::vector<BatchJob>& jobs, const BatchOptions& optio
       first = &r;
     }
   }
-  std::fprintf(stdout, "%d jobs (shard %d of %d): %d done, %d failed; manifest %s/%s\n",
-               int(rows.value().size()), options.shard, options.shards,
-               int(rows.value().size()) - failed, failed, printable(output.outDir, 300).c_str(),
-               manifestName(options).c_str());
+  if (!output.quiet)
+    std::fprintf(stdout, "%d jobs (shard %d of %d): %d done, %d failed; manifest %s/%s\n",
+                 int(rows.value().size()), options.shard, options.shards,
+                 int(rows.value().size()) - failed, failed, printable(output.outDir, 300).c_str(),
+                 manifestName(options).c_str());
   // A failed batch says so on stderr, once: a scheduler's log shows why the job array failed.
   if (first)
     Terminal::error(output.outDir + "/" + manifestName(options) + ": " + std::to_string(failed) +
@@ -188,9 +279,10 @@ int runBatchCommand(const std::vector<BatchJob>& jobs, const BatchOptions& optio
   return worst;
 }
 
-int mergeBatchCommand(const std::string& dir, bool allowPartial) {
+int mergeBatchCommand(const std::string& dir, bool allowPartial, bool quiet) {
   const Result<MergedBatch> merged = mergeBatch(dir, allowPartial);
   if (!merged.isOk()) return fail(merged.status());
+  if (quiet) return 0;
   const MergedBatch& m = merged.value();
   printBatchRows(m.rows);
   const std::string into = printable(dir, 300);
@@ -217,30 +309,43 @@ int exportSaved(const std::string& dir, const OutputOptions& output,
   MessageSink sink(terminal.listener());
   const Result<std::string> into = exportSavedResult(dir, output, sink, interrupted);
   if (!into.isOk()) return fail(into.status());
-  std::fprintf(stdout, "exported %s into %s\n", output.profile.c_str(), into.value().c_str());
+  if (!output.quiet)
+    std::fprintf(stdout, "exported %s into %s\n", output.profile.c_str(), into.value().c_str());
   return 0;
 }
 
-int validateSaved(const std::string& dir, const std::string& gateName) {
+int validateSaved(const std::string& dir, const std::string& gateName, const Printing& printing) {
   const Result<SavedCheck> checked = validateSavedResult(dir, gateName);
   if (!checked.isOk()) return fail(checked.status());
   const SavedCheck& check = checked.value();
-  printGate(check.gate);
   // A report that is missing or unreadable (3), or incomplete or disagreeing with its meshes
-  // (7), fails.
-  if (!check.report.isOk()) return fail(check.report);
-  if (!check.differences.empty()) {
+  // (7), fails; so does the gate, when one judged.
+  const int code = !check.report.isOk()                   ? exitCode(check.report.code())
+                   : !check.differences.empty()           ? exitCode(ErrorCode::GateFailed)
+                   : check.judged && !check.gate.passed() ? exitCode(ErrorCode::GateFailed)
+                                                          : 0;
+  if (printing.json) {
+    nlohmann::json summary = {{"command", "validate"},
+                              {"output", dir},
+                              {"gate", gateJson(check.gate, check.judged)},
+                              {"report_differences", check.differences},
+                              {"exit_code", code}};
+    std::fprintf(stdout, "%s\n", summary.dump(2).c_str());
+  } else if (!printing.quiet) {
+    printGate(check.gate, check.judged);
     for (const std::string& line : check.differences)
       std::fprintf(stdout, "report.json differs: %s\n", line.c_str());
+    if (check.report.isOk() && check.differences.empty())
+      std::fprintf(stdout,
+                   "report.json: its mode and mesh sizes agree, its figures match the meshes\n");
+  }
+  if (!check.report.isOk()) return fail(check.report);
+  if (!check.differences.empty())
     Terminal::error(dir + "/report.json: " + std::to_string(check.differences.size()) +
                     " entries differ from the saved result (first: " + check.differences[0] + ")");
-    return exitCode(ErrorCode::GateFailed);
-  }
-  std::fprintf(stdout,
-               "report.json: its mode and mesh sizes agree, its figures match the meshes\n");
-  if (!check.gate.passed())
+  else if (code != 0)
     Terminal::error(dir + ": the result failed the quality gate '" + check.gateName + "'");
-  return check.gate.passed() ? 0 : exitCode(ErrorCode::GateFailed);
+  return code;
 }
 
 int listProfiles() {

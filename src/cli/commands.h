@@ -9,9 +9,17 @@
 
 namespace dform::cli {
 
+/// How a command prints its outcome: `quiet`, nothing but errors; `json`, one JSON object on
+/// stdout and nothing else there.
+struct Printing {
+  bool quiet = false;
+  bool json = false;
+};
+
 /// `dform forward`, `inverse`, `run`: one job written into output.outDir, its figures and gate
-/// printed.
-int runJob(const Job& job, const OutputOptions& output, const std::atomic<bool>& interrupted);
+/// printed (as text, or as one JSON object when `json`; nothing when output.quiet).
+int runJob(const Job& job, const OutputOptions& output, bool json,
+           const std::atomic<bool>& interrupted);
 /// `dform sweep`: `base` from every start of `options`, each result written as `runJob` writes
 /// one, into output.outDir/<start>/, with sweep.json and gallery.html (docs/sweep.md).
 int runSweepCommand(const Job& base, const SweepOptions& options, const OutputOptions& output,
@@ -22,10 +30,12 @@ int runBatchCommand(const std::vector<BatchJob>& jobs, const BatchOptions& optio
                     const OutputOptions& output, const std::atomic<bool>& interrupted);
 /// `dform batch --merge DIR`: the shards' manifests gathered into batch.json and gallery.html;
 /// refused (exit 5) while a job of the list has not finished, unless `allowPartial`.
-int mergeBatchCommand(const std::string& dir, bool allowPartial);
+int mergeBatchCommand(const std::string& dir, bool allowPartial, bool quiet);
 int exportSaved(const std::string& dir, const OutputOptions& output,
                 const std::atomic<bool>& interrupted);
-int validateSaved(const std::string& dir, const std::string& gate);
+/// `dform validate`: the result in `dir` re-measured, against the gate `gate` or, for "none",
+/// measured only (exit 0 unless the folder or its report is unreadable or wrong).
+int validateSaved(const std::string& dir, const std::string& gate, const Printing& printing);
 int listProfiles();
 /// `dform studio`: serves the design page, prints its address (and opens it in the browser
 /// when `openBrowser` and xdg-open is there) until `interrupted` is set (Ctrl-C, SIGTERM).

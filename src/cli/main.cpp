@@ -1,6 +1,7 @@
 // dform: forward and inverse D-Form modelling, export and validation from the command line.
 // Thin: parses options into jobs, calls the pipeline, prints. Exit codes: README "Exit codes".
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -12,6 +13,7 @@
 #include "dform/cli/commands.h"
 #include "dform/cli/terminal.h"
 #include "dform/core/allocator.h"
+#include "dform/core/input_file.h"
 #include "dform/core/interrupt.h"
 
 namespace {
@@ -81,23 +83,39 @@ void addExportOptions(CLI::App* command, OutputOptions& out) {
                    "score every fold of the solved body of at least DEG degrees on its piece "
                    "(SCORE layer, pattern.json); 0 to 180")
       ->type_name("DEG");
-  command->add_flag("!--no-title", out.title,
-                    "leave the title block and notes off the pattern sheets");
+  // A callback, not CLI11's "!--no-title" form, whose help shows "--no-title{false}".
+  command->add_flag_callback(
+      "--no-title", [&out] { out.title = false; },
+      "leave the title block and notes off the pattern sheets");
   command->add_flag("--gltf", out.gltfText,
                     "write the 3D preview as text dform.gltf instead of dform.glb");
 }
 
-void addOutputOptions(CLI::App* command, OutputOptions& out) {
+// A repeatable option takes one value per use ("--weight a=1 --weight b=2"), so that the
+// positional arguments after it stay positional.
+void addRepeatable(CLI::App* command, const std::string& name, std::vector<std::string>& values,
+                   const std::string& help) {
+  command->add_option(name, values, help)->allow_extra_args(false)->type_name("NAME=VALUE");
+}
+
+// `json`: where --json goes, on the commands that print one result's summary (null: no --json).
+void addOutputOptions(CLI::App* command, OutputOptions& out, bool* json = nullptr) {
   command->add_option("-o,--output", out.outDir, "folder for the results (created if missing)")
       ->required();
-  command->add_flag("!--no-export", out.exportFiles, "skip the cutting patterns and 3D previews");
+  command->add_flag_callback(
+      "--no-export", [&out] { out.exportFiles = false; },
+      "skip the cutting patterns and 3D previews");
   addExportOptions(command, out);
   command->add_option(
       "--gate", out.gate,
       "quality gate: default (the default), strict, lenient, a .json file, or none");
   command->add_flag("--export-anyway", out.exportAnyway,
                     "export even if the gate fails (marked FAILED GATE)");
-  command->add_flag("-q,--quiet", out.quiet, "print only the figures, warnings and errors");
+  command->add_flag("-q,--quiet", out.quiet, "print nothing but errors");
+  if (json)
+    command->add_flag("--json", *json,
+                      "print the summary (model, figures, gate, files, exit code) as one JSON "
+                      "object on stdout, and nothing else there");
 }
 
 int failUsage(const Status& status) {
@@ -105,10 +123,18 @@ int failUsage(const Status& status) {
   return exitCode(status.code());
 }
 
+// "-" (standard input) may stand for one input of a command, not two.
+Status oneStandardInput(const std::vector<std::string>& inputs) {
+  if (std::count(inputs.begin(), inputs.end(), kStandardInput) > 1)
+    return Status(ErrorCode::Usage, "only one input can be read from stdin ('-')");
+  return Status::ok();
+}
+
 // Each subcommand: its options as parsed (`add` declares them) and what it runs.
 struct ForwardCommand {
   Job job;
   OutputOptions out;
+  bool json = false;
   std::string startANear, startBNear, join, model;
   std::vector<std::string> weights;
   CLI::App* command = nullptr;
@@ -145,10 +171,11 @@ struct ForwardCommand {
                       "scale piece B to A's perimeter");
     command->add_option("--perimeter-tolerance", job.forward.perimeterTolerance,
                         "largest relative perimeter difference (default 0.005)");
-    command->add_option("--weight", weights, "term weight, e.g. smooth_3d=0.02 (repeatable)");
+    addRepeatable(command, "--weight", weights,
+                  "term weight, e.g. smooth_3d=0.02 (one per use, repeatable)");
     command->add_option("--max-iterations", job.forward.solver.maxIterations,
                         "Levenberg-Marquardt iteration cap");
-    addOutputOptions(command, out);
+    addOutputOptions(command, out, &json);
   }
   int run() {
     if (!startANear.empty() && !parsePoint(startANear, job.forward.startA))
@@ -160,17 +187,20 @@ struct ForwardCommand {
           ErrorCode::Usage, "--join must be outer,outer, inner,inner, outer,inner or inner,outer"));
     if (!model.empty() && !parseModelChoice(model, job.forward.model))
       return failUsage(Status(ErrorCode::Usage, "--model must be auto, exact, paper or general"));
+    if (Status s = oneStandardInput({job.forward.pieceA, job.forward.pieceB}); !s.isOk())
+      return failUsage(s);
     job.forward.weights = defaultWeights(job.forward.joinA, job.forward.joinB);
     for (const std::string& w : weights)
       if (Status s = setWeight(job, w); !s.isOk()) return failUsage(s);
     if (Status s = validateForwardJob(job.forward); !s.isOk()) return failUsage(s);
-    return cli::runJob(job, out, interrupted);
+    return cli::runJob(job, out, json, interrupted);
   }
 };
 
 struct InverseCommand {
   Job job;
   OutputOptions out;
+  bool json = false;
   std::vector<std::string> weights;
   CLI::App* command = nullptr;
 
@@ -181,16 +211,17 @@ struct InverseCommand {
         ->required();
     command->add_option("--resolution", job.inverse.resolution, "seam vertices (default 100)");
     command->add_flag("--closed", job.inverse.forceClosed, "close an open OBJ polyline");
-    command->add_option("--weight", weights, "term weight, e.g. smooth_3d=0.005 (repeatable)");
+    addRepeatable(command, "--weight", weights,
+                  "term weight, e.g. smooth_3d=0.005 (one per use, repeatable)");
     command->add_option("--max-iterations", job.inverse.solver.maxIterations,
                         "Levenberg-Marquardt iteration cap");
-    addOutputOptions(command, out);
+    addOutputOptions(command, out, &json);
   }
   int run() {
     for (const std::string& w : weights)
       if (Status s = setWeight(job, w); !s.isOk()) return failUsage(s);
     if (Status s = validateInverseJob(job.inverse); !s.isOk()) return failUsage(s);
-    return cli::runJob(job, out, interrupted);
+    return cli::runJob(job, out, json, interrupted);
   }
 };
 
@@ -237,6 +268,10 @@ struct SweepCommand {
       return failUsage(
           Status(ErrorCode::Usage, "--threads must be 0 (the machine's cores) or more"));
     job.forward.weights = defaultWeights(job.forward.joinA, job.forward.joinB);
+    // Every start reads the outlines again; standard input can be read only once.
+    if (job.forward.pieceA == kStandardInput || job.forward.pieceB == kStandardInput)
+      return failUsage(
+          Status(ErrorCode::Usage, "sweep reads its outlines once per start: give files, not '-'"));
     job.forward.flip = flip == "flipped";
     options.bothFlips = flip == "both";
     if (Status s = validateForwardJob(job.forward); !s.isOk()) return failUsage(s);
@@ -274,7 +309,7 @@ struct BatchCommand {
     if (!mergeDir.empty()) {
       if (!input.empty() || !out.outDir.empty())
         return failUsage(Status(ErrorCode::Usage, "batch --merge DIR takes no job list and no -o"));
-      return cli::mergeBatchCommand(mergeDir, allowPartial);
+      return cli::mergeBatchCommand(mergeDir, allowPartial, out.quiet);
     }
     if (allowPartial)
       return failUsage(Status(ErrorCode::Usage, "--allow-partial goes with --merge DIR"));
@@ -296,17 +331,23 @@ struct BatchCommand {
 struct RunCommand {
   std::string jobPath;
   OutputOptions out;
+  bool json = false;
   CLI::App* command = nullptr;
 
   void add(CLI::App& app) {
     command = app.add_subcommand("run", "run a job file (forward or inverse)");
     command->add_option("job", jobPath, "job file (.json, see docs/cli.md)")->required();
-    addOutputOptions(command, out);
+    addOutputOptions(command, out, &json);
   }
   int run() {
     Result<Job> job = readJobFile(jobPath);
     if (!job.isOk()) return failUsage(job.status());
-    return cli::runJob(job.value(), out, interrupted);
+    const Job& read = job.value();
+    if (Status s = oneStandardInput(
+            {jobPath, read.forward.pieceA, read.forward.pieceB, read.inverse.curve});
+        !s.isOk())
+      return failUsage(s);
+    return cli::runJob(job.value(), out, json, interrupted);
   }
 };
 
@@ -338,14 +379,20 @@ struct ExportCommand {
 
 struct ValidateCommand {
   std::string dir, gate = "default";
+  cli::Printing printing;
   CLI::App* command = nullptr;
 
   void add(CLI::App& app) {
     command = app.add_subcommand("validate", "re-check a saved result against a quality gate");
     command->add_option("dir", dir, "a result folder")->required();
-    command->add_option("--gate", gate, "default, strict, lenient or a .json file");
+    command->add_option("--gate", gate,
+                        "default, strict, lenient, a .json file, or none (the figures measured "
+                        "and printed, no verdict)");
+    command->add_flag("-q,--quiet", printing.quiet, "print nothing but errors");
+    command->add_flag("--json", printing.json,
+                      "print the checks and the verdict as one JSON object on stdout");
   }
-  int run() { return cli::validateSaved(dir, gate); }
+  int run() { return cli::validateSaved(dir, gate, printing); }
 };
 
 // `dform studio`: serves the design page until Ctrl-C or SIGTERM (docs/studio.md).

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 
 #include "dform/core/message_text.h"
@@ -21,10 +22,35 @@ MessageSink::Listener Terminal::listener() {
   };
 }
 
+void Terminal::level(const LevelStart& start) {
+  level_ = start;
+  stage_.clear();
+}
+
 void Terminal::progress(const std::string& stage, const IterationSummary& it) {
   if (quiet_ || !tty_) return;
-  std::fprintf(stderr, "\r\033[K%s: iteration %d, cost %.6g, %.2f s", stage.c_str(), it.iteration,
-               it.cost, it.cumulativeSeconds);
+  if (!level_) {
+    std::fprintf(stderr, "\r\033[K%s: iteration %d, cost %.6g, %.2f s", stage.c_str(), it.iteration,
+                 it.cost, it.cumulativeSeconds);
+  } else {
+    const auto now = std::chrono::steady_clock::now();
+    if (stage != stage_) {  // a new stage of the level: its rate timed from this iteration on
+      stage_ = stage;
+      stageStart_ = now;
+      stageFirstIteration_ = it.iteration;
+    }
+    const bool relaxing = stage == "relaxing";
+    const int cap = relaxing ? level_->relaxationSteps : level_->solverIterations;
+    char eta[32] = "ETA -";  // no rate before the stage's second iteration
+    if (const int timed = it.iteration - stageFirstIteration_; timed > 0) {
+      const double seconds = std::chrono::duration<double>(now - stageStart_).count();
+      std::snprintf(eta, sizeof eta, "ETA %.0f s",
+                    seconds / timed * std::max(cap - it.iteration, 0));
+    }
+    std::fprintf(stderr, "\r\033[Klevel %d/%d: %s %d/%d %s, cost %.6g, %s", level_->level,
+                 level_->levels, stage.c_str(), it.iteration, cap,
+                 relaxing ? "steps" : "iterations", it.cost, eta);
+  }
   std::fflush(stderr);
   progressShown_ = true;
 }

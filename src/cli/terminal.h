@@ -1,6 +1,8 @@
 // What the CLI shows on the terminal: messages, a one-line progress display, errors.
 #pragma once
 
+#include <chrono>
+#include <optional>
 #include <string>
 
 #include "dform/core/messages.h"
@@ -14,6 +16,9 @@ class Terminal {
  public:
   explicit Terminal(bool quiet);
   MessageSink::Listener listener();
+  /// The level a coarse-to-fine solve begins: the progress line names it from then on, with the
+  /// time the level's iteration cap would take at the rate it runs at (an upper bound).
+  void level(const LevelStart& start);
   void progress(const std::string& stage, const IterationSummary& it);
   /// One updating line of any text (e.g. a sweep's jobs done and time left), on the same terms.
   void status(const std::string& text);
@@ -25,6 +30,10 @@ class Terminal {
   bool quiet_;
   bool tty_;
   bool progressShown_ = false;
+  std::optional<LevelStart> level_;
+  std::string stage_;  ///< the stage whose rate stageStart_ times
+  std::chrono::steady_clock::time_point stageStart_;
+  int stageFirstIteration_ = 0;
 };
 
 }  // namespace dform::cli

@@ -24,9 +24,33 @@ std::string sizeText(std::size_t bytes) {
                                          : std::to_string(bytes >> 10) + " KiB";
 }
 
-// The blocking part of readInputFile: stat, open and read.
+// Reads `fd` to its end, at most one buffer past `maxBytes`, so that a file that grows (or a pipe)
+// cannot exhaust memory; `name` is what messages call it. The caller closes `fd`.
+Result<std::string> readAll(int fd, const std::string& name, std::size_t maxBytes,
+                            std::size_t sizeHint) {
+  std::string text;
+  text.reserve(sizeHint);
+  char buffer[1 << 16];
+  for (;;) {
+    const ssize_t got = ::read(fd, buffer, sizeof buffer);
+    if (got == 0) break;
+    if (got < 0) {
+      if (errno == EINTR) return interruptedReading(name);
+      return Status{ErrorCode::InputUnreadable,
+                    name + ": read error (" + std::strerror(errno) + ")"};
+    }
+    text.append(buffer, std::size_t(got));
+    if (text.size() > maxBytes)
+      return Status{ErrorCode::InputUnreadable,
+                    name + ": file is too large (the limit is " + sizeText(maxBytes) + ")"};
+  }
+  return text;
+}
+
+// The blocking part of readInputFile: stat, open and read; "-" reads standard input.
 Result<std::string> readBlocking(const std::string& path, std::size_t maxBytes) {
   namespace fs = std::filesystem;
+  if (path == kStandardInput) return readAll(STDIN_FILENO, "stdin", maxBytes, 0);
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   // A missing file (or a path through a regular file) is only not found; anything else (a
@@ -50,31 +74,14 @@ Result<std::string> readBlocking(const std::string& path, std::size_t maxBytes) 
     return Status{ErrorCode::InputUnreadable,
                   path + ": cannot be opened for reading (" + std::strerror(errno) + ")"};
   }
-  std::string text;
-  text.reserve(std::size_t(size));
-  // Read at most one buffer past the limit, so a file that grows (or a pipe) cannot exhaust memory.
-  char buffer[1 << 16];
-  for (;;) {
-    const ssize_t got = ::read(fd, buffer, sizeof buffer);
-    if (got == 0) break;
-    if (got < 0) {
-      const int error = errno;
-      ::close(fd);
-      if (error == EINTR) return interruptedReading(path);
-      return Status{ErrorCode::InputUnreadable,
-                    path + ": read error (" + std::strerror(error) + ")"};
-    }
-    text.append(buffer, std::size_t(got));
-    if (text.size() > maxBytes) {
-      ::close(fd);
-      return Status{ErrorCode::InputUnreadable, path + ": file is too large (" + limit + ")"};
-    }
-  }
+  Result<std::string> text = readAll(fd, path, maxBytes, std::size_t(size));
   ::close(fd);
   return text;
 }
 
 }  // namespace
+
+std::string inputName(const std::string& path) { return path == kStandardInput ? "stdin" : path; }
 
 Result<std::string> readInputFile(const std::string& path, std::size_t maxBytes) {
   // The read runs on a thread of its own while this one polls the interrupt flag: an open or a
@@ -84,7 +91,7 @@ Result<std::string> readInputFile(const std::string& path, std::size_t maxBytes)
   // blocked call (EINTR).
   auto result = std::make_shared<std::optional<Result<std::string>>>();
   if (!runWhilePolling([result, path, maxBytes] { *result = readBlocking(path, maxBytes); }))
-    return interruptedReading(path);
+    return interruptedReading(inputName(path));
   return std::move(**result);
 }
 

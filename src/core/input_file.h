@@ -17,8 +17,14 @@ constexpr std::size_t kMaxInputBytes = std::size_t(64) << 20;
 /// absurd for them.
 constexpr std::size_t kMaxSettingsBytes = std::size_t(1) << 20;
 
-/// Reads the whole file, or InputUnreadable naming `path` (missing, a folder, unreadable, larger
-/// than `maxBytes`).
+/// The path that names standard input, as a command-line argument (docs/cli.md).
+inline const std::string kStandardInput = "-";
+
+/// What messages call the input `path`: "stdin" for kStandardInput, else the path.
+std::string inputName(const std::string& path);
+
+/// Reads the whole file (standard input for kStandardInput), or InputUnreadable naming it
+/// (missing, a folder, unreadable, larger than `maxBytes`).
 Result<std::string> readInputFile(const std::string& path, std::size_t maxBytes = kMaxInputBytes);
 
 }  // namespace dform

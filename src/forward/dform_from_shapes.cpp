@@ -310,9 +310,12 @@ Status solvePaperModel(const ForwardSettings& job, const SeamLayout& layout, Sol
                           std::to_string(pieces[1].F.rows()));
 
     const auto solveStart = Clock::now();
-    solved = solveForward(
-        pieces[0], pieces[1],
-        detail::levelSettings(hooked, finest, pieces[0].flat.rows() + pieces[1].flat.rows()));
+    const ForwardSettings levelJob =
+        detail::levelSettings(hooked, finest, pieces[0].flat.rows() + pieces[1].flat.rows());
+    if (hooks.onLevel)
+      hooks.onLevel({int(level) + 1, int(levels.size()), levelJob.relaxation.maxIterations,
+                     levelJob.solver.maxIterations});
+    solved = solveForward(pieces[0], pieces[1], levelJob);
     run.timings.solve += secondsSince(solveStart);
     if (detail::stopRequested(hooks)) return interruptedDuring("the solve");
     if (!solved.summary.usable())

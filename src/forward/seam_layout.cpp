@@ -93,8 +93,10 @@ Result<DrawnPiece> drawnPiece(Shape2& shape, JoinedBoundary join, const std::str
                               MessageSink& sink) {
   const std::string path = pieceLabel(shape, name.c_str());
   const std::size_t holes = shape.holes.size();
-  std::string found = "piece " + name + " (" + path + "): outline " +
-                      format("%.3f mm", closedLength(shape.outer.points));
+  // "piece A (a.svg)" for a file; "piece A" alone when the piece has no file to name.
+  const std::string who =
+      shape.outer.source.empty() ? path : "piece " + name + " (" + shape.outer.source + ")";
+  std::string found = who + ": outline " + format("%.3f mm", closedLength(shape.outer.points));
   for (const Outline2& hole : shape.holes)
     found += format(", hole %.3f mm", closedLength(hole.points));
   if (!shape.creases.empty()) found += ", " + std::to_string(shape.creases.size()) + " crease(s)";

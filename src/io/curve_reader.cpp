@@ -259,10 +259,17 @@ Result<Curve3> parseCurve(const std::string& text, const std::string& source,
     return Status{ErrorCode::Usage,
                   source + ": the flatten tolerance and coordinate limit must be positive"};
   Result<std::string> format = curveFormat(source);
-  if (!format.isOk()) {  // a source without a known extension (a curve made in memory): sniffed
+  if (!format.isOk()) {  // a source without a known extension (stdin, a curve in memory): sniffed
     const auto first = text.find_first_not_of(" \t\r\n");
-    if (first == std::string::npos || text[first] != '{') return format.status();
-    format = std::string("json");
+    if (first == std::string::npos) return format.status();
+    // An OBJ file opens with a comment, a vertex, an object or a group line.
+    const std::string opening = text.substr(first, 2);
+    if (text[first] == '{')
+      format = std::string("json");
+    else if (opening[0] == '#' || opening == "v " || opening == "o " || opening == "g ")
+      format = std::string("obj");
+    else
+      return format.status();
   }
   return format.value() == "obj" ? readObjCurve(source, text, options)
                                  : readJsonCurve(source, text, options);
@@ -281,11 +288,14 @@ Result<Curve3> checkCurve(const Curve3& curve, const std::string& name,
 }
 
 Result<Curve3> readCurve(const std::string& path, const CurveReadOptions& options) {
-  // The type is checked first: a wrong file is named as such without being read.
-  if (const Result<std::string> format = curveFormat(path); !format.isOk()) return format.status();
+  // The type is checked first: a wrong file is named as such without being read. Standard input
+  // has no name to tell: its content is sniffed.
+  if (path != kStandardInput)
+    if (const Result<std::string> format = curveFormat(path); !format.isOk())
+      return format.status();
   const Result<std::string> text = readInputFile(path);
   if (!text.isOk()) return text.status();
-  Result<Curve3> curve = parseCurve(text.value(), path, options);
+  Result<Curve3> curve = parseCurve(text.value(), inputName(path), options);
   if (curve.isOk()) curve.value().sha256 = sha256Hex(text.value());
   return curve;
 }

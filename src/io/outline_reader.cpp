@@ -260,7 +260,7 @@ Result<Shape2> readOutline(const std::string& path, const OutlineReadOptions& op
   Result<std::string> text = readInputFile(path);
   if (!text.isOk()) return text.status();
   std::string sha256 = sha256Hex(text.value());
-  Result<Shape2> shape = parseOutline(std::move(text).value(), path, options);
+  Result<Shape2> shape = parseOutline(std::move(text).value(), inputName(path), options);
   if (shape.isOk()) shape.value().sha256 = std::move(sha256);
   return shape;
 }

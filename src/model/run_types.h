@@ -53,8 +53,19 @@ struct ModelUsed {
   std::vector<BodyFold> folds;  ///< exact: every fold through a piece (the paper model knows none)
 };
 
+/// A level of a coarse-to-fine solve begins: `level` of `levels` (from 1), with at most
+/// `relaxationSteps` local-global steps and `solverIterations` Levenberg-Marquardt iterations.
+struct LevelStart {
+  int level = 1;
+  int levels = 1;
+  int relaxationSteps = 0;
+  int solverIterations = 0;
+};
+
 /// Hooks for a caller that shows progress or can be interrupted.
 struct RunHooks {
+  /// Each level of the paper model's coarse-to-fine solve, before its first iteration.
+  std::function<void(const LevelStart&)> onLevel;
   /// Each iteration of a stage ("relaxing": local-global steps, "solving": Levenberg-Marquardt).
   std::function<void(const char* stage, const IterationSummary&)> onIteration;
   const std::atomic<bool>* interrupted = nullptr;  ///< checked between iterations

@@ -2,6 +2,7 @@
 
 #include <new>
 
+#include "dform/core/input_file.h"
 #include "dform/core/interrupt.h"
 #include "dform/io/outline_reader.h"
 #include "dform/model/resources.h"
@@ -65,8 +66,8 @@ Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const Ru
   Result<Shape2> b = readOutline(job.pieceB);
   if (!b.isOk()) return b.status();
   const double read = secondsSince(start);
-  a.value().outer.source = job.pieceA;
-  b.value().outer.source = job.pieceB;
+  a.value().outer.source = inputName(job.pieceA);
+  b.value().outer.source = inputName(job.pieceB);
   Result<ForwardRun> run =
       solveAndMeasure(std::move(a).value(), std::move(b).value(), job, sink, hooks);
   if (!run.isOk()) return run;

@@ -2,6 +2,7 @@
 
 #include <new>
 
+#include "dform/core/input_file.h"
 #include "dform/core/interrupt.h"
 #include "dform/core/polyline.h"
 #include "dform/io/curve_reader.h"
@@ -71,7 +72,7 @@ Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const Ru
   readOptions.forceClosed = job.forceClosed;
   Result<Curve3> curve = readCurve(job.curve, readOptions);
   if (!curve.isOk()) return curve.status();
-  curve.value().source = job.curve;
+  curve.value().source = inputName(job.curve);
   const double read = secondsSince(start);
   Result<InverseRun> run = solveAndMeasure(std::move(curve).value(), job, sink, hooks);
   if (!run.isOk()) return run;

@@ -190,7 +190,7 @@ Result<Job> readJobFile(const std::string& path) {
   const Result<std::string> text = readInputFile(path, kMaxSettingsBytes);
   if (!text.isOk()) return text.status();
   const std::string base = std::filesystem::path(path).parent_path().string();
-  return parseJobJson(text.value(), path, base.empty() ? "." : base);
+  return parseJobJson(text.value(), inputName(path), base.empty() ? "." : base);
 }
 
 bool setNamedWeight(Job& job, const std::string& name, double value) {

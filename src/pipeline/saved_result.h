@@ -25,13 +25,15 @@ Result<std::string> exportSavedResult(const std::string& dir, const OutputOption
 /// the figures measured again.
 struct SavedCheck {
   std::string gateName;
+  bool judged = true;  ///< false for the gate "none": the checks measured, their verdicts moot
   GateReport gate;
   /// report.json missing or unreadable (InputUnreadable) or malformed; ok when it was compared.
   Status report = Status::ok();
   std::vector<std::string> differences;  ///< report.json's entries that disagree with the meshes
 };
 
-/// Validates the result in `dir` against the gate `gateName` (a preset or a file).
+/// Validates the result in `dir` against the gate `gateName` (a preset or a file; "none":
+/// measured with the default gate's checks, not judged).
 Result<SavedCheck> validateSavedResult(const std::string& dir, const std::string& gateName);
 
 }  // namespace dform

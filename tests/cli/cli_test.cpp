@@ -358,8 +358,7 @@ TEST_F(CliTest, ForwardWritesEveryFileAndValidates) {
 
 TEST_F(CliTest, ProgressOnlyOnATerminalAndNotWhenQuiet) {
   const std::string args = "forward " + sample("forward/ellipses-a.svg") + " " +
-                           sample("forward/ellipses-b.svg") +
-                           " --resolution 30 --no-export --model paper";
+                           sample("forward/ellipses-b.svg") + " --no-export --model paper";
   // The paper model iterates (the exact one answers in one go). util-linux `script` runs the
   // command on a pseudo-terminal and copies what it shows.
   auto onTerminal = [&](const std::string& more, const std::string& out) {
@@ -371,16 +370,23 @@ TEST_F(CliTest, ProgressOnlyOnATerminalAndNotWhenQuiet) {
     text << std::ifstream(path(out + ".txt")).rdbuf();
     return text.str();
   };
-  const std::string shown = onTerminal("", "tty");
-  EXPECT_NE(shown.find("solving: iteration 1, cost "), std::string::npos) << shown;
+  const std::string shown = onTerminal(" --resolution 30", "tty");
+  EXPECT_NE(shown.find("level 1/1: solving 1/100 iterations, cost "), std::string::npos) << shown;
+  // Two levels (a seam of 80 has a coarse level of 26): each named, with the time its cap would
+  // take at its own rate from its stage's second iteration on.
+  const std::string levels = onTerminal(" --resolution 80", "tty-levels");
+  EXPECT_NE(levels.find("level 1/2: relaxing 1/"), std::string::npos) << levels;
+  EXPECT_TRUE(std::regex_search(
+      levels, std::regex(R"(level 2/2: relaxing 2/\d+ steps, cost \S+, ETA \d+ s)")))
+      << levels;
   EXPECT_NE(shown.find("\r\033[K"), std::string::npos) << "redrawn in place";
-  const std::string quiet = onTerminal(" -q", "tty-quiet");
-  EXPECT_EQ(quiet.find("solving: iteration"), std::string::npos) << quiet;
-  EXPECT_NE(quiet.find("gate: PASSED"), std::string::npos) << "the verdict is still printed";
+  const std::string quiet = onTerminal(" --resolution 30 -q", "tty-quiet");
+  EXPECT_EQ(quiet.find("level 1/1"), std::string::npos) << quiet;
+  EXPECT_EQ(quiet.find("gate: PASSED"), std::string::npos) << "quiet prints nothing but errors";
   // Not a terminal (a batch job's log): no progress at all.
-  const Outcome piped = run(args + " -o " + path("piped"));
+  const Outcome piped = run(args + " --resolution 30 -o " + path("piped"));
   EXPECT_EQ(piped.exitCode, 0) << piped.err;
-  EXPECT_EQ(piped.err.find("solving: iteration"), std::string::npos) << piped.err;
+  EXPECT_EQ(piped.err.find("level 1/1"), std::string::npos) << piped.err;
   EXPECT_NE(piped.err.find("solve: converged"), std::string::npos) << "the stages are still logged";
   EXPECT_EQ(piped.err.find('\r'), std::string::npos);
 }
@@ -396,7 +402,7 @@ TEST_F(CliTest, AFailedGateKeepsTheReportAndReleasesNothing) {
   const std::string tight =
       write("tight.json", R"({"version": 1, "name": "tight", "limits": {"L_error": 1e-9}})");
   const Outcome failed =
-      run("forward " + pieces + " --resolution 30 --model paper -q --gate " + tight + " -o " + out);
+      run("forward " + pieces + " --resolution 30 --model paper --gate " + tight + " -o " + out);
   expectError(failed, 7, "no cutting files");
   EXPECT_NE(failed.out.find("gate: FAILED (tight: "), std::string::npos) << failed.out;
   for (const char* name :

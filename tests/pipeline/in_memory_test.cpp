@@ -63,6 +63,14 @@ TEST(InMemory, PiecesWithoutAFileAreNamedByTheirRole) {
   ASSERT_TRUE(fitted.isOk()) << fitted.status().message();
   EXPECT_NEAR(fitted.value().scaleB, 40.0 / 45.0, 1e-9);
   EXPECT_NEAR(fitted.value().metrics.seamLengthAMm, fitted.value().metrics.seamLengthBMm, 1e-9);
+  // Each piece is named once in its line ("piece A: outline ..."), never "piece A (piece A)":
+  // both runs into this sink name both pieces.
+  int named = 0;
+  for (const Message& m : sink.messages()) {
+    EXPECT_EQ(m.text.find("(piece "), std::string::npos) << m.text;
+    named += m.text.rfind("piece A: outline", 0) == 0 || m.text.rfind("piece B: outline", 0) == 0;
+  }
+  EXPECT_EQ(named, 4);
 }
 
 TEST(InMemory, ACurveGivesThePiecesItsFileGives) {
