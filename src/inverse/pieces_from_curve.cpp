@@ -223,6 +223,9 @@ Result<SolvedPieces> solveCurve(const Curve3& curve, const InverseSettings& job,
     detail::relaxOnlyIfLarge(startModel.a.flat.rows() + startModel.b.flat.rows(),
                              levelSettings.solver, levelSettings.relaxation);
     if (level > 0) levelSettings.relaxation.relativeTolerance = detail::kRefinedRelaxationTolerance;
+    if (hooks.onLevel)
+      hooks.onLevel({int(level) + 1, int(levels.size()), levelSettings.relaxation.maxIterations,
+                     levelSettings.solver.maxIterations});
     solved = solveInverse(startModel, target, levelSettings);
     run.timings.solve += secondsSince(solveStart);
     if (detail::stopRequested(hooks)) return interruptedDuring("the solve");

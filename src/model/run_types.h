@@ -64,7 +64,8 @@ struct LevelStart {
 
 /// Hooks for a caller that shows progress or can be interrupted.
 struct RunHooks {
-  /// Each level of the paper model's coarse-to-fine solve, before its first iteration.
+  /// Each level of the paper model's coarse-to-fine solve, forward or inverse, before its first
+  /// iteration.
   std::function<void(const LevelStart&)> onLevel;
   /// Each iteration of a stage ("relaxing": local-global steps, "solving": Levenberg-Marquardt).
   std::function<void(const char* stage, const IterationSummary&)> onIteration;

@@ -380,6 +380,16 @@ TEST_F(CliTest, ProgressOnlyOnATerminalAndNotWhenQuiet) {
       levels, std::regex(R"(level 2/2: relaxing 2/\d+ steps, cost \S+, ETA \d+ s)")))
       << levels;
   EXPECT_NE(shown.find("\r\033[K"), std::string::npos) << "redrawn in place";
+  // The inverse's paper model (a curve off its hull) names its level too.
+  const std::string curve = "script -qec '" + std::string(DFORM_EXE) + " inverse " +
+                            sample("inverse/pushed-in.obj") +
+                            " --resolution 40 --no-export --gate none -o " + path("tty-inverse") +
+                            "' /dev/null > " + path("tty-inverse.txt") + " 2>&1";
+  EXPECT_EQ(std::system(curve.c_str()), 0) << curve;
+  std::ostringstream inverseShown;
+  inverseShown << std::ifstream(path("tty-inverse.txt")).rdbuf();
+  EXPECT_NE(inverseShown.str().find("level 1/1: relaxing "), std::string::npos)
+      << inverseShown.str();
   const std::string quiet = onTerminal(" --resolution 30 -q", "tty-quiet");
   EXPECT_EQ(quiet.find("level 1/1"), std::string::npos) << quiet;
   EXPECT_EQ(quiet.find("gate: PASSED"), std::string::npos) << "quiet prints nothing but errors";
