@@ -34,10 +34,7 @@ namespace {
 namespace fs = std::filesystem;
 using test::readText;
 
-struct Outcome {
-  int exitCode = -1;
-  std::string out, err;
-};
+using test::Outcome;
 
 // A scratch folder per test, removed at the end.
 class CliTest : public ::testing::Test {
@@ -59,18 +56,7 @@ class CliTest : public ::testing::Test {
   // Runs dform with `args`, capturing stdout and stderr; `environment` (e.g. "env NAME=value") is
   // put before the command.
   Outcome run(const std::string& args, const std::string& environment = "") const {
-    const std::string out = path("stdout.txt"), err = path("stderr.txt");
-    const std::string command =
-        environment + " " + std::string(DFORM_EXE) + " " + args + " >" + out + " 2>" + err;
-    const int status = std::system(command.c_str());
-    Outcome o;
-    o.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ostringstream a, b;
-    a << std::ifstream(out).rdbuf();
-    b << std::ifstream(err).rdbuf();
-    o.out = a.str();
-    o.err = b.str();
-    return o;
+    return test::runCaptured(environment + " " + std::string(DFORM_EXE) + " " + args, dir_);
   }
 
   // The run failed with `code` and said so in one error line, the last, naming `mentions`

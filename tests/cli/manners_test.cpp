@@ -25,10 +25,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using test::readText;
 
-struct Outcome {
-  int exitCode = -1;
-  std::string out, err;
-};
+using test::Outcome;
 
 class CliMannersTest : public ::testing::Test {
  protected:
@@ -44,10 +41,7 @@ class CliMannersTest : public ::testing::Test {
   }
 
   Outcome run(const std::string& args) const {
-    const std::string out = path("stdout.txt"), err = path("stderr.txt");
-    const std::string command = std::string(DFORM_EXE) + " " + args + " >" + out + " 2>" + err;
-    const int status = std::system(command.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, readText(out), readText(err)};
+    return test::runCaptured(std::string(DFORM_EXE) + " " + args, dir_);
   }
   json report(const std::string& folder) const {
     return json::parse(std::ifstream(fs::path(path(folder)) / "report.json"));

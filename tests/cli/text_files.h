@@ -2,8 +2,10 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -36,6 +38,20 @@ inline int occurrences(const std::string& text, const std::string& what) {
   int n = 0;
   for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
   return n;
+}
+
+/// What a process did: its exit code (-1 when it did not exit) and what it printed.
+struct Outcome {
+  int exitCode = -1;
+  std::string out, err;
+};
+
+/// Runs the shell command line `command` with its stdout and stderr kept in `dir`/stdout.txt and
+/// `dir`/stderr.txt.
+inline Outcome runCaptured(const std::string& command, const std::filesystem::path& dir) {
+  const std::filesystem::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const int status = std::system((command + " >" + out.string() + " 2>" + err.string()).c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, readText(out), readText(err)};
 }
 
 }  // namespace dform::test

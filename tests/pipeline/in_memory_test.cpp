@@ -147,15 +147,15 @@ TEST(InMemory, ABadShapeIsRefusedAsItsFileIs) {
   ASSERT_FALSE(apart.isOk());
   EXPECT_EQ(apart.status().message(), "piece A: 2 separate outlines; expected one piece");
   Shape2 creased = ellipse(50, 50, 400);
-  Points2 stub(2, 2);
-  stub << -50, 0, 10, 0;
-  creased.creases.push_back({stub, ""});
-  const Result<ForwardRun> stubbed = makeDForm(creased, other, settings, sink);
-  ASSERT_FALSE(stubbed.isOk());
-  EXPECT_EQ(stubbed.status().code(), ErrorCode::InputInvalid);
-  EXPECT_EQ(stubbed.status().message().rfind("piece A: crease 1 ends 40 mm inside the piece", 0),
+  Points2 shortCrease(2, 2);
+  shortCrease << -50, 0, 10, 0;
+  creased.creases.push_back({shortCrease, ""});
+  const Result<ForwardRun> shortened = makeDForm(creased, other, settings, sink);
+  ASSERT_FALSE(shortened.isOk());
+  EXPECT_EQ(shortened.status().code(), ErrorCode::InputInvalid);
+  EXPECT_EQ(shortened.status().message().rfind("piece A: crease 1 ends 40 mm inside the piece", 0),
             0u)
-      << stubbed.status().message();
+      << shortened.status().message();
   Points2 outside(3, 2);
   outside << -50, 0, 55, 0, 55, 10;
   creased.creases = {{outside, "fold"}};
