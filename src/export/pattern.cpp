@@ -98,13 +98,16 @@ std::vector<Polyline> materialLoops(const Piece& piece) {
   return material;
 }
 
-// A piece's printed tint (flat frame; holes wind against the outer loops): its cut region grown
-// by `bleed`.
+// A piece's printed tint (flat frame; outer loops counter-clockwise, holes clockwise): its cut
+// region grown by `bleed`, each hole shrunk by it and left out.
 std::vector<Polyline> bleedLoops(const std::vector<Polyline>& outer,
                                  const std::vector<Polyline>& holes, double bleed) {
   ClipperLib::Paths region;
-  for (const auto* loops : {&outer, &holes})
-    for (const Polyline& loop : *loops) region.push_back(toClip(loop));
+  for (const Polyline& loop : outer) region.push_back(toClip(loop));
+  for (const Polyline& loop : holes) {  // toClip turns every loop counter-clockwise
+    region.push_back(toClip(loop));
+    ClipperLib::ReversePath(region.back());
+  }
   std::vector<Polyline> out;
   for (const auto& p : grownRegion(region, bleed)) out.push_back(fromClip(p));
   return out;
