@@ -168,8 +168,8 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
       const double margin = profile.value("margin_mm", 5.0);
       Box title;
       const SvgDoc first = readSvg(dir + "/" + sheets[0]["file"].get<std::string>());
-      for (const char* id : {"title", "note", "tab-note", "crease-legend-label", "calibration-bar",
-                             "calibration-label"})
+      for (const char* id : {"title", "note", "tab-note", "crease-legend-label", "scale-note",
+                             "calibration-bar", "calibration-label"})
         if (const SvgPath* path = first.find(id))
           for (const Polyline& part : path->parts) title.add(part);
       const double depth = std::min(title.w(), title.h());
@@ -206,17 +206,25 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
       // A sheet whose title lines do not fit beside its pieces gets a cover page for them.
       for (const auto& page : pages) expectedPages += page["kind"] == "cover";
       EXPECT_EQ(pages.size(), expectedPages);
-      // True size wherever the pieces fit at true size, else the largest whole percent that
-      // fits: one percent more is refused as too large.
+      // True size wherever the pieces fit at true size, else the largest tenth of a percent
+      // that fits: a tenth more is refused as too large, with a message naming that scale. Every
+      // sheet of a scaled pattern says so in words (on its cover page, where its title lines go).
       if (scale < 1.0) {
-        char larger[16];
-        std::snprintf(larger, sizeof larger, "%.2f", scale + 0.01);
+        char larger[16], named[64];
+        std::snprintf(larger, sizeof larger, "%.4f", scale + 0.001);
+        std::snprintf(named, sizeof named, "largest scale that fits is %.1f %%", 100 * scale);
         EXPECT_EQ(run(dform() + " export " + solved + " -o " + freshDir("larger") + " -q --scale " +
                           larger + " --profile " + profileName + paperOption,
                       &out),
                   2)
             << out;
         EXPECT_NE(out.find("does not fit"), std::string::npos) << out;
+        EXPECT_NE(out.find(named), std::string::npos) << out;
+        size_t notes = 0;
+        for (const SvgPath& path : readSvg(dir + "/pattern.svg").paths)
+          notes += path.id.rfind("scale-note", 0) == 0;
+        for (const auto& page : pages) notes += page["kind"] == "cover";
+        EXPECT_EQ(notes, sheets.size()) << "a sheet that does not state its scale";
       }
       // The seams' perimeters in the SVG and the DXF: exported again without tabs, each piece's
       // cut path is its seam (no shipped profile has a kerf).
