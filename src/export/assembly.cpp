@@ -340,9 +340,12 @@ void drawSeamAndTicks(const DForm& model, const PatternBuild& pattern, const Sha
 Drawing assemblyPage(const DForm& model, const PatternBuild& pattern, const ExportOptions& o,
                      const StrokeFont& font) {
   Drawing d;
-  const bool letter = pattern.profile.page == "Letter" || o.page == "Letter";
-  d.width = letter ? 8.5 * 25.4 : 210.0;
-  d.height = letter ? 11.0 * 25.4 : 297.0;
+  // The job's paper (--page over the profile's), portrait, so that a printer prints the whole job
+  // on one paper size; A4 for a sheet profile, which has none.
+  const std::string page = o.page.empty() ? pattern.profile.page : o.page;
+  const auto size = pageSizeMm(page.empty() ? "A4" : page);
+  d.width = size ? size->first : 210.0;
+  d.height = size ? size->second : 297.0;
   d.title = o.jobName + " - assembly";
   d.description = "How to glue the pieces: dform assembly page, mm";
   d.layers = {makeLayer("Shape", "#000000", 0.1), makeLayer("Hidden", "#999999", 0.25),

@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <regex>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "synthetic.h"
@@ -76,6 +78,36 @@ TEST(Assembly, IsThePdfsLastPageAndAFileOfItsOwn) {
     for (const PdfPath& p : pdf)
       if (p.page == lastPage) onLast.push_back(p);
     EXPECT_LT(closestDrawing(onLast, a.page.find("view-seam")->parts[0]), 0.1) << profile;
+  }
+}
+
+TEST(Assembly, SharesTheJobsPaperWithEveryPatternPage) {
+  // --page over the profile's paper: every page of pattern.pdf (the pattern's, a landscape turn
+  // of the paper allowed, and the assembly page) and assembly.svg are that paper.
+  for (const auto& [profile, page, W, H] : {std::tuple{"print-letter", "A4", 210.0, 297.0},
+                                            std::tuple{"print-and-cut-cricut", "A4", 210.0, 297.0},
+                                            std::tuple{"print", "Letter", 215.9, 279.4},
+                                            std::tuple{"print-and-cut", "Letter", 215.9, 279.4}}) {
+    SCOPED_TRACE(std::string(profile) + " on " + page);
+    ExportOptions o = options(profile);
+    o.page = page;
+    const Exported e = exportTo(std::string("asm-paper-") + profile, ellipseCircleDForm(), o);
+    const SvgDoc assembly = readSvg(e.dir + "/assembly.svg");
+    EXPECT_NEAR(parseMm(assembly.width), W, 1e-6);
+    EXPECT_NEAR(parseMm(assembly.height), H, 1e-6);
+    std::string info;
+    ASSERT_EQ(run("pdfinfo -f 1 -l 999 " + e.dir + "/pattern.pdf", &info), 0) << info;
+    const std::regex size(R"(Page +([0-9]+) size: +([0-9.]+) x ([0-9.]+) pts)");
+    int pages = 0;
+    for (auto it = std::sregex_iterator(info.begin(), info.end(), size);
+         it != std::sregex_iterator(); ++it) {
+      ++pages;
+      const double w = std::stod((*it)[2]) * 25.4 / 72, h = std::stod((*it)[3]) * 25.4 / 72;
+      const bool paper = (std::abs(w - W) < 0.1 && std::abs(h - H) < 0.1) ||
+                         (std::abs(w - H) < 0.1 && std::abs(h - W) < 0.1);
+      EXPECT_TRUE(paper) << "page " << (*it)[1] << " is " << w << " x " << h << " mm";
+    }
+    EXPECT_EQ(pages, e.summary.pages + 1) << info;
   }
 }
 
