@@ -111,6 +111,41 @@ TEST(Assembly, SharesTheJobsPaperWithEveryPatternPage) {
   }
 }
 
+TEST(Assembly, NoTwoLabelsOverlap) {
+  // Ticks every 8 mm round long, thin ellipses crowd the numbers at the 3D view's tips: each
+  // number takes a free spot (with a leader where it is not the nearest) or is left out, and a
+  // note counts those left out. Label footprints are their drawn boxes in assembly.svg.
+  for (const auto& [ax, by] : {std::pair{80.0, 50.0}, std::pair{120.0, 20.0}}) {
+    SCOPED_TRACE("ellipse " + std::to_string(ax) + " x " + std::to_string(by));
+    ExportOptions o = options("print");
+    o.tickSpacingMm = 8;
+    const Exported e = exportTo("asm-labels", ellipseCircleDForm(64, 8, ax, by), o);
+    const SvgDoc page = readSvg(e.dir + "/assembly.svg");
+    std::vector<std::pair<std::string, std::pair<Vec2, Vec2>>> boxes;
+    int viewLabels = 0;
+    bool note = false;
+    for (const SvgPath& p : page.paths) {
+      const bool label = p.id.size() > 6 && p.id.compare(p.id.size() - 6, 6, "-label") == 0;
+      const bool name = p.id.size() > 5 && p.id.compare(p.id.size() - 5, 5, "-name") == 0;
+      note = note || p.id == "view-dropped-note";
+      if (!label && !name && p.id != "view-dropped-note") continue;
+      viewLabels += p.id.rfind("view-tick-", 0) == 0;
+      boxes.push_back({p.id, {boxLo(p.parts), boxHi(p.parts)}});
+    }
+    const int ticks = int(e.sidecar["ticks"].size());
+    EXPECT_GE(ticks, 40);
+    EXPECT_TRUE(viewLabels == ticks || note) << viewLabels << " of " << ticks << ", no note";
+    for (size_t i = 0; i < boxes.size(); ++i)
+      for (size_t j = i + 1; j < boxes.size(); ++j) {
+        const auto& [lo1, hi1] = boxes[i].second;
+        const auto& [lo2, hi2] = boxes[j].second;
+        const bool overlap =
+            lo1.x() < hi2.x() && lo2.x() < hi1.x() && lo1.y() < hi2.y() && lo2.y() < hi1.y();
+        EXPECT_FALSE(overlap) << boxes[i].first << " and " << boxes[j].first;
+      }
+  }
+}
+
 TEST(Assembly, ThumbnailsAreThePiecesScaledWithTheStartOnTickZero) {
   const Assembly a = exportAssembly("asm-thumbs", "laser");
   const auto& ticks = a.e.sidecar["ticks"];
