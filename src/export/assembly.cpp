@@ -15,12 +15,16 @@ namespace dform::fab {
 
 namespace {
 
-constexpr double kMargin = 15.0;     // page margin (mm)
-constexpr double kTextH = 3.2;       // cap height of the steps (mm)
-constexpr double kLineH = 1.7;       // line pitch, in cap heights
-constexpr double kShadeSteps = 16;   // shades per piece: runs of one colour merge into one path
-constexpr double kViewAzimuth = 30;  // the report's first view
-constexpr double kViewElevation = 25;
+constexpr double kMargin = 15.0;    // page margin (mm)
+constexpr double kTextH = 3.2;      // cap height of the steps (mm)
+constexpr double kLineH = 1.7;      // line pitch, in cap heights
+constexpr double kShadeSteps = 16;  // shades per piece: runs of one colour merge into one path
+// The 3D picture's candidate views: the report's first (30, 25) first, then azimuths 120 degrees
+// apart at 25 and 60 degrees above and below the shape (each costs a painter's sort of the faces).
+constexpr double kViewAzimuth = 30;
+constexpr double kViewElevations[] = {25, 60, -25, -60};
+// Seam points the view choice tests for sight, at most (every k-th of a longer seam).
+constexpr size_t kViewSeamSamples = 48;
 
 std::string hex(const Eigen::Vector3d& rgb) {
   char text[8];
@@ -336,6 +340,54 @@ bool hiddenBySurface(const std::vector<SeenFace>& faces, double size, const Eige
   return false;
 }
 
+// A view of the shape and its faces in painter's order.
+struct ShapeView {
+  ShapeCamera camera;
+  std::vector<SeenFace> faces;
+};
+
+// The candidate view that shows the most of the seam: the 3D length of the seam edges (between
+// every k-th seam point, at most kViewSeamSamples) with both ends in sight (hiddenBySurface),
+// preferring views with tick 0 (`start`) in sight. A later view replaces the best only when it
+// shows more by over 1 % of the seam, so that rounding never decides and a tie keeps the
+// report's view.
+ShapeView mostSeamInSight(const DForm& model, const Eigen::Vector3d& start) {
+  const Piece& a = model.a;
+  const size_t n = a.seam.size(), step = std::max<size_t>(1, n / kViewSeamSamples);
+  std::vector<Eigen::Vector3d> points;
+  for (size_t i = 0; i < n; i += step) points.push_back(a.shape.row(a.seam[i]).transpose());
+  double seamLength = 0;
+  for (size_t i = 0; i < points.size(); ++i)
+    seamLength += (points[(i + 1) % points.size()] - points[i]).norm();
+  std::optional<ShapeView> best;
+  double bestScore = 0;
+  for (double elevation : kViewElevations)
+    for (int k = 0; k < 3; ++k) {
+      ShapeView v{ShapeCamera(kViewAzimuth + 120.0 * k, elevation), {}};
+      v.faces = paintersFaces(model, v.camera);
+      Box seen;
+      for (const SeenFace& f : v.faces)
+        for (const Vec2& c : f.corners) seen.add(c);
+      const double size = std::max(seen.w(), seen.h());
+      auto inSight = [&](const Eigen::Vector3d& p) {
+        return !hiddenBySurface(v.faces, size, v.camera.screen(p));
+      };
+      std::vector<bool> seenAt;
+      for (const Eigen::Vector3d& p : points) seenAt.push_back(inSight(p));
+      double length = 0;
+      for (size_t i = 0; i < points.size(); ++i)
+        if (seenAt[i] && seenAt[(i + 1) % points.size()])
+          length += (points[(i + 1) % points.size()] - points[i]).norm();
+      // Tick 0 in sight counts as more than any seam length.
+      const double score = length + (inSight(start) ? 2 * seamLength : 0);
+      if (!best || score > bestScore + 0.01 * seamLength) {
+        best = std::move(v);
+        bestScore = score;
+      }
+    }
+  return std::move(*best);
+}
+
 // The seam on the 3D shape: all of it dashed grey, then the stretches in sight over it; and the
 // tick numbers where the ticks meet. A tick's 3D point is the same seam edge and fraction as on
 // the flat outline of A; its number goes outside the shape's picture, grey where the surface
@@ -441,8 +493,12 @@ Drawing assemblyPage(const DForm& model, const PatternBuild& pattern, const Expo
     drawThumbnail(pattern, p, kMargin + double(p) * (half + gap), half, thumbsTop, thumbsH, font,
                   labels, layers);
   // The 3D shape, shaded, with its seam and the tick numbers where the ticks meet.
-  const ShapeCamera camera(kViewAzimuth, kViewElevation);
-  const std::vector<SeenFace> faces = paintersFaces(model, camera);
+  const std::vector<SeamTick> ticks = seamTicks(model, pattern);
+  const ShapeView chosen =
+      mostSeamInSight(model, ticks.empty() ? Eigen::Vector3d(model.a.shape.row(model.a.seam[0]))
+                                           : ticks.front().at);
+  const ShapeCamera& camera = chosen.camera;
+  const std::vector<SeenFace>& faces = chosen.faces;
   Box seen;
   for (const SeenFace& f : faces)
     for (const Vec2& c : f.corners) seen.add(c);
