@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "dform/core/shape_projection.h"
 #include "dform/export/internal.h"
@@ -14,12 +15,16 @@ namespace dform::fab {
 
 namespace {
 
-constexpr double kMargin = 15.0;     // page margin (mm)
-constexpr double kTextH = 3.2;       // cap height of the steps (mm)
-constexpr double kLineH = 1.7;       // line pitch, in cap heights
-constexpr double kShadeSteps = 16;   // shades per piece: runs of one colour merge into one path
-constexpr double kViewAzimuth = 30;  // the report's first view
-constexpr double kViewElevation = 25;
+constexpr double kMargin = 15.0;    // page margin (mm)
+constexpr double kTextH = 3.2;      // cap height of the steps (mm)
+constexpr double kLineH = 1.7;      // line pitch, in cap heights
+constexpr double kShadeSteps = 16;  // shades per piece: runs of one colour merge into one path
+// The 3D picture's candidate views: the report's first (30, 25) first, then azimuths 120 degrees
+// apart at 25 and 60 degrees above and below the shape (each costs a painter's sort of the faces).
+constexpr double kViewAzimuth = 30;
+constexpr double kViewElevations[] = {25, 60, -25, -60};
+// Seam points the view choice tests for sight, at most (every k-th of a longer seam).
+constexpr size_t kViewSeamSamples = 48;
 
 std::string hex(const Eigen::Vector3d& rgb) {
   char text[8];
@@ -151,6 +156,51 @@ void write(Layer& layer, const StrokeFont& font, const std::string& id, const st
   layer.paths.push_back(std::move(p));
 }
 
+// Where the page's labels are, so that a new one goes where it overlaps none: each label takes the
+// first of its candidate spots that is free and inside the region it may use.
+class LabelSpots {
+ public:
+  explicit LabelSpots(const StrokeFont& font) : font_(font) {}
+  // The footprint of `s` centred on c at capital height h, with a clearance of 0.3 mm.
+  Box footprint(const std::string& s, const Vec2& c, double h) const {
+    const Vec2 half(0.5 * font_.width(s, h) + 0.3, 0.5 * h + 0.3);
+    return Box::spanning(c - half, c + half);
+  }
+  bool isFree(const Box& b, const Box& region) const {
+    if (!region.contains(b, 0)) return false;
+    return std::none_of(taken_.begin(), taken_.end(), [&](const Box& t) { return t.overlaps(b); });
+  }
+  void take(const Box& b) { taken_.push_back(b); }
+  // The first of `centres` where `s` fits, taken; nullopt when none is free.
+  std::optional<Vec2> firstFree(const std::string& s, const std::vector<Vec2>& centres, double h,
+                                const Box& region) {
+    for (const Vec2& c : centres)
+      if (isFree(footprint(s, c, h), region)) {
+        take(footprint(s, c, h));
+        return c;
+      }
+    return std::nullopt;
+  }
+
+ private:
+  const StrokeFont& font_;
+  std::vector<Box> taken_;
+};
+
+// Spots around a mark at `at` pointing away along `out`: at each distance in turn, straight out,
+// then turned by 20, 40, 60 and 90 degrees either way.
+std::vector<Vec2> spotsAround(const Vec2& at, const Vec2& out,
+                              const std::vector<double>& distances) {
+  std::vector<Vec2> spots;
+  for (double d : distances)
+    for (double deg : {0.0, 20.0, -20.0, 40.0, -40.0, 60.0, -60.0, 90.0, -90.0}) {
+      const double r = deg * M_PI / 180;
+      spots.push_back(at + d * Vec2(std::cos(r) * out.x() - std::sin(r) * out.y(),
+                                    std::sin(r) * out.x() + std::cos(r) * out.y()));
+    }
+  return spots;
+}
+
 // The numbered steps at the foot of a W x H page, laid out from the bottom up so that the
 // pictures take the room that is left. Returns the top of the steps (mm).
 double drawSteps(const PatternBuild& pattern, const StrokeFont& font, double W, double H,
@@ -192,7 +242,8 @@ struct AssemblyLayers {
 // Piece p small in its half of the strip [thumbsTop, thumbsTop + thumbsH] whose left edge is at
 // x0: outline and tabs, tick 0 and the zip.
 void drawThumbnail(const PatternBuild& pattern, size_t p, double x0, double half, double thumbsTop,
-                   double thumbsH, const StrokeFont& font, AssemblyLayers& layers) {
+                   double thumbsH, const StrokeFont& font, LabelSpots& labels,
+                   AssemblyLayers& layers) {
   const PieceInfo& piece = pattern.pieces[p];
   const std::string& name = piece.name;
   Box content = boxOf(piece.cut);
@@ -230,12 +281,18 @@ void drawThumbnail(const PatternBuild& pattern, size_t p, double x0, double half
   const Vec2 at = fit(p == 0 ? t0.onA : t0.onB);
   start.parts = {disc(at, 1.2)};
   layers.marks.paths.push_back(start);
-  // "0" just outside the start, away from the piece's centre.
+  // The name under the piece; "0" just outside the start, away from the piece's centre, or turned
+  // away from the name where it would overlap it.
+  const Vec2 nameAt(x0 + 0.5 * half, thumbsTop + thumbsH - 3);
+  labels.take(labels.footprint(name, nameAt, 4.0));
+  write(layers.text, font, "thumb-" + name + "-name", name, nameAt, 4.0);
   Vec2 out = at - 0.5 * (area.lo + area.hi);
   out = out.norm() > 0 ? out.normalized() : Vec2(0, -1);
-  write(layers.text, font, "thumb-" + name + "-start-label", "0", at + 3.5 * out, kTextH);
-  write(layers.text, font, "thumb-" + name + "-name", name,
-        Vec2(x0 + 0.5 * half, thumbsTop + thumbsH - 3), 4.0);
+  const Box strip = Box::spanning(Vec2(x0, thumbsTop), Vec2(x0 + half, thumbsTop + thumbsH));
+  const std::optional<Vec2> zeroAt =
+      labels.firstFree("0", spotsAround(at, out, {3.5, 5.5, 7.5}), kTextH, strip);
+  write(layers.text, font, "thumb-" + name + "-start-label", "0", zeroAt.value_or(at + 3.5 * out),
+        kTextH);
 }
 
 // The faces, shaded. Each face's shade is quantised; a run of faces of one colour in painter's
@@ -283,13 +340,64 @@ bool hiddenBySurface(const std::vector<SeenFace>& faces, double size, const Eige
   return false;
 }
 
+// A view of the shape and its faces in painter's order.
+struct ShapeView {
+  ShapeCamera camera;
+  std::vector<SeenFace> faces;
+};
+
+// The candidate view that shows the most of the seam: the 3D length of the seam edges (between
+// every k-th seam point, at most kViewSeamSamples) with both ends in sight (hiddenBySurface),
+// preferring views with tick 0 (`start`) in sight. A later view replaces the best only when it
+// shows more by over 1 % of the seam, so that rounding never decides and a tie keeps the
+// report's view.
+ShapeView mostSeamInSight(const DForm& model, const Eigen::Vector3d& start) {
+  const Piece& a = model.a;
+  const size_t n = a.seam.size(), step = std::max<size_t>(1, n / kViewSeamSamples);
+  std::vector<Eigen::Vector3d> points;
+  for (size_t i = 0; i < n; i += step) points.push_back(a.shape.row(a.seam[i]).transpose());
+  double seamLength = 0;
+  for (size_t i = 0; i < points.size(); ++i)
+    seamLength += (points[(i + 1) % points.size()] - points[i]).norm();
+  std::optional<ShapeView> best;
+  double bestScore = 0;
+  for (double elevation : kViewElevations)
+    for (int k = 0; k < 3; ++k) {
+      ShapeView v{ShapeCamera(kViewAzimuth + 120.0 * k, elevation), {}};
+      v.faces = paintersFaces(model, v.camera);
+      Box seen;
+      for (const SeenFace& f : v.faces)
+        for (const Vec2& c : f.corners) seen.add(c);
+      const double size = std::max(seen.w(), seen.h());
+      auto inSight = [&](const Eigen::Vector3d& p) {
+        return !hiddenBySurface(v.faces, size, v.camera.screen(p));
+      };
+      std::vector<bool> seenAt;
+      for (const Eigen::Vector3d& p : points) seenAt.push_back(inSight(p));
+      double length = 0;
+      for (size_t i = 0; i < points.size(); ++i)
+        if (seenAt[i] && seenAt[(i + 1) % points.size()])
+          length += (points[(i + 1) % points.size()] - points[i]).norm();
+      // Tick 0 in sight counts as more than any seam length.
+      const double score = length + (inSight(start) ? 2 * seamLength : 0);
+      if (!best || score > bestScore + 0.01 * seamLength) {
+        best = std::move(v);
+        bestScore = score;
+      }
+    }
+  return std::move(*best);
+}
+
 // The seam on the 3D shape: all of it dashed grey, then the stretches in sight over it; and the
 // tick numbers where the ticks meet. A tick's 3D point is the same seam edge and fraction as on
 // the flat outline of A; its number goes outside the shape's picture, grey where the surface
-// hides the point.
-void drawSeamAndTicks(const DForm& model, const PatternBuild& pattern, const ShapeCamera& camera,
-                      const std::vector<SeenFace>& faces, const Box& seen, const Fit& view,
-                      const StrokeFont& font, AssemblyLayers& layers) {
+// hides the point, at the first spot near it that no other label takes (within `region`), with a
+// leader line where that is not the nearest; a number with no free spot is left out. Returns how
+// many were.
+int drawSeamAndTicks(const DForm& model, const PatternBuild& pattern, const ShapeCamera& camera,
+                     const std::vector<SeenFace>& faces, const Box& seen, const Fit& view,
+                     const StrokeFont& font, LabelSpots& labels, const Box& region,
+                     AssemblyLayers& layers) {
   const double size = std::max(seen.w(), seen.h());
   const Piece& a = model.a;
   const size_t n = a.seam.size();
@@ -318,6 +426,7 @@ void drawSeamAndTicks(const DForm& model, const PatternBuild& pattern, const Sha
   if (!inSight.parts.empty()) layers.seam.paths.push_back(inSight);
   // A tick's number goes outside the shape's picture; grey where the surface hides its point.
   const Vec2 middle = view(0.5 * (seen.lo + seen.hi));
+  int dropped = 0;
   for (const SeamTick& t : seamTicks(model, pattern)) {
     const Eigen::Vector3d s = camera.screen(t.at);
     const Vec2 at = view(Vec2(s.head<2>()));
@@ -329,10 +438,24 @@ void drawSeamAndTicks(const DForm& model, const PatternBuild& pattern, const Sha
     (covered ? layers.hidden : layers.marks).paths.push_back(dot);
     Vec2 out = at - middle;
     out = out.norm() > 0 ? out.normalized() : Vec2(0, -1);
-    write(covered ? layers.hidden : layers.text, font,
-          "view-tick-" + std::to_string(t.id) + "-label", t.label, at + 4.0 * out,
-          t.id == 0 ? 3.2 : 2.6);
+    const double h = t.id == 0 ? 3.2 : 2.6;
+    const std::optional<Vec2> c =
+        labels.firstFree(t.label, spotsAround(at, out, {4.0, 7.0, 10.0, 13.0}), h, region);
+    if (!c) {
+      ++dropped;
+      continue;
+    }
+    Layer& layer = covered ? layers.hidden : layers.text;
+    write(layer, font, "view-tick-" + std::to_string(t.id) + "-label", t.label, *c, h);
+    const Vec2 to = *c - at;
+    if (to.norm() > 4.0 + 1e-9) {  // a leader from the dot to the number's near side
+      Path leader;
+      leader.id = "view-tick-" + std::to_string(t.id) + "-leader";
+      leader.parts = {{at + 1.0 * to.normalized(), *c - (0.5 * h + 0.8) * to.normalized()}};
+      layer.paths.push_back(leader);
+    }
   }
+  return dropped;
 }
 
 }  // namespace
@@ -340,9 +463,12 @@ void drawSeamAndTicks(const DForm& model, const PatternBuild& pattern, const Sha
 Drawing assemblyPage(const DForm& model, const PatternBuild& pattern, const ExportOptions& o,
                      const StrokeFont& font) {
   Drawing d;
-  const bool letter = pattern.profile.page == "Letter" || o.page == "Letter";
-  d.width = letter ? 8.5 * 25.4 : 210.0;
-  d.height = letter ? 11.0 * 25.4 : 297.0;
+  // The job's paper (--page over the profile's), portrait, so that a printer prints the whole job
+  // on one paper size; A4 for a sheet profile, which has none.
+  const std::string page = o.page.empty() ? pattern.profile.page : o.page;
+  const auto size = pageSizeMm(page.empty() ? "A4" : page);
+  d.width = size ? size->first : 210.0;
+  d.height = size ? size->second : 297.0;
   d.title = o.jobName + " - assembly";
   d.description = "How to glue the pieces: dform assembly page, mm";
   d.layers = {makeLayer("Shape", "#000000", 0.1), makeLayer("Hidden", "#999999", 0.25),
@@ -362,12 +488,17 @@ Drawing assemblyPage(const DForm& model, const PatternBuild& pattern, const Expo
   const double thumbsH = std::min(60.0, 0.35 * (stepsTop - top));
   const double thumbsTop = stepsTop - gap - thumbsH;
   const double half = 0.5 * (W - 2 * kMargin - gap);
+  LabelSpots labels(font);
   for (size_t p = 0; p < 2; ++p)
     drawThumbnail(pattern, p, kMargin + double(p) * (half + gap), half, thumbsTop, thumbsH, font,
-                  layers);
+                  labels, layers);
   // The 3D shape, shaded, with its seam and the tick numbers where the ticks meet.
-  const ShapeCamera camera(kViewAzimuth, kViewElevation);
-  const std::vector<SeenFace> faces = paintersFaces(model, camera);
+  const std::vector<SeamTick> ticks = seamTicks(model, pattern);
+  const ShapeView chosen =
+      mostSeamInSight(model, ticks.empty() ? Eigen::Vector3d(model.a.shape.row(model.a.seam[0]))
+                                           : ticks.front().at);
+  const ShapeCamera& camera = chosen.camera;
+  const std::vector<SeenFace>& faces = chosen.faces;
   Box seen;
   for (const SeenFace& f : faces)
     for (const Vec2& c : f.corners) seen.add(c);
@@ -375,7 +506,16 @@ Drawing assemblyPage(const DForm& model, const PatternBuild& pattern, const Expo
       Box::spanning(Vec2(kMargin + 8, top + 6), Vec2(W - kMargin - 8, thumbsTop - gap - 6));
   const Fit view(seen, viewArea, true);
   drawShadedFaces(faces, view, layers.shape);
-  drawSeamAndTicks(model, pattern, camera, faces, seen, view, font, layers);
+  // The tick numbers keep between the title and the thumbnails, above a note's line under the
+  // picture, which says how many had no room (each is numbered on the pieces).
+  const Box tickRegion = Box::spanning(Vec2(kMargin, top), Vec2(W - kMargin, thumbsTop - gap));
+  const int dropped =
+      drawSeamAndTicks(model, pattern, camera, faces, seen, view, font, labels, tickRegion, layers);
+  if (dropped > 0)
+    write(layers.text, font, "view-dropped-note",
+          std::to_string(dropped) + " tick number" + (dropped > 1 ? "s" : "") +
+              " left out of this picture for lack of room: every tick is numbered on the pieces",
+          Vec2(0.5 * W, thumbsTop - 0.5 * gap), 2.4);
   return d;
 }
 

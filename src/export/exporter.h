@@ -149,8 +149,8 @@ struct ExportOptions {
   /// Scale of the pattern (1 = true size): the pieces are scaled, tabs, ticks and labels keep
   /// their size; the scale is printed in the title line and written in pattern.json.
   double scale = 1.0;
-  /// When the pieces do not fit at `scale`, use the largest smaller scale (whole percent) at
-  /// which they do, and say so (--scale fit).
+  /// When the pieces do not fit at `scale`, use the largest smaller scale (to 0.1 %) at which
+  /// they do, and say so (--scale fit).
   bool scaleToFit = false;
   /// prepareExport, exportAll, renderPatternPng: stamp every output FAILED GATE (markFailedGate)
   bool failedGateMark = false;

@@ -98,13 +98,16 @@ std::vector<Polyline> materialLoops(const Piece& piece) {
   return material;
 }
 
-// A piece's printed tint (flat frame; holes wind against the outer loops): its cut region grown
-// by `bleed`.
+// A piece's printed tint (flat frame; outer loops counter-clockwise, holes clockwise): its cut
+// region grown by `bleed`, each hole shrunk by it and left out.
 std::vector<Polyline> bleedLoops(const std::vector<Polyline>& outer,
                                  const std::vector<Polyline>& holes, double bleed) {
   ClipperLib::Paths region;
-  for (const auto* loops : {&outer, &holes})
-    for (const Polyline& loop : *loops) region.push_back(toClip(loop));
+  for (const Polyline& loop : outer) region.push_back(toClip(loop));
+  for (const Polyline& loop : holes) {  // toClip turns every loop counter-clockwise
+    region.push_back(toClip(loop));
+    ClipperLib::ReversePath(region.back());
+  }
   std::vector<Polyline> out;
   for (const auto& p : grownRegion(region, bleed)) out.push_back(fromClip(p));
   return out;
@@ -206,7 +209,7 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
   out.profile = profile;
   out.tickSpacing = o.tickSpacingMm;
   const FlatPieces flat(model);
-  Result<SheetFit> fitResult = sheetFit(o, profile, flat.creased, tooLargeOut);
+  Result<SheetFit> fitResult = sheetFit(o, profile, flat.creased, scale, tooLargeOut);
   if (!fitResult.isOk()) return fitResult.status();
   const SheetFit& fit = fitResult.value();
   if (Status s = checkOutlinesFit(fit, flat); !s.isOk()) return s;
@@ -276,6 +279,68 @@ DForm scaledFlat(const DForm& model, double scale) {
   return scaled;
 }
 
+// The pattern of `model` at `scale` with options `o`; `tooLarge` is set when a piece does not fit.
+Result<PatternBuild> buildScaled(const DForm& model, const ExportOptions& o, const Profile& profile,
+                                 const StrokeFont& font, double scale, BuildWork& work,
+                                 bool& tooLarge) {
+  tooLarge = false;
+  return buildAtScale(scale == 1.0 ? model : scaledFlat(model, scale), o, profile, font, scale,
+                      work, tooLarge);
+}
+
+// The largest scale below `failsAt` (in tenths of a percent, where a piece does not fit) at which
+// the pattern fits, found by bisection: a smaller scale never makes a piece's extent larger (its
+// outline shrinks; its tabs and ticks keep their size). `built` is the pattern at that scale;
+// with no such scale down to 0.1 % `permille` is 0 and `built` is `failure`; `otherError` when a
+// build failed for another reason than a piece too large (`built` is that failure).
+struct ScaleFit {
+  int permille = 0;
+  Result<PatternBuild> built;
+  bool otherError = false;
+};
+ScaleFit largestFittingScale(const DForm& model, const ExportOptions& o, const Profile& profile,
+                             const StrokeFont& font, int failsAt, const Status& failure,
+                             BuildWork& work) {
+  ScaleFit best{0, failure};
+  while (failsAt - best.permille > 1) {
+    const int mid = (best.permille + failsAt) / 2;
+    bool tooLarge = false;
+    Result<PatternBuild> attempt =
+        buildScaled(model, o, profile, font, mid / 1000.0, work, tooLarge);
+    if (attempt.isOk()) {
+      best = ScaleFit{mid, std::move(attempt)};
+    } else if (tooLarge) {
+      failsAt = mid;
+    } else {
+      return ScaleFit{0, std::move(attempt), true};
+    }
+  }
+  return best;
+}
+
+// What makes a pattern that does not fit at the scale asked fit: the largest scale that does
+// (`permille`, 0 for none), a larger sheet, or a larger page where one fits at the scale asked.
+// (The title block is never the obstacle: it goes on a page of its own where it does not fit.)
+std::string fitAdvice(const DForm& model, const ExportOptions& o, const Profile& profile,
+                      const StrokeFont& font, int permille, BuildWork& work) {
+  std::string advice = permille >= 50
+                           ? "; the largest scale that fits is " + percentText(permille / 1000.0) +
+                                 ": --scale fit makes it so"
+                           : "; it does not fit even at 5 %";
+  bool tooLarge = false;
+  const std::string page = o.page.empty() ? profile.page : o.page;
+  if (page.empty()) return advice + ", or give a larger --sheet";
+  for (const char* larger : {"A3", "Tabloid"}) {
+    const auto size = pageSizeMm(larger), now = pageSizeMm(page);
+    if (!size || !now || size->first * size->second <= now->first * now->second) continue;
+    ExportOptions onLarger = o;
+    onLarger.page = larger;
+    if (buildScaled(model, onLarger, profile, font, o.scale, work, tooLarge).isOk())
+      return advice + ", or --page " + larger + " prints it at " + percentText(o.scale);
+  }
+  return advice;
+}
+
 }  // namespace
 
 Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
@@ -295,34 +360,26 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
     return built;
   };
   bool tooLarge = false;
-  Result<PatternBuild> built = buildAtScale(o.scale == 1.0 ? model : scaledFlat(model, o.scale), o,
-                                            profile, font, o.scale, work, tooLarge);
-  if (built.isOk() || !tooLarge || !o.scaleToFit) return withAssembly(std::move(built));
-  // Scaled to fit: the largest scale below the one asked for, in whole percent, at which every
-  // piece fits, by bisection (a smaller scale never makes a piece's extent larger: its outline
-  // shrinks and its tabs and ticks keep their size).
-  const Status atFull = built.status();
-  int fitsAt = 0, failsAt = int(std::lround(100 * o.scale));
-  Result<PatternBuild> best = atFull;
-  while (failsAt - fitsAt > 1) {
-    const int mid = (fitsAt + failsAt) / 2;
-    tooLarge = false;
-    Result<PatternBuild> attempt =
-        buildAtScale(scaledFlat(model, mid / 100.0), o, profile, font, mid / 100.0, work, tooLarge);
-    if (attempt.isOk()) {
-      fitsAt = mid;
-      best = std::move(attempt);
-    } else if (tooLarge) {
-      failsAt = mid;
-    } else {
-      return attempt;
-    }
+  Result<PatternBuild> built = buildScaled(model, o, profile, font, o.scale, work, tooLarge);
+  if (built.isOk() || !tooLarge) return withAssembly(std::move(built));
+  // A piece does not fit: the largest scale, to a tenth of a percent, at which every piece does.
+  // Only a pattern scaled to fit counts the search as its work: a refusal's advice is the work of
+  // patterns of an ordinary size.
+  const Status atScale = built.status();
+  BuildWork adviceWork;
+  BuildWork& searchWork = o.scaleToFit ? work : adviceWork;
+  ScaleFit fit = largestFittingScale(model, o, profile, font, int(std::lround(1000 * o.scale)),
+                                     atScale, searchWork);
+  if (!o.scaleToFit) {
+    if (fit.otherError) return fit.built.status();
+    return Status{atScale.code(),
+                  atScale.message() + fitAdvice(model, o, profile, font, fit.permille, searchWork)};
   }
-  if (fitsAt == 0) return atFull;
-  best.value().messages.push_back("scaled to " + std::to_string(fitsAt) + "% to fit: at " +
-                                  std::to_string(int(std::lround(100 * o.scale))) + "% " +
-                                  atFull.message());
-  return withAssembly(std::move(best));
+  if (fit.permille == 0 || fit.otherError) return fit.built;
+  fit.built.value().messages.push_back("scaled to " + percentText(fit.permille / 1000.0) +
+                                       " to fit: at " + percentText(o.scale) + " " +
+                                       atScale.message());
+  return withAssembly(std::move(fit.built));
 }
 
 }  // namespace dform::fab

@@ -72,6 +72,7 @@ struct SheetFit {
   double textH = 0, lineH = 0;  // the title lines' capital height and line pitch (mm)
   bool tabbed = false;          // the pattern has tabs: a title line says how they fold
   double titleBlock = 0;        // the title block's height with its margin from the pieces
+  std::string scaleNote;        // the line stating a scale other than 1, on every sheet; or ""
   std::string pageName;         // empty for a material sheet
   std::string sheetWord;        // "sheet" or "page"
   double pageW = 0, pageH = 0;
@@ -101,10 +102,10 @@ struct SheetFit {
   Status tooManyTiles(long tiles) const;
 };
 
-// The sheet or page for the options and profile, and its title block's height. `tooLargeOut` is
-// the build's flag for failing because a piece does not fit.
+// The sheet or page for the options and profile, and its title block's height for a pattern at
+// `scale`. `tooLargeOut` is the build's flag for failing because a piece does not fit.
 Result<SheetFit> sheetFit(const ExportOptions& o, const Profile& profile, bool creased,
-                          bool& tooLargeOut);
+                          double scale, bool& tooLargeOut);
 
 // Fails, before any tick or tab is made, when a piece's bare outline fits no sheet (or, tiled,
 // needs too many pages).
@@ -170,7 +171,7 @@ void drawScoredFolds(const std::vector<PieceInfo>& pieces, DrawingBuilder& b);
 void drawCuts(const std::vector<PieceInfo>& pieces, const std::string names[2],
               const Profile& profile, DrawingBuilder& b);
 
-// The scale as a percentage of true size ("80%").
+// The scale as a percentage of true size, to a tenth ("73.4 %").
 std::string percentText(double scale);
 
 // What the title lines of a pattern's sheets say: its pieces, options, scale and seam length.

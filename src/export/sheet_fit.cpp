@@ -53,6 +53,15 @@ Status SheetFit::tooLarge(const std::string& what, const std::vector<Vec2>& size
       size = candidate;
     }
   }
+  if (profile->registration == Registration::Cricut) {  // the area, not the paper, is the limit
+    const bool fullArea = std::abs(r.w() - kCricutW) < 1e-6 && std::abs(r.h() - kCricutH) < 1e-6;
+    return Status{ErrorCode::Usage,
+                  what + " does not fit the Cricut Print Then Cut area: it takes " +
+                      formatMm(size.x()) + " x " + formatMm(size.y()) + " mm (" + contents +
+                      "); the area is " + (fullArea ? "6.75 x 9.25 in, " : "") +
+                      formatMm(r.w(), 2) + " x " + formatMm(r.h(), 2) + " mm on " + pageName +
+                      " paper, and no larger on larger paper"};
+  }
   const std::string area = pageName.empty() ? "sheet" : pageName + " page's cutting area";
   return Status{ErrorCode::Usage, what + " does not fit the " + area + ": it needs at least " +
                                       formatMm(need.x()) + " x " + formatMm(need.y()) + " mm (" +
@@ -81,10 +90,10 @@ Status SheetFit::tooManyTiles(long tiles) const {
                                       " a print profile makes; use a sheet profile"};
 }
 
-// The sheet or page for the options and profile, and its title block's height. `tooLargeOut` is
-// the build's flag for failing because a piece does not fit.
+// The sheet or page for the options and profile, and its title block's height for a pattern at
+// `scale`. `tooLargeOut` is the build's flag for failing because a piece does not fit.
 Result<SheetFit> sheetFit(const ExportOptions& o, const Profile& profile, bool creased,
-                          bool& tooLargeOut) {
+                          double scale, bool& tooLargeOut) {
   SheetFit fit;
   fit.profile = &profile;
   fit.tooLargeOut = &tooLargeOut;
@@ -95,8 +104,15 @@ Result<SheetFit> sheetFit(const ExportOptions& o, const Profile& profile, bool c
   const double barH = profile.calibrationBar ? 9.0 : 0.0;
   // Tabs fold away from the printed (outer) side: a line says so on every sheet that has them.
   fit.tabbed = o.tabWidthMm > 0 && profile.tabs != TabSide::None;
-  // The lines: title and note, a legend line for creases, the tab line (none with --no-title).
-  const int titleLines = o.title ? 2 + int(creased) + int(fit.tabbed) : 0;
+  // A pattern not at true size says so in words on every sheet, title or not: a scale printed
+  // only as a figure in the title line is easily missed.
+  if (scale != 1.0)
+    fit.scaleNote = "printed at " + percentText(scale) + ": the D-Form is " + percentText(scale) +
+                    " of the designed size (ticks, tabs and labels keep theirs)";
+  // The lines: title and note, a legend line for creases, the tab line (none with --no-title),
+  // the scale note.
+  const int titleLines =
+      (o.title ? 2 + int(creased) + int(fit.tabbed) : 0) + int(!fit.scaleNote.empty());
   const double titleH = titleLines * fit.lineH + barH;
   fit.titleBlock = titleH > 0 ? fit.m + titleH : 0.0;
   // The page: --page over the profile's. A page profile refuses a sheet size and a sheet profile

@@ -230,7 +230,7 @@ void addPages(const std::vector<SheetPlan>& plans, const SheetFit& fit, const Ti
   for (size_t k = 0; k < plans.size(); ++k) {
     const SheetPlan& plan = plans[k];
     if (!plan.tiled) {
-      if (plan.title == TitleAt::None && text.o.title) {
+      if (plan.title == TitleAt::None && (text.o.title || !fit.scaleNote.empty())) {
         out.pages.push_back(coverPage(k, plans.size(), plan, fit, text));
         out.messages.push_back("the title lines do not fit beside piece " +
                                out.pieces[size_t(plan.pieces.front())].name + " on its " +

@@ -18,10 +18,10 @@ std::string onPage(const std::string& id, size_t page) {
 
 }  // namespace
 
-// The scale as a percentage of true size ("80%").
+// The scale as a percentage of true size, to a tenth ("73.4 %").
 std::string percentText(double scale) {
   char percent[32];
-  std::snprintf(percent, sizeof percent, "%.0f%%", 100 * scale);
+  std::snprintf(percent, sizeof percent, "%.1f %%", 100 * scale);
   return percent;
 }
 
@@ -61,7 +61,10 @@ void drawTitleLines(size_t k, size_t sheets, const SheetPlan& plan, const SheetF
   if (sheets > 1)
     pieceNote = " - " + fit.sheetWord + " " + std::to_string(k + 1) + " of " +
                 std::to_string(sheets) + ": piece " + flat.names[plan.pieces.front()];
-  if (!o.title) return;
+  if (!o.title) {
+    if (!fit.scaleNote.empty()) line("scale-note", fit.scaleNote, textH);
+    return;
+  }
   line("title",
        o.jobName + " - D-Form " + flat.names[0] + " + " + flat.names[1] + pieceNote + " - " +
            text.scaleText + " - seam " + text.perimeterText + " mm - " + profile.name,
@@ -82,6 +85,7 @@ void drawTitleLines(size_t k, size_t sheets, const SheetPlan& plan, const SheetF
             "dash-dot), and glue them inside";
   if (flat.creased) line("crease-legend-label", creaseLegend, textH);
   if (fit.tabbed) line("tab-note", tabNote, textH);
+  if (!fit.scaleNote.empty()) line("scale-note", fit.scaleNote, textH);
 }
 
 namespace {

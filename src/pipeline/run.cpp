@@ -73,8 +73,8 @@ std::optional<Result<PreparedExport>> prepareJudged(const Solved& solved, const 
   }
   if (!prepared.isOk()) {
     sink.emit(Level::Error, "export: " + prepared.status().message() +
-                                " (the result is saved; run `dform export " + output.outDir +
-                                "` with another --sheet or --profile)");
+                                " (the result is saved: `dform export " + output.outDir +
+                                "` exports it again with other options)");
   } else if (!gate && prepared.value().layout.problems() > 0) {
     sink.warning("export: " + layoutCheck(prepared.value().layout).detail);
   }

@@ -8,6 +8,7 @@
 
 #include "dform/export/exporter.h"
 #include "dform/export/internal.h"
+#include "dform/export/plane_geometry.h"
 #include "models.h"
 #include "synthetic.h"
 #include "test_util.h"
@@ -150,6 +151,45 @@ TEST(ExportLayout, EveryTabIsPartOfItsPiecesOneCutLoop) {
       }
       EXPECT_EQ(fab::checkLayout(p).extraCutLoops, 0) << fab::checkLayout(p).example;
     }
+}
+
+// The winding number of `loops` around q (a point on no loop): what a non-zero fill, the SVG's and
+// Cairo's default, paints where it is not 0.
+int windingNumber(const std::vector<Polyline>& loops, const Vec2& q) {
+  int w = 0;
+  for (const Polyline& loop : loops)
+    for (size_t i = 0; i < loop.size(); ++i) {
+      const Vec2 a = loop[i], b = loop[(i + 1) % loop.size()];
+      const double side = (b - a).x() * (q - a).y() - (b - a).y() * (q - a).x();
+      if (a.y() <= q.y() && b.y() > q.y() && side > 0) ++w;
+      if (a.y() > q.y() && b.y() <= q.y() && side < 0) --w;
+    }
+  return w;
+}
+
+TEST(ExportLayout, APrintedTintLeavesItsPiecesHolesOut) {
+  // An anti D-Form printed for a cutter: each piece's tint is its ring grown by the bleed, the
+  // hole (with the tabs in it) shrunk by it, under the non-zero rule the renderers fill with.
+  const fab::PatternBuild p = build(annulusDForm(), options("print-and-cut"));
+  const double bleed = p.profile.bleedMm;
+  ASSERT_GT(bleed, 0);
+  for (const fab::PieceInfo& piece : p.pieces) {
+    ASSERT_EQ(piece.boundaries.size(), 2u) << piece.name;
+    ASSERT_EQ(piece.bleed.size(), 2u) << piece.name << ": one tint loop per boundary loop";
+    const Vec2 holeCentre = centroid(piece.boundaries[1]);
+    EXPECT_EQ(windingNumber(piece.bleed, holeCentre), 0) << piece.name << "'s hole is tinted";
+    // The ring between the hole's cut (35 mm radius on a 50/20 annulus: 15 mm clear of the
+    // cut, tabs included) and the outline is tinted.
+    const Vec2 inRing = holeCentre + 35 * (piece.boundaries[0][0] - holeCentre).normalized();
+    EXPECT_NE(windingNumber(piece.bleed, inRing), 0) << piece.name << "'s ring is not tinted";
+    // Every vertex of the tint lies the bleed off a cut line (within 0.02 mm: where two offset
+    // edges meet at the tabs' inner corners, Clipper's grid moves the corner by up to ~0.01 mm).
+    std::vector<Polyline> cuts = piece.cut;
+    cuts.insert(cuts.end(), piece.holeCuts.begin(), piece.holeCuts.end());
+    for (const Polyline& loop : piece.bleed)
+      for (const Vec2& q : loop)
+        EXPECT_NEAR(fab::distanceToPolylines(cuts, q, true), bleed, 0.02) << piece.name;
+  }
 }
 
 TEST(ExportLayout, AHoleIsOutsideItsPiece) {

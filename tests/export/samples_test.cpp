@@ -4,7 +4,10 @@
 // fewest the pieces' sizes allow, the title block clear of the pieces, the seams' perimeters in
 // the SVG within 0.1 mm of the solved ones times the scale. Everything is exported with
 // --scale fit: a piece larger than the paper (circle+square's 257 mm square on A4) is scaled,
-// and the scale is checked to be 1 wherever the pieces fit at true size.
+// and the scale is checked to be 1 wherever the pieces fit at true size, else the largest that
+// fits, named by the refusal of a tenth of a percent more and stated on every sheet. A page
+// profile's pages and assembly page share its paper; the laser profiles are laid out again in
+// memory on 600 x 400 and 300 x 200 mm sheets.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,7 +16,9 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <regex>
 
+#include "dform/io/model_files.h"
 #include "shipped_samples.h"
 #include "test_util.h"
 
@@ -84,6 +89,59 @@ void expectOneCutLoopPerBoundary(const std::string& dir) {
   EXPECT_EQ(loops, boundaries) << dir;
 }
 
+// A page profile's job is on one paper: every page of pattern.pdf (the pattern's, a landscape
+// turn allowed, and the assembly page) and assembly.svg; and the PDF asks viewers not to scale
+// it (the catalog's resolution through the trailer is ExportPattern.PdfPagesHaveTheSheetSize...).
+void expectOnePaper(const std::string& dir, const Paper& paper) {
+  std::string info;
+  ASSERT_EQ(run("pdfinfo -f 1 -l 9999 " + dir + "/pattern.pdf", &info), 0) << info;
+  const std::regex size(R"(Page +([0-9]+) size: +([0-9.]+) x ([0-9.]+) pts)");
+  int pages = 0;
+  for (auto it = std::sregex_iterator(info.begin(), info.end(), size); it != std::sregex_iterator();
+       ++it) {
+    ++pages;
+    const double w = std::stod((*it)[2]) * 25.4 / 72, h = std::stod((*it)[3]) * 25.4 / 72;
+    EXPECT_TRUE((std::abs(w - paper.w) < 0.1 && std::abs(h - paper.h) < 0.1) ||
+                (std::abs(w - paper.h) < 0.1 && std::abs(h - paper.w) < 0.1))
+        << "pattern.pdf page " << (*it)[1] << " is " << w << " x " << h << " mm";
+  }
+  EXPECT_GT(pages, 1) << info;
+  const SvgDoc assembly = readSvg(dir + "/assembly.svg");
+  EXPECT_NEAR(parseMm(assembly.width), paper.w, 1e-6);
+  EXPECT_NEAR(parseMm(assembly.height), paper.h, 1e-6);
+  EXPECT_NE(readText(dir + "/pattern.pdf").find("/PrintScaling /None"), std::string::npos);
+}
+
+// A laser profile on the sheets a laser cuts (600 x 400 and 300 x 200 mm), laid out in memory
+// from the solved model: scaled to fit where need be, one cut loop per boundary loop and a clean
+// layout; a scale a tenth of a percent larger is refused naming the scale that fits.
+void expectLaserSheets(const DForm& model, const std::string& profileName) {
+  for (const auto& [w, h] : {std::pair{600.0, 400.0}, std::pair{300.0, 200.0}}) {
+    SCOPED_TRACE(profileName + " on " + std::to_string(int(w)) + "x" + std::to_string(int(h)));
+    ExportOptions o = options(profileName);
+    o.sheetWidthMm = w;
+    o.sheetHeightMm = h;
+    o.sheetGiven = true;
+    o.scaleToFit = true;
+    const Result<LaidOutExport> laid = layOutExport(model, o);
+    ASSERT_TRUE(laid.isOk()) << laid.status().message();
+    EXPECT_EQ(laid.value().layout.problems(), 0) << laid.value().layout.example;
+    const fab::PatternBuild& built = laid.value().pattern->build;
+    for (const fab::PieceInfo& piece : built.pieces)
+      EXPECT_EQ(piece.cut.size() + piece.holeCuts.size(), piece.boundaries.size()) << piece.name;
+    if (built.scale < 1.0) {
+      o.scaleToFit = false;
+      o.scale = built.scale + 0.001;
+      const Result<LaidOutExport> larger = layOutExport(model, o);
+      ASSERT_FALSE(larger.isOk());
+      char named[64];
+      std::snprintf(named, sizeof named, "largest scale that fits is %.1f %%", 100 * built.scale);
+      EXPECT_NE(larger.status().message().find(named), std::string::npos)
+          << larger.status().message();
+    }
+  }
+}
+
 class SamplePatterns : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
@@ -98,6 +156,8 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
                 &out),
             0)
       << out;
+  const Result<DForm> model = readModel(solved);
+  ASSERT_TRUE(model.isOk()) << model.status().message();
   const json metrics = readJson(solved + "/report.json")["metrics"];
   const double seam[2] = {metrics["seam_length_a_mm"].get<double>(),
                           metrics["seam_length_b_mm"].get<double>()};
@@ -106,6 +166,7 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
     const json profile =
         readJson(std::string(DFORM_TEMPLATES_DIR) + "/profiles/" + profileName + ".json");
     const bool pageProfile = profile.contains("page");
+    if (!pageProfile) expectLaserSheets(model.value(), profileName);
     for (const Paper& paper : kPapers) {
       SCOPED_TRACE(sample + " " + profileName + " " + paper.name);
       const std::string dir = freshDir("export");
@@ -123,6 +184,7 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
       const double scale = pattern["scale"].get<double>();
       const auto& sheets = pattern["sheets"];
       const auto& pages = pattern["pages"];
+      if (pageProfile) expectOnePaper(dir, paper);
       expectOneCutLoopPerBoundary(dir);
       // No page shows another sheet's geometry: each page's window of the canvas lies within one
       // sheet (a page map or a cover page shows none).
@@ -168,8 +230,8 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
       const double margin = profile.value("margin_mm", 5.0);
       Box title;
       const SvgDoc first = readSvg(dir + "/" + sheets[0]["file"].get<std::string>());
-      for (const char* id : {"title", "note", "tab-note", "crease-legend-label", "calibration-bar",
-                             "calibration-label"})
+      for (const char* id : {"title", "note", "tab-note", "crease-legend-label", "scale-note",
+                             "calibration-bar", "calibration-label"})
         if (const SvgPath* path = first.find(id))
           for (const Polyline& part : path->parts) title.add(part);
       const double depth = std::min(title.w(), title.h());
@@ -206,17 +268,25 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
       // A sheet whose title lines do not fit beside its pieces gets a cover page for them.
       for (const auto& page : pages) expectedPages += page["kind"] == "cover";
       EXPECT_EQ(pages.size(), expectedPages);
-      // True size wherever the pieces fit at true size, else the largest whole percent that
-      // fits: one percent more is refused as too large.
+      // True size wherever the pieces fit at true size, else the largest tenth of a percent
+      // that fits: a tenth more is refused as too large, with a message naming that scale. Every
+      // sheet of a scaled pattern says so in words (on its cover page, where its title lines go).
       if (scale < 1.0) {
-        char larger[16];
-        std::snprintf(larger, sizeof larger, "%.2f", scale + 0.01);
+        char larger[16], named[64];
+        std::snprintf(larger, sizeof larger, "%.4f", scale + 0.001);
+        std::snprintf(named, sizeof named, "largest scale that fits is %.1f %%", 100 * scale);
         EXPECT_EQ(run(dform() + " export " + solved + " -o " + freshDir("larger") + " -q --scale " +
                           larger + " --profile " + profileName + paperOption,
                       &out),
                   2)
             << out;
         EXPECT_NE(out.find("does not fit"), std::string::npos) << out;
+        EXPECT_NE(out.find(named), std::string::npos) << out;
+        size_t notes = 0;
+        for (const SvgPath& path : readSvg(dir + "/pattern.svg").paths)
+          notes += path.id.rfind("scale-note", 0) == 0;
+        for (const auto& page : pages) notes += page["kind"] == "cover";
+        EXPECT_EQ(notes, sheets.size()) << "a sheet that does not state its scale";
       }
       // The seams' perimeters in the SVG and the DXF: exported again without tabs, each piece's
       // cut path is its seam (no shipped profile has a kerf).

@@ -120,6 +120,86 @@ TEST(ExportScale, AnOversizedPatternFailsBeforeAnyTickOrTab) {
   EXPECT_EQ(work.pairTests, 0);
 }
 
+// The scale a refusal names: "the largest scale that fits is 61.7 %", as a fraction.
+double scaleNamed(const std::string& message) {
+  std::smatch m;
+  if (!std::regex_search(message, m, std::regex(R"(largest scale that fits is ([0-9.]+) %)"))) {
+    ADD_FAILURE() << "no scale in: " << message;
+    return 0;
+  }
+  return std::stod(m[1]) / 100;
+}
+
+// Whether the pattern builds at `scale` (true size otherwise asked).
+bool buildsAt(const DForm& model, ExportOptions o, double scale) {
+  o.scale = scale;
+  fab::BuildWork work;
+  return buildCounted(model, o, work).isOk();
+}
+
+// The scale notes drawn: on the sheets, or on cover pages where the title lines go.
+size_t scaleNotes(const fab::PatternBuild& pattern) {
+  size_t notes = 0;
+  auto count = [&](const std::vector<fab::Layer>& layers) {
+    for (const fab::Layer& layer : layers)
+      for (const fab::Path& path : layer.paths) notes += path.id.rfind("scale-note", 0) == 0;
+  };
+  count(pattern.drawing.layers);
+  for (const fab::PageView& page : pattern.pages) count(page.overlay);
+  return notes;
+}
+
+TEST(ExportScale, ARefusalNamesTheLargestScaleThatFitsAndScaleFitUsesIt) {
+  // A 200 mm square: too large for a Silhouette A4 page (a 170 x 257 mm area inside the marks)
+  // and for the Cricut Print Then Cut area (6.75 x 9.25 in on any paper), and for a 200 mm sheet.
+  const DForm model = squareDForm(200, 10);
+  ExportOptions small = options("laser");
+  small.sheetWidthMm = small.sheetHeightMm = 200;
+  for (const ExportOptions& base :
+       {options("print-and-cut"), options("print-and-cut-cricut"), small}) {
+    SCOPED_TRACE(base.profile);
+    fab::BuildWork work;
+    auto refused = buildCounted(model, base, work);
+    ASSERT_FALSE(refused.isOk());
+    const std::string message = refused.status().message();
+    EXPECT_EQ(refused.status().code(), ErrorCode::Usage);
+    // The largest scale that fits, to a tenth of a percent: it fits, a tenth more does not.
+    const double fits = scaleNamed(message);
+    EXPECT_TRUE(buildsAt(model, base, fits)) << message;
+    EXPECT_FALSE(buildsAt(model, base, fits + 0.001)) << message;
+    EXPECT_NE(message.find("--scale fit"), std::string::npos) << message;
+    // --scale fit takes that scale and says so in words on every sheet, with or without the
+    // title lines (on a cover page where they do not fit beside a piece).
+    for (bool title : {true, false}) {
+      ExportOptions fit = base;
+      fit.scaleToFit = true;
+      fit.title = title;
+      auto scaled = buildCounted(model, fit, work);
+      ASSERT_TRUE(scaled.isOk()) << scaled.status().message();
+      EXPECT_DOUBLE_EQ(scaled.value().scale, fits);
+      EXPECT_EQ(scaleNotes(scaled.value()), scaled.value().sheets.size()) << "title " << title;
+    }
+  }
+  // Cricut: the area is the limit, not the paper, so no page size is named as the way out; a
+  // Silhouette page is, where the piece fits it.
+  fab::BuildWork work;
+  const std::string cricut =
+      buildCounted(model, options("print-and-cut-cricut"), work).status().message();
+  EXPECT_NE(cricut.find("Print Then Cut area"), std::string::npos) << cricut;
+  EXPECT_EQ(cricut.find("needs at least"), std::string::npos) << cricut;
+  EXPECT_EQ(cricut.find("--page"), std::string::npos) << cricut;
+  const std::string silhouette =
+      buildCounted(model, options("print-and-cut"), work).status().message();
+  EXPECT_NE(silhouette.find("--page A3"), std::string::npos) << silhouette;
+  ExportOptions onA3 = options("print-and-cut");
+  onA3.page = "A3";
+  EXPECT_TRUE(buildsAt(model, onA3, 1.0));
+  // At true size no sheet states a scale.
+  auto trueSize = buildCounted(model, onA3, work);
+  ASSERT_TRUE(trueSize.isOk());
+  EXPECT_EQ(scaleNotes(trueSize.value()), 0u);
+}
+
 TEST(ExportScale, ThePageLimitHoldsForATiledPattern) {
   // Two 600 mm squares tile across a few dozen A4 pages; two 5 m squares would take over a
   // thousand and are refused.
