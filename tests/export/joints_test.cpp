@@ -131,6 +131,34 @@ TEST(ExportJoints, HolePairsLieAtTheSame3DSeamPoints) {
   EXPECT_EQ(corner, 4);
 }
 
+TEST(ExportJoints, HolesOnAHoleSeamGoIntoTheMaterial) {
+  // Anti (both seams are hole loops) and demi (A's seam its outline, B's a hole loop) D-Forms:
+  // the holes lie in the material, the edge distance from the seam, paired in 3D.
+  for (const DForm& model : {annulusDForm(), demiDForm()}) {
+    ExportOptions o = options();
+    o.joint = Joint::Holes;
+    o.holeSpacingMm = 10;
+    const Exported e = exportTo("holes-hole-seam", model, o);
+    expectPairsMeetIn3d(model, e.sidecar);
+    for (const json& h : e.sidecar["joint_holes"]) {
+      const json& piece = e.sidecar["pieces"][h["piece"] == "A" ? 0 : 1];
+      const Vec2 c(h["centre"][0].get<double>(), h["centre"][1].get<double>());
+      EXPECT_NEAR(arcLengthOf(toPolyline(piece["outline"]), c).second, 3.0, 1e-6);
+      const Polyline outer = toPolyline(piece["boundaries"][0]);
+      bool inAHole = false;  // the piece's own holes (its seam, if a hole), not the joint holes
+      for (size_t k = 1; k < piece["boundaries"].size(); ++k) {
+        const Polyline loop = toPolyline(piece["boundaries"][k]);
+        const bool jointHole = (loop[0] - loop[loop.size() / 2]).norm() < 3;  // 2 mm across
+        if (inside(loop, c) && !jointHole) inAHole = true;
+      }
+      EXPECT_TRUE(inside(outer, c) && !inAHole) << "hole " << h["index"] << " in the material";
+    }
+    const Result<PreparedExport> prepared = prepareExport(model, o);
+    ASSERT_TRUE(prepared.isOk());
+    EXPECT_EQ(prepared.value().layout.problems(), 0) << prepared.value().layout.example;
+  }
+}
+
 TEST(ExportJoints, HolesAreClosedCutLoopsInEveryFile) {
   const DForm model = ellipseCircleDForm(64, 8);
   ExportOptions o = options();
