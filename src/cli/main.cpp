@@ -78,6 +78,28 @@ void addExportOptions(CLI::App* command, OutputOptions& out) {
       "which piece gets the glue tabs: a, b, alternate or none (default: the profile's)");
   command->add_option("--tick-spacing", out.tickSpacingMm,
                       "seam length between numbered ticks in mm (default 20)");
+  command->add_option("--joint", out.joint,
+                      "how the pieces are joined: glue (tabs), holes (matched hole pairs for ties "
+                      "or stitches) or lace (default: the material's, else the profile's)");
+  command->add_option("--material", out.material,
+                      "sheet material, setting the joint and hole sizes: paper (0.1 mm), card "
+                      "(0.3 mm), polypropylene (0.5 mm) or plywood (3 mm)");
+  command
+      ->add_option("--kerf", out.kerfMm,
+                   "the cutter's kerf in mm, 0 to 5: cut paths move half of it away from the "
+                   "material (default: the profile's)")
+      ->type_name("MM");
+  command
+      ->add_option("--hole-spacing", out.holeSpacingMm,
+                   "joint holes: largest distance between neighbouring holes in mm (default 15)")
+      ->type_name("MM");
+  command
+      ->add_option("--hole-diameter", out.holeDiameterMm, "joint holes: diameter in mm (default 2)")
+      ->type_name("MM");
+  command
+      ->add_option("--hole-edge", out.holeEdgeMm,
+                   "joint holes: distance from the seam to the hole centres in mm (default 3)")
+      ->type_name("MM");
   command
       ->add_option("--score-folds", out.scoreFoldsDeg,
                    "score every fold of the solved body of at least DEG degrees on its piece "

@@ -9,6 +9,7 @@
 #include "dform/core/atomic_file.h"
 #include "dform/core/interrupt.h"
 #include "dform/export/internal.h"
+#include "dform/export/pattern_parts.h"
 
 namespace dform {
 
@@ -44,6 +45,22 @@ Status checkExportOptions(const ExportOptions& o) {
     return Status{ErrorCode::Usage, "tab gap, length and turn limits must be positive"};
   if (!(o.scale >= 0.05 && o.scale <= 20))
     return Status{ErrorCode::Usage, "scale must be between 0.05 (5%) and 20"};
+  if (!(o.kerfMm <= 5) || (o.kerfMm < 0 && o.kerfMm != -1))
+    return Status{ErrorCode::Usage, "--kerf must be between 0 and 5 mm"};
+  if (!o.material.empty() && !materialNamed(o.material))
+    return Status{ErrorCode::Usage,
+                  "--material must be one of " + materialNames() + ", got '" + o.material + "'"};
+  // The holes' sizes as the pattern will use them (a material's, or the defaults, where unset).
+  const fab::JointSettings j = fab::jointSettings(o, Profile{});
+  if (!(j.diameterMm >= 0.5 && j.diameterMm <= 20))
+    return Status{ErrorCode::Usage, "--hole-diameter must be between 0.5 and 20 mm"};
+  if (!(j.edgeMm >= j.diameterMm && j.edgeMm <= 50))
+    return Status{ErrorCode::Usage, "--hole-edge must be at least the hole diameter (" +
+                                        fab::formatMm(j.diameterMm) + " mm) and at most 50 mm"};
+  if (!(j.spacingMm >= 2 * j.diameterMm && j.spacingMm <= 1000))
+    return Status{ErrorCode::Usage, "--hole-spacing must be at least twice the hole diameter (" +
+                                        fab::formatMm(2 * j.diameterMm) +
+                                        " mm) and at most 1000 mm"};
   return Status::ok();
 }
 
@@ -134,6 +151,7 @@ Result<PreparedExport> renderOrThrow(const DForm& model, const LaidOutExport& la
   summary.ticks = int(pat.ticks.size());
   summary.tabs = int(pat.tabs.size());
   summary.creases = int(pat.pieces[0].creases.size() + pat.pieces[1].creases.size());
+  summary.jointHoles = int(pat.jointHoles.size());
   summary.pages = int(pat.pages.size());
   summary.triangles = int(model.a.F.rows() + model.b.F.rows());
   return prepared;

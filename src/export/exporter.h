@@ -55,6 +55,31 @@ const char* tabSideName(TabSide side);
 /// The side called `name` (as tabSideName writes it), or nullopt.
 std::optional<TabSide> tabSideNamed(const std::string& name);
 
+/// How the pieces are joined along the seam.
+enum class Joint {
+  Glue,   ///< glue tabs (or edge to edge): paper and card
+  Holes,  ///< matched hole pairs on A and B at the same seam points: ties, rivets, stitches
+  Lace,   ///< lacing holes, B's halfway between A's along the seam: a zigzag lace
+};
+
+/// The joint's name in profiles and on the command line: "glue", "holes", "lace".
+const char* jointName(Joint joint);
+
+/// The joint called `name` (as jointName writes it), or nullopt.
+std::optional<Joint> jointNamed(const std::string& name);
+
+/// A sheet material (--material): its thickness and the joint it is usually made with.
+struct MaterialPreset {
+  std::string name;        ///< "paper", "card", "polypropylene", "plywood"
+  double thicknessMm = 0;  ///< nominal thickness (mm)
+  Joint joint = Joint::Glue;
+  double holeSpacingMm = 15, holeDiameterMm = 2, holeEdgeMm = 3;  ///< for holes and lace
+};
+
+/// The preset called `name`, or nullopt; materialNames lists them ("paper, card, ...").
+std::optional<MaterialPreset> materialNamed(const std::string& name);
+std::string materialNames();
+
 /// A machine profile, read from templates/profiles/<name>.json (see docs/export.md). Every field
 /// has a default; a profile file may leave any field out.
 struct Profile {
@@ -88,8 +113,11 @@ struct Profile {
   std::string fillColorA = "#FFE6CC";  ///< piece A's tint, #RRGGBB (the 3D preview's A)
   std::string fillColorB = "#CCE6FF";  ///< piece B's tint, #RRGGBB (the 3D preview's B)
   double labelHeightMm = 3.0;          ///< cap height of tick numbers (mm); piece names are 3x
-  double kerfMm = 0.0;        ///< outward offset of the closed cut path (mm, half the kerf)
+  /// The cutter's kerf (mm, the width of material the beam removes): cut paths are offset by
+  /// half of it away from the material, so that the parts come out at their drawn size.
+  double kerfMm = 0.0;
   TabSide tabs = TabSide::A;  ///< which piece gets the glue tabs
+  Joint joint = Joint::Glue;  ///< how the pieces are joined (a material or --joint overrides)
 };
 
 /// Reads a profile: `nameOrPath` is a profile name (looked up as
@@ -139,7 +167,16 @@ struct ExportOptions {
   double tabMaxLengthMm = 40;      ///< max length of one tab along the seam (mm)
   double tabGapMm = 1.5;           ///< gap between neighbouring tabs along the seam (mm)
   std::optional<TabSide> tabSide;  ///< which piece gets the glue tabs; unset: the profile's
-  double kerfMm = -1;              ///< outward cut-path offset (mm); negative = the profile's
+  /// The cutter's kerf (mm, 0 to 5; cut paths move half of it); -1: the profile's.
+  double kerfMm = -1;
+  /// --joint: how the pieces are joined; unset: the material's, else the profile's. With holes or
+  /// lace the glue tabs are off unless tabSide asks for them.
+  std::optional<Joint> joint;
+  std::string material;  ///< --material: a materialNamed preset; "" none
+  /// Joint holes (mm): the largest distance between neighbouring holes on a piece along the seam,
+  /// the holes' diameter and the distance from the seam to their centres; unset: the material's,
+  /// else 15, 2 and 3.
+  std::optional<double> holeSpacingMm, holeDiameterMm, holeEdgeMm;
   /// --score-folds: every fold of `folds` of at least this angle (degrees) becomes an optional
   /// score line on its piece (SCORE layer, pattern.json); unset: none.
   std::optional<double> scoreFoldsDeg;
@@ -176,6 +213,7 @@ struct ExportSummary {
   int ticks = 0;                               ///< tick pairs
   int tabs = 0;                                ///< glue tabs on both pieces
   int creases = 0;                             ///< crease fold lines on both pieces
+  int jointHoles = 0;                          ///< joint holes on both pieces
   int pages = 0;      ///< pattern pages (more than 1 when tiled or one piece per page); the PDF has
                       ///< the assembly page after them
   int triangles = 0;  ///< triangles in the STL (both pieces)

@@ -112,6 +112,30 @@ struct TabInfo {
   Polyline fold;          ///< the fold line (sheet mm), on the piece outline
 };
 
+/// The joint a pattern is made with: the options over the material's preset over the profile's.
+struct JointSettings {
+  Joint joint = Joint::Glue;
+  std::string material;    ///< "" when none was named
+  double thicknessMm = 0;  ///< the material's (0: none named)
+  double spacingMm = 15;   ///< largest distance between neighbouring holes of a piece (mm)
+  double diameterMm = 2;   ///< hole diameter (mm)
+  double edgeMm = 3;       ///< seam to hole centre (mm)
+};
+
+/// The joint settings for `o` and the (resolved) profile.
+JointSettings jointSettings(const ExportOptions& o, const Profile& profile);
+
+/// A joint hole. With --joint holes, hole `index` on A and hole `index` on B are a pair at the
+/// same seam point; with lace the holes are numbered along the seam, A's even and B's odd.
+struct JointHoleInfo {
+  int piece = 0;        ///< 0 = A, 1 = B
+  int index = 0;        ///< the pair (holes) or the place along the seam (lace)
+  double s = 0;         ///< seam parameter (A's arc length, mm) of the hole's seam point
+  double own = 0;       ///< the same point's arc length along its own piece's seam (mm)
+  Vec2 centre;          ///< sheet mm
+  double diameter = 0;  ///< mm
+};
+
 /// A crease drawn on the pattern as a fold line.
 struct CreaseInfo {
   std::string id;   ///< "A-crease-1-mountain"
@@ -158,6 +182,8 @@ struct PatternBuild {
   std::vector<PieceInfo> pieces;
   std::vector<TickInfo> ticks;
   std::vector<TabInfo> tabs;
+  JointSettings joint;
+  std::vector<JointHoleInfo> jointHoles;
   std::vector<std::string> messages;
   double tickSpacing = 0;
   /// Stamped FAILED GATE (stampFailedGate) after a failed quality gate: the stamp is an overlay,

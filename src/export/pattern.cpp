@@ -62,15 +62,17 @@ Polyline seamWithTabs(const Seam& seam, const std::vector<FlatTab>& tabs, int pi
 }
 
 // The closed cut paths of one piece (flat frame): its outline with its tabs spliced in, and its
-// holes, offset by the kerf (outward from the material: the outline grows and the holes shrink).
+// holes, offset by half the kerf (outward from the material: the outline grows and the holes
+// shrink), so that what the beam leaves has the drawn size.
 // `freeLoops` are its free boundaries; `outer` is outerLoopIndex (0 the seam, k free loop k - 1).
 // One cut loop per boundary loop, tabs or not.
 CutPaths cutPaths(const Seam& seam, const std::vector<Polyline>& freeLoops, int outer,
                   const std::vector<FlatTab>& tabs, int piece, double kerf) {
+  const double offset = 0.5 * kerf;
   std::vector<Polyline> loops{seamWithTabs(seam, tabs, piece)};
   loops.insert(loops.end(), freeLoops.begin(), freeLoops.end());
   CutPaths out;
-  if (kerf <= 0) {
+  if (offset <= 0) {
     for (size_t k = 0; k < loops.size(); ++k)
       (int(k) == outer ? out.outer : out.holes).push_back(oriented(loops[k], int(k) == outer));
     return out;
@@ -81,7 +83,7 @@ CutPaths cutPaths(const Seam& seam, const std::vector<Polyline>& freeLoops, int 
     region.push_back(toClip(loops[k]));
     if (int(k) != outer) ClipperLib::ReversePath(region.back());
   }
-  for (const auto& p : grownRegion(region, kerf))
+  for (const auto& p : grownRegion(region, offset))
     (ClipperLib::Orientation(p) ? out.outer : out.holes).push_back(fromClip(p));
   return out;
 }
@@ -188,12 +190,14 @@ Status checkModel(const DForm& model) {
   return Status::ok();
 }
 
-// Piece p's closed cut paths (flat frame): its seam and free boundaries with its tabs merged in.
+// Piece p's closed cut paths (flat frame): its seam and free boundaries with its tabs merged in,
+// and its joint holes (`jointHoles`, flat frame).
 CutPaths pieceCutPaths(const FlatPieces& flat, int p, const std::vector<FlatTab>& tabs,
-                       double kerf) {
+                       const std::vector<Polyline>& jointHoles, double kerf) {
   const Piece& piece = *flat.piece[p];
   std::vector<Polyline> freeLoops;
   for (const auto& loop : piece.freeBoundaries) freeLoops.push_back(flatPolyline(piece.flat, loop));
+  freeLoops.insert(freeLoops.end(), jointHoles.begin(), jointHoles.end());
   return cutPaths(flat.seams[p], freeLoops, outerLoopIndex(piece), tabs, p, kerf);
 }
 
@@ -228,9 +232,13 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
   const std::vector<double> tickS = tickParameters(L, o.tickSpacingMm, work);
   const std::vector<FlatTab> tabs =
       makeTabs(seams, flat.material, o, profile.tabs, L, out.messages, work);
+  out.joint = jointSettings(o, profile);
+  const std::vector<FlatHole> holes = makeJointHoles(seams, flat.material, out.joint, out.messages);
+  std::vector<Polyline> holeLoops[2];
+  for (const FlatHole& h : holes) holeLoops[h.piece].push_back(holeLoop(h));
   std::vector<Polyline> cuts[2], holeCuts[2];
   for (int p = 0; p < 2; ++p) {
-    CutPaths c = pieceCutPaths(flat, p, tabs, profile.kerfMm);
+    CutPaths c = pieceCutPaths(flat, p, tabs, holeLoops[p], profile.kerfMm);
     cuts[p] = std::move(c.outer);
     holeCuts[p] = std::move(c.holes);
   }
@@ -248,10 +256,15 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
     place[p].M = flipRotate(a.rot[p]);
     place[p].t = a.corner[p] - a.box[p].lo;
     out.pieces.push_back(placedPiece(flat, p, cuts[p], holeCuts[p], place[p], a, profile.bleedMm));
+    for (const Polyline& loop : holeLoops[p])  // the material has the joint holes too
+      out.pieces.back().boundaries.push_back(place[p].map(loop));
     out.pieces.back().scoredFolds = scoredFolds(o, p, place[p], out.pieces.back());
   }
   out.ticks = placeTicks(tickS, seams, place);
   out.tabs = placeTabs(tabs, place);
+  for (const FlatHole& h : holes)
+    out.jointHoles.push_back(
+        {h.piece, h.index, h.s, h.own, place[h.piece].point(h.centre), h.diameter});
 
   DrawingBuilder b(profile, canvasW, canvasH);
   const std::string perimeterText = formatMm(seams[0].L, 1);

@@ -123,9 +123,10 @@ struct CutPaths {
   std::vector<Polyline> holes;  // clockwise
 };
 
-// Piece p's closed cut paths (flat frame): its seam and free boundaries with its tabs merged in.
+// Piece p's closed cut paths (flat frame): its seam and free boundaries with its tabs merged in,
+// and its joint holes (`jointHoles`, flat frame, clockwise); offset by half the kerf `kerf`.
 CutPaths pieceCutPaths(const FlatPieces& flat, int p, const std::vector<FlatTab>& tabs,
-                       double kerf);
+                       const std::vector<Polyline>& jointHoles, double kerf);
 
 // A piece's printed tint (flat frame; holes wind against the outer loops): its cut region grown
 // by `bleed`.

@@ -226,4 +226,25 @@ std::vector<TabInfo> placeTabs(const std::vector<FlatTab>& tabs, const Placement
 void drawTabFolds(const std::vector<TabInfo>& tabs, const std::string names[2],
                   const Profile& profile, DrawingBuilder& b);
 
+// --- Joint holes (joint_holes.cpp) ---------------------------------------------------------------
+
+struct FlatHole {
+  int piece = 0;
+  int index = 0;   // pair (holes) or place along the seam (lace)
+  double s = 0;    // seam parameter (A's arc length)
+  double own = 0;  // arc length along its own piece's seam
+  Vec2 centre;     // flat frame
+  double diameter = 0;
+};
+
+// The joint holes of both pieces (flat frame) for `joint` (none for glue): placed along the seam
+// clear of its corners, `edgeMm` inside each piece; a hole (pair) too close to a corner, another
+// hole or an edge is left out, with a message.
+std::vector<FlatHole> makeJointHoles(const Seam seams[2], const std::vector<Polyline> material[2],
+                                     const JointSettings& joint,
+                                     std::vector<std::string>& messages);
+
+// A hole's loop (flat frame, clockwise): a polygon whose edges stay within 5 um of the circle.
+Polyline holeLoop(const FlatHole& hole);
+
 }  // namespace dform::fab

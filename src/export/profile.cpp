@@ -104,6 +104,17 @@ struct FieldReader {
 };
 
 constexpr TabSide kTabSides[] = {TabSide::A, TabSide::B, TabSide::Alternate, TabSide::None};
+constexpr Joint kJoints[] = {Joint::Glue, Joint::Holes, Joint::Lace};
+
+// The sheet materials: paper and card are glued with tabs; polypropylene (0.5 mm) is laced, its
+// holes a little larger for a 2 mm cord; 3 mm plywood is joined with cable ties or bolts through
+// hole pairs kept well in from the edge, where a thin edge of plywood would split.
+const MaterialPreset kMaterials[] = {
+    {"paper", 0.1, Joint::Glue, 15, 2, 3},
+    {"card", 0.3, Joint::Glue, 15, 2, 3},
+    {"polypropylene", 0.5, Joint::Lace, 15, 3, 4},
+    {"plywood", 3.0, Joint::Holes, 25, 4, 6},
+};
 
 const char* kKnownFields[] = {"version",
                               "name",
@@ -129,6 +140,7 @@ const char* kKnownFields[] = {"version",
                               "label_height_mm",
                               "kerf_mm",
                               "tabs",
+                              "joint",
                               "bleed_mm",
                               "fill_color_a",
                               "fill_color_b"};
@@ -195,6 +207,9 @@ Result<Profile> parseProfileJson(const std::string& text, const std::string& sou
   std::vector<std::pair<std::string, TabSide>> sides;
   for (TabSide side : kTabSides) sides.emplace_back(tabSideName(side), side);
   r.choice<TabSide>("tabs", p.tabs, sides);
+  std::vector<std::pair<std::string, Joint>> joints;
+  for (Joint joint : kJoints) joints.emplace_back(jointName(joint), joint);
+  r.choice<Joint>("joint", p.joint, joints);
   if (!r.status.isOk()) return r.status;
   if (!p.page.empty() && !pageSizeMm(p.page))
     return invalid(source,
@@ -248,6 +263,33 @@ std::optional<TabSide> tabSideNamed(const std::string& name) {
   return std::nullopt;
 }
 
+const char* jointName(Joint joint) {
+  switch (joint) {
+    case Joint::Glue: return "glue";
+    case Joint::Holes: return "holes";
+    case Joint::Lace: return "lace";
+  }
+  return "?";
+}
+
+std::optional<Joint> jointNamed(const std::string& name) {
+  for (Joint joint : kJoints)
+    if (name == jointName(joint)) return joint;
+  return std::nullopt;
+}
+
+std::optional<MaterialPreset> materialNamed(const std::string& name) {
+  for (const MaterialPreset& m : kMaterials)
+    if (name == m.name) return m;
+  return std::nullopt;
+}
+
+std::string materialNames() {
+  std::string names;
+  for (const MaterialPreset& m : kMaterials) names += (names.empty() ? "" : ", ") + m.name;
+  return names;
+}
+
 std::vector<std::string> listProfiles(const std::string& templatesDir) {
   std::vector<std::string> names;
   std::error_code ec;
@@ -290,8 +332,31 @@ Result<Profile> resolveProfile(const ExportOptions& options) {
   if (!loaded.isOk()) return loaded;
   Profile p = loaded.value();
   if (options.kerfMm >= 0) p.kerfMm = options.kerfMm;
+  const std::optional<MaterialPreset> material = materialNamed(options.material);
+  if (options.joint)
+    p.joint = *options.joint;
+  else if (material)
+    p.joint = material->joint;
+  // Holes and lace join the pieces: glue tabs only where asked for.
+  if (p.joint != Joint::Glue) p.tabs = TabSide::None;
   if (options.tabSide) p.tabs = *options.tabSide;
   return p;
+}
+
+JointSettings jointSettings(const ExportOptions& o, const Profile& profile) {
+  JointSettings j;
+  j.joint = profile.joint;
+  if (const std::optional<MaterialPreset> m = materialNamed(o.material)) {
+    j.material = m->name;
+    j.thicknessMm = m->thicknessMm;
+    j.spacingMm = m->holeSpacingMm;
+    j.diameterMm = m->holeDiameterMm;
+    j.edgeMm = m->holeEdgeMm;
+  }
+  j.spacingMm = o.holeSpacingMm.value_or(j.spacingMm);
+  j.diameterMm = o.holeDiameterMm.value_or(j.diameterMm);
+  j.edgeMm = o.holeEdgeMm.value_or(j.edgeMm);
+  return j;
 }
 
 }  // namespace fab

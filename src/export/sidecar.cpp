@@ -27,6 +27,30 @@ const char* kindName(ProfileKind kind) {
   return "?";
 }
 
+// The joint and its holes (pattern.json's "joint" and "joint_holes").
+void addJoint(json& j, const PatternBuild& pattern) {
+  // A glued pattern's sidecar is as it always was; holes and lace, or a material, add these.
+  const JointSettings& joint = pattern.joint;
+  if (joint.joint == Joint::Glue && joint.material.empty()) return;
+  j["joint"] = {{"kind", jointName(joint.joint)},
+                {"material", joint.material.empty() ? json(nullptr) : json(joint.material)},
+                {"thickness_mm", joint.material.empty() ? json(nullptr) : json(joint.thicknessMm)},
+                {"hole_spacing_mm", joint.spacingMm},
+                {"hole_diameter_mm", joint.diameterMm},
+                {"hole_edge_mm", joint.edgeMm}};
+  // Each hole's seam point: `s` along A's seam (the seam parameter, as the ticks' `s`) and
+  // `s_own` along its own piece's seam; holes of one pair (holes) share `index`.
+  json holes = json::array();
+  for (const JointHoleInfo& h : pattern.jointHoles)
+    holes.push_back({{"piece", pattern.pieces[size_t(h.piece)].name},
+                     {"index", h.index},
+                     {"s", h.s},
+                     {"s_own", h.own},
+                     {"centre", point(h.centre)},
+                     {"diameter_mm", h.diameter}});
+  j["joint_holes"] = holes;
+}
+
 }  // namespace
 
 std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName) {
@@ -39,7 +63,7 @@ std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName)
   j["sheet"] = {{"width", pattern.drawing.width}, {"height", pattern.drawing.height}};
   j["scale"] = pattern.scale;
   j["tick_spacing_mm"] = pattern.tickSpacing;
-  j["kerf_mm"] = pattern.profile.kerfMm;
+  j["kerf_mm"] = pattern.profile.kerfMm;  // the cutter's kerf; cut paths move half of it
   j["bleed_mm"] = pattern.profile.bleedMm;
   j["tabs_on"] = tabSideName(pattern.profile.tabs);
   // Exported after a failed quality gate (--export-anyway): not for fabrication.
@@ -94,6 +118,7 @@ std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName)
                     {"polygon", polyline(t.polygon)},
                     {"fold", polyline(t.fold)}});
   j["tabs"] = tabs;
+  addJoint(j, pattern);
   json pages = json::array();
   for (const PageView& p : pattern.pages)
     pages.push_back({{"kind", p.kind},

@@ -65,13 +65,20 @@ void drawTitleLines(size_t k, size_t sheets, const SheetPlan& plan, const SheetF
     if (!fit.scaleNote.empty()) line("scale-note", fit.scaleNote, textH);
     return;
   }
+  const std::optional<MaterialPreset> material = materialNamed(o.material);
+  const std::string materialNote =
+      material ? " - " + material->name + " " + formatMm(material->thicknessMm) + " mm" : "";
   line("title",
        o.jobName + " - D-Form " + flat.names[0] + " + " + flat.names[1] + pieceNote + " - " +
-           text.scaleText + " - seam " + text.perimeterText + " mm - " + profile.name,
+           text.scaleText + " - seam " + text.perimeterText + " mm - " + profile.name +
+           materialNote,
        textH);
+  const char* joinNote = profile.joint == Joint::Holes  ? "tie or stitch the hole pairs"
+                         : profile.joint == Joint::Lace ? "lace the holes, A to B in turn"
+                                                        : "glue equal numbers together";
   line("note",
        "tick 0 = start, arrow = zip direction; ticks every " + formatMm(o.tickSpacingMm, 0) +
-           " mm; glue equal numbers together",
+           " mm; " + joinNote,
        textH);
   const char* creaseLegend =
       profile.fold == FoldStyle::Dashed

@@ -182,6 +182,21 @@ Result<ExportOptions> exportOptions(const OutputOptions& output) {
       return Status(ErrorCode::Usage,
                     "--tabs must be a, b, alternate or none, got '" + output.tabs + "'");
   }
+  if (!output.joint.empty()) {
+    options.joint = jointNamed(output.joint);
+    if (!options.joint)
+      return Status(ErrorCode::Usage,
+                    "--joint must be glue, holes or lace, got '" + output.joint + "'");
+  }
+  options.material = output.material;
+  if (output.kerfMm) {
+    if (!(*output.kerfMm >= 0 && *output.kerfMm <= 5))
+      return Status(ErrorCode::Usage, "--kerf must be between 0 and 5 mm");
+    options.kerfMm = *output.kerfMm;
+  }
+  options.holeSpacingMm = output.holeSpacingMm;
+  options.holeDiameterMm = output.holeDiameterMm;
+  options.holeEdgeMm = output.holeEdgeMm;
   options.gltfBinary = !output.gltfText;
   options.title = output.title;
   if (Status s = checkExportOptions(options); !s.isOk()) return s;

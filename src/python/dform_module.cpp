@@ -50,6 +50,12 @@ std::string inPythonTerms(std::string text) {
              {"--sheet", "sheet"},
              {"--page", "page"},
              {"--scale", "scale"},
+             {"--joint", "joint"},
+             {"--material", "material"},
+             {"--kerf", "kerf"},
+             {"--hole-spacing", "hole_spacing"},
+             {"--hole-diameter", "hole_diameter"},
+             {"--hole-edge", "hole_edge"},
              {"--gate", "gate"},
              {"--no-export", "cutting_files=False"}})
       k.emplace_back(std::regex(option + "\\b"), keyword);
@@ -168,7 +174,10 @@ py::list messageList(const Made& made) {
 // Made.export(out_dir, ...): the result folder as `dform forward` writes it.
 py::dict exportMade(const Made& made, const std::string& outDir, const std::string& profile,
                     const std::string& gate, bool exportAnyway, bool exportFiles,
-                    const std::string& sheet, const std::string& page, const std::string& scale) {
+                    const std::string& sheet, const std::string& page, const std::string& scale,
+                    const std::string& joint, const std::string& material,
+                    std::optional<double> kerf, std::optional<double> holeSpacing,
+                    std::optional<double> holeDiameter, std::optional<double> holeEdge) {
   OutputOptions output;
   output.outDir = outDir;
   output.profile = profile;
@@ -178,6 +187,12 @@ py::dict exportMade(const Made& made, const std::string& outDir, const std::stri
   output.sheet = sheet;
   output.page = page;
   output.scale = scale;
+  output.joint = joint;
+  output.material = material;
+  output.kerfMm = kerf;
+  output.holeSpacingMm = holeSpacing;
+  output.holeDiameterMm = holeDiameter;
+  output.holeEdgeMm = holeEdge;
   const RunSettings settings = valueOrRaise(checkOutput(output));
   MessageSink sink;
   for (const Message& m : made.messages) sink.emit(m.level, m.text);  // kept in report.json
@@ -310,7 +325,9 @@ PYBIND11_MODULE(_dform, m) {
           "inverse: the resampled curve the seam follows (n, 3), else None")
       .def("export", &exportMade, arg("out_dir"), py::kw_only(), arg("profile") = "laser",
            arg("gate") = "default", arg("export_anyway") = false, arg("cutting_files") = true,
-           arg("sheet") = "", arg("page") = "", arg("scale") = "",
+           arg("sheet") = "", arg("page") = "", arg("scale") = "", arg("joint") = "",
+           arg("material") = "", arg("kerf") = py::none(), arg("hole_spacing") = py::none(),
+           arg("hole_diameter") = py::none(), arg("hole_edge") = py::none(),
            "writes the result folder as `dform forward` does: meshes, report.json, report.html "
            "and, when the gate passes, the cutting files; returns the gate's verdict");
 

@@ -492,6 +492,24 @@ TEST_F(CliTest, ExportOptionsOnTheCommandLine) {
               "tick spacing");
   EXPECT_FALSE(fs::exists(bad));
   expectError(run("export " + out + " --tabs left"), 2, "--tabs");
+
+  // Joints, material and kerf: re-exported with hole pairs and a kerf, then bad values.
+  ASSERT_EQ(run("export " + out + " --joint holes --material card --kerf 0.2 -q").exitCode, 0);
+  const nlohmann::json holes = nlohmann::json::parse(std::ifstream(fs::path(out) / "pattern.json"));
+  EXPECT_EQ(holes["joint"]["kind"], "holes");
+  EXPECT_EQ(holes["joint"]["material"], "card");
+  EXPECT_EQ(holes["joint"]["thickness_mm"].get<double>(), 0.3);
+  EXPECT_EQ(holes["kerf_mm"].get<double>(), 0.2);
+  EXPECT_GT(holes["joint_holes"].size(), 10u);
+  EXPECT_TRUE(holes["tabs"].empty()) << "no glue tabs with holes unless asked";
+  expectError(run("export " + out + " --joint tape"), 2, "--joint must be glue, holes or lace");
+  expectError(run("export " + out + " --material steel"), 2, "--material must be one of");
+  expectError(run("export " + out + " --kerf 9"), 2, "--kerf");
+  expectError(run("export " + out + " --kerf thin"), 2, "--kerf");
+  expectError(run("export " + out + " --hole-edge 1"), 2, "--hole-edge");
+  expectError(run("export " + out + " --hole-diameter 0"), 2, "--hole-diameter");
+  expectError(run("forward " + pieces + " --hole-spacing 3 -o " + bad), 2, "--hole-spacing");
+  EXPECT_FALSE(fs::exists(bad));
 }
 
 TEST_F(CliTest, PrintAndCutPutsEachPieceOnItsOwnPage) {

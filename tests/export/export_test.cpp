@@ -208,28 +208,6 @@ DForm unevenSeams(double stretch, double slide) {
   return d;
 }
 
-// The 3D seam point at the sheet point q of a piece's seam outline (pattern.json's, in the order
-// of piece.seam): the nearest outline segment i..i+1 and the fraction along it, interpolated
-// between the 3D points of seam[i] and seam[i + 1]. Also returns the distance from q to the
-// outline.
-std::pair<Eigen::Vector3d, double> seamPoint3d(const Piece& piece, const Polyline& outline,
-                                               const Vec2& q) {
-  double best = 1e300;
-  Eigen::Vector3d at = Eigen::Vector3d::Zero();
-  const size_t n = outline.size();
-  for (size_t i = 0; i < n; ++i) {
-    const Vec2 a = outline[i], ab = outline[(i + 1) % n] - a;
-    const double f = std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-    const double dist = (a + f * ab - q).norm();
-    if (dist < best) {
-      best = dist;
-      at = (1 - f) * piece.shape.row(piece.seam[i]).transpose() +
-           f * piece.shape.row(piece.seam[(i + 1) % n]).transpose();
-    }
-  }
-  return {at, best};
-}
-
 TEST(ExportPattern, PartnerTicksMarkTheSamePointOfThe3DSeam) {
   struct Case {
     double stretch, slide;
@@ -345,7 +323,7 @@ TEST(ExportPattern, KerfOffsetGrowsTheCutPathOutward) {
   const DForm model = ellipseCircleDForm();
   ExportOptions o = options();
   o.tabWidthMm = 0;
-  o.kerfMm = 0.1;
+  o.kerfMm = 0.2;  // the beam's width: the cut path moves half of it
   const Exported e = exportTo("kerf", model, o);
   // An outward offset by d of a convex closed curve (round joins) is longer by 2 pi d.
   const double expected = solvedPerimeter(model.b) + 2 * M_PI * 0.1;

@@ -83,6 +83,32 @@ TEST(ExportProfile, TheTabSideIsAProfileFieldThatAnOptionOverrides) {
   EXPECT_TRUE(build(model, o).tabs.empty());
 }
 
+TEST(ExportProfile, TheJointIsAProfileFieldThatAMaterialAndAnOptionOverride) {
+  EXPECT_EQ(loadProfile("laser", DFORM_TEMPLATES_DIR).value().joint, Joint::Glue);
+  for (Joint joint : {Joint::Glue, Joint::Holes, Joint::Lace}) {
+    const std::string name = jointName(joint);
+    EXPECT_EQ(jointNamed(name), joint) << name;
+    auto p = loadProfile(writeProfile("joint-" + name, R"({"joint": ")" + name + R"("})"), "");
+    ASSERT_TRUE(p.isOk()) << p.status().message();
+    EXPECT_EQ(p.value().joint, joint) << name;
+  }
+  EXPECT_FALSE(jointNamed("slots"));
+  // A laced profile: holes in the pattern, no glue tabs; a material, then the option, override.
+  const DForm model = ellipseCircleDForm(48, 4);
+  ExportOptions o = options();
+  o.profileOverride =
+      loadProfile(writeProfile("joint-lace-model", R"({"joint": "lace"})"), "").value();
+  o.useProfileOverride = true;
+  const fab::PatternBuild laced = build(model, o);
+  EXPECT_EQ(laced.joint.joint, Joint::Lace);
+  EXPECT_FALSE(laced.jointHoles.empty());
+  EXPECT_TRUE(laced.tabs.empty());
+  o.material = "paper";
+  EXPECT_EQ(build(model, o).joint.joint, Joint::Glue);
+  o.joint = Joint::Holes;
+  EXPECT_EQ(build(model, o).joint.joint, Joint::Holes);
+}
+
 TEST(ExportProfile, BadProfilesNameTheFileAndField) {
   struct Case {
     const char* name;
@@ -101,6 +127,8 @@ TEST(ExportProfile, BadProfilesNameTheFileAndField) {
       {"tiny-page", R"({"kind": "print", "page": "40x40mm"})", ErrorCode::InputInvalid, "page"},
       {"pnc-no-page", R"({"kind": "print-and-cut"})", ErrorCode::InputInvalid, "page"},
       {"bad-tabs", R"({"tabs": "both"})", ErrorCode::InputInvalid, "tabs"},
+      {"bad-joint", R"({"joint": "tape"})", ErrorCode::InputInvalid, "joint"},
+      {"bad-kerf", R"({"kerf_mm": 6})", ErrorCode::InputInvalid, "kerf_mm"},
       {"laser-bleed", R"({"kind": "laser", "bleed_mm": 1})", ErrorCode::InputInvalid, "bleed_mm"},
       {"print-bleed", R"({"kind": "print", "page": "A4", "bleed_mm": 1})", ErrorCode::InputInvalid,
        "bleed_mm"},

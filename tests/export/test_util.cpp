@@ -186,6 +186,24 @@ std::pair<double, double> arcLengthOf(const Polyline& loop, const Vec2& q) {
   return {bestS, best};
 }
 
+std::pair<Eigen::Vector3d, double> seamPoint3d(const Piece& piece, const Polyline& outline,
+                                               const Vec2& q) {
+  double best = 1e300;
+  Eigen::Vector3d at = Eigen::Vector3d::Zero();
+  const size_t n = outline.size();
+  for (size_t i = 0; i < n; ++i) {
+    const Vec2 a = outline[i], ab = outline[(i + 1) % n] - a;
+    const double f = std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+    const double dist = (a + f * ab - q).norm();
+    if (dist < best) {
+      best = dist;
+      at = (1 - f) * piece.shape.row(piece.seam[i]).transpose() +
+           f * piece.shape.row(piece.seam[(i + 1) % n]).transpose();
+    }
+  }
+  return {at, best};
+}
+
 bool inside(const Polyline& poly, const Vec2& q) {
   bool in = false;
   for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {

@@ -82,6 +82,12 @@ double solvedPerimeter(const Piece& piece);
 /// nearest to q, and that distance.
 std::pair<double, double> arcLengthOf(const Polyline& loop, const Vec2& q);
 bool inside(const Polyline& polygon, const Vec2& q);
+/// The 3D seam point at the sheet point q of a piece's seam outline (pattern.json's, in the order
+/// of piece.seam): the nearest outline segment i..i+1 and the fraction along it, interpolated
+/// between the 3D points of seam[i] and seam[i + 1]. Also returns the distance from q to the
+/// outline.
+std::pair<Eigen::Vector3d, double> seamPoint3d(const Piece& piece, const Polyline& outline,
+                                               const Vec2& q);
 /// Where segment [a, b] crosses the closed polyline, if it does (first crossing).
 bool crossing(const Polyline& loop, const Vec2& a, const Vec2& b, Vec2* at);
 

@@ -146,14 +146,14 @@ TEST(ExportVariants, KerfGrowsTheOutlineAndShrinksTheHole) {
   const DForm model = annulusDForm();
   ExportOptions o = options();
   o.tabWidthMm = 0;
-  o.kerfMm = 0.2;
+  o.kerfMm = 0.4;  // the beam's width: the cut loops move half of it
   const fab::PatternBuild pattern = build(model, o);
   for (const fab::PieceInfo& piece : pattern.pieces) {
     ASSERT_EQ(piece.cut.size(), 1u);
     ASSERT_EQ(piece.holeCuts.size(), 1u);
     const Polyline& outline = piece.boundaries[0];
     const Polyline& hole = piece.boundaries[1];
-    // Every cut point lies the kerf away from its loop, outside the material (round joins are
+    // Every cut point lies half the kerf away from its loop, outside the material (round joins are
     // drawn within 5 um, Clipper's grid is 0.1 um).
     for (const Vec2& q : piece.cut[0]) {
       EXPECT_NEAR(fab::distanceToPolylines({outline}, q, true), 0.2, 0.01);

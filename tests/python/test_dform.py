@@ -127,3 +127,14 @@ def test_export_writes_a_folder_that_validates(tmp_path):
     with pytest.raises(dform.Error) as profile:
         result.export(str(tmp_path / "other"), profile="nope")
     assert profile.value.exit_code == 2 and not (tmp_path / "other").exists()
+    # Joints, material and kerf as keywords; a bad value is named by its keyword.
+    result.export(str(tmp_path / "holes"), joint="holes", material="plywood", kerf=0.2)
+    pattern = json.loads((tmp_path / "holes" / "pattern.json").read_text())
+    assert pattern["joint"]["kind"] == "holes" and pattern["joint"]["thickness_mm"] == 3.0
+    assert pattern["kerf_mm"] == 0.2 and len(pattern["joint_holes"]) > 10
+    with pytest.raises(dform.Error) as joint:
+        result.export(str(tmp_path / "bad-joint"), joint="tape")
+    assert joint.value.exit_code == 2 and "joint must be" in str(joint.value)
+    with pytest.raises(dform.Error) as edge:
+        result.export(str(tmp_path / "bad-edge"), hole_edge=1.0)
+    assert "hole_edge" in str(edge.value)

@@ -61,6 +61,12 @@ class Result:
         sheet: str = ...,
         page: str = ...,
         scale: str = ...,
+        joint: str = ...,
+        material: str = ...,
+        kerf: Optional[float] = ...,
+        hole_spacing: Optional[float] = ...,
+        hole_diameter: Optional[float] = ...,
+        hole_edge: Optional[float] = ...,
     ) -> Dict[str, Any]: ...
     def __getstate__(self) -> Dict[str, Any]: ...
     def __setstate__(self, state: Dict[str, Any]) -> None: ...

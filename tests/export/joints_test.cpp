@@ -1,0 +1,323 @@
+// Joints for sheet materials: matched hole pairs and lacing holes along the seam, the kerf offset
+// of the cut paths, and the material presets. The holes are read back from pattern.json and the
+// written files and checked against the 3D shape, not against the arc lengths that placed them.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "dform/export/exporter.h"
+#include "dform/export/internal.h"
+#include "models.h"
+#include "synthetic.h"
+#include "test_util.h"
+
+namespace dform::test {
+namespace {
+
+using nlohmann::json;
+using Vec2 = Eigen::Vector2d;
+
+// The outline's corners: vertices where it turns by 35 degrees or more.
+std::vector<Vec2> corners(const Polyline& outline) {
+  std::vector<Vec2> out;
+  const size_t n = outline.size();
+  for (size_t i = 0; i < n; ++i) {
+    const Vec2 a = outline[i] - outline[(i + n - 1) % n], b = outline[(i + 1) % n] - outline[i];
+    const double turn = std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
+    if (std::abs(turn) >= 35 * M_PI / 180) out.push_back(outline[i]);
+  }
+  return out;
+}
+
+struct Hole {
+  int piece = 0;
+  Vec2 centre;
+  double diameter = 0;
+};
+
+// pattern.json's joint holes by index (pair or place along the seam), each with its piece.
+std::multimap<int, Hole> holesOf(const json& sidecar) {
+  std::multimap<int, Hole> out;
+  for (const json& h : sidecar["joint_holes"])
+    out.insert({h["index"].get<int>(),
+                {h["piece"] == "A" ? 0 : 1,
+                 Vec2(h["centre"][0].get<double>(), h["centre"][1].get<double>()),
+                 h["diameter_mm"].get<double>()}});
+  return out;
+}
+
+// Every hole lies `edge` inside its piece from the seam, a diameter clear of the seam's corners
+// and of the other holes of its piece.
+void expectHolesClear(const json& sidecar, double edge) {
+  const std::multimap<int, Hole> holes = holesOf(sidecar);
+  for (const auto& [index, h] : holes) {
+    const Polyline outline = toPolyline(sidecar["pieces"][h.piece]["outline"]);
+    EXPECT_TRUE(inside(outline, h.centre)) << "hole " << index << " lies in its piece";
+    EXPECT_NEAR(arcLengthOf(outline, h.centre).second, edge, 1e-6) << "hole " << index;
+    for (const Vec2& c : corners(outline))
+      EXPECT_GE((c - h.centre).norm() - 0.5 * h.diameter, h.diameter) << "hole " << index;
+    for (const auto& [other, o] : holes) {
+      if (other == index || o.piece != h.piece) continue;
+      EXPECT_GE((o.centre - h.centre).norm() - h.diameter, h.diameter)
+          << "holes " << index << " and " << other;
+    }
+  }
+}
+
+// For --joint holes, the holes of each pair lie at the same point of the 3D seam: each hole's
+// seam foot on its own piece, mapped through that piece's 3D shape, within 0.1 mm of its
+// partner's.
+void expectPairsMeetIn3d(const DForm& model, const json& sidecar) {
+  const std::multimap<int, Hole> holes = holesOf(sidecar);
+  const Polyline outline[2] = {toPolyline(sidecar["pieces"][0]["outline"]),
+                               toPolyline(sidecar["pieces"][1]["outline"])};
+  const Piece* piece[2] = {&model.a, &model.b};
+  ASSERT_GT(holes.size(), 8u);
+  for (auto it = holes.begin(); it != holes.end(); it = holes.upper_bound(it->first)) {
+    ASSERT_EQ(holes.count(it->first), 2u) << "hole pair " << it->first;
+    const Hole& h0 = it->second;
+    const Hole& h1 = std::next(it)->second;
+    ASSERT_NE(h0.piece, h1.piece) << "one hole of pair " << it->first << " on each piece";
+    const double apart = (seamPoint3d(*piece[h0.piece], outline[h0.piece], h0.centre).first -
+                          seamPoint3d(*piece[h1.piece], outline[h1.piece], h1.centre).first)
+                             .norm();
+    EXPECT_LE(apart, 0.1) << "hole pair " << it->first;
+  }
+}
+
+// The ellipse and circle D-Form with B's flat vertices slid round the centre by up to 0.3 rad
+// (their 3D points as they were): B's seam is parametrised unlike A's, so equal arc lengths on
+// A and B are different seam points (up to 20 mm apart), as on a solved model.
+DForm warpedEllipseCircle() {
+  DForm model = ellipseCircleDForm(64, 8);
+  for (Eigen::Index v = 0; v < model.b.flat.rows(); ++v) {
+    const Eigen::Vector2d q = model.b.flat.row(v).transpose();
+    const double r = q.norm(), a = std::atan2(q.y(), q.x());
+    const double warped = a + 0.3 * std::sin(a);
+    model.b.flat.row(v) << r * std::cos(warped), r * std::sin(warped);
+  }
+  return model;
+}
+
+TEST(ExportJoints, HolePairsLieAtTheSame3DSeamPoints) {
+  const DForm ellipse = warpedEllipseCircle();
+  ExportOptions o = options();
+  o.joint = Joint::Holes;
+  const Exported e = exportTo("holes-ellipse", ellipse, o);
+  expectPairsMeetIn3d(ellipse, e.sidecar);
+  expectHolesClear(e.sidecar, 3.0);
+  EXPECT_TRUE(e.sidecar["tabs"].empty()) << "holes join the pieces: no glue tabs unless asked";
+  EXPECT_EQ(e.summary.jointHoles, int(e.sidecar["joint_holes"].size()));
+  // A square-ish D-Form: its corners keep their holes away, its seams differ in parametrisation.
+  const DForm tetra = tetraDForm(6, 60.0);
+  o.holeSpacingMm = 12;
+  const Exported t = exportTo("holes-tetra", tetra, o);
+  expectPairsMeetIn3d(tetra, t.sidecar);
+  expectHolesClear(t.sidecar, 3.0);
+  // The holes are placed clear of the corners, not placed at them and dropped.
+  for (const json& message : t.sidecar["messages"])
+    EXPECT_EQ(message.get<std::string>().find("joint holes"), std::string::npos) << message;
+  int corner = 0;  // and the corners are no further from their holes than the clearance needs
+  const Polyline outlineA = toPolyline(t.sidecar["pieces"][0]["outline"]);
+  for (const Vec2& c : corners(outlineA)) {
+    double nearest = 1e300;
+    for (const auto& [index, h] : holesOf(t.sidecar))
+      if (h.piece == 0) nearest = std::min(nearest, (h.centre - c).norm());
+    EXPECT_LT(nearest, 12.0) << "corner " << corner << " of A has a hole near it";
+    ++corner;
+  }
+  EXPECT_EQ(corner, 4);
+}
+
+TEST(ExportJoints, HolesOnAHoleSeamGoIntoTheMaterial) {
+  // Anti (both seams are hole loops) and demi (A's seam its outline, B's a hole loop) D-Forms:
+  // the holes lie in the material, the edge distance from the seam, paired in 3D.
+  for (const DForm& model : {annulusDForm(), demiDForm()}) {
+    ExportOptions o = options();
+    o.joint = Joint::Holes;
+    o.holeSpacingMm = 10;
+    const Exported e = exportTo("holes-hole-seam", model, o);
+    expectPairsMeetIn3d(model, e.sidecar);
+    for (const json& h : e.sidecar["joint_holes"]) {
+      const json& piece = e.sidecar["pieces"][h["piece"] == "A" ? 0 : 1];
+      const Vec2 c(h["centre"][0].get<double>(), h["centre"][1].get<double>());
+      EXPECT_NEAR(arcLengthOf(toPolyline(piece["outline"]), c).second, 3.0, 1e-6);
+      const Polyline outer = toPolyline(piece["boundaries"][0]);
+      bool inAHole = false;  // the piece's own holes (its seam, if a hole), not the joint holes
+      for (size_t k = 1; k < piece["boundaries"].size(); ++k) {
+        const Polyline loop = toPolyline(piece["boundaries"][k]);
+        const bool jointHole = (loop[0] - loop[loop.size() / 2]).norm() < 3;  // 2 mm across
+        if (inside(loop, c) && !jointHole) inAHole = true;
+      }
+      EXPECT_TRUE(inside(outer, c) && !inAHole) << "hole " << h["index"] << " in the material";
+    }
+    const Result<PreparedExport> prepared = prepareExport(model, o);
+    ASSERT_TRUE(prepared.isOk());
+    EXPECT_EQ(prepared.value().layout.problems(), 0) << prepared.value().layout.example;
+  }
+}
+
+TEST(ExportJoints, HolesAreClosedCutLoopsInEveryFile) {
+  const DForm model = ellipseCircleDForm(64, 8);
+  ExportOptions o = options();
+  o.joint = Joint::Holes;
+  o.holeDiameterMm = 3;
+  o.holeEdgeMm = 4;
+  const Exported e = exportTo("holes-files", model, o);
+  const size_t holes = e.sidecar["joint_holes"].size();
+  int closedCuts = 0;
+  for (const auto& path : e.svg.paths)
+    if (path.layer == "Cut" && path.closed) closedCuts += int(path.parts.size());
+  EXPECT_EQ(size_t(closedCuts), 2 + holes) << "cut loops = pieces + holes";
+  // Each hole's cut is its circle (chords within 5 um), at the designed diameter without a kerf.
+  for (const json& h : e.sidecar["joint_holes"]) {
+    const Vec2 c(h["centre"][0].get<double>(), h["centre"][1].get<double>());
+    bool found = false;
+    for (const auto& path : e.svg.paths)
+      if (path.layer == "Cut" && path.closed && (path.parts[0][0] - c).norm() < 2)
+        for (const Vec2& q : path.parts[0]) {
+          found = true;
+          EXPECT_NEAR((q - c).norm(), 1.5, 1e-3);
+        }
+    EXPECT_TRUE(found) << "a cut loop around hole " << h["index"];
+  }
+  expectDxfChecks(e.dir);
+  // The layout check counts the holes as the pieces' own loops.
+  const Result<PreparedExport> prepared = prepareExport(model, o);
+  ASSERT_TRUE(prepared.isOk());
+  EXPECT_EQ(prepared.value().layout.extraCutLoops, 0);
+  EXPECT_EQ(prepared.value().layout.problems(), 0) << prepared.value().layout.example;
+}
+
+TEST(ExportJoints, LacingHolesAlternateBetweenThePieces) {
+  const DForm model = ellipseCircleDForm(64, 8);
+  ExportOptions o = options();
+  o.joint = Joint::Lace;
+  const Exported e = exportTo("lace", model, o);
+  const json& holes = e.sidecar["joint_holes"];
+  ASSERT_GT(holes.size(), 8u);
+  EXPECT_EQ(holes.size() % 2, 0u) << "A, B, A, B all the way round";
+  const Piece* piece[2] = {&model.a, &model.b};
+  const Polyline outline[2] = {toPolyline(e.sidecar["pieces"][0]["outline"]),
+                               toPolyline(e.sidecar["pieces"][1]["outline"])};
+  // Along the 3D seam the holes alternate between A and B, at most half a spacing apart.
+  for (size_t k = 0; k < holes.size(); ++k) {
+    const json& h = holes[k];
+    const json& next = holes[(k + 1) % holes.size()];
+    EXPECT_NE(h["piece"], next["piece"]) << "lacing holes " << k << " and " << k + 1;
+    const int p = h["piece"] == "A" ? 0 : 1, q = 1 - p;
+    const Vec2 c(h["centre"][0].get<double>(), h["centre"][1].get<double>());
+    const Vec2 d(next["centre"][0].get<double>(), next["centre"][1].get<double>());
+    const double along =
+        (seamPoint3d(*piece[p], outline[p], c).first - seamPoint3d(*piece[q], outline[q], d).first)
+            .norm();
+    // Half a spacing, and the seam points moved off convex vertices (edge * tan(turn / 2), under
+    // 0.25 mm each on this seam).
+    EXPECT_LE(along, 0.5 * 15 + 0.5) << "lacing holes " << k << " and " << k + 1;
+    EXPECT_GT(along, 0.25 * 15) << "lacing holes " << k << " and " << k + 1;
+  }
+  expectHolesClear(e.sidecar, 3.0);
+}
+
+TEST(ExportJoints, KerfMovesCutsByHalfTheKerfAndTicksStay) {
+  const DForm model = ellipseCircleDForm(64, 8);
+  ExportOptions o = options();
+  o.joint = Joint::Holes;
+  o.kerfMm = 0;
+  const Exported bare = exportTo("kerf-0", model, o);
+  o.kerfMm = 0.4;
+  const Exported cut = exportTo("kerf-04", model, o);
+  EXPECT_EQ(cut.sidecar["kerf_mm"].get<double>(), 0.4);
+  // In the DXF (ezdxf): outer loops 0.2 mm outside the seam, hole loops 0.2 mm inside the holes.
+  std::string report;
+  ASSERT_EQ(
+      run(std::string(DFORM_PYTHON3) + " " + DFORM_KERF_CHECKER + " " + cut.dir + " 0.4", &report),
+      0)
+      << report;
+  // Ticks cross the seam as without a kerf: 1.5 mm outside, 3 mm (the start 6 mm) inside.
+  for (int p = 0; p < 2; ++p) {
+    const std::string name = p == 0 ? "A" : "B";
+    const Polyline outline = toPolyline(cut.sidecar["pieces"][p]["outline"]);
+    const Polyline outline0 = toPolyline(bare.sidecar["pieces"][p]["outline"]);
+    for (int k = 0; k < 5; ++k) {
+      const std::string id = name + "-tick-0" + std::to_string(k);
+      const auto* tick = cut.svg.find(id);
+      const auto* tick0 = bare.svg.find(id);
+      ASSERT_TRUE(tick && tick0) << id;
+      for (size_t end = 0; end < 2; ++end) {
+        const Vec2 q = tick->parts[0][end], q0 = tick0->parts[0][end];
+        EXPECT_NEAR(arcLengthOf(outline, q).second, arcLengthOf(outline0, q0).second, 1e-3) << id;
+        EXPECT_NEAR(arcLengthOf(outline, q).first, arcLengthOf(outline0, q0).first, 1e-3) << id;
+      }
+      EXPECT_NEAR(arcLengthOf(outline, tick->parts[0][0]).second, 1.5, 1e-3) << id;
+    }
+  }
+}
+
+TEST(ExportJoints, MaterialPresetsSetTheJointAndExplicitOptionsWin) {
+  const DForm model = ellipseCircleDForm(48, 4);
+  ExportOptions o = options();
+  o.material = "plywood";
+  const fab::PatternBuild ply = build(model, o);
+  EXPECT_EQ(ply.joint.joint, Joint::Holes);
+  EXPECT_EQ(ply.joint.thicknessMm, 3.0);
+  EXPECT_EQ(ply.joint.diameterMm, 4.0);
+  EXPECT_TRUE(ply.tabs.empty());
+  EXPECT_FALSE(ply.jointHoles.empty());
+  o.material = "polypropylene";
+  EXPECT_EQ(build(model, o).joint.joint, Joint::Lace);
+  o.joint = Joint::Glue;  // an explicit joint wins over the material's
+  const fab::PatternBuild glued = build(model, o);
+  EXPECT_TRUE(glued.jointHoles.empty());
+  EXPECT_FALSE(glued.tabs.empty());
+  o.material = "card";
+  o.joint.reset();
+  EXPECT_EQ(build(model, o).joint.joint, Joint::Glue);
+  o.material = "plywood";
+  o.holeDiameterMm = 2.5;  // and an explicit size over the material's
+  o.tabSide = TabSide::A;  // tabs where asked for, holes or not
+  const fab::PatternBuild both = build(model, o);
+  EXPECT_EQ(both.joint.diameterMm, 2.5);
+  EXPECT_FALSE(both.tabs.empty());
+  for (const auto& h : both.jointHoles) EXPECT_EQ(h.diameter, 2.5);
+}
+
+TEST(ExportJoints, BadJointValuesAreUsageErrors) {
+  ExportOptions o = options();
+  auto expectUsage = [&](const ExportOptions& bad, const std::string& mentions) {
+    const Status s = checkExportOptions(bad);
+    EXPECT_EQ(s.code(), ErrorCode::Usage) << mentions;
+    EXPECT_NE(s.message().find(mentions), std::string::npos) << s.message();
+    EXPECT_EQ(s.message().find('\n'), std::string::npos) << "one line";
+  };
+  ExportOptions bad = o;
+  bad.material = "steel";
+  expectUsage(bad, "--material");
+  bad = o;
+  bad.holeDiameterMm = 0.2;
+  expectUsage(bad, "--hole-diameter");
+  bad = o;
+  bad.holeDiameterMm = std::nan("");
+  expectUsage(bad, "--hole-diameter");
+  bad = o;
+  bad.holeEdgeMm = 1.5;  // less than the 2 mm diameter
+  expectUsage(bad, "--hole-edge");
+  bad = o;
+  bad.holeSpacingMm = 3;  // less than twice the diameter
+  expectUsage(bad, "--hole-spacing");
+  bad = o;
+  bad.material = "plywood";
+  bad.holeSpacingMm = 7;  // plywood's 4 mm holes need 8
+  expectUsage(bad, "--hole-spacing");
+  bad = o;
+  bad.kerfMm = 6;
+  expectUsage(bad, "--kerf");
+  bad.kerfMm = -0.5;
+  expectUsage(bad, "--kerf");
+  EXPECT_TRUE(checkExportOptions(o).isOk());
+}
+
+}  // namespace
+}  // namespace dform::test
