@@ -32,26 +32,31 @@ struct Figure {
 };
 
 // The figures a result is judged on, in the gate's units. gauss_max_rad is the gate's own
-// (vertices away from the seam; report.json's metrics.gauss_max takes every interior vertex),
-// so it is listed only when a gate ran.
-std::vector<Figure> summaryFigures(const WrittenResult& written) {
-  const Metrics& m = written.metrics;
+// (vertices away from the seam; report.json's metrics.angle_defect_max_rad takes every interior
+// vertex), so it is listed only when a gate ran.
+std::vector<Figure> summaryFigures(const Metrics& m, const CurveMatch* curve,
+                                   const GateReport* gate) {
   std::vector<Figure> figures = {{"L_error", m.lengthError}, {"L_max", m.lengthErrorMax}};
-  if (written.curve) {
-    figures.push_back({"D_error", written.curve->curveError});
-    figures.push_back({"curve_distance_max_mm", written.curve->curveDistanceMaxMm});
+  if (curve) {
+    figures.push_back({"D_error", curve->curveError});
+    figures.push_back({"curve_distance_max_mm", curve->curveDistanceMaxMm});
   } else {
     figures.push_back({"B_error", m.seamError});
     figures.push_back({"seam_gap_mm", m.seamGapMm});
   }
-  if (written.gate)
-    for (const CheckResult& c : written.gate->checks)
+  if (gate)
+    for (const CheckResult& c : gate->checks)
       if (c.name == "gauss_max_rad") figures.push_back({c.name, c.value});
   figures.push_back({"flipped", double(m.flipped2d + m.flipped3d)});
   figures.push_back({"degenerate", double(m.degenerate2d + m.degenerate3d)});
   figures.push_back({"seam_length_a_mm", m.seamLengthAMm});
   figures.push_back({"seam_length_b_mm", m.seamLengthBMm});
   return figures;
+}
+
+std::vector<Figure> summaryFigures(const WrittenResult& written) {
+  return summaryFigures(written.metrics, written.curve ? &*written.curve : nullptr,
+                        written.gate ? &*written.gate : nullptr);
 }
 
 void printFigures(const std::vector<Figure>& figures, const Timings& t, const std::string& dir) {
@@ -114,20 +119,29 @@ nlohmann::json folderFiles(const std::string& dir) {
   return names;
 }
 
+// The model a result folder's run used, as its report.json names it (the one record of that
+// choice); null when the report is missing or says none.
+nlohmann::json modelName(const std::string& dir) {
+  std::ifstream reportFile(std::filesystem::path(dir) / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(reportFile, nullptr, false);
+  return report.is_object() && report.contains("model") && report["model"].is_object()
+             ? report["model"].value("name", nlohmann::json())
+             : nlohmann::json();
+}
+
+nlohmann::json figuresJson(const std::vector<Figure>& figures) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const Figure& f : figures) out[f.name] = number(f.value);
+  return out;
+}
+
 // --json: the run's summary as one object on stdout (docs/cli.md "Machine-readable summary").
 void printRunJson(const Job& job, const WrittenResult& written, const OutputOptions& output,
                   int code) {
   nlohmann::json summary;
   summary["command"] = job.mode == Job::Mode::Forward ? "forward" : "inverse";
-  // The model the run used, as report.json names it (the one record of that choice).
-  std::ifstream reportFile(std::filesystem::path(output.outDir) / "report.json");
-  const nlohmann::json report = nlohmann::json::parse(reportFile, nullptr, false);
-  summary["model"] = report.is_object() && report.contains("model") && report["model"].is_object()
-                         ? report["model"].value("name", nlohmann::json())
-                         : nlohmann::json();
-  nlohmann::json figures = nlohmann::json::object();
-  for (const Figure& f : summaryFigures(written)) figures[f.name] = number(f.value);
-  summary["figures"] = figures;
+  summary["model"] = modelName(output.outDir);
+  summary["figures"] = figuresJson(summaryFigures(written));
   summary["gate"] = written.gate ? gateJson(*written.gate, true) : nlohmann::json();
   summary["output"] = output.outDir;
   summary["files"] = folderFiles(output.outDir);
@@ -325,11 +339,18 @@ int validateSaved(const std::string& dir, const std::string& gateName, const Pri
                    : check.judged && !check.gate.passed() ? exitCode(ErrorCode::GateFailed)
                                                           : 0;
   if (printing.json) {
-    nlohmann::json summary = {{"command", "validate"},
-                              {"output", dir},
-                              {"gate", gateJson(check.gate, check.judged)},
-                              {"report_differences", check.differences},
-                              {"exit_code", code}};
+    // The figures as the meshes give them (never report.json's), with the gate's gauss_max_rad.
+    const GateReport& gate = check.gate;
+    nlohmann::json summary = {
+        {"command", "validate"},
+        {"model", modelName(dir)},
+        {"figures",
+         figuresJson(summaryFigures(gate.metrics, gate.curve ? &*gate.curve : nullptr, &gate))},
+        {"gate", gateJson(gate, check.judged)},
+        {"report_differences", check.differences},
+        {"output", dir},
+        {"files", folderFiles(dir)},
+        {"exit_code", code}};
     std::fprintf(stdout, "%s\n", summary.dump(2).c_str());
   } else if (!printing.quiet) {
     printGate(check.gate, check.judged);

@@ -268,10 +268,8 @@ struct SweepCommand {
       return failUsage(
           Status(ErrorCode::Usage, "--threads must be 0 (the machine's cores) or more"));
     job.forward.weights = defaultWeights(job.forward.joinA, job.forward.joinB);
-    // Every start reads the outlines again; standard input can be read only once.
-    if (job.forward.pieceA == kStandardInput || job.forward.pieceB == kStandardInput)
-      return failUsage(
-          Status(ErrorCode::Usage, "sweep reads its outlines once per start: give files, not '-'"));
+    if (Status s = oneStandardInput({job.forward.pieceA, job.forward.pieceB}); !s.isOk())
+      return failUsage(s);
     job.forward.flip = flip == "flipped";
     options.bothFlips = flip == "both";
     if (Status s = validateForwardJob(job.forward); !s.isOk()) return failUsage(s);

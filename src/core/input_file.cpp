@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <optional>
 
 #include "dform/core/interrupt.h"
@@ -47,10 +48,24 @@ Result<std::string> readAll(int fd, const std::string& name, std::size_t maxByte
   return text;
 }
 
+// Standard input read once, whole (up to kMaxInputBytes): a stream can be read only once, and a
+// command that reads its input again (a sweep reads its outlines for every start) must see the
+// same bytes each time.
+Result<std::string> readStandardInput(std::size_t maxBytes) {
+  static std::mutex mutex;
+  static std::optional<Result<std::string>> whole;
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (!whole) whole = readAll(STDIN_FILENO, "stdin", kMaxInputBytes, 0);
+  if (whole->isOk() && whole->value().size() > maxBytes)
+    return Status{ErrorCode::InputUnreadable,
+                  "stdin: file is too large (the limit is " + sizeText(maxBytes) + ")"};
+  return *whole;
+}
+
 // The blocking part of readInputFile: stat, open and read; "-" reads standard input.
 Result<std::string> readBlocking(const std::string& path, std::size_t maxBytes) {
   namespace fs = std::filesystem;
-  if (path == kStandardInput) return readAll(STDIN_FILENO, "stdin", maxBytes, 0);
+  if (path == kStandardInput) return readStandardInput(maxBytes);
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   // A missing file (or a path through a regular file) is only not found; anything else (a

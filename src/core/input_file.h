@@ -23,8 +23,9 @@ inline const std::string kStandardInput = "-";
 /// What messages call the input `path`: "stdin" for kStandardInput, else the path.
 std::string inputName(const std::string& path);
 
-/// Reads the whole file (standard input for kStandardInput), or InputUnreadable naming it
-/// (missing, a folder, unreadable, larger than `maxBytes`).
+/// Reads the whole file, or InputUnreadable naming it (missing, a folder, unreadable, larger than
+/// `maxBytes`). kStandardInput reads standard input, once per process: every later read of it
+/// gives the same bytes (or the same error).
 Result<std::string> readInputFile(const std::string& path, std::size_t maxBytes = kMaxInputBytes);
 
 }  // namespace dform

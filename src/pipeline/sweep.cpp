@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "dform/core/atomic_file.h"
+#include "dform/core/input_file.h"
 #include "dform/core/message_text.h"
 #include "dform/core/result_folder.h"
 #include "dform/io/json_util.h"
@@ -229,9 +230,10 @@ Result<std::vector<SweepRow>> runSweep(const Job& base, const SweepOptions& opti
   for (const auto& [name, text] :
        {std::pair<const char*, std::string>{"sweep.json", sweepJson(base, options, rows)},
         {"gallery.html",
-         galleryHtml("D-Form sweep: " + fs::path(base.forward.pieceA).filename().string() + " + " +
-                         fs::path(base.forward.pieceB).filename().string(),
-                     rows)}})
+         galleryHtml(
+             "D-Form sweep: " + fs::path(inputName(base.forward.pieceA)).filename().string() +
+                 " + " + fs::path(inputName(base.forward.pieceB)).filename().string(),
+             rows)}})
     if (Status s = writeFileAtomically((fs::path(folder.staging()) / name).string(), text);
         !s.isOk())
       return folder.named(s);

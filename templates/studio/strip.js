@@ -55,7 +55,7 @@ Strip.prototype.add = function (event) {
       return { shape: decodeF64(p.shape), faces: decodeU32(p.faces), seam: p.seam, creases: p.creases };
     });
     var f = shapeFigures(pieces);
-    card.height = f.height; card.volume = f.volume; card.curvature = event.result.figures.gauss_max || 0;
+    card.height = f.height; card.volume = f.volume; card.curvature = event.result.figures.angle_defect_max_rad || 0;
     card.model = event.result.model.name;
     card.passed = event.result.gate.passed;
     if (!this.view) this.view = new View3D(this.canvas);

@@ -271,7 +271,7 @@
     var rows = [
       ["L_error", percent(f.L_error)], ["L_max", percent(f.L_max)],
       ["B_error", number(f.B_error)], ["seam gap", number(f.seam_gap_mm) + " mm"],
-      ["curvature max", number(f.gauss_max) + " rad"], ["3D seam", number(f.seam_length_3d_mm, 5) + " mm"],
+      ["angle defect max", number(f.angle_defect_max_rad) + " rad"], ["3D seam", number(f.seam_length_3d_mm, 5) + " mm"],
     ];
     if (r.scale_b != null) rows.push(["B scaled by", number(r.scale_b, 6)], ["starts", "A " + r.start_a.toFixed(4) + ", B " + r.start_b.toFixed(4)]);
     if (r.curve_match) rows.push(["D_error", number(r.curve_match.D_error)], ["round trip max", number(r.curve_match.roundtrip_max_rel)],

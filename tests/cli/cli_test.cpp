@@ -300,7 +300,8 @@ TEST_F(CliTest, ForwardWritesEveryFileAndValidates) {
   for (const auto& entry : fs::directory_iterator(out))
     EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
   const nlohmann::json report = nlohmann::json::parse(std::ifstream(fs::path(out) / "report.json"));
-  for (const char* key : {"L_error", "L_max", "B_error", "seam_gap_mm", "gauss_max", "gauss_mean"})
+  for (const char* key : {"L_error", "L_max", "B_error", "seam_gap_mm", "angle_defect_max_rad",
+                          "angle_defect_mean_rad"})
     EXPECT_TRUE(report["metrics"][key].is_number()) << key;
   // Every stage of the command is timed, and the stages are disjoint parts of its total.
   const nlohmann::json& t = report["timings"];

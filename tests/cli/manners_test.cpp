@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -61,8 +62,8 @@ std::map<std::string, double> namedFigures(const std::string& line) {
 }
 
 // report.json's value of a figure the summary names: its metric of that name, else the gate's
-// check of that name (gauss_max_rad is the gate's: report.json's metrics.gauss_max takes every
-// interior vertex, the gate only those away from the seam).
+// check of that name (gauss_max_rad is the gate's: report.json's metrics.angle_defect_max_rad takes
+// every interior vertex, the gate only those away from the seam).
 double reportFigure(const json& report, const std::string& name) {
   if (name == "flipped")
     return report["metrics"]["flipped_2d"].get<double>() +
@@ -152,6 +153,18 @@ TEST_F(CliMannersTest, ValidateWithoutAGateMeasuresAndGivesNoVerdict) {
   const json parsed = json::parse(asJson.out);
   EXPECT_TRUE(parsed["gate"]["passed"].is_null());
   EXPECT_EQ(parsed["gate"]["name"], "none");
+  // The same summary as the run's: its model, its figures (measured again from the meshes) and
+  // the folder's files.
+  EXPECT_EQ(parsed["model"], saved["model"]["name"]);
+  for (const char* name : {"L_error", "L_max", "B_error", "seam_gap_mm", "gauss_max_rad"}) {
+    ASSERT_TRUE(parsed["figures"][name].is_number()) << name << "\n" << asJson.out;
+    const double savedValue = reportFigure(saved, name);
+    EXPECT_NEAR(parsed["figures"][name].get<double>(), savedValue, 1e-9 * std::abs(savedValue))
+        << name;
+  }
+  const json files = parsed["files"];
+  for (const char* name : {"report.json", "piece-a-3d.obj", "piece-b-flat.obj"})
+    EXPECT_NE(std::find(files.begin(), files.end(), name), files.end()) << name;
   // An unreadable folder or a report that disagrees with its meshes is still an error.
   EXPECT_EQ(run("validate --gate none " + path("missing")).exitCode, 3);
   json edited = saved;
@@ -236,7 +249,7 @@ TEST_F(CliMannersTest, JsonOnInverseRunAndAFailedGate) {
 }
 
 // "-" reads standard input: its format told by its content, named "stdin" in messages, recorded
-// in report.json as "-" with the SHA-256 of what was read.
+// in report.json as "-" with the SHA-256 of what was read, the same bytes for every read.
 TEST_F(CliMannersTest, ADashReadsStandardInput) {
   const std::string a = sample("forward/ellipses-a.svg"), b = sample("forward/ellipses-b.svg");
   Outcome o = run("forward - " + b + " --resolution 30 --no-export -q -o " + path("f") + " < " + a);
@@ -267,8 +280,26 @@ TEST_F(CliMannersTest, ADashReadsStandardInput) {
   o = run("forward - - -o " + path("x") + " < " + a);
   EXPECT_EQ(o.exitCode, 2);
   EXPECT_NE(o.err.find("stdin"), std::string::npos) << o.err;
-  EXPECT_EQ(run("sweep - " + b + " -o " + path("x") + " < " + a).exitCode, 2);
+  EXPECT_EQ(run("sweep - - -o " + path("x") + " < " + a).exitCode, 2);
   EXPECT_FALSE(fs::exists(path("x")));
+  // A sweep reads stdin once and gives every start the same bytes: each start solves what the
+  // same sweep of the file solves.
+  const std::string sweep = " --starts 2 --resolution 30 --model paper --no-export -q -o ";
+  o = run("sweep - " + b + sweep + path("s-stdin") + " < " + a);
+  ASSERT_EQ(o.exitCode, 0) << o.err;
+  ASSERT_EQ(run("sweep " + a + " " + b + sweep + path("s-file")).exitCode, 0);
+  int starts = 0;
+  for (const auto& entry : fs::directory_iterator(path("s-file"))) {
+    if (!entry.is_directory()) continue;
+    const std::string start = entry.path().filename().string();
+    const json fromFile = report("s-file/" + start);
+    const json fromStdin = report("s-stdin/" + start);
+    EXPECT_EQ(fromStdin["inputs"]["piece_a"]["path"], "-") << start;
+    EXPECT_EQ(fromStdin["inputs"]["piece_a"]["sha256"], sha256Hex(readText(a))) << start;
+    EXPECT_EQ(fromStdin["metrics"]["L_max"], fromFile["metrics"]["L_max"]) << start;
+    ++starts;
+  }
+  EXPECT_EQ(starts, 2);
 }
 
 TEST_F(CliMannersTest, HelpShowsNoFlagDefaults) {

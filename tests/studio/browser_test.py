@@ -146,7 +146,7 @@ def main():
         figures = s.js("return window.studio.shown.result.figures")
         check("%.3f %%" % (100 * figures["L_error"]) in s.js("return document.getElementById('figures').textContent"),
               "the shape's figures are in the panel")
-        same = all(report["metrics"][k] == figures[k] for k in ("L_error", "L_max", "B_error", "gauss_max"))
+        same = all(report["metrics"][k] == figures[k] for k in ("L_error", "L_max", "B_error", "angle_defect_max_rad"))
         check(same, "Save job + dform run reproduces the figures")
 
         s.js("window.studio.lastDownload = null")

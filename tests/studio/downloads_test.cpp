@@ -74,7 +74,7 @@ TEST_F(StudioDownloads, SavedJobRunsToTheSameFiguresAndExportToTheSameFiles) {
   ASSERT_EQ(std::system(run.c_str()), 0) << readAll(dir / "run.log");
   const json report = json::parse(readAll(dir / "cli" / "report.json"));
   for (const char* figure :
-       {"L_error", "L_max", "B_error", "seam_gap_mm", "gauss_max", "seam_length_3d_mm"})
+       {"L_error", "L_max", "B_error", "seam_gap_mm", "angle_defect_max_rad", "seam_length_3d_mm"})
     EXPECT_DOUBLE_EQ(report["metrics"][figure].get<double>(),
                      verdict["figures"][figure].get<double>())
         << figure;

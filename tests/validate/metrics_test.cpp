@@ -293,7 +293,7 @@ TEST(Metrics, SeamGapIsTheWorstPartnerAndBErrorTheMeanOverTheSeamLength) {
   EXPECT_NEAR(m.seamError, meanGap / seam3dLength(model), 1e-15);
 }
 
-// gauss_max is the largest |angle defect|, gauss_mean the mean: two apexes of different heights.
+// gaussMax is the largest |angle defect|, gaussMean the mean: two apexes of different heights.
 TEST(Metrics, GaussMaxIsTheSharperApexAndGaussMeanTheMeanOfBoth) {
   const int n = 7;
   const double r = 20.0;
