@@ -395,7 +395,8 @@ Result<SolvedDForm> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSet
               format(", stationarity %.2g, bending energy %.4g, stretching energy %.4g",
                      sheet.summary.stationarity, sheet.summary.bendingEnergy,
                      sheet.summary.stretchingEnergy) +
-              format(" in %.3f s", sheet.summary.seconds));
+              format(", %.0f factorisations in %.3f s", sheet.summary.factorisations,
+                     sheet.summary.seconds));
     if (!sheet.summary.converged) sink.warning("general model: " + sheet.summary.message);
   }
   run.timings.total = secondsSince(start);

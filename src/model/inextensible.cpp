@@ -238,7 +238,8 @@ InextensibleResult solveInextensible(const DForm& start, const InextensibleOptio
       // factorisation positive definite without bending the step.
       const double floorShift = 1e-10 * lower.diagonal().cwiseAbs().maxCoeff();
       shift = std::max(shift, floorShift);
-      while (!factor.factorize(lower, shift)) shift *= 10;
+      for (++summary.factorisations; !factor.factorize(lower, shift); ++summary.factorisations)
+        shift *= 10;
       const Eigen::VectorXd g = now.bendingGradient + now.stretchingGradient;
       const Eigen::VectorXd step = factor.solve(-g);
       const double slope = g.dot(step);

@@ -36,6 +36,7 @@ struct InextensibleOptions {
 struct InextensibleSummary {
   bool converged = false;       ///< the last stage reached the tolerance
   int steps = 0;                ///< Newton steps over all stages
+  int factorisations = 0;       ///< Cholesky factorisations tried, those that failed included
   double stationarity = 0;      ///< |grad E| / (|grad E_bend| + |k grad E_stretch|) at the answer
   double bendingEnergy = 0;     ///< E_bend at the answer (dimensionless)
   double stretchingEnergy = 0;  ///< k E_stretch at the answer (unit sqrt(area))

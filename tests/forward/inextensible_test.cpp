@@ -63,6 +63,28 @@ TEST(Inextensible, AUniformStretchCostsHalfTheStiffnessTimesTheGreenStrainSquare
   }
 }
 
+TEST(Inextensible, CountsEveryFactorisationTriedFailedOnesIncluded) {
+  // A flat sheet stretched by 5 % is under tension at every Newton step (they approach its rest
+  // size from above), so its Hessian factorises at the first try every time. Compressed by 5 %
+  // instead, the Hessian across its edges is negative (the sheet could buckle out of its plane):
+  // the first step needs a larger shift, and every try counts. (Three steps each: a flat sheet
+  // has no bending force to measure its stationarity against.)
+  for (double s : {0.05, -0.05}) {
+    DForm d = foldedSquares(20.0, 0.0);
+    d.a.shape *= 1 + s;
+    d.b.shape *= 1 + s;
+    InextensibleOptions options;
+    options.stiffness = 1e6;
+    options.maxSteps = 3;
+    const InextensibleSummary summary = solveInextensible(d, options).summary;
+    ASSERT_EQ(summary.steps, 3) << "s " << s << ": " << summary.message;
+    if (s > 0)
+      EXPECT_EQ(summary.factorisations, summary.steps);
+    else
+      EXPECT_GT(summary.factorisations, summary.steps);
+  }
+}
+
 // The directional derivative of the sheet's energy at `model` along per-vertex unit directions
 // (seeded), by central differences.
 double energySlope(const DForm& model, double k, unsigned seed, double h) {
