@@ -321,24 +321,64 @@ void drawShadedFaces(const std::vector<SeenFace>& faces, const Fit& view, Layer&
   }
 }
 
-// Whether the surface hides a point (screen x, y, depth): a face covers it that is nearer there
-// by more than a hundredth of the shape's `size` (the faces beside a seam point are at its
-// depth).
-bool hiddenBySurface(const std::vector<SeenFace>& faces, double size, const Eigen::Vector3d& s) {
-  for (const SeenFace& f : faces) {
-    const Vec2 u = f.corners[1] - f.corners[0], v = f.corners[2] - f.corners[0];
-    const Vec2 w = Vec2(s.head<2>()) - f.corners[0];
-    const double det = u.x() * v.y() - u.y() * v.x();
-    if (std::abs(det) < 1e-12) continue;
-    const double b1 = (w.x() * v.y() - w.y() * v.x()) / det;
-    const double b2 = (u.x() * w.y() - u.y() * w.x()) / det;
-    if (b1 < 0 || b2 < 0 || b1 + b2 > 1) continue;
-    const double there =
-        (1 - b1 - b2) * f.cornerDepths[0] + b1 * f.cornerDepths[1] + b2 * f.cornerDepths[2];
-    if (there < s.z() - 0.01 * size) return true;
+// Which screen points the surface hides. A point (screen x, y, depth) is hidden where a face
+// covers it that is nearer there by more than a hundredth of the shape's size (the faces beside
+// a seam point are at its depth). The faces are bucketed in a grid over their screen box, so a
+// point is tested against the faces whose boxes reach its cell only: the same answer as testing
+// every face, at a small part of the cost.
+class SurfaceDepth {
+ public:
+  explicit SurfaceDepth(const std::vector<SeenFace>& faces) : faces_(faces) {
+    for (const SeenFace& f : faces)
+      for (const Vec2& c : f.corners) box_.add(c);
+    size_ = std::max(box_.w(), box_.h());
+    cells_.resize(kCells * kCells);
+    for (size_t k = 0; k < faces.size(); ++k) {
+      Box b;
+      for (const Vec2& c : faces[k].corners) b.add(c);
+      const auto [i0, j0] = cell(b.lo);
+      const auto [i1, j1] = cell(b.hi);
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) cells_[size_t(j * kCells + i)].push_back(k);
+    }
   }
-  return false;
-}
+
+  bool hides(const Eigen::Vector3d& s) const {
+    const Vec2 p(s.head<2>());
+    if (faces_.empty() || !box_.contains(Box::spanning(p, p), 0)) return false;
+    const auto [i, j] = cell(p);
+    for (size_t k : cells_[size_t(j * kCells + i)]) {
+      const SeenFace& f = faces_[k];
+      const Vec2 u = f.corners[1] - f.corners[0], v = f.corners[2] - f.corners[0];
+      const Vec2 w = p - f.corners[0];
+      const double det = u.x() * v.y() - u.y() * v.x();
+      if (std::abs(det) < 1e-12) continue;
+      const double b1 = (w.x() * v.y() - w.y() * v.x()) / det;
+      const double b2 = (u.x() * w.y() - u.y() * w.x()) / det;
+      if (b1 < 0 || b2 < 0 || b1 + b2 > 1) continue;
+      const double there =
+          (1 - b1 - b2) * f.cornerDepths[0] + b1 * f.cornerDepths[1] + b2 * f.cornerDepths[2];
+      if (there < s.z() - 0.01 * size_) return true;
+    }
+    return false;
+  }
+
+ private:
+  static constexpr int kCells = 64;  // per side
+  // The cell of a point of the box, clamped (a box's own corners fall in its last cells).
+  std::pair<int, int> cell(const Vec2& p) const {
+    auto index = [](double x, double lo, double span) {
+      const int k = span > 0 ? int(std::floor((x - lo) / span * kCells)) : 0;
+      return std::clamp(k, 0, kCells - 1);
+    };
+    return {index(p.x(), box_.lo.x(), box_.w()), index(p.y(), box_.lo.y(), box_.h())};
+  }
+
+  const std::vector<SeenFace>& faces_;
+  Box box_;
+  double size_ = 0;
+  std::vector<std::vector<size_t>> cells_;
+};
 
 // A view of the shape and its faces in painter's order.
 struct ShapeView {
@@ -347,7 +387,7 @@ struct ShapeView {
 };
 
 // The candidate view that shows the most of the seam: the 3D length of the seam edges (between
-// every k-th seam point, at most kViewSeamSamples) with both ends in sight (hiddenBySurface),
+// every k-th seam point, at most kViewSeamSamples) with both ends in sight (SurfaceDepth),
 // preferring views with tick 0 (`start`) in sight. A later view replaces the best only when it
 // shows more by over 1 % of the seam, so that rounding never decides and a tie keeps the
 // report's view.
@@ -365,13 +405,8 @@ ShapeView mostSeamInSight(const DForm& model, const Eigen::Vector3d& start) {
     for (int k = 0; k < 3; ++k) {
       ShapeView v{ShapeCamera(kViewAzimuth + 120.0 * k, elevation), {}};
       v.faces = paintersFaces(model, v.camera);
-      Box seen;
-      for (const SeenFace& f : v.faces)
-        for (const Vec2& c : f.corners) seen.add(c);
-      const double size = std::max(seen.w(), seen.h());
-      auto inSight = [&](const Eigen::Vector3d& p) {
-        return !hiddenBySurface(v.faces, size, v.camera.screen(p));
-      };
+      const SurfaceDepth surface(v.faces);
+      auto inSight = [&](const Eigen::Vector3d& p) { return !surface.hides(v.camera.screen(p)); };
       std::vector<bool> seenAt;
       for (const Eigen::Vector3d& p : points) seenAt.push_back(inSight(p));
       double length = 0;
@@ -398,7 +433,7 @@ int drawSeamAndTicks(const DForm& model, const PatternBuild& pattern, const Shap
                      const std::vector<SeenFace>& faces, const Box& seen, const Fit& view,
                      const StrokeFont& font, LabelSpots& labels, const Box& region,
                      AssemblyLayers& layers) {
-  const double size = std::max(seen.w(), seen.h());
+  const SurfaceDepth surface(faces);
   const Piece& a = model.a;
   const size_t n = a.seam.size();
   auto seam3 = [&](size_t i) { return Eigen::Vector3d(a.shape.row(a.seam[i % n]).transpose()); };
@@ -413,7 +448,7 @@ int drawSeamAndTicks(const DForm& model, const PatternBuild& pattern, const Shap
   for (size_t i = 0; i < n; ++i) {
     const Eigen::Vector3d s = camera.screen(seam3(i));
     seamPath.parts[0].push_back(view(Vec2(s.head<2>())));
-    seenAt[i] = !hiddenBySurface(faces, size, s);
+    seenAt[i] = !surface.hides(s);
   }
   for (size_t i = 0; i < n; ++i) {  // each edge with both ends in sight, runs joined
     if (!seenAt[i] || !seenAt[(i + 1) % n]) continue;
@@ -430,7 +465,7 @@ int drawSeamAndTicks(const DForm& model, const PatternBuild& pattern, const Shap
   for (const SeamTick& t : seamTicks(model, pattern)) {
     const Eigen::Vector3d s = camera.screen(t.at);
     const Vec2 at = view(Vec2(s.head<2>()));
-    const bool covered = hiddenBySurface(faces, size, s);
+    const bool covered = surface.hides(s);
     Path dot;
     dot.id = "view-tick-" + std::to_string(t.id);
     dot.filled = dot.closed = true;
