@@ -45,7 +45,7 @@ Status checkExportOptions(const ExportOptions& o) {
     return Status{ErrorCode::Usage, "tab gap, length and turn limits must be positive"};
   if (!(o.scale >= 0.05 && o.scale <= 20))
     return Status{ErrorCode::Usage, "scale must be between 0.05 (5%) and 20"};
-  if (!(o.kerfMm <= 5) || (o.kerfMm < 0 && o.kerfMm != -1))
+  if (o.kerfMm && !(*o.kerfMm >= 0 && *o.kerfMm <= 5))
     return Status{ErrorCode::Usage, "--kerf must be between 0 and 5 mm"};
   if (!o.material.empty() && !materialNamed(o.material))
     return Status{ErrorCode::Usage,

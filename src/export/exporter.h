@@ -167,8 +167,8 @@ struct ExportOptions {
   double tabMaxLengthMm = 40;      ///< max length of one tab along the seam (mm)
   double tabGapMm = 1.5;           ///< gap between neighbouring tabs along the seam (mm)
   std::optional<TabSide> tabSide;  ///< which piece gets the glue tabs; unset: the profile's
-  /// The cutter's kerf (mm, 0 to 5; cut paths move half of it); -1: the profile's.
-  double kerfMm = -1;
+  /// The cutter's kerf (mm, 0 to 5; cut paths move half of it); unset: the profile's.
+  std::optional<double> kerfMm;
   /// --joint: how the pieces are joined; unset: the material's, else the profile's. With holes or
   /// lace the glue tabs are off unless tabSide asks for them.
   std::optional<Joint> joint;

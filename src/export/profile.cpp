@@ -331,7 +331,7 @@ Result<Profile> resolveProfile(const ExportOptions& options) {
                                : loadProfile(options.profile, options.templatesDir);
   if (!loaded.isOk()) return loaded;
   Profile p = loaded.value();
-  if (options.kerfMm >= 0) p.kerfMm = options.kerfMm;
+  if (options.kerfMm) p.kerfMm = *options.kerfMm;
   const std::optional<MaterialPreset> material = materialNamed(options.material);
   if (options.joint)
     p.joint = *options.joint;

@@ -189,11 +189,7 @@ Result<ExportOptions> exportOptions(const OutputOptions& output) {
                     "--joint must be glue, holes or lace, got '" + output.joint + "'");
   }
   options.material = output.material;
-  if (output.kerfMm) {
-    if (!(*output.kerfMm >= 0 && *output.kerfMm <= 5))
-      return Status(ErrorCode::Usage, "--kerf must be between 0 and 5 mm");
-    options.kerfMm = *output.kerfMm;
-  }
+  options.kerfMm = output.kerfMm;
   options.holeSpacingMm = output.holeSpacingMm;
   options.holeDiameterMm = output.holeDiameterMm;
   options.holeEdgeMm = output.holeEdgeMm;

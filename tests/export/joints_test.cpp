@@ -316,6 +316,8 @@ TEST(ExportJoints, BadJointValuesAreUsageErrors) {
   expectUsage(bad, "--kerf");
   bad.kerfMm = -0.5;
   expectUsage(bad, "--kerf");
+  bad.kerfMm = -1;  // no sentinel value: unset is the profile's kerf
+  expectUsage(bad, "--kerf");
   EXPECT_TRUE(checkExportOptions(o).isOk());
 }
 
