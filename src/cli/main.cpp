@@ -80,7 +80,8 @@ void addExportOptions(CLI::App* command, OutputOptions& out) {
                       "seam length between numbered ticks in mm (default 20)");
   command->add_option("--joint", out.joint,
                       "how the pieces are joined: glue (tabs), holes (matched hole pairs for ties "
-                      "or stitches) or lace (default: the material's, else the profile's)");
+                      "or stitches), lace, or slots (tongues on A through slots in B, hole pairs "
+                      "where the seam bends) (default: the material's, else the profile's)");
   command->add_option("--material", out.material,
                       "sheet material, setting the joint and hole sizes: paper (0.1 mm), card "
                       "(0.3 mm), polypropylene (0.5 mm) or plywood (3 mm)");
@@ -99,6 +100,10 @@ void addExportOptions(CLI::App* command, OutputOptions& out) {
   command
       ->add_option("--hole-edge", out.holeEdgeMm,
                    "joint holes: distance from the seam to the hole centres in mm (default 3)")
+      ->type_name("MM");
+  command
+      ->add_option("--slot-length", out.slotLengthMm,
+                   "slots: a tongue's width along the seam in mm (default half the hole spacing)")
       ->type_name("MM");
   command
       ->add_option("--score-folds", out.scoreFoldsDeg,

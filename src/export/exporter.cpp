@@ -61,6 +61,11 @@ Status checkExportOptions(const ExportOptions& o) {
     return Status{ErrorCode::Usage, "--hole-spacing must be at least twice the hole diameter (" +
                                         fab::formatMm(2 * j.diameterMm) +
                                         " mm) and at most 1000 mm"};
+  if (o.slotLengthMm && !(*o.slotLengthMm >= 2 && *o.slotLengthMm <= j.spacingMm - j.diameterMm))
+    return Status{ErrorCode::Usage,
+                  "--slot-length must be at least 2 mm and at most the hole spacing less a hole "
+                  "diameter (" +
+                      fab::formatMm(j.spacingMm - j.diameterMm) + " mm)"};
   return Status::ok();
 }
 
@@ -152,6 +157,7 @@ Result<PreparedExport> renderOrThrow(const DForm& model, const LaidOutExport& la
   summary.tabs = int(pat.tabs.size());
   summary.creases = int(pat.pieces[0].creases.size() + pat.pieces[1].creases.size());
   summary.jointHoles = int(pat.jointHoles.size());
+  summary.jointSlots = int(pat.jointSlots.size());
   summary.pages = int(pat.pages.size());
   summary.triangles = int(model.a.F.rows() + model.b.F.rows());
   return prepared;

@@ -60,9 +60,12 @@ enum class Joint {
   Glue,   ///< glue tabs (or edge to edge): paper and card
   Holes,  ///< matched hole pairs on A and B at the same seam points: ties, rivets, stitches
   Lace,   ///< lacing holes, B's halfway between A's along the seam: a zigzag lace
+  /// tongues on A through slots in B where both seams are straight enough, hole pairs elsewhere:
+  /// stiff sheets joined without ties
+  Slots,
 };
 
-/// The joint's name in profiles and on the command line: "glue", "holes", "lace".
+/// The joint's name in profiles and on the command line: "glue", "holes", "lace", "slots".
 const char* jointName(Joint joint);
 
 /// The joint called `name` (as jointName writes it), or nullopt.
@@ -169,14 +172,18 @@ struct ExportOptions {
   std::optional<TabSide> tabSide;  ///< which piece gets the glue tabs; unset: the profile's
   /// The cutter's kerf (mm, 0 to 5; cut paths move half of it); unset: the profile's.
   std::optional<double> kerfMm;
-  /// --joint: how the pieces are joined; unset: the material's, else the profile's. With holes or
-  /// lace the glue tabs are off unless tabSide asks for them.
+  /// --joint: how the pieces are joined; unset: the material's, else the profile's. With holes,
+  /// lace or slots the glue tabs are off unless tabSide asks for them (slots: on B only, since
+  /// A's seam carries the tongues).
   std::optional<Joint> joint;
   std::string material;  ///< --material: a materialNamed preset; "" none
-  /// Joint holes (mm): the largest distance between neighbouring holes on a piece along the seam,
-  /// the holes' diameter and the distance from the seam to their centres; unset: the material's,
-  /// else 15, 2 and 3.
+  /// Joint holes (mm): the largest distance between neighbouring holes (or slots) on a piece along
+  /// the seam, the holes' diameter and the distance from the seam to their centres (slots': to
+  /// their middle line); unset: the material's, else 15, 2 and 3.
   std::optional<double> holeSpacingMm, holeDiameterMm, holeEdgeMm;
+  /// --slot-length: a tongue's width along the seam (mm), its slot that and a clearance; unset:
+  /// half the hole spacing. A tongue and its slot sit where a hole pair would.
+  std::optional<double> slotLengthMm;
   /// --score-folds: every fold of `folds` of at least this angle (degrees) becomes an optional
   /// score line on its piece (SCORE layer, pattern.json); unset: none.
   std::optional<double> scoreFoldsDeg;
@@ -214,6 +221,7 @@ struct ExportSummary {
   int tabs = 0;                                ///< glue tabs on both pieces
   int creases = 0;                             ///< crease fold lines on both pieces
   int jointHoles = 0;                          ///< joint holes on both pieces
+  int jointSlots = 0;                          ///< tongue and slot pairs (--joint slots)
   int pages = 0;      ///< pattern pages (more than 1 when tiled or one piece per page); the PDF has
                       ///< the assembly page after them
   int triangles = 0;  ///< triangles in the STL (both pieces)

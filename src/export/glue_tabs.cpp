@@ -140,13 +140,13 @@ std::vector<TabInfo> placeTabs(const std::vector<FlatTab>& tabs, const Placement
 }
 
 void drawTabFolds(const std::vector<TabInfo>& tabs, const std::string names[2],
-                  const Profile& profile, DrawingBuilder& b) {
+                  const std::string& kind, const Profile& profile, DrawingBuilder& b) {
   int tabIndex[2] = {0, 0};
   for (const TabInfo& t : tabs) {
-    const std::string id = names[t.piece] + "-fold-" + twoDigits(++tabIndex[t.piece]);
+    const std::string id = names[t.piece] + "-" + kind + "fold-" + twoDigits(++tabIndex[t.piece]);
     if (profile.fold == FoldStyle::Perforated) {
       Path perf;
-      perf.id = names[t.piece] + "-perf-" + twoDigits(tabIndex[t.piece]);
+      perf.id = names[t.piece] + "-" + kind + "perf-" + twoDigits(tabIndex[t.piece]);
       perf.parts = perforate(t.fold, profile.perforationCutMm, profile.perforationGapMm);
       if (!perf.parts.empty()) b.cut().paths.push_back(perf);
     } else {
@@ -155,8 +155,8 @@ void drawTabFolds(const std::vector<TabInfo>& tabs, const std::string names[2],
       fold.parts = {t.fold};
       if (Layer* cutter = b.cutterScore()) cutter->paths.push_back(scorePass(fold));
       fold.dashed = profile.fold == FoldStyle::Dashed;
-      // A tab folds back, away from the printed face: a mountain fold seen from it, dashed as
-      // the legend's mountain creases are.
+      // A tab (or tongue) folds back, away from the printed face: a mountain fold seen from it,
+      // dashed as the legend's mountain creases are.
       if (fold.dashed) fold.dash = creaseDash(FoldDirection::Mountain, profile.dashMm);
       b.score().paths.push_back(fold);
     }

@@ -115,11 +115,15 @@ struct TabInfo {
 /// The joint a pattern is made with: the options over the material's preset over the profile's.
 struct JointSettings {
   Joint joint = Joint::Glue;
-  std::string material;    ///< "" when none was named
-  double thicknessMm = 0;  ///< the material's (0: none named)
-  double spacingMm = 15;   ///< largest distance between neighbouring holes of a piece (mm)
-  double diameterMm = 2;   ///< hole diameter (mm)
-  double edgeMm = 3;       ///< seam to hole centre (mm)
+  std::string material;       ///< "" when none was named
+  double thicknessMm = 0;     ///< the material's (0: none named)
+  double spacingMm = 15;      ///< largest distance between neighbouring holes of a piece (mm)
+  double diameterMm = 2;      ///< hole diameter (mm)
+  double edgeMm = 3;          ///< seam to hole centre, and to a slot's middle line (mm)
+  double slotLengthMm = 7.5;  ///< a tongue's width along the seam (mm): half the spacing unless set
+  /// A slot's width (mm): the sheet's thickness (0.3 mm when none is named) and 0.2 mm to slide,
+  /// wider than the kerf, which would close a narrower slot's compensated cut loop.
+  double slotWidthMm = 0.5;
 };
 
 /// The joint settings for `o` and the (resolved) profile.
@@ -134,6 +138,20 @@ struct JointHoleInfo {
   double own = 0;       ///< the same point's arc length along its own piece's seam (mm)
   Vec2 centre;          ///< sheet mm
   double diameter = 0;  ///< mm
+};
+
+/// A tongue of A and its slot in B (--joint slots), both at seam parameter `s`: the tongue's fold
+/// line is A's seam from s0 to s1, the slot's middle line lies `edge` inside B's seam, along it.
+/// Zipped, the tongue folds back along the seam and through the slot.
+struct JointSlotInfo {
+  int index = 0;                 ///< the joint's place along the seam (shared with hole pairs)
+  double s = 0;                  ///< seam parameter (A's arc length, mm) of the slot's seam point
+  double s0 = 0, s1 = 0;         ///< seam parameter of the tongue's fold line's ends
+  Polyline tongue;               ///< the tongue (sheet mm), fold line first
+  Polyline fold;                 ///< its fold line (sheet mm), on A's outline
+  Polyline slot;                 ///< the slot's loop on B (sheet mm)
+  Vec2 slotCentre;               ///< sheet mm
+  double length = 0, width = 0;  ///< the slot's (mm)
 };
 
 /// A crease drawn on the pattern as a fold line.
@@ -184,6 +202,7 @@ struct PatternBuild {
   std::vector<TabInfo> tabs;
   JointSettings joint;
   std::vector<JointHoleInfo> jointHoles;
+  std::vector<JointSlotInfo> jointSlots;
   std::vector<std::string> messages;
   double tickSpacing = 0;
   /// Stamped FAILED GATE (stampFailedGate) after a failed quality gate: the stamp is an overlay,

@@ -233,12 +233,16 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
   const std::vector<FlatTab> tabs =
       makeTabs(seams, flat.material, o, profile.tabs, L, out.messages, work);
   out.joint = jointSettings(o, profile);
-  const std::vector<FlatHole> holes = makeJointHoles(seams, flat.material, out.joint, out.messages);
+  const FlatJoints joints = makeJoints(seams, flat.material, out.joint, out.messages);
   std::vector<Polyline> holeLoops[2];
-  for (const FlatHole& h : holes) holeLoops[h.piece].push_back(holeLoop(h));
+  for (const FlatHole& h : joints.holes) holeLoops[h.piece].push_back(holeLoop(h));
+  for (const FlatSlot& slot : joints.slots) holeLoops[1].push_back(slot.loop);
+  // The tongues grow out of A's outline as its tabs do (resolveProfile keeps tabs off A then).
+  std::vector<FlatTab> outlineParts = tabs;
+  outlineParts.insert(outlineParts.end(), joints.tongues.begin(), joints.tongues.end());
   std::vector<Polyline> cuts[2], holeCuts[2];
   for (int p = 0; p < 2; ++p) {
-    CutPaths c = pieceCutPaths(flat, p, tabs, holeLoops[p], profile.kerfMm);
+    CutPaths c = pieceCutPaths(flat, p, outlineParts, holeLoops[p], profile.kerfMm);
     cuts[p] = std::move(c.outer);
     holeCuts[p] = std::move(c.holes);
   }
@@ -262,9 +266,17 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
   }
   out.ticks = placeTicks(tickS, seams, place);
   out.tabs = placeTabs(tabs, place);
-  for (const FlatHole& h : holes)
+  for (const FlatHole& h : joints.holes)
     out.jointHoles.push_back(
         {h.piece, h.index, h.s, h.own, place[h.piece].point(h.centre), h.diameter});
+  for (size_t k = 0; k < joints.slots.size(); ++k) {
+    const FlatTab& tongue = joints.tongues[k];
+    const FlatSlot& slot = joints.slots[k];
+    out.jointSlots.push_back({slot.index, slot.s, tongue.s0, tongue.s1,
+                              place[0].map(tongue.polygon), place[0].map(tongue.fold),
+                              place[1].map(slot.loop), place[1].point(slot.centre), slot.length,
+                              slot.width});
+  }
 
   DrawingBuilder b(profile, canvasW, canvasH);
   const std::string perimeterText = formatMm(seams[0].L, 1);
@@ -274,7 +286,8 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
   drawPieceLabels(flat, place, profile, font, b, out, work);
   drawCreases(out.pieces, profile, b);
   drawScoredFolds(out.pieces, b);
-  drawTabFolds(out.tabs, flat.names, profile, b);
+  drawTabFolds(out.tabs, flat.names, "", profile, b);
+  drawTabFolds(placeTabs(joints.tongues, place), flat.names, "tongue-", profile, b);
   drawCuts(out.pieces, flat.names, profile, b);
   const TitleText title{flat, o, scaleText, perimeterText, font};
   drawSheetFurniture(a.plans, fit, title, b);

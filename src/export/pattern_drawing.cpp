@@ -104,11 +104,20 @@ bool boxFits(const std::vector<Polyline>& region, const std::vector<Polyline>& l
     for (const Polyline& line : *set)
       for (const Vec2& q : line)
         if (insidePolygon(box, q)) return false;
-  for (const Polyline& line : lines)
-    for (size_t i = 0; i + 1 < line.size(); ++i)
+  // No edge through it either: a crease, or a loop narrower than the box (a joint slot) passing
+  // between the points tested above.
+  auto crosses = [&](const Polyline& line, bool closed) {
+    const size_t n = line.size(), segments = closed ? n : n - 1;
+    for (size_t i = 0; n > 1 && i < segments; ++i)
       for (size_t k = 0; k < box.size(); ++k)
-        if (segmentsIntersect(line[i], line[i + 1], box[k], box[(k + 1) % box.size()]))
-          return false;
+        if (segmentsIntersect(line[i], line[(i + 1) % n], box[k], box[(k + 1) % box.size()]))
+          return true;
+    return false;
+  };
+  for (const Polyline& line : lines)
+    if (crosses(line, false)) return false;
+  for (const Polyline& loop : region)
+    if (crosses(loop, true)) return false;
   return true;
 }
 

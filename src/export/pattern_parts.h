@@ -62,11 +62,12 @@ struct Seam {
     }
     return Vec2(1, 0);
   }
-  // Unit normal of segment i away from the material: out of the piece, or into its hole.
-  Vec2 outward(int i) const {
-    const Vec2 t = dir(i);
+  // Unit normal of the seam direction t away from the material: out of the piece, or into its
+  // hole.
+  Vec2 outwardOf(const Vec2& t) const {
     return orient * (hole ? -1 : 1) > 0 ? Vec2(t.y(), -t.x()) : Vec2(-t.y(), t.x());
   }
+  Vec2 outward(int i) const { return outwardOf(dir(i)); }
   // Offset direction at vertex i for an offset curve at constant distance (mitre, capped at 2x).
   Vec2 miter(int i) const {
     const Vec2 a = outward((i - 1 + n()) % n()), b = outward(i);
@@ -160,8 +161,8 @@ Vec2 readable(Vec2 t);
 
 // Whether a text box centred at c (half-extents along d and its normal) sits inside the piece's
 // material (`region`, even-odd) with `clear` mm to spare: its corners and long sides' midpoints
-// inside and clear of every loop, no loop vertex (a small hole) inside it, and no crease (`lines`)
-// through it.
+// inside and clear of every loop, no loop vertex (a small hole) inside it, and no loop edge (a
+// slot) nor crease (`lines`) through it.
 bool boxFits(const std::vector<Polyline>& region, const std::vector<Polyline>& lines, const Vec2& c,
              const Vec2& d, double halfW, double halfH, double clear);
 
@@ -222,11 +223,13 @@ std::vector<FlatTab> makeTabs(const Seam seams[2], const std::vector<Polyline> m
 // The tabs on the sheet.
 std::vector<TabInfo> placeTabs(const std::vector<FlatTab>& tabs, const Placement place[2]);
 
-// The tabs' fold lines in the profile's fold style (or their perforations).
+// The tabs' fold lines in the profile's fold style (or their perforations), with ids
+// "<piece>-<kind>fold-NN" and "<piece>-<kind>perf-NN": `kind` "" for glue tabs, "tongue-" for
+// slot tongues.
 void drawTabFolds(const std::vector<TabInfo>& tabs, const std::string names[2],
-                  const Profile& profile, DrawingBuilder& b);
+                  const std::string& kind, const Profile& profile, DrawingBuilder& b);
 
-// --- Joint holes (joint_holes.cpp) ---------------------------------------------------------------
+// --- Joints (joints.cpp) ------------------------------------------------------------------------
 
 struct FlatHole {
   int piece = 0;
@@ -237,12 +240,29 @@ struct FlatHole {
   double diameter = 0;
 };
 
-// The joint holes of both pieces (flat frame) for `joint` (none for glue): placed along the seam
-// clear of its corners, `edgeMm` inside each piece; a hole (pair) too close to a corner, another
-// hole or an edge is left out, with a message.
-std::vector<FlatHole> makeJointHoles(const Seam seams[2], const std::vector<Polyline> material[2],
-                                     const JointSettings& joint,
-                                     std::vector<std::string>& messages);
+// A slot in B (flat frame) for the tongue of A with the same index.
+struct FlatSlot {
+  int index = 0;
+  double s = 0;   // seam parameter (A's arc length) of its seam point
+  Polyline loop;  // clockwise: a hole in the material
+  Vec2 centre;
+  double length = 0, width = 0;
+};
+
+// The joints of both pieces: holes (holes, lace, and slots where a tongue does not fit), and for
+// slots the tongues on A (spliced into A's cut loop as glue tabs are) with slots[k] the slot of
+// tongues[k].
+struct FlatJoints {
+  std::vector<FlatHole> holes;
+  std::vector<FlatTab> tongues;
+  std::vector<FlatSlot> slots;
+};
+
+// The joints of both pieces (flat frame) for `joint` (none for glue): placed along the seam
+// clear of its corners, `edgeMm` inside each piece; a joint too close to a corner, another joint
+// or an edge is left out (a tongue and slot become a hole pair first), with a message.
+FlatJoints makeJoints(const Seam seams[2], const std::vector<Polyline> material[2],
+                      const JointSettings& joint, std::vector<std::string>& messages);
 
 // A hole's loop (flat frame, clockwise): a polygon whose edges stay within 5 um of the circle.
 Polyline holeLoop(const FlatHole& hole);

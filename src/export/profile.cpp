@@ -104,7 +104,7 @@ struct FieldReader {
 };
 
 constexpr TabSide kTabSides[] = {TabSide::A, TabSide::B, TabSide::Alternate, TabSide::None};
-constexpr Joint kJoints[] = {Joint::Glue, Joint::Holes, Joint::Lace};
+constexpr Joint kJoints[] = {Joint::Glue, Joint::Holes, Joint::Lace, Joint::Slots};
 
 // The sheet materials: paper and card are glued with tabs; polypropylene (0.5 mm) is laced, its
 // holes a little larger for a 2 mm cord; 3 mm plywood is joined with cable ties or bolts through
@@ -268,6 +268,7 @@ const char* jointName(Joint joint) {
     case Joint::Glue: return "glue";
     case Joint::Holes: return "holes";
     case Joint::Lace: return "lace";
+    case Joint::Slots: return "slots";
   }
   return "?";
 }
@@ -337,9 +338,13 @@ Result<Profile> resolveProfile(const ExportOptions& options) {
     p.joint = *options.joint;
   else if (material)
     p.joint = material->joint;
-  // Holes and lace join the pieces: glue tabs only where asked for.
+  // Holes, lace and slots join the pieces: glue tabs only where asked for.
   if (p.joint != Joint::Glue) p.tabs = TabSide::None;
   if (options.tabSide) p.tabs = *options.tabSide;
+  if (p.joint == Joint::Slots && (p.tabs == TabSide::A || p.tabs == TabSide::Alternate))
+    return Status{ErrorCode::Usage, std::string("--joint slots puts its tongues on A's seam: glue "
+                                                "tabs go on B (--tabs b) or none, not on ") +
+                                        tabSideName(p.tabs)};
   return p;
 }
 
@@ -356,6 +361,8 @@ JointSettings jointSettings(const ExportOptions& o, const Profile& profile) {
   j.spacingMm = o.holeSpacingMm.value_or(j.spacingMm);
   j.diameterMm = o.holeDiameterMm.value_or(j.diameterMm);
   j.edgeMm = o.holeEdgeMm.value_or(j.edgeMm);
+  j.slotLengthMm = o.slotLengthMm.value_or(0.5 * j.spacingMm);
+  j.slotWidthMm = std::max((j.thicknessMm > 0 ? j.thicknessMm : 0.3) + 0.2, profile.kerfMm + 0.1);
   return j;
 }
 

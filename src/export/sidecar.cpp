@@ -38,6 +38,10 @@ void addJoint(json& j, const PatternBuild& pattern) {
                 {"hole_spacing_mm", joint.spacingMm},
                 {"hole_diameter_mm", joint.diameterMm},
                 {"hole_edge_mm", joint.edgeMm}};
+  if (joint.joint == Joint::Slots) {
+    j["joint"]["slot_length_mm"] = joint.slotLengthMm;
+    j["joint"]["slot_width_mm"] = joint.slotWidthMm;
+  }
   // Each hole's seam point: `s` along A's seam (the seam parameter, as the ticks' `s`) and
   // `s_own` along its own piece's seam; holes of one pair (holes) share `index`.
   json holes = json::array();
@@ -49,6 +53,23 @@ void addJoint(json& j, const PatternBuild& pattern) {
                      {"centre", point(h.centre)},
                      {"diameter_mm", h.diameter}});
   j["joint_holes"] = holes;
+  if (joint.joint != Joint::Slots) return;
+  // Tongue k of A and slot k of B: `s` the slot's seam point, `s0`..`s1` the tongue's fold line
+  // (A's seam there), both as the ticks' `s`; a hole pair left where a tongue does not fit shares
+  // the joints' numbering.
+  json slots = json::array();
+  for (const JointSlotInfo& slot : pattern.jointSlots)
+    slots.push_back({{"index", slot.index},
+                     {"s", slot.s},
+                     {"s0", slot.s0},
+                     {"s1", slot.s1},
+                     {"tongue", polyline(slot.tongue)},
+                     {"fold", polyline(slot.fold)},
+                     {"slot", polyline(slot.slot)},
+                     {"slot_centre", point(slot.slotCentre)},
+                     {"slot_length_mm", slot.length},
+                     {"slot_width_mm", slot.width}});
+  j["joint_slots"] = slots;
 }
 
 }  // namespace

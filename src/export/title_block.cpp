@@ -75,7 +75,10 @@ void drawTitleLines(size_t k, size_t sheets, const SheetPlan& plan, const SheetF
        textH);
   const char* joinNote = profile.joint == Joint::Holes  ? "tie or stitch the hole pairs"
                          : profile.joint == Joint::Lace ? "lace the holes, A to B in turn"
-                                                        : "glue equal numbers together";
+                         : profile.joint == Joint::Slots
+                             ? "fold A's tongues back and push each out through B's slot "
+                               "at the same ticks; tie any hole pairs"
+                             : "glue equal numbers together";
   line("note",
        "tick 0 = start, arrow = zip direction; ticks every " + formatMm(o.tickSpacingMm, 0) +
            " mm; " + joinNote,

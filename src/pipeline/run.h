@@ -48,11 +48,12 @@ struct OutputOptions {
   std::optional<double> tabWidthMm;     ///< --tab-width (mm; 0 = no tabs); unset: the default
   std::string tabs;                     ///< --tabs a|b|alternate|none; empty: the profile's
   std::optional<double> tickSpacingMm;  ///< --tick-spacing (mm); unset: the default
-  std::string joint;     ///< --joint glue|holes|lace; empty: the material's, else the profile's
-  std::string material;  ///< --material paper|card|polypropylene|plywood; empty: none
+  std::string joint;  ///< --joint glue|holes|lace|slots; empty: the material's, else the profile's
+  std::string material;          ///< --material paper|card|polypropylene|plywood; empty: none
   std::optional<double> kerfMm;  ///< --kerf: the cutter's kerf (mm); unset: the profile's
   /// --hole-spacing, --hole-diameter, --hole-edge (mm); unset: the material's or the defaults
   std::optional<double> holeSpacingMm, holeDiameterMm, holeEdgeMm;
+  std::optional<double> slotLengthMm;   ///< --slot-length (mm); unset: half the hole spacing
   bool gltfText = false;                ///< --gltf: dform.gltf (text) instead of dform.glb
   bool title = true;                    ///< the title block on the sheets (--no-title: none)
   std::optional<double> scoreFoldsDeg;  ///< --score-folds (degrees); unset: no folds scored

@@ -186,13 +186,14 @@ Result<ExportOptions> exportOptions(const OutputOptions& output) {
     options.joint = jointNamed(output.joint);
     if (!options.joint)
       return Status(ErrorCode::Usage,
-                    "--joint must be glue, holes or lace, got '" + output.joint + "'");
+                    "--joint must be glue, holes, lace or slots, got '" + output.joint + "'");
   }
   options.material = output.material;
   options.kerfMm = output.kerfMm;
   options.holeSpacingMm = output.holeSpacingMm;
   options.holeDiameterMm = output.holeDiameterMm;
   options.holeEdgeMm = output.holeEdgeMm;
+  options.slotLengthMm = output.slotLengthMm;
   options.gltfBinary = !output.gltfText;
   options.title = output.title;
   if (Status s = checkExportOptions(options); !s.isOk()) return s;

@@ -56,6 +56,7 @@ std::string inPythonTerms(std::string text) {
              {"--hole-spacing", "hole_spacing"},
              {"--hole-diameter", "hole_diameter"},
              {"--hole-edge", "hole_edge"},
+             {"--slot-length", "slot_length"},
              {"--gate", "gate"},
              {"--no-export", "cutting_files=False"}})
       k.emplace_back(std::regex(option + "\\b"), keyword);
@@ -177,7 +178,8 @@ py::dict exportMade(const Made& made, const std::string& outDir, const std::stri
                     const std::string& sheet, const std::string& page, const std::string& scale,
                     const std::string& joint, const std::string& material,
                     std::optional<double> kerf, std::optional<double> holeSpacing,
-                    std::optional<double> holeDiameter, std::optional<double> holeEdge) {
+                    std::optional<double> holeDiameter, std::optional<double> holeEdge,
+                    std::optional<double> slotLength) {
   OutputOptions output;
   output.outDir = outDir;
   output.profile = profile;
@@ -193,6 +195,7 @@ py::dict exportMade(const Made& made, const std::string& outDir, const std::stri
   output.holeSpacingMm = holeSpacing;
   output.holeDiameterMm = holeDiameter;
   output.holeEdgeMm = holeEdge;
+  output.slotLengthMm = slotLength;
   const RunSettings settings = valueOrRaise(checkOutput(output));
   MessageSink sink;
   for (const Message& m : made.messages) sink.emit(m.level, m.text);  // kept in report.json
@@ -328,6 +331,7 @@ PYBIND11_MODULE(_dform, m) {
            arg("sheet") = "", arg("page") = "", arg("scale") = "", arg("joint") = "",
            arg("material") = "", arg("kerf") = py::none(), arg("hole_spacing") = py::none(),
            arg("hole_diameter") = py::none(), arg("hole_edge") = py::none(),
+           arg("slot_length") = py::none(),
            "writes the result folder as `dform forward` does: meshes, report.json, report.html "
            "and, when the gate passes, the cutting files; returns the gate's verdict");
 

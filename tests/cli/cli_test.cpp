@@ -502,7 +502,14 @@ TEST_F(CliTest, ExportOptionsOnTheCommandLine) {
   EXPECT_EQ(holes["kerf_mm"].get<double>(), 0.2);
   EXPECT_GT(holes["joint_holes"].size(), 10u);
   EXPECT_TRUE(holes["tabs"].empty()) << "no glue tabs with holes unless asked";
-  expectError(run("export " + out + " --joint tape"), 2, "--joint must be glue, holes or lace");
+  expectError(run("export " + out + " --joint tape"), 2,
+              "--joint must be glue, holes, lace or slots");
+  ASSERT_EQ(run("export " + out + " --joint slots --slot-length 8 -q").exitCode, 0);
+  const nlohmann::json slots = nlohmann::json::parse(std::ifstream(fs::path(out) / "pattern.json"));
+  EXPECT_EQ(slots["joint"]["slot_length_mm"].get<double>(), 8.0);
+  EXPECT_GT(slots["joint_slots"].size(), 10u);
+  expectError(run("export " + out + " --joint slots --slot-length 1"), 2, "--slot-length");
+  expectError(run("export " + out + " --joint slots --tabs a"), 2, "--joint slots");
   expectError(run("export " + out + " --material steel"), 2, "--material must be one of");
   expectError(run("export " + out + " --kerf 9"), 2, "--kerf");
   expectError(run("export " + out + " --kerf thin"), 2, "--kerf");

@@ -4,13 +4,16 @@
 
 usage: check_kerf.py DIR KERF_MM
 
-pattern.json gives each piece's seam (`outline`, sheet mm, y down) and the joint holes (centre,
-diameter). In pattern.dxf (mm, y up), on layer CUT:
-  - the closed loops are one per piece plus one per joint hole ("cut loops = pieces + holes");
-  - every vertex of a piece's outer loop lies KERF/2 outside its seam (within 0.01 mm: round
-    joins are drawn within 5 um);
-  - every vertex of a hole's loop lies KERF/2 inside the hole's circle, so that the beam, half a
-    kerf either side of the loop, leaves the hole at its designed diameter (within 0.01 mm).
+pattern.json gives each piece's seam (`outline`, sheet mm, y down), the joint holes (centre,
+diameter) and, for --joint slots, the tongues and slots (`joint_slots`: tongue, slot loop and
+centre). In pattern.dxf (mm, y up), on layer CUT:
+  - the closed loops are one per piece plus one per joint hole and slot ("cut loops = pieces +
+    holes");
+  - every vertex of a piece's outer loop lies KERF/2 outside its seam and tongues (within 0.01 mm:
+    round joins are drawn within 5 um);
+  - every vertex of a hole's loop lies KERF/2 inside the hole's circle (a slot's: inside its
+    rectangle), so that the beam, half a kerf either side of the loop, leaves the hole at its
+    designed size (within 0.01 mm).
 Prints the largest differences; exit 0 when every check passes, 1 otherwise, 2 without ezdxf.
 """
 import json
@@ -55,13 +58,15 @@ def main():
     height = pattern["sheet"]["height"]
     seams = [piece["outline"] for piece in pattern["pieces"]]
     holes = pattern.get("joint_holes", [])
+    slots = pattern.get("joint_slots", [])
+    tongues = [slot["tongue"] for slot in slots]
     doc = ezdxf.readfile(os.path.join(folder, "pattern.dxf"))
     loops = [[(x, height - y) for x, y in e.get_points("xy")]
              for e in doc.modelspace().query("LWPOLYLINE") if e.dxf.layer == "CUT" and e.closed]
     problems, worst = [], {"outer": 0.0, "hole": 0.0}
-    if len(loops) != len(seams) + len(holes):
-        problems.append("%d closed cut loops for %d pieces and %d holes" %
-                        (len(loops), len(seams), len(holes)))
+    if len(loops) != len(seams) + len(holes) + len(slots):
+        problems.append("%d closed cut loops for %d pieces, %d holes and %d slots" %
+                        (len(loops), len(seams), len(holes), len(slots)))
     outer = hole_loops = 0
     for loop in loops:
         cx = sum(p[0] for p in loop) / len(loop)
@@ -74,16 +79,27 @@ def main():
                 r = math.hypot(q[0] - near[0]["centre"][0], q[1] - near[0]["centre"][1])
                 worst["hole"] = max(worst["hole"], abs(r - radius))
             continue
+        slot = [s for s in slots if math.hypot(s["slot_centre"][0] - cx, s["slot_centre"][1] - cy) < 1e-2]
+        if slot:
+            hole_loops += 1
+            for q in loop:
+                worst["hole"] = max(worst["hole"],
+                                    abs(distance_to_loop(slot[0]["slot"], q) - 0.5 * kerf))
+                if not inside(slot[0]["slot"], q):
+                    problems.append("a slot's cut vertex lies outside the slot")
+                    break
+            continue
         outer += 1
         seam = min(seams, key=lambda s: distance_to_loop(s, loop[0]))
         for q in loop:
-            worst["outer"] = max(worst["outer"], abs(distance_to_loop(seam, q) - 0.5 * kerf))
-            if inside(seam, q):
-                problems.append("an outer cut vertex lies inside its seam")
+            nearest = min(distance_to_loop(part, q) for part in [seam] + tongues)
+            worst["outer"] = max(worst["outer"], abs(nearest - 0.5 * kerf))
+            if inside(seam, q) or any(inside(tongue, q) for tongue in tongues):
+                problems.append("an outer cut vertex lies inside its seam or a tongue")
                 break
-    if outer != len(seams) or hole_loops != len(holes):
+    if outer != len(seams) or hole_loops != len(holes) + len(slots):
         problems.append("%d outer loops and %d hole loops, expected %d and %d" %
-                        (outer, hole_loops, len(seams), len(holes)))
+                        (outer, hole_loops, len(seams), len(holes) + len(slots)))
     for kind, value in worst.items():
         if value > TOL:
             problems.append("%s loop off its kerf offset by %.4f mm" % (kind, value))

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "dform/export/exporter.h"
 #include "dform/export/internal.h"
@@ -256,6 +257,132 @@ TEST(ExportJoints, KerfMovesCutsByHalfTheKerfAndTicksStay) {
   }
 }
 
+// The point at half the arc length of an open polyline.
+Vec2 arcMidpoint(const Polyline& line) {
+  double half = 0.5 * length(line, false);
+  for (size_t i = 0; i + 1 < line.size(); ++i) {
+    const double l = (line[i + 1] - line[i]).norm();
+    if (half <= l) return line[i] + (half / std::max(l, 1e-300)) * (line[i + 1] - line[i]);
+    half -= l;
+  }
+  return line.back();
+}
+
+// For --joint slots: tongue k grows out of A's outline along its fold line and lies outside A;
+// slot k lies `edge` inside B's outline, inside B, its long sides along B's seam, longer than the
+// tongue's neck and shorter than its barbed head; and the two are at the same point of the 3D
+// seam (within 0.1 mm): the fold line's midpoint on A, the slot centre's nearest seam point on B.
+// Slots and the hole pairs left where a tongue does not fit share one numbering. Returns the
+// slot count.
+size_t expectSlotsMeetIn3d(const DForm& model, const json& sidecar, double edge) {
+  const Polyline outline[2] = {toPolyline(sidecar["pieces"][0]["outline"]),
+                               toPolyline(sidecar["pieces"][1]["outline"])};
+  std::set<int> indices;
+  for (const json& j : sidecar["joint_slots"]) {
+    const int index = j["index"].get<int>();
+    EXPECT_TRUE(indices.insert(index).second) << "slot " << index;
+    const Polyline fold = toPolyline(j["fold"]), tongue = toPolyline(j["tongue"]);
+    const Polyline slot = toPolyline(j["slot"]);
+    const Vec2 centre(j["slot_centre"][0].get<double>(), j["slot_centre"][1].get<double>());
+    for (const Vec2& q : fold) EXPECT_LT(arcLengthOf(outline[0], q).second, 1e-6) << index;
+    for (size_t i = fold.size(); i < tongue.size(); ++i)
+      EXPECT_FALSE(inside(outline[0], tongue[i])) << "tongue " << index << " point " << i;
+    const auto [onA, foldOff] = seamPoint3d(model.a, outline[0], arcMidpoint(fold));
+    const auto [onB, slotOff] = seamPoint3d(model.b, outline[1], centre);
+    EXPECT_NEAR(slotOff, edge, 1e-6) << "slot " << index << " lies the edge distance inside B";
+    EXPECT_LE((onA - onB).norm(), 0.1) << "tongue and slot " << index;
+    EXPECT_EQ(slot.size(), 4u) << "slot " << index << " is a rectangle";
+    if (slot.size() != 4) continue;
+    for (const Vec2& q : slot) EXPECT_TRUE(inside(outline[1], q)) << "slot " << index;
+    // Along the fold: the neck's width (the fold's chord), the head's (the tongue's extent).
+    const Vec2 t = (fold.back() - fold.front()).normalized();
+    double lo = 1e300, hi = -1e300;
+    for (const Vec2& q : tongue) {
+      lo = std::min(lo, t.dot(q - fold.front()));
+      hi = std::max(hi, t.dot(q - fold.front()));
+    }
+    const double neck = (fold.back() - fold.front()).norm(),
+                 slotLength = (slot[1] - slot[0]).norm() > (slot[2] - slot[1]).norm()
+                                  ? (slot[1] - slot[0]).norm()
+                                  : (slot[2] - slot[1]).norm();
+    EXPECT_NEAR(j["slot_length_mm"].get<double>(), slotLength, 1e-9) << index;
+    EXPECT_GT(slotLength, neck) << "tongue " << index << " slides into its slot";
+    EXPECT_LT(slotLength, neck + 1) << "slot " << index;
+    EXPECT_GT(hi - lo, slotLength) << "tongue " << index << "'s barbs hold it in the slot";
+  }
+  for (const json& h : sidecar["joint_holes"])
+    if (h["piece"] == "A") {
+      EXPECT_TRUE(indices.insert(h["index"].get<int>()).second);
+    }
+  EXPECT_EQ(indices.empty() ? 0 : *indices.rbegin() + 1, int(indices.size()))
+      << "joints numbered 0.. along the seam";
+  return sidecar["joint_slots"].size();
+}
+
+TEST(ExportJoints, TonguesAndSlotsLieAtTheSame3DSeamPoints) {
+  // The square-ish D-Form: straight seams, a tongue and slot between every pair of corners.
+  const DForm tetra = tetraDForm(6, 60.0);
+  ExportOptions o = options();
+  o.joint = Joint::Slots;
+  const Exported t = exportTo("slots-tetra", tetra, o);
+  EXPECT_GT(expectSlotsMeetIn3d(tetra, t.sidecar, 3.0), 8u);
+  EXPECT_TRUE(t.sidecar["joint_holes"].empty()) << "straight seams: tongues only";
+  EXPECT_TRUE(t.sidecar["tabs"].empty()) << "slots join the pieces: no glue tabs unless asked";
+  EXPECT_EQ(t.summary.jointSlots, int(t.sidecar["joint_slots"].size()));
+  EXPECT_NE(t.svg.find("A-tongue-fold-01"), nullptr) << "the tongues' folds are scored";
+  // Curved seams, B's parametrised unlike A's: longer tongues fit where the ellipse is flat and
+  // become hole pairs at its tight ends, with a message saying how many.
+  const DForm ellipse = warpedEllipseCircle();
+  o.holeSpacingMm = 25;
+  o.slotLengthMm = 10;
+  const Exported e = exportTo("slots-ellipse", ellipse, o);
+  EXPECT_GT(expectSlotsMeetIn3d(ellipse, e.sidecar, 3.0), 2u);
+  expectPairsMeetIn3d(ellipse, e.sidecar);
+  bool said = false;
+  for (const json& message : e.sidecar["messages"])
+    said = said || message.get<std::string>().find("joints are hole pairs") != std::string::npos;
+  EXPECT_TRUE(said) << e.sidecar["messages"];
+}
+
+TEST(ExportJoints, SlotsAreHoleLoopsAndTonguesPartOfTheOutlineInEveryFile) {
+  const DForm tetra = tetraDForm(6, 60.0);
+  ExportOptions o = options();
+  o.joint = Joint::Slots;
+  o.material = "card";
+  o.kerfMm = 0.3;
+  const Exported e = exportTo("slots-files", tetra, o);
+  const size_t slots = e.sidecar["joint_slots"].size();
+  ASSERT_GT(slots, 8u);
+  EXPECT_EQ(e.sidecar["joint"]["slot_width_mm"].get<double>(), 0.5) << "card 0.3 mm + 0.2 mm";
+  int closedCuts = 0;
+  for (const auto& path : e.svg.paths)
+    if (path.layer == "Cut" && path.closed) closedCuts += int(path.parts.size());
+  EXPECT_EQ(size_t(closedCuts), 2 + slots) << "cut loops = pieces + slots";
+  expectDxfChecks(e.dir);
+  // In the DXF: the outlines with their tongues 0.15 mm out, the slots 0.15 mm in.
+  std::string report;
+  ASSERT_EQ(
+      run(std::string(DFORM_PYTHON3) + " " + DFORM_KERF_CHECKER + " " + e.dir + " 0.3", &report), 0)
+      << report;
+  const Result<PreparedExport> prepared = prepareExport(tetra, o);
+  ASSERT_TRUE(prepared.isOk());
+  EXPECT_EQ(prepared.value().layout.extraCutLoops, 0);
+  EXPECT_EQ(prepared.value().layout.problems(), 0) << prepared.value().layout.example;
+  // A kerf wider than a slot: the slot widens to stay a loop the beam can follow.
+  o.kerfMm = 0.8;
+  EXPECT_NEAR(build(tetra, o).jointSlots.front().width, 0.9, 1e-12);
+  // Glue tabs on A would cross the tongues: asked for, they are a usage error; on B they fit.
+  o.tabSide = TabSide::A;
+  const Result<PreparedExport> clash = prepareExport(tetra, o);
+  ASSERT_FALSE(clash.isOk());
+  EXPECT_EQ(clash.status().code(), ErrorCode::Usage);
+  EXPECT_NE(clash.status().message().find("--tabs b"), std::string::npos);
+  o.tabSide = TabSide::B;
+  const fab::PatternBuild tabbed = build(tetra, o);
+  EXPECT_FALSE(tabbed.tabs.empty());
+  EXPECT_FALSE(tabbed.jointSlots.empty());
+}
+
 TEST(ExportJoints, MaterialPresetsSetTheJointAndExplicitOptionsWin) {
   const DForm model = ellipseCircleDForm(48, 4);
   ExportOptions o = options();
@@ -318,6 +445,13 @@ TEST(ExportJoints, BadJointValuesAreUsageErrors) {
   expectUsage(bad, "--kerf");
   bad.kerfMm = -1;  // no sentinel value: unset is the profile's kerf
   expectUsage(bad, "--kerf");
+  bad = o;
+  bad.slotLengthMm = 1.5;
+  expectUsage(bad, "--slot-length");
+  bad.slotLengthMm = 14;  // the 15 mm spacing less a 2 mm hole leaves 13
+  expectUsage(bad, "--slot-length");
+  bad.slotLengthMm = std::nan("");
+  expectUsage(bad, "--slot-length");
   EXPECT_TRUE(checkExportOptions(o).isOk());
 }
 

@@ -85,14 +85,15 @@ TEST(ExportProfile, TheTabSideIsAProfileFieldThatAnOptionOverrides) {
 
 TEST(ExportProfile, TheJointIsAProfileFieldThatAMaterialAndAnOptionOverride) {
   EXPECT_EQ(loadProfile("laser", DFORM_TEMPLATES_DIR).value().joint, Joint::Glue);
-  for (Joint joint : {Joint::Glue, Joint::Holes, Joint::Lace}) {
+  for (Joint joint : {Joint::Glue, Joint::Holes, Joint::Lace, Joint::Slots}) {
     const std::string name = jointName(joint);
     EXPECT_EQ(jointNamed(name), joint) << name;
     auto p = loadProfile(writeProfile("joint-" + name, R"({"joint": ")" + name + R"("})"), "");
     ASSERT_TRUE(p.isOk()) << p.status().message();
     EXPECT_EQ(p.value().joint, joint) << name;
   }
-  EXPECT_FALSE(jointNamed("slots"));
+  EXPECT_FALSE(jointNamed("slot"));
+  EXPECT_FALSE(jointNamed("Slots"));
   // A laced profile: holes in the pattern, no glue tabs; a material, then the option, override.
   const DForm model = ellipseCircleDForm(48, 4);
   ExportOptions o = options();

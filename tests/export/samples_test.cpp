@@ -7,7 +7,7 @@
 // and the scale is checked to be 1 wherever the pieces fit at true size, else the largest that
 // fits, named by the refusal of a tenth of a percent more and stated on every sheet. A page
 // profile's pages and assembly page share its paper; the laser profiles are laid out again in
-// memory on 600 x 400 and 300 x 200 mm sheets.
+// memory on 600 x 400 and 300 x 200 mm sheets, and on the larger with each sheet-material joint.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -112,9 +112,28 @@ void expectOnePaper(const std::string& dir, const Paper& paper) {
   EXPECT_NE(readText(dir + "/pattern.pdf").find("/PrintScaling /None"), std::string::npos);
 }
 
+// Each joint for sheet materials laid out with options `o`: its holes and slots are loops of their
+// pieces, and the layout stays clean.
+void expectJointsFit(const DForm& model, const ExportOptions& o) {
+  for (Joint joint : {Joint::Holes, Joint::Lace, Joint::Slots}) {
+    ExportOptions jo = o;
+    jo.joint = joint;
+    const Result<LaidOutExport> joined = layOutExport(model, jo);
+    ASSERT_TRUE(joined.isOk()) << jointName(joint) << ": " << joined.status().message();
+    EXPECT_EQ(joined.value().layout.problems(), 0)
+        << jointName(joint) << ": " << joined.value().layout.example;
+    const fab::PatternBuild& built = joined.value().pattern->build;
+    EXPECT_GT(built.jointHoles.size() + built.jointSlots.size(), 4u) << jointName(joint);
+    for (const fab::PieceInfo& piece : built.pieces)
+      EXPECT_EQ(piece.cut.size() + piece.holeCuts.size(), piece.boundaries.size())
+          << jointName(joint) << " " << piece.name;
+  }
+}
+
 // A laser profile on the sheets a laser cuts (600 x 400 and 300 x 200 mm), laid out in memory
 // from the solved model: scaled to fit where need be, one cut loop per boundary loop and a clean
-// layout; a scale a tenth of a percent larger is refused naming the scale that fits.
+// layout (with every joint too, on the larger sheet); a scale a tenth of a percent larger is
+// refused naming the scale that fits.
 void expectLaserSheets(const DForm& model, const std::string& profileName) {
   for (const auto& [w, h] : {std::pair{600.0, 400.0}, std::pair{300.0, 200.0}}) {
     SCOPED_TRACE(profileName + " on " + std::to_string(int(w)) + "x" + std::to_string(int(h)));
@@ -129,6 +148,7 @@ void expectLaserSheets(const DForm& model, const std::string& profileName) {
     const fab::PatternBuild& built = laid.value().pattern->build;
     for (const fab::PieceInfo& piece : built.pieces)
       EXPECT_EQ(piece.cut.size() + piece.holeCuts.size(), piece.boundaries.size()) << piece.name;
+    if (w == 600.0) expectJointsFit(model, o);
     if (built.scale < 1.0) {
       o.scaleToFit = false;
       o.scale = built.scale + 0.001;

@@ -138,3 +138,9 @@ def test_export_writes_a_folder_that_validates(tmp_path):
     with pytest.raises(dform.Error) as edge:
         result.export(str(tmp_path / "bad-edge"), hole_edge=1.0)
     assert "hole_edge" in str(edge.value)
+    result.export(str(tmp_path / "slots"), joint="slots", slot_length=6.0)
+    pattern = json.loads((tmp_path / "slots" / "pattern.json").read_text())
+    assert pattern["joint"]["slot_length_mm"] == 6.0 and len(pattern["joint_slots"]) > 10
+    with pytest.raises(dform.Error) as slot:
+        result.export(str(tmp_path / "bad-slot"), joint="slots", slot_length=1.0)
+    assert "slot_length" in str(slot.value)
