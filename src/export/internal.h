@@ -174,7 +174,8 @@ struct PieceInfo {
   /// Every boundary loop (sheet mm), the outer outline first: the piece's material by the
   /// even-odd rule. Just the seam for a classic piece.
   std::vector<Polyline> boundaries;
-  bool seamIsHole = false;  ///< the seam is a hole's loop (anti and demi D-Forms)
+  std::vector<Polyline> jointLoops;  ///< its joint holes and slots (sheet mm; among `boundaries`)
+  bool seamIsHole = false;           ///< the seam is a hole's loop (anti and demi D-Forms)
   /// The printed tint's loops (sheet mm; holes wind against the outer loops): the cut region grown
   /// by the profile's bleed; empty without a bleed.
   std::vector<Polyline> bleed;

@@ -260,8 +260,10 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
     place[p].M = flipRotate(a.rot[p]);
     place[p].t = a.corner[p] - a.box[p].lo;
     out.pieces.push_back(placedPiece(flat, p, cuts[p], holeCuts[p], place[p], a, profile.bleedMm));
-    for (const Polyline& loop : holeLoops[p])  // the material has the joint holes too
-      out.pieces.back().boundaries.push_back(place[p].map(loop));
+    for (const Polyline& loop : holeLoops[p]) {  // the material has the joint holes too
+      out.pieces.back().jointLoops.push_back(place[p].map(loop));
+      out.pieces.back().boundaries.push_back(out.pieces.back().jointLoops.back());
+    }
     out.pieces.back().scoredFolds = scoredFolds(o, p, place[p], out.pieces.back());
   }
   out.ticks = placeTicks(tickS, seams, place);

@@ -1,5 +1,6 @@
 // The seam marks: numbered ticks at matching seam points on both pieces, across each piece's
-// outline, the start tick longer with an arrow along the zip direction.
+// outline, the start tick longer with an arrow along the zip direction; a tick stops short of a
+// joint hole or slot in its way.
 #include "dform/export/pattern_parts.h"
 #include "dform/export/plane_geometry.h"
 
@@ -9,6 +10,33 @@ namespace {
 
 constexpr double kTickIn = 3.0;       // tick length inside the outline (mm)
 constexpr double kStartTickIn = 6.0;  // the start tick is longer (mm)
+constexpr double kTickClear = 0.5;    // a tick stops this far before a hole or slot (mm)
+
+// How far a tick may run from its seam point c along unit direction d, up to `length`, keeping
+// kTickClear from every joint hole and slot (`joints`, convex loops): the distance to each is
+// convex along the tick, so stepping 0.02 mm finds where it first comes too close, and a
+// bisection puts the end there to a micrometre.
+double tickReach(const Vec2& c, const Vec2& d, double length, const std::vector<Polyline>& joints) {
+  std::vector<Polyline> near;
+  for (const Polyline& loop : joints) {
+    const Box box = boxOf({loop});
+    const Vec2 gap = (box.lo - c).cwiseMax(c - box.hi).cwiseMax(Vec2::Zero());
+    if (gap.norm() < length + kTickClear) near.push_back(loop);
+  }
+  if (near.empty()) return length;
+  auto clear = [&](double t) { return distanceToPolylines(near, c + t * d, true) >= kTickClear; };
+  if (!clear(0)) return 0;
+  for (double lo = 0;;) {
+    const double hi = std::min(lo + 0.02, length);
+    if (!clear(hi)) {
+      for (double top = hi; top - lo > 1e-6;)
+        (clear(0.5 * (lo + top)) ? lo : top) = 0.5 * (lo + top);
+      return lo;
+    }
+    if (hi >= length) return length;
+    lo = hi;
+  }
+}
 
 }  // namespace
 
@@ -61,7 +89,7 @@ TickLabelCounts drawTicks(int p, const PieceInfo& info, const Seam& seam, const 
     const Vec2 c = p == 0 ? t.onA : t.onB;
     const Vec2 nOut = place.vector(seam.outward(seg)).normalized();
     const Vec2 tan = place.vector(seam.dir(seg)).normalized();
-    const double in = t.id == 0 ? kStartTickIn : kTickIn;
+    const double in = tickReach(c, -nOut, t.id == 0 ? kStartTickIn : kTickIn, info.jointLoops);
     Path tick;
     tick.id = info.name + "-tick-" + twoDigits(t.id);
     tick.parts.push_back({c + kTickOut * nOut, c - in * nOut});

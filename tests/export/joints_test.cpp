@@ -7,6 +7,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <tuple>
 
 #include "dform/export/exporter.h"
 #include "dform/export/internal.h"
@@ -381,6 +382,55 @@ TEST(ExportJoints, SlotsAreHoleLoopsAndTonguesPartOfTheOutlineInEveryFile) {
   const fab::PatternBuild tabbed = build(tetra, o);
   EXPECT_FALSE(tabbed.tabs.empty());
   EXPECT_FALSE(tabbed.jointSlots.empty());
+}
+
+// The distance from q to the segment [a, b].
+double distanceToSegment(const Vec2& q, const Vec2& a, const Vec2& b) {
+  const Vec2 ab = b - a;
+  const double t = std::clamp((q - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
+  return (a + t * ab - q).norm();
+}
+
+TEST(ExportJoints, TicksStopHalfAMillimetreShortOfJointHolesAndSlots) {
+  // Hole 0 is at the seam's start, on tick 0's line; B's slots sit where ticks fall.
+  const DForm ellipse = ellipseCircleDForm(64, 8);
+  const DForm tetra = tetraDForm(6, 60.0);
+  int shortened = 0;
+  for (const auto& [name, model, joint] : {std::tuple{"ticks-holes", &ellipse, Joint::Holes},
+                                           std::tuple{"ticks-slots", &tetra, Joint::Slots}}) {
+    ExportOptions o = options();
+    o.joint = joint;
+    const Exported e = exportTo(name, *model, o);
+    std::vector<Polyline> loops[2];  // each piece's joint holes and slots (sheet mm)
+    for (const json& h : e.sidecar["joint_holes"]) {
+      const Vec2 c(h["centre"][0].get<double>(), h["centre"][1].get<double>());
+      Polyline circle;
+      for (int k = 0; k < 64; ++k)
+        circle.push_back(c + 0.5 * h["diameter_mm"].get<double>() *
+                                 Vec2(std::cos(k * M_PI / 32), std::sin(k * M_PI / 32)));
+      loops[h["piece"] == "A" ? 0 : 1].push_back(circle);
+    }
+    for (const json& slot : e.sidecar.value("joint_slots", json::array()))
+      loops[1].push_back(toPolyline(slot["slot"]));
+    for (int p = 0; p < 2; ++p) {
+      for (const auto& path : e.svg.paths) {
+        if (path.id.rfind(std::string(p == 0 ? "A" : "B") + "-tick-", 0) != 0 ||
+            path.id.find("label") != std::string::npos)
+          continue;
+        const Vec2 a = path.parts[0][0], b = path.parts[0][1];
+        const double in = (b - a).norm() - 1.5;  // 1.5 mm of the tick lie outside
+        EXPECT_GE(in, 0.5) << name << " " << path.id << " reaches into its piece";
+        shortened += in < (path.id.find("-00") != std::string::npos ? 6.0 : 3.0) - 1e-6;
+        for (const Polyline& loop : loops[p])
+          for (size_t i = 0; i < loop.size(); ++i)
+            EXPECT_GE(std::min(distanceToSegment(loop[i], a, b),
+                               distanceToSegment(b, loop[i], loop[(i + 1) % loop.size()])),
+                      0.5 - 0.006)  // a hole is cut as a polygon within 5 um of its circle
+                << path.id << " comes within half a millimetre of a joint";
+      }
+    }
+  }
+  EXPECT_GT(shortened, 2) << "ticks met joints and stopped short";
 }
 
 TEST(ExportJoints, MaterialPresetsSetTheJointAndExplicitOptionsWin) {
