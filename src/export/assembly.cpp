@@ -113,40 +113,6 @@ std::pair<size_t, double> edgeAt(const Polyline& loop, double s) {
   return {loop.size() - 1, 1.0};
 }
 
-// The numbered steps, for this pattern's tabs and profile.
-std::vector<std::string> steps(const PatternBuild& pattern) {
-  const std::string& a = pattern.pieces[0].name;
-  const std::string& b = pattern.pieces[1].name;
-  bool tabsOn[2] = {false, false};
-  for (const TabInfo& t : pattern.tabs) tabsOn[t.piece] = true;
-  const bool laser = pattern.profile.kind == ProfileKind::Laser;
-  const std::string face = laser ? "engraved" : "printed";
-  std::string cut = "Cut out both pieces on their cut lines";
-  if (tabsOn[0] || tabsOn[1])
-    cut += "; crease each tab's fold line and fold the tab back, away from the " + face + " side.";
-  else
-    cut += ". There are no glue tabs: join the edges with tape on the inside.";
-  std::string join =
-      "Join " + a + "'s tick 0 to " + b + "'s tick 0, edge to edge, " + face + " sides out";
-  if (tabsOn[0] && tabsOn[1])
-    join += "; the tabs alternate between the pieces and go inside, under the other edge.";
-  else if (tabsOn[0] || tabsOn[1])
-    join += "; " + (tabsOn[0] ? a : b) + "'s tabs go inside, under " + (tabsOn[0] ? b : a) +
-            "'s edge. Glue one tab at a time.";
-  else
-    join += ".";
-  const std::string last = tickLabel(int(pattern.ticks.size()) - 1);
-  return {cut,
-          "Find tick 0 on each piece: the long tick with the arrow, which points the way to zip "
-          "(shown on the small pieces above).",
-          join,
-          "Zip along the arrows: tick 1 to 1, 2 to 2, and on. The sheet bends by itself; do not "
-          "crease it anywhere but on drawn fold lines.",
-          "Close the last gap, from tick " + last +
-              " back to 0, from the outside (tweezers help with the last tabs), and compare the "
-              "shape with the picture above."};
-}
-
 // `s` in `font`, centred on c at capital height h, as one path of `layer`.
 void write(Layer& layer, const StrokeFont& font, const std::string& id, const std::string& s,
            const Vec2& c, double h) {
@@ -208,7 +174,7 @@ double drawSteps(const PatternBuild& pattern, const StrokeFont& font, double W, 
   std::vector<std::vector<std::string>> stepLines;
   double stepsH = 0;
   const double indent = 8.0, textW = W - 2 * kMargin - indent;
-  for (const std::string& step : steps(pattern)) {
+  for (const std::string& step : assemblySteps(pattern)) {
     stepLines.push_back(wrapped(font, step, textW, kTextH));
     stepsH += (double(stepLines.back().size()) + 0.4) * kLineH * kTextH;
   }
@@ -494,6 +460,64 @@ int drawSeamAndTicks(const DForm& model, const PatternBuild& pattern, const Shap
 }
 
 }  // namespace
+
+std::vector<std::string> assemblySteps(const PatternBuild& pattern) {
+  const std::string& a = pattern.pieces[0].name;
+  const std::string& b = pattern.pieces[1].name;
+  bool tabsOn[2] = {false, false};
+  for (const TabInfo& t : pattern.tabs) tabsOn[t.piece] = true;
+  const bool tabs = tabsOn[0] || tabsOn[1];
+  const Joint joint = pattern.joint.joint;
+  const bool laser = pattern.profile.kind == ProfileKind::Laser;
+  const std::string face = laser ? "engraved" : "printed";
+  std::string cut = "Cut out both pieces on their cut lines";
+  if (joint != Joint::Glue)
+    cut += joint == Joint::Slots ? ", their slots and holes first" : ", their joint holes first";
+  if (tabs)
+    cut += "; crease each tab's fold line and fold the tab back, away from the " + face + " side.";
+  else if (joint == Joint::Glue)
+    cut += ". There are no glue tabs: join the edges with tape on the inside.";
+  else
+    cut += ".";
+  if (!pattern.jointSlots.empty())
+    cut += " Crease each tongue of " + a + " on its fold line and fold it back, away from the " +
+           face + " side.";
+  std::string join =
+      "Join " + a + "'s tick 0 to " + b + "'s tick 0, edge to edge, " + face + " sides out";
+  if (tabsOn[0] && tabsOn[1])
+    join += "; the tabs alternate between the pieces and go inside, under the other edge.";
+  else if (tabs)
+    join += "; " + (tabsOn[0] ? a : b) + "'s tabs go inside, under " + (tabsOn[0] ? b : a) +
+            "'s edge. Glue one tab at a time.";
+  else
+    join += ".";
+  // How each stretch of the seam is closed as the zip goes along.
+  const std::string holePairs = "tie each hole pair (a hole of " + a + " facing one of " + b +
+                                ") with a cable tie, rivet or stitch";
+  std::string zip = "Zip along the arrows: tick 1 to 1, 2 to 2, and on";
+  switch (joint) {
+    case Joint::Glue: zip += "."; break;
+    case Joint::Holes: zip += ", and " + holePairs + " as you go."; break;
+    case Joint::Lace:
+      zip += ", lacing as you go: from a hole of " + a + " to the next hole along, on " + b +
+             ", and back, so the lace zigzags across the seam and pulls the edges together.";
+      break;
+    case Joint::Slots:
+      zip += ", and push each tongue of " + a + " from the inside out through the slot of " + b +
+             " beside it, pressing its barbed head flat" +
+             (pattern.jointHoles.empty() ? std::string(".") : "; " + holePairs + ".");
+      break;
+  }
+  zip += " The sheet bends by itself; do not crease it anywhere but on drawn fold lines.";
+  const std::string last = tickLabel(int(pattern.ticks.size()) - 1);
+  return {cut,
+          "Find tick 0 on each piece: the long tick with the arrow, which points the way to zip "
+          "(shown on the small pieces above).",
+          join, zip,
+          "Close the last gap, from tick " + last + " back to 0, from the outside" +
+              (tabs ? " (tweezers help with the last tabs)" : "") +
+              ", and compare the shape with the picture above."};
+}
 
 Drawing assemblyPage(const DForm& model, const PatternBuild& pattern, const ExportOptions& o,
                      const StrokeFont& font) {

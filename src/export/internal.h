@@ -277,6 +277,10 @@ std::string tickLabel(int k);
 /// None when that outline is not A's seam vertex for vertex (no numbers rather than wrong ones).
 std::vector<SeamTick> seamTicks(const DForm& model, const PatternBuild& pattern);
 
+/// The assembly page's numbered steps for `pattern`: how to cut, start, zip and close it with its
+/// tabs and its joint (tape, tabs, hole pairs, lace or tongues and slots).
+std::vector<std::string> assemblySteps(const PatternBuild& pattern);
+
 /// The assembly page of a laid-out pattern (A4, or Letter for a Letter profile; mm, y down): the
 /// 3D shape with the tick numbers at their seam points, both pieces small with tick 0 and the zip
 /// direction, and the numbered steps. Its text is `font`'s.

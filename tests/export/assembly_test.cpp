@@ -1,15 +1,19 @@
 // The assembly page, read back from assembly.svg and pattern.pdf: the pieces' thumbnails are the
 // cut pieces scaled, with the start on tick 0 and the zip running to tick 1; the 3D view's tick
-// dots lie on its seam in seam order; the steps are numbered and keep off the pictures; the PDF's
-// last page is the page.
+// dots lie on its seam in seam order; the steps are numbered, keep off the pictures and say how
+// the pattern's joint closes the seam; the PDF's last page is the page.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
+#include <optional>
 #include <regex>
 #include <string>
 #include <tuple>
 #include <vector>
 
+#include "dform/export/internal.h"
+#include "models.h"
 #include "synthetic.h"
 #include "test_util.h"
 
@@ -274,6 +278,32 @@ TEST(Assembly, StepsAreNumberedAndKeepOffThePictures) {
                      plo.y() < lhi.y())
             << profile << ": a step line on a picture";
   }
+}
+
+TEST(Assembly, TheStepsFollowTheJoint) {
+  // Each joint's steps say how it closes the seam, and none but glue without tabs says tape.
+  const DForm tetra = tetraDForm(6, 60.0);
+  auto stepsFor = [&](Joint joint, std::optional<TabSide> tabs) {
+    ExportOptions o = options();
+    o.joint = joint;
+    o.tabSide = tabs;
+    std::string all;
+    for (const std::string& step : fab::assemblySteps(build(tetra, o))) all += step + "\n";
+    return all;
+  };
+  const std::map<Joint, std::string> says = {
+      {Joint::Holes, "cable tie"}, {Joint::Lace, "lacing"}, {Joint::Slots, "through the slot"}};
+  for (const auto& [joint, phrase] : says) {
+    const std::string steps = stepsFor(joint, std::nullopt);
+    EXPECT_NE(steps.find(phrase), std::string::npos) << jointName(joint) << ":\n" << steps;
+    EXPECT_EQ(steps.find("tape"), std::string::npos) << jointName(joint) << ":\n" << steps;
+    EXPECT_EQ(steps.find("tabs"), std::string::npos) << jointName(joint) << ":\n" << steps;
+  }
+  EXPECT_NE(stepsFor(Joint::Slots, std::nullopt).find("Crease each tongue"), std::string::npos);
+  EXPECT_NE(stepsFor(Joint::Glue, TabSide::None).find("tape"), std::string::npos);
+  const std::string glued = stepsFor(Joint::Glue, std::nullopt);
+  EXPECT_NE(glued.find("Glue one tab at a time"), std::string::npos) << glued;
+  EXPECT_NE(stepsFor(Joint::Holes, TabSide::B).find("tabs go inside"), std::string::npos);
 }
 
 }  // namespace
