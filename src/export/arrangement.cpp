@@ -161,7 +161,7 @@ Status arrangeAlone(const SheetFit& fit, const std::vector<Choice>& choices, int
   } else {
     std::vector<Vec2> sizes;
     for (const Choice& c : choices) sizes.emplace_back(c.box[p].w(), c.box[p].h());
-    return fit.tooLarge("piece " + name, sizes, "the piece and its tabs");
+    return fit.tooLarge("piece " + name, sizes, "the piece with its tabs");
   }
   plan.size = Vec2(a.box[p].w(), a.box[p].h());
   const Box region = fit.artRegion(plan.box.w(), plan.box.h(), plan.box.lo);

@@ -56,10 +56,11 @@ Status SheetFit::tooLarge(const std::string& what, const std::vector<Vec2>& size
   if (profile->registration == Registration::Cricut) {  // the area, not the paper, is the limit
     const bool fullArea = std::abs(r.w() - kCricutW) < 1e-6 && std::abs(r.h() - kCricutH) < 1e-6;
     return Status{ErrorCode::Usage,
-                  what + " does not fit the Cricut Print Then Cut area: it takes " +
-                      formatMm(size.x()) + " x " + formatMm(size.y()) + " mm (" + contents +
-                      "); the area is " + (fullArea ? "6.75 x 9.25 in, " : "") +
-                      formatMm(r.w(), 2) + " x " + formatMm(r.h(), 2) + " mm on " + pageName +
+                  what + " does not fit the Cricut Print Then Cut area: " + contents + ", " +
+                      formatMm(size.x()) + " x " + formatMm(size.y()) +
+                      " mm, is larger than the area, which is " +
+                      (fullArea ? "6.75 x 9.25 in, " : "") + formatMm(r.w(), 2) + " x " +
+                      formatMm(r.h(), 2) + " mm on " + pageName +
                       " paper, and no larger on larger paper"};
   }
   const std::string area = pageName.empty() ? "sheet" : pageName + " page's cutting area";
