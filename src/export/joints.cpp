@@ -203,9 +203,14 @@ std::optional<std::pair<FlatTab, FlatSlot>> tongueAndSlot(const Seam seams[2], d
   tongue.width = neck + head;
   tongue.polygon = tongue.fold;
   const Vec2 tip = (neck + head) * n;
-  const Polyline outer{a1 + neck * n,          a1 + barb * t + neck * n, a1 - chamfer * t + tip,
-                       a0 + chamfer * t + tip, a0 - barb * t + neck * n, a0 + neck * n};
-  tongue.polygon.insert(tongue.polygon.end(), outer.begin(), outer.end());
+  // Shoulder, barb, tip, barb, shoulder; without barbs a shoulder is one point (a repeated vertex
+  // would read as the outline touching itself).
+  tongue.polygon.push_back(a1 + neck * n);
+  if (barb > 0) tongue.polygon.push_back(a1 + barb * t + neck * n);
+  tongue.polygon.push_back(a1 - chamfer * t + tip);
+  tongue.polygon.push_back(a0 + chamfer * t + tip);
+  if (barb > 0) tongue.polygon.push_back(a0 - barb * t + neck * n);
+  tongue.polygon.push_back(a0 + neck * n);
   tongue.box = boxOf({tongue.polygon});
   int seg = 0;
   const Vec2 foot = b.at(own, &seg);

@@ -271,11 +271,12 @@ Vec2 arcMidpoint(const Polyline& line) {
 
 // For --joint slots: tongue k grows out of A's outline along its fold line and lies outside A;
 // slot k lies `edge` inside B's outline, inside B, its long sides along B's seam, longer than the
-// tongue's neck and shorter than its barbed head; and the two are at the same point of the 3D
-// seam (within 0.1 mm): the fold line's midpoint on A, the slot centre's nearest seam point on B.
-// Slots and the hole pairs left where a tongue does not fit share one numbering. Returns the
-// slot count.
-size_t expectSlotsMeetIn3d(const DForm& model, const json& sidecar, double edge) {
+// tongue's neck and shorter than its barbed head (`barbed`; else the head is as wide as the
+// neck); and the two are at the same point of the 3D seam (within 0.1 mm): the fold line's
+// midpoint on A, the slot centre's nearest seam point on B. Slots and the hole pairs left where
+// a tongue does not fit share one numbering. Returns the slot count.
+size_t expectSlotsMeetIn3d(const DForm& model, const json& sidecar, double edge,
+                           bool barbed = true) {
   const Polyline outline[2] = {toPolyline(sidecar["pieces"][0]["outline"]),
                                toPolyline(sidecar["pieces"][1]["outline"])};
   std::set<int> indices;
@@ -309,7 +310,10 @@ size_t expectSlotsMeetIn3d(const DForm& model, const json& sidecar, double edge)
     EXPECT_NEAR(j["slot_length_mm"].get<double>(), slotLength, 1e-9) << index;
     EXPECT_GT(slotLength, neck) << "tongue " << index << " slides into its slot";
     EXPECT_LT(slotLength, neck + 1) << "slot " << index;
-    EXPECT_GT(hi - lo, slotLength) << "tongue " << index << "'s barbs hold it in the slot";
+    if (barbed)
+      EXPECT_GT(hi - lo, slotLength) << "tongue " << index << "'s barbs hold it in the slot";
+    else
+      EXPECT_NEAR(hi - lo, neck, 1e-9) << "tongue " << index << " has no barbs";
   }
   for (const json& h : sidecar["joint_holes"])
     if (h["piece"] == "A") {
@@ -331,6 +335,12 @@ TEST(ExportJoints, TonguesAndSlotsLieAtTheSame3DSeamPoints) {
   EXPECT_TRUE(t.sidecar["tabs"].empty()) << "slots join the pieces: no glue tabs unless asked";
   EXPECT_EQ(t.summary.jointSlots, int(t.sidecar["joint_slots"].size()));
   EXPECT_NE(t.svg.find("A-tongue-fold-01"), nullptr) << "the tongues' folds are scored";
+  // Plywood does not flex through a slot: tongues without barbs, every one of them made.
+  o.material = "plywood";
+  const Exported ply = exportTo("slots-tetra-plywood", tetra, o);
+  EXPECT_GT(expectSlotsMeetIn3d(tetra, ply.sidecar, 6.0, false), 4u);
+  EXPECT_TRUE(ply.sidecar["joint_holes"].empty()) << ply.sidecar["messages"];
+  o.material.clear();
   // Curved seams, B's parametrised unlike A's: longer tongues fit where the ellipse is flat and
   // become hole pairs at its tight ends, with a message saying how many.
   const DForm ellipse = warpedEllipseCircle();
