@@ -237,30 +237,27 @@ bool isJobName(const std::string& name) {
          !isShardFileName(name, "gallery-shard-", ".html");
 }
 
-std::string jobSha256(const std::string& jobPath) {
+JobFacts readJobFacts(const std::string& jobPath) {
+  JobFacts facts;
   const Result<std::string> bytes = readInputFile(jobPath, kMaxSettingsBytes);
-  if (!bytes.isOk()) return "";
+  if (!bytes.isOk()) return facts;
   std::string hashes = sha256Hex(bytes.value());
-  const Result<Job> job = readJobFile(jobPath);
+  const Result<Job> job = parseJobFileText(bytes.value(), jobPath);
   if (job.isOk()) {
     const Job& j = job.value();
+    const bool forward = j.mode == Job::Mode::Forward;
     const std::vector<std::string> inputs =
-        j.mode == Job::Mode::Forward ? std::vector<std::string>{j.forward.pieceA, j.forward.pieceB}
-                                     : std::vector<std::string>{j.inverse.curve};
+        forward ? std::vector<std::string>{j.forward.pieceA, j.forward.pieceB}
+                : std::vector<std::string>{j.inverse.curve};
     for (const std::string& input : inputs) {
       const Result<std::string> read = readInputFile(input);
       hashes += " " + (read.isOk() ? sha256Hex(read.value()) : std::string("missing"));
     }
+    const double resolution = forward ? j.forward.resolution : j.inverse.resolution;
+    facts.size = resolution * resolution;
   }
-  return sha256Hex(hashes);
-}
-
-double jobSize(const std::string& jobPath) {
-  const Result<Job> job = readJobFile(jobPath);
-  if (!job.isOk()) return 1;
-  const double resolution = job.value().mode == Job::Mode::Forward ? job.value().forward.resolution
-                                                                   : job.value().inverse.resolution;
-  return resolution * resolution;
+  facts.sha256 = sha256Hex(hashes);
+  return facts;
 }
 
 double estimateSecondsLeft(double elapsed, double doneSize, double remainingSize) {
@@ -328,8 +325,9 @@ Result<std::vector<BatchJob>> listBatchJobs(const std::string& input) {
                                                  printable(jobs[k].name, 200) + "/");
   }
   for (BatchJob& job : jobs) {
-    job.sha256 = jobSha256(job.path);
-    job.size = jobSize(job.path);
+    const JobFacts facts = readJobFacts(job.path);
+    job.sha256 = facts.sha256;
+    job.size = facts.size;
   }
   return jobs;
 }

@@ -18,27 +18,32 @@ struct BatchJob {
   int index = 0;       ///< its place in the batch's list, from 0
   std::string path;    ///< the job file, as listed (relative paths of a list file: from its folder)
   std::string name;    ///< OUT/<name>/
-  std::string sha256;  ///< jobSha256 of the job when the batch listed it
-  double size = 1;     ///< its share of the batch's work, for the time left: resolution² of
-                       ///< its job file (vertices grow with it), 1 for a job file unreadable
+  std::string sha256;  ///< the JobFacts sha256 of the job when the batch listed it
+  double size = 1;     ///< its share of the batch's work (JobFacts size)
 };
 
-/// A job's size for the time left: the square of its job file's resolution (forward or
-/// inverse), 1 when the job file cannot be read.
-double jobSize(const std::string& jobPath);
+/// What a batch knows of a job file, from one read of it (so that both describe the same
+/// version of a file edited meanwhile):
+/// - sha256: what its result is made from, as one SHA-256 of the job file's bytes and those of
+///   the inputs it names (the pieces, or the curve). A job file or an input edited since gives
+///   another; an input that cannot be read counts as missing; empty when the job file is
+///   unreadable.
+/// - size: its share of the batch's work, for the time left: the square of its resolution
+///   (forward or inverse; vertices grow with it), 1 when the job file cannot be read or parsed.
+struct JobFacts {
+  std::string sha256;
+  double size = 1;
+};
+JobFacts readJobFacts(const std::string& jobPath);
 
 /// Seconds left at the pace so far: `elapsed` seconds finished jobs of total size `doneSize`,
 /// so jobs of total size `remainingSize` take elapsed * remainingSize / doneSize. NaN (unknown)
 /// until a job of some size has finished.
 double estimateSecondsLeft(double elapsed, double doneSize, double remainingSize);
 
-/// What a job's result is made from, as one SHA-256: the job file's bytes and those of the
-/// inputs it names (the pieces, or the curve). A job file or an input edited since gives
-/// another; a file that cannot be read counts as missing. Empty when the job file is unreadable.
-std::string jobSha256(const std::string& jobPath);
-
 /// The identity of a batch's job list: how many jobs, and one SHA-256 of every job's name and
-/// jobSha256 in list order. Shards run from the same list and the same files agree on it.
+/// job file sha256 (JobFacts) in list order. Shards run from the same list and the same files agree
+/// on it.
 struct JobList {
   int count = -1;  ///< -1: not recorded
   std::string sha256;
@@ -52,7 +57,7 @@ bool isJobName(const std::string& name);
 
 /// The jobs of `input`: a text file with one job file per line (blank lines and lines starting
 /// with # skipped; relative paths from the list's folder), or every *.json in a folder, sorted by
-/// name, each with its jobSha256. InputUnreadable naming the file; InputInvalid when the list is
+/// name, each with its JobFacts. InputUnreadable naming the file; InputInvalid when the list is
 /// empty, two jobs have the same name, or a name is not isJobName (all refused before anything
 /// runs).
 Result<std::vector<BatchJob>> listBatchJobs(const std::string& input);
@@ -89,7 +94,7 @@ using BatchProgress = std::function<void(int done, int failed, int total, double
 struct BatchOptions {
   int shard = 1, shards = 1;  ///< run only this slice
   bool resume = false;        ///< skip jobs the manifest has as finished with their result in
-                              ///< place and the same jobSha256 as now
+                              ///< place and the same JobFacts sha256 as now
   int threads = 0;            ///< jobs at once; 0: the machine's cores
 };
 

@@ -189,8 +189,12 @@ Result<Job> parseJobJson(const std::string& text, const std::string& source,
 Result<Job> readJobFile(const std::string& path) {
   const Result<std::string> text = readInputFile(path, kMaxSettingsBytes);
   if (!text.isOk()) return text.status();
+  return parseJobFileText(text.value(), path);
+}
+
+Result<Job> parseJobFileText(const std::string& text, const std::string& path) {
   const std::string base = std::filesystem::path(path).parent_path().string();
-  return parseJobJson(text.value(), inputName(path), base.empty() ? "." : base);
+  return parseJobJson(text, inputName(path), base.empty() ? "." : base);
 }
 
 bool setNamedWeight(Job& job, const std::string& name, double value) {

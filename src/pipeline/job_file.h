@@ -22,6 +22,9 @@ struct Job {
 /// mistyped key or a bad value.
 Result<Job> readJobFile(const std::string& path);
 
+/// The same from the text of the job file at `path`, read by the caller.
+Result<Job> parseJobFileText(const std::string& text, const std::string& path);
+
 /// The same from text; `source` names it in messages and `baseDir` resolves relative paths.
 Result<Job> parseJobJson(const std::string& text, const std::string& source,
                          const std::string& baseDir);

@@ -43,17 +43,17 @@ TEST(BatchEta, AJobsSizeIsItsResolutionSquared) {
   std::ofstream(dir / "default.json")
       << R"({"mode": "forward", "piece_a": "a.svg", "piece_b": "b.svg"})";
   std::ofstream(dir / "broken.json") << "{";
-  EXPECT_DOUBLE_EQ(jobSize((dir / "forward.json").string()), 90000);
-  EXPECT_DOUBLE_EQ(jobSize((dir / "inverse.json").string()), 2500);
-  EXPECT_DOUBLE_EQ(jobSize((dir / "default.json").string()), 10000);  // resolution 100
-  EXPECT_DOUBLE_EQ(jobSize((dir / "broken.json").string()), 1);
-  EXPECT_DOUBLE_EQ(jobSize((dir / "absent.json").string()), 1);
+  EXPECT_DOUBLE_EQ(readJobFacts((dir / "forward.json").string()).size, 90000);
+  EXPECT_DOUBLE_EQ(readJobFacts((dir / "inverse.json").string()).size, 2500);
+  EXPECT_DOUBLE_EQ(readJobFacts((dir / "default.json").string()).size, 10000);  // resolution 100
+  EXPECT_DOUBLE_EQ(readJobFacts((dir / "broken.json").string()).size, 1);
+  EXPECT_DOUBLE_EQ(readJobFacts((dir / "absent.json").string()).size, 1);
   // listBatchJobs gives each job its size.
   const Result<std::vector<BatchJob>> jobs = listBatchJobs(dir.string());
   ASSERT_TRUE(jobs.isOk()) << jobs.status().message();
   ASSERT_EQ(jobs.value().size(), 4u);
   for (const BatchJob& job : jobs.value())
-    EXPECT_DOUBLE_EQ(job.size, jobSize(job.path)) << job.name;
+    EXPECT_DOUBLE_EQ(job.size, readJobFacts(job.path).size) << job.name;
   EXPECT_DOUBLE_EQ(jobs.value()[2].size, 90000) << jobs.value()[2].name;  // forward.json
   fs::remove_all(dir);
 }
