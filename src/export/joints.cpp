@@ -243,9 +243,8 @@ class JointSet {
     for (const FlatHole& other : joints_.holes)
       if (other.piece == h.piece && (other.centre - h.centre).norm() < 2 * j_.diameterMm)
         return false;
-    if (h.piece == 1)
-      for (const FlatSlot& slot : joints_.slots)
-        if (distanceToPolylines({slot.loop}, h.centre, true) < 1.5 * j_.diameterMm) return false;
+    for (const FlatSlot& slot : joints_.slots)
+      if (crowds(h, slot)) return false;
     return true;
   }
   bool slotFits(const FlatTab& tongue, const FlatSlot& slot) const {
@@ -262,8 +261,7 @@ class JointSet {
       if (c.piece == 1 && distanceToPolylines({slot.loop}, c.at, true) < j_.diameterMm)
         return false;
     for (const FlatHole& h : joints_.holes)
-      if (h.piece == 1 && distanceToPolylines({slot.loop}, h.centre, true) < 1.5 * j_.diameterMm)
-        return false;
+      if (crowds(h, slot)) return false;
     for (const FlatSlot& other : joints_.slots)
       for (const Vec2& q : slot.loop)
         if (insideRegion({other.loop}, q) ||
@@ -278,6 +276,11 @@ class JointSet {
   }
 
  private:
+  // Whether hole h (on B) comes within a diameter of the slot, edge to edge.
+  bool crowds(const FlatHole& h, const FlatSlot& slot) const {
+    return h.piece == 1 && distanceToPolylines({slot.loop}, h.centre, true) < 1.5 * j_.diameterMm;
+  }
+
   const std::vector<Polyline>* material_;
   const std::vector<Corner>& corners_;
   const JointSettings& j_;

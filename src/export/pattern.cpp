@@ -271,13 +271,12 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
   for (const FlatHole& h : joints.holes)
     out.jointHoles.push_back(
         {h.piece, h.index, h.s, h.own, place[h.piece].point(h.centre), h.diameter});
+  const std::vector<TabInfo> tongues = placeTabs(joints.tongues, place);
   for (size_t k = 0; k < joints.slots.size(); ++k) {
-    const FlatTab& tongue = joints.tongues[k];
     const FlatSlot& slot = joints.slots[k];
-    out.jointSlots.push_back({slot.index, slot.s, tongue.s0, tongue.s1,
-                              place[0].map(tongue.polygon), place[0].map(tongue.fold),
-                              place[1].map(slot.loop), place[1].point(slot.centre), slot.length,
-                              slot.width});
+    out.jointSlots.push_back({slot.index, slot.s, tongues[k].s0, tongues[k].s1, tongues[k].polygon,
+                              tongues[k].fold, place[1].map(slot.loop), place[1].point(slot.centre),
+                              slot.length, slot.width});
   }
 
   DrawingBuilder b(profile, canvasW, canvasH);
@@ -289,7 +288,7 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
   drawCreases(out.pieces, profile, b);
   drawScoredFolds(out.pieces, b);
   drawTabFolds(out.tabs, flat.names, "", profile, b);
-  drawTabFolds(placeTabs(joints.tongues, place), flat.names, "tongue-", profile, b);
+  drawTabFolds(tongues, flat.names, "tongue-", profile, b);
   drawCuts(out.pieces, flat.names, profile, b);
   const TitleText title{flat, o, scaleText, perimeterText, font};
   drawSheetFurniture(a.plans, fit, title, b);

@@ -17,12 +17,11 @@ constexpr double kTickClear = 0.5;    // a tick stops this far before a hole or 
 // convex along the tick, so stepping 0.02 mm finds where it first comes too close, and a
 // bisection puts the end there to a micrometre.
 double tickReach(const Vec2& c, const Vec2& d, double length, const std::vector<Polyline>& joints) {
+  const Vec2 r = Vec2::Constant(length + kTickClear);
+  const Box reach = Box::spanning(c - r, c + r);  // the tick and its clearance lie in it
   std::vector<Polyline> near;
-  for (const Polyline& loop : joints) {
-    const Box box = boxOf({loop});
-    const Vec2 gap = (box.lo - c).cwiseMax(c - box.hi).cwiseMax(Vec2::Zero());
-    if (gap.norm() < length + kTickClear) near.push_back(loop);
-  }
+  for (const Polyline& loop : joints)
+    if (boxOf({loop}).overlaps(reach)) near.push_back(loop);
   if (near.empty()) return length;
   auto clear = [&](double t) { return distanceToPolylines(near, c + t * d, true) >= kTickClear; };
   if (!clear(0)) return 0;
