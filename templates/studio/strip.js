@@ -42,6 +42,12 @@ Strip.prototype.reset = function (seq) {
   this.container.setAttribute("data-state", "computing");
 };
 
+// A new run is due: the running one's late cards and its end are no longer this strip's.
+Strip.prototype.cancel = function () {
+  this.seq = -1;
+  this.container.setAttribute("data-state", "scheduled");
+};
+
 Strip.prototype.same = function (a, b) {
   function close(x, y) { return Math.abs(x - y) <= 1e-3 * Math.max(Math.abs(x), Math.abs(y), 1e-9); }
   return close(a.height, b.height) && close(a.volume, b.volume) && close(a.curvature, b.curvature);

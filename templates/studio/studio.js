@@ -323,11 +323,12 @@
     state.settings.start_b = card.start_b; state.settings.flip = card.flip;
     syncControls(); refreshPieces(); solve();
   });
+  studio.strip = strip;
   var stripTimer = null, stripSeq = 0;
   function scheduleStrip() {
     if (state.mode !== "forward") return;
     clearTimeout(stripTimer);
-    $("strip-cards").setAttribute("data-state", "scheduled");
+    strip.cancel();
     stripTimer = setTimeout(function () {
       var seq = ++stripSeq;
       strip.reset(seq);

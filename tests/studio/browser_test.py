@@ -119,6 +119,14 @@ def main():
         got = s.js("return window.studio.shown.settings")
         check(abs(got["start_b"] - want_b) < 1e-12 and got["flip"] == want_flip, "clicking a card jumps to its start")
 
+        # A setting change schedules a new run; the old run's end, arriving in the debounce, must not
+        # mark the strip done while its cards are about to be replaced.
+        old_seq = s.js("return window.studio.strip.seq")
+        state = s.js("document.getElementById('flip').click(); window.studio.strip.done({seq: arguments[0]});"
+                     " return document.getElementById('strip-cards').getAttribute('data-state')", old_seq)
+        check(state == "scheduled", f"the finished run's end leaves the newly scheduled strip alone ({state})")
+        s.settle()
+
         bad = os.path.join(work, "bad.svg")
         with open(bad, "w") as f:
             f.write("<svg xmlns='http://www.w3.org/2000/svg' width='100mm' height='100mm'><path d='M 10 10 L 90 10 L 50'/></svg>")
