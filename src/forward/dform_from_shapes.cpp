@@ -320,7 +320,7 @@ Status solvePaperModel(const ForwardSettings& job, const SeamLayout& layout, Sol
     if (detail::stopRequested(hooks)) return interruptedDuring("the solve");
     if (!solved.summary.usable())
       return Status(ErrorCode::SolveFailed, "the solver failed: " + solved.summary.message);
-    sink.emit(Level::Debug, format("local-global start: %.0f iterations, energy %.4g -> %.4g",
+    sink.emit(Level::Debug, format("local-global start: %d iterations, energy %.4g -> %.4g",
                                    solved.relaxation.iterations, solved.relaxation.initialEnergy,
                                    solved.relaxation.finalEnergy) +
                                 format(" in %.3f s; level solved in %.3f s",
@@ -395,7 +395,7 @@ Result<SolvedDForm> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSet
               format(", stationarity %.2g, bending energy %.4g, stretching energy %.4g",
                      sheet.summary.stationarity, sheet.summary.bendingEnergy,
                      sheet.summary.stretchingEnergy) +
-              format(", %.0f factorisations in %.3f s", sheet.summary.factorisations,
+              format(", %d factorisations in %.3f s", sheet.summary.factorisations,
                      sheet.summary.seconds));
     if (!sheet.summary.converged) sink.warning("general model: " + sheet.summary.message);
   }

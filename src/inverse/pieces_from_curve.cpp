@@ -232,7 +232,7 @@ Result<SolvedPieces> solveCurve(const Curve3& curve, const InverseSettings& job,
     if (!solved.summary.usable())
       return Status(ErrorCode::SolveFailed,
                     name + ": the solver failed: " + solved.summary.message);
-    sink.emit(Level::Debug, format("local-global start: %.0f iterations, energy %.4g -> %.4g",
+    sink.emit(Level::Debug, format("local-global start: %d iterations, energy %.4g -> %.4g",
                                    solved.relaxation.iterations, solved.relaxation.initialEnergy,
                                    solved.relaxation.finalEnergy));
     sink.emit(detail, "solve: " + solved.summary.briefReport());

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdarg>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -23,10 +24,13 @@ inline double secondsSince(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-/// printf-style formatting of up to three numbers into a message.
-inline std::string format(const char* pattern, double a, double b = 0, double c = 0) {
+/// printf-style formatting into a message; the compiler checks the arguments against the pattern.
+[[gnu::format(printf, 1, 2)]] inline std::string format(const char* pattern, ...) {
   char text[256];
-  std::snprintf(text, sizeof text, pattern, a, b, c);
+  std::va_list arguments;
+  va_start(arguments, pattern);
+  std::vsnprintf(text, sizeof text, pattern, arguments);
+  va_end(arguments);
   return text;
 }
 
