@@ -1,5 +1,6 @@
 #include "dform/studio/studio.h"
 
+#include <atomic>
 #include <chrono>
 #include <map>
 #include <mutex>
@@ -13,6 +14,7 @@
 #include "dform/pipeline/run.h"
 #include "dform/studio/downloads.h"
 #include "dform/studio/guard.h"
+#include "dform/studio/listener.h"
 #include "dform/studio/outlines.h"
 #include "dform/studio/session.h"
 #include "dform/studio/wire.h"
@@ -202,7 +204,7 @@ struct Studio::Impl {
       sessions;
   std::atomic<bool> stopping{false};
   httplib::Server v4, v6;
-  std::thread listen4, listen6;
+  studio::Listener listen4, listen6;
   bool stopped = false;
 
   std::shared_ptr<Session> session(const std::string& id) {
@@ -563,8 +565,8 @@ Result<std::unique_ptr<Studio>> Studio::start(const StudioOptions& options) {
                                                ": cannot listen (the port is taken?)");
   const bool ipv6 = impl->v6.bind_to_port("::1", impl->port);  // where the machine has IPv6
   Impl* raw = impl.get();
-  raw->listen4 = std::thread([raw] { raw->v4.listen_after_bind(); });
-  if (ipv6) raw->listen6 = std::thread([raw] { raw->v6.listen_after_bind(); });
+  raw->listen4.start(raw->v4);
+  if (ipv6) raw->listen6.start(raw->v6);
   return std::unique_ptr<Studio>(new Studio(std::move(impl)));
 }
 
@@ -584,8 +586,8 @@ void Studio::stop() {
   }
   impl_->v4.stop();
   impl_->v6.stop();
-  if (impl_->listen4.joinable()) impl_->listen4.join();
-  if (impl_->listen6.joinable()) impl_->listen6.join();
+  impl_->listen4.join();
+  impl_->listen6.join();
   std::lock_guard<std::mutex> lock(impl_->sessionsMutex);
   impl_->sessions.clear();
 }

@@ -4,8 +4,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
@@ -28,6 +31,28 @@ namespace {
 
 using nlohmann::json;
 using test::StudioClient;
+
+// A stop straight after start (a quick Ctrl-C, a short test) ends both listening threads: httplib
+// ignores a stop that comes before its listen has begun, which start() waits out. The loop runs
+// on a thread so that a hang fails here instead of stalling the suite.
+TEST(StudioServer, StopsRightAfterStart) {
+  std::promise<int> stopped;
+  std::future<int> done = stopped.get_future();
+  std::thread([&stopped] {
+    int count = 0;
+    for (; count < 300; ++count) {
+      Result<std::unique_ptr<Studio>> studio = Studio::start({});
+      if (!studio.isOk()) break;
+      studio.value()->stop();
+    }
+    stopped.set_value(count);
+  }).detach();
+  if (done.wait_for(std::chrono::seconds(120)) != std::future_status::ready) {
+    std::fprintf(stderr, "a studio stopped right after its start did not end within 120 s\n");
+    std::_Exit(1);  // the hung thread cannot be joined
+  }
+  EXPECT_EQ(done.get(), 300);
+}
 
 TEST(StudioServer, RefusesRequestsWithoutTheToken) {
   StudioClient c;
