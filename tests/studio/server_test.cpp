@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <future>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
@@ -36,16 +37,17 @@ using test::StudioClient;
 // ignores a stop that comes before its listen has begun, which start() waits out. The loop runs
 // on a thread so that a hang fails here instead of stalling the suite.
 TEST(StudioServer, StopsRightAfterStart) {
-  std::promise<int> stopped;
-  std::future<int> done = stopped.get_future();
-  std::thread([&stopped] {
+  // Shared: the detached thread may still be inside set_value() when the test returns.
+  auto stopped = std::make_shared<std::promise<int>>();
+  std::future<int> done = stopped->get_future();
+  std::thread([stopped] {
     int count = 0;
     for (; count < 300; ++count) {
       Result<std::unique_ptr<Studio>> studio = Studio::start({});
       if (!studio.isOk()) break;
       studio.value()->stop();
     }
-    stopped.set_value(count);
+    stopped->set_value(count);
   }).detach();
   if (done.wait_for(std::chrono::seconds(120)) != std::future_status::ready) {
     std::fprintf(stderr, "a studio stopped right after its start did not end within 120 s\n");
