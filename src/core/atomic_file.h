@@ -7,8 +7,10 @@
 
 namespace dform {
 
-/// Writes `content` to `path` atomically (temporary file in the same folder, then rename).
-/// Returns OutputFailed naming the path when the folder is missing or unwritable.
+/// Writes `content` to `path` atomically: into a new temporary file beside it
+/// (`PATH.tmp.PID`, created by this call and never opened through a symbolic link), then renamed
+/// over `path` (a link at `path` is replaced, not followed). OutputFailed naming the path when
+/// the folder is missing or unwritable, or when something stands at the temporary path.
 Status writeFileAtomically(const std::string& path, const std::string& content);
 
 }  // namespace dform
