@@ -113,6 +113,12 @@ Status validateCurve(const std::string& path, const Points3& P, const CurveReadO
     return fail(
         pointName(bad->first) + " has a coordinate that " +
         io_detail::describeBadCoordinate(P(bad->first, bad->second), options.maxCoordinate));
+  if (const double size =
+          P.rows() > 0 ? (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm() : 0.0;
+      P.rows() > 0 && size < io_detail::kMinShapeSizeMm)
+    return fail("the curve is " + fmt(size) + " mm across; seam curves must be at least " +
+                fmt(io_detail::kMinShapeSizeMm) +
+                " mm across (the diagonal of their bounding box)");
   if (countDistinct(P) < kMinDistinctPoints)
     return fail("the curve has fewer than " + std::to_string(kMinDistinctPoints) +
                 " distinct points");
@@ -207,7 +213,7 @@ Result<Points3> flattenClosedBezier(const std::string& path, const Eigen::Matrix
 
 Result<Curve3> readJsonCurve(const std::string& path, const std::string& text,
                              const CurveReadOptions& options) {
-  const Result<nlohmann::json> parsed = io_detail::parseJson(path, text, options.maxPoints);
+  const Result<nlohmann::json> parsed = io_detail::parseJson(path, text, options.maxPoints, 3);
   if (!parsed.isOk()) return parsed.status();
   const nlohmann::json& doc = parsed.value();
   const Result<double> scale = io_detail::jsonUnitScale(path, doc);
@@ -216,6 +222,8 @@ Result<Curve3> readJsonCurve(const std::string& path, const std::string& text,
   if (doc.is_object() && !bezier && !doc.contains("points"))
     return Status{ErrorCode::InputUnreadable,
                   path + ": JSON object has no \"points\" or \"bezier\" list"};
+  if (Status s = io_detail::onlyKnownKeys(path, doc, {"points", "bezier", "units"}); !s.isOk())
+    return s;
   const nlohmann::json& list = doc.is_object() ? doc[bezier ? "bezier" : "points"] : doc;
   const Result<Eigen::MatrixXd> rows =
       io_detail::jsonPointList(path, list, bezier ? "\"bezier\"" : "\"points\"", 3, scale.value());

@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <vector>
 
@@ -69,6 +70,12 @@ bool isOutOfRangeNumber(const std::string& token) {
   double value = 0.0;
   const auto [end, ec] = std::from_chars(begin, token.data() + token.size(), value);
   return ec == std::errc::result_out_of_range && end == token.data() + token.size();
+}
+
+std::string outOfRangeReason(const std::string& token) {
+  return std::isinf(std::strtod(token.c_str(), nullptr))
+             ? "too large for a number: coordinates must be finite"
+             : "too close to zero to be held as a number: write 0";
 }
 
 std::optional<double> millimetresPerUnit(const std::string& unit) {

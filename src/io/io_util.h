@@ -27,6 +27,12 @@ std::string fmt(double value);
 /// "(x, y)" or "(x, y, z)" with fmt() numbers.
 std::string fmtPoint(const Eigen::Ref<const Eigen::RowVectorXd>& p);
 
+/// The smallest outline, hole or seam curve read, as the diagonal of its bounding box (mm). A
+/// smaller one is nothing a sheet can be cut to (a seam curve 0.2 um across would give a pattern
+/// of tabs wider than its pieces), and at the closing tolerance (0.01 mm) its drawn shape is no
+/// longer kept (a 0.01 mm square closes into a triangle): refused, not reshaped.
+constexpr double kMinShapeSizeMm = 1.0;
+
 /// InputInvalid for a file over its point limit (OutlineReadOptions::maxPoints,
 /// CurveReadOptions::maxPoints): "<path>: <what> more than <limit> points (the limit)".
 Status tooManyPoints(const std::string& path, const std::string& what, std::size_t limit);
@@ -40,6 +46,11 @@ std::optional<double> parseDouble(const std::string& token);
 /// Whether `token` is a whole number that no double holds: too large ("1e999") or too small to
 /// be told from zero ("1e-999"). OBJ and JSON files refuse both alike (InputInvalid).
 bool isOutOfRangeNumber(const std::string& token);
+
+/// Why an out-of-range number (isOutOfRangeNumber) is refused, for the message "'TOKEN' is out of
+/// range (REASON)": too large for a double ("1e999": coordinates must be finite) or too close to
+/// zero to hold ("1e-999").
+std::string outOfRangeReason(const std::string& token);
 
 /// Millimetres per unit for the unit names accepted in JSON files ("mm", "cm", "in"); nullopt if
 /// the name is unknown.

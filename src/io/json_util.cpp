@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "dform/core/message_text.h"
@@ -34,16 +35,36 @@ std::optional<std::string> outOfRangeNumber(const std::string& text) {
 }  // namespace
 
 Result<nlohmann::json> parseJson(const std::string& path, const std::string& text,
-                                 std::size_t maxPoints) {
+                                 std::size_t maxPoints, int dimension) {
   if (const std::optional<std::string> token = outOfRangeNumber(text))
-    return Status{ErrorCode::InputInvalid, path + ": '" + printable(*token) +
-                                               "' is out of range (coordinates must be finite)"};
-  // A point is at most 4 values (its list and 3 numbers); the rest of a document is a handful.
-  const std::size_t maxValues = 4 * maxPoints + 1024;
-  struct TooManyValues {};
-  std::size_t values = 0;
-  const auto count = [&](int, nlohmann::json::parse_event_t event, nlohmann::json&) {
-    if (event != nlohmann::json::parse_event_t::key && ++values > maxValues) throw TooManyValues{};
+    return Status{
+        ErrorCode::InputInvalid,
+        path + ": '" + printable(*token) + "' is out of range (" + outOfRangeReason(*token) + ")"};
+  // A point is a list of `dimension` numbers, and no other number belongs in the document: its
+  // numbers are held to exactly what the limit's points have, while the parser reads them. Lists
+  // and objects, one per point and a handful besides, are counted too ("[]" takes memory).
+  using Event = nlohmann::json::parse_event_t;
+  const std::size_t maxNumbers = std::size_t(dimension) * maxPoints,
+                    maxContainers = maxPoints + 1024;
+  struct TooManyValues {
+    bool numbers;
+  };
+  struct RepeatedKey {
+    std::string key;
+  };
+  std::size_t numbers = 0, containers = 0;
+  std::vector<std::set<std::string>> keys;  // of each object being read, innermost last
+  const auto count = [&](int, Event event, nlohmann::json& parsed) {
+    if (event == Event::object_start) keys.emplace_back();
+    if (event == Event::object_end && !keys.empty()) keys.pop_back();
+    if (event == Event::key && !keys.empty() &&
+        !keys.back().insert(parsed.get<std::string>()).second)
+      throw RepeatedKey{parsed.get<std::string>()};
+    if (event == Event::value && parsed.is_number() && ++numbers > maxNumbers)
+      throw TooManyValues{true};
+    if ((event == Event::array_start || event == Event::object_start) &&
+        ++containers > maxContainers)
+      throw TooManyValues{false};
     return true;
   };
   try {
@@ -51,11 +72,33 @@ Result<nlohmann::json> parseJson(const std::string& path, const std::string& tex
   } catch (const nlohmann::json::exception& e) {
     return Status{ErrorCode::InputUnreadable,
                   path + ": not valid JSON (" + parserReason(e.what()) + ")"};
-  } catch (const TooManyValues&) {
+  } catch (const TooManyValues& many) {
+    if (many.numbers) return io_detail::tooManyPoints(path, "the file has", maxPoints);
     return Status{ErrorCode::InputInvalid, path + ": more JSON values than " +
                                                std::to_string(maxPoints) +
                                                " points (the limit) can have"};
+  } catch (const RepeatedKey& repeated) {
+    return Status{ErrorCode::InputInvalid, path + ": \"" + printable(repeated.key, 100) +
+                                               "\" is given twice in one object (which one is "
+                                               "meant cannot be told)"};
   }
+}
+
+Status onlyKnownKeys(const std::string& path, const nlohmann::json& doc,
+                     const std::vector<std::string>& allowed) {
+  if (!doc.is_object()) return Status::ok();
+  for (const auto& item : doc.items()) {
+    if (std::find(allowed.begin(), allowed.end(), item.key()) != allowed.end()) continue;
+    std::string known;
+    for (std::size_t k = 0; k < allowed.size(); ++k)
+      known += (k == 0                    ? ""
+                : k + 1 == allowed.size() ? " and "
+                                          : ", ") +
+               ("\"" + allowed[k] + "\"");
+    return Status{ErrorCode::InputInvalid, path + ": \"" + printable(item.key(), 100) +
+                                               "\": unknown key (the file may have " + known + ")"};
+  }
+  return Status::ok();
 }
 
 Result<double> jsonUnitScale(const std::string& path, const nlohmann::json& doc) {

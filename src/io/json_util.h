@@ -5,17 +5,25 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "dform/core/status.h"
 
 namespace dform::io_detail {
 
-/// Parses `text` holding at most `maxPoints` points, or InputUnreadable naming `path` with the
-/// parser's one-line reason. The document is refused (InputInvalid) as soon as it has more values
-/// than that many points can have: its tree would take gigabytes long before the points are
-/// counted (a megabyte of "[]," is 350 000 arrays).
+/// Parses `text` holding at most `maxPoints` points of `dimension` numbers, or InputUnreadable
+/// naming `path` with the parser's one-line reason. The document is refused (InputInvalid) as
+/// soon as it has more numbers than that many points have, or more lists and objects than they
+/// and a handful more need: its tree would take gigabytes long before the points are counted (a
+/// megabyte of "[]," is 350 000 arrays). An object with a key twice is refused (InputInvalid): a
+/// reader would keep one of them silently.
 Result<nlohmann::json> parseJson(const std::string& path, const std::string& text,
-                                 std::size_t maxPoints);
+                                 std::size_t maxPoints, int dimension);
+
+/// InputInvalid naming the first key of the object `doc` that is not in `allowed` (a misspelt
+/// "creaess" would otherwise be passed over, and its creases with it); ok for a non-object.
+Status onlyKnownKeys(const std::string& path, const nlohmann::json& doc,
+                     const std::vector<std::string>& allowed);
 
 /// Millimetres per unit from the object's optional "units" member (mm by default, cm, in).
 Result<double> jsonUnitScale(const std::string& path, const nlohmann::json& doc);

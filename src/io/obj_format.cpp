@@ -57,7 +57,7 @@ Result<ObjData> parseObj(const std::string& path, const std::string& text,
         if (!value && isOutOfRangeNumber(token))  // "1e999", "1e-999": no double holds them
           return Status{ErrorCode::InputInvalid,
                         path + ": line " + std::to_string(lineNumber) + ": '" + printable(token) +
-                            "' is out of range (coordinates must be finite)"};
+                            "' is out of range (" + outOfRangeReason(token) + ")"};
         if (!value) return malformed("'" + printable(token) + "' is not a number");
         if (count < 3) v(count) = *value;
         ++count;

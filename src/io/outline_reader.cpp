@@ -26,10 +26,7 @@ using io_detail::fmtPoint;
 /// root keeps it above the eigen solver's rounding.
 constexpr double kZeroAreaFraction = 1e-12;
 
-/// The smallest outline or hole read, as the diagonal of its bounding box (mm). A smaller one is
-/// nothing a sheet can be cut to, and at the closing tolerance (0.01 mm) its drawn
-/// shape is no longer kept (a 0.01 mm square closes into a triangle): refused, not reshaped.
-constexpr double kMinOutlineSizeMm = 1.0;
+using io_detail::kMinShapeSizeMm;
 
 /// Beyond this many outlines the nesting analysis (pairwise) is not worth doing: no piece has it.
 constexpr std::size_t kMaxLoops = 10000;
@@ -70,9 +67,9 @@ Result<Points2> cleanLoop(const std::string& path, const DrawnLine& loop,
   Points2 P = io_detail::dropRepeatedPoints(loop.points, true);
   if (P.rows() < 3) return fail("has fewer than 3 distinct points");
   if (const double size = (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm();
-      size < kMinOutlineSizeMm)
+      size < kMinShapeSizeMm)
     return fail("is " + fmt(size) + " mm across; outlines and holes must be at least " +
-                fmt(kMinOutlineSizeMm) + " mm across (the diagonal of their bounding box)");
+                fmt(kMinShapeSizeMm) + " mm across (the diagonal of their bounding box)");
   // Collinear points first (their edges overlap, which is not what "crossing" should mean):
   // the spread across the principal direction is nil.
   const Points2 centred = P.rowwise() - P.colwise().mean();
@@ -175,18 +172,20 @@ Result<Points2> jsonLoop(const std::string& path, const nlohmann::json& list,
 ///  "creases": [[[x, y], ...], ...]} or a bare point list.
 Result<io_detail::Drawing> readJsonDrawing(const std::string& path, const std::string& text,
                                            std::size_t maxPoints) {
-  const Result<nlohmann::json> parsed = io_detail::parseJson(path, text, maxPoints);
+  const Result<nlohmann::json> parsed = io_detail::parseJson(path, text, maxPoints, 2);
   if (!parsed.isOk()) return parsed.status();
   const nlohmann::json& doc = parsed.value();
   if (doc.is_object() && !doc.contains("points"))
     return Status{ErrorCode::InputUnreadable, path + ": JSON object has no \"points\" list"};
+  if (Status s = io_detail::onlyKnownKeys(path, doc, {"points", "units", "holes", "creases"});
+      !s.isOk())
+    return s;
   const Result<double> scale = io_detail::jsonUnitScale(path, doc);
   if (!scale.isOk()) return scale.status();
   io_detail::Drawing drawing;
   Result<Points2> outline =
       jsonLoop(path, doc.is_object() ? doc["points"] : doc, "the outline", scale.value());
   if (!outline.isOk()) return outline.status();
-  std::size_t points = std::size_t(outline.value().rows());
   drawing.loops.push_back({std::move(outline).value(), "the outline"});
   for (const char* key : {"holes", "creases"}) {
     if (!doc.is_object() || !doc.contains(key)) continue;
@@ -200,8 +199,6 @@ Result<io_detail::Drawing> readJsonDrawing(const std::string& path, const std::s
       Result<Points2> P = holes ? jsonLoop(path, lists[k], name, scale.value())
                                 : jsonLine(path, lists[k], name, scale.value());
       if (!P.isOk()) return P.status();
-      points += std::size_t(P.value().rows());
-      if (points > maxPoints) return io_detail::tooManyPoints(path, "the outlines have", maxPoints);
       // fitCreases names a crease "crease <label>".
       (holes ? drawing.loops : drawing.creases)
           .push_back({std::move(P).value(), holes ? name : std::to_string(k + 1)});

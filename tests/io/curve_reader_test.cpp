@@ -258,5 +258,57 @@ TEST(CurveJson, NotJson) {
       failsWith(readCurve(path).status(), ErrorCode::InputUnreadable, path, "not valid JSON"));
 }
 
+TEST(CurveJson, ACurveSmallerThanAnOutlineMayBeIsRefused) {
+  test::ScratchDir dir;
+  // A seam 0.2 um across, as an outline that small is refused: nothing a sheet is cut to.
+  const std::string tiny = dir.write(
+      "tiny.json",
+      R"({"points": [[0,0,0],[1e-4,0,1e-5],[1e-4,1e-4,0],[0,1e-4,1e-5],[-5e-5,5e-5,2e-5]]})");
+  CurveReadOptions closed;
+  closed.forceClosed = true;
+  EXPECT_TRUE(failsWith(readCurve(tiny, closed).status(), ErrorCode::InputInvalid, tiny,
+                        "mm across; seam curves must be at least 1 mm across"));
+  // One just over the size is read.
+  const std::string small = dir.write(
+      "small.json", R"({"points": [[0,0,0],[0.8,0,0.1],[0.8,0.8,0],[0,0.8,0.1],[-0.4,0.4,0.2]]})");
+  EXPECT_TRUE(readCurve(small, closed).isOk()) << readCurve(small, closed).status().message();
+}
+
+TEST(CurveJson, UnknownAndRepeatedKeysAreRefused) {
+  test::ScratchDir dir;
+  const std::string points = R"([[0,0,0],[10,0,1],[10,10,0],[0,10,1],[-5,5,2],[0,0,0]])";
+  const std::string typo = dir.write("typo.json", "{\"points\": " + points + ", \"unit\": \"in\"}");
+  EXPECT_TRUE(
+      failsWith(readCurve(typo).status(), ErrorCode::InputInvalid, typo, "\"unit\": unknown key"));
+  const std::string twice =
+      dir.write("twice.json", "{\"points\": " + points + ", \"points\": " + points + "}");
+  EXPECT_TRUE(failsWith(readCurve(twice).status(), ErrorCode::InputInvalid, twice,
+                        "\"points\" is given twice in one object"));
+}
+
+TEST(CurveFiles, ANumberNoDoubleHoldsIsNamedForWhyItIsOutOfRange) {
+  test::ScratchDir dir;
+  for (const bool obj : {true, false}) {
+    const auto write = [&](const std::string& number) {
+      return obj ? dir.write("n.obj", "v 0 0 0\nv " + number +
+                                          " 0 0\nv 1 1 0\nv 0 1 1\nv 2 2 2\nl 1 2 3 4 5 1\n")
+                 : dir.write("n.json", "{\"points\": [[0, 0, 0], [" + number +
+                                           ", 0, 0], [1, 1, 0], [0, 1, 1], [2, 2, 2]]}");
+    };
+    // Too small to hold: the reason is not that it is infinite.
+    const std::string small = write("1e-999");
+    const Status tooSmall = readCurve(small).status();
+    EXPECT_TRUE(failsWith(tooSmall, ErrorCode::InputInvalid, small,
+                          "'1e-999' is out of range (too close to zero to be held as a number: "
+                          "write 0)"))
+        << tooSmall.message();
+    EXPECT_EQ(tooSmall.message().find("finite"), std::string::npos);
+    const std::string large = write("-1e999");
+    EXPECT_TRUE(failsWith(readCurve(large).status(), ErrorCode::InputInvalid, large,
+                          "'-1e999' is out of range (too large for a number: coordinates must be "
+                          "finite)"));
+  }
+}
+
 }  // namespace
 }  // namespace dform

@@ -71,6 +71,34 @@ TEST(JsonOutline, WrongStructure) {
   EXPECT_TRUE(failsWith(readOutline(holes).status(), ErrorCode::InputUnreadable, holes, "holes"));
 }
 
+TEST(JsonOutline, UnknownAndRepeatedKeysAreRefused) {
+  test::ScratchDir dir;
+  // A misspelt key would drop what it holds without a word: the creases, the holes.
+  const std::string square = "[[0,0],[100,0],[100,100],[0,100]]";
+  for (const char* key : {"creaess", "hole", "Points", "unit"}) {
+    const std::string path = dir.write(
+        "typo.json", "{\"points\": " + square + ", \"" + key + "\": [[[10,10],[90,90]]]}");
+    EXPECT_TRUE(failsWith(readOutline(path).status(), ErrorCode::InputInvalid, path,
+                          "\"" + std::string(key) + "\": unknown key"))
+        << readOutline(path).status().message();
+  }
+  // The last of two would be kept silently.
+  const std::string twice =
+      dir.write("twice.json", "{\"points\": " + square + ", \"units\": \"mm\", \"units\": \"in\"}");
+  EXPECT_TRUE(failsWith(readOutline(twice).status(), ErrorCode::InputInvalid, twice,
+                        "\"units\" is given twice in one object"));
+  const std::string inner =
+      dir.write("inner.json", "[[0,0],[100,0],[100,100],[0,100], {\"x\": 1, \"x\": 2}]");
+  EXPECT_TRUE(failsWith(readOutline(inner).status(), ErrorCode::InputInvalid, inner,
+                        "\"x\" is given twice"));
+  // Every key the format has is still read.
+  const std::string all = dir.write(
+      "all.json", "{\"points\": " + square +
+                      ", \"units\": \"mm\", \"holes\": [[[40,40],[60,40],[60,60],[40,60]]], "
+                      "\"creases\": []}");
+  EXPECT_TRUE(readOutline(all).isOk()) << readOutline(all).status().message();
+}
+
 TEST(JsonOutline, UnknownUnits) {
   test::ScratchDir dir;
   const std::string path =
