@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "dform/cli/browser.h"
 #include "dform/cli/terminal.h"
 #include "dform/core/message_text.h"
 #include "dform/pipeline/saved_result.h"
@@ -234,15 +235,17 @@ int runSweepCommand(const Job& base, const SweepOptions& options, const OutputOp
   Terminal terminal(output.quiet);
   const Result<RunSettings> settings = checkOutput(output);
   if (!settings.isOk()) return fail(settings.status());
+  MessageSink notes(terminal.listener());
   const Result<std::vector<SweepRow>> rows = sweepAndWrite(
       base, options, output, settings.value(),
       [line = progressLine(terminal, "sweep")](int done, int failed, int total, double seconds) {
         line(done, failed, total, estimateSecondsLeft(seconds, done, total - done));
       },
-      interrupted);
+      interrupted, &notes);
   terminal.clearProgress();
   if (!rows.isOk()) return fail(rows.status());
-  if (output.quiet) return 0;
+  const Status unwritten = unwrittenStarts(output.outDir, rows.value());
+  if (output.quiet) return unwritten.isOk() ? 0 : fail(unwritten);
   int passed = 0;
   std::fprintf(stdout, "%-16s %8s %10s %12s %10s %8s %8s\n", "start", "start_b", "height_mm",
                "volume_cm3", "max_curv", "gate", "seconds");
@@ -258,7 +261,7 @@ int runSweepCommand(const Job& base, const SweepOptions& options, const OutputOp
   std::fprintf(stdout, "%d starts: %d passed the gate, %d failed; gallery in %s/gallery.html\n",
                int(rows.value().size()), passed, int(rows.value().size()) - passed,
                output.outDir.c_str());
-  return 0;
+  return unwritten.isOk() ? 0 : fail(unwritten);
 }
 
 int runBatchCommand(const std::vector<BatchJob>& jobs, const BatchOptions& options,
@@ -390,12 +393,10 @@ int runStudio(const StudioOptions& options, bool openBrowser,
   const std::string url = studio.value()->url();
   std::printf("dform studio: open %s\n(Ctrl-C stops it)\n", url.c_str());
   std::fflush(stdout);
-  // The address holds digits, letters and ":/?=." only, so it is safe in single quotes; without
+  // Through a file only this user can read: the token never appears on a command line. Without
   // xdg-open (or a desktop) the printed address is all there is.
-  if (openBrowser && std::system("command -v xdg-open >/dev/null 2>&1") == 0) {
-    const int opened = std::system(("xdg-open '" + url + "' >/dev/null 2>&1 &").c_str());
-    static_cast<void>(opened);
-  }
+  PrivateOpener opener;
+  if (openBrowser) opener.open(url);
   while (!interrupted.load()) std::this_thread::sleep_for(std::chrono::milliseconds(100));
   studio.value()->stop();
   return exitCode(ErrorCode::Interrupted);

@@ -375,11 +375,11 @@ Result<std::vector<BatchRow>> runBatch(const std::vector<BatchJob>& jobs,
                                        const BatchOptions& options, const std::string& outDir,
                                        const BatchRunner& run, const BatchProgress& progress,
                                        const std::atomic<bool>& interrupted) {
-  std::error_code ec;
-  fs::create_directories(outDir, ec);
+  std::error_code ec, made;
+  fs::create_directories(outDir, made);  // its error, not the check's: why the folder is missing
   if (!fs::is_directory(outDir, ec))
     return Status(ErrorCode::OutputFailed,
-                  outDir + ": cannot create the folder (" + ec.message() + ")");
+                  outDir + ": cannot create the folder (" + (made ? made : ec).message() + ")");
   BatchLock lock;
   if (Status s = lock.acquire(outDir, options, false); !s.isOk()) return s;
   const JobList list = jobListOf(jobs);

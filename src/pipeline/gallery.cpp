@@ -9,6 +9,26 @@ namespace dform {
 
 namespace {
 
+// A folder name as one segment of a relative URL: every byte but letters, digits and "-._~"
+// written %XX, so that a name with '#', '?', '%', a space or bytes that are not UTF-8 links to
+// the folder of exactly that name.
+std::string urlSegment(const std::string& name) {
+  static const char* const kHex = "0123456789ABCDEF";
+  std::string out;
+  for (const char c : name) {
+    const unsigned char b = static_cast<unsigned char>(c);
+    const bool letter = (b | 32) >= 'a' && (b | 32) <= 'z', digit = b >= '0' && b <= '9';
+    if (letter || digit || c == '-' || c == '.' || c == '_' || c == '~') {
+      out += c;
+    } else {
+      out += '%';
+      out += kHex[b >> 4];
+      out += kHex[b & 15];
+    }
+  }
+  return out;
+}
+
 std::string number(const char* format, double value) {
   char text[64];
   std::snprintf(text, sizeof text, format, value);
@@ -88,7 +108,7 @@ std::string galleryHtml(const std::string& title, const std::vector<SweepRow>& r
     // A card links to its result's page only where the result is there (an empty subfolder: the
     // folder is not one the run made, and nothing is linked).
     const bool linked = !r.subfolder.empty();
-    if (linked) html += "<a href=\"" + escapeXml(utf8Text(r.subfolder)) + "/report.html\">";
+    if (linked) html += "<a href=\"" + urlSegment(r.subfolder) + "/report.html\">";
     html += "<div class=\"pic\">" + (r.solved ? r.svg : std::string("<span>no shape</span>")) +
             "</div>\n<table>";
     const auto line = [&](const std::string& name, const std::string& value) {

@@ -125,7 +125,8 @@ Result<WrittenResult> gateAndWrite(const Job& job, const Solved& solved, ResultF
                                     release ? &prepared->value() : nullptr, solved.model());
       !html.isOk())
     return folder.named(html);
-  if (Status s = commitUnlessInterrupted(folder, output.outDir, interrupted); !s.isOk()) return s;
+  if (Status s = commitUnlessInterrupted(folder, output.outDir, interrupted, &sink); !s.isOk())
+    return s;
   // A signal held back during the swap is delivered now: the new result is in place.
   if (interrupted)
     return Status(ErrorCode::Interrupted,
@@ -233,7 +234,8 @@ Result<std::vector<SweepRow>> sweepAndWrite(const Job& base, const SweepOptions&
                                             const OutputOptions& output,
                                             const RunSettings& settings,
                                             const SweepProgress& progress,
-                                            const std::atomic<bool>& interrupted) {
+                                            const std::atomic<bool>& interrupted,
+                                            MessageSink* notes) {
   // A piece that cannot be read fails every start alike: said once, before the folder is made.
   for (const std::string& piece : {base.forward.pieceA, base.forward.pieceB})
     if (const Result<std::string> read = readInputFile(piece); !read.isOk()) return read.status();
@@ -247,7 +249,7 @@ Result<std::vector<SweepRow>> sweepAndWrite(const Job& base, const SweepOptions&
     const Result<WrittenResult> written = runAndWrite(job, one, settings, sink, hooks);
     return written.isOk() ? written.value().exported : written.status();
   };
-  return runSweep(base, options, output.outDir, run, progress, interrupted);
+  return runSweep(base, options, output.outDir, run, progress, interrupted, notes);
 }
 
 Result<std::vector<BatchRow>> batchAndWrite(const std::vector<BatchJob>& jobs,

@@ -108,7 +108,8 @@ Result<std::vector<SweepRow>> sweepAndWrite(const Job& base, const SweepOptions&
                                             const OutputOptions& output,
                                             const RunSettings& settings,
                                             const SweepProgress& progress,
-                                            const std::atomic<bool>& interrupted);
+                                            const std::atomic<bool>& interrupted,
+                                            MessageSink* notes = nullptr);
 
 /// Every job file of `jobs` in the options' shard, each written as runAndWrite writes one into
 /// output.outDir/<job name>/, with the manifest (docs/batch.md).

@@ -315,10 +315,10 @@ Status leftAsItWas(const std::string& dir, const std::string& what) {
 // Swaps the staged result in with SIGINT and SIGTERM held back, so that a signal cannot cut the
 // swap short; one that came before it leaves the folder as it was.
 Status commitUnlessInterrupted(ResultFolder& folder, const std::string& dir,
-                               const std::atomic<bool>& interrupted) {
+                               const std::atomic<bool>& interrupted, MessageSink* sink) {
   const StopSignalsHeld held;
   if (interrupted) return leftAsItWas(dir, "interrupted");
-  return folder.commit();
+  return folder.commit(sink);
 }
 
 }  // namespace dform

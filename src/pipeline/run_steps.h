@@ -60,8 +60,9 @@ std::set<std::string> resultFileNames();
 Status leftAsItWas(const std::string& dir, const std::string& what);
 
 /// Swaps the staged result in with SIGINT and SIGTERM held back, so that a signal cannot cut
-/// the swap short; one that came before it leaves the folder as it was.
+/// the swap short; one that came before it leaves the folder as it was. What the swap kept that
+/// appeared in the folder meanwhile is a warning in `sink`.
 Status commitUnlessInterrupted(ResultFolder& folder, const std::string& dir,
-                               const std::atomic<bool>& interrupted);
+                               const std::atomic<bool>& interrupted, MessageSink* sink);
 
 }  // namespace dform

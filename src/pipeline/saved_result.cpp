@@ -86,9 +86,12 @@ Result<std::string> exportSavedOrThrow(const std::string& dir, const OutputOptio
   if (!fs::is_directory(dir, ec))  // a name too long for the system is no folder either
     return Status(ErrorCode::InputUnreadable, dir + ": no such result folder");
   // Locked before it is read, so that no run replaces the result between reading and writing;
-  // the export is staged with the result's other files and swapped in whole.
+  // the export is staged with the result's other files and swapped in whole. Exported into
+  // another folder (-o), the result is only read: held by a shared lock, written nowhere.
   ResultFolder folder;
-  if (Status s = folder.begin(dir, resultFileNames()); !s.isOk()) return s;
+  const Status locked =
+      output.outDir.empty() ? folder.begin(dir, resultFileNames()) : folder.read(dir);
+  if (!locked.isOk()) return locked;
   Result<DForm> model = readModel(dir);
   if (!model.isOk()) return model.status();
   if (interrupted) return leftAsItWas(dir, "interrupted");
@@ -152,7 +155,8 @@ Result<std::string> exportSavedOrThrow(const std::string& dir, const OutputOptio
     if (Status s = out.begin(output.outDir, resultFileNames()); !s.isOk()) return s;
     if (Status s = writeExport(prepared.value(), out.staging()).status(); !s.isOk())
       return out.named(s);
-    if (Status s = commitUnlessInterrupted(out, output.outDir, interrupted); !s.isOk()) return s;
+    if (Status s = commitUnlessInterrupted(out, output.outDir, interrupted, &sink); !s.isOk())
+      return s;
     return output.outDir;
   }
   // The result's own files go into the new folder unchanged; earlier cutting files do not.
@@ -172,7 +176,7 @@ Result<std::string> exportSavedOrThrow(const std::string& dir, const OutputOptio
         !s.isOk())
       return folder.named(s);
   }
-  if (Status s = commitUnlessInterrupted(folder, dir, interrupted); !s.isOk()) return s;
+  if (Status s = commitUnlessInterrupted(folder, dir, interrupted, &sink); !s.isOk()) return s;
   if (interrupted)
     return Status(ErrorCode::Interrupted,
                   dir + ": interrupted; the new export was written completely");

@@ -12,6 +12,7 @@
 #include <mutex>
 #include <new>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <thread>
 
 #include "dform/core/atomic_file.h"
@@ -155,7 +156,7 @@ void parallelFor(std::size_t count, int threads, const std::function<void(std::s
 Result<std::vector<SweepRow>> runSweep(const Job& base, const SweepOptions& options,
                                        const std::string& outDir, const SweepRunner& run,
                                        const SweepProgress& progress,
-                                       const std::atomic<bool>& interrupted) {
+                                       const std::atomic<bool>& interrupted, MessageSink* notes) {
   const std::vector<SweepStart> starts = sweepStarts(base, options);
   ResultFolder folder;
   // An earlier sweep in the folder is replaced whole, its start folders with it.
@@ -166,17 +167,18 @@ Result<std::vector<SweepRow>> runSweep(const Job& base, const SweepOptions& opti
   };
   if (Status s = folder.begin(outDir, {"sweep.json", "gallery.html"}, isStartFolder); !s.isOk())
     return s;
-  // Each earlier start folder is locked as a run locks its folder, and refused as a run refuses
-  // it when it holds anything but a result's files: it goes with the swap, and an export into
-  // it meanwhile would be swapped away with it.
+  // Each earlier start folder, and each this sweep makes, is locked as a run locks its folder,
+  // and refused as a run refuses it when it holds anything but a result's files: it goes with
+  // the swap, and a run or an export into it meanwhile would be swapped away with it.
   std::vector<std::unique_ptr<ResultFolder>> heldStarts;
   std::error_code ec;
-  std::vector<std::string> earlierStarts;
+  std::set<std::string> startNames;
   for (const fs::directory_entry& entry : fs::directory_iterator(outDir, ec))
     if (isStartFolder(entry.path().filename().string()))
-      earlierStarts.push_back(entry.path().filename().string());
-  std::sort(earlierStarts.begin(), earlierStarts.end());
-  for (const std::string& name : earlierStarts) {
+      startNames.insert(entry.path().filename().string());
+  if (fs::is_directory(outDir, ec))
+    for (const SweepStart& start : starts) startNames.insert(start.subfolder);
+  for (const std::string& name : startNames) {
     heldStarts.push_back(std::make_unique<ResultFolder>());
     if (Status s = heldStarts.back()->hold((fs::path(outDir) / name).string(), resultFileNames());
         !s.isOk())
@@ -196,6 +198,7 @@ Result<std::vector<SweepRow>> runSweep(const Job& base, const SweepOptions& opti
     // A result whose export failed is saved all the same: measured, and failed with why.
     SweepRow row = fs::exists(fs::path(dir) / "report.json") ? measureResult(dir) : SweepRow{};
     if (!status.isOk()) {
+      row.error = status.code();
       row.passed = false;
       row.reason = folder.named(status).message() + (row.reason.empty() ? "" : "; " + row.reason);
     }
@@ -237,8 +240,24 @@ Result<std::vector<SweepRow>> runSweep(const Job& base, const SweepOptions& opti
     if (Status s = writeFileAtomically((fs::path(folder.staging()) / name).string(), text);
         !s.isOk())
       return folder.named(s);
-  if (Status s = folder.commit(); !s.isOk()) return s;
+  if (Status s = folder.commit(notes); !s.isOk()) return s;
   return rows;
+}
+
+Status unwrittenStarts(const std::string& outDir, const std::vector<SweepRow>& rows) {
+  constexpr int kNamed = 8;
+  std::string names, first;
+  int count = 0;
+  for (const SweepRow& r : rows) {
+    if (r.error != ErrorCode::OutputFailed) continue;
+    if (++count <= kNamed) names += (names.empty() ? "" : ", ") + r.subfolder;
+    if (first.empty()) first = printable(r.reason, 200);
+  }
+  if (count == 0) return Status::ok();
+  if (count > kNamed) names += " and " + std::to_string(count - kNamed) + " more";
+  return {ErrorCode::OutputFailed, outDir + ": " + std::to_string(count) + " of " +
+                                       std::to_string(rows.size()) + " starts were not written (" +
+                                       names + "; first: " + first + ")"};
 }
 
 std::string sweepJson(const Job& base, const SweepOptions& options,

@@ -48,6 +48,7 @@ struct SweepRow {
   std::string reason;  ///< why the row failed: the run's error, or the failed checks' details
   double seconds = 0;  ///< the run's wall time, start to commit
   std::string svg;     ///< the 3D shape from the gallery's camera (empty when not solved)
+  ErrorCode error = ErrorCode::Ok;  ///< how the start's run failed (OutputFailed: not written)
 };
 
 /// Runs one start: writes a complete result into `dir` (a fresh folder) or returns why not.
@@ -63,11 +64,13 @@ using SweepProgress = std::function<void(int done, int failed, int total, double
 /// sweep.json, gallery.html and start-K[-flip] folders, all replaced), runs every start with `run`
 /// on a pool of threads, measures each saved result, writes sweep.json and gallery.html, and swaps
 /// the folder in. Interrupted when `interrupted` is set meanwhile (the folder is left as it was);
-/// OutputFailed naming the file. `progress` is called under a lock, one call at a time.
+/// OutputFailed naming the file. `progress` is called under a lock, one call at a time; what the
+/// swap kept that appeared in the folder meanwhile is a warning in `notes`.
 Result<std::vector<SweepRow>> runSweep(const Job& base, const SweepOptions& options,
                                        const std::string& outDir, const SweepRunner& run,
                                        const SweepProgress& progress,
-                                       const std::atomic<bool>& interrupted);
+                                       const std::atomic<bool>& interrupted,
+                                       MessageSink* notes = nullptr);
 
 /// `run()`, or an exception it throws as a Status (Internal naming the exception, Usage for an
 /// allocation that failed): one job of many fails, not the process.
@@ -79,6 +82,11 @@ Status runGuarded(const std::function<Status()>& run);
 /// again once every thread has finished.
 void parallelFor(std::size_t count, int threads, const std::function<void(std::size_t)>& work,
                  const std::atomic<bool>& stop);
+
+/// OutputFailed naming the starts of `rows` whose result could not be written (a full disk): the
+/// sweep's other results are in place, but it did not do what was asked, as a batch fails for its
+/// jobs. Ok when every start was written (solved or not).
+Status unwrittenStarts(const std::string& outDir, const std::vector<SweepRow>& rows);
 
 /// The measured row of a saved result folder (report.json and the meshes).
 SweepRow measureResult(const std::string& dir);
