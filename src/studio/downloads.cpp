@@ -107,7 +107,8 @@ ExportRequest exportRequestFrom(const json& request) {
   return r;
 }
 
-Result<std::string> exportedResult(const Files& jobFiles, const ExportRequest& request) {
+Result<std::string> exportedResult(const Files& jobFiles, const ExportRequest& request,
+                                   const std::atomic<bool>* cancel) {
   Result<fs::path> folder = temporaryFolder();
   if (!folder.isOk()) return folder.status();
   const fs::path dir = folder.value();
@@ -133,8 +134,9 @@ Result<std::string> exportedResult(const Files& jobFiles, const ExportRequest& r
   Result<RunSettings> settings = checkOutput(output);
   if (!settings.isOk()) return settings.status();
   MessageSink sink;
-  Result<WrittenResult> written =
-      runAndWrite(job.value(), output, settings.value(), sink, RunHooks{});
+  RunHooks hooks;
+  hooks.interrupted = cancel;
+  Result<WrittenResult> written = runAndWrite(job.value(), output, settings.value(), sink, hooks);
   if (!fs::is_directory(output.outDir))
     return written.isOk() ? Status(ErrorCode::OutputFailed, "the export wrote nothing")
                           : written.status();

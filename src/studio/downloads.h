@@ -31,9 +31,11 @@ ExportRequest exportRequestFrom(const nlohmann::json& request);
 /// Runs the saved job (forward or inverse, `jobZipFiles` as savedForwardJob lays them out) with
 /// runAndWrite into a fresh temporary folder and returns the zip of the result folder's files;
 /// the folder is removed. The run's error (a bad profile, a failed gate without exportAnyway
-/// still writes the result) when nothing was written.
+/// still writes the result) when nothing was written. `cancel`, when set meanwhile, stops the run
+/// (Interrupted).
 Result<std::string> exportedResult(const std::vector<std::pair<std::string, std::string>>& jobFiles,
-                                   const ExportRequest& request);
+                                   const ExportRequest& request,
+                                   const std::atomic<bool>* cancel = nullptr);
 
 /// The files of savedForwardJob / savedInverseJob before zipping.
 std::vector<std::pair<std::string, std::string>> forwardJobFiles(const PieceInput& a,

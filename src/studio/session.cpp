@@ -12,13 +12,21 @@ using nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
 void EventStream::push(const json& event) {
+  std::function<void()> listener;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     events_.push_back("data: " + event.dump() + "\n\n");
     ++next_;
     while (events_.size() > kKept) events_.pop_front();
+    listener = onPush_;
   }
   changed_.notify_all();
+  if (listener) listener();
+}
+
+void EventStream::onPush(std::function<void()> listener) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  onPush_ = std::move(listener);
 }
 
 std::string EventStream::waitAfter(long& position, std::chrono::milliseconds timeout) {
@@ -50,10 +58,10 @@ bool EventStream::closed() const {
   return closed_;
 }
 
-Latest::Ticket Latest::next() {
+Latest::Ticket Latest::next(std::shared_ptr<std::atomic<bool>> cancel) {
   std::lock_guard<std::mutex> lock(mutex_);
   if (cancel_) cancel_->store(true);
-  cancel_ = std::make_shared<std::atomic<bool>>(false);
+  cancel_ = cancel ? std::move(cancel) : std::make_shared<std::atomic<bool>>(false);
   return {++generation_, cancel_};
 }
 
@@ -78,7 +86,7 @@ Session::~Session() {
   }
   live_.cancel();
   strip_.cancel();
-  events_.close();
+  events_->close();
   workReady_.notify_all();
   worker_.join();
 }
@@ -123,7 +131,7 @@ json Session::finish(const Result<Solved>& result, const Latest::Ticket& ticket,
           json event = verdict();
           if (!live_.current(ticket)) return;
           event.update({{"type", "gate"}, {"seq", seq}, {"preview", preview}});
-          events_.push(event);
+          events_->push(event);
         },
         Task::Gate);
   return out;
@@ -143,24 +151,24 @@ void Session::queueRefinement(const SolveAt& solve, int resolution, const Latest
         progress.onIteration = [&](const char* stage, const IterationSummary& it) {
           if (Clock::now() - last < std::chrono::milliseconds(50)) return;
           last = Clock::now();
-          events_.push({{"type", "progress"},
-                        {"seq", seq},
-                        {"stage", stage},
-                        {"iteration", it.iteration},
-                        {"cost", it.cost}});
+          events_->push({{"type", "progress"},
+                         {"seq", seq},
+                         {"stage", stage},
+                         {"iteration", it.iteration},
+                         {"cost", it.cost}});
         };
         json result = finish(solve(resolution, Interior::Job, progress), ticket, seq, false,
                              Verdict::InAnswer);
         if (result.contains("superseded") || !live_.current(ticket)) return;
         result["type"] = "result";
-        events_.push(result);
+        events_->push(result);
       },
       Task::Refinement);
 }
 
 json Session::solveLive(const SolveAt& solve, int resolution, bool optimises, long seq,
-                        const std::string& design) {
-  const Latest::Ticket ticket = live_.next();
+                        const std::string& design, std::shared_ptr<std::atomic<bool>> cancel) {
+  const Latest::Ticket ticket = live_.next(std::move(cancel));
   ++liveWaiting_;
   std::unique_lock<std::mutex> lock(solveMutex_);
   --liveWaiting_;
@@ -228,8 +236,8 @@ void Session::startStrip(std::vector<std::pair<json, SolveAt>> starts, long seq)
           } else {
             event["error"] = result.status().message();
           }
-          events_.push(event);
-          if (k + 1 == count) events_.push({{"type", "strip_done"}, {"seq", seq}});
+          events_->push(event);
+          if (k + 1 == count) events_->push({{"type", "strip_done"}, {"seq", seq}});
         },
         Task::Strip);
   }

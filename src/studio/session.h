@@ -45,6 +45,8 @@ class EventStream {
   std::string waitAfter(long& position, std::chrono::milliseconds timeout);
   void close();
   bool closed() const;
+  /// Called after each push (outside the stream's lock): the server sends the news at once.
+  void onPush(std::function<void()> listener);
   long end() const;  ///< the position after the newest event
 
  private:
@@ -54,6 +56,7 @@ class EventStream {
   std::deque<std::string> events_;
   long next_ = 0;  ///< the number the next event gets
   bool closed_ = false;
+  std::function<void()> onPush_;
 };
 
 /// Tickets of which only the newest is current: taking one cancels the one before.
@@ -63,7 +66,9 @@ class Latest {
     long generation = 0;
     std::shared_ptr<std::atomic<bool>> cancel;
   };
-  Ticket next();
+  /// A new current ticket, cancelling the one before; `cancel`, when given, is its flag (set also
+  /// by its owner: a request whose client went away).
+  Ticket next(std::shared_ptr<std::atomic<bool>> cancel = nullptr);
   bool current(const Ticket& ticket) const;
   void cancel();
 
@@ -112,15 +117,19 @@ class Session {
   /// (or `optimises` says so, or the last solve of the same `design` did), the answer is a
   /// preview at kPreviewResolution with "preview" and "refining" true, and the worker streams the
   /// full solve ("progress" and "result" events). `design` names what decides the model: the
-  /// pieces and every setting but the starts.
+  /// pieces and every setting but the starts. `cancel`, when given, stops the solve when set
+  /// (its client went away), as newer input does.
   nlohmann::json solveLive(const SolveAt& solve, int resolution, bool optimises, long seq,
-                           const std::string& design);
+                           const std::string& design,
+                           std::shared_ptr<std::atomic<bool>> cancel = nullptr);
 
   /// Solves each of `starts` (queued to the worker, one "strip" event each, then "strip_done"),
   /// cancelling the strip asked for before.
   void startStrip(std::vector<std::pair<nlohmann::json, SolveAt>> starts, long seq);
 
-  EventStream& events() { return events_; }
+  EventStream& events() { return *events_; }
+  /// The events, for a stream that must not keep the session (its solves and worker) alive.
+  std::shared_ptr<EventStream> eventStream() const { return events_; }
 
   /// Seam vertices of a preview, and of the alternative-starts strip's cards.
   static constexpr int kPreviewResolution = 36;
@@ -153,7 +162,7 @@ class Session {
   std::unique_lock<std::mutex> lockAfterLive();
   std::string optimisedDesign_;  ///< the last design whose solve optimised (under solveMutex_)
   Latest live_, strip_;
-  EventStream events_;
+  std::shared_ptr<EventStream> events_ = std::make_shared<EventStream>();
 
   std::mutex workMutex_;
   std::condition_variable workReady_;

@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdlib>
 #include <map>
 #include <mutex>
 #include <thread>
@@ -14,8 +15,8 @@
 #include "dform/pipeline/run.h"
 #include "dform/studio/downloads.h"
 #include "dform/studio/guard.h"
-#include "dform/studio/listener.h"
 #include "dform/studio/outlines.h"
+#include "dform/studio/server.h"
 #include "dform/studio/session.h"
 #include "dform/studio/wire.h"
 
@@ -203,8 +204,7 @@ struct Studio::Impl {
   std::map<std::string, std::pair<std::shared_ptr<Session>, std::chrono::steady_clock::time_point>>
       sessions;
   std::atomic<bool> stopping{false};
-  httplib::Server v4, v6;
-  studio::Listener listen4, listen6;
+  std::unique_ptr<studio::Server> server;
   bool stopped = false;
 
   std::shared_ptr<Session> session(const std::string& id) {
@@ -217,6 +217,7 @@ struct Studio::Impl {
 
   std::string newSession() {
     auto created = std::make_shared<Session>(startA, startB);
+    created->events().onPush([this] { server->wake(); });  // its streams are sent at once
     if (startCurve) created->setCurve(*startCurve);
     const std::string id = studio::randomToken().substr(0, 16);
     std::shared_ptr<Session> dropped;  // destroyed outside the lock: it joins its worker
@@ -233,6 +234,9 @@ struct Studio::Impl {
   }
 
   Status readStart();
+  std::string tooLargeText() const {
+    return "the request is larger than " + std::to_string(options.maxUploadBytes) + " bytes";
+  }
   void guard(httplib::Server& server);
   void routes(httplib::Server& server);
   void pageRoutes(httplib::Server& server);
@@ -298,7 +302,8 @@ Status Studio::Impl::readStart() {
   return Status::ok();
 }
 
-// Every request: Host, Origin and token checked before anything is routed.
+// Every request: Host, Origin and token checked before anything is routed, and before its body
+// is read: a refused request's connection is closed after its answer.
 void Studio::Impl::guard(httplib::Server& server) {
   server.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
     studio::RequestFacts facts{
@@ -306,17 +311,27 @@ void Studio::Impl::guard(httplib::Server& server) {
         req.get_header_value("Sec-Fetch-Site"), req.get_param_value("token"),
         req.get_header_value("X-Dform-Token"),  req.get_header_value("Cookie")};
     const std::string why = studio::refusal(facts, port, token);
-    if (why.empty()) return httplib::Server::HandlerResponse::Unhandled;
-    reply(res, 403, {{"error", why}});
+    const bool tooLarge = std::strtoull(req.get_header_value("Content-Length").c_str(), nullptr,
+                                        10) > options.maxUploadBytes;
+    if (why.empty() && !tooLarge) {
+      studio::Server::admitBody();
+      return httplib::Server::HandlerResponse::Unhandled;
+    }
+    studio::Server::closeAfterAnswer();
+    res.set_header("Connection", "close");
+    reply(res, why.empty() ? 413 : 403, {{"error", why.empty() ? tooLargeText() : why}});
     return httplib::Server::HandlerResponse::Handled;
   });
   server.set_error_handler([this](const httplib::Request&, httplib::Response& res) {
+    if (studio::Server::bodyTooLarge()) {  // cut off at the limit, chunked or not
+      res.status = 413;
+      res.body.clear();
+      res.set_header("Connection", "close");
+    }
     if (!res.body.empty()) return;
-    const std::string why =
-        res.status == 413
-            ? "the request is larger than " + std::to_string(options.maxUploadBytes) + " bytes"
-        : res.status == 404 ? "no such page or API"
-                            : "HTTP " + std::to_string(res.status);
+    const std::string why = res.status == 413   ? tooLargeText()
+                            : res.status == 404 ? "no such page or API"
+                                                : "HTTP " + std::to_string(res.status);
     reply(res, res.status, {{"error", why}});
   });
   server.set_exception_handler(
@@ -324,13 +339,7 @@ void Studio::Impl::guard(httplib::Server& server) {
         reply(res, 500, {{"error", "internal error"}});
       });
   server.set_payload_max_length(options.maxUploadBytes);
-  // An answer goes out as its headers, then its body: with Nagle's algorithm the body's last
-  // partial segment waits for the client's delayed acknowledgement of the ones before.
-  server.set_tcp_nodelay(true);
-  server.set_keep_alive_timeout(1);
-  server.set_read_timeout(5);
-  server.set_write_timeout(5);
-  server.new_task_queue = [] { return new httplib::ThreadPool(16); };
+  server.set_keep_alive_timeout(5);  // as the server's idle deadline
 }
 
 // A JSON API route: the body parsed, its session found, any error a JSON answer.
@@ -414,18 +423,13 @@ void Studio::Impl::pageRoutes(httplib::Server& server) {
   server.Get("/api/events", [this](const httplib::Request& req, httplib::Response& res) {
     std::shared_ptr<Session> found = session(req.get_param_value("session"));
     if (!found) return reply(res, 400, {{"error", "unknown session (reload the page)"}});
-    res.set_header("Cache-Control", "no-store");
-    res.set_chunked_content_provider(
-        "text/event-stream", [this, found, position = found->events().end()](
-                                 std::size_t, httplib::DataSink& sink) mutable {
-          if (stopping || found->events().closed()) {
-            sink.done();
-            return true;
-          }
-          std::string text = found->events().waitAfter(position, std::chrono::milliseconds(500));
-          if (text.empty()) text = ": alive\n\n";  // a comment: finds a closed connection
-          return sink.write(text.data(), text.size());
-        });
+    // The stream holds the session's events, not the session: a dropped session ends it.
+    studio::Server::streamEvents([this, events = found->eventStream(),
+                                  position = found->events().end()](std::string& out) mutable {
+      if (stopping || events->closed()) return false;
+      out += events->waitAfter(position, std::chrono::milliseconds(0));
+      return true;
+    });
   });
 }
 
@@ -459,7 +463,7 @@ void Studio::Impl::solveRoutes(httplib::Server& server) {
     reply(res, 200,
           s.solveLive(forwardSolve(a, b, settings, gate), settings.resolution,
                       settings.model == ModelChoice::Paper, sequence(body),
-                      forwardDesign(a, b, settings)));
+                      forwardDesign(a, b, settings), studio::Server::clientGone()));
   });
   api(server, "/api/strip", [this](const json& body, Session& s, httplib::Response& res) {
     const ForwardSettings settings = studio::forwardSettingsFrom(body);
@@ -499,7 +503,8 @@ void Studio::Impl::solveRoutes(httplib::Server& server) {
           s.solveLive(inverseSolve(*curve, settings, gate), settings.resolution, false,
                       sequence(body),
                       std::to_string(std::hash<std::string>()(curve->text)) + "/" +
-                          std::to_string(settings.resolution)));
+                          std::to_string(settings.resolution),
+                      studio::Server::clientGone()));
   });
   api(server, "/api/job", [](const json& body, Session& s, httplib::Response& res) {
     if (body.value("mode", "forward") == "inverse") {
@@ -525,7 +530,9 @@ void Studio::Impl::solveRoutes(httplib::Server& server) {
     } else {
       files = studio::forwardJobFiles(s.piece(0), s.piece(1), studio::forwardSettingsFrom(body));
     }
-    Result<std::string> zip = studio::exportedResult(files, request);
+    // Left to run, an export abandoned by its client would hold its memory for its whole run.
+    Result<std::string> zip =
+        studio::exportedResult(files, request, studio::Server::clientGone().get());
     if (!zip.isOk()) throw RequestError(zip.status().message());
     sendZip(res, zip.value(), "dform-export.zip");
   });
@@ -553,20 +560,18 @@ Result<std::unique_ptr<Studio>> Studio::start(const StudioOptions& options) {
     if (!text.isOk()) return text.status();
     impl->assets[name] = text.value();
   }
-  for (httplib::Server* server : {&impl->v4, &impl->v6}) {
-    impl->guard(*server);
-    impl->routes(*server);
-  }
-  impl->port = options.port == 0
-                   ? impl->v4.bind_to_any_port("127.0.0.1")
-                   : (impl->v4.bind_to_port("127.0.0.1", options.port) ? options.port : -1);
+  // Every tab may hold a few event streams (reloads, a second window on one session).
+  studio::ServerLimits limits;
+  limits.maxBodyBytes = options.maxUploadBytes;
+  limits.maxStreams = std::size_t(4 * std::max(options.maxSessions, 1));
+  impl->server = std::make_unique<studio::Server>(limits);
+  impl->guard(impl->server->routes());
+  impl->routes(impl->server->routes());
+  impl->port = impl->server->bindLoopback(options.port);
   if (impl->port <= 0)
     return Status(ErrorCode::OutputFailed, "127.0.0.1:" + std::to_string(options.port) +
                                                ": cannot listen (the port is taken?)");
-  const bool ipv6 = impl->v6.bind_to_port("::1", impl->port);  // where the machine has IPv6
-  Impl* raw = impl.get();
-  raw->listen4.start(raw->v4);
-  if (ipv6) raw->listen6.start(raw->v6);
+  impl->server->start();
   return std::unique_ptr<Studio>(new Studio(std::move(impl)));
 }
 
@@ -584,10 +589,7 @@ void Studio::stop() {
     std::lock_guard<std::mutex> lock(impl_->sessionsMutex);
     for (auto& [id, entry] : impl_->sessions) entry.first->events().close();
   }
-  impl_->v4.stop();
-  impl_->v6.stop();
-  impl_->listen4.join();
-  impl_->listen6.join();
+  if (impl_->server) impl_->server->stop();
   std::lock_guard<std::mutex> lock(impl_->sessionsMutex);
   impl_->sessions.clear();
 }
