@@ -45,7 +45,7 @@ bool isLockOrLeftoverOf(const std::string& entry,
     const std::size_t at = entry.rfind(suffix);
     if (at == std::string::npos || at < 2) continue;
     const std::string tail = entry.substr(at + std::strlen(suffix));
-    const bool isLock = suffix[6] == 'l';
+    const bool isLock = suffix[7] == 'l';  // ".dform-lock"
     if (locksOnly && !isLock) continue;
     if (isLock ? !tail.empty()
                : tail.empty() || tail.find_first_not_of("0123456789") != std::string::npos)
