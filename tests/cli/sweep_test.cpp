@@ -183,6 +183,26 @@ TEST_F(SweepTest, ASecondSweepReplacesTheFirstWhole) {
   EXPECT_TRUE(fs::exists(again / "start-1-flip" / "report.json"));
 }
 
+// A folder a user kept beside the starts under a name that begins like one ("start-1-keep": an
+// earlier start's result set aside) is not a start of the sweep: refused, never swapped away.
+TEST_F(SweepTest, AKeptCopyOfAStartIsNotTakenForOne) {
+  ASSERT_EQ(exit_, 0) << readText(dir_ / "sweep.log");
+  const fs::path kept = dir_ / "kept";
+  fs::copy(dir_ / "sweep", kept, fs::copy_options::recursive);
+  for (const char* name : {"start-1-keep", "start-12x", "start-0-flipped"}) {
+    fs::copy(kept / "start-1", kept / name);  // only a result's files
+    const std::string command = exe() + " sweep " + sample("ellipses-a.svg") + " " +
+                                sample("ellipses-b.svg") + " --starts 2 -q --no-export -o " +
+                                kept.string();
+    EXPECT_EQ(shell(command, dir_ / "kept.log"), 6) << name << ": " << readText(dir_ / "kept.log");
+    EXPECT_NE(readText(dir_ / "kept.log").find(std::string("kept/") + name), std::string::npos)
+        << readText(dir_ / "kept.log");
+    EXPECT_TRUE(fs::exists(kept / name / "report.json")) << name;
+    fs::remove_all(kept / name);
+  }
+  EXPECT_TRUE(fs::exists(kept / "start-7" / "report.json"));  // the earlier sweep is left whole
+}
+
 // The gallery in headless Chromium: the page loads and runs its script without a console error,
 // and the rendered page has one picture per card.
 TEST_F(SweepTest, GalleryRendersInHeadlessChromium) {

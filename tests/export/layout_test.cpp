@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <functional>
+#include <map>
 
 #include "dform/export/exporter.h"
 #include "dform/export/internal.h"
@@ -311,6 +312,48 @@ TEST(ExportLayout, TightTickSpacingThinsTheNumbersAndKeepsEveryTick) {
   EXPECT_TRUE(
       std::any_of(pattern.messages.begin(), pattern.messages.end(),
                   [](const std::string& m) { return m.find("thinned") != std::string::npos; }));
+}
+
+// The strokes of a laid-out number, as distances from its first point: the same number laid out
+// anywhere, at any angle, gives the same list (a different one does not: "07" and "08" differ).
+std::vector<double> numberShape(const fab::Path& label) {
+  std::vector<double> shape;
+  const Vec2 first = label.parts.at(0).at(0);
+  for (const auto& stroke : label.parts) {
+    shape.push_back(-1.0 * double(stroke.size()));  // where each stroke begins
+    for (const Vec2& q : stroke) shape.push_back((q - first).norm());
+  }
+  return shape;
+}
+
+TEST(ExportLayout, PartnerTicksCarryTheSameNumberOnBothPieces) {
+  const DForm model = ellipseCircleDForm();
+  ExportOptions o = options("print");
+  o.tickSpacingMm = 15;
+  const fab::PatternBuild pattern = build(model, o);
+  std::map<std::string, const fab::Path*> labels;
+  for (const fab::Layer& layer : pattern.drawing.layers)
+    for (const fab::Path& path : layer.paths)
+      if (path.id.size() > 6 && path.id.compare(path.id.size() - 6, 6, "-label") == 0 &&
+          path.id.find("-tick-") != std::string::npos)
+        labels[path.id] = &path;
+  int compared = 0, distinct = 0;
+  std::vector<double> previous;
+  for (const fab::TickInfo& t : pattern.ticks) {
+    char id[16];
+    std::snprintf(id, sizeof id, "-tick-%02d-label", t.id);
+    const auto a = labels.find(std::string("A") + id), b = labels.find(std::string("B") + id);
+    if (a == labels.end() || b == labels.end()) continue;  // thinned out on one piece
+    const std::vector<double> onA = numberShape(*a->second), onB = numberShape(*b->second);
+    ASSERT_EQ(onA.size(), onB.size()) << "tick " << t.id << ": A and B show different numbers";
+    for (std::size_t k = 0; k < onA.size(); ++k)
+      EXPECT_NEAR(onA[k], onB[k], 1e-9) << "tick " << t.id << ": A and B show different numbers";
+    distinct += onA != previous;  // the check can tell numbers apart
+    previous = onA;
+    ++compared;
+  }
+  EXPECT_GE(compared, int(pattern.ticks.size()) / 2);
+  EXPECT_GE(distinct, compared - 1);
 }
 
 TEST(ExportLayout, CornerTickNumbersAreMovedInwardNotDropped) {

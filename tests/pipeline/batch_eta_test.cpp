@@ -103,5 +103,31 @@ TEST(BatchEta, RunBatchWeighsTheJobsLeftBySize) {
   fs::remove_all(dir);
 }
 
+// A merged table has one row per job, keyed by its name (its result folder, OUT/<name>): a
+// manifest that names one job at two places of the list does not merge into a table with that
+// job twice, and the place it does not hold is a job that has not finished.
+TEST(BatchMerge, AJobNamedAtTwoPlacesIsMergedOnceUnderItsLatestPlace) {
+  const fs::path dir = fs::temp_directory_path() / ("dform_merge_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "batch.json") << R"({"schema": "dform-batch", "schema_version": 3,
+    "jobs": {"count": 2, "sha256": "ab"}, "shard": [1, 1], "slice": [[0, "a"], [1, "a"]],
+    "rows": [{"index": 0, "job": "a.json", "name": "a", "status": "done", "exit_code": 0},
+             {"index": 1, "job": "a.json", "name": "a", "status": "failed", "exit_code": 5,
+              "message": "the later row"}]})";
+  const Result<MergedBatch> strict = mergeBatch(dir.string(), false);
+  ASSERT_FALSE(strict.isOk());
+  EXPECT_EQ(strict.status().code(), ErrorCode::SolveFailed) << strict.status().message();
+  EXPECT_NE(strict.status().message().find("1 of 2 jobs have not finished"), std::string::npos)
+      << strict.status().message();
+  const Result<MergedBatch> partial = mergeBatch(dir.string(), true);
+  ASSERT_TRUE(partial.isOk()) << partial.status().message();
+  ASSERT_EQ(partial.value().rows.size(), 1u);
+  EXPECT_EQ(partial.value().rows[0].job.index, 1);
+  EXPECT_EQ(partial.value().rows[0].message, "the later row");
+  EXPECT_EQ(partial.value().missingCount, 1);
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace dform
