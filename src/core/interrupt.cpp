@@ -19,6 +19,8 @@ static_assert(std::atomic<bool>::is_always_lock_free, "a signal handler sets the
 
 std::atomic<bool>& interruptFlag() { return flag; }
 
+thread_local const std::atomic<bool>* detail::threadStop = nullptr;
+
 bool runWhilePolling(std::function<void()> work) {
   struct Pending {
     std::mutex mutex;

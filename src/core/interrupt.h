@@ -15,8 +15,34 @@ namespace dform {
 /// The one flag of the process. Lock-free, so that a signal handler may set it.
 std::atomic<bool>& interruptFlag();
 
-/// Whether a stop has been requested (interruptFlag() is set).
-inline bool interruptRequested() { return interruptFlag().load(std::memory_order_relaxed); }
+namespace detail {
+/// The stop flag of the run on this thread besides the process's (ScopedStop), or null.
+extern thread_local const std::atomic<bool>* threadStop;
+}  // namespace detail
+
+/// Whether a stop has been requested: interruptFlag() is set, or the flag of the run on this
+/// thread (ScopedStop) is.
+inline bool interruptRequested() {
+  return interruptFlag().load(std::memory_order_relaxed) ||
+         (detail::threadStop && detail::threadStop->load(std::memory_order_relaxed));
+}
+
+/// While it lives, `flag` (when not null) stops the runs of this thread as interruptFlag() stops
+/// every run: a server's request whose client went away stops inside its long loops as the
+/// command line's Ctrl-C does, without stopping the requests beside it. Threads the run starts
+/// are not covered (their callers poll on this thread: runWhilePolling). Scopes nest.
+class ScopedStop {
+ public:
+  explicit ScopedStop(const std::atomic<bool>* flag) : outer_(detail::threadStop) {
+    if (flag) detail::threadStop = flag;
+  }
+  ~ScopedStop() { detail::threadStop = outer_; }
+  ScopedStop(const ScopedStop&) = delete;
+  ScopedStop& operator=(const ScopedStop&) = delete;
+
+ private:
+  const std::atomic<bool>* outer_;
+};
 
 /// Thrown by throwIfInterrupted from inside a long set-up (a triangulation, a matrix assembly)
 /// that has no status to return: the entry point of the run's stage (solveDForm, solvePieces,

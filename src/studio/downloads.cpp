@@ -1,11 +1,14 @@
 #include "dform/studio/downloads.h"
 
+#include <malloc.h>
+
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "dform/core/interrupt.h"
 #include "dform/pipeline/job_file.h"
 #include "dform/pipeline/run.h"
 #include "dform/studio/wire.h"
@@ -117,6 +120,8 @@ Result<std::string> exportedResult(const Files& jobFiles, const ExportRequest& r
     ~Cleanup() {
       std::error_code ec;
       fs::remove_all(dir, ec);
+      // The run's hundreds of MB, freed, go back to the system: a server lives on after it.
+      ::malloc_trim(0);
     }
   } cleanup{dir};
   for (const auto& [name, content] : jobFiles)
@@ -136,7 +141,11 @@ Result<std::string> exportedResult(const Files& jobFiles, const ExportRequest& r
   MessageSink sink;
   RunHooks hooks;
   hooks.interrupted = cancel;
-  Result<WrittenResult> written = runAndWrite(job.value(), output, settings.value(), sink, hooks);
+  Result<WrittenResult> written = [&] {
+    // Stopped inside its long steps (meshing, figures, layout) too, not only between them.
+    const ScopedStop stop(cancel);
+    return runAndWrite(job.value(), output, settings.value(), sink, hooks);
+  }();
   if (!fs::is_directory(output.outDir))
     return written.isOk() ? Status(ErrorCode::OutputFailed, "the export wrote nothing")
                           : written.status();

@@ -6,10 +6,24 @@
 
 #include <chrono>
 
+#include "dform/core/interrupt.h"
+
 namespace dform::studio {
 
 using nlohmann::json;
 using Clock = std::chrono::steady_clock;
+
+namespace {
+
+// A solve that its hooks' flag (newer input, a client gone) stops inside its long steps too
+// (meshing, the exact body, the figures), not only between iterations.
+Result<Solved> solveStoppable(const SolveAt& solve, int resolution, Interior interior,
+                              const RunHooks& hooks) {
+  const ScopedStop stop(hooks.interrupted);
+  return solve(resolution, interior, hooks);
+}
+
+}  // namespace
 
 void EventStream::push(const json& event) {
   std::function<void()> listener;
@@ -157,8 +171,8 @@ void Session::queueRefinement(const SolveAt& solve, int resolution, const Latest
                          {"iteration", it.iteration},
                          {"cost", it.cost}});
         };
-        json result = finish(solve(resolution, Interior::Job, progress), ticket, seq, false,
-                             Verdict::InAnswer);
+        json result = finish(solveStoppable(solve, resolution, Interior::Job, progress), ticket,
+                             seq, false, Verdict::InAnswer);
         if (result.contains("superseded") || !live_.current(ticket)) return;
         result["type"] = "result";
         events_->push(result);
@@ -186,7 +200,7 @@ json Session::solveLive(const SolveAt& solve, int resolution, bool optimises, lo
       if (preview < resolution) optimising = true;
       if (optimising || ticket.cancel->load()) stop = true;
     };
-    Result<Solved> full = solve(resolution, Interior::Sparse, probe);
+    Result<Solved> full = solveStoppable(solve, resolution, Interior::Sparse, probe);
     if (!optimising) {
       if (!full.isOk() || !full.value().sparse)
         return finish(full, ticket, seq, false, Verdict::AsEvent);
@@ -201,7 +215,8 @@ json Session::solveLive(const SolveAt& solve, int resolution, bool optimises, lo
   }
   RunHooks hooks;
   hooks.interrupted = ticket.cancel.get();
-  json out = finish(solve(preview, Interior::Job, hooks), ticket, seq, true, Verdict::AsEvent);
+  json out = finish(solveStoppable(solve, preview, Interior::Job, hooks), ticket, seq, true,
+                    Verdict::AsEvent);
   if (!out.contains("error") && !out.contains("superseded")) {
     out["refining"] = true;
     queueRefinement(solve, resolution, ticket, seq);
@@ -224,7 +239,7 @@ void Session::startStrip(std::vector<std::pair<json, SolveAt>> starts, long seq)
           if (!strip_.current(ticket)) return;
           RunHooks hooks;
           hooks.interrupted = ticket.cancel.get();
-          Result<Solved> result = solve(kPreviewResolution, Interior::Job, hooks);
+          Result<Solved> result = solveStoppable(solve, kPreviewResolution, Interior::Job, hooks);
           if (!strip_.current(ticket)) return;
           json event = card;
           event["type"] = "strip";

@@ -1,11 +1,15 @@
 // The studio's downloads against the command line: a saved job that `dform run` reproduces (the
 // same figures), and an export whose files are the ones `dform run` writes for that job.
+#include "dform/studio/downloads.h"
+
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "dform/core/interrupt.h"
 #include "studio_client.h"
 
 namespace dform {
@@ -103,6 +107,54 @@ TEST_F(StudioDownloads, ExportRefusesUnknownProfilesWithAJsonError) {
       c.post("/api/export", {{"session", c.session()}, {"profile", "print"}, {"page", "Z9"}});
   EXPECT_EQ(page.first, 400);
   EXPECT_NE(page.second["error"].get<std::string>().find("page"), std::string::npos) << page.second;
+}
+
+// An export whose client has gone stops, inside its long steps too (its run is interrupted),
+// and the flag is that export's alone.
+TEST_F(StudioDownloads, AnExportWhoseClientWentIsStopped) {
+  const studio::PieceInput a{
+      "a.json", studio::parametricOutline("ellipse", {{"a", 120}, {"b", 70}}), {}};
+  const studio::PieceInput b{
+      "b.json", studio::parametricOutline("ellipse", {{"a", 110}, {"b", 82.305579}}), {}};
+  ForwardSettings settings;
+  settings.resolution = 60;
+  settings.fitPerimeter = true;
+  const auto files = studio::forwardJobFiles(a, b, settings);
+  std::atomic<bool> gone{true};
+  const Result<std::string> stopped = studio::exportedResult(files, {}, &gone);
+  EXPECT_EQ(stopped.status().code(), ErrorCode::Interrupted) << stopped.status().message();
+  // The flag is this export's alone: the thread's next run is not stopped by it.
+  EXPECT_FALSE(interruptRequested());
+  std::atomic<bool> here{false};
+  const Result<std::string> zip = studio::exportedResult(files, {}, &here);
+  ASSERT_TRUE(zip.isOk()) << zip.status().message();
+  EXPECT_EQ(zip.value().substr(0, 2), "PK");
+}
+
+TEST(ScopedStop, StopsTheRunsOfItsThreadOnly) {
+  std::atomic<bool> flag{false};
+  EXPECT_FALSE(interruptRequested());
+  {
+    const ScopedStop stop(&flag);
+    EXPECT_FALSE(interruptRequested());
+    flag = true;
+    EXPECT_TRUE(interruptRequested());
+    EXPECT_THROW(throwIfInterrupted("the test"), Interrupted);
+    bool elsewhere = true;
+    std::thread([&] { elsewhere = interruptRequested(); }).join();
+    EXPECT_FALSE(elsewhere);
+    {
+      const ScopedStop none(nullptr);  // no flag of its own: the enclosing one still holds
+      EXPECT_TRUE(interruptRequested());
+    }
+    std::atomic<bool> inner{false};
+    {
+      const ScopedStop nested(&inner);
+      EXPECT_FALSE(interruptRequested());
+    }
+    EXPECT_TRUE(interruptRequested());
+  }
+  EXPECT_FALSE(interruptRequested());
 }
 
 }  // namespace
