@@ -3,8 +3,8 @@
 # every lock and temporary path of forward, inverse, run, sweep, batch and export (the link's
 # target is never written, the run exits 6 with one line), a run into a folder that a sweep or a
 # run is replacing (refused, exit 6), a file saved into such a folder meanwhile (kept, said so), a
-# result folder read for an export elsewhere on a read-only mount (exported). Run by ctest
-# (cli_link_probes).
+# result folder read for an export elsewhere on a read-only mount (exported), a batch into a
+# read-only mount and a sweep on a full disk (exit 6, saying why). Run by ctest (cli_link_probes).
 #
 #   tests/cli/link_probes.sh DFORM SAMPLES
 set -u
@@ -136,7 +136,7 @@ for target in W R; do
   rm -f $target/notes.txt
 done
 
-# --- A result read on a read-only mount is exported elsewhere -------------------------------------
+# --- A read-only mount and a full disk (tmpfs in a mount namespace) ------------------------------
 if unshare -rm true 2>/dev/null; then
   unshare -rm bash -c '
     mkdir ro && mount -t tmpfs -o size=16m tmpfs ro && cp -r R ro/R && mount -o remount,ro ro || exit 9
@@ -144,8 +144,30 @@ if unshare -rm true 2>/dev/null; then
   got=$?
   [ "$got" = 0 ] || fail "export of a result on a read-only mount into another folder: exit $got: $(head -c 300 "$work/err.txt")"
   [ -e ro-export/pattern.svg ] || fail "export of a read-only result: no pattern.svg in ro-export"
+  # A batch that cannot create its folder there says why: the mount is read-only.
+  unshare -rm bash -c '
+    mount -t tmpfs -o size=1m,ro tmpfs ro || exit 9
+    "$1" batch jobs --no-export -q -o ro/B' _ "$dform" 2>"$work/err.txt"
+  got=$?
+  [ "$got" = 6 ] || fail "a batch into a read-only mount: exit $got: $(head -c 300 "$work/err.txt")"
+  grep -q "ro/B: cannot create the folder (Read-only file system)" "$work/err.txt" ||
+    fail "a batch into a read-only mount names another cause: $(head -c 300 "$work/err.txt")"
+  # A sweep on a disk that fills after its first start: its other starts are not written, and it
+  # says so (exit 6), though what it wrote is in place.
+  mkdir full
+  unshare -rm bash -c '
+    mount -t tmpfs -o size=380k tmpfs full || exit 9
+    "$1" sweep "$2/ellipses-a.svg" "$2/ellipses-b.svg" --starts 4 --threads 1 --resolution 30 \
+      --no-export -q -o full/W
+    code=$?
+    [ -e full/W/sweep.json ] && [ -e full/W/start-0/report.json ] || exit 8
+    exit $code' _ "$dform" "$fwd" 2>"$work/err.txt"
+  got=$?
+  [ "$got" = 6 ] || fail "a sweep on a full disk: exit $got: $(head -c 300 "$work/err.txt")"
+  grep -Eq "full/W: [123] of 4 starts were not written \(start-[123]" "$work/err.txt" ||
+    fail "a sweep on a full disk does not name its unwritten starts: $(head -c 300 "$work/err.txt")"
 else
-  echo "skipped: the read-only mount (no user namespaces here)"
+  echo "skipped: the read-only mount and the full disk (no user namespaces here)"
 fi
 
 left=$(find "$work" \( -name '.*.dform-*' -o -name '.dform-batch*' \) -not -name '*.dform-kept.*' | head -5)
