@@ -1,0 +1,146 @@
+#!/usr/bin/python3
+"""Makes every referee sheet of tests/referee/README.md and the files under tests/referee/data/.
+
+    tests/referee/run_all.py [--dform build/dform] [--work out/referee] [--only JOB ...]
+                             [--levels 0 1] [--data tests/referee/data]
+
+Run from the repository root after building dform. For each job it makes the start results with
+`dform forward` (paper and general models; the exact one for convex pairs), then one referee
+sheet (referee.py solve) per start, mirror and level (0: dform's mesh, about 1k vertices; 1: every
+triangle split into four, about 4k). A run whose summary.json exists is not run again (delete the
+folder to redo it). Then it writes data/<job>-<start>-<level>.json (the converged seam, the
+commands, the figures) and data/results.json (the comparisons: against the exact seam, 1k against
+4k, between the states a pair converged to).
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import referee  # noqa: E402
+
+S = "samples/forward/"
+COMMON = ["--resolution", "100", "--no-export", "--quiet", "--gate", "none"]
+ZIP = ["--start-a", "0.003", "--start-b", "0.003"]
+# name: (dform forward arguments, interior edge for about 1k vertices, convex, starts)
+JOBS = {
+    "ellipses": ([S + "ellipses-a.svg", S + "ellipses-b.svg"], "1.3", True, ["paper"]),
+    "circle-square": ([S + "circle.svg", S + "square.svg"], "1.3", True, ["paper"]),
+    "nonconvex-shifted": ([S + "nonconvex-a.svg", S + "nonconvex-b.svg", "--start-b", "0.3"],
+                          "1.3", False, ["paper", "general"]),
+    "nonconvex": ([S + "nonconvex-a.svg", S + "nonconvex-b.svg"], "1.3", False,
+                  ["paper", "general"]),
+    "anti": ([S + "anti-a.svg", S + "anti-b.svg", "--join", "inner,inner"] + ZIP, "2.6", False,
+             ["paper", "general", "paper-mirror", "general-mirror"]),
+    "demi": ([S + "demi-disc.svg", S + "demi-ring.svg", "--join", "outer,inner"] + ZIP, "2.0",
+             False, ["paper", "general", "paper-mirror", "general-mirror"]),
+}
+LEVEL_NAME = {0: "1k", 1: "4k"}
+
+
+def run(cmd):
+    print("+", " ".join(cmd), flush=True)
+    subprocess.run(cmd, check=True)
+
+
+def make_input(args, job, model):
+    """dform's result for the job with the model; returns (folder, command)."""
+    files, ie, _, _ = JOBS[job]
+    folder = os.path.join(args.work, "inputs", f"{job}-{model}")
+    cmd = [args.dform, "forward"] + files + ["--model", model, "--interior-edge", ie] + COMMON + \
+        ["-o", folder]
+    if not os.path.exists(os.path.join(folder, "report.json")):
+        run(cmd)
+    return folder, " ".join(cmd)
+
+
+def solve(args, job, start, level, source):
+    folder = os.path.join(args.work, "runs", f"{job}-{start}-{LEVEL_NAME[level]}")
+    cmd = [sys.executable, "tests/referee/referee.py", "solve", source, "-o", folder,
+           "--subdivide", str(level), "--dform", args.dform]
+    if start.endswith("-mirror"):
+        cmd.append("--mirror")
+    if not os.path.exists(os.path.join(folder, "summary.json")):
+        run(cmd)
+    with open(os.path.join(folder, "summary.json"), encoding="utf-8") as f:
+        summary = json.load(f)
+    with open(os.path.join(folder, "seam.json"), encoding="utf-8") as f:
+        points = json.load(f)["points"]
+    return summary, points
+
+
+def record(args, job, start, level, input_cmd, summary, points):
+    """data/<job>-<start>-<level>.json: the seam and how it was made."""
+    keep = ["vertices", "faces", "seam_points", "start_L_max", "L_max", "L_rms", "bending",
+            "evolver_energy", "final_kbend", "hessian_eigencounts_about_0_and_minus_1e-9",
+            "seconds", "cpu_seconds", "loadavg_at_start", "evolver"]
+    data = {"job": job, "start": start, "level": LEVEL_NAME[level],
+            "dform_command": input_cmd,
+            "referee_command": summary["command"].replace(os.path.abspath(".") + "/", ""),
+            "units": "mm", "seam_order": "piece A's seam from its first vertex",
+            **{k: summary[k] for k in keep},
+            "dform_validate": summary.get("dform_validate", {}).get("checks"),
+            "points": [[round(c, 9) for c in p] for p in points]}
+    path = os.path.join(args.data, f"{job}-{start}-{LEVEL_NAME[level]}.json")
+    with open(path, "w", encoding="utf-8") as f:
+        json.dump(data, f, indent=1)
+        f.write("\n")
+
+
+def distances(p, q):
+    rms, worst = referee.seam_distance(p, q)
+    rms_m, worst_m = referee.seam_distance(p, q, allow_mirror=True)
+    return {"rms": rms, "max": worst, "rms_mirror_allowed": rms_m, "max_mirror_allowed": worst_m}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--dform", default="build/dform")
+    parser.add_argument("--work", default="out/referee")
+    parser.add_argument("--data", default="tests/referee/data")
+    parser.add_argument("--only", nargs="*", default=list(JOBS))
+    parser.add_argument("--levels", nargs="*", type=int, default=[0, 1])
+    parser.add_argument("--starts", nargs="*", help="only these starts (paper, general-mirror...)")
+    args = parser.parse_args()
+    os.makedirs(args.data, exist_ok=True)
+    results_path = os.path.join(args.data, "results.json")
+    results = {}
+    if os.path.exists(results_path):
+        with open(results_path, encoding="utf-8") as f:
+            results = json.load(f)
+    for job in args.only:
+        _, _, convex, starts = JOBS[job]
+        if args.starts:
+            starts = [s for s in starts if s in args.starts]
+        seams, out = {}, results.setdefault(job, {})
+        for start in starts:
+            model = start.split("-")[0]
+            source, input_cmd = make_input(args, job, model)
+            for level in args.levels:
+                summary, points = solve(args, job, start, level, source)
+                record(args, job, start, level, input_cmd, summary, points)
+                seams[(start, level)] = points
+        if convex:
+            folder, _ = make_input(args, job, "exact")
+            exact = referee.sh.read_piece(folder, "a")
+            exact_seam = [list(exact.shape[i]) for i in exact.seam]
+            for (start, level), points in seams.items():
+                out[f"vs_exact_{start}_{LEVEL_NAME[level]}"] = distances(exact_seam, points)
+        for start in starts:
+            if (start, 0) in seams and (start, 1) in seams:
+                out[f"1k_vs_4k_{start}"] = distances(seams[(start, 1)], seams[(start, 0)])
+        for level in args.levels:
+            done = [s for s in starts if (s, level) in seams]
+            for i, s in enumerate(done):
+                for t in done[i + 1:]:
+                    out[f"{s}_vs_{t}_{LEVEL_NAME[level]}"] = distances(seams[(s, level)],
+                                                                       seams[(t, level)])
+        with open(results_path, "w", encoding="utf-8") as f:
+            json.dump(results, f, indent=1, sort_keys=True)
+            f.write("\n")
+
+
+if __name__ == "__main__":
+    main()
