@@ -106,15 +106,11 @@ def main():
     args = parser.parse_args()
     os.makedirs(args.data, exist_ok=True)
     results_path = os.path.join(args.data, "results.json")
-    results = {}
-    if os.path.exists(results_path):
-        with open(results_path, encoding="utf-8") as f:
-            results = json.load(f)
     for job in args.only:
         _, _, convex, starts = JOBS[job]
         if args.starts:
             starts = [s for s in starts if s in args.starts]
-        seams, out = {}, results.setdefault(job, {})
+        seams, out = {}, {}
         for start in starts:
             model = start.split("-")[0]
             source, input_cmd = make_input(args, job, model)
@@ -137,6 +133,11 @@ def main():
                 for t in done[i + 1:]:
                     out[f"{s}_vs_{t}_{LEVEL_NAME[level]}"] = distances(seams[(s, level)],
                                                                        seams[(t, level)])
+        results = {}
+        if os.path.exists(results_path):  # read again: another run may have written meanwhile
+            with open(results_path, encoding="utf-8") as f:
+                results = json.load(f)
+        results.setdefault(job, {}).update(out)
         with open(results_path, "w", encoding="utf-8") as f:
             json.dump(results, f, indent=1, sort_keys=True)
             f.write("\n")
