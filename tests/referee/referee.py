@@ -40,6 +40,8 @@ SCHEDULES = {
     "default": [(1e1, 200, 40), (1.0, 200, 40), (1e-1, 200, 40), (1e-2, 200, 60),
                 (1e-3, 200, 80), (1e-4, 200, 100), (1e-5, 2000, 200)],
     "quick": [(1e1, 50, 20), (1e-1, 50, 20), (1e-3, 200, 60)],
+    # for a start that is already a converged sheet (a 1k referee sheet split into 4k)
+    "finish": [(1e-4, 200, 100), (1e-5, 2000, 200)],
 }
 POISSON = 0.3
 NEWTON_TOL = 1e-13  # relative energy drop below which a Newton loop ends

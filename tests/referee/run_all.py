@@ -6,8 +6,9 @@
 
 Run from the repository root after building dform. For each job it makes the start results with
 `dform forward` (paper and general models; the exact one for convex pairs), then one referee
-sheet (referee.py solve) per start, mirror and level (0: dform's mesh, about 1k vertices; 1: every
-triangle split into four, about 4k). A run whose summary.json exists is not run again (delete the
+sheet (referee.py solve) per start, mirror and level (0: dform's mesh, about 1k vertices, from
+dform's result; 1: the converged level-0 sheet with every triangle split into four, about 4k,
+finished with the last two stages). A run whose summary.json exists is not run again (delete the
 folder to redo it). Then it writes data/<job>-<start>-<level>.json (the converged seam, the
 commands, the figures) and data/results.json (the comparisons: against the exact seam, 1k against
 4k, between the states a pair converged to).
@@ -56,12 +57,21 @@ def make_input(args, job, model):
     return folder, " ".join(cmd)
 
 
+def run_folder(args, job, start, level):
+    return os.path.join(args.work, "runs", f"{job}-{start}-{LEVEL_NAME[level]}")
+
+
 def solve(args, job, start, level, source):
-    folder = os.path.join(args.work, "runs", f"{job}-{start}-{LEVEL_NAME[level]}")
+    """Level 0 starts from dform's result (mirrored for a -mirror start) with the default
+    schedule; level 1 from the level-0 sheet split into four, with the last two stages."""
+    folder = run_folder(args, job, start, level)
     cmd = [sys.executable, "tests/referee/referee.py", "solve", source, "-o", folder,
-           "--subdivide", str(level), "--dform", args.dform]
-    if start.endswith("-mirror"):
+           "--dform", args.dform]
+    if level == 0 and start.endswith("-mirror"):
         cmd.append("--mirror")
+    if level == 1:
+        cmd[3] = run_folder(args, job, start, 0)
+        cmd += ["--subdivide", "1", "--schedule", "finish"]
     if not os.path.exists(os.path.join(folder, "summary.json")):
         run(cmd)
     with open(os.path.join(folder, "summary.json"), encoding="utf-8") as f:
@@ -72,7 +82,11 @@ def solve(args, job, start, level, source):
 
 
 def record(args, job, start, level, input_cmd, summary, points):
-    """data/<job>-<start>-<level>.json: the seam and how it was made."""
+    """data/<job>-<start>-<level>.json: the seam and how it was made; the bending figures are
+    measured again on the run's OBJs (sheet.bending, today's definition)."""
+    folder = run_folder(args, job, start, level)
+    solved = referee.sh.Sheet(referee.sh.read_piece(folder, "a"), referee.sh.read_piece(folder, "b"))
+    summary = dict(summary, bending=referee.sh.bending(solved, solved.x))
     keep = ["vertices", "faces", "seam_points", "start_L_max", "L_max", "L_rms", "bending",
             "evolver_energy", "final_kbend", "hessian_eigencounts_about_0_and_minus_1e-9",
             "seconds", "cpu_seconds", "loadavg_at_start", "evolver"]

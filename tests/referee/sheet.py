@@ -261,20 +261,23 @@ def hinge_angles(sheet, x):
 def bending(sheet, x):
     """Bending figures over the hinges (interior edges of each piece, creases left out):
     `dihedral_hooke` = sum (1 - cos theta) |e| (Surface Evolver's method, unit modulus) and
-    `hinge` = sum theta^2 |e|^2 / (A1 + A2) (discrete shells, flat areas); and the seam's fold
-    angles (rad, min and max of the signed turning)."""
+    `hinge` = sum theta^2 |e|^2 / (A1 + A2) (discrete shells, flat areas); the seam's and the
+    hinges' fold angles (rad, min and max of the signed turning, hinge_angles' sign)."""
     hooke = hinge = 0.0
-    seam = []
+    seam, folds = [], []
     for e, angle, weight in hinge_angles(sheet, x):
         u, v = sheet.edges[e]
         if sheet.hinge[e]:
             hooke += (1.0 - math.cos(angle)) * float(np.linalg.norm(x[v] - x[u]))
             hinge += angle * angle * weight
+            folds.append(angle)
         elif sheet.edge_owner[e] == 2:
             seam.append(angle)
     return {"dihedral_hooke": hooke, "hinge": hinge,
             "seam_fold_min_rad": min(seam) if seam else None,
-            "seam_fold_max_rad": max(seam) if seam else None}
+            "seam_fold_max_rad": max(seam) if seam else None,
+            "hinge_fold_min_rad": min(folds) if folds else None,
+            "hinge_fold_max_rad": max(folds) if folds else None}
 
 
 def exact_decimal(value):
