@@ -23,7 +23,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import referee  # noqa: E402
 
 S = "samples/forward/"
-COMMON = ["--resolution", "100", "--no-export", "--quiet", "--gate", "none"]
+COMMON = ["--no-export", "--quiet", "--gate", "none"]
 ZIP = ["--start-a", "0.003", "--start-b", "0.003"]
 # name: (dform forward arguments, interior edge for about 1k vertices, convex, starts)
 JOBS = {
@@ -34,7 +34,7 @@ JOBS = {
     "nonconvex": ([S + "nonconvex-a.svg", S + "nonconvex-b.svg"], "1.3", False,
                   ["paper", "general"]),
     "anti": ([S + "anti-a.svg", S + "anti-b.svg", "--join", "inner,inner"] + ZIP, "2.6", False,
-             ["paper", "general", "paper-mirror", "general-mirror"]),
+             ["paper", "general", "paper-mirror", "general-mirror", "paper-r50"]),
     "demi": ([S + "demi-disc.svg", S + "demi-ring.svg", "--join", "outer,inner"] + ZIP, "2.0",
              False, ["paper", "general", "paper-mirror", "general-mirror"]),
 }
@@ -46,13 +46,18 @@ def run(cmd):
     subprocess.run(cmd, check=True)
 
 
-def make_input(args, job, model):
-    """dform's result for the job with the model; returns (folder, command)."""
+def make_input(args, job, start):
+    """dform's result for the job and start (its model; `-r50`: resolution 50 with dform's own
+    interior edge, about 1.6k vertices, instead of resolution 100 with a coarser interior);
+    returns (folder, command)."""
     files, ie, _, _ = JOBS[job]
-    folder = os.path.join(args.work, "inputs", f"{job}-{model}")
-    cmd = [args.dform, "forward"] + files + ["--model", model, "--interior-edge", ie] + COMMON + \
-        ["-o", folder]
-    if not os.path.exists(os.path.join(folder, "report.json")):
+    model = start.split("-")[0]
+    name = model + ("-r50" if "-r50" in start else "")
+    folder = os.path.join(args.work, "inputs", f"{job}-{name}")
+    mesh = ["--resolution", "50"] if "-r50" in start else ["--resolution", "100",
+                                                           "--interior-edge", ie]
+    cmd = [args.dform, "forward"] + files + ["--model", model] + mesh + COMMON + ["-o", folder]
+    if not os.path.exists(os.path.join(folder, "report.json")) and not args.collect:
         run(cmd)
     return folder, " ".join(cmd)
 
@@ -73,6 +78,8 @@ def solve(args, job, start, level, source):
         cmd[3] = run_folder(args, job, start, 0)
         cmd += ["--subdivide", "1", "--schedule", "finish"]
     if not os.path.exists(os.path.join(folder, "summary.json")):
+        if args.collect:
+            return None, None
         run(cmd)
     with open(os.path.join(folder, "summary.json"), encoding="utf-8") as f:
         summary = json.load(f)
@@ -117,6 +124,8 @@ def main():
     parser.add_argument("--only", nargs="*", default=list(JOBS))
     parser.add_argument("--levels", nargs="*", type=int, default=[0, 1])
     parser.add_argument("--starts", nargs="*", help="only these starts (paper, general-mirror...)")
+    parser.add_argument("--collect", action="store_true",
+                        help="run nothing: write data/ from the runs that have finished")
     args = parser.parse_args()
     os.makedirs(args.data, exist_ok=True)
     results_path = os.path.join(args.data, "results.json")
@@ -126,18 +135,28 @@ def main():
             starts = [s for s in starts if s in args.starts]
         seams, out = {}, {}
         for start in starts:
-            model = start.split("-")[0]
-            source, input_cmd = make_input(args, job, model)
+            source, input_cmd = make_input(args, job, start)
             for level in args.levels:
                 summary, points = solve(args, job, start, level, source)
+                if summary is None:
+                    continue
                 record(args, job, start, level, input_cmd, summary, points)
                 seams[(start, level)] = points
-        if convex:
+        if convex and seams:
             folder, _ = make_input(args, job, "exact")
             exact = referee.sh.read_piece(folder, "a")
             exact_seam = [list(exact.shape[i]) for i in exact.seam]
             for (start, level), points in seams.items():
                 out[f"vs_exact_{start}_{LEVEL_NAME[level]}"] = distances(exact_seam, points)
+        for model in ("paper", "general"):  # dform's results of the job against each sheet
+            folder = os.path.join(args.work, "inputs", f"{job}-{model}")
+            if not os.path.exists(os.path.join(folder, "report.json")):
+                continue
+            piece = referee.sh.read_piece(folder, "a")
+            dform_seam = [list(piece.shape[i]) for i in piece.seam]
+            for (start, level), points in seams.items():
+                out[f"dform_{model}_vs_sheet_{start}_{LEVEL_NAME[level]}"] = distances(
+                    points, dform_seam)
         for start in starts:
             if (start, 0) in seams and (start, 1) in seams:
                 out[f"1k_vs_4k_{start}"] = distances(seams[(start, 1)], seams[(start, 0)])
