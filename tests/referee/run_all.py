@@ -34,9 +34,9 @@ JOBS = {
     "nonconvex": ([S + "nonconvex-a.svg", S + "nonconvex-b.svg"], "1.3", False,
                   ["paper", "general"]),
     "anti": ([S + "anti-a.svg", S + "anti-b.svg", "--join", "inner,inner"] + ZIP, "2.6", False,
-             ["paper", "general", "paper-mirror", "general-mirror", "paper-r50"]),
+             ["paper", "general", "paper-mirror", "general-mirror", "paper-r50", "general-r50"]),
     "demi": ([S + "demi-disc.svg", S + "demi-ring.svg", "--join", "outer,inner"] + ZIP, "2.0",
-             False, ["paper", "general", "paper-mirror", "general-mirror"]),
+             False, ["paper-r50", "general-r50", "paper-r50-mirror", "general-r50-mirror"]),
 }
 LEVEL_NAME = {0: "1k", 1: "4k"}
 
@@ -148,14 +148,16 @@ def main():
             exact_seam = [list(exact.shape[i]) for i in exact.seam]
             for (start, level), points in seams.items():
                 out[f"vs_exact_{start}_{LEVEL_NAME[level]}"] = distances(exact_seam, points)
-        for model in ("paper", "general"):  # dform's results of the job against each sheet
-            folder = os.path.join(args.work, "inputs", f"{job}-{model}")
+        for name in ("paper", "general", "paper-r50", "general-r50", "paper-default"):
+            # dform's results of the job against each sheet (-default: resolution 100 with
+            # dform's own interior edge, the CLI's result; made by hand where it is listed)
+            folder = os.path.join(args.work, "inputs", f"{job}-{name}")
             if not os.path.exists(os.path.join(folder, "report.json")):
                 continue
             piece = referee.sh.read_piece(folder, "a")
             dform_seam = [list(piece.shape[i]) for i in piece.seam]
             for (start, level), points in seams.items():
-                out[f"dform_{model}_vs_sheet_{start}_{LEVEL_NAME[level]}"] = distances(
+                out[f"dform_{name}_vs_sheet_{start}_{LEVEL_NAME[level]}"] = distances(
                     points, dform_seam)
         for start in starts:
             if (start, 0) in seams and (start, 1) in seams:
