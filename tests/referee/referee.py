@@ -34,23 +34,31 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import sheet as sh  # noqa: E402
 
-# Stages: (bending modulus, gradient steps, Newton step cap). Stretching modulus is 1 (energy
-# density (1/2/(1+v))(tr C^2 + v (tr C)^2/(1-v)) per mm^2 of sheet), bending modulus in mm^2.
+# A schedule: its stages (bending modulus, gradient steps, Newton step cap) and the eigenvalue
+# below which a Newton step is followed by a saddle step. The stretching modulus is 1 (energy
+# density (1/2/(1+v))(tr C^2 + v (tr C)^2/(1-v)) per mm^2 of sheet), the bending modulus in mm.
+# "finish" (a converged sheet split into four) takes saddle steps only below -1e-9: the rigid
+# motions' eigenvalues sit between that and 0 through rounding, and at 4k vertices each saddle
+# step costs about ten Newton steps.
 SCHEDULES = {
-    "default": [(1e1, 200, 40), (1.0, 200, 40), (1e-1, 200, 40), (1e-2, 200, 60),
-                (1e-3, 200, 80), (1e-4, 200, 100), (1e-5, 2000, 200)],
-    "quick": [(1e1, 50, 20), (1e-1, 50, 20), (1e-3, 200, 60)],
-    # for a start that is already a converged sheet (a 1k referee sheet split into 4k)
-    "finish": [(1e-4, 200, 100), (1e-5, 2000, 200)],
+    "default": ([(1e1, 200, 40), (1.0, 200, 40), (1e-1, 200, 40), (1e-2, 200, 60),
+                 (1e-3, 200, 80), (1e-4, 200, 100), (1e-5, 2000, 200)], 0.0),
+    "quick": ([(1e1, 50, 20), (1e-1, 50, 20), (1e-3, 200, 60)], 0.0),
+    "finish": ([(1e-4, 200, 100), (1e-5, 2000, 200)], -1e-9),
 }
 POISSON = 0.3
 NEWTON_TOL = 1e-13  # relative energy drop below which a Newton loop ends
 
 
-def command_file(schedule):
+def command_file(schedule, saddle_below):
     """Evolver commands: each stage sets the bending modulus, takes gradient steps, then Newton
-    (hessian_seek) steps until the energy falls by less than NEWTON_TOL relative or the cap; at the
-    end the energies, the Hessian's eigenvalue counts about 0 and every vertex position."""
+    (hessian_seek) steps, each followed by a saddle step (a line search along the lowest
+    eigenvector) while the Hessian has an eigenvalue below saddle_below, until the energy falls by
+    less than NEWTON_TOL relative or the cap; at the end the energies, the Hessian's eigenvalue
+    counts about 0 and -1e-9, and every vertex position."""
+    saddle = "if eigenneg > 0 then { saddle; saddle_steps += 1 }"
+    if saddle_below != 0:  # count again below the threshold first
+        saddle = f"if eigenneg > 0 then {{ eigenprobe {saddle_below!r}; {saddle} }}"
     lines = ["hessian_normal off", "quiet on", "newton_steps := 0", "gradient_steps := 0",
              "saddle_steps := 0"]
     for k, (kbend, gsteps, cap) in enumerate(schedule):
@@ -61,8 +69,7 @@ def command_file(schedule):
             f"g {gsteps}",
             f"gradient_steps += {gsteps}",
             "newton_count := 0",
-            "do { e_old := total_energy; hessian_seek; newton_count += 1; "
-            "if eigenneg > 0 then { saddle; saddle_steps += 1 }; "
+            "do { e_old := total_energy; hessian_seek; newton_count += 1; " + saddle + "; "
             f"}} while (e_old - total_energy > {NEWTON_TOL!r} * abs(e_old) && newton_count < {cap})",
             "newton_steps += newton_count",
             f"printf \"STAGE {k} kbend %g end %.17g newton %d\\n\", kbend, total_energy, "
@@ -130,14 +137,14 @@ def solve(args):
     if args.mirror:
         start[:, 2] = -start[:, 2]
     os.makedirs(args.output, exist_ok=True)
-    schedule = SCHEDULES[args.schedule]
+    schedule, saddle_below = SCHEDULES[args.schedule]
     fe = os.path.join(args.output, "sheet.fe")
     cmd = os.path.join(args.output, "schedule.cmd")
     command = " ".join(["tests/referee/referee.py"] + sys.argv[1:])
     sheet.write_fe(fe, start, [f"dform referee sheet of {args.folder}", command],
                    1.0, schedule[0][0], POISSON)
     with open(cmd, "w", encoding="utf-8") as f:
-        f.write(command_file(schedule))
+        f.write(command_file(schedule, saddle_below))
     load = open("/proc/loadavg", encoding="utf-8").read().split()[:3]
     text, seconds, cpu_seconds = run_evolver(fe, cmd, os.path.join(args.output, "evolver.log"))
     x, energies, stages, counts = parse_log(text, len(sheet.x))
