@@ -27,16 +27,18 @@ COMMON = ["--no-export", "--quiet", "--gate", "none"]
 ZIP = ["--start-a", "0.003", "--start-b", "0.003"]
 # name: (dform forward arguments, interior edge for about 1k vertices, convex, starts)
 JOBS = {
-    "ellipses": ([S + "ellipses-a.svg", S + "ellipses-b.svg"], "1.3", True, ["paper"]),
-    "circle-square": ([S + "circle.svg", S + "square.svg"], "1.3", True, ["paper"]),
+    "ellipses": ([S + "ellipses-a.svg", S + "ellipses-b.svg"], "1.3", True, ["paper", "exact"]),
+    "circle-square": ([S + "circle.svg", S + "square.svg"], "1.3", True, ["paper", "exact"]),
     "nonconvex-shifted": ([S + "nonconvex-a.svg", S + "nonconvex-b.svg", "--start-b", "0.3"],
                           "1.3", False, ["paper", "general"]),
     "nonconvex": ([S + "nonconvex-a.svg", S + "nonconvex-b.svg"], "1.3", False,
                   ["paper", "general"]),
     "anti": ([S + "anti-a.svg", S + "anti-b.svg", "--join", "inner,inner"] + ZIP, "2.6", False,
-             ["paper", "general", "paper-mirror", "general-mirror", "paper-r50", "general-r50"]),
+             ["paper", "general", "paper-mirror", "general-mirror", "paper-r50", "general-r50",
+              "paper-r50-stiff"]),
     "demi": ([S + "demi-disc.svg", S + "demi-ring.svg", "--join", "outer,inner"] + ZIP, "2.0",
-             False, ["paper-r50", "general-r50", "paper-r50-mirror", "general-r50-mirror"]),
+             False, ["paper-r50", "general-r50", "paper-r50-mirror", "general-r50-mirror",
+                     "paper-r50-stiff"]),
 }
 LEVEL_NAME = {0: "1k", 1: "4k"}
 
@@ -68,12 +70,15 @@ def run_folder(args, job, start, level):
 
 def solve(args, job, start, level, source):
     """Level 0 starts from dform's result (mirrored for a -mirror start) with the default
-    schedule; level 1 from the level-0 sheet split into four, with the last two stages."""
+    schedule (a -stiff start: the last two stages only); level 1 from the level-0 sheet split
+    into four, with the last two stages."""
     folder = run_folder(args, job, start, level)
     cmd = [sys.executable, "tests/referee/referee.py", "solve", source, "-o", folder,
            "--dform", args.dform]
     if level == 0 and start.endswith("-mirror"):
         cmd.append("--mirror")
+    if level == 0 and "-stiff" in start:  # stiff from the first step: does the start's state hold?
+        cmd += ["--schedule", "finish"]
     if level == 1:
         cmd[3] = run_folder(args, job, start, 0)
         cmd += ["--subdivide", "1", "--schedule", "finish"]
