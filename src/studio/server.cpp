@@ -284,6 +284,7 @@ void Server::streamEvents(std::function<bool(std::string&)> pump) {
 // event streams for as long as they are open; running requests are watched for their client
 // closing. Only the accepting thread touches it.
 struct Server::Loop {
+  explicit Loop(Server& server) : s(server) {}
   Server& s;
   std::list<std::unique_ptr<Connection>> waiting, streams;
   long nextId = 0;
@@ -450,7 +451,7 @@ struct Server::Loop {
   }
 };
 
-void Server::accepting() { Loop{*this}.run(); }
+void Server::accepting() { Loop(*this).run(); }
 
 void Server::working() {
   for (;;) {

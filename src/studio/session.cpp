@@ -29,7 +29,7 @@ void EventStream::push(const json& event) {
   std::function<void()> listener;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    events_.push_back("data: " + event.dump() + "\n\n");
+    events_.push_back("id: " + std::to_string(next_) + "\ndata: " + event.dump() + "\n\n");
     ++next_;
     while (events_.size() > kKept) events_.pop_front();
     listener = onPush_;
@@ -67,6 +67,15 @@ long EventStream::end() const {
   return next_;
 }
 
+long EventStream::resumeAfter(const std::string& lastId) const {
+  const long newest = end();
+  if (lastId.empty() || lastId.size() > 18 ||
+      lastId.find_first_not_of("0123456789") != std::string::npos)
+    return newest;
+  const long seen = std::stol(lastId);
+  return seen < newest ? seen + 1 : newest;
+}
+
 bool EventStream::closed() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return closed_;
@@ -74,9 +83,16 @@ bool EventStream::closed() const {
 
 Latest::Ticket Latest::next(std::shared_ptr<std::atomic<bool>> cancel) {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (cancel_) cancel_->store(true);
-  cancel_ = cancel ? std::move(cancel) : std::make_shared<std::atomic<bool>>(false);
-  return {++generation_, cancel_};
+  for (const auto& flag : flags_) flag->store(true);
+  flags_.assign(1, cancel ? std::move(cancel) : std::make_shared<std::atomic<bool>>(false));
+  return {++generation_, flags_.front()};
+}
+
+Latest::Ticket Latest::follow(const Ticket& ticket) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  auto flag = std::make_shared<std::atomic<bool>>(ticket.generation != generation_);
+  if (ticket.generation == generation_) flags_.push_back(flag);
+  return {ticket.generation, std::move(flag)};
 }
 
 bool Latest::current(const Ticket& ticket) const {
@@ -86,7 +102,7 @@ bool Latest::current(const Ticket& ticket) const {
 
 void Latest::cancel() {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (cancel_) cancel_->store(true);
+  for (const auto& flag : flags_) flag->store(true);
 }
 
 Session::Session(PieceInput a, PieceInput b) : pieces_{std::move(a), std::move(b)} {
@@ -140,7 +156,7 @@ json Session::finish(const Result<Solved>& result, const Latest::Ticket& ticket,
   if (verdict == Verdict::InAnswer) out.update(result.value().verdict());
   if (verdict == Verdict::AsEvent)
     queue(
-        [this, verdict = result.value().verdict, ticket, seq, preview] {
+        [this, verdict = result.value().verdict, ticket = live_.follow(ticket), seq, preview] {
           if (!live_.current(ticket)) return;
           json event = verdict();
           if (!live_.current(ticket)) return;
@@ -154,10 +170,10 @@ json Session::finish(const Result<Solved>& result, const Latest::Ticket& ticket,
 // The refinement does not take the session's solve lock: newer input cancels it (its hooks poll
 // the ticket), and on the worker's lower priority it yields the cores to the live solve anyway,
 // which would otherwise wait for a whole refinement and its measuring.
-void Session::queueRefinement(const SolveAt& solve, int resolution, const Latest::Ticket& ticket,
+void Session::queueRefinement(const SolveAt& solve, int resolution, const Latest::Ticket& live,
                               long seq) {
   queue(
-      [this, solve, resolution, ticket, seq] {
+      [this, solve, resolution, ticket = live_.follow(live), seq] {
         if (!live_.current(ticket)) return;
         auto last = Clock::now();
         RunHooks progress;

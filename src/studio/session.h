@@ -40,14 +40,19 @@ class EventStream {
  public:
   /// Queues one event (a JSON object; its "type" names it).
   void push(const nlohmann::json& event);
-  /// Waits up to `timeout` for events after `position` (0: from the oldest kept); returns them as
-  /// SSE text ("data: ...\n\n" each) and moves `position` on. Empty on timeout or once closed.
+  /// Waits up to `timeout` for events from `position` on (0: from the oldest kept); returns them
+  /// as SSE text ("id: <position>\ndata: ...\n\n" each) and moves `position` on. Empty on
+  /// timeout or once closed. The ids let a client that reconnects (an EventSource sends the last
+  /// id it saw as Last-Event-ID) resume where it stopped instead of losing what came between.
   std::string waitAfter(long& position, std::chrono::milliseconds timeout);
   void close();
   bool closed() const;
   /// Called after each push (outside the stream's lock): the server sends the news at once.
   void onPush(std::function<void()> listener);
   long end() const;  ///< the position after the newest event
+  /// Where a stream starts: after `lastId`, the Last-Event-ID a reconnecting client sends (a
+  /// number below end(); anything else is ignored), else at end(), the news from now on.
+  long resumeAfter(const std::string& lastId) const;
 
  private:
   static constexpr std::size_t kKept = 256;
@@ -69,13 +74,17 @@ class Latest {
   /// A new current ticket, cancelling the one before; `cancel`, when given, is its flag (set also
   /// by its owner: a request whose client went away).
   Ticket next(std::shared_ptr<std::atomic<bool>> cancel = nullptr);
+  /// A ticket of the same generation as `ticket` with a flag of its own, cancelled by newer
+  /// tickets and cancel() only: work queued for the page (a refinement, a verdict) that must
+  /// outlive the request that asked for it, whose client goes once it has its answer.
+  Ticket follow(const Ticket& ticket);
   bool current(const Ticket& ticket) const;
   void cancel();
 
  private:
   mutable std::mutex mutex_;
   long generation_ = 0;
-  std::shared_ptr<std::atomic<bool>> cancel_;
+  std::vector<std::shared_ptr<std::atomic<bool>>> flags_;  ///< the current generation's
 };
 
 /// A solve's answer for the page (wire.h): its shape, and its figures with the gate's verdict on
@@ -147,9 +156,9 @@ class Session {
   nlohmann::json finish(const Result<Solved>& result, const Latest::Ticket& ticket, long seq,
                         bool preview, Verdict verdict);
   /// Queues the worker's solve of `resolution` meshed as the job says, streamed as a "result"
-  /// event with its figures and verdict unless newer input came first.
-  void queueRefinement(const SolveAt& solve, int resolution, const Latest::Ticket& ticket,
-                       long seq);
+  /// event with its figures and verdict unless newer input came first (a ticket following
+  /// `live`: the live request's client going once it has its answer does not stop it).
+  void queueRefinement(const SolveAt& solve, int resolution, const Latest::Ticket& live, long seq);
 
   mutable std::mutex inputMutex_;
   PieceInput pieces_[2];

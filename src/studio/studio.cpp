@@ -423,9 +423,11 @@ void Studio::Impl::pageRoutes(httplib::Server& server) {
   server.Get("/api/events", [this](const httplib::Request& req, httplib::Response& res) {
     std::shared_ptr<Session> found = session(req.get_param_value("session"));
     if (!found) return reply(res, 400, {{"error", "unknown session (reload the page)"}});
-    // The stream holds the session's events, not the session: a dropped session ends it.
+    // The stream holds the session's events, not the session: a dropped session ends it. A
+    // client that reconnects resumes after the last event it saw; a new one starts with the news.
     studio::Server::streamEvents([this, events = found->eventStream(),
-                                  position = found->events().end()](std::string& out) mutable {
+                                  position = found->events().resumeAfter(req.get_header_value(
+                                      "Last-Event-ID"))](std::string& out) mutable {
       if (stopping || events->closed()) return false;
       out += events->waitAfter(position, std::chrono::milliseconds(0));
       return true;

@@ -331,6 +331,41 @@ TEST(StudioServer, LatestTicketCancelsTheOneBefore) {
   EXPECT_FALSE(latest.current(two));
 }
 
+// A followed ticket is current with its generation and has a flag of its own: the followed
+// ticket's flag (its client gone) leaves it current, a newer ticket and cancel() do not.
+TEST(StudioServer, AFollowedTicketOutlivesItsRequestButNotNewerInput) {
+  studio::Latest latest;
+  auto gone = std::make_shared<std::atomic<bool>>(false);
+  const studio::Latest::Ticket live = latest.next(gone);
+  const studio::Latest::Ticket queued = latest.follow(live);
+  gone->store(true);
+  EXPECT_FALSE(latest.current(live));
+  EXPECT_TRUE(latest.current(queued));
+  const studio::Latest::Ticket newer = latest.next();
+  EXPECT_TRUE(queued.cancel->load());
+  EXPECT_FALSE(latest.current(latest.follow(live))) << "a ticket followed too late";
+  const studio::Latest::Ticket newerQueued = latest.follow(newer);
+  latest.cancel();
+  EXPECT_FALSE(latest.current(newerQueued));
+}
+
+// A client that reconnects with the last id it saw gets every event after it, each once, with
+// its id; a new client, or one whose Last-Event-ID is not an id of this stream, starts at the news.
+TEST(StudioServer, AReconnectingEventStreamResumesAfterTheLastEventItSaw) {
+  studio::EventStream stream;
+  for (int k = 0; k < 3; ++k) stream.push({{"type", "step"}, {"k", k}});
+  long position = stream.resumeAfter("0");
+  EXPECT_EQ(position, 1);
+  EXPECT_EQ(stream.waitAfter(position, std::chrono::milliseconds(0)),
+            "id: 1\ndata: {\"k\":1,\"type\":\"step\"}\n\n"
+            "id: 2\ndata: {\"k\":2,\"type\":\"step\"}\n\n");
+  EXPECT_EQ(position, 3);
+  EXPECT_EQ(stream.waitAfter(position, std::chrono::milliseconds(0)), "");
+  for (const char* notAnId : {"", "2", "3", "99", "-1", "1x", " 1", "99999999999999999999"})
+    EXPECT_EQ(stream.resumeAfter(notAnId), 3) << "'" << notAnId << "'";
+  EXPECT_EQ(stream.resumeAfter("1"), 2);
+}
+
 }  // namespace
 }  // namespace dform
 
@@ -402,6 +437,35 @@ std::vector<int> threadNiceValues() {
       if (k == 19) out.push_back(std::stoi(field));
   }
   return out;
+}
+
+// The page asks for a shape and its client closes the connection once it has the answer; the
+// refinement the answer promises ("refining": true) still arrives as an event. The solve at the
+// job's mesh waits for the client to have gone, so the order is the same on every machine.
+TEST(StudioSession, ARefinementOutlivesTheRequestThatAskedForIt) {
+  studio::PieceInput a{"a.json", "", test::startEllipse(120, 70, "a.json")};
+  studio::PieceInput b{"b.json", "", test::startEllipse(110, 82.305579, "b.json")};
+  studio::Session session(a, b);
+  auto gone = std::make_shared<std::atomic<bool>>(false);
+  const studio::SolveAt solve = [gone](int resolution, studio::Interior interior,
+                                       const RunHooks&) -> Result<studio::Solved> {
+    for (int k = 0; k < 2000 && interior == studio::Interior::Job && !gone->load(); ++k)
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    studio::Solved solved;
+    solved.result = {{"resolution", resolution}};
+    solved.verdict = [] { return json{{"gate", {{"passed", true}}}}; };
+    solved.sparse = interior == studio::Interior::Sparse;
+    return solved;
+  };
+  const json answer = session.solveLive(solve, 100, false, 7, "design", gone);
+  EXPECT_TRUE(answer["refining"].get<bool>()) << answer;
+  gone->store(true);
+  long position = 0;
+  std::string events;
+  for (int k = 0; k < 100 && events.find("\"result\"") == std::string::npos; ++k)
+    events += session.events().waitAfter(position, std::chrono::milliseconds(100));
+  EXPECT_NE(events.find("\"type\":\"result\""), std::string::npos) << events;
+  EXPECT_NE(events.find("\"seq\":7"), std::string::npos) << events;
 }
 
 TEST(StudioSession, TheWorkerYieldsToTheLiveSolves) {

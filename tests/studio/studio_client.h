@@ -61,22 +61,31 @@ class EventReader {
     client_.set_read_timeout(5);
     thread_ = std::thread([this, session] {
       while (!stop_) {
-        client_.Get(("/api/events?session=" + session).c_str(), headers_,
+        // A reconnect (after a read timeout on a loaded machine) resumes after the last event
+        // seen, as a browser's EventSource does, so no event is lost between two connections.
+        httplib::Headers headers = headers_;
+        if (lastId_ >= 0) headers.emplace("Last-Event-ID", std::to_string(lastId_));
+        client_.Get(("/api/events?session=" + session).c_str(), headers,
+                    [this](const httplib::Response&) {
+                      std::lock_guard<std::mutex> lock(mutex_);
+                      open_ = true;
+                      changed_.notify_all();
+                      return true;
+                    },
                     [this](const char* data, std::size_t n) {
                       std::lock_guard<std::mutex> lock(mutex_);
                       buffer_.append(data, n);
                       for (std::size_t end; (end = buffer_.find("\n\n")) != std::string::npos;) {
-                        const std::string event = buffer_.substr(0, end);
+                        read(buffer_.substr(0, end));
                         buffer_.erase(0, end + 2);
-                        if (event.rfind("data: ", 0) == 0)
-                          events_.push_back(nlohmann::json::parse(event.substr(6)));
                       }
                       changed_.notify_all();
                       return !stop_.load();
                     });
       }
     });
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the stream is open
+    std::unique_lock<std::mutex> lock(mutex_);  // the stream is open before anything is asked
+    changed_.wait_for(lock, std::chrono::seconds(60), [this] { return open_; });
   }
   ~EventReader() {
     stop_ = true;
@@ -100,12 +109,27 @@ class EventReader {
   }
 
  private:
+  // One SSE message: its "id: n" line and its "data: {...}" line (comments start with ':').
+  void read(const std::string& message) {
+    std::size_t from = 0;
+    while (from < message.size()) {
+      std::size_t to = message.find('\n', from);
+      if (to == std::string::npos) to = message.size();
+      const std::string line = message.substr(from, to - from);
+      if (line.rfind("id: ", 0) == 0) lastId_ = std::stol(line.substr(4));
+      if (line.rfind("data: ", 0) == 0) events_.push_back(nlohmann::json::parse(line.substr(6)));
+      from = to + 1;
+    }
+  }
+
   httplib::Client client_;
   httplib::Headers headers_;
   std::atomic<bool> stop_{false};
   std::mutex mutex_;
   std::condition_variable changed_;
   std::string buffer_;
+  bool open_ = false;
+  long lastId_ = -1;
   std::vector<nlohmann::json> events_;
   std::thread thread_;
 };
