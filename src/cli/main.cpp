@@ -213,7 +213,8 @@ struct ForwardCommand {
       return failUsage(Status(
           ErrorCode::Usage, "--join must be outer,outer, inner,inner, outer,inner or inner,outer"));
     if (!model.empty() && !parseModelChoice(model, job.forward.model))
-      return failUsage(Status(ErrorCode::Usage, "--model must be auto, exact, paper or general"));
+      return failUsage(
+          Status(ErrorCode::Usage, "--model must be auto, exact, ruled, paper or general"));
     if (Status s = oneStandardInput({job.forward.pieceA, job.forward.pieceB}); !s.isOk())
       return failUsage(s);
     job.forward.weights = defaultWeights(job.forward.joinA, job.forward.joinB);
@@ -273,7 +274,7 @@ struct SweepCommand {
                         "none (B as drawn, the default), flipped (B turned over) or both");
     command->add_option("--start-a", job.forward.startA.fraction,
                         "start of A's seam: arc-length fraction in [0, 1)");
-    command->add_option("--model", model, "auto (default), exact, paper or general");
+    command->add_option("--model", model, "auto (default), exact, ruled, paper or general");
     command->add_option("--resolution", job.forward.resolution,
                         "seam vertices per piece (default 100)");
     command->add_option("--interior-edge", job.forward.interiorEdgeFactor,
@@ -286,7 +287,8 @@ struct SweepCommand {
   }
   int run() {
     if (!model.empty() && !parseModelChoice(model, job.forward.model))
-      return failUsage(Status(ErrorCode::Usage, "--model must be auto, exact, paper or general"));
+      return failUsage(
+          Status(ErrorCode::Usage, "--model must be auto, exact, ruled, paper or general"));
     if (flip != "none" && flip != "flipped" && flip != "both")
       return failUsage(Status(ErrorCode::Usage, "--flip must be none, flipped or both"));
     if (options.starts < 1 || options.starts > 4096)

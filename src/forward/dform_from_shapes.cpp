@@ -11,6 +11,7 @@
 #include "dform/core/polyline.h"
 #include "dform/exact/exact_gluing.h"
 #include "dform/forward/coarse_to_fine.h"
+#include "dform/forward/ruled_forward.h"
 #include "dform/forward/seam_layout.h"
 #include "dform/meshing/triangulate.h"
 #include "dform/model/exact_model.h"
@@ -78,6 +79,7 @@ const char* modelChoiceName(ModelChoice model) {
   switch (model) {
     case ModelChoice::Auto: return "auto";
     case ModelChoice::Exact: return "exact";
+    case ModelChoice::Ruled: return "ruled";
     case ModelChoice::Paper: return "paper";
     case ModelChoice::General: return "general";
   }
@@ -85,8 +87,8 @@ const char* modelChoiceName(ModelChoice model) {
 }
 
 bool parseModelChoice(const std::string& text, ModelChoice& model) {
-  for (ModelChoice m :
-       {ModelChoice::Auto, ModelChoice::Exact, ModelChoice::Paper, ModelChoice::General})
+  for (ModelChoice m : {ModelChoice::Auto, ModelChoice::Exact, ModelChoice::Ruled,
+                        ModelChoice::Paper, ModelChoice::General})
     if (text == modelChoiceName(m)) {
       model = m;
       return true;
@@ -149,7 +151,8 @@ Result<std::optional<SolvedDForm>> tryExactModel(const ForwardSettings& job,
                                                  const RunHooks& hooks) {
   const std::string both = layout.bothPaths();
   refusal = exactModelRefusal(job, layout.pieces[0], layout.pieces[1]);
-  if (job.model == ModelChoice::Paper || job.model == ModelChoice::General)
+  if (job.model == ModelChoice::Paper || job.model == ModelChoice::General ||
+      job.model == ModelChoice::Ruled)
     return std::optional<SolvedDForm>();
   if (!refusal.empty()) {
     if (job.model == ModelChoice::Exact)
@@ -375,12 +378,25 @@ Result<SolvedDForm> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSet
     return std::move(*exact.value());
   }
   const bool general = job.model == ModelChoice::General;
+  const bool ruledAsked = job.model == ModelChoice::Ruled;
+  // The ruled engine starts from the paper model's shape: tried where asked, and by auto where
+  // the exact model does not apply.
+  const std::string ruledRefusal = ruledAsked || job.model == ModelChoice::Auto
+                                       ? ruledModelRefusal(job, layout, ruledAsked)
+                                       : "-";
+  if (ruledAsked && !ruledRefusal.empty())
+    return Status(ErrorCode::InputInvalid,
+                  layout.bothPaths() + ": the ruled model: " + ruledRefusal);
+  const bool ruled = ruledRefusal.empty();
   run.modelUsed.name = general ? "general" : "paper";
   run.modelUsed.reason = general ? "asked for (--model general)"
                          : job.model == ModelChoice::Paper
                              ? "asked for (--model paper)"
                              : "the exact model does not apply: " + refusal;
-  sink.info(run.modelUsed.name + " model: " + run.modelUsed.reason);
+  if (job.model == ModelChoice::Auto && !ruled)
+    run.modelUsed.reason += "; the ruled engine is not tried: " + ruledRefusal;
+  sink.info(run.modelUsed.name + " model" + (ruled ? " (the ruled engine's start): " : ": ") +
+            run.modelUsed.reason);
   if (Status s = solvePaperModel(job, layout, run, sink, hooks); !s.isOk()) return s;
   if (general) {
     const auto solveStart = Clock::now();
@@ -398,6 +414,22 @@ Result<SolvedDForm> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSet
               format(", %d factorisations in %.3f s", sheet.summary.factorisations,
                      sheet.summary.seconds));
     if (!sheet.summary.converged) sink.warning("general model: " + sheet.summary.message);
+  }
+  if (ruled) {
+    const auto solveStart = Clock::now();
+    const std::string paperReason = run.modelUsed.reason;
+    // Auto takes no state that folds the sheet back on itself (a chord folded past 90 degrees).
+    Status s = solveRuledModel(job, layout, run, sink, ruledAsked ? 180.0 : 90.0);
+    run.timings.solve += secondsSince(solveStart);
+    if (s.isOk())
+      run.modelUsed.reason = ruledAsked ? "asked for (--model ruled)"
+                                        : paperReason + "; the ruled engine met every edge length";
+    else if (ruledAsked)
+      return Status(s.code(), layout.bothPaths() + ": the ruled model: " + s.message());
+    else {
+      sink.info("ruled engine: " + s.message() + "; the paper model's shape is kept");
+      run.modelUsed.reason = paperReason + "; the ruled engine: " + s.message();
+    }
   }
   run.timings.total = secondsSince(start);
   return run;

@@ -26,7 +26,8 @@ ForwardWeights defaultWeights(JoinedBoundary a, JoinedBoundary b);
 /// false when the text is not of that form.
 bool parseJoin(const std::string& text, JoinedBoundary& a, JoinedBoundary& b);
 
-const char* modelChoiceName(ModelChoice model);  ///< "auto", "exact", "paper" or "general"
+/// "auto", "exact", "ruled", "paper" or "general"
+const char* modelChoiceName(ModelChoice model);
 bool parseModelChoice(const std::string& text, ModelChoice& model);
 
 /// A solved forward job: the model, which model made it and how the solve went.

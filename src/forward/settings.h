@@ -26,11 +26,13 @@ struct StartPoint {
 enum class JoinedBoundary { Outer, Inner };
 
 /// Which model makes the 3D shape: the exact D-Form (Alexandrov's convex body of the glued
-/// pieces, src/exact), the paper's optimisation, or the general engine (the paper's shape relaxed
-/// to a stationary point of a stiff sheet's bending and stretching energy, forward/inextensible.h);
-/// `Auto` takes the exact one wherever it applies (two discs zipped along their outlines, no drawn
-/// creases, a convex glued metric), else the paper's.
-enum class ModelChoice { Auto, Exact, Paper, General };
+/// pieces, src/exact), the ruled engine (rigid flat triangles between the pieces' boundary points,
+/// src/ruled, started from the paper model's shape), the paper's optimisation, or the general
+/// engine (the paper's shape relaxed to a stationary point of a stiff sheet's bending and
+/// stretching energy, model/inextensible.h); `Auto` takes the exact one wherever it applies (two
+/// discs zipped along their outlines, no drawn creases, a convex glued metric), else the ruled
+/// one where it finds a state that does not fold the sheet back on itself, else the paper's.
+enum class ModelChoice { Auto, Exact, Ruled, Paper, General };
 
 /// The range of ForwardSettings::interiorEdgeFactor: finer meshes cost more than they show, and
 /// coarser ones leave the paper model too few triangles to bend.

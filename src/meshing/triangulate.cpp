@@ -316,4 +316,18 @@ Result<FlatMesh> triangulateDomain(const Points2& boundary, const std::vector<Po
   return mesh;
 }
 
+Result<Faces> triangulateBoundaryPoints(const Points2& points,
+                                        const std::vector<std::pair<int, int>>& loops,
+                                        const std::vector<std::pair<int, int>>& edges) {
+  std::vector<Loop> cdtLoops;
+  for (const auto& [first, count] : loops) cdtLoops.push_back({first, count});
+  std::vector<std::vector<int>> chains;
+  for (const auto& [a, b] : edges) chains.push_back({a, b});
+  try {
+    return meshing_detail::constrainedDelaunay(points, cdtLoops, chains);
+  } catch (const Interrupted& stop) {
+    return interruptedDuring(stop.stage());
+  }
+}
+
 }  // namespace dform

@@ -34,4 +34,13 @@ Result<FlatMesh> triangulateDomain(const Points2& boundary, const std::vector<Po
                                    const TriangulateOptions& options,
                                    const std::vector<InteriorLine>& lines = {});
 
+/// The constrained Delaunay triangulation of a domain using its boundary points only, no point
+/// added: `points` (#P by 2) hold the loops' points, each loop a run of consecutive rows given as
+/// (first row, count); the domain is inside an odd number of loops. Every loop edge and every pair
+/// of `edges` (rows) is an edge of the result. Triangles counter-clockwise. InputInvalid when
+/// points coincide or loops and edges cross.
+Result<Faces> triangulateBoundaryPoints(const Points2& points,
+                                        const std::vector<std::pair<int, int>>& loops,
+                                        const std::vector<std::pair<int, int>>& edges = {});
+
 }  // namespace dform

@@ -19,12 +19,6 @@ namespace {
 
 constexpr double kDegree = 3.14159265358979323846 / 180.0;
 
-// A smoothly curved body of n seam points folds by up to about 3 x 360/n degrees between
-// neighbouring faces (measured on ellipse pairs and an ellipse with a circle, n = 100 to 400:
-// 10.4, 5.2 and 2.6 degrees); a real crease keeps its angle as n grows (a square's corners
-// against a circle: 66 degrees). Twice that margin, and never below 20 degrees.
-double foundCreaseRadians(long n) { return std::max(20.0, 6.0 * 360.0 / double(n)) * kDegree; }
-
 // The seam of the meshes: every seam point, and between them the places where followed body edges
 // cross the seam (the same places on both pieces), in seam order.
 class ConformingSeam {
@@ -81,11 +75,6 @@ class ConformingSeam {
 }  // namespace
 
 namespace {
-
-// Folds of the body the meshes do not follow: a mesh edge across a fold of angle theta is shorter
-// on the body than flat by at most theta^2 / 8 of its length, 1.25e-11 at 1e-5 rad, below what
-// the figures resolve; such folds are the body's triangulation of a flat face and rounding.
-constexpr double kFollowedFold = 1e-5;
 
 // The lines a piece's mesh follows: each run of a followed body edge through the piece, from one
 // row of the conforming seam to another, with points about `edge` apart; and each line's fold.
@@ -338,6 +327,8 @@ double longestStretch(const Piece& piece) {
 }
 
 }  // namespace
+
+double foundCreaseRadians(long n) { return std::max(20.0, 6.0 * 360.0 / double(n)) * kDegree; }
 
 Result<DForm> exactDForm(exact::SeamPolygons polygons, double targetEdge,
                          const std::string paths[2], ModelUsed& used) {

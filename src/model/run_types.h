@@ -38,19 +38,35 @@ struct BodyFold {
   int crease = -1;               ///< its index in the piece's creases, -1 for a gentle fold
 };
 
+/// A state of the sheet the ruled engine found: the start it came from, its bending energy and
+/// its largest fold (of a chord that is no drawn crease).
+struct RuledStateSummary {
+  std::string start;
+  double bendingEnergy = 0;
+  double largestFoldDeg = 0;
+};
+
 /// Which model ran, and why the other did not.
 struct ModelUsed {
-  std::string name;         ///< "exact", "paper" or "general"
+  std::string name;         ///< "exact", "ruled", "paper" or "general"
   std::string reason;       ///< why this one: the exact model's conditions met, or which failed
   int conePoints = 0;       ///< exact: seam points that are vertices of the body
   int newtonSteps = 0;      ///< exact: steps of the deformation; general: Newton steps of the sheet
   double maxCurvature = 0;  ///< exact: largest |curvature| left at a cone point (radians)
   double chordMoveMm = 0;   ///< exact: the most a seam point moved to make paired chords equal
   bool doublyCovered = false;  ///< exact: the pieces fold flat onto each other
-  double stationarity = 0;     ///< general: relative first-order residual at the answer
+  /// general: relative first-order residual at the answer; ruled: of its bending energy where
+  /// the lengths leave freedom (0 on a closed surface)
+  double stationarity = 0;
   double stiffness = 0;  ///< general: stretching over bending stiffness (model/inextensible.h)
   std::vector<FoundCrease> creases;
-  std::vector<BodyFold> folds;  ///< exact: every fold through a piece (the paper model knows none)
+  /// exact and ruled: every fold through a piece (the paper model knows none)
+  std::vector<BodyFold> folds;
+  double bendingEnergy = 0;      ///< ruled: the answer's bending energy (dimensionless)
+  double lengthError = 0;        ///< ruled: largest relative edge-length error of its surface
+  int flips = 0;                 ///< ruled: flips after the start's triangulation
+  bool flipsStationary = false;  ///< ruled: no flip lowers its objective
+  std::vector<RuledStateSummary> states;  ///< ruled: every distinct state, least bending first
 };
 
 /// A level of a coarse-to-fine solve begins: `level` of `levels` (from 1), with at most

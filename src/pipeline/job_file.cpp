@@ -118,7 +118,7 @@ Job parse(const json& root, const std::string& baseDir) {
     f.weights = defaultWeights(f.joinA, f.joinB);
     if (root.contains("model") &&
         !(root["model"].is_string() && parseModelChoice(root["model"].get<std::string>(), f.model)))
-      throw KeyError{"model", "must be \"auto\", \"exact\" or \"paper\""};
+      throw KeyError{"model", "must be \"auto\", \"exact\", \"ruled\", \"paper\" or \"general\""};
     if (root.contains("start_a")) f.startA = startPoint(root["start_a"], "start_a");
     if (root.contains("start_b")) f.startB = startPoint(root["start_b"], "start_b");
     if (root.contains("resolution")) f.resolution = integer(root, "resolution");

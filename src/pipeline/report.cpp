@@ -70,6 +70,21 @@ json modelJson(const ModelUsed& used, const DForm& model) {
                 {"doubly_covered", used.doublyCovered},
                 {"found_creases", creases},
                 {"folds", foldsJson(used, model)}});
+  if (used.name == "ruled") {
+    json states = json::array();
+    for (const RuledStateSummary& state : used.states)
+      states.push_back({{"start", state.start},
+                        {"bending_energy", numberOrNull(state.bendingEnergy)},
+                        {"largest_fold_deg", numberOrNull(state.largestFoldDeg)}});
+    out.update({{"bending_energy", numberOrNull(used.bendingEnergy)},
+                {"length_error", numberOrNull(used.lengthError)},
+                {"stationarity", numberOrNull(used.stationarity)},
+                {"flips", used.flips},
+                {"flips_stationary", used.flipsStationary},
+                {"states", states},
+                {"found_creases", creases},
+                {"folds", foldsJson(used, model)}});
+  }
   if (used.name == "general")
     out.update({{"newton_steps", used.newtonSteps},
                 {"stationarity", numberOrNull(used.stationarity)},
@@ -352,9 +367,9 @@ void compareSavedJob(const json& report, const Metrics& metrics, const CurveMatc
            "\" version " + std::to_string(kReportSchemaVersion));
   const json model = at(at(report, "model"), "name");
   const double exactDistance = curve ? curve->roundtripMaxRel : metrics.exactDistanceMaxRel;
-  if (model != "exact" && model != "paper" && model != "general")
+  if (model != "exact" && model != "ruled" && model != "paper" && model != "general")
     differ("model.name: report.json says " + describeJsonValue(model) +
-           ", not exact, paper or general");
+           ", not exact, ruled, paper or general");
   else if (model == "exact" && !(exactDistance <= 1e-6))
     differ("model.name: report.json says exact, but the saved shape is " +
            describeJsonValue(json(exactDistance)) + " of its size from the exact one");

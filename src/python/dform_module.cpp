@@ -237,7 +237,8 @@ Made forward(const RowPoints& outlineA, const RowPoints& outlineB,
   job.fitPerimeter = fitPerimeter;
   job.interiorEdgeFactor = interiorEdge;
   if (!parseModelChoice(model, job.model))
-    raise({ErrorCode::Usage, "model must be auto, exact, paper or general, got '" + model + "'"});
+    raise({ErrorCode::Usage,
+           "model must be auto, exact, ruled, paper or general, got '" + model + "'"});
   if (!parseJoin(join, job.joinA, job.joinB))
     raise({ErrorCode::Usage,
            "join must be 'outer,outer', 'inner,inner', 'outer,inner' or "

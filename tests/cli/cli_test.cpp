@@ -623,7 +623,7 @@ TEST_F(CliTest, TheGeneralModelReportsHowStationaryItsAnswerIs) {
       run("forward " + sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg") +
           " --model generic -q -o " + path("generic"));
   EXPECT_EQ(bad.exitCode, 2);
-  EXPECT_NE(bad.err.find("auto, exact, paper or general"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("auto, exact, ruled, paper or general"), std::string::npos) << bad.err;
 }
 
 TEST_F(CliTest, ReportsFollowTheirSchema) {

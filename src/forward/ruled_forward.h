@@ -1,0 +1,29 @@
+// The ruled engine in a forward run (internal to src/forward): the surface of rigid flat
+// triangles built from the seam layout, solved from the paper model's shape (and its mirror
+// image where the sheet has a free brim), the least bending state meshed as the run's model.
+#pragma once
+
+#include <string>
+
+#include "dform/core/messages.h"
+#include "dform/core/status.h"
+#include "dform/forward/dform_from_shapes.h"
+#include "dform/forward/seam_layout.h"
+
+namespace dform::forward_detail {
+
+/// Why the ruled engine is not tried on this job, or "" when it is: drawn creases must be
+/// straight and the seam at most ruled::kMaxRuledSeam points; unless `asked`, a piece zipped along
+/// its outline must not meet a seam point of negative curvature (two pieces' angles summing to
+/// more than 360 degrees), where the engine finds no state or one folded back on itself
+/// (docs/ruled.md, "Limits").
+std::string ruledModelRefusal(const ForwardSettings& job, const SeamLayout& layout, bool asked);
+
+/// Replaces run.model (the paper model's solution of the same job, which is the start) by the
+/// ruled engine's least bending state and sets run.modelUsed; on failure (no state, or the least
+/// bending one folds a chord by more than `largestFoldDeg`) leaves run as it is and returns
+/// SolveFailed saying why.
+Status solveRuledModel(const ForwardSettings& job, const SeamLayout& layout, SolvedDForm& run,
+                       MessageSink& sink, double largestFoldDeg);
+
+}  // namespace dform::forward_detail
