@@ -135,8 +135,4 @@ Result<Eigen::MatrixXd> jsonPointList(const std::string& path, const nlohmann::j
   return P;
 }
 
-nlohmann::json numberOrNull(double value) {
-  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
-}
-
 }  // namespace dform::io_detail

@@ -1,5 +1,4 @@
-// Internal: JSON helpers shared by the outline and curve readers and the writers of reports and
-// manifests (nlohmann-json stays private).
+// io-internal: JSON helpers shared by the outline and curve readers (nlohmann-json stays private).
 #pragma once
 
 #include <Eigen/Core>
@@ -32,9 +31,5 @@ Result<double> jsonUnitScale(const std::string& path, const nlohmann::json& doc)
 /// #P by dimension rows. `what` names the list in messages ("the outline").
 Result<Eigen::MatrixXd> jsonPointList(const std::string& path, const nlohmann::json& list,
                                       const std::string& what, int dimension, double scale);
-
-/// `value` as a JSON number, or null when it is not finite (JSON has no NaN or infinity): a figure
-/// that was not measured.
-nlohmann::json numberOrNull(double value);
 
 }  // namespace dform::io_detail

@@ -17,8 +17,8 @@
 #include "dform/core/input_file.h"
 #include "dform/core/lock_file.h"
 #include "dform/core/message_text.h"
-#include "dform/io/json_util.h"
 #include "dform/pipeline/job_file.h"
+#include "dform/pipeline/json_values.h"
 #include "dform/pipeline/run.h"
 
 namespace dform {
@@ -27,7 +27,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
-using io_detail::numberOrNull;
 using Clock = std::chrono::steady_clock;
 
 double number(const json& row, const char* key) {

@@ -7,13 +7,12 @@
 #include "dform/core/atomic_file.h"
 #include "dform/core/input_file.h"
 #include "dform/core/message_text.h"
-#include "dform/io/json_util.h"
+#include "dform/pipeline/json_values.h"
 
 namespace dform {
 
 namespace {
 
-using io_detail::numberOrNull;  // JSON has no NaN or infinity: such a figure is written as null
 using nlohmann::json;
 
 // The inverse figures measured against the target curve.

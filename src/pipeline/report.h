@@ -3,7 +3,6 @@
 
 #include <chrono>
 #include <limits>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -41,11 +40,9 @@ Result<std::string> writeInverseReport(const std::string& dir, const Job& job,
                                        const InverseRun& run, const std::vector<Message>& messages,
                                        const GateReport* gate, const CommandTimings& command);
 
-/// The figures as report.json records them under "metrics" (NaN and infinity as null), for
-/// front ends that show them (the studio).
-nlohmann::json metricsJson(const Metrics& metrics);
-
-/// The same with the inverse's `curve` figures when given, as JSON text (the Python module).
+/// The figures as report.json records them under "metrics" (NaN and infinity as null), with the
+/// inverse's `curve` figures when given, as JSON text (for front ends that show them: the studio,
+/// the Python module).
 std::string metricsJsonText(const Metrics& metrics, const CurveMatch* curve);
 
 /// Compares a saved result with what `dir`/report.json recorded: its mode (inverse when `curve`

@@ -19,8 +19,8 @@
 #include "dform/core/input_file.h"
 #include "dform/core/message_text.h"
 #include "dform/core/result_folder.h"
-#include "dform/io/json_util.h"
 #include "dform/io/model_files.h"
+#include "dform/pipeline/json_values.h"
 #include "dform/pipeline/run_steps.h"
 #include "dform/report/views.h"
 #include "dform/validate/metrics.h"
@@ -31,7 +31,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
-using io_detail::numberOrNull;
 using Clock = std::chrono::steady_clock;
 
 // Signed volume enclosed by the triangles of a piece's 3D shape, as cones from `apex`.

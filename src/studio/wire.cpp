@@ -5,7 +5,6 @@
 #include <cstring>
 #include <vector>
 
-#include "dform/io/json_util.h"
 #include "dform/pipeline/report.h"
 
 namespace dform::studio {
@@ -64,7 +63,10 @@ json pieceJson(const Piece& piece) {
           {"free", loops(piece.freeBoundaries)}, {"creases", loops(piece.creases)}};
 }
 
-using io_detail::numberOrNull;  // a figure that may be NaN (no exact D-Form to compare with)
+// A figure that may be NaN (no exact D-Form to compare with): null, as report.json writes it.
+json numberOrNull(double value) { return std::isfinite(value) ? json(value) : json(nullptr); }
+
+json figuresJson(const Metrics& metrics) { return json::parse(metricsJsonText(metrics, nullptr)); }
 
 json gateChecks(const GateReport& gate) {
   json checks = json::array();
@@ -172,7 +174,7 @@ InverseSettings inverseSettingsFrom(const json& request, bool& forceClosed) {
 }
 
 json verdictJson(const Metrics& metrics, const GateReport& gate) {
-  return {{"figures", metricsJson(metrics)}, {"gate", gateJson(gate)}};
+  return {{"figures", figuresJson(metrics)}, {"gate", gateJson(gate)}};
 }
 
 json forwardResultJson(const SolvedDForm& run) {
@@ -191,7 +193,7 @@ json inverseResultJson(const InverseRun& run) {
   const CurveMatch& c = run.curveMatch;
   return {{"mode", "inverse"},
           {"model", modelJson(run.modelUsed)},
-          {"figures", metricsJson(run.metrics)},
+          {"figures", figuresJson(run.metrics)},
           {"pieces", {pieceJson(run.model.a), pieceJson(run.model.b)}},
           {"curve_match",
            {{"D_error", numberOrNull(c.curveError)},
