@@ -1,4 +1,4 @@
-#include "dform/cli/browser.h"
+#include "browser.h"
 
 #include <fcntl.h>
 #include <spawn.h>

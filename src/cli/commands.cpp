@@ -1,4 +1,4 @@
-#include "dform/cli/commands.h"
+#include "commands.h"
 
 #include <algorithm>
 #include <chrono>
@@ -11,10 +11,9 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "dform/cli/browser.h"
-#include "dform/cli/terminal.h"
 #include "dform/core/message_text.h"
 #include "dform/pipeline/saved_result.h"
+#include "terminal.h"
 
 namespace dform::cli {
 

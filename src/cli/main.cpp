@@ -10,11 +10,11 @@
 #include <set>
 #include <string>
 
-#include "dform/cli/commands.h"
-#include "dform/cli/terminal.h"
+#include "commands.h"
 #include "dform/core/allocator.h"
 #include "dform/core/input_file.h"
 #include "dform/core/interrupt.h"
+#include "terminal.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "dform/cli/terminal.h"
+#include "terminal.h"
 
 #include <unistd.h>
 

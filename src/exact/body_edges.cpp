@@ -7,7 +7,7 @@
 #include <limits>
 #include <string>
 
-#include "dform/exact/plane_angles.h"
+#include "plane_angles.h"
 
 namespace dform::exact {
 

@@ -7,7 +7,7 @@
 #include <list>
 #include <numeric>
 
-#include "dform/exact/plane_angles.h"
+#include "plane_angles.h"
 
 namespace dform::exact {
 

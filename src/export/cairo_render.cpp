@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "dform/export/internal.h"
+#include "internal.h"
 
 namespace dform::fab {
 

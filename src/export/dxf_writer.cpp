@@ -16,7 +16,7 @@
 #include <cstdio>
 #include <string>
 
-#include "dform/export/internal.h"
+#include "internal.h"
 
 namespace dform::fab {
 

@@ -8,8 +8,8 @@
 
 #include "dform/core/atomic_file.h"
 #include "dform/core/interrupt.h"
-#include "dform/export/internal.h"
-#include "dform/export/pattern_parts.h"
+#include "internal.h"
+#include "pattern_parts.h"
 
 namespace dform {
 

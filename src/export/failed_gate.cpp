@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cctype>
 
-#include "dform/export/internal.h"
+#include "internal.h"
 
 namespace dform::fab {
 

@@ -1,7 +1,7 @@
 // The glue tabs: along the seam, on one piece or alternating, each a trapezoid folded on the
 // piece's outline, narrowed, split or left out where it would overlap its piece or a neighbour.
-#include "dform/export/pattern_parts.h"
-#include "dform/export/plane_geometry.h"
+#include "pattern_parts.h"
+#include "plane_geometry.h"
 
 namespace dform::fab {
 

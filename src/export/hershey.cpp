@@ -5,7 +5,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "dform/export/internal.h"
+#include "internal.h"
 
 namespace dform::fab {
 

@@ -15,8 +15,8 @@
 #include <cmath>
 #include <optional>
 
-#include "dform/export/pattern_parts.h"
-#include "dform/export/plane_geometry.h"
+#include "pattern_parts.h"
+#include "plane_geometry.h"
 
 namespace dform::fab {
 

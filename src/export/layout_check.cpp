@@ -8,8 +8,8 @@
 #include <cctype>
 #include <string>
 
-#include "dform/export/internal.h"
-#include "dform/export/plane_geometry.h"
+#include "internal.h"
+#include "plane_geometry.h"
 
 namespace dform::fab {
 

@@ -9,7 +9,7 @@
 #include <cstring>
 #include <sstream>
 
-#include "dform/export/internal.h"
+#include "internal.h"
 
 namespace dform::fab {
 

@@ -9,8 +9,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "dform/export/pattern_layout.h"
-#include "dform/export/plane_geometry.h"
+#include "pattern_layout.h"
+#include "plane_geometry.h"
 
 namespace dform::fab {
 

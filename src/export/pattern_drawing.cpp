@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "dform/export/pattern_layout.h"
-#include "dform/export/plane_geometry.h"
+#include "pattern_layout.h"
+#include "plane_geometry.h"
 
 namespace dform::fab {
 

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "dform/export/pattern_parts.h"
+#include "pattern_parts.h"
 
 namespace dform::fab {
 

@@ -13,7 +13,7 @@
 
 #include "dform/core/piece_loops.h"
 #include "dform/core/polyline.h"
-#include "dform/export/internal.h"
+#include "internal.h"
 
 namespace dform::fab {
 

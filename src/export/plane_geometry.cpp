@@ -1,4 +1,4 @@
-#include "dform/export/plane_geometry.h"
+#include "plane_geometry.h"
 
 #include <algorithm>
 #include <cmath>

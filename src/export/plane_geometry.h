@@ -7,7 +7,7 @@
 #include <polyclipping/clipper.hpp>
 #include <unordered_map>
 
-#include "dform/export/internal.h"
+#include "internal.h"
 
 namespace dform::fab {
 

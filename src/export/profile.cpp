@@ -9,7 +9,7 @@
 
 #include "dform/core/input_file.h"
 #include "dform/core/message_text.h"
-#include "dform/export/internal.h"
+#include "internal.h"
 
 namespace dform {
 

@@ -1,8 +1,8 @@
 // The seam marks: numbered ticks at matching seam points on both pieces, across each piece's
 // outline, the start tick longer with an arrow along the zip direction; a tick stops short of a
 // joint hole or slot in its way.
-#include "dform/export/pattern_parts.h"
-#include "dform/export/plane_geometry.h"
+#include "pattern_parts.h"
+#include "plane_geometry.h"
 
 namespace dform::fab {
 

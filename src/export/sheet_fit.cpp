@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "dform/export/pattern_layout.h"
+#include "pattern_layout.h"
 
 namespace dform::fab {
 

@@ -2,7 +2,7 @@
 // tests, the report and anyone who wants to check a cut file without parsing SVG.
 #include <nlohmann/json.hpp>
 
-#include "dform/export/internal.h"
+#include "internal.h"
 
 namespace dform::fab {
 

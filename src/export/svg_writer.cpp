@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "dform/core/message_text.h"
-#include "dform/export/internal.h"
+#include "internal.h"
 
 namespace dform::fab {
 

@@ -3,7 +3,7 @@
 // header naming the tile and a calibration bar.
 #include <algorithm>
 
-#include "dform/export/pattern_layout.h"
+#include "pattern_layout.h"
 
 namespace dform::fab {
 

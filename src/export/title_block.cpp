@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "dform/export/pattern_layout.h"
+#include "pattern_layout.h"
 
 namespace dform::fab {
 

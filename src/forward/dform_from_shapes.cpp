@@ -11,14 +11,14 @@
 #include "dform/core/polyline.h"
 #include "dform/exact/exact_gluing.h"
 #include "dform/forward/coarse_to_fine.h"
-#include "dform/forward/ruled_forward.h"
-#include "dform/forward/seam_layout.h"
 #include "dform/meshing/triangulate.h"
 #include "dform/model/exact_model.h"
 #include "dform/model/resources.h"
 #include "dform/model/run_control.h"
 #include "dform/model/term_table.h"
 #include "dform/model/transfer.h"
+#include "ruled_forward.h"
+#include "seam_layout.h"
 
 namespace dform {
 

@@ -1,4 +1,4 @@
-#include "dform/forward/ruled_forward.h"
+#include "ruled_forward.h"
 
 #include <algorithm>
 #include <cmath>

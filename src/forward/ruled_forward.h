@@ -8,7 +8,7 @@
 #include "dform/core/messages.h"
 #include "dform/core/status.h"
 #include "dform/forward/dform_from_shapes.h"
-#include "dform/forward/seam_layout.h"
+#include "seam_layout.h"
 
 namespace dform::forward_detail {
 

@@ -1,4 +1,4 @@
-#include "dform/forward/seam_layout.h"
+#include "seam_layout.h"
 
 #include <algorithm>
 #include <cmath>

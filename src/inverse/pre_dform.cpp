@@ -10,9 +10,9 @@
 #include <utility>
 
 #include "dform/core/polyline.h"
-#include "dform/inverse/unfold.h"
 #include "dform/meshing/convex_hull.h"
 #include "dform/meshing/triangulate.h"
+#include "unfold.h"
 
 namespace dform {
 namespace {

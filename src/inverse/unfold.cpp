@@ -1,4 +1,4 @@
-#include "dform/inverse/unfold.h"
+#include "unfold.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "dform/io/crease_lines.h"
+#include "crease_lines.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <optional>
 
 #include "dform/core/polyline.h"
-#include "dform/io/io_util.h"
+#include "io_util.h"
 
 namespace dform::io_detail {
 namespace {

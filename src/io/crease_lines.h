@@ -7,7 +7,7 @@
 
 #include "dform/core/status.h"
 #include "dform/io/outline_reader.h"
-#include "dform/io/svg_outline.h"
+#include "svg_outline.h"
 
 namespace dform::io_detail {
 

@@ -8,10 +8,10 @@
 #include "dform/core/file_hash.h"
 #include "dform/core/input_file.h"
 #include "dform/core/polyline.h"
-#include "dform/io/flatten.h"
-#include "dform/io/io_util.h"
-#include "dform/io/json_util.h"
-#include "dform/io/obj_format.h"
+#include "flatten.h"
+#include "io_util.h"
+#include "json_util.h"
+#include "obj_format.h"
 
 namespace dform {
 namespace {

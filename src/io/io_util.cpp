@@ -1,4 +1,4 @@
-#include "dform/io/io_util.h"
+#include "io_util.h"
 
 #include <algorithm>
 #include <cctype>

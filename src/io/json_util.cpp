@@ -1,4 +1,4 @@
-#include "dform/io/json_util.h"
+#include "json_util.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <string>
 
 #include "dform/core/message_text.h"
-#include "dform/io/io_util.h"
+#include "io_util.h"
 
 namespace dform::io_detail {
 

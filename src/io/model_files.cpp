@@ -8,8 +8,8 @@
 
 #include "dform/core/atomic_file.h"
 #include "dform/core/input_file.h"
-#include "dform/io/io_util.h"
-#include "dform/io/obj_format.h"
+#include "io_util.h"
+#include "obj_format.h"
 
 namespace dform {
 namespace {

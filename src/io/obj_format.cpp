@@ -1,4 +1,4 @@
-#include "dform/io/obj_format.h"
+#include "obj_format.h"
 
 #include <charconv>
 #include <cstdint>
@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "dform/core/message_text.h"
-#include "dform/io/io_util.h"
+#include "io_util.h"
 
 namespace dform::io_detail {
 namespace {

@@ -5,13 +5,13 @@
 #include <cmath>
 #include <optional>
 
+#include "crease_lines.h"
 #include "dform/core/file_hash.h"
 #include "dform/core/input_file.h"
 #include "dform/core/polyline.h"
-#include "dform/io/crease_lines.h"
-#include "dform/io/io_util.h"
-#include "dform/io/json_util.h"
-#include "dform/io/svg_outline.h"
+#include "io_util.h"
+#include "json_util.h"
+#include "svg_outline.h"
 
 namespace dform {
 namespace {

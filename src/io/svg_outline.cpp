@@ -1,7 +1,7 @@
 // The only translation unit that includes svgpp (expensive to compile). svgpp walks the document,
 // resolves element transforms, lengths and basic shapes into absolute path commands; this file
 // records them per element and flattens them in millimetres once the element's transform is known.
-#include "dform/io/svg_outline.h"
+#include "svg_outline.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -19,9 +19,9 @@
 #include <svgpp/svgpp.hpp>
 
 #include "dform/core/message_text.h"
-#include "dform/io/flatten.h"
-#include "dform/io/io_util.h"
-#include "dform/io/svg_viewport.h"
+#include "flatten.h"
+#include "io_util.h"
+#include "svg_viewport.h"
 
 namespace dform::io_detail {
 namespace {

@@ -1,4 +1,4 @@
-#include "dform/io/svg_viewport.h"
+#include "svg_viewport.h"
 
 #include <algorithm>
 #include <cctype>
@@ -9,7 +9,7 @@
 #include <utility>
 
 #include "dform/core/message_text.h"
-#include "dform/io/io_util.h"
+#include "io_util.h"
 
 namespace dform::io_detail {
 

@@ -20,8 +20,8 @@
 #include <string>
 #include <utility>
 
+#include "cgal_backend.h"
 #include "dform/core/interrupt.h"
-#include "dform/meshing/cgal_backend.h"
 #include "dform/meshing/convex_hull.h"
 
 namespace dform {

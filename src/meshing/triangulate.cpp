@@ -10,9 +10,9 @@
 #include <cmath>
 #include <string>
 
+#include "cgal_backend.h"
 #include "dform/core/interrupt.h"
 #include "dform/core/polyline.h"
-#include "dform/meshing/cgal_backend.h"
 
 namespace dform {
 namespace {

@@ -18,8 +18,8 @@
 #include "dform/core/lock_file.h"
 #include "dform/core/message_text.h"
 #include "dform/pipeline/job_file.h"
-#include "dform/pipeline/json_values.h"
 #include "dform/pipeline/run.h"
+#include "json_values.h"
 
 namespace dform {
 

@@ -8,7 +8,7 @@
 #include "dform/io/curve_reader.h"
 #include "dform/model/resources.h"
 #include "dform/model/run_control.h"
-#include "dform/pipeline/reference_seams.h"
+#include "reference_seams.h"
 
 namespace dform {
 

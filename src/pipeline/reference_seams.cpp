@@ -1,4 +1,4 @@
-#include "dform/pipeline/reference_seams.h"
+#include "reference_seams.h"
 
 #include "dform/exact/body_edges.h"
 #include "dform/exact/exact_gluing.h"

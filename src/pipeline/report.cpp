@@ -7,7 +7,7 @@
 #include "dform/core/atomic_file.h"
 #include "dform/core/input_file.h"
 #include "dform/core/message_text.h"
-#include "dform/pipeline/json_values.h"
+#include "json_values.h"
 
 namespace dform {
 

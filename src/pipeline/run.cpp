@@ -9,7 +9,7 @@
 #include "dform/io/model_files.h"
 #include "dform/model/resources.h"
 #include "dform/pipeline/report.h"
-#include "dform/pipeline/run_steps.h"
+#include "run_steps.h"
 
 namespace dform {
 

@@ -1,4 +1,4 @@
-#include "dform/pipeline/run_steps.h"
+#include "run_steps.h"
 
 #include <signal.h>
 

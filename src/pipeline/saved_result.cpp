@@ -10,9 +10,9 @@
 #include "dform/core/result_folder.h"
 #include "dform/io/curve_reader.h"
 #include "dform/io/model_files.h"
-#include "dform/pipeline/reference_seams.h"
 #include "dform/pipeline/report.h"
-#include "dform/pipeline/run_steps.h"
+#include "reference_seams.h"
+#include "run_steps.h"
 
 namespace dform {
 

@@ -20,10 +20,10 @@
 #include "dform/core/message_text.h"
 #include "dform/core/result_folder.h"
 #include "dform/io/model_files.h"
-#include "dform/pipeline/json_values.h"
-#include "dform/pipeline/run_steps.h"
 #include "dform/report/views.h"
 #include "dform/validate/metrics.h"
+#include "json_values.h"
+#include "run_steps.h"
 
 namespace dform {
 

@@ -1,10 +1,10 @@
-#include "dform/report/convergence_plot.h"
+#include "convergence_plot.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "dform/report/svg_text.h"
+#include "svg_text.h"
 
 namespace dform {
 

@@ -6,12 +6,12 @@
 #include <kainjow/mustache.hpp>
 #include <nlohmann/json.hpp>
 
+#include "convergence_plot.h"
 #include "dform/core/input_file.h"
 #include "dform/core/message_text.h"
-#include "dform/report/convergence_plot.h"
-#include "dform/report/viewer_model.h"
 #include "dform/report/views.h"
 #include "dform/validate/metrics.h"
+#include "viewer_model.h"
 
 namespace dform {
 

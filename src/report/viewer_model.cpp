@@ -1,4 +1,4 @@
-#include "dform/report/viewer_model.h"
+#include "viewer_model.h"
 
 #include <algorithm>
 #include <array>

@@ -8,8 +8,8 @@
 
 #include "dform/core/piece_loops.h"
 #include "dform/core/shape_projection.h"
-#include "dform/report/svg_text.h"
 #include "dform/validate/metrics.h"
+#include "svg_text.h"
 
 namespace dform {
 

@@ -1,4 +1,4 @@
-#include "dform/solver/gradient_check.h"
+#include "gradient_check.h"
 
 #include <algorithm>
 #include <cmath>

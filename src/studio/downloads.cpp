@@ -1,4 +1,4 @@
-#include "dform/studio/downloads.h"
+#include "downloads.h"
 
 #include <malloc.h>
 
@@ -11,8 +11,8 @@
 #include "dform/core/interrupt.h"
 #include "dform/pipeline/job_file.h"
 #include "dform/pipeline/run.h"
-#include "dform/studio/wire.h"
-#include "dform/studio/zip.h"
+#include "wire.h"
+#include "zip.h"
 
 namespace dform::studio {
 

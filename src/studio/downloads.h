@@ -8,7 +8,7 @@
 
 #include "dform/core/status.h"
 #include "dform/pipeline/inverse_pipeline.h"
-#include "dform/studio/session.h"
+#include "session.h"
 
 namespace dform::studio {
 

@@ -1,4 +1,4 @@
-#include "dform/studio/guard.h"
+#include "guard.h"
 
 #include <cctype>
 #include <random>

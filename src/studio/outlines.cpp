@@ -1,4 +1,4 @@
-#include "dform/studio/outlines.h"
+#include "outlines.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "dform/studio/server.h"
+#include "server.h"
 
 #include <arpa/inet.h>
 #include <fcntl.h>

@@ -1,4 +1,4 @@
-#include "dform/studio/session.h"
+#include "session.h"
 
 #include <sys/resource.h>
 #include <sys/syscall.h>

@@ -13,12 +13,12 @@
 #include "dform/io/outline_reader.h"
 #include "dform/pipeline/job_file.h"
 #include "dform/pipeline/run.h"
-#include "dform/studio/downloads.h"
-#include "dform/studio/guard.h"
-#include "dform/studio/outlines.h"
-#include "dform/studio/server.h"
-#include "dform/studio/session.h"
-#include "dform/studio/wire.h"
+#include "downloads.h"
+#include "guard.h"
+#include "outlines.h"
+#include "server.h"
+#include "session.h"
+#include "wire.h"
 
 // Last: glibc's resolv.h, which it includes, defines _res, a name Eigen's headers use.
 #include <httplib.h>

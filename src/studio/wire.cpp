@@ -1,4 +1,4 @@
-#include "dform/studio/wire.h"
+#include "wire.h"
 
 #include <cmath>
 #include <cstdint>

@@ -1,4 +1,4 @@
-#include "dform/studio/zip.h"
+#include "zip.h"
 
 #include <array>
 #include <cstdint>

@@ -1,4 +1,4 @@
-#include "dform/validate/cgal_checks.h"
+#include "cgal_checks.h"
 
 #include <CGAL/Convex_hull_traits_adapter_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>

@@ -8,11 +8,11 @@
 #include <set>
 #include <utility>
 
+#include "cgal_checks.h"
 #include "dform/core/interrupt.h"
 #include "dform/core/piece_loops.h"
 #include "dform/core/polyline.h"
-#include "dform/validate/cgal_checks.h"
-#include "dform/validate/mesh_measures.h"
+#include "mesh_measures.h"
 
 namespace dform {
 

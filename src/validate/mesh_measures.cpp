@@ -1,4 +1,4 @@
-#include "dform/validate/mesh_measures.h"
+#include "mesh_measures.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>

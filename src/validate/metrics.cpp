@@ -8,7 +8,7 @@
 #include "dform/core/interrupt.h"
 #include "dform/core/polyline.h"
 #include "dform/exact/aligned_distance.h"
-#include "dform/validate/mesh_measures.h"
+#include "mesh_measures.h"
 
 namespace dform {
 

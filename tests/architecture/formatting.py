@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The C++ sources of src/ and tests/ are formatted as .clang-format says (Google style, 100
+"""The C++ sources of src/, include/ and tests/ are formatted as .clang-format says (Google style, 100
 columns): lists every file clang-format would change and exits 1, else 0. Fix with
 `clang-format -i FILE`.
 
@@ -12,7 +12,7 @@ import subprocess
 import sys
 import tempfile
 
-FOLDERS = ("src", "tests")
+FOLDERS = ("src", "include", "tests")
 
 
 def sources(root):

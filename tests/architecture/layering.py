@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
 """The modules of src/ depend one way (docs/architecture.md): each may include only the modules
-below it, and the command line links the pipeline alone. Includes are written as an installed
-project reads them, "dform/<module>/<header>.h". Lists every #include of a module a file may not
-use or written without the dform/ prefix (or every module the CLI links besides the pipeline) and
-exits 1, else 0.
+below it, and the command line links the pipeline alone. A module's public headers are in
+include/dform/<module>/ (beside src/), included as an installed project reads them,
+"dform/<module>/<header>.h"; its private headers are beside its sources, included by their bare
+names from the module's own files only. Lists every #include of a module a file may not use, of
+another module's private header, of a header that is not there, or written without the dform/
+prefix (or every module the CLI links besides the pipeline) and exits 1, else 0.
 
-    layering.py SRC_DIR
+    layering.py SRC_DIR    (its public headers in SRC_DIR/../include/dform)
     layering.py --cli-links "LINK;LIBRARIES"   (the dform target's LINK_LIBRARIES property)
     layering.py --core-copies SRC_DIR   (export defines none of core/polyline.h's 2D helpers again)
     layering.py --docs SRC_DIR DOCS_DIR   (docs/architecture.md's table and docs/conventions.md's
@@ -47,35 +49,72 @@ ALLOWED = {
     "studio": {"core", "io", "pipeline", "validate"},
 }
 
-INCLUDE = re.compile(r'^\s*#\s*include\s+"dform/([a-z_]+)/')
+INCLUDE = re.compile(r'^\s*#\s*include\s+"dform/([a-z_]+)/([^"]+)"')
 UNPREFIXED = re.compile(r'^\s*#\s*include\s+[<"](' + "|".join(ALLOWED) + r')/')
+PRIVATE = re.compile(r'^\s*#\s*include\s+"([^"/]+)"')
+
+
+def public_folder(src):
+    """include/dform, beside src/: the public headers, one folder per module."""
+    return os.path.join(os.path.dirname(os.path.abspath(src)), "include", "dform")
+
+
+def module_files(src, module):
+    """(path, public) for every C++ file of `module`: its sources and private headers in src/,
+    its public headers in include/dform/."""
+    for folder, public in ((os.path.join(src, module), False),
+                           (os.path.join(public_folder(src), module), True)):
+        for root, _, files in os.walk(folder):
+            for name in sorted(files):
+                if name.endswith((".h", ".hpp", ".cpp")):
+                    yield os.path.join(root, name), public
+
+
+def include_problems(src, module, path, public, line):
+    """What is wrong with one line's #include in a file of `module` (None when nothing)."""
+    bare = UNPREFIXED.match(line)
+    if bare:
+        return f"includes {bare.group(1)}/ without the dform/ prefix"
+    m = INCLUDE.match(line)
+    if m:
+        if m.group(1) != module and m.group(1) not in ALLOWED[module]:
+            return (f"{module} includes {m.group(1)}/, which it may not (allowed: "
+                    f"{', '.join(sorted(ALLOWED[module])) or 'nothing'})")
+        if not os.path.isfile(os.path.join(public_folder(src), m.group(1), m.group(2))):
+            private = os.path.isfile(os.path.join(src, m.group(1), m.group(2)))
+            return (f"includes dform/{m.group(1)}/{m.group(2)}, which is "
+                    + ("a private header of " + m.group(1) if private else "not there")
+                    + f" (public headers are in include/dform/{m.group(1)}/)")
+        return None
+    m = PRIVATE.match(line)
+    if m:
+        if public:
+            return f"a public header includes the private header {m.group(1)}"
+        if not os.path.isfile(os.path.join(os.path.dirname(path), m.group(1))):
+            return f"includes {m.group(1)}, which is not a private header of {module}"
+    return None
 
 
 def violations(src):
     found = []
-    for module in sorted(os.listdir(src)):
-        folder = os.path.join(src, module)
-        if not os.path.isdir(folder):
+    include = public_folder(src)
+    for module in sorted(set(os.listdir(src)) | set(os.listdir(include) if os.path.isdir(include) else [])):
+        if not os.path.isdir(os.path.join(src, module)) and not os.path.isdir(os.path.join(include, module)):
             continue
         if module not in ALLOWED:
             found.append(f"{module}/: a module the layering does not know (add it to ALLOWED)")
             continue
-        for root, _, files in os.walk(folder):
-            for name in sorted(files):
-                if not name.endswith((".h", ".hpp", ".cpp")):
-                    continue
-                path = os.path.join(root, name)
-                with open(path, encoding="utf-8") as f:
-                    for number, line in enumerate(f, 1):
-                        bare = UNPREFIXED.match(line)
-                        if bare:
-                            found.append(f"{os.path.relpath(path, src)}:{number}: includes "
-                                         f"{bare.group(1)}/ without the dform/ prefix")
-                        m = INCLUDE.match(line)
-                        if m and m.group(1) != module and m.group(1) not in ALLOWED[module]:
-                            found.append(f"{os.path.relpath(path, src)}:{number}: {module} includes "
-                                         f"{m.group(1)}/, which it may not (allowed: "
-                                         f"{', '.join(sorted(ALLOWED[module])) or 'nothing'})")
+        for path, public in module_files(src, module):
+            shown = os.path.relpath(path, os.path.dirname(os.path.dirname(include)) if public else src)
+            if public and path.endswith(".cpp"):
+                found.append(f"{shown}: a source file among the public headers")
+            if public and os.path.isfile(os.path.join(src, module, os.path.basename(path))):
+                found.append(f"{shown}: a private header of the same name is in src/{module}/")
+            with open(path, encoding="utf-8") as f:
+                for number, line in enumerate(f, 1):
+                    problem = include_problems(src, module, path, public, line)
+                    if problem:
+                        found.append(f"{shown}:{number}: {problem}")
     return found
 
 
@@ -97,7 +136,7 @@ DECLARED = re.compile(r"^[A-Za-z][\w:<>,\s\*&]*?[\s\*&](\w+)\(", re.M)
 
 
 def core_helper_copies(src, module="export", header="core/polyline.h"):
-    with open(os.path.join(src, header), encoding="utf-8") as f:
+    with open(os.path.join(public_folder(src), header), encoding="utf-8") as f:
         names = set(DECLARED.findall(f.read()))
     found = []
     for root, _, files in os.walk(os.path.join(src, module)):
@@ -164,11 +203,18 @@ def doc_violations(src, docs):
 
 
 def self_test():
-    with tempfile.TemporaryDirectory() as src:
-        def write(path, text):
-            os.makedirs(os.path.dirname(os.path.join(src, path)), exist_ok=True)
-            with open(os.path.join(src, path), "w", encoding="utf-8") as f:
+    with tempfile.TemporaryDirectory() as root:
+        src = os.path.join(root, "src")
+        def write(path, text, folder=src):
+            os.makedirs(os.path.dirname(os.path.join(folder, path)), exist_ok=True)
+            with open(os.path.join(folder, path), "w", encoding="utf-8") as f:
                 f.write(text)
+        def public(path, text=""):
+            write(path, text, os.path.join(root, "include", "dform"))
+        for header in ("io/reader.h", "core/status.h", "core/types.h", "validate/gate.h",
+                       "pipeline/run.h", "export/exporter.h", "forward/forward.h",
+                       "inverse/pre_dform.h", "solver/problem.h", "io/outline_reader.h"):
+            public(header)
         write("io/reader.cpp", '#include "dform/io/reader.h"\n#include "dform/core/status.h"\n')
         write("pipeline/run.cpp", '#include "dform/io/reader.h"\n#include "dform/validate/gate.h"\n')
         assert violations(src) == [], violations(src)
@@ -188,20 +234,41 @@ def self_test():
         # judges meshes and uses no solver.
         write("inverse/solve.cpp", '#include "dform/model/terms.h"\n#include "dform/forward/forward.h"\n')
         write("forward/solve.cpp", '#include "dform/model/terms.h"\n#include "dform/inverse/pre_dform.h"\n')
-        write("model/terms.h", '#include "dform/solver/problem.h"\n#include "dform/forward/forward.h"\n')
+        public("model/terms.h", '#include "dform/solver/problem.h"\n#include "dform/forward/forward.h"\n')
         write("validate/metrics.cpp", '#include "dform/core/types.h"\n#include "dform/solver/problem.h"\n')
         found = violations(src)
         assert [f.split(": ")[0] for f in found] == [
             "core/worse.h:1", "forward/solve.cpp:2", "inverse/solve.cpp:2", "io/bad.cpp:2",
-            "model/terms.h:2", "validate/metrics.cpp:2"], found
+            "include/dform/model/terms.h:2", "validate/metrics.cpp:2"], found
         # The studio uses the pipeline, io and validate, nothing else of the stages.
         write("studio/server.cpp", '#include "dform/pipeline/run.h"\n#include "dform/io/outline_reader.h"\n')
         assert len(violations(src)) == 6, violations(src)
         write("studio/worse.cpp", '#include "dform/export/exporter.h"\n')
         found = violations(src)
         assert len(found) == 7 and any(f.startswith("studio/worse.cpp:1: studio includes export/") for f in found), found
-        write("core/polyline.h", "double closedLength(const Eigen::MatrixXd& P);\n"
-                                 "bool segmentsIntersect(const Vec2& a,\n    const Vec2& b);\n")
+        for planted in ("core/worse.h", "forward/solve.cpp", "inverse/solve.cpp", "io/bad.cpp",
+                        "validate/metrics.cpp", "studio/worse.cpp"):
+            os.remove(os.path.join(src, planted))
+        os.remove(os.path.join(root, "include", "dform", "model", "terms.h"))
+        assert violations(src) == [], violations(src)
+        # A private header is included by its bare name from its own module's folder only; a
+        # public header includes public ones only, and a dform/ include names a file that is there.
+        write("io/svg_path.h", "")
+        write("io/svg.cpp", '#include "svg_path.h"\n#include "dform/io/reader.h"\n')
+        assert violations(src) == [], violations(src)
+        write("pipeline/peek.cpp", '#include "dform/io/svg_path.h"\n#include "svg_path.h"\n'
+                                   '#include "dform/core/missing.h"\n')
+        public("io/leaky.h", '#include "svg_path.h"\n')
+        found = violations(src)
+        assert found == [
+            "include/dform/io/leaky.h:1: a public header includes the private header svg_path.h",
+            "pipeline/peek.cpp:1: includes dform/io/svg_path.h, which is a private header of io "
+            "(public headers are in include/dform/io/)",
+            "pipeline/peek.cpp:2: includes svg_path.h, which is not a private header of pipeline",
+            "pipeline/peek.cpp:3: includes dform/core/missing.h, which is not there (public "
+            "headers are in include/dform/core/)"], found
+        public("core/polyline.h", "double closedLength(const Eigen::MatrixXd& P);\n"
+                                  "bool segmentsIntersect(const Vec2& a,\n    const Vec2& b);\n")
         write("export/draw.cpp", "double width(const Polyline& p) { return closedLength(p); }\n")
         assert core_helper_copies(src) == [], core_helper_copies(src)
         write("export/copy.cpp", "namespace {\nstatic double closedLength(const Polyline& p,\n"

@@ -12,7 +12,7 @@
 #include <tuple>
 #include <vector>
 
-#include "dform/export/internal.h"
+#include "export/internal.h"
 #include "models.h"
 #include "synthetic.h"
 #include "test_util.h"

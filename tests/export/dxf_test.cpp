@@ -13,7 +13,7 @@
 
 #include "dform/core/atomic_file.h"
 #include "dform/export/exporter.h"
-#include "dform/export/internal.h"
+#include "export/internal.h"
 #include "models.h"
 #include "synthetic.h"
 #include "test_util.h"

@@ -14,7 +14,7 @@
 #include "dform/core/interrupt.h"
 #include "dform/core/polyline.h"
 #include "dform/export/exporter.h"
-#include "dform/export/plane_geometry.h"
+#include "export/plane_geometry.h"
 #include "synthetic.h"
 #include "test_util.h"
 

@@ -8,7 +8,7 @@
 #include <functional>
 
 #include "dform/export/exporter.h"
-#include "dform/export/internal.h"
+#include "export/internal.h"
 #include "synthetic.h"
 #include "test_util.h"
 

@@ -10,7 +10,7 @@
 #include <tuple>
 
 #include "dform/export/exporter.h"
-#include "dform/export/internal.h"
+#include "export/internal.h"
 #include "models.h"
 #include "synthetic.h"
 #include "test_util.h"

@@ -8,8 +8,8 @@
 #include <map>
 
 #include "dform/export/exporter.h"
-#include "dform/export/internal.h"
-#include "dform/export/plane_geometry.h"
+#include "export/internal.h"
+#include "export/plane_geometry.h"
 #include "models.h"
 #include "synthetic.h"
 #include "test_util.h"

@@ -6,7 +6,7 @@
 #include <regex>
 
 #include "dform/export/exporter.h"
-#include "dform/export/internal.h"
+#include "export/internal.h"
 #include "models.h"
 #include "test_util.h"
 

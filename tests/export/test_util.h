@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "dform/export/exporter.h"
-#include "dform/export/internal.h"
+#include "export/internal.h"
 
 namespace dform::test {
 

@@ -10,9 +10,9 @@
 
 #include "dform/core/polyline.h"
 #include "dform/export/exporter.h"
-#include "dform/export/internal.h"
-#include "dform/export/plane_geometry.h"
 #include "dform/validate/metrics.h"
+#include "export/internal.h"
+#include "export/plane_geometry.h"
 #include "models.h"
 #include "test_util.h"
 

@@ -13,10 +13,10 @@
 #include "dform/model/term_table.h"
 #include "dform/model/terms.h"
 #include "dform/model/transfer.h"
-#include "dform/pipeline/reference_seams.h"
 #include "dform/validate/gate.h"
 #include "dform/validate/metrics.h"
 #include "model/test_meshes.h"
+#include "pipeline/reference_seams.h"
 
 namespace dform {
 namespace {

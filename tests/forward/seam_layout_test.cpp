@@ -1,4 +1,4 @@
-#include "dform/forward/seam_layout.h"
+#include "forward/seam_layout.h"
 
 #include <gtest/gtest.h>
 

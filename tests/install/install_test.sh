@@ -14,7 +14,7 @@ cmake --install "$build" --prefix "$work/prefix" > "$work/install.log" ||
   fail "cmake --install failed: $(tail -3 "$work/install.log")"
 include=$work/prefix/include/dform
 [ -f "$include/pipeline/run.h" ] || fail "pipeline/run.h is not installed"
-for internal in pipeline/run_steps.h model/exact_model.h forward/seam_layout.h model/term_table.h model/run_control.h io/json_util.h export/internal.h; do
+for internal in pipeline/run_steps.h pipeline/json_values.h forward/seam_layout.h io/json_util.h export/internal.h studio/studio.h; do
   [ ! -e "$include/$internal" ] || fail "the internal header $internal is installed"
 done
 "$work/prefix/bin/dform" --version > /dev/null || fail "the installed dform does not run"

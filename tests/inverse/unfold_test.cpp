@@ -1,4 +1,4 @@
-#include "dform/inverse/unfold.h"
+#include "inverse/unfold.h"
 
 #include <gtest/gtest.h>
 

@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "dform/exact/body_edges.h"
-#include "dform/pipeline/reference_seams.h"
 #include "dform/validate/gate.h"
 #include "dform/validate/metrics.h"
 #include "exact/shapes.h"
+#include "pipeline/reference_seams.h"
 
 namespace dform {
 namespace {

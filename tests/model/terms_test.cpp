@@ -6,8 +6,8 @@
 #include <Eigen/Geometry>
 #include <random>
 
-#include "dform/solver/gradient_check.h"
 #include "dform/validate/metrics.h"
+#include "solver/gradient_check.h"
 #include "test_meshes.h"
 
 namespace dform {

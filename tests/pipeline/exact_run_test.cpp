@@ -8,8 +8,8 @@
 #include <fstream>
 
 #include "dform/pipeline/forward_pipeline.h"
-#include "dform/pipeline/reference_seams.h"
 #include "dform/validate/gate.h"
+#include "pipeline/reference_seams.h"
 
 namespace dform {
 namespace {

@@ -10,11 +10,11 @@
 #include <sstream>
 
 #include "dform/export/exporter.h"
-#include "dform/export/internal.h"
 #include "dform/io/outline_reader.h"
 #include "dform/pipeline/forward_pipeline.h"
 #include "dform/pipeline/run.h"
 #include "dform/pipeline/saved_result.h"
+#include "export/internal.h"
 
 namespace dform {
 namespace {

@@ -13,8 +13,8 @@
 
 #include "dform/core/polyline.h"
 #include "dform/pipeline/forward_pipeline.h"
-#include "dform/pipeline/reference_seams.h"
 #include "dform/validate/gate.h"
+#include "pipeline/reference_seams.h"
 
 namespace dform {
 namespace {

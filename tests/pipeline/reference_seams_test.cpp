@@ -1,7 +1,7 @@
 // The references a result's figures are measured against (pipeline/reference_seams.h): the exact
 // body where the glued metric is convex, and for each reason there is none, that reason as a
 // value the round trip chooses its way by.
-#include "dform/pipeline/reference_seams.h"
+#include "pipeline/reference_seams.h"
 
 #include <gtest/gtest.h>
 

@@ -11,9 +11,9 @@
 #include "dform/core/polyline.h"
 #include "dform/io/outline_reader.h"
 #include "dform/pipeline/forward_pipeline.h"
-#include "dform/pipeline/reference_seams.h"
 #include "dform/validate/gate.h"
 #include "dform/validate/metrics.h"
+#include "pipeline/reference_seams.h"
 
 namespace dform {
 namespace {

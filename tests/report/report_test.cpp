@@ -12,12 +12,12 @@
 #include <vector>
 
 #include "dform/core/shape_projection.h"
-#include "dform/report/convergence_plot.h"
 #include "dform/report/html_report.h"
 #include "dform/report/views.h"
 #include "dform/validate/metrics.h"
 #include "minimal_report.h"
 #include "models.h"
+#include "report/convergence_plot.h"
 
 namespace dform {
 namespace {

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <random>
 
-#include "dform/solver/gradient_check.h"
+#include "solver/gradient_check.h"
 
 namespace dform {
 namespace {

@@ -16,7 +16,7 @@
 #include <thread>
 #include <vector>
 
-#include "dform/studio/server.h"
+#include "studio/server.h"
 #include "studio_client.h"
 
 namespace dform {

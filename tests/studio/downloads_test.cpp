@@ -1,6 +1,6 @@
 // The studio's downloads against the command line: a saved job that `dform run` reproduces (the
 // same figures), and an export whose files are the ones `dform run` writes for that job.
-#include "dform/studio/downloads.h"
+#include "studio/downloads.h"
 
 #include <gtest/gtest.h>
 

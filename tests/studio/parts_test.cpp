@@ -8,9 +8,9 @@
 #include <fstream>
 
 #include "dform/io/outline_reader.h"
-#include "dform/studio/guard.h"
-#include "dform/studio/outlines.h"
-#include "dform/studio/zip.h"
+#include "studio/guard.h"
+#include "studio/outlines.h"
+#include "studio/zip.h"
 
 namespace dform {
 namespace {

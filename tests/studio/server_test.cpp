@@ -18,9 +18,9 @@
 #include "dform/io/outline_reader.h"
 #include "dform/pipeline/forward_pipeline.h"
 #include "dform/pipeline/report.h"
-#include "dform/studio/session.h"
 #include "dform/studio/studio.h"
-#include "dform/studio/wire.h"
+#include "studio/session.h"
+#include "studio/wire.h"
 #include "studio_client.h"
 
 // clang-format off

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "dform/io/outline_reader.h"
-#include "dform/studio/outlines.h"
 #include "dform/studio/studio.h"
+#include "studio/outlines.h"
 
 // clang-format off
 #include <httplib.h>  // last: its resolv.h defines _res, a name Eigen uses

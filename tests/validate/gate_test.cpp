@@ -10,8 +10,8 @@
 #include <limits>
 #include <set>
 
-#include "dform/pipeline/reference_seams.h"
 #include "models.h"
+#include "pipeline/reference_seams.h"
 
 namespace dform {
 namespace {

@@ -13,10 +13,10 @@
 #include "dform/core/interrupt.h"
 #include "dform/core/polyline.h"
 #include "dform/core/shape_projection.h"
-#include "dform/validate/cgal_checks.h"
 #include "dform/validate/gate.h"
-#include "dform/validate/mesh_measures.h"
 #include "models.h"
+#include "validate/cgal_checks.h"
+#include "validate/mesh_measures.h"
 
 namespace dform {
 namespace {

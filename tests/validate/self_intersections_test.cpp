@@ -6,7 +6,7 @@
 #include <cmath>
 #include <initializer_list>
 
-#include "dform/validate/cgal_checks.h"
+#include "validate/cgal_checks.h"
 
 namespace dform::detail {
 namespace {
