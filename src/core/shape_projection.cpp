@@ -7,12 +7,13 @@
 #include <map>
 #include <numeric>
 
+#include "dform/core/constants.h"
 #include "dform/core/interrupt.h"
 
 namespace dform {
 
 ShapeCamera::ShapeCamera(double azimuthDeg, double elevationDeg) {
-  const double az = azimuthDeg * M_PI / 180.0, el = elevationDeg * M_PI / 180.0;
+  const double az = azimuthDeg * kDegree, el = elevationDeg * kDegree;
   R_ = (Eigen::AngleAxisd(el, Eigen::Vector3d::UnitX()) *
         Eigen::AngleAxisd(-az, Eigen::Vector3d::UnitZ()))
            .toRotationMatrix();

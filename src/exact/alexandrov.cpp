@@ -8,11 +8,12 @@
 #include <deque>
 #include <unsupported/Eigen/AutoDiff>
 
+#include "dform/core/constants.h"
+
 namespace dform::exact {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 using Dual = Eigen::AutoDiffScalar<Eigen::Vector3d>;
 
 // A face laid out in the plane: corner 0 at the origin, corner 1 on the +x axis, corner 2 above.

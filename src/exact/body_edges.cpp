@@ -15,7 +15,6 @@ namespace {
 
 using plane::ccwAngle;
 using plane::cross;
-using plane::kPi;
 
 Eigen::Vector2d rotated(const Eigen::Vector2d& u, double angle) {
   const double c = std::cos(angle), s = std::sin(angle);

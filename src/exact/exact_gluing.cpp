@@ -15,7 +15,6 @@ namespace {
 
 using plane::ccwAngle;
 using plane::cross;
-using plane::kPi;
 
 Eigen::Vector2d row(const Points2& P, long k) {
   const long n = P.rows();

@@ -5,11 +5,11 @@
 #include <cmath>
 #include <deque>
 
+#include "dform/core/constants.h"
+
 namespace dform::exact {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return a.x() * b.y() - a.y() * b.x();

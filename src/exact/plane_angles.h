@@ -4,9 +4,9 @@
 #include <Eigen/Core>
 #include <cmath>
 
-namespace dform::exact::plane {
+#include "dform/core/constants.h"
 
-constexpr double kPi = 3.14159265358979323846;
+namespace dform::exact::plane {
 
 inline double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return a.x() * b.y() - a.y() * b.x();

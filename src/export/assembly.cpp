@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <optional>
 
+#include "dform/core/constants.h"
 #include "dform/core/shape_projection.h"
 #include "internal.h"
 #include "plane_geometry.h"
@@ -45,7 +46,7 @@ Layer makeLayer(std::string name, std::string color, double width) {
 Polyline disc(const Vec2& c, double r) {
   Polyline p;
   for (int k = 0; k < 16; ++k) {
-    const double a = 2 * M_PI * k / 16;
+    const double a = 2 * kPi * k / 16;
     p.push_back(c + r * Vec2(std::cos(a), std::sin(a)));
   }
   return p;
@@ -160,7 +161,7 @@ std::vector<Vec2> spotsAround(const Vec2& at, const Vec2& out,
   std::vector<Vec2> spots;
   for (double d : distances)
     for (double deg : {0.0, 20.0, -20.0, 40.0, -40.0, 60.0, -60.0, 90.0, -90.0}) {
-      const double r = deg * M_PI / 180;
+      const double r = deg * kDegree;
       spots.push_back(at + d * Vec2(std::cos(r) * out.x() - std::sin(r) * out.y(),
                                     std::sin(r) * out.x() + std::cos(r) * out.y()));
     }

@@ -11,13 +11,13 @@
 #include <utility>
 #include <vector>
 
+#include "dform/core/constants.h"
 #include "dform/core/piece_loops.h"
 #include "dform/core/polyline.h"
 #include "internal.h"
 
 namespace dform::fab {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kTickOut = 1.5;  // tick length outside the outline (mm)
 
 Points2 toPoints(const Polyline& p);

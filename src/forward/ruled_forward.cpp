@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dform/core/constants.h"
 #include "dform/core/polyline.h"
 #include "dform/model/ruled_model.h"
 #include "dform/model/run_control.h"
@@ -13,8 +14,6 @@ namespace dform::forward_detail {
 using detail::format;
 
 namespace {
-
-constexpr double kDegree = 3.14159265358979323846 / 180.0;
 
 // A drawn crease as the straight line between its ends, if it is one: every point within 1e-6 of
 // its length of that line (a curved crease is no chord of the piece).

@@ -18,6 +18,7 @@
 #include <svgpp/policy/xml/rapidxml_ns.hpp>
 #include <svgpp/svgpp.hpp>
 
+#include "dform/core/constants.h"
 #include "dform/core/message_text.h"
 #include "flatten.h"
 #include "io_util.h"
@@ -280,7 +281,7 @@ void SvgContext::appendArc(const Vec2& fromUser, const Command& c, std::vector<V
     out.push_back(end);
     return;
   }
-  const double phi = c.v[2] * M_PI / 180.0;
+  const double phi = c.v[2] * kDegree;
   const bool largeArc = c.v[3] != 0.0, sweep = c.v[4] != 0.0;
   const Eigen::Matrix2d rotation = Eigen::Rotation2Dd(phi).toRotationMatrix();
   const Vec2 half = rotation.transpose() * (0.5 * (fromUser - toUser));  // x1', y1'
@@ -300,8 +301,8 @@ void SvgContext::appendArc(const Vec2& fromUser, const Command& c, std::vector<V
   const double theta2 =
       std::atan2((-half.y() - centreRotated.y()) / ry, (-half.x() - centreRotated.x()) / rx);
   double delta = theta2 - theta1;
-  if (sweep && delta < 0.0) delta += 2.0 * M_PI;
-  if (!sweep && delta > 0.0) delta -= 2.0 * M_PI;
+  if (sweep && delta < 0.0) delta += 2.0 * kPi;
+  if (!sweep && delta > 0.0) delta -= 2.0 * kPi;
 
   // In page mm the arc is C + U cos(t) + V sin(t); |second derivative| <= sqrt(|U|^2 + |V|^2).
   const Vec2 pageCentre = transform_(centre);

@@ -9,6 +9,7 @@
 #include <set>
 #include <utility>
 
+#include "dform/core/constants.h"
 #include "dform/core/polyline.h"
 #include "dform/exact/body_edges.h"
 #include "dform/meshing/triangulate.h"
@@ -16,8 +17,6 @@
 namespace dform {
 
 namespace {
-
-constexpr double kDegree = 3.14159265358979323846 / 180.0;
 
 // The seam of the meshes: every seam point, and between them the places where followed body edges
 // cross the seam (the same places on both pieces), in seam order.

@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 
+#include "dform/core/constants.h"
 #include "dform/core/polyline.h"
 #include "dform/meshing/triangulate.h"
 #include "dform/model/exact_model.h"
@@ -14,8 +15,6 @@
 namespace dform {
 
 namespace {
-
-constexpr double kDegree = 3.14159265358979323846 / 180.0;
 
 // A piece's boundary as the mesher takes it: the outline counter-clockwise, then the hole, and
 // for each row of the surface's piece its index among those fixed points.

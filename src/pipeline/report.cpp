@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "dform/core/atomic_file.h"
+#include "dform/core/constants.h"
 #include "dform/core/input_file.h"
 #include "dform/core/message_text.h"
 #include "json_values.h"
@@ -29,7 +30,6 @@ json seamPointOrNull(int k) { return k < 0 ? json(nullptr) : json(k); }
 
 // The exact body's folds through the pieces, each with its ends in its piece's flat coordinates.
 json foldsJson(const ModelUsed& used, const DForm& model) {
-  constexpr double kDegree = 3.14159265358979323846 / 180.0;
   json out = json::array();
   for (const BodyFold& f : used.folds) {
     const Points2& flat = f.piece == 0 ? model.a.flat : model.b.flat;

@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "dform/core/atomic_file.h"
+#include "dform/core/constants.h"
 #include "dform/core/message_text.h"
 #include "dform/io/model_files.h"
 #include "dform/report/html_report.h"
@@ -207,7 +208,6 @@ Result<ExportOptions> exportOptions(const OutputOptions& output) {
 }
 
 std::vector<FoldToScore> foldsToScore(const ModelUsed& used, const DForm& model) {
-  constexpr double kDegree = 3.14159265358979323846 / 180.0;
   std::vector<FoldToScore> out;
   for (const BodyFold& f : used.folds) {
     if (f.crease >= 0) continue;  // drawn already, as the piece's crease line

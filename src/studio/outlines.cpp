@@ -4,11 +4,12 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "dform/core/constants.h"
+
 namespace dform::studio {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Points along a smooth outline: the seam is resampled from them (at most a few hundred seam
 // vertices), and 1440 keep the chord error of a 150 mm circle under 3 micrometres.
 constexpr int kSmoothPoints = 1440;

@@ -6,6 +6,7 @@
 #include <numeric>
 #include <tuple>
 
+#include "dform/core/constants.h"
 #include "dform/core/interrupt.h"
 
 namespace dform::detail {
@@ -80,7 +81,7 @@ double cornerAngle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eig
 }
 
 Eigen::VectorXd angleDefects(const Points3& V, const Faces& F) {
-  Eigen::VectorXd defect = Eigen::VectorXd::Constant(V.rows(), 2.0 * M_PI);
+  Eigen::VectorXd defect = Eigen::VectorXd::Constant(V.rows(), 2.0 * kPi);
   for (int f = 0; f < F.rows(); ++f) {
     if (f % kPollInterval == 0) throwIfInterrupted("the figures");
     for (int k = 0; k < 3; ++k) {

@@ -34,5 +34,27 @@ TEST(Result, ReadingTheValueOfAnErrorThrowsWithItsStatus) {
   EXPECT_THROW((void)r.value(), std::logic_error);  // catchable as the standard's logic errors
 }
 
+// A Result made from an ok Status has no value to give: it is an error (Internal) rather than a
+// default-made value that would read as a result.
+TEST(Result, MadeFromAnOkStatusIsAnInternalError) {
+  const Result<double> r(Status::ok());
+  EXPECT_FALSE(r.isOk());
+  EXPECT_EQ(r.status().code(), ErrorCode::Internal);
+  EXPECT_THROW((void)r.value(), BadResultAccess);
+}
+
+// The value type needs no default constructor: an error holds no value at all.
+TEST(Result, HoldsATypeWithoutADefaultConstructor) {
+  struct Length {
+    explicit Length(double mm) : mm(mm) {}
+    double mm;
+  };
+  const Result<Length> made(Length(3.5));
+  ASSERT_TRUE(made.isOk());
+  EXPECT_EQ(made.value().mm, 3.5);
+  const Result<Length> failed(Status(ErrorCode::Usage, "no length"));
+  EXPECT_FALSE(failed.isOk());
+}
+
 }  // namespace
 }  // namespace dform

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "dform/core/constants.h"
 #include "dform/core/types.h"
 
 namespace dform {
@@ -37,7 +38,7 @@ Eigen::MatrixXd resampleOpen(const Eigen::MatrixXd& P, int segments);
 
 /// A flattened smooth curve turns by a fraction of a degree per point; a drawn corner by much
 /// more. 20 degrees separates the two for any outline a designer draws.
-constexpr double kCornerTurnRadians = 20.0 * 3.14159265358979323846 / 180.0;
+constexpr double kCornerTurnRadians = 20.0 * kDegree;
 
 /// The turning angle (radians, in [0, pi]) of the closed polygon P (#P by d) at each vertex.
 Eigen::VectorXd turningAngles(const Eigen::MatrixXd& P);

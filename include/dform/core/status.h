@@ -3,6 +3,7 @@
 // problem.
 #pragma once
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -22,7 +23,7 @@ enum class ErrorCode {
   Internal,         ///< a bug
 };
 
-class Status {
+class [[nodiscard]] Status {
  public:
   Status() = default;
   Status(ErrorCode code, std::string message) : code_(code), message_(std::move(message)) {}
@@ -52,25 +53,30 @@ class BadResultAccess : public std::logic_error {
 };
 
 /// A value or the Status that explains why there is none. value() on an error throws
-/// BadResultAccess, in every build.
+/// BadResultAccess, in every build. A Result made from a Status holds an error: one made from
+/// Status::ok() (a bug of the caller, who has no value to give) holds an Internal error saying so,
+/// never a default value that reads as a result.
 template <typename T>
-class Result {
+class [[nodiscard]] Result {
  public:
-  Result(T value) : value_(std::move(value)) {}          // NOLINT: implicit by design
-  Result(Status status) : status_(std::move(status)) {}  // NOLINT: implicit by design
+  Result(T value) : value_(std::move(value)) {}  // NOLINT: implicit by design
+  Result(Status status)                          // NOLINT: implicit by design
+      : status_(status.isOk() ? Status(ErrorCode::Internal,
+                                       "a result was made from an ok status, without a value")
+                              : std::move(status)) {}
 
   bool isOk() const { return status_.isOk(); }
   const Status& status() const { return status_; }
-  const T& value() const& { return checked(), value_; }
-  T& value() & { return checked(), value_; }
-  T&& value() && { return checked(), std::move(value_); }
+  const T& value() const& { return checked(), *value_; }
+  T& value() & { return checked(), *value_; }
+  T&& value() && { return checked(), std::move(*value_); }
 
  private:
   void checked() const {
     if (!isOk()) throw BadResultAccess(status_);
   }
 
-  T value_{};
+  std::optional<T> value_;
   Status status_;
 };
 

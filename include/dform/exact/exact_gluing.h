@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "dform/core/constants.h"
 #include "dform/core/status.h"
 #include "dform/core/types.h"
 #include "dform/exact/alexandrov.h"
@@ -32,7 +33,7 @@ double equalizeChords(SeamPolygons& seam);
 
 /// How far from straight (each piece's turn, radians: 0.5 degrees) a seam point may be for
 /// equalizeChords to take its angle sum over 2 pi for a sampling artefact.
-constexpr double kSamplingExcess = 0.5 * 3.14159265358979323846 / 180.0;
+constexpr double kSamplingExcess = 0.5 * kDegree;
 
 /// The glued metric's angles at the seam points.
 struct SeamAngles {

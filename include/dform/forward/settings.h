@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 
+#include "dform/core/constants.h"
 #include "dform/model/inextensible.h"
 #include "dform/model/local_global.h"
 #include "dform/model/weights.h"
@@ -44,13 +45,13 @@ struct ForwardSettings {
   ModelChoice model = ModelChoice::Auto;
   JoinedBoundary joinA = JoinedBoundary::Outer, joinB = JoinedBoundary::Outer;
   StartPoint startA, startB;  ///< the starting pair (paper Definition 3), on the joined boundaries
-  int resolution = 100;       ///< seam vertices per piece
-  bool flip = false;          ///< zip B turned over (its mirror image) instead
-  bool fitPerimeter = false;  ///< scale B uniformly to A's perimeter
-  double perimeterTolerance = 0.005;  ///< largest |pA - pB| / max(pA, pB) accepted as equal
-  double interiorEdgeFactor = 1.0;    ///< interior edge length / seam edge length, in
-                                      ///< [kMinInteriorEdgeFactor, kMaxInteriorEdgeFactor]
-  bool coarseToFine = true;           ///< start from solutions at 1/3, 1/9, ... of the resolution
+  int resolution = kDefaultResolution;  ///< seam vertices per piece
+  bool flip = false;                    ///< zip B turned over (its mirror image) instead
+  bool fitPerimeter = false;            ///< scale B uniformly to A's perimeter
+  double perimeterTolerance = 0.005;    ///< largest |pA - pB| / max(pA, pB) accepted as equal
+  double interiorEdgeFactor = 1.0;      ///< interior edge length / seam edge length, in
+                                        ///< [kMinInteriorEdgeFactor, kMaxInteriorEdgeFactor]
+  bool coarseToFine = true;             ///< start from solutions at 1/3, 1/9, ... of the resolution
 
   /// The paper's term weights (dimensionless; defaultWeights gives a job's starting ones).
   ForwardWeights weights;

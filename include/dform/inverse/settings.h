@@ -3,6 +3,7 @@
 // fields from the same struct.
 #pragma once
 
+#include "dform/core/constants.h"
 #include "dform/inverse/pre_dform.h"
 #include "dform/model/local_global.h"
 #include "dform/model/weights.h"
@@ -12,9 +13,9 @@ namespace dform {
 
 /// Everything an inverse run needs besides the curve.
 struct InverseSettings {
-  int resolution = 100;     ///< seam vertices
-  InverseInitOptions init;  ///< the pre-D-Form start and the remeshing of its pieces
-  InverseWeights weights;   ///< the terms of Eq. 6 (dimensionless)
+  int resolution = kDefaultResolution;  ///< seam vertices
+  InverseInitOptions init;              ///< the pre-D-Form start and the remeshing of its pieces
+  InverseWeights weights;               ///< the terms of Eq. 6 (dimensionless)
   /// The pre-D-Form start is isometric already (its pieces are unfolded exactly): the relaxation
   /// (at most 300 steps) only smooths it, and stops once a plain step would lower the energy by
   /// less than 2e-5 of it (relative, dimensionless). That gain is the global step's, a lower

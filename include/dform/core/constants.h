@@ -1,0 +1,17 @@
+// Constants that more than one module uses: pi and the seam resolution a run takes unless told.
+#pragma once
+
+namespace dform {
+
+/// pi to double precision (M_PI is POSIX, not C++).
+constexpr double kPi = 3.14159265358979323846;
+
+/// One degree in radians.
+constexpr double kDegree = kPi / 180.0;
+
+/// Seam vertices per piece (forward) or points of the curve (inverse) when a job gives none: fine
+/// enough that the figures agree to two digits with a finer seam on the samples, and solved in
+/// seconds (docs/benchmarks.md).
+constexpr int kDefaultResolution = 100;
+
+}  // namespace dform
