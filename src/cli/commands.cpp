@@ -20,7 +20,7 @@ namespace dform::cli {
 namespace {
 
 int fail(const Status& status) {
-  Terminal::error(status.message());
+  Terminal::error(status);
   return exitCode(status.code());
 }
 
@@ -139,7 +139,7 @@ nlohmann::json figuresJson(const std::vector<Figure>& figures) {
 void printRunJson(const Job& job, const WrittenResult& written, const OutputOptions& output,
                   int code) {
   nlohmann::json summary;
-  summary["command"] = job.mode == Job::Mode::Forward ? "forward" : "inverse";
+  summary["command"] = job.modeName();
   summary["model"] = modelName(output.outDir);
   summary["figures"] = figuresJson(summaryFigures(written));
   summary["gate"] = written.gate ? gateJson(*written.gate, true) : nlohmann::json();
@@ -151,18 +151,18 @@ void printRunJson(const Job& job, const WrittenResult& written, const OutputOpti
 
 }  // namespace
 
-int runJob(const Job& job, const OutputOptions& output, bool json,
+int runJob(const Job& job, const OutputOptions& output, const Printing& printing,
            const std::atomic<bool>& interrupted) {
-  Terminal terminal(output.quiet);
+  Terminal terminal(printing.quiet);
   MessageSink sink(terminal.listener());
-  const bool forward = job.mode == Job::Mode::Forward;
+  const bool forward = job.isForward();
   RunHooks hooks;
   hooks.interrupted = &interrupted;
   hooks.onIteration = [&](const char* stage, const IterationSummary& it) {
     terminal.progress(forward ? stage : std::string(stage) + " (inverse)", it);
   };
   hooks.onLevel = [&](const LevelStart& start) { terminal.level(start); };
-  const Result<RunSettings> settings = checkOutput(output);
+  const Result<RunSettings> settings = checkOutput(job.exporting);
   if (!settings.isOk()) return fail(settings.status());
   const Result<WrittenResult> result = runAndWrite(job, output, settings.value(), sink, hooks);
   terminal.clearProgress();
@@ -172,17 +172,17 @@ int runJob(const Job& job, const OutputOptions& output, bool json,
   const std::optional<GateReport>& gate = written.gate;
   const bool gateFailed = gate && !gate->passed();
   const int code = gateFailed ? exitCode(ErrorCode::GateFailed) : 0;
-  if (json) {
+  if (printing.json) {
     printRunJson(job, written, output, code);
-  } else if (!output.quiet) {
+  } else if (!printing.quiet) {
     printFigures(summaryFigures(written), written.timings, output.outDir);
     if (gate) printGate(*gate);
   }
   if (gateFailed)
     Terminal::error(output.outDir + ": the result failed the quality gate '" +
                     settings.value().limits->name + "'" +
-                    (output.exportAnyway ? " (exported anyway, marked FAILED GATE)"
-                                         : "; no cutting files were written"));
+                    (job.exporting.exportAnyway ? " (exported anyway, marked FAILED GATE)"
+                                                : "; no cutting files were written"));
   return code;
 }
 
@@ -230,9 +230,9 @@ void printBatchRows(const std::vector<BatchRow>& rows) {
 }  // namespace
 
 int runSweepCommand(const Job& base, const SweepOptions& options, const OutputOptions& output,
-                    const std::atomic<bool>& interrupted) {
-  Terminal terminal(output.quiet);
-  const Result<RunSettings> settings = checkOutput(output);
+                    const Printing& printing, const std::atomic<bool>& interrupted) {
+  Terminal terminal(printing.quiet);
+  const Result<RunSettings> settings = checkOutput(base.exporting);
   if (!settings.isOk()) return fail(settings.status());
   MessageSink notes(terminal.listener());
   const Result<std::vector<SweepRow>> rows = sweepAndWrite(
@@ -244,7 +244,7 @@ int runSweepCommand(const Job& base, const SweepOptions& options, const OutputOp
   terminal.clearProgress();
   if (!rows.isOk()) return fail(rows.status());
   const Status unwritten = unwrittenStarts(output.outDir, rows.value());
-  if (output.quiet) return unwritten.isOk() ? 0 : fail(unwritten);
+  if (printing.quiet) return unwritten.isOk() ? 0 : fail(unwritten);
   int passed = 0;
   std::fprintf(stdout, "%-16s %8s %10s %12s %10s %8s %8s\n", "start", "start_b", "height_mm",
                "volume_cm3", "max_curv", "gate", "seconds");
@@ -264,15 +264,22 @@ int runSweepCommand(const Job& base, const SweepOptions& options, const OutputOp
 }
 
 int runBatchCommand(const std::vector<BatchJob>& jobs, const BatchOptions& options,
-                    const OutputOptions& output, const std::atomic<bool>& interrupted) {
-  Terminal terminal(output.quiet);
-  const Result<RunSettings> settings = checkOutput(output);
-  if (!settings.isOk()) return fail(settings.status());
-  const Result<std::vector<BatchRow>> rows = batchAndWrite(
-      jobs, options, output, settings.value(), progressLine(terminal, "batch"), interrupted);
+                    const OutputOptions& output, const Printing& printing,
+                    const std::function<Status(Job&)>& adjust,
+                    const std::atomic<bool>& interrupted) {
+  Terminal terminal(printing.quiet);
+  const Result<std::vector<BatchRow>> rows =
+      batchAndWrite(jobs, options, output, adjust, progressLine(terminal, "batch"), interrupted);
   terminal.clearProgress();
-  if (!rows.isOk()) return fail(rows.status());
-  if (!output.quiet) printBatchRows(rows.value());
+  if (!rows.isOk()) {
+    // A batch cut short is finished by running it again with --resume.
+    if (rows.status().code() == ErrorCode::Interrupted)
+      Terminal::error(rows.status().text() + "; --resume runs the rest");
+    else
+      Terminal::error(rows.status());
+    return exitCode(rows.status().code());
+  }
+  if (!printing.quiet) printBatchRows(rows.value());
   int worst = 0, failed = 0;
   const BatchRow* first = nullptr;
   for (const BatchRow& r : rows.value()) {
@@ -282,7 +289,7 @@ int runBatchCommand(const std::vector<BatchJob>& jobs, const BatchOptions& optio
       first = &r;
     }
   }
-  if (!output.quiet)
+  if (!printing.quiet)
     std::fprintf(stdout, "%d jobs (shard %d of %d): %d done, %d failed; manifest %s/%s\n",
                  int(rows.value().size()), options.shard, options.shards,
                  int(rows.value().size()) - failed, failed, printable(output.outDir, 300).c_str(),
@@ -297,6 +304,11 @@ int runBatchCommand(const std::vector<BatchJob>& jobs, const BatchOptions& optio
 
 int mergeBatchCommand(const std::string& dir, bool allowPartial, bool quiet) {
   const Result<MergedBatch> merged = mergeBatch(dir, allowPartial);
+  // A merge refused for jobs that have not finished is made all the same by --allow-partial.
+  if (!merged.isOk() && merged.status().code() == ErrorCode::SolveFailed) {
+    Terminal::error(merged.status().text() + "; --allow-partial merges what is there");
+    return exitCode(merged.status().code());
+  }
   if (!merged.isOk()) return fail(merged.status());
   if (quiet) return 0;
   const MergedBatch& m = merged.value();
@@ -319,14 +331,15 @@ int mergeBatchCommand(const std::string& dir, bool allowPartial, bool quiet) {
   return 0;
 }
 
-int exportSaved(const std::string& dir, const OutputOptions& output,
-                const std::atomic<bool>& interrupted) {
-  Terminal terminal(output.quiet);
+int exportSaved(const std::string& dir, const ExportSettings& settings, const std::string& outDir,
+                bool quiet, const std::atomic<bool>& interrupted) {
+  Terminal terminal(quiet);
   MessageSink sink(terminal.listener());
-  const Result<std::string> into = exportSavedResult(dir, output, sink, interrupted);
+  const Result<std::string> into = exportSavedResult(dir, settings, outDir, sink, interrupted);
   if (!into.isOk()) return fail(into.status());
-  if (!output.quiet)
-    std::fprintf(stdout, "exported %s into %s\n", output.profile.c_str(), into.value().c_str());
+  if (!quiet)
+    std::fprintf(stdout, "exported %s into %s\n", settings.pattern.profile.c_str(),
+                 into.value().c_str());
   return 0;
 }
 

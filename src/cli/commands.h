@@ -17,22 +17,27 @@ struct Printing {
 };
 
 /// `dform forward`, `inverse`, `run`: one job written into output.outDir, its figures and gate
-/// printed (as text, or as one JSON object when `json`; nothing when output.quiet).
-int runJob(const Job& job, const OutputOptions& output, bool json,
+/// printed (as text, or as one JSON object when printing.json; nothing when printing.quiet).
+int runJob(const Job& job, const OutputOptions& output, const Printing& printing,
            const std::atomic<bool>& interrupted);
 /// `dform sweep`: `base` from every start of `options`, each result written as `runJob` writes
 /// one, into output.outDir/<start>/, with sweep.json and gallery.html (docs/sweep.md).
 int runSweepCommand(const Job& base, const SweepOptions& options, const OutputOptions& output,
-                    const std::atomic<bool>& interrupted);
-/// `dform batch`: every job of `jobs` in the options' shard, each written as `dform run` writes
-/// it, into output.outDir/<job name>/, with the manifest (docs/batch.md).
+                    const Printing& printing, const std::atomic<bool>& interrupted);
+/// `dform batch`: every job of `jobs` in the options' shard, `adjust`ed (the command line's
+/// settings over each file's) and written as `dform run` writes it, into
+/// output.outDir/<job name>/, with the manifest (docs/batch.md).
 int runBatchCommand(const std::vector<BatchJob>& jobs, const BatchOptions& options,
-                    const OutputOptions& output, const std::atomic<bool>& interrupted);
+                    const OutputOptions& output, const Printing& printing,
+                    const std::function<Status(Job&)>& adjust,
+                    const std::atomic<bool>& interrupted);
 /// `dform batch --merge DIR`: the shards' manifests gathered into batch.json and gallery.html;
 /// refused (exit 5) while a job of the list has not finished, unless `allowPartial`.
 int mergeBatchCommand(const std::string& dir, bool allowPartial, bool quiet);
-int exportSaved(const std::string& dir, const OutputOptions& output,
-                const std::atomic<bool>& interrupted);
+/// `dform export`: the result in `dir` exported again with `settings`' pattern, into `outDir`
+/// when given, else into `dir`.
+int exportSaved(const std::string& dir, const ExportSettings& settings, const std::string& outDir,
+                bool quiet, const std::atomic<bool>& interrupted);
 /// `dform validate`: the result in `dir` re-measured, against the gate `gate` or, for "none",
 /// measured only (exit 0 unless the folder or its report is unreadable or wrong).
 int validateSaved(const std::string& dir, const std::string& gate, const Printing& printing);

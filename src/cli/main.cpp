@@ -14,11 +14,13 @@
 #include "dform/core/allocator.h"
 #include "dform/core/input_file.h"
 #include "dform/core/interrupt.h"
+#include "setting_options.h"
 #include "terminal.h"
 
 namespace {
 
 using namespace dform;
+using cli::SettingOptions;
 
 // The process's stop flag (core/interrupt.h), which the readers and long loops poll too.
 std::atomic<bool>& interrupted = interruptFlag();
@@ -32,121 +34,36 @@ extern "C" void onStopSignal(int signal) {
   interrupted = true;
 }
 
-// "--weight isometry=2" -> the named weight of a forward or inverse job.
-Status setWeight(Job& job, const std::string& assignment) {
-  const auto eq = assignment.find('=');
-  const std::string name = assignment.substr(0, eq);
-  double value = 0;
-  try {
-    if (eq == std::string::npos) throw std::invalid_argument("no =");
-    std::size_t used = 0;
-    value = std::stod(assignment.substr(eq + 1), &used);
-    if (used != assignment.size() - eq - 1) throw std::invalid_argument("trailing");
-  } catch (const std::exception&) {
-    return Status(ErrorCode::Usage, "--weight must look like name=value, got '" + assignment + "'");
+// `rows` of one mode without the settings of `except` (a sweep's own --flip and start_b).
+std::vector<const SettingRow*> rowsOf(bool forward, std::initializer_list<SettingScope> scopes,
+                                      std::initializer_list<Setting> except = {}) {
+  std::vector<const SettingRow*> out;
+  for (const SettingRow* row : settingRows(forward))
+    if (std::find(scopes.begin(), scopes.end(), row->scope) != scopes.end() &&
+        std::find(except.begin(), except.end(), row->id) == except.end())
+      out.push_back(row);
+  return out;
+}
+
+// What a run writes where: -o, -q and (on the commands that print one result's summary) --json.
+struct Output {
+  OutputOptions options;
+  cli::Printing printing;
+
+  void add(CLI::App* command, bool json) {
+    command
+        ->add_option("-o,--output", options.outDir, "folder for the results (created if missing)")
+        ->required();
+    command->add_flag("-q,--quiet", printing.quiet, "print nothing but errors");
+    if (json)
+      command->add_flag("--json", printing.json,
+                        "print the summary (model, figures, gate, files, exit code) as one JSON "
+                        "object on stdout, and nothing else there");
   }
-  if (!setNamedWeight(job, name, value))
-    return Status(ErrorCode::Usage, "--weight: unknown weight '" + name + "'");
-  return Status::ok();
-}
-
-// "X,Y" -> a start point nearest to (X, Y) mm.
-bool parsePoint(const std::string& text, StartPoint& start) {
-  double x = 0, y = 0;
-  char rest = 0;
-  if (std::sscanf(text.c_str(), "%lf,%lf%c", &x, &y, &rest) != 2) return false;
-  start.nearestToPoint = true;
-  start.point = {x, y};
-  return true;
-}
-
-// The options of the cutting patterns and previews (forward, inverse, run and export).
-void addExportOptions(CLI::App* command, OutputOptions& out) {
-  command->add_option("--profile", out.profile,
-                      "export profile name or .json file (default laser)");
-  command->add_option("--sheet", out.sheet, "material sheet of a laser profile, e.g. 600x400mm");
-  command->add_option("--scale", out.scale,
-                      "pattern scale: 1 (true size, the default), 0.8 or 80%, or fit (the largest "
-                      "scale up to 1 at which every piece fits its page or sheet)");
-  command->add_option(
-      "--page", out.page,
-      "paper of a print profile: A4, Letter, A3, Tabloid or WxHmm (default: the profile's)");
-  command->add_option("--tab-width", out.tabWidthMm,
-                      "glue tab width in mm, 0 for none (default 6)");
-  command->add_option(
-      "--tabs", out.tabs,
-      "which piece gets the glue tabs: a, b, alternate or none (default: the profile's)");
-  command->add_option("--tick-spacing", out.tickSpacingMm,
-                      "seam length between numbered ticks in mm (default 20)");
-  command->add_option("--joint", out.joint,
-                      "how the pieces are joined: glue (tabs), holes (matched hole pairs for ties "
-                      "or stitches), lace, or slots (tongues on A through slots in B, hole pairs "
-                      "where the seam bends) (default: the material's, else the profile's)");
-  command->add_option("--material", out.material,
-                      "sheet material, setting the joint and hole sizes: paper (0.1 mm), card "
-                      "(0.3 mm), polypropylene (0.5 mm) or plywood (3 mm)");
-  command
-      ->add_option("--kerf", out.kerfMm,
-                   "the cutter's kerf in mm, 0 to 5: cut paths move half of it away from the "
-                   "material (default: the profile's)")
-      ->type_name("MM");
-  command
-      ->add_option("--hole-spacing", out.holeSpacingMm,
-                   "joint holes: largest distance between neighbouring holes in mm (default 15)")
-      ->type_name("MM");
-  command
-      ->add_option("--hole-diameter", out.holeDiameterMm, "joint holes: diameter in mm (default 2)")
-      ->type_name("MM");
-  command
-      ->add_option("--hole-edge", out.holeEdgeMm,
-                   "joint holes: distance from the seam to the hole centres in mm (default 3)")
-      ->type_name("MM");
-  command
-      ->add_option("--slot-length", out.slotLengthMm,
-                   "slots: a tongue's width along the seam in mm (default half the hole spacing)")
-      ->type_name("MM");
-  command
-      ->add_option("--score-folds", out.scoreFoldsDeg,
-                   "score every fold of the solved body of at least DEG degrees on its piece "
-                   "(SCORE layer, pattern.json); 0 to 180")
-      ->type_name("DEG");
-  // A callback, not CLI11's "!--no-title" form, whose help shows "--no-title{false}".
-  command->add_flag_callback(
-      "--no-title", [&out] { out.title = false; },
-      "leave the title block and notes off the pattern sheets");
-  command->add_flag("--gltf", out.gltfText,
-                    "write the 3D preview as text dform.gltf instead of dform.glb");
-}
-
-// A repeatable option takes one value per use ("--weight a=1 --weight b=2"), so that the
-// positional arguments after it stay positional.
-void addRepeatable(CLI::App* command, const std::string& name, std::vector<std::string>& values,
-                   const std::string& help) {
-  command->add_option(name, values, help)->allow_extra_args(false)->type_name("NAME=VALUE");
-}
-
-// `json`: where --json goes, on the commands that print one result's summary (null: no --json).
-void addOutputOptions(CLI::App* command, OutputOptions& out, bool* json = nullptr) {
-  command->add_option("-o,--output", out.outDir, "folder for the results (created if missing)")
-      ->required();
-  command->add_flag_callback(
-      "--no-export", [&out] { out.exportFiles = false; },
-      "skip the cutting patterns and 3D previews");
-  addExportOptions(command, out);
-  command->add_option(
-      "--gate", out.gate,
-      "quality gate: default (the default), strict, lenient, a .json file, or none");
-  command->add_flag("--export-anyway", out.exportAnyway,
-                    "export even if the gate fails (marked FAILED GATE)");
-  command->add_flag("-q,--quiet", out.quiet, "print nothing but errors");
-  if (json)
-    command->add_flag("--json", *json,
-                      "print the summary (model, figures, gate, files, exit code) as one JSON "
-                      "object on stdout, and nothing else there");
-}
+};
 
 int failUsage(const Status& status) {
-  cli::Terminal::error(status.message());
+  cli::Terminal::error(status);
   return exitCode(status.code());
 }
 
@@ -157,138 +74,75 @@ Status oneStandardInput(const std::vector<std::string>& inputs) {
   return Status::ok();
 }
 
-// Each subcommand: its options as parsed (`add` declares them) and what it runs.
+// Each subcommand: its options as parsed (`add` declares them) and what it runs. The settings'
+// options come from the settings table (setting_options.h).
 struct ForwardCommand {
-  Job job;
-  OutputOptions out;
-  bool json = false;
-  std::string startANear, startBNear, join, model;
-  std::vector<std::string> weights;
+  ForwardJob inputs;
+  SettingOptions settings;
+  Output output;
   CLI::App* command = nullptr;
 
   void add(CLI::App& app) {
     command = app.add_subcommand("forward", "two flat outlines -> the D-Form they make");
-    command->add_option("piece_a", job.forward.pieceA, "outline of piece A (.svg or .json)")
-        ->required();
-    command->add_option("piece_b", job.forward.pieceB, "outline of piece B (.svg or .json)")
-        ->required();
-    command->add_option("--resolution", job.forward.resolution,
-                        "seam vertices per piece (default 100)");
-    command->add_option(
-        "--interior-edge", job.forward.interiorEdgeFactor,
-        "interior edge length over the seam's edge length, 0.25-8 (default 1): above 1 a "
-        "coarser, faster mesh at the same seam resolution");
-    command->add_option("--start-a", job.forward.startA.fraction,
-                        "start of A's seam: arc-length fraction in [0, 1)");
-    command->add_option("--start-b", job.forward.startB.fraction,
-                        "start of B's seam: arc-length fraction in [0, 1)");
-    command->add_option("--start-a-near", startANear,
-                        "start of A's seam: the outline point nearest X,Y (mm)");
-    command->add_option("--start-b-near", startBNear,
-                        "start of B's seam: the outline point nearest X,Y (mm)");
-    command->add_option("--join", join,
-                        "boundaries zipped, A's then B's: outer,outer (default), inner,inner "
-                        "(anti D-Form) or outer,inner (demi D-Form)");
-    command->add_flag("--flip", job.forward.flip, "zip piece B turned over");
-    command->add_option(
-        "--model", model,
-        "auto (default: exact where the pieces make a convex body, else paper), exact, paper or "
-        "general (a stiff sheet at a stationary point of its energy)");
-    command->add_flag("--fit-perimeter", job.forward.fitPerimeter,
-                      "scale piece B to A's perimeter");
-    command->add_option("--perimeter-tolerance", job.forward.perimeterTolerance,
-                        "largest relative perimeter difference (default 0.005)");
-    addRepeatable(command, "--weight", weights,
-                  "term weight, e.g. smooth_3d=0.02 (one per use, repeatable)");
-    command->add_option("--max-iterations", job.forward.solver.maxIterations,
-                        "Levenberg-Marquardt iteration cap");
-    addOutputOptions(command, out, &json);
+    command->add_option("piece_a", inputs.pieceA, "outline of piece A (.svg or .json)")->required();
+    command->add_option("piece_b", inputs.pieceB, "outline of piece B (.svg or .json)")->required();
+    settings.add(command, settingRows(true));
+    output.add(command, true);
   }
   int run() {
-    if (!startANear.empty() && !parsePoint(startANear, job.forward.startA))
-      return failUsage(Status(ErrorCode::Usage, "--start-a-near must look like X,Y"));
-    if (!startBNear.empty() && !parsePoint(startBNear, job.forward.startB))
-      return failUsage(Status(ErrorCode::Usage, "--start-b-near must look like X,Y"));
-    if (!join.empty() && !parseJoin(join, job.forward.joinA, job.forward.joinB))
-      return failUsage(Status(
-          ErrorCode::Usage, "--join must be outer,outer, inner,inner, outer,inner or inner,outer"));
-    if (!model.empty() && !parseModelChoice(model, job.forward.model))
-      return failUsage(
-          Status(ErrorCode::Usage, "--model must be auto, exact, ruled, paper or general"));
-    if (Status s = oneStandardInput({job.forward.pieceA, job.forward.pieceB}); !s.isOk())
-      return failUsage(s);
-    job.forward.weights = defaultWeights(job.forward.joinA, job.forward.joinB);
-    for (const std::string& w : weights)
-      if (Status s = setWeight(job, w); !s.isOk()) return failUsage(s);
-    if (Status s = validateForwardJob(job.forward); !s.isOk()) return failUsage(s);
-    return cli::runJob(job, out, json, interrupted);
+    Job job(inputs);
+    if (Status s = oneStandardInput(job.inputs()); !s.isOk()) return failUsage(s);
+    if (Status s = settings.apply(job); !s.isOk()) return failUsage(s);
+    return cli::runJob(job, output.options, output.printing, interrupted);
   }
 };
 
 struct InverseCommand {
-  Job job;
-  OutputOptions out;
-  bool json = false;
-  std::vector<std::string> weights;
+  InverseJob inputs;
+  SettingOptions settings;
+  Output output;
   CLI::App* command = nullptr;
 
   void add(CLI::App& app) {
-    job.mode = Job::Mode::Inverse;
     command = app.add_subcommand("inverse", "a 3D seam curve -> the two flat pieces that make it");
-    command->add_option("curve", job.inverse.curve, "seam curve (.obj polyline or .json)")
-        ->required();
-    command->add_option("--resolution", job.inverse.resolution, "seam vertices (default 100)");
-    command->add_flag("--closed", job.inverse.forceClosed, "close an open OBJ polyline");
-    addRepeatable(command, "--weight", weights,
-                  "term weight, e.g. smooth_3d=0.005 (one per use, repeatable)");
-    command->add_option("--max-iterations", job.inverse.solver.maxIterations,
-                        "Levenberg-Marquardt iteration cap");
-    addOutputOptions(command, out, &json);
+    command->add_option("curve", inputs.curve, "seam curve (.obj polyline or .json)")->required();
+    settings.add(command, settingRows(false));
+    output.add(command, true);
   }
   int run() {
-    for (const std::string& w : weights)
-      if (Status s = setWeight(job, w); !s.isOk()) return failUsage(s);
-    if (Status s = validateInverseJob(job.inverse); !s.isOk()) return failUsage(s);
-    return cli::runJob(job, out, json, interrupted);
+    Job job(inputs);
+    if (Status s = settings.apply(job); !s.isOk()) return failUsage(s);
+    return cli::runJob(job, output.options, output.printing, interrupted);
   }
 };
 
 struct SweepCommand {
-  Job job;
+  ForwardJob inputs;
   SweepOptions options;
-  OutputOptions out;
-  std::string flip = "none", model;
+  SettingOptions settings;
+  Output output;
+  std::string flip = "none";
   CLI::App* command = nullptr;
 
   void add(CLI::App& app) {
     command = app.add_subcommand(
         "sweep",
         "two outlines from many starting pairs -> a gallery of the D-Forms to choose from");
-    command->add_option("piece_a", job.forward.pieceA, "outline of piece A (.svg or .json)")
-        ->required();
-    command->add_option("piece_b", job.forward.pieceB, "outline of piece B (.svg or .json)")
-        ->required();
+    command->add_option("piece_a", inputs.pieceA, "outline of piece A (.svg or .json)")->required();
+    command->add_option("piece_b", inputs.pieceB, "outline of piece B (.svg or .json)")->required();
     command->add_option("--starts", options.starts,
                         "starting pairs: start_b = k/N, k = 0 .. N-1 (default 8)");
     command->add_option("--flip", flip,
                         "none (B as drawn, the default), flipped (B turned over) or both");
-    command->add_option("--start-a", job.forward.startA.fraction,
-                        "start of A's seam: arc-length fraction in [0, 1)");
-    command->add_option("--model", model, "auto (default), exact, ruled, paper or general");
-    command->add_option("--resolution", job.forward.resolution,
-                        "seam vertices per piece (default 100)");
-    command->add_option("--interior-edge", job.forward.interiorEdgeFactor,
-                        "as for forward (default 1)");
-    command->add_flag("--fit-perimeter", job.forward.fitPerimeter,
-                      "scale piece B to A's perimeter");
     command->add_option("--threads", options.threads,
                         "starts solved at once (default: the machine's cores)");
-    addOutputOptions(command, out);
+    settings.add(command, rowsOf(true,
+                                 {SettingScope::Forward, SettingScope::Solve, SettingScope::Export,
+                                  SettingScope::Output},
+                                 {Setting::Flip, Setting::StartB}));
+    output.add(command, false);
   }
   int run() {
-    if (!model.empty() && !parseModelChoice(model, job.forward.model))
-      return failUsage(
-          Status(ErrorCode::Usage, "--model must be auto, exact, ruled, paper or general"));
     if (flip != "none" && flip != "flipped" && flip != "both")
       return failUsage(Status(ErrorCode::Usage, "--flip must be none, flipped or both"));
     if (options.starts < 1 || options.starts > 4096)
@@ -296,21 +150,21 @@ struct SweepCommand {
     if (options.threads < 0)
       return failUsage(
           Status(ErrorCode::Usage, "--threads must be 0 (the machine's cores) or more"));
-    job.forward.weights = defaultWeights(job.forward.joinA, job.forward.joinB);
-    if (Status s = oneStandardInput({job.forward.pieceA, job.forward.pieceB}); !s.isOk())
-      return failUsage(s);
-    job.forward.flip = flip == "flipped";
+    Job job(inputs);
+    if (Status s = oneStandardInput(job.inputs()); !s.isOk()) return failUsage(s);
+    if (Status s = settings.apply(job); !s.isOk()) return failUsage(s);
+    std::get<ForwardJob>(job.run).flip = flip == "flipped";
     options.bothFlips = flip == "both";
-    if (Status s = validateForwardJob(job.forward); !s.isOk()) return failUsage(s);
-    return cli::runSweepCommand(job, options, out, interrupted);
+    return cli::runSweepCommand(job, options, output.options, output.printing, interrupted);
   }
 };
 
 struct BatchCommand {
-  std::string input, shard = "1/1", mergeDir;
+  std::string input, shard = "1/1", mergeDir, outDir;
   bool allowPartial = false;
   BatchOptions options;
-  OutputOptions out;
+  SettingOptions settings;
+  cli::Printing printing;
   CLI::App* command = nullptr;
 
   void add(CLI::App& app) {
@@ -329,18 +183,20 @@ struct BatchCommand {
                       "with --merge: merge the finished jobs although others have not finished");
     command->add_option("--threads", options.threads,
                         "jobs run at once (default: the machine's cores)");
-    addOutputOptions(command, out);
-    command->get_option("--output")->required(false);
+    // The pattern and gate settings given here apply to every job, over its file's.
+    settings.add(command, rowsOf(true, {SettingScope::Export, SettingScope::Output}));
+    command->add_option("-o,--output", outDir, "folder for the results (created if missing)");
+    command->add_flag("-q,--quiet", printing.quiet, "print nothing but errors");
   }
   int run() {
     if (!mergeDir.empty()) {
-      if (!input.empty() || !out.outDir.empty())
+      if (!input.empty() || !outDir.empty())
         return failUsage(Status(ErrorCode::Usage, "batch --merge DIR takes no job list and no -o"));
-      return cli::mergeBatchCommand(mergeDir, allowPartial, out.quiet);
+      return cli::mergeBatchCommand(mergeDir, allowPartial, printing.quiet);
     }
     if (allowPartial)
       return failUsage(Status(ErrorCode::Usage, "--allow-partial goes with --merge DIR"));
-    if (input.empty() || out.outDir.empty())
+    if (input.empty() || outDir.empty())
       return failUsage(
           Status(ErrorCode::Usage, "batch needs a job list or folder and -o OUT (or --merge OUT)"));
     if (!parseShard(shard, options.shard, options.shards))
@@ -349,58 +205,68 @@ struct BatchCommand {
     if (options.threads < 0)
       return failUsage(
           Status(ErrorCode::Usage, "--threads must be 0 (the machine's cores) or more"));
+    // The settings given are checked once, before any job runs.
+    Job probe;
+    if (Status s = settings.apply(probe); !s.isOk()) return failUsage(s);
+    if (Result<RunSettings> checked = checkOutput(probe.exporting); !checked.isOk())
+      return failUsage(checked.status());
     Result<std::vector<BatchJob>> jobs = listBatchJobs(input);
     if (!jobs.isOk()) return failUsage(jobs.status());
-    return cli::runBatchCommand(jobs.value(), options, out, interrupted);
+    OutputOptions output;
+    output.outDir = outDir;
+    return cli::runBatchCommand(
+        jobs.value(), options, output, printing, [this](Job& job) { return settings.apply(job); },
+        interrupted);
   }
 };
 
 struct RunCommand {
   std::string jobPath;
-  OutputOptions out;
-  bool json = false;
+  SettingOptions settings;
+  Output output;
   CLI::App* command = nullptr;
 
   void add(CLI::App& app) {
     command = app.add_subcommand("run", "run a job file (forward or inverse)");
     command->add_option("job", jobPath, "job file (.json, see docs/cli.md)")->required();
-    addOutputOptions(command, out, &json);
+    // The pattern and gate settings given here apply over the job file's.
+    settings.add(command, rowsOf(true, {SettingScope::Export, SettingScope::Output}));
+    output.add(command, true);
   }
   int run() {
     Result<Job> job = readJobFile(jobPath);
     if (!job.isOk()) return failUsage(job.status());
-    const Job& read = job.value();
-    if (Status s = oneStandardInput(
-            {jobPath, read.forward.pieceA, read.forward.pieceB, read.inverse.curve});
-        !s.isOk())
-      return failUsage(s);
-    return cli::runJob(job.value(), out, json, interrupted);
+    std::vector<std::string> inputs = job.value().inputs();
+    inputs.push_back(jobPath);
+    if (Status s = oneStandardInput(inputs); !s.isOk()) return failUsage(s);
+    if (Status s = settings.apply(job.value()); !s.isOk()) return failUsage(s);
+    return cli::runJob(job.value(), output.options, output.printing, interrupted);
   }
 };
 
 struct ExportCommand {
-  std::string dir;
-  OutputOptions out;
-  bool listOnly = false;
+  std::string dir, outDir;
+  SettingOptions settings;
+  bool listOnly = false, quiet = false;
   CLI::App* command = nullptr;
 
   void add(CLI::App& app) {
     command = app.add_subcommand("export", "write cutting patterns and previews of a saved result");
     command->add_option("dir", dir, "a result folder written by forward, inverse or run");
-    addExportOptions(command, out);
-    command->add_option("-o,--output", out.outDir,
+    settings.add(command, rowsOf(true, {SettingScope::Export}));
+    settings.add(command, {findSetting(settingKey(Setting::ExportAnyway), true)});
+    command->add_option("-o,--output", outDir,
                         "write the patterns into this folder (created if missing) instead of "
                         "the result folder, which is left untouched");
-    command->add_flag("--export-anyway", out.exportAnyway,
-                      "export a result that failed its gate, or a pattern that does not lay "
-                      "out cleanly (marked FAILED GATE)");
     command->add_flag("--list-profiles", listOnly, "list the profiles and exit");
-    command->add_flag("-q,--quiet", out.quiet, "print only warnings and errors");
+    command->add_flag("-q,--quiet", quiet, "print only warnings and errors");
   }
   int run() {
     if (listOnly) return cli::listProfiles();
     if (dir.empty()) return failUsage(Status(ErrorCode::Usage, "export needs a result folder"));
-    return cli::exportSaved(dir, out, interrupted);
+    Job job;
+    if (Status s = settings.apply(job); !s.isOk()) return failUsage(s);
+    return cli::exportSaved(dir, job.exporting, outDir, quiet, interrupted);
   }
 };
 

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "dform/core/message_text.h"
+#include "setting_options.h"
 
 namespace dform::cli {
 
@@ -18,7 +19,7 @@ MessageSink::Listener Terminal::listener() {
     const char* prefix = m.level == Level::Warning ? "dform: warning: "
                          : m.level == Level::Error ? "dform: error: "
                                                    : "";
-    std::fprintf(stderr, "%s%s\n", prefix, printableMessage(m.text).c_str());
+    std::fprintf(stderr, "%s%s\n", prefix, printableMessage(inCommandLineTerms(m.text)).c_str());
   };
 }
 
@@ -69,7 +70,9 @@ void Terminal::clearProgress() {
 }
 
 void Terminal::error(const std::string& message) {
-  std::fprintf(stderr, "dform: error: %s\n", printableMessage(message).c_str());
+  std::fprintf(stderr, "dform: error: %s\n", printableMessage(inCommandLineTerms(message)).c_str());
 }
+
+void Terminal::error(const Status& status) { error(status.text()); }
 
 }  // namespace dform::cli

@@ -10,8 +10,9 @@
 
 namespace dform::cli {
 
-/// Prints messages and solver progress to stderr. Progress (an updating line) only when stderr
-/// is a terminal and not quiet; info messages unless quiet; warnings and errors always.
+/// Prints messages and solver progress to stderr, the settings they mention named by their flags.
+/// Progress (an updating line) only when stderr is a terminal and not quiet; info messages unless
+/// quiet; warnings and errors always.
 class Terminal {
  public:
   explicit Terminal(bool quiet);
@@ -23,8 +24,9 @@ class Terminal {
   /// One updating line of any text (e.g. a sweep's jobs done and time left), on the same terms.
   void status(const std::string& text);
   void clearProgress();
-  /// One line "dform: error: ..." on stderr.
+  /// One line "dform: error: ..." on stderr, the settings it mentions named by their flags.
   static void error(const std::string& message);
+  static void error(const Status& status);
 
  private:
   bool quiet_;

@@ -33,39 +33,38 @@ Status stopped() { return interruptedDuring("the export"); }
 }  // namespace
 
 Status checkExportOptions(const ExportOptions& o) {
-  if (o.scoreFoldsDeg && !(*o.scoreFoldsDeg >= 0 && *o.scoreFoldsDeg <= 180))
-    return Status{ErrorCode::Usage, "--score-folds must be an angle from 0 to 180 degrees"};
-  if (!(o.tickSpacingMm >= 1.0))
-    return Status{ErrorCode::Usage, "tick spacing must be at least 1 mm"};
-  if (!(o.tabWidthMm >= 0 && o.tabWidthMm <= 50))
-    return Status{ErrorCode::Usage, "tab width must be between 0 and 50 mm"};
+  // The values the layout cannot work with at all (a tick spacing of 0 would never end): the
+  // export's own guard for a caller that did not go through the settings table, which checks
+  // the same ranges for a user.
+  if (!(o.tickSpacingMm >= kMinTickSpacingMm))
+    return Status{ErrorCode::Usage, mention(Setting::TickSpacing) + " must be at least " +
+                                        fab::formatMm(kMinTickSpacingMm) + " mm"};
+  if (!(o.tabWidthMm >= 0 && o.tabWidthMm <= kMaxTabWidthMm))
+    return Status{ErrorCode::Usage, mention(Setting::TabWidth) + " must be between 0 and " +
+                                        fab::formatMm(kMaxTabWidthMm) + " mm"};
+  if (!(o.scale >= kMinPatternScale && o.scale <= kMaxPatternScale))
+    return Status{ErrorCode::Usage, mention(Setting::Scale) + " must be between " +
+                                        fab::formatMm(kMinPatternScale) + " and " +
+                                        fab::formatMm(kMaxPatternScale)};
   if (!(o.tabAngleDeg >= 15 && o.tabAngleDeg <= 90))
     return Status{ErrorCode::Usage, "tab angle must be between 15 and 90 degrees"};
   if (!(o.tabGapMm >= 0) || !(o.tabMaxLengthMm > 0) || !(o.tabMaxTurnDeg > 0))
     return Status{ErrorCode::Usage, "tab gap, length and turn limits must be positive"};
-  if (!(o.scale >= 0.05 && o.scale <= 20))
-    return Status{ErrorCode::Usage, "scale must be between 0.05 (5%) and 20"};
-  if (o.kerfMm && !(*o.kerfMm >= 0 && *o.kerfMm <= 5))
-    return Status{ErrorCode::Usage, "--kerf must be between 0 and 5 mm"};
-  if (!o.material.empty() && !materialNamed(o.material))
-    return Status{ErrorCode::Usage,
-                  "--material must be one of " + materialNames() + ", got '" + o.material + "'"};
-  // The holes' sizes as the pattern will use them (a material's, or the defaults, where unset).
+  // The holes' sizes as the pattern will use them (a material's, or the defaults, where unset),
+  // against each other; each alone is in its range (the settings table).
   const fab::JointSettings j = fab::jointSettings(o, Profile{});
-  if (!(j.diameterMm >= 0.5 && j.diameterMm <= 20))
-    return Status{ErrorCode::Usage, "--hole-diameter must be between 0.5 and 20 mm"};
-  if (!(j.edgeMm >= j.diameterMm && j.edgeMm <= 50))
-    return Status{ErrorCode::Usage, "--hole-edge must be at least the hole diameter (" +
-                                        fab::formatMm(j.diameterMm) + " mm) and at most 50 mm"};
-  if (!(j.spacingMm >= 2 * j.diameterMm && j.spacingMm <= 1000))
-    return Status{ErrorCode::Usage, "--hole-spacing must be at least twice the hole diameter (" +
-                                        fab::formatMm(2 * j.diameterMm) +
-                                        " mm) and at most 1000 mm"};
-  if (o.slotLengthMm && !(*o.slotLengthMm >= 2 && *o.slotLengthMm <= j.spacingMm - j.diameterMm))
-    return Status{ErrorCode::Usage,
-                  "--slot-length must be at least 2 mm and at most the hole spacing less a hole "
-                  "diameter (" +
-                      fab::formatMm(j.spacingMm - j.diameterMm) + " mm)"};
+  if (!(j.edgeMm >= j.diameterMm))
+    return Status{ErrorCode::Usage, mention(Setting::HoleEdge) +
+                                        " must be at least the hole diameter (" +
+                                        fab::formatMm(j.diameterMm) + " mm)"};
+  if (!(j.spacingMm >= 2 * j.diameterMm))
+    return Status{ErrorCode::Usage, mention(Setting::HoleSpacing) +
+                                        " must be at least twice the hole diameter (" +
+                                        fab::formatMm(2 * j.diameterMm) + " mm)"};
+  if (o.slotLengthMm && !(*o.slotLengthMm <= j.spacingMm - j.diameterMm))
+    return Status{ErrorCode::Usage, mention(Setting::SlotLength) +
+                                        " must be at most the hole spacing less a hole diameter (" +
+                                        fab::formatMm(j.spacingMm - j.diameterMm) + " mm)"};
   return Status::ok();
 }
 

@@ -352,18 +352,19 @@ std::string fitAdvice(const DForm& model, const ExportOptions& o, const Profile&
                       const StrokeFont& font, int permille, BuildWork& work) {
   std::string advice = permille >= 50
                            ? "; the largest scale that fits is " + percentText(permille / 1000.0) +
-                                 ": --scale fit makes it so"
+                                 ": " + mention(Setting::Scale) + " fit makes it so"
                            : "; it does not fit even at 5 %";
   bool tooLarge = false;
   const std::string page = o.page.empty() ? profile.page : o.page;
-  if (page.empty()) return advice + ", or give a larger --sheet";
+  if (page.empty()) return advice + ", or give a larger " + mention(Setting::Sheet);
   for (const char* larger : {"A3", "Tabloid"}) {
     const auto size = pageSizeMm(larger), now = pageSizeMm(page);
     if (!size || !now || size->first * size->second <= now->first * now->second) continue;
     ExportOptions onLarger = o;
     onLarger.page = larger;
     if (buildScaled(model, onLarger, profile, font, o.scale, work, tooLarge).isOk())
-      return advice + ", or --page " + larger + " prints it at " + percentText(o.scale);
+      return advice + ", or " + mention(Setting::Page) + " " + larger + " prints it at " +
+             percentText(o.scale);
   }
   return advice;
 }

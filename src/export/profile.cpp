@@ -199,7 +199,7 @@ Result<Profile> parseProfileJson(const std::string& text, const std::string& sou
   r.number("registration_clear_mm", p.registrationClearMm, 0, 50);
   r.flag("calibration_bar", p.calibrationBar);
   r.number("label_height_mm", p.labelHeightMm, 0.5, 50);
-  r.number("kerf_mm", p.kerfMm, 0, 5);
+  r.number("kerf_mm", p.kerfMm, 0, kMaxKerfMm);
   // Print shops ask for up to 3 mm of bleed; a cutter's registration is off by far less.
   r.number("bleed_mm", p.bleedMm, 0, 3);
   r.color("fill_color_a", p.fillColorA);
@@ -285,6 +285,24 @@ std::optional<MaterialPreset> materialNamed(const std::string& name) {
   return std::nullopt;
 }
 
+std::vector<std::string> tabSideNames() {
+  std::vector<std::string> names;
+  for (TabSide side : kTabSides) names.push_back(tabSideName(side));
+  return names;
+}
+
+std::vector<std::string> jointNames() {
+  std::vector<std::string> names;
+  for (Joint joint : kJoints) names.push_back(jointName(joint));
+  return names;
+}
+
+std::vector<std::string> materialPresetNames() {
+  std::vector<std::string> names;
+  for (const MaterialPreset& m : kMaterials) names.push_back(m.name);
+  return names;
+}
+
 std::string materialNames() {
   std::string names;
   for (const MaterialPreset& m : kMaterials) names += (names.empty() ? "" : ", ") + m.name;
@@ -342,8 +360,9 @@ Result<Profile> resolveProfile(const ExportOptions& options) {
   if (p.joint != Joint::Glue) p.tabs = TabSide::None;
   if (options.tabSide) p.tabs = *options.tabSide;
   if (p.joint == Joint::Slots && (p.tabs == TabSide::A || p.tabs == TabSide::Alternate))
-    return Status{ErrorCode::Usage, std::string("--joint slots puts its tongues on A's seam: glue "
-                                                "tabs go on B (--tabs b) or none, not on ") +
+    return Status{ErrorCode::Usage, mention(Setting::Joint) +
+                                        " slots puts its tongues on A's seam: glue tabs go on B (" +
+                                        mention(Setting::Tabs) + " b) or none, not on " +
                                         tabSideName(p.tabs)};
   return p;
 }

@@ -120,14 +120,16 @@ Result<SheetFit> sheetFit(const ExportOptions& o, const Profile& profile, bool c
   // a page, rather than ignore them.
   fit.pageName = o.page.empty() ? profile.page : o.page;
   if (!o.page.empty() && profile.page.empty())
-    return Status{ErrorCode::Usage, "--page is for page profiles (print, print-and-cut); profile " +
+    return Status{ErrorCode::Usage, mention(Setting::Page) +
+                                        " is for page profiles (print, print-and-cut); profile " +
                                         profile.name +
-                                        " cuts a material sheet: give its size with --sheet WxHmm"};
+                                        " cuts a material sheet: give its size with " +
+                                        mention(Setting::Sheet) + " WxHmm"};
   if (!profile.page.empty() && o.sheetGiven)
-    return Status{ErrorCode::Usage,
-                  "profile " + profile.name + " prints on " + fit.pageName +
-                      " pages, so --sheet does not apply; choose the paper with --page "
-                      "A4|Letter|A3|Tabloid|WxHmm"};
+    return Status{ErrorCode::Usage, "profile " + profile.name + " prints on " + fit.pageName +
+                                        " pages, so " + mention(Setting::Sheet) +
+                                        " does not apply; choose the paper with " +
+                                        mention(Setting::Page) + " A4|Letter|A3|Tabloid|WxHmm"};
   fit.pageW = o.sheetWidthMm;
   fit.pageH = o.sheetHeightMm;
   if (!fit.pageName.empty()) {

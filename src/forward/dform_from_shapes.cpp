@@ -15,7 +15,6 @@
 #include "dform/model/exact_model.h"
 #include "dform/model/resources.h"
 #include "dform/model/run_control.h"
-#include "dform/model/term_table.h"
 #include "dform/model/transfer.h"
 #include "ruled_forward.h"
 #include "seam_layout.h"
@@ -75,22 +74,29 @@ bool startOnExactBody(const exact::ExactGluing& g, Piece pieces[2]) {
 
 }  // namespace
 
+const std::vector<ModelChoiceInfo>& modelChoices() {
+  static const std::vector<ModelChoiceInfo> choices = {
+      {ModelChoice::Auto, "auto",
+       "exact where the pieces make a convex body, else paper, then the ruled engine for drawn "
+       "creases and anti D-Forms"},
+      {ModelChoice::Exact, "exact", "Alexandrov's convex body of the glued pieces"},
+      {ModelChoice::Ruled, "ruled",
+       "rigid flat triangles between the pieces' boundary points, from the paper model's shape"},
+      {ModelChoice::Paper, "paper", "the paper's optimisation"},
+      {ModelChoice::General, "general", "a stiff sheet at a stationary point of its energy"}};
+  return choices;
+}
+
 const char* modelChoiceName(ModelChoice model) {
-  switch (model) {
-    case ModelChoice::Auto: return "auto";
-    case ModelChoice::Exact: return "exact";
-    case ModelChoice::Ruled: return "ruled";
-    case ModelChoice::Paper: return "paper";
-    case ModelChoice::General: return "general";
-  }
+  for (const ModelChoiceInfo& m : modelChoices())
+    if (m.choice == model) return m.name;
   return "?";
 }
 
 bool parseModelChoice(const std::string& text, ModelChoice& model) {
-  for (ModelChoice m : {ModelChoice::Auto, ModelChoice::Exact, ModelChoice::Ruled,
-                        ModelChoice::Paper, ModelChoice::General})
-    if (text == modelChoiceName(m)) {
-      model = m;
+  for (const ModelChoiceInfo& m : modelChoices())
+    if (text == m.name) {
+      model = m.choice;
       return true;
     }
   return false;
@@ -100,6 +106,23 @@ const char* joinedBoundaryName(JoinedBoundary boundary) {
   return boundary == JoinedBoundary::Outer ? "outer" : "inner";
 }
 
+const std::vector<JoinChoiceInfo>& joinChoices() {
+  static const std::vector<JoinChoiceInfo> choices = [] {
+    using J = JoinedBoundary;
+    const std::pair<J, J> pairs[] = {
+        {J::Outer, J::Outer}, {J::Inner, J::Inner}, {J::Outer, J::Inner}, {J::Inner, J::Outer}};
+    const char* helps[] = {"a classic D-Form", "an anti D-Form", "a demi D-Form",
+                           "a demi D-Form, B's outline zipped"};
+    std::vector<JoinChoiceInfo> out;
+    for (int k = 0; k < 4; ++k)
+      out.push_back({std::string(joinedBoundaryName(pairs[k].first)) + "," +
+                         joinedBoundaryName(pairs[k].second),
+                     pairs[k].first, pairs[k].second, helps[k]});
+    return out;
+  }();
+  return choices;
+}
+
 ForwardWeights defaultWeights(JoinedBoundary a, JoinedBoundary b) {
   ForwardWeights weights;
   if (a == JoinedBoundary::Inner || b == JoinedBoundary::Inner) weights.smooth3d = 0.001;
@@ -107,44 +130,19 @@ ForwardWeights defaultWeights(JoinedBoundary a, JoinedBoundary b) {
 }
 
 bool parseJoin(const std::string& text, JoinedBoundary& a, JoinedBoundary& b) {
-  const std::size_t comma = text.find(',');
-  if (comma == std::string::npos) return false;
-  JoinedBoundary* targets[2] = {&a, &b};
-  const std::string names[2] = {text.substr(0, comma), text.substr(comma + 1)};
-  for (int p = 0; p < 2; ++p) {
-    if (names[p] != "outer" && names[p] != "inner") return false;
-    *targets[p] = names[p] == "outer" ? JoinedBoundary::Outer : JoinedBoundary::Inner;
-  }
-  return true;
-}
-
-Status validateForwardJob(const ForwardSettings& job) {
-  auto usage = [](const std::string& text) { return Status(ErrorCode::Usage, text); };
-  if (job.resolution < 8 || job.resolution > 20000)
-    return usage("resolution must be between 8 and 20000 seam vertices, got " +
-                 std::to_string(job.resolution));
-  for (const StartPoint* s : {&job.startA, &job.startB})
-    if (!s->nearestToPoint && !(s->fraction >= 0.0 && s->fraction < 1.0))
-      return usage("a start fraction must be in [0, 1)");
-    else if (s->nearestToPoint && !s->point.allFinite())
-      return usage("a start point must have finite coordinates");
-  if (!(job.perimeterTolerance > 0.0 && job.perimeterTolerance < 1.0))
-    return usage("the perimeter tolerance must be in (0, 1)");
-  if (!(job.interiorEdgeFactor >= kMinInteriorEdgeFactor &&
-        job.interiorEdgeFactor <= kMaxInteriorEdgeFactor))
-    return usage(
-        "the interior edge factor (--interior-edge, interior_edge in a job file) must be in [0.25, "
-        "8]");
-  if (std::string problem = settingsProblem(forwardTerms(), job.weights, job.solver);
-      !problem.empty())
-    return usage(problem);
-  return Status::ok();
+  for (const JoinChoiceInfo& j : joinChoices())
+    if (text == j.name) {
+      a = j.a;
+      b = j.b;
+      return true;
+    }
+  return false;
 }
 
 namespace {
 
 // The exact D-Form where it applies and was not declined: the finished run, or nothing with
-// `refusal` saying why not (an error where --model exact asked for it).
+// `refusal` saying why not (an error where the model setting asked for the exact one).
 Result<std::optional<SolvedDForm>> tryExactModel(const ForwardSettings& job,
                                                  const SeamLayout& layout, SolvedDForm& run,
                                                  std::string& refusal, MessageSink& sink,
@@ -156,7 +154,8 @@ Result<std::optional<SolvedDForm>> tryExactModel(const ForwardSettings& job,
     return std::optional<SolvedDForm>();
   if (!refusal.empty()) {
     if (job.model == ModelChoice::Exact)
-      return Status(ErrorCode::InputInvalid, both + ": --model exact: " + refusal);
+      return Status(ErrorCode::InputInvalid,
+                    both + ": " + mention(Setting::Model) + " exact: " + refusal);
     return std::optional<SolvedDForm>();
   }
   const auto solveStart = Clock::now();
@@ -170,7 +169,8 @@ Result<std::optional<SolvedDForm>> tryExactModel(const ForwardSettings& job,
   if (!exactModel.isOk()) {
     refusal = exactModel.status().message();
     if (job.model == ModelChoice::Exact)
-      return Status(exactModel.status().code(), both + ": --model exact: " + refusal);
+      return Status(exactModel.status().code(),
+                    both + ": " + mention(Setting::Model) + " exact: " + refusal);
     if (exactModel.status().code() == ErrorCode::SolveFailed) {
       sink.warning("the exact model failed (" + refusal +
                    "); the paper model makes the shape instead");
@@ -343,7 +343,6 @@ Status solvePaperModel(const ForwardSettings& job, const SeamLayout& layout, Sol
 Result<SolvedDForm> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSettings& job,
                                 MessageSink& sink, const RunHooks& hooks,
                                 MemoryAtResolution& estimateAt) {
-  if (Status s = validateForwardJob(job); !s.isOk()) return s;
   const auto start = Clock::now();
   SolvedDForm run;
   SeamLayout layout;
@@ -389,9 +388,9 @@ Result<SolvedDForm> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSet
                   layout.bothPaths() + ": the ruled model: " + ruledRefusal);
   const bool ruled = ruledRefusal.empty();
   run.modelUsed.name = general ? "general" : "paper";
-  run.modelUsed.reason = general ? "asked for (--model general)"
-                         : job.model == ModelChoice::Paper
-                             ? "asked for (--model paper)"
+  run.modelUsed.reason = general || job.model == ModelChoice::Paper
+                             ? std::string("asked for (") + settingKey(Setting::Model) + " " +
+                                   modelChoiceName(job.model) + ")"
                              : "the exact model does not apply: " + refusal;
   if (job.model == ModelChoice::Auto && !ruled)
     run.modelUsed.reason += "; the ruled engine is not tried: " + ruledRefusal;
@@ -422,7 +421,8 @@ Result<SolvedDForm> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSet
     Status s = solveRuledModel(job, layout, run, sink, ruledAsked ? 180.0 : 90.0);
     run.timings.solve += secondsSince(solveStart);
     if (s.isOk())
-      run.modelUsed.reason = ruledAsked ? "asked for (--model ruled)"
+      run.modelUsed.reason = ruledAsked ? std::string("asked for (") + settingKey(Setting::Model) +
+                                              " " + modelChoiceName(job.model) + ")"
                                         : paperReason + "; the ruled engine met every edge length";
     else if (ruledAsked)
       return Status(s.code(), layout.bothPaths() + ": the ruled model: " + s.message());

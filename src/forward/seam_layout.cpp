@@ -105,17 +105,19 @@ Result<DrawnPiece> drawnPiece(Shape2& shape, JoinedBoundary join, const std::str
   for (CreaseLine& crease : shape.creases) piece.creases.push_back(std::move(crease.points));
   if (join == JoinedBoundary::Outer) {
     if (holes != 0)
-      return Status(
-          ErrorCode::InputInvalid,
-          path + ": the outline has " + std::to_string(holes) +
-              " hole(s); a classic D-Form piece must be a disc without holes (to zip a "
-              "hole, as in anti and demi D-Forms, choose it with --join, e.g. --join inner,inner)");
+      return Status(ErrorCode::InputInvalid,
+                    path + ": the outline has " + std::to_string(holes) +
+                        " hole(s); a classic D-Form piece must be a disc without holes (to zip a "
+                        "hole, as in anti and demi D-Forms, choose it with " +
+                        mention(Setting::Join) + ", e.g. " + mention(Setting::Join) +
+                        " inner,inner)");
     piece.joined = std::move(shape.outer.points);
     sink.info(found + "; joining its outline");
   } else {
     if (holes != 1)
       return Status(ErrorCode::InputInvalid,
-                    path + ": --join inner needs a piece with exactly one hole, and this one has " +
+                    path + ": " + mention(Setting::Join) +
+                        " inner needs a piece with exactly one hole, and this one has " +
                         std::to_string(holes));
     piece.joined = std::move(shape.holes[0].points);
     piece.freeOutline = std::move(shape.outer.points);
@@ -167,13 +169,13 @@ Status matchPieces(const ForwardSettings& job, SeamLayout& layout, SolvedDForm& 
   const std::string lengths = classic ? "the perimeters" : "the joined boundaries' lengths";
   if (mismatch > job.perimeterTolerance) {
     if (!job.fitPerimeter)
-      return Status(ErrorCode::InputInvalid,
-                    layout.bothPaths() + ": " + lengths + " differ" +
-                        format(" (%.3f mm and %.3f mm, %.2f%%", run.perimeterA, run.perimeterB,
-                               100.0 * mismatch) +
-                        format(" > %.2f%%); a D-Form needs equal lengths (--fit-perimeter "
-                               "scales piece B to match)",
-                               100.0 * job.perimeterTolerance));
+      return Status(
+          ErrorCode::InputInvalid,
+          layout.bothPaths() + ": " + lengths + " differ" +
+              format(" (%.3f mm and %.3f mm, %.2f%%", run.perimeterA, run.perimeterB,
+                     100.0 * mismatch) +
+              format(" > %.2f%%); a D-Form needs equal lengths (", 100.0 * job.perimeterTolerance) +
+              mention(Setting::FitPerimeter) + " scales piece B to match)");
   }
   if (job.fitPerimeter) {
     run.scaleB = run.perimeterA / run.perimeterB;
@@ -187,7 +189,8 @@ Status matchPieces(const ForwardSettings& job, SeamLayout& layout, SolvedDForm& 
   StartPoint startB = job.startB;
   if (job.flip) {
     mirror(B, startB);
-    sink.info("piece B is zipped turned over (--flip): its flat pattern is mirrored");
+    sink.info("piece B is zipped turned over (" + mention(Setting::Flip) +
+              "): its flat pattern is mirrored");
   }
   run.startFractionA = resolveFraction(A.joined, job.startA);
   run.startFractionB = resolveFraction(B.joined, startB);

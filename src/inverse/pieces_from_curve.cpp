@@ -12,7 +12,6 @@
 #include "dform/model/exact_model.h"
 #include "dform/model/resources.h"
 #include "dform/model/run_control.h"
-#include "dform/model/term_table.h"
 #include "dform/model/transfer.h"
 
 namespace dform {
@@ -23,17 +22,6 @@ using detail::secondsSince;
 
 std::string curveLabel(const Curve3& curve) {
   return curve.source.empty() ? "the curve" : curve.source;
-}
-
-Status validateInverseJob(const InverseSettings& job) {
-  auto usage = [](const std::string& text) { return Status(ErrorCode::Usage, text); };
-  if (job.resolution < 8 || job.resolution > 20000)
-    return usage("resolution must be between 8 and 20000 curve points, got " +
-                 std::to_string(job.resolution));
-  if (std::string problem = settingsProblem(inverseTerms(), job.weights, job.solver);
-      !problem.empty())
-    return usage(problem);
-  return Status::ok();
 }
 
 namespace {
@@ -142,7 +130,6 @@ MemoryEstimate inverseMemory(int resolution) {
 
 Result<SolvedPieces> solveCurve(const Curve3& curve, const InverseSettings& job, MessageSink& sink,
                                 const RunHooks& hooks) {
-  if (Status s = validateInverseJob(job); !s.isOk()) return s;
   const auto start = Clock::now();
   SolvedPieces run;
   const std::string name = curveLabel(curve);

@@ -42,8 +42,8 @@ Status invalid(std::string message) { return {ErrorCode::InputInvalid, std::move
 // (the memory check before meshing could not foresee it), a usage matter like a resolution too
 // large for the machine (README "Exit codes").
 Status outOfMemory(const char* what) {
-  return {ErrorCode::Usage,
-          std::string("out of memory while ") + what + "; try a lower --resolution"};
+  return {ErrorCode::Usage, std::string("out of memory while ") + what + "; try a lower " +
+                                mention(Setting::Resolution)};
 }
 
 // Level 0 is the unbounded region; crossing a loop's edge enters the next level (`isChainEdge`

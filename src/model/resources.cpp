@@ -13,6 +13,7 @@
 #include <string>
 #include <thread>
 
+#include "dform/core/constants.h"
 #include "dform/model/run_control.h"
 
 namespace dform {
@@ -116,9 +117,6 @@ std::size_t estimatedPeakBytes(double vertices, double extraBytes) {
 
 namespace {
 
-// The lowest resolution a run takes.
-constexpr int kLowestResolution = 8;
-
 // Bytes as a person reads them, in MB below a gigabyte (to 0.1 MB) and in GB above (to 0.01 GB),
 // rounded up or down: a need rounded up and a limit rounded down never print alike where the
 // need exceeds the limit.
@@ -143,7 +141,7 @@ double peakAt(const MemoryAtResolution& estimateAt, int resolution) {
 // within `budget`; 0 when not even the lowest does. Every one is tried (the formula is a few
 // operations each): the pre-D-Form's tables do not grow monotonically with the resolution.
 int highestFitting(const MemoryAtResolution& estimateAt, int resolution, double budget) {
-  for (int fits = resolution - 1; fits >= kLowestResolution; --fits)
+  for (int fits = resolution - 1; fits >= kMinResolution; --fits)
     if (peakAt(estimateAt, fits) <= budget) return fits;
   return 0;
 }
@@ -176,7 +174,7 @@ Status outOfMemory(const MemoryAtResolution& estimateAt, int resolution, const s
   // The run needed more than its estimate: the resolution offered is held to half of what the
   // estimate adds to the program's own memory, and to what checkMemory would let a run use now
   // (without an estimate, the resolution of half the vertices).
-  int fits = std::max(kLowestResolution, int(resolution / std::sqrt(2.0)));
+  int fits = std::max(kMinResolution, int(resolution / std::sqrt(2.0)));
   if (estimateAt) {
     const double program = double(estimatedPeakBytes(0.0));
     double budget = program + 0.5 * (peakAt(estimateAt, resolution) - program);

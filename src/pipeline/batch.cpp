@@ -17,8 +17,8 @@
 #include "dform/core/input_file.h"
 #include "dform/core/lock_file.h"
 #include "dform/core/message_text.h"
+#include "dform/pipeline/exit_code.h"
 #include "dform/pipeline/job_file.h"
-#include "dform/pipeline/run.h"
 #include "json_values.h"
 
 namespace dform {
@@ -243,16 +243,11 @@ JobFacts readJobFacts(const std::string& jobPath) {
   std::string hashes = sha256Hex(bytes.value());
   const Result<Job> job = parseJobFileText(bytes.value(), jobPath);
   if (job.isOk()) {
-    const Job& j = job.value();
-    const bool forward = j.mode == Job::Mode::Forward;
-    const std::vector<std::string> inputs =
-        forward ? std::vector<std::string>{j.forward.pieceA, j.forward.pieceB}
-                : std::vector<std::string>{j.inverse.curve};
-    for (const std::string& input : inputs) {
+    for (const std::string& input : job.value().inputs()) {
       const Result<std::string> read = readInputFile(input);
       hashes += " " + (read.isOk() ? sha256Hex(read.value()) : std::string("missing"));
     }
-    const double resolution = forward ? j.forward.resolution : j.inverse.resolution;
+    const double resolution = job.value().resolution();
     facts.size = resolution * resolution;
   }
   facts.sha256 = sha256Hex(hashes);
@@ -433,8 +428,9 @@ Result<std::vector<BatchRow>> runBatch(const std::vector<BatchJob>& jobs,
         row.job = job;
         row.exitCode = outcome.exitCode;
         row.message = outcome.message;
-        const bool saved = (outcome.exitCode == 0 || outcome.exitCode == 7) &&
-                           fs::exists(fs::path(dir) / "report.json");
+        const bool saved =
+            (outcome.exitCode == 0 || outcome.exitCode == exitCode(ErrorCode::GateFailed)) &&
+            fs::exists(fs::path(dir) / "report.json");
         if (saved) row.figures = measureResult(dir);
         row.figures.svg.clear();  // the manifest keeps figures; the gallery draws from results
         row.figures.subfolder = row.figures.label = job.name;
@@ -464,7 +460,8 @@ Result<std::vector<BatchRow>> runBatch(const std::vector<BatchJob>& jobs,
   if (interrupted)
     return Status(ErrorCode::Interrupted, outDir + ": interrupted; " +
                                               manifest.filename().string() +
-                                              " lists the finished jobs (--resume runs the rest)");
+                                              " lists the finished jobs (a resumed batch runs the "
+                                              "rest)");
   if (Status s = writeGallery(outDir, rows, galleryName(options)); !s.isOk()) return s;
   return rows;
 }
@@ -539,7 +536,7 @@ Result<MergedBatch> mergeBatch(const std::string& outDir, bool allowPartial) {
   if (list.count < 0 && !allowPartial)
     return Status(ErrorCode::SolveFailed,
                   outDir + ": the manifests do not record their job list, so whether every job " +
-                      "finished cannot be told; nothing was merged (--allow-partial merges them " +
+                      "finished cannot be told; nothing was merged (a partial merge takes them " +
                       "all the same)");
   for (const BatchRow& r : rows) listed[r.job.index] = r.job.name;
   std::set<int> finished;
@@ -552,12 +549,12 @@ Result<MergedBatch> mergeBatch(const std::string& outDir, bool allowPartial) {
       merged.firstMissing.push_back(name != listed.end() ? name->second : "#" + std::to_string(k));
     }
   if (merged.missingCount > 0 && !allowPartial)
-    return Status(ErrorCode::SolveFailed,
-                  outDir + ": " + std::to_string(merged.missingCount) + " of " +
-                      std::to_string(list.count) + " jobs have not finished in any manifest (" +
-                      missingText(merged) +
-                      "); nothing was merged (run their shards, --resume finishes a shard cut " +
-                      "short; --allow-partial merges what is there)");
+    return Status(
+        ErrorCode::SolveFailed,
+        outDir + ": " + std::to_string(merged.missingCount) + " of " + std::to_string(list.count) +
+            " jobs have not finished in any manifest (" + missingText(merged) +
+            "); nothing was merged (run their shards, resume a shard cut short, or merge " +
+            "what is there as a partial merge)");
   const fs::path base = fs::path(outDir);
   if (Status s = writeFileAtomically((base / "batch.json").string(),
                                      manifestText(rows, {}, list, listed, true));

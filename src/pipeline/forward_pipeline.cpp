@@ -7,6 +7,7 @@
 #include "dform/io/outline_reader.h"
 #include "dform/model/resources.h"
 #include "dform/model/run_control.h"
+#include "dform/pipeline/settings.h"
 #include "reference_seams.h"
 
 namespace dform {
@@ -45,21 +46,38 @@ Result<ForwardRun> solveAndMeasure(Shape2 a, Shape2 b, const ForwardSettings& se
 
 }  // namespace
 
-Result<ForwardRun> makeDForm(Shape2 a, Shape2 b, const ForwardSettings& settings, MessageSink& sink,
-                             const RunHooks& hooks) {
-  // As a run from files: the numbers first, then each shape as its file would be read.
-  if (Status s = validateForwardJob(settings); !s.isOk()) return s;
+namespace {
+
+// As a run from files checks its job and files: the numbers first, then each shape as its file
+// would be read.
+Status checkShapes(Shape2& a, Shape2& b, const ForwardSettings& settings) {
+  if (Status s = checkSettings(settings); !s.isOk()) return s;
   Result<Shape2> checkedA = checkOutline(a, pieceName(a, "piece A"));
   if (!checkedA.isOk()) return checkedA.status();
   Result<Shape2> checkedB = checkOutline(b, pieceName(b, "piece B"));
   if (!checkedB.isOk()) return checkedB.status();
-  return solveAndMeasure(std::move(checkedA).value(), std::move(checkedB).value(), settings, sink,
-                         hooks);
+  a = std::move(checkedA).value();
+  b = std::move(checkedB).value();
+  return Status::ok();
+}
+
+}  // namespace
+
+Result<ForwardRun> makeDForm(Shape2 a, Shape2 b, const ForwardSettings& settings, MessageSink& sink,
+                             const RunHooks& hooks) {
+  if (Status s = checkShapes(a, b, settings); !s.isOk()) return s;
+  return solveAndMeasure(std::move(a), std::move(b), settings, sink, hooks);
+}
+
+Result<SolvedDForm> shapeDForm(Shape2 a, Shape2 b, const ForwardSettings& settings,
+                               MessageSink& sink, const RunHooks& hooks) {
+  if (Status s = checkShapes(a, b, settings); !s.isOk()) return s;
+  return solveDForm(std::move(a), std::move(b), settings, sink, hooks);
 }
 
 Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const RunHooks& hooks) {
   // The job's numbers first: a bad one costs no reading.
-  if (Status s = validateForwardJob(job); !s.isOk()) return s;
+  if (Status s = checkSettings(job); !s.isOk()) return s;
   const auto start = Clock::now();
   Result<Shape2> a = readOutline(job.pieceA);
   if (!a.isOk()) return a.status();

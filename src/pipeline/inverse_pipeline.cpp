@@ -8,6 +8,7 @@
 #include "dform/io/curve_reader.h"
 #include "dform/model/resources.h"
 #include "dform/model/run_control.h"
+#include "dform/pipeline/settings.h"
 #include "reference_seams.h"
 
 namespace dform {
@@ -58,7 +59,7 @@ Result<InverseRun> solveAndMeasure(Curve3 curve, const InverseSettings& settings
 Result<InverseRun> makePieces(Curve3 curve, const InverseSettings& settings, MessageSink& sink,
                               const RunHooks& hooks) {
   // As a run from a file: the numbers first, then the curve as its file would be read.
-  if (Status s = validateInverseJob(settings); !s.isOk()) return s;
+  if (Status s = checkSettings(settings); !s.isOk()) return s;
   Result<Curve3> checked = checkCurve(curve, curveLabel(curve));
   if (!checked.isOk()) return checked.status();
   return solveAndMeasure(std::move(checked).value(), settings, sink, hooks);
@@ -66,7 +67,7 @@ Result<InverseRun> makePieces(Curve3 curve, const InverseSettings& settings, Mes
 
 Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const RunHooks& hooks) {
   // The job's numbers first: a bad one costs no reading.
-  if (Status s = validateInverseJob(job); !s.isOk()) return s;
+  if (Status s = checkSettings(job); !s.isOk()) return s;
   const auto start = Clock::now();
   CurveReadOptions readOptions;
   readOptions.forceClosed = job.forceClosed;

@@ -168,7 +168,7 @@ json timingsJson(const Timings& t, const CommandTimings& command,
 json messagesJson(const std::vector<Message>& messages) {
   json out = json::array();
   for (const Message& m : messages)
-    out.push_back({{"level", levelName(m.level)}, {"text", m.text}});
+    out.push_back({{"level", levelName(m.level)}, {"text", plainSettings(m.text)}});
   return out;
 }
 
@@ -254,9 +254,10 @@ Result<std::string> writeForwardReport(const std::string& dir, const Job& job,
                                        const GateReport* gate, const CommandTimings& command) {
   const auto reportStart = std::chrono::steady_clock::now();
   json report = header(job, "forward");
-  report["inputs"] = {
-      {"piece_a", inputJson(job.forward.pieceA, run.sha256A, "perimeter_mm", run.perimeterA)},
-      {"piece_b", inputJson(job.forward.pieceB, run.sha256B, "perimeter_mm", run.perimeterB)}};
+  report["inputs"] = {{"piece_a", inputJson(std::get<ForwardJob>(job.run).pieceA, run.sha256A,
+                                            "perimeter_mm", run.perimeterA)},
+                      {"piece_b", inputJson(std::get<ForwardJob>(job.run).pieceB, run.sha256B,
+                                            "perimeter_mm", run.perimeterB)}};
   report["fit_perimeter_scale"] = numberOrNull(run.scaleB);
   report["start_fraction_a"] = numberOrNull(run.startFractionA);
   report["start_fraction_b"] = numberOrNull(run.startFractionB);
@@ -277,8 +278,8 @@ Result<std::string> writeInverseReport(const std::string& dir, const Job& job,
                                        const GateReport* gate, const CommandTimings& command) {
   const auto reportStart = std::chrono::steady_clock::now();
   json report = header(job, "inverse");
-  report["inputs"] = {
-      {"curve", inputJson(job.inverse.curve, run.target.sha256, "length_mm", run.curveLength)}};
+  report["inputs"] = {{"curve", inputJson(std::get<InverseJob>(job.run).curve, run.target.sha256,
+                                          "length_mm", run.curveLength)}};
   report["model"] = modelJson(run.modelUsed, run.model);
   report["pre_dform"] = {{"on_hull", run.pre.onHull},
                          {"is_hull", run.pre.isHull},

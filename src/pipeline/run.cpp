@@ -30,19 +30,20 @@ Status namingFolder(const Status& status, const std::string& dir) {
                                                             : status;
 }
 
-// A run's solved result, of either mode (exactly one is set).
-struct Solved {
-  const ForwardRun* forward = nullptr;
-  const InverseRun* inverse = nullptr;
-  const DForm& model() const { return forward ? forward->model : inverse->model; }
-};
+// Each mode's job read and solved.
+Result<ForwardRun> solveJob(const ForwardJob& job, MessageSink& sink, const RunHooks& hooks) {
+  return runForward(job, sink, hooks);
+}
+Result<InverseRun> solveJob(const InverseJob& job, MessageSink& sink, const RunHooks& hooks) {
+  return runInverse(job, sink, hooks);
+}
 
 // The gate on the figures the run measured on its model (the exact body, the round trip): not
 // measured twice.
-GateReport gateSolved(const Solved& solved, const GateLimits& limits) {
-  return solved.forward ? runGate(solved.model(), limits, solved.forward->metrics, nullptr, nullptr)
-                        : runGate(solved.model(), limits, solved.inverse->metrics,
-                                  &solved.inverse->target, &solved.inverse->curveMatch);
+GateReport gateSolved(const SolvedRun& solved, const GateLimits& limits) {
+  const InverseRun* inverse = std::get_if<InverseRun>(&solved);
+  return runGate(solvedModel(solved), limits, solvedMetrics(solved),
+                 inverse ? &inverse->target : nullptr, solvedCurveMatch(solved));
 }
 
 // The cutting files laid out once in memory and the layout judged as the gate's last check (so
@@ -50,29 +51,30 @@ GateReport gateSolved(const Solved& solved, const GateLimits& limits) {
 // any reason: the stamp is an overlay, so the pattern judged is the pattern written. An export
 // that fails leaves the rest of the result to be written (a sheet too small: the export can be
 // redone alone). Nothing (nullopt) where no export was asked for.
-std::optional<Result<PreparedExport>> prepareJudged(const Solved& solved, const std::string& name,
-                                                    const OutputOptions& output,
-                                                    const RunSettings& settings,
-                                                    std::optional<GateReport>& gate,
-                                                    MessageSink& sink) {
-  if (!output.exportFiles) {
-    if (gate) gate->checks.push_back(notRunCheck("pattern_layout", 0, "no export (--no-export)"));
+std::optional<Result<PreparedExport>> prepareJudged(
+    const SolvedRun& solved, const std::string& name, const OutputOptions& output,
+    const RunSettings& settings, std::optional<GateReport>& gate, MessageSink& sink) {
+  if (!settings.cuttingFiles) {
+    if (gate)
+      gate->checks.push_back(
+          notRunCheck("pattern_layout", 0,
+                      std::string("no export (") + settingKey(Setting::CuttingFiles) + " false)"));
     return std::nullopt;
   }
-  const ModelUsed& used = solved.forward ? solved.forward->modelUsed : solved.inverse->modelUsed;
+  const DForm& model = solvedModel(solved);
+  const ModelUsed& used = solvedModelUsed(solved);
   const Result<LaidOutExport> laidOut = layOut(
-      solved.model(),
-      withFolds(*settings.exporting, foldsToScore(used, solved.model()), used.name, sink), name);
+      model, withFolds(*settings.exporting, foldsToScore(used, model), used.name, sink), name);
   Result<PreparedExport> prepared = laidOut.status();
   if (laidOut.isOk()) {
     if (gate) gate->checks.push_back(layoutCheck(laidOut.value().layout));
-    prepared = render(solved.model(), laidOut.value(), gate && !gate->passed());
+    prepared = render(model, laidOut.value(), gate && !gate->passed());
   } else if (gate) {
     gate->checks.push_back(
         notRunCheck("pattern_layout", 0, "the export failed: " + laidOut.status().message()));
   }
   if (!prepared.isOk()) {
-    sink.emit(Level::Error, "export: " + prepared.status().message() +
+    sink.emit(Level::Error, "export: " + prepared.status().text() +
                                 " (the result is saved: `dform export " + output.outDir +
                                 "` exports it again with other options)");
   } else if (!gate && prepared.value().layout.problems() > 0) {
@@ -85,7 +87,7 @@ std::optional<Result<PreparedExport>> prepareJudged(const Solved& solved, const 
 // in: meshes, report.json (the gate's verdict, measured on the export prepared in memory), the
 // cutting files when released, report.html. Any failure drops it and leaves the output folder
 // as it was.
-Result<WrittenResult> gateAndWrite(const Job& job, const Solved& solved, ResultFolder& folder,
+Result<WrittenResult> gateAndWrite(const Job& job, const SolvedRun& solved, ResultFolder& folder,
                                    const OutputOptions& output, const RunSettings& settings,
                                    MessageSink& sink, const std::atomic<bool>& interrupted,
                                    CommandTimings timings) {
@@ -99,30 +101,31 @@ Result<WrittenResult> gateAndWrite(const Job& job, const Solved& solved, ResultF
   const auto exportStart = Clock::now();
   const std::optional<Result<PreparedExport>> prepared =
       prepareJudged(solved, jobName(job), output, settings, gate, sink);
-  if (output.exportFiles) timings.exportFiles = secondsSince(exportStart);
+  if (settings.cuttingFiles) timings.exportFiles = secondsSince(exportStart);
   const bool gateFailed = gate && !gate->passed();
 
   // Everything is computed; a Ctrl-C that came meanwhile leaves the output folder as it was.
   if (interrupted) return leftAsItWas(output.outDir, "interrupted");
   const std::string& staging = folder.staging();
   const auto writeStart = Clock::now();
-  Status written = writeModel(staging, solved.model());
-  if (written.isOk() && solved.inverse) written = writeTargetCurve(staging, solved.inverse->target);
+  const InverseRun* inverse = std::get_if<InverseRun>(&solved);
+  Status written = writeModel(staging, solvedModel(solved));
+  if (written.isOk() && inverse) written = writeTargetCurve(staging, inverse->target);
   if (!written.isOk()) return folder.named(written);
   timings.write = secondsSince(writeStart);
-  const bool release = prepared && prepared->isOk() && (!gateFailed || output.exportAnyway);
+  const bool release = prepared && prepared->isOk() && (!gateFailed || settings.exportAnyway);
   if (release) noteExport(prepared->value(), sink);
   const GateReport* gateReport = gate ? &*gate : nullptr;
   const Result<std::string> reported =
-      solved.forward
-          ? writeForwardReport(staging, job, *solved.forward, sink.messages(), gateReport, timings)
-          : writeInverseReport(staging, job, *solved.inverse, sink.messages(), gateReport, timings);
+      inverse ? writeInverseReport(staging, job, *inverse, sink.messages(), gateReport, timings)
+              : writeForwardReport(staging, job, std::get<ForwardRun>(solved), sink.messages(),
+                                   gateReport, timings);
   if (!reported.isOk()) return folder.named(reported.status());
   if (release)
     if (Status s = writeExport(prepared->value(), staging).status(); !s.isOk())
       return folder.named(s);
   if (Status html = writeReportPage(staging, reported.value(), output.outDir + "/report.json",
-                                    release ? &prepared->value() : nullptr, solved.model());
+                                    release ? &prepared->value() : nullptr, solvedModel(solved));
       !html.isOk())
     return folder.named(html);
   if (Status s = commitUnlessInterrupted(folder, output.outDir, interrupted, &sink); !s.isOk())
@@ -134,15 +137,15 @@ Result<WrittenResult> gateAndWrite(const Job& job, const Solved& solved, ResultF
   WrittenResult result;
   result.gate = gate;
   result.exported = !prepared || prepared->isOk() ? Status::ok() : prepared->status();
-  result.metrics = solved.forward ? solved.forward->metrics : solved.inverse->metrics;
-  result.timings = solved.forward ? solved.forward->timings : solved.inverse->timings;
-  if (solved.inverse) result.curve = solved.inverse->curveMatch;
+  result.metrics = solvedMetrics(solved);
+  result.timings = solvedTimings(solved);
+  if (inverse) result.curve = inverse->curveMatch;
   return result;
 }
 
 // gateAndWrite, with a stop inside its figures, pictures or export (which poll the stop flag and
 // throw) ending the run as a stop between its steps does.
-Result<WrittenResult> writeSolved(const Job& job, const Solved& solved, ResultFolder& folder,
+Result<WrittenResult> writeSolved(const Job& job, const SolvedRun& solved, ResultFolder& folder,
                                   const OutputOptions& output, const RunSettings& settings,
                                   MessageSink& sink, const std::atomic<bool>& interrupted,
                                   CommandTimings timings) {
@@ -163,40 +166,32 @@ Result<WrittenResult> solveAndWrite(const Job& job, const OutputOptions& output,
   timings.start = Clock::now();
   ResultFolder folder;
   if (Status s = folder.begin(output.outDir, resultFileNames()); !s.isOk()) return s;
-  if (job.mode == Job::Mode::Forward) {
-    const Result<ForwardRun> run = runForward(job.forward, sink, hooks);
-    if (!run.isOk()) return namingFolder(run.status(), output.outDir);
-    return writeSolved(job, {&run.value(), nullptr}, folder, output, settings, sink, interrupted,
-                       timings);
-  }
-  const Result<InverseRun> run = runInverse(job.inverse, sink, hooks);
+  Result<SolvedRun> run = std::visit(
+      [&](const auto& mode) -> Result<SolvedRun> {
+        auto solved = solveJob(mode, sink, hooks);
+        if (!solved.isOk()) return solved.status();
+        return SolvedRun(std::move(solved).value());
+      },
+      job.run);
   if (!run.isOk()) return namingFolder(run.status(), output.outDir);
-  return writeSolved(job, {nullptr, &run.value()}, folder, output, settings, sink, interrupted,
-                     timings);
-}
-
-// A result made in memory, written as a run writes its own.
-Result<WrittenResult> writeMade(const Job& job, const Solved& solved, const OutputOptions& output,
-                                const RunSettings& settings, MessageSink& sink) {
-  CommandTimings timings;
-  timings.start = Clock::now();
-  ResultFolder folder;
-  if (Status s = folder.begin(output.outDir, resultFileNames()); !s.isOk()) return s;
-  return writeSolved(job, solved, folder, output, settings, sink, kNeverStopped, timings);
+  return writeSolved(job, run.value(), folder, output, settings, sink, interrupted, timings);
 }
 
 }  // namespace
 
-Result<RunSettings> checkOutput(const OutputOptions& output) {
+Result<RunSettings> checkOutput(const ExportSettings& exporting) {
+  if (Status s = checkExportSettings(exporting); !s.isOk()) return s;
   RunSettings settings;
-  if (output.gate != "none") {
-    Result<GateLimits> loaded = loadGate(output.gate);
+  if (exporting.gate != "none") {
+    Result<GateLimits> loaded = loadGate(exporting.gate);
     if (!loaded.isOk()) return loaded.status();
     settings.limits = loaded.value();
   }
-  Result<ExportOptions> exporting = exportOptions(output);
-  if (!exporting.isOk()) return exporting.status();
-  settings.exporting = std::make_shared<const ExportOptions>(exporting.value());
+  Result<ExportOptions> options = exportOptions(exporting);
+  if (!options.isOk()) return options.status();
+  settings.exporting = std::make_shared<const ExportOptions>(options.value());
+  settings.cuttingFiles = exporting.cuttingFiles;
+  settings.exportAnyway = exporting.exportAnyway;
   return settings;
 }
 
@@ -207,27 +202,17 @@ Result<WrittenResult> runAndWrite(const Job& job, const OutputOptions& output,
     return solveAndWrite(job, output, settings, sink, hooks);
   } catch (const std::bad_alloc&) {
     // Past the solve (which says this itself, with its estimate): exporting, measuring, writing.
-    const int resolution =
-        job.mode == Job::Mode::Forward ? job.forward.resolution : job.inverse.resolution;
-    return outOfMemory(nullptr, resolution, output.outDir + ": the run");
+    return outOfMemory(nullptr, job.resolution(), output.outDir + ": the run");
   }
 }
 
-Result<WrittenResult> writeResult(const ForwardJob& job, const ForwardRun& run,
-                                  const OutputOptions& output, const RunSettings& settings,
-                                  MessageSink& sink) {
-  Job whole;
-  whole.forward = job;
-  return writeMade(whole, {&run, nullptr}, output, settings, sink);
-}
-
-Result<WrittenResult> writeResult(const InverseJob& job, const InverseRun& run,
-                                  const OutputOptions& output, const RunSettings& settings,
-                                  MessageSink& sink) {
-  Job whole;
-  whole.mode = Job::Mode::Inverse;
-  whole.inverse = job;
-  return writeMade(whole, {nullptr, &run}, output, settings, sink);
+Result<WrittenResult> writeResult(const Job& job, const SolvedRun& run, const OutputOptions& output,
+                                  const RunSettings& settings, MessageSink& sink) {
+  CommandTimings timings;
+  timings.start = Clock::now();
+  ResultFolder folder;
+  if (Status s = folder.begin(output.outDir, resultFileNames()); !s.isOk()) return s;
+  return writeSolved(job, run, folder, output, settings, sink, kNeverStopped, timings);
 }
 
 Result<std::vector<SweepRow>> sweepAndWrite(const Job& base, const SweepOptions& options,
@@ -237,7 +222,7 @@ Result<std::vector<SweepRow>> sweepAndWrite(const Job& base, const SweepOptions&
                                             const std::atomic<bool>& interrupted,
                                             MessageSink* notes) {
   // A piece that cannot be read fails every start alike: said once, before the folder is made.
-  for (const std::string& piece : {base.forward.pieceA, base.forward.pieceB})
+  for (const std::string& piece : base.inputs())
     if (const Result<std::string> read = readInputFile(piece); !read.isOk()) return read.status();
   // Each start runs as `dform forward` would, into its own folder, its messages kept in its
   // report.json (its sink has no listener: many runs at once would interleave on a terminal).
@@ -255,19 +240,25 @@ Result<std::vector<SweepRow>> sweepAndWrite(const Job& base, const SweepOptions&
 Result<std::vector<BatchRow>> batchAndWrite(const std::vector<BatchJob>& jobs,
                                             const BatchOptions& options,
                                             const OutputOptions& output,
-                                            const RunSettings& settings,
+                                            const std::function<Status(Job&)>& adjust,
                                             const BatchProgress& progress,
                                             const std::atomic<bool>& interrupted) {
   // Each job as `dform run` runs it; its messages are kept in its report.json.
   const BatchRunner run = [&](const std::string& path, const std::string& dir) -> JobOutcome {
-    const Result<Job> job = readJobFile(path);
+    Result<Job> job = readJobFile(path);
     if (!job.isOk()) return {exitCode(job.status().code()), job.status().message()};
+    if (adjust)
+      if (Status s = adjust(job.value()); !s.isOk()) return {exitCode(s.code()), s.message()};
+    const Result<RunSettings> settings = checkOutput(job.value().exporting);
+    if (!settings.isOk())
+      return {exitCode(settings.status().code()), path + ": " + settings.status().message()};
     OutputOptions one = output;
     one.outDir = dir;
     MessageSink sink;
     RunHooks hooks;
     hooks.interrupted = &interrupted;
-    const Result<WrittenResult> written = runAndWrite(job.value(), one, settings, sink, hooks);
+    const Result<WrittenResult> written =
+        runAndWrite(job.value(), one, settings.value(), sink, hooks);
     if (!written.isOk()) return {exitCode(written.status().code()), written.status().message()};
     if (!written.value().exported.isOk())
       return {exitCode(written.value().exported.code()), written.value().exported.message()};

@@ -39,35 +39,7 @@ class StopSignalsHeld {
   sigset_t previous_;
 };
 
-// "600x400", "600x400mm", "23.6x15.7in" -> millimetres.
-Result<std::pair<double, double>> parseSheet(const std::string& text) {
-  double w = 0, h = 0;
-  char unit[8] = "";
-  const int n = std::sscanf(text.c_str(), "%lfx%lf%7s", &w, &h, unit);
-  const std::string u = unit;
-  const double scale = u.empty() || u == "mm" ? 1.0 : u == "cm" ? 10.0 : u == "in" ? 25.4 : 0.0;
-  if (n < 2 || scale == 0.0 || !(w > 0 && h > 0 && std::isfinite(w) && std::isfinite(h)))
-    return Status(ErrorCode::Usage,
-                  "--sheet must look like 600x400mm (units mm, cm or in), got '" + text + "'");
-  return std::make_pair(w * scale, h * scale);
-}
-
 }  // namespace
-
-int exitCode(ErrorCode code) {
-  switch (code) {
-    case ErrorCode::Ok: return 0;
-    case ErrorCode::Internal: return 1;
-    case ErrorCode::Usage: return 2;
-    case ErrorCode::InputUnreadable: return 3;
-    case ErrorCode::InputInvalid: return 4;
-    case ErrorCode::SolveFailed: return 5;
-    case ErrorCode::OutputFailed: return 6;
-    case ErrorCode::GateFailed: return 7;
-    case ErrorCode::Interrupted: return 130;
-  }
-  return 1;
-}
 
 namespace {
 
@@ -125,7 +97,7 @@ Result<GateLimits> loadGate(const std::string& nameOrPath) {
         if (entry.path().extension() == ".json") names.insert(entry.path().stem().string());
       std::string known;
       for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
-      return Status(ErrorCode::Usage, "--gate: unknown gate \"" + nameOrPath +
+      return Status(ErrorCode::Usage, mention(Setting::Gate) + ": unknown gate \"" + nameOrPath +
                                           "\" (known: " + known + ", or a gate .json file)");
     }
     return readGateFile(file.string());
@@ -140,65 +112,16 @@ Result<GateLimits> loadGate(const std::string& nameOrPath) {
   return readGateFile(nameOrPath);
 }
 
-// The export options the command line asks for, checked before anything is solved: Usage with a
-// one-line message for a bad value.
-Result<ExportOptions> exportOptions(const OutputOptions& output) {
-  ExportOptions options;
-  options.profile = output.profile;
+// The export options of `settings` completed: the templates folder, the profile read once, now,
+// not after the solve (when cutting files are written), and the options checked against each
+// other. Each setting alone is in its range (checkOutput checks the table's rows first).
+Result<ExportOptions> exportOptions(const ExportSettings& settings) {
+  ExportOptions options = settings.pattern;
   const Result<std::string> templates = templatesDir();
   if (!templates.isOk()) return templates.status();
   options.templatesDir = templates.value();
-  if (!output.sheet.empty()) {
-    Result<std::pair<double, double>> sheet = parseSheet(output.sheet);
-    if (!sheet.isOk()) return sheet.status();
-    options.sheetWidthMm = sheet.value().first;
-    options.sheetHeightMm = sheet.value().second;
-    options.sheetGiven = true;
-  }
-  if (!output.page.empty() && !pageSizeMm(output.page))
-    return Status(ErrorCode::Usage,
-                  "--page must be A4, Letter, A3, Tabloid or a size such as "
-                  "200x300mm, got '" +
-                      output.page + "'");
-  options.page = output.page;
-  options.scoreFoldsDeg = output.scoreFoldsDeg;
-  if (output.scale == "fit") {
-    options.scaleToFit = true;
-  } else if (!output.scale.empty()) {
-    double value = 0;
-    char rest[4] = "";
-    const int n = std::sscanf(output.scale.c_str(), "%lf%3s", &value, rest);
-    const std::string unit = rest;
-    if (n < 1 || !(unit.empty() || unit == "%"))
-      return Status(
-          ErrorCode::Usage,
-          "--scale must be a number (0.8), a percentage (80%) or fit, got '" + output.scale + "'");
-    options.scale = unit == "%" ? value / 100 : value;
-  }
-  if (output.tabWidthMm) options.tabWidthMm = *output.tabWidthMm;
-  if (output.tickSpacingMm) options.tickSpacingMm = *output.tickSpacingMm;
-  if (!output.tabs.empty()) {
-    options.tabSide = tabSideNamed(output.tabs);
-    if (!options.tabSide)
-      return Status(ErrorCode::Usage,
-                    "--tabs must be a, b, alternate or none, got '" + output.tabs + "'");
-  }
-  if (!output.joint.empty()) {
-    options.joint = jointNamed(output.joint);
-    if (!options.joint)
-      return Status(ErrorCode::Usage,
-                    "--joint must be glue, holes, lace or slots, got '" + output.joint + "'");
-  }
-  options.material = output.material;
-  options.kerfMm = output.kerfMm;
-  options.holeSpacingMm = output.holeSpacingMm;
-  options.holeDiameterMm = output.holeDiameterMm;
-  options.holeEdgeMm = output.holeEdgeMm;
-  options.slotLengthMm = output.slotLengthMm;
-  options.gltfBinary = !output.gltfText;
-  options.title = output.title;
   if (Status s = checkExportOptions(options); !s.isOk()) return s;
-  if (output.exportFiles) {  // the profile is read once, now, not after the solve
+  if (settings.cuttingFiles) {
     Result<Profile> profile = loadProfile(options.profile, options.templatesDir);
     if (!profile.isOk()) return profile.status();
     options.profileOverride = profile.value();
@@ -222,7 +145,7 @@ ExportOptions withFolds(ExportOptions options, std::vector<FoldToScore> folds,
                         const std::string& modelName, MessageSink& sink) {
   if (!options.scoreFoldsDeg) return options;
   if (folds.empty())
-    sink.warning("--score-folds: no folds known: the " +
+    sink.warning(mention(Setting::ScoreFolds) + ": no folds known: the " +
                  (modelName.empty() ? std::string("saved") : modelName + " model's") +
                  " result has none; no score lines added");
   options.folds = std::move(folds);
@@ -247,11 +170,7 @@ Result<PreparedExport> render(const DForm& model, const LaidOutExport& laidOut, 
 }
 
 // A run's job name: its first input's file name.
-std::string jobName(const Job& job) {
-  return fs::path(job.mode == Job::Mode::Forward ? job.forward.pieceA : job.inverse.curve)
-      .stem()
-      .string();
-}
+std::string jobName(const Job& job) { return fs::path(job.inputs().front()).stem().string(); }
 
 // The gate's fabrication check: the laid-out pattern fits the sheet and nothing on it overlaps.
 CheckResult layoutCheck(const LayoutFindings& f) {

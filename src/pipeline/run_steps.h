@@ -17,15 +17,17 @@
 
 namespace dform {
 
-/// The export options the command line asks for: Usage with a one-line message for a bad
-/// value; the profile is read now (when files are exported), not after the solve.
-Result<ExportOptions> exportOptions(const OutputOptions& output);
+/// The export options of `settings` completed (the templates folder; the profile read now, when
+/// cutting files are written, not after the solve) and checked against each other: Usage with a
+/// one-line message naming the setting.
+Result<ExportOptions> exportOptions(const ExportSettings& settings);
 
-/// The body's folds (`used`) in the flat frames of `model`, for --score-folds.
+/// The body's folds (`used`) in the flat frames of `model`, to score
+/// (ExportOptions::scoreFoldsDeg).
 std::vector<FoldToScore> foldsToScore(const ModelUsed& used, const DForm& model);
 
-/// `options` with the body's folds for --score-folds, and a warning through `sink` when the model
-/// that made the result (`modelName`) knows none; `options` as it is without --score-folds.
+/// `options` with the body's folds to score, and a warning through `sink` when the model that
+/// made the result (`modelName`) knows none; `options` as it is when no folds are to be scored.
 ExportOptions withFolds(ExportOptions options, std::vector<FoldToScore> folds,
                         const std::string& modelName, MessageSink& sink);
 

@@ -78,9 +78,11 @@ Result<std::optional<Curve3>> readSavedTarget(const std::string& dir, const DFor
   return std::optional<Curve3>(curve.value());
 }
 
-Result<std::string> exportSavedOrThrow(const std::string& dir, const OutputOptions& output,
-                                       MessageSink& sink, const std::atomic<bool>& interrupted) {
-  const Result<ExportOptions> exporting = exportOptions(output);
+Result<std::string> exportSavedOrThrow(const std::string& dir, const ExportSettings& settings,
+                                       const std::string& outDir, MessageSink& sink,
+                                       const std::atomic<bool>& interrupted) {
+  if (Status s = checkExportSettings(settings); !s.isOk()) return s;
+  const Result<ExportOptions> exporting = exportOptions(settings);
   if (!exporting.isOk()) return exporting.status();
   std::error_code ec;
   if (!fs::is_directory(dir, ec))  // a name too long for the system is no folder either
@@ -123,12 +125,13 @@ Result<std::string> exportSavedOrThrow(const std::string& dir, const OutputOptio
   for (const CheckResult& c : gate.checks)
     if (c.verdict == CheckResult::Verdict::Fail) failing += (failing.empty() ? "" : ", ") + c.name;
   failedGate = failedGate || !gate.passed();
-  if (failedGate && !output.exportAnyway) {
+  if (failedGate && !settings.exportAnyway) {
     return Status(ErrorCode::GateFailed,
                   dir + ": the result failed its quality gate '" + gateName +
                       "' (checked again on the meshes: " +
                       (failing.empty() ? "report.json records a failure" : failing + " fail") +
-                      "); nothing exported (--export-anyway exports it marked FAILED GATE)");
+                      "); nothing exported (" + mention(Setting::ExportAnyway) +
+                      " exports it marked FAILED GATE)");
   }
   // Laid out once: a layout that fails is stamped as it is (the stamp is an overlay).
   std::string modelName;
@@ -138,10 +141,11 @@ Result<std::string> exportSavedOrThrow(const std::string& dir, const OutputOptio
   if (interrupted) return leftAsItWas(dir, "interrupted");
   if (!laidOut.isOk()) return laidOut.status();
   const LayoutFindings& layout = laidOut.value().layout;
-  if (layout.problems() > 0 && !output.exportAnyway) {
-    return Status(ErrorCode::GateFailed,
-                  dir + ": the pattern does not lay out cleanly (" + layoutCheck(layout).detail +
-                      "); nothing exported (--export-anyway exports it marked FAILED GATE)");
+  if (layout.problems() > 0 && !settings.exportAnyway) {
+    return Status(ErrorCode::GateFailed, dir + ": the pattern does not lay out cleanly (" +
+                                             layoutCheck(layout).detail + "); nothing exported (" +
+                                             mention(Setting::ExportAnyway) +
+                                             " exports it marked FAILED GATE)");
   }
   failedGate = failedGate || layout.problems() > 0;
   const Result<PreparedExport> prepared = render(model.value(), laidOut.value(), failedGate);
@@ -150,14 +154,13 @@ Result<std::string> exportSavedOrThrow(const std::string& dir, const OutputOptio
   noteExport(prepared.value(), sink);
   // -o: the pattern set goes into a folder of its own, as one transaction too, and the result
   // folder is left as it is (its lock is released unchanged).
-  if (!output.outDir.empty()) {
+  if (!outDir.empty()) {
     ResultFolder out;
-    if (Status s = out.begin(output.outDir, resultFileNames()); !s.isOk()) return s;
+    if (Status s = out.begin(outDir, resultFileNames()); !s.isOk()) return s;
     if (Status s = writeExport(prepared.value(), out.staging()).status(); !s.isOk())
       return out.named(s);
-    if (Status s = commitUnlessInterrupted(out, output.outDir, interrupted, &sink); !s.isOk())
-      return s;
-    return output.outDir;
+    if (Status s = commitUnlessInterrupted(out, outDir, interrupted, &sink); !s.isOk()) return s;
+    return outDir;
   }
   // The result's own files go into the new folder unchanged; earlier cutting files do not.
   for (const char* kept : {ModelFileNames::aFlat, ModelFileNames::a3d, ModelFileNames::bFlat,
@@ -185,10 +188,11 @@ Result<std::string> exportSavedOrThrow(const std::string& dir, const OutputOptio
 
 }  // namespace
 
-Result<std::string> exportSavedResult(const std::string& dir, const OutputOptions& output,
-                                      MessageSink& sink, const std::atomic<bool>& interrupted) {
+Result<std::string> exportSavedResult(const std::string& dir, const ExportSettings& settings,
+                                      const std::string& outDir, MessageSink& sink,
+                                      const std::atomic<bool>& interrupted) {
   try {
-    return exportSavedOrThrow(dir, output, sink, interrupted);
+    return exportSavedOrThrow(dir, settings, outDir, sink, interrupted);
   } catch (const Interrupted&) {  // inside the figures or the report page's pictures
     return leftAsItWas(dir, "interrupted");
   }

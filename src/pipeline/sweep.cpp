@@ -72,10 +72,11 @@ std::vector<SweepStart> sweepStarts(const Job& base, const SweepOptions& options
       SweepStart s;
       s.job = base;
       s.startB = double(k) / options.starts;
-      s.flip = options.bothFlips ? flip : base.forward.flip;
-      s.job.forward.startB = StartPoint{};
-      s.job.forward.startB.fraction = s.startB;
-      s.job.forward.flip = s.flip;
+      ForwardJob& forward = std::get<ForwardJob>(s.job.run);
+      s.flip = options.bothFlips ? flip : forward.flip;
+      forward.startB = StartPoint{};
+      forward.startB.fraction = s.startB;
+      forward.flip = s.flip;
       char name[32];
       std::snprintf(name, sizeof name, "start-%0*d%s", width, k, s.flip ? "-flip" : "");
       s.subfolder = name;
@@ -232,10 +233,9 @@ Result<std::vector<SweepRow>> runSweep(const Job& base, const SweepOptions& opti
   for (const auto& [name, text] :
        {std::pair<const char*, std::string>{"sweep.json", sweepJson(base, options, rows)},
         {"gallery.html",
-         galleryHtml(
-             "D-Form sweep: " + fs::path(inputName(base.forward.pieceA)).filename().string() +
-                 " + " + fs::path(inputName(base.forward.pieceB)).filename().string(),
-             rows)}})
+         galleryHtml("D-Form sweep: " + fs::path(inputName(base.inputs()[0])).filename().string() +
+                         " + " + fs::path(inputName(base.inputs()[1])).filename().string(),
+                     rows)}})
     if (Status s = writeFileAtomically((fs::path(folder.staging()) / name).string(), text);
         !s.isOk())
       return folder.named(s);
@@ -265,9 +265,9 @@ std::string sweepJson(const Job& base, const SweepOptions& options,
               {"schema_version", 1},
               {"job", json::parse(jobToJson(base))},
               {"starts", options.starts},
-              {"flip", options.bothFlips   ? "both"
-                       : base.forward.flip ? "flipped"
-                                           : "as drawn"}};
+              {"flip", options.bothFlips                     ? "both"
+                       : std::get<ForwardJob>(base.run).flip ? "flipped"
+                                                             : "as drawn"}};
   json list = json::array();
   for (const SweepRow& r : rows)
     list.push_back({{"start_b", r.startB},

@@ -1,21 +1,22 @@
 // The compiled part `dform._dform` of the Python package `dform` (docs/python.md; dform/__init__.py
 // wraps its runs into picklable results): forward and inverse runs from numpy arrays, their meshes
 // and figures back as numpy arrays and dicts, and the whole result folder written as the command
-// writes it. A thin shell like the cli: the pipeline does the work, errors become dform.Error with
-// the command's exit code and a message that names the Python keyword, not the command's option;
-// Ctrl-C stops a solve.
+// writes it. A thin shell like the cli: the pipeline does the work, the settings are keyword
+// arguments read through the settings table (pipeline/settings.h), errors become dform.Error with
+// the command's exit code and a message that names a setting by its Python keyword; Ctrl-C stops
+// a solve.
 #include <Python.h>
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <map>
 #include <optional>
-#include <regex>
 #include <string>
 #include <vector>
 
@@ -34,40 +35,21 @@ using RowPoints = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::R
 // dform.Error, raised for every Status that is not ok.
 PyObject* errorType = nullptr;
 
-// A message of the pipeline in Python terms: each command-line option it names becomes the
-// keyword argument of dform.forward, dform.inverse or Result.export that sets the same thing.
-std::string inPythonTerms(std::string text) {
-  static const std::vector<std::pair<std::regex, std::string>> keywords = [] {
-    std::vector<std::pair<std::regex, std::string>> k;
-    for (const auto& [option, keyword] : std::vector<std::pair<std::string, std::string>>{
-             {"--fit-perimeter", "fit_perimeter=True"},
-             {"--flip", "flip=True"},
-             {"--interior-edge, interior_edge in a job file", "interior_edge"},
-             {"--model ([a-z]+)", "model=\"$1\""},
-             {"--join ([a-z]+(,[a-z]+)?)", "join=\"$1\""},
-             {"--join", "join"},
-             {"--sheet WxHmm", "sheet=\"WxHmm\""},
-             {"--sheet", "sheet"},
-             {"--page", "page"},
-             {"--scale", "scale"},
-             {"--joint", "joint"},
-             {"--material", "material"},
-             {"--kerf", "kerf"},
-             {"--hole-spacing", "hole_spacing"},
-             {"--hole-diameter", "hole_diameter"},
-             {"--hole-edge", "hole_edge"},
-             {"--slot-length", "slot_length"},
-             {"--gate", "gate"},
-             {"--no-export", "cutting_files=False"}})
-      k.emplace_back(std::regex(option + "\\b"), keyword);
-    return k;
-  }();
-  for (const auto& [option, keyword] : keywords) text = std::regex_replace(text, option, keyword);
-  return text;
+// How Python names a setting a message mentions (core/setting.h): its keyword ("fit_perimeter"),
+// a weight as its entry of the dict weights ("weights['smooth_3d']"), one without a keyword by
+// its job-file key.
+std::string pythonWords(const std::string& key) {
+  for (const SettingRow& row : settingRows())
+    if (row.key == key)
+      return row.type == SettingType::Weight ? row.keyword + "['" + row.weightName() + "']"
+                                             : row.keyword;
+  return key;
 }
 
+std::string inPythonTerms(const std::string& text) { return wordSettings(text, pythonWords); }
+
 [[noreturn]] void raise(const Status& status) {
-  py::object error = py::reinterpret_borrow<py::object>(errorType)(inPythonTerms(status.message()));
+  py::object error = py::reinterpret_borrow<py::object>(errorType)(inPythonTerms(status.text()));
   error.attr("exit_code") = exitCode(status.code());
   PyErr_SetObject(errorType, error.ptr());
   throw py::error_already_set();
@@ -150,19 +132,16 @@ py::dict pieceDict(const Piece& piece) {
 // A solved run and what writing it needs: the job (settings and input names) and its messages.
 struct Made {
   Job job;
-  std::optional<ForwardRun> forward;
-  std::optional<InverseRun> inverse;
+  std::optional<SolvedRun> run;
   std::vector<Message> messages;
 
-  const DForm& model() const { return forward ? forward->model : inverse->model; }
-  const ModelUsed& modelUsed() const { return forward ? forward->modelUsed : inverse->modelUsed; }
+  const DForm& model() const { return solvedModel(*run); }
+  const ModelUsed& modelUsed() const { return solvedModelUsed(*run); }
 };
 
 py::dict figures(const Made& made) {
   py::object json = py::module_::import("json");
-  const CurveMatch* curve = made.inverse ? &made.inverse->curveMatch : nullptr;
-  const Metrics& metrics = made.forward ? made.forward->metrics : made.inverse->metrics;
-  return json.attr("loads")(metricsJsonText(metrics, curve));
+  return json.attr("loads")(metricsJsonText(solvedMetrics(*made.run), solvedCurveMatch(*made.run)));
 }
 
 py::list messageList(const Made& made) {
@@ -172,36 +151,76 @@ py::list messageList(const Made& made) {
   return list;
 }
 
-// Made.export(out_dir, ...): the result folder as `dform forward` writes it.
-py::dict exportMade(const Made& made, const std::string& outDir, const std::string& profile,
-                    const std::string& gate, bool exportAnyway, bool exportFiles,
-                    const std::string& sheet, const std::string& page, const std::string& scale,
-                    const std::string& joint, const std::string& material,
-                    std::optional<double> kerf, std::optional<double> holeSpacing,
-                    std::optional<double> holeDiameter, std::optional<double> holeEdge,
-                    std::optional<double> slotLength) {
+// A keyword argument's value as JSON text, as a job file would hold it: numpy's numbers as the
+// numbers they are (an integer type by its __index__), a tuple as a list.
+std::string jsonValue(const py::handle& value) {
+  static const py::object dumps = py::module_::import("json").attr("dumps");
+  const py::cpp_function plain([](const py::object& o) -> py::object {
+    if (py::hasattr(o, "__index__")) return py::int_(o);
+    return py::float_(o);
+  });
+  try {
+    return dumps(value, py::arg("default") = plain, py::arg("allow_nan") = false)
+        .cast<std::string>();
+  } catch (const py::error_already_set&) {
+    return "\"" + py::str(value).cast<std::string>() + "\"";  // refused by its row: not a value
+  }
+}
+
+// Sets each keyword argument on `job` through its row of the settings table (`scopes` are the
+// rows the function takes; the dict `weights` holds one row per weight): the one range check,
+// its refusal raised as dform.Error naming the keyword.
+void applyKeywords(Job& job, const py::kwargs& keywords, std::initializer_list<SettingScope> scopes,
+                   const char* function) {
+  const auto taken = [&](const SettingRow& row) {
+    return std::find(scopes.begin(), scopes.end(), row.scope) != scopes.end();
+  };
+  // In the table's order, so that a join sets the weights' defaults before a weight is set.
+  std::vector<std::string> known;
+  for (const SettingRow* row : settingRows(job.isForward())) {
+    if (!taken(*row)) continue;
+    if (known.empty() || known.back() != row->keyword) known.push_back(row->keyword);
+    if (!keywords.contains(row->keyword.c_str())) continue;
+    const py::object value = keywords[row->keyword.c_str()];
+    if (row->type == SettingType::Weight) {
+      if (!py::isinstance<py::dict>(value))
+        raise({ErrorCode::Usage, "weights must be a dict of term names and weights"});
+      const py::dict weights = value;
+      if (!weights.contains(row->weightName().c_str())) continue;
+      if (Status s = setSetting(job, *row, jsonValue(weights[row->weightName().c_str()]));
+          !s.isOk())
+        raise(s);
+    } else if (Status s = setSetting(job, *row, jsonValue(value)); !s.isOk()) {
+      raise(s);
+    }
+  }
+  for (const auto& [name, value] : keywords) {
+    const std::string keyword = py::str(name);
+    if (std::find(known.begin(), known.end(), keyword) == known.end()) {
+      std::string list;
+      for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+      raise({ErrorCode::Usage, std::string(function) + "() got an unexpected keyword argument '" +
+                                   keyword + "' (its settings: " + list + ")"});
+    }
+    if (keyword != "weights") continue;
+    for (const auto& entry : py::reinterpret_borrow<py::dict>(value)) {
+      const std::string term = std::string(py::str(entry.first));
+      if (!findSetting(std::string(settingKey(Setting::Weight)) + "." + term, job.isForward()))
+        raise({ErrorCode::Usage, "unknown weight '" + term + "'"});
+    }
+  }
+}
+
+// Made.export(out_dir, **settings): the result folder as `dform forward` writes it.
+py::dict exportMade(const Made& made, const std::string& outDir, const py::kwargs& keywords) {
+  Job job = made.job;
+  applyKeywords(job, keywords, {SettingScope::Export, SettingScope::Output}, "export");
+  const RunSettings settings = valueOrRaise(checkOutput(job.exporting));
   OutputOptions output;
   output.outDir = outDir;
-  output.profile = profile;
-  output.gate = gate;
-  output.exportAnyway = exportAnyway;
-  output.exportFiles = exportFiles;
-  output.sheet = sheet;
-  output.page = page;
-  output.scale = scale;
-  output.joint = joint;
-  output.material = material;
-  output.kerfMm = kerf;
-  output.holeSpacingMm = holeSpacing;
-  output.holeDiameterMm = holeDiameter;
-  output.holeEdgeMm = holeEdge;
-  output.slotLengthMm = slotLength;
-  const RunSettings settings = valueOrRaise(checkOutput(output));
   MessageSink sink;
   for (const Message& m : made.messages) sink.emit(m.level, m.text);  // kept in report.json
-  const WrittenResult written = valueOrRaise(
-      made.forward ? writeResult(made.job.forward, *made.forward, output, settings, sink)
-                   : writeResult(made.job.inverse, *made.inverse, output, settings, sink));
+  const WrittenResult written = valueOrRaise(writeResult(job, *made.run, output, settings, sink));
   py::dict outcome;
   outcome["folder"] = outDir;
   outcome["gate_passed"] = written.gate ? py::cast(written.gate->passed()) : py::none();
@@ -213,61 +232,39 @@ py::dict exportMade(const Made& made, const std::string& outDir, const std::stri
                              py::arg("verdict") = verdictName(c.verdict),
                              py::arg("detail") = inPythonTerms(c.detail)));
   outcome["checks"] = checks;
-  outcome["cutting_files"] = exportFiles && written.exported.isOk() &&
-                             (!written.gate || written.gate->passed() || exportAnyway);
-  if (!written.exported.isOk()) outcome["export_error"] = inPythonTerms(written.exported.message());
+  outcome["cutting_files"] =
+      job.exporting.cuttingFiles && written.exported.isOk() &&
+      (!written.gate || written.gate->passed() || job.exporting.exportAnyway);
+  if (!written.exported.isOk()) outcome["export_error"] = inPythonTerms(written.exported.text());
   return outcome;
 }
 
 Made forward(const RowPoints& outlineA, const RowPoints& outlineB,
              const std::vector<RowPoints>& holesA, const std::vector<RowPoints>& holesB,
              const std::vector<RowPoints>& creasesA, const std::vector<RowPoints>& creasesB,
-             int resolution, const std::string& model, double startA, double startB, bool flip,
-             bool fitPerimeter, double interiorEdge, const std::string& join,
-             const std::map<std::string, double>& weights, const std::string& nameA,
-             const std::string& nameB) {
-  Made made;
-  ForwardJob& job = made.job.forward;
-  job.pieceA = nameA;
-  job.pieceB = nameB;
-  job.resolution = resolution;
-  job.startA.fraction = startA;
-  job.startB.fraction = startB;
-  job.flip = flip;
-  job.fitPerimeter = fitPerimeter;
-  job.interiorEdgeFactor = interiorEdge;
-  if (!parseModelChoice(model, job.model))
-    raise({ErrorCode::Usage,
-           "model must be auto, exact, ruled, paper or general, got '" + model + "'"});
-  if (!parseJoin(join, job.joinA, job.joinB))
-    raise({ErrorCode::Usage,
-           "join must be 'outer,outer', 'inner,inner', 'outer,inner' or "
-           "'inner,outer', got '" +
-               join + "'"});
-  job.weights = defaultWeights(job.joinA, job.joinB);
-  for (const auto& [name, value] : weights)
-    if (!setNamedWeight(made.job, name, value))
-      raise({ErrorCode::Usage, "unknown weight '" + name + "'"});
+             const std::string& nameA, const std::string& nameB, const py::kwargs& keywords) {
+  ForwardJob inputs;
+  inputs.pieceA = nameA;
+  inputs.pieceB = nameB;
+  Made made{Job(inputs), std::nullopt, {}};
+  applyKeywords(made.job, keywords, {SettingScope::Forward, SettingScope::Solve}, "forward");
+  const ForwardJob& job = std::get<ForwardJob>(made.job.run);
   Shape2 a = shapeFromArrays(outlineA, holesA, creasesA, nameA);
   Shape2 b = shapeFromArrays(outlineB, holesB, creasesB, nameB);
   auto [run, messages] = solveInterruptibly([&](MessageSink& sink, const RunHooks& hooks) {
     return makeDForm(std::move(a), std::move(b), job, sink, hooks);
   });
-  made.forward = std::move(run);
+  made.run = SolvedRun(std::move(run));
   made.messages = std::move(messages);
   return made;
 }
 
-Made inverse(const RowPoints& points, int resolution, const std::map<std::string, double>& weights,
-             const std::string& name) {
-  Made made;
-  made.job.mode = Job::Mode::Inverse;
-  InverseJob& job = made.job.inverse;
-  job.curve = name;
-  job.resolution = resolution;
-  for (const auto& [weight, value] : weights)
-    if (!setNamedWeight(made.job, weight, value))
-      raise({ErrorCode::Usage, "unknown weight '" + weight + "'"});
+Made inverse(const RowPoints& points, const std::string& name, const py::kwargs& keywords) {
+  InverseJob inputs;
+  inputs.curve = name;
+  Made made{Job(inputs), std::nullopt, {}};
+  applyKeywords(made.job, keywords, {SettingScope::Inverse, SettingScope::Solve}, "inverse");
+  const InverseJob& job = std::get<InverseJob>(made.job.run);
   // Read and checked as a JSON curve file would be; closed, as a seam is.
   CurveReadOptions closed;
   closed.forceClosed = true;
@@ -277,9 +274,48 @@ Made inverse(const RowPoints& points, int resolution, const std::map<std::string
   auto [run, messages] = solveInterruptibly([&](MessageSink& sink, const RunHooks& hooks) {
     return makePieces(std::move(curve), job, sink, hooks);
   });
-  made.inverse = std::move(run);
+  made.run = SolvedRun(std::move(run));
   made.messages = std::move(messages);
   return made;
+}
+
+// The settings a call of `function` ("forward", "inverse", "export") with `keywords` would use,
+// as a job file's settings (a dict), without solving: the keywords checked as the call checks
+// them (dform.Error naming the keyword when one is refused).
+py::object jobSettings(const std::string& function, const py::kwargs& keywords) {
+  Job job = function == "inverse" ? Job(InverseJob()) : Job(ForwardJob());
+  if (function == "export")
+    applyKeywords(job, keywords, {SettingScope::Export, SettingScope::Output}, "export");
+  else
+    applyKeywords(job, keywords,
+                  {function == "inverse" ? SettingScope::Inverse : SettingScope::Forward,
+                   SettingScope::Solve},
+                  function.c_str());
+  return py::module_::import("json").attr("loads")(settingsJson(job));
+}
+
+// The settings table's rows a function takes ("forward", "inverse", "export"), as dicts: the
+// package builds its docstrings from them and its tests walk them.
+py::list settingRowsOf(const std::string& function) {
+  const bool forward = function != "inverse";
+  const std::vector<SettingScope> scopes =
+      function == "export" ? std::vector<SettingScope>{SettingScope::Export, SettingScope::Output}
+      : forward            ? std::vector<SettingScope>{SettingScope::Forward, SettingScope::Solve}
+                           : std::vector<SettingScope>{SettingScope::Inverse, SettingScope::Solve};
+  py::object loads = py::module_::import("json").attr("loads");
+  py::list rows;
+  for (const SettingRow* row : settingRows(forward)) {
+    if (std::find(scopes.begin(), scopes.end(), row->scope) == scopes.end()) continue;
+    py::list choices;
+    for (const SettingChoice& c : row->choices) choices.append(c.name);
+    rows.append(py::dict(py::arg("keyword") = row->keyword, py::arg("key") = row->key,
+                         py::arg("weight") = row->weightName(), py::arg("flag") = row->flag,
+                         py::arg("default") = loads(settingDefault(*row)),
+                         py::arg("unset") = row->unset, py::arg("range") = row->rangeText(),
+                         py::arg("choices") = choices, py::arg("unit") = row->unit,
+                         py::arg("help") = row->help));
+  }
+  return rows;
 }
 
 py::dict readOutlineAsDict(const std::string& path) {
@@ -323,30 +359,35 @@ PYBIND11_MODULE(_dform, m) {
       .def_property_readonly(
           "target",
           [](const Made& r) -> std::optional<Points3> {
-            if (!r.inverse) return std::nullopt;
-            return r.inverse->target.points;
+            const InverseRun* inverse = std::get_if<InverseRun>(&*r.run);
+            if (!inverse) return std::nullopt;
+            return inverse->target.points;
           },
           "inverse: the resampled curve the seam follows (n, 3), else None")
-      .def("export", &exportMade, arg("out_dir"), py::kw_only(), arg("profile") = "laser",
-           arg("gate") = "default", arg("export_anyway") = false, arg("cutting_files") = true,
-           arg("sheet") = "", arg("page") = "", arg("scale") = "", arg("joint") = "",
-           arg("material") = "", arg("kerf") = py::none(), arg("hole_spacing") = py::none(),
-           arg("hole_diameter") = py::none(), arg("hole_edge") = py::none(),
-           arg("slot_length") = py::none(),
+      .def("export", &exportMade, arg("out_dir"),
            "writes the result folder as `dform forward` does: meshes, report.json, report.html "
-           "and, when the gate passes, the cutting files; returns the gate's verdict");
+           "and, when the gate passes, the cutting files; returns the gate's verdict. Its "
+           "keyword arguments are the export settings (setting_rows('export'))");
 
+  // The settings are keyword arguments read through the settings table (setting_rows), which
+  // the package's docstrings list.
   m.def("forward", &forward, arg("outline_a"), arg("outline_b"), py::kw_only(),
         arg("holes_a") = std::vector<RowPoints>(), arg("holes_b") = std::vector<RowPoints>(),
         arg("creases_a") = std::vector<RowPoints>(), arg("creases_b") = std::vector<RowPoints>(),
-        arg("resolution") = 100, arg("model") = "auto", arg("start_a") = 0.0, arg("start_b") = 0.0,
-        arg("flip") = false, arg("fit_perimeter") = false, arg("interior_edge") = 1.0,
-        arg("join") = "outer,outer", arg("weights") = std::map<std::string, double>(),
         arg("name_a") = "piece A", arg("name_b") = "piece B",
-        "two flat outlines (n, 2) in mm -> the D-Form they make (docs/python.md)");
-  m.def("inverse", &inverse, arg("curve"), py::kw_only(), arg("resolution") = 100,
-        arg("weights") = std::map<std::string, double>(), arg("name") = "curve",
-        "a closed 3D seam curve (n, 3) in mm -> the two flat pieces that make it");
+        "two flat outlines (n, 2) in mm -> the D-Form they make (docs/python.md); its other "
+        "keyword arguments are the forward settings (setting_rows('forward'))");
+  m.def("inverse", &inverse, arg("curve"), py::kw_only(), arg("name") = "curve",
+        "a closed 3D seam curve (n, 3) in mm -> the two flat pieces that make it; its other "
+        "keyword arguments are the inverse settings (setting_rows('inverse'))");
+  m.def("job_settings", &jobSettings, arg("function"),
+        "the settings (a job file's) a call of dform.forward, dform.inverse or Result.export "
+        "('forward', 'inverse', 'export') with these keyword arguments would use, checked as "
+        "the call checks them, without solving");
+  m.def("setting_rows", &settingRowsOf, arg("function"),
+        "the settings table's rows that dform.forward, dform.inverse or Result.export takes "
+        "('forward', 'inverse', 'export'): keyword, key, weight, flag, default, unset, range, "
+        "choices, unit, help");
   m.def("read_outline", &readOutlineAsDict, arg("path"),
         "an SVG or JSON outline file -> {'outline', 'holes', 'creases'} in mm");
   m.def("read_curve", &readCurvePoints, arg("path"),

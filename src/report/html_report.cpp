@@ -182,7 +182,8 @@ Result<std::string> renderReportHtml(const ReportSources& sources, const DForm& 
   } else {
     page.set("verdict", "NO GATE");
     page.set("verdict_class", "none");
-    page.set("verdict_note", "the run was made with --gate none");
+    page.set("verdict_note", std::string("the run was made with ") + settingKey(Setting::Gate) +
+                                 " none: no quality gate judged it");
   }
   page.set("checks", checks);
 

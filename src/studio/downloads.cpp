@@ -63,55 +63,19 @@ Files filesUnder(const fs::path& dir) {
   return files;
 }
 
-std::string text(const json& request, const char* key) {
-  if (!request.contains(key)) return "";
-  if (!request.at(key).is_string()) throw RequestError(std::string(key) + ": must be a string");
-  return request.at(key).get<std::string>();
-}
-
 }  // namespace
 
-Files forwardJobFiles(const PieceInput& a, const PieceInput& b, const ForwardSettings& settings) {
-  Job job;
-  job.mode = Job::Mode::Forward;
-  job.forward = ForwardJob{settings, a.name, b.name};
+Files forwardJobFiles(const PieceInput& a, const PieceInput& b, const Job& job) {
   return {{"job.json", withInputs(job, {{"piece_a", a.name}, {"piece_b", b.name}})},
           {a.name, a.text},
           {b.name, b.text}};
 }
 
-Files inverseJobFiles(const CurveInput& curve, const InverseSettings& settings, bool forceClosed) {
-  Job job;
-  job.mode = Job::Mode::Inverse;
-  job.inverse = InverseJob{settings, curve.name, forceClosed};
+Files inverseJobFiles(const CurveInput& curve, const Job& job) {
   return {{"job.json", withInputs(job, {{"curve", curve.name}})}, {curve.name, curve.text}};
 }
 
-std::string savedForwardJob(const PieceInput& a, const PieceInput& b,
-                            const ForwardSettings& settings) {
-  return storedZip(forwardJobFiles(a, b, settings));
-}
-
-std::string savedInverseJob(const CurveInput& curve, const InverseSettings& settings,
-                            bool forceClosed) {
-  return storedZip(inverseJobFiles(curve, settings, forceClosed));
-}
-
-ExportRequest exportRequestFrom(const json& request) {
-  ExportRequest r;
-  if (std::string p = text(request, "profile"); !p.empty()) r.profile = p;
-  const std::vector<std::string> profiles = exportProfileNames();
-  if (std::find(profiles.begin(), profiles.end(), r.profile) == profiles.end())
-    throw RequestError("profile: not one of the shipped export profiles");
-  r.page = text(request, "page");
-  r.sheet = text(request, "sheet");
-  r.scale = text(request, "scale");
-  if (request.contains("export_anyway")) r.exportAnyway = request.at("export_anyway").get<bool>();
-  return r;
-}
-
-Result<std::string> exportedResult(const Files& jobFiles, const ExportRequest& request,
-                                   const std::atomic<bool>* cancel) {
+Result<std::string> exportedResult(const Files& jobFiles, const std::atomic<bool>* cancel) {
   Result<fs::path> folder = temporaryFolder();
   if (!folder.isOk()) return folder.status();
   const fs::path dir = folder.value();
@@ -130,13 +94,7 @@ Result<std::string> exportedResult(const Files& jobFiles, const ExportRequest& r
   if (!job.isOk()) return job.status();
   OutputOptions output;
   output.outDir = (dir / "result").string();
-  output.profile = request.profile;
-  output.page = request.page;
-  output.sheet = request.sheet;
-  output.scale = request.scale;
-  output.exportAnyway = request.exportAnyway;
-  output.quiet = true;
-  Result<RunSettings> settings = checkOutput(output);
+  Result<RunSettings> settings = checkOutput(job.value().exporting);
   if (!settings.isOk()) return settings.status();
   MessageSink sink;
   RunHooks hooks;

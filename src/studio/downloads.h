@@ -1,48 +1,35 @@
-// The studio's downloads: a saved job (job.json with the outlines or curve it names, which
-// `dform run job.json` reproduces) and an export (the files `dform run` writes for that job,
-// made by the pipeline's runAndWrite in a temporary folder), each as a stored zip.
+// The studio's downloads: a saved job (job.json with every setting and the outlines or curve it
+// names, which `dform run job.json` reproduces, export included) and an export (the files
+// `dform run` writes for that job, made by the pipeline's runAndWrite in a temporary folder),
+// each as a stored zip.
 #pragma once
 
-#include <nlohmann/json.hpp>
+#include <atomic>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "dform/core/status.h"
-#include "dform/pipeline/inverse_pipeline.h"
+#include "dform/pipeline/job.h"
 #include "session.h"
 
 namespace dform::studio {
 
-/// The zip of job.json and the two outline files it names (forward).
-std::string savedForwardJob(const PieceInput& a, const PieceInput& b,
-                            const ForwardSettings& settings);
-
-/// The zip of job.json and the curve file it names (inverse).
-std::string savedInverseJob(const CurveInput& curve, const InverseSettings& settings,
-                            bool forceClosed);
-
-/// What "Export" asks for: the pattern's options as the command line spells them.
-struct ExportRequest {
-  std::string profile = "laser", page, sheet, scale;
-  bool exportAnyway = false;
-};
-
-ExportRequest exportRequestFrom(const nlohmann::json& request);
-
-/// Runs the saved job (forward or inverse, `jobZipFiles` as savedForwardJob lays them out) with
-/// runAndWrite into a fresh temporary folder and returns the zip of the result folder's files;
-/// the folder is removed. The run's error (a bad profile, a failed gate without exportAnyway
-/// still writes the result) when nothing was written. `cancel`, when set meanwhile, stops the run
-/// (Interrupted).
-Result<std::string> exportedResult(const std::vector<std::pair<std::string, std::string>>& jobFiles,
-                                   const ExportRequest& request,
-                                   const std::atomic<bool>* cancel = nullptr);
-
-/// The files of savedForwardJob / savedInverseJob before zipping.
+/// A saved job's files: job.json (every setting of `job`, export options included, its inputs
+/// named beside it) and the two outlines it names (forward) or the curve (inverse), as the zip
+/// (zip.h storedZip) holds them.
 std::vector<std::pair<std::string, std::string>> forwardJobFiles(const PieceInput& a,
                                                                  const PieceInput& b,
-                                                                 const ForwardSettings& settings);
+                                                                 const Job& job);
 std::vector<std::pair<std::string, std::string>> inverseJobFiles(const CurveInput& curve,
-                                                                 const InverseSettings& settings,
-                                                                 bool forceClosed);
+                                                                 const Job& job);
+
+/// Runs the saved job (`jobFiles` as forwardJobFiles lays them out) with runAndWrite, as its
+/// export settings say, into a fresh temporary folder and returns the zip of the result folder's
+/// files; the folder is removed. The run's error (a bad profile; a failed gate without
+/// export_anyway still writes the result) when nothing was written. `cancel`, when set
+/// meanwhile, stops the run (Interrupted).
+Result<std::string> exportedResult(const std::vector<std::pair<std::string, std::string>>& jobFiles,
+                                   const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace dform::studio

@@ -13,12 +13,14 @@
 #include "dform/io/outline_reader.h"
 #include "dform/pipeline/job_file.h"
 #include "dform/pipeline/run.h"
+#include "dform/pipeline/settings.h"
 #include "downloads.h"
 #include "guard.h"
 #include "outlines.h"
 #include "server.h"
 #include "session.h"
 #include "wire.h"
+#include "zip.h"
 
 // Last: glibc's resolv.h, which it includes, defines _res, a name Eigen's headers use.
 #include <httplib.h>
@@ -52,10 +54,25 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
       .count();
 }
 
+// The warnings of a solve, each setting they mention named by its key (the page's field names).
 std::vector<std::string> warnings(const MessageSink& sink) {
   std::vector<std::string> out;
   for (const Message& m : sink.messages())
-    if (m.level == Level::Warning) out.push_back(m.text);
+    if (m.level == Level::Warning) out.push_back(plainSettings(m.text));
+  return out;
+}
+
+// The export dialog's fields when empty, as the settings table says: a page's and a sheet's
+// (what an unset one is) and the scale's (its range and default).
+json exportPlaceholders() {
+  json out = json::object();
+  for (Setting s : {Setting::Page, Setting::Sheet, Setting::Scale}) {
+    const SettingRow* row = findSetting(settingKey(s), true);
+    const std::string key = row->key.substr(row->key.find('.') + 1);
+    out[key] = !row->unset.empty()
+                   ? row->unset
+                   : json::parse(settingDefault(*row)).dump() + ": " + row->rangeText();
+  }
   return out;
 }
 
@@ -91,12 +108,12 @@ json pieceSummary(const PieceInput& piece) {
 }
 
 // What decides whether a forward solve optimises: the pieces and every setting but the starts.
-std::string forwardDesign(const PieceInput& a, const PieceInput& b, const ForwardSettings& s) {
+std::string forwardDesign(const PieceInput& a, const PieceInput& b, const Job& job) {
   const std::hash<std::string> hash;
-  return std::to_string(hash(a.text)) + "/" + std::to_string(hash(b.text)) + "/" +
-         joinedBoundaryName(s.joinA) + joinedBoundaryName(s.joinB) + (s.flip ? "/flip/" : "/") +
-         modelChoiceName(s.model) + "/" + std::to_string(s.resolution) +
-         (s.fitPerimeter ? "/fit" : "");
+  json settings = json::parse(settingsJson(job));
+  settings.erase(settingKey(Setting::StartA));
+  settings.erase(settingKey(Setting::StartB));
+  return std::to_string(hash(a.text)) + "/" + std::to_string(hash(b.text)) + "/" + settings.dump();
 }
 
 // The shape first; its figures and the gate's verdict when the session asks for them (after the
@@ -110,16 +127,17 @@ studio::SolveAt forwardSolve(const PieceInput& a, const PieceInput& b,
                                                  const RunHooks& hooks) -> Result<studio::Solved> {
         ForwardSettings s = settings;
         s.resolution = resolution;
-        const bool sparse =
-            interior == studio::Interior::Sparse && s.interiorEdgeFactor < kMaxInteriorEdgeFactor;
-        if (sparse) s.interiorEdgeFactor = kMaxInteriorEdgeFactor;
+        // The coarsest interior the settings table allows.
+        const double coarsest = findSetting(settingKey(Setting::InteriorEdge), true)->max;
+        const bool sparse = interior == studio::Interior::Sparse && s.interiorEdgeFactor < coarsest;
+        if (sparse) s.interiorEdgeFactor = coarsest;
         MessageSink sink;
         const auto start = std::chrono::steady_clock::now();
-        Result<SolvedDForm> made = solveDForm(a, b, s, sink, hooks);
+        Result<SolvedDForm> made = shapeDForm(a, b, s, sink, hooks);
         if (sparse && made.isOk() && made.value().modelUsed.name != "exact") {
           s.interiorEdgeFactor = settings.interiorEdgeFactor;
           sink = MessageSink();
-          made = solveDForm(a, b, s, sink, hooks);
+          made = shapeDForm(a, b, s, sink, hooks);
         }
         if (!made.isOk()) return made.status();
         auto run = std::make_shared<const SolvedDForm>(std::move(made).value());
@@ -197,8 +215,16 @@ struct Studio::Impl {
   GateLimits gate;
   std::map<std::string, std::string> assets;
   PieceInput startA, startB;
-  json startSettings = json::object();
+  /// The starting design's settings, of each mode: the job file's, else the table's defaults
+  /// (but fit_perimeter, which the studio's starting design turns on, so that an outline of
+  /// another perimeter is scaled to A's rather than refused).
+  Job startForward, startInverse{InverseJob()};
+  bool startsInverse = false;
   std::optional<CurveInput> startCurve;
+
+  const Job& base(const json& body) const {
+    return body.value("mode", "forward") == "inverse" ? startInverse : startForward;
+  }
 
   std::mutex sessionsMutex;
   std::map<std::string, std::pair<std::shared_ptr<Session>, std::chrono::steady_clock::time_point>>
@@ -257,24 +283,16 @@ Status Studio::Impl::readStart() {
                       shape.value()};
   };
   std::string a = options.pieceA, b = options.pieceB;
+  std::get<ForwardJob>(startForward.run).fitPerimeter = true;
   if (!options.jobFile.empty()) {
     Result<Job> job = readJobFile(options.jobFile);
     if (!job.isOk()) return job.status();
-    if (job.value().mode == Job::Mode::Forward) {
-      const ForwardJob& f = job.value().forward;
-      a = f.pieceA;
-      b = f.pieceB;
-      startSettings = {
-          {"start_a", f.startA.nearestToPoint ? 0.0 : f.startA.fraction},
-          {"start_b", f.startB.nearestToPoint ? 0.0 : f.startB.fraction},
-          {"flip", f.flip},
-          {"fit_perimeter", f.fitPerimeter},
-          {"resolution", f.resolution},
-          {"model", modelChoiceName(f.model)},
-          {"interior_edge", f.interiorEdgeFactor},
-          {"join", std::string(joinedBoundaryName(f.joinA)) + "," + joinedBoundaryName(f.joinB)}};
+    if (const ForwardJob* f = std::get_if<ForwardJob>(&job.value().run)) {
+      a = f->pieceA;
+      b = f->pieceB;
+      startForward = job.value();
     } else {
-      const InverseJob& i = job.value().inverse;
+      const InverseJob& i = std::get<InverseJob>(job.value().run);
       Result<std::string> text = readInputFile(i.curve);
       if (!text.isOk()) return text.status();
       try {
@@ -283,7 +301,8 @@ Status Studio::Impl::readStart() {
       } catch (const RequestError& e) {
         return Status(ErrorCode::InputInvalid, e.what());
       }
-      startSettings = {{"mode", "inverse"}, {"resolution", i.resolution}};
+      startInverse = job.value();
+      startsInverse = true;
     }
   }
   if (a.empty()) {
@@ -411,7 +430,11 @@ void Studio::Impl::pageRoutes(httplib::Server& server) {
     }
     json out = {{"session", newSession()},
                 {"kinds", kinds},
-                {"settings", startSettings},
+                {"settings",
+                 {{"forward", json::parse(settingsJson(startForward))},
+                  {"inverse", json::parse(settingsJson(startInverse))}}},
+                {"mode", startsInverse ? "inverse" : "forward"},
+                {"placeholders", exportPlaceholders()},
                 {"pieces", {pieceSummary(startA), pieceSummary(startB)}},
                 {"profiles", exportProfileNames()},
                 {"preview_resolution", Session::kPreviewResolution}};
@@ -460,15 +483,17 @@ void Studio::Impl::solveRoutes(httplib::Server& server) {
     reply(res, 200, out);
   });
   api(server, "/api/solve", [this](const json& body, Session& s, httplib::Response& res) {
-    const ForwardSettings settings = studio::forwardSettingsFrom(body);
+    const Job job = studio::jobFrom(body, startForward);
+    const ForwardSettings& settings = std::get<ForwardJob>(job.run);
     const PieceInput a = s.piece(0), b = s.piece(1);
     reply(res, 200,
           s.solveLive(forwardSolve(a, b, settings, gate), settings.resolution,
                       settings.model == ModelChoice::Paper, sequence(body),
-                      forwardDesign(a, b, settings), studio::Server::clientGone()));
+                      forwardDesign(a, b, job), studio::Server::clientGone()));
   });
   api(server, "/api/strip", [this](const json& body, Session& s, httplib::Response& res) {
-    const ForwardSettings settings = studio::forwardSettingsFrom(body);
+    const Job job = studio::jobFrom(body, startForward);
+    const ForwardSettings& settings = std::get<ForwardJob>(job.run);
     const int starts = body.value("starts", 16);
     if (starts < 1 || starts > 64) throw RequestError("starts: must be in [1, 64]");
     const bool bothFlips = body.value("both_flips", true);
@@ -497,8 +522,8 @@ void Studio::Impl::solveRoutes(httplib::Server& server) {
     reply(res, 200, out);
   });
   api(server, "/api/inverse", [this](const json& body, Session& s, httplib::Response& res) {
-    bool closed = false;
-    const InverseSettings settings = studio::inverseSettingsFrom(body, closed);
+    const Job job = studio::jobFrom(body, startInverse);
+    const InverseSettings& settings = std::get<InverseJob>(job.run);
     std::optional<CurveInput> curve = s.curve();
     if (!curve) throw RequestError("no seam curve loaded");
     reply(res, 200,
@@ -508,33 +533,24 @@ void Studio::Impl::solveRoutes(httplib::Server& server) {
                           std::to_string(settings.resolution),
                       studio::Server::clientGone()));
   });
-  api(server, "/api/job", [](const json& body, Session& s, httplib::Response& res) {
-    if (body.value("mode", "forward") == "inverse") {
-      bool closed = false;
-      const InverseSettings settings = studio::inverseSettingsFrom(body, closed);
-      std::optional<CurveInput> curve = s.curve();
-      if (!curve) throw RequestError("no seam curve loaded");
-      sendZip(res, studio::savedInverseJob(*curve, settings, curve->forceClosed), "dform-job.zip");
-      return;
-    }
-    sendZip(res, studio::savedForwardJob(s.piece(0), s.piece(1), studio::forwardSettingsFrom(body)),
-            "dform-job.zip");
+  // Save job and Export: the job with every setting of the request (the page sends all it had
+  // from the session, export options included), its files as the zip holds them.
+  const auto jobFiles = [this](const json& body, Session& s) {
+    const Job job = studio::jobFrom(body, base(body));
+    if (job.isForward()) return studio::forwardJobFiles(s.piece(0), s.piece(1), job);
+    std::optional<CurveInput> curve = s.curve();
+    if (!curve) throw RequestError("no seam curve loaded");
+    Job closed = job;  // the curve as the session read it: closed or not when it was loaded
+    std::get<InverseJob>(closed.run).forceClosed = curve->forceClosed;
+    return studio::inverseJobFiles(*curve, closed);
+  };
+  api(server, "/api/job", [jobFiles](const json& body, Session& s, httplib::Response& res) {
+    sendZip(res, studio::storedZip(jobFiles(body, s)), "dform-job.zip");
   });
-  api(server, "/api/export", [](const json& body, Session& s, httplib::Response& res) {
-    const studio::ExportRequest request = studio::exportRequestFrom(body);
-    std::vector<std::pair<std::string, std::string>> files;
-    if (body.value("mode", "forward") == "inverse") {
-      bool closed = false;
-      const InverseSettings settings = studio::inverseSettingsFrom(body, closed);
-      std::optional<CurveInput> curve = s.curve();
-      if (!curve) throw RequestError("no seam curve loaded");
-      files = studio::inverseJobFiles(*curve, settings, curve->forceClosed);
-    } else {
-      files = studio::forwardJobFiles(s.piece(0), s.piece(1), studio::forwardSettingsFrom(body));
-    }
+  api(server, "/api/export", [jobFiles](const json& body, Session& s, httplib::Response& res) {
     // Left to run, an export abandoned by its client would hold its memory for its whole run.
     Result<std::string> zip =
-        studio::exportedResult(files, request, studio::Server::clientGone().get());
+        studio::exportedResult(jobFiles(body, s), studio::Server::clientGone().get());
     if (!zip.isOk()) throw RequestError(zip.status().message());
     sendZip(res, zip.value(), "dform-export.zip");
   });
@@ -549,7 +565,8 @@ Result<std::unique_ptr<Studio>> Studio::start(const StudioOptions& options) {
   impl->options = options;
   impl->token = options.token.empty() ? studio::randomToken() : options.token;
   if (options.port < 0 || options.port > 65535)
-    return Status(ErrorCode::Usage, "--port must be in [0, 65535]");
+    return Status(ErrorCode::Usage,
+                  "the port must be in [0, 65535], got " + std::to_string(options.port));
   if (Status s = impl->readStart(); !s.isOk()) return s;
   Result<GateLimits> gate = loadGate("default");
   if (!gate.isOk()) return gate.status();

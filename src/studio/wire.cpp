@@ -1,11 +1,14 @@
 #include "wire.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <vector>
 
 #include "dform/pipeline/report.h"
+#include "dform/pipeline/run.h"
+#include "dform/pipeline/settings.h"
 
 namespace dform::studio {
 
@@ -105,22 +108,6 @@ json timingsJson(const Timings& t) {
   return {{"read", t.read}, {"mesh", t.mesh}, {"solve", t.solve}, {"total", t.total}};
 }
 
-template <typename T>
-T valueOr(const json& request, const char* key, T fallback) {
-  if (!request.contains(key)) return fallback;
-  try {
-    return request.at(key).get<T>();
-  } catch (const json::exception&) {
-    throw RequestError(std::string(key) + ": wrong type");
-  }
-}
-
-double fraction(const json& request, const char* key) {
-  const double f = valueOr<double>(request, key, 0.0);
-  if (!(f >= 0.0 && f < 1.0)) throw RequestError(std::string(key) + ": must be in [0, 1)");
-  return f;
-}
-
 // Flattened loop points, every k-th point so that at most maxPoints remain.
 template <typename Matrix>
 std::vector<double> flatPoints(const Matrix& points, int maxPoints) {
@@ -142,35 +129,25 @@ double loopLength(const Points2& p) {
 
 static_assert(sizeof(double) == 8, "the page reads vertices as 64-bit doubles");
 
-ForwardSettings forwardSettingsFrom(const json& request) {
+Job jobFrom(const json& request, const Job& base) {
   if (!request.is_object()) throw RequestError("the request must be a JSON object");
-  ForwardSettings s;
-  s.startA.fraction = fraction(request, "start_a");
-  s.startB.fraction = fraction(request, "start_b");
-  s.flip = valueOr<bool>(request, "flip", false);
-  s.fitPerimeter = valueOr<bool>(request, "fit_perimeter", true);
-  s.resolution = valueOr<int>(request, "resolution", 100);
-  if (s.resolution < 8 || s.resolution > 1000)
-    throw RequestError("resolution: must be in [8, 1000]");
-  if (!parseJoin(valueOr<std::string>(request, "join", "outer,outer"), s.joinA, s.joinB))
-    throw RequestError("join: must be outer,outer, inner,inner, outer,inner or inner,outer");
-  if (!parseModelChoice(valueOr<std::string>(request, "model", "auto"), s.model))
-    throw RequestError("model: must be auto, exact or paper");
-  s.interiorEdgeFactor = valueOr<double>(request, "interior_edge", 1.0);
-  s.weights = defaultWeights(s.joinA, s.joinB);
-  if (Status ok = validateForwardJob(s); !ok.isOk()) throw RequestError(ok.message());
-  return s;
-}
-
-InverseSettings inverseSettingsFrom(const json& request, bool& forceClosed) {
-  if (!request.is_object()) throw RequestError("the request must be a JSON object");
-  InverseSettings s;
-  s.resolution = valueOr<int>(request, "resolution", s.resolution);
-  if (s.resolution < 8 || s.resolution > 1000)
-    throw RequestError("resolution: must be in [8, 1000]");
-  forceClosed = valueOr<bool>(request, "closed", false);
-  if (Status ok = validateInverseJob(s); !ok.isOk()) throw RequestError(ok.message());
-  return s;
+  Job job = base;
+  if (Status read = readSettings(job, request.dump()); !read.isOk())
+    throw RequestError(read.message());
+  if (job.resolution() > kMaxLiveResolution)
+    throw RequestError(std::string(settingKey(Setting::Resolution)) + " must be at most " +
+                       std::to_string(kMaxLiveResolution) + " in the studio, got " +
+                       std::to_string(job.resolution()));
+  const std::vector<std::string> profiles = exportProfileNames();
+  const std::string& profile = job.exporting.pattern.profile;
+  if (std::find(profiles.begin(), profiles.end(), profile) == profiles.end())
+    throw RequestError(std::string(settingKey(Setting::Profile)) +
+                       ": not one of the shipped export profiles");
+  const std::string& gate = job.exporting.gate;
+  if (gate.find('/') != std::string::npos || gate.find(".json") != std::string::npos)
+    throw RequestError(std::string(settingKey(Setting::Gate)) +
+                       ": a gate preset's name (a request names no file)");
+  return job;
 }
 
 json verdictJson(const Metrics& metrics, const GateReport& gate) {

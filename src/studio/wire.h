@@ -7,8 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "dform/pipeline/forward_pipeline.h"
-#include "dform/pipeline/inverse_pipeline.h"
+#include "dform/pipeline/job.h"
 #include "dform/validate/gate.h"
 
 namespace dform::studio {
@@ -21,13 +20,17 @@ struct RequestError : std::runtime_error {
 /// Base64 (RFC 4648, with padding) of `size` bytes.
 std::string base64(const void* data, std::size_t size);
 
-/// The settings of a forward solve from the page's request ("start_a", "start_b", "flip",
-/// "join", "model", "resolution", "fit_perimeter"; missing keys keep their defaults, the
-/// weights are the join's defaults as the command line's). RequestError on a bad value.
-ForwardSettings forwardSettingsFrom(const nlohmann::json& request);
+/// The finest seam a live solve takes: a request for more is refused (a job file may ask for
+/// more, and the command line runs it).
+constexpr int kMaxLiveResolution = 1000;
 
-/// A seam curve's settings ("resolution", "closed").
-InverseSettings inverseSettingsFrom(const nlohmann::json& request, bool& forceClosed);
+/// The job a request describes: `base` (the session's starting design of the request's mode,
+/// "mode" forward unless "inverse") with every setting the request holds, its keys shaped as a
+/// job file's ("resolution", "weights": {...}, "export": {...}), read through the settings table
+/// (pipeline/settings.h). RequestError naming the setting (its key: the page's field names are
+/// the keys) on a bad value, a resolution over kMaxLiveResolution, or an export profile or gate
+/// that is not one the server ships (a request names no file on the server).
+Job jobFrom(const nlohmann::json& request, const Job& base);
 
 /// A solved forward run's shape for the page: model and why, both pieces, the starts and scale
 /// (its figures follow with the gate's verdict: verdictJson).

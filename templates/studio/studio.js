@@ -10,11 +10,21 @@
   var session = null, kinds = [];
   var state = {
     mode: "forward",
-    settings: { start_a: 0, start_b: 0, flip: false, join: "outer,outer", model: "auto", resolution: 100, fit_perimeter: true },
+    // Each mode's settings as the server's settings table writes them (the session's answer):
+    // the page changes the ones it has controls for and sends back all of them.
+    byMode: { forward: {}, inverse: {} },
     pieces: [null, null],   // {name, kind, values} or {name, text}: what made each outline
     curve: null,
   };
   var summaries = [null, null], history = [], future = [];
+  function settings() { return state.byMode[state.mode]; }
+  // Where each seam starts as the last shape solved it: a start given as the outline point
+  // nearest a point (a job file's "near") is drawn there until it is dragged.
+  var resolvedStarts = [0, 0];
+  function startFraction(i) {
+    var f = settings()[i ? "start_b" : "start_a"];
+    return typeof f === "number" ? f : resolvedStarts[i];
+  }
 
   function api(path, body, binary) {
     return fetch(path, { method: "POST", headers: { "Content-Type": "application/json", "X-Dform-Token": TOKEN },
@@ -131,7 +141,7 @@
   studio.idle = function () { return pending == null && !inFlight; };
   var views = [0, 1].map(function (i) {
     return new PieceView($("svg-" + "ab"[i]), "AB"[i], function (f, e) {
-      state.settings[i ? "start_b" : "start_a"] = f;
+      settings()[i ? "start_b" : "start_a"] = f;
       solve(e.timeStamp);
     }, function () { scheduleStrip(); });
   });
@@ -139,7 +149,7 @@
   // A start set as a drag ending there sets it (scripts and tests).
   studio.setStart = function (i, f) {
     remember();
-    state.settings[i ? "start_b" : "start_a"] = f;
+    settings()[i ? "start_b" : "start_a"] = f;
     views[i].setFraction(f);
     solve(); scheduleStrip();
   };
@@ -147,12 +157,12 @@
     if (e.target.classList.contains("handle-target")) remember();
   }, true); });
 
-  function joinOf(i) { return state.settings.join.split(",")[i]; }
+  function joinOf(i) { return settings().join.split(",")[i]; }
   function refreshPieces() {
     [0, 1].forEach(function (i) {
       if (!summaries[i]) return;
       views[i].setShape(summaries[i], joinOf(i));
-      views[i].setFraction(state.settings[i ? "start_b" : "start_a"]);
+      views[i].setFraction(startFraction(i));
     });
     $("fit-note").textContent = summaries[0] && summaries[1]
       ? "A " + summaries[0].perimeter.toFixed(1) + " mm, B " + summaries[1].perimeter.toFixed(1) + " mm" : "";
@@ -169,7 +179,7 @@
     if (pending == null) return;
     var seq = pending; pending = null; inFlight = true;
     var path = state.mode === "inverse" ? "/api/inverse" : "/api/solve";
-    var body = Object.assign({ seq: seq }, state.settings);
+    var body = Object.assign({ seq: seq, mode: state.mode }, settings());
     var sent = performance.now();
     api(path, body).then(function (r) {
       if (r.arrival) r.arrival.sent = sent;
@@ -214,15 +224,17 @@
       $("name-" + "ab"[i]).textContent = "piece " + "AB"[i] + " as cut, unfolded from the curve";
     });
     if (state.mode === "forward") {
+      resolvedStarts = [r.start_a, r.start_b];
       [0, 1].forEach(function (i) {
-        views[i].setResult(pieces[i], i === 0 || state.settings.flip ? 1 : -1, brk ? +brk[1] : null,
+        views[i].setFraction(startFraction(i));
+        views[i].setResult(pieces[i], i === 0 || settings().flip ? 1 : -1, brk ? +brk[1] : null,
                            placement(pieces[i], summaries[i]));
       });
     }
     facts(r);
     var time = inputTime[r.seq];
     delete inputTime[r.seq];
-    studio.shown = { seq: r.seq, result: r, pieces: pieces, settings: Object.assign({}, state.settings) };
+    studio.shown = { seq: r.seq, result: r, pieces: pieces, settings: Object.assign({}, settings()) };
     var drawn = performance.now();
     requestAnimationFrame(function () {
       if (time != null && !r.preview) {
@@ -297,7 +309,7 @@
 
   // ---- settings ---------------------------------------------------------------------------------
   function syncControls() {
-    var s = state.settings;
+    var s = settings();
     $("flip").checked = s.flip; $("join").value = s.join; $("model-choice").value = s.model;
     $("resolution").value = s.resolution; $("fit").checked = s.fit_perimeter;
     document.body.setAttribute("data-mode", state.mode);
@@ -307,7 +319,7 @@
   function setting(id, key, read) {
     $(id).onchange = function () {
       remember();
-      state.settings[key] = read($(id));
+      settings()[key] = read($(id));
       refreshPieces(); solve(); scheduleStrip();
     };
   }
@@ -320,7 +332,7 @@
   // ---- the strip --------------------------------------------------------------------------------
   var strip = new Strip($("strip-cards"), $("thumbnail"), function (card) {
     remember();
-    state.settings.start_b = card.start_b; state.settings.flip = card.flip;
+    settings().start_b = card.start_b; settings().flip = card.flip;
     syncControls(); refreshPieces(); solve();
   });
   studio.strip = strip;
@@ -332,7 +344,7 @@
     stripTimer = setTimeout(function () {
       var seq = ++stripSeq;
       strip.reset(seq);
-      api("/api/strip", Object.assign({ seq: seq, starts: 16, both_flips: true }, state.settings)).catch(function (e) { showError(e.message); });
+      api("/api/strip", Object.assign({ seq: seq, starts: 16, both_flips: true }, settings())).catch(function (e) { showError(e.message); });
     }, 300);
   }
 
@@ -372,19 +384,33 @@
     document.body.appendChild(a); a.click(); a.remove();
     setTimeout(function () { URL.revokeObjectURL(a.href); }, 10000);
   }
-  function jobBody() { return Object.assign({ mode: state.mode }, state.settings); }
+  function jobBody() { return Object.assign({ mode: state.mode }, settings()); }
+  // The export dialog shows and sets the export settings of the current mode; an empty field is
+  // a setting not given (the profile's, or the export's default, which its placeholder shows).
+  var exportFields = ["profile", "page", "sheet", "scale"];
+  function fillExportDialog() {
+    var e = settings().export || {};
+    exportFields.forEach(function (k) { $(k).value = e[k] != null ? e[k] : (k === "profile" ? "laser" : ""); });
+    $("export-anyway").checked = !!e.export_anyway;
+  }
+  function readExportDialog() {
+    var e = Object.assign({}, settings().export || {});
+    exportFields.forEach(function (k) { e[k] = $(k).value === "" ? null : $(k).value; });
+    e.export_anyway = $("export-anyway").checked;
+    settings().export = e;
+  }
   $("save-job").onclick = function () {
     api("/api/job", jobBody(), true).then(function (b) { studio.lastDownload = b; download(b, "dform-job.zip"); })
       .catch(function (e) { showError(e.message); });
   };
-  $("export").onclick = function () { $("export-dialog").showModal(); };
+  $("export").onclick = function () { fillExportDialog(); $("export-dialog").showModal(); };
   $("export-cancel").onclick = function () { $("export-dialog").close(); };
   $("export-go").onclick = function (e) {
     e.preventDefault();
     $("export-state").textContent = "exporting…";
-    var body = Object.assign(jobBody(), { profile: $("profile").value, page: $("page").value, sheet: $("sheet").value,
-                                          scale: $("scale").value, export_anyway: $("export-anyway").checked });
-    api("/api/export", body, true).then(function (b) {
+    remember();
+    readExportDialog();
+    api("/api/export", jobBody(), true).then(function (b) {
       studio.lastDownload = b; $("export-state").textContent = ""; $("export-dialog").close(); download(b, "dform-export.zip");
     }).catch(function (err) { $("export-state").textContent = err.message; });
   };
@@ -394,9 +420,9 @@
   window.addEventListener("resize", function () { view3d.draw(); });
   api("/api/session", {}).then(function (s) {
     session = s.session; kinds = s.kinds; studio.session = session; studio.previewResolution = s.preview_resolution;
-    Object.assign(state.settings, s.settings);
-    if (s.settings.mode) state.mode = s.settings.mode;
-    delete state.settings.mode;
+    state.byMode = s.settings;
+    state.mode = s.mode;
+    Object.keys(s.placeholders).forEach(function (k) { $(k).placeholder = s.placeholders[k]; });
     s.profiles.forEach(function (p) { var o = document.createElement("option"); o.value = o.textContent = p; $("profile").appendChild(o); });
     [0, 1].forEach(function (i) {
       summaries[i] = s.pieces[i];

@@ -82,7 +82,7 @@ Result<ForwardRun> solveCase(const Case& c) {
   if (c.jobFile) {
     Result<Job> read = readJobFile(sample(c.jobFile));
     if (!read.isOk()) return read.status();
-    job = read.value().forward;
+    job = std::get<ForwardJob>(read.value().run);
   } else {
     job.pieceA = sample(c.a);
     job.pieceB = sample(c.b);

@@ -167,7 +167,10 @@ TEST(ExportScale, ARefusalNamesTheLargestScaleThatFitsAndScaleFitUsesIt) {
     const double fits = scaleNamed(message);
     EXPECT_TRUE(buildsAt(model, base, fits)) << message;
     EXPECT_FALSE(buildsAt(model, base, fits + 0.001)) << message;
-    EXPECT_NE(message.find("--scale fit"), std::string::npos) << message;
+    // The way out names the scale setting (the command line words it --scale, Python scale=).
+    EXPECT_EQ(refused.status().setting(), Setting::Scale) << message;
+    EXPECT_NE(message.find(std::string(settingKey(Setting::Scale)) + " fit"), std::string::npos)
+        << message;
     // --scale fit takes that scale and says so in words on every sheet, with or without the
     // title lines (on a cover page where they do not fit beside a piece).
     for (bool title : {true, false}) {
@@ -187,10 +190,11 @@ TEST(ExportScale, ARefusalNamesTheLargestScaleThatFitsAndScaleFitUsesIt) {
       buildCounted(model, options("print-and-cut-cricut"), work).status().message();
   EXPECT_NE(cricut.find("Print Then Cut area"), std::string::npos) << cricut;
   EXPECT_EQ(cricut.find("needs at least"), std::string::npos) << cricut;
-  EXPECT_EQ(cricut.find("--page"), std::string::npos) << cricut;
+  EXPECT_EQ(cricut.find(settingKey(Setting::Page)), std::string::npos) << cricut;
   const std::string silhouette =
       buildCounted(model, options("print-and-cut"), work).status().message();
-  EXPECT_NE(silhouette.find("--page A3"), std::string::npos) << silhouette;
+  EXPECT_NE(silhouette.find(std::string(settingKey(Setting::Page)) + " A3"), std::string::npos)
+      << silhouette;
   ExportOptions onA3 = options("print-and-cut");
   onA3.page = "A3";
   EXPECT_TRUE(buildsAt(model, onA3, 1.0));

@@ -3,17 +3,17 @@
 
 #include <gtest/gtest.h>
 
-#include "dform/forward/dform_from_shapes.h"
 #include "model/term_table_checks.h"
 
 namespace dform {
 namespace {
 
 // forwardTerms covers every member of ForwardWeights once, each row's linear flag agrees with the
-// term its factory makes, a Problem and the relaxation's list built from it follow it, and a job's
-// validation refuses a bad value of every weight (term_table_checks.h).
+// term its factory makes, and a Problem and the relaxation's list built from it follow it
+// (term_table_checks.h). The settings table's rows of the weights refuse a bad value of each
+// (pipeline's SettingsTable tests).
 TEST(ForwardTerms, TableIsWholeAndAgreesWithItsTerms) {
-  test::expectTermTableHolds(forwardTerms(), validateForwardJob);
+  test::expectTermTableHolds(forwardTerms());
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // Fuzzes the job-file reader. A job it accepts must be valid and survive the trip through
 // report.json unchanged (jobToJson, then read again), since that is how a run is repeated.
 #include "dform/pipeline/job_file.h"
+#include "dform/pipeline/settings.h"
 #include "fuzz_check.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const unsigned char* data, std::size_t size) {
@@ -11,8 +12,7 @@ extern "C" int LLVMFuzzerTestOneInput(const unsigned char* data, std::size_t siz
       });
   if (!job.isOk()) return 0;
   const Job& j = job.value();
-  const Status valid =
-      j.mode == Job::Mode::Forward ? validateForwardJob(j.forward) : validateInverseJob(j.inverse);
+  const Status valid = checkSettings(j);
   fuzz::require(valid.isOk(), "an accepted job is invalid", valid.message());
   const std::string saved = jobToJson(j);
   const Result<Job> again = parseJobJson(saved, "again.json", "/elsewhere");

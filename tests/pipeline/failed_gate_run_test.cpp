@@ -66,21 +66,25 @@ class FailedGateRun : public testing::Test {
   }
 
   // Writes the run into `name` as `dform forward` does, counting the patterns laid out.
-  WrittenResult write(const std::string& name, OutputOptions output, long* layouts) {
+  WrittenResult write(const std::string& name, const ExportSettings& exporting, long* layouts) {
+    OutputOptions output;
     output.outDir = (dir_ / name).string();
-    const Result<RunSettings> settings = checkOutput(output);
+    const Result<RunSettings> settings = checkOutput(exporting);
     EXPECT_TRUE(settings.isOk()) << settings.status().message();
     MessageSink sink;
     const long before = fab::patternsLaidOut();
-    const Result<WrittenResult> written = writeResult(job_, run_, output, settings.value(), sink);
+    Job job(job_);
+    job.exporting = exporting;
+    const Result<WrittenResult> written =
+        writeResult(job, SolvedRun(run_), output, settings.value(), sink);
     *layouts = fab::patternsLaidOut() - before;
     EXPECT_TRUE(written.isOk()) << written.status().message();
     return written.isOk() ? written.value() : WrittenResult{};
   }
 
   // The pattern of the run's model laid out with `output`'s options and no mark, into `name`.
-  std::string unmarked(const std::string& name, const OutputOptions& output) {
-    const Result<RunSettings> settings = checkOutput(output);
+  std::string unmarked(const std::string& name, const ExportSettings& exporting) {
+    const Result<RunSettings> settings = checkOutput(exporting);
     EXPECT_TRUE(settings.isOk()) << settings.status().message();
     ExportOptions options = *settings.value().exporting;
     options.jobName = "ellipses-a";  // the run's: its first input's name
@@ -101,7 +105,7 @@ TEST_F(FailedGateRun, AFailedLayoutIsLaidOutOnceAndStampedAsItIs) {
   // and every other check passes.
   run_.model.a.name = "A-piece-whose-name-is-far-wider-than-the-piece-itself";
   run_.model.b.name = "B-piece-whose-name-is-far-wider-than-the-piece-itself";
-  OutputOptions output;
+  ExportSettings output;
   output.exportAnyway = true;
   long layouts = 0;
   const WrittenResult written = write("layout", output, &layouts);
@@ -131,10 +135,10 @@ TEST_F(FailedGateRun, AFailedLayoutIsLaidOutOnceAndStampedAsItIs) {
   const long before = fab::patternsLaidOut();
   MessageSink sink;
   const std::atomic<bool> never{false};
-  OutputOptions again;
+  ExportSettings again;
   again.exportAnyway = true;
-  again.outDir = (dir_ / "again").string();
-  const Result<std::string> exported = exportSavedResult(out.string(), again, sink, never);
+  const Result<std::string> exported =
+      exportSavedResult(out.string(), again, (dir_ / "again").string(), sink, never);
   ASSERT_TRUE(exported.isOk()) << exported.status().message();
   EXPECT_EQ(fab::patternsLaidOut() - before, 1);
   const std::string reexported = text(dir_ / "again" / "pattern.svg");
@@ -148,7 +152,7 @@ TEST_F(FailedGateRun, AFigureThatFailsStampsTheLayoutTheGateJudged) {
   ASSERT_NO_FATAL_FAILURE(solve());
   const fs::path tight = dir_ / "tight.json";
   std::ofstream(tight) << R"({"version": 1, "name": "tight", "limits": {"L_error": 1e-9}})";
-  OutputOptions output;
+  ExportSettings output;
   output.gate = tight.string();
   output.exportAnyway = true;
   long layouts = 0;
@@ -162,11 +166,11 @@ TEST_F(FailedGateRun, AFigureThatFailsStampsTheLayoutTheGateJudged) {
   EXPECT_EQ(unstampedLines(svg), unstampedLines(unmarked("figure-plain", output)));
 
   // A run that passes: laid out once, no stamp.
-  const WrittenResult passed = write("passed", OutputOptions{}, &layouts);
+  const WrittenResult passed = write("passed", ExportSettings{}, &layouts);
   ASSERT_TRUE(passed.gate.has_value());
   EXPECT_TRUE(passed.gate->passed());
   EXPECT_EQ(layouts, 1);
-  EXPECT_EQ(text(dir_ / "passed" / "pattern.svg"), unmarked("passed-plain", OutputOptions{}));
+  EXPECT_EQ(text(dir_ / "passed" / "pattern.svg"), unmarked("passed-plain", ExportSettings{}));
 }
 
 }  // namespace

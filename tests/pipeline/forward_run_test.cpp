@@ -285,7 +285,9 @@ TEST(ForwardRun, TheInteriorEdgeFactorCoarsensTheInteriorOnly) {
     coarseJob.interiorEdgeFactor = factor;
     const Status refused = runForward(coarseJob, sink).status();
     EXPECT_EQ(refused.code(), ErrorCode::Usage) << factor;
-    EXPECT_NE(refused.message().find("--interior-edge"), std::string::npos) << refused.message();
+    EXPECT_EQ(refused.setting(), Setting::InteriorEdge) << refused.message();
+    EXPECT_EQ(refused.message().rfind("interior_edge must be a number between 0.25 and 8", 0), 0)
+        << refused.message();
   }
 }
 

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "dform/model/term_table.h"
+#include "dform/pipeline/settings.h"
 
 namespace dform {
 namespace {
@@ -19,7 +20,7 @@ TEST(JobFile, ForwardJobRoundTrips) {
     "solver": {"max_iterations": 30}})";
   const Result<Job> job = parseJobJson(text, "job.json", "/base");
   ASSERT_TRUE(job.isOk()) << job.status().message();
-  const ForwardJob& f = job.value().forward;
+  const ForwardJob& f = std::get<ForwardJob>(job.value().run);
   EXPECT_EQ(f.pieceA, "/base/a.svg");
   EXPECT_EQ(f.pieceB, "/abs/b.svg");
   EXPECT_DOUBLE_EQ(f.startA.fraction, 0.1);
@@ -37,9 +38,17 @@ TEST(JobFile, ForwardJobRoundTrips) {
   EXPECT_EQ(jobToJson(again.value()), jobToJson(job.value()));
 }
 
-// --weight (setNamedWeight), the job file's writer and its reader all go through the mode's table
-// of terms: a distinct value per row, set by its name, reaches the row's member, is written under
-// its name and read back into the same member; a name of the other mode's table is unknown.
+// Sets the weight named `name` of `job`'s mode through its row of the settings table (as
+// --weight, Python's weights and job files do): false for a name the mode has no weight of.
+bool setNamedWeight(Job& job, const std::string& name, double value) {
+  const SettingRow* row = findSetting("weights." + name, job.isForward());
+  return row && setSetting(job, *row, std::to_string(value)).isOk();
+}
+
+// The settings table's weight rows, the job file's writer and its reader all go through the
+// mode's table of terms: a distinct value per row, set by its name, reaches the row's member, is
+// written under its name and read back into the same member; a name of the other mode's table is
+// unknown.
 template <typename Weights>
 void expectNamedWeightsRoundTrip(Job job, const TermTable<Weights>& table,
                                  Weights& (*weightsOf)(Job&)) {
@@ -61,17 +70,20 @@ void expectNamedWeightsRoundTrip(Job job, const TermTable<Weights>& table,
 }
 
 TEST(JobFile, NamedWeightsRoundTripThroughTheTables) {
-  Job forward;
-  forward.forward.pieceA = "a.svg";
-  forward.forward.pieceB = "b.svg";
+  ForwardJob forwardInputs;
+  forwardInputs.pieceA = "a.svg";
+  forwardInputs.pieceB = "b.svg";
+  Job forward(forwardInputs);
   expectNamedWeightsRoundTrip(
-      forward, forwardTerms(), +[](Job& job) -> ForwardWeights& { return job.forward.weights; });
+      forward, forwardTerms(),
+      +[](Job& job) -> ForwardWeights& { return std::get<ForwardJob>(job.run).weights; });
   EXPECT_FALSE(setNamedWeight(forward, "closeness", 1.0));
-  Job inverse;
-  inverse.mode = Job::Mode::Inverse;
-  inverse.inverse.curve = "c.obj";
+  InverseJob inverseInputs;
+  inverseInputs.curve = "c.obj";
+  Job inverse(inverseInputs);
   expectNamedWeightsRoundTrip(
-      inverse, inverseTerms(), +[](Job& job) -> InverseWeights& { return job.inverse.weights; });
+      inverse, inverseTerms(),
+      +[](Job& job) -> InverseWeights& { return std::get<InverseJob>(job.run).weights; });
   EXPECT_FALSE(setNamedWeight(inverse, "seam", 1.0));
 }
 
@@ -85,7 +97,7 @@ TEST(JobFile, EachWeightNameSetsItsOwnWeight) {
   for (const auto& [name, member] : forwardNames) {
     Job forward;  // a fresh one each time: a weight set by another name must not pass here
     ASSERT_TRUE(setNamedWeight(forward, name, 123.5)) << name;
-    EXPECT_EQ(forward.forward.weights.*member, 123.5) << name;
+    EXPECT_EQ(std::get<ForwardJob>(forward.run).weights.*member, 123.5) << name;
   }
   const std::vector<std::pair<std::string, double InverseWeights::*>> inverseNames = {
       {"isometry", &InverseWeights::isometry},
@@ -93,10 +105,9 @@ TEST(JobFile, EachWeightNameSetsItsOwnWeight) {
       {"smooth_3d", &InverseWeights::smooth3d},
       {"smooth_2d", &InverseWeights::smooth2d}};
   for (const auto& [name, member] : inverseNames) {
-    Job inverse;
-    inverse.mode = Job::Mode::Inverse;
+    Job inverse{InverseJob()};
     ASSERT_TRUE(setNamedWeight(inverse, name, 0.25)) << name;
-    EXPECT_EQ(inverse.inverse.weights.*member, 0.25) << name;
+    EXPECT_EQ(std::get<InverseJob>(inverse.run).weights.*member, 0.25) << name;
   }
 }
 
@@ -105,10 +116,11 @@ TEST(JobFile, InverseJobRoundTrips) {
     "weights": {"closeness": 2}})",
                                        "job.json", "/base");
   ASSERT_TRUE(job.isOk()) << job.status().message();
-  EXPECT_EQ(job.value().mode, Job::Mode::Inverse);
-  EXPECT_EQ(job.value().inverse.curve, "/base/seam.obj");
-  EXPECT_TRUE(job.value().inverse.forceClosed);
-  EXPECT_DOUBLE_EQ(job.value().inverse.weights.closeness, 2.0);
+  ASSERT_FALSE(job.value().isForward());
+  const InverseJob& i = std::get<InverseJob>(job.value().run);
+  EXPECT_EQ(i.curve, "/base/seam.obj");
+  EXPECT_TRUE(i.forceClosed);
+  EXPECT_DOUBLE_EQ(i.weights.closeness, 2.0);
   const Result<Job> again = parseJobJson(jobToJson(job.value()), "again.json", "/x");
   ASSERT_TRUE(again.isOk());
   EXPECT_EQ(jobToJson(again.value()), jobToJson(job.value()));

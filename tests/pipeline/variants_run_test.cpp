@@ -188,7 +188,7 @@ TEST(Variants, TheJoinMustFitThePieces) {
   ASSERT_FALSE(run.isOk());
   EXPECT_NE(run.status().message().find("demi-ring.svg: the outline has 1 hole(s)"),
             std::string::npos);
-  EXPECT_NE(run.status().message().find("--join"), std::string::npos);
+  EXPECT_EQ(run.status().setting(), Setting::Join) << run.status().message();
 
   // Joined boundaries of unequal length: the anti ring's hole is 242 mm, the demi disc 273 mm.
   const ForwardJob unequal =

@@ -14,4 +14,8 @@ constexpr double kDegree = kPi / 180.0;
 /// seconds (docs/benchmarks.md).
 constexpr int kDefaultResolution = 100;
 
+/// The resolutions a run takes: from the coarsest mesh the solve still makes sense on to the
+/// finest the solver is tested at (the memory check may refuse a finer one on a smaller machine).
+constexpr int kMinResolution = 8, kMaxResolution = 20000;
+
 }  // namespace dform

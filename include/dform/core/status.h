@@ -1,12 +1,15 @@
 // Errors from bad user input. A broken invariant is a bug (assert); a solve that does not converge
 // is a result with its summary; everything the user can fix is a Status naming the file and
-// problem.
+// problem. A message about a setting names it by mention() (core/setting.h), which each shell
+// words its own way.
 #pragma once
 
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
+
+#include "dform/core/setting.h"
 
 namespace dform {
 
@@ -31,7 +34,14 @@ class [[nodiscard]] Status {
   static Status ok() { return {}; }
   bool isOk() const { return code_ == ErrorCode::Ok; }
   ErrorCode code() const { return code_; }
-  const std::string& message() const { return message_; }
+  /// The message, each setting it mentions named by its job-file key ("fit_perimeter").
+  std::string message() const { return plainSettings(message_); }
+  /// The message, each setting it mentions as a shell names it (`words`).
+  std::string message(const SettingWords& words) const { return wordSettings(message_, words); }
+  /// The message as written, its mentions kept: for a Status that adds to it.
+  const std::string& text() const { return message_; }
+  /// The first setting the message mentions (the one it is about, or the one to change).
+  std::optional<Setting> setting() const { return firstMention(message_); }
 
  private:
   ErrorCode code_ = ErrorCode::Ok;

@@ -55,6 +55,9 @@ const char* tabSideName(TabSide side);
 /// The side called `name` (as tabSideName writes it), or nullopt.
 std::optional<TabSide> tabSideNamed(const std::string& name);
 
+/// Every side's name, in the order of TabSide.
+std::vector<std::string> tabSideNames();
+
 /// How the pieces are joined along the seam.
 enum class Joint {
   Glue,   ///< glue tabs (or edge to edge): paper and card
@@ -71,6 +74,9 @@ const char* jointName(Joint joint);
 /// The joint called `name` (as jointName writes it), or nullopt.
 std::optional<Joint> jointNamed(const std::string& name);
 
+/// Every joint's name, in the order of Joint.
+std::vector<std::string> jointNames();
+
 /// A sheet material (--material): its thickness and the joint it is usually made with.
 struct MaterialPreset {
   std::string name;        ///< "paper", "card", "polypropylene", "plywood"
@@ -82,6 +88,21 @@ struct MaterialPreset {
 /// The preset called `name`, or nullopt; materialNames lists them ("paper, card, ...").
 std::optional<MaterialPreset> materialNamed(const std::string& name);
 std::string materialNames();
+/// Every preset's name, in materialNames' order.
+std::vector<std::string> materialPresetNames();
+
+/// The ranges of the user's export options (the settings table checks them, pipeline/settings.h;
+/// a profile's kerf_mm is held to the same range).
+constexpr double kMaxKerfMm = 5;            ///< the cutter's kerf (mm), from 0
+constexpr double kMaxTabWidthMm = 50;       ///< glue tab width (mm), from 0
+constexpr double kMinTickSpacingMm = 1;     ///< seam length between numbered ticks (mm)
+constexpr double kMinPatternScale = 0.05;   ///< the pattern's scale (5 %) ...
+constexpr double kMaxPatternScale = 20;     ///< ... to 20 times true size
+constexpr double kMinHoleDiameterMm = 0.5;  ///< joint holes' diameter (mm) ...
+constexpr double kMaxHoleDiameterMm = 20;   ///< ... up to this
+constexpr double kMaxHoleEdgeMm = 50;       ///< seam to hole centres (mm), from the diameter
+constexpr double kMaxHoleSpacingMm = 1000;  ///< between holes (mm), from twice the diameter
+constexpr double kMinSlotLengthMm = 2;      ///< a tongue's width (mm), to spacing - diameter
 
 /// A machine profile, read from templates/profiles/<name>.json (see docs/export.md). Every field
 /// has a default; a profile file may leave any field out.
@@ -206,8 +227,11 @@ struct ExportOptions {
   std::string fontPath = "/usr/share/hershey-fonts/futural.jhf";  ///< Hershey single-stroke font
 };
 
-/// Checks the option values that do not depend on the model or the profile (tick spacing, tab
-/// width, angle, gap and limits): Usage with a one-line message naming the value otherwise. Every
+/// Checks the option values that do not depend on the model or the profile and that the settings
+/// table does not (the tabs' angle, gap and limits, and the joint sizes against each other: a
+/// hole's edge distance and spacing against its diameter, a slot's length against the spacing),
+/// and guards the layout against values it cannot work with (a tick spacing, tab width or scale
+/// outside the ranges above): Usage with a one-line message naming the setting otherwise. Every
 /// export checks them; a caller may check them before it has a model.
 Status checkExportOptions(const ExportOptions& options);
 

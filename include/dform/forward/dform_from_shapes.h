@@ -44,13 +44,12 @@ struct SolvedDForm {
   double startFractionA = 0, startFractionB = 0;  ///< resolved starting pair
 };
 
-/// Checks a job's numbers before any work is done (Usage errors).
-Status validateForwardJob(const ForwardSettings& job);
-
 /// The D-Form of two shapes in memory (mm, counter-clockwise loops, as io's readOutline gives
 /// them): checked (lengths, joins, the memory the run needs), meshed and solved by the exact model
-/// or the paper's. Messages and errors name a piece by its outline's `source` (a file path), else
-/// "piece A" / "piece B". A failed allocation is an error with the resolution that fits.
+/// or the paper's. `settings` are in their ranges (the pipeline's settings table checks them:
+/// pipeline/settings.h checkSettings, which makeDForm runs first). Messages and errors name a piece
+/// by its outline's `source` (a file path), else "piece A" / "piece B". A failed allocation is an
+/// error with the resolution that fits.
 Result<SolvedDForm> solveDForm(Shape2 a, Shape2 b, const ForwardSettings& settings,
                                MessageSink& sink, const RunHooks& hooks = {});
 

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <string>
+#include <vector>
 
 #include "dform/core/constants.h"
 #include "dform/model/inextensible.h"
@@ -34,6 +36,28 @@ enum class JoinedBoundary { Outer, Inner };
 /// discs zipped along their outlines, no drawn creases, a convex glued metric), else the ruled
 /// one where it finds a state that does not fold the sheet back on itself, else the paper's.
 enum class ModelChoice { Auto, Exact, Ruled, Paper, General };
+
+/// A model choice's name (job files, the command line, Python, the studio) and what it does.
+struct ModelChoiceInfo {
+  ModelChoice choice;
+  const char* name;
+  const char* help;
+};
+
+/// Every model choice in the order --help lists them: the settings table's choices of the model
+/// (pipeline/settings.h). A new choice is a value of ModelChoice and its line here.
+const std::vector<ModelChoiceInfo>& modelChoices();
+
+/// A value of the join (which boundary of A, then of B, is zipped) as job files name it
+/// ("outer,inner") and what it makes.
+struct JoinChoiceInfo {
+  std::string name;
+  JoinedBoundary a, b;
+  const char* help;
+};
+
+/// Every join: the settings table's choices of the join.
+const std::vector<JoinChoiceInfo>& joinChoices();
 
 /// The range of ForwardSettings::interiorEdgeFactor: finer meshes cost more than they show, and
 /// coarser ones leave the paper model too few triangles to bend.

@@ -30,13 +30,11 @@ struct SolvedPieces {
   Timings timings;
 };
 
-/// Checks a job's numbers before any work is done (Usage errors).
-Status validateInverseJob(const InverseSettings& job);
-
 /// The pieces for `curve` (mm, closed, in memory): initialised (pre-D-Form; the exact model where
 /// the curve lies on its convex hull) and optimised. Messages and errors name the curve by its
 /// `source` (a file path), else "the curve". A failed allocation is an error with the resolution
-/// that fits.
+/// that fits. `settings` are in their ranges (the pipeline's settings table checks them:
+/// pipeline/settings.h checkSettings, which makePieces runs first).
 Result<SolvedPieces> solvePieces(const Curve3& curve, const InverseSettings& settings,
                                  MessageSink& sink, const RunHooks& hooks = {});
 

@@ -1,6 +1,7 @@
 // The one table per objective of its terms and their weights: forward modelling's (forwardTerms)
-// and inverse modelling's (inverseTerms). Job files, --weight, the validation of a job,
-// report.json's term names and the solves (their Problem and their local-global relaxation's
+// and inverse modelling's (inverseTerms). The settings table's weight rows (pipeline/settings.h:
+// job files, the command line, Python, the studio, the range check), report.json's term names
+// and the solves (their Problem and their local-global relaxation's
 // linear terms) all loop over it. To add a term: a member in the mode's weights struct
 // (model/weights.h) and a row in its table (its name, that member, its factory, whether it is
 // linear); the factory reads TermInputs (model/terms.h), which grows a field if it needs one.
@@ -24,8 +25,9 @@ namespace dform {
 /// One term of an objective and its weight.
 template <typename Weights>
 struct TermRow {
-  std::string name;         ///< as job files, --weight and report.json give it
+  std::string name;         ///< as job files, the settings table and report.json give it
   double Weights::*weight;  ///< its member of the weights struct
+  std::string help;         ///< what the weight weighs, one line (the settings table's help)
   /// Makes the term; null for a weight that switches an exact constraint instead of weighting a
   /// term of its own (forward's alignment: the seam closed; inverse's closeness: held on the
   /// curve).
@@ -105,19 +107,6 @@ const TermRow<Weights>* findTerm(const TermTable<Weights>& table, const std::str
   for (const TermRow<Weights>& row : table)
     if (row.name == name) return &row;
   return nullptr;
-}
-
-/// Why a job's weights and solver options cannot be used, or "" when they can: a weight that is
-/// negative or not finite, or solver options that are not valid. Forward and inverse jobs share it.
-template <typename Weights>
-std::string settingsProblem(const TermTable<Weights>& table, const Weights& weights,
-                            const SolverOptions& solver) {
-  for (const TermRow<Weights>& row : table) {
-    const double weight = weights.*row.weight;
-    if (!(weight >= 0.0 && std::isfinite(weight))) return "weights must be finite and >= 0";
-  }
-  std::string why;
-  return solver.isValid(&why) ? "" : "solver options: " + why;
 }
 
 }  // namespace dform

@@ -26,13 +26,18 @@ struct ForwardRun : SolvedDForm {
 Result<ForwardRun> runForward(const ForwardJob& job, MessageSink& sink, const RunHooks& hooks = {});
 
 /// The D-Form of two shapes in memory, checked as a run from files checks its job and files
-/// (validateForwardJob, then io's checkOutline: the same codes and messages, a piece named by
-/// its outline's `source`, else "piece A" / "piece B"), solved as forward's solveDForm does (the
-/// exact model or the paper's), and measured: measureDForm(solveDForm(...)).
+/// (the settings table's checkSettings, then io's checkOutline: the same codes and messages, a
+/// piece named by its outline's `source`, else "piece A" / "piece B"), solved as forward's
+/// solveDForm does (the exact model or the paper's), and measured: measureDForm(solveDForm(...)).
 Result<ForwardRun> makeDForm(Shape2 a, Shape2 b, const ForwardSettings& settings, MessageSink& sink,
                              const RunHooks& hooks = {});
 
-/// The figures makeDForm gives a solved D-Form, for a front end that shows the shape (solveDForm)
+/// makeDForm without the figures, for a front end that shows the shape before them (the studio):
+/// checked and solved as makeDForm does; measureDForm gives its figures.
+Result<SolvedDForm> shapeDForm(Shape2 a, Shape2 b, const ForwardSettings& settings,
+                               MessageSink& sink, const RunHooks& hooks = {});
+
+/// The figures makeDForm gives a solved D-Form, for a front end that shows the shape (shapeDForm)
 /// before its figures; `settings` and `pieces` (the pieces' names) for the message when
 /// measuring runs out of memory.
 Result<Metrics> measureDForm(const SolvedDForm& solved, const ForwardSettings& settings,

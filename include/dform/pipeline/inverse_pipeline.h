@@ -28,9 +28,9 @@ struct InverseRun : SolvedPieces {
 Result<InverseRun> runInverse(const InverseJob& job, MessageSink& sink, const RunHooks& hooks = {});
 
 /// The two flat pieces whose D-Form has `curve` (mm, closed, in memory) as its seam, checked as
-/// a run from a file checks its job and file (validateInverseJob, then io's checkCurve: the same
-/// codes and messages, the curve named by its `source`, else "the curve"), solved as inverse's
-/// solvePieces does, and measured.
+/// a run from a file checks its job and file (the settings table's checkSettings, then io's
+/// checkCurve: the same codes and messages, the curve named by its `source`, else "the curve"),
+/// solved as inverse's solvePieces does, and measured.
 Result<InverseRun> makePieces(Curve3 curve, const InverseSettings& settings, MessageSink& sink,
                               const RunHooks& hooks = {});
 

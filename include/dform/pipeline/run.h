@@ -13,18 +13,15 @@
 #include "dform/core/messages.h"
 #include "dform/core/status.h"
 #include "dform/pipeline/batch.h"
+#include "dform/pipeline/exit_code.h"
 #include "dform/pipeline/forward_pipeline.h"
 #include "dform/pipeline/job_file.h"
+#include "dform/pipeline/settings.h"
 #include "dform/pipeline/sweep.h"
 #include "dform/validate/gate.h"
 #include "dform/validate/metrics.h"
 
 namespace dform {
-
-struct ExportOptions;
-
-/// The documented exit code of an error kind (README "Exit codes"); batch manifests record it.
-int exitCode(ErrorCode code);
 
 /// The templates folder (export profiles, gate presets, the report page and the studio's page):
 /// $DFORM_TEMPLATES, else share/dform/templates under the running program's prefix (an installed
@@ -37,44 +34,28 @@ Result<std::string> templatesDir();
 /// templates folder.
 std::vector<std::string> exportProfileNames();
 
-/// What to do with a run's result.
+/// Where a run writes its result (how it writes it is the job's: Job::exporting).
 struct OutputOptions {
-  std::string outDir;
-  bool exportFiles = true;        ///< write the cutting patterns and previews
-  std::string profile = "laser";  ///< export profile name or file
-  std::string sheet;              ///< "WxH" in mm (e.g. 600x400mm); empty: the exporter's default
-  std::string page;               ///< --page A4|Letter|A3|Tabloid|WxHmm; empty: the profile's
-  std::string scale;              ///< --scale 0.8 | 80% | fit; empty: true size
-  std::optional<double> tabWidthMm;     ///< --tab-width (mm; 0 = no tabs); unset: the default
-  std::string tabs;                     ///< --tabs a|b|alternate|none; empty: the profile's
-  std::optional<double> tickSpacingMm;  ///< --tick-spacing (mm); unset: the default
-  std::string joint;  ///< --joint glue|holes|lace|slots; empty: the material's, else the profile's
-  std::string material;          ///< --material paper|card|polypropylene|plywood; empty: none
-  std::optional<double> kerfMm;  ///< --kerf: the cutter's kerf (mm); unset: the profile's
-  /// --hole-spacing, --hole-diameter, --hole-edge (mm); unset: the material's or the defaults
-  std::optional<double> holeSpacingMm, holeDiameterMm, holeEdgeMm;
-  std::optional<double> slotLengthMm;   ///< --slot-length (mm); unset: half the hole spacing
-  bool gltfText = false;                ///< --gltf: dform.gltf (text) instead of dform.glb
-  bool title = true;                    ///< the title block on the sheets (--no-title: none)
-  std::optional<double> scoreFoldsDeg;  ///< --score-folds (degrees); unset: no folds scored
-  std::string gate = "default";         ///< gate name or file; "none" skips the gate
-  bool exportAnyway = false;  ///< export even when the gate fails (files marked FAILED GATE)
-  bool quiet = false;
+  std::string outDir;  ///< the result folder, replaced as one transaction
 };
 
 /// A gate preset's name (templates/gates/NAME.json: Usage when there is none) or a gate file.
 Result<GateLimits> loadGate(const std::string& nameOrPath);
 
-/// A run's settings, checked before anything is solved: the gate's limits (none: no gate) and
-/// the export's options with its profile read.
+/// A run's export settings made ready before anything is solved: the gate's limits (none: no
+/// gate), the export's options completed (the templates folder, the profile read) and what is
+/// released.
 struct RunSettings {
   std::optional<GateLimits> limits;
   std::shared_ptr<const ExportOptions> exporting;
+  bool cuttingFiles = true;   ///< ExportSettings::cuttingFiles
+  bool exportAnyway = false;  ///< ExportSettings::exportAnyway
 };
 
-/// Checks `output`'s gate, profile, sheet, page, scale and tabs: Usage (or the profile's read
-/// error) naming the option, before any work is done.
-Result<RunSettings> checkOutput(const OutputOptions& output);
+/// Checks `settings` (each in its range, the export's options against each other) and reads its
+/// gate and profile: Usage (or the gate's or profile's read error) naming the setting, before any
+/// work is done.
+Result<RunSettings> checkOutput(const ExportSettings& settings);
 
 /// What a result written into its folder shows afterwards. `exported` is the export's error
 /// when the result was saved without its cutting files.
@@ -87,20 +68,17 @@ struct WrittenResult {
 };
 
 /// Solves `job`, gates it, lays out its pattern and writes the whole result into output.outDir
-/// as one transaction (locked, staged, swapped in). hooks.interrupted stops it with the folder
-/// left as it was; an allocation that fails past the solve is reported with a resolution.
+/// as one transaction (locked, staged, swapped in), as `settings` (checkOutput of the job's
+/// exporting) say. hooks.interrupted stops it with the folder left as it was; an allocation that
+/// fails past the solve is reported with a resolution.
 Result<WrittenResult> runAndWrite(const Job& job, const OutputOptions& output,
                                   const RunSettings& settings, MessageSink& sink,
                                   const RunHooks& hooks);
 
 /// A result made in memory (makeDForm, makePieces) written into output.outDir as runAndWrite
 /// writes one; `job` (its settings, and names for its inputs) is what report.json records.
-Result<WrittenResult> writeResult(const ForwardJob& job, const ForwardRun& run,
-                                  const OutputOptions& output, const RunSettings& settings,
-                                  MessageSink& sink);
-Result<WrittenResult> writeResult(const InverseJob& job, const InverseRun& run,
-                                  const OutputOptions& output, const RunSettings& settings,
-                                  MessageSink& sink);
+Result<WrittenResult> writeResult(const Job& job, const SolvedRun& run, const OutputOptions& output,
+                                  const RunSettings& settings, MessageSink& sink);
 
 /// `base` from every start of `options`, each written as runAndWrite writes one into
 /// output.outDir/<start>/, with sweep.json and gallery.html (docs/sweep.md).
@@ -111,12 +89,13 @@ Result<std::vector<SweepRow>> sweepAndWrite(const Job& base, const SweepOptions&
                                             const std::atomic<bool>& interrupted,
                                             MessageSink* notes = nullptr);
 
-/// Every job file of `jobs` in the options' shard, each written as runAndWrite writes one into
-/// output.outDir/<job name>/, with the manifest (docs/batch.md).
+/// Every job file of `jobs` in the options' shard, each read, changed by `adjust` (the command
+/// line's settings over the file's; may be empty), checked (checkOutput) and written as
+/// runAndWrite writes one into output.outDir/<job name>/, with the manifest (docs/batch.md).
 Result<std::vector<BatchRow>> batchAndWrite(const std::vector<BatchJob>& jobs,
                                             const BatchOptions& options,
                                             const OutputOptions& output,
-                                            const RunSettings& settings,
+                                            const std::function<Status(Job&)>& adjust,
                                             const BatchProgress& progress,
                                             const std::atomic<bool>& interrupted);
 

@@ -13,13 +13,14 @@
 
 namespace dform {
 
-/// `dform export DIR`: the cutting files of the result in `dir` with `output`'s export options,
-/// into `dir` itself (its other files kept) or into output.outDir when given, as one
-/// transaction. A result that fails its gate again, or whose pattern does not lay out cleanly,
-/// is exported only with output.exportAnyway (marked FAILED GATE), else GateFailed. Returns the
-/// folder the files went into.
-Result<std::string> exportSavedResult(const std::string& dir, const OutputOptions& output,
-                                      MessageSink& sink, const std::atomic<bool>& interrupted);
+/// `dform export DIR`: the cutting files of the result in `dir` with the pattern settings of
+/// `settings` (its gate is the one the result recorded), into `dir` itself (its other files
+/// kept) or into `outDir` when given, as one transaction. A result that fails its gate again, or
+/// whose pattern does not lay out cleanly, is exported only with settings.exportAnyway (marked
+/// FAILED GATE), else GateFailed. Returns the folder the files went into.
+Result<std::string> exportSavedResult(const std::string& dir, const ExportSettings& settings,
+                                      const std::string& outDir, MessageSink& sink,
+                                      const std::atomic<bool>& interrupted);
 
 /// What `dform validate DIR` found: the gate run on the meshes, and report.json compared with
 /// the figures measured again.

@@ -67,10 +67,6 @@ class Result:
                       doc="inverse: the resampled curve (n, 3) the seam follows, else None")
 
     def export(self, out_dir, **options):
-        """Writes the result folder as `dform forward` does: meshes, report.json, report.html
-        and, when the gate passes, the cutting files; returns the gate's verdict and checks.
-        Options: profile="laser", gate="default", export_anyway=False, cutting_files=True,
-        sheet="", page="", scale=""."""
         if self._run is None:
             name, args, kwargs = self._call
             self._run = getattr(_dform, name)(*args, **kwargs)
@@ -104,16 +100,40 @@ class Result:
 
 
 def forward(outline_a, outline_b, **options):
-    """Two flat outlines (n, 2) in mm -> the D-Form they make (docs/python.md). Options:
-    holes_a=[], holes_b=[], creases_a=[], creases_b=[], resolution=100, model="auto",
-    start_a=0.0, start_b=0.0, flip=False, fit_perimeter=False, interior_edge=1.0,
-    join="outer,outer", weights={}, name_a="piece A", name_b="piece B"."""
     call = ("forward", _copy.deepcopy((outline_a, outline_b)), _copy.deepcopy(options))
     return Result(_dform.forward(outline_a, outline_b, **options), call)
 
 
 def inverse(curve, **options):
-    """A closed 3D seam curve (n, 3) in mm -> the two flat pieces that make it. Options:
-    resolution=100, weights={}, name="curve"."""
     call = ("inverse", _copy.deepcopy((curve,)), _copy.deepcopy(options))
     return Result(_dform.inverse(curve, **options), call)
+
+
+def _settings_doc(function):
+    """The keyword arguments of `function` as the settings table (dform._dform.setting_rows) has
+    them: each with its default (or what it is when not given), range and help."""
+    lines, weights = [], []
+    for row in _dform.setting_rows(function):
+        if row["weight"]:
+            weights.append("{}={}".format(row["weight"], row["default"]))
+            continue
+        default = row["unset"] if row["unset"] else repr(row["default"])
+        unit = " ({})".format(row["unit"]) if row["unit"] else ""
+        lines.append("    {}: {}{}; {}; default {}".format(
+            row["keyword"], row["help"], unit, row["range"], default))
+    if weights:
+        lines.append("    weights: a dict of term weights, each >= 0; defaults " + ", ".join(weights))
+    return "\n".join(lines)
+
+
+forward.__doc__ = """Two flat outlines (n, 2) in mm -> the D-Form they make (docs/python.md).
+    holes_a, holes_b, creases_a, creases_b: lists of (n, 2) arrays; name_a, name_b: the pieces'
+    names (default "piece A", "piece B"). The settings, as keyword arguments:
+""" + _settings_doc("forward")
+inverse.__doc__ = """A closed 3D seam curve (n, 3) in mm -> the two flat pieces that make it.
+    name: the curve's name (default "curve"). The settings, as keyword arguments:
+""" + _settings_doc("inverse")
+Result.export.__doc__ = """Writes the result folder as `dform forward` does: meshes, report.json,
+    report.html and, when the gate passes, the cutting files; returns the gate's verdict and
+    checks. The export settings, as keyword arguments:
+""" + _settings_doc("export")

@@ -1,6 +1,6 @@
 # Type stubs of the package dform (docs/python.md); tests/python/test_stubs.py checks them against
-# the module with mypy's stubtest.
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, TypedDict
+# the module with mypy's stubtest, and their keyword arguments against the settings table's rows.
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, TypedDict, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -55,19 +55,25 @@ class Result:
         out_dir: str,
         *,
         profile: str = ...,
-        gate: str = ...,
-        export_anyway: bool = ...,
-        cutting_files: bool = ...,
-        sheet: str = ...,
-        page: str = ...,
-        scale: str = ...,
-        joint: str = ...,
-        material: str = ...,
+        sheet: Optional[str] = ...,
+        page: Optional[str] = ...,
+        scale: Union[float, str] = ...,
+        tab_width: float = ...,
+        tabs: Optional[str] = ...,
+        tick_spacing: float = ...,
+        joint: Optional[str] = ...,
+        material: Optional[str] = ...,
         kerf: Optional[float] = ...,
         hole_spacing: Optional[float] = ...,
         hole_diameter: Optional[float] = ...,
         hole_edge: Optional[float] = ...,
         slot_length: Optional[float] = ...,
+        score_folds: Optional[float] = ...,
+        title: bool = ...,
+        gltf: bool = ...,
+        cutting_files: bool = ...,
+        export_anyway: bool = ...,
+        gate: str = ...,
     ) -> Dict[str, Any]: ...
     def __getstate__(self) -> Dict[str, Any]: ...
     def __setstate__(self, state: Dict[str, Any]) -> None: ...
@@ -81,24 +87,32 @@ def forward(
     holes_b: Sequence[_ArrayLike] = ...,
     creases_a: Sequence[_ArrayLike] = ...,
     creases_b: Sequence[_ArrayLike] = ...,
-    resolution: int = ...,
-    model: str = ...,
-    start_a: float = ...,
-    start_b: float = ...,
-    flip: bool = ...,
-    fit_perimeter: bool = ...,
-    interior_edge: float = ...,
-    join: str = ...,
-    weights: Mapping[str, float] = ...,
     name_a: str = ...,
     name_b: str = ...,
+    model: str = ...,
+    join: str = ...,
+    start_a: Union[float, Mapping[str, Any]] = ...,
+    start_b: Union[float, Mapping[str, Any]] = ...,
+    interior_edge: float = ...,
+    flip: bool = ...,
+    fit_perimeter: bool = ...,
+    perimeter_tolerance: float = ...,
+    weights: Mapping[str, float] = ...,
+    resolution: int = ...,
+    max_iterations: int = ...,
+    function_tolerance: float = ...,
+    gradient_tolerance: float = ...,
 ) -> Result: ...
 def inverse(
     curve: _ArrayLike,
     *,
-    resolution: int = ...,
-    weights: Mapping[str, float] = ...,
     name: str = ...,
+    closed: bool = ...,
+    weights: Mapping[str, float] = ...,
+    resolution: int = ...,
+    max_iterations: int = ...,
+    function_tolerance: float = ...,
+    gradient_tolerance: float = ...,
 ) -> Result: ...
 def read_outline(path: str) -> _Outline: ...
 def read_curve(path: str) -> _Floats: ...

@@ -8,8 +8,5 @@ int main() {
   const consumer::Point corner{3, 4};
   const dform::Job job;
   const dform::DForm made;
-  return corner.x + corner.y == 7 && job.mode == dform::Job::Mode::Forward &&
-                 made.a.shape.rows() == 0
-             ? 0
-             : 1;
+  return corner.x + corner.y == 7 && job.isForward() && made.a.shape.rows() == 0 ? 0 : 1;
 }

@@ -1,0 +1,261 @@
+// The settings table walked row by row (pipeline/settings.h): every setting has its command-line
+// flag (listed by --help and taken by the command), its job-file key and its Python keyword
+// (tests/python/test_settings.py takes each); each accepts its default, refuses a value out of its
+// range or choices with a message naming the setting (by its flag on the command line, its key in
+// a job file and in the library's message), and round-trips through a job file.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
+#include <string>
+
+#include "dform/pipeline/job_file.h"
+#include "dform/pipeline/settings.h"
+
+namespace dform {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct CommandRun {
+  int exitCode = 0;
+  std::string out;  ///< stdout and stderr
+};
+
+CommandRun dform(const std::string& arguments) {
+  CommandRun r;
+  const std::string command = std::string(DFORM_EXE) + " " + arguments + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  char buffer[4096];
+  while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) r.out.append(buffer, n);
+  const int status = pclose(pipe);
+  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::string quoted(const std::string& text) { return "'" + text + "'"; }
+
+// A job of the row's mode.
+Job jobOf(const SettingRow& row) {
+  return row.scope == SettingScope::Inverse ? Job(InverseJob()) : Job(ForwardJob());
+}
+
+// A value of `row` in its range or choices other than its default, as JSON text.
+std::string otherValue(const SettingRow& row) {
+  const json fallback = json::parse(settingDefault(row));
+  switch (row.type) {
+    case SettingType::Flag: return fallback.get<bool>() ? "false" : "true";
+    case SettingType::Integer: return std::to_string(int(row.min) + 1);
+    case SettingType::Number:
+    case SettingType::Weight: {
+      const double low = std::isfinite(row.min) ? row.min : -1.0;
+      const double high = std::isfinite(row.max) ? row.max : low + 10.0;
+      const double inside = low + 0.375 * (high - low);
+      const bool same = fallback.is_number() && inside == fallback.get<double>();
+      return json(same ? low + 0.625 * (high - low) : inside).dump();
+    }
+    case SettingType::Choice:
+      for (const SettingChoice& c : row.choices)
+        if (fallback.is_null() || c.name != fallback.get<std::string>()) return json(c.name).dump();
+      return "";
+    case SettingType::Start: return R"({"near": [12.5, -3]})";
+    case SettingType::Text: {
+      // Every text setting has its example here: a new one fails until it is given one.
+      const std::map<Setting, std::string> examples = {{Setting::Profile, "\"print\""},
+                                                       {Setting::Sheet, "\"300x200mm\""},
+                                                       {Setting::Page, "\"A3\""},
+                                                       {Setting::Scale, "0.5"},
+                                                       {Setting::Gate, "\"strict\""}};
+      const auto found = examples.find(row.id);
+      return found == examples.end() ? "" : found->second;
+    }
+  }
+  return "";
+}
+
+// A value `row` must refuse (out of its range, not one of its choices, not of its kind), as
+// JSON text, and the same as the command line would give it ("" where a flag takes no value).
+std::pair<std::string, std::string> badValue(const SettingRow& row) {
+  switch (row.type) {
+    case SettingType::Flag: return {"\"yes\"", ""};
+    case SettingType::Integer: {
+      const long long bad =
+          std::isfinite(row.max) && row.max < 2e9 ? (long long)row.max + 1 : (long long)row.min - 1;
+      return {std::to_string(bad), std::to_string(bad)};
+    }
+    case SettingType::Number:
+    case SettingType::Weight: {
+      const double bad =
+          std::isfinite(row.min) ? (row.minExcluded ? row.min : row.min - 1) : row.max + 1;
+      return {json(bad).dump(), json(bad).dump()};
+    }
+    case SettingType::Choice: return {"\"no-such-choice\"", "no-such-choice"};
+    case SettingType::Start: return {"1.5", "1.5"};
+    case SettingType::Text: {
+      const std::map<Setting, std::string> bad = {{Setting::Sheet, "big"},
+                                                  {Setting::Page, "B9"},
+                                                  {Setting::Scale, "huge"},
+                                                  {Setting::Profile, ""},
+                                                  {Setting::Gate, ""}};
+      const std::string text = bad.at(row.id);
+      return {json(text).dump(), text};
+    }
+  }
+  return {"", ""};
+}
+
+// The command line's text of a JSON value.
+std::string commandLineText(const SettingRow& row, const std::string& value) {
+  const json v = json::parse(value);
+  if (v.is_string()) return v.get<std::string>();
+  if (row.type == SettingType::Weight) return row.weightName() + "=" + v.dump();
+  return v.dump();
+}
+
+class SettingsTable : public testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("dform-settings-table-" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // The command's arguments to run `row`'s mode on the samples, into a folder that cannot be
+  // made: a setting the command takes ends in exit 6 (the output), one it refuses in exit 2.
+  std::string command(const SettingRow& row) const {
+    const std::string samples = DFORM_SAMPLES_DIR;
+    const std::string unwritable = " -q -o /proc/dform-settings-table/out";
+    if (row.scope == SettingScope::Inverse)
+      return "inverse " + samples + "/inverse/tennis-ball.obj" + unwritable;
+    return "forward " + samples + "/forward/ellipses-a.svg " + samples + "/forward/ellipses-b.svg" +
+           unwritable;
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(SettingsTable, EveryRowHasItsNamesInEveryShell) {
+  std::set<std::string> keys[2];
+  const std::regex keyword("^[a-z][a-z0-9_]*$"), flag("^--[a-z][a-z0-9-]*$");
+  const std::string forwardHelp = dform("forward --help").out;
+  const std::string inverseHelp = dform("inverse --help").out;
+  for (const SettingRow& row : settingRows()) {
+    SCOPED_TRACE(row.key);
+    EXPECT_EQ(row.key.rfind(settingKey(row.id), 0), 0u) << "the key is its setting's";
+    EXPECT_TRUE(std::regex_match(row.keyword, keyword)) << row.keyword;
+    EXPECT_TRUE(std::regex_match(row.flag, flag)) << row.flag;
+    EXPECT_FALSE(row.help.empty());
+    for (int mode = 0; mode < 2; ++mode) {
+      const bool forward = mode == 0;
+      if (forward ? row.scope == SettingScope::Inverse : row.scope == SettingScope::Forward)
+        continue;
+      EXPECT_TRUE(keys[mode].insert(row.key).second) << "one row per key and mode";
+      EXPECT_EQ(findSetting(row.key, forward), &row);
+      const std::string& help = forward ? forwardHelp : inverseHelp;
+      EXPECT_NE(help.find("  " + row.flag), std::string::npos)
+          << row.flag << " missing from " << (forward ? "forward" : "inverse") << " --help";
+      if (!row.nearFlag.empty()) {
+        EXPECT_NE(help.find("  " + row.nearFlag), std::string::npos);
+      }
+    }
+  }
+}
+
+TEST_F(SettingsTable, EveryRowTakesItsDefaultAndRefusesAValueOutOfRange) {
+  for (const SettingRow& row : settingRows()) {
+    SCOPED_TRACE(row.key);
+    // The library: its default is taken, a bad value refused naming the setting.
+    Job job = jobOf(row);
+    const std::string fallback = settingDefault(row);
+    EXPECT_TRUE(setSetting(job, row, fallback).isOk()) << fallback;
+    EXPECT_EQ(settingValue(job, row), fallback);
+    const auto [bad, badText] = badValue(row);
+    ASSERT_FALSE(bad.empty()) << "no bad value for this row's type";
+    const Status refused = setSetting(job, row, bad);
+    EXPECT_EQ(refused.code(), ErrorCode::Usage) << bad;
+    EXPECT_EQ(refused.setting(), row.id) << refused.message();
+    EXPECT_EQ(refused.message().rfind(row.key + " ", 0), 0u) << refused.message();
+    EXPECT_EQ(settingValue(job, row), fallback) << "a refused value leaves the setting as it was";
+
+    // A job file: the default read, the bad value refused naming the key.
+    for (const std::string& value : {fallback, bad}) {
+      const std::size_t dot = row.key.find('.');
+      json file = {{"mode", row.scope == SettingScope::Inverse ? "inverse" : "forward"},
+                   {"piece_a", "a.svg"},
+                   {"piece_b", "b.svg"},
+                   {"curve", "c.obj"}};
+      file.erase(row.scope == SettingScope::Inverse ? "piece_a" : "curve");
+      file.erase(row.scope == SettingScope::Inverse ? "piece_b" : "curve");
+      if (dot == std::string::npos)
+        file[row.key] = json::parse(value);
+      else
+        file[row.key.substr(0, dot)][row.key.substr(dot + 1)] = json::parse(value);
+      if (json::parse(value).is_null()) continue;  // an unset optional setting: no key to write
+      const Result<Job> read = parseJobJson(file.dump(), "job.json", "/base");
+      if (value == fallback) {
+        EXPECT_TRUE(read.isOk()) << read.status().message();
+      } else {
+        ASSERT_FALSE(read.isOk()) << file.dump();
+        EXPECT_EQ(read.status().code(), ErrorCode::InputInvalid);
+        EXPECT_EQ(read.status().message().rfind("job.json: " + row.key + ": ", 0), 0u)
+            << read.status().message();
+      }
+    }
+  }
+}
+
+TEST_F(SettingsTable, TheCommandLineTakesEveryDefaultAndRefusesAValueOutOfRange) {
+  for (const SettingRow& row : settingRows()) {
+    SCOPED_TRACE(row.key);
+    const std::string fallback = settingDefault(row);
+    if (row.type == SettingType::Flag) {
+      // A flag sets the value it names; it takes no value, so none is out of range.
+      EXPECT_EQ(dform(command(row) + " " + row.flag).exitCode, 6);
+      continue;
+    }
+    if (fallback != "null") {
+      const CommandRun taken =
+          dform(command(row) + " " + row.flag + " " + quoted(commandLineText(row, fallback)));
+      EXPECT_EQ(taken.exitCode, 6) << taken.out;
+    }
+    const std::string badText = badValue(row).second;
+    const CommandRun refused =
+        dform(command(row) + " " + row.flag + " " +
+              quoted(row.type == SettingType::Weight ? row.weightName() + "=" + badText : badText));
+    EXPECT_EQ(refused.exitCode, 2) << refused.out;
+    EXPECT_EQ(refused.out.rfind("dform: error: " + row.flag, 0), 0u) << refused.out;
+  }
+}
+
+TEST_F(SettingsTable, EveryRowRoundTripsThroughAJobFile) {
+  for (const bool forward : {true, false}) {
+    // Every setting of the mode at once at a value other than its default.
+    Job job = forward ? Job(ForwardJob{ForwardSettings(), "/base/a.svg", "/base/b.svg"})
+                      : Job(InverseJob{InverseSettings(), "/base/c.obj", false});
+    for (const SettingRow* row : settingRows(forward)) {
+      const std::string value = otherValue(*row);
+      ASSERT_FALSE(value.empty()) << row->key << ": no other value for this row";
+      const Status set = setSetting(job, *row, value);
+      ASSERT_TRUE(set.isOk()) << row->key << " = " << value << ": " << set.message();
+    }
+    const std::string written = jobToJson(job);
+    const Result<Job> read = parseJobJson(written, "job.json", "/base");
+    ASSERT_TRUE(read.isOk()) << read.status().message() << "\n" << written;
+    for (const SettingRow* row : settingRows(forward)) {
+      EXPECT_EQ(settingValue(read.value(), *row), settingValue(job, *row)) << row->key;
+      EXPECT_NE(settingValue(read.value(), *row), settingDefault(*row)) << row->key;
+    }
+    EXPECT_EQ(jobToJson(read.value()), written);
+  }
+}
+
+}  // namespace
+}  // namespace dform
