@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "browser.h"
 #include "dform/core/message_text.h"
 #include "dform/pipeline/saved_result.h"
 #include "terminal.h"

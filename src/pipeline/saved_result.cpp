@@ -91,8 +91,7 @@ Result<std::string> exportSavedOrThrow(const std::string& dir, const ExportSetti
   // the export is staged with the result's other files and swapped in whole. Exported into
   // another folder (-o), the result is only read: held by a shared lock, written nowhere.
   ResultFolder folder;
-  const Status locked =
-      output.outDir.empty() ? folder.begin(dir, resultFileNames()) : folder.read(dir);
+  const Status locked = outDir.empty() ? folder.begin(dir, resultFileNames()) : folder.read(dir);
   if (!locked.isOk()) return locked;
   Result<DForm> model = readModel(dir);
   if (!model.isOk()) return model.status();

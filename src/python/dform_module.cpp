@@ -154,7 +154,7 @@ py::list messageList(const Made& made) {
 // A keyword argument's value as JSON text, as a job file would hold it: numpy's numbers as the
 // numbers they are (an integer type by its __index__), a tuple as a list.
 std::string jsonValue(const py::handle& value) {
-  static const py::object dumps = py::module_::import("json").attr("dumps");
+  const py::object dumps = py::module_::import("json").attr("dumps");
   const py::cpp_function plain([](const py::object& o) -> py::object {
     if (py::hasattr(o, "__index__")) return py::int_(o);
     return py::float_(o);

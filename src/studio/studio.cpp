@@ -54,28 +54,6 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
       .count();
 }
 
-// The warnings of a solve, each setting they mention named by its key (the page's field names).
-std::vector<std::string> warnings(const MessageSink& sink) {
-  std::vector<std::string> out;
-  for (const Message& m : sink.messages())
-    if (m.level == Level::Warning) out.push_back(plainSettings(m.text));
-  return out;
-}
-
-// The export dialog's fields when empty, as the settings table says: a page's and a sheet's
-// (what an unset one is) and the scale's (its range and default).
-json exportPlaceholders() {
-  json out = json::object();
-  for (Setting s : {Setting::Page, Setting::Sheet, Setting::Scale}) {
-    const SettingRow* row = findSetting(settingKey(s), true);
-    const std::string key = row->key.substr(row->key.find('.') + 1);
-    out[key] = !row->unset.empty()
-                   ? row->unset
-                   : json::parse(settingDefault(*row)).dump() + ": " + row->rangeText();
-  }
-  return out;
-}
-
 // A piece's outline, read from its text as the command line reads its file.
 PieceInput readPiece(const std::string& name, std::string text) {
   Result<Shape2> shape = parseOutline(text, name);
@@ -107,13 +85,11 @@ json pieceSummary(const PieceInput& piece) {
   return out;
 }
 
-// What decides whether a forward solve optimises: the pieces and every setting but the starts.
+// What decides whether a forward solve optimises: the pieces and the design's settings.
 std::string forwardDesign(const PieceInput& a, const PieceInput& b, const Job& job) {
   const std::hash<std::string> hash;
-  json settings = json::parse(settingsJson(job));
-  settings.erase(settingKey(Setting::StartA));
-  settings.erase(settingKey(Setting::StartB));
-  return std::to_string(hash(a.text)) + "/" + std::to_string(hash(b.text)) + "/" + settings.dump();
+  return std::to_string(hash(a.text)) + "/" + std::to_string(hash(b.text)) + "/" +
+         studio::designSettings(job);
 }
 
 // The shape first; its figures and the gate's verdict when the session asks for them (after the
@@ -143,7 +119,7 @@ studio::SolveAt forwardSolve(const PieceInput& a, const PieceInput& b,
         auto run = std::make_shared<const SolvedDForm>(std::move(made).value());
         const double madeMs = millisecondsSince(start);
         json out = studio::forwardResultJson(*run);
-        out["warnings"] = warnings(sink);
+        out["warnings"] = studio::warnings(sink.messages());
         out["timings"]["made"] = madeMs / 1000;
         out["timings"]["answer"] = (millisecondsSince(start) - madeMs) / 1000;
         const bool sparseExact = sparse && run->modelUsed.name == "exact";
@@ -172,7 +148,7 @@ studio::SolveAt inverseSolve(const CurveInput& curve, const InverseSettings& set
     if (!made.isOk()) return made.status();
     auto run = std::make_shared<const InverseRun>(std::move(made).value());
     json out = studio::inverseResultJson(*run);
-    out["warnings"] = warnings(sink);
+    out["warnings"] = studio::warnings(sink.messages());
     return studio::Solved{out, [run, gate] {
                             return verdictUnlessStopped([&] {
                               return studio::verdictJson(run->metrics,
@@ -434,7 +410,7 @@ void Studio::Impl::pageRoutes(httplib::Server& server) {
                  {{"forward", json::parse(settingsJson(startForward))},
                   {"inverse", json::parse(settingsJson(startInverse))}}},
                 {"mode", startsInverse ? "inverse" : "forward"},
-                {"placeholders", exportPlaceholders()},
+                {"placeholders", studio::exportPlaceholders()},
                 {"pieces", {pieceSummary(startA), pieceSummary(startB)}},
                 {"profiles", exportProfileNames()},
                 {"preview_resolution", Session::kPreviewResolution}};

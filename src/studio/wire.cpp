@@ -150,6 +150,32 @@ Job jobFrom(const json& request, const Job& base) {
   return job;
 }
 
+std::vector<std::string> warnings(const std::vector<Message>& messages) {
+  std::vector<std::string> out;
+  for (const Message& m : messages)
+    if (m.level == Level::Warning) out.push_back(plainSettings(m.text));
+  return out;
+}
+
+json exportPlaceholders() {
+  json out = json::object();
+  for (Setting s : {Setting::Page, Setting::Sheet, Setting::Scale}) {
+    const SettingRow* row = findSetting(settingKey(s), true);
+    const std::string key = row->key.substr(row->key.find('.') + 1);
+    out[key] = !row->unset.empty()
+                   ? row->unset
+                   : json::parse(settingDefault(*row)).dump() + ": " + row->rangeText();
+  }
+  return out;
+}
+
+std::string designSettings(const Job& job) {
+  json settings = json::parse(settingsJson(job));
+  for (Setting s : {Setting::StartA, Setting::StartB, Setting::Gate}) settings.erase(settingKey(s));
+  settings.erase("export");
+  return settings.dump();
+}
+
 json verdictJson(const Metrics& metrics, const GateReport& gate) {
   return {{"figures", figuresJson(metrics)}, {"gate", gateJson(gate)}};
 }

@@ -6,7 +6,9 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
+#include "dform/core/messages.h"
 #include "dform/pipeline/job.h"
 #include "dform/validate/gate.h"
 
@@ -39,6 +41,18 @@ nlohmann::json forwardResultJson(const SolvedDForm& run);
 /// A solved inverse run: as forwardResultJson, plus its figures, the curve match and the on-hull
 /// test.
 nlohmann::json inverseResultJson(const InverseRun& run);
+
+/// The warnings among `messages`, each setting they mention named by its key (the page's field
+/// names are the keys).
+std::vector<std::string> warnings(const std::vector<Message>& messages);
+
+/// The export dialog's fields when empty, as the settings table says: a page's and a sheet's
+/// (what an unset one is) and the scale's (its default and range), keyed "page", "sheet", "scale".
+nlohmann::json exportPlaceholders();
+
+/// The settings of `job` that shape its solve, as text: every setting but the starts and the
+/// export's (a session reuses a solve whose design text is the same).
+std::string designSettings(const Job& job);
 
 /// A run's figures (as report.json's "metrics") and the gate's verdict on them: {"figures",
 /// "gate"}, the gate's name, passed, and every check.

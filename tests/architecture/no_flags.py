@@ -2,8 +2,9 @@
 """Library code never words a command-line flag (docs/conventions.md): a message about a setting
 names it by mention() (core/setting.h) and each shell words it its own way. Lists every string
 literal of src/ and include/ outside src/cli/ that holds a flag ("--resolution", "--no-export")
-and exits 1, else 0. The command line's own sources (src/cli/) word flags, and the settings table
-(src/pipeline/settings.cpp) is where each setting's flag is written, once; comments may name them.
+and exits 1, else 0. The command line's own sources (src/cli/) word flags, and the settings
+table's rows (src/pipeline/setting_rows.cpp) are where each setting's flag is written, once;
+comments may name them.
 
     no_flags.py ROOT
     no_flags.py --self-test   (a planted flag in a message must be found, one in a comment not)
@@ -14,7 +15,7 @@ import sys
 import tempfile
 
 # The settings table: the one place a setting's flag is written (its flag column).
-TABLE = os.path.join("src", "pipeline", "settings.cpp")
+TABLE = os.path.join("src", "pipeline", "setting_rows.cpp")
 FLAG = re.compile(r"(?<![\w-])--[a-z][a-z0-9-]*")
 # A C++ string literal (escapes kept), and a raw one R"(...)".
 STRING = re.compile(r'R"\((.*?)\)"|"((?:[^"\\\n]|\\.)*)"')
@@ -79,7 +80,7 @@ def self_test():
                                    'auto s = mention(Setting::Kerf) + " must be";\n'
                                    '/* --page\n --sheet */ const char* x = "a-b--c";\n')
         write("src/cli/main.cpp", 'add_option("--kerf", k, "the kerf");\n')
-        write("src/pipeline/settings.cpp", 'row(Setting::Kerf, "--kerf", "kerf");\n')
+        write("src/pipeline/setting_rows.cpp", 'row(Setting::Kerf, "--kerf", "kerf");\n')
         assert flags_in_messages(root) == [], flags_in_messages(root)
         write("src/export/bad.cpp", 'return Status{Usage, "--kerf must be between 0 and 5"};\n'
                                     'x = 1;  // "--quiet" in a comment\n'

@@ -485,11 +485,13 @@ TEST_F(CliTest, ExportOptionsOnTheCommandLine) {
   const std::string bad = path("bad");
   expectError(run("forward " + pieces + " --tabs both -o " + bad), 2,
               "--tabs must be a, b, alternate or none");
-  expectError(run("forward " + pieces + " --tab-width 60 -o " + bad), 2, "tab width");
+  expectError(run("forward " + pieces + " --tab-width 60 -o " + bad), 2,
+              "--tab-width must be a number between 0 and 50 mm, got 60");
   expectError(run("forward " + pieces + " --tab-width wide -o " + bad), 2, "--tab-width");
-  expectError(run("forward " + pieces + " --tick-spacing 0.5 -o " + bad), 2, "tick spacing");
+  expectError(run("forward " + pieces + " --tick-spacing 0.5 -o " + bad), 2,
+              "--tick-spacing must be a number at least 1 mm");
   expectError(run("run " + sample("forward/ellipse-twin.json") + " --tick-spacing -3 -o " + bad), 2,
-              "tick spacing");
+              "--tick-spacing must be a number at least 1 mm, got -3");
   EXPECT_FALSE(fs::exists(bad));
   expectError(run("export " + out + " --tabs left"), 2, "--tabs");
 
@@ -510,7 +512,8 @@ TEST_F(CliTest, ExportOptionsOnTheCommandLine) {
   EXPECT_GT(slots["joint_slots"].size(), 10u);
   expectError(run("export " + out + " --joint slots --slot-length 1"), 2, "--slot-length");
   expectError(run("export " + out + " --joint slots --tabs a"), 2, "--joint slots");
-  expectError(run("export " + out + " --material steel"), 2, "--material must be one of");
+  expectError(run("export " + out + " --material steel"), 2,
+              "--material must be paper, card, polypropylene or plywood");
   expectError(run("export " + out + " --kerf 9"), 2, "--kerf");
   expectError(run("export " + out + " --kerf thin"), 2, "--kerf");
   expectError(run("export " + out + " --hole-edge 1"), 2, "--hole-edge");

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -232,6 +233,65 @@ TEST_F(SettingsTable, TheCommandLineTakesEveryDefaultAndRefusesAValueOutOfRange)
               quoted(row.type == SettingType::Weight ? row.weightName() + "=" + badText : badText));
     EXPECT_EQ(refused.exitCode, 2) << refused.out;
     EXPECT_EQ(refused.out.rfind("dform: error: " + row.flag, 0), 0u) << refused.out;
+  }
+}
+
+// report.json's schema (templates/schema/report.schema.json) describes the job it records: every
+// row of each mode is a property of the mode's job there, with the row's choices and range.
+TEST_F(SettingsTable, TheReportSchemaDescribesEveryRow) {
+  std::ifstream in(DFORM_REPORT_SCHEMA);
+  const json schema = json::parse(in);
+  const json& defs = schema.at("$defs");
+  const auto resolved = [&defs](const json& node) -> const json& {
+    if (!node.contains("$ref")) return node;
+    const std::string ref = node.at("$ref").get<std::string>();
+    return defs.at(ref.substr(ref.rfind('/') + 1));
+  };
+  for (const bool forward : {true, false}) {
+    const json& job = defs.at(forward ? "forwardJob" : "inverseJob");
+    for (const SettingRow* row : settingRows(forward)) {
+      SCOPED_TRACE(row->key);
+      const std::size_t dot = row->key.find('.');
+      const json& properties = job.at("properties");
+      const std::string first = row->key.substr(0, dot);
+      ASSERT_TRUE(properties.contains(first));
+      const json* property = &resolved(properties.at(first));
+      if (dot != std::string::npos) {
+        const std::string member = row->key.substr(dot + 1);
+        if (row->type == SettingType::Weight) {  // any term name: a number >= 0
+          EXPECT_EQ(property->at("additionalProperties").at("minimum"), 0);
+          continue;
+        }
+        ASSERT_TRUE(property->at("properties").contains(member));
+        property = &property->at("properties").at(member);
+      }
+      if (property->contains("oneOf")) {  // a number or its text form (the scale)
+        for (const json& alternative : property->at("oneOf"))
+          if (alternative.value("type", "") == "number") property = &alternative;
+      }
+      if (row->type == SettingType::Choice) {
+        std::vector<std::string> choices;
+        for (const SettingChoice& c : row->choices) choices.push_back(c.name);
+        EXPECT_EQ(property->at("enum").get<std::vector<std::string>>(), choices);
+      }
+      if (row->type == SettingType::Flag) {
+        EXPECT_EQ(property->at("type"), "boolean");
+      }
+      if (row->type != SettingType::Integer && row->type != SettingType::Number &&
+          row->id != Setting::Scale)
+        continue;
+      const bool wholeRange = row->max >= std::numeric_limits<int>::max();
+      const char* low = row->minExcluded ? "exclusiveMinimum" : "minimum";
+      const char* high = row->maxExcluded ? "exclusiveMaximum" : "maximum";
+      if (std::isfinite(row->min)) {
+        EXPECT_EQ(property->value(low, json()), row->min) << property->dump();
+      }
+      if (std::isfinite(row->max) && !wholeRange) {
+        EXPECT_EQ(property->value(high, json()), row->max) << property->dump();
+      } else {
+        EXPECT_FALSE(property->contains(high)) << property->dump();
+      }
+    }
   }
 }
 

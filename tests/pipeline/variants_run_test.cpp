@@ -177,10 +177,11 @@ TEST(Variants, TheJoinMustFitThePieces) {
   Result<ForwardRun> run = runForward(holeOfADisc, sink);
   ASSERT_FALSE(run.isOk());
   EXPECT_EQ(run.status().code(), ErrorCode::InputInvalid);
-  EXPECT_NE(run.status().message().find(
-                "demi-disc.svg: --join inner needs a piece with exactly one hole"),
-            std::string::npos)
+  EXPECT_NE(
+      run.status().message().find("demi-disc.svg: join inner needs a piece with exactly one hole"),
+      std::string::npos)
       << run.status().message();
+  EXPECT_EQ(run.status().setting(), Setting::Join) << "the message names the setting to change";
 
   const ForwardJob outlineOfARing =
       variantJob("demi-disc.svg", "demi-ring.svg", JoinedBoundary::Outer, JoinedBoundary::Outer);

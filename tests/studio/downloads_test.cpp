@@ -100,11 +100,12 @@ TEST_F(StudioDownloads, SavedJobRunsToTheSameFiguresAndExportToTheSameFiles) {
 
 TEST_F(StudioDownloads, ExportRefusesUnknownProfilesWithAJsonError) {
   test::StudioClient c;
-  auto r = c.post("/api/export", {{"session", c.session()}, {"profile", "../../etc/passwd"}});
+  auto r = c.post("/api/export",
+                  {{"session", c.session()}, {"export", {{"profile", "../../etc/passwd"}}}});
   EXPECT_EQ(r.first, 400);
   EXPECT_TRUE(r.second.contains("error"));
-  auto page =
-      c.post("/api/export", {{"session", c.session()}, {"profile", "print"}, {"page", "Z9"}});
+  auto page = c.post("/api/export", {{"session", c.session()},
+                                     {"export", {{"profile", "print"}, {"page", "Z9"}}}});
   EXPECT_EQ(page.first, 400);
   EXPECT_NE(page.second["error"].get<std::string>().find("page"), std::string::npos) << page.second;
 }
@@ -116,17 +117,17 @@ TEST_F(StudioDownloads, AnExportWhoseClientWentIsStopped) {
       "a.json", studio::parametricOutline("ellipse", {{"a", 120}, {"b", 70}}), {}};
   const studio::PieceInput b{
       "b.json", studio::parametricOutline("ellipse", {{"a", 110}, {"b", 82.305579}}), {}};
-  ForwardSettings settings;
-  settings.resolution = 60;
-  settings.fitPerimeter = true;
-  const auto files = studio::forwardJobFiles(a, b, settings);
+  ForwardJob job;
+  job.resolution = 60;
+  job.fitPerimeter = true;
+  const auto files = studio::forwardJobFiles(a, b, Job(job));
   std::atomic<bool> gone{true};
-  const Result<std::string> stopped = studio::exportedResult(files, {}, &gone);
+  const Result<std::string> stopped = studio::exportedResult(files, &gone);
   EXPECT_EQ(stopped.status().code(), ErrorCode::Interrupted) << stopped.status().message();
   // The flag is this export's alone: the thread's next run is not stopped by it.
   EXPECT_FALSE(interruptRequested());
   std::atomic<bool> here{false};
-  const Result<std::string> zip = studio::exportedResult(files, {}, &here);
+  const Result<std::string> zip = studio::exportedResult(files, &here);
   ASSERT_TRUE(zip.isOk()) << zip.status().message();
   EXPECT_EQ(zip.value().substr(0, 2), "PK");
 }
