@@ -75,13 +75,26 @@ def man_page(dform, version, commands):
     return "\n".join(lines) + "\n"
 
 
+def choices(entry):
+    """'--model auto|exact|paper|general' -> ['auto', 'exact', 'paper', 'general'] (the values
+    --help lists for an option of the settings table that takes one of them), else []."""
+    m = re.match(r"^\S+ ([A-Za-z0-9_,.-]+(?:\|[A-Za-z0-9_,.-]+)+)$", entry)
+    return m.group(1).split("|") if m else []
+
+
 def completion(top, commands):
-    cases = []
+    cases, values = [], {}
     for name, _ in top.get("Subcommands", []):
         found, _ = commands[name]
         options = sorted({n for entry, _ in found.get("Options", []) for n in option_names(entry)})
         cases.append(f'    {name}) options="{" ".join(options)}" ;;')
+        for entry, _ in found.get("Options", []):
+            for option in option_names(entry):
+                if choices(entry):
+                    values[option] = choices(entry)
     subcommands = " ".join(name for name, _ in top.get("Subcommands", []))
+    value_cases = "".join(f'    {option}) COMPREPLY=($(compgen -W "{" ".join(v)}" -- "$current"));'
+                          " return ;;\n" for option, v in sorted(values.items()))
     return f"""# bash completion for dform, made from its --help texts (help_pages.py)
 _dform() {{
   local current=${{COMP_WORDS[COMP_CWORD]}} previous=${{COMP_WORDS[COMP_CWORD-1]}} options
@@ -93,6 +106,8 @@ _dform() {{
 {chr(10).join(cases)}
     *) options="" ;;
   esac
+  case "$previous" in
+{value_cases}  esac
   if [ "$previous" = --profile ]; then
     COMPREPLY=($(compgen -W "$(dform export --list-profiles 2>/dev/null)" -- "$current"))
   elif [[ "$current" == -* ]]; then

@@ -1,7 +1,8 @@
 #!/bin/bash
 # The man page and the bash completion made from dform's --help texts (src/cli/help_pages.py):
 # the page renders and has a section for every subcommand and an entry for each of a
-# subcommand's options; the completion completes subcommands, options and profile names.
+# subcommand's options; the completion completes subcommands, options, profile names and the
+# values of a setting with choices.
 #   help_pages_test.sh BUILD_DIR
 set -euo pipefail
 build=$1
@@ -23,4 +24,8 @@ complete() {  # the words the completion offers for the command line "$@" (the l
 [ "$(complete dform forward --res)" = --resolution ] || fail "'dform forward --res' completes to '$(complete dform forward --res)'"
 [ "$(complete dform validate --res)" = "" ] || fail "validate has no --resolution, yet it is offered"
 grep -qw laser <<< "$(complete dform forward --profile la)" || fail "--profile does not complete to the profile names"
+# A setting with choices completes to the settings table's choices, as --help lists them.
+[ "$(complete dform forward --model e)" = exact ] || fail "'--model e' completes to '$(complete dform forward --model e)'"
+[ "$(complete dform export out --joint "")" = "glue holes lace slots" ] ||
+  fail "'--joint' completes to '$(complete dform export out --joint "")'"
 echo "help pages test: $(wc -w <<< "$subcommands") subcommands in the page; completion works"

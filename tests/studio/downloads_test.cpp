@@ -10,6 +10,9 @@
 #include <sstream>
 
 #include "dform/core/interrupt.h"
+#include "dform/pipeline/job_file.h"
+#include "dform/pipeline/settings.h"
+#include "pipeline/setting_values.h"
 #include "studio_client.h"
 
 namespace dform {
@@ -84,7 +87,7 @@ TEST_F(StudioDownloads, SavedJobRunsToTheSameFiguresAndExportToTheSameFiles) {
         << figure;
 
   json exportRequest = settings;
-  exportRequest["profile"] = "laser";
+  exportRequest["export"] = {{"profile", "laser"}};
   auto exported =
       c.raw().Post("/api/export", c.headers(), exportRequest.dump(), "application/json");
   ASSERT_EQ(exported->status, 200) << exported->body;
@@ -96,6 +99,62 @@ TEST_F(StudioDownloads, SavedJobRunsToTheSameFiguresAndExportToTheSameFiles) {
   }
   EXPECT_TRUE(fs::exists(dir / "export" / "report.html"));
   EXPECT_TRUE(fs::exists(dir / "export" / "pattern.pdf"));
+}
+
+// `dform studio JOB`, then Save job as the page does it (the session's settings of the job's mode
+// sent back as they came): the saved job.json equals the job opened, setting by setting.
+void expectSavedAsOpened(const fs::path& jobFile, const fs::path& dir) {
+  SCOPED_TRACE(jobFile.string());
+  const Result<Job> opened = readJobFile(jobFile.string());
+  ASSERT_TRUE(opened.isOk()) << opened.status().message();
+  StudioOptions options;
+  options.jobFile = jobFile.string();
+  test::StudioClient c(options);
+  const auto [status, started] = c.post("/api/session", json::object());
+  ASSERT_EQ(status, 200) << started;
+  EXPECT_EQ(started["mode"], opened.value().modeName());
+  json request = started["settings"][opened.value().modeName()];
+  request["mode"] = opened.value().modeName();
+  request["session"] = started["session"];
+  auto saved = c.raw().Post("/api/job", c.headers(), request.dump(), "application/json");
+  ASSERT_EQ(saved->status, 200) << saved->body;
+  unzip(saved->body, dir);
+  const Result<Job> read = readJobFile((dir / "job.json").string());
+  ASSERT_TRUE(read.isOk()) << read.status().message();
+  ASSERT_EQ(read.value().modeName(), opened.value().modeName());
+  for (const SettingRow* row : settingRows(opened.value().isForward()))
+    EXPECT_EQ(settingValue(read.value(), *row), settingValue(opened.value(), *row)) << row->key;
+  fs::remove_all(dir);
+}
+
+TEST_F(StudioDownloads, EveryShippedJobIsSavedAsItWasOpened) {
+  int jobs = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(DFORM_SAMPLES_DIR) / "forward"))
+    if (entry.path().extension() == ".json") {
+      expectSavedAsOpened(entry.path(), dir / entry.path().stem());
+      ++jobs;
+    }
+  EXPECT_GE(jobs, 7);
+}
+
+// Every setting of the mode away from its default, export options included: a job the studio
+// opens and saves again unchanged.
+TEST_F(StudioDownloads, AJobWithEverySettingChangedIsSavedAsItWasOpened) {
+  const fs::path samples = DFORM_SAMPLES_DIR;
+  for (const bool forward : {true, false}) {
+    Job job = forward ? Job(ForwardJob{ForwardSettings(), (samples / "forward/circle.svg").string(),
+                                       (samples / "forward/square.svg").string()})
+                      : Job(InverseJob{InverseSettings(),
+                                       (samples / "inverse/tennis-ball.obj").string(), false});
+    for (const SettingRow* row : settingRows(forward)) {
+      const std::string value = test::otherValue(*row);
+      ASSERT_TRUE(setSetting(job, *row, value).isOk()) << row->key << " = " << value;
+    }
+    fs::create_directories(dir);
+    const fs::path file = dir / (forward ? "forward.json" : "inverse.json");
+    std::ofstream(file) << jobToJson(job);
+    expectSavedAsOpened(file, dir / (forward ? "forward" : "inverse"));
+  }
 }
 
 TEST_F(StudioDownloads, ExportRefusesUnknownProfilesWithAJsonError) {
