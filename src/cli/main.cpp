@@ -271,7 +271,7 @@ struct ExportCommand {
 };
 
 struct ValidateCommand {
-  std::string dir, gate = "default";
+  std::string dir, gate = ExportSettings().gate;  // the settings table's default gate
   cli::Printing printing;
   CLI::App* command = nullptr;
 

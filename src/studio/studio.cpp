@@ -491,7 +491,8 @@ void Studio::Impl::solveRoutes(httplib::Server& server) {
   api(server, "/api/curve", [](const json& body, Session& s, httplib::Response& res) {
     CurveInput curve = readCurveInput(
         studio::safeFileName(requiredText(body, "name"), kCurveExtensions, "curve.obj"),
-        requiredText(body, "text"), body.value("closed", false));
+        requiredText(body, "text"),
+        body.value(settingKey(Setting::Closed), InverseJob().forceClosed));
     json out = studio::curveJson(curve.curve);
     out["name"] = curve.name;
     s.setCurve(std::move(curve));

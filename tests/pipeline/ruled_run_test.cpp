@@ -23,7 +23,7 @@ Result<ForwardRun> run(const ForwardJob& job) {
 ForwardJob sampleJob(const std::string& name) {
   Result<Job> job = readJobFile(sample(name));
   EXPECT_TRUE(job.isOk()) << job.status().message();
-  return job.value().forward;
+  return std::get<ForwardJob>(job.value().run);
 }
 
 TEST(RuledRun, ReachesTheExactBodyFromThePaperModelsShapeOnConvexPairs) {
