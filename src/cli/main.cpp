@@ -106,7 +106,7 @@ struct InverseCommand {
   void add(CLI::App& app) {
     command = app.add_subcommand("inverse", "a 3D seam curve -> the two flat pieces that make it");
     command->add_option("curve", inputs.curve, "seam curve (.obj polyline or .json)")->required();
-    settings.add(command, settingRows(false));
+    settings.add(command, settingRows(false), false);
     output.add(command, true);
   }
   int run() {

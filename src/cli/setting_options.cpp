@@ -60,7 +60,7 @@ std::string inCommandLineTerms(const std::string& text) {
   return wordSettings(text, commandLineWords);
 }
 
-std::string helpLine(const SettingRow& row) {
+std::string helpLine(const SettingRow& row, bool forward) {
   std::string line = row.help;
   if (row.type == SettingType::Choice) {
     line += ": ";
@@ -78,25 +78,26 @@ std::string helpLine(const SettingRow& row) {
   }
   if (row.type == SettingType::Flag) return row.flagValue ? line : "turn off " + line;
   if (!row.unset.empty()) return line + " (default: " + row.unset + ")";
-  return line + " (default " + shown(settingDefault(row)) + ")";
+  return line + " (default " + shown(settingDefault(row, forward)) + ")";
 }
 
-void SettingOptions::add(CLI::App* command, const std::vector<const SettingRow*>& rows) {
+void SettingOptions::add(CLI::App* command, const std::vector<const SettingRow*>& rows,
+                         bool forward) {
   std::string weightHelp;
   for (const SettingRow* row : rows) {
     if (row->type == SettingType::Weight) {
       weightHelp += (weightHelp.empty() ? "" : ", ") + row->weightName() + " (default " +
-                    shown(settingDefault(*row)) + ")";
+                    shown(settingDefault(*row, forward)) + ")";
       continue;
     }
     if (row->type == SettingType::Flag) {
       CLI::Option* flag = command->add_flag(row->flag);
-      flag->description(helpLine(*row));
+      flag->description(helpLine(*row, forward));
       bound_.push_back({row, row->flag, flag, nullptr});
       continue;
     }
     texts_.emplace_back();
-    CLI::Option* option = command->add_option(row->flag, texts_.back(), helpLine(*row));
+    CLI::Option* option = command->add_option(row->flag, texts_.back(), helpLine(*row, forward));
     option->type_name(typeName(*row));
     bound_.push_back({row, row->flag, option, &texts_.back()});
     if (!row->nearFlag.empty()) {

@@ -20,13 +20,15 @@ std::string commandLineWords(const std::string& key);
 /// `text` (a library message) with the settings it mentions as the command line names them.
 std::string inCommandLineTerms(const std::string& text);
 
-/// The --help line of a row: its help, range and default (or what it is when unset).
-std::string helpLine(const SettingRow& row);
+/// The --help line of a row in a command of one mode: its help, range and default (or what it is
+/// when unset).
+std::string helpLine(const SettingRow& row, bool forward);
 
 class SettingOptions {
  public:
-  /// Adds the options of `rows` to `command`.
-  void add(CLI::App* command, const std::vector<const SettingRow*>& rows);
+  /// Adds the options of `rows` to `command`, a command of one mode (forward: `forward`; an
+  /// export's rows are alike in both), their defaults that mode's.
+  void add(CLI::App* command, const std::vector<const SettingRow*>& rows, bool forward = true);
 
   /// Sets every setting given on the command line in `job` (of a mode the rows belong to; rows
   /// of the other mode are skipped), in the table's order: Usage naming the flag when a value is

@@ -159,7 +159,11 @@ std::string settingValue(const Job& job, const SettingRow& row) {
 }
 
 std::string settingDefault(const SettingRow& row) {
-  const Job fresh = row.scope == SettingScope::Inverse ? Job(InverseJob()) : Job();
+  return settingDefault(row, row.scope != SettingScope::Inverse);
+}
+
+std::string settingDefault(const SettingRow& row, bool forward) {
+  const Job fresh = forward ? Job(ForwardJob()) : Job(InverseJob());
   return settingValue(fresh, row);
 }
 

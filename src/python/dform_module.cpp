@@ -310,7 +310,7 @@ py::list settingRowsOf(const std::string& function) {
     for (const SettingChoice& c : row->choices) choices.append(c.name);
     rows.append(py::dict(py::arg("keyword") = row->keyword, py::arg("key") = row->key,
                          py::arg("weight") = row->weightName(), py::arg("flag") = row->flag,
-                         py::arg("default") = loads(settingDefault(*row)),
+                         py::arg("default") = loads(settingDefault(*row, forward)),
                          py::arg("unset") = row->unset, py::arg("range") = row->rangeText(),
                          py::arg("choices") = choices, py::arg("unit") = row->unit,
                          py::arg("help") = row->help));

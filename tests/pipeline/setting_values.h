@@ -12,9 +12,10 @@
 
 namespace dform::test {
 
-// A value of `row` in its range or choices other than its default, as JSON text.
-inline std::string otherValue(const SettingRow& row) {
-  const nlohmann::json fallback = nlohmann::json::parse(settingDefault(row));
+// A value of `row` in its range or choices other than its default in a job of the mode (forward:
+// `forward`), as JSON text.
+inline std::string otherValue(const SettingRow& row, bool forward) {
+  const nlohmann::json fallback = nlohmann::json::parse(settingDefault(row, forward));
   switch (row.type) {
     case SettingType::Flag: return fallback.get<bool>() ? "false" : "true";
     case SettingType::Integer: return std::to_string(int(row.min) + 1);

@@ -147,7 +147,7 @@ TEST_F(StudioDownloads, AJobWithEverySettingChangedIsSavedAsItWasOpened) {
                       : Job(InverseJob{InverseSettings(),
                                        (samples / "inverse/tennis-ball.obj").string(), false});
     for (const SettingRow* row : settingRows(forward)) {
-      const std::string value = test::otherValue(*row);
+      const std::string value = test::otherValue(*row, forward);
       ASSERT_TRUE(setSetting(job, *row, value).isOk()) << row->key << " = " << value;
     }
     fs::create_directories(dir);

@@ -93,8 +93,12 @@ const SettingRow* findSetting(const std::string& key, bool forward);
 /// {"near": [150, 50]}; null for an optional setting that is not set.
 std::string settingValue(const Job& job, const SettingRow& row);
 
-/// The row's default: its value in a new job of its mode, as JSON text.
+/// The row's default: its value in a new job of its mode (forward for a row of both modes), as
+/// JSON text.
 std::string settingDefault(const SettingRow& row);
+/// The same in a new job of one mode: a row of both modes has each mode's own default (the
+/// inverse solve's stops are not the forward solve's).
+std::string settingDefault(const SettingRow& row, bool forward);
 
 /// Sets the row's value in `job` from JSON text (null unsets an optional setting): the one range
 /// check. Usage naming the setting (a mention) with what it must be when refused.
