@@ -13,7 +13,7 @@
 namespace dform {
 
 ShapeCamera::ShapeCamera(double azimuthDeg, double elevationDeg) {
-  const double az = azimuthDeg * kDegree, el = elevationDeg * kDegree;
+  const double az = azimuthDeg * kPi / 180.0, el = elevationDeg * kPi / 180.0;
   R_ = (Eigen::AngleAxisd(el, Eigen::Vector3d::UnitX()) *
         Eigen::AngleAxisd(-az, Eigen::Vector3d::UnitZ()))
            .toRotationMatrix();

@@ -161,7 +161,7 @@ std::vector<Vec2> spotsAround(const Vec2& at, const Vec2& out,
   std::vector<Vec2> spots;
   for (double d : distances)
     for (double deg : {0.0, 20.0, -20.0, 40.0, -40.0, 60.0, -60.0, 90.0, -90.0}) {
-      const double r = deg * kDegree;
+      const double r = deg * kPi / 180;
       spots.push_back(at + d * Vec2(std::cos(r) * out.x() - std::sin(r) * out.y(),
                                     std::sin(r) * out.x() + std::cos(r) * out.y()));
     }

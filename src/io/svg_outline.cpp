@@ -281,7 +281,7 @@ void SvgContext::appendArc(const Vec2& fromUser, const Command& c, std::vector<V
     out.push_back(end);
     return;
   }
-  const double phi = c.v[2] * kDegree;
+  const double phi = c.v[2] * kPi / 180.0;
   const bool largeArc = c.v[3] != 0.0, sweep = c.v[4] != 0.0;
   const Eigen::Matrix2d rotation = Eigen::Rotation2Dd(phi).toRotationMatrix();
   const Vec2 half = rotation.transpose() * (0.5 * (fromUser - toUser));  // x1', y1'

@@ -104,7 +104,7 @@ std::vector<CreaseFold> creaseFolds(const Piece& piece) {
       // mountain) when g's normal turns about u -> v the positive way from f's.
       const Eigen::Vector3d nf = unitNormal(f), ng = unitNormal(g);
       const Eigen::Vector3d along = (corner(v) - corner(u)).normalized();
-      const double angle = std::atan2(nf.cross(ng).dot(along), nf.dot(ng)) / kDegree;
+      const double angle = std::atan2(nf.cross(ng).dot(along), nf.dot(ng)) * 180.0 / kPi;
       fold.minAngleDeg = first ? angle : std::min(fold.minAngleDeg, angle);
       fold.maxAngleDeg = first ? angle : std::max(fold.maxAngleDeg, angle);
       first = false;
