@@ -88,26 +88,23 @@ struct PieceLines {
 };
 
 // Whether the run between seam places i and j cuts off places of the seam (one or more, between
-// i and j going one way round) that all lie within kSliver of the run's length from it, or
-// within kThinStrip of a seam edge: the face between them is a sliver whose corners at i and j
-// are under 1e-3 rad, or a strip too thin for a mesh vertex, whose triangles would be ears of the
-// nearly straight seam points in it; no mesh draws either without triangles that thin. The fold
-// is not followed: the triangles beside the seam there cross it within that strip (an edge of
-// length l across a fold of angle theta at distance d from its end is shorter by about
-// theta^2 d / (2 l) of l). A body edge along a straight stretch of the seam is such a run
-// wherever the outline is drawn to a precision: rounded, the stretch's points lie a little off
-// the edge; so is one along a nearly straight stretch (the flat side of a superellipse).
+// i and j going one way round) that all lie within kSliver of the run's length from it: the face
+// between them is a sliver whose corners at i and j are under 1e-3 rad, which no mesh draws
+// without triangles that thin. The fold is not followed: the triangles beside the seam there
+// cross it within that sliver (an edge of length l across a fold of angle theta at distance d
+// from its end is shorter by about theta^2 d / (2 l) of l). A body edge along a straight stretch
+// of the seam is such a run wherever the outline is drawn to a precision: rounded, the stretch's
+// points lie a little off the edge; so is one along a nearly straight stretch (the flat side of a
+// superellipse).
 constexpr double kSliver = 1e-3;
-constexpr double kThinStrip = 0.1;
 
-bool hugsTheSeam(const Points2& outline, const std::vector<int>& rowOf, int i, int j,
-                 double seamEdge) {
+bool hugsTheSeam(const Points2& outline, const std::vector<int>& rowOf, int i, int j) {
   const int N = int(rowOf.size());
   for (const auto& [from, to] : {std::pair{i, j}, std::pair{j, i}}) {
     const Eigen::Vector2d p = outline.row(rowOf[std::size_t(from)]),
                           q = outline.row(rowOf[std::size_t(to)]);
     const Eigen::Vector2d u = (q - p).normalized();
-    const double off = std::max(kSliver * (q - p).norm(), kThinStrip * seamEdge);
+    const double off = kSliver * (q - p).norm();
     bool within = (from + 1) % N != to;
     for (int m = (from + 1) % N; within && m != to; m = (m + 1) % N) {
       const Eigen::Vector2d d = outline.row(rowOf[std::size_t(m)]).transpose() - p;
@@ -177,7 +174,7 @@ void withoutNeedles(PieceLines& out, const Points2& outline) {
 
 PieceLines pieceLines(const std::vector<const exact::BodyEdge*>& followed, int piece,
                       const ConformingSeam& seam, const std::vector<int>& rowOf,
-                      const Points2& outline, double edge, double seamEdge) {
+                      const Points2& outline, double edge) {
   PieceLines out;
   const int N = seam.size();
   std::map<std::pair<int, int>, std::size_t> seen;
@@ -191,7 +188,7 @@ PieceLines pieceLines(const std::vector<const exact::BodyEdge*>& followed, int p
       InteriorLine line;
       line.from = rowOf[std::size_t(i)];
       line.to = rowOf[std::size_t(j)];
-      if (hugsTheSeam(outline, rowOf, i, j, seamEdge)) continue;
+      if (hugsTheSeam(outline, rowOf, i, j)) continue;
       const auto key = std::minmax(line.from, line.to);
       if (const auto it = seen.find(key); it != seen.end()) {
         out.folds[it->second] = std::max(out.folds[it->second], body->fold);
@@ -442,8 +439,7 @@ Result<DForm> exactDForm(exact::SeamPolygons polygons, double targetEdge,
       rowOf[std::size_t(k)] = p == 0 ? k : (N - k) % N;
       outline.row(rowOf[std::size_t(k)]) = exact::seamPlacePoint(g, p, seam.place(k)).transpose();
     }
-    const PieceLines lines = pieceLines(followed, p, seam, rowOf, outline, targetEdge,
-                                        closedLength(p == 0 ? g.seam.a : g.seam.b) / double(n));
+    const PieceLines lines = pieceLines(followed, p, seam, rowOf, outline, targetEdge);
     TriangulateOptions meshOptions;
     meshOptions.targetEdgeLength = targetEdge;
     Result<FlatMesh> mesh = triangulateDomain(outline, {}, meshOptions, lines.lines);
