@@ -72,8 +72,11 @@ TEST(ExactEverywhere, CircleAndSquareStartBesideACorner) {
       parseOutline(convex::shipped("circle.svg", kExact).text, "circle.svg").value();
   const Shape2 square =
       parseOutline(convex::shipped("square.svg", kExact).text, "square.svg").value();
+  // At n = 100, and at 400 from 0.2542, where the run exited 7 (ExactEverywhereSweep sweeps
+  // 2,000 starts at 400).
   for (double start : {0.2450, 0.2480, 0.2520, 0.2530, 0.2542, 0.0042, 0.5042, 0.7542})
     for (int n : {100, 400}) {
+      if (n == 400 && start != 0.2542) continue;
       ForwardSettings settings;
       settings.resolution = n;
       settings.startB.fraction = start;
