@@ -2,7 +2,6 @@
 
 #include <atomic>
 #include <chrono>
-#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <mutex>
@@ -91,23 +90,14 @@ json pieceSummary(const PieceInput& piece) {
   return out;
 }
 
-// What decides whether a forward solve optimises: the pieces and every setting, the starts
-// included. Whether the glued metric is convex depends on where the seam starts, so the exact
-// engine is asked at every position, and the optimiser runs only for the positions that need it.
+// What decides whether a forward solve optimises: the pieces and every setting, the starts (the
+// studio's fractions) included, for the glued metric's convexity depends on where the seam starts.
 std::string forwardDesign(const PieceInput& a, const PieceInput& b, const ForwardSettings& s) {
   const std::hash<std::string> hash;
-  auto start = [](const StartPoint& p) {
-    char text[80];
-    if (p.nearestToPoint)
-      std::snprintf(text, sizeof text, "near %.17g,%.17g", p.point.x(), p.point.y());
-    else
-      std::snprintf(text, sizeof text, "%.17g", p.fraction);
-    return std::string(text);
-  };
   return std::to_string(hash(a.text)) + "/" + std::to_string(hash(b.text)) + "/" +
          joinedBoundaryName(s.joinA) + joinedBoundaryName(s.joinB) + (s.flip ? "/flip/" : "/") +
          modelChoiceName(s.model) + "/" + std::to_string(s.resolution) +
-         (s.fitPerimeter ? "/fit/" : "/") + start(s.startA) + "/" + start(s.startB);
+         (s.fitPerimeter ? "/fit/" : "/") + json{s.startA.fraction, s.startB.fraction}.dump();
 }
 
 // The shape first; its figures and the gate's verdict when the session asks for them (after the
