@@ -90,34 +90,58 @@ Vec2 readable(Vec2 t) {
   return t;
 }
 
+namespace {
+
+// The distance from segment [a, b] to the convex quadrilateral `box` (its inside included): 0
+// where they meet.
+double segmentToBox(const Vec2& a, const Vec2& b, const Polyline& box) {
+  if (insidePolygon(box, a) || insidePolygon(box, b)) return 0;
+  double best = 1e300;
+  for (size_t k = 0; k < box.size(); ++k) {
+    const Vec2& p = box[k];
+    const Vec2& q = box[(k + 1) % box.size()];
+    if (segmentsIntersect(a, b, p, q)) return 0;
+    best = std::min(
+        {best, distanceToSegment(a, p, q), distanceToSegment(b, p, q), distanceToSegment(p, a, b)});
+  }
+  return best;
+}
+
+// Whether every segment of `line` (closed or open) lies at least `clear` from the box (`near`
+// bounds the points that could be nearer).
+bool clearOf(const Polyline& line, bool closed, const Polyline& box, const Box& near,
+             double clear) {
+  const size_t n = line.size(), segments = closed ? n : n - 1;
+  for (size_t i = 0; n > 1 && i < segments; ++i) {
+    const Vec2& a = line[i];
+    const Vec2& b = line[(i + 1) % n];
+    if (std::max(a.x(), b.x()) < near.lo.x() || std::min(a.x(), b.x()) > near.hi.x() ||
+        std::max(a.y(), b.y()) < near.lo.y() || std::min(a.y(), b.y()) > near.hi.y())
+      continue;
+    const double d = segmentToBox(a, b, box);
+    if (clear > 0 ? d < clear : d <= 0) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 bool boxFits(const std::vector<Polyline>& region, const std::vector<Polyline>& lines, const Vec2& c,
              const Vec2& d, double halfW, double halfH, double clear) {
+  // Its centre in the material and its whole outline `clear` from every loop (the outline, a
+  // hole, a joint slot): then all of it is material, with that much to spare. No crease through
+  // it or inside it.
+  if (!insideRegion(region, c)) return false;
   const Vec2 n(-d.y(), d.x());
-  for (double a : {-1.0, 0.0, 1.0})
-    for (double b : {-1.0, 1.0}) {
-      const Vec2 q = c + a * halfW * d + b * halfH * n;
-      if (!insideRegion(region, q) || distanceToPolylines(region, q, true) < clear) return false;
-    }
   const Polyline box = {c - halfW * d - halfH * n, c + halfW * d - halfH * n,
                         c + halfW * d + halfH * n, c - halfW * d + halfH * n};
-  for (const std::vector<Polyline>* set : {&region, &lines})
-    for (const Polyline& line : *set)
-      for (const Vec2& q : line)
-        if (insidePolygon(box, q)) return false;
-  // No edge through it either: a crease, or a loop narrower than the box (a joint slot) passing
-  // between the points tested above.
-  auto crosses = [&](const Polyline& line, bool closed) {
-    const size_t n = line.size(), segments = closed ? n : n - 1;
-    for (size_t i = 0; n > 1 && i < segments; ++i)
-      for (size_t k = 0; k < box.size(); ++k)
-        if (segmentsIntersect(line[i], line[(i + 1) % n], box[k], box[(k + 1) % box.size()]))
-          return true;
-    return false;
-  };
-  for (const Polyline& line : lines)
-    if (crosses(line, false)) return false;
+  Box near = boxOf({box});
+  near.lo -= Vec2::Constant(clear);
+  near.hi += Vec2::Constant(clear);
   for (const Polyline& loop : region)
-    if (crosses(loop, true)) return false;
+    if (!clearOf(loop, true, box, near, clear)) return false;
+  for (const Polyline& line : lines)
+    if (!clearOf(line, false, box, near, 0)) return false;
   return true;
 }
 

@@ -160,9 +160,9 @@ class DrawingBuilder {
 Vec2 readable(Vec2 t);
 
 // Whether a text box centred at c (half-extents along d and its normal) sits inside the piece's
-// material (`region`, even-odd) with `clear` mm to spare: its corners and long sides' midpoints
-// inside and clear of every loop, no loop vertex (a small hole) inside it, and no loop edge (a
-// slot) nor crease (`lines`) through it.
+// material (`region`, even-odd) with `clear` mm to spare: its centre inside and its whole outline
+// at least `clear` from every loop (the outline, a hole, a joint slot; one inside the box counts
+// as 0), and no crease (`lines`) through it or inside it.
 bool boxFits(const std::vector<Polyline>& region, const std::vector<Polyline>& lines, const Vec2& c,
              const Vec2& d, double halfW, double halfH, double clear);
 
