@@ -90,8 +90,7 @@ struct PageView {
   Vec2 origin{0, 0};             ///< canvas point drawn at the page's (0, 0)
   double clipX0 = 0, clipY0 = 0, clipX1 = 0, clipY1 = 0;  ///< page area the canvas shows (mm)
   std::vector<Layer> overlay;                             ///< drawn in page coordinates, unclipped
-  /// "sheet" (a sheet or page of the layout), "cover" (a sheet's title lines, where they do not
-  /// fit beside its pieces), "map" (a tiled piece's page map) or "tile"
+  /// "sheet" (a sheet or page of the layout), "map" (a tiled piece's page map) or "tile"
   std::string kind = "sheet";
 };
 

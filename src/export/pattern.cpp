@@ -246,7 +246,17 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
     cuts[p] = std::move(c.outer);
     holeCuts[p] = std::move(c.holes);
   }
-  Result<Arrangement> arranged = arrange(fit, cuts, flat.names, out.messages);
+  const std::string perimeterText = formatMm(seams[0].L, 1);
+  const std::string scaleText =
+      scale == 1.0 ? std::string("1:1, mm") : "scale " + percentText(scale) + " of true size, mm";
+  const TitleText title{o,
+                        "D-Form " + flat.names[0] + " + " + flat.names[1],
+                        scaleText,
+                        "seam " + perimeterText + " mm",
+                        {flat.names[0], flat.names[1]},
+                        flat.creased,
+                        font};
+  Result<Arrangement> arranged = arrange(fit, cuts, flat.names, title, out.messages);
   if (!arranged.isOk()) return arranged.status();
   const Arrangement& a = arranged.value();
   double canvasW = 0, canvasH = 0;
@@ -280,9 +290,6 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
   }
 
   DrawingBuilder b(profile, canvasW, canvasH);
-  const std::string perimeterText = formatMm(seams[0].L, 1);
-  const std::string scaleText =
-      scale == 1.0 ? std::string("1:1, mm") : "scale " + percentText(scale) + " of true size, mm";
   describe(b.drawing(), o, profile, scale, perimeterText);
   drawPieceLabels(flat, place, profile, font, b, out, work);
   drawCreases(out.pieces, profile, b);
@@ -290,7 +297,6 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
   drawTabFolds(out.tabs, flat.names, "", profile, b);
   drawTabFolds(tongues, flat.names, "tongue-", profile, b);
   drawCuts(out.pieces, flat.names, profile, b);
-  const TitleText title{flat, o, scaleText, perimeterText, font};
   drawSheetFurniture(a.plans, fit, title, b);
   out.drawing = std::move(b.drawing());
   addPages(a.plans, fit, title, out);
