@@ -394,6 +394,9 @@ struct ExportCommand {
     command->add_flag("--export-anyway", out.exportAnyway,
                       "export a result that failed its gate, or a pattern that does not lay "
                       "out cleanly (marked FAILED GATE)");
+    command->add_flag("--regate", out.regate,
+                      "measure and judge the result again even where report.json's gate verdict "
+                      "still holds (its meshes unchanged since the run)");
     command->add_flag("--list-profiles", listOnly, "list the profiles and exit");
     command->add_flag("-q,--quiet", out.quiet, "print only warnings and errors");
   }

@@ -190,11 +190,9 @@ json gateJson(const GateReport* gate) {
                       {"limit", numberOrNull(c.limit)},
                       {"verdict", verdictName(c.verdict)},
                       {"detail", c.detail}});
-  return {{"name", gate->name},
-          {"passed", gate->passed()},
-          {"failed", gate->failed()},
-          {"not_run", gate->notRun()},
-          {"checks", checks}};
+  return {{"name", gate->name},        {"limits", json::parse(gateLimitsJson(gate->limits))},
+          {"passed", gate->passed()},  {"failed", gate->failed()},
+          {"not_run", gate->notRun()}, {"checks", checks}};
 }
 
 // Each crease's fold as solved: the piece, its number there (from 1), mountain or valley as seen
@@ -260,7 +258,8 @@ std::string metricsJsonText(const Metrics& metrics, const CurveMatch* curve) {
 
 Result<std::string> writeForwardReport(const std::string& dir, const Job& job,
                                        const ForwardRun& run, const std::vector<Message>& messages,
-                                       const GateReport* gate, const CommandTimings& command) {
+                                       const GateReport* gate, const CommandTimings& command,
+                                       const FileHashes& resultFiles) {
   const auto reportStart = std::chrono::steady_clock::now();
   json report = header(job, "forward");
   report["inputs"] = {
@@ -276,6 +275,7 @@ Result<std::string> writeForwardReport(const std::string& dir, const Job& job,
   report["metrics"] = metricsJson(run.metrics);
   report["creases"] = creasesJson(run.model);
   report["gate"] = gateJson(gate);
+  report["result_files"] = resultFiles;
   report["messages"] = messagesJson(messages);
   report["timings"] = timingsJson(run.timings, command, reportStart);
   return write(dir, report);
@@ -283,7 +283,8 @@ Result<std::string> writeForwardReport(const std::string& dir, const Job& job,
 
 Result<std::string> writeInverseReport(const std::string& dir, const Job& job,
                                        const InverseRun& run, const std::vector<Message>& messages,
-                                       const GateReport* gate, const CommandTimings& command) {
+                                       const GateReport* gate, const CommandTimings& command,
+                                       const FileHashes& resultFiles) {
   const auto reportStart = std::chrono::steady_clock::now();
   json report = header(job, "inverse");
   report["inputs"] = {
@@ -299,6 +300,7 @@ Result<std::string> writeInverseReport(const std::string& dir, const Job& job,
   addCurveMatch(report["metrics"], run.curveMatch);
   report["metrics"]["curve_length_mm"] = numberOrNull(run.curveLength);
   report["gate"] = gateJson(gate);
+  report["result_files"] = resultFiles;
   report["messages"] = messagesJson(messages);
   report["timings"] = timingsJson(run.timings, command, reportStart);
   return write(dir, report);
@@ -319,6 +321,49 @@ Result<json> readReport(const std::string& dir) {
 }
 
 }  // namespace
+
+Result<std::optional<GateReport>> reusableGate(const std::string& dir, const FileHashes& files,
+                                               const GateLimits& limits) {
+  Result<json> read = readReport(dir);
+  if (!read.isOk()) return read.status();
+  const json& report = read.value();
+  const std::optional<GateReport> none;
+  const json* version = report.is_object() && report.contains("tool") && report["tool"].is_object()
+                            ? &report["tool"]
+                            : nullptr;
+  if (!version || version->value("version", json()) != DFORM_VERSION) return none;
+  if (!report.contains("result_files") || report["result_files"] != json(files)) return none;
+  const json& gate = report.contains("gate") ? report["gate"] : json(nullptr);
+  if (!gate.is_object() || gate.value("name", json()) != limits.name || !gate.contains("limits") ||
+      gate["limits"] != json::parse(gateLimitsJson(limits)) || !gate.contains("checks") ||
+      !gate["checks"].is_array())
+    return none;
+  GateReport out;
+  out.name = limits.name;
+  out.limits = limits;
+  for (const json& c : gate["checks"]) {
+    if (!c.is_object() || !c.contains("name") || !c["name"].is_string() || !c.contains("verdict") ||
+        !c["verdict"].is_string())
+      return none;
+    if (c["name"] == "pattern_layout") continue;  // the export lays its own pattern out
+    CheckResult check;
+    check.name = c["name"].get<std::string>();
+    check.value = c.contains("value") && c["value"].is_number() ? c["value"].get<double>() : NAN;
+    check.limit = c.contains("limit") && c["limit"].is_number() ? c["limit"].get<double>() : NAN;
+    check.detail = c.value("detail", std::string());
+    const std::string verdict = c["verdict"].get<std::string>();
+    bool known = false;
+    for (CheckResult::Verdict v :
+         {CheckResult::Verdict::Pass, CheckResult::Verdict::Fail, CheckResult::Verdict::NotRun})
+      if (verdict == verdictName(v)) {
+        check.verdict = v;
+        known = true;
+      }
+    if (!known) return none;
+    out.checks.push_back(check);
+  }
+  return std::optional<GateReport>(std::move(out));
+}
 
 Result<std::optional<bool>> savedGateVerdict(const std::string& dir) {
   Result<json> report = readReport(dir);

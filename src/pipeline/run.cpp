@@ -106,17 +106,20 @@ Result<WrittenResult> gateAndWrite(const Job& job, const Solved& solved, ResultF
   if (interrupted) return leftAsItWas(output.outDir, "interrupted");
   const std::string& staging = folder.staging();
   const auto writeStart = Clock::now();
-  Status written = writeModel(staging, solved.model());
-  if (written.isOk() && solved.inverse) written = writeTargetCurve(staging, solved.inverse->target);
+  FileHashes resultFiles;
+  Status written = writeModel(staging, solved.model(), &resultFiles);
+  if (written.isOk() && solved.inverse)
+    written = writeTargetCurve(staging, solved.inverse->target, &resultFiles);
   if (!written.isOk()) return folder.named(written);
   timings.write = secondsSince(writeStart);
   const bool release = prepared && prepared->isOk() && (!gateFailed || output.exportAnyway);
   if (release) noteExport(prepared->value(), sink);
   const GateReport* gateReport = gate ? &*gate : nullptr;
   const Result<std::string> reported =
-      solved.forward
-          ? writeForwardReport(staging, job, *solved.forward, sink.messages(), gateReport, timings)
-          : writeInverseReport(staging, job, *solved.inverse, sink.messages(), gateReport, timings);
+      solved.forward ? writeForwardReport(staging, job, *solved.forward, sink.messages(),
+                                          gateReport, timings, resultFiles)
+                     : writeInverseReport(staging, job, *solved.inverse, sink.messages(),
+                                          gateReport, timings, resultFiles);
   if (!reported.isOk()) return folder.named(reported.status());
   if (release)
     if (Status s = writeExport(prepared->value(), staging).status(); !s.isOk())

@@ -59,6 +59,9 @@ struct OutputOptions {
   std::optional<double> scoreFoldsDeg;  ///< --score-folds (degrees); unset: no folds scored
   std::string gate = "default";         ///< gate name or file; "none" skips the gate
   bool exportAnyway = false;  ///< export even when the gate fails (files marked FAILED GATE)
+  /// `dform export`: measure and judge the saved result again even where report.json's verdict
+  /// still holds (its meshes unchanged, the same gate and dform)
+  bool regate = false;
   bool quiet = false;
 };
 

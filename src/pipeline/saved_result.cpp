@@ -92,14 +92,17 @@ Result<std::string> exportSavedOrThrow(const std::string& dir, const OutputOptio
   const Status locked =
       output.outDir.empty() ? folder.begin(dir, resultFileNames()) : folder.read(dir);
   if (!locked.isOk()) return locked;
-  Result<DForm> model = readModel(dir);
+  FileHashes files;
+  Result<DForm> model = readModel(dir, &files);
   if (!model.isOk()) return model.status();
   if (interrupted) return leftAsItWas(dir, "interrupted");
   Result<std::optional<Curve3>> target = readSavedTarget(dir, model.value());
   if (!target.isOk()) return target.status();
-  // A result that failed its gate is exported only on purpose, and marked. The gate is run
-  // again on the meshes (report.json's verdicts could have been edited), with the limits of the
-  // preset report.json names, else the default ones.
+  if (target.value()) files[ModelFileNames::targetCurve] = target.value()->sha256;
+  // A result that failed its gate is exported only on purpose, and marked. Its gate is the one
+  // report.json records where the meshes are the bytes the run wrote and judged (their hashes
+  // there), by the same dform and the same limits; else (or when asked) it is run again on the
+  // meshes, with the limits of the preset report.json names, else the default ones.
   const bool hasReport = fs::exists(fs::path(dir) / "report.json");
   bool failedGate = false;
   std::string gateName = "default";
@@ -116,8 +119,17 @@ Result<std::string> exportSavedOrThrow(const std::string& dir, const OutputOptio
   }
   Result<GateLimits> limits = loadGate(gateName);
   if (!limits.isOk()) return limits.status();
-  const GateReport gate =
-      measureAndGate(model.value(), limits.value(), target.value() ? &*target.value() : nullptr);
+  std::optional<GateReport> recorded;
+  if (hasReport && !output.regate) {
+    Result<std::optional<GateReport>> reused = reusableGate(dir, files, limits.value());
+    if (!reused.isOk()) return reused.status();
+    recorded = reused.value();
+  }
+  if (recorded)
+    sink.info("the gate's verdict is report.json's: the meshes are as the run wrote them");
+  const GateReport gate = recorded ? *recorded
+                                   : measureAndGate(model.value(), limits.value(),
+                                                    target.value() ? &*target.value() : nullptr);
   if (interrupted) return leftAsItWas(dir, "interrupted");
   std::string failing;
   for (const CheckResult& c : gate.checks)
