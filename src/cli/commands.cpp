@@ -14,6 +14,7 @@
 #include "dform/cli/browser.h"
 #include "dform/cli/terminal.h"
 #include "dform/core/message_text.h"
+#include "dform/pipeline/nested_export.h"
 #include "dform/pipeline/saved_result.h"
 
 namespace dform::cli {
@@ -328,6 +329,17 @@ int exportSaved(const std::string& dir, const OutputOptions& output,
   if (!into.isOk()) return fail(into.status());
   if (!output.quiet)
     std::fprintf(stdout, "exported %s into %s\n", output.profile.c_str(), into.value().c_str());
+  return 0;
+}
+
+int exportNested(const std::vector<std::string>& dirs, int copies, const OutputOptions& output,
+                 const std::atomic<bool>& interrupted) {
+  Terminal terminal(output.quiet);
+  MessageSink sink(terminal.listener());
+  const Result<std::string> into = exportNest(dirs, copies, output, sink, interrupted);
+  if (!into.isOk()) return fail(into.status());
+  if (!output.quiet)
+    std::fprintf(stdout, "nested %s into %s\n", output.profile.c_str(), into.value().c_str());
   return 0;
 }
 

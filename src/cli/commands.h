@@ -31,6 +31,10 @@ int runBatchCommand(const std::vector<BatchJob>& jobs, const BatchOptions& optio
 /// `dform batch --merge DIR`: the shards' manifests gathered into batch.json and gallery.html;
 /// refused (exit 5) while a job of the list has not finished, unless `allowPartial`.
 int mergeBatchCommand(const std::string& dir, bool allowPartial, bool quiet);
+/// `dform export DIR... --nest`: the results' pieces nested into output.outDir.
+int exportNested(const std::vector<std::string>& dirs, int copies, const OutputOptions& output,
+                 const std::atomic<bool>& interrupted);
+
 int exportSaved(const std::string& dir, const OutputOptions& output,
                 const std::atomic<bool>& interrupted);
 /// `dform validate`: the result in `dir` re-measured, against the gate `gate` or, for "none",

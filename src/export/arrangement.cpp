@@ -66,22 +66,23 @@ struct Choice {
 };
 
 // Each piece at its smallest-box turn or a quarter turn more, side by side or stacked.
-std::vector<Choice> arrangementChoices(const std::vector<Polyline> cuts[2], double edge,
-                                       double gap) {
+std::vector<Choice> arrangementChoices(const std::vector<Polyline> cuts[2], double edge, double gap,
+                                       int quarterTurns) {
   double baseRot[2];
   for (int p = 0; p < 2; ++p) baseRot[p] = bestRotation(cuts[p]);
   std::vector<Choice> choices;
   for (int ra = 0; ra < 2; ++ra)
     for (int rb = 0; rb < 2; ++rb)
-      for (int v = 0; v < 2; ++v) {
-        Choice c;
-        c.rot[0] = baseRot[0] + 90 * ra;
-        c.rot[1] = baseRot[1] + 90 * rb;
-        c.vertical = v == 1;
-        for (int p = 0; p < 2; ++p) c.box[p] = extentAt(cuts[p], c.rot[p], edge);
-        c.size = arranged(c.box[0], c.box[1], c.vertical, gap);
-        choices.push_back(c);
-      }
+      if (quarterTurns < 0 || (ra == quarterTurns && rb == quarterTurns))
+        for (int v = 0; v < 2; ++v) {
+          Choice c;
+          c.rot[0] = baseRot[0] + 90 * ra;
+          c.rot[1] = baseRot[1] + 90 * rb;
+          c.vertical = v == 1;
+          for (int p = 0; p < 2; ++p) c.box[p] = extentAt(cuts[p], c.rot[p], edge);
+          c.size = arranged(c.box[0], c.box[1], c.vertical, gap);
+          choices.push_back(c);
+        }
   return choices;
 }
 
@@ -216,8 +217,8 @@ Status arrangeAlone(const SheetFit& fit, const std::vector<Choice>& choices, int
 // print page may turn to landscape), else each on its own, else (print) tiled across pages.
 Result<Arrangement> arrange(const SheetFit& fit, const std::vector<Polyline> cuts[2],
                             const std::string names[2], const TitleText& text,
-                            std::vector<std::string>& messages) {
-  const std::vector<Choice> choices = arrangementChoices(cuts, fit.edge, fit.m);
+                            std::vector<std::string>& messages, int quarterTurns) {
+  const std::vector<Choice> choices = arrangementChoices(cuts, fit.edge, fit.m, quarterTurns);
   Arrangement a;
   if (!arrangeTogether(fit, choices, text, a)) {
     double x = 0;  // the sheets lie side by side on the canvas

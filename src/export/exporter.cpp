@@ -113,28 +113,18 @@ LaidOutExport markFailedGate(const LaidOutExport& laidOut) {
   return out;
 }
 
-namespace {
-
-Result<PreparedExport> renderOrThrow(const DForm& model, const LaidOutExport& laidOut) {
-  if (!laidOut.pattern) return Status(ErrorCode::Internal, "renderExport: nothing laid out");
+Result<PreparedExport> fab::renderPattern(const LaidOutExport& laidOut) {
+  if (!laidOut.pattern) return Status(ErrorCode::Internal, "renderPattern: nothing laid out");
   const fab::PatternBuild& pat = laidOut.pattern->build;
-  ExportOptions options = laidOut.pattern->options;
-  options.failedGateMark = pat.failedGate;  // the previews' names and header say so too
   auto pdf = fab::pdfDocument(pat);
   if (!pdf.isOk()) return pdf.status();
-  if (interruptRequested()) return stopped();
-  auto gltf = fab::gltfDocument(model, options);
-  if (!gltf.isOk()) return gltf.status();
   if (interruptRequested()) return stopped();
   PreparedExport prepared;
   prepared.files = {
       {"pattern.svg", fab::svgDocument(pat.drawing)},
       {"pattern.dxf", fab::dxfDocument(pat.drawing)},
       {"pattern.pdf", pdf.value()},
-      {"assembly.svg", fab::svgDocument(pat.assembly)},
-      {"pattern.json", fab::sidecarJson(pat, options.jobName)},
-      {"dform.stl", fab::stlDocument(model, pat.failedGate)},
-      {options.gltfBinary ? "dform.glb" : "dform.gltf", gltf.value()},
+      {"pattern.json", fab::sidecarJson(pat, laidOut.pattern->options.jobName)},
   };
   // A pattern on several sheets (pages): each also alone, at its own size, for the machine, as
   // SVG and as DXF.
@@ -149,17 +139,40 @@ Result<PreparedExport> renderOrThrow(const DForm& model, const LaidOutExport& la
   ExportSummary& summary = prepared.summary;
   summary.messages = pat.messages;
   summary.profile = pat.profile.name;
-  summary.perimeterA = pat.pieces[0].perimeter;
-  summary.perimeterB = pat.pieces[1].perimeter;
+  if (pat.pieces.size() == 2) {
+    summary.perimeterA = pat.pieces[0].perimeter;
+    summary.perimeterB = pat.pieces[1].perimeter;
+  }
   summary.sheetWidthMm = pat.drawing.width;
   summary.sheetHeightMm = pat.drawing.height;
   summary.ticks = int(pat.ticks.size());
   summary.tabs = int(pat.tabs.size());
-  summary.creases = int(pat.pieces[0].creases.size() + pat.pieces[1].creases.size());
+  for (const fab::PieceInfo& piece : pat.pieces) summary.creases += int(piece.creases.size());
   summary.jointHoles = int(pat.jointHoles.size());
   summary.jointSlots = int(pat.jointSlots.size());
   summary.pages = int(pat.pages.size());
-  summary.triangles = int(model.a.F.rows() + model.b.F.rows());
+  summary.pieces = int(pat.pieces.size());
+  summary.sheets = int(pat.sheets.size());
+  return prepared;
+}
+
+namespace {
+
+Result<PreparedExport> renderOrThrow(const DForm& model, const LaidOutExport& laidOut) {
+  if (!laidOut.pattern) return Status(ErrorCode::Internal, "renderExport: nothing laid out");
+  const fab::PatternBuild& pat = laidOut.pattern->build;
+  ExportOptions options = laidOut.pattern->options;
+  options.failedGateMark = pat.failedGate;  // the previews' names and header say so too
+  Result<PreparedExport> prepared = fab::renderPattern(laidOut);
+  if (!prepared.isOk()) return prepared;
+  auto gltf = fab::gltfDocument(model, options);
+  if (!gltf.isOk()) return gltf.status();
+  if (interruptRequested()) return stopped();
+  std::vector<std::pair<std::string, std::string>>& files = prepared.value().files;
+  files.insert(files.begin() + 3, {"assembly.svg", fab::svgDocument(pat.assembly)});
+  files.insert(files.begin() + 5, {"dform.stl", fab::stlDocument(model, pat.failedGate)});
+  files.insert(files.begin() + 6, {options.gltfBinary ? "dform.glb" : "dform.gltf", gltf.value()});
+  prepared.value().summary.triangles = int(model.a.F.rows() + model.b.F.rows());
   return prepared;
 }
 

@@ -225,6 +225,8 @@ struct ExportSummary {
   int pages = 0;      ///< pattern pages (more than 1 when tiled or one piece per page); the PDF has
                       ///< the assembly page after them
   int triangles = 0;  ///< triangles in the STL (both pieces)
+  int pieces = 0;     ///< pieces on the sheets (2, or a nest's)
+  int sheets = 0;     ///< sheets (pages) the pieces are laid out on
 };
 
 /// What the layout check measured on the laid-out pattern (the fabrication part of the quality
@@ -233,7 +235,7 @@ struct LayoutFindings {
   int outsideSheet = 0;       ///< drawn paths with a point off the sheet
   int overlappingTabs = 0;    ///< pairs of glue tabs sharing area
   int tabsOverPieces = 0;     ///< (tab, piece) pairs sharing area
-  int overlappingPieces = 0;  ///< 1 when the two pieces' cut paths share area
+  int overlappingPieces = 0;  ///< pairs of pieces whose cut paths share area
   int labelsOutside = 0;      ///< labels not wholly inside their piece's outline
   int overlappingLabels = 0;  ///< pairs of labels whose footprints (convex hulls) share area
   /// (title block or calibration bar line, piece or registration mark) pairs sharing area
@@ -301,6 +303,28 @@ std::vector<std::string> exportFileNames();
 /// that cannot be exported, OutputFailed for an unwritable folder, and loadProfile's codes.
 Result<ExportSummary> exportAll(const DForm& model, const ExportOptions& options,
                                 const std::string& outDir);
+
+/// One D-Form of a nest (layOutNest): its model, the job its pieces are labelled with, how many
+/// copies of it to cut, and its body's folds (for score lines).
+struct NestItem {
+  const DForm* model = nullptr;
+  std::string jobName;
+  int copies = 1;
+  std::vector<FoldToScore> folds;
+};
+
+/// Every piece of `items` (each D-Form `copies` times) on as few sheets of the options' sheet (a
+/// page profile: its page) as hold them, `kerf + 1` mm apart, each turned by a quarter where that
+/// packs better, labelled with its D-Form ("ellipses-A", a later copy "ellipses-copy2-A"); each
+/// sheet with the mark (the options' job name over the 50 mm bar) and the title lines where they
+/// fit; checked by the layout check. Usage when a piece fits the sheet at neither turn, or for
+/// no items or a copy count below 1; the errors of layOutExport.
+Result<LaidOutExport> layOutNest(const std::vector<NestItem>& items, const ExportOptions& options);
+
+/// A laid-out nest's files in memory: pattern.svg, pattern.dxf, pattern.pdf (a page per sheet),
+/// pattern.json (with `nest`: each part's job, copy, piece and sheet), and each sheet's SVG and
+/// DXF when there is more than one.
+Result<PreparedExport> renderNest(const LaidOutExport& laidOut);
 
 /// Renders the pattern's page `page` (0-based; tiles of a print profile are pages, and the page
 /// after the last is the assembly page) to a PNG at

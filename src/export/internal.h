@@ -187,6 +187,16 @@ struct PieceInfo {
   int sheet = 0;  ///< the sheet (page) it is on: an index into PatternBuild::sheets
 };
 
+/// A part of a nest: which piece of which D-Form (and copy), where it went.
+struct NestPartInfo {
+  std::string name;    ///< "ellipses-A", its paths' ids' head
+  std::string job;     ///< its D-Form's job
+  int copy = 1;        ///< which copy of that D-Form (from 1)
+  int piece = 0;       ///< 0 = A, 1 = B of its D-Form
+  int sheet = 0;       ///< the sheet it is on
+  double turnDeg = 0;  ///< the quarter turn past its smallest-box turn it was packed at
+};
+
 struct PatternBuild {
   Profile profile;
   double scale = 1.0;  ///< the pattern's scale: 1 true size, else the flat pieces were scaled
@@ -205,6 +215,8 @@ struct PatternBuild {
   std::vector<JointSlotInfo> jointSlots;
   std::vector<std::string> messages;
   double tickSpacing = 0;
+  /// A nest's parts (layOutNest), one per piece, in `pieces`' order; empty for one D-Form.
+  std::vector<NestPartInfo> nestParts;
   /// Stamped FAILED GATE (stampFailedGate) after a failed quality gate: the stamp is an overlay,
   /// the layout is the same as without it.
   bool failedGate = false;
@@ -245,6 +257,11 @@ struct LaidOutPattern {
   ExportOptions options;
 };
 
+/// The pattern's own files of a laid-out pattern, rendered in memory: pattern.svg, .dxf, .pdf
+/// (with the assembly page when it has one), pattern.json, and each sheet's SVG and DXF when it
+/// has more than one; the summary of what they hold.
+Result<PreparedExport> renderPattern(const LaidOutExport& laidOut);
+
 /// How many patterns layOutExport has laid out in this process (tests count them).
 long patternsLaidOut();
 
@@ -267,6 +284,18 @@ Result<Profile> resolveProfile(const ExportOptions& options);
 /// `work`, when given, counts the work done (also when the build fails).
 Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& options,
                                   const Profile& profile, BuildWork* work = nullptr);
+
+/// How a nest (nest.cpp) lays one D-Form out: both pieces turned `quarterTurns` (0 or 1) quarter
+/// turns past their smallest-box turn, and each piece's name (its D-Form's, long) no larger than
+/// fits inside it.
+struct NestLayout {
+  int quarterTurns = 0;
+};
+
+/// The pattern of `model` at the options' scale laid out as a nest lays it out; no assembly page.
+Result<PatternBuild> buildNestPattern(const DForm& model, const ExportOptions& o,
+                                      const Profile& profile, const StrokeFont& font,
+                                      const NestLayout& nest);
 
 /// The tick number as printed: one that reads as another number upside down (6, 9, 16, 68, ...)
 /// gets a trailing dot.

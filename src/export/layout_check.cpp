@@ -44,11 +44,15 @@ bool isSheetFurniture(const Path& p) {
          id == "failed-gate" || id == "calibration-bar" || id == "calibration-label";
 }
 
-// The piece a path belongs to, from its id ("A-tick-07-label" -> A), or -1.
+// The piece a path belongs to, from its id ("A-tick-07-label" -> A), or -1: the piece with the
+// longest name that heads the id (a nest's "x-A" and "x-A-copy2-A" both head the latter's ids).
 int pieceOf(const Path& p, const std::vector<PieceInfo>& pieces) {
+  int found = -1;
   for (size_t i = 0; i < pieces.size(); ++i)
-    if (p.id.rfind(pieces[i].name + "-", 0) == 0) return int(i);
-  return -1;
+    if (p.id.rfind(pieces[i].name + "-", 0) == 0 &&
+        (found < 0 || pieces[i].name.size() > pieces[size_t(found)].name.size()))
+      found = int(i);
+  return found;
 }
 
 void note(LayoutFindings& f, const std::string& what) {
@@ -128,10 +132,15 @@ LayoutFindings checkLayout(const PatternBuild& pattern, BuildWork* workOut) {
     region.insert(region.end(), piece.holeCuts.begin(), piece.holeCuts.end());
     return region;
   };
-  if (pieces.size() == 2 &&
-      overlapArea(cutRegion(pieces[0]), cutRegion(pieces[1])) > kOverlapTolMm2) {
-    f.overlappingPieces = 1;
-    note(f, "the cut paths of " + pieces[0].name + " and " + pieces[1].name + " overlap");
+  std::vector<Box> pieceBoxes;
+  for (const PieceInfo& piece : pieces) pieceBoxes.push_back(boxOf(piece.cut));
+  for (const auto& [i, j] : meetingPairs(pieceBoxes)) {
+    const PieceInfo& a = pieces[size_t(i)];
+    const PieceInfo& b = pieces[size_t(j)];
+    if (overlapArea(cutRegion(a), cutRegion(b)) > kOverlapTolMm2) {
+      ++f.overlappingPieces;
+      note(f, "the cut paths of " + a.name + " and " + b.name + " overlap");
+    }
   }
 
   // The title block and the calibration bar keep off the pieces (their cut paths, tabs included,

@@ -207,7 +207,7 @@ namespace {
 // is set when it fails because a piece does not fit its sheet or page.
 Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
                                   const Profile& profile, const StrokeFont& font, double scale,
-                                  BuildWork& work, bool& tooLargeOut) {
+                                  BuildWork& work, bool& tooLargeOut, const NestLayout* nest) {
   PatternBuild out;
   out.scale = scale;
   out.profile = profile;
@@ -256,7 +256,8 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
                         {flat.names[0], flat.names[1]},
                         flat.creased,
                         font};
-  Result<Arrangement> arranged = arrange(fit, cuts, flat.names, title, out.messages);
+  Result<Arrangement> arranged =
+      arrange(fit, cuts, flat.names, title, out.messages, nest ? nest->quarterTurns : -1);
   if (!arranged.isOk()) return arranged.status();
   const Arrangement& a = arranged.value();
   double canvasW = 0, canvasH = 0;
@@ -291,7 +292,7 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
 
   DrawingBuilder b(profile, canvasW, canvasH);
   describe(b.drawing(), o, profile, scale, perimeterText);
-  drawPieceLabels(flat, place, profile, font, b, out, work);
+  drawPieceLabels(flat, place, profile, font, b, out, work, nest != nullptr);
   drawCreases(out.pieces, profile, b);
   drawScoredFolds(out.pieces, b);
   drawTabFolds(out.tabs, flat.names, "", profile, b);
@@ -315,10 +316,10 @@ DForm scaledFlat(const DForm& model, double scale) {
 // The pattern of `model` at `scale` with options `o`; `tooLarge` is set when a piece does not fit.
 Result<PatternBuild> buildScaled(const DForm& model, const ExportOptions& o, const Profile& profile,
                                  const StrokeFont& font, double scale, BuildWork& work,
-                                 bool& tooLarge) {
+                                 bool& tooLarge, const NestLayout* nest = nullptr) {
   tooLarge = false;
   return buildAtScale(scale == 1.0 ? model : scaledFlat(model, scale), o, profile, font, scale,
-                      work, tooLarge);
+                      work, tooLarge, nest);
 }
 
 // The largest scale below `failsAt` (in tenths of a percent, where a piece does not fit) at which
@@ -375,6 +376,16 @@ std::string fitAdvice(const DForm& model, const ExportOptions& o, const Profile&
 }
 
 }  // namespace
+
+Result<PatternBuild> buildNestPattern(const DForm& model, const ExportOptions& o,
+                                      const Profile& profile, const StrokeFont& font,
+                                      const NestLayout& nest) {
+  if (Status s = checkModel(model); !s.isOk()) return s;
+  if (Status s = checkExportOptions(o); !s.isOk()) return s;
+  BuildWork work;
+  bool tooLarge = false;
+  return buildScaled(model, o, profile, font, o.scale, work, tooLarge, &nest);
+}
 
 Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
                                   const Profile& profile, BuildWork* workOut) {

@@ -185,12 +185,16 @@ namespace {
 // placed joins `taken`.
 void drawPieceName(const PieceInfo& info, const std::vector<Polyline>& creaseLines,
                    const Profile& profile, const StrokeFont& font, DrawingBuilder& b,
-                   std::vector<Polyline>& taken) {
+                   std::vector<Polyline>& taken, bool fitNames) {
   const std::string& nm = info.name;
   auto nameLabels = [&](const std::vector<Polyline>& avoid) {
     const auto [centre, room] = roomiestPoint(info.boundaries, creaseLines, avoid);
     std::vector<Path> labels;
-    const double nameH = std::min(3 * profile.labelHeightMm, 0.9 * room);
+    double nameH = std::min(3 * profile.labelHeightMm, 0.9 * room);
+    if (fitNames) {  // the name's box within the free disc of radius `room` about the centre
+      const double aspect = font.width(nm, 1.0);
+      nameH = std::min(nameH, 0.9 * 2 * room / std::sqrt(aspect * aspect + 1));
+    }
     if (nameH >= 1.0) labels.push_back(textPath(font, nm + "-name", nm, centre, {1, 0}, nameH));
     return labels;
   };
@@ -246,8 +250,8 @@ int drawCreaseLetters(const PieceInfo& info, const std::vector<Polyline>& crease
 // Each piece's ticks and tick numbers, name and crease letters, and messages for the labels left
 // out.
 void drawPieceLabels(const FlatPieces& flat, const Placement place[2], const Profile& profile,
-                     const StrokeFont& font, DrawingBuilder& b, PatternBuild& out,
-                     BuildWork& work) {
+                     const StrokeFont& font, DrawingBuilder& b, PatternBuild& out, BuildWork& work,
+                     bool fitNames) {
   int skippedLabels = 0, thinnedLabels = 0, skippedCreaseLabels = 0;
   for (int p = 0; p < 2; ++p) {
     const PieceInfo& info = out.pieces[size_t(p)];
@@ -260,7 +264,7 @@ void drawPieceLabels(const FlatPieces& flat, const Placement place[2], const Pro
     std::vector<Polyline> taken;  // footprints of the piece's labels so far
     for (const Path& path : b.engrave().paths)
       if (path.id.rfind(info.name + "-", 0) == 0) taken.push_back(convexHull(path.parts));
-    drawPieceName(info, creaseLines, profile, font, b, taken);
+    drawPieceName(info, creaseLines, profile, font, b, taken, fitNames);
     skippedCreaseLabels += drawCreaseLetters(info, creaseLines, profile, font, b, taken);
   }
   if (skippedLabels > 0)

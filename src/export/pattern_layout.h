@@ -160,9 +160,11 @@ struct Arrangement {
 
 // Pieces are packed on as few sheets (pages) as hold them: both on one where they fit together,
 // else each on its own, else (print) tiled across pages.
+// `quarterTurns` 0 or 1 turns both pieces that many quarter turns past their smallest-box turn
+// (a nest lays each piece out both ways); -1 lets the arrangement choose.
 Result<Arrangement> arrange(const SheetFit& fit, const std::vector<Polyline> cuts[2],
                             const std::string names[2], const TitleText& text,
-                            std::vector<std::string>& messages);
+                            std::vector<std::string>& messages, int quarterTurns = -1);
 
 // Piece p on the sheet: its outline, material, cut paths, tint and creases.
 PieceInfo placedPiece(const FlatPieces& flat, int p, const std::vector<Polyline>& cuts,
@@ -171,8 +173,11 @@ PieceInfo placedPiece(const FlatPieces& flat, int p, const std::vector<Polyline>
 
 // Each piece's ticks and tick numbers, name and crease letters, and messages for the labels left
 // out.
+// `fitNames`: each name no wider than fits in its piece (a nest's long names); else as tall as
+// the room at the roomiest point allows.
 void drawPieceLabels(const FlatPieces& flat, const Placement place[2], const Profile& profile,
-                     const StrokeFont& font, DrawingBuilder& b, PatternBuild& out, BuildWork& work);
+                     const StrokeFont& font, DrawingBuilder& b, PatternBuild& out, BuildWork& work,
+                     bool fitNames = false);
 
 // Crease fold lines: the profile's fold style, dashed by the fold's direction.
 void drawCreases(const std::vector<PieceInfo>& pieces, const Profile& profile, DrawingBuilder& b);

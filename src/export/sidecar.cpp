@@ -163,6 +163,17 @@ std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName)
                       {"dxf", alone ? sheetFileName(int(k) + 1, "dxf") : "pattern.dxf"}});
   }
   j["sheets"] = sheets;
+  if (!pattern.nestParts.empty()) {  // a nest: which D-Form each piece belongs to
+    json parts = json::array();
+    for (const NestPartInfo& part : pattern.nestParts)
+      parts.push_back({{"name", part.name},
+                       {"job", part.job},
+                       {"copy", part.copy},
+                       {"piece", part.piece == 0 ? "A" : "B"},
+                       {"sheet", part.sheet},
+                       {"turn_deg", part.turnDeg}});
+    j["nest"] = {{"gap_mm", pattern.profile.kerfMm + 1.0}, {"parts", parts}};
+  }
   j["messages"] = pattern.messages;
   return j.dump(1, ' ', false, json::error_handler_t::replace);
 }

@@ -54,9 +54,10 @@ std::vector<TitleLine> titleLines(size_t k, size_t sheets, int piece, bool full,
     return lines;
   }
   std::string pieceNote;
-  if (sheets > 1 && piece >= 0)
+  if (sheets > 1)
     pieceNote = " - " + fit.sheetWord + " " + std::to_string(k + 1) + " of " +
-                std::to_string(sheets) + ": piece " + text.names[piece];
+                std::to_string(sheets) +
+                (piece >= 0 ? ": piece " + text.names[size_t(piece)] : std::string());
   const std::optional<MaterialPreset> material = materialNamed(o.material);
   const std::string materialNote =
       material ? " - " + material->name + " " + formatMm(material->thicknessMm) + " mm" : "";
@@ -161,8 +162,8 @@ void drawSheetFurniture(const std::vector<SheetPlan>& plans, const SheetFit& fit
     const TitlePlace& title = plans[k].title;
     if (!plans[k].tiled && title.placed) {
       TitleBlock block = title.block;
-      drawTitleBlock(k, plans.size(), plans[k].pieces.front(), title.full, title.h, fit, text,
-                     b.title(), block);
+      const int piece = plans[k].pieces.size() == 1 ? plans[k].pieces.front() : -1;
+      drawTitleBlock(k, plans.size(), piece, title.full, title.h, fit, text, b.title(), block);
     }
     if (fit.profile->registration == Registration::Silhouette)
       drawRegistrationMarks(k, plans[k].box, *b.regmarks());

@@ -519,6 +519,31 @@ TEST_F(CliTest, ExportOptionsOnTheCommandLine) {
   EXPECT_FALSE(fs::exists(bad));
 }
 
+TEST_F(CliTest, ExportNestsSeveralResultsIntoAFolderOfItsOwn) {
+  const std::string pieces =
+      sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  for (const char* result : {"r1", "r2"})
+    ASSERT_EQ(
+        run("forward " + pieces + " --resolution 30 -q --no-export -o " + path(result)).exitCode,
+        0);
+  const std::string both = path("r1") + " " + path("r2");
+  const Outcome nested =
+      run("export " + both + " --nest --copies 2 --sheet 600x400mm -q -o " + path("nest"));
+  ASSERT_EQ(nested.exitCode, 0) << nested.err;
+  const nlohmann::json pattern =
+      nlohmann::json::parse(std::ifstream(fs::path(path("nest")) / "pattern.json"));
+  ASSERT_EQ(pattern["nest"]["parts"].size(), 8u) << "two pieces, two results, two copies";
+  EXPECT_EQ(pattern["nest"]["parts"][0]["job"], "ellipses-a");
+  const size_t sheets = pattern["sheets"].size();
+  for (size_t k = 1; sheets > 1 && k <= sheets; ++k)
+    EXPECT_TRUE(
+        fs::exists(fs::path(path("nest")) / ("pattern-sheet-" + std::to_string(k) + ".dxf")));
+  // Several results without --nest, a nest without its folder or with no copies: usage errors.
+  EXPECT_EQ(run("export " + both + " -q -o " + path("plain")).exitCode, 2);
+  EXPECT_EQ(run("export " + both + " --nest -q").exitCode, 2);
+  EXPECT_EQ(run("export " + both + " --nest --copies 0 -q -o " + path("none")).exitCode, 2);
+}
+
 TEST_F(CliTest, PrintAndCutPutsEachPieceOnItsOwnPage) {
   // A 160 x 100 mm ellipse and a circle of its perimeter (413.8 mm): each fits an A4 page's
   // registration area, the two together do not.

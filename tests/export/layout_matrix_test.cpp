@@ -18,50 +18,6 @@ namespace {
 
 using fab::Box;
 
-// The best similarity (scale, turn, shift) taking points `from` onto `to` (as many, in the same
-// order; Umeyama without reflection), and the largest distance it leaves, relative to the span
-// of `to`.
-double similarityResidual(const std::vector<Vec2>& from, const std::vector<Vec2>& to) {
-  Vec2 mf = Vec2::Zero(), mt = Vec2::Zero();
-  for (size_t i = 0; i < from.size(); ++i) {
-    mf += from[i];
-    mt += to[i];
-  }
-  mf /= double(from.size());
-  mt /= double(to.size());
-  double a = 0, b = 0, norm = 0;  // to ~ s R from, R = [[c, -d], [d, c]]: s c = a / n, s d = b / n
-  for (size_t i = 0; i < from.size(); ++i) {
-    const Vec2 p = from[i] - mf, q = to[i] - mt;
-    a += p.dot(q);
-    b += p.x() * q.y() - p.y() * q.x();
-    norm += p.squaredNorm();
-  }
-  if (norm <= 0) return 1e300;
-  const double c = a / norm, d = b / norm;
-  double worst = 0, span = 0;
-  for (size_t i = 0; i < from.size(); ++i) {
-    const Vec2 p = from[i] - mf;
-    const Vec2 mapped = mt + Vec2(c * p.x() - d * p.y(), d * p.x() + c * p.y());
-    worst = std::max(worst, (mapped - to[i]).norm());
-    span = std::max(span, (to[i] - mt).norm());
-  }
-  return span > 0 ? worst / span : 1e300;
-}
-
-// Whether the text path's first strokes write `words`: the Hershey strokes of `words`, stroke for
-// stroke and point for point, up to a similarity (its position, height and direction).
-bool startsWithText(const fab::Path& path, const std::string& words, const fab::StrokeFont& font) {
-  const std::vector<Polyline> expected = font.layout(words, Vec2::Zero(), Vec2(1, 0), 1.0);
-  if (expected.empty() || path.parts.size() < expected.size()) return false;
-  std::vector<Vec2> from, to;
-  for (size_t k = 0; k < expected.size(); ++k) {
-    if (path.parts[k].size() != expected[k].size()) return false;
-    from.insert(from.end(), expected[k].begin(), expected[k].end());
-    to.insert(to.end(), path.parts[k].begin(), path.parts[k].end());
-  }
-  return similarityResidual(from, to) < 1e-6;
-}
-
 // The id without a "-page-N" suffix (a later sheet's copy of the sheet furniture).
 std::string baseId(const std::string& id) {
   const size_t at = id.rfind("-page-");

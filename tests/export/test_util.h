@@ -97,6 +97,10 @@ int checkDxf(const std::string& dir, std::string* out, const std::string& extra 
 /// checkDxf passes; its report (the differences measured) goes to the log.
 void expectDxfChecks(const std::string& dir, const std::string& extra = "");
 
+/// Whether the text path's first strokes write `words` in `font`: the Hershey strokes of `words`,
+/// stroke for stroke and point for point, up to a similarity (position, height and direction).
+bool startsWithText(const fab::Path& path, const std::string& words, const fab::StrokeFont& font);
+
 /// Runs a shell command; returns its exit code, output (stdout and stderr) in *out.
 int run(const std::string& command, std::string* out = nullptr);
 bool haveProgram(const std::string& name);
