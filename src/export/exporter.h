@@ -55,6 +55,19 @@ const char* tabSideName(TabSide side);
 /// The side called `name` (as tabSideName writes it), or nullopt.
 std::optional<TabSide> tabSideNamed(const std::string& name);
 
+/// Where a tick's number is printed.
+enum class TickNumbers {
+  Face,  ///< inside the piece, beside its tick (seen on the finished D-Form)
+  Tabs,  ///< on the glue tab over the tick, where it has one (hidden once glued), else the face
+  Both,  ///< on the tab and on the face
+};
+
+/// The place's name in profiles and on the command line: "face", "tabs", "both".
+const char* tickNumbersName(TickNumbers numbers);
+
+/// The place called `name` (as tickNumbersName writes it), or nullopt.
+std::optional<TickNumbers> tickNumbersNamed(const std::string& name);
+
 /// How the pieces are joined along the seam.
 enum class Joint {
   Glue,   ///< glue tabs (or edge to edge): paper and card
@@ -119,7 +132,8 @@ struct Profile {
   /// The cutter's kerf (mm, the width of material the beam removes): cut paths are offset by
   /// half of it away from the material, so that the parts come out at their drawn size.
   double kerfMm = 0.0;
-  TabSide tabs = TabSide::A;  ///< which piece gets the glue tabs
+  TabSide tabs = TabSide::A;                ///< which piece gets the glue tabs
+  TickNumbers numbers = TickNumbers::Face;  ///< where the ticks' numbers are printed
   Joint joint = Joint::Glue;  ///< how the pieces are joined (a material or --joint overrides)
 };
 
@@ -170,6 +184,8 @@ struct ExportOptions {
   double tabMaxLengthMm = 40;      ///< max length of one tab along the seam (mm)
   double tabGapMm = 1.5;           ///< gap between neighbouring tabs along the seam (mm)
   std::optional<TabSide> tabSide;  ///< which piece gets the glue tabs; unset: the profile's
+  /// Where the ticks' numbers go (the face, the glue tabs, both); unset: the profile's.
+  std::optional<TickNumbers> numbers;
   /// The cutter's kerf (mm, 0 to 5; cut paths move half of it); unset: the profile's.
   std::optional<double> kerfMm;
   /// --joint: how the pieces are joined; unset: the material's, else the profile's. With holes,

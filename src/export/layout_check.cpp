@@ -203,9 +203,20 @@ LayoutFindings checkLayout(const PatternBuild& pattern, BuildWork* workOut) {
     // A piece's labels lie inside it; the sheet's own (title, calibration bar) only on the sheet.
     const int p = pieceOf(*label, pieces);
     if (p < 0) continue;
-    bool inside = true;
-    for (const Polyline& part : label->parts)
-      for (const Vec2& q : part) inside = inside && insideRegion(pieces[size_t(p)].boundaries, q);
+    // A number on a glue tab lies inside one of its piece's tabs; any other label in the piece.
+    std::vector<std::vector<Polyline>> regions;
+    if (endsWith(label->id, "-tab-label")) {
+      for (const TabInfo& tab : tabs)
+        if (tab.piece == p) regions.push_back({tab.polygon});
+    } else {
+      regions.push_back(pieces[size_t(p)].boundaries);
+    }
+    bool inside = std::any_of(regions.begin(), regions.end(), [&](const auto& region) {
+      for (const Polyline& part : label->parts)
+        for (const Vec2& q : part)
+          if (!insideRegion(region, q)) return false;
+      return true;
+    });
     if (!inside) {
       ++f.labelsOutside;
       note(f, "label " + label->id + " is not inside its piece");

@@ -257,8 +257,11 @@ void drawPieceLabels(const FlatPieces& flat, const Placement place[2], const Pro
     const PieceInfo& info = out.pieces[size_t(p)];
     std::vector<Polyline> creaseLines;  // labels keep off them
     for (const CreaseInfo& crease : info.creases) creaseLines.push_back(crease.line);
-    const TickLabelCounts ticks =
-        drawTicks(p, info, flat.seams[p], place[p], out.ticks, creaseLines, profile, font, b, work);
+    std::vector<const TabInfo*> tabs;  // the piece's, for numbers on them
+    for (const TabInfo& tab : out.tabs)
+      if (tab.piece == p) tabs.push_back(&tab);
+    const TickLabelCounts ticks = drawTicks(p, info, flat.seams[p], place[p], out.ticks,
+                                            creaseLines, tabs, profile, font, b, work);
     skippedLabels += ticks.skipped;
     thinnedLabels += ticks.thinned;
     std::vector<Polyline> taken;  // footprints of the piece's labels so far

@@ -196,10 +196,12 @@ struct TickLabelCounts {
 };
 
 // Piece p's tick marks across its outline (score layer) and their numbers inside it (engrave
-// layer), clear of its creases (`creaseLines`).
+// layer), clear of its creases (`creaseLines`); where the profile's `numbers` asks, a number goes
+// on the glue tab of the piece over its tick (`tabs`: the piece's), "A-tick-07-tab-label".
 TickLabelCounts drawTicks(int p, const PieceInfo& info, const Seam& seam, const Placement& place,
                           const std::vector<TickInfo>& ticks,
-                          const std::vector<Polyline>& creaseLines, const Profile& profile,
+                          const std::vector<Polyline>& creaseLines,
+                          const std::vector<const TabInfo*>& tabs, const Profile& profile,
                           const StrokeFont& font, DrawingBuilder& b, BuildWork& work);
 
 // --- Glue tabs (glue_tabs.cpp) ------------------------------------------------------------------

@@ -105,6 +105,7 @@ struct FieldReader {
 
 constexpr TabSide kTabSides[] = {TabSide::A, TabSide::B, TabSide::Alternate, TabSide::None};
 constexpr Joint kJoints[] = {Joint::Glue, Joint::Holes, Joint::Lace, Joint::Slots};
+constexpr TickNumbers kNumbers[] = {TickNumbers::Face, TickNumbers::Tabs, TickNumbers::Both};
 
 // The sheet materials: paper and card are glued with tabs; polypropylene (0.5 mm) is laced, its
 // holes a little larger for a 2 mm cord; 3 mm plywood is joined with cable ties or bolts through
@@ -141,6 +142,7 @@ const char* kKnownFields[] = {"version",
                               "kerf_mm",
                               "tabs",
                               "joint",
+                              "numbers",
                               "bleed_mm",
                               "fill_color_a",
                               "fill_color_b"};
@@ -210,6 +212,9 @@ Result<Profile> parseProfileJson(const std::string& text, const std::string& sou
   std::vector<std::pair<std::string, Joint>> joints;
   for (Joint joint : kJoints) joints.emplace_back(jointName(joint), joint);
   r.choice<Joint>("joint", p.joint, joints);
+  std::vector<std::pair<std::string, TickNumbers>> numbers;
+  for (TickNumbers n : kNumbers) numbers.emplace_back(tickNumbersName(n), n);
+  r.choice<TickNumbers>("numbers", p.numbers, numbers);
   if (!r.status.isOk()) return r.status;
   if (!p.page.empty() && !pageSizeMm(p.page))
     return invalid(source,
@@ -260,6 +265,21 @@ const char* tabSideName(TabSide side) {
 std::optional<TabSide> tabSideNamed(const std::string& name) {
   for (TabSide side : kTabSides)
     if (name == tabSideName(side)) return side;
+  return std::nullopt;
+}
+
+const char* tickNumbersName(TickNumbers numbers) {
+  switch (numbers) {
+    case TickNumbers::Face: return "face";
+    case TickNumbers::Tabs: return "tabs";
+    case TickNumbers::Both: return "both";
+  }
+  return "?";
+}
+
+std::optional<TickNumbers> tickNumbersNamed(const std::string& name) {
+  for (TickNumbers n : kNumbers)
+    if (name == tickNumbersName(n)) return n;
   return std::nullopt;
 }
 
@@ -333,6 +353,7 @@ Result<Profile> resolveProfile(const ExportOptions& options) {
   if (!loaded.isOk()) return loaded;
   Profile p = loaded.value();
   if (options.kerfMm) p.kerfMm = *options.kerfMm;
+  if (options.numbers) p.numbers = *options.numbers;
   const std::optional<MaterialPreset> material = materialNamed(options.material);
   if (options.joint)
     p.joint = *options.joint;
