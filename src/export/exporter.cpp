@@ -134,6 +134,17 @@ Result<PreparedExport> fab::renderPattern(const LaidOutExport& laidOut) {
       prepared.files.emplace_back(sheetFileName(int(k) + 1, "svg"), fab::svgDocument(sheet));
       prepared.files.emplace_back(sheetFileName(int(k) + 1, "dxf"), fab::dxfDocument(sheet));
     }
+  // For a cutter's software that takes the print as an image: each page's print as a PNG and its
+  // cut line alone as an SVG of the same frame.
+  if (pat.profile.printPngDpi > 0)
+    for (size_t k = 0, sheet = 0; k < pat.pages.size(); ++k) {
+      if (pat.pages[k].kind != "sheet") continue;
+      auto png = fab::printPng(pat, int(k), pat.profile.printPngDpi);
+      if (!png.isOk()) return png.status();
+      ++sheet;
+      prepared.files.emplace_back(printSheetFileName(int(sheet), "png"), png.value());
+      prepared.files.emplace_back(printSheetFileName(int(sheet), "svg"), fab::cutSvg(pat, int(k)));
+    }
   prepared.layout = laidOut.layout;
   prepared.ticks = laidOut.ticks;
   ExportSummary& summary = prepared.summary;
@@ -217,7 +228,11 @@ std::vector<std::string> exportFileNames() {
           sheetFileName(1, "svg"),
           sheetFileName(2, "svg"),
           sheetFileName(1, "dxf"),
-          sheetFileName(2, "dxf")};
+          sheetFileName(2, "dxf"),
+          printSheetFileName(1, "png"),
+          printSheetFileName(2, "png"),
+          printSheetFileName(1, "svg"),
+          printSheetFileName(2, "svg")};
 }
 
 Result<ExportSummary> exportAll(const DForm& model, const ExportOptions& options,

@@ -126,6 +126,14 @@ struct Profile {
   /// outside its cut line, so that a cut a little off its line leaves no white edge; 0 = no tint.
   /// While it is on, the outline is not printed on the cut line, where an off cut would show it.
   double bleedMm = 0.0;
+  /// Print-and-cut for a RIP (Roland VersaWorks, Mimaki RasterLink): the cut line is written into
+  /// pattern.pdf as this spot colour (a Separation colour space, e.g. "CutContour"), which the RIP
+  /// sends to the cutter and does not print; the SVG's cut layer is named after it. "" = none.
+  std::string cutSpotColor;
+  /// Print-and-cut: each page's print also written as a PNG at this resolution (dots per inch,
+  /// 72 to 1200), transparent around the print, with the cut outline alone as an SVG of the same
+  /// frame (Cricut Design Space); 0 = none.
+  double printPngDpi = 0;
   std::string fillColorA = "#FFE6CC";  ///< piece A's tint, #RRGGBB (the 3D preview's A)
   std::string fillColorB = "#CCE6FF";  ///< piece B's tint, #RRGGBB (the 3D preview's B)
   double labelHeightMm = 3.0;          ///< cap height of tick numbers (mm); piece names are 3x
@@ -157,6 +165,10 @@ std::optional<std::pair<double, double>> pageSizeMm(const std::string& name);
 /// The file of sheet `sheet` (1-based) alone, written when a pattern takes more than one sheet or
 /// page: "pattern-sheet-1.svg" for (1, "svg"), "pattern-sheet-1.dxf" for (1, "dxf").
 std::string sheetFileName(int sheet, const std::string& extension);
+
+/// A print-and-cut profile with print_png_dpi: sheet (page) `sheet`'s print as an image,
+/// "print-sheet-1.png" for (1, "png"), and its cut line alone, "cut-sheet-1.svg" for (1, "svg").
+std::string printSheetFileName(int sheet, const std::string& extension);
 
 /// A fold of the solved body through a flat piece (report.json's model.folds), to score.
 struct FoldToScore {

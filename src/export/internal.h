@@ -73,6 +73,9 @@ struct Layer {
   double widthMm = 0.025;  ///< stroke width (mm)
   double dashMm = 3.0;     ///< dash and gap length for dashed paths (mm)
   bool printed = true;     ///< drawn in the PDF and PNG (a print-and-cut Cut layer is not)
+  /// A spot colour's name (a print-and-cut Cut layer for a RIP, "CutContour"): the PDF draws the
+  /// layer in that Separation colour space, the SVG names the layer after it. "" = none.
+  std::string spot;
   std::vector<Path> paths;
 };
 
@@ -90,6 +93,9 @@ struct PageView {
   Vec2 origin{0, 0};             ///< canvas point drawn at the page's (0, 0)
   double clipX0 = 0, clipY0 = 0, clipX1 = 0, clipY1 = 0;  ///< page area the canvas shows (mm)
   std::vector<Layer> overlay;                             ///< drawn in page coordinates, unclipped
+  /// The area of the page the print may use (page mm): the profile's art region (a Cricut's
+  /// Print Then Cut area, inside a Silhouette's marks); empty on a tile or a page map.
+  Box printArea;
   /// "sheet" (a sheet or page of the layout), "map" (a tiled piece's page map) or "tile"
   std::string kind = "sheet";
 };
@@ -323,7 +329,24 @@ std::string dxfDocument(const Drawing& drawing);
 /// The part of `drawing` on `sheet` (the paths inside it), moved to the sheet's own origin.
 Drawing sheetDrawing(const Drawing& drawing, const Box& sheet);
 Result<std::string> pdfDocument(const PatternBuild& pattern);
+/// `pdf` (Cairo's) with /ViewerPreferences << /PrintScaling /None >> in its catalog, so that a
+/// viewer's print dialog prints at 100 % instead of fitting the page to the paper (pdf_update.cpp,
+/// an incremental update: Cairo's bytes stay as they are). Internal when Cairo's output is not
+/// laid out as expected.
+Result<std::string> withPrintScalingNone(std::string pdf);
+/// `pdf` with each page's paths of the pattern's spot-colour layer (Layer::spot, a RIP's
+/// CutContour) drawn in that Separation colour space (DeviceCMYK magenta where a device lacks
+/// the ink), full tint, at the layer's width; as it is without one.
+Result<std::string> withSpotLayers(std::string pdf, const PatternBuild& pattern);
 Result<std::string> pngImage(const PatternBuild& pattern, int page, double dpi);
+/// Page `page`'s print (its printed layers, no cut line) within its print area, as a PNG at `dpi`
+/// with a transparent background and the resolution recorded (pHYs), for a cutter's software that
+/// takes the print as an image and cuts round its opaque pixels (Cricut Design Space's Print Then
+/// Cut): only the pieces, each clipped to its cut line (a pattern stamped FAILED GATE keeps its
+/// stamp).
+Result<std::string> printPng(const PatternBuild& pattern, int page, double dpi);
+/// Page `page`'s cut line alone, in the frame of printPng's image (mm, its top left at 0, 0).
+std::string cutSvg(const PatternBuild& pattern, int page);
 std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName);
 
 std::string stlDocument(const DForm& model, bool failedGate);

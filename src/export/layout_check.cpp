@@ -33,7 +33,8 @@ std::string withoutPage(const std::string& id) {
 bool isLabel(const Path& p) {
   const std::string id = withoutPage(p.id);
   return endsWith(id, "-label") || endsWith(id, "-name") || endsWith(id, "-failed-gate") ||
-         id == "title" || id == "note" || id == "tab-note" || id == "failed-gate";
+         id == "title" || id == "note" || id == "tab-note" || id == "failed-gate" ||
+         id == "scale-note" || id == "regmark-note";
 }
 
 // The sheet's own furniture: its title block (title, notes, legend, failed-gate line) and the
@@ -41,7 +42,8 @@ bool isLabel(const Path& p) {
 bool isSheetFurniture(const Path& p) {
   const std::string id = withoutPage(p.id);
   return id == "title" || id == "note" || id == "tab-note" || id == "crease-legend-label" ||
-         id == "failed-gate" || id == "calibration-bar" || id == "calibration-label";
+         id == "failed-gate" || id == "calibration-bar" || id == "calibration-label" ||
+         id == "job-name" || id == "scale-note" || id == "regmark-note";
 }
 
 // The piece a path belongs to, from its id ("A-tick-07-label" -> A), or -1: the piece with the

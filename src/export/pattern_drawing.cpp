@@ -76,6 +76,7 @@ DrawingBuilder::DrawingBuilder(const Profile& p, double w, double h) {
       break;
   }
   cut_ = layer("Cut", p.cutColor, p.cutWidthMm, !printAndCut);
+  drawing_.layers[size_t(cut_)].spot = p.cutSpotColor;
 }
 
 Path scorePass(const Path& fold) {

@@ -145,7 +145,9 @@ const char* kKnownFields[] = {"version",
                               "numbers",
                               "bleed_mm",
                               "fill_color_a",
-                              "fill_color_b"};
+                              "fill_color_b",
+                              "cut_spot_color",
+                              "print_png_dpi"};
 
 }  // namespace
 
@@ -206,6 +208,8 @@ Result<Profile> parseProfileJson(const std::string& text, const std::string& sou
   r.number("bleed_mm", p.bleedMm, 0, 3);
   r.color("fill_color_a", p.fillColorA);
   r.color("fill_color_b", p.fillColorB);
+  r.text("cut_spot_color", p.cutSpotColor);
+  r.number("print_png_dpi", p.printPngDpi, 0, 1200);
   std::vector<std::pair<std::string, TabSide>> sides;
   for (TabSide side : kTabSides) sides.emplace_back(tabSideName(side), side);
   r.choice<TabSide>("tabs", p.tabs, sides);
@@ -223,6 +227,19 @@ Result<Profile> parseProfileJson(const std::string& text, const std::string& sou
   if (p.kind == ProfileKind::PrintAndCut && p.page.empty())
     return invalid(source, "a print-and-cut profile needs \"page\" (A4 or Letter)");
   if (p.tile && p.page.empty()) return invalid(source, "\"tile\" needs a \"page\"");
+  const bool spotName = std::all_of(p.cutSpotColor.begin(), p.cutSpotColor.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+  });
+  if (!spotName || p.cutSpotColor.size() > 64)
+    return invalid(source,
+                   "field \"cut_spot_color\" must be a name of letters, digits, '_' and '-' "
+                   "(such as CutContour), at most 64 characters");
+  if (p.kind != ProfileKind::PrintAndCut && (!p.cutSpotColor.empty() || p.printPngDpi > 0))
+    return invalid(source,
+                   "fields \"cut_spot_color\" and \"print_png_dpi\" are for print-and-cut "
+                   "profiles: they split a print from its cut line");
+  if (p.printPngDpi > 0 && p.printPngDpi < 72)
+    return invalid(source, "field \"print_png_dpi\" must be 0 (none) or from 72 to 1200");
   if (p.kind != ProfileKind::PrintAndCut && p.bleedMm > 0)
     return invalid(source,
                    "field \"bleed_mm\" is for print-and-cut profiles: scissors follow the printed "
@@ -250,6 +267,11 @@ std::optional<std::pair<double, double>> pageSizeMm(const std::string& name) {
 
 std::string sheetFileName(int sheet, const std::string& extension) {
   return "pattern-sheet-" + std::to_string(sheet) + "." + extension;
+}
+
+std::string printSheetFileName(int sheet, const std::string& extension) {
+  return (extension == "png" ? "print-sheet-" : "cut-sheet-") + std::to_string(sheet) + "." +
+         extension;
 }
 
 const char* tabSideName(TabSide side) {

@@ -109,7 +109,8 @@ Result<SheetFit> sheetFit(const ExportOptions& o, const Profile& profile, bool c
                     " of the designed size (ticks, tabs and labels keep theirs)";
   // The full block's lines: title and note, a legend line for creases, the tab line, the scale
   // note (the depth a tiled piece's page map keeps for them).
-  const int titleLines = 2 + int(creased) + int(fit.tabbed) + int(!fit.scaleNote.empty());
+  const int titleLines = 2 + int(creased) + int(fit.tabbed) + int(!fit.scaleNote.empty()) +
+                         int(profile.registration == Registration::Silhouette);
   const double titleH = titleLines * kTitlePitch * fit.textH + barH;
   fit.titleBlock = titleH > 0 ? fit.m + titleH : 0.0;
   // The page: --page over the profile's. A page profile refuses a sheet size and a sheet profile

@@ -2,7 +2,7 @@
 // tests, the report and anyone who wants to check a cut file without parsing SVG.
 #include <nlohmann/json.hpp>
 
-#include "dform/export/internal.h"
+#include "dform/export/pattern_layout.h"
 
 namespace dform::fab {
 
@@ -70,6 +70,51 @@ void addJoint(json& j, const PatternBuild& pattern) {
                      {"slot_length_mm", slot.length},
                      {"slot_width_mm", slot.width}});
   j["joint_slots"] = slots;
+}
+
+// What the cutter is set to and where its marks are (pattern.json's "registration"): Silhouette
+// type-1 marks with their sizes (Silhouette Studio's registration settings) and each sheet's
+// square and L-marks; the Print Then Cut area on a Cricut's pages; a RIP's spot cut colour.
+void addRegistration(json& j, const PatternBuild& pattern) {
+  const Profile& profile = pattern.profile;
+  json r = {{"type", profile.registration == Registration::Silhouette ? "silhouette"
+                     : profile.registration == Registration::Cricut   ? "cricut"
+                                                                      : "none"}};
+  if (!profile.cutSpotColor.empty()) r["cut_spot_color"] = profile.cutSpotColor;
+  if (profile.registration == Registration::Silhouette) {
+    r["style"] = "Type 1";
+    r["inset_mm"] = kRegInset;
+    r["square_mm"] = kRegSquare;
+    r["length_mm"] = kRegArm;
+    r["thickness_mm"] = kRegLine;
+    r["clear_mm"] = profile.registrationClearMm;
+    json marks = json::array();
+    for (const Layer& layer : pattern.drawing.layers)
+      if (layer.name == "Regmarks")
+        for (const Path& mark : layer.paths) {
+          const Box b = boxOf(mark.parts);
+          int sheet = 0;
+          for (size_t k = 0; k < pattern.sheets.size(); ++k)
+            if (pattern.sheets[k].contains(b, 1e-6)) sheet = int(k);
+          marks.push_back({{"id", mark.id}, {"sheet", sheet}, {"lines", [&] {
+                                                                 json lines = json::array();
+                                                                 for (const Polyline& part :
+                                                                      mark.parts)
+                                                                   lines.push_back(polyline(part));
+                                                                 return lines;
+                                                               }()}});
+        }
+    r["marks"] = marks;
+  }
+  if (profile.registration == Registration::Cricut) {
+    json areas = json::array();
+    for (const PageView& page : pattern.pages)
+      if (page.kind == "sheet")
+        areas.push_back(
+            {point(page.origin + page.printArea.lo), point(page.origin + page.printArea.hi)});
+    r["print_then_cut_areas"] = areas;
+  }
+  j["registration"] = r;
 }
 
 }  // namespace
@@ -163,6 +208,7 @@ std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName)
                       {"dxf", alone ? sheetFileName(int(k) + 1, "dxf") : "pattern.dxf"}});
   }
   j["sheets"] = sheets;
+  addRegistration(j, pattern);
   if (!pattern.nestParts.empty()) {  // a nest: which D-Form each piece belongs to
     json parts = json::array();
     for (const NestPartInfo& part : pattern.nestParts)

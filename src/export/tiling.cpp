@@ -216,6 +216,7 @@ void addPages(const std::vector<SheetPlan>& plans, const SheetFit& fit, const Ti
                                (fit.profile->calibrationBar ? " and the 50 mm bar" : "") +
                                " alone");
       out.pages.push_back(sheetPage(plan));
+      out.pages.back().printArea = fit.artRegion(plan.box.w(), plan.box.h());
       continue;
     }
     const PieceInfo& info = out.pieces[size_t(plan.pieces.front())];

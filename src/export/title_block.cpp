@@ -83,6 +83,11 @@ std::vector<TitleLine> titleLines(size_t k, size_t sheets, int piece, bool full,
             "dash-dot), and glue them inside";
   if (text.creased) lines.push_back({"crease-legend-label", creaseLegend});
   if (fit.tabbed) lines.push_back({"tab-note", tabNote});
+  if (profile.registration == Registration::Silhouette)  // what Silhouette Studio is set to
+    lines.push_back({"regmark-note", "Silhouette Studio: registration marks Type 1, length " +
+                                         formatMm(kRegArm, 0) + " mm, thickness " +
+                                         formatMm(kRegLine, 1) + " mm, inset " +
+                                         formatMm(kRegInset, 0) + " mm"});
   if (!fit.scaleNote.empty()) lines.push_back({"scale-note", fit.scaleNote});
   return lines;
 }

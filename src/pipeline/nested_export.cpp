@@ -42,7 +42,10 @@ Result<NestResult> readJudged(const std::string& dir, const OutputOptions& outpu
 std::set<std::string> nestFileNames() {
   std::set<std::string> names = resultFileNames();
   for (int k = 1; k <= kMaxNestSheets; ++k)
-    for (const char* extension : {"svg", "dxf"}) names.insert(sheetFileName(k, extension));
+    for (const char* extension : {"svg", "dxf"}) {
+      names.insert(sheetFileName(k, extension));
+      names.insert(printSheetFileName(k, extension == std::string("svg") ? "svg" : "png"));
+    }
   return names;
 }
 

@@ -83,7 +83,8 @@ void expectOneCutLoopPerBoundary(const std::string& dir) {
   const SvgDoc svg = readSvg(dir + "/pattern.svg");
   size_t loops = 0, boundaries = 0;
   for (const SvgPath& path : svg.paths)
-    if (path.layer == "Cut" && path.closed) loops += path.parts.size();
+    if ((path.layer == "Cut" || path.layer == "CutContour") && path.closed)
+      loops += path.parts.size();
   const json pattern = readJson(dir + "/pattern.json");
   for (const auto& piece : pattern["pieces"]) boundaries += piece["boundaries"].size();
   EXPECT_EQ(loops, boundaries) << dir;

@@ -271,7 +271,7 @@ std::vector<std::string> contentTokens(const std::string& text) {
         while (i < text.size() && !std::isspace(static_cast<unsigned char>(text[i])) &&
                std::string("()<>[]{}/%").find(text[i]) == std::string::npos)
           ++i;
-        tokens.push_back("?");
+        tokens.push_back(text.substr(start, i - start));
       } else {
         tokens.push_back(text.substr(start, i - start));
       }
@@ -322,7 +322,8 @@ std::vector<PdfPath> readPdfPaths(const std::string& pdf) {
     Affine ctm{1, 0, 0, 1, 0, 0};
     std::vector<double> operands;
     Eigen::Vector3d strokeColor = Eigen::Vector3d::Zero(), fillColor = Eigen::Vector3d::Zero();
-    std::vector<PdfPath> current;  // the path being built, one entry per subpath
+    std::string name, strokeSpace, fillSpace;  // the last name operand; the colour spaces
+    std::vector<PdfPath> current;              // the path being built, one entry per subpath
     auto point = [&](double x, double y) {
       const double X = ctm[0] * x + ctm[2] * y + ctm[4], Y = ctm[1] * x + ctm[3] * y + ctm[5];
       return Vec2((X - box[0]) * kMmPerPt, (box[3] - Y) * kMmPerPt);
@@ -342,6 +343,10 @@ std::vector<PdfPath> readPdfPaths(const std::string& pdf) {
         const double value = std::strtod(token.c_str(), &end);
         if (token != "?" && end == token.c_str() + token.size()) {
           operands.push_back(value);
+          continue;
+        }
+        if (token[0] == '/') {  // a name operand ("/CS1 CS")
+          name = token.substr(1);
           continue;
         }
         const auto& o = operands;
@@ -368,11 +373,15 @@ std::vector<PdfPath> readPdfPaths(const std::string& pdf) {
           current.back().closed = true;
         } else if ((token == "RG" || token == "rg") && n >= 3) {
           (token == "RG" ? strokeColor : fillColor) = Eigen::Vector3d(o[n - 3], o[n - 2], o[n - 1]);
+          (token == "RG" ? strokeSpace : fillSpace).clear();
+        } else if (token == "CS" || token == "cs") {
+          (token == "CS" ? strokeSpace : fillSpace) = name;
         } else if (std::string(" S s f F f* B B* b b* n ").find(" " + token + " ") !=
                    std::string::npos) {
           const bool stroked = token == "S" || token == "s" || token[0] == 'B' || token[0] == 'b';
           for (PdfPath& path : current) {
             path.color = stroked ? strokeColor : fillColor;
+            path.space = stroked ? strokeSpace : fillSpace;
             if (token == "s" || token == "b" || token == "b*") path.closed = true;
             // A closed subpath drawn back to its start: the start once.
             if (path.points.size() > 2 &&

@@ -42,6 +42,9 @@ struct PdfPath {
   Polyline points;
   bool closed = false;
   Eigen::Vector3d color = Eigen::Vector3d::Zero();  ///< RGB 0..1 it was stroked (or filled) in
+  /// The colour space resource it was stroked (or filled) in ("CS1" for "/CS1 CS"), "" for
+  /// DeviceRGB (set by RG or rg).
+  std::string space;
 };
 /// Every subpath stroked or filled in the PDF's page content streams (decoded by qpdf), with the
 /// transformation matrix (q, Q, cm) applied. Empty, and the test told, when qpdf cannot read it.
