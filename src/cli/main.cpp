@@ -110,6 +110,15 @@ void addExportOptions(CLI::App* command, OutputOptions& out) {
                    "score every fold of the solved body of at least DEG degrees on its piece "
                    "(SCORE layer, pattern.json); 0 to 180")
       ->type_name("DEG");
+  command->add_option("--numbers", out.numbers,
+                      "where tick numbers go: face, tabs (hidden once glued) or both (default: "
+                      "the profile's)");
+  command->add_flag_callback(
+      "--hinge", [&out] { out.hinge = true; },
+      "kerf-bending cuts across each piece where the solved shape bends, parallel to its folds "
+      "(default for plywood; exact model results)");
+  command->add_flag_callback(
+      "--no-hinge", [&out] { out.hinge = false; }, "no kerf-bending cuts, even in plywood");
   // A callback, not CLI11's "!--no-title" form, whose help shows "--no-title{false}".
   command->add_flag_callback(
       "--no-title", [&out] { out.title = false; },

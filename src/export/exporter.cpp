@@ -50,6 +50,17 @@ Status checkExportOptions(const ExportOptions& o) {
   if (!o.material.empty() && !materialNamed(o.material))
     return Status{ErrorCode::Usage,
                   "--material must be one of " + materialNames() + ", got '" + o.material + "'"};
+  // A rigid sheet neither folds a tongue back through a slot nor bends without a hinge; a hinge
+  // needs the material's bending figures.
+  const std::optional<MaterialPreset> material = materialNamed(o.material);
+  if (material && material->hinge && o.joint == Joint::Slots)
+    return Status{ErrorCode::Usage,
+                  "joint slots: " + o.material + " (" + fab::formatMm(material->thicknessMm) +
+                      " mm) cannot fold its tongues back through the slots; join it with holes"};
+  if (o.hinge.value_or(false) && !(material && material->hingeRowMm > 0))
+    return Status{ErrorCode::Usage, "hinge: kerf-bending cuts are for a rigid sheet material (" +
+                                        rigidMaterials() + "), got " +
+                                        (o.material.empty() ? std::string("none") : o.material)};
   // The holes' sizes as the pattern will use them (a material's, or the defaults, where unset).
   const fab::JointSettings j = fab::jointSettings(o, Profile{});
   if (!(j.diameterMm >= 0.5 && j.diameterMm <= 20))
@@ -67,6 +78,11 @@ Status checkExportOptions(const ExportOptions& o) {
                   "diameter (" +
                       fab::formatMm(j.spacingMm - j.diameterMm) + " mm)"};
   return Status::ok();
+}
+
+Status checkProfileOptions(const ExportOptions& options) {
+  const Result<Profile> profile = fab::resolveProfile(options);
+  return profile.isOk() ? Status::ok() : profile.status();
 }
 
 long fab::patternsLaidOut() { return layoutsMade.load(); }

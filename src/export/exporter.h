@@ -90,11 +90,20 @@ struct MaterialPreset {
   double thicknessMm = 0;  ///< nominal thickness (mm)
   Joint joint = Joint::Glue;
   double holeSpacingMm = 15, holeDiameterMm = 2, holeEdgeMm = 3;  ///< for holes and lace
+  /// Kerf-bending (living-hinge) cuts where the shape bends, by default: a sheet too stiff to
+  /// bend to the D-Form without them.
+  bool hinge = false;
+  /// The hinge's rows of cuts: no closer than this (mm, centre to centre: the links between rows
+  /// about as wide as the sheet is thick, and a kerf), each row bending by at most
+  /// hingeRowDeg degrees; so the tightest radius the hinge allows is hingeRowMm / hingeRowDeg.
+  double hingeRowMm = 0, hingeRowDeg = 0;
 };
 
 /// The preset called `name`, or nullopt; materialNames lists them ("paper, card, ...").
 std::optional<MaterialPreset> materialNamed(const std::string& name);
 std::string materialNames();
+/// The presets of sheets too stiff to bend without a hinge ("plywood").
+std::string rigidMaterials();
 
 /// A machine profile, read from templates/profiles/<name>.json (see docs/export.md). Every field
 /// has a default; a profile file may leave any field out.
@@ -159,8 +168,13 @@ Result<Profile> parseProfileJson(const std::string& text, const std::string& sou
 std::vector<std::string> listProfiles(const std::string& templatesDir);
 
 /// The size (width, height in mm, portrait) of a page called `name`: "A4", "A3", "Letter",
-/// "Tabloid", or "WxH" with a unit mm, cm or in ("200x300mm"); nullopt for anything else.
+/// "Tabloid", or "WxH" with a unit mm, cm or in ("200x300mm"), in any case ("a4", "200x300MM");
+/// nullopt for anything else.
 std::optional<std::pair<double, double>> pageSizeMm(const std::string& name);
+
+/// A page name as pageSizeMm reads it, spelt the one way: "a4" -> "A4", "200X300MM" ->
+/// "200x300mm".
+std::string pageName(const std::string& name);
 
 /// The file of sheet `sheet` (1-based) alone, written when a pattern takes more than one sheet or
 /// page: "pattern-sheet-1.svg" for (1, "svg"), "pattern-sheet-1.dxf" for (1, "dxf").
@@ -176,6 +190,7 @@ struct FoldToScore {
   Eigen::Vector2d from = Eigen::Vector2d::Zero();  ///< one end in the piece's flat frame (mm)
   Eigen::Vector2d to = Eigen::Vector2d::Zero();    ///< the other end
   double angleDeg = 0;                             ///< fold angle (degrees; 0 = flat)
+  bool crease = false;  ///< a found crease (drawn as the piece's crease line, never scored)
 };
 
 struct ExportOptions {
@@ -216,8 +231,11 @@ struct ExportOptions {
   /// score line on its piece (SCORE layer, pattern.json); unset: none.
   std::optional<double> scoreFoldsDeg;
   std::vector<FoldToScore> folds;  ///< the body's folds; empty when the model knows none
-  std::string jobName = "dform";   ///< printed in the title line and file metadata
-  bool title = true;               ///< the title block and notes on each sheet (--no-title: none)
+  /// Kerf-bending cuts across each piece where the solved shape bends, parallel to the body's
+  /// folds (`folds`); unset: the material's (on for plywood).
+  std::optional<bool> hinge;
+  std::string jobName = "dform";  ///< printed in the title line and file metadata
+  bool title = true;              ///< the title block and notes on each sheet (--no-title: none)
   /// Scale of the pattern (1 = true size): the pieces are scaled, tabs, ticks and labels keep
   /// their size; the scale is printed in the title line and written in pattern.json.
   double scale = 1.0;
@@ -238,6 +256,11 @@ struct ExportOptions {
 /// width, angle, gap and limits): Usage with a one-line message naming the value otherwise. Every
 /// export checks them; a caller may check them before it has a model.
 Status checkExportOptions(const ExportOptions& options);
+
+/// The options against their profile (options.profile, or the override), before anything is
+/// solved: Usage for a kerf on a profile cut by hand, glue tabs where slots' tongues go, or a
+/// profile that cannot be read.
+Status checkProfileOptions(const ExportOptions& options);
 
 struct ExportSummary {
   std::vector<std::string> files;         ///< every file written, full paths

@@ -173,6 +173,35 @@ struct ScoredFoldInfo {
   std::vector<Polyline> lines;  ///< its parts inside the piece (sheet mm)
 };
 
+/// A row of a hinge: its slits and the bending it allows against the shape's.
+struct HingeRow {
+  std::vector<Polyline> cuts;  ///< straight slits (sheet mm), bridged, clear of the margins
+  double pitchMm = 0;          ///< the width of sheet the row bends (its cell across the rows)
+  double radiusAllowedMm = 0;  ///< the tightest bend it takes: its cell over its angle
+  double radiusNeededMm = 0;   ///< the shape's tightest bending radius in its cell
+};
+
+/// A body fold a hinge bends along.
+struct HingeFoldInfo {
+  int index = 0;        ///< into ExportOptions::folds
+  Polyline line;        ///< the fold (sheet mm)
+  double angleDeg = 0;  ///< its angle
+  double radiusMm = 0;  ///< the shape's bending radius there: its band over its angle
+};
+
+/// A hinge: rows of cuts across a family of parallel body folds of a piece, parallel to them.
+struct HingeInfo {
+  std::string id;  ///< "A-hinge-1"; its rows' paths "A-hinge-1-row-03"
+  Vec2 direction;  ///< of its folds and rows (sheet, unit)
+  std::vector<HingeFoldInfo> folds;
+  std::vector<HingeRow> rows;
+};
+
+/// The angle a hinge's folds turn in all (degrees).
+double hingeTurnDeg(const HingeInfo& hinge);
+/// The angle its rows with slits bend at most (degrees): each its pitch over its allowed radius.
+double hingeBendDeg(const HingeInfo& hinge);
+
 struct PieceInfo {
   std::string name;
   Polyline outline;  ///< seam polyline in seam order from seam[0] (sheet mm)
@@ -188,6 +217,7 @@ struct PieceInfo {
   std::vector<Polyline> holeCuts;  ///< closed cut paths of the holes (cut before the outer ones)
   std::vector<CreaseInfo> creases;
   std::vector<ScoredFoldInfo> scoredFolds;  ///< folds scored by --score-folds
+  std::vector<HingeInfo> hinges;            ///< kerf-bending cuts where it bends (a rigid sheet)
   double perimeter = 0;                     ///< flat seam length (mm)
   double rotationDeg = 0;                   ///< rotation applied on the sheet (after flipping y)
   int sheet = 0;  ///< the sheet (page) it is on: an index into PatternBuild::sheets

@@ -79,6 +79,47 @@ std::vector<std::pair<int, int>> meetingPairs(const std::vector<Box>& boxes) {
   return pairs;
 }
 
+// The title block and the calibration bar keep off the pieces (their cut paths, tabs included,
+// and their printed bleed) and the registration marks.
+void checkSheetFurniture(const PatternBuild& pattern, LayoutFindings& f, BuildWork& work) {
+  const Drawing& d = pattern.drawing;
+  const std::vector<PieceInfo>& pieces = pattern.pieces;
+  std::vector<Polyline> obstacles;
+  std::vector<std::string> obstacleNames;
+  for (const PieceInfo& piece : pieces) {
+    for (const Polyline& cut : piece.cut) {
+      obstacles.push_back(cut);
+      obstacleNames.push_back("piece " + piece.name);
+    }
+    for (const Polyline& tint : piece.bleed) {
+      obstacles.push_back(tint);
+      obstacleNames.push_back("piece " + piece.name + "'s printed bleed");
+    }
+  }
+  for (const Layer& layer : d.layers)
+    if (layer.name == "Regmarks")
+      for (const Path& mark : layer.paths) {
+        obstacles.push_back(convexHull(mark.parts));
+        obstacleNames.push_back("registration mark " + mark.id);
+      }
+  std::vector<Box> obstacleBoxes;
+  for (const Polyline& o : obstacles) obstacleBoxes.push_back(boxOf({o}));
+  for (const Layer& layer : d.layers)
+    for (const Path& path : layer.paths) {
+      if (!isSheetFurniture(path)) continue;
+      const Polyline hull = convexHull(path.parts);
+      const Box box = boxOf({hull});
+      for (size_t k = 0; k < obstacles.size(); ++k) {
+        if (hull.size() < 3 || !box.overlaps(obstacleBoxes[k])) continue;
+        ++work.pairTests;
+        if (overlapArea(hull, obstacles[k]) > kOverlapTolMm2) {
+          ++f.titleOverlaps;
+          note(f, path.id + " overlaps " + obstacleNames[k]);
+        }
+      }
+    }
+}
+
 }  // namespace
 
 LayoutFindings checkLayout(const PatternBuild& pattern, BuildWork* workOut) {
@@ -145,42 +186,7 @@ LayoutFindings checkLayout(const PatternBuild& pattern, BuildWork* workOut) {
     }
   }
 
-  // The title block and the calibration bar keep off the pieces (their cut paths, tabs included,
-  // and their printed bleed) and the registration marks.
-  std::vector<Polyline> obstacles;
-  std::vector<std::string> obstacleNames;
-  for (const PieceInfo& piece : pieces) {
-    for (const Polyline& cut : piece.cut) {
-      obstacles.push_back(cut);
-      obstacleNames.push_back("piece " + piece.name);
-    }
-    for (const Polyline& tint : piece.bleed) {
-      obstacles.push_back(tint);
-      obstacleNames.push_back("piece " + piece.name + "'s printed bleed");
-    }
-  }
-  for (const Layer& layer : d.layers)
-    if (layer.name == "Regmarks")
-      for (const Path& mark : layer.paths) {
-        obstacles.push_back(convexHull(mark.parts));
-        obstacleNames.push_back("registration mark " + mark.id);
-      }
-  std::vector<Box> obstacleBoxes;
-  for (const Polyline& o : obstacles) obstacleBoxes.push_back(boxOf({o}));
-  for (const Layer& layer : d.layers)
-    for (const Path& path : layer.paths) {
-      if (!isSheetFurniture(path)) continue;
-      const Polyline hull = convexHull(path.parts);
-      const Box box = boxOf({hull});
-      for (size_t k = 0; k < obstacles.size(); ++k) {
-        if (hull.size() < 3 || !box.overlaps(obstacleBoxes[k])) continue;
-        ++work.pairTests;
-        if (overlapArea(hull, obstacles[k]) > kOverlapTolMm2) {
-          ++f.titleOverlaps;
-          note(f, path.id + " overlaps " + obstacleNames[k]);
-        }
-      }
-    }
+  checkSheetFurniture(pattern, f, work);
 
   // One closed cut loop per boundary loop of each piece: its outline (tabs included) and each
   // hole. A loop more is cut free of its piece (a detached tab); perforations are open paths.

@@ -275,7 +275,7 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
       out.pieces.back().jointLoops.push_back(place[p].map(loop));
       out.pieces.back().boundaries.push_back(out.pieces.back().jointLoops.back());
     }
-    out.pieces.back().scoredFolds = scoredFolds(o, p, place[p], out.pieces.back());
+    out.pieces.back().scoredFolds = scoredFolds(o, p, place[p], scale, out.pieces.back());
   }
   out.ticks = placeTicks(tickS, seams, place);
   out.tabs = placeTabs(tabs, place);
@@ -297,6 +297,7 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
   drawScoredFolds(out.pieces, b);
   drawTabFolds(out.tabs, flat.names, "", profile, b);
   drawTabFolds(tongues, flat.names, "tongue-", profile, b);
+  addHinges(o, flat, holeLoops, place, scale, b, out);
   drawCuts(out.pieces, flat.names, profile, b);
   drawSheetFurniture(a.plans, fit, title, b);
   out.drawing = std::move(b.drawing());
@@ -375,6 +376,40 @@ std::string fitAdvice(const DForm& model, const ExportOptions& o, const Profile&
   return advice;
 }
 
+// What prints a tiled pattern without tiles: the largest scale at which every piece fits a page
+// (`--scale`), a larger page at the scale asked; empty when neither does.
+std::string tileAdvice(const DForm& model, const ExportOptions& o, const Profile& profile,
+                       const StrokeFont& font, BuildWork& work) {
+  Profile untiled = profile;
+  untiled.tile = false;
+  bool tooLarge = false;
+  Result<PatternBuild> whole = buildScaled(model, o, untiled, font, o.scale, work, tooLarge);
+  if (whole.isOk() || !tooLarge) return "";
+  std::vector<std::string> ways;
+  const ScaleFit fit = largestFittingScale(model, o, untiled, font,
+                                           int(std::lround(1000 * o.scale)), whole.status(), work);
+  if (fit.permille >= 50 && !fit.otherError) {
+    char flag[32];  // the option's value without the space percentText puts before "%"
+    std::snprintf(flag, sizeof flag, "%.1f%%", fit.permille / 10.0);
+    ways.push_back("at " + percentText(fit.permille / 1000.0) + " (--scale " + flag +
+                   ") it fits one page a piece");
+  }
+  const std::string page = o.page.empty() ? profile.page : o.page;
+  for (const char* larger : {"A3", "Tabloid"}) {
+    const auto size = pageSizeMm(larger), now = pageSizeMm(page);
+    if (!size || !now || size->first * size->second <= now->first * now->second) continue;
+    ExportOptions onLarger = o;
+    onLarger.page = larger;
+    if (buildScaled(model, onLarger, untiled, font, o.scale, work, tooLarge).isOk()) {
+      ways.push_back("--page " + std::string(larger) + " prints it untiled at " +
+                     percentText(o.scale));
+      break;
+    }
+  }
+  if (ways.empty()) return "";
+  return "to print without tiles: " + ways.front() + (ways.size() > 1 ? ", or " + ways[1] : "");
+}
+
 }  // namespace
 
 Result<PatternBuild> buildNestPattern(const DForm& model, const ExportOptions& o,
@@ -405,6 +440,12 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
   };
   bool tooLarge = false;
   Result<PatternBuild> built = buildScaled(model, o, profile, font, o.scale, work, tooLarge);
+  if (built.isOk() && std::any_of(built.value().pages.begin(), built.value().pages.end(),
+                                  [](const PageView& page) { return page.kind == "tile"; })) {
+    BuildWork adviceWork;  // a refusal's advice is not the pattern's work
+    if (std::string advice = tileAdvice(model, o, profile, font, adviceWork); !advice.empty())
+      built.value().messages.push_back(advice);
+  }
   if (built.isOk() || !tooLarge) return withAssembly(std::move(built));
   // A piece does not fit: the largest scale, to a tenth of a percent, at which every piece does.
   // Only a pattern scaled to fit counts the search as its work: a refusal's advice is the work of

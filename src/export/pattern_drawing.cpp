@@ -304,13 +304,13 @@ void drawCreases(const std::vector<PieceInfo>& pieces, const Profile& profile, D
 }
 
 std::vector<ScoredFoldInfo> scoredFolds(const ExportOptions& o, int p, const Placement& place,
-                                        const PieceInfo& info) {
+                                        double scale, const PieceInfo& info) {
   std::vector<ScoredFoldInfo> out;
   if (!o.scoreFoldsDeg) return out;
   for (const FoldToScore& fold : o.folds) {
-    if (fold.piece != p || !(fold.angleDeg >= *o.scoreFoldsDeg)) continue;
+    if (fold.piece != p || fold.crease || !(fold.angleDeg >= *o.scoreFoldsDeg)) continue;
     std::vector<Polyline> lines =
-        clipToRegion(place.map(Polyline{fold.from, fold.to}), info.boundaries);
+        clipToRegion(place.map(Polyline{scale * fold.from, scale * fold.to}), info.boundaries);
     if (lines.empty()) continue;
     out.push_back({info.name + "-body-fold-" + std::to_string(out.size() + 1), fold.angleDeg,
                    std::move(lines)});

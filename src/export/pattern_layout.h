@@ -182,10 +182,32 @@ void drawPieceLabels(const FlatPieces& flat, const Placement place[2], const Pro
 // Crease fold lines: the profile's fold style, dashed by the fold's direction.
 void drawCreases(const std::vector<PieceInfo>& pieces, const Profile& profile, DrawingBuilder& b);
 
-// The body's folds of at least o.scoreFoldsDeg through piece p (o.folds, flat mm), placed on the
-// sheet and clipped to the piece's material; none without --score-folds.
+// The body's folds of at least o.scoreFoldsDeg through piece p (o.folds, flat mm at true size,
+// drawn at `scale`) but its creases (drawn as crease lines), placed on the sheet and clipped to the
+// piece's material; none without --score-folds.
 std::vector<ScoredFoldInfo> scoredFolds(const ExportOptions& o, int p, const Placement& place,
-                                        const PieceInfo& info);
+                                        double scale, const PieceInfo& info);
+
+// Piece p's hinges (hinges.cpp): rows of bridged slits parallel to the body's folds (o.folds, flat
+// frame) of at least 2 degrees, spaced so that each row bends by the material's row angle over a
+// cell no wider than that angle times the shape's bending radius there (never narrower than the
+// material's row pitch), a solid margin inside the seam (past the joint holes `jointLoops`), free
+// edges, holes and the piece's `labels` (convex footprints on the sheet); placed on the sheet by
+// `place`. The folds are drawn at true size, the pieces at `scale`.
+std::vector<HingeInfo> hingesOf(const ExportOptions& o, int p, const FlatPieces& flat,
+                                const std::vector<Polyline>& jointLoops, const JointSettings& joint,
+                                const MaterialPreset& material, const Placement& place,
+                                double scale, const std::vector<Polyline>& labels);
+
+// The hinges' slits in the Cut layer, before the holes and outer cuts.
+void drawHinges(const std::vector<PieceInfo>& pieces, DrawingBuilder& b);
+
+// Each piece's hinges where `o` asks for them (unset: where the material's preset does), clear of
+// the labels drawn so far, drawn (drawHinges); a message for each hinge whose rows cannot let the
+// sheet bend as tightly as the shape does.
+void addHinges(const ExportOptions& o, const FlatPieces& flat,
+               const std::vector<Polyline> jointLoops[2], const Placement place[2], double scale,
+               DrawingBuilder& b, PatternBuild& out);
 
 // The scored folds as solid lines on the score layer (and the cutter's score pass).
 void drawScoredFolds(const std::vector<PieceInfo>& pieces, DrawingBuilder& b);

@@ -110,11 +110,15 @@ constexpr TickNumbers kNumbers[] = {TickNumbers::Face, TickNumbers::Tabs, TickNu
 // The sheet materials: paper and card are glued with tabs; polypropylene (0.5 mm) is laced, its
 // holes a little larger for a 2 mm cord; 3 mm plywood is joined with cable ties or bolts through
 // hole pairs kept well in from the edge, where a thin edge of plywood would split.
+// Plywood bends with a hinge: a lattice of cuts whose links (about as wide as the sheet is thick)
+// twist. A 90-degree bend of 3 mm plywood with 3 mm links and a 0.2 mm kerf takes 23 rows (a
+// 44 mm inner radius; the torsional-link sums of deferredprocrastination.co.uk's lattice hinge
+// notes): rows 3.2 mm apart, 90/23 degrees each.
 const MaterialPreset kMaterials[] = {
     {"paper", 0.1, Joint::Glue, 15, 2, 3},
     {"card", 0.3, Joint::Glue, 15, 2, 3},
     {"polypropylene", 0.5, Joint::Lace, 15, 3, 4},
-    {"plywood", 3.0, Joint::Holes, 25, 4, 6},
+    {"plywood", 3.0, Joint::Holes, 25, 4, 6, true, 3.2, 90.0 / 23},
 };
 
 const char* kKnownFields[] = {"version",
@@ -247,7 +251,19 @@ Result<Profile> parseProfileJson(const std::string& text, const std::string& sou
   return p;
 }
 
-std::optional<std::pair<double, double>> pageSizeMm(const std::string& name) {
+std::string pageName(const std::string& name) {
+  std::string lower;
+  for (char c : name) lower += char(std::tolower(static_cast<unsigned char>(c)));
+  for (const char* named : {"A4", "A3", "Letter", "Tabloid"}) {
+    std::string n = named;
+    for (char& c : n) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (lower == n) return named;
+  }
+  return lower;
+}
+
+std::optional<std::pair<double, double>> pageSizeMm(const std::string& given) {
+  const std::string name = pageName(given);
   if (name == "A4") return std::pair{210.0, 297.0};
   if (name == "A3") return std::pair{297.0, 420.0};
   if (name == "Letter") return std::pair{8.5 * 25.4, 11.0 * 25.4};
@@ -333,6 +349,13 @@ std::string materialNames() {
   return names;
 }
 
+std::string rigidMaterials() {
+  std::string names;
+  for (const MaterialPreset& m : kMaterials)
+    if (m.hinge) names += (names.empty() ? "" : ", ") + m.name;
+  return names;
+}
+
 std::vector<std::string> listProfiles(const std::string& templatesDir) {
   std::vector<std::string> names;
   std::error_code ec;
@@ -374,6 +397,11 @@ Result<Profile> resolveProfile(const ExportOptions& options) {
                                : loadProfile(options.profile, options.templatesDir);
   if (!loaded.isOk()) return loaded;
   Profile p = loaded.value();
+  // Scissors follow the printed line: a kerf would move the line off the pattern's true size.
+  if (options.kerfMm && *options.kerfMm > 0 && p.kind == ProfileKind::Print)
+    return Status{ErrorCode::Usage, "kerf: profile " + p.name +
+                                        " is cut by hand along its printed line, which has no "
+                                        "kerf; a laser or print-and-cut profile takes one"};
   if (options.kerfMm) p.kerfMm = *options.kerfMm;
   if (options.numbers) p.numbers = *options.numbers;
   const std::optional<MaterialPreset> material = materialNamed(options.material);

@@ -117,6 +117,35 @@ void addRegistration(json& j, const PatternBuild& pattern) {
   j["registration"] = r;
 }
 
+// A piece's hinges: where each is (its folds and rows of slits), the radius each row lets the
+// sheet bend to and the radius the shape needs there.
+json hingesJson(const PieceInfo& p) {
+  json out = json::array();
+  for (const HingeInfo& h : p.hinges) {
+    json folds = json::array(), rows = json::array();
+    for (const HingeFoldInfo& f : h.folds)
+      folds.push_back({{"fold", f.index},
+                       {"angle_deg", f.angleDeg},
+                       {"radius_needed_mm", f.radiusMm},
+                       {"line", polyline(f.line)}});
+    for (const HingeRow& r : h.rows) {
+      json cuts = json::array();
+      for (const Polyline& c : r.cuts) cuts.push_back(polyline(c));
+      rows.push_back({{"pitch_mm", r.pitchMm},
+                      {"radius_allowed_mm", r.radiusAllowedMm},
+                      {"radius_needed_mm", r.radiusNeededMm},
+                      {"cuts", cuts}});
+    }
+    out.push_back({{"id", h.id},
+                   {"direction", point(h.direction)},
+                   {"turn_deg", hingeTurnDeg(h)},
+                   {"bend_deg", hingeBendDeg(h)},
+                   {"folds", folds},
+                   {"rows", rows}});
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName) {
@@ -168,6 +197,7 @@ std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName)
                       {"bleed", polylines(p.bleed)},
                       {"creases", creases}});
     if (!p.scoredFolds.empty()) pieces.back()["score_lines"] = scored;
+    if (!p.hinges.empty()) pieces.back()["hinges"] = hingesJson(p);
   }
   j["pieces"] = pieces;
   json ticks = json::array();

@@ -27,6 +27,8 @@ Result<NestResult> readJudged(const std::string& dir, const OutputOptions& outpu
   std::error_code ec;
   if (!fs::is_directory(dir, ec))
     return Status(ErrorCode::InputUnreadable, dir + ": no such result folder");
+  ResultFolder held;  // a shared lock while it is read, as `dform export DIR -o OUT` holds it
+  if (Status s = held.read(dir); !s.isOk()) return s;
   const Result<SavedModel> saved = readSaved(dir);
   if (!saved.isOk()) return saved.status();
   const Result<SavedGate> judged = judgeSaved(dir, saved.value(), output.regate, sink);
@@ -97,7 +99,8 @@ Result<std::string> exportNestOrThrow(const std::vector<std::string>& dirs, int 
   if (Status s = out.begin(output.outDir, nestFileNames()); !s.isOk()) return s;
   if (Status s = writeExport(prepared.value(), out.staging()).status(); !s.isOk())
     return out.named(s);
-  if (Status s = commitUnlessInterrupted(out, output.outDir, interrupted); !s.isOk()) return s;
+  if (Status s = commitUnlessInterrupted(out, output.outDir, interrupted, &sink); !s.isOk())
+    return s;
   return output.outDir;
 }
 

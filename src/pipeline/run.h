@@ -57,8 +57,11 @@ struct OutputOptions {
   bool gltfText = false;                ///< --gltf: dform.gltf (text) instead of dform.glb
   bool title = true;                    ///< the title block on the sheets (--no-title: none)
   std::optional<double> scoreFoldsDeg;  ///< --score-folds (degrees); unset: no folds scored
-  std::string gate = "default";         ///< gate name or file; "none" skips the gate
-  bool exportAnyway = false;  ///< export even when the gate fails (files marked FAILED GATE)
+  std::string numbers;  ///< --numbers face|tabs|both: where tick numbers go; empty: the profile's
+  /// --hinge / --no-hinge: kerf-bending cuts where the shape bends; unset: the material's
+  std::optional<bool> hinge;
+  std::string gate = "default";  ///< gate name or file; "none" skips the gate
+  bool exportAnyway = false;     ///< export even when the gate fails (files marked FAILED GATE)
   /// `dform export`: measure and judge the saved result again even where report.json's verdict
   /// still holds (its meshes unchanged, the same gate and dform)
   bool regate = false;

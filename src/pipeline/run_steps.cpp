@@ -2,6 +2,7 @@
 
 #include <signal.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -38,13 +39,18 @@ class StopSignalsHeld {
   sigset_t previous_;
 };
 
-// "600x400", "600x400mm", "23.6x15.7in" -> millimetres.
+// "600x400mm", "60x40cm", "23.6x15.7in" -> millimetres. The unit is needed, as --page's is: a
+// bare 24x16 may be inches.
 Result<std::pair<double, double>> parseSheet(const std::string& text) {
   double w = 0, h = 0;
   char unit[8] = "";
   const int n = std::sscanf(text.c_str(), "%lfx%lf%7s", &w, &h, unit);
-  const std::string u = unit;
-  const double scale = u.empty() || u == "mm" ? 1.0 : u == "cm" ? 10.0 : u == "in" ? 25.4 : 0.0;
+  std::string u = unit;
+  for (char& c : u) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const double scale = u == "mm" ? 1.0 : u == "cm" ? 10.0 : u == "in" ? 25.4 : 0.0;
+  if (n == 2)
+    return Status(ErrorCode::Usage,
+                  "--sheet needs a unit (mm, cm or in), as in " + text + "mm, got '" + text + "'");
   if (n < 2 || scale == 0.0 || !(w > 0 && h > 0 && std::isfinite(w) && std::isfinite(h)))
     return Status(ErrorCode::Usage,
                   "--sheet must look like 600x400mm (units mm, cm or in), got '" + text + "'");
@@ -159,7 +165,7 @@ Result<ExportOptions> exportOptions(const OutputOptions& output) {
                   "--page must be A4, Letter, A3, Tabloid or a size such as "
                   "200x300mm, got '" +
                       output.page + "'");
-  options.page = output.page;
+  options.page = output.page.empty() ? "" : pageName(output.page);
   options.scoreFoldsDeg = output.scoreFoldsDeg;
   if (output.scale == "fit") {
     options.scaleToFit = true;
@@ -188,6 +194,13 @@ Result<ExportOptions> exportOptions(const OutputOptions& output) {
       return Status(ErrorCode::Usage,
                     "--joint must be glue, holes, lace or slots, got '" + output.joint + "'");
   }
+  if (!output.numbers.empty()) {
+    options.numbers = tickNumbersNamed(output.numbers);
+    if (!options.numbers)
+      return Status(ErrorCode::Usage,
+                    "--numbers must be face, tabs or both, got '" + output.numbers + "'");
+  }
+  options.hinge = output.hinge;
   options.material = output.material;
   options.kerfMm = output.kerfMm;
   options.holeSpacingMm = output.holeSpacingMm;
@@ -202,6 +215,8 @@ Result<ExportOptions> exportOptions(const OutputOptions& output) {
     if (!profile.isOk()) return profile.status();
     options.profileOverride = profile.value();
     options.useProfileOverride = true;
+    // The options against the profile (a kerf for scissors, tabs where slots go), before a solve.
+    if (Status s = checkProfileOptions(options); !s.isOk()) return s;
   }
   return options;
 }
@@ -210,21 +225,28 @@ std::vector<FoldToScore> foldsToScore(const ModelUsed& used, const DForm& model)
   constexpr double kDegree = 3.14159265358979323846 / 180.0;
   std::vector<FoldToScore> out;
   for (const BodyFold& f : used.folds) {
-    if (f.crease >= 0) continue;  // drawn already, as the piece's crease line
     const Points2& flat = f.piece == 0 ? model.a.flat : model.b.flat;
-    out.push_back(
-        {f.piece, flat.row(f.from).transpose(), flat.row(f.to).transpose(), f.radians / kDegree});
+    // A crease is drawn already, as the piece's crease line: hinged, never scored.
+    out.push_back({f.piece, flat.row(f.from).transpose(), flat.row(f.to).transpose(),
+                   f.radians / kDegree, f.crease >= 0});
   }
   return out;
 }
 
 ExportOptions withFolds(ExportOptions options, std::vector<FoldToScore> folds,
                         const std::string& modelName, MessageSink& sink) {
-  if (!options.scoreFoldsDeg) return options;
-  if (folds.empty())
-    sink.warning("--score-folds: no folds known: the " +
-                 (modelName.empty() ? std::string("saved") : modelName + " model's") +
-                 " result has none; no score lines added");
+  const std::optional<MaterialPreset> material = materialNamed(options.material);
+  const bool hinged = options.hinge.value_or(material && material->hinge);
+  if (!options.scoreFoldsDeg && !hinged) return options;
+  const std::string whose = modelName.empty() ? std::string("saved") : modelName + " model's";
+  if (folds.empty() && options.scoreFoldsDeg)
+    sink.warning("--score-folds: no folds known: the " + whose +
+                 " result has none; no score "
+                 "lines added");
+  if (folds.empty() && hinged)
+    sink.warning("hinge: no folds known: the " + whose +
+                 " result has none; no kerf-bending cuts "
+                 "(the exact model's results have them)");
   options.folds = std::move(folds);
   return options;
 }

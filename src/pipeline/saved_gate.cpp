@@ -51,7 +51,7 @@ std::vector<FoldToScore> savedFolds(const std::string& dir, std::string& modelNa
         !point(f["from_mm"], fold.from) || !point(f["to_mm"], fold.to) ||
         !(f["piece"] == "A" || f["piece"] == "B"))
       continue;
-    if (f.contains("crease") && f["crease"] == true) continue;  // drawn as the piece's crease line
+    fold.crease = f.contains("crease") && f["crease"] == true;  // drawn as the crease line
     fold.piece = f["piece"] == "A" ? 0 : 1;
     fold.angleDeg = f["angle_deg"].get<double>();
     out.push_back(fold);

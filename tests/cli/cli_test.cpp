@@ -1314,7 +1314,18 @@ TEST_F(CliTest, OptionsAndTheOutputFolderAreCheckedBeforeTheSolve) {
               path("missing-profile.json"));
   expectError(run(big + " --gate " + path("missing-gate.json")), 3, path("missing-gate.json"));
   expectError(run(big + " --sheet 600x400furlong"), 2, "--sheet");
+  expectError(run(big + " --sheet 600x400"), 2, "--sheet needs a unit");
+  expectError(run(big + " --profile print --kerf 0.2"), 2, "kerf: profile print");
+  expectError(run(big + " --material plywood --joint slots"), 2, "joint slots: plywood");
+  expectError(run(big + " --hinge"), 2, "hinge:");
+  expectError(run(big + " --numbers inside"), 2, "--numbers");
   EXPECT_TRUE(folderContents(out) == before);
+  // Page names in any case.
+  const std::string letter = path("letter");
+  ASSERT_EQ(run("export " + out + " -o " + letter + " --profile print --page letter -q").exitCode,
+            0);
+  const nlohmann::json pattern = nlohmann::json::parse(readText(fs::path(letter) / "pattern.json"));
+  EXPECT_NEAR(pattern["sheet"]["height"].get<double>(), 279.4, 1e-9) << pattern["sheet"];  // 11 in
   const std::string file = write("a-file", "x");
   expectError(run(big.substr(0, big.find(" -o ")) + " -o " + file + "/out"), 6, file + "/out");
 }

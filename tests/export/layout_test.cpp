@@ -332,6 +332,7 @@ TEST(ExportLayout, PartnerTicksCarryTheSameNumberOnBothPieces) {
   const DForm model = ellipseCircleDForm();
   ExportOptions o = options("print");
   o.tickSpacingMm = 15;
+  o.numbers = TickNumbers::Face;  // the print profile's numbers go on the tabs, one piece's
   const fab::PatternBuild pattern = build(model, o);
   std::map<std::string, const fab::Path*> labels;
   for (const fab::Layer& layer : pattern.drawing.layers)
