@@ -246,7 +246,7 @@ ExportOptions withFolds(ExportOptions options, std::vector<FoldToScore> folds,
   if (folds.empty() && hinged)
     sink.warning("hinge: no folds known: the " + whose +
                  " result has none; no kerf-bending cuts "
-                 "(the exact model's results have them)");
+                 "(the exact and ruled models' results have them)");
   options.folds = std::move(folds);
   return options;
 }
