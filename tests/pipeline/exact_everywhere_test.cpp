@@ -132,7 +132,7 @@ nlohmann::json reportedModel(const ForwardRun& run, const ForwardSettings& setti
   job.forward.pieceA = "a.svg";
   job.forward.pieceB = "b.svg";
   const Result<std::string> text =
-      writeForwardReport(dir.string(), job, run, {}, nullptr, CommandTimings{});
+      writeForwardReport(dir.string(), job, run, {}, nullptr, CommandTimings{}, FileHashes{});
   EXPECT_TRUE(text.isOk()) << text.status().message();
   if (!text.isOk()) return {};
   const std::string check =
