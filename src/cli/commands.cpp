@@ -13,6 +13,7 @@
 
 #include "browser.h"
 #include "dform/core/message_text.h"
+#include "dform/pipeline/nested_export.h"
 #include "dform/pipeline/saved_result.h"
 #include "terminal.h"
 
@@ -332,14 +333,26 @@ int mergeBatchCommand(const std::string& dir, bool allowPartial, bool quiet) {
   return 0;
 }
 
-int exportSaved(const std::string& dir, const ExportSettings& settings, const std::string& outDir,
+int exportSaved(const std::string& dir, const ExportSettings& settings, const SavedExport& how,
                 bool quiet, const std::atomic<bool>& interrupted) {
   Terminal terminal(quiet);
   MessageSink sink(terminal.listener());
-  const Result<std::string> into = exportSavedResult(dir, settings, outDir, sink, interrupted);
+  const Result<std::string> into = exportSavedResult(dir, settings, how, sink, interrupted);
   if (!into.isOk()) return fail(into.status());
   if (!quiet)
     std::fprintf(stdout, "exported %s into %s\n", settings.pattern.profile.c_str(),
+                 into.value().c_str());
+  return 0;
+}
+
+int exportNested(const std::vector<std::string>& dirs, int copies, const ExportSettings& settings,
+                 const SavedExport& how, bool quiet, const std::atomic<bool>& interrupted) {
+  Terminal terminal(quiet);
+  MessageSink sink(terminal.listener());
+  const Result<std::string> into = exportNest(dirs, copies, settings, how, sink, interrupted);
+  if (!into.isOk()) return fail(into.status());
+  if (!quiet)
+    std::fprintf(stdout, "nested %s into %s\n", settings.pattern.profile.c_str(),
                  into.value().c_str());
   return 0;
 }

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "dform/pipeline/run.h"
+#include "dform/pipeline/saved_result.h"
 #include "dform/studio/studio.h"
 
 namespace dform::cli {
@@ -34,10 +35,13 @@ int runBatchCommand(const std::vector<BatchJob>& jobs, const BatchOptions& optio
 /// `dform batch --merge DIR`: the shards' manifests gathered into batch.json and gallery.html;
 /// refused (exit 5) while a job of the list has not finished, unless `allowPartial`.
 int mergeBatchCommand(const std::string& dir, bool allowPartial, bool quiet);
-/// `dform export`: the result in `dir` exported again with `settings`' pattern, into `outDir`
+/// `dform export`: the result in `dir` exported again with `settings`' pattern, into how.outDir
 /// when given, else into `dir`.
-int exportSaved(const std::string& dir, const ExportSettings& settings, const std::string& outDir,
+int exportSaved(const std::string& dir, const ExportSettings& settings, const SavedExport& how,
                 bool quiet, const std::atomic<bool>& interrupted);
+/// `dform export DIR... --nest`: the results' pieces nested into how.outDir.
+int exportNested(const std::vector<std::string>& dirs, int copies, const ExportSettings& settings,
+                 const SavedExport& how, bool quiet, const std::atomic<bool>& interrupted);
 /// `dform validate`: the result in `dir` re-measured, against the gate `gate` or, for "none",
 /// measured only (exit 0 unless the folder or its report is unreadable or wrong).
 int validateSaved(const std::string& dir, const std::string& gate, const Printing& printing);

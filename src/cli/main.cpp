@@ -245,28 +245,45 @@ struct RunCommand {
 };
 
 struct ExportCommand {
-  std::string dir, outDir;
+  std::vector<std::string> dirs;
   SettingOptions settings;
-  bool listOnly = false, quiet = false;
+  SavedExport how;
+  bool listOnly = false, quiet = false, nest = false;
+  int copies = 1;
   CLI::App* command = nullptr;
 
   void add(CLI::App& app) {
     command = app.add_subcommand("export", "write cutting patterns and previews of a saved result");
-    command->add_option("dir", dir, "a result folder written by forward, inverse or run");
+    command->add_option("dir", dirs,
+                        "a result folder written by forward, inverse or run (several with --nest)");
     settings.add(command, rowsOf(true, {SettingScope::Export}));
     settings.add(command, {findSetting(settingKey(Setting::ExportAnyway), true)});
-    command->add_option("-o,--output", outDir,
+    command->add_option("-o,--output", how.outDir,
                         "write the patterns into this folder (created if missing) instead of "
                         "the result folder, which is left untouched");
+    command->add_flag("--regate", how.regate,
+                      "measure and judge the result again even where report.json's gate verdict "
+                      "still holds (its meshes unchanged since the run)");
+    command->add_flag("--nest", nest,
+                      "put the pieces of every result given (and --copies) on as few sheets as "
+                      "hold them, into the -o folder");
+    command
+        ->add_option("--copies", copies, "with --nest: cut each D-Form this many times (1 to 1000)")
+        ->type_name("N");
     command->add_flag("--list-profiles", listOnly, "list the profiles and exit");
     command->add_flag("-q,--quiet", quiet, "print only warnings and errors");
   }
   int run() {
     if (listOnly) return cli::listProfiles();
-    if (dir.empty()) return failUsage(Status(ErrorCode::Usage, "export needs a result folder"));
+    if (dirs.empty()) return failUsage(Status(ErrorCode::Usage, "export needs a result folder"));
     Job job;
     if (Status s = settings.apply(job); !s.isOk()) return failUsage(s);
-    return cli::exportSaved(dir, job.exporting, outDir, quiet, interrupted);
+    if (nest) return cli::exportNested(dirs, copies, job.exporting, how, quiet, interrupted);
+    if (dirs.size() > 1 || copies != 1)
+      return failUsage(Status(ErrorCode::Usage,
+                              "several result folders, or --copies, are exported together with "
+                              "--nest -o FOLDER"));
+    return cli::exportSaved(dirs.front(), job.exporting, how, quiet, interrupted);
   }
 };
 

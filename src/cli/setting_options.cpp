@@ -94,6 +94,12 @@ void SettingOptions::add(CLI::App* command, const std::vector<const SettingRow*>
       CLI::Option* flag = command->add_flag(row->flag);
       flag->description(helpLine(*row, forward));
       bound_.push_back({row, row->flag, flag, nullptr});
+      if (!row->offFlag.empty()) {
+        CLI::Option* off = command->add_flag(row->offFlag);
+        off->description("turn off " + row->help);
+        off->excludes(flag);
+        bound_.push_back({row, row->offFlag, off, nullptr});
+      }
       continue;
     }
     texts_.emplace_back();
@@ -131,8 +137,9 @@ Status SettingOptions::apply(Job& job) const {
   for (const SettingRow* row : settingRows(job.isForward())) {
     for (const Bound& b : bound_) {
       if (b.row != row || b.option->count() == 0) continue;
+      const bool flagValue = b.flag == row->offFlag ? !row->flagValue : row->flagValue;
       const Status set = b.text ? setSettingText(job, *row, b.flag, *b.text)
-                                : setSetting(job, *row, row->flagValue ? "true" : "false");
+                                : setSetting(job, *row, flagValue ? "true" : "false");
       if (!set.isOk())
         return Status(ErrorCode::Usage, wordSettings(set.text(), [&](const std::string& key) {
                         return key == row->key ? b.flag : commandLineWords(key);

@@ -41,6 +41,8 @@ const char* settingKey(Setting setting) {
     case Setting::HoleEdge: return "export.hole_edge";
     case Setting::SlotLength: return "export.slot_length";
     case Setting::ScoreFolds: return "export.score_folds";
+    case Setting::Numbers: return "export.numbers";
+    case Setting::Hinge: return "export.hinge";
     case Setting::Title: return "export.title";
     case Setting::Gltf: return "export.gltf";
     case Setting::CuttingFiles: return "export.cutting_files";

@@ -83,13 +83,17 @@ PointClusters drawnShapeClusters(const DForm& model) {
 }
 
 std::vector<SeenFace> paintersFaces(const DForm& model, const ShapeCamera& camera) {
+  return paintersFaces(model, camera, drawnShapeClusters(model));
+}
+
+std::vector<SeenFace> paintersFaces(const DForm& model, const ShapeCamera& camera,
+                                    const PointClusters& drawn) {
   const Eigen::Vector3d light = Eigen::Vector3d(-0.4, 0.5, 1.0).normalized();  // screen frame
   // A closed surface (no free boundary; faces wind outward) hides every face turned away from
   // the viewer behind one turned towards it: those need no drawing. An open one shows both sides.
   const bool closed = model.a.freeBoundaries.empty() && model.b.freeBoundaries.empty();
   const Eigen::Vector3d away = camera.depthAxis();
   const Piece* pieces[2] = {&model.a, &model.b};
-  const PointClusters drawn = drawnShapeClusters(model);
   ClusteredFaces kept(drawn.cell);
   std::vector<SeenFace> faces;
   for (int piece = 0; piece < 2; ++piece) {

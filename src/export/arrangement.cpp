@@ -66,92 +66,129 @@ struct Choice {
 };
 
 // Each piece at its smallest-box turn or a quarter turn more, side by side or stacked.
-std::vector<Choice> arrangementChoices(const std::vector<Polyline> cuts[2], double edge,
-                                       double gap) {
+std::vector<Choice> arrangementChoices(const std::vector<Polyline> cuts[2], double edge, double gap,
+                                       int quarterTurns) {
   double baseRot[2];
   for (int p = 0; p < 2; ++p) baseRot[p] = bestRotation(cuts[p]);
   std::vector<Choice> choices;
   for (int ra = 0; ra < 2; ++ra)
     for (int rb = 0; rb < 2; ++rb)
-      for (int v = 0; v < 2; ++v) {
-        Choice c;
-        c.rot[0] = baseRot[0] + 90 * ra;
-        c.rot[1] = baseRot[1] + 90 * rb;
-        c.vertical = v == 1;
-        for (int p = 0; p < 2; ++p) c.box[p] = extentAt(cuts[p], c.rot[p], edge);
-        c.size = arranged(c.box[0], c.box[1], c.vertical, gap);
-        choices.push_back(c);
-      }
+      if (quarterTurns < 0 || (ra == quarterTurns && rb == quarterTurns))
+        for (int v = 0; v < 2; ++v) {
+          Choice c;
+          c.rot[0] = baseRot[0] + 90 * ra;
+          c.rot[1] = baseRot[1] + 90 * rb;
+          c.vertical = v == 1;
+          for (int p = 0; p < 2; ++p) c.box[p] = extentAt(cuts[p], c.rot[p], edge);
+          c.size = arranged(c.box[0], c.box[1], c.vertical, gap);
+          choices.push_back(c);
+        }
   return choices;
 }
 
-// Both pieces on one sheet (a print page turned to landscape where only that fits), in the
-// smallest arrangement that fits; false when none does.
-bool arrangeTogether(const SheetFit& fit, const std::vector<Choice>& choices, Arrangement& a) {
-  auto pick = [&](double W, double H) -> const Choice* {
-    const Choice* best = nullptr;
-    for (const Choice& c : choices)
-      if (fit.fits(c.size, W, H) && (!best || c.size.prod() < best->size.prod() - 1e-9)) best = &c;
-    return best;
-  };
-  const Choice* together = pick(fit.pageW, fit.pageH);
+// One way to put a sheet's pieces on it: the arrangement choice, the page turned or not, and its
+// title block.
+struct Candidate {
+  const Choice* choice = nullptr;
   bool landscape = false;
-  if (!together && fit.mayTurnPage) {
-    together = pick(fit.pageH, fit.pageW);
-    landscape = together != nullptr;
+  TitlePlace title;
+};
+
+// Whether candidate `c` of extent `size` is better than `best` of extent `bestSize`: a better
+// title block (the full one before the mark, larger before smaller), then a page as it is before
+// one turned, then the smaller extent.
+bool better(const Candidate& c, const Vec2& size, const Candidate& best, const Vec2& bestSize) {
+  if (!best.choice) return true;
+  if (betterTitle(c.title, best.title)) return true;
+  if (betterTitle(best.title, c.title)) return false;
+  if (c.landscape != best.landscape) return !c.landscape;
+  return size.prod() < bestSize.prod() - 1e-9;
+}
+
+// Both pieces on one sheet (a print page turned to landscape where that helps): every
+// arrangement whose pieces fit with at least the mark beside them, the best title block first,
+// then the page as it is, then the smallest; false when none does. The full title block never
+// decides whether the pieces share a sheet.
+bool arrangeTogether(const SheetFit& fit, const std::vector<Choice>& choices, const TitleText& text,
+                     Arrangement& a) {
+  Candidate best;
+  for (bool landscape : {false, true}) {
+    if (landscape && !fit.mayTurnPage) continue;
+    const double W = landscape ? fit.pageH : fit.pageW, H = landscape ? fit.pageW : fit.pageH;
+    const Box region = fit.artRegion(W, H);
+    for (const Choice& c : choices) {
+      if (!fit.fits(c.size, W, H)) continue;
+      const Vec2 second =
+          c.vertical ? Vec2(0, c.box[0].h() + fit.m) : Vec2(c.box[0].w() + fit.m, 0);
+      const std::vector<Box> taken = {
+          Box::spanning(region.lo, region.lo + Vec2(c.box[0].w(), c.box[0].h())),
+          Box::spanning(region.lo + second, region.lo + second + Vec2(c.box[1].w(), c.box[1].h()))};
+      const Candidate candidate{&c, landscape, placeTitle(region, taken, 0, 1, 0, fit, text)};
+      if (candidate.title.placed &&
+          better(candidate, c.size, best, best.choice ? best.choice->size : Vec2::Zero()))
+        best = candidate;
+    }
   }
-  if (!together) return false;
+  if (!best.choice) return false;
+  const Choice& together = *best.choice;
   SheetPlan plan;
-  plan.box = Box::spanning(Vec2::Zero(),
-                           landscape ? Vec2(fit.pageH, fit.pageW) : Vec2(fit.pageW, fit.pageH));
+  plan.box = Box::spanning(
+      Vec2::Zero(), best.landscape ? Vec2(fit.pageH, fit.pageW) : Vec2(fit.pageW, fit.pageH));
   plan.pieces = {0, 1};
-  plan.size = together->size;
+  plan.size = together.size;
+  plan.title = best.title;
   const Box region = fit.artRegion(plan.box.w(), plan.box.h());
-  plan.title = fit.titleAt(plan.size, region);
   for (int p = 0; p < 2; ++p) {
-    a.rot[p] = together->rot[p];
-    a.box[p] = together->box[p];
+    a.rot[p] = together.rot[p];
+    a.box[p] = together.box[p];
   }
   a.corner[0] = region.lo;
-  a.corner[1] = region.lo + (together->vertical ? Vec2(0, a.box[0].h() + fit.m)
-                                                : Vec2(a.box[0].w() + fit.m, 0));
+  a.corner[1] = region.lo +
+                (together.vertical ? Vec2(0, a.box[0].h() + fit.m) : Vec2(a.box[0].w() + fit.m, 0));
   a.plans.push_back(plan);
   return true;
 }
 
-// Piece p on a sheet of its own whose left edge is at x on the canvas: at the smaller of its two
-// turns that fits (a print page turned where only that fits), with its title block, else
-// without, else (print) tiled across pages.
+// Piece p on a sheet of its own whose left edge is at x on the canvas: at the better of its two
+// turns, on the page as it is or turned (print), with the best title block beside it; else
+// (print) tiled across pages, else refused.
 Status arrangeAlone(const SheetFit& fit, const std::vector<Choice>& choices, int p, double x,
-                    const std::string& name, Arrangement& a) {
+                    const std::string& name, const TitleText& text, Arrangement& a) {
   SheetPlan plan;
   plan.pieces = {p};
-  const Choice* best = nullptr;  // the rotations tried for this piece: its two in `choices`
-  bool turned = false;
-  // With its title block beside it where one fits, else bare (the title lines on a page of
-  // their own): the title never makes a piece tiled or refused.
-  for (bool withTitle : {true, false})
-    for (bool turn : {false, true}) {
-      if (best || (turn && !fit.mayTurnPage)) continue;
-      const double W = turn ? fit.pageH : fit.pageW, H = turn ? fit.pageW : fit.pageH;
-      for (const Choice& c : choices)
-        if (fit.fits(Vec2(c.box[p].w(), c.box[p].h()), W, H, withTitle) &&
-            (!best || c.box[p].w() * c.box[p].h() < best->box[p].w() * best->box[p].h() - 1e-9))
-          best = &c;
-      turned = turn;
+  Candidate best;  // the rotations tried for this piece: its two in `choices`
+  auto extent = [&](const Choice& c) { return Vec2(c.box[p].w(), c.box[p].h()); };
+  for (bool landscape : {false, true}) {
+    if (landscape && !fit.mayTurnPage) continue;
+    const double W = landscape ? fit.pageH : fit.pageW, H = landscape ? fit.pageW : fit.pageH;
+    const Box region = fit.artRegion(W, H);
+    for (const Choice& c : choices) {
+      if (!fit.fits(extent(c), W, H)) continue;
+      const Candidate candidate{
+          &c, landscape,
+          placeTitle(region, {Box::spanning(region.lo, region.lo + extent(c))}, size_t(p), 2, p,
+                     fit, text)};
+      if (candidate.title.placed &&
+          better(candidate, extent(c), best, best.choice ? extent(*best.choice) : Vec2::Zero()))
+        best = candidate;
     }
-  if (best) {
-    a.rot[p] = best->rot[p];
-    a.box[p] = best->box[p];
-    plan.box = Box::spanning(Vec2(x, 0), Vec2(x, 0) + (turned ? Vec2(fit.pageH, fit.pageW)
-                                                              : Vec2(fit.pageW, fit.pageH)));
+  }
+  if (best.choice) {
+    a.rot[p] = best.choice->rot[p];
+    a.box[p] = best.choice->box[p];
+    plan.box = Box::spanning(
+        Vec2(x, 0),
+        Vec2(x, 0) + (best.landscape ? Vec2(fit.pageH, fit.pageW) : Vec2(fit.pageW, fit.pageH)));
+    plan.title = best.title;
+    // Placed on the sheet at the canvas's x: the block moves with it.
+    plan.title.block.start += Vec2(x, 0);
   } else if (fit.mayTile) {  // its turn of the smaller largest side, tiled
-    best = &choices[0];
+    const Choice* tiled = &choices[0];
     for (const Choice& c : choices)
-      if (std::max(c.box[p].w(), c.box[p].h()) < std::max(best->box[p].w(), best->box[p].h()))
-        best = &c;
-    a.rot[p] = best->rot[p];
-    a.box[p] = best->box[p];
+      if (std::max(c.box[p].w(), c.box[p].h()) < std::max(tiled->box[p].w(), tiled->box[p].h()))
+        tiled = &c;
+    a.rot[p] = tiled->rot[p];
+    a.box[p] = tiled->box[p];
     plan.tiled = true;
     plan.box =
         Box::spanning(Vec2(x, 0), Vec2(x, 0) + fit.tiledExtent(Vec2(a.box[p].w(), a.box[p].h())));
@@ -160,31 +197,33 @@ Status arrangeAlone(const SheetFit& fit, const std::vector<Choice>& choices, int
     plan.tilesY = ny;
   } else {
     std::vector<Vec2> sizes;
-    for (const Choice& c : choices) sizes.emplace_back(c.box[p].w(), c.box[p].h());
-    return fit.tooLarge("piece " + name, sizes, "the piece with its tabs");
+    for (const Choice& c : choices)  // the mark under the piece or beside it
+      for (const Vec2& room : {Vec2(0, fit.markRoom()), Vec2(fit.markRoom(), 0)})
+        sizes.push_back(extent(c) + room);
+    return fit.tooLarge("piece " + name, sizes,
+                        fit.markRoom() > 0 ? "the piece with its tabs and the mark beside it"
+                                           : "the piece with its tabs");
   }
   plan.size = Vec2(a.box[p].w(), a.box[p].h());
-  const Box region = fit.artRegion(plan.box.w(), plan.box.h(), plan.box.lo);
-  plan.title = fit.titleAt(plan.size, region);
-  a.corner[p] = region.lo;
+  a.corner[p] = fit.artRegion(plan.box.w(), plan.box.h(), plan.box.lo).lo;
   a.plans.push_back(plan);
   return Status::ok();
 }
 
 }  // namespace
 
-// Pieces are packed on as few sheets (pages) as hold them: both on one where they fit together
-// (side by side or stacked, each at its smallest-box turn or a quarter turn more; a print page
-// may turn to landscape), else each on its own, at the smaller of its two turns that fits (a
-// print page turned where only that fits), else (print) tiled across pages.
+// Pieces are packed on as few sheets (pages) as hold them with the mark: both on one where they
+// fit together (side by side or stacked, each at its smallest-box turn or a quarter turn more; a
+// print page may turn to landscape), else each on its own, else (print) tiled across pages.
 Result<Arrangement> arrange(const SheetFit& fit, const std::vector<Polyline> cuts[2],
-                            const std::string names[2], std::vector<std::string>& messages) {
-  const std::vector<Choice> choices = arrangementChoices(cuts, fit.edge, fit.m);
+                            const std::string names[2], const TitleText& text,
+                            std::vector<std::string>& messages, int quarterTurns) {
+  const std::vector<Choice> choices = arrangementChoices(cuts, fit.edge, fit.m, quarterTurns);
   Arrangement a;
-  if (!arrangeTogether(fit, choices, a)) {
+  if (!arrangeTogether(fit, choices, text, a)) {
     double x = 0;  // the sheets lie side by side on the canvas
     for (int p = 0; p < 2; ++p) {
-      if (Status s = arrangeAlone(fit, choices, p, x, names[p], a); !s.isOk()) return s;
+      if (Status s = arrangeAlone(fit, choices, p, x, names[p], text, a); !s.isOk()) return s;
       x = a.plans.back().box.hi.x();
     }
     messages.push_back("the pieces do not fit one " +

@@ -368,10 +368,11 @@ ShapeView mostSeamInSight(const DForm& model, const Eigen::Vector3d& start) {
     seamLength += (points[(i + 1) % points.size()] - points[i]).norm();
   std::optional<ShapeView> best;
   double bestScore = 0;
+  const PointClusters drawn = drawnShapeClusters(model);  // the same on every view
   for (double elevation : kViewElevations)
     for (int k = 0; k < 3; ++k) {
       ShapeView v{ShapeCamera(kViewAzimuth + 120.0 * k, elevation), {}};
-      v.faces = paintersFaces(model, v.camera);
+      v.faces = paintersFaces(model, v.camera, drawn);
       const SurfaceDepth surface(v.faces);
       auto inSight = [&](const Eigen::Vector3d& p) { return !surface.hides(v.camera.screen(p)); };
       std::vector<bool> seenAt;

@@ -4,6 +4,7 @@
 #include <cairo-pdf.h>
 #include <cairo.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -99,48 +100,6 @@ Status cairoError(cairo_status_t status, const std::string& what) {
           what + ": Cairo failed (" + cairo_status_to_string(status) + ")"};
 }
 
-/// The number after `key` in `text` from `from` on ("/Root 11 0 R" -> 11), or -1.
-long numberAfter(const std::string& text, const std::string& key, std::size_t from) {
-  const std::size_t at = text.find(key, from);
-  if (at == std::string::npos) return -1;
-  return std::strtol(text.c_str() + at + key.size(), nullptr, 10);
-}
-
-/// `pdf` with /ViewerPreferences << /PrintScaling /None >> in its catalog, so that a viewer's
-/// print dialog prints at 100 % instead of fitting the page to the paper: a pattern printed
-/// shrunk is cut wrong. Added as an incremental update (the catalog again, a cross-reference
-/// section for it and a trailer pointing back to Cairo's), so Cairo's bytes stay as they are.
-/// InternalError when Cairo's output is not laid out as expected.
-Result<std::string> withPrintScalingNone(std::string pdf) {
-  const std::size_t trailer = pdf.rfind("trailer");
-  const std::size_t startxref = pdf.rfind("startxref");
-  if (trailer == std::string::npos || startxref == std::string::npos || startxref < trailer)
-    return Status(ErrorCode::Internal, "pattern.pdf: Cairo wrote no trailer");
-  const long root = numberAfter(pdf, "/Root ", trailer), size = numberAfter(pdf, "/Size ", trailer),
-             info = numberAfter(pdf, "/Info ", trailer),
-             previous = numberAfter(pdf, "startxref", startxref);
-  const std::string header = "\n" + std::to_string(root) + " 0 obj\n";
-  const std::size_t object = pdf.rfind(header, trailer);  // after the pages' content streams
-  const std::size_t end = object == std::string::npos ? object : pdf.find("endobj", object);
-  const std::size_t open = object == std::string::npos ? object : pdf.find("<<", object);
-  const std::size_t close = end == std::string::npos ? end : pdf.rfind(">>", end);
-  if (root < 0 || size < 0 || previous < 0 || end == std::string::npos || open > close)
-    return Status(ErrorCode::Internal,
-                  "pattern.pdf: Cairo's catalog or trailer is not as expected");
-  std::string catalog = pdf.substr(open, close + 2 - open);
-  catalog.insert(2, " /ViewerPreferences << /PrintScaling /None >>");
-  const std::size_t at = pdf.size() + 1;  // after the newline below
-  pdf += "\n" + std::to_string(root) + " 0 obj\n" + catalog + "\nendobj\n";
-  const std::size_t xref = pdf.size();
-  char entry[32];
-  std::snprintf(entry, sizeof entry, "%010zu 00000 n \n", at);
-  pdf += "xref\n" + std::to_string(root) + " 1\n" + entry + "trailer\n<< /Size " +
-         std::to_string(size) + " /Root " + std::to_string(root) + " 0 R" +
-         (info >= 0 ? " /Info " + std::to_string(info) + " 0 R" : std::string()) + " /Prev " +
-         std::to_string(previous) + " >>\nstartxref\n" + std::to_string(xref) + "\n%%EOF\n";
-  return pdf;
-}
-
 }  // namespace
 
 Result<std::string> pdfDocument(const PatternBuild& pattern) {
@@ -177,7 +136,70 @@ Result<std::string> pdfDocument(const PatternBuild& pattern) {
   cairo_surface_finish(surface.get());
   if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS)
     return cairoError(cairo_surface_status(surface.get()), "pattern.pdf");
-  return withPrintScalingNone(std::move(bytes));
+  Result<std::string> scaled = withPrintScalingNone(std::move(bytes));
+  if (!scaled.isOk()) return scaled;
+  return withSpotLayers(std::move(scaled.value()), pattern);
+}
+
+namespace {
+
+// The PNG `png` with a pHYs chunk recording `dpi` (as pixels per metre) after its header.
+std::string withResolution(std::string png, double dpi) {
+  auto crc32 = [](const std::string& bytes) {
+    unsigned long crc = 0xFFFFFFFFul;
+    for (unsigned char c : bytes) {
+      crc ^= c;
+      for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xEDB88320ul & (0ul - (crc & 1ul)));
+    }
+    return crc ^ 0xFFFFFFFFul;
+  };
+  auto be32 = [](unsigned long v) {
+    return std::string{char((v >> 24) & 0xFF), char((v >> 16) & 0xFF), char((v >> 8) & 0xFF),
+                       char(v & 0xFF)};
+  };
+  const unsigned long perMetre = static_cast<unsigned long>(std::lround(dpi / 0.0254));
+  const std::string chunk = "pHYs" + be32(perMetre) + be32(perMetre) + std::string(1, '\1');
+  constexpr std::size_t kAfterHeader = 8 + 4 + 4 + 13 + 4;  // signature, IHDR chunk
+  png.insert(kAfterHeader, be32(9) + chunk + be32(crc32(chunk)));
+  return png;
+}
+
+}  // namespace
+
+Result<std::string> printPng(const PatternBuild& pattern, int pageIndex, double dpi) {
+  const PageView& page = pattern.pages[size_t(pageIndex)];
+  const Box area = page.printArea;
+  const double k = dpi / kMmPerInch;
+  const int w = int(std::lround(area.w() * k)), h = int(std::lround(area.h() * k));
+  std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
+      cairo_image_surface_create(CAIRO_FORMAT_ARGB32, w, h), cairo_surface_destroy);
+  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()), cairo_destroy);
+  cairo_scale(cr.get(), k, k);
+  cairo_translate(cr.get(), -area.lo.x(), -area.lo.y());
+  // Only the pieces, each clipped to its cut line (ticks and tint stop there): the software cuts
+  // round the image's opaque pixels, and adds its own bleed. A pattern stamped FAILED GATE keeps
+  // the stamp, outside the pieces.
+  if (!pattern.failedGate) {
+    cairo_new_path(cr.get());
+    for (const PieceInfo& piece : pattern.pieces)
+      for (const auto* loops : {&piece.cut, &piece.holeCuts})
+        for (const Polyline& loop : *loops) {
+          if (loop.empty()) continue;
+          cairo_move_to(cr.get(), loop[0].x() - page.origin.x(), loop[0].y() - page.origin.y());
+          for (const Vec2& q : loop)
+            cairo_line_to(cr.get(), q.x() - page.origin.x(), q.y() - page.origin.y());
+          cairo_close_path(cr.get());
+        }
+    cairo_set_fill_rule(cr.get(), CAIRO_FILL_RULE_EVEN_ODD);
+    cairo_clip(cr.get());
+  }
+  drawPage(cr.get(), pattern, page, 1.0 / k);
+  cr.reset();
+  std::string bytes;
+  const cairo_status_t status =
+      cairo_surface_write_to_png_stream(surface.get(), appendToString, &bytes);
+  if (status != CAIRO_STATUS_SUCCESS) return cairoError(status, "the print's PNG");
+  return withResolution(std::move(bytes), dpi);
 }
 
 Result<std::string> pngImage(const PatternBuild& pattern, int pageIndex, double dpi) {

@@ -50,6 +50,19 @@ Status checkExportOptions(const ExportOptions& o) {
     return Status{ErrorCode::Usage, "tab angle must be between 15 and 90 degrees"};
   if (!(o.tabGapMm >= 0) || !(o.tabMaxLengthMm > 0) || !(o.tabMaxTurnDeg > 0))
     return Status{ErrorCode::Usage, "tab gap, length and turn limits must be positive"};
+  // A rigid sheet neither folds a tongue back through a slot nor bends without a hinge; a hinge
+  // needs the material's bending figures.
+  const std::optional<MaterialPreset> material = materialNamed(o.material);
+  if (material && material->hinge && o.joint == Joint::Slots)
+    return Status{ErrorCode::Usage,
+                  mention(Setting::Joint) + " slots: " + o.material + " (" +
+                      fab::formatMm(material->thicknessMm) +
+                      " mm) cannot fold its tongues back through the slots; join it with holes"};
+  if (o.hinge.value_or(false) && !(material && material->hingeRowMm > 0))
+    return Status{ErrorCode::Usage, mention(Setting::Hinge) +
+                                        ": kerf-bending cuts are for a rigid sheet material (" +
+                                        rigidMaterials() + "), got " +
+                                        (o.material.empty() ? std::string("none") : o.material)};
   // The holes' sizes as the pattern will use them (a material's, or the defaults, where unset),
   // against each other; each alone is in its range (the settings table).
   const fab::JointSettings j = fab::jointSettings(o, Profile{});
@@ -66,6 +79,11 @@ Status checkExportOptions(const ExportOptions& o) {
                                         " must be at most the hole spacing less a hole diameter (" +
                                         fab::formatMm(j.spacingMm - j.diameterMm) + " mm)"};
   return Status::ok();
+}
+
+Status checkProfileOptions(const ExportOptions& options) {
+  const Result<Profile> profile = fab::resolveProfile(options);
+  return profile.isOk() ? Status::ok() : profile.status();
 }
 
 long fab::patternsLaidOut() { return layoutsMade.load(); }
@@ -112,28 +130,18 @@ LaidOutExport markFailedGate(const LaidOutExport& laidOut) {
   return out;
 }
 
-namespace {
-
-Result<PreparedExport> renderOrThrow(const DForm& model, const LaidOutExport& laidOut) {
-  if (!laidOut.pattern) return Status(ErrorCode::Internal, "renderExport: nothing laid out");
+Result<PreparedExport> fab::renderPattern(const LaidOutExport& laidOut) {
+  if (!laidOut.pattern) return Status(ErrorCode::Internal, "renderPattern: nothing laid out");
   const fab::PatternBuild& pat = laidOut.pattern->build;
-  ExportOptions options = laidOut.pattern->options;
-  options.failedGateMark = pat.failedGate;  // the previews' names and header say so too
   auto pdf = fab::pdfDocument(pat);
   if (!pdf.isOk()) return pdf.status();
-  if (interruptRequested()) return stopped();
-  auto gltf = fab::gltfDocument(model, options);
-  if (!gltf.isOk()) return gltf.status();
   if (interruptRequested()) return stopped();
   PreparedExport prepared;
   prepared.files = {
       {"pattern.svg", fab::svgDocument(pat.drawing)},
       {"pattern.dxf", fab::dxfDocument(pat.drawing)},
       {"pattern.pdf", pdf.value()},
-      {"assembly.svg", fab::svgDocument(pat.assembly)},
-      {"pattern.json", fab::sidecarJson(pat, options.jobName)},
-      {"dform.stl", fab::stlDocument(model, pat.failedGate)},
-      {options.gltfBinary ? "dform.glb" : "dform.gltf", gltf.value()},
+      {"pattern.json", fab::sidecarJson(pat, laidOut.pattern->options.jobName)},
   };
   // A pattern on several sheets (pages): each also alone, at its own size, for the machine, as
   // SVG and as DXF.
@@ -143,22 +151,56 @@ Result<PreparedExport> renderOrThrow(const DForm& model, const LaidOutExport& la
       prepared.files.emplace_back(sheetFileName(int(k) + 1, "svg"), fab::svgDocument(sheet));
       prepared.files.emplace_back(sheetFileName(int(k) + 1, "dxf"), fab::dxfDocument(sheet));
     }
+  // For a cutter's software that takes the print as an image: each page's print as a PNG and its
+  // cut line alone as an SVG of the same frame.
+  if (pat.profile.printPngDpi > 0)
+    for (size_t k = 0, sheet = 0; k < pat.pages.size(); ++k) {
+      if (pat.pages[k].kind != "sheet") continue;
+      auto png = fab::printPng(pat, int(k), pat.profile.printPngDpi);
+      if (!png.isOk()) return png.status();
+      ++sheet;
+      prepared.files.emplace_back(printSheetFileName(int(sheet), "png"), png.value());
+      prepared.files.emplace_back(printSheetFileName(int(sheet), "svg"), fab::cutSvg(pat, int(k)));
+    }
   prepared.layout = laidOut.layout;
   prepared.ticks = laidOut.ticks;
   ExportSummary& summary = prepared.summary;
   summary.messages = pat.messages;
   summary.profile = pat.profile.name;
-  summary.perimeterA = pat.pieces[0].perimeter;
-  summary.perimeterB = pat.pieces[1].perimeter;
+  if (pat.pieces.size() == 2) {
+    summary.perimeterA = pat.pieces[0].perimeter;
+    summary.perimeterB = pat.pieces[1].perimeter;
+  }
   summary.sheetWidthMm = pat.drawing.width;
   summary.sheetHeightMm = pat.drawing.height;
   summary.ticks = int(pat.ticks.size());
   summary.tabs = int(pat.tabs.size());
-  summary.creases = int(pat.pieces[0].creases.size() + pat.pieces[1].creases.size());
+  for (const fab::PieceInfo& piece : pat.pieces) summary.creases += int(piece.creases.size());
   summary.jointHoles = int(pat.jointHoles.size());
   summary.jointSlots = int(pat.jointSlots.size());
   summary.pages = int(pat.pages.size());
-  summary.triangles = int(model.a.F.rows() + model.b.F.rows());
+  summary.pieces = int(pat.pieces.size());
+  summary.sheets = int(pat.sheets.size());
+  return prepared;
+}
+
+namespace {
+
+Result<PreparedExport> renderOrThrow(const DForm& model, const LaidOutExport& laidOut) {
+  if (!laidOut.pattern) return Status(ErrorCode::Internal, "renderExport: nothing laid out");
+  const fab::PatternBuild& pat = laidOut.pattern->build;
+  ExportOptions options = laidOut.pattern->options;
+  options.failedGateMark = pat.failedGate;  // the previews' names and header say so too
+  Result<PreparedExport> prepared = fab::renderPattern(laidOut);
+  if (!prepared.isOk()) return prepared;
+  auto gltf = fab::gltfDocument(model, options);
+  if (!gltf.isOk()) return gltf.status();
+  if (interruptRequested()) return stopped();
+  std::vector<std::pair<std::string, std::string>>& files = prepared.value().files;
+  files.insert(files.begin() + 3, {"assembly.svg", fab::svgDocument(pat.assembly)});
+  files.insert(files.begin() + 5, {"dform.stl", fab::stlDocument(model, pat.failedGate)});
+  files.insert(files.begin() + 6, {options.gltfBinary ? "dform.glb" : "dform.gltf", gltf.value()});
+  prepared.value().summary.triangles = int(model.a.F.rows() + model.b.F.rows());
   return prepared;
 }
 
@@ -203,7 +245,11 @@ std::vector<std::string> exportFileNames() {
           sheetFileName(1, "svg"),
           sheetFileName(2, "svg"),
           sheetFileName(1, "dxf"),
-          sheetFileName(2, "dxf")};
+          sheetFileName(2, "dxf"),
+          printSheetFileName(1, "png"),
+          printSheetFileName(2, "png"),
+          printSheetFileName(1, "svg"),
+          printSheetFileName(2, "svg")};
 }
 
 Result<ExportSummary> exportAll(const DForm& model, const ExportOptions& options,

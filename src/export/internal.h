@@ -73,6 +73,9 @@ struct Layer {
   double widthMm = 0.025;  ///< stroke width (mm)
   double dashMm = 3.0;     ///< dash and gap length for dashed paths (mm)
   bool printed = true;     ///< drawn in the PDF and PNG (a print-and-cut Cut layer is not)
+  /// A spot colour's name (a print-and-cut Cut layer for a RIP, "CutContour"): the PDF draws the
+  /// layer in that Separation colour space, the SVG names the layer after it. "" = none.
+  std::string spot;
   std::vector<Path> paths;
 };
 
@@ -90,8 +93,10 @@ struct PageView {
   Vec2 origin{0, 0};             ///< canvas point drawn at the page's (0, 0)
   double clipX0 = 0, clipY0 = 0, clipX1 = 0, clipY1 = 0;  ///< page area the canvas shows (mm)
   std::vector<Layer> overlay;                             ///< drawn in page coordinates, unclipped
-  /// "sheet" (a sheet or page of the layout), "cover" (a sheet's title lines, where they do not
-  /// fit beside its pieces), "map" (a tiled piece's page map) or "tile"
+  /// The area of the page the print may use (page mm): the profile's art region (a Cricut's
+  /// Print Then Cut area, inside a Silhouette's marks); empty on a tile or a page map.
+  Box printArea;
+  /// "sheet" (a sheet or page of the layout), "map" (a tiled piece's page map) or "tile"
   std::string kind = "sheet";
 };
 
@@ -168,6 +173,35 @@ struct ScoredFoldInfo {
   std::vector<Polyline> lines;  ///< its parts inside the piece (sheet mm)
 };
 
+/// A row of a hinge: its slits and the bending it allows against the shape's.
+struct HingeRow {
+  std::vector<Polyline> cuts;  ///< straight slits (sheet mm), bridged, clear of the margins
+  double pitchMm = 0;          ///< the width of sheet the row bends (its cell across the rows)
+  double radiusAllowedMm = 0;  ///< the tightest bend it takes: its cell over its angle
+  double radiusNeededMm = 0;   ///< the shape's tightest bending radius in its cell
+};
+
+/// A body fold a hinge bends along.
+struct HingeFoldInfo {
+  int index = 0;        ///< into ExportOptions::folds
+  Polyline line;        ///< the fold (sheet mm)
+  double angleDeg = 0;  ///< its angle
+  double radiusMm = 0;  ///< the shape's bending radius there: its band over its angle
+};
+
+/// A hinge: rows of cuts across a family of parallel body folds of a piece, parallel to them.
+struct HingeInfo {
+  std::string id;  ///< "A-hinge-1"; its rows' paths "A-hinge-1-row-03"
+  Vec2 direction;  ///< of its folds and rows (sheet, unit)
+  std::vector<HingeFoldInfo> folds;
+  std::vector<HingeRow> rows;
+};
+
+/// The angle a hinge's folds turn in all (degrees).
+double hingeTurnDeg(const HingeInfo& hinge);
+/// The angle its rows with slits bend at most (degrees): each its pitch over its allowed radius.
+double hingeBendDeg(const HingeInfo& hinge);
+
 struct PieceInfo {
   std::string name;
   Polyline outline;  ///< seam polyline in seam order from seam[0] (sheet mm)
@@ -183,9 +217,20 @@ struct PieceInfo {
   std::vector<Polyline> holeCuts;  ///< closed cut paths of the holes (cut before the outer ones)
   std::vector<CreaseInfo> creases;
   std::vector<ScoredFoldInfo> scoredFolds;  ///< folds scored by --score-folds
+  std::vector<HingeInfo> hinges;            ///< kerf-bending cuts where it bends (a rigid sheet)
   double perimeter = 0;                     ///< flat seam length (mm)
   double rotationDeg = 0;                   ///< rotation applied on the sheet (after flipping y)
   int sheet = 0;  ///< the sheet (page) it is on: an index into PatternBuild::sheets
+};
+
+/// A part of a nest: which piece of which D-Form (and copy), where it went.
+struct NestPartInfo {
+  std::string name;    ///< "ellipses-A", its paths' ids' head
+  std::string job;     ///< its D-Form's job
+  int copy = 1;        ///< which copy of that D-Form (from 1)
+  int piece = 0;       ///< 0 = A, 1 = B of its D-Form
+  int sheet = 0;       ///< the sheet it is on
+  double turnDeg = 0;  ///< the quarter turn past its smallest-box turn it was packed at
 };
 
 struct PatternBuild {
@@ -206,6 +251,8 @@ struct PatternBuild {
   std::vector<JointSlotInfo> jointSlots;
   std::vector<std::string> messages;
   double tickSpacing = 0;
+  /// A nest's parts (layOutNest), one per piece, in `pieces`' order; empty for one D-Form.
+  std::vector<NestPartInfo> nestParts;
   /// Stamped FAILED GATE (stampFailedGate) after a failed quality gate: the stamp is an overlay,
   /// the layout is the same as without it.
   bool failedGate = false;
@@ -246,6 +293,11 @@ struct LaidOutPattern {
   ExportOptions options;
 };
 
+/// The pattern's own files of a laid-out pattern, rendered in memory: pattern.svg, .dxf, .pdf
+/// (with the assembly page when it has one), pattern.json, and each sheet's SVG and DXF when it
+/// has more than one; the summary of what they hold.
+Result<PreparedExport> renderPattern(const LaidOutExport& laidOut);
+
 /// How many patterns layOutExport has laid out in this process (tests count them).
 long patternsLaidOut();
 
@@ -268,6 +320,18 @@ Result<Profile> resolveProfile(const ExportOptions& options);
 /// `work`, when given, counts the work done (also when the build fails).
 Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& options,
                                   const Profile& profile, BuildWork* work = nullptr);
+
+/// How a nest (nest.cpp) lays one D-Form out: both pieces turned `quarterTurns` (0 or 1) quarter
+/// turns past their smallest-box turn, and each piece's name (its D-Form's, long) no larger than
+/// fits inside it.
+struct NestLayout {
+  int quarterTurns = 0;
+};
+
+/// The pattern of `model` at the options' scale laid out as a nest lays it out; no assembly page.
+Result<PatternBuild> buildNestPattern(const DForm& model, const ExportOptions& o,
+                                      const Profile& profile, const StrokeFont& font,
+                                      const NestLayout& nest);
 
 /// The tick number as printed: one that reads as another number upside down (6, 9, 16, 68, ...)
 /// gets a trailing dot.
@@ -295,7 +359,24 @@ std::string dxfDocument(const Drawing& drawing);
 /// The part of `drawing` on `sheet` (the paths inside it), moved to the sheet's own origin.
 Drawing sheetDrawing(const Drawing& drawing, const Box& sheet);
 Result<std::string> pdfDocument(const PatternBuild& pattern);
+/// `pdf` (Cairo's) with /ViewerPreferences << /PrintScaling /None >> in its catalog, so that a
+/// viewer's print dialog prints at 100 % instead of fitting the page to the paper (pdf_update.cpp,
+/// an incremental update: Cairo's bytes stay as they are). Internal when Cairo's output is not
+/// laid out as expected.
+Result<std::string> withPrintScalingNone(std::string pdf);
+/// `pdf` with each page's paths of the pattern's spot-colour layer (Layer::spot, a RIP's
+/// CutContour) drawn in that Separation colour space (DeviceCMYK magenta where a device lacks
+/// the ink), full tint, at the layer's width; as it is without one.
+Result<std::string> withSpotLayers(std::string pdf, const PatternBuild& pattern);
 Result<std::string> pngImage(const PatternBuild& pattern, int page, double dpi);
+/// Page `page`'s print (its printed layers, no cut line) within its print area, as a PNG at `dpi`
+/// with a transparent background and the resolution recorded (pHYs), for a cutter's software that
+/// takes the print as an image and cuts round its opaque pixels (Cricut Design Space's Print Then
+/// Cut): only the pieces, each clipped to its cut line (a pattern stamped FAILED GATE keeps its
+/// stamp).
+Result<std::string> printPng(const PatternBuild& pattern, int page, double dpi);
+/// Page `page`'s cut line alone, in the frame of printPng's image (mm, its top left at 0, 0).
+std::string cutSvg(const PatternBuild& pattern, int page);
 std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName);
 
 std::string stlDocument(const DForm& model, bool failedGate);

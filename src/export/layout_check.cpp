@@ -33,7 +33,8 @@ std::string withoutPage(const std::string& id) {
 bool isLabel(const Path& p) {
   const std::string id = withoutPage(p.id);
   return endsWith(id, "-label") || endsWith(id, "-name") || endsWith(id, "-failed-gate") ||
-         id == "title" || id == "note" || id == "tab-note" || id == "failed-gate";
+         id == "title" || id == "note" || id == "tab-note" || id == "failed-gate" ||
+         id == "scale-note" || id == "regmark-note";
 }
 
 // The sheet's own furniture: its title block (title, notes, legend, failed-gate line) and the
@@ -41,14 +42,19 @@ bool isLabel(const Path& p) {
 bool isSheetFurniture(const Path& p) {
   const std::string id = withoutPage(p.id);
   return id == "title" || id == "note" || id == "tab-note" || id == "crease-legend-label" ||
-         id == "failed-gate" || id == "calibration-bar" || id == "calibration-label";
+         id == "failed-gate" || id == "calibration-bar" || id == "calibration-label" ||
+         id == "job-name" || id == "scale-note" || id == "regmark-note";
 }
 
-// The piece a path belongs to, from its id ("A-tick-07-label" -> A), or -1.
+// The piece a path belongs to, from its id ("A-tick-07-label" -> A), or -1: the piece with the
+// longest name that heads the id (a nest's "x-A" and "x-A-copy2-A" both head the latter's ids).
 int pieceOf(const Path& p, const std::vector<PieceInfo>& pieces) {
+  int found = -1;
   for (size_t i = 0; i < pieces.size(); ++i)
-    if (p.id.rfind(pieces[i].name + "-", 0) == 0) return int(i);
-  return -1;
+    if (p.id.rfind(pieces[i].name + "-", 0) == 0 &&
+        (found < 0 || pieces[i].name.size() > pieces[size_t(found)].name.size()))
+      found = int(i);
+  return found;
 }
 
 void note(LayoutFindings& f, const std::string& what) {
@@ -71,6 +77,47 @@ std::vector<std::pair<int, int>> meetingPairs(const std::vector<Box>& boxes) {
     for (int j : index.overlapping(boxes[i]))
       if (j > int(i)) pairs.emplace_back(int(i), j);
   return pairs;
+}
+
+// The title block and the calibration bar keep off the pieces (their cut paths, tabs included,
+// and their printed bleed) and the registration marks.
+void checkSheetFurniture(const PatternBuild& pattern, LayoutFindings& f, BuildWork& work) {
+  const Drawing& d = pattern.drawing;
+  const std::vector<PieceInfo>& pieces = pattern.pieces;
+  std::vector<Polyline> obstacles;
+  std::vector<std::string> obstacleNames;
+  for (const PieceInfo& piece : pieces) {
+    for (const Polyline& cut : piece.cut) {
+      obstacles.push_back(cut);
+      obstacleNames.push_back("piece " + piece.name);
+    }
+    for (const Polyline& tint : piece.bleed) {
+      obstacles.push_back(tint);
+      obstacleNames.push_back("piece " + piece.name + "'s printed bleed");
+    }
+  }
+  for (const Layer& layer : d.layers)
+    if (layer.name == "Regmarks")
+      for (const Path& mark : layer.paths) {
+        obstacles.push_back(convexHull(mark.parts));
+        obstacleNames.push_back("registration mark " + mark.id);
+      }
+  std::vector<Box> obstacleBoxes;
+  for (const Polyline& o : obstacles) obstacleBoxes.push_back(boxOf({o}));
+  for (const Layer& layer : d.layers)
+    for (const Path& path : layer.paths) {
+      if (!isSheetFurniture(path)) continue;
+      const Polyline hull = convexHull(path.parts);
+      const Box box = boxOf({hull});
+      for (size_t k = 0; k < obstacles.size(); ++k) {
+        if (hull.size() < 3 || !box.overlaps(obstacleBoxes[k])) continue;
+        ++work.pairTests;
+        if (overlapArea(hull, obstacles[k]) > kOverlapTolMm2) {
+          ++f.titleOverlaps;
+          note(f, path.id + " overlaps " + obstacleNames[k]);
+        }
+      }
+    }
 }
 
 }  // namespace
@@ -128,48 +175,18 @@ LayoutFindings checkLayout(const PatternBuild& pattern, BuildWork* workOut) {
     region.insert(region.end(), piece.holeCuts.begin(), piece.holeCuts.end());
     return region;
   };
-  if (pieces.size() == 2 &&
-      overlapArea(cutRegion(pieces[0]), cutRegion(pieces[1])) > kOverlapTolMm2) {
-    f.overlappingPieces = 1;
-    note(f, "the cut paths of " + pieces[0].name + " and " + pieces[1].name + " overlap");
+  std::vector<Box> pieceBoxes;
+  for (const PieceInfo& piece : pieces) pieceBoxes.push_back(boxOf(piece.cut));
+  for (const auto& [i, j] : meetingPairs(pieceBoxes)) {
+    const PieceInfo& a = pieces[size_t(i)];
+    const PieceInfo& b = pieces[size_t(j)];
+    if (overlapArea(cutRegion(a), cutRegion(b)) > kOverlapTolMm2) {
+      ++f.overlappingPieces;
+      note(f, "the cut paths of " + a.name + " and " + b.name + " overlap");
+    }
   }
 
-  // The title block and the calibration bar keep off the pieces (their cut paths, tabs included,
-  // and their printed bleed) and the registration marks.
-  std::vector<Polyline> obstacles;
-  std::vector<std::string> obstacleNames;
-  for (const PieceInfo& piece : pieces) {
-    for (const Polyline& cut : piece.cut) {
-      obstacles.push_back(cut);
-      obstacleNames.push_back("piece " + piece.name);
-    }
-    for (const Polyline& tint : piece.bleed) {
-      obstacles.push_back(tint);
-      obstacleNames.push_back("piece " + piece.name + "'s printed bleed");
-    }
-  }
-  for (const Layer& layer : d.layers)
-    if (layer.name == "Regmarks")
-      for (const Path& mark : layer.paths) {
-        obstacles.push_back(convexHull(mark.parts));
-        obstacleNames.push_back("registration mark " + mark.id);
-      }
-  std::vector<Box> obstacleBoxes;
-  for (const Polyline& o : obstacles) obstacleBoxes.push_back(boxOf({o}));
-  for (const Layer& layer : d.layers)
-    for (const Path& path : layer.paths) {
-      if (!isSheetFurniture(path)) continue;
-      const Polyline hull = convexHull(path.parts);
-      const Box box = boxOf({hull});
-      for (size_t k = 0; k < obstacles.size(); ++k) {
-        if (hull.size() < 3 || !box.overlaps(obstacleBoxes[k])) continue;
-        ++work.pairTests;
-        if (overlapArea(hull, obstacles[k]) > kOverlapTolMm2) {
-          ++f.titleOverlaps;
-          note(f, path.id + " overlaps " + obstacleNames[k]);
-        }
-      }
-    }
+  checkSheetFurniture(pattern, f, work);
 
   // One closed cut loop per boundary loop of each piece: its outline (tabs included) and each
   // hole. A loop more is cut free of its piece (a detached tab); perforations are open paths.
@@ -194,9 +211,20 @@ LayoutFindings checkLayout(const PatternBuild& pattern, BuildWork* workOut) {
     // A piece's labels lie inside it; the sheet's own (title, calibration bar) only on the sheet.
     const int p = pieceOf(*label, pieces);
     if (p < 0) continue;
-    bool inside = true;
-    for (const Polyline& part : label->parts)
-      for (const Vec2& q : part) inside = inside && insideRegion(pieces[size_t(p)].boundaries, q);
+    // A number on a glue tab lies inside one of its piece's tabs; any other label in the piece.
+    std::vector<std::vector<Polyline>> regions;
+    if (endsWith(label->id, "-tab-label")) {
+      for (const TabInfo& tab : tabs)
+        if (tab.piece == p) regions.push_back({tab.polygon});
+    } else {
+      regions.push_back(pieces[size_t(p)].boundaries);
+    }
+    bool inside = std::any_of(regions.begin(), regions.end(), [&](const auto& region) {
+      for (const Polyline& part : label->parts)
+        for (const Vec2& q : part)
+          if (!insideRegion(region, q)) return false;
+      return true;
+    });
     if (!inside) {
       ++f.labelsOutside;
       note(f, "label " + label->id + " is not inside its piece");

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "dform/core/setting.h"
 #include "pattern_layout.h"
 #include "plane_geometry.h"
 
@@ -207,7 +208,7 @@ namespace {
 // is set when it fails because a piece does not fit its sheet or page.
 Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
                                   const Profile& profile, const StrokeFont& font, double scale,
-                                  BuildWork& work, bool& tooLargeOut) {
+                                  BuildWork& work, bool& tooLargeOut, const NestLayout* nest) {
   PatternBuild out;
   out.scale = scale;
   out.profile = profile;
@@ -246,7 +247,18 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
     cuts[p] = std::move(c.outer);
     holeCuts[p] = std::move(c.holes);
   }
-  Result<Arrangement> arranged = arrange(fit, cuts, flat.names, out.messages);
+  const std::string perimeterText = formatMm(seams[0].L, 1);
+  const std::string scaleText =
+      scale == 1.0 ? std::string("1:1, mm") : "scale " + percentText(scale) + " of true size, mm";
+  const TitleText title{o,
+                        "D-Form " + flat.names[0] + " + " + flat.names[1],
+                        scaleText,
+                        "seam " + perimeterText + " mm",
+                        {flat.names[0], flat.names[1]},
+                        flat.creased,
+                        font};
+  Result<Arrangement> arranged =
+      arrange(fit, cuts, flat.names, title, out.messages, nest ? nest->quarterTurns : -1);
   if (!arranged.isOk()) return arranged.status();
   const Arrangement& a = arranged.value();
   double canvasW = 0, canvasH = 0;
@@ -264,7 +276,7 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
       out.pieces.back().jointLoops.push_back(place[p].map(loop));
       out.pieces.back().boundaries.push_back(out.pieces.back().jointLoops.back());
     }
-    out.pieces.back().scoredFolds = scoredFolds(o, p, place[p], out.pieces.back());
+    out.pieces.back().scoredFolds = scoredFolds(o, p, place[p], scale, out.pieces.back());
   }
   out.ticks = placeTicks(tickS, seams, place);
   out.tabs = placeTabs(tabs, place);
@@ -280,17 +292,14 @@ Result<PatternBuild> buildAtScale(const DForm& model, const ExportOptions& o,
   }
 
   DrawingBuilder b(profile, canvasW, canvasH);
-  const std::string perimeterText = formatMm(seams[0].L, 1);
-  const std::string scaleText =
-      scale == 1.0 ? std::string("1:1, mm") : "scale " + percentText(scale) + " of true size, mm";
   describe(b.drawing(), o, profile, scale, perimeterText);
-  drawPieceLabels(flat, place, profile, font, b, out, work);
+  drawPieceLabels(flat, place, profile, font, b, out, work, nest != nullptr);
   drawCreases(out.pieces, profile, b);
   drawScoredFolds(out.pieces, b);
   drawTabFolds(out.tabs, flat.names, "", profile, b);
   drawTabFolds(tongues, flat.names, "tongue-", profile, b);
+  addHinges(o, flat, holeLoops, place, scale, b, out);
   drawCuts(out.pieces, flat.names, profile, b);
-  const TitleText title{flat, o, scaleText, perimeterText, font};
   drawSheetFurniture(a.plans, fit, title, b);
   out.drawing = std::move(b.drawing());
   addPages(a.plans, fit, title, out);
@@ -309,10 +318,10 @@ DForm scaledFlat(const DForm& model, double scale) {
 // The pattern of `model` at `scale` with options `o`; `tooLarge` is set when a piece does not fit.
 Result<PatternBuild> buildScaled(const DForm& model, const ExportOptions& o, const Profile& profile,
                                  const StrokeFont& font, double scale, BuildWork& work,
-                                 bool& tooLarge) {
+                                 bool& tooLarge, const NestLayout* nest = nullptr) {
   tooLarge = false;
   return buildAtScale(scale == 1.0 ? model : scaledFlat(model, scale), o, profile, font, scale,
-                      work, tooLarge);
+                      work, tooLarge, nest);
 }
 
 // The largest scale below `failsAt` (in tenths of a percent, where a piece does not fit) at which
@@ -369,7 +378,51 @@ std::string fitAdvice(const DForm& model, const ExportOptions& o, const Profile&
   return advice;
 }
 
+// What prints a tiled pattern without tiles: the largest scale at which every piece fits a page
+// (`--scale`), a larger page at the scale asked; empty when neither does.
+std::string tileAdvice(const DForm& model, const ExportOptions& o, const Profile& profile,
+                       const StrokeFont& font, BuildWork& work) {
+  Profile untiled = profile;
+  untiled.tile = false;
+  bool tooLarge = false;
+  Result<PatternBuild> whole = buildScaled(model, o, untiled, font, o.scale, work, tooLarge);
+  if (whole.isOk() || !tooLarge) return "";
+  std::vector<std::string> ways;
+  const ScaleFit fit = largestFittingScale(model, o, untiled, font,
+                                           int(std::lround(1000 * o.scale)), whole.status(), work);
+  if (fit.permille >= 50 && !fit.otherError) {
+    char flag[32];  // the option's value without the space percentText puts before "%"
+    std::snprintf(flag, sizeof flag, "%.1f%%", fit.permille / 10.0);
+    ways.push_back("at " + percentText(fit.permille / 1000.0) + " (" + mention(Setting::Scale) +
+                   " " + flag + ") it fits one page a piece");
+  }
+  const std::string page = o.page.empty() ? profile.page : o.page;
+  for (const char* larger : {"A3", "Tabloid"}) {
+    const auto size = pageSizeMm(larger), now = pageSizeMm(page);
+    if (!size || !now || size->first * size->second <= now->first * now->second) continue;
+    ExportOptions onLarger = o;
+    onLarger.page = larger;
+    if (buildScaled(model, onLarger, untiled, font, o.scale, work, tooLarge).isOk()) {
+      ways.push_back(mention(Setting::Page) + " " + larger + " prints it untiled at " +
+                     percentText(o.scale));
+      break;
+    }
+  }
+  if (ways.empty()) return "";
+  return "to print without tiles: " + ways.front() + (ways.size() > 1 ? ", or " + ways[1] : "");
+}
+
 }  // namespace
+
+Result<PatternBuild> buildNestPattern(const DForm& model, const ExportOptions& o,
+                                      const Profile& profile, const StrokeFont& font,
+                                      const NestLayout& nest) {
+  if (Status s = checkModel(model); !s.isOk()) return s;
+  if (Status s = checkExportOptions(o); !s.isOk()) return s;
+  BuildWork work;
+  bool tooLarge = false;
+  return buildScaled(model, o, profile, font, o.scale, work, tooLarge, &nest);
+}
 
 Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
                                   const Profile& profile, BuildWork* workOut) {
@@ -389,6 +442,12 @@ Result<PatternBuild> buildPattern(const DForm& model, const ExportOptions& o,
   };
   bool tooLarge = false;
   Result<PatternBuild> built = buildScaled(model, o, profile, font, o.scale, work, tooLarge);
+  if (built.isOk() && std::any_of(built.value().pages.begin(), built.value().pages.end(),
+                                  [](const PageView& page) { return page.kind == "tile"; })) {
+    BuildWork adviceWork;  // a refusal's advice is not the pattern's work
+    if (std::string advice = tileAdvice(model, o, profile, font, adviceWork); !advice.empty())
+      built.value().messages.push_back(advice);
+  }
   if (built.isOk() || !tooLarge) return withAssembly(std::move(built));
   // A piece does not fit: the largest scale, to a tenth of a percent, at which every piece does.
   // Only a pattern scaled to fit counts the search as its work: a refusal's advice is the work of

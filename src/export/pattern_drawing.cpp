@@ -76,6 +76,7 @@ DrawingBuilder::DrawingBuilder(const Profile& p, double w, double h) {
       break;
   }
   cut_ = layer("Cut", p.cutColor, p.cutWidthMm, !printAndCut);
+  drawing_.layers[size_t(cut_)].spot = p.cutSpotColor;
 }
 
 Path scorePass(const Path& fold) {
@@ -90,34 +91,58 @@ Vec2 readable(Vec2 t) {
   return t;
 }
 
+namespace {
+
+// The distance from segment [a, b] to the convex quadrilateral `box` (its inside included): 0
+// where they meet.
+double segmentToBox(const Vec2& a, const Vec2& b, const Polyline& box) {
+  if (insidePolygon(box, a) || insidePolygon(box, b)) return 0;
+  double best = 1e300;
+  for (size_t k = 0; k < box.size(); ++k) {
+    const Vec2& p = box[k];
+    const Vec2& q = box[(k + 1) % box.size()];
+    if (segmentsIntersect(a, b, p, q)) return 0;
+    best = std::min(
+        {best, distanceToSegment(a, p, q), distanceToSegment(b, p, q), distanceToSegment(p, a, b)});
+  }
+  return best;
+}
+
+// Whether every segment of `line` (closed or open) lies at least `clear` from the box (`near`
+// bounds the points that could be nearer).
+bool clearOf(const Polyline& line, bool closed, const Polyline& box, const Box& near,
+             double clear) {
+  const size_t n = line.size(), segments = closed ? n : n - 1;
+  for (size_t i = 0; n > 1 && i < segments; ++i) {
+    const Vec2& a = line[i];
+    const Vec2& b = line[(i + 1) % n];
+    if (std::max(a.x(), b.x()) < near.lo.x() || std::min(a.x(), b.x()) > near.hi.x() ||
+        std::max(a.y(), b.y()) < near.lo.y() || std::min(a.y(), b.y()) > near.hi.y())
+      continue;
+    const double d = segmentToBox(a, b, box);
+    if (clear > 0 ? d < clear : d <= 0) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 bool boxFits(const std::vector<Polyline>& region, const std::vector<Polyline>& lines, const Vec2& c,
              const Vec2& d, double halfW, double halfH, double clear) {
+  // Its centre in the material and its whole outline `clear` from every loop (the outline, a
+  // hole, a joint slot): then all of it is material, with that much to spare. No crease through
+  // it or inside it.
+  if (!insideRegion(region, c)) return false;
   const Vec2 n(-d.y(), d.x());
-  for (double a : {-1.0, 0.0, 1.0})
-    for (double b : {-1.0, 1.0}) {
-      const Vec2 q = c + a * halfW * d + b * halfH * n;
-      if (!insideRegion(region, q) || distanceToPolylines(region, q, true) < clear) return false;
-    }
   const Polyline box = {c - halfW * d - halfH * n, c + halfW * d - halfH * n,
                         c + halfW * d + halfH * n, c - halfW * d + halfH * n};
-  for (const std::vector<Polyline>* set : {&region, &lines})
-    for (const Polyline& line : *set)
-      for (const Vec2& q : line)
-        if (insidePolygon(box, q)) return false;
-  // No edge through it either: a crease, or a loop narrower than the box (a joint slot) passing
-  // between the points tested above.
-  auto crosses = [&](const Polyline& line, bool closed) {
-    const size_t n = line.size(), segments = closed ? n : n - 1;
-    for (size_t i = 0; n > 1 && i < segments; ++i)
-      for (size_t k = 0; k < box.size(); ++k)
-        if (segmentsIntersect(line[i], line[(i + 1) % n], box[k], box[(k + 1) % box.size()]))
-          return true;
-    return false;
-  };
-  for (const Polyline& line : lines)
-    if (crosses(line, false)) return false;
+  Box near = boxOf({box});
+  near.lo -= Vec2::Constant(clear);
+  near.hi += Vec2::Constant(clear);
   for (const Polyline& loop : region)
-    if (crosses(loop, true)) return false;
+    if (!clearOf(loop, true, box, near, clear)) return false;
+  for (const Polyline& line : lines)
+    if (!clearOf(line, false, box, near, 0)) return false;
   return true;
 }
 
@@ -161,12 +186,16 @@ namespace {
 // placed joins `taken`.
 void drawPieceName(const PieceInfo& info, const std::vector<Polyline>& creaseLines,
                    const Profile& profile, const StrokeFont& font, DrawingBuilder& b,
-                   std::vector<Polyline>& taken) {
+                   std::vector<Polyline>& taken, bool fitNames) {
   const std::string& nm = info.name;
   auto nameLabels = [&](const std::vector<Polyline>& avoid) {
     const auto [centre, room] = roomiestPoint(info.boundaries, creaseLines, avoid);
     std::vector<Path> labels;
-    const double nameH = std::min(3 * profile.labelHeightMm, 0.9 * room);
+    double nameH = std::min(3 * profile.labelHeightMm, 0.9 * room);
+    if (fitNames) {  // the name's box within the free disc of radius `room` about the centre
+      const double aspect = font.width(nm, 1.0);
+      nameH = std::min(nameH, 0.9 * 2 * room / std::sqrt(aspect * aspect + 1));
+    }
     if (nameH >= 1.0) labels.push_back(textPath(font, nm + "-name", nm, centre, {1, 0}, nameH));
     return labels;
   };
@@ -222,21 +251,24 @@ int drawCreaseLetters(const PieceInfo& info, const std::vector<Polyline>& crease
 // Each piece's ticks and tick numbers, name and crease letters, and messages for the labels left
 // out.
 void drawPieceLabels(const FlatPieces& flat, const Placement place[2], const Profile& profile,
-                     const StrokeFont& font, DrawingBuilder& b, PatternBuild& out,
-                     BuildWork& work) {
+                     const StrokeFont& font, DrawingBuilder& b, PatternBuild& out, BuildWork& work,
+                     bool fitNames) {
   int skippedLabels = 0, thinnedLabels = 0, skippedCreaseLabels = 0;
   for (int p = 0; p < 2; ++p) {
     const PieceInfo& info = out.pieces[size_t(p)];
     std::vector<Polyline> creaseLines;  // labels keep off them
     for (const CreaseInfo& crease : info.creases) creaseLines.push_back(crease.line);
-    const TickLabelCounts ticks =
-        drawTicks(p, info, flat.seams[p], place[p], out.ticks, creaseLines, profile, font, b, work);
+    std::vector<const TabInfo*> tabs;  // the piece's, for numbers on them
+    for (const TabInfo& tab : out.tabs)
+      if (tab.piece == p) tabs.push_back(&tab);
+    const TickLabelCounts ticks = drawTicks(p, info, flat.seams[p], place[p], out.ticks,
+                                            creaseLines, tabs, profile, font, b, work);
     skippedLabels += ticks.skipped;
     thinnedLabels += ticks.thinned;
     std::vector<Polyline> taken;  // footprints of the piece's labels so far
     for (const Path& path : b.engrave().paths)
       if (path.id.rfind(info.name + "-", 0) == 0) taken.push_back(convexHull(path.parts));
-    drawPieceName(info, creaseLines, profile, font, b, taken);
+    drawPieceName(info, creaseLines, profile, font, b, taken, fitNames);
     skippedCreaseLabels += drawCreaseLetters(info, creaseLines, profile, font, b, taken);
   }
   if (skippedLabels > 0)
@@ -272,13 +304,13 @@ void drawCreases(const std::vector<PieceInfo>& pieces, const Profile& profile, D
 }
 
 std::vector<ScoredFoldInfo> scoredFolds(const ExportOptions& o, int p, const Placement& place,
-                                        const PieceInfo& info) {
+                                        double scale, const PieceInfo& info) {
   std::vector<ScoredFoldInfo> out;
   if (!o.scoreFoldsDeg) return out;
   for (const FoldToScore& fold : o.folds) {
-    if (fold.piece != p || !(fold.angleDeg >= *o.scoreFoldsDeg)) continue;
+    if (fold.piece != p || fold.crease || !(fold.angleDeg >= *o.scoreFoldsDeg)) continue;
     std::vector<Polyline> lines =
-        clipToRegion(place.map(Polyline{fold.from, fold.to}), info.boundaries);
+        clipToRegion(place.map(Polyline{scale * fold.from, scale * fold.to}), info.boundaries);
     if (lines.empty()) continue;
     out.push_back({info.name + "-body-fold-" + std::to_string(out.size() + 1), fold.angleDeg,
                    std::move(lines)});

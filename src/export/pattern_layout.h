@@ -47,17 +47,34 @@ struct FlatPieces {
         creased(!model.a.creases.empty() || !model.b.creases.empty()) {}
 };
 
-// Where a sheet's title block goes: under its pieces, in a column beside them, or nowhere (the
-// pieces and the block do not fit).
-enum class TitleAt { Below, Aside, None };
+struct TitleText;
+
+// A title block: its lines run along `along` from `start`, each the next one across, in
+// `length` mm; `v` is how far across the lines so far reach.
+struct TitleBlock {
+  Vec2 along, across, start;
+  double length = 0;
+  double v = 0;
+};
+
+// Where a sheet's title block goes and what it holds: the full block (title, note, legends, scale
+// note and the 50 mm bar) or, where that finds no room, the mark every cut sheet carries (the
+// 50 mm bar beside the job's name, and the scale in words where it is not 1), at text height `h`,
+// in a free rectangle of the sheet's art region.
+struct TitlePlace {
+  bool placed = false;
+  bool full = true;
+  double h = 0;
+  TitleBlock block;
+};
 
 // One sheet (or page) of the layout and what is on it.
 struct SheetPlan {
   Box box;                   // on the canvas (mm); the sheets lie side by side
   std::vector<int> pieces;   // the pieces on it (0 = A, 1 = B)
   Vec2 size = Vec2::Zero();  // the extent of those pieces, from the region's top-left corner (mm)
-  TitleAt title = TitleAt::Below;
-  bool tiled = false;           // a piece larger than the page, tiled across pages (print)
+  TitlePlace title;          // none on a tiled piece's sheet (its page map has it)
+  bool tiled = false;        // a piece larger than the page, tiled across pages (print)
   long tilesX = 1, tilesY = 1;  // its pages: columns and rows
 };
 
@@ -69,9 +86,10 @@ struct SheetFit {
   bool* tooLargeOut = nullptr;  // set when the pattern fails because a piece does not fit
   double m = 0;                 // the profile's margin (mm)
   double edge = 0;              // drawn outside a piece's cut line
-  double textH = 0, lineH = 0;  // the title lines' capital height and line pitch (mm)
+  double textH = 0;             // the title lines' capital height (mm), where room allows
   bool tabbed = false;          // the pattern has tabs: a title line says how they fold
-  double titleBlock = 0;        // the title block's height with its margin from the pieces
+  double titleBlock = 0;        // the full title block's depth with its margin from the pieces
+  double scale = 1.0;           // the pattern's scale
   std::string scaleNote;        // the line stating a scale other than 1, on every sheet; or ""
   std::string pageName;         // empty for a material sheet
   std::string sheetWord;        // "sheet" or "page"
@@ -82,14 +100,12 @@ struct SheetFit {
   // The area of a W x H sheet or page (its top-left corner at `at`) that the pieces and the title
   // lines may use.
   Box artRegion(double W, double H, const Vec2& at = Vec2::Zero()) const;
-  // Where a sheet's title block goes when the pieces on it take `size` of its region `r`: under
-  // them (a margin apart) where the region is tall enough, else in a column to their right, its
-  // lines reading upwards; None when neither fits (or the pieces do not).
-  TitleAt titleAt(const Vec2& size, const Box& r) const;
-  // Whether pieces (and tabs) of extent `size` fit a W x H sheet, with their title block beside
-  // them unless `withTitle` is false (the title lines then go on a page of their own).
-  bool fits(const Vec2& size, double W, double H, bool withTitle = true) const;
-  // Whether they fit a page or sheet alone, turned where the page may turn, title or not.
+  // The least room (mm, a margin included) the mark takes beside a sheet's pieces: the bar's row
+  // (or the job's name) and the scale's line where it is not 1, at the smallest title height.
+  double markRoom() const;
+  // Whether pieces (and tabs) of extent `size` fit a W x H sheet, title block aside.
+  bool fits(const Vec2& size, double W, double H) const;
+  // Whether they fit a page or sheet alone, turned where the page may turn, title block aside.
   bool fitsSomeWay(const Vec2& size) const;
   // `what` (`contents`) fits the sheet in none of the arrangements tried, of extents `sizes`:
   // the message gives the sheet size needed by the arrangement that needs the least enlargement.
@@ -144,8 +160,11 @@ struct Arrangement {
 
 // Pieces are packed on as few sheets (pages) as hold them: both on one where they fit together,
 // else each on its own, else (print) tiled across pages.
+// `quarterTurns` 0 or 1 turns both pieces that many quarter turns past their smallest-box turn
+// (a nest lays each piece out both ways); -1 lets the arrangement choose.
 Result<Arrangement> arrange(const SheetFit& fit, const std::vector<Polyline> cuts[2],
-                            const std::string names[2], std::vector<std::string>& messages);
+                            const std::string names[2], const TitleText& text,
+                            std::vector<std::string>& messages, int quarterTurns = -1);
 
 // Piece p on the sheet: its outline, material, cut paths, tint and creases.
 PieceInfo placedPiece(const FlatPieces& flat, int p, const std::vector<Polyline>& cuts,
@@ -154,16 +173,41 @@ PieceInfo placedPiece(const FlatPieces& flat, int p, const std::vector<Polyline>
 
 // Each piece's ticks and tick numbers, name and crease letters, and messages for the labels left
 // out.
+// `fitNames`: each name no wider than fits in its piece (a nest's long names); else as tall as
+// the room at the roomiest point allows.
 void drawPieceLabels(const FlatPieces& flat, const Placement place[2], const Profile& profile,
-                     const StrokeFont& font, DrawingBuilder& b, PatternBuild& out, BuildWork& work);
+                     const StrokeFont& font, DrawingBuilder& b, PatternBuild& out, BuildWork& work,
+                     bool fitNames = false);
 
 // Crease fold lines: the profile's fold style, dashed by the fold's direction.
 void drawCreases(const std::vector<PieceInfo>& pieces, const Profile& profile, DrawingBuilder& b);
 
-// The body's folds of at least o.scoreFoldsDeg through piece p (o.folds, flat mm), placed on the
-// sheet and clipped to the piece's material; none without --score-folds.
+// The body's folds of at least o.scoreFoldsDeg through piece p (o.folds, flat mm at true size,
+// drawn at `scale`) but its creases (drawn as crease lines), placed on the sheet and clipped to the
+// piece's material; none without --score-folds.
 std::vector<ScoredFoldInfo> scoredFolds(const ExportOptions& o, int p, const Placement& place,
-                                        const PieceInfo& info);
+                                        double scale, const PieceInfo& info);
+
+// Piece p's hinges (hinges.cpp): rows of bridged slits parallel to the body's folds (o.folds, flat
+// frame) of at least 2 degrees, spaced so that each row bends by the material's row angle over a
+// cell no wider than that angle times the shape's bending radius there (never narrower than the
+// material's row pitch), a solid margin inside the seam (past the joint holes `jointLoops`), free
+// edges, holes and the piece's `labels` (convex footprints on the sheet); placed on the sheet by
+// `place`. The folds are drawn at true size, the pieces at `scale`.
+std::vector<HingeInfo> hingesOf(const ExportOptions& o, int p, const FlatPieces& flat,
+                                const std::vector<Polyline>& jointLoops, const JointSettings& joint,
+                                const MaterialPreset& material, const Placement& place,
+                                double scale, const std::vector<Polyline>& labels);
+
+// The hinges' slits in the Cut layer, before the holes and outer cuts.
+void drawHinges(const std::vector<PieceInfo>& pieces, DrawingBuilder& b);
+
+// Each piece's hinges where `o` asks for them (unset: where the material's preset does), clear of
+// the labels drawn so far, drawn (drawHinges); a message for each hinge whose rows cannot let the
+// sheet bend as tightly as the shape does.
+void addHinges(const ExportOptions& o, const FlatPieces& flat,
+               const std::vector<Polyline> jointLoops[2], const Placement place[2], double scale,
+               DrawingBuilder& b, PatternBuild& out);
 
 // The scored folds as solid lines on the score layer (and the cutter's score pass).
 void drawScoredFolds(const std::vector<PieceInfo>& pieces, DrawingBuilder& b);
@@ -175,34 +219,58 @@ void drawCuts(const std::vector<PieceInfo>& pieces, const std::string names[2],
 // The scale as a percentage of true size, to a tenth ("73.4 %").
 std::string percentText(double scale);
 
-// What the title lines of a pattern's sheets say: its pieces, options, scale and seam length.
+// What the title lines of a pattern's sheets say: what it is ("D-Form A + B"), its pieces'
+// names, its options, scale and seam length ("seam 607.3 mm").
 struct TitleText {
-  const FlatPieces& flat;
   const ExportOptions& o;
-  std::string scaleText, perimeterText;
+  std::string what, scaleText, perimeterText;
+  std::vector<std::string> names;  // the pieces' names, as the sheets' notes name them
+  bool creased = false;            // a crease is drawn: the legend line says how to read it
   const StrokeFont& font;
 };
 
-// A title block: its lines run along `along` from `start`, each the next one across, in
-// `length` mm; `v` is how far across the lines so far reach.
-struct TitleBlock {
-  Vec2 along, across, start;
-  double length = 0;
-  double v = 0;
+// Title lines: their pitch (x capital height), the calibration bar's row (its 3 mm end ticks and a
+// label up to 4 mm tall centred 1.5 mm above the bar, 4 mm down the row), where the bar's label
+// starts (the 50 mm bar and a 4 mm gap), and the smallest capital height a title line is set at
+// where room is short (small, still legible printed and engraved).
+inline constexpr double kTitlePitch = 1.7, kBarRow = 5.0, kBarLabelAt = 54.0, kMinTitleH = 1.5;
+
+// One title line: its id and its words.
+struct TitleLine {
+  std::string id, words;
 };
 
-// The title lines of sheet k (of `sheets`), unless --no-title, into `layer`: the title, the note
-// and the legends for creases and tabs.
-void drawTitleLines(size_t k, size_t sheets, const SheetPlan& plan, const SheetFit& fit,
+// The lines of sheet k's (of `sheets`, with piece `piece` first on it) title block: the full
+// block (title, note, legends for creases and tabs, the scale in words) or the mark's (the job's
+// name and "print at 100%" over the bar, the scale in a short line where it is not 1).
+std::vector<TitleLine> titleLines(size_t k, size_t sheets, int piece, bool full,
+                                  const SheetFit& fit, const TitleText& text);
+
+// The calibration bar's label: "50 mm - print at 100% (actual size)" in the full block, "50 mm"
+// in the mark (whose line above it names the job and says so).
+std::string barLabel(bool full, const SheetFit& fit);
+
+// The rectangles of `region` clear of every box of `taken` grown by `gap` (those spanned by the
+// boxes' and the region's edges): the one under everything across the whole region first, then
+// the column right of everything (where the block has always gone), then the rest.
+std::vector<Box> freeRectangles(const Box& region, const std::vector<Box>& taken, double gap);
+
+// Where sheet k's title block goes beside the pieces' extents `taken` in its art region: the full
+// block (unless the title is off) at the largest height that fits, else the mark; in the first
+// free rectangle that holds it, reading along or up. Not placed when not even the mark fits.
+TitlePlace placeTitle(const Box& region, const std::vector<Box>& taken, size_t k, size_t sheets,
+                      int piece, const SheetFit& fit, const TitleText& text);
+
+// Whether title place `a` is better than `b`: placed, then full, then larger.
+bool betterTitle(const TitlePlace& a, const TitlePlace& b);
+
+// Sheet k's title block (full or the mark) at capital height h, and where the profile has one,
+// the 50 mm calibration bar after it, into `layer` along `block`.
+void drawTitleBlock(size_t k, size_t sheets, int piece, bool full, double h, const SheetFit& fit,
                     const TitleText& text, Layer& layer, TitleBlock& block);
 
-// The title lines and, where the profile has one, the 50 mm calibration bar after them.
-void drawTitleBlock(size_t k, size_t sheets, const SheetPlan& plan, const SheetFit& fit,
-                    const TitleText& text, Layer& layer, TitleBlock& block);
-
-// Title lines (and the calibration bar) under each sheet's pieces or in a column beside them;
-// those of a tiled piece go on its page map, those that do not fit beside the pieces on a cover
-// page before the sheet's. The registration marks in each sheet's corners.
+// Each sheet's title block where its plan put it (a tiled piece's goes on its page map), and the
+// registration marks in each sheet's corners.
 void drawSheetFurniture(const std::vector<SheetPlan>& plans, const SheetFit& fit,
                         const TitleText& text, DrawingBuilder& b);
 
@@ -211,7 +279,7 @@ void describe(Drawing& drawing, const ExportOptions& o, const Profile& profile, 
               const std::string& perimeterText);
 
 // The pages: one per sheet; a tiled piece gets a page map (with its sheet's title lines), then
-// its tiles.
+// its tiles. A message for each sheet whose title lines found no room beside its pieces.
 void addPages(const std::vector<SheetPlan>& plans, const SheetFit& fit, const TitleText& text,
               PatternBuild& out);
 

@@ -160,9 +160,9 @@ class DrawingBuilder {
 Vec2 readable(Vec2 t);
 
 // Whether a text box centred at c (half-extents along d and its normal) sits inside the piece's
-// material (`region`, even-odd) with `clear` mm to spare: its corners and long sides' midpoints
-// inside and clear of every loop, no loop vertex (a small hole) inside it, and no loop edge (a
-// slot) nor crease (`lines`) through it.
+// material (`region`, even-odd) with `clear` mm to spare: its centre inside and its whole outline
+// at least `clear` from every loop (the outline, a hole, a joint slot; one inside the box counts
+// as 0), and no crease (`lines`) through it or inside it.
 bool boxFits(const std::vector<Polyline>& region, const std::vector<Polyline>& lines, const Vec2& c,
              const Vec2& d, double halfW, double halfH, double clear);
 
@@ -196,10 +196,12 @@ struct TickLabelCounts {
 };
 
 // Piece p's tick marks across its outline (score layer) and their numbers inside it (engrave
-// layer), clear of its creases (`creaseLines`).
+// layer), clear of its creases (`creaseLines`); where the profile's `numbers` asks, a number goes
+// on the glue tab of the piece over its tick (`tabs`: the piece's), "A-tick-07-tab-label".
 TickLabelCounts drawTicks(int p, const PieceInfo& info, const Seam& seam, const Placement& place,
                           const std::vector<TickInfo>& ticks,
-                          const std::vector<Polyline>& creaseLines, const Profile& profile,
+                          const std::vector<Polyline>& creaseLines,
+                          const std::vector<const TabInfo*>& tabs, const Profile& profile,
                           const StrokeFont& font, DrawingBuilder& b, BuildWork& work);
 
 // --- Glue tabs (glue_tabs.cpp) ------------------------------------------------------------------

@@ -105,15 +105,20 @@ struct FieldReader {
 
 constexpr TabSide kTabSides[] = {TabSide::A, TabSide::B, TabSide::Alternate, TabSide::None};
 constexpr Joint kJoints[] = {Joint::Glue, Joint::Holes, Joint::Lace, Joint::Slots};
+constexpr TickNumbers kNumbers[] = {TickNumbers::Face, TickNumbers::Tabs, TickNumbers::Both};
 
 // The sheet materials: paper and card are glued with tabs; polypropylene (0.5 mm) is laced, its
 // holes a little larger for a 2 mm cord; 3 mm plywood is joined with cable ties or bolts through
 // hole pairs kept well in from the edge, where a thin edge of plywood would split.
+// Plywood bends with a hinge: a lattice of cuts whose links (about as wide as the sheet is thick)
+// twist. A 90-degree bend of 3 mm plywood with 3 mm links and a 0.2 mm kerf takes 23 rows (a
+// 44 mm inner radius; the torsional-link sums of deferredprocrastination.co.uk's lattice hinge
+// notes): rows 3.2 mm apart, 90/23 degrees each.
 const MaterialPreset kMaterials[] = {
     {"paper", 0.1, Joint::Glue, 15, 2, 3},
     {"card", 0.3, Joint::Glue, 15, 2, 3},
     {"polypropylene", 0.5, Joint::Lace, 15, 3, 4},
-    {"plywood", 3.0, Joint::Holes, 25, 4, 6},
+    {"plywood", 3.0, Joint::Holes, 25, 4, 6, true, 3.2, 90.0 / 23},
 };
 
 const char* kKnownFields[] = {"version",
@@ -141,9 +146,12 @@ const char* kKnownFields[] = {"version",
                               "kerf_mm",
                               "tabs",
                               "joint",
+                              "numbers",
                               "bleed_mm",
                               "fill_color_a",
-                              "fill_color_b"};
+                              "fill_color_b",
+                              "cut_spot_color",
+                              "print_png_dpi"};
 
 }  // namespace
 
@@ -204,12 +212,17 @@ Result<Profile> parseProfileJson(const std::string& text, const std::string& sou
   r.number("bleed_mm", p.bleedMm, 0, 3);
   r.color("fill_color_a", p.fillColorA);
   r.color("fill_color_b", p.fillColorB);
+  r.text("cut_spot_color", p.cutSpotColor);
+  r.number("print_png_dpi", p.printPngDpi, 0, 1200);
   std::vector<std::pair<std::string, TabSide>> sides;
   for (TabSide side : kTabSides) sides.emplace_back(tabSideName(side), side);
   r.choice<TabSide>("tabs", p.tabs, sides);
   std::vector<std::pair<std::string, Joint>> joints;
   for (Joint joint : kJoints) joints.emplace_back(jointName(joint), joint);
   r.choice<Joint>("joint", p.joint, joints);
+  std::vector<std::pair<std::string, TickNumbers>> numbers;
+  for (TickNumbers n : kNumbers) numbers.emplace_back(tickNumbersName(n), n);
+  r.choice<TickNumbers>("numbers", p.numbers, numbers);
   if (!r.status.isOk()) return r.status;
   if (!p.page.empty() && !pageSizeMm(p.page))
     return invalid(source,
@@ -218,6 +231,19 @@ Result<Profile> parseProfileJson(const std::string& text, const std::string& sou
   if (p.kind == ProfileKind::PrintAndCut && p.page.empty())
     return invalid(source, "a print-and-cut profile needs \"page\" (A4 or Letter)");
   if (p.tile && p.page.empty()) return invalid(source, "\"tile\" needs a \"page\"");
+  const bool spotName = std::all_of(p.cutSpotColor.begin(), p.cutSpotColor.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+  });
+  if (!spotName || p.cutSpotColor.size() > 64)
+    return invalid(source,
+                   "field \"cut_spot_color\" must be a name of letters, digits, '_' and '-' "
+                   "(such as CutContour), at most 64 characters");
+  if (p.kind != ProfileKind::PrintAndCut && (!p.cutSpotColor.empty() || p.printPngDpi > 0))
+    return invalid(source,
+                   "fields \"cut_spot_color\" and \"print_png_dpi\" are for print-and-cut "
+                   "profiles: they split a print from its cut line");
+  if (p.printPngDpi > 0 && p.printPngDpi < 72)
+    return invalid(source, "field \"print_png_dpi\" must be 0 (none) or from 72 to 1200");
   if (p.kind != ProfileKind::PrintAndCut && p.bleedMm > 0)
     return invalid(source,
                    "field \"bleed_mm\" is for print-and-cut profiles: scissors follow the printed "
@@ -225,7 +251,19 @@ Result<Profile> parseProfileJson(const std::string& text, const std::string& sou
   return p;
 }
 
-std::optional<std::pair<double, double>> pageSizeMm(const std::string& name) {
+std::string pageName(const std::string& name) {
+  std::string lower;
+  for (char c : name) lower += char(std::tolower(static_cast<unsigned char>(c)));
+  for (const char* named : {"A4", "A3", "Letter", "Tabloid"}) {
+    std::string n = named;
+    for (char& c : n) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (lower == n) return named;
+  }
+  return lower;
+}
+
+std::optional<std::pair<double, double>> pageSizeMm(const std::string& given) {
+  const std::string name = pageName(given);
   if (name == "A4") return std::pair{210.0, 297.0};
   if (name == "A3") return std::pair{297.0, 420.0};
   if (name == "Letter") return std::pair{8.5 * 25.4, 11.0 * 25.4};
@@ -247,6 +285,11 @@ std::string sheetFileName(int sheet, const std::string& extension) {
   return "pattern-sheet-" + std::to_string(sheet) + "." + extension;
 }
 
+std::string printSheetFileName(int sheet, const std::string& extension) {
+  return (extension == "png" ? "print-sheet-" : "cut-sheet-") + std::to_string(sheet) + "." +
+         extension;
+}
+
 const char* tabSideName(TabSide side) {
   switch (side) {
     case TabSide::A: return "a";
@@ -260,6 +303,21 @@ const char* tabSideName(TabSide side) {
 std::optional<TabSide> tabSideNamed(const std::string& name) {
   for (TabSide side : kTabSides)
     if (name == tabSideName(side)) return side;
+  return std::nullopt;
+}
+
+const char* tickNumbersName(TickNumbers numbers) {
+  switch (numbers) {
+    case TickNumbers::Face: return "face";
+    case TickNumbers::Tabs: return "tabs";
+    case TickNumbers::Both: return "both";
+  }
+  return "?";
+}
+
+std::optional<TickNumbers> tickNumbersNamed(const std::string& name) {
+  for (TickNumbers n : kNumbers)
+    if (name == tickNumbersName(n)) return n;
   return std::nullopt;
 }
 
@@ -291,6 +349,12 @@ std::vector<std::string> tabSideNames() {
   return names;
 }
 
+std::vector<std::string> tickNumbersNames() {
+  std::vector<std::string> names;
+  for (TickNumbers n : kNumbers) names.push_back(tickNumbersName(n));
+  return names;
+}
+
 std::vector<std::string> jointNames() {
   std::vector<std::string> names;
   for (Joint joint : kJoints) names.push_back(jointName(joint));
@@ -306,6 +370,13 @@ std::vector<std::string> materialPresetNames() {
 std::string materialNames() {
   std::string names;
   for (const MaterialPreset& m : kMaterials) names += (names.empty() ? "" : ", ") + m.name;
+  return names;
+}
+
+std::string rigidMaterials() {
+  std::string names;
+  for (const MaterialPreset& m : kMaterials)
+    if (m.hinge) names += (names.empty() ? "" : ", ") + m.name;
   return names;
 }
 
@@ -350,7 +421,13 @@ Result<Profile> resolveProfile(const ExportOptions& options) {
                                : loadProfile(options.profile, options.templatesDir);
   if (!loaded.isOk()) return loaded;
   Profile p = loaded.value();
+  // Scissors follow the printed line: a kerf would move the line off the pattern's true size.
+  if (options.kerfMm && *options.kerfMm > 0 && p.kind == ProfileKind::Print)
+    return Status{ErrorCode::Usage, "kerf: profile " + p.name +
+                                        " is cut by hand along its printed line, which has no "
+                                        "kerf; a laser or print-and-cut profile takes one"};
   if (options.kerfMm) p.kerfMm = *options.kerfMm;
+  if (options.numbers) p.numbers = *options.numbers;
   const std::optional<MaterialPreset> material = materialNamed(options.material);
   if (options.joint)
     p.joint = *options.joint;

@@ -37,6 +37,35 @@ double tickReach(const Vec2& c, const Vec2& d, double length, const std::vector<
   }
 }
 
+// Tick t's number on the glue tab of its piece over it (`tabs`: the piece's), centred across the
+// tab, up to the tab's half width tall: at the tick, else slid along the tab by up to 8 mm (off a
+// slanted end), where it fits inside the tab 0.3 mm clear of its edges and of the numbers already
+// on tabs (`placed`, their hulls, which it joins). Whether it was placed.
+bool drawTabNumber(const TickInfo& t, const std::string& id, const std::string& label,
+                   const Vec2& c, const Vec2& nOut, const Vec2& tan,
+                   const std::vector<const TabInfo*>& tabs, const Profile& profile,
+                   const StrokeFont& font, DrawingBuilder& b, std::vector<Polyline>& placed) {
+  const Vec2 d = readable(tan);
+  for (const TabInfo* tab : tabs) {
+    if (!(t.s > tab->s0 && t.s < tab->s1)) continue;
+    const double h = std::min(profile.labelHeightMm, 0.5 * tab->width);
+    const double halfW = 0.5 * font.width(label, h), halfH = 0.5 * h;
+    for (int k = 0; k <= 16; ++k) {
+      const double slide = (k % 2 == 0 ? 1 : -1) * double((k + 1) / 2);  // 0, -1, 1, -2, 2, ...
+      const Vec2 center = c + 0.5 * tab->width * nOut + slide * tan;
+      if (!boxFits({tab->polygon}, {}, center, d, halfW, halfH, 0.3)) continue;
+      Path text = textPath(font, id + "-tab-label", label, center, d, h);
+      Polyline hull = convexHull(text.parts);
+      if (overlapsAny(hull, placed, 0.0)) continue;
+      placed.push_back(std::move(hull));
+      b.engrave().paths.push_back(std::move(text));
+      return true;
+    }
+    return false;
+  }
+  return false;
+}
+
 }  // namespace
 
 double matchingArc(const Seam& from, const Seam& to, double s) {
@@ -77,9 +106,11 @@ std::vector<TickInfo> placeTicks(const std::vector<double>& tickS, const Seam se
 
 TickLabelCounts drawTicks(int p, const PieceInfo& info, const Seam& seam, const Placement& place,
                           const std::vector<TickInfo>& ticks,
-                          const std::vector<Polyline>& creaseLines, const Profile& profile,
+                          const std::vector<Polyline>& creaseLines,
+                          const std::vector<const TabInfo*>& tabs, const Profile& profile,
                           const StrokeFont& font, DrawingBuilder& b, BuildWork& work) {
   TickLabelCounts counts;
+  std::vector<Polyline> tabLabelHulls;                                  // the numbers on tabs
   std::vector<Polyline> tickLabelHulls;                                 // the numbers placed
   BoxIndex tickLabelIndex(std::max(2.0 * profile.labelHeightMm, 1.0));  // about one number
   for (const TickInfo& t : ticks) {
@@ -101,6 +132,12 @@ TickLabelCounts drawTicks(int p, const PieceInfo& info, const Seam& seam, const 
     const std::string label = tickLabel(t.id);
     const double h = profile.labelHeightMm;
     const Vec2 d = readable(tan);
+    // On the tab over the tick where the profile asks (hidden once glued), and on the face
+    // unless the tab took it alone.
+    const bool onTab =
+        profile.numbers != TickNumbers::Face &&
+        drawTabNumber(t, tick.id, label, c, nOut, tan, tabs, profile, font, b, tabLabelHulls);
+    if (onTab && profile.numbers == TickNumbers::Tabs) continue;
     const double halfW = 0.5 * font.width(label, h), halfH = 0.5 * h;
     // Next to the tick, else deeper into the piece, else slid along the seam (at a corner the
     // tick's own normal points past the corner): moved inward, not dropped. A number that fits

@@ -22,21 +22,18 @@ Box SheetFit::artRegion(double W, double H, const Vec2& at) const {
   return r;
 }
 
-TitleAt SheetFit::titleAt(const Vec2& size, const Box& r) const {
-  if (!(r.w() > 0 && size.x() <= r.w() + 1e-9 && size.y() <= r.h() + 1e-9)) return TitleAt::None;
-  if (size.y() + titleBlock <= r.h() + 1e-9) return TitleAt::Below;
-  if (size.x() + titleBlock <= r.w() + 1e-9) return TitleAt::Aside;
-  return TitleAt::None;
+double SheetFit::markRoom() const {
+  const double line = kTitlePitch * kMinTitleH;
+  return m + (profile->calibrationBar ? kBarRow : line) + (scaleNote.empty() ? 0.0 : line);
 }
 
-bool SheetFit::fits(const Vec2& size, double W, double H, bool withTitle) const {
+bool SheetFit::fits(const Vec2& size, double W, double H) const {
   const Box r = artRegion(W, H);
-  if (!withTitle) return r.w() > 0 && size.x() <= r.w() + 1e-9 && size.y() <= r.h() + 1e-9;
-  return titleAt(size, r) != TitleAt::None;
+  return r.w() > 0 && size.x() <= r.w() + 1e-9 && size.y() <= r.h() + 1e-9;
 }
 
 bool SheetFit::fitsSomeWay(const Vec2& size) const {
-  return fits(size, pageW, pageH, false) || (mayTurnPage && fits(size, pageH, pageW, false));
+  return fits(size, pageW, pageH) || (mayTurnPage && fits(size, pageH, pageW));
 }
 
 Status SheetFit::tooLarge(const std::string& what, const std::vector<Vec2>& sizes,
@@ -101,8 +98,8 @@ Result<SheetFit> sheetFit(const ExportOptions& o, const Profile& profile, bool c
   fit.m = profile.marginMm;
   fit.edge = std::max(kTickOut, profile.bleedMm);
   fit.textH = std::clamp(profile.labelHeightMm, 2.0, 4.0);
-  fit.lineH = 1.7 * fit.textH;
-  const double barH = profile.calibrationBar ? 9.0 : 0.0;
+  const double barH = profile.calibrationBar ? kBarRow : 0.0;
+  fit.scale = scale;
   // Tabs fold away from the printed (outer) side: a line says so on every sheet that has them.
   fit.tabbed = o.tabWidthMm > 0 && profile.tabs != TabSide::None;
   // A pattern not at true size says so in words on every sheet, title or not: a scale printed
@@ -110,11 +107,11 @@ Result<SheetFit> sheetFit(const ExportOptions& o, const Profile& profile, bool c
   if (scale != 1.0)
     fit.scaleNote = "printed at " + percentText(scale) + ": the D-Form is " + percentText(scale) +
                     " of the designed size (ticks, tabs and labels keep theirs)";
-  // The lines: title and note, a legend line for creases, the tab line (none with --no-title),
-  // the scale note.
-  const int titleLines =
-      (o.title ? 2 + int(creased) + int(fit.tabbed) : 0) + int(!fit.scaleNote.empty());
-  const double titleH = titleLines * fit.lineH + barH;
+  // The full block's lines: title and note, a legend line for creases, the tab line, the scale
+  // note (the depth a tiled piece's page map keeps for them).
+  const int titleLines = 2 + int(creased) + int(fit.tabbed) + int(!fit.scaleNote.empty()) +
+                         int(profile.registration == Registration::Silhouette);
+  const double titleH = titleLines * kTitlePitch * fit.textH + barH;
   fit.titleBlock = titleH > 0 ? fit.m + titleH : 0.0;
   // The page: --page over the profile's. A page profile refuses a sheet size and a sheet profile
   // a page, rather than ignore them.

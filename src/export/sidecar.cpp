@@ -2,7 +2,7 @@
 // tests, the report and anyone who wants to check a cut file without parsing SVG.
 #include <nlohmann/json.hpp>
 
-#include "internal.h"
+#include "pattern_layout.h"
 
 namespace dform::fab {
 
@@ -72,6 +72,80 @@ void addJoint(json& j, const PatternBuild& pattern) {
   j["joint_slots"] = slots;
 }
 
+// What the cutter is set to and where its marks are (pattern.json's "registration"): Silhouette
+// type-1 marks with their sizes (Silhouette Studio's registration settings) and each sheet's
+// square and L-marks; the Print Then Cut area on a Cricut's pages; a RIP's spot cut colour.
+void addRegistration(json& j, const PatternBuild& pattern) {
+  const Profile& profile = pattern.profile;
+  json r = {{"type", profile.registration == Registration::Silhouette ? "silhouette"
+                     : profile.registration == Registration::Cricut   ? "cricut"
+                                                                      : "none"}};
+  if (!profile.cutSpotColor.empty()) r["cut_spot_color"] = profile.cutSpotColor;
+  if (profile.registration == Registration::Silhouette) {
+    r["style"] = "Type 1";
+    r["inset_mm"] = kRegInset;
+    r["square_mm"] = kRegSquare;
+    r["length_mm"] = kRegArm;
+    r["thickness_mm"] = kRegLine;
+    r["clear_mm"] = profile.registrationClearMm;
+    json marks = json::array();
+    for (const Layer& layer : pattern.drawing.layers)
+      if (layer.name == "Regmarks")
+        for (const Path& mark : layer.paths) {
+          const Box b = boxOf(mark.parts);
+          int sheet = 0;
+          for (size_t k = 0; k < pattern.sheets.size(); ++k)
+            if (pattern.sheets[k].contains(b, 1e-6)) sheet = int(k);
+          marks.push_back({{"id", mark.id}, {"sheet", sheet}, {"lines", [&] {
+                                                                 json lines = json::array();
+                                                                 for (const Polyline& part :
+                                                                      mark.parts)
+                                                                   lines.push_back(polyline(part));
+                                                                 return lines;
+                                                               }()}});
+        }
+    r["marks"] = marks;
+  }
+  if (profile.registration == Registration::Cricut) {
+    json areas = json::array();
+    for (const PageView& page : pattern.pages)
+      if (page.kind == "sheet")
+        areas.push_back(
+            {point(page.origin + page.printArea.lo), point(page.origin + page.printArea.hi)});
+    r["print_then_cut_areas"] = areas;
+  }
+  j["registration"] = r;
+}
+
+// A piece's hinges: where each is (its folds and rows of slits), the radius each row lets the
+// sheet bend to and the radius the shape needs there.
+json hingesJson(const PieceInfo& p) {
+  json out = json::array();
+  for (const HingeInfo& h : p.hinges) {
+    json folds = json::array(), rows = json::array();
+    for (const HingeFoldInfo& f : h.folds)
+      folds.push_back({{"fold", f.index},
+                       {"angle_deg", f.angleDeg},
+                       {"radius_needed_mm", f.radiusMm},
+                       {"line", polyline(f.line)}});
+    for (const HingeRow& r : h.rows) {
+      json cuts = json::array();
+      for (const Polyline& c : r.cuts) cuts.push_back(polyline(c));
+      rows.push_back({{"pitch_mm", r.pitchMm},
+                      {"radius_allowed_mm", r.radiusAllowedMm},
+                      {"radius_needed_mm", r.radiusNeededMm},
+                      {"cuts", cuts}});
+    }
+    out.push_back({{"id", h.id},
+                   {"direction", point(h.direction)},
+                   {"turn_deg", hingeTurnDeg(h)},
+                   {"bend_deg", hingeBendDeg(h)},
+                   {"folds", folds},
+                   {"rows", rows}});
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName) {
@@ -123,6 +197,7 @@ std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName)
                       {"bleed", polylines(p.bleed)},
                       {"creases", creases}});
     if (!p.scoredFolds.empty()) pieces.back()["score_lines"] = scored;
+    if (!p.hinges.empty()) pieces.back()["hinges"] = hingesJson(p);
   }
   j["pieces"] = pieces;
   json ticks = json::array();
@@ -163,6 +238,18 @@ std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName)
                       {"dxf", alone ? sheetFileName(int(k) + 1, "dxf") : "pattern.dxf"}});
   }
   j["sheets"] = sheets;
+  addRegistration(j, pattern);
+  if (!pattern.nestParts.empty()) {  // a nest: which D-Form each piece belongs to
+    json parts = json::array();
+    for (const NestPartInfo& part : pattern.nestParts)
+      parts.push_back({{"name", part.name},
+                       {"job", part.job},
+                       {"copy", part.copy},
+                       {"piece", part.piece == 0 ? "A" : "B"},
+                       {"sheet", part.sheet},
+                       {"turn_deg", part.turnDeg}});
+    j["nest"] = {{"gap_mm", pattern.profile.kerfMm + 1.0}, {"parts", parts}};
+  }
   j["messages"] = pattern.messages;
   return j.dump(1, ' ', false, json::error_handler_t::replace);
 }

@@ -1,6 +1,7 @@
 // The cutting SVG, written by hand: millimetre page (1 user unit = 1 mm), one Inkscape layer per
 // operation, an id on every path, inline hex styles repeated as presentation attributes (VisiCut
 // ignores CSS classes; early LaserGRBL read only style=""). Paths use absolute M/L/Z only.
+#include <algorithm>
 #include <charconv>
 #include <cstdio>
 #include <sstream>
@@ -47,8 +48,10 @@ std::string svgDocument(const Drawing& drawing) {
     << "  <title>" << escapeXml(drawing.title) << "</title>\n"
     << "  <desc>" << escapeXml(drawing.description) << "</desc>\n";
   for (const Layer& layer : drawing.layers) {
-    s << "  <g inkscape:groupmode=\"layer\" inkscape:label=\"" << escapeXml(layer.name)
-      << "\" id=\"layer-" << escapeXml(layer.name) << "\">\n";
+    // A spot colour names its layer (a RIP's CutContour, in the cutter's layer list).
+    const std::string& label = layer.spot.empty() ? layer.name : layer.spot;
+    s << "  <g inkscape:groupmode=\"layer\" inkscape:label=\"" << escapeXml(label)
+      << "\" id=\"layer-" << escapeXml(label) << "\">\n";
     for (const Path& p : layer.paths) {
       const std::string d = pathData(p);
       if (d.empty()) continue;
@@ -83,6 +86,17 @@ std::string svgDocument(const Drawing& drawing) {
   }
   s << "</svg>\n";
   return s.str();
+}
+
+std::string cutSvg(const PatternBuild& pattern, int pageIndex) {
+  const PageView& page = pattern.pages[size_t(pageIndex)];
+  const Box area = Box::spanning(page.origin + page.printArea.lo, page.origin + page.printArea.hi);
+  Drawing cut = pattern.drawing;
+  cut.layers.erase(std::remove_if(cut.layers.begin(), cut.layers.end(),
+                                  [](const Layer& layer) { return layer.name != "Cut"; }),
+                   cut.layers.end());
+  cut.description += "; the cut line alone, in the frame of the print's PNG";
+  return svgDocument(sheetDrawing(cut, area));
 }
 
 Drawing sheetDrawing(const Drawing& drawing, const Box& sheet) {

@@ -122,30 +122,10 @@ PageView pageMap(size_t k, size_t sheets, const SheetPlan& plan, const PieceInfo
   block.length = cw;
   Layer titleLines = tilingLayer();
   titleLines.name = "Title";
-  drawTitleBlock(k, sheets, plan, fit, title, titleLines, block);
+  drawTitleBlock(k, sheets, plan.pieces.front(), o.title, fit.textH, fit, title, titleLines, block);
   map.overlay.push_back(titleLines);
   map.overlay.push_back(furniture);
   return map;
-}
-
-// The title lines and calibration bar of sheet k on a page of their own, where they do not fit
-// beside its pieces: the sheet's size, the lines from its top-left margin.
-PageView coverPage(size_t k, size_t sheets, const SheetPlan& plan, const SheetFit& fit,
-                   const TitleText& text) {
-  PageView cover;
-  cover.kind = "cover";
-  cover.width = plan.box.w();
-  cover.height = plan.box.h();
-  TitleBlock block;
-  block.along = Vec2(1, 0);
-  block.across = Vec2(0, 1);
-  block.start = Vec2(kTileMargin, kTileMargin);
-  block.length = cover.width - 2 * kTileMargin;
-  Layer lines = tilingLayer();
-  lines.name = "Title";
-  drawTitleBlock(k, sheets, plan, fit, text, lines, block);
-  cover.overlay.push_back(lines);
-  return cover;
 }
 
 // The alignment crosses of a tiled sheet (canvas mm): in the middle of each overlap.
@@ -230,13 +210,13 @@ void addPages(const std::vector<SheetPlan>& plans, const SheetFit& fit, const Ti
   for (size_t k = 0; k < plans.size(); ++k) {
     const SheetPlan& plan = plans[k];
     if (!plan.tiled) {
-      if (plan.title == TitleAt::None && (text.o.title || !fit.scaleNote.empty())) {
-        out.pages.push_back(coverPage(k, plans.size(), plan, fit, text));
-        out.messages.push_back("the title lines do not fit beside piece " +
-                               out.pieces[size_t(plan.pieces.front())].name + " on its " +
-                               fit.sheetWord + ": they are on a page of their own before it");
-      }
+      if (text.o.title && !plan.title.full)
+        out.messages.push_back("the title lines do not fit beside the pieces on " + fit.sheetWord +
+                               " " + std::to_string(k + 1) + ": it carries the job's name" +
+                               (fit.profile->calibrationBar ? " and the 50 mm bar" : "") +
+                               " alone");
       out.pages.push_back(sheetPage(plan));
+      out.pages.back().printArea = fit.artRegion(plan.box.w(), plan.box.h());
       continue;
     }
     const PieceInfo& info = out.pieces[size_t(plan.pieces.front())];

@@ -1,6 +1,7 @@
-// Each sheet's furniture: the title lines (title, note, crease and tab legends) under its pieces
-// or in a column beside them, the 50 mm calibration bar, Silhouette registration marks in its
-// corners; and the drawing's title and description.
+// Each sheet's furniture: the title lines (title, note, crease and tab legends, the scale in
+// words) or, where they find no room, the mark (the job's name beside the bar), the 50 mm
+// calibration bar, Silhouette registration marks in its corners; and the drawing's title and
+// description.
 #include <algorithm>
 #include <cstdio>
 
@@ -27,62 +28,49 @@ std::string percentText(double scale) {
 
 namespace {
 
-// Where a sheet's title lines go: under its pieces or in a column beside them.
-TitleBlock titleBlockOf(const SheetPlan& plan, const SheetFit& fit) {
-  const Box region = fit.artRegion(plan.box.w(), plan.box.h(), plan.box.lo);
-  const bool aside = plan.title == TitleAt::Aside;
-  TitleBlock block;
-  block.along = aside ? Vec2(0, -1) : Vec2(1, 0);
-  block.across = aside ? Vec2(1, 0) : Vec2(0, 1);
-  block.start = aside ? Vec2(region.lo.x() + plan.size.x() + fit.m, region.hi.y())
-                      : Vec2(region.lo.x(), region.lo.y() + plan.size.y() + fit.m);
-  block.length = aside ? region.h() : region.w();
-  return block;
+// What the bar asks: print (or cut) at 100 %, so that it measures 50 mm.
+const char* checkWords(const SheetFit& fit) {
+  return fit.profile->kind == ProfileKind::Laser ? "cut at 100% (actual size)"
+                                                 : "print at 100% (actual size)";
 }
 
 }  // namespace
 
-void drawTitleLines(size_t k, size_t sheets, const SheetPlan& plan, const SheetFit& fit,
-                    const TitleText& text, Layer& layer, TitleBlock& block) {
-  const FlatPieces& flat = text.flat;
+std::string barLabel(bool full, const SheetFit& fit) {
+  return full ? std::string("50 mm - ") + checkWords(fit) : std::string("50 mm");
+}
+
+std::vector<TitleLine> titleLines(size_t k, size_t sheets, int piece, bool full,
+                                  const SheetFit& fit, const TitleText& text) {
   const ExportOptions& o = text.o;
-  const StrokeFont& font = text.font;
   const Profile& profile = *fit.profile;
-  const double textH = fit.textH, lineH = fit.lineH;
-  auto line = [&](const std::string& id, const std::string& words, double h) {
-    const double w = font.width(words, h);
-    if (w > block.length) h *= block.length / w;
-    const Vec2 c = block.start + 0.5 * std::min(w, block.length) * block.along +
-                   (block.v + 0.5 * lineH * h / textH) * block.across;
-    layer.paths.push_back(textPath(font, onPage(id, k), words, c, block.along, h));
-    block.v += lineH * h / textH;
-  };
+  std::vector<TitleLine> lines;
+  if (!full) {  // the mark: the job's name (over the bar), the scale where it is not 1
+    lines.push_back(
+        {"job-name", profile.calibrationBar ? o.jobName + " - " + checkWords(fit) : o.jobName});
+    if (!fit.scaleNote.empty())
+      lines.push_back({"scale-note", "printed at " + percentText(fit.scale) +
+                                         " of the designed size (ticks, tabs, labels: 100 %)"});
+    return lines;
+  }
   std::string pieceNote;
   if (sheets > 1)
     pieceNote = " - " + fit.sheetWord + " " + std::to_string(k + 1) + " of " +
-                std::to_string(sheets) + ": piece " + flat.names[plan.pieces.front()];
-  if (!o.title) {
-    if (!fit.scaleNote.empty()) line("scale-note", fit.scaleNote, textH);
-    return;
-  }
+                std::to_string(sheets) +
+                (piece >= 0 ? ": piece " + text.names[size_t(piece)] : std::string());
   const std::optional<MaterialPreset> material = materialNamed(o.material);
   const std::string materialNote =
       material ? " - " + material->name + " " + formatMm(material->thicknessMm) + " mm" : "";
-  line("title",
-       o.jobName + " - D-Form " + flat.names[0] + " + " + flat.names[1] + pieceNote + " - " +
-           text.scaleText + " - seam " + text.perimeterText + " mm - " + profile.name +
-           materialNote,
-       textH);
+  lines.push_back({"title", o.jobName + " - " + text.what + pieceNote + " - " + text.scaleText +
+                                " - " + text.perimeterText + " - " + profile.name + materialNote});
   const char* joinNote = profile.joint == Joint::Holes  ? "tie or stitch the hole pairs"
                          : profile.joint == Joint::Lace ? "lace the holes, A to B in turn"
                          : profile.joint == Joint::Slots
                              ? "fold A's tongues back and push each out through B's slot "
                                "at the same ticks; tie any hole pairs"
                              : "glue equal numbers together";
-  line("note",
-       "tick 0 = start, arrow = zip direction; ticks every " + formatMm(o.tickSpacingMm, 0) +
-           " mm; " + joinNote,
-       textH);
+  lines.push_back({"note", "tick 0 = start, arrow = zip direction; ticks every " +
+                               formatMm(o.tickSpacingMm, 0) + " mm; " + joinNote});
   const char* creaseLegend =
       profile.fold == FoldStyle::Dashed
           ? "creases seen from this side (the outside): M = mountain (dash-dot), V = valley "
@@ -93,16 +81,35 @@ void drawTitleLines(size_t k, size_t sheets, const SheetPlan& plan, const SheetF
           ? "engraved side out: fold the tabs back, away from the engraving, and glue them inside"
           : "printed side out: fold the tabs back, away from the print (mountain folds, "
             "dash-dot), and glue them inside";
-  if (flat.creased) line("crease-legend-label", creaseLegend, textH);
-  if (fit.tabbed) line("tab-note", tabNote, textH);
-  if (!fit.scaleNote.empty()) line("scale-note", fit.scaleNote, textH);
+  if (text.creased) lines.push_back({"crease-legend-label", creaseLegend});
+  if (fit.tabbed) lines.push_back({"tab-note", tabNote});
+  if (profile.registration == Registration::Silhouette)  // what Silhouette Studio is set to
+    lines.push_back({"regmark-note", "Silhouette Studio: registration marks Type 1, length " +
+                                         formatMm(kRegArm, 0) + " mm, thickness " +
+                                         formatMm(kRegLine, 1) + " mm, inset " +
+                                         formatMm(kRegInset, 0) + " mm"});
+  if (!fit.scaleNote.empty()) lines.push_back({"scale-note", fit.scaleNote});
+  return lines;
 }
 
 namespace {
 
-// The 50 mm calibration bar of sheet k, after its title lines.
-void drawCalibrationBar(size_t k, const TitleBlock& block, double textH, const StrokeFont& font,
-                        Layer& layer) {
+void drawLines(size_t k, const std::vector<TitleLine>& lines, double textH, const StrokeFont& font,
+               Layer& layer, TitleBlock& block) {
+  for (const TitleLine& line : lines) {
+    double h = textH;
+    const double w = font.width(line.words, h);
+    if (w > block.length) h *= block.length / w;
+    const Vec2 c = block.start + 0.5 * std::min(w, block.length) * block.along +
+                   (block.v + 0.5 * kTitlePitch * h) * block.across;
+    layer.paths.push_back(textPath(font, onPage(line.id, k), line.words, c, block.along, h));
+    block.v += kTitlePitch * h;
+  }
+}
+
+// The 50 mm calibration bar of sheet k, after its title lines, and its label beside it.
+void drawCalibrationBar(size_t k, const TitleBlock& block, double textH, const std::string& text,
+                        const StrokeFont& font, Layer& layer) {
   auto at = [&](double u, double w) -> Vec2 {
     return block.start + u * block.along + w * block.across;
   };
@@ -115,11 +122,12 @@ void drawCalibrationBar(size_t k, const TitleBlock& block, double textH, const S
     bar.parts.push_back({at(10 * j, vb - tickLen), at(10 * j, vb)});
   }
   layer.paths.push_back(bar);
-  const std::string text = "50 mm - print at 100% (actual size)";
-  // Smaller where the block is too short for it beside the bar (a narrow tiled piece).
-  const double h = std::min(textH, (block.length - 54) / std::max(1.0, font.width(text, 1.0)));
+  // Smaller where the block is too short for it beside the bar.
+  const double h =
+      std::min(textH, (block.length - kBarLabelAt) / std::max(1.0, font.width(text, 1.0)));
   layer.paths.push_back(textPath(font, onPage("calibration-label", k), text,
-                                 at(54 + 0.5 * font.width(text, h), vb - 1.5), block.along, h));
+                                 at(kBarLabelAt + 0.5 * font.width(text, h), vb - 1.5), block.along,
+                                 h));
 }
 
 // Silhouette type-1 registration marks in the corners of sheet k.
@@ -146,20 +154,21 @@ void drawRegistrationMarks(size_t k, const Box& sheet, Layer& regmarks) {
 
 }  // namespace
 
-// Title lines (and the calibration bar) under each sheet's pieces or in a column beside them,
-// and the registration marks in each sheet's corners.
-void drawTitleBlock(size_t k, size_t sheets, const SheetPlan& plan, const SheetFit& fit,
+void drawTitleBlock(size_t k, size_t sheets, int piece, bool full, double h, const SheetFit& fit,
                     const TitleText& text, Layer& layer, TitleBlock& block) {
-  drawTitleLines(k, sheets, plan, fit, text, layer, block);
-  if (fit.profile->calibrationBar) drawCalibrationBar(k, block, fit.textH, text.font, layer);
+  drawLines(k, titleLines(k, sheets, piece, full, fit, text), h, text.font, layer, block);
+  if (fit.profile->calibrationBar)
+    drawCalibrationBar(k, block, h, barLabel(full, fit), text.font, layer);
 }
 
 void drawSheetFurniture(const std::vector<SheetPlan>& plans, const SheetFit& fit,
                         const TitleText& text, DrawingBuilder& b) {
   for (size_t k = 0; k < plans.size(); ++k) {
-    if (!plans[k].tiled && plans[k].title != TitleAt::None) {
-      TitleBlock block = titleBlockOf(plans[k], fit);
-      drawTitleBlock(k, plans.size(), plans[k], fit, text, b.title(), block);
+    const TitlePlace& title = plans[k].title;
+    if (!plans[k].tiled && title.placed) {
+      TitleBlock block = title.block;
+      const int piece = plans[k].pieces.size() == 1 ? plans[k].pieces.front() : -1;
+      drawTitleBlock(k, plans.size(), piece, title.full, title.h, fit, text, b.title(), block);
     }
     if (fit.profile->registration == Registration::Silhouette)
       drawRegistrationMarks(k, plans[k].box, *b.regmarks());

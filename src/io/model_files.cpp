@@ -1,12 +1,14 @@
 #include "dform/io/model_files.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
-#include <set>
 #include <utility>
 
 #include "dform/core/atomic_file.h"
+#include "dform/core/file_hash.h"
 #include "dform/core/input_file.h"
 #include "io_util.h"
 #include "obj_format.h"
@@ -60,6 +62,7 @@ std::string objText(const Piece& piece, const Eigen::MatrixXd& V, const std::str
 /// The polylines and the triangles of one OBJ file, checked for shape.
 struct PieceFile {
   std::string path;
+  std::string sha256;  // of the bytes parsed
   io_detail::ObjData obj;
   Faces F;
   std::vector<int> seam;
@@ -75,7 +78,7 @@ Result<PieceFile> readPieceFile(const std::string& path) {
   if (!text.isOk()) return text.status();
   Result<io_detail::ObjData> parsed = io_detail::parseObj(path, text.value());
   if (!parsed.isOk()) return parsed.status();
-  PieceFile file{path, std::move(parsed).value(), {}, {}, {}, {}};
+  PieceFile file{path, sha256Hex(text.value()), std::move(parsed).value(), {}, {}, {}, {}};
   const io_detail::ObjData& obj = file.obj;
   for (std::size_t i = 0; i < obj.vertices.size(); ++i)
     if (!obj.vertices[i].allFinite())
@@ -122,10 +125,19 @@ Status checkLoopsAndCreases(const PieceFile& file) {
   auto fail = [&](const std::string& what) {
     return Status{ErrorCode::InputInvalid, file.path + ": " + what};
   };
-  std::set<std::pair<int, int>> halfEdges;  // (u, v) for each face that runs from u to v
+  if (file.freeBoundaries.empty() && file.creases.empty()) return Status::ok();
+  // (u, v) for each face that runs from u to v, as u * 2^32 + v, sorted.
+  const auto key = [](int u, int v) {
+    return (std::uint64_t(std::uint32_t(u)) << 32) | std::uint32_t(v);
+  };
+  std::vector<std::uint64_t> halfEdges;
+  halfEdges.reserve(std::size_t(3 * file.F.rows()));
   for (Eigen::Index f = 0; f < file.F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) halfEdges.emplace(file.F(f, k), file.F(f, (k + 1) % 3));
-  auto has = [&](int u, int v) { return halfEdges.count({u, v}) > 0; };
+    for (int k = 0; k < 3; ++k) halfEdges.push_back(key(file.F(f, k), file.F(f, (k + 1) % 3)));
+  std::sort(halfEdges.begin(), halfEdges.end());
+  auto has = [&](int u, int v) {
+    return std::binary_search(halfEdges.begin(), halfEdges.end(), key(u, v));
+  };
   auto pair = [](int u, int v) { return std::to_string(u + 1) + " and " + std::to_string(v + 1); };
   for (std::size_t k = 0; k < file.freeBoundaries.size(); ++k) {
     const std::vector<int>& loop = file.freeBoundaries[k];
@@ -143,8 +155,10 @@ Status checkLoopsAndCreases(const PieceFile& file) {
     }
   }
   std::vector<bool> onBoundary(file.obj.vertices.size(), false);
-  for (const auto& [u, v] : halfEdges)
+  for (const std::uint64_t e : halfEdges) {
+    const int u = int(e >> 32), v = int(e & 0xFFFFFFFFu);
     if (!has(v, u)) onBoundary[std::size_t(u)] = onBoundary[std::size_t(v)] = true;
+  }
   for (std::size_t k = 0; k < file.creases.size(); ++k) {
     const std::vector<int>& line = file.creases[k];
     const std::string name = "crease " + std::to_string(k + 1);
@@ -164,11 +178,15 @@ Status checkLoopsAndCreases(const PieceFile& file) {
 }
 
 Result<Piece> readPiece(const std::string& dir, const char* flatName, const char* shapeName,
-                        const std::string& name) {
+                        const std::string& name, FileHashes* hashes) {
   const Result<PieceFile> flat = readPieceFile(joinPath(dir, flatName));
   if (!flat.isOk()) return flat.status();
   const Result<PieceFile> shape = readPieceFile(joinPath(dir, shapeName));
   if (!shape.isOk()) return shape.status();
+  if (hashes) {
+    (*hashes)[flatName] = flat.value().sha256;
+    (*hashes)[shapeName] = shape.value().sha256;
+  }
   const PieceFile& a = flat.value();
   const PieceFile& b = shape.value();
   auto mismatch = [&](const std::string& what) {
@@ -209,14 +227,15 @@ Result<Piece> readPiece(const std::string& dir, const char* flatName, const char
 
 }  // namespace
 
-Status writeObj(const std::string& path, const Piece& piece, PieceForm form) {
+Status writeObj(const std::string& path, const Piece& piece, PieceForm form, std::string* sha256) {
   assert(piece.flat.rows() == piece.shape.rows() && "flat and 3D vertex counts differ");
-  return writeFileAtomically(path, form == PieceForm::Flat
-                                       ? objText(piece, piece.flat, "flat layout")
-                                       : objText(piece, piece.shape, "3D shape"));
+  const std::string text = form == PieceForm::Flat ? objText(piece, piece.flat, "flat layout")
+                                                   : objText(piece, piece.shape, "3D shape");
+  if (sha256) *sha256 = sha256Hex(text);
+  return writeFileAtomically(path, text);
 }
 
-Status writeModel(const std::string& dir, const DForm& model) {
+Status writeModel(const std::string& dir, const DForm& model, FileHashes* hashes) {
   struct Output {
     const char* name;
     const Piece& piece;
@@ -227,13 +246,15 @@ Status writeModel(const std::string& dir, const DForm& model) {
                             {ModelFileNames::bFlat, model.b, PieceForm::Flat},
                             {ModelFileNames::b3d, model.b, PieceForm::Shape3D}};
   for (const Output& out : outputs) {
-    const Status written = writeObj(joinPath(dir, out.name), out.piece, out.form);
+    std::string sha256;
+    const Status written = writeObj(joinPath(dir, out.name), out.piece, out.form, &sha256);
+    if (hashes) (*hashes)[out.name] = sha256;
     if (!written.isOk()) return written;
   }
   return Status::ok();
 }
 
-Status writeTargetCurve(const std::string& dir, const Curve3& curve) {
+Status writeTargetCurve(const std::string& dir, const Curve3& curve, FileHashes* hashes) {
   std::string text = "# dform target seam curve (mm), closed polyline\n";
   for (Eigen::Index i = 0; i < curve.points.rows(); ++i)
     text += "v " + exactDecimal(curve.points(i, 0)) + " " + exactDecimal(curve.points(i, 1)) + " " +
@@ -241,13 +262,14 @@ Status writeTargetCurve(const std::string& dir, const Curve3& curve) {
   text += "l";
   for (Eigen::Index i = 0; i < curve.points.rows(); ++i) text += " " + std::to_string(i + 1);
   text += " 1\n";
+  if (hashes) (*hashes)[ModelFileNames::targetCurve] = sha256Hex(text);
   return writeFileAtomically(joinPath(dir, ModelFileNames::targetCurve), text);
 }
 
-Result<DForm> readModel(const std::string& dir) {
-  Result<Piece> a = readPiece(dir, ModelFileNames::aFlat, ModelFileNames::a3d, "A");
+Result<DForm> readModel(const std::string& dir, FileHashes* hashes) {
+  Result<Piece> a = readPiece(dir, ModelFileNames::aFlat, ModelFileNames::a3d, "A", hashes);
   if (!a.isOk()) return a.status();
-  Result<Piece> b = readPiece(dir, ModelFileNames::bFlat, ModelFileNames::b3d, "B");
+  Result<Piece> b = readPiece(dir, ModelFileNames::bFlat, ModelFileNames::b3d, "B", hashes);
   if (!b.isOk()) return b.status();
   if (a.value().seam.size() != b.value().seam.size())
     return Status{ErrorCode::InputInvalid, joinPath(dir, ModelFileNames::bFlat) + ": seam has " +

@@ -1,5 +1,7 @@
 #include "reference_seams.h"
 
+#include <atomic>
+
 #include "dform/exact/body_edges.h"
 #include "dform/exact/exact_gluing.h"
 #include "dform/forward/coarse_to_fine.h"
@@ -11,6 +13,8 @@ namespace {
 using Missing = ReferenceSeam::Missing;
 
 ReferenceSeam missing(Missing why, std::string note) { return {Points3(), std::move(note), why}; }
+
+std::atomic<long> measuredForGate{0};
 
 }  // namespace
 
@@ -71,7 +75,10 @@ void measureInverse(const DForm& model, const Curve3& target, Metrics& metrics, 
   curve = computeCurveMatch(model, target, zippedAgainSeam(model, body));
 }
 
+long modelsMeasuredForGate() { return measuredForGate.load(); }
+
 GateReport measureAndGate(const DForm& model, const GateLimits& limits, const Curve3* target) {
+  ++measuredForGate;
   const std::size_t pairs = model.a.seam.size();
   if (!(target && std::size_t(target->points.rows()) == pairs && pairs > 0))
     return runGate(model, limits, measureModel(model), target, nullptr);

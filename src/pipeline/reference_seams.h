@@ -34,4 +34,7 @@ void measureInverse(const DForm& model, const Curve3& target, Metrics& metrics, 
 /// it measured). With a `target` curve (one point per seam pair) the curve is matched too.
 GateReport measureAndGate(const DForm& model, const GateLimits& limits, const Curve3* target);
 
+/// How many models measureAndGate has measured in this process (tests count them).
+long modelsMeasuredForGate();
+
 }  // namespace dform

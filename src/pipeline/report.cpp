@@ -62,13 +62,21 @@ json modelJson(const ModelUsed& used, const DForm& model) {
                        {"length_mm", numberOrNull(c.lengthMm)}});
   json out = {{"name", used.name}, {"reason", used.reason}};
   if (used.name == "exact")
-    out.update({{"cone_points", used.conePoints},
-                {"newton_steps", used.newtonSteps},
-                {"max_curvature_rad", numberOrNull(used.maxCurvature)},
-                {"chord_move_mm", numberOrNull(used.chordMoveMm)},
-                {"doubly_covered", used.doublyCovered},
-                {"found_creases", creases},
-                {"folds", foldsJson(used, model)}});
+    out.update(
+        {{"cone_points", used.conePoints},
+         {"newton_steps", used.newtonSteps},
+         {"max_curvature_rad", numberOrNull(used.maxCurvature)},
+         {"chord_move_mm", numberOrNull(used.chordMoveMm)},
+         {"doubly_covered", used.doublyCovered},
+         {"precision_mm", numberOrNull(used.precisionMm)},
+         {"pouch", used.pouch.empty()
+                       ? json(nullptr)
+                       : json{{"case", used.pouch},
+                              {"deviation_mm", numberOrNull(used.flatDeviationMm)},
+                              {"thickness_mm", used.pouch == "thin" ? numberOrNull(used.thicknessMm)
+                                                                    : json(nullptr)}}},
+         {"found_creases", creases},
+         {"folds", foldsJson(used, model)}});
   if (used.name == "ruled") {
     json states = json::array();
     for (const RuledStateSummary& state : used.states)
@@ -181,11 +189,9 @@ json gateJson(const GateReport* gate) {
                       {"limit", numberOrNull(c.limit)},
                       {"verdict", verdictName(c.verdict)},
                       {"detail", c.detail}});
-  return {{"name", gate->name},
-          {"passed", gate->passed()},
-          {"failed", gate->failed()},
-          {"not_run", gate->notRun()},
-          {"checks", checks}};
+  return {{"name", gate->name},        {"limits", json::parse(gateLimitsJson(gate->limits))},
+          {"passed", gate->passed()},  {"failed", gate->failed()},
+          {"not_run", gate->notRun()}, {"checks", checks}};
 }
 
 // Each crease's fold as solved: the piece, its number there (from 1), mountain or valley as seen
@@ -251,7 +257,8 @@ std::string metricsJsonText(const Metrics& metrics, const CurveMatch* curve) {
 
 Result<std::string> writeForwardReport(const std::string& dir, const Job& job,
                                        const ForwardRun& run, const std::vector<Message>& messages,
-                                       const GateReport* gate, const CommandTimings& command) {
+                                       const GateReport* gate, const CommandTimings& command,
+                                       const FileHashes& resultFiles) {
   const auto reportStart = std::chrono::steady_clock::now();
   json report = header(job, "forward");
   report["inputs"] = {{"piece_a", inputJson(std::get<ForwardJob>(job.run).pieceA, run.sha256A,
@@ -268,6 +275,7 @@ Result<std::string> writeForwardReport(const std::string& dir, const Job& job,
   report["metrics"] = metricsJson(run.metrics);
   report["creases"] = creasesJson(run.model);
   report["gate"] = gateJson(gate);
+  report["result_files"] = resultFiles;
   report["messages"] = messagesJson(messages);
   report["timings"] = timingsJson(run.timings, command, reportStart);
   return write(dir, report);
@@ -275,7 +283,8 @@ Result<std::string> writeForwardReport(const std::string& dir, const Job& job,
 
 Result<std::string> writeInverseReport(const std::string& dir, const Job& job,
                                        const InverseRun& run, const std::vector<Message>& messages,
-                                       const GateReport* gate, const CommandTimings& command) {
+                                       const GateReport* gate, const CommandTimings& command,
+                                       const FileHashes& resultFiles) {
   const auto reportStart = std::chrono::steady_clock::now();
   json report = header(job, "inverse");
   report["inputs"] = {{"curve", inputJson(std::get<InverseJob>(job.run).curve, run.target.sha256,
@@ -291,6 +300,7 @@ Result<std::string> writeInverseReport(const std::string& dir, const Job& job,
   addCurveMatch(report["metrics"], run.curveMatch);
   report["metrics"]["curve_length_mm"] = numberOrNull(run.curveLength);
   report["gate"] = gateJson(gate);
+  report["result_files"] = resultFiles;
   report["messages"] = messagesJson(messages);
   report["timings"] = timingsJson(run.timings, command, reportStart);
   return write(dir, report);
@@ -311,6 +321,49 @@ Result<json> readReport(const std::string& dir) {
 }
 
 }  // namespace
+
+Result<std::optional<GateReport>> reusableGate(const std::string& dir, const FileHashes& files,
+                                               const GateLimits& limits) {
+  Result<json> read = readReport(dir);
+  if (!read.isOk()) return read.status();
+  const json& report = read.value();
+  const std::optional<GateReport> none;
+  const json* version = report.is_object() && report.contains("tool") && report["tool"].is_object()
+                            ? &report["tool"]
+                            : nullptr;
+  if (!version || version->value("version", json()) != DFORM_VERSION) return none;
+  if (!report.contains("result_files") || report["result_files"] != json(files)) return none;
+  const json& gate = report.contains("gate") ? report["gate"] : json(nullptr);
+  if (!gate.is_object() || gate.value("name", json()) != limits.name || !gate.contains("limits") ||
+      gate["limits"] != json::parse(gateLimitsJson(limits)) || !gate.contains("checks") ||
+      !gate["checks"].is_array())
+    return none;
+  GateReport out;
+  out.name = limits.name;
+  out.limits = limits;
+  for (const json& c : gate["checks"]) {
+    if (!c.is_object() || !c.contains("name") || !c["name"].is_string() || !c.contains("verdict") ||
+        !c["verdict"].is_string())
+      return none;
+    if (c["name"] == "pattern_layout") continue;  // the export lays its own pattern out
+    CheckResult check;
+    check.name = c["name"].get<std::string>();
+    check.value = c.contains("value") && c["value"].is_number() ? c["value"].get<double>() : NAN;
+    check.limit = c.contains("limit") && c["limit"].is_number() ? c["limit"].get<double>() : NAN;
+    check.detail = c.value("detail", std::string());
+    const std::string verdict = c["verdict"].get<std::string>();
+    bool known = false;
+    for (CheckResult::Verdict v :
+         {CheckResult::Verdict::Pass, CheckResult::Verdict::Fail, CheckResult::Verdict::NotRun})
+      if (verdict == verdictName(v)) {
+        check.verdict = v;
+        known = true;
+      }
+    if (!known) return none;
+    out.checks.push_back(check);
+  }
+  return std::optional<GateReport>(std::move(out));
+}
 
 Result<std::optional<bool>> savedGateVerdict(const std::string& dir) {
   Result<json> report = readReport(dir);

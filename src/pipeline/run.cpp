@@ -109,17 +109,19 @@ Result<WrittenResult> gateAndWrite(const Job& job, const SolvedRun& solved, Resu
   const std::string& staging = folder.staging();
   const auto writeStart = Clock::now();
   const InverseRun* inverse = std::get_if<InverseRun>(&solved);
-  Status written = writeModel(staging, solvedModel(solved));
-  if (written.isOk() && inverse) written = writeTargetCurve(staging, inverse->target);
+  FileHashes resultFiles;
+  Status written = writeModel(staging, solvedModel(solved), &resultFiles);
+  if (written.isOk() && inverse) written = writeTargetCurve(staging, inverse->target, &resultFiles);
   if (!written.isOk()) return folder.named(written);
   timings.write = secondsSince(writeStart);
   const bool release = prepared && prepared->isOk() && (!gateFailed || settings.exportAnyway);
   if (release) noteExport(prepared->value(), sink);
   const GateReport* gateReport = gate ? &*gate : nullptr;
   const Result<std::string> reported =
-      inverse ? writeInverseReport(staging, job, *inverse, sink.messages(), gateReport, timings)
+      inverse ? writeInverseReport(staging, job, *inverse, sink.messages(), gateReport, timings,
+                                   resultFiles)
               : writeForwardReport(staging, job, std::get<ForwardRun>(solved), sink.messages(),
-                                   gateReport, timings);
+                                   gateReport, timings, resultFiles);
   if (!reported.isOk()) return folder.named(reported.status());
   if (release)
     if (Status s = writeExport(prepared->value(), staging).status(); !s.isOk())

@@ -126,6 +126,8 @@ Result<ExportOptions> exportOptions(const ExportSettings& settings) {
     if (!profile.isOk()) return profile.status();
     options.profileOverride = profile.value();
     options.useProfileOverride = true;
+    // The options against the profile (a kerf for scissors, tabs where slots go), before a solve.
+    if (Status s = checkProfileOptions(options); !s.isOk()) return s;
   }
   return options;
 }
@@ -133,21 +135,27 @@ Result<ExportOptions> exportOptions(const ExportSettings& settings) {
 std::vector<FoldToScore> foldsToScore(const ModelUsed& used, const DForm& model) {
   std::vector<FoldToScore> out;
   for (const BodyFold& f : used.folds) {
-    if (f.crease >= 0) continue;  // drawn already, as the piece's crease line
     const Points2& flat = f.piece == 0 ? model.a.flat : model.b.flat;
-    out.push_back(
-        {f.piece, flat.row(f.from).transpose(), flat.row(f.to).transpose(), f.radians / kDegree});
+    // A crease is drawn already, as the piece's crease line: hinged, never scored.
+    out.push_back({f.piece, flat.row(f.from).transpose(), flat.row(f.to).transpose(),
+                   f.radians / kDegree, f.crease >= 0});
   }
   return out;
 }
 
 ExportOptions withFolds(ExportOptions options, std::vector<FoldToScore> folds,
                         const std::string& modelName, MessageSink& sink) {
-  if (!options.scoreFoldsDeg) return options;
-  if (folds.empty())
-    sink.warning(mention(Setting::ScoreFolds) + ": no folds known: the " +
-                 (modelName.empty() ? std::string("saved") : modelName + " model's") +
+  const std::optional<MaterialPreset> material = materialNamed(options.material);
+  const bool hinged = options.hinge.value_or(material && material->hinge);
+  if (!options.scoreFoldsDeg && !hinged) return options;
+  const std::string whose = modelName.empty() ? std::string("saved") : modelName + " model's";
+  if (folds.empty() && options.scoreFoldsDeg)
+    sink.warning(mention(Setting::ScoreFolds) + ": no folds known: the " + whose +
                  " result has none; no score lines added");
+  if (folds.empty() && hinged)
+    sink.warning("hinge: no folds known: the " + whose +
+                 " result has none; no kerf-bending cuts (the exact and ruled models' results "
+                 "have them)");
   options.folds = std::move(folds);
   return options;
 }

@@ -13,6 +13,7 @@
 #include "dform/pipeline/report.h"
 #include "reference_seams.h"
 #include "run_steps.h"
+#include "saved_gate.h"
 
 namespace dform {
 
@@ -20,66 +21,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A saved result's job name, from the job its report.json records; the folder's name when there is
-// no readable job.
-std::string savedJobName(const std::string& dir) {
-  const fs::path path = fs::path(dir) / "report.json";
-  std::ifstream in(path);
-  const nlohmann::json report = nlohmann::json::parse(in, nullptr, false);
-  if (report.is_object() && report.contains("job")) {
-    Result<Job> job =
-        parseJobJson(report["job"].dump(-1, ' ', false, nlohmann::json::error_handler_t::replace),
-                     path.string(), dir);
-    if (job.isOk()) return jobName(job.value());
-  }
-  return fs::path(dir).filename().string();
-}
-
-// The body's folds report.json records (model.folds, flat mm), for --score-folds; entries that
-// are not a piece, two points and an angle are passed over. `modelName` gets model.name.
-std::vector<FoldToScore> savedFolds(const std::string& dir, std::string& modelName) {
-  std::ifstream in(fs::path(dir) / "report.json");
-  const nlohmann::json report = nlohmann::json::parse(in, nullptr, false);
-  std::vector<FoldToScore> out;
-  if (!report.is_object() || !report.contains("model") || !report["model"].is_object()) return out;
-  const nlohmann::json& model = report["model"];
-  if (model.contains("name") && model["name"].is_string()) modelName = model["name"];
-  if (!model.contains("folds") || !model["folds"].is_array()) return out;
-  const auto point = [](const nlohmann::json& p, Eigen::Vector2d& q) {
-    if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number()) return false;
-    q = Eigen::Vector2d(p[0].get<double>(), p[1].get<double>());
-    return true;
-  };
-  for (const nlohmann::json& f : model["folds"]) {
-    FoldToScore fold;
-    if (!f.is_object() || !f.contains("piece") || !f.contains("from_mm") || !f.contains("to_mm") ||
-        !f.contains("angle_deg") || !f["angle_deg"].is_number() ||
-        !point(f["from_mm"], fold.from) || !point(f["to_mm"], fold.to) ||
-        !(f["piece"] == "A" || f["piece"] == "B"))
-      continue;
-    if (f.contains("crease") && f["crease"] == true) continue;  // drawn as the piece's crease line
-    fold.piece = f["piece"] == "A" ? 0 : 1;
-    fold.angleDeg = f["angle_deg"].get<double>();
-    out.push_back(fold);
-  }
-  return out;
-}
-
-// An inverse result's target curve, when the folder holds one, checked against the seam.
-Result<std::optional<Curve3>> readSavedTarget(const std::string& dir, const DForm& model) {
-  const std::string curvePath = (fs::path(dir) / ModelFileNames::targetCurve).string();
-  std::error_code ec;
-  if (!fs::exists(curvePath, ec)) return std::optional<Curve3>();
-  Result<Curve3> curve = readCurve(curvePath);
-  if (!curve.isOk()) return curve.status();
-  if (std::size_t(curve.value().points.rows()) != model.a.seam.size())
-    return Status(ErrorCode::InputInvalid,
-                  curvePath + ": has a different number of points than the seam");
-  return std::optional<Curve3>(curve.value());
-}
-
 Result<std::string> exportSavedOrThrow(const std::string& dir, const ExportSettings& settings,
-                                       const std::string& outDir, MessageSink& sink,
+                                       const SavedExport& how, MessageSink& sink,
                                        const std::atomic<bool>& interrupted) {
   if (Status s = checkExportSettings(settings); !s.isOk()) return s;
   const Result<ExportOptions> exporting = exportOptions(settings);
@@ -91,52 +34,24 @@ Result<std::string> exportSavedOrThrow(const std::string& dir, const ExportSetti
   // the export is staged with the result's other files and swapped in whole. Exported into
   // another folder (-o), the result is only read: held by a shared lock, written nowhere.
   ResultFolder folder;
-  const Status locked = outDir.empty() ? folder.begin(dir, resultFileNames()) : folder.read(dir);
+  const Status locked =
+      how.outDir.empty() ? folder.begin(dir, resultFileNames()) : folder.read(dir);
   if (!locked.isOk()) return locked;
-  Result<DForm> model = readModel(dir);
-  if (!model.isOk()) return model.status();
+  const Result<SavedModel> saved = readSaved(dir);
+  if (!saved.isOk()) return saved.status();
   if (interrupted) return leftAsItWas(dir, "interrupted");
-  Result<std::optional<Curve3>> target = readSavedTarget(dir, model.value());
-  if (!target.isOk()) return target.status();
-  // A result that failed its gate is exported only on purpose, and marked. The gate is run
-  // again on the meshes (report.json's verdicts could have been edited), with the limits of the
-  // preset report.json names, else the default ones.
-  const bool hasReport = fs::exists(fs::path(dir) / "report.json");
-  bool failedGate = false;
-  std::string gateName = "default";
-  if (hasReport) {
-    Result<std::optional<bool>> verdict = savedGateVerdict(dir);
-    if (!verdict.isOk()) return verdict.status();
-    failedGate = verdict.value() == false;
-    const Result<std::string> recorded = savedGateName(dir);
-    const Result<std::string> templates = templatesDir();
-    if (!templates.isOk()) return templates.status();
-    if (recorded.isOk() &&
-        fs::exists(fs::path(templates.value()) / "gates" / (recorded.value() + ".json")))
-      gateName = recorded.value();
-  }
-  Result<GateLimits> limits = loadGate(gateName);
-  if (!limits.isOk()) return limits.status();
-  const GateReport gate =
-      measureAndGate(model.value(), limits.value(), target.value() ? &*target.value() : nullptr);
+  const DForm& model = saved.value().model;
+  // A result that failed its gate is exported only on purpose, and marked.
+  const Result<SavedGate> judged = judgeSaved(dir, saved.value(), how.regate, sink);
+  if (!judged.isOk()) return judged.status();
   if (interrupted) return leftAsItWas(dir, "interrupted");
-  std::string failing;
-  for (const CheckResult& c : gate.checks)
-    if (c.verdict == CheckResult::Verdict::Fail) failing += (failing.empty() ? "" : ", ") + c.name;
-  failedGate = failedGate || !gate.passed();
-  if (failedGate && !settings.exportAnyway) {
-    return Status(ErrorCode::GateFailed,
-                  dir + ": the result failed its quality gate '" + gateName +
-                      "' (checked again on the meshes: " +
-                      (failing.empty() ? "report.json records a failure" : failing + " fail") +
-                      "); nothing exported (" + mention(Setting::ExportAnyway) +
-                      " exports it marked FAILED GATE)");
-  }
+  bool failedGate = judged.value().failed;
+  if (failedGate && !settings.exportAnyway) return gateRefusal(dir, judged.value());
   // Laid out once: a layout that fails is stamped as it is (the stamp is an overlay).
   std::string modelName;
-  const Result<LaidOutExport> laidOut = layOut(
-      model.value(), withFolds(exporting.value(), savedFolds(dir, modelName), modelName, sink),
-      savedJobName(dir));
+  const Result<LaidOutExport> laidOut =
+      layOut(model, withFolds(exporting.value(), savedFolds(dir, modelName), modelName, sink),
+             savedJobName(dir));
   if (interrupted) return leftAsItWas(dir, "interrupted");
   if (!laidOut.isOk()) return laidOut.status();
   const LayoutFindings& layout = laidOut.value().layout;
@@ -147,19 +62,20 @@ Result<std::string> exportSavedOrThrow(const std::string& dir, const ExportSetti
                                              " exports it marked FAILED GATE)");
   }
   failedGate = failedGate || layout.problems() > 0;
-  const Result<PreparedExport> prepared = render(model.value(), laidOut.value(), failedGate);
+  const Result<PreparedExport> prepared = render(model, laidOut.value(), failedGate);
   if (interrupted) return leftAsItWas(dir, "interrupted");
   if (!prepared.isOk()) return prepared.status();
   noteExport(prepared.value(), sink);
   // -o: the pattern set goes into a folder of its own, as one transaction too, and the result
   // folder is left as it is (its lock is released unchanged).
-  if (!outDir.empty()) {
+  if (!how.outDir.empty()) {
     ResultFolder out;
-    if (Status s = out.begin(outDir, resultFileNames()); !s.isOk()) return s;
+    if (Status s = out.begin(how.outDir, resultFileNames()); !s.isOk()) return s;
     if (Status s = writeExport(prepared.value(), out.staging()).status(); !s.isOk())
       return out.named(s);
-    if (Status s = commitUnlessInterrupted(out, outDir, interrupted, &sink); !s.isOk()) return s;
-    return outDir;
+    if (Status s = commitUnlessInterrupted(out, how.outDir, interrupted, &sink); !s.isOk())
+      return s;
+    return how.outDir;
   }
   // The result's own files go into the new folder unchanged; earlier cutting files do not.
   for (const char* kept : {ModelFileNames::aFlat, ModelFileNames::a3d, ModelFileNames::bFlat,
@@ -169,12 +85,12 @@ Result<std::string> exportSavedOrThrow(const std::string& dir, const ExportSetti
   if (Status s = writeExport(prepared.value(), folder.staging()).status(); !s.isOk())
     return folder.named(s);
   // The report page shows the pattern: redrawn with the new one.
-  if (hasReport) {
+  if (fs::exists(fs::path(dir) / "report.json")) {
     const std::string reportPath = (fs::path(dir) / "report.json").string();
     const Result<std::string> report = readInputFile(reportPath);
     if (!report.isOk()) return report.status();
-    if (Status s = writeReportPage(folder.staging(), report.value(), reportPath, &prepared.value(),
-                                   model.value());
+    if (Status s =
+            writeReportPage(folder.staging(), report.value(), reportPath, &prepared.value(), model);
         !s.isOk())
       return folder.named(s);
   }
@@ -188,10 +104,10 @@ Result<std::string> exportSavedOrThrow(const std::string& dir, const ExportSetti
 }  // namespace
 
 Result<std::string> exportSavedResult(const std::string& dir, const ExportSettings& settings,
-                                      const std::string& outDir, MessageSink& sink,
+                                      const SavedExport& how, MessageSink& sink,
                                       const std::atomic<bool>& interrupted) {
   try {
-    return exportSavedOrThrow(dir, settings, outDir, sink, interrupted);
+    return exportSavedOrThrow(dir, settings, how, sink, interrupted);
   } catch (const Interrupted&) {  // inside the figures or the report page's pictures
     return leftAsItWas(dir, "interrupted");
   }

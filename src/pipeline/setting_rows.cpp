@@ -2,6 +2,7 @@
 // reads and writes its member of a Job (pipeline/settings.h, setting_rows.h).
 #include "setting_rows.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -187,12 +188,17 @@ const SettingAccess* weightMember(double Weights::*weight) {
                 });
 }
 
-// "600x400", "600x400mm", "23.6x15.7in" -> millimetres; "" when it is not of that form.
+// "600x400mm", "60x40cm", "23.6x15.7in" -> millimetres; "" when it is of that form. The unit is
+// needed, as the page's is: a bare 24x16 may be inches.
 std::string sheetProblem(const std::string& text, double& w, double& h) {
   char unit[8] = "";
   const int n = std::sscanf(text.c_str(), "%lfx%lf%7s", &w, &h, unit);
-  const std::string u = unit;
-  const double scale = u.empty() || u == "mm" ? 1.0 : u == "cm" ? 10.0 : u == "in" ? 25.4 : 0.0;
+  std::string u = unit;
+  for (char& c : u) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const double scale = u == "mm" ? 1.0 : u == "cm" ? 10.0 : u == "in" ? 25.4 : 0.0;
+  if (n == 2)
+    return "needs a unit (mm, cm or in), as in " + printable(text) + "mm, got '" + printable(text) +
+           "'";
   if (n < 2 || scale == 0.0 || !(w > 0 && h > 0 && std::isfinite(w) && std::isfinite(h)))
     return "must look like 600x400mm (units mm, cm or in), got '" + printable(text) + "'";
   w *= scale;
@@ -237,7 +243,7 @@ const SettingAccess* pageMember() {
         if (!page.empty() && !pageSizeMm(page))
           return "must be A4, Letter, A3, Tabloid or a size such as 200x300mm, got '" +
                  printable(page) + "'";
-        job.exporting.pattern.page = page;
+        job.exporting.pattern.page = page.empty() ? "" : pageName(page);
         return std::string();
       });
 }
@@ -527,6 +533,20 @@ void addExportRows(std::vector<SettingRow>& rows) {
                           optionalExportMember(&ExportOptions::scoreFoldsDeg)),
                       0, 180, "degrees"),
                "no folds scored"));
+  SettingRow numbers = optional(
+      row(Setting::Numbers, "--numbers", "numbers", S::Export, T::Choice,
+          "where the ticks' numbers are printed (tabs: on the glue tabs, hidden once glued)",
+          optionalNamedMember<TickNumbers>(&ExportOptions::numbers, tickNumbersName,
+                                           tickNumbersNamed)),
+      "the profile's");
+  numbers.choices = names(tickNumbersNames());
+  rows.push_back(numbers);
+  SettingRow hinge = optional(row(Setting::Hinge, "--hinge", "hinge", S::Export, T::Flag,
+                                  "kerf-bending cuts where the shape bends (a rigid sheet)",
+                                  optionalExportMember(&ExportOptions::hinge)),
+                              "the material's: on for " + rigidMaterials());
+  hinge.offFlag = "--no-hinge";
+  rows.push_back(hinge);
   SettingRow title =
       row(Setting::Title, "--no-title", "title", S::Export, T::Flag,
           "the title block and notes on the pattern sheets", exportMember(&ExportOptions::title));

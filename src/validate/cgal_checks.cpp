@@ -2,9 +2,9 @@
 
 #include <CGAL/Convex_hull_traits_adapter_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_3.h>
 #include <CGAL/box_intersection_d.h>
 #include <CGAL/convex_hull_2.h>
-#include <CGAL/convex_hull_3.h>
 #include <CGAL/intersections.h>
 #include <CGAL/property_map.h>
 
@@ -13,6 +13,7 @@
 #include <array>
 #include <iterator>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <vector>
 
@@ -128,28 +129,53 @@ SelfIntersections findSelfIntersections(const Points3& V, const Faces& F) {
   return result;
 }
 
+// The hull is read off a triangulation of the points (the facets of its infinite cells), not
+// made by convex_hull_3: CGAL 5.5's quickhull can leave a visible region whose border is no single
+// loop where many points lie on hull faces (the seam of a body with flat sides, points of both
+// pieces on them), and then reads past the end of its border map; which inputs do so follows the
+// memory addresses of its vertices, so one run crashed and the next did not. The triangulation's
+// predicates are exact and its result does not depend on the order of the points.
 std::optional<HullMesh> convexHull(const Points3& P) {
   std::vector<Point> points;
   points.reserve(size_t(P.rows()));
   for (int i = 0; i < P.rows(); ++i) points.push_back(point(P, i));
-  // Equal points (A's and B's seam vertices meet) would come back as separate hull vertices and
-  // break the Euler count below, depending on the hull's random insertion order.
   std::sort(points.begin(), points.end());
   points.erase(std::unique(points.begin(), points.end()), points.end());
   if (points.size() < 4) return std::nullopt;
-  std::vector<Point> hullPoints;
-  std::vector<std::array<size_t, 3>> hullFaces;
-  CGAL::convex_hull_3(points.begin(), points.end(), hullPoints, hullFaces);
-  // A solid hull is a closed triangulated sphere (F = 2V - 4); coplanar input comes back as a
-  // triangulated polygon (F = V - 2), collinear input with no face.
-  if (hullPoints.size() < 4 || hullFaces.size() != 2 * hullPoints.size() - 4) return std::nullopt;
+  using Triangulation = CGAL::Triangulation_3<Kernel>;
+  const Triangulation t(points.begin(), points.end());
+  // Coplanar or collinear points span no solid.
+  if (t.dimension() < 3) return std::nullopt;
+  std::map<Triangulation::Vertex_handle, int> index;
+  std::vector<Eigen::Vector3i> faces;
+  std::vector<Eigen::Vector3d> corners;
+  std::vector<Triangulation::Cell_handle> cells;
+  t.incident_cells(t.infinite_vertex(), std::back_inserter(cells));
+  for (const Triangulation::Cell_handle& cell : cells) {
+    const int infinite = cell->index(t.infinite_vertex());
+    // The facet opposite the infinite vertex, turned so that the finite cell behind it (its
+    // vertex off the facet, inside the hull) lies on the side its normal points away from.
+    Triangulation::Vertex_handle v[3];
+    for (int k = 0; k < 3; ++k)
+      v[k] = cell->vertex(Triangulation::vertex_triple_index(infinite, k));
+    const Triangulation::Cell_handle behind = cell->neighbor(infinite);
+    const Point& inner = behind->vertex(behind->index(cell))->point();
+    if (CGAL::orientation(v[0]->point(), v[1]->point(), v[2]->point(), inner) == CGAL::POSITIVE)
+      std::swap(v[1], v[2]);
+    Eigen::Vector3i face;
+    for (int k = 0; k < 3; ++k) {
+      const auto [it, added] = index.emplace(v[k], int(corners.size()));
+      if (added) corners.emplace_back(v[k]->point().x(), v[k]->point().y(), v[k]->point().z());
+      face[k] = it->second;
+    }
+    faces.push_back(face);
+  }
+  if (faces.size() != 2 * corners.size() - 4) return std::nullopt;
   HullMesh hull;
-  hull.V.resize(Eigen::Index(hullPoints.size()), 3);
-  for (size_t i = 0; i < hullPoints.size(); ++i)
-    hull.V.row(Eigen::Index(i)) << hullPoints[i].x(), hullPoints[i].y(), hullPoints[i].z();
-  hull.F.resize(Eigen::Index(hullFaces.size()), 3);
-  for (size_t i = 0; i < hullFaces.size(); ++i)
-    for (int k = 0; k < 3; ++k) hull.F(Eigen::Index(i), k) = int(hullFaces[i][size_t(k)]);
+  hull.V.resize(Eigen::Index(corners.size()), 3);
+  for (size_t i = 0; i < corners.size(); ++i) hull.V.row(Eigen::Index(i)) = corners[i].transpose();
+  hull.F.resize(Eigen::Index(faces.size()), 3);
+  for (size_t i = 0; i < faces.size(); ++i) hull.F.row(Eigen::Index(i)) = faces[i].transpose();
   return hull;
 }
 

@@ -452,6 +452,7 @@ GateReport runGate(const DForm& model, const GateLimits& limits, const Metrics& 
                    const Curve3* target, const CurveMatch* curve) {
   GateReport report;
   report.name = limits.name;
+  report.limits = limits;
   const Metrics& m = report.metrics = metrics;
   auto& checks = report.checks;
   const size_t pairs = model.a.seam.size();

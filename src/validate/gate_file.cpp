@@ -21,7 +21,38 @@ Status invalid(const std::string& source, const std::string& problem) {
   return Status(ErrorCode::InputInvalid, source + ": " + problem);
 }
 
+// Every limit of a gate file, by its key: the reader and the writer walk the same table.
+struct Real {
+  const char* key;
+  double GateLimits::*field;
+};
+constexpr Real kReals[] = {
+    {"L_error", &GateLimits::lengthError},
+    {"L_max", &GateLimits::lengthErrorMax},
+    {"B_error", &GateLimits::seamError},
+    {"D_error", &GateLimits::curveError},
+    {"seam_gap_mm", &GateLimits::seamGapMm},
+    {"gauss_max_rad", &GateLimits::gaussMaxRad},
+    {"seam_length_rel", &GateLimits::seamLengthRel},
+    {"hull_distance_rel", &GateLimits::hullDistanceRel},
+    {"exact_distance_rel", &GateLimits::exactDistanceRel},
+    {"roundtrip_rel", &GateLimits::roundtripRel},
+};
+struct Count {
+  const char* key;
+  int GateLimits::*field;
+};
+constexpr Count kCounts[] = {{"flipped", &GateLimits::flipped},
+                             {"degenerate", &GateLimits::degenerate}};
+
 }  // namespace
+
+std::string gateLimitsJson(const GateLimits& limits) {
+  json out = json::object();
+  for (const Real& r : kReals) out[r.key] = limits.*r.field;
+  for (const Count& c : kCounts) out[c.key] = limits.*c.field;
+  return out.dump();
+}
 
 Result<GateLimits> parseGateJson(const std::string& text, const std::string& source) {
   json doc;
@@ -57,33 +88,11 @@ Result<GateLimits> parseGateJson(const std::string& text, const std::string& sou
   }
   if (!sawVersion) return invalid(source, "missing field 'version' (1)");
 
-  struct Real {
-    const char* key;
-    double* field;
-  };
-  const Real reals[] = {
-      {"L_error", &limits.lengthError},
-      {"L_max", &limits.lengthErrorMax},
-      {"B_error", &limits.seamError},
-      {"D_error", &limits.curveError},
-      {"seam_gap_mm", &limits.seamGapMm},
-      {"gauss_max_rad", &limits.gaussMaxRad},
-      {"seam_length_rel", &limits.seamLengthRel},
-      {"hull_distance_rel", &limits.hullDistanceRel},
-      {"exact_distance_rel", &limits.exactDistanceRel},
-      {"roundtrip_rel", &limits.roundtripRel},
-  };
-  struct Count {
-    const char* key;
-    int* field;
-  };
-  const Count counts[] = {{"flipped", &limits.flipped}, {"degenerate", &limits.degenerate}};
-
   if (!doc.contains("limits")) return limits;
   for (const auto& [key, value] : doc["limits"].items()) {
     const std::string where = "limits." + printable(key);
     bool known = false;
-    for (const Real& r : reals) {
+    for (const Real& r : kReals) {
       if (key != r.key) continue;
       known = true;
       if (!value.is_number())
@@ -92,9 +101,9 @@ Result<GateLimits> parseGateJson(const std::string& text, const std::string& sou
       if (!(x >= 0.0) || !std::isfinite(x))
         return invalid(source, where + " must be a finite non-negative number (got " +
                                    describeJsonValue(value) + ")");
-      *r.field = x;
+      limits.*r.field = x;
     }
-    for (const Count& c : counts) {
+    for (const Count& c : kCounts) {
       if (key != c.key) continue;
       known = true;
       if (!value.is_number_integer())
@@ -104,7 +113,7 @@ Result<GateLimits> parseGateJson(const std::string& text, const std::string& sou
       if (x < 0 || x > 1000000000)
         return invalid(
             source, where + " must be a non-negative count (got " + describeJsonValue(value) + ")");
-      *c.field = int(x);
+      limits.*c.field = int(x);
     }
     if (!known) return invalid(source, "unknown field '" + where + "'");
   }

@@ -3,8 +3,9 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
-#include <tuple>
+#include <utility>
 
 #include "dform/core/constants.h"
 #include "dform/core/interrupt.h"
@@ -25,25 +26,26 @@ Eigen::Vector3d row3(const Points3& V, int i) { return V.row(i).transpose(); }
 }  // namespace
 
 EdgeTopology edgeTopology(const Faces& F) {
-  std::vector<std::tuple<int, int, int>> halfEdges;  // (min, max, face)
+  // (min * 2^32 + max, face) per half-edge: sorted as the triples (min, max, face) would be, as
+  // two machine words instead of three compared one by one.
+  std::vector<std::pair<std::uint64_t, int>> halfEdges;
   halfEdges.reserve(size_t(F.rows()) * 3);
   for (int f = 0; f < F.rows(); ++f)
     for (int k = 0; k < 3; ++k) {
       const int i = F(f, k), j = F(f, (k + 1) % 3);
-      halfEdges.emplace_back(std::min(i, j), std::max(i, j), f);
+      halfEdges.emplace_back(
+          (std::uint64_t(std::uint32_t(std::min(i, j))) << 32) | std::uint32_t(std::max(i, j)), f);
     }
   throwIfInterrupted("the figures");
   std::sort(halfEdges.begin(), halfEdges.end());
   throwIfInterrupted("the figures");
   EdgeTopology t;
   for (size_t h = 0; h < halfEdges.size();) {
-    const auto [i, j, f] = halfEdges[h];
+    const auto [key, f] = halfEdges[h];
     size_t next = h + 1;
-    while (next < halfEdges.size() && std::get<0>(halfEdges[next]) == i &&
-           std::get<1>(halfEdges[next]) == j)
-      ++next;
-    t.edges.push_back({i, j});
-    t.faces.push_back({f, next - h >= 2 ? std::get<2>(halfEdges[h + 1]) : -1});
+    while (next < halfEdges.size() && halfEdges[next].first == key) ++next;
+    t.edges.push_back({int(key >> 32), int(key & 0xFFFFFFFFu)});
+    t.faces.push_back({f, next - h >= 2 ? halfEdges[h + 1].second : -1});
     h = next;
   }
   return t;

@@ -2,7 +2,8 @@
 """The CLI's tables of docs/benchmarks.md: runs `dform` as a user does and prints each table in
 Markdown, figures from the runs' report.json, times as stated in each table's heading.
 
-    cli_tables.py BUILD/dform SAMPLES_DIR [--repeats 3] [--only exact,samples,inverse,sweep,general]
+    cli_tables.py BUILD/dform SAMPLES_DIR [--repeats 3]
+                  [--only exact,samples,inverse,sweep,general,export]
 
 Every run writes into a temporary folder that is removed at the end. A table's times are the
 median of --repeats runs where its heading says so, else one run's.
@@ -29,14 +30,19 @@ class Runner:
         """Runs dform ARGS -q -o FOLDER: (report or None, exit code, wall s, peak RSS MB)."""
         self.count += 1
         out = os.path.join(self.work, f"run{self.count}")
+        report, code, wall, rss = self.timed([*args, "-q", "-o", out])
+        report_path = os.path.join(out, "report.json")
+        report = json.load(open(report_path)) if os.path.exists(report_path) else None
+        return report, code, wall, rss
+
+    def timed(self, args):
+        """Runs dform ARGS as it is: (None, exit code, wall s, peak RSS MB)."""
         begun = time.perf_counter()
-        process = subprocess.Popen([self.dform, *args, "-q", "-o", out], stdout=subprocess.DEVNULL,
+        process = subprocess.Popen([self.dform, *args], stdout=subprocess.DEVNULL,
                                    stderr=subprocess.DEVNULL)
         _, status, usage = os.wait4(process.pid, 0)
         wall = time.perf_counter() - begun
-        report_path = os.path.join(out, "report.json")
-        report = json.load(open(report_path)) if os.path.exists(report_path) else None
-        return report, os.waitstatus_to_exitcode(status), wall, usage.ru_maxrss / 1024.0
+        return None, os.waitstatus_to_exitcode(status), wall, usage.ru_maxrss / 1024.0
 
 
 def job_with_model(r, job, model):
@@ -192,18 +198,46 @@ def general_tables(r):
             "passed" if report["gate"]["passed"] else "failed", f"{report['timings']['solve']:.2f}")
 
 
+def saved_export_table(r, repeats):
+    """`dform export DIR -o OUT` of a saved ellipses result at resolution 1000 (laser profile):
+    its gate reused from report.json (the meshes unchanged), and measured again (--regate)."""
+    solved = os.path.join(r.work, "ellipses-1000")
+    subprocess.run([r.dform, "forward", *ellipses(r), "--resolution", "1000", "--no-export", "-q",
+                    "-o", solved], check=True)
+    print(f"\n`dform export` of a saved ellipses result, n = 1000, median of {repeats}\n")
+    row("gate", "wall s, median", "min", "max", "peak RSS MB")
+    row(*["---"] * 5)
+    cases = (("reused from report.json, -o OUT", ["export", solved]),
+             ("measured again (--regate), -o OUT", ["export", solved, "--regate"]),
+             ("reused, into DIR (report.html redrawn)", ["export", solved]))
+    for label, args in cases:
+        walls, rss = [], []
+        for _ in range(repeats):
+            if "DIR" in label:
+                _, code, wall, peak = r.timed([*args, "-q"])
+            else:
+                _, code, wall, peak = r.run(args)
+            if code != 0:
+                raise SystemExit(f"dform {' '.join(args)} exited {code}")
+            walls.append(wall)
+            rss.append(peak)
+        row(label, f"{statistics.median(walls):.2f}", f"{min(walls):.2f}", f"{max(walls):.2f}",
+            f"{statistics.median(rss):.0f}")
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("dform")
     parser.add_argument("samples")
     parser.add_argument("--repeats", type=int, default=3)
-    parser.add_argument("--only", default="exact,samples,inverse,sweep,general")
+    parser.add_argument("--only", default="exact,samples,inverse,sweep,general,export")
     args = parser.parse_args()
     tables = {"exact": lambda r: exact_tables(r, args.repeats),
               "samples": lambda r: samples_table(r, args.repeats),
               "inverse": lambda r: inverse_table(r, args.repeats),
               "sweep": lambda r: sweep_table(r, args.repeats),
-              "general": general_tables}
+              "general": general_tables,
+              "export": lambda r: saved_export_table(r, args.repeats)}
     with tempfile.TemporaryDirectory() as work:
         runner = Runner(os.path.abspath(args.dform), os.path.abspath(args.samples), work)
         for name in args.only.split(","):

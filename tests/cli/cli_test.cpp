@@ -522,6 +522,31 @@ TEST_F(CliTest, ExportOptionsOnTheCommandLine) {
   EXPECT_FALSE(fs::exists(bad));
 }
 
+TEST_F(CliTest, ExportNestsSeveralResultsIntoAFolderOfItsOwn) {
+  const std::string pieces =
+      sample("forward/ellipses-a.svg") + " " + sample("forward/ellipses-b.svg");
+  for (const char* result : {"r1", "r2"})
+    ASSERT_EQ(
+        run("forward " + pieces + " --resolution 30 -q --no-export -o " + path(result)).exitCode,
+        0);
+  const std::string both = path("r1") + " " + path("r2");
+  const Outcome nested =
+      run("export " + both + " --nest --copies 2 --sheet 600x400mm -q -o " + path("nest"));
+  ASSERT_EQ(nested.exitCode, 0) << nested.err;
+  const nlohmann::json pattern =
+      nlohmann::json::parse(std::ifstream(fs::path(path("nest")) / "pattern.json"));
+  ASSERT_EQ(pattern["nest"]["parts"].size(), 8u) << "two pieces, two results, two copies";
+  EXPECT_EQ(pattern["nest"]["parts"][0]["job"], "ellipses-a");
+  const size_t sheets = pattern["sheets"].size();
+  for (size_t k = 1; sheets > 1 && k <= sheets; ++k)
+    EXPECT_TRUE(
+        fs::exists(fs::path(path("nest")) / ("pattern-sheet-" + std::to_string(k) + ".dxf")));
+  // Several results without --nest, a nest without its folder or with no copies: usage errors.
+  EXPECT_EQ(run("export " + both + " -q -o " + path("plain")).exitCode, 2);
+  EXPECT_EQ(run("export " + both + " --nest -q").exitCode, 2);
+  EXPECT_EQ(run("export " + both + " --nest --copies 0 -q -o " + path("none")).exitCode, 2);
+}
+
 TEST_F(CliTest, PrintAndCutPutsEachPieceOnItsOwnPage) {
   // A 160 x 100 mm ellipse and a circle of its perimeter (413.8 mm): each fits an A4 page's
   // registration area, the two together do not.
@@ -1292,7 +1317,18 @@ TEST_F(CliTest, OptionsAndTheOutputFolderAreCheckedBeforeTheSolve) {
               path("missing-profile.json"));
   expectError(run(big + " --gate " + path("missing-gate.json")), 3, path("missing-gate.json"));
   expectError(run(big + " --sheet 600x400furlong"), 2, "--sheet");
+  expectError(run(big + " --sheet 600x400"), 2, "--sheet needs a unit");
+  expectError(run(big + " --profile print --kerf 0.2"), 2, "kerf: profile print");
+  expectError(run(big + " --material plywood --joint slots"), 2, "joint slots: plywood");
+  expectError(run(big + " --hinge"), 2, "hinge:");
+  expectError(run(big + " --numbers inside"), 2, "--numbers");
   EXPECT_TRUE(folderContents(out) == before);
+  // Page names in any case.
+  const std::string letter = path("letter");
+  ASSERT_EQ(run("export " + out + " -o " + letter + " --profile print --page letter -q").exitCode,
+            0);
+  const nlohmann::json pattern = nlohmann::json::parse(readText(fs::path(letter) / "pattern.json"));
+  EXPECT_NEAR(pattern["sheet"]["height"].get<double>(), 279.4, 1e-9) << pattern["sheet"];  // 11 in
   const std::string file = write("a-file", "x");
   expectError(run(big.substr(0, big.find(" -o ")) + " -o " + file + "/out"), 6, file + "/out");
 }

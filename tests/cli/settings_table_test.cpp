@@ -103,6 +103,9 @@ TEST_F(SettingsTable, EveryRowHasItsNamesInEveryShell) {
       if (!row.nearFlag.empty()) {
         EXPECT_NE(help.find("  " + row.nearFlag), std::string::npos);
       }
+      if (!row.offFlag.empty()) {
+        EXPECT_NE(help.find("  " + row.offFlag), std::string::npos);
+      }
       // A number's --help line gives the mode's own default (the inverse solve's stops differ).
       if ((row.type == SettingType::Integer || row.type == SettingType::Number) &&
           row.unset.empty()) {
@@ -167,8 +170,18 @@ TEST_F(SettingsTable, TheCommandLineTakesEveryDefaultAndRefusesAValueOutOfRange)
     SCOPED_TRACE(row.key);
     const std::string fallback = settingDefault(row);
     if (row.type == SettingType::Flag) {
-      // A flag sets the value it names; it takes no value, so none is out of range.
-      EXPECT_EQ(dform(command(row) + " " + row.flag).exitCode, 6);
+      // A flag sets the value it names; it takes no value, so none is out of range. A hinge is
+      // for a rigid sheet alone (a usage error without one).
+      const std::string needs = row.id == Setting::Hinge ? " --material plywood" : "";
+      EXPECT_EQ(dform(command(row) + " " + row.flag + needs).exitCode, 6);
+      if (row.id == Setting::Hinge) {
+        EXPECT_EQ(dform(command(row) + " " + row.flag).exitCode, 2);
+      }
+      if (!row.offFlag.empty()) {
+        EXPECT_EQ(dform(command(row) + " " + row.offFlag).exitCode, 6);
+        EXPECT_EQ(dform(command(row) + " " + row.flag + needs + " " + row.offFlag).exitCode, 2)
+            << "the flag and its opposite exclude each other";
+      }
       continue;
     }
     if (fallback != "null") {

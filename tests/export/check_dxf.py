@@ -40,8 +40,9 @@ MM_TOL = 0.1     # the issue's bar for cut dimensions
 # the DXF 9.
 SVG_TOL = 1.1e-4
 
-LAYER_OF = {"Cut": "CUT", "Score": "SCORE", "Fold": "SCORE", "Regmarks": "REGMARKS",
-            "FailedGate": "FAILED-GATE"}
+# (A RIP profile's cut layer is named after its spot colour, CutContour.)
+LAYER_OF = {"Cut": "CUT", "CutContour": "CUT", "Score": "SCORE", "Fold": "SCORE",
+            "Regmarks": "REGMARKS", "FailedGate": "FAILED-GATE"}
 
 problems = []
 worst = {"perimeter_vs_svg": 0.0, "perimeter_vs_seam": 0.0, "vertex": 0.0}

@@ -3,12 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <map>
 
 #include "dform/export/exporter.h"
 #include "export/internal.h"
+#include "export/pattern_parts.h"
 #include "export/plane_geometry.h"
 #include "models.h"
 #include "synthetic.h"
@@ -330,6 +332,7 @@ TEST(ExportLayout, PartnerTicksCarryTheSameNumberOnBothPieces) {
   const DForm model = ellipseCircleDForm();
   ExportOptions o = options("print");
   o.tickSpacingMm = 15;
+  o.numbers = TickNumbers::Face;  // the print profile's numbers go on the tabs, one piece's
   const fab::PatternBuild pattern = build(model, o);
   std::map<std::string, const fab::Path*> labels;
   for (const fab::Layer& layer : pattern.drawing.layers)
@@ -372,6 +375,41 @@ TEST(ExportLayout, CornerTickNumbersAreMovedInwardNotDropped) {
       std::snprintf(id, sizeof id, "%s-tick-%02d-label", piece, t.id);
       EXPECT_NE(findPath(pattern, id), nullptr) << id;
     }
+}
+
+}  // namespace
+}  // namespace dform::test
+
+namespace dform::test {
+namespace {
+
+// A circle of radius r about c, as a hole winds (clockwise on screen, y down), 64 sides.
+Polyline circleLoop(const Vec2& c, double r) {
+  Polyline loop;
+  for (int k = 0; k < 64; ++k)
+    loop.push_back(c + r * Vec2(std::cos(-k * M_PI / 32), std::sin(-k * M_PI / 32)));
+  return loop;
+}
+
+TEST(ExportLabels, ANumberKeepsClearOfAHoleAlongItsWholeOutline) {
+  // A 10 x 3 mm label box at the middle of a 100 mm square, and a 4 mm hole whose edge comes
+  // 0.1 mm from the box's long side halfway between its middle and its corner: 1.3 mm from
+  // every corner and side midpoint, so a check at those six points passes it.
+  const Polyline square{{0, 0}, {100, 0}, {100, 100}, {0, 100}};
+  const Vec2 c(50, 50), d(1, 0);
+  const double halfW = 5, halfH = 1.5, r = 2;
+  for (double gap : {0.1, 0.29, 0.31, 1.0}) {
+    const Polyline hole = circleLoop(c + Vec2(0.5 * halfW, halfH + gap + r), r);
+    EXPECT_EQ(fab::boxFits({square, hole}, {}, c, d, halfW, halfH, 0.3), gap >= 0.3)
+        << "a hole " << gap << " mm from the box";
+  }
+  // A hole wholly inside the box, a crease through it, and a box across the outline.
+  EXPECT_FALSE(fab::boxFits({square, circleLoop(c, 0.5)}, {}, c, d, halfW, halfH, 0.3));
+  EXPECT_FALSE(fab::boxFits({square}, {{{50, 40}, {50, 60}}}, c, d, halfW, halfH, 0.3));
+  EXPECT_TRUE(fab::boxFits({square}, {{{60, 40}, {60, 60}}}, c, d, halfW, halfH, 0.3));
+  EXPECT_FALSE(fab::boxFits({square}, {}, Vec2(3, 50), d, halfW, halfH, 0.3));
+  EXPECT_FALSE(fab::boxFits({square}, {}, Vec2(5.2, 50), d, halfW, halfH, 0.3));
+  EXPECT_TRUE(fab::boxFits({square}, {}, Vec2(5.4, 50), d, halfW, halfH, 0.3));
 }
 
 }  // namespace

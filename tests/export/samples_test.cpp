@@ -83,7 +83,8 @@ void expectOneCutLoopPerBoundary(const std::string& dir) {
   const SvgDoc svg = readSvg(dir + "/pattern.svg");
   size_t loops = 0, boundaries = 0;
   for (const SvgPath& path : svg.paths)
-    if (path.layer == "Cut" && path.closed) loops += path.parts.size();
+    if ((path.layer == "Cut" || path.layer == "CutContour") && path.closed)
+      loops += path.parts.size();
   const json pattern = readJson(dir + "/pattern.json");
   for (const auto& piece : pattern["pieces"]) boundaries += piece["boundaries"].size();
   EXPECT_EQ(loops, boundaries) << dir;
@@ -244,28 +245,21 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
         // The seam as drawn is the solved one, scaled.
         EXPECT_NEAR(length(toPolyline(piece["outline"]), true), scale * seam[p], kMmTol);
       }
-      // The fewest pages: one sheet when both fit one page (with the title block as drawn),
-      // two otherwise; a tiled piece's pages are its map and its tiles.
+      // The fewest pages: one sheet when both fit one page with the mark (the job's name over
+      // the 50 mm bar, at most 15 mm deep with the scale's line) under or beside them, two when
+      // they do not fit one page even bare; a tiled piece's pages are its map and its tiles.
       const double W = paper.w, H = paper.h;
       const double margin = profile.value("margin_mm", 5.0);
-      Box title;
-      const SvgDoc first = readSvg(dir + "/" + sheets[0]["file"].get<std::string>());
-      for (const char* id : {"title", "note", "tab-note", "crease-legend-label", "scale-note",
-                             "calibration-bar", "calibration-label"})
-        if (const SvgPath* path = first.find(id))
-          for (const Polyline& part : path->parts) title.add(part);
-      const double depth = std::min(title.w(), title.h());
       const bool turnable = profile.value("kind", std::string()) == "print";
       auto together = [&](double d) {
         return fitTogether(extent[0], extent[1], margin, d, artArea(profile, W, H)) ||
                (turnable && fitTogether(extent[0], extent[1], margin, d, artArea(profile, H, W)));
       };
-      // The block drawn is up to a line's leading less deep than the room kept for it (4 mm at
-      // the largest title height); a case within that of the edge is not judged.
-      // A first sheet without its title (on a cover page, or a tiled piece's page map) is not
-      // judged.
-      if (title.w() >= 0 && together(depth) == together(depth + 4)) {
-        EXPECT_EQ(sheets.size(), together(depth) ? 1u : 2u);
+      if (together(15)) {
+        EXPECT_EQ(sheets.size(), 1u) << "pieces that fit together with the mark share a page";
+        ++judged;
+      } else if (!together(0)) {
+        EXPECT_EQ(sheets.size(), 2u);
         ++judged;
       }
       size_t expectedPages = 0;
@@ -285,12 +279,10 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
         };
         expectedPages += 1 + count(sw, W - 20) * count(sh, H - 32);
       }
-      // A sheet whose title lines do not fit beside its pieces gets a cover page for them.
-      for (const auto& page : pages) expectedPages += page["kind"] == "cover";
-      EXPECT_EQ(pages.size(), expectedPages);
+      EXPECT_EQ(pages.size(), expectedPages) << "a page per sheet, no cover page";
       // True size wherever the pieces fit at true size, else the largest tenth of a percent
       // that fits: a tenth more is refused as too large, with a message naming that scale. Every
-      // sheet of a scaled pattern says so in words (on its cover page, where its title lines go).
+      // sheet of a scaled pattern says so in words.
       if (scale < 1.0) {
         char larger[16], named[64];
         std::snprintf(larger, sizeof larger, "%.4f", scale + 0.001);
@@ -305,7 +297,6 @@ TEST_P(SamplePatterns, ExportOnA4AndLetterUnderEveryProfile) {
         size_t notes = 0;
         for (const SvgPath& path : readSvg(dir + "/pattern.svg").paths)
           notes += path.id.rfind("scale-note", 0) == 0;
-        for (const auto& page : pages) notes += page["kind"] == "cover";
         EXPECT_EQ(notes, sheets.size()) << "a sheet that does not state its scale";
       }
       // The seams' perimeters in the SVG and the DXF: exported again without tabs, each piece's

@@ -13,25 +13,16 @@ import json
 import os
 import re
 import shutil
-import subprocess
 import sys
 
 import ezdxf
 
+from e2e_checks import check, failures, runner
+
 DFORM, SAMPLES, WORK = sys.argv[1:4]
 CIRCLE = os.path.join(SAMPLES, "forward", "circle.svg")
 SQUARE = os.path.join(SAMPLES, "forward", "square.svg")
-failures = []
-
-
-def check(ok, what):
-    if not ok:
-        failures.append(what)
-        print("FAIL:", what)
-
-
-def run(*args):
-    return subprocess.run([DFORM, *args], capture_output=True, text=True)
+run = runner(DFORM)
 
 
 def forward(out, *extra):

@@ -271,7 +271,7 @@ std::vector<std::string> contentTokens(const std::string& text) {
         while (i < text.size() && !std::isspace(static_cast<unsigned char>(text[i])) &&
                std::string("()<>[]{}/%").find(text[i]) == std::string::npos)
           ++i;
-        tokens.push_back("?");
+        tokens.push_back(text.substr(start, i - start));
       } else {
         tokens.push_back(text.substr(start, i - start));
       }
@@ -322,7 +322,8 @@ std::vector<PdfPath> readPdfPaths(const std::string& pdf) {
     Affine ctm{1, 0, 0, 1, 0, 0};
     std::vector<double> operands;
     Eigen::Vector3d strokeColor = Eigen::Vector3d::Zero(), fillColor = Eigen::Vector3d::Zero();
-    std::vector<PdfPath> current;  // the path being built, one entry per subpath
+    std::string name, strokeSpace, fillSpace;  // the last name operand; the colour spaces
+    std::vector<PdfPath> current;              // the path being built, one entry per subpath
     auto point = [&](double x, double y) {
       const double X = ctm[0] * x + ctm[2] * y + ctm[4], Y = ctm[1] * x + ctm[3] * y + ctm[5];
       return Vec2((X - box[0]) * kMmPerPt, (box[3] - Y) * kMmPerPt);
@@ -342,6 +343,10 @@ std::vector<PdfPath> readPdfPaths(const std::string& pdf) {
         const double value = std::strtod(token.c_str(), &end);
         if (token != "?" && end == token.c_str() + token.size()) {
           operands.push_back(value);
+          continue;
+        }
+        if (token[0] == '/') {  // a name operand ("/CS1 CS")
+          name = token.substr(1);
           continue;
         }
         const auto& o = operands;
@@ -368,11 +373,15 @@ std::vector<PdfPath> readPdfPaths(const std::string& pdf) {
           current.back().closed = true;
         } else if ((token == "RG" || token == "rg") && n >= 3) {
           (token == "RG" ? strokeColor : fillColor) = Eigen::Vector3d(o[n - 3], o[n - 2], o[n - 1]);
+          (token == "RG" ? strokeSpace : fillSpace).clear();
+        } else if (token == "CS" || token == "cs") {
+          (token == "CS" ? strokeSpace : fillSpace) = name;
         } else if (std::string(" S s f F f* B B* b b* n ").find(" " + token + " ") !=
                    std::string::npos) {
           const bool stroked = token == "S" || token == "s" || token[0] == 'B' || token[0] == 'b';
           for (PdfPath& path : current) {
             path.color = stroked ? strokeColor : fillColor;
+            path.space = stroked ? strokeSpace : fillSpace;
             if (token == "s" || token == "b" || token == "b*") path.closed = true;
             // A closed subpath drawn back to its start: the start once.
             if (path.points.size() > 2 &&
@@ -457,6 +466,54 @@ void expectDxfChecks(const std::string& dir, const std::string& extra) {
   std::string out;
   EXPECT_EQ(checkDxf(dir, &out, extra), 0) << out;
   std::printf("%s", out.c_str());  // the differences measured, for the log
+}
+
+// The best similarity (scale, turn, shift) taking points `from` onto `to` (as many, in the same
+// order; Umeyama without reflection), and the largest distance it leaves, relative to the span
+// of `to`.
+namespace {
+
+double similarityResidual(const std::vector<Vec2>& from, const std::vector<Vec2>& to) {
+  Vec2 mf = Vec2::Zero(), mt = Vec2::Zero();
+  for (size_t i = 0; i < from.size(); ++i) {
+    mf += from[i];
+    mt += to[i];
+  }
+  mf /= double(from.size());
+  mt /= double(to.size());
+  double a = 0, b = 0, norm = 0;  // to ~ s R from, R = [[c, -d], [d, c]]: s c = a / n, s d = b / n
+  for (size_t i = 0; i < from.size(); ++i) {
+    const Vec2 p = from[i] - mf, q = to[i] - mt;
+    a += p.dot(q);
+    b += p.x() * q.y() - p.y() * q.x();
+    norm += p.squaredNorm();
+  }
+  if (norm <= 0) return 1e300;
+  const double c = a / norm, d = b / norm;
+  double worst = 0, span = 0;
+  for (size_t i = 0; i < from.size(); ++i) {
+    const Vec2 p = from[i] - mf;
+    const Vec2 mapped = mt + Vec2(c * p.x() - d * p.y(), d * p.x() + c * p.y());
+    worst = std::max(worst, (mapped - to[i]).norm());
+    span = std::max(span, (to[i] - mt).norm());
+  }
+  return span > 0 ? worst / span : 1e300;
+}
+
+}  // namespace
+
+// Whether the text path's first strokes write `words`: the Hershey strokes of `words`, stroke for
+// stroke and point for point, up to a similarity (its position, height and direction).
+bool startsWithText(const fab::Path& path, const std::string& words, const fab::StrokeFont& font) {
+  const std::vector<Polyline> expected = font.layout(words, Vec2::Zero(), Vec2(1, 0), 1.0);
+  if (expected.empty() || path.parts.size() < expected.size()) return false;
+  std::vector<Vec2> from, to;
+  for (size_t k = 0; k < expected.size(); ++k) {
+    if (path.parts[k].size() != expected[k].size()) return false;
+    from.insert(from.end(), expected[k].begin(), expected[k].end());
+    to.insert(to.end(), path.parts[k].begin(), path.parts[k].end());
+  }
+  return similarityResidual(from, to) < 1e-6;
 }
 
 bool haveProgram(const std::string& name) { return run("command -v " + name + " >/dev/null") == 0; }

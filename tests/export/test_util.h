@@ -42,6 +42,9 @@ struct PdfPath {
   Polyline points;
   bool closed = false;
   Eigen::Vector3d color = Eigen::Vector3d::Zero();  ///< RGB 0..1 it was stroked (or filled) in
+  /// The colour space resource it was stroked (or filled) in ("CS1" for "/CS1 CS"), "" for
+  /// DeviceRGB (set by RG or rg).
+  std::string space;
 };
 /// Every subpath stroked or filled in the PDF's page content streams (decoded by qpdf), with the
 /// transformation matrix (q, Q, cm) applied. Empty, and the test told, when qpdf cannot read it.
@@ -96,6 +99,10 @@ bool crossing(const Polyline& loop, const Vec2& a, const Vec2& b, Vec2* at);
 int checkDxf(const std::string& dir, std::string* out, const std::string& extra = "");
 /// checkDxf passes; its report (the differences measured) goes to the log.
 void expectDxfChecks(const std::string& dir, const std::string& extra = "");
+
+/// Whether the text path's first strokes write `words` in `font`: the Hershey strokes of `words`,
+/// stroke for stroke and point for point, up to a similarity (position, height and direction).
+bool startsWithText(const fab::Path& path, const std::string& words, const fab::StrokeFont& font);
 
 /// Runs a shell command; returns its exit code, output (stdout and stderr) in *out.
 int run(const std::string& command, std::string* out = nullptr);

@@ -138,7 +138,7 @@ TEST_F(FailedGateRun, AFailedLayoutIsLaidOutOnceAndStampedAsItIs) {
   ExportSettings again;
   again.exportAnyway = true;
   const Result<std::string> exported =
-      exportSavedResult(out.string(), again, (dir_ / "again").string(), sink, never);
+      exportSavedResult(out.string(), again, {(dir_ / "again").string()}, sink, never);
   ASSERT_TRUE(exported.isOk()) << exported.status().message();
   EXPECT_EQ(fab::patternsLaidOut() - before, 1);
   const std::string reexported = text(dir_ / "again" / "pattern.svg");

@@ -17,7 +17,8 @@ namespace dform::test {
 inline std::string otherValue(const SettingRow& row, bool forward) {
   const nlohmann::json fallback = nlohmann::json::parse(settingDefault(row, forward));
   switch (row.type) {
-    case SettingType::Flag: return fallback.get<bool>() ? "false" : "true";
+    case SettingType::Flag:  // an optional flag unset: "false", valid with every other setting
+      return fallback.is_null() || fallback.get<bool>() ? "false" : "true";
     case SettingType::Integer: return std::to_string(int(row.min) + 1);
     case SettingType::Number:
     case SettingType::Weight: {

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include "dform/validate/gate.h"
 
@@ -137,6 +138,62 @@ TEST(GateFile, FileErrorsNameThePath) {
   EXPECT_EQ(big.status().message().rfind(huge + ": file is too large", 0), 0u)
       << big.status().message();
   fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace dform
+
+namespace dform {
+namespace {
+
+// Every limit written by gateLimitsJson reads back, each one changed alone changes the text: a
+// report records the limits its gate judged by, and a later export compares them.
+TEST(GateFile, LimitsWrittenAsJsonReadBackAndEachOneCounts) {
+  GateLimits limits;
+  limits.lengthError = 0.011;
+  limits.lengthErrorMax = 0.022;
+  limits.seamError = 3.3e-7;
+  limits.curveError = 4.4e-7;
+  limits.seamGapMm = 0.055;
+  limits.gaussMaxRad = 0.066;
+  limits.seamLengthRel = 7.7e-3;
+  limits.hullDistanceRel = 0.088;
+  limits.exactDistanceRel = 9.9e-3;
+  limits.roundtripRel = 1.01e-3;
+  limits.flipped = 3;
+  limits.degenerate = 4;
+  const std::string written = gateLimitsJson(limits);
+  const Result<GateLimits> read =
+      parseGateJson(R"({"version": 1, "limits": )" + written + "}", "written");
+  ASSERT_TRUE(read.isOk()) << read.status().message();
+  EXPECT_EQ(gateLimitsJson(read.value()), written);
+  const GateLimits& r = read.value();
+  EXPECT_EQ(r.lengthError, limits.lengthError);
+  EXPECT_EQ(r.lengthErrorMax, limits.lengthErrorMax);
+  EXPECT_EQ(r.seamError, limits.seamError);
+  EXPECT_EQ(r.curveError, limits.curveError);
+  EXPECT_EQ(r.seamGapMm, limits.seamGapMm);
+  EXPECT_EQ(r.gaussMaxRad, limits.gaussMaxRad);
+  EXPECT_EQ(r.seamLengthRel, limits.seamLengthRel);
+  EXPECT_EQ(r.hullDistanceRel, limits.hullDistanceRel);
+  EXPECT_EQ(r.exactDistanceRel, limits.exactDistanceRel);
+  EXPECT_EQ(r.roundtripRel, limits.roundtripRel);
+  EXPECT_EQ(r.flipped, limits.flipped);
+  EXPECT_EQ(r.degenerate, limits.degenerate);
+  // Each limit of the defaults changed alone gives another text.
+  const std::string defaults = gateLimitsJson(GateLimits{});
+  std::vector<std::function<void(GateLimits&)>> changes = {
+      [](GateLimits& l) { l.lengthError *= 2; },      [](GateLimits& l) { l.lengthErrorMax *= 2; },
+      [](GateLimits& l) { l.seamError *= 2; },        [](GateLimits& l) { l.curveError *= 2; },
+      [](GateLimits& l) { l.seamGapMm *= 2; },        [](GateLimits& l) { l.gaussMaxRad *= 2; },
+      [](GateLimits& l) { l.seamLengthRel *= 2; },    [](GateLimits& l) { l.hullDistanceRel *= 2; },
+      [](GateLimits& l) { l.exactDistanceRel *= 2; }, [](GateLimits& l) { l.roundtripRel *= 2; },
+      [](GateLimits& l) { l.flipped += 1; },          [](GateLimits& l) { l.degenerate += 1; }};
+  for (size_t k = 0; k < changes.size(); ++k) {
+    GateLimits changed;
+    changes[k](changed);
+    EXPECT_NE(gateLimitsJson(changed), defaults) << "limit " << k;
+  }
 }
 
 }  // namespace

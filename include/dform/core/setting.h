@@ -46,6 +46,8 @@ enum class Setting {
   HoleEdge,
   SlotLength,
   ScoreFolds,
+  Numbers,
+  Hinge,
   Title,
   Gltf,
   CuttingFiles,

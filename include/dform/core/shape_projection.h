@@ -5,7 +5,7 @@
 
 #include <Eigen/Core>
 #include <array>
-#include <set>
+#include <unordered_set>
 #include <vector>
 
 #include "dform/core/types.h"
@@ -69,8 +69,14 @@ class ClusteredFaces {
   bool draws(std::array<int, 3> clusters);
 
  private:
+  struct Hash {
+    size_t operator()(const std::array<int, 3>& c) const {
+      return std::hash<long long>()((static_cast<long long>(c[0]) * 1000003 + c[1]) * 1000003 +
+                                    c[2]);
+    }
+  };
   bool merged_;
-  std::set<std::array<int, 3>> drawn_;
+  std::unordered_set<std::array<int, 3>, Hash> drawn_;  // membership only: no order is read
 };
 
 /// Both pieces' faces, far first (painter's order); on a closed surface only those turned towards
@@ -78,6 +84,11 @@ class ClusteredFaces {
 /// on about that many, both pieces' vertices clustered together (one face per cluster triple;
 /// `face` is a solved face it stands for).
 std::vector<SeenFace> paintersFaces(const DForm& model, const ShapeCamera& camera);
+
+/// The same with the model's vertices already clustered (`drawn`, drawnShapeClusters(model)), for
+/// a caller that draws one model from several views.
+std::vector<SeenFace> paintersFaces(const DForm& model, const ShapeCamera& camera,
+                                    const PointClusters& drawn);
 
 /// A piece's colour (red, green, blue in [0, 1]) at a shade: A warm, B cool.
 Eigen::Vector3d shadedPieceColour(int piece, double shade);

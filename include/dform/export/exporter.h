@@ -58,6 +58,21 @@ std::optional<TabSide> tabSideNamed(const std::string& name);
 /// Every side's name, in the order of TabSide.
 std::vector<std::string> tabSideNames();
 
+/// Where a tick's number is printed.
+enum class TickNumbers {
+  Face,  ///< inside the piece, beside its tick (seen on the finished D-Form)
+  Tabs,  ///< on the glue tab over the tick, where it has one (hidden once glued), else the face
+  Both,  ///< on the tab and on the face
+};
+
+/// The place's name in profiles and on the command line: "face", "tabs", "both".
+const char* tickNumbersName(TickNumbers numbers);
+
+/// The place called `name` (as tickNumbersName writes it), or nullopt.
+std::optional<TickNumbers> tickNumbersNamed(const std::string& name);
+/// Every place's name, in the order of TickNumbers.
+std::vector<std::string> tickNumbersNames();
+
 /// How the pieces are joined along the seam.
 enum class Joint {
   Glue,   ///< glue tabs (or edge to edge): paper and card
@@ -83,6 +98,13 @@ struct MaterialPreset {
   double thicknessMm = 0;  ///< nominal thickness (mm)
   Joint joint = Joint::Glue;
   double holeSpacingMm = 15, holeDiameterMm = 2, holeEdgeMm = 3;  ///< for holes and lace
+  /// Kerf-bending (living-hinge) cuts where the shape bends, by default: a sheet too stiff to
+  /// bend to the D-Form without them.
+  bool hinge = false;
+  /// The hinge's rows of cuts: no closer than this (mm, centre to centre: the links between rows
+  /// about as wide as the sheet is thick, and a kerf), each row bending by at most
+  /// hingeRowDeg degrees; so the tightest radius the hinge allows is hingeRowMm / hingeRowDeg.
+  double hingeRowMm = 0, hingeRowDeg = 0;
 };
 
 /// The preset called `name`, or nullopt; materialNames lists them ("paper, card, ...").
@@ -103,6 +125,9 @@ constexpr double kMaxHoleDiameterMm = 20;   ///< ... up to this
 constexpr double kMaxHoleEdgeMm = 50;       ///< seam to hole centres (mm), from the diameter
 constexpr double kMaxHoleSpacingMm = 1000;  ///< between holes (mm), from twice the diameter
 constexpr double kMinSlotLengthMm = 2;      ///< a tongue's width (mm), to spacing - diameter
+
+/// The presets of sheets too stiff to bend without a hinge ("plywood").
+std::string rigidMaterials();
 
 /// A machine profile, read from templates/profiles/<name>.json (see docs/export.md). Every field
 /// has a default; a profile file may leave any field out.
@@ -134,13 +159,22 @@ struct Profile {
   /// outside its cut line, so that a cut a little off its line leaves no white edge; 0 = no tint.
   /// While it is on, the outline is not printed on the cut line, where an off cut would show it.
   double bleedMm = 0.0;
+  /// Print-and-cut for a RIP (Roland VersaWorks, Mimaki RasterLink): the cut line is written into
+  /// pattern.pdf as this spot colour (a Separation colour space, e.g. "CutContour"), which the RIP
+  /// sends to the cutter and does not print; the SVG's cut layer is named after it. "" = none.
+  std::string cutSpotColor;
+  /// Print-and-cut: each page's print also written as a PNG at this resolution (dots per inch,
+  /// 72 to 1200), transparent around the print, with the cut outline alone as an SVG of the same
+  /// frame (Cricut Design Space); 0 = none.
+  double printPngDpi = 0;
   std::string fillColorA = "#FFE6CC";  ///< piece A's tint, #RRGGBB (the 3D preview's A)
   std::string fillColorB = "#CCE6FF";  ///< piece B's tint, #RRGGBB (the 3D preview's B)
   double labelHeightMm = 3.0;          ///< cap height of tick numbers (mm); piece names are 3x
   /// The cutter's kerf (mm, the width of material the beam removes): cut paths are offset by
   /// half of it away from the material, so that the parts come out at their drawn size.
   double kerfMm = 0.0;
-  TabSide tabs = TabSide::A;  ///< which piece gets the glue tabs
+  TabSide tabs = TabSide::A;                ///< which piece gets the glue tabs
+  TickNumbers numbers = TickNumbers::Face;  ///< where the ticks' numbers are printed
   Joint joint = Joint::Glue;  ///< how the pieces are joined (a material or --joint overrides)
 };
 
@@ -158,12 +192,21 @@ Result<Profile> parseProfileJson(const std::string& text, const std::string& sou
 std::vector<std::string> listProfiles(const std::string& templatesDir);
 
 /// The size (width, height in mm, portrait) of a page called `name`: "A4", "A3", "Letter",
-/// "Tabloid", or "WxH" with a unit mm, cm or in ("200x300mm"); nullopt for anything else.
+/// "Tabloid", or "WxH" with a unit mm, cm or in ("200x300mm"), in any case ("a4", "200x300MM");
+/// nullopt for anything else.
 std::optional<std::pair<double, double>> pageSizeMm(const std::string& name);
+
+/// A page name as pageSizeMm reads it, spelt the one way: "a4" -> "A4", "200X300MM" ->
+/// "200x300mm".
+std::string pageName(const std::string& name);
 
 /// The file of sheet `sheet` (1-based) alone, written when a pattern takes more than one sheet or
 /// page: "pattern-sheet-1.svg" for (1, "svg"), "pattern-sheet-1.dxf" for (1, "dxf").
 std::string sheetFileName(int sheet, const std::string& extension);
+
+/// A print-and-cut profile with print_png_dpi: sheet (page) `sheet`'s print as an image,
+/// "print-sheet-1.png" for (1, "png"), and its cut line alone, "cut-sheet-1.svg" for (1, "svg").
+std::string printSheetFileName(int sheet, const std::string& extension);
 
 /// A fold of the solved body through a flat piece (report.json's model.folds), to score.
 struct FoldToScore {
@@ -171,6 +214,7 @@ struct FoldToScore {
   Eigen::Vector2d from = Eigen::Vector2d::Zero();  ///< one end in the piece's flat frame (mm)
   Eigen::Vector2d to = Eigen::Vector2d::Zero();    ///< the other end
   double angleDeg = 0;                             ///< fold angle (degrees; 0 = flat)
+  bool crease = false;  ///< a found crease (drawn as the piece's crease line, never scored)
 };
 
 struct ExportOptions {
@@ -191,6 +235,8 @@ struct ExportOptions {
   double tabMaxLengthMm = 40;      ///< max length of one tab along the seam (mm)
   double tabGapMm = 1.5;           ///< gap between neighbouring tabs along the seam (mm)
   std::optional<TabSide> tabSide;  ///< which piece gets the glue tabs; unset: the profile's
+  /// Where the ticks' numbers go (the face, the glue tabs, both); unset: the profile's.
+  std::optional<TickNumbers> numbers;
   /// The cutter's kerf (mm, 0 to 5; cut paths move half of it); unset: the profile's.
   std::optional<double> kerfMm;
   /// --joint: how the pieces are joined; unset: the material's, else the profile's. With holes,
@@ -209,8 +255,11 @@ struct ExportOptions {
   /// score line on its piece (SCORE layer, pattern.json); unset: none.
   std::optional<double> scoreFoldsDeg;
   std::vector<FoldToScore> folds;  ///< the body's folds; empty when the model knows none
-  std::string jobName = "dform";   ///< printed in the title line and file metadata
-  bool title = true;               ///< the title block and notes on each sheet (--no-title: none)
+  /// Kerf-bending cuts across each piece where the solved shape bends, parallel to the body's
+  /// folds (`folds`); unset: the material's (on for plywood).
+  std::optional<bool> hinge;
+  std::string jobName = "dform";  ///< printed in the title line and file metadata
+  bool title = true;              ///< the title block and notes on each sheet (--no-title: none)
   /// Scale of the pattern (1 = true size): the pieces are scaled, tabs, ticks and labels keep
   /// their size; the scale is printed in the title line and written in pattern.json.
   double scale = 1.0;
@@ -235,6 +284,11 @@ struct ExportOptions {
 /// export checks them; a caller may check them before it has a model.
 Status checkExportOptions(const ExportOptions& options);
 
+/// The options against their profile (options.profile, or the override), before anything is
+/// solved: Usage for a kerf on a profile cut by hand, glue tabs where slots' tongues go, or a
+/// profile that cannot be read.
+Status checkProfileOptions(const ExportOptions& options);
+
 struct ExportSummary {
   std::vector<std::string> files;         ///< every file written, full paths
   std::vector<std::string> messages;      ///< notes for the user (dropped tabs, perimeter mismatch)
@@ -249,6 +303,8 @@ struct ExportSummary {
   int pages = 0;      ///< pattern pages (more than 1 when tiled or one piece per page); the PDF has
                       ///< the assembly page after them
   int triangles = 0;  ///< triangles in the STL (both pieces)
+  int pieces = 0;     ///< pieces on the sheets (2, or a nest's)
+  int sheets = 0;     ///< sheets (pages) the pieces are laid out on
 };
 
 /// What the layout check measured on the laid-out pattern (the fabrication part of the quality
@@ -257,7 +313,7 @@ struct LayoutFindings {
   int outsideSheet = 0;       ///< drawn paths with a point off the sheet
   int overlappingTabs = 0;    ///< pairs of glue tabs sharing area
   int tabsOverPieces = 0;     ///< (tab, piece) pairs sharing area
-  int overlappingPieces = 0;  ///< 1 when the two pieces' cut paths share area
+  int overlappingPieces = 0;  ///< pairs of pieces whose cut paths share area
   int labelsOutside = 0;      ///< labels not wholly inside their piece's outline
   int overlappingLabels = 0;  ///< pairs of labels whose footprints (convex hulls) share area
   /// (title block or calibration bar line, piece or registration mark) pairs sharing area
@@ -325,6 +381,28 @@ std::vector<std::string> exportFileNames();
 /// that cannot be exported, OutputFailed for an unwritable folder, and loadProfile's codes.
 Result<ExportSummary> exportAll(const DForm& model, const ExportOptions& options,
                                 const std::string& outDir);
+
+/// One D-Form of a nest (layOutNest): its model, the job its pieces are labelled with, how many
+/// copies of it to cut, and its body's folds (for score lines).
+struct NestItem {
+  const DForm* model = nullptr;
+  std::string jobName;
+  int copies = 1;
+  std::vector<FoldToScore> folds;
+};
+
+/// Every piece of `items` (each D-Form `copies` times) on as few sheets of the options' sheet (a
+/// page profile: its page) as hold them, `kerf + 1` mm apart, each turned by a quarter where that
+/// packs better, labelled with its D-Form ("ellipses-A", a later copy "ellipses-copy2-A"); each
+/// sheet with the mark (the options' job name over the 50 mm bar) and the title lines where they
+/// fit; checked by the layout check. Usage when a piece fits the sheet at neither turn, or for
+/// no items or a copy count below 1; the errors of layOutExport.
+Result<LaidOutExport> layOutNest(const std::vector<NestItem>& items, const ExportOptions& options);
+
+/// A laid-out nest's files in memory: pattern.svg, pattern.dxf, pattern.pdf (a page per sheet),
+/// pattern.json (with `nest`: each part's job, copy, piece and sheet), and each sheet's SVG and
+/// DXF when there is more than one.
+Result<PreparedExport> renderNest(const LaidOutExport& laidOut);
 
 /// Renders the pattern's page `page` (0-based; tiles of a print profile are pages, and the page
 /// after the last is the assembly page) to a PNG at

@@ -9,6 +9,7 @@
 
 #include "dform/core/messages.h"
 #include "dform/core/status.h"
+#include "dform/io/model_files.h"
 #include "dform/pipeline/job_file.h"
 #include "dform/validate/gate.h"
 
@@ -31,14 +32,18 @@ struct CommandTimings {
 /// Writes `dir`/report.json (atomically) for a forward run and returns its text (for report.html).
 /// `gate` may be null (no gate ran). Its timings add the command's stages, the making of
 /// report.json itself, and the total from `command.start` to the moment report.json is made.
+/// `resultFiles` are the SHA-256 of the meshes (and the target curve) written beside it, by name:
+/// a saved result whose files still have them is the one the gate judged.
 Result<std::string> writeForwardReport(const std::string& dir, const Job& job,
                                        const ForwardRun& run, const std::vector<Message>& messages,
-                                       const GateReport* gate, const CommandTimings& command);
+                                       const GateReport* gate, const CommandTimings& command,
+                                       const FileHashes& resultFiles);
 
 /// The same for an inverse run; its metrics add D_error and curve_distance_max_mm.
 Result<std::string> writeInverseReport(const std::string& dir, const Job& job,
                                        const InverseRun& run, const std::vector<Message>& messages,
-                                       const GateReport* gate, const CommandTimings& command);
+                                       const GateReport* gate, const CommandTimings& command,
+                                       const FileHashes& resultFiles);
 
 /// The figures as report.json records them under "metrics" (NaN and infinity as null), with the
 /// inverse's `curve` figures when given, as JSON text (for front ends that show them: the studio,
@@ -55,6 +60,14 @@ Result<std::vector<std::string>> compareWithReport(const std::string& dir, const
 
 /// The name of the gate `dir`/report.json recorded; InputInvalid when it records none.
 Result<std::string> savedGateName(const std::string& dir);
+
+/// The gate report `dir`/report.json recorded, when it still holds for the saved result: the same
+/// dform version wrote it, `files` (the SHA-256 of the meshes and target curve as just read) are
+/// those it records, and `limits` (the gate the result is judged by now) are the limits it
+/// records. Its checks are the recorded ones but the pattern's layout (an export checks its own).
+/// nullopt when any of that does not hold; InputUnreadable when report.json is unreadable.
+Result<std::optional<GateReport>> reusableGate(const std::string& dir, const FileHashes& files,
+                                               const GateLimits& limits);
 
 /// The gate verdict `dir`/report.json recorded: passed or not, or nullopt when the run had no
 /// gate. InputUnreadable when report.json is missing or not JSON, InputInvalid when its gate

@@ -13,13 +13,22 @@
 
 namespace dform {
 
+/// Where `dform export` writes a saved result's cutting files, and whether it judges it again.
+struct SavedExport {
+  std::string outDir;  ///< a folder of their own; empty: the result folder itself
+  /// Measure and judge the result again even where report.json's verdict still holds (its meshes
+  /// unchanged, the same gate and dform).
+  bool regate = false;
+};
+
 /// `dform export DIR`: the cutting files of the result in `dir` with the pattern settings of
 /// `settings` (its gate is the one the result recorded), into `dir` itself (its other files
-/// kept) or into `outDir` when given, as one transaction. A result that fails its gate again, or
-/// whose pattern does not lay out cleanly, is exported only with settings.exportAnyway (marked
-/// FAILED GATE), else GateFailed. Returns the folder the files went into.
+/// kept) or into how.outDir when given, as one transaction. The gate's verdict is report.json's
+/// where it still holds, unless how.regate. A result that fails its gate, or whose pattern does
+/// not lay out cleanly, is exported only with settings.exportAnyway (marked FAILED GATE), else
+/// GateFailed. Returns the folder the files went into.
 Result<std::string> exportSavedResult(const std::string& dir, const ExportSettings& settings,
-                                      const std::string& outDir, MessageSink& sink,
+                                      const SavedExport& how, MessageSink& sink,
                                       const std::atomic<bool>& interrupted);
 
 /// What `dform validate DIR` found: the gate run on the meshes, and report.json compared with

@@ -67,6 +67,7 @@ struct SettingRow {
   std::vector<SettingChoice> choices;             ///< Choice rows
   bool flagValue = true;  ///< Flag rows: what the command line's flag sets (--no-title: false)
   std::string nearFlag;   ///< Start rows: the flag of the point form, "--start-a-near X,Y"
+  std::string offFlag;    ///< optional Flag rows: a flag setting the other value, "--no-hinge"
   /// An optional setting: what it is when not set ("the profile's"); empty: always set.
   std::string unset;
   const SettingAccess* access = nullptr;

@@ -42,6 +42,10 @@ Result<GateLimits> readGateFile(const std::string& path);
 /// The same from the file's text; `source` names it in error messages.
 Result<GateLimits> parseGateJson(const std::string& text, const std::string& source);
 
+/// Every limit of `limits` as a gate file's "limits" object (JSON text, keys in a fixed order),
+/// which parseGateJson reads back to the same limits: what a report records of the gate it judged.
+std::string gateLimitsJson(const GateLimits& limits);
+
 struct CheckResult {
   enum class Verdict { Pass, Fail, NotRun };
   std::string name;  ///< the check's name, the gate file's field where it has one
@@ -61,7 +65,8 @@ CheckResult judgeCheck(std::string name, double value, double limit, std::string
 CheckResult notRunCheck(std::string name, double limit, std::string reason);
 
 struct GateReport {
-  std::string name;  ///< the gate's name (GateLimits::name)
+  std::string name;   ///< the gate's name (GateLimits::name)
+  GateLimits limits;  ///< the limits it judged by
   std::vector<CheckResult> checks;
   Metrics metrics;                  ///< the figures the checks were computed from
   std::optional<CurveMatch> curve;  ///< inverse mode: the seam-to-curve figures

@@ -69,6 +69,8 @@ class Result:
         hole_edge: Optional[float] = ...,
         slot_length: Optional[float] = ...,
         score_folds: Optional[float] = ...,
+        numbers: Optional[str] = ...,
+        hinge: Optional[bool] = ...,
         title: bool = ...,
         gltf: bool = ...,
         cutting_files: bool = ...,
