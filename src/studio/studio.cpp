@@ -90,14 +90,13 @@ json pieceSummary(const PieceInput& piece) {
   return out;
 }
 
-// What decides whether a forward solve optimises: the pieces and every setting, the starts (the
-// studio's fractions) included, for the glued metric's convexity depends on where the seam starts.
+// What decides whether a forward solve optimises: the pieces and every setting but the starts.
 std::string forwardDesign(const PieceInput& a, const PieceInput& b, const ForwardSettings& s) {
   const std::hash<std::string> hash;
   return std::to_string(hash(a.text)) + "/" + std::to_string(hash(b.text)) + "/" +
          joinedBoundaryName(s.joinA) + joinedBoundaryName(s.joinB) + (s.flip ? "/flip/" : "/") +
          modelChoiceName(s.model) + "/" + std::to_string(s.resolution) +
-         (s.fitPerimeter ? "/fit/" : "/") + json{s.startA.fraction, s.startB.fraction}.dump();
+         (s.fitPerimeter ? "/fit" : "");
 }
 
 // The shape first; its figures and the gate's verdict when the session asks for them (after the
