@@ -85,14 +85,11 @@ json pieceSummary(const PieceInput& piece) {
   return out;
 }
 
-// What decides whether a forward solve optimises: the pieces and every setting of the design, the
-// starts (the studio's fractions) included, for the glued metric's convexity depends on where the
-// seam starts.
+// What decides whether a forward solve optimises: the pieces and every setting but the starts.
 std::string forwardDesign(const PieceInput& a, const PieceInput& b, const Job& job) {
   const std::hash<std::string> hash;
-  const ForwardJob& s = std::get<ForwardJob>(job.run);
   return std::to_string(hash(a.text)) + "/" + std::to_string(hash(b.text)) + "/" +
-         studio::designSettings(job) + "/" + json{s.startA.fraction, s.startB.fraction}.dump();
+         studio::designSettings(job);
 }
 
 // The shape first; its figures and the gate's verdict when the session asks for them (after the
