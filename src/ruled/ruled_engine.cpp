@@ -1,9 +1,9 @@
 #include "dform/ruled/ruled_engine.h"
 
-#include <Eigen/Dense>
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+
+#include "dform/exact/aligned_distance.h"
 
 namespace dform::ruled {
 
@@ -20,30 +20,13 @@ Points3 seamOf(const RuledSurface& s) {
   return out;
 }
 
-// Largest distance between two seams after the best rigid motion (Kabsch), over the first one's
-// bounding-box diagonal.
-double alignedMax(const Points3& P, const Points3& Q) {
-  const Eigen::RowVector3d cp = P.colwise().mean(), cq = Q.colwise().mean();
-  const Eigen::Matrix3d H = (Q.rowwise() - cq).transpose() * (P.rowwise() - cp);
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(H, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d R = svd.matrixV() * svd.matrixU().transpose();
-  if (R.determinant() < 0) {
-    Eigen::Matrix3d V = svd.matrixV();
-    V.col(2) *= -1.0;
-    R = V * svd.matrixU().transpose();
-  }
-  const Points3 moved = ((Q.rowwise() - cq) * R.transpose()).rowwise() + cp;
-  const double diagonal = (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm();
-  return (moved - P).rowwise().norm().maxCoeff() / diagonal;
-}
-
 // The distance between two states' seams, one of them mirrored or not: a mirror image of a state
 // is the same shape seen from its other side, with the same energy.
 double seamDistance(const RuledSurface& a, const RuledSurface& b) {
   const Points3 P = seamOf(a), Q = seamOf(b);
   Points3 mirrored = Q;
   mirrored.col(2) *= -1.0;
-  return std::min(alignedMax(P, Q), alignedMax(P, mirrored));
+  return std::min(exact::alignedDistance(P, Q).maxRel, exact::alignedDistance(P, mirrored).maxRel);
 }
 
 // One start through the search; false with `why` when it gives no state.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 #include <tuple>
 #include <utility>
@@ -20,6 +21,23 @@ bool flipKeepsSingle(const RuledSurface& s, const SurfaceEdge& e) {
   RuledSurface trial = s;
   trial.pieces[std::size_t(e.piece)].flip(e.halfedge);
   return !trial.hasDoubleEdge();
+}
+
+// The chord of a piece in `use` folded furthest backwards (its dihedral below -1e-9: folds
+// flatter than rounding are no fold) whose flip is possible and leaves no doubled edge.
+std::optional<SurfaceEdge> mostFoldedBack(const RuledSurface& s, const std::array<bool, 2>& use) {
+  double worst = -1e-9;
+  std::optional<SurfaceEdge> chosen;
+  for (const SurfaceEdge& e : s.edges()) {
+    if (e.kind != EdgeKind::Chord || !use[std::size_t(e.piece)]) continue;
+    const double theta = dihedralOf(s, e);
+    if (!(theta < worst) || !s.pieces[std::size_t(e.piece)].flippable(e.halfedge) ||
+        !flipKeepsSingle(s, e))
+      continue;
+    worst = theta;
+    chosen = e;
+  }
+  return chosen;
 }
 
 // An edge's identity across flips: its piece (seam chords and ties: -1) and ends.
@@ -124,18 +142,7 @@ bool removeDoubleEdges(RuledSurface& surface) {
 int flipToConvexHeld(RuledSurface& surface, const std::array<bool, 2>& use) {
   int flips = 0;
   for (; flips < 100000; ++flips) {
-    const std::vector<SurfaceEdge> edges = surface.edges();
-    double worst = -1e-9;  // folds flatter than rounding are no fold
-    const SurfaceEdge* chosen = nullptr;
-    for (const SurfaceEdge& e : edges) {
-      if (e.kind != EdgeKind::Chord || !use[std::size_t(e.piece)]) continue;
-      const double theta = dihedralOf(surface, e);
-      if (!(theta < worst) || !surface.pieces[std::size_t(e.piece)].flippable(e.halfedge) ||
-          !flipKeepsSingle(surface, e))
-        continue;
-      worst = theta;
-      chosen = &e;
-    }
+    const std::optional<SurfaceEdge> chosen = mostFoldedBack(surface, use);
     if (!chosen) break;
     surface.pieces[std::size_t(chosen->piece)].flip(chosen->halfedge);
   }
@@ -147,18 +154,7 @@ FlipSearchSummary flipToConvex(RuledSurface& surface, const FlipSearchOptions& o
   SolveOptions solve = options.solve;
   solve.maxIterations = std::min(solve.maxIterations, 8);
   for (; summary.flips < options.maxFlips; ++summary.flips) {
-    const std::vector<SurfaceEdge> edges = surface.edges();
-    double worst = -1e-9;
-    const SurfaceEdge* chosen = nullptr;
-    for (const SurfaceEdge& e : edges) {
-      if (e.kind != EdgeKind::Chord) continue;
-      const double theta = dihedralOf(surface, e);
-      if (!(theta < worst) || !surface.pieces[std::size_t(e.piece)].flippable(e.halfedge) ||
-          !flipKeepsSingle(surface, e))
-        continue;
-      worst = theta;
-      chosen = &e;
-    }
+    const std::optional<SurfaceEdge> chosen = mostFoldedBack(surface, {true, true});
     if (!chosen) {
       summary.stationary = true;
       break;

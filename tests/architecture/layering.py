@@ -33,7 +33,7 @@ ALLOWED = {
     "io": {"core"},
     "meshing": {"core"},
     "exact": {"core"},
-    "ruled": {"core"},
+    "ruled": {"core", "exact"},
     "model": {"core", "solver", "meshing", "exact", "ruled"},
     "forward": {"core", "solver", "meshing", "exact", "ruled", "model"},
     "inverse": {"core", "solver", "meshing", "exact", "model"},
