@@ -3,7 +3,7 @@
 Markdown, figures from the runs' report.json, times as stated in each table's heading.
 
     cli_tables.py BUILD/dform SAMPLES_DIR [--repeats 3]
-                  [--only exact,samples,inverse,sweep,general,export]
+                  [--only exact,samples,inverse,sweep,general,ruled,export]
 
 Every run writes into a temporary folder that is removed at the end. A table's times are the
 median of --repeats runs where its heading says so, else one run's.
@@ -198,6 +198,33 @@ def general_tables(r):
             "passed" if report["gate"]["passed"] else "failed", f"{report['timings']['solve']:.2f}")
 
 
+def ruled_table(r, repeats):
+    print(f"\n### ruled engine (resolution 100; times the median of {repeats} runs)\n")
+    row("case", "L_max", "bending energy", "flips", "states", "exact distance max", "gate",
+        "run s", "peak MB")
+    row(*["---"] * 9)
+    cases = [("ellipses", ["forward", *ellipses(r), "--resolution", "100", "--model", "ruled"]),
+             ("circle + square",
+              ["forward", *circle_square(r), "--resolution", "100", "--model", "ruled"])]
+    cases += [(job + " (sample)", ["run", job_with_model(r, job, "ruled")])
+              for job in ("ellipse-twin", "circle-square-mid-side", "squaricle", "anti",
+                          "nonconvex-shifted", "demi")]
+    for name, args in cases:
+        runs = [r.run([*args, "--no-export"]) for _ in range(repeats)]
+        report, code = runs[0][0], runs[0][1]
+        wall = statistics.median(run[2] for run in runs)
+        rss = statistics.median(run[3] for run in runs)
+        if report is None:
+            row(name, "", "", "", "", "", f"exit {code}", f"{wall:.2f}", f"{rss:.0f}")
+            continue
+        model, m = report["model"], report["metrics"]
+        distance = (f"{m['exact_distance_max_rel']:.2g}" if not m.get("exact_note")
+                    and m.get("exact_distance_max_rel") is not None else "n/a")
+        row(name, f"{m['L_max']:.2g}", f"{model.get('bending_energy', 0):.4g}",
+            model.get("flips", ""), len(model.get("states", [])), distance,
+            "passed" if report["gate"]["passed"] else "failed", f"{wall:.2f}", f"{rss:.0f}")
+
+
 def saved_export_table(r, repeats):
     """`dform export DIR -o OUT` of a saved ellipses result at resolution 1000 (laser profile):
     its gate reused from report.json (the meshes unchanged), and measured again (--regate)."""
@@ -230,13 +257,14 @@ def main():
     parser.add_argument("dform")
     parser.add_argument("samples")
     parser.add_argument("--repeats", type=int, default=3)
-    parser.add_argument("--only", default="exact,samples,inverse,sweep,general,export")
+    parser.add_argument("--only", default="exact,samples,inverse,sweep,general,ruled,export")
     args = parser.parse_args()
     tables = {"exact": lambda r: exact_tables(r, args.repeats),
               "samples": lambda r: samples_table(r, args.repeats),
               "inverse": lambda r: inverse_table(r, args.repeats),
               "sweep": lambda r: sweep_table(r, args.repeats),
               "general": general_tables,
+              "ruled": lambda r: ruled_table(r, args.repeats),
               "export": lambda r: saved_export_table(r, args.repeats)}
     with tempfile.TemporaryDirectory() as work:
         runner = Runner(os.path.abspath(args.dform), os.path.abspath(args.samples), work)
