@@ -396,7 +396,12 @@ Result<SolvedDForm> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSet
     run.modelUsed.reason += "; the ruled engine is not tried: " + ruledRefusal;
   sink.info(run.modelUsed.name + " model" + (ruled ? " (the ruled engine's start): " : ": ") +
             run.modelUsed.reason);
-  if (Status s = solvePaperModel(job, layout, run, sink, hooks); !s.isOk()) return s;
+  // The ruled engine needs of its start only the boundary points' places, so its paper model is
+  // solved on a coarser mesh than the job's (the ruled state is meshed at the job's own).
+  ForwardSettings paperJob = job;
+  if (ruled)
+    paperJob.interiorEdgeFactor = std::max(job.interiorEdgeFactor, kRuledStartInteriorEdge);
+  if (Status s = solvePaperModel(paperJob, layout, run, sink, hooks); !s.isOk()) return s;
   if (general) {
     const auto solveStart = Clock::now();
     InextensibleResult sheet = solveInextensible(run.model, job.inextensible);
@@ -418,7 +423,19 @@ Result<SolvedDForm> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSet
     const auto solveStart = Clock::now();
     const std::string paperReason = run.modelUsed.reason;
     // Auto takes no state that folds the sheet back on itself (a chord folded past 90 degrees).
-    Status s = solveRuledModel(job, layout, run, sink, ruledAsked ? 180.0 : 90.0);
+    std::vector<NamedShape> otherStarts;
+    {
+      SolvedDForm coarse = run;
+      ForwardSettings coarseJob = job;
+      coarseJob.interiorEdgeFactor =
+          std::max(job.interiorEdgeFactor, kRuledSecondStartInteriorEdge);
+      MessageSink coarseMessages;
+      if (solvePaperModel(coarseJob, layout, coarse, coarseMessages, hooks).isOk())
+        otherStarts.push_back(
+            {"the paper model's shape on a coarse mesh", std::move(coarse.model)});
+      if (detail::stopRequested(hooks)) return interruptedDuring("the solve");
+    }
+    Status s = solveRuledModel(job, layout, run, otherStarts, sink, ruledAsked ? 180.0 : 90.0);
     run.timings.solve += secondsSince(solveStart);
     if (s.isOk())
       run.modelUsed.reason = ruledAsked ? std::string("asked for (") + settingKey(Setting::Model) +
@@ -429,6 +446,9 @@ Result<SolvedDForm> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSet
     else {
       sink.info("ruled engine: " + s.message() + "; the paper model's shape is kept");
       run.modelUsed.reason = paperReason + "; the ruled engine: " + s.message();
+      // The paper model's answer on the job's own mesh.
+      if (paperJob.interiorEdgeFactor != job.interiorEdgeFactor)
+        if (Status p = solvePaperModel(job, layout, run, sink, hooks); !p.isOk()) return p;
     }
   }
   run.timings.total = secondsSince(start);

@@ -55,14 +55,19 @@ RuledPieces piecesOf(const ForwardSettings& job, const SeamLayout& layout, doubl
   return out;
 }
 
-// The starts: the paper model's shape, and where the sheet has a free brim its mirror image (a
-// sheet with a brim may sit either way; a closed one has one convex state).
-std::vector<ruled::RuledStart> startsOf(const DForm& paper, const ruled::RuledSurface& blank) {
-  std::vector<ruled::RuledStart> starts{{"the paper model's shape", ruledStartOf(paper, blank)}};
-  if (!blank.freeRows[0].empty() || !blank.freeRows[1].empty()) {
-    Points3 mirrored = starts.front().X;
-    mirrored.col(2) *= -1.0;
-    starts.push_back({"its mirror image", std::move(mirrored)});
+// The starts: each shape, and where the sheet has a free brim its mirror image (a sheet with a
+// brim may sit either way; a closed one has one convex state).
+std::vector<ruled::RuledStart> startsOf(const std::vector<NamedShape>& shapes,
+                                        const ruled::RuledSurface& blank) {
+  const bool brim = !blank.freeRows[0].empty() || !blank.freeRows[1].empty();
+  std::vector<ruled::RuledStart> starts;
+  for (const NamedShape& shape : shapes) {
+    starts.push_back({shape.name, ruledStartOf(shape.model, blank)});
+    if (brim) {
+      Points3 mirrored = starts.back().X;
+      mirrored.col(2) *= -1.0;
+      starts.push_back({shape.name + ", mirrored", std::move(mirrored)});
+    }
   }
   return starts;
 }
@@ -96,12 +101,15 @@ std::string ruledModelRefusal(const ForwardSettings& job, const SeamLayout& layo
 }
 
 Status solveRuledModel(const ForwardSettings& job, const SeamLayout& layout, SolvedDForm& run,
-                       MessageSink& sink, double largestFoldDeg) {
+                       const std::vector<NamedShape>& otherStarts, MessageSink& sink,
+                       double largestFoldDeg) {
   const RuledPieces pieces = piecesOf(job, layout, run.perimeterA);
   Result<ruled::RuledSurface> blank = ruledSurface(pieces, layout.paths);
   if (!blank.isOk()) return blank.status();
+  std::vector<NamedShape> shapes{{"the paper model's shape", run.model}};
+  shapes.insert(shapes.end(), otherStarts.begin(), otherStarts.end());
   const ruled::RuledResult solved =
-      ruled::solveRuled(blank.value(), startsOf(run.model, blank.value()));
+      ruled::solveRuled(blank.value(), startsOf(shapes, blank.value()));
   if (solved.states.empty()) {
     std::string why;
     for (const auto& [start, reason] : solved.failures)

@@ -106,6 +106,13 @@ TEST(RuledRun, AntiSampleMeetsEveryLengthAtAStationaryLeastBendingState) {
   for (std::size_t s = 1; s < anti.modelUsed.states.size(); ++s)
     EXPECT_LE(anti.modelUsed.states[s - 1].bendingEnergy, anti.modelUsed.states[s].bendingEnergy);
   EXPECT_EQ(anti.metrics.flipped2d + anti.metrics.flipped3d, 0);
+  // The card sits two ways: the paper model's shape on the run's start mesh and on a coarser one
+  // lead to two states, bending 28.29 and 30.60; both are listed, named by their start.
+  ASSERT_EQ(anti.modelUsed.states.size(), 2u);
+  EXPECT_NEAR(anti.modelUsed.states[0].bendingEnergy, 28.29, 0.01);
+  EXPECT_NEAR(anti.modelUsed.states[1].bendingEnergy, 30.60, 0.01);
+  EXPECT_EQ(anti.modelUsed.states[0].start, "the paper model's shape");
+  EXPECT_EQ(anti.modelUsed.states[1].start, "the paper model's shape on a coarse mesh");
 }
 
 }  // namespace
