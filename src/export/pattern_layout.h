@@ -52,7 +52,7 @@ struct TitleText;
 // A title block: its lines run along `along` from `start`, each the next one across, in
 // `length` mm; `v` is how far across the lines so far reach.
 struct TitleBlock {
-  Vec2 along, across, start;
+  Vec2 along = Vec2::Zero(), across = Vec2::Zero(), start = Vec2::Zero();
   double length = 0;
   double v = 0;
 };
