@@ -15,6 +15,7 @@
 #include "dform/core/message_text.h"
 #include "dform/pipeline/nested_export.h"
 #include "dform/pipeline/saved_result.h"
+#include "json_summary.h"
 #include "terminal.h"
 
 namespace dform::cli {
@@ -138,17 +139,15 @@ nlohmann::json figuresJson(const std::vector<Figure>& figures) {
 }
 
 // --json: the run's summary as one object on stdout (docs/cli.md "Machine-readable summary").
-void printRunJson(const Job& job, const WrittenResult& written, const OutputOptions& output,
-                  int code) {
+void addRunJson(const Job& job, const WrittenResult& written, const OutputOptions& output) {
   nlohmann::json summary;
-  summary["command"] = job.modeName();
+  summary["mode"] = job.modeName();
   summary["model"] = modelName(output.outDir);
   summary["figures"] = figuresJson(summaryFigures(written));
   summary["gate"] = written.gate ? gateJson(*written.gate, true) : nlohmann::json();
   summary["output"] = output.outDir;
   summary["files"] = folderFiles(output.outDir);
-  summary["exit_code"] = code;
-  std::fprintf(stdout, "%s\n", summary.dump(2).c_str());
+  json_summary::add(summary);
 }
 
 }  // namespace
@@ -175,7 +174,7 @@ int runJob(const Job& job, const OutputOptions& output, const Printing& printing
   const bool gateFailed = gate && !gate->passed();
   const int code = gateFailed ? exitCode(ErrorCode::GateFailed) : 0;
   if (printing.json) {
-    printRunJson(job, written, output, code);
+    addRunJson(job, written, output);
   } else if (!printing.quiet) {
     printFigures(summaryFigures(written), written.timings, output.outDir);
     if (gate) printGate(*gate);
@@ -229,6 +228,21 @@ void printBatchRows(const std::vector<BatchRow>& rows) {
   }
 }
 
+nlohmann::json batchRowsJson(const std::vector<BatchRow>& rows) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const BatchRow& r : rows) {
+    const SweepRow& f = r.figures;
+    out.push_back({{"job", r.job.name},
+                   {"status", r.status},
+                   {"exit_code", r.exitCode},
+                   {"height_mm", f.solved ? number(f.heightMm) : nlohmann::json()},
+                   {"volume_cm3", f.solved ? number(f.volumeMm3 / 1000) : nlohmann::json()},
+                   {"max_curvature", f.solved ? number(f.maxCurvature) : nlohmann::json()},
+                   {"seconds", number(r.seconds)}});
+  }
+  return out;
+}
+
 }  // namespace
 
 int runSweepCommand(const Job& base, const SweepOptions& options, const OutputOptions& output,
@@ -246,7 +260,20 @@ int runSweepCommand(const Job& base, const SweepOptions& options, const OutputOp
   terminal.clearProgress();
   if (!rows.isOk()) return fail(rows.status());
   const Status unwritten = unwrittenStarts(output.outDir, rows.value());
-  if (printing.quiet) return unwritten.isOk() ? 0 : fail(unwritten);
+  if (printing.json) {
+    nlohmann::json starts = nlohmann::json::array();
+    for (const SweepRow& r : rows.value())
+      starts.push_back({{"folder", r.subfolder},
+                        {"start_b", r.startB},
+                        {"solved", r.solved},
+                        {"gate_passed", r.solved ? nlohmann::json(r.passed) : nlohmann::json()},
+                        {"height_mm", r.solved ? number(r.heightMm) : nlohmann::json()},
+                        {"volume_cm3", r.solved ? number(r.volumeMm3 / 1000) : nlohmann::json()},
+                        {"max_curvature", r.solved ? number(r.maxCurvature) : nlohmann::json()},
+                        {"seconds", number(r.seconds)}});
+    json_summary::add({{"output", output.outDir}, {"starts", starts}});
+  }
+  if (printing.quiet || printing.json) return unwritten.isOk() ? 0 : fail(unwritten);
   int passed = 0;
   std::fprintf(stdout, "%-16s %8s %10s %12s %10s %8s %8s\n", "start", "start_b", "height_mm",
                "volume_cm3", "max_curv", "gate", "seconds");
@@ -281,7 +308,12 @@ int runBatchCommand(const std::vector<BatchJob>& jobs, const BatchOptions& optio
       Terminal::error(rows.status());
     return exitCode(rows.status().code());
   }
-  if (!printing.quiet) printBatchRows(rows.value());
+  if (printing.json)
+    json_summary::add({{"output", output.outDir},
+                       {"manifest", manifestName(options)},
+                       {"jobs", batchRowsJson(rows.value())}});
+  else if (!printing.quiet)
+    printBatchRows(rows.value());
   int worst = 0, failed = 0;
   const BatchRow* first = nullptr;
   for (const BatchRow& r : rows.value()) {
@@ -291,7 +323,7 @@ int runBatchCommand(const std::vector<BatchJob>& jobs, const BatchOptions& optio
       first = &r;
     }
   }
-  if (!printing.quiet)
+  if (!printing.quiet && !printing.json)
     std::fprintf(stdout, "%d jobs (shard %d of %d): %d done, %d failed; manifest %s/%s\n",
                  int(rows.value().size()), options.shard, options.shards,
                  int(rows.value().size()) - failed, failed, printable(output.outDir, 300).c_str(),
@@ -312,8 +344,13 @@ int mergeBatchCommand(const std::string& dir, bool allowPartial, bool quiet) {
     return exitCode(merged.status().code());
   }
   if (!merged.isOk()) return fail(merged.status());
-  if (quiet) return 0;
   const MergedBatch& m = merged.value();
+  if (json_summary::enabled())
+    json_summary::add(
+        {{"output", dir},
+         {"jobs", batchRowsJson(m.rows)},
+         {"missing", m.missingCount > 0 ? nlohmann::json(missingText(m)) : nlohmann::json()}});
+  if (quiet || json_summary::enabled()) return 0;
   printBatchRows(m.rows);
   const std::string into = printable(dir, 300);
   if (m.jobCount < 0)
@@ -339,7 +376,11 @@ int exportSaved(const std::string& dir, const ExportSettings& settings, const Sa
   MessageSink sink(terminal.listener());
   const Result<std::string> into = exportSavedResult(dir, settings, how, sink, interrupted);
   if (!into.isOk()) return fail(into.status());
-  if (!quiet)
+  if (json_summary::enabled())
+    json_summary::add({{"profile", settings.pattern.profile},
+                       {"output", into.value()},
+                       {"files", folderFiles(into.value())}});
+  else if (!quiet)
     std::fprintf(stdout, "exported %s into %s\n", settings.pattern.profile.c_str(),
                  into.value().c_str());
   return 0;
@@ -351,7 +392,11 @@ int exportNested(const std::vector<std::string>& dirs, int copies, const ExportS
   MessageSink sink(terminal.listener());
   const Result<std::string> into = exportNest(dirs, copies, settings, how, sink, interrupted);
   if (!into.isOk()) return fail(into.status());
-  if (!quiet)
+  if (json_summary::enabled())
+    json_summary::add({{"profile", settings.pattern.profile},
+                       {"output", into.value()},
+                       {"files", folderFiles(into.value())}});
+  else if (!quiet)
     std::fprintf(stdout, "nested %s into %s\n", settings.pattern.profile.c_str(),
                  into.value().c_str());
   return 0;
@@ -370,17 +415,13 @@ int validateSaved(const std::string& dir, const std::string& gateName, const Pri
   if (printing.json) {
     // The figures as the meshes give them (never report.json's), with the gate's gauss_max_rad.
     const GateReport& gate = check.gate;
-    nlohmann::json summary = {
-        {"command", "validate"},
-        {"model", modelName(dir)},
-        {"figures",
-         figuresJson(summaryFigures(gate.metrics, gate.curve ? &*gate.curve : nullptr, &gate))},
-        {"gate", gateJson(gate, check.judged)},
-        {"report_differences", check.differences},
-        {"output", dir},
-        {"files", folderFiles(dir)},
-        {"exit_code", code}};
-    std::fprintf(stdout, "%s\n", summary.dump(2).c_str());
+    json_summary::add({{"model", modelName(dir)},
+                       {"figures", figuresJson(summaryFigures(
+                                       gate.metrics, gate.curve ? &*gate.curve : nullptr, &gate))},
+                       {"gate", gateJson(gate, check.judged)},
+                       {"report_differences", check.differences},
+                       {"output", dir},
+                       {"files", folderFiles(dir)}});
   } else if (!printing.quiet) {
     printGate(check.gate, check.judged);
     for (const std::string& line : check.differences)
@@ -403,7 +444,10 @@ int listProfiles() {
     Terminal::error(templates.status().message());
     return exitCode(templates.status().code());
   }
-  for (const std::string& name : exportProfileNames()) std::fprintf(stdout, "%s\n", name.c_str());
+  if (json_summary::enabled())
+    json_summary::add({{"profiles", exportProfileNames()}});
+  else
+    for (const std::string& name : exportProfileNames()) std::fprintf(stdout, "%s\n", name.c_str());
   return 0;
 }
 
@@ -413,11 +457,16 @@ int runStudio(const StudioOptions& options, bool openBrowser,
   std::signal(SIGPIPE, SIG_IGN);
   Result<std::unique_ptr<Studio>> studio = Studio::start(options);
   if (!studio.isOk()) {
-    Terminal::error(studio.status().message());
+    Terminal::error(studio.status());
     return exitCode(studio.status().code());
   }
   const std::string url = studio.value()->url();
-  std::printf("dform studio: open %s\n(Ctrl-C stops it)\n", url.c_str());
+  if (json_summary::enabled()) {
+    json_summary::add({{"url", url}});
+    json_summary::printNow(0);
+  } else {
+    std::printf("dform studio: open %s\n(Ctrl-C stops it)\n", url.c_str());
+  }
   std::fflush(stdout);
   // Through a file only this user can read: the token never appears on a command line. Without
   // xdg-open (or a desktop) the printed address is all there is.

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <exception>
 #include <new>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -14,6 +15,7 @@
 #include "dform/core/allocator.h"
 #include "dform/core/input_file.h"
 #include "dform/core/interrupt.h"
+#include "json_summary.h"
 #include "setting_options.h"
 #include "terminal.h"
 
@@ -45,20 +47,24 @@ std::vector<const SettingRow*> rowsOf(bool forward, std::initializer_list<Settin
   return out;
 }
 
-// What a run writes where: -o, -q and (on the commands that print one result's summary) --json.
+// --json, which every command takes (docs/cli.md, "Machine-readable output").
+void addJsonFlag(CLI::App* command, bool& json) {
+  command->add_flag("--json", json,
+                    "print the outcome (what the command made, the exit code, the error if any) "
+                    "as one JSON object on stdout, and nothing else there");
+}
+
+// What a run writes where: -o, -q and --json.
 struct Output {
   OutputOptions options;
   cli::Printing printing;
 
-  void add(CLI::App* command, bool json) {
+  void add(CLI::App* command) {
     command
         ->add_option("-o,--output", options.outDir, "folder for the results (created if missing)")
         ->required();
     command->add_flag("-q,--quiet", printing.quiet, "print nothing but errors");
-    if (json)
-      command->add_flag("--json", printing.json,
-                        "print the summary (model, figures, gate, files, exit code) as one JSON "
-                        "object on stdout, and nothing else there");
+    addJsonFlag(command, printing.json);
   }
 };
 
@@ -87,7 +93,7 @@ struct ForwardCommand {
     command->add_option("piece_a", inputs.pieceA, "outline of piece A (.svg or .json)")->required();
     command->add_option("piece_b", inputs.pieceB, "outline of piece B (.svg or .json)")->required();
     settings.add(command, settingRows(true));
-    output.add(command, true);
+    output.add(command);
   }
   int run() {
     Job job(inputs);
@@ -107,7 +113,7 @@ struct InverseCommand {
     command = app.add_subcommand("inverse", "a 3D seam curve -> the two flat pieces that make it");
     command->add_option("curve", inputs.curve, "seam curve (.obj polyline or .json)")->required();
     settings.add(command, settingRows(false), false);
-    output.add(command, true);
+    output.add(command);
   }
   int run() {
     Job job(inputs);
@@ -140,7 +146,7 @@ struct SweepCommand {
                                  {SettingScope::Forward, SettingScope::Solve, SettingScope::Export,
                                   SettingScope::Output},
                                  {Setting::Flip, Setting::StartB}));
-    output.add(command, false);
+    output.add(command);
   }
   int run() {
     if (flip != "none" && flip != "flipped" && flip != "both")
@@ -187,6 +193,7 @@ struct BatchCommand {
     settings.add(command, rowsOf(true, {SettingScope::Export, SettingScope::Output}));
     command->add_option("-o,--output", outDir, "folder for the results (created if missing)");
     command->add_flag("-q,--quiet", printing.quiet, "print nothing but errors");
+    addJsonFlag(command, printing.json);
   }
   int run() {
     if (!mergeDir.empty()) {
@@ -231,7 +238,7 @@ struct RunCommand {
     command->add_option("job", jobPath, "job file (.json, see docs/cli.md)")->required();
     // The pattern and gate settings given here apply over the job file's.
     settings.add(command, rowsOf(true, {SettingScope::Export, SettingScope::Output}));
-    output.add(command, true);
+    output.add(command);
   }
   int run() {
     Result<Job> job = readJobFile(jobPath);
@@ -248,7 +255,7 @@ struct ExportCommand {
   std::vector<std::string> dirs;
   SettingOptions settings;
   SavedExport how;
-  bool listOnly = false, quiet = false, nest = false;
+  bool listOnly = false, quiet = false, nest = false, json = false;
   int copies = 1;
   CLI::App* command = nullptr;
 
@@ -272,6 +279,7 @@ struct ExportCommand {
         ->type_name("N");
     command->add_flag("--list-profiles", listOnly, "list the profiles and exit");
     command->add_flag("-q,--quiet", quiet, "print only warnings and errors");
+    addJsonFlag(command, json);
   }
   int run() {
     if (listOnly) return cli::listProfiles();
@@ -299,8 +307,7 @@ struct ValidateCommand {
                         "default, strict, lenient, a .json file, or none (the figures measured "
                         "and printed, no verdict)");
     command->add_flag("-q,--quiet", printing.quiet, "print nothing but errors");
-    command->add_flag("--json", printing.json,
-                      "print the checks and the verdict as one JSON object on stdout");
+    addJsonFlag(command, printing.json);
   }
   int run() { return cli::validateSaved(dir, gate, printing); }
 };
@@ -309,7 +316,7 @@ struct ValidateCommand {
 struct StudioCommand {
   std::vector<std::string> inputs;
   StudioOptions options;
-  bool noBrowser = false;
+  bool noBrowser = false, json = false;
   CLI::App* command = nullptr;
 
   void add(CLI::App& app) {
@@ -318,6 +325,7 @@ struct StudioCommand {
                         "two outlines (A B) or a job file to start from (default: two ellipses)");
     command->add_option("--port", options.port, "port on 127.0.0.1 (default: any free one)");
     command->add_flag("--no-browser", noBrowser, "print the address but do not open a browser");
+    addJsonFlag(command, json);
   }
   int run() {
     if (inputs.size() == 2) {
@@ -356,6 +364,11 @@ int run(int argc, char** argv) {
 
   const std::set<std::string> commands = {"forward", "inverse", "run",      "sweep",
                                           "batch",   "export",  "validate", "studio"};
+  // --json anywhere on the line: one JSON object on stdout, a usage error's too.
+  for (int k = 1; k < argc; ++k)
+    if (std::string(argv[k]) == "--json")
+      cli::json_summary::enable(
+          argc > 1 && commands.count(argv[1]) ? std::optional<std::string>(argv[1]) : std::nullopt);
   if (argc > 1 && argv[1][0] != '-' && !commands.count(argv[1]))
     return failUsage(
         Status(ErrorCode::Usage, "unknown command '" + std::string(argv[1]) +
@@ -364,8 +377,10 @@ int run(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
+    cli::json_summary::cancel();
     return app.exit(e);
   } catch (const CLI::CallForVersion& e) {
+    cli::json_summary::cancel();
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     return failUsage(Status(ErrorCode::Usage, e.what()));
@@ -397,23 +412,25 @@ int main(int argc, char** argv) {
     const int code = run(argc, argv);
     // Interrupted: 130 for Ctrl-C, 143 for SIGTERM, as a shell reports a process they ended.
     const int interruptedCode = dform::exitCode(dform::ErrorCode::Interrupted);
-    return code == interruptedCode && stopSignal ? 128 + stopSignal : code;
+    return dform::cli::json_summary::finish(code == interruptedCode && stopSignal ? 128 + stopSignal
+                                                                                  : code);
   } catch (const dform::Interrupted& stop) {
     // A stop inside a computation no stage turned into a status: everything it held is undone
     // by the unwinding (the folder's lock and staging among it).
     dform::cli::Terminal::error(std::string("interrupted during ") + stop.stage());
-    return stopSignal ? 128 + stopSignal : dform::exitCode(dform::ErrorCode::Interrupted);
+    return dform::cli::json_summary::finish(
+        stopSignal ? 128 + stopSignal : dform::exitCode(dform::ErrorCode::Interrupted));
   } catch (const std::bad_alloc&) {
     // An allocation the memory check did not foresee (a limit it cannot see, another process
     // taking the memory meanwhile): the run needs more memory than it can get, a usage matter.
     dform::cli::Terminal::error(
         "out of memory (the machine or its limits, e.g. ulimit -v, give this run less than it "
         "needs); try a lower --resolution");
-    return dform::exitCode(dform::ErrorCode::Usage);
+    return dform::cli::json_summary::finish(dform::exitCode(dform::ErrorCode::Usage));
   } catch (const std::exception& e) {
     dform::cli::Terminal::error(std::string("internal error: ") + e.what());
   } catch (...) {
     dform::cli::Terminal::error("internal error");
   }
-  return 1;
+  return dform::cli::json_summary::finish(1);
 }

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "dform/core/message_text.h"
+#include "json_summary.h"
 #include "setting_options.h"
 
 namespace dform::cli {
@@ -19,7 +20,9 @@ MessageSink::Listener Terminal::listener() {
     const char* prefix = m.level == Level::Warning ? "dform: warning: "
                          : m.level == Level::Error ? "dform: error: "
                                                    : "";
-    std::fprintf(stderr, "%s%s\n", prefix, printableMessage(inCommandLineTerms(m.text)).c_str());
+    const std::string shown = printableMessage(inCommandLineTerms(m.text));
+    std::fprintf(stderr, "%s%s\n", prefix, shown.c_str());
+    if (m.level == Level::Error) json_summary::error(shown);
   };
 }
 
@@ -70,9 +73,15 @@ void Terminal::clearProgress() {
 }
 
 void Terminal::error(const std::string& message) {
-  std::fprintf(stderr, "dform: error: %s\n", printableMessage(inCommandLineTerms(message)).c_str());
+  const std::string shown = printableMessage(inCommandLineTerms(message));
+  std::fprintf(stderr, "dform: error: %s\n", shown.c_str());
+  json_summary::error(shown);
 }
 
-void Terminal::error(const Status& status) { error(status.text()); }
+void Terminal::error(const Status& status) {
+  const std::string shown = printableMessage(inCommandLineTerms(status.text()));
+  std::fprintf(stderr, "dform: error: %s\n", shown.c_str());
+  json_summary::error(shown, &status);
+}
 
 }  // namespace dform::cli
