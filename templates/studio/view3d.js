@@ -163,4 +163,5 @@ function View3D(canvas) {
     self.draw();
   }, { passive: false });
   this.camera = camera;
+  this.partCount = function () { return parts.length; };
 }

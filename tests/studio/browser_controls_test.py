@@ -1,0 +1,147 @@
+#!/usr/bin/env python3
+"""dform studio's controls in headless Chromium, with real keys: Ctrl+Shift+Z redoes; Ctrl+Z in a
+number box is the box's own (the design stays); counts move in whole steps (Reuleaux sides in odd
+steps); every slider shows its unit and has a number box; the starts are typed in mm and nudged
+with the arrow keys (Shift: ten times as far); a handle's label stays inside its panel; '?' opens
+the list of shortcuts; docs/studio.md lists the outlines the page offers.
+
+    browser_controls_test.py DFORM SOURCE_DIR      (exit 77 when Chromium or Selenium is absent)
+"""
+import os
+import re
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import studio_browser  # noqa: E402
+from studio_browser import check  # noqa: E402
+
+
+def keys(s, *sequence):
+    """Real key presses: strings are typed, tuples are chords (modifiers held)."""
+    from selenium.webdriver.common.action_chains import ActionChains
+    actions = ActionChains(s.driver)
+    for item in sequence:
+        if isinstance(item, tuple):
+            *modifiers, key = item
+            for m in modifiers:
+                actions.key_down(m)
+            actions.send_keys(key)
+            for m in reversed(modifiers):
+                actions.key_up(m)
+        else:
+            actions.send_keys(item)
+    actions.perform()
+
+
+def flip(s):
+    return s.js("return document.getElementById('flip').checked")
+
+
+def choose_kind(s, piece, kind):
+    s.js(f"var k = document.getElementById('kind-{piece}'); k.value = '{kind}'; k.dispatchEvent(new Event('change'))")
+    s.wait(lambda: s.js(f"return document.querySelectorAll('#sliders-{piece} input').length") > 0, 30, "the sliders")
+    s.settle()
+
+
+def main():
+    from selenium.webdriver.common.keys import Keys
+    dform, source = sys.argv[1], sys.argv[2]
+    if studio_browser.skipped():
+        return studio_browser.SKIP
+    s = studio_browser.Studio(dform, [])
+    try:
+        s.settle()
+        body = s.driver.find_element("tag name", "body")
+        # Undo and redo from the keyboard, Shift's "Z" included.
+        s.driver.find_element("id", "flip").click()
+        s.settle()
+        body.click()
+        keys(s, (Keys.CONTROL, "z"))
+        s.wait(lambda: not flip(s), 10, "undo")
+        keys(s, (Keys.CONTROL, Keys.SHIFT, "z"))
+        s.wait(lambda: flip(s), 10, "redo")
+        check(flip(s), "Ctrl+Z undoes and Ctrl+Shift+Z redoes")
+        s.settle()
+
+        # Ctrl+Z in a number box undoes the typing, not the design.
+        resolution = s.driver.find_element("id", "resolution")
+        resolution.click()
+        keys(s, "4", (Keys.CONTROL, "z"))
+        check(flip(s), "Ctrl+Z in the resolution box leaves the design alone")
+        body.click()
+
+        # Counts move in whole steps; Reuleaux sides in odd ones.
+        choose_kind(s, "a", "polygon")
+        sides = s.driver.find_element("id", "value-a-sides")
+        slider = s.driver.find_element("css selector", "#sliders-a input[type=range]")
+        check(slider.get_attribute("step") == "1", f"the sides slider steps by 1 ({slider.get_attribute('step')})")
+        sides.clear()
+        sides.send_keys("3.5", Keys.ENTER)
+        s.wait(lambda: sides.get_attribute("value") == "4", 10, "the count")
+        s.settle()
+        check(s.js("return window.studio.shown.settings") is not None and sides.get_attribute("value") == "4",
+              "3.5 sides typed is 4 sides")
+        choose_kind(s, "b", "reuleaux")
+        reuleaux = s.driver.find_element("css selector", "#sliders-b input[type=range]")
+        reuleaux.click()
+        s.js("arguments[0].value = 3; arguments[0].focus()", reuleaux)
+        keys(s, Keys.ARROW_RIGHT)
+        s.settle()
+        value = s.driver.find_element("id", "value-b-sides").get_attribute("value")
+        check(value == "5", f"one step up from a Reuleaux triangle is a pentagon ({value})")
+
+        # Every slider: a unit and a number box.
+        labels = s.js("return Array.from(document.querySelectorAll('.sliders label')).map(function (l) {"
+                      " var u = l.querySelector('.unit'); return [u ? u.textContent : '', !!l.querySelector('input[type=number]')]; })")
+        check(labels and all(u and box for u, box in labels), f"every slider shows its unit and a number box {labels}")
+
+        # Starts in mm: typed, nudged by 1 mm, by 10 mm with Shift.
+        field = s.driver.find_element("id", "start-mm-a")
+        length = s.js("return window.studio.views[0].loop.length")
+        field.click()
+        field.clear()
+        field.send_keys("100", Keys.ENTER)
+        s.settle()
+        got = s.js("return window.studio.shown.settings.start_a") * length
+        check(abs(got - 100) < 1e-6, f"A's start typed as 100 mm ({got:.6f} mm)")
+        keys(s, Keys.ARROW_UP, (Keys.SHIFT, Keys.ARROW_UP))
+        s.settle()
+        got = s.js("return window.studio.shown.settings.start_a") * length
+        check(abs(got - 111) < 1e-6, f"up nudges 1 mm, Shift+up 10 mm ({got:.6f} mm)")
+        body.click()
+
+        # The handle's label inside its panel, at the outline's right- and top-most points.
+        for which in ("right", "top"):
+            s.js(f"""var v = window.studio.views[1], p = v.loop.points, best = 0;
+                for (var k = 0; k < v.loop.n; ++k) if ({'p[2*k] > p[2*best]' if which == 'right' else 'p[2*k+1] > p[2*best+1]'}) best = k;
+                window.studio.setStart(1, v.loop.cumulative[best] / v.loop.length);""")
+            s.settle()
+            inside = s.js("var l = window.studio.views[1].handleLabel.getBoundingClientRect(),"
+                          " b = document.getElementById('svg-b').getBoundingClientRect();"
+                          " return [l.left >= b.left, l.right <= b.right, l.top >= b.top, l.bottom <= b.bottom]")
+            check(all(inside), f"the handle's label is inside the panel at the {which}most point {inside}")
+
+        # '?' lists the shortcuts; Escape closes the list.
+        body.click()
+        keys(s, "?")
+        s.wait(lambda: s.js("return document.getElementById('help').open"), 10, "the help")
+        listed = s.js("return document.getElementById('help').textContent")
+        check(all(k in listed for k in ("Ctrl", "Shift", "Z", "Esc", "?")), "'?' lists the shortcuts")
+        keys(s, Keys.ESCAPE)
+        check(not s.js("return document.getElementById('help').open"), "Escape closes the list")
+
+        # docs/studio.md names the page's outlines, no more and no fewer.
+        with open(os.path.join(source, "docs", "studio.md")) as f:
+            docs = f.read()
+        line = re.search(r"built-in parametric outlines with sliders \(([^)]*)\)", docs.replace("\n  ", " "))
+        documented = sorted(x.strip().lower() for x in re.split(r",|\band\b", line.group(1)) if x.strip()) if line else []
+        offered = sorted(k["label"].lower() for k in s.js("return window.studio.kinds"))
+        check(documented == offered, f"docs/studio.md lists the page's outlines ({documented} vs {offered})")
+        check(s.console_errors() == [], "no console errors")
+    finally:
+        s.close()
+    return studio_browser.verdict()
+
+
+if __name__ == "__main__":
+    sys.exit(main())
