@@ -495,6 +495,13 @@
   // ---- start ------------------------------------------------------------------------------------
   var view3d = studio.view3d = new View3D($("view3d"));
   window.addEventListener("resize", function () { view3d.draw(); });
+  // The scale bar: a round length in mm and its width on screen at the view's scale.
+  view3d.onScale(function (scale) {
+    $("scale-bar-line").style.width = (scale.barMm * scale.pixelsPerMm).toFixed(1) + "px";
+    $("scale-bar-text").textContent = scale.barMm + " mm";
+  });
+  $("reset-view").onclick = function () { view3d.resetView(); };
+  $("fixed-scale").onchange = function () { view3d.setFixedScale($("fixed-scale").checked); };
   api("/api/session", {}).then(function (s) {
     session = s.session; kinds = studio.kinds = s.kinds; studio.session = session; studio.previewResolution = s.preview_resolution;
     state.byMode = s.settings;

@@ -3,7 +3,8 @@
 number box is the box's own (the design stays); counts move in whole steps (Reuleaux sides in odd
 steps); every slider shows its unit and has a number box; the starts are typed in mm and nudged
 with the arrow keys (Shift: ten times as far); a handle's label stays inside its panel; '?' opens
-the list of shortcuts; docs/studio.md lists the outlines the page offers.
+the list of shortcuts; Reset view; a fixed scale (ground grid, scale bar in mm) shows a change of
+size; docs/studio.md lists the outlines the page offers.
 
     browser_controls_test.py DFORM SOURCE_DIR      (exit 77 when Chromium or Selenium is absent)
 """
@@ -38,9 +39,61 @@ def flip(s):
 
 
 def choose_kind(s, piece, kind):
+    """A built-in outline for `piece`, its shape solved."""
+    seq = s.js("return window.studio.frameSeq")
     s.js(f"var k = document.getElementById('kind-{piece}'); k.value = '{kind}'; k.dispatchEvent(new Event('change'))")
-    s.wait(lambda: s.js(f"return document.querySelectorAll('#sliders-{piece} input').length") > 0, 30, "the sliders")
+    s.wait(lambda: s.js("return window.studio.frameSeq") > seq, 60, "the outline's shape")
     s.settle()
+
+
+COLOURED = """var c = document.getElementById('view3d'), t = document.createElement('canvas');
+    t.width = c.width; t.height = c.height; var g = t.getContext('2d'); g.drawImage(c, 0, 0);
+    var d = g.getImageData(0, 0, t.width, t.height).data, n = 0;
+    for (var i = 0; i < d.length; i += 4)
+      if (Math.max(d[i], d[i + 1], d[i + 2]) - Math.min(d[i], d[i + 1], d[i + 2]) > 40) ++n;
+    return n;"""
+
+
+def view(s):
+    """Reset view; fixed scale with its grid and scale bar shows a change of size."""
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.keys import Keys
+    canvas = s.driver.find_element("id", "view3d")
+    ActionChains(s.driver).move_to_element(canvas).click_and_hold().move_by_offset(80, 40).release().perform()
+    turned = s.js("return Object.assign({}, window.studio.view3d.camera)")
+    s.driver.find_element("id", "reset-view").click()
+    home = s.js("return Object.assign({}, window.studio.view3d.camera)")
+    check(turned != home and home == {"azimuth": 30, "elevation": 25, "zoom": 1}, f"Reset view turns {turned} back to {home}")
+
+    choose_kind(s, "a", "ellipse")
+    choose_kind(s, "b", "ellipse")
+    s.driver.find_element("id", "fixed-scale").click()
+    before = s.js("return [window.studio.view3d.pixelsPerMm(), document.getElementById('scale-bar-text').textContent,"
+                  " document.getElementById('scale-bar-line').style.width, window.studio.view3d.gridLines()]")
+    pixels = s.js(COLOURED)
+    # A at half its size: B, scaled to A's perimeter, halves too, so the shape is the same at half
+    # the size: a quarter of the pixels at a fixed scale, twice the pixels per mm when refitted.
+    for name, value in (("a", "60"), ("b", "35")):
+        size = s.driver.find_element("id", "value-a-" + name)
+        size.clear()
+        size.send_keys(value, Keys.ENTER)
+        s.settle()
+    after = s.js("return [window.studio.view3d.pixelsPerMm(), document.getElementById('scale-bar-text').textContent,"
+                 " document.getElementById('scale-bar-line').style.width, window.studio.view3d.gridLines()]")
+    smaller = s.js(COLOURED)
+    check(before[3] > 4 and after == before and before[1].endswith(" mm"),
+          f"fixed scale: the scale, the bar and the ground grid stay ({before} -> {after})")
+    check(0.18 < smaller / pixels < 0.32, f"fixed scale shows the shape at half its size ({pixels} -> {smaller} pixels)")
+    s.driver.find_element("id", "fixed-scale").click()
+    refit = s.js("return [window.studio.view3d.pixelsPerMm(), document.getElementById('scale-bar-text').textContent]")
+    check(abs(refit[0] / before[0] - 2) < 0.01, f"without it the view fits the smaller shape again ({refit})")
+
+
+def guarded_view(s):
+    try:
+        view(s)
+    except Exception as e:  # noqa: BLE001
+        check(False, f"the 3D view's tools: {type(e).__name__}: {e}")
 
 
 def main():
@@ -129,6 +182,8 @@ def main():
         check(all(k in listed for k in ("Ctrl", "Shift", "Z", "Esc", "?")), "'?' lists the shortcuts")
         keys(s, Keys.ESCAPE)
         check(not s.js("return document.getElementById('help').open"), "Escape closes the list")
+
+        guarded_view(s)
 
         # docs/studio.md names the page's outlines, no more and no fewer.
         with open(os.path.join(source, "docs", "studio.md")) as f:
