@@ -457,6 +457,7 @@
       [0, 1].forEach(function (i) {
         $("name-" + "ab"[i]).textContent = summaries[i].name + " — perimeter " + summaries[i].perimeter.toFixed(1) + " mm";
       });
+      $("status").textContent = "solving…";
       refreshPieces(); scheduleStrip();
     } else {
       clearTimeout(stripTimer); strip.cancel();
