@@ -22,7 +22,7 @@ import zipfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import studio_browser  # noqa: E402
-from studio_browser import check  # noqa: E402
+from studio_browser import check, guarded  # noqa: E402
 
 
 def text(s, element_id):
@@ -95,16 +95,12 @@ def failed_export(dform, samples, work):
         s.close()
 
 
+# The pieces the 3D view draws (-1: a page without the count).
+PARTS = "(window.studio.view3d.partCount ? window.studio.view3d.partCount() : -1)"
+
+
 def wait_shape(s, seq):
     s.wait(lambda: s.js("return window.studio.frameSeq") > seq, 120, "the next answer")
-
-
-def guarded(what, part, *args):
-    """Runs one part; an exception (a timeout: what was waited for never came) is its failure."""
-    try:
-        part(*args)
-    except Exception as e:  # noqa: BLE001
-        check(False, f"{what}: {type(e).__name__}: {e}")
 
 
 def one_state(dform, samples, work):
@@ -149,7 +145,7 @@ def strip_computing(s):
     # change of the strip is recorded as it happens (a MutationObserver), not sampled.
     s.js("""var c = document.getElementById('strip-cards'), log = window.stripLog = [];
         new MutationObserver(function () {
-          log.push([c.getAttribute('data-state'), document.getElementById('strip-status').textContent,
+          log.push([c.getAttribute('data-state'), (document.getElementById('strip-status') || {}).textContent || '',
                     getComputedStyle(c).backgroundImage,
                     Array.from(c.querySelectorAll('.card span')).map(function (e) { return e.textContent; })]);
         }).observe(c, { attributes: true, childList: true, subtree: true });""")
@@ -166,7 +162,7 @@ def strip_computing(s):
                 seen["final_group_early"] = True
     check(seen["computing"] and " of 32" in seen["status"] and seen.get("style", "none") != "none",
           f"the strip says it is computing ({seen['status']})")
-    check(not seen["final_group_early"], "no group is shown as final while the strip computes")
+    check(seen["computing"] and not seen["final_group_early"], "no group is shown as final while the strip computes")
     final = s.js("return Array.from(document.querySelectorAll('#strip-cards .card span'))"
                  ".map(function (e) { return e.textContent; })")
     check(any("×" in t for t in final) and not any("so far" in t for t in final),
@@ -181,8 +177,8 @@ def failed_solve(s, samples):
     wait_shape(s, seq)
     seq = s.js("return window.studio.frameSeq")
     s.driver.find_element("id", "file-a").send_keys(os.path.join(samples, "forward", "nonconvex-a.svg"))
-    wait_shape(s, seq)
-    cleared = s.js("return [window.studio.shown, window.studio.view3d.partCount(),"
+    s.wait(lambda: s.js("return document.getElementById('status').className") == "status error", 120, "the error")
+    cleared = s.js("return [window.studio.shown, " + PARTS + ","
                    " document.getElementById('figures').rows.length, document.getElementById('model').textContent,"
                    " document.getElementById('status').className, document.querySelectorAll('#svg-a .found-crease').length]")
     check(cleared[4] == "status error", f"the failed solve is said ({text(s, 'status')})")
@@ -191,7 +187,7 @@ def failed_solve(s, samples):
     s.driver.find_element("id", "undo").click()
     s.settle()
     check(s.js("return document.getElementById('status').className") != "status error" and
-          s.js("return window.studio.view3d.partCount()") == 2,
+          s.js("return " + PARTS) == 2,
           "undo brings back a shape and clears the error")
 
 
@@ -202,12 +198,12 @@ def inverse_mode(s):
     s.settle()
     s.driver.find_element("id", "mode-inverse").click()
     state = s.js("return [getComputedStyle(document.getElementById('sliders-a')).display,"
-                 " window.studio.view3d.partCount(), document.querySelectorAll('#svg-a .handle, #svg-a .cut').length,"
+                 " " + PARTS + ", document.querySelectorAll('#svg-a .handle, #svg-a .cut').length,"
                  " document.getElementById('figures').rows.length, !!window.studio.shown]")
     check(state == ["none", 0, 0, 0, False], f"inverse mode: no sliders, shape, pieces or figures of the forward design {state}")
     s.driver.find_element("id", "mode-forward").click()
     s.settle()
-    check(s.js("return window.studio.view3d.partCount()") == 2 and
+    check(s.js("return " + PARTS) == 2 and
           s.js("return document.querySelectorAll('#svg-a .handle').length") == 1, "back in forward, its design again")
 
 

@@ -28,6 +28,15 @@ def check(condition, message):
         failures.append(message)
 
 
+def guarded(what, part, *args):
+    """Runs one part of a test; an exception (a timeout: what it waited for never came, an element
+    the page lacks) is that part's failure, and the next part runs."""
+    try:
+        part(*args)
+    except Exception as e:  # noqa: BLE001
+        check(False, f"{what}: {type(e).__name__}: {str(e).splitlines()[0] if str(e) else ''}")
+
+
 def verdict():
     """The test's exit code after its checks: 1 when any failed."""
     print(f"{len(failures)} failure(s)")
