@@ -63,6 +63,44 @@ Files filesUnder(const fs::path& dir) {
   return files;
 }
 
+// `text` with the temporary folder's path taken out: a file beside it named by its name alone,
+// the folder itself as ".".
+std::string withoutFolder(std::string text, const fs::path& dir) {
+  for (const std::string& path : {dir.string() + "/", dir.string()}) {
+    const std::string by = path.back() == '/' ? "" : ".";
+    for (std::size_t at = text.find(path); at != std::string::npos;
+         at = text.find(path, at + by.size()))
+      text.replace(at, path.size(), by);
+  }
+  return text;
+}
+
+// The files of the result that may name the folder (the report records its inputs' paths); the
+// pattern, meshes and pictures name none, and a PDF's or GLB's bytes are not text to edit.
+bool namesPaths(const std::string& name) {
+  const auto endsWith = [&](const char* tail) {
+    const std::string t = tail;
+    return name.size() >= t.size() && name.compare(name.size() - t.size(), t.size(), t) == 0;
+  };
+  return endsWith(".json") || endsWith(".html");
+}
+
+// Why the zip holds no cutting files, and what to do, or "" when it holds them.
+std::string missingFiles(const WrittenResult& written, const RunSettings& settings) {
+  const std::string holds = "The zip holds the model, its previews and the report, but ";
+  if (!written.exported.isOk())
+    return "The cutting files could not be made: " + studioWords(written.exported) + ". " + holds +
+           "no cutting files: change the export's settings and export again.";
+  if (!written.gate || written.gate->passed() || settings.exportAnyway || !settings.cuttingFiles)
+    return "";
+  std::string failed;
+  for (const CheckResult& c : written.gate->checks)
+    if (c.verdict == CheckResult::Verdict::Fail) failed += (failed.empty() ? "" : ", ") + c.name;
+  return "The design failed the quality gate '" + written.gate->name + "' (" + failed + "). " +
+         holds + "no cutting files: tick \"export even if the gate fails\" for cutting " +
+         "files marked FAILED GATE, or change the design until the gate passes.";
+}
+
 }  // namespace
 
 Files forwardJobFiles(const PieceInput& a, const PieceInput& b, const Job& job) {
@@ -75,7 +113,7 @@ Files inverseJobFiles(const CurveInput& curve, const Job& job) {
   return {{"job.json", withInputs(job, {{"curve", curve.name}})}, {curve.name, curve.text}};
 }
 
-Result<std::string> exportedResult(const Files& jobFiles, const std::atomic<bool>* cancel) {
+Result<ExportedZip> exportedResult(const Files& jobFiles, const std::atomic<bool>* cancel) {
   Result<fs::path> folder = temporaryFolder();
   if (!folder.isOk()) return folder.status();
   const fs::path dir = folder.value();
@@ -88,14 +126,18 @@ Result<std::string> exportedResult(const Files& jobFiles, const std::atomic<bool
       ::malloc_trim(0);
     }
   } cleanup{dir};
+  // An error names no path of the server's: the folder is the server's, not the designer's.
+  const auto failed = [&](const Status& s) {
+    return Status(s.code(), withoutFolder(studioWords(s), dir));
+  };
   for (const auto& [name, content] : jobFiles)
-    if (Status s = writeFile(dir / name, content); !s.isOk()) return s;
+    if (Status s = writeFile(dir / name, content); !s.isOk()) return failed(s);
   Result<Job> job = readJobFile((dir / "job.json").string());
-  if (!job.isOk()) return job.status();
+  if (!job.isOk()) return failed(job.status());
   OutputOptions output;
   output.outDir = (dir / "result").string();
   Result<RunSettings> settings = checkOutput(job.value().exporting);
-  if (!settings.isOk()) return settings.status();
+  if (!settings.isOk()) return failed(settings.status());
   MessageSink sink;
   RunHooks hooks;
   hooks.interrupted = cancel;
@@ -104,10 +146,13 @@ Result<std::string> exportedResult(const Files& jobFiles, const std::atomic<bool
     const ScopedStop stop(cancel);
     return runAndWrite(job.value(), output, settings.value(), sink, hooks);
   }();
+  if (!written.isOk()) return failed(written.status());
   if (!fs::is_directory(output.outDir))
-    return written.isOk() ? Status(ErrorCode::OutputFailed, "the export wrote nothing")
-                          : written.status();
-  return storedZip(filesUnder(output.outDir));
+    return Status(ErrorCode::OutputFailed, "the export wrote nothing");
+  Files files = filesUnder(output.outDir);
+  for (auto& [name, content] : files)
+    if (namesPaths(name)) content = withoutFolder(content, dir);
+  return ExportedZip{storedZip(files), missingFiles(written.value(), settings.value())};
 }
 
 }  // namespace dform::studio

@@ -24,12 +24,20 @@ std::vector<std::pair<std::string, std::string>> forwardJobFiles(const PieceInpu
 std::vector<std::pair<std::string, std::string>> inverseJobFiles(const CurveInput& curve,
                                                                  const Job& job);
 
+/// An export's zip and, where it lacks the cutting files the export asked for, why and what to
+/// do, in the studio's words (studioWords): the gate failed without export_anyway, or the pattern
+/// could not be laid out (a sheet too small). Empty: the zip holds every file asked for.
+struct ExportedZip {
+  std::string zip;
+  std::string missing;
+};
+
 /// Runs the saved job (`jobFiles` as forwardJobFiles lays them out) with runAndWrite, as its
 /// export settings say, into a fresh temporary folder and returns the zip of the result folder's
-/// files; the folder is removed. The run's error (a bad profile; a failed gate without
-/// export_anyway still writes the result) when nothing was written. `cancel`, when set
-/// meanwhile, stops the run (Interrupted).
-Result<std::string> exportedResult(const std::vector<std::pair<std::string, std::string>>& jobFiles,
+/// files; the folder is removed, and no file of the zip nor message names it (report.json names
+/// its inputs as the saved job does, beside it). The run's error, in the studio's words, when
+/// nothing was written. `cancel`, when set meanwhile, stops the run (Interrupted).
+Result<ExportedZip> exportedResult(const std::vector<std::pair<std::string, std::string>>& jobFiles,
                                    const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace dform::studio

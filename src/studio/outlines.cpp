@@ -87,16 +87,34 @@ const std::vector<OutlineKind>& outlineKinds() {
       {"ellipse", "Ellipse", {{"a", 10, 300, 120}, {"b", 10, 300, 70}}},
       {"superellipse",
        "Superellipse",
-       {{"a", 10, 300, 100}, {"b", 10, 300, 80}, {"exponent", 1.2, 8, 3}}},
+       {{"a", 10, 300, 100}, {"b", 10, 300, 80}, {"exponent", 1.2, 8, 3, 0, "power"}}},
       {"rounded_rectangle",
        "Rounded rectangle",
        {{"width", 20, 500, 200}, {"height", 20, 500, 140}, {"radius", 1, 150, 30}}},
-      {"polygon", "Regular polygon", {{"sides", 3, 12, 6}, {"radius", 10, 300, 100}}},
-      {"reuleaux", "Reuleaux polygon", {{"sides", 3, 11, 3}, {"radius", 10, 300, 100}}},
+      {"polygon", "Regular polygon", {{"sides", 3, 12, 6, 1, "sides"}, {"radius", 10, 300, 100}}},
+      {"reuleaux", "Reuleaux polygon", {{"sides", 3, 11, 3, 2, "sides"}, {"radius", 10, 300, 100}}},
       {"lobed",
        "Lobed circle",
-       {{"radius", 10, 300, 90}, {"lobes", 2, 12, 4}, {"amplitude", 0, 0.3, 0.12}}},
+       {{"radius", 10, 300, 90},
+        {"lobes", 2, 12, 4, 1, "lobes"},
+        {"amplitude", 0, 0.3, 0.12, 0, "× radius"}}},
   };
+  return kinds;
+}
+
+nlohmann::json outlineKindsJson() {
+  nlohmann::json kinds = nlohmann::json::array();
+  for (const OutlineKind& k : outlineKinds()) {
+    nlohmann::json parameters = nlohmann::json::array();
+    for (const Parameter& p : k.parameters)
+      parameters.push_back({{"name", p.name},
+                            {"min", p.min},
+                            {"max", p.max},
+                            {"value", p.value},
+                            {"step", p.step},
+                            {"unit", p.unit}});
+    kinds.push_back({{"name", k.name}, {"label", k.label}, {"parameters", parameters}});
+  }
   return kinds;
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -11,8 +12,10 @@ namespace dform::studio {
 
 /// One slider of a parametric outline.
 struct Parameter {
-  std::string name;        ///< as the request and the page name it
-  double min, max, value;  ///< range and default (mm, or a count, or a ratio)
+  std::string name;         ///< as the request and the page name it
+  double min, max, value;   ///< range and default (mm, or a count, or a ratio)
+  double step = 0;          ///< a count's whole step from min (2: odd counts only); 0: any value
+  std::string unit = "mm";  ///< as the page shows it beside the value
 };
 
 /// A kind of outline and its sliders.
@@ -25,6 +28,10 @@ struct OutlineKind {
 
 /// Every kind, in the page's order.
 const std::vector<OutlineKind>& outlineKinds();
+
+/// Every kind as /api/session sends it: name, label, and each parameter's name, min, max, value
+/// (its default), step and unit.
+nlohmann::json outlineKindsJson();
 
 /// The JSON points text of `kind` with `values` (missing ones: their defaults; each is clamped
 /// to its range, counts rounded). Empty when `kind` is unknown.

@@ -38,8 +38,8 @@ namespace {
 
 const std::vector<std::string> kOutlineExtensions = {".svg", ".json"};
 const std::vector<std::string> kCurveExtensions = {".obj", ".json"};
-const char* const kAssets[] = {"index.html", "studio.js", "studio.css",
-                               "view3d.js",  "pieces.js", "strip.js"};
+const char* const kAssets[] = {"index.html", "studio.js", "studio.css",  "view3d.js",
+                               "pieces.js",  "strip.js",  "downloads.js"};
 
 // JSON answers. The charset parameter also keeps cpp-httplib from compressing them (it
 // compresses a bare "application/json" for a browser that accepts gzip or brotli): on loopback
@@ -396,16 +396,8 @@ void Studio::Impl::pageRoutes(httplib::Server& server) {
                });
   }
   server.Post("/api/session", [this](const httplib::Request&, httplib::Response& res) {
-    json kinds = json::array();
-    for (const studio::OutlineKind& k : studio::outlineKinds()) {
-      json parameters = json::array();
-      for (const studio::Parameter& p : k.parameters)
-        parameters.push_back(
-            {{"name", p.name}, {"min", p.min}, {"max", p.max}, {"value", p.value}});
-      kinds.push_back({{"name", k.name}, {"label", k.label}, {"parameters", parameters}});
-    }
     json out = {{"session", newSession()},
-                {"kinds", kinds},
+                {"kinds", studio::outlineKindsJson()},
                 {"settings",
                  {{"forward", json::parse(settingsJson(startForward))},
                   {"inverse", json::parse(settingsJson(startInverse))}}},
@@ -526,10 +518,13 @@ void Studio::Impl::solveRoutes(httplib::Server& server) {
   });
   api(server, "/api/export", [jobFiles](const json& body, Session& s, httplib::Response& res) {
     // Left to run, an export abandoned by its client would hold its memory for its whole run.
-    Result<std::string> zip =
+    Result<studio::ExportedZip> zip =
         studio::exportedResult(jobFiles(body, s), studio::Server::clientGone().get());
     if (!zip.isOk()) throw RequestError(zip.status().message());
-    sendZip(res, zip.value(), "dform-export.zip");
+    // What the zip lacks, said by the page before the zip is saved (a header: percent-encoded).
+    if (!zip.value().missing.empty())
+      res.set_header("X-Dform-Missing", studio::percentEncoded(zip.value().missing));
+    sendZip(res, zip.value().zip, "dform-export.zip");
   });
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <map>
 #include <vector>
 
 #include "dform/pipeline/report.h"
@@ -27,6 +28,22 @@ std::string base64(const void* data, std::size_t size) {
     out += alphabet[(n >> 12) & 63];
     out += i + 1 < size ? alphabet[(n >> 6) & 63] : '=';
     out += i + 2 < size ? alphabet[n & 63] : '=';
+  }
+  return out;
+}
+
+std::string percentEncoded(const std::string& text) {
+  static const char hex[] = "0123456789ABCDEF";
+  std::string out;
+  for (const unsigned char c : text) {
+    if ((c >= '0' && c <= '9') || (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == '-' ||
+        c == '.' || c == '_' || c == '~') {
+      out += char(c);
+    } else {
+      out += '%';
+      out += hex[c >> 4];
+      out += hex[c & 15];
+    }
   }
   return out;
 }
@@ -155,6 +172,23 @@ std::vector<std::string> warnings(const std::vector<Message>& messages) {
   for (const Message& m : messages)
     if (m.level == Level::Warning) out.push_back(plainSettings(m.text));
   return out;
+}
+
+std::string studioWords(const Status& status) {
+  static const std::map<std::string, std::string> labels = {
+      {settingKey(Setting::Flip), "flip B"},
+      {settingKey(Setting::FitPerimeter), "match perimeters"},
+      {settingKey(Setting::StartA), "A start"},
+      {settingKey(Setting::StartB), "B start"},
+      {settingKey(Setting::Profile), "profile"},
+      {settingKey(Setting::Page), "page"},
+      {settingKey(Setting::Sheet), "sheet"},
+      {settingKey(Setting::Scale), "scale"},
+      {settingKey(Setting::ExportAnyway), "export even if the gate fails"}};
+  return status.message([](const std::string& key) {
+    const auto label = labels.find(key);
+    return "\"" + (label != labels.end() ? label->second : key) + "\"";
+  });
 }
 
 json exportPlaceholders() {

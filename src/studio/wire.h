@@ -22,6 +22,10 @@ struct RequestError : std::runtime_error {
 /// Base64 (RFC 4648, with padding) of `size` bytes.
 std::string base64(const void* data, std::size_t size);
 
+/// `text` percent-encoded (RFC 3986: every byte but letters, digits and -._~), for a header the
+/// page reads with decodeURIComponent.
+std::string percentEncoded(const std::string& text);
+
 /// The finest seam a live solve takes: a request for more is refused (a job file may ask for
 /// more, and the command line runs it).
 constexpr int kMaxLiveResolution = 1000;
@@ -45,6 +49,11 @@ nlohmann::json inverseResultJson(const InverseRun& run);
 /// The warnings among `messages`, each setting they mention named by its key (the page's field
 /// names are the keys).
 std::vector<std::string> warnings(const std::vector<Message>& messages);
+
+/// `status`'s message with each setting it mentions named as the page labels its control, in
+/// quotes ("sheet", "match perimeters", "export even if the gate fails"); a setting the page has
+/// no control for by its job-file key, as the saved job names it.
+std::string studioWords(const Status& status);
 
 /// The export dialog's fields when empty, as the settings table says: a page's and a sheet's
 /// (what an unset one is) and the scale's (its default and range), keyed "page", "sheet", "scale".

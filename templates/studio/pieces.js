@@ -109,6 +109,19 @@ PieceView.prototype.setSolvedPiece = function (piece) {
 
 PieceView.prototype.setFraction = function (f) { this.fraction = f; this.renderHandle(); };
 
+// No result for the outline (the design's solve failed): the outline as read, nothing solved on it.
+PieceView.prototype.clearResult = function () {
+  if (!this.result || this.fixed) return;
+  this.result = null;
+  this.render();
+};
+
+// Nothing to show (the inverse mode before its curve's pieces).
+PieceView.prototype.clear = function () {
+  this.shape = null; this.loop = null; this.result = null; this.handle = null;
+  this.render();
+};
+
 // A result over the outline as read: the way its seam runs (ticks), its found creases and the
 // seam point that breaks convexity, its flat piece placed by `place` ({scale, offset}).
 // A new result redraws only what depends on it (the ticks' direction, the found creases and the
@@ -181,8 +194,12 @@ PieceView.prototype.renderHandle = function () {
   var p = this.loop.at(this.fraction);
   this.handle.setAttribute("cx", p[0]);
   this.handle.setAttribute("cy", -p[1]);
-  this.handleLabel.setAttribute("x", p[0] + 10 * this.unit);
-  this.handleLabel.setAttribute("y", -p[1] - 10 * this.unit);
+  // The label on the side of the handle away from the nearer edges, so that the panel does not
+  // clip it: left of a handle in the right half, below one in the top half.
+  var box = this.svg.viewBox.baseVal, right = p[0] > box.x + box.width / 2, top = -p[1] < box.y + box.height / 2;
+  this.handleLabel.setAttribute("x", p[0] + (right ? -10 : 10) * this.unit);
+  this.handleLabel.setAttribute("y", -p[1] + (top ? 18 : -10) * this.unit);
+  this.handleLabel.setAttribute("text-anchor", right ? "end" : "start");
   this.handleLabel.textContent = this.label + " start " + this.fraction.toFixed(3);
   while (this.ticks.firstChild) this.ticks.removeChild(this.ticks.firstChild);
   this.renderTicks();

@@ -26,8 +26,13 @@ function shapeFigures(pieces) {
   return { height: zMax - zMin, volume: Math.abs(volume) };
 }
 
-function Strip(container, thumbnailCanvas, onPick) {
+// `status` says how far the run is: the cards are provisional (a group may grow, a card may
+// join one) until every start is in.
+function Strip(container, thumbnailCanvas, onPick, status) {
   this.container = container;
+  this.status = status;
+  this.total = 0;
+  this.received = 0;
   this.view = null;
   this.canvas = thumbnailCanvas;
   this.onPick = onPick;
@@ -35,17 +40,26 @@ function Strip(container, thumbnailCanvas, onPick) {
   this.seq = -1;
 }
 
-Strip.prototype.reset = function (seq) {
+Strip.prototype.reset = function (seq, total) {
   this.seq = seq;
   this.cards = [];
+  this.total = total;
+  this.received = 0;
   this.container.innerHTML = "";
-  this.container.setAttribute("data-state", "computing");
+  this.setState("computing");
+};
+
+Strip.prototype.setState = function (state) {
+  this.container.setAttribute("data-state", state);
+  this.status.textContent = state === "computing" ? "solving starts: " + this.received + " of " + this.total + "…"
+    : state === "scheduled" ? "waiting for the design to settle…"
+    : this.received + " starts, " + this.cards.length + " shapes";
 };
 
 // A new run is due: the running one's late cards and its end are no longer this strip's.
 Strip.prototype.cancel = function () {
   this.seq = -1;
-  this.container.setAttribute("data-state", "scheduled");
+  this.setState("scheduled");
 };
 
 Strip.prototype.same = function (a, b) {
@@ -56,6 +70,7 @@ Strip.prototype.same = function (a, b) {
 Strip.prototype.add = function (event) {
   if (event.seq !== this.seq) return;
   var card = { start_b: event.start_b, flip: event.flip, error: event.error };
+  this.received += 1;
   if (event.result) {
     var pieces = event.result.pieces.map(function (p) {
       return { shape: decodeF64(p.shape), faces: decodeU32(p.faces), seam: p.seam, creases: p.creases };
@@ -70,15 +85,18 @@ Strip.prototype.add = function (event) {
   }
   for (var i = 0; i < this.cards.length; ++i) {
     var other = this.cards[i];
-    if (!card.error && !other.error && this.same(card, other)) { other.also.push(card); this.render(); return; }
+    if (!card.error && !other.error && this.same(card, other)) { other.also.push(card); this.render(); this.setState("computing"); return; }
   }
   card.also = [];
   this.cards.push(card);
   this.render();
+  this.setState("computing");
 };
 
 Strip.prototype.done = function (event) {
-  if (event.seq === this.seq) this.container.setAttribute("data-state", "done");
+  if (event.seq !== this.seq) return;
+  this.setState("done");
+  this.render();
 };
 
 function startName(card) { return card.start_b.toFixed(3) + (card.flip ? " flipped" : ""); }
@@ -93,7 +111,8 @@ Strip.prototype.render = function () {
     el.setAttribute("data-flip", card.flip);
     if (card.picture) { var img = document.createElement("img"); img.src = card.picture; img.alt = startName(card); el.appendChild(img); }
     var text = document.createElement("span");
-    text.textContent = "B " + startName(card) + (card.also.length ? "  ×" + (card.also.length + 1) : "") +
+    var final = self.container.getAttribute("data-state") === "done";
+    text.textContent = "B " + startName(card) + (card.also.length ? "  ×" + (card.also.length + 1) + (final ? "" : " so far") : "") +
       (card.error ? " — " + card.error : "  h " + card.height.toFixed(0) + " mm");
     el.title = (card.also.length ? "the same shape from B " + card.also.map(startName).join(", ") + "\n" : "") +
       (card.error || ("height " + card.height.toFixed(1) + " mm, volume " + (card.volume / 1000).toFixed(0) + " cm³, " + card.model));

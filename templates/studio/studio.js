@@ -21,6 +21,14 @@
   // Where each seam starts as the last shape solved it: a start given as the outline point
   // nearest a point (a job file's "near") is drawn there until it is dragged.
   var resolvedStarts = [0, 0];
+  // B's resolved start where B is turned over is a fraction of its mirrored outline, whose points
+  // run the other way round: the same point's fraction on the outline as read (and as drawn).
+  function asRead(f, flipped) {
+    var loop = views[1].loop;
+    if (!flipped || !loop) return f;
+    var g = (loop.cumulative[loop.n - 1] / loop.length - f) % 1;
+    return g < 0 ? g + 1 : g;
+  }
   function startFraction(i) {
     var f = settings()[i ? "start_b" : "start_a"];
     return typeof f === "number" ? f : resolvedStarts[i];
@@ -30,7 +38,11 @@
     return fetch(path, { method: "POST", headers: { "Content-Type": "application/json", "X-Dform-Token": TOKEN },
                          body: JSON.stringify(Object.assign({ session: session }, body)) })
       .then(function (res) {
-        if (binary && res.ok) return res.blob();
+        if (binary && res.ok) return res.blob().then(function (b) {
+          var missing = res.headers.get("X-Dform-Missing");
+          b.missing = missing ? decodeURIComponent(missing) : "";
+          return b;
+        });
         var headers = performance.now();
         return res.json().then(function (j) {
           if (!res.ok) throw new Error(j.error || res.statusText);
@@ -42,22 +54,42 @@
 
   // ---- undo / redo: snapshots of the state, outlines included -----------------------------------
   function snapshot() { return JSON.stringify(state); }
-  function remember() { history.push(snapshot()); if (history.length > 200) history.shift(); future = []; updateUndo(); }
+  function remember() { history.push(snapshot()); if (history.length > 200) history.shift(); future = []; updateUndo(); clearNotices(); }
+  // A refused file leaves the design as it was: its message stands until the design next changes.
+  function clearNotices() { ["error-a", "error-b", "curve-error"].forEach(function (id) { $(id).textContent = ""; }); }
   function updateUndo() { $("undo").disabled = !history.length; $("redo").disabled = !future.length; }
   function restore(text) {
     var old = state;
     state = JSON.parse(text);
+    if (old.mode !== state.mode) { clearNotices(); enterMode(); return Promise.resolve(); }
     var loads = [0, 1].map(function (i) {
       return JSON.stringify(old.pieces[i]) === JSON.stringify(state.pieces[i]) ? null : loadPiece(i, state.pieces[i], false);
     });
-    return Promise.all(loads).then(function () { syncControls(); refreshPieces(); solve(); scheduleStrip(); });
+    clearNotices();
+    return Promise.all(loads).then(function () {
+      [0, 1].forEach(function (i) { sliders(i); }); syncControls(); refreshPieces(); solve(); scheduleStrip();
+    });
   }
   $("undo").onclick = function () { if (history.length) { future.push(snapshot()); restore(history.pop()); updateUndo(); } };
   $("redo").onclick = function () { if (future.length) { history.push(snapshot()); restore(future.pop()); updateUndo(); } };
+  // A box one types in (text, number) undoes its own typing; a slider, a checkbox or the page
+  // undoes the design.
+  function typing(target) {
+    return target.isContentEditable || target.tagName === "TEXTAREA" ||
+      (target.tagName === "INPUT" && ["range", "checkbox", "radio", "button", "file"].indexOf(target.type) < 0);
+  }
   document.addEventListener("keydown", function (e) {
-    if ((e.ctrlKey || e.metaKey) && e.key === "z") { e.preventDefault(); (e.shiftKey ? $("redo") : $("undo")).click(); }
-    if ((e.ctrlKey || e.metaKey) && e.key === "y") { e.preventDefault(); $("redo").click(); }
+    var key = (e.key || "").toLowerCase();
+    if ((e.ctrlKey || e.metaKey) && (key === "z" || key === "y") && !typing(e.target)) {
+      e.preventDefault();
+      (key === "y" || e.shiftKey ? $("redo") : $("undo")).click();
+    }
+    if (e.key === "?" && !typing(e.target) && !e.ctrlKey && !e.metaKey) {
+      e.preventDefault();
+      if ($("help").open) $("help").close(); else $("help").showModal();
+    }
   });
+  $("help-open").onclick = function () { $("help").showModal(); };
 
   // ---- outlines ---------------------------------------------------------------------------------
   function loadPiece(i, source, record) {
@@ -78,27 +110,52 @@
     });
   }
 
+  // A number box's keys: up and down nudge by its step, with Shift by ten steps (`apply` takes the
+  // new value); Enter applies what was typed.
+  function nudging(input, step, apply) {
+    input.addEventListener("keydown", function (e) {
+      if (e.key !== "ArrowUp" && e.key !== "ArrowDown") return;
+      e.preventDefault();
+      apply(+input.value + (e.key === "ArrowUp" ? 1 : -1) * (e.shiftKey ? 10 : 1) * step());
+    });
+    input.addEventListener("change", function () { if (input.value !== "") apply(+input.value); });
+  }
+
+  // Each parameter of a built-in outline: a slider and a number box beside it, with its unit. A
+  // count moves in whole steps (odd counts, Reuleaux sides, in steps of two).
   function sliders(i) {
     var box = $("sliders-" + "ab"[i]), source = state.pieces[i];
     box.innerHTML = "";
     if (!source || source.kind == null) return;
     var kind = kinds.filter(function (k) { return k.name === source.kind; })[0];
     kind.parameters.forEach(function (p) {
-      var label = document.createElement("label"), input = document.createElement("input"), out = document.createElement("output");
+      var label = document.createElement("label"), input = document.createElement("input"), field = document.createElement("input");
+      var unit = document.createElement("span");
       label.textContent = p.name + " ";
-      input.type = "range"; input.min = p.min; input.max = p.max;
-      input.step = p.max - p.min > 20 ? 1 : (p.max - p.min) / 200;
-      input.value = source.values[p.name] != null ? source.values[p.name] : p.value;
-      out.textContent = (+input.value).toFixed(2).replace(/\.?0+$/, "");
-      input.oninput = function () {
-        out.textContent = (+input.value).toFixed(2).replace(/\.?0+$/, "");
-        var values = Object.assign({}, state.pieces[i].values); values[p.name] = +input.value;
+      unit.className = "unit"; unit.textContent = p.unit;
+      var step = p.step || (p.max - p.min > 20 ? 1 : (p.max - p.min) / 200);
+      // A value in range, on the slider's steps from min (a count's whole steps).
+      var snap = function (x) {
+        x = Math.max(p.min, Math.min(p.max, x));
+        return p.step ? p.min + Math.round((x - p.min) / p.step) * p.step : +x.toFixed(6);
+      };
+      input.type = "range"; input.min = p.min; input.max = p.max; input.step = step;
+      field.type = "number"; field.min = p.min; field.max = p.max; field.step = step;
+      field.id = "value-" + "ab"[i] + "-" + p.name;
+      input.value = field.value = snap(source.values[p.name] != null ? source.values[p.name] : p.value);
+      var set = function (x) {
+        x = snap(x);
+        input.value = field.value = x;
+        var values = Object.assign({}, state.pieces[i].values); values[p.name] = x;
         loadPiece(i, { name: source.kind, kind: source.kind, values: values }, false)
           .then(function () { refreshPieces(); solve(); }).catch(function () {});
       };
+      input.oninput = function () { set(+input.value); };
       input.onchange = function () { scheduleStrip(); };
       input.onpointerdown = function () { remember(); };
-      label.appendChild(input); label.appendChild(out); box.appendChild(label);
+      input.addEventListener("keydown", function (e) { if (e.key.indexOf("Arrow") === 0) remember(); });
+      nudging(field, function () { return step; }, function (x) { remember(); set(x); scheduleStrip(); });
+      label.appendChild(input); label.appendChild(field); label.appendChild(unit); box.appendChild(label);
     });
   }
 
@@ -137,20 +194,37 @@
   });
 
   // ---- the pieces and the live drag -------------------------------------------------------------
-  var pending = null, inFlight = false, nextSeq = 1, shownSeq = 0, inputTime = {};
+  var pending = null, inFlight = false, nextSeq = 1, shownSeq = 0, inputTime = {}, askedSettings = {};
   studio.idle = function () { return pending == null && !inFlight; };
   var views = [0, 1].map(function (i) {
     return new PieceView($("svg-" + "ab"[i]), "AB"[i], function (f, e) {
       settings()[i ? "start_b" : "start_a"] = f;
+      showStartField(i);
       solve(e.timeStamp);
     }, function () { scheduleStrip(); });
   });
   studio.views = views;
+  // Each start as a length (mm) along its boundary from the outline's first point, the way the
+  // handle's fraction runs: typed, or nudged by 1 mm (Shift: 10 mm).
+  function showStartField(i) {
+    var loop = views[i].loop;
+    if (loop && document.activeElement !== $("start-mm-" + "ab"[i])) $("start-mm-" + "ab"[i]).value = (startFraction(i) * loop.length).toFixed(1);
+  }
+  [0, 1].forEach(function (i) {
+    nudging($("start-mm-" + "ab"[i]), function () { return 1; }, function (mm) {
+      var loop = views[i].loop;
+      if (!loop || !isFinite(mm)) return;
+      var f = ((mm / loop.length) % 1 + 1) % 1;
+      studio.setStart(i, f);
+      $("start-mm-" + "ab"[i]).value = (f * loop.length).toFixed(1);
+    });
+  });
   // A start set as a drag ending there sets it (scripts and tests).
   studio.setStart = function (i, f) {
     remember();
     settings()[i ? "start_b" : "start_a"] = f;
     views[i].setFraction(f);
+    showStartField(i);
     solve(); scheduleStrip();
   };
   [0, 1].forEach(function (i) { $("svg-" + "ab"[i]).addEventListener("pointerdown", function (e) {
@@ -163,6 +237,7 @@
       if (!summaries[i]) return;
       views[i].setShape(summaries[i], joinOf(i));
       views[i].setFraction(startFraction(i));
+      showStartField(i);
     });
     $("fit-note").textContent = summaries[0] && summaries[1]
       ? "A " + summaries[0].perimeter.toFixed(1) + " mm, B " + summaries[1].perimeter.toFixed(1) + " mm" : "";
@@ -180,13 +255,31 @@
     var seq = pending; pending = null; inFlight = true;
     var path = state.mode === "inverse" ? "/api/inverse" : "/api/solve";
     var body = Object.assign({ seq: seq, mode: state.mode }, settings());
+    askedSettings[seq] = Object.assign({}, settings());
     var sent = performance.now();
     api(path, body).then(function (r) {
       if (r.arrival) r.arrival.sent = sent;
       inFlight = false;
       if (!r.superseded) show(r);
       send();
-    }).catch(function (e) { inFlight = false; showError(e.message); send(); });
+    }).catch(function (e) { inFlight = false; solveFailed(seq, e.message); send(); });
+  }
+
+  // No shape for the design on screen: the last one's shape, model, figures and verdict go with
+  // it, so that nothing shown belongs to another design. The error says why.
+  function clearShape() {
+    studio.shown = null;
+    view3d.setModel([]);
+    views.forEach(function (v) { v.clearResult(); });
+    ["model", "reason", "warnings", "checks", "figures"].forEach(function (id) { $(id).textContent = ""; });
+    $("status").className = "status";
+  }
+  function solveFailed(seq, text) {
+    if (seq < shownSeq) return;
+    shownSeq = seq;
+    clearShape();
+    showError(text);
+    studio.frameSeq = seq;
   }
 
   function showError(text) {
@@ -211,9 +304,11 @@
   }
 
   function show(r) {
-    if (r.seq < shownSeq) return;
-    if (r.error) { showError(r.error); return; }
+    if (r.seq < shownSeq || (r.mode && r.mode !== state.mode)) return;
+    if (r.error) { solveFailed(r.seq, r.error); return; }
     shownSeq = r.seq;
+    var asked = askedSettings[r.seq] || Object.assign({}, settings());
+    Object.keys(askedSettings).forEach(function (k) { if (+k < r.seq) delete askedSettings[k]; });
     var pieces = decodePieces(r);
     var extra = [];
     if (r.target) extra.push({ points: decodeF64(r.target), colour: [0.1, 0.5, 0.2], loop: true });
@@ -224,17 +319,21 @@
       $("name-" + "ab"[i]).textContent = "piece " + "AB"[i] + " as cut, unfolded from the curve";
     });
     if (state.mode === "forward") {
-      resolvedStarts = [r.start_a, r.start_b];
+      resolvedStarts = [r.start_a, asRead(r.start_b, asked.flip)];
+      r.startsAsRead = [0, 1].map(function (i) {
+        var f = asked[i ? "start_b" : "start_a"];
+        return typeof f === "number" ? f : resolvedStarts[i];
+      });
       [0, 1].forEach(function (i) {
         views[i].setFraction(startFraction(i));
-        views[i].setResult(pieces[i], i === 0 || settings().flip ? 1 : -1, brk ? +brk[1] : null,
+        views[i].setResult(pieces[i], i === 0 || asked.flip ? 1 : -1, brk ? +brk[1] : null,
                            placement(pieces[i], summaries[i]));
       });
     }
     facts(r);
     var time = inputTime[r.seq];
     delete inputTime[r.seq];
-    studio.shown = { seq: r.seq, result: r, pieces: pieces, settings: Object.assign({}, settings()) };
+    studio.shown = { seq: r.seq, result: r, pieces: pieces, settings: asked };
     var drawn = performance.now();
     requestAnimationFrame(function () {
       if (time != null && !r.preview) {
@@ -285,7 +384,7 @@
       ["B_error", number(f.B_error)], ["seam gap", number(f.seam_gap_mm) + " mm"],
       ["angle defect max", number(f.angle_defect_max_rad) + " rad"], ["3D seam", number(f.seam_length_3d_mm, 5) + " mm"],
     ];
-    if (r.scale_b != null) rows.push(["B scaled by", number(r.scale_b, 6)], ["starts", "A " + r.start_a.toFixed(4) + ", B " + r.start_b.toFixed(4)]);
+    if (r.startsAsRead) rows.push(["B scaled by", number(r.scale_b, 6)], ["starts", "A " + r.startsAsRead[0].toFixed(4) + ", B " + r.startsAsRead[1].toFixed(4)]);
     if (r.curve_match) rows.push(["D_error", number(r.curve_match.D_error)], ["round trip max", number(r.curve_match.roundtrip_max_rel)],
                                  ["on hull", r.on_hull.on_hull ? "yes" : "no: " + r.on_hull.summary]);
     rows.push(["solve", (1000 * r.timings.total).toFixed(0) + " ms"]);
@@ -334,30 +433,43 @@
     remember();
     settings().start_b = card.start_b; settings().flip = card.flip;
     syncControls(); refreshPieces(); solve();
-  });
+  }, $("strip-status"));
   studio.strip = strip;
-  var stripTimer = null, stripSeq = 0;
+  var stripTimer = null, stripSeq = 0, STRIP_STARTS = 16;
   function scheduleStrip() {
     if (state.mode !== "forward") return;
     clearTimeout(stripTimer);
     strip.cancel();
     stripTimer = setTimeout(function () {
       var seq = ++stripSeq;
-      strip.reset(seq);
-      api("/api/strip", Object.assign({ seq: seq, starts: 16, both_flips: true }, settings())).catch(function (e) { showError(e.message); });
+      strip.reset(seq, 2 * STRIP_STARTS);
+      api("/api/strip", Object.assign({ seq: seq, starts: STRIP_STARTS, both_flips: true }, settings())).catch(function (e) { showError(e.message); });
     }, 300);
   }
 
   // ---- inverse ----------------------------------------------------------------------------------
-  function setMode(mode) {
-    remember(); state.mode = mode; syncControls();
-    if (mode === "forward") {
+  // The page as the mode has it: nothing of the other mode's design stays on screen (its shape,
+  // pieces, figures, sliders, strip) until this mode's answer comes.
+  function enterMode() {
+    syncControls();
+    clearShape();
+    if (state.mode === "forward") {
       [0, 1].forEach(function (i) {
         $("name-" + "ab"[i]).textContent = summaries[i].name + " — perimeter " + summaries[i].perimeter.toFixed(1) + " mm";
       });
+      $("status").textContent = "solving…";
       refreshPieces(); scheduleStrip();
+    } else {
+      clearTimeout(stripTimer); strip.cancel();
+      views.forEach(function (v) { v.clear(); });
+      [0, 1].forEach(function (i) { $("name-" + "ab"[i]).textContent = state.curve ? "" : "piece " + "AB"[i] + ": open a seam curve below"; });
+      $("status").textContent = state.curve ? "solving…" : "open or drop a closed 3D seam curve";
     }
-    if (mode === "forward" || state.curve) solve();
+    if (state.mode === "forward" || state.curve) solve();
+  }
+  function setMode(mode) {
+    if (mode === state.mode) return;
+    remember(); state.mode = mode; enterMode();
   }
   $("mode-forward").onclick = function () { setMode("forward"); };
   $("mode-inverse").onclick = function () { setMode("inverse"); };
@@ -378,48 +490,21 @@
   $("curve-drop").addEventListener("drop", function (e) { e.preventDefault(); if (e.dataTransfer.files[0]) readCurve(e.dataTransfer.files[0]); });
 
   // ---- downloads --------------------------------------------------------------------------------
-  function download(blob, name) {
-    var a = document.createElement("a");
-    a.href = URL.createObjectURL(blob); a.download = name;
-    document.body.appendChild(a); a.click(); a.remove();
-    setTimeout(function () { URL.revokeObjectURL(a.href); }, 10000);
-  }
-  function jobBody() { return Object.assign({ mode: state.mode }, settings()); }
-  // The export dialog shows and sets the export settings of the current mode; an empty field is
-  // a setting not given (the profile's, or the export's default, which its placeholder shows).
-  var exportFields = ["profile", "page", "sheet", "scale"];
-  function fillExportDialog() {
-    var e = settings().export || {};
-    exportFields.forEach(function (k) { $(k).value = e[k] != null ? e[k] : (k === "profile" ? "laser" : ""); });
-    $("export-anyway").checked = !!e.export_anyway;
-  }
-  function readExportDialog() {
-    var e = Object.assign({}, settings().export || {});
-    exportFields.forEach(function (k) { e[k] = $(k).value === "" ? null : $(k).value; });
-    e.export_anyway = $("export-anyway").checked;
-    settings().export = e;
-  }
-  $("save-job").onclick = function () {
-    api("/api/job", jobBody(), true).then(function (b) { studio.lastDownload = b; download(b, "dform-job.zip"); })
-      .catch(function (e) { showError(e.message); });
-  };
-  $("export").onclick = function () { fillExportDialog(); $("export-dialog").showModal(); };
-  $("export-cancel").onclick = function () { $("export-dialog").close(); };
-  $("export-go").onclick = function (e) {
-    e.preventDefault();
-    $("export-state").textContent = "exporting…";
-    remember();
-    readExportDialog();
-    api("/api/export", jobBody(), true).then(function (b) {
-      studio.lastDownload = b; $("export-state").textContent = ""; $("export-dialog").close(); download(b, "dform-export.zip");
-    }).catch(function (err) { $("export-state").textContent = err.message; });
-  };
+  new Downloads({ api: api, settings: settings, remember: remember, showError: showError, studio: studio,
+                  body: function () { return Object.assign({ mode: state.mode }, settings()); } });
 
   // ---- start ------------------------------------------------------------------------------------
   var view3d = studio.view3d = new View3D($("view3d"));
   window.addEventListener("resize", function () { view3d.draw(); });
+  // The scale bar: a round length in mm and its width on screen at the view's scale.
+  view3d.onScale(function (scale) {
+    $("scale-bar-line").style.width = (scale.barMm * scale.pixelsPerMm).toFixed(1) + "px";
+    $("scale-bar-text").textContent = scale.barMm + " mm";
+  });
+  $("reset-view").onclick = function () { view3d.resetView(); };
+  $("fixed-scale").onchange = function () { view3d.setFixedScale($("fixed-scale").checked); };
   api("/api/session", {}).then(function (s) {
-    session = s.session; kinds = s.kinds; studio.session = session; studio.previewResolution = s.preview_resolution;
+    session = s.session; kinds = studio.kinds = s.kinds; studio.session = session; studio.previewResolution = s.preview_resolution;
     state.byMode = s.settings;
     state.mode = s.mode;
     Object.keys(s.placeholders).forEach(function (k) { $(k).placeholder = s.placeholders[k]; });

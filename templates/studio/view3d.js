@@ -48,7 +48,11 @@ function View3D(canvas) {
   ["turn", "centre", "scale", "colour", "lit"].forEach(function (n) { loc[n] = gl.getUniformLocation(program, n); });
 
   var COLOURS = [[0.93, 0.62, 0.27], [0.36, 0.6, 0.85]];
-  var camera = { azimuth: 30, elevation: 25, zoom: 1 };
+  var HOME = { azimuth: 30, elevation: 25, zoom: 1 };
+  var camera = Object.assign({}, HOME);
+  // Fixed scale: the fit (centre, radius, ground) kept from the shape on screen when it was
+  // turned on, so that a change of size shows; a ground grid and the scale bar give the size.
+  var fixed = false, ground = 0, grid = { count: 0 }, onScale = null, bounds = null;
   var parts = [];   // per piece: buffers and counts
   var lines = [];   // seam and creases: {buffer, count, colour, loop}
   var centre = [0, 0, 0], radius = 1;
@@ -98,12 +102,58 @@ function View3D(canvas) {
       line.count = w.index.length; line.colour = w.colour; line.loop = w.loop;
     });
     lines.length = wanted.length;
-    if (isFinite(lo[0])) {
-      centre = [0, 1, 2].map(function (k) { return (lo[k] + hi[k]) / 2; });
-      radius = 0.5 * Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) || 1;
-    }
+    if (isFinite(lo[0])) bounds = { lo: lo, hi: hi };
+    if (!fixed) refit();
     this.draw();
   };
+
+  // The view fitted to the shape on screen: its centre, radius and lowest point.
+  function refit() {
+    if (!bounds) return;
+    var lo = bounds.lo, hi = bounds.hi;
+    centre = [0, 1, 2].map(function (k) { return (lo[k] + hi[k]) / 2; });
+    radius = 0.5 * Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) || 1;
+    ground = lo[2];
+  }
+
+  // Lines every `step` mm (the scale bar's length, or a fifth of it) on the plane z = ground,
+  // a square of about three radii round the centre.
+  function makeGrid() {
+    var step = niceLength(radius / 3), half = Math.ceil(1.5 * radius / step) * step, out = [];
+    var cx = Math.round(centre[0] / step) * step, cy = Math.round(centre[1] / step) * step;
+    for (var d = -half; d <= half + 1e-9; d += step) {
+      out.push(cx + d, cy - half, ground, cx + d, cy + half, ground, cx - half, cy + d, ground, cx + half, cy + d, ground);
+    }
+    fill(grid, gl.ARRAY_BUFFER, new Float32Array(out));
+    grid.count = out.length / 3;
+    grid.step = step;
+  }
+
+  // The largest of 1, 2 and 5 times a power of ten that is at most `mm`.
+  function niceLength(mm) {
+    var p = Math.pow(10, Math.floor(Math.log10(mm))), best = p;
+    [2, 5, 10].forEach(function (k) { if (k * p <= mm) best = k * p; });
+    return best;
+  }
+
+  // Screen pixels (CSS) per millimetre of the model at the view's scale.
+  function pixelsPerMm() {
+    var w = canvas.clientWidth, h = canvas.clientHeight, s = camera.zoom * 0.9 / radius;
+    return w > h ? s * h / 2 : s * w / 2;
+  }
+
+  this.setFixedScale = function (on) {
+    fixed = on;
+    refit();
+    if (on) makeGrid();
+    this.draw();
+  };
+  this.resetView = function () { Object.assign(camera, HOME); this.draw(); };
+  // onScale({pixelsPerMm, barMm}) after each frame: for the scale bar.
+  this.onScale = function (f) { onScale = f; };
+  this.pixelsPerMm = pixelsPerMm;
+  this.gridLines = function () { return fixed ? grid.count / 2 : 0; };
+  this.fixedScale = function () { return fixed; };
 
   function turnMatrix() {
     var a = camera.azimuth * Math.PI / 180, e = camera.elevation * Math.PI / 180;
@@ -139,12 +189,22 @@ function View3D(canvas) {
     });
     gl.disable(gl.POLYGON_OFFSET_FILL);
     gl.uniform1f(loc.lit, 0);
+    if (fixed && grid.count) {
+      gl.uniform3fv(loc.colour, [0.78, 0.81, 0.85]);
+      gl.bindBuffer(gl.ARRAY_BUFFER, grid.buffer);
+      gl.vertexAttribPointer(loc.position, 3, gl.FLOAT, false, 0, 0);
+      gl.drawArrays(gl.LINES, 0, grid.count);
+    }
     lines.forEach(function (line) {
       gl.uniform3fv(loc.colour, line.colour);
       gl.bindBuffer(gl.ARRAY_BUFFER, line.buffer);
       gl.vertexAttribPointer(loc.position, 3, gl.FLOAT, false, 0, 0);
       gl.drawArrays(line.loop ? gl.LINE_LOOP : gl.LINE_STRIP, 0, line.count);
     });
+    if (onScale) {
+      var perMm = pixelsPerMm();
+      onScale({ pixelsPerMm: perMm, barMm: niceLength(120 / perMm) });
+    }
   };
 
   var self = this, drag = null;
@@ -163,4 +223,5 @@ function View3D(canvas) {
     self.draw();
   }, { passive: false });
   this.camera = camera;
+  this.partCount = function () { return parts.length; };
 }

@@ -18,14 +18,7 @@ import urllib.request
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import studio_browser  # noqa: E402
-
-failures = []
-
-
-def check(condition, message):
-    print(("ok   " if condition else "FAIL ") + message, flush=True)
-    if not condition:
-        failures.append(message)
+from studio_browser import check  # noqa: E402
 
 
 def http_status(url, headers):
@@ -69,9 +62,7 @@ def drag_handle(s, piece, steps):
 
 def main():
     dform, samples = sys.argv[1], sys.argv[2]
-    missing = studio_browser.chromium_missing()
-    if missing:
-        print("SKIP: " + missing)
+    if studio_browser.skipped():
         return studio_browser.SKIP
     a, b = os.path.join(samples, "forward", "ellipses-a.svg"), os.path.join(samples, "forward", "ellipses-b.svg")
     work = tempfile.mkdtemp(prefix="dform-studio-browser-")
@@ -197,8 +188,7 @@ def main():
         s.close()
     code = s.process.returncode
     check(code == 143, f"SIGTERM stops the studio with exit 143 (got {code})")
-    print(f"{len(failures)} failure(s)")
-    return 1 if failures else 0
+    return studio_browser.verdict()
 
 
 if __name__ == "__main__":

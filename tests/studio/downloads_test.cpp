@@ -7,6 +7,7 @@
 #include <atomic>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "dform/core/interrupt.h"
@@ -181,14 +182,89 @@ TEST_F(StudioDownloads, AnExportWhoseClientWentIsStopped) {
   job.fitPerimeter = true;
   const auto files = studio::forwardJobFiles(a, b, Job(job));
   std::atomic<bool> gone{true};
-  const Result<std::string> stopped = studio::exportedResult(files, &gone);
+  const Result<studio::ExportedZip> stopped = studio::exportedResult(files, &gone);
   EXPECT_EQ(stopped.status().code(), ErrorCode::Interrupted) << stopped.status().message();
   // The flag is this export's alone: the thread's next run is not stopped by it.
   EXPECT_FALSE(interruptRequested());
   std::atomic<bool> here{false};
-  const Result<std::string> zip = studio::exportedResult(files, &here);
+  const Result<studio::ExportedZip> zip = studio::exportedResult(files, &here);
   ASSERT_TRUE(zip.isOk()) << zip.status().message();
-  EXPECT_EQ(zip.value().substr(0, 2), "PK");
+  EXPECT_EQ(zip.value().zip.substr(0, 2), "PK");
+}
+
+// The ellipses' export with `settings` (a job file's keys) over a paper model solved at
+// resolution 40 with two iterations (exact_distance_rel fails the strict gate).
+Result<studio::ExportedZip> ellipsesExport(const std::string& settings) {
+  const studio::PieceInput a{
+      "a.json", studio::parametricOutline("ellipse", {{"a", 120}, {"b", 70}}), {}};
+  const studio::PieceInput b{
+      "b.json", studio::parametricOutline("ellipse", {{"a", 110}, {"b", 82.305579}}), {}};
+  Job job{ForwardJob()};
+  EXPECT_TRUE(readSettings(job, R"({"resolution": 40, "fit_perimeter": true, "model": "paper",
+                                    "solver": {"max_iterations": 2}})")
+                  .isOk());
+  const Status set = readSettings(job, settings);
+  EXPECT_TRUE(set.isOk()) << set.message();
+  return studio::exportedResult(studio::forwardJobFiles(a, b, job));
+}
+
+// What a zip holds, unzipped by an independent reader: file name -> content.
+std::map<std::string, std::string> unzipped(const std::string& zip, const fs::path& dir) {
+  unzip(zip, dir);
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::recursive_directory_iterator(dir))
+    if (entry.is_regular_file())
+      files[fs::relative(entry.path(), dir).generic_string()] = readAll(entry.path());
+  return files;
+}
+
+// An export that lacks its cutting files says so and what to do, in the page's words (its
+// fields' labels, no command-line flag); the files it holds name no folder of the server's.
+TEST_F(StudioDownloads, AnExportWithoutItsCuttingFilesSaysWhyAndWhatToDo) {
+  const Result<studio::ExportedZip> failed = ellipsesExport(R"({"gate": "strict"})");
+  ASSERT_TRUE(failed.isOk()) << failed.status().message();
+  const std::string& why = failed.value().missing;
+  EXPECT_NE(why.find("failed the quality gate 'strict' (exact_distance_rel"), std::string::npos)
+      << why;
+  EXPECT_NE(why.find("tick \"export even if the gate fails\""), std::string::npos) << why;
+  std::map<std::string, std::string> files = unzipped(failed.value().zip, dir / "failed");
+  EXPECT_TRUE(files.count("report.json"));
+  EXPECT_FALSE(files.count("pattern.svg"));
+  for (const auto& [name, content] : files)
+    EXPECT_EQ(content.find("dform-studio-"), std::string::npos)
+        << name << " names the server's folder";
+  EXPECT_NE(files["report.json"].find("\"path\": \"a.json\""), std::string::npos)
+      << "report.json names its inputs as the saved job does";
+
+  const Result<studio::ExportedZip> anyway =
+      ellipsesExport(R"({"gate": "strict", "export": {"export_anyway": true}})");
+  ASSERT_TRUE(anyway.isOk()) << anyway.status().message();
+  EXPECT_EQ(anyway.value().missing, "");
+  EXPECT_TRUE(unzipped(anyway.value().zip, dir / "anyway").count("pattern.svg"));
+
+  const Result<studio::ExportedZip> small =
+      ellipsesExport(R"({"export": {"profile": "laser", "sheet": "100x100mm"}})");
+  ASSERT_TRUE(small.isOk()) << small.status().message();
+  const std::string& tooSmall = small.value().missing;
+  EXPECT_NE(tooSmall.find("does not fit the sheet"), std::string::npos) << tooSmall;
+  EXPECT_NE(tooSmall.find("\"scale\" fit"), std::string::npos) << tooSmall;
+  EXPECT_NE(tooSmall.find("a larger \"sheet\""), std::string::npos) << tooSmall;
+  for (const char* shell : {"--", "dform export", "/tmp", "export.sheet"})
+    EXPECT_EQ(tooSmall.find(shell), std::string::npos) << shell << " in: " << tooSmall;
+  EXPECT_FALSE(unzipped(small.value().zip, dir / "small").count("pattern.svg"));
+}
+
+// An export that writes nothing answers the run's error, naming no folder of the server's.
+TEST_F(StudioDownloads, AnExportThatFailsNamesNoServerFolder) {
+  const studio::PieceInput a{"a.svg", "<svg xmlns='http://www.w3.org/2000/svg'/>", {}};
+  const studio::PieceInput b{
+      "b.json", studio::parametricOutline("ellipse", {{"a", 110}, {"b", 82}}), {}};
+  const Result<studio::ExportedZip> zip =
+      studio::exportedResult(studio::forwardJobFiles(a, b, Job(ForwardJob())));
+  ASSERT_FALSE(zip.isOk());
+  EXPECT_NE(zip.status().message().find("a.svg"), std::string::npos) << zip.status().message();
+  EXPECT_EQ(zip.status().message().find("dform-studio-"), std::string::npos)
+      << zip.status().message();
 }
 
 TEST(ScopedStop, StopsTheRunsOfItsThreadOnly) {

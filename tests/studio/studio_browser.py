@@ -18,6 +18,30 @@ import zipfile
 
 SKIP = 77
 
+failures = []
+
+
+def check(condition, message):
+    """One check of a browser test: printed, and remembered when it fails."""
+    print(("ok   " if condition else "FAIL ") + message, flush=True)
+    if not condition:
+        failures.append(message)
+
+
+def guarded(what, part, *args):
+    """Runs one part of a test; an exception (a timeout: what it waited for never came, an element
+    the page lacks) is that part's failure, and the next part runs."""
+    try:
+        part(*args)
+    except Exception as e:  # noqa: BLE001
+        check(False, f"{what}: {type(e).__name__}: {str(e).splitlines()[0] if str(e) else ''}")
+
+
+def verdict():
+    """The test's exit code after its checks: 1 when any failed."""
+    print(f"{len(failures)} failure(s)")
+    return 1 if failures else 0
+
 
 def chromium_missing():
     """Why headless Chromium cannot run here, or None."""
@@ -29,6 +53,14 @@ def chromium_missing():
     except ImportError:
         return "python3-selenium is not installed"
     return None
+
+
+def skipped():
+    """True, with the reason printed, when headless Chromium cannot run here."""
+    missing = chromium_missing()
+    if missing:
+        print("SKIP: " + missing)
+    return missing is not None
 
 
 class Studio:

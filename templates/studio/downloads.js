@@ -1,0 +1,58 @@
+// dform studio's downloads: Save job (dform-job.zip) and the Export dialog (dform-export.zip). An
+// export whose zip lacks the cutting files it asked for keeps the dialog open with the server's
+// reason (X-Dform-Missing) and offers that zip as what it is.
+// page: {api, settings() (the mode's settings, changed in place), body() (a request's), remember
+// (an undo step), showError, studio (window.studio: lastDownload for tests)}.
+"use strict";
+
+function Downloads(page) {
+  var $ = function (id) { return document.getElementById(id); };
+  function download(blob, name) {
+    var a = document.createElement("a");
+    a.href = URL.createObjectURL(blob); a.download = name;
+    document.body.appendChild(a); a.click(); a.remove();
+    setTimeout(function () { URL.revokeObjectURL(a.href); }, 10000);
+  }
+  // The export dialog shows and sets the export settings of the current mode; an empty field is
+  // a setting not given (the profile's, or the export's default, which its placeholder shows).
+  var exportFields = ["profile", "page", "sheet", "scale"];
+  function fillExportDialog() {
+    var e = page.settings().export || {};
+    exportFields.forEach(function (k) { $(k).value = e[k] != null ? e[k] : (k === "profile" ? "laser" : ""); });
+    $("export-anyway").checked = !!e.export_anyway;
+  }
+  function readExportDialog() {
+    var e = Object.assign({}, page.settings().export || {});
+    exportFields.forEach(function (k) { e[k] = $(k).value === "" ? null : $(k).value; });
+    e.export_anyway = $("export-anyway").checked;
+    page.settings().export = e;
+  }
+  $("save-job").onclick = function () {
+    page.api("/api/job", page.body(), true).then(function (b) { page.studio.lastDownload = b; download(b, "dform-job.zip"); })
+      .catch(function (e) { page.showError(e.message); });
+  };
+  $("export").onclick = function () {
+    fillExportDialog(); $("export-state").textContent = ""; $("export-partial").hidden = true; $("export-dialog").showModal();
+  };
+  $("export-cancel").onclick = function () { $("export-dialog").close(); };
+  $("export-go").onclick = function (e) {
+    e.preventDefault();
+    $("export-state").textContent = "exporting…";
+    page.remember();
+    readExportDialog();
+    $("export-partial").hidden = true;
+    page.api("/api/export", page.body(), true).then(function (b) {
+      // A zip without the cutting files asked for is not handed over silently: the dialog stays,
+      // says why and what to do, and offers that zip as what it is.
+      if (b.missing) {
+        $("export-state").textContent = b.missing;
+        $("export-partial").hidden = false;
+        $("export-partial").onclick = function () {
+          page.studio.lastDownload = b; $("export-dialog").close(); download(b, "dform-export-without-cutting-files.zip");
+        };
+        return;
+      }
+      page.studio.lastDownload = b; $("export-state").textContent = ""; $("export-dialog").close(); download(b, "dform-export.zip");
+    }).catch(function (err) { $("export-state").textContent = err.message; });
+  };
+}
