@@ -166,6 +166,7 @@ Result<PreparedExport> fab::renderPattern(const LaidOutExport& laidOut) {
   prepared.ticks = laidOut.ticks;
   ExportSummary& summary = prepared.summary;
   summary.messages = pat.messages;
+  summary.warnings = pat.warnings;
   summary.profile = pat.profile.name;
   if (pat.pieces.size() == 2) {
     summary.perimeterA = pat.pieces[0].perimeter;

@@ -167,14 +167,12 @@ struct RowRoom {
   }
 };
 
-// The stretches of the line {p : n.p = at} where a row of `family` may be cut, as (t0, t1)
-// along d from the point at * n.
-std::vector<std::pair<double, double>> stretches(const RowRoom& room, int family, const Vec2& n,
-                                                 const Vec2& d, double at, double reach) {
-  const Vec2 c = at * n;
+// The runs of [from, to] where ok(t) holds, sampled every kSampleStep, their ends bisected to
+// 0.01 mm.
+template <class Ok>
+std::vector<std::pair<double, double>> runs(const Ok& ok, double from, double to) {
   std::vector<std::pair<double, double>> out;
-  auto ok = [&](double t) { return room.ok(c + t * d, family); };
-  auto edge = [&](double inside, double outside) {  // bisected to 0.01 mm
+  auto edge = [&](double inside, double outside) {
     while (std::abs(outside - inside) > 0.01) {
       const double mid = 0.5 * (inside + outside);
       (ok(mid) ? inside : outside) = mid;
@@ -182,16 +180,24 @@ std::vector<std::pair<double, double>> stretches(const RowRoom& room, int family
     return inside;
   };
   bool in = false;
-  double start = 0, previous = -reach;
-  for (double t = -reach; t <= reach; t += kSampleStep) {
+  double start = 0, previous = from;
+  for (double t = from; t <= to; t += kSampleStep) {
     const bool now = ok(t);
-    if (now && !in) start = t == -reach ? t : edge(t, previous);
+    if (now && !in) start = t == from ? t : edge(t, previous);
     if (!now && in) out.emplace_back(start, edge(previous, t));
     in = now;
     previous = t;
   }
-  if (in) out.emplace_back(start, previous);
+  if (in) out.emplace_back(start, ok(to) ? to : edge(previous, to));
   return out;
+}
+
+// The stretches of the line {p : n.p = at} where a row of `family` may be cut, as (t0, t1)
+// along d from the point at * n.
+std::vector<std::pair<double, double>> stretches(const RowRoom& room, int family, const Vec2& n,
+                                                 const Vec2& d, double at, double reach) {
+  const Vec2 c = at * n;
+  return runs([&](double t) { return room.ok(c + t * d, family); }, -reach, reach);
 }
 
 // A row's slits on the stretch (t0, t1): kSlit long, kBridge apart and from either end, the odd
@@ -207,6 +213,36 @@ std::vector<std::pair<double, double>> slits(double t0, double t1, int row) {
     if (hi - lo >= kMinSlit) out.emplace_back(lo, hi);
   }
   return out;
+}
+
+// Each of a hinge's folds (in `across`' order) against the rows across its band (their cells
+// across, in `cells`): the loosest radius the rows with slits allow there, the angle they bend
+// there (each row its share of the band), and the fold's stretches in the seam margin.
+void foldFigures(const std::vector<Band>& across,
+                 const std::vector<std::pair<double, double>>& cells, double rowAngle,
+                 const RowRoom& room, const std::vector<Fold>& folds, const Placement& place,
+                 HingeInfo& hinge) {
+  for (size_t i = 0; i < across.size(); ++i) {
+    HingeFoldInfo& info = hinge.folds[i];
+    double bend = 0;
+    for (size_t r = 0; r < cells.size(); ++r) {
+      const double overlap =
+          std::min(cells[r].second, across[i].hi) - std::max(cells[r].first, across[i].lo);
+      if (hinge.rows[r].cuts.empty() || overlap <= 1e-9) continue;
+      info.radiusAllowedMm = std::max(info.radiusAllowedMm, hinge.rows[r].radiusAllowedMm);
+      bend += rowAngle * overlap / (cells[r].second - cells[r].first);
+    }
+    info.bendDeg = bend * 180 / kPi;
+    const Fold& f = folds[size_t(across[i].fold)];
+    const double length = (f.b - f.a).norm();
+    const Vec2 u = (f.b - f.a) / length;
+    const std::vector<Polyline> seam{*room.seam};
+    const auto inMargin = [&](double t) {
+      return distanceToPolylines(seam, f.a + t * u, true) < room.seamMargin;
+    };
+    for (const auto& [t0, t1] : runs(inMargin, 0.0, length))
+      info.inSeamMargin.push_back(place.map(Polyline{f.a + t0 * u, f.a + t1 * u}));
+  }
 }
 
 }  // namespace
@@ -280,33 +316,76 @@ std::vector<HingeInfo> hingesOf(const ExportOptions& o, int p, const FlatPieces&
     HingeInfo hinge;
     hinge.id = flat.names[p] + "-hinge-" + std::to_string(k + 1);
     hinge.direction = place.vector(d).normalized();
+    const double start = across.front().lo;
     for (const Band& b : across) {
       const Fold& f = folds[size_t(b.fold)];
-      hinge.folds.push_back(
-          {f.index, place.map(Polyline{f.a, f.b}), f.theta * 180 / kPi, b.radius});
+      HingeFoldInfo info;
+      info.index = f.index;
+      info.line = place.map(Polyline{f.a, f.b});
+      info.angleDeg = f.theta * 180 / kPi;
+      info.radiusMm = b.radius;
+      info.bandFromMm = b.lo - start;
+      info.bandToMm = b.hi - start;
+      hinge.folds.push_back(std::move(info));
     }
     // Walk across the bands, a row per cell: as wide as the row angle times the tightest radius
     // in it, never narrower than the material's row pitch.
     const double end = across.back().hi;
+    std::vector<std::pair<double, double>> cells;  // each row's, across
     int row = 0;
-    for (double x = across.front().lo; x < end - 1e-9; ++row) {
+    for (double x = start; x < end - 1e-9; ++row) {
       double cell = std::max(material.hingeRowMm, rowAngle * neededOver(across, x, x + 1e-9));
       cell = std::max(material.hingeRowMm, rowAngle * neededOver(across, x, x + cell));
       HingeRow r;
       r.pitchMm = cell;
       r.radiusAllowedMm = cell / rowAngle;
       r.radiusNeededMm = neededOver(across, x, std::min(x + cell, end));
+      r.fromMm = x - start;
       const double at = x + 0.5 * cell;
       for (const auto& [t0, t1] : stretches(room, int(k), n, d, at, reach))
         for (const auto& [s0, s1] : slits(t0, t1, row))
           r.cuts.push_back(place.map(Polyline{at * n + s0 * d, at * n + s1 * d}));
       hinge.rows.push_back(std::move(r));
+      cells.emplace_back(x, x + cell);
       x += cell;
     }
+    foldFigures(across, cells, rowAngle, room, folds, place, hinge);
     out.push_back(std::move(hinge));
   }
   return out;
 }
+
+namespace {
+
+// A warning naming the hinge's folds that need a tighter radius than the material bends to, and
+// a note where its rows with slits bend less than its folds turn.
+void hingeMessages(const HingeInfo& hinge, const MaterialPreset& material, PatternBuild& out) {
+  const double tightest = material.hingeRowMm / (material.hingeRowDeg * kPi / 180);
+  std::vector<const HingeFoldInfo*> tooTight;
+  for (const HingeFoldInfo& f : hinge.folds)
+    if (f.radiusMm < tightest * (1 - 1e-9)) tooTight.push_back(&f);
+  if (!tooTight.empty()) {
+    std::string folds;
+    for (size_t k = 0; k < tooTight.size(); ++k)
+      folds += std::string(k == 0                     ? ""
+                           : k + 1 == tooTight.size() ? " and "
+                                                      : ", ") +
+               std::to_string(tooTight[k]->index) + " (" + formatMm(tooTight[k]->radiusMm, 1) +
+               " mm)";
+    out.warnings.push_back(hinge.id + ": " + material.name + " bends to a radius of " +
+                           formatMm(tightest, 1) + " mm at the tightest; the shape needs less at " +
+                           (tooTight.size() == 1 ? "fold " : "folds ") + folds +
+                           " of report.json's model.folds: the sheet cannot follow it there");
+  }
+  const double turn = hingeTurnDeg(hinge), bend = hingeBendDeg(hinge);
+  if (bend < turn * (1 - 1e-9))
+    out.messages.push_back(hinge.id + ": its rows of slits bend " + formatMm(bend, 1) + " of the " +
+                           formatMm(turn, 1) +
+                           " degrees its folds turn; the rest lies where no slit may go "
+                           "(the solid margin along the seam, holes, labels)");
+}
+
+}  // namespace
 
 void addHinges(const ExportOptions& o, const FlatPieces& flat,
                const std::vector<Polyline> jointLoops[2], const Placement place[2], double scale,
@@ -320,24 +399,7 @@ void addHinges(const ExportOptions& o, const FlatPieces& flat,
       if (path.id.rfind(info.name + "-", 0) == 0) labels.push_back(convexHull(path.parts));
     info.hinges =
         hingesOf(o, p, flat, jointLoops[p], out.joint, *material, place[p], scale, labels);
-    for (const HingeInfo& hinge : info.hinges) {
-      double allowed = 0, needed = 1e300;
-      for (const HingeRow& row : hinge.rows)
-        if (row.radiusAllowedMm > row.radiusNeededMm * (1 + 1e-9) && row.radiusNeededMm < needed) {
-          allowed = row.radiusAllowedMm;
-          needed = row.radiusNeededMm;
-        }
-      if (allowed > 0)
-        out.messages.push_back(hinge.id + ": " + material->name + " bends to a radius of " +
-                               formatMm(allowed, 1) + " mm at the tightest, the shape needs " +
-                               formatMm(needed, 1) + " mm there");
-      const double turn = hingeTurnDeg(hinge), bend = hingeBendDeg(hinge);
-      if (bend < turn * (1 - 1e-9))
-        out.messages.push_back(hinge.id + ": its rows of slits bend " + formatMm(bend, 1) +
-                               " of the " + formatMm(turn, 1) +
-                               " degrees its folds turn; the rest lies where no slit may go "
-                               "(the solid margin along the seam, holes, labels)");
-    }
+    for (const HingeInfo& hinge : info.hinges) hingeMessages(hinge, *material, out);
   }
   drawHinges(out.pieces, b);
 }

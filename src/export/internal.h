@@ -177,8 +177,11 @@ struct ScoredFoldInfo {
 struct HingeRow {
   std::vector<Polyline> cuts;  ///< straight slits (sheet mm), bridged, clear of the margins
   double pitchMm = 0;          ///< the width of sheet the row bends (its cell across the rows)
-  double radiusAllowedMm = 0;  ///< the tightest bend it takes: its cell over its angle
-  double radiusNeededMm = 0;   ///< the shape's tightest bending radius in its cell
+  /// The tightest bend it takes with its slits: its cell over its angle (a row without slits,
+  /// wholly in the margins, takes none).
+  double radiusAllowedMm = 0;
+  double radiusNeededMm = 0;  ///< the shape's tightest bending radius in its cell
+  double fromMm = 0;          ///< its cell's near side across the hinge, from its first band's
 };
 
 /// A body fold a hinge bends along.
@@ -187,6 +190,17 @@ struct HingeFoldInfo {
   Polyline line;        ///< the fold (sheet mm)
   double angleDeg = 0;  ///< its angle
   double radiusMm = 0;  ///< the shape's bending radius there: its band over its angle
+  double bandFromMm = 0, bandToMm = 0;  ///< its band across the hinge, as HingeRow::fromMm
+  /// The loosest radius the rows with slits across its band allow; 0 where none has slits.
+  double radiusAllowedMm = 0;
+  double bendDeg = 0;  ///< the angle those rows bend across its band (each its share of it)
+  /// Its stretches within the solid margin along the seam (sheet mm): no row has slits beside
+  /// them, so the sheet bends there by its own give only, less than the fold.
+  std::vector<Polyline> inSeamMargin;
+  /// The rows across its band have slits and bend no more loosely than it does: false where the
+  /// material cannot bend as tightly (the shape needs less than the material's tightest radius)
+  /// or no row beside it has slits.
+  bool radiusMet() const { return radiusAllowedMm > 0 && radiusAllowedMm <= radiusMm * (1 + 1e-9); }
 };
 
 /// A hinge: rows of cuts across a family of parallel body folds of a piece, parallel to them.
@@ -250,6 +264,7 @@ struct PatternBuild {
   std::vector<JointHoleInfo> jointHoles;
   std::vector<JointSlotInfo> jointSlots;
   std::vector<std::string> messages;
+  std::vector<std::string> warnings;  ///< what the pattern cannot do as asked (a hinge too stiff)
   double tickSpacing = 0;
   /// A nest's parts (layOutNest), one per piece, in `pieces`' order; empty for one D-Form.
   std::vector<NestPartInfo> nestParts;

@@ -89,7 +89,7 @@ namespace {
 Status layOutParts(const std::vector<NestItem>& items, const ExportOptions& options,
                    const Profile& profile, const StrokeFont& font,
                    std::vector<std::unique_ptr<PatternBuild>>& builds, std::vector<Part>& parts,
-                   std::vector<std::string>& messages) {
+                   PatternBuild& out) {
   std::vector<int> itemOf;
   const std::vector<std::pair<std::string, int>> labels = copyLabels(items, itemOf);
   const Profile alone = unpaged(profile);
@@ -117,8 +117,12 @@ Status layOutParts(const std::vector<NestItem>& items, const ExportOptions& opti
       builds.push_back(std::make_unique<PatternBuild>(std::move(b.value())));
       built[turn] = builds.back().get();
     }
-    if (labels[c].second == 1)
-      for (const std::string& m : built[0]->messages) messages.push_back(item.jobName + ": " + m);
+    if (labels[c].second == 1) {
+      for (const std::string& m : built[0]->messages)
+        out.messages.push_back(item.jobName + ": " + m);
+      for (const std::string& w : built[0]->warnings)
+        out.warnings.push_back(item.jobName + ": " + w);
+    }
     for (int p = 0; p < 2; ++p) {
       Part part;
       part.name = built[0]->pieces[size_t(p)].name;
@@ -235,8 +239,7 @@ Result<LaidOutExport> layOutNestOrThrow(const std::vector<NestItem>& items,
   std::vector<std::unique_ptr<PatternBuild>> builds;
   std::vector<Part> parts;
   PatternBuild out;
-  if (Status s = layOutParts(items, o, profile, font.value(), builds, parts, out.messages);
-      !s.isOk())
+  if (Status s = layOutParts(items, o, profile, font.value(), builds, parts, out); !s.isOk())
     return s;
   bool tooLarge = false;
   Result<SheetFit> fitted = sheetFit(o, profile, false, o.scale, tooLarge);

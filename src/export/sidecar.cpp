@@ -123,16 +123,31 @@ json hingesJson(const PieceInfo& p) {
   json out = json::array();
   for (const HingeInfo& h : p.hinges) {
     json folds = json::array(), rows = json::array();
-    for (const HingeFoldInfo& f : h.folds)
-      folds.push_back({{"fold", f.index},
-                       {"angle_deg", f.angleDeg},
-                       {"radius_needed_mm", f.radiusMm},
-                       {"line", polyline(f.line)}});
+    for (const HingeFoldInfo& f : h.folds) {
+      json margin = json::array();
+      double marginMm = 0;
+      for (const Polyline& part : f.inSeamMargin) {
+        margin.push_back(polyline(part));
+        marginMm += (part.back() - part.front()).norm();
+      }
+      folds.push_back(
+          {{"fold", f.index},
+           {"angle_deg", f.angleDeg},
+           {"radius_needed_mm", f.radiusMm},
+           {"radius_allowed_mm", f.radiusAllowedMm > 0 ? json(f.radiusAllowedMm) : json()},
+           {"radius_met", f.radiusMet()},
+           {"bend_deg", f.bendDeg},
+           {"band_mm", {f.bandFromMm, f.bandToMm}},
+           {"line", polyline(f.line)},
+           {"in_seam_margin", margin},
+           {"in_seam_margin_mm", marginMm}});
+    }
     for (const HingeRow& r : h.rows) {
       json cuts = json::array();
       for (const Polyline& c : r.cuts) cuts.push_back(polyline(c));
-      rows.push_back({{"pitch_mm", r.pitchMm},
-                      {"radius_allowed_mm", r.radiusAllowedMm},
+      rows.push_back({{"from_mm", r.fromMm},
+                      {"pitch_mm", r.pitchMm},
+                      {"radius_allowed_mm", r.cuts.empty() ? json() : json(r.radiusAllowedMm)},
                       {"radius_needed_mm", r.radiusNeededMm},
                       {"cuts", cuts}});
     }
@@ -251,6 +266,7 @@ std::string sidecarJson(const PatternBuild& pattern, const std::string& jobName)
     j["nest"] = {{"gap_mm", pattern.profile.kerfMm + 1.0}, {"parts", parts}};
   }
   j["messages"] = pattern.messages;
+  if (!pattern.warnings.empty()) j["warnings"] = pattern.warnings;
   return j.dump(1, ' ', false, json::error_handler_t::replace);
 }
 

@@ -97,6 +97,7 @@ Result<std::string> exportNestOrThrow(const std::vector<std::string>& dirs, int 
             std::to_string(dirs.size()) + " result(s) on " + std::to_string(summary.sheets) +
             " sheet(s)");
   for (const std::string& m : summary.messages) sink.info("nest: " + m);
+  for (const std::string& w : summary.warnings) sink.warning("nest: " + w);
   ResultFolder out;
   if (Status s = out.begin(how.outDir, nestFileNames()); !s.isOk()) return s;
   if (Status s = writeExport(prepared.value(), out.staging()).status(); !s.isOk())

@@ -200,6 +200,7 @@ CheckResult layoutCheck(const LayoutFindings& f) {
 // Says what a prepared export holds, before it is written (so that the report has it).
 void noteExport(const PreparedExport& prepared, MessageSink& sink) {
   for (const std::string& note : prepared.summary.messages) sink.info("export: " + note);
+  for (const std::string& w : prepared.summary.warnings) sink.warning("export: " + w);
   sink.info("export (" + prepared.summary.profile + "): " + std::to_string(prepared.files.size()) +
             " files");
 }

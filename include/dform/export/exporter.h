@@ -290,10 +290,12 @@ Status checkExportOptions(const ExportOptions& options);
 Status checkProfileOptions(const ExportOptions& options);
 
 struct ExportSummary {
-  std::vector<std::string> files;         ///< every file written, full paths
-  std::vector<std::string> messages;      ///< notes for the user (dropped tabs, perimeter mismatch)
-  std::string profile;                    ///< the profile's name
-  double perimeterA = 0, perimeterB = 0;  ///< flat seam lengths (mm)
+  std::vector<std::string> files;     ///< every file written, full paths
+  std::vector<std::string> messages;  ///< notes for the user (dropped tabs, perimeter mismatch)
+  /// What the pattern cannot do as asked: a hinge's folds bending more tightly than the material
+  std::vector<std::string> warnings;
+  std::string profile;                         ///< the profile's name
+  double perimeterA = 0, perimeterB = 0;       ///< flat seam lengths (mm)
   double sheetWidthMm = 0, sheetHeightMm = 0;  ///< the pattern canvas (mm)
   int ticks = 0;                               ///< tick pairs
   int tabs = 0;                                ///< glue tabs on both pieces
