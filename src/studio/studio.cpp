@@ -403,6 +403,7 @@ void Studio::Impl::pageRoutes(httplib::Server& server) {
                   {"inverse", json::parse(settingsJson(startInverse))}}},
                 {"mode", startsInverse ? "inverse" : "forward"},
                 {"placeholders", studio::exportPlaceholders()},
+                {"choices", studio::exportChoices()},
                 {"pieces", {pieceSummary(startA), pieceSummary(startB)}},
                 {"profiles", exportProfileNames()},
                 {"preview_resolution", Session::kPreviewResolution}};

@@ -203,6 +203,18 @@ json exportPlaceholders() {
   return out;
 }
 
+json exportChoices() {
+  json out = json::object();
+  for (Setting s : {Setting::Material, Setting::Numbers, Setting::Hinge}) {
+    const SettingRow* row = findSetting(settingKey(s), true);
+    json choices = json::array();
+    if (row->type == SettingType::Flag) choices = {true, false};
+    for (const SettingChoice& c : row->choices) choices.push_back(c.name);
+    out[row->key.substr(row->key.find('.') + 1)] = {{"unset", row->unset}, {"choices", choices}};
+  }
+  return out;
+}
+
 std::string designSettings(const Job& job) {
   json settings = json::parse(settingsJson(job));
   for (Setting s : {Setting::StartA, Setting::StartB, Setting::Gate}) settings.erase(settingKey(s));

@@ -59,6 +59,11 @@ std::string studioWords(const Status& status);
 /// (what an unset one is) and the scale's (its default and range), keyed "page", "sheet", "scale".
 nlohmann::json exportPlaceholders();
 
+/// The export dialog's lists, as the settings table has them: the material's and the numbers'
+/// choices and the hinge's (true, false), each with what leaving it unset means, keyed
+/// "material", "numbers", "hinge".
+nlohmann::json exportChoices();
+
 /// The settings of `job` that shape its solve, as text: every setting but the starts and the
 /// export's (a session reuses a solve whose design text is the same).
 std::string designSettings(const Job& job);

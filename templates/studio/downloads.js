@@ -15,15 +15,30 @@ function Downloads(page) {
   }
   // The export dialog shows and sets the export settings of the current mode; an empty field is
   // a setting not given (the profile's, or the export's default, which its placeholder shows).
-  var exportFields = ["profile", "page", "sheet", "scale"];
+  // The lists (material, numbers, hinge) hold their choices as JSON, the empty one unset.
+  var exportFields = ["profile", "page", "sheet", "scale"], exportLists = ["material", "numbers", "hinge"];
+  // The lists' options from the session's `choices` (the settings table's).
+  this.fillLists = function (choices) {
+    exportLists.forEach(function (k) {
+      var unset = document.createElement("option");
+      unset.value = ""; unset.textContent = choices[k].unset; $(k).appendChild(unset);
+      choices[k].choices.forEach(function (c) {
+        var o = document.createElement("option");
+        o.value = JSON.stringify(c); o.textContent = c === true ? "on" : c === false ? "off" : c;
+        $(k).appendChild(o);
+      });
+    });
+  };
   function fillExportDialog() {
     var e = page.settings().export || {};
     exportFields.forEach(function (k) { $(k).value = e[k] != null ? e[k] : (k === "profile" ? "laser" : ""); });
+    exportLists.forEach(function (k) { $(k).value = e[k] != null ? JSON.stringify(e[k]) : ""; });
     $("export-anyway").checked = !!e.export_anyway;
   }
   function readExportDialog() {
     var e = Object.assign({}, page.settings().export || {});
     exportFields.forEach(function (k) { e[k] = $(k).value === "" ? null : $(k).value; });
+    exportLists.forEach(function (k) { e[k] = $(k).value === "" ? null : JSON.parse($(k).value); });
     e.export_anyway = $("export-anyway").checked;
     page.settings().export = e;
   }

@@ -490,7 +490,7 @@
   $("curve-drop").addEventListener("drop", function (e) { e.preventDefault(); if (e.dataTransfer.files[0]) readCurve(e.dataTransfer.files[0]); });
 
   // ---- downloads --------------------------------------------------------------------------------
-  new Downloads({ api: api, settings: settings, remember: remember, showError: showError, studio: studio,
+  var downloads = new Downloads({ api: api, settings: settings, remember: remember, showError: showError, studio: studio,
                   body: function () { return Object.assign({ mode: state.mode }, settings()); } });
 
   // ---- start ------------------------------------------------------------------------------------
@@ -509,6 +509,7 @@
     state.mode = s.mode;
     Object.keys(s.placeholders).forEach(function (k) { $(k).placeholder = s.placeholders[k]; });
     s.profiles.forEach(function (p) { var o = document.createElement("option"); o.value = o.textContent = p; $("profile").appendChild(o); });
+    downloads.fillLists(s.choices);
     [0, 1].forEach(function (i) {
       summaries[i] = s.pieces[i];
       state.pieces[i] = { name: s.pieces[i].name, text: s.pieces[i].text };

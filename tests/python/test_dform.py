@@ -5,6 +5,7 @@ build/python and DFORM_SAMPLES, DFORM_EXE set."""
 import json
 import math
 import os
+import re
 import subprocess
 
 import numpy as np
@@ -144,3 +145,39 @@ def test_export_writes_a_folder_that_validates(tmp_path):
     with pytest.raises(dform.Error) as slot:
         result.export(str(tmp_path / "bad-slot"), joint="slots", slot_length=1.0)
     assert "slot_length" in str(slot.value)
+
+
+def test_export_takes_the_hinge_and_the_numbers(tmp_path):
+    """numbers= puts the ticks' numbers on the tabs, the face or both; hinge= turns the plywood's
+    hinge off, and on a flexible sheet is refused naming the keyword; report.json keeps both."""
+    a = dform.read_outline(sample("forward/ellipses-a.svg"))
+    b = dform.read_outline(sample("forward/ellipses-b.svg"))
+    result = dform.forward(a["outline"], b["outline"], resolution=60, model="exact")
+
+    def labels(name, **settings):
+        result.export(str(tmp_path / name), profile="print", **settings)
+        svg = (tmp_path / name / "pattern.svg").read_text()
+        report = json.loads((tmp_path / name / "report.json").read_text())
+        assert all(report["job"]["export"].get(k) == v for k, v in settings.items()), report["job"]
+        return (len(re.findall(r'id="[AB]-tick-\d+-tab-label"', svg)),
+                len(re.findall(r'id="[AB]-tick-\d+-label"', svg)))
+
+    on_face, on_tabs, on_both = labels("face", numbers="face"), labels("tabs", numbers="tabs"), \
+        labels("both", numbers="both")
+    assert on_face[0] == 0 and on_face[1] > 20
+    assert on_tabs[0] > 10 and on_tabs[1] < on_face[1]
+    assert on_both == (on_tabs[0], on_face[1])
+
+    def hinges(name, **settings):
+        result.export(str(tmp_path / name), material="plywood", **settings)
+        pattern = json.loads((tmp_path / name / "pattern.json").read_text())
+        report = json.loads((tmp_path / name / "report.json").read_text())
+        assert report["job"]["export"].get("hinge") == settings.get("hinge"), report["job"]
+        return sum(len(p.get("hinges", [])) for p in pattern["pieces"])
+
+    assert hinges("plywood") > 0 and hinges("plywood-on", hinge=True) == hinges("plywood")
+    assert hinges("plywood-off", hinge=False) == 0
+    with pytest.raises(dform.Error) as card:
+        result.export(str(tmp_path / "card"), material="card", hinge=True)
+    assert card.value.exit_code == 2 and str(card.value).startswith("hinge:")
+    assert not (tmp_path / "card").exists()

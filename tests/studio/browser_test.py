@@ -3,7 +3,8 @@
 dragging a start handle changes the shape, and the shape is the command line's for that start;
 flip and the alternative-starts strip work; a bad SVG shows its error and the next good one
 solves; Save job + `dform run` reproduces the figures; Export's pattern.svg is the CLI's, byte
-for byte; requests without the token or from a foreign origin get 403.
+for byte; the export dialog's material, numbers and hinge lists are the settings table's and reach
+the export and the saved job; requests without the token or from a foreign origin get 403.
 
     browser_test.py DFORM SAMPLES_DIR      (exit 77 when Chromium, its driver or Selenium is absent)
 """
@@ -31,6 +32,16 @@ def http_status(url, headers):
 def obj_vertices(path):
     with open(path) as f:
         return [[float(x) for x in line.split()[1:4]] for line in f if line.startswith("v ")]
+
+
+def downloaded_json(s, button, folder, name):
+    """Clicks `button`, unzips the download into `folder` and reads its JSON file `name`."""
+    s.js("window.studio.lastDownload = null")
+    s.driver.find_element("id", button).click()
+    s.wait(lambda: s.js("return !!window.studio.lastDownload"), 120, "the download of " + button)
+    studio_browser.unzip(s.download(), folder)
+    with open(os.path.join(folder, name)) as f:
+        return json.load(f)
 
 
 def drag_handle(s, piece, steps):
@@ -156,6 +167,23 @@ def main():
         studio_browser.unzip(s.download(), export_dir)
         with open(os.path.join(export_dir, "pattern.svg"), "rb") as f1, open(os.path.join(cli_dir, "pattern.svg"), "rb") as f2:
             check(f1.read() == f2.read(), "Export's pattern.svg is byte-identical to the CLI's")
+
+        # The dialog's lists are the settings table's; what they are set to reaches the export and
+        # the saved job.
+        s.driver.find_element("id", "export").click()
+        lists = s.js("return ['material', 'numbers', 'hinge'].map(function (k) {"
+                     " return Array.from(document.getElementById(k).options).map(function (o) { return o.value; }); })")
+        check(lists[1] == ["", '"face"', '"tabs"', '"both"'] and lists[2] == ["", "true", "false"] and
+              '"plywood"' in lists[0], f"the export dialog lists material, numbers and hinge ({lists})")
+        s.js("document.getElementById('numbers').value = '\"both\"';"
+             " document.getElementById('hinge').value = 'false'")
+        listed = downloaded_json(s, "export-go", os.path.join(work, "export-lists"),
+                                 "report.json")["job"]["export"]
+        check(listed.get("numbers") == "both" and listed.get("hinge") is False,
+              f"the dialog's numbers and hinge reach the export ({listed})")
+        saved = downloaded_json(s, "save-job", os.path.join(work, "job-lists"), "job.json")["export"]
+        check(saved.get("numbers") == "both" and saved.get("hinge") is False,
+              f"Save job keeps the dialog's numbers and hinge ({saved})")
 
         # A pair whose glued metric is not convex: a preview at once, then the refined paper model
         # streamed, with the seam point that breaks convexity marked on the pieces.

@@ -8,7 +8,9 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <sstream>
+#include <tuple>
 
 #include "dform/core/interrupt.h"
 #include "dform/pipeline/job_file.h"
@@ -168,6 +170,67 @@ TEST_F(StudioDownloads, ExportRefusesUnknownProfilesWithAJsonError) {
                                      {"export", {{"profile", "print"}, {"page", "Z9"}}}});
   EXPECT_EQ(page.first, 400);
   EXPECT_NE(page.second["error"].get<std::string>().find("page"), std::string::npos) << page.second;
+}
+
+// The export dialog's lists (material, tick numbers, hinge) are the settings table's rows, and
+// what the page sends from them reaches the export and the saved job.
+TEST_F(StudioDownloads, TheExportDialogsListsAreTheTablesAndReachTheExport) {
+  test::StudioClient c;
+  const auto [status, started] = c.post("/api/session", json::object());
+  ASSERT_EQ(status, 200) << started;
+  for (const char* key : {"material", "numbers", "hinge"}) {
+    SCOPED_TRACE(key);
+    const SettingRow* row = findSetting(std::string("export.") + key, true);
+    ASSERT_NE(row, nullptr);
+    json choices = json::array();
+    if (row->type == SettingType::Flag) choices = {true, false};
+    for (const SettingChoice& choice : row->choices) choices.push_back(choice.name);
+    EXPECT_EQ(started["choices"][key]["choices"], choices);
+    EXPECT_EQ(started["choices"][key]["unset"], row->unset);
+    EXPECT_FALSE(row->unset.empty());
+  }
+  EXPECT_EQ(started["choices"]["numbers"]["choices"].size(), 3u);
+  const json base = {{"session", started["session"]}, {"resolution", 60}, {"model", "exact"}};
+  // The pattern's numbers on tabs and on the face, and its hinges, as exported with `settings`.
+  auto exportWith = [&](const std::string& name, const json& settings) {
+    json request = base;
+    request["export"] = settings;
+    auto r = c.raw().Post("/api/export", c.headers(), request.dump(), "application/json");
+    EXPECT_EQ(r->status, 200) << r->body;
+    unzip(r->body, dir / name);
+    const std::string svg = readAll(dir / name / "pattern.svg");
+    const std::regex tab("id=\"[AB]-tick-\\d+-tab-label\""), face("id=\"[AB]-tick-\\d+-label\"");
+    const auto count = [&](const std::regex& re) {
+      return std::distance(std::sregex_iterator(svg.begin(), svg.end(), re),
+                           std::sregex_iterator());
+    };
+    int hinges = 0;
+    const json pattern = json::parse(readAll(dir / name / "pattern.json"));
+    for (const json& piece : pattern["pieces"])
+      hinges += int(piece.value("hinges", json::array()).size());
+    return std::tuple{count(tab), count(face), hinges};
+  };
+  const auto [faceTabs, faceFace, faceHinges] =
+      exportWith("face", {{"profile", "print"}, {"numbers", "face"}});
+  const auto [bothTabs, bothFace, bothHinges] =
+      exportWith("both", {{"profile", "print"}, {"numbers", "both"}});
+  EXPECT_EQ(faceTabs, 0);
+  EXPECT_GT(faceFace, 20);
+  EXPECT_GT(bothTabs, 10);
+  EXPECT_EQ(bothFace, faceFace);
+  EXPECT_EQ(faceHinges + bothHinges, 0);
+  EXPECT_GT(std::get<2>(exportWith("on", {{"material", "plywood"}, {"hinge", true}})), 0);
+  EXPECT_EQ(std::get<2>(exportWith("off", {{"material", "plywood"}, {"hinge", false}})), 0);
+  // Save job keeps them.
+  json request = base;
+  request["export"] = {{"material", "plywood"}, {"hinge", false}, {"numbers", "both"}};
+  auto saved = c.raw().Post("/api/job", c.headers(), request.dump(), "application/json");
+  ASSERT_EQ(saved->status, 200) << saved->body;
+  unzip(saved->body, dir / "job");
+  const json job = json::parse(readAll(dir / "job" / "job.json"));
+  EXPECT_EQ(job["export"]["hinge"], false) << job;
+  EXPECT_EQ(job["export"]["numbers"], "both") << job;
+  EXPECT_EQ(job["export"]["material"], "plywood") << job;
 }
 
 // An export whose client has gone stops, inside its long steps too (its run is interrupted),
