@@ -248,8 +248,9 @@ void drawThumbnail(const PatternBuild& pattern, size_t p, double x0, double half
   const Vec2 at = fit(p == 0 ? t0.onA : t0.onB);
   start.parts = {disc(at, 1.2)};
   layers.marks.paths.push_back(start);
-  // The name under the piece; "0" just outside the start, away from the piece's centre, or turned
-  // away from the name where it would overlap it.
+  // The name under the piece; "0" just outside the start, away from the piece's centre, turned or
+  // further out where it would overlap another label, and left out (the disc marks the start)
+  // where no spot near it is free.
   const Vec2 nameAt(x0 + 0.5 * half, thumbsTop + thumbsH - 3);
   labels.take(labels.footprint(name, nameAt, 4.0));
   write(layers.text, font, "thumb-" + name + "-name", name, nameAt, 4.0);
@@ -257,9 +258,8 @@ void drawThumbnail(const PatternBuild& pattern, size_t p, double x0, double half
   out = out.norm() > 0 ? out.normalized() : Vec2(0, -1);
   const Box strip = Box::spanning(Vec2(x0, thumbsTop), Vec2(x0 + half, thumbsTop + thumbsH));
   const std::optional<Vec2> zeroAt =
-      labels.firstFree("0", spotsAround(at, out, {3.5, 5.5, 7.5}), kTextH, strip);
-  write(layers.text, font, "thumb-" + name + "-start-label", "0", zeroAt.value_or(at + 3.5 * out),
-        kTextH);
+      labels.firstFree("0", spotsAround(at, out, {3.5, 5.5, 7.5, 10.0, 13.0}), kTextH, strip);
+  if (zeroAt) write(layers.text, font, "thumb-" + name + "-start-label", "0", *zeroAt, kTextH);
 }
 
 // The faces, shaded. Each face's shade is quantised; a run of faces of one colour in painter's
