@@ -20,10 +20,11 @@ namespace dform::forward_detail {
 /// (docs/ruled.md, "Limits").
 std::string ruledModelRefusal(const ForwardSettings& job, const SeamLayout& layout, bool asked);
 
-/// The ruled engine's start interior edges, as multiples of the seam edge. Its start needs only the
-/// boundary points' places: on the anti sample the paper model on meshes of 1 to 4 leads to one
-/// state (bending 28.288181410596, 128 flips), and 3 takes a fifth of the time of 1; a mesh of 8
-/// leads to another state (bending 30.60) the sheet can sit in, so it is a second start.
+/// The ruled engine's start interior edges on a sheet with a free brim, as multiples of the seam
+/// edge. There its start needs only the boundary points' places: on the anti sample the paper
+/// model on meshes of 1 to 4 leads to one state (bending 28.288181410596, 128 flips), and 3 takes
+/// a fifth of the time of 1; a mesh of 8 leads to another state (bending 30.60) the sheet can sit
+/// in, so it is a second start. A closed sheet starts from the job's own mesh.
 constexpr double kRuledStartInteriorEdge = 3.0;
 constexpr double kRuledSecondStartInteriorEdge = 8.0;
 
