@@ -22,8 +22,8 @@
 #include "dform/core/polyline.h"
 #include "dform/io/outline_reader.h"
 #include "dform/pipeline/forward_pipeline.h"
-#include "dform/studio/outlines.h"
 #include "dform/validate/gate.h"
+#include "studio/outlines.h"
 
 namespace dform::convex {
 

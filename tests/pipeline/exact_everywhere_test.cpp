@@ -127,10 +127,11 @@ nlohmann::json reportedModel(const ForwardRun& run, const ForwardSettings& setti
       std::filesystem::path(::testing::TempDir()) / ("exact_everywhere_" + name);
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
-  Job job;
-  static_cast<ForwardSettings&>(job.forward) = settings;
-  job.forward.pieceA = "a.svg";
-  job.forward.pieceB = "b.svg";
+  ForwardJob forward;
+  static_cast<ForwardSettings&>(forward) = settings;
+  forward.pieceA = "a.svg";
+  forward.pieceB = "b.svg";
+  const Job job(forward);
   const Result<std::string> text =
       writeForwardReport(dir.string(), job, run, {}, nullptr, CommandTimings{}, FileHashes{});
   EXPECT_TRUE(text.isOk()) << text.status().message();
