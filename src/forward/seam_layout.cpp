@@ -318,6 +318,64 @@ double finestVertices(const ForwardSettings& job, const SeamLayout& layout, doub
   return 2.0 * area / (std::sqrt(3.0) * h * h) + 2.0 * job.resolution;
 }
 
+namespace {
+
+// The straight sides of the closed polygon P at least `longest` long, as seam fractions (from
+// `start` in `direction`): where each begins and how far it runs.
+std::vector<std::pair<double, double>> straightSides(const Points2& P, double longest, double start,
+                                                     int direction) {
+  const Eigen::Index n = P.rows();
+  const Eigen::VectorXd s = cumulativeArcLength(P);
+  const double total = closedLength(P);
+  std::vector<std::pair<double, double>> sides;
+  for (Eigen::Index i = 0; i < n && total > 0.0; ++i)
+    if (const double length = (P.row((i + 1) % n) - P.row(i)).norm(); length >= longest) {
+      const double a = fractionFrom(s(i) / total, start, direction),
+                   b = fractionFrom((i + 1 < n ? s(i + 1) : 0.0) / total, start, direction);
+      sides.emplace_back(direction > 0 ? a : b, length / total);
+    }
+  return sides;
+}
+
+// Whether seam fraction x lies on one of `sides`.
+bool onSide(const std::vector<std::pair<double, double>>& sides, double x) {
+  for (const auto& [begin, length] : sides)
+    if (std::fmod(x - begin + 2.0, 1.0) <= length) return true;
+  return false;
+}
+
+// The ends of the pieces' straight sides two seam edges long or longer, as seam corners: where
+// a straight side meets a curve (a rounded corner's tangent point). A seam point a little way
+// into the curve lies a little off the side's line, and the body's edge from it along the side,
+// where the other piece is straight too, runs micrometres beside the seam, folding as sharply as
+// the seam does: no mesh follows it without triangles that thin, and none crosses it without
+// stretching. With a seam point on each end the side is straight from end to end and that edge
+// is the seam. Where the two pieces' sides end within a seam edge of each other, the one end
+// that lies on both sides is taken (a second, that close, would make a chord that short).
+void addStraightSideEnds(const ForwardSettings& job, SeamLayout& layout) {
+  std::vector<std::pair<double, double>> sides[2];
+  for (int p = 0; p < 2; ++p) {
+    const Points2& joined = layout.pieces[p].joined;
+    sides[p] = straightSides(joined, 2.0 * closedLength(joined) / std::max(1, job.resolution),
+                             layout.startFraction[p], layout.direction[p]);
+  }
+  const double edge = 1.0 / std::max(1, job.resolution);
+  for (int p = 0; p < 2; ++p)
+    for (const auto& [begin, length] : sides[p])
+      for (const double end : {begin, std::fmod(begin + length, 1.0)}) {
+        bool yields = false;
+        for (const auto& [otherBegin, otherLength] : sides[1 - p])
+          for (const double other : {otherBegin, std::fmod(otherBegin + otherLength, 1.0)}) {
+            const double apart = std::abs(std::remainder(end - other, 1.0));
+            yields = yields || (apart > 0.0 && apart < edge && !onSide(sides[1 - p], end) &&
+                                onSide(sides[p], other));
+          }
+        if (!yields) layout.seamCorners.push_back(end);
+      }
+}
+
+}  // namespace
+
 // Each seam runs so that the zipped pieces are consistently oriented: A's the way A's triangles
 // run along it (counter-clockwise round an outline, clockwise round a hole), B's the other way
 // round from B's triangles (so B is turned over unless exactly one of the two joins a hole).
@@ -349,6 +407,7 @@ void layOutSeam(const ForwardSettings& job, const SolvedDForm& run, SeamLayout& 
               fractionFrom(nearestArcFraction(*piece.freeOutline, q), freeStart, 1));
       }
   }
+  addStraightSideEnds(job, layout);
 }
 
 }  // namespace forward_detail

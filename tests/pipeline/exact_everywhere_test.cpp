@@ -65,6 +65,40 @@ TEST(ExactEverywhere, EveryFamilyAtSomeStartsAndEveryRounding) {
   expectNoFailure(grid({{40, 3}, {100, 2}}, {kExact, 9, 5, 3}), "fast subset");
 }
 
+// The index of the family called `name`.
+std::size_t family(const std::string& name) {
+  const std::vector<convex::Family> all = convex::families();
+  for (std::size_t f = 0; f < all.size(); ++f)
+    if (all[f].name == name) return f;
+  ADD_FAILURE() << "no family " << name;
+  return 0;
+}
+
+// Cases the sweeps found short of the exact model: congruent rounded squares written with 5
+// decimals, zipped unflipped from starts an eighth of a loop apart at n = 100, and circle +
+// square at n = 1000, the engine's limit.
+TEST(ExactEverywhere, CasesTheSweepsFound) {
+  std::vector<Case> cases;
+  for (int decimals : {5, 9, 3})
+    for (double startB : {0.0625, 0.125, 0.1875}) {
+      Case c;
+      c.family = family("rounded squares, congruent");
+      c.decimals = decimals;
+      c.resolution = 100;
+      c.startB = startB;
+      cases.push_back(c);
+    }
+  for (double startB : {0.0, 0.2542}) {
+    Case c;
+    c.family = family("circle + square");
+    c.resolution = 1000;
+    c.startB = startB;
+    cases.push_back(c);
+  }
+  const std::vector<std::string> failures = convex::sweep(cases);
+  for (const std::string& failure : failures) ADD_FAILURE() << failure;
+}
+
 // The starts of the issue: 1-5 mm past or before a corner of the square, where the seam's last
 // chord cut the corner off (361.3 degrees at seam point 2) and auto fell back to the paper model.
 TEST(ExactEverywhere, CircleAndSquareStartBesideACorner) {
