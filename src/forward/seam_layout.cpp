@@ -350,8 +350,9 @@ bool onSide(const std::vector<std::pair<double, double>>& sides, double x) {
 // where the other piece is straight too, runs micrometres beside the seam, folding as sharply as
 // the seam does: no mesh follows it without triangles that thin, and none crosses it without
 // stretching. With a seam point on each end the side is straight from end to end and that edge
-// is the seam. Where the two pieces' sides end within a seam edge of each other, the one end
-// that lies on both sides is taken (a second, that close, would make a chord that short).
+// is the seam. Where the two pieces' sides end within a seam edge of each other and overlap,
+// one end is taken (a second, that close, would make a chord that short): the one that lies on
+// both sides, A's where both do. Where a gap parts them, both are.
 void addStraightSideEnds(const ForwardSettings& job, SeamLayout& layout) {
   std::vector<std::pair<double, double>> sides[2];
   for (int p = 0; p < 2; ++p) {
@@ -367,8 +368,8 @@ void addStraightSideEnds(const ForwardSettings& job, SeamLayout& layout) {
         for (const auto& [otherBegin, otherLength] : sides[1 - p])
           for (const double other : {otherBegin, std::fmod(otherBegin + otherLength, 1.0)}) {
             const double apart = std::abs(std::remainder(end - other, 1.0));
-            yields = yields || (apart > 0.0 && apart < edge && !onSide(sides[1 - p], end) &&
-                                onSide(sides[p], other));
+            yields = yields || (apart > 0.0 && apart < edge && onSide(sides[p], other) &&
+                                (!onSide(sides[1 - p], end) || p == 1));
           }
         if (!yields) layout.seamCorners.push_back(end);
       }

@@ -84,7 +84,8 @@ Status matchPieces(const ForwardSettings& job, SeamLayout& layout, SolvedDForm& 
 /// The finest mesh's vertices, for the memory check.
 double finestVertices(const ForwardSettings& job, const SeamLayout& layout, double perimeterA);
 
-/// Each seam's direction and start, and the corners and crease ends every level samples.
+/// Each seam's direction and start, and the corners, crease ends and ends of straight sides
+/// (two seam edges long or longer, at job.resolution) every level samples.
 void layOutSeam(const ForwardSettings& job, const SolvedDForm& run, SeamLayout& layout);
 
 /// The two sides of the seam sampled at `fractions` (A's counter-clockwise, B's clockwise from

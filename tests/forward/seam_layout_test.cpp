@@ -3,6 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "dform/core/constants.h"
+#include "dform/core/polyline.h"
 
 namespace dform {
 namespace {
@@ -61,6 +67,100 @@ TEST(SeamLayout, ACornerWithinHalfAnEdgeOfTheStartIsTheFirstVertex) {
   EXPECT_LT(u.back(), 1.02);
   // Half an edge or more away: the start stays the first vertex.
   EXPECT_EQ(seamFractions(10, {0.05, 0.6})[0], 0.0);
+}
+
+// A stadium: two straight sides `side` mm long joined by half circles of radius 20 mm, each of
+// 64 segments, counter-clockwise from the start of its lower side.
+Points2 stadium(double side) {
+  const int arc = 64;
+  Points2 P(2 * (arc + 1), 2);
+  for (int half = 0; half < 2; ++half)
+    for (int i = 0; i <= arc; ++i) {
+      const double t = -0.5 * kPi + kPi * (half + double(i) / arc);
+      const double x = (half == 0 ? side : 0.0) + 20.0 * std::cos(t);
+      P.row(half * (arc + 1) + i) << x, 20.0 * std::sin(t);
+    }
+  return P;
+}
+
+// The ends of the straight sides of P (its segments longer than `longest`) as seam fractions,
+// with whether a fraction lies on one of them.
+struct Sides {
+  std::vector<std::pair<double, double>> spans;  // begin, length
+  std::vector<double> ends;
+  bool on(double x) const {
+    for (const auto& [begin, length] : spans)
+      if (std::fmod(x - begin + 2.0, 1.0) <= length + 1e-12) return true;
+    return false;
+  }
+};
+Sides sidesOf(const Points2& P, double longest, double start, int direction) {
+  const Eigen::VectorXd s = cumulativeArcLength(P);
+  const double total = closedLength(P);
+  Sides out;
+  for (Eigen::Index i = 0; i < P.rows(); ++i) {
+    const Eigen::Index j = (i + 1) % P.rows();
+    const double length = (P.row(j) - P.row(i)).norm();
+    if (length < longest) continue;
+    auto at = [&](double c) { return std::fmod(direction * (c / total - start) + 2.0, 1.0); };
+    const double a = at(s(i)), b = at(j == 0 ? 0.0 : s(j));
+    out.spans.emplace_back(direction > 0 ? a : b, length / total);
+    out.ends.push_back(a);
+    out.ends.push_back(b);
+  }
+  return out;
+}
+
+bool listed(const std::vector<double>& corners, double x) {
+  return std::any_of(corners.begin(), corners.end(),
+                     [&](double c) { return std::abs(std::remainder(c - x, 1.0)) < 1e-12; });
+}
+
+// Both ends of every straight side two seam edges long are seam corners; where the two pieces'
+// sides end within a seam edge of each other and overlap, one end is, on both sides (A's where
+// both are); where a gap parts them, both are.
+TEST(SeamLayout, StraightSidesEndAtSeamCornersOnceWhereThePiecesEndTogether) {
+  ForwardSettings job;
+  job.resolution = 40;
+  const Points2 A = stadium(100.0);
+  const double edge = closedLength(A) / job.resolution;
+  for (const double startB : {0.0, 0.5, 0.3 / job.resolution, -0.2 / job.resolution}) {
+    forward_detail::SeamLayout layout;
+    layout.pieces[0].joined = A;
+    layout.pieces[1].joined = A;
+    SolvedDForm run;
+    run.startFractionB = std::fmod(startB + 1.0, 1.0);
+    forward_detail::layOutSeam(job, run, layout);
+    const Sides a = sidesOf(A, 2.0 * edge, 0.0, 1),
+                b = sidesOf(A, 2.0 * edge, run.startFractionB, -1);
+    int overlapping = 0;
+    ASSERT_EQ(a.ends.size(), 4u);
+    ASSERT_EQ(b.ends.size(), 4u);
+    for (const auto& [mine, theirs] : {std::pair{&a, &b}, std::pair{&b, &a}})
+      for (double end : mine->ends) {
+        double partner = -1.0;
+        for (double other : theirs->ends)
+          if (const double apart = std::abs(std::remainder(end - other, 1.0));
+              apart > 0.0 && apart < 1.0 / job.resolution)
+            partner = other;
+        const std::string what =
+            "start B " + std::to_string(startB) + ", end " + std::to_string(end);
+        // Alone, or with a gap between the two sides (neither end on the other's side): taken.
+        if (partner < 0.0 || !(theirs->on(end) || mine->on(partner))) {
+          EXPECT_TRUE(listed(layout.seamCorners, end)) << what;
+          continue;
+        }
+        ++overlapping;
+        // Of the two, exactly one, on both pieces' sides: A's where both are.
+        EXPECT_NE(listed(layout.seamCorners, end), listed(layout.seamCorners, partner)) << what;
+        const bool both = theirs->on(end) && mine->on(partner);
+        EXPECT_EQ(listed(layout.seamCorners, end), both ? mine == &a : theirs->on(end)) << what;
+      }
+    // Zipped 0.3 of an edge one way, the sides' ends meet across a gap at two places; 0.2 the
+    // other way, they overlap there (each place counted from both ends).
+    if (startB < 0.0) EXPECT_EQ(overlapping, 4);
+    if (startB > 0.0 && startB < 0.5) EXPECT_EQ(overlapping, 0);
+  }
 }
 
 }  // namespace
