@@ -320,16 +320,25 @@ double finestVertices(const ForwardSettings& job, const SeamLayout& layout, doub
 
 namespace {
 
-// The straight sides of the closed polygon P at least `longest` long, as seam fractions (from
-// `start` in `direction`): where each begins and how far it runs.
+// A segment of an outline is a straight side meeting a curve where it is this many times as long
+// as a segment beside it (the curve drawn in shorter ones). A smooth curve drawn in segments of
+// slowly varying length (a superellipse's, longest near its flattest points) has none.
+constexpr double kSideOverCurve = 4.0;
+
+// The straight sides of the closed polygon P at least `longest` long and meeting a curve (at
+// least kSideOverCurve times as long as a segment beside them), as seam fractions (from `start`
+// in `direction`): where each begins and how far it runs.
 std::vector<std::pair<double, double>> straightSides(const Points2& P, double longest, double start,
                                                      int direction) {
   const Eigen::Index n = P.rows();
   const Eigen::VectorXd s = cumulativeArcLength(P);
   const double total = closedLength(P);
   std::vector<std::pair<double, double>> sides;
+  auto segment = [&](Eigen::Index i) { return (P.row((i + 1) % n) - P.row(i % n)).norm(); };
   for (Eigen::Index i = 0; i < n && total > 0.0; ++i)
-    if (const double length = (P.row((i + 1) % n) - P.row(i)).norm(); length >= longest) {
+    if (const double length = segment(i);
+        length >= longest &&
+        length >= kSideOverCurve * std::min(segment(i + n - 1), segment(i + 1))) {
       const double a = fractionFrom(s(i) / total, start, direction),
                    b = fractionFrom((i + 1 < n ? s(i + 1) : 0.0) / total, start, direction);
       sides.emplace_back(direction > 0 ? a : b, length / total);
@@ -344,8 +353,8 @@ bool onSide(const std::vector<std::pair<double, double>>& sides, double x) {
   return false;
 }
 
-// The ends of the pieces' straight sides two seam edges long or longer, as seam corners: where
-// a straight side meets a curve (a rounded corner's tangent point). A seam point a little way
+// The ends of the pieces' straight sides two seam edges long or longer that meet a curve, as
+// seam corners (a rounded corner's tangent point). A seam point a little way
 // into the curve lies a little off the side's line, and the body's edge from it along the side,
 // where the other piece is straight too, runs micrometres beside the seam, folding as sharply as
 // the seam does: no mesh follows it without triangles that thin, and none crosses it without
