@@ -3,7 +3,9 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <list>
 #include <numeric>
 
@@ -25,21 +27,52 @@ double bboxDiagonal(const Points2& P) {
   return (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm();
 }
 
-// Least-norm Gauss-Newton: moves P so that |P[k+1] - P[k]| = target[k].
-double fitChords(Points2& P, const Eigen::VectorXd& target) {
+// The sine of the turn at point k of P, from chord k - 1 to chord k (> 0: forwards, convex).
+double turnSine(const Points2& P, long k) {
+  const Eigen::Vector2d in = row(P, k) - row(P, k - 1), out = row(P, k + 1) - row(P, k);
+  return cross(in, out) / (in.norm() * out.norm());
+}
+
+// Whether point k of P lies on the straight line through its two neighbours, to within
+// kFlatCurvature, turning forwards.
+bool onStraightLine(const Points2& P, long k) {
+  return (row(P, k) - row(P, k - 1)).dot(row(P, k + 1) - row(P, k)) > 0.0 &&
+         std::abs(turnSine(P, k)) <= kFlatCurvature;
+}
+
+// Least-norm Gauss-Newton: moves P so that |P[k+1] - P[k]| = target[k], and so that each point
+// of `straight` stays on the straight line through its two neighbours (the sine of its turn
+// stays 0).
+double fitChords(Points2& P, const Eigen::VectorXd& target, const std::vector<int>& straight) {
   const int n = int(P.rows());
+  const int rows = n + int(straight.size());
   const Points2 start = P;
   for (int iteration = 0; iteration < 8; ++iteration) {
-    Eigen::VectorXd g(n);
+    Eigen::VectorXd g(rows);
     std::vector<Eigen::Vector2d> u(n);
     for (int k = 0; k < n; ++k) {
       const Eigen::Vector2d e = row(P, k + 1) - row(P, k);
       g[k] = e.norm() - target[k];
       u[k] = e / e.norm();
     }
+    // Row n + s: the turn's sine at straight[s], with its gradient in the three points (previous,
+    // itself, next): d cross(a, b) = (b.y, -b.x) . da + (-a.y, a.x) . db over |a| |b|.
+    std::vector<std::array<Eigen::Vector2d, 3>> bend(straight.size());
+    double bent = 0.0;
+    for (std::size_t s = 0; s < straight.size(); ++s) {
+      const int k = straight[s];
+      const Eigen::Vector2d a = row(P, k) - row(P, k - 1), b = row(P, k + 1) - row(P, k);
+      const double scale = 1.0 / (a.norm() * b.norm());
+      g[n + long(s)] = cross(a, b) * scale;
+      bent = std::max(bent, std::abs(g[n + long(s)]));
+      const Eigen::Vector2d da = Eigen::Vector2d(b.y(), -b.x()) * scale;
+      const Eigen::Vector2d db = Eigen::Vector2d(-a.y(), a.x()) * scale;
+      bend[s] = {-da, da - db, db};
+    }
     // Rounding of a chord length is ~1e-16 of it; stop an order above.
-    if (g.cwiseAbs().maxCoeff() <= 1e-15 * target.maxCoeff()) break;
-    // J J^T of the constraints: 2 on the diagonal, -u_k . u_(k+1) between neighbouring chords.
+    if (g.head(n).cwiseAbs().maxCoeff() <= 1e-15 * target.maxCoeff() && bent <= 1e-15) break;
+    // J J^T of the constraints: 2 on the diagonal, -u_k . u_(k+1) between neighbouring chords;
+    // a straight point's row meets the chords and straight points it shares a point with.
     std::vector<Eigen::Triplet<double>> entries;
     for (int k = 0; k < n; ++k) {
       entries.emplace_back(k, k, 2.0);
@@ -47,14 +80,54 @@ double fitChords(Points2& P, const Eigen::VectorXd& target) {
       entries.emplace_back(k, (k + 1) % n, off);
       entries.emplace_back((k + 1) % n, k, off);
     }
-    Eigen::SparseMatrix<double> JJt(n, n);
+    // The gradient of chord c in point q: -u_c at its tail, u_c at its head.
+    auto chordIn = [&](int c, int q) -> Eigen::Vector2d {
+      const int tail = (c % n + n) % n;
+      return q == tail ? Eigen::Vector2d(-u[tail]) : Eigen::Vector2d(u[tail]);
+    };
+    for (std::size_t s = 0; s < straight.size(); ++s) {
+      const int k = straight[s], r = n + int(s);
+      const int at[3] = {(k + n - 1) % n, k, (k + 1) % n};
+      for (int c : {k - 2, k - 1, k, k + 1}) {  // the chords that touch its three points
+        double v = 0.0;
+        for (int j = 0; j < 3; ++j)
+          if (at[j] == (c % n + n) % n || at[j] == ((c + 1) % n + n) % n)
+            v += bend[s][std::size_t(j)].dot(chordIn(c, at[j]));
+        const int col = (c % n + n) % n;
+        if (v != 0.0) entries.emplace_back(r, col, v), entries.emplace_back(col, r, v);
+      }
+      // The straight points within two of it (straight is sorted) share a point with it.
+      std::vector<std::size_t> near;
+      for (long d = -2; d <= 2; ++d)
+        near.push_back(
+            std::size_t((long(s) + d + 5 * long(straight.size())) % long(straight.size())));
+      std::sort(near.begin(), near.end());
+      near.erase(std::unique(near.begin(), near.end()), near.end());
+      for (std::size_t t : near) {
+        const int m = straight[t];
+        double v = 0.0;
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j)
+            if (at[i] == (m + j - 1 + n) % n)
+              v += bend[s][std::size_t(i)].dot(bend[t][std::size_t(j)]);
+        if (v != 0.0) entries.emplace_back(r, n + int(t), v);
+      }
+    }
+    Eigen::SparseMatrix<double> JJt(rows, rows);
     JJt.setFromTriplets(entries.begin(), entries.end());
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(JJt);
+    if (solver.info() != Eigen::Success) break;
     const Eigen::VectorXd y = solver.solve(g);
-    // delta = -J^T y: chord k pulls vertex k + 1 along u_k and pushes vertex k back.
+    // delta = -J^T y: chord k pulls vertex k + 1 along u_k and pushes vertex k back; a straight
+    // point's row moves its three points along its gradients.
     for (int k = 0; k < n; ++k) {
       P.row((k + 1) % n) -= y[k] * u[k].transpose();
       P.row(k) += y[k] * u[k].transpose();
+    }
+    for (std::size_t s = 0; s < straight.size(); ++s) {
+      const int k = straight[s];
+      for (int j = 0; j < 3; ++j)
+        P.row((k + j - 1 + n) % n) -= y[n + long(s)] * bend[s][std::size_t(j)].transpose();
     }
   }
   return (P - start).rowwise().norm().maxCoeff();
@@ -111,21 +184,30 @@ std::vector<Eigen::Vector3i> earClip(const Points2& P, std::vector<int> loop) {
   return out;
 }
 
-// The orientation-reversing isometry of B's plane onto A's that maps every b_k onto a_k, if the
-// pieces are congruent that way to within `tolerance` mm.
-bool congruentMirror(const SeamPolygons& seam, double tolerance, Eigen::Matrix2d& M,
-                     Eigen::Vector2d& t) {
+// The orientation-reversing isometry of B's plane onto A's that maps every b_k closest to a_k
+// (least squares), and the largest distance left between a point and its image, mm; infinite
+// where only a reflection of the reflected piece would fit.
+double congruentMirror(const SeamPolygons& seam, Eigen::Matrix2d& M, Eigen::Vector2d& t) {
   const Eigen::Matrix2d mirror = Eigen::Vector2d(1.0, -1.0).asDiagonal();
   const Points2 b = seam.b * mirror;
   const Eigen::RowVector2d ca = seam.a.colwise().mean(), cb = b.colwise().mean();
   const Eigen::Matrix2d H = (b.rowwise() - cb).transpose() * (seam.a.rowwise() - ca);
   Eigen::JacobiSVD<Eigen::Matrix2d> svd(H, Eigen::ComputeFullU | Eigen::ComputeFullV);
   Eigen::Matrix2d R = svd.matrixV() * svd.matrixU().transpose();
-  if (R.determinant() < 0) return false;  // would need a reflection of the reflected piece
+  if (R.determinant() < 0) return std::numeric_limits<double>::infinity();
   M = R * mirror;
   t = ca.transpose() - M * (seam.b.colwise().mean().transpose());
   const Points2 mapped = (seam.b * M.transpose()).rowwise() + t.transpose();
-  return (mapped - seam.a).rowwise().norm().maxCoeff() <= tolerance;
+  return (mapped - seam.a).rowwise().norm().maxCoeff();
+}
+
+// The glued body's thickness: the extent of its vertices along their direction of least spread.
+double thickness(const Eigen::MatrixX3d& V) {
+  const Eigen::RowVector3d centre = V.colwise().mean();
+  const Eigen::MatrixX3d centred = V.rowwise() - centre;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> spread(centred.transpose() * centred);
+  const Eigen::VectorXd along = centred * spread.eigenvectors().col(0);
+  return along.maxCoeff() - along.minCoeff();
 }
 
 // Seam point k's direction towards q of piece `piece` as a signpost angle at k (A's wedge first,
@@ -172,18 +254,59 @@ bool crossesBoundary(const Points2& P, int k, const Eigen::Vector2d& q) {
   return false;
 }
 
+// The doubly covered piece A: B's seam points are put on the mirror images of A's (moved by at
+// most g.flatDeviation), so that the two pieces are congruent to rounding and every edge of the
+// pouch keeps its length on both.
+ExactGluing pressedFlat(ExactGluing g, ExactGluing::Pouch why) {
+  g.doublyCovered = true;
+  g.pouch = why;
+  g.seam.b = (g.seam.a.rowwise() - g.flatShift.transpose()) * g.flatRotation;
+  g.angles = seamAngles(g.seam);
+  return g;
+}
+
 }  // namespace
 
 namespace {
 
-// Chord k of each polygon set to the mean of the two lengths; returns the largest move.
+// Chord k of each polygon set to the mean of the two lengths, each polygon kept convex where it
+// is (a point that turns forwards, or is straight, does not turn backwards); returns the largest
+// move. Points on a straight line stay on it; a point that would turn backwards is kept straight
+// instead, and the fit is made again (free, the points beside a corner, or where a side meets a
+// curve, would leave the side's line, and those of the side next to them turn backwards: a metric
+// that is not convex where the pieces are).
 double fitMeanChords(SeamPolygons& seam) {
   const long n = seam.a.rows();
   Eigen::VectorXd target(n);
   for (long k = 0; k < n; ++k)
     target[k] = 0.5 * ((row(seam.a, k + 1) - row(seam.a, k)).norm() +
                        (row(seam.b, k + 1) - row(seam.b, k)).norm());
-  return std::max(fitChords(seam.a, target), fitChords(seam.b, target));
+  double moved = 0.0;
+  for (const auto& [P, forwards] : {std::pair{&seam.a, 1.0}, std::pair{&seam.b, -1.0}}) {
+    // A runs counter-clockwise round its piece, B clockwise: B turns forwards with a negative sine.
+    std::vector<int> straight;
+    std::vector<bool> convex(static_cast<std::size_t>(n), false);
+    for (long k = 0; k < n; ++k) {
+      if (onStraightLine(*P, k)) straight.push_back(int(k));
+      convex[std::size_t(k)] = forwards * turnSine(*P, k) >= -kFlatCurvature;
+    }
+    Points2 fitted = *P;
+    for (int round = 0; round < 8; ++round) {
+      fitted = *P;
+      fitChords(fitted, target, straight);
+      std::vector<int> backwards;
+      for (long k = 0; k < n; ++k)
+        if (convex[std::size_t(k)] && forwards * turnSine(fitted, k) < -kFlatCurvature)
+          backwards.push_back(int(k));
+      if (backwards.empty()) break;
+      straight.insert(straight.end(), backwards.begin(), backwards.end());
+      std::sort(straight.begin(), straight.end());
+      straight.erase(std::unique(straight.begin(), straight.end()), straight.end());
+    }
+    moved = std::max(moved, (fitted - *P).rowwise().norm().maxCoeff());
+    *P = fitted;
+  }
+  return moved;
 }
 
 // Straightens, on both sides, every run of seam points where both pieces turn by at most
@@ -244,6 +367,10 @@ double equalizeChords(SeamPolygons& seam) {
                   (seam.b - start.b).rowwise().norm().maxCoeff());
 }
 
+double seamPrecision(const SeamPolygons& seam) {
+  return std::max(kOutlinePrecision, 1e-6 * std::max(bboxDiagonal(seam.a), bboxDiagonal(seam.b)));
+}
+
 SeamAngles seamAngles(const SeamPolygons& seam) {
   const long n = seam.a.rows();
   SeamAngles out;
@@ -273,12 +400,11 @@ Result<ExactGluing> glue(const SeamPolygons& seam, const ExactOptions& options) 
                       " degrees, more than 360");
   }
   // Congruent pieces zipped point to point fold flat: Alexandrov's body is the doubly covered
-  // piece, with no inside for an apex. Congruent to rounding of the coordinates.
+  // piece, with no inside for an apex. Congruent to the precision the outlines are known to.
   const double size = std::max(bboxDiagonal(seam.a), bboxDiagonal(seam.b));
-  if (congruentMirror(seam, 1e-9 * size, g.flatRotation, g.flatShift)) {
-    g.doublyCovered = true;
-    return g;
-  }
+  const double precision = seamPrecision(seam);
+  g.flatDeviation = congruentMirror(seam, g.flatRotation, g.flatShift);
+  if (g.flatDeviation <= precision) return pressedFlat(std::move(g), ExactGluing::Pouch::Congruent);
   // The surface: both pieces triangulated without inner points and glued along the chords. A
   // seam point on a straight side of both pieces is no vertex of either polygon (its two chords
   // are one straight chord on each side); other flat points are removed from the triangulation.
@@ -335,6 +461,18 @@ Result<ExactGluing> glue(const SeamPolygons& seam, const ExactOptions& options) 
   if (!g.embedding.converged)
     return Status(ErrorCode::SolveFailed,
                   "the exact gluing did not converge: " + g.embedding.message);
+  // A body thinner than pressing it flat would change a length of it by the precision (a path
+  // over its width W rising h is longer by about 2 h^2 / W) is the doubly covered piece: the
+  // pieces are congruent as far as their outlines are known, zipped point to point (drawn with
+  // rounded coordinates, say), and its two sheets, micrometres apart, would fold within a
+  // precision of the seam. (Laid out by chained triangles, so thin a body reads its edges a few
+  // millionths off.)
+  if (const double h = thickness(g.embedding.vertices);
+      h <= std::sqrt(0.5 * precision * size) &&
+      g.flatDeviation <= std::sqrt(0.5 * precision * size)) {
+    g.thickness = h;
+    return pressedFlat(std::move(g), ExactGluing::Pouch::Thin);
+  }
   // Laid out in 3D, every edge keeps its length to ~1e-10 where the layout is sound (tests/exact).
   if (!(g.embedding.maxEdgeError <= 1e-6))
     return Status(ErrorCode::SolveFailed,

@@ -180,7 +180,13 @@ Result<std::optional<SolvedDForm>> tryExactModel(const ForwardSettings& job,
   }
   used.name = "exact";
   used.reason =
-      used.doublyCovered
+      used.pouch == "thin"
+          ? format(
+                "the body glued came out %.2g mm thick, too thin to be anything but flat: the "
+                "pieces are congruent as far as their outlines are known (to %.2g mm) and "
+                "zipped point to point, and fold flat onto each other",
+                used.thicknessMm, used.precisionMm)
+      : used.doublyCovered
           ? "the pieces are congruent and zipped point to point: they fold flat onto each other"
           : "two discs zipped along their outlines whose glued metric is convex (every seam "
             "point's "

@@ -19,9 +19,17 @@ namespace dform {
 /// except that every corner of either outline (`corners`, seam fractions) becomes a vertex, so that
 /// no corner of the cut pattern is chamfered off. The stretch between two consecutive corners gets
 /// a share of the n vertices in proportion to its length, spaced uniformly; both pieces use the
-/// same fractions, so paired seam edges keep equal flat lengths. Corners closer than half a seam
-/// edge to an earlier one are merged into it; with more than n / 4 corners the seam is uniform.
+/// same fractions, so paired seam edges keep equal flat lengths. The first vertex is the starting
+/// pair, or the corner nearest it where one lies within half a seam edge of it (the fractions then
+/// run from that corner's, which is below 0 for a corner behind the start, to it plus 1). Corners
+/// closer than kSameCorner of a seam edge to an earlier one are merged into it; with more than
+/// n / 2 corners the seam is uniform.
 std::vector<double> seamFractions(int n, std::vector<double> corners);
+
+/// Corners of the seam closer than this share of a seam edge are one vertex: a chord that short
+/// (1e-3 of a seam edge, 0.8 um on an 800 mm seam of 1000 points) would only chamfer a corner by
+/// as much.
+constexpr double kSameCorner = 1e-3;
 
 namespace forward_detail {
 
@@ -76,7 +84,8 @@ Status matchPieces(const ForwardSettings& job, SeamLayout& layout, SolvedDForm& 
 /// The finest mesh's vertices, for the memory check.
 double finestVertices(const ForwardSettings& job, const SeamLayout& layout, double perimeterA);
 
-/// Each seam's direction and start, and the corners and crease ends every level samples.
+/// Each seam's direction and start, and the corners, crease ends and ends of straight sides
+/// (two seam edges long or longer, at job.resolution) every level samples.
 void layOutSeam(const ForwardSettings& job, const SolvedDForm& run, SeamLayout& layout);
 
 /// The two sides of the seam sampled at `fractions` (A's counter-clockwise, B's clockwise from

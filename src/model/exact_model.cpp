@@ -86,25 +86,89 @@ struct PieceLines {
       along;  ///< how far along its edge each line's ends are, mm
 };
 
-// Whether the run between seam places i and j cuts off a single place m between them (an ear of
-// the seam) lying within kSliver of the run's length from it: the face between them is a sliver
-// whose corners at i and j are under 1e-3 rad, which no mesh draws without triangles that thin.
-// The fold is not followed: the triangles beside the seam there cross it within that sliver
-// (an edge of length l across a fold of angle theta at distance d from its end is shorter by
-// about theta^2 d / (2 l) of l).
+// Whether the run between seam places i and j cuts off places of the seam (one or more, between
+// i and j going one way round) that all lie within kSliver of the run's length from it: the face
+// between them is a sliver whose corners at i and j are under 1e-3 rad, which no mesh draws
+// without triangles that thin. The fold is not followed: the triangles beside the seam there
+// cross it within that sliver (an edge of length l across a fold of angle theta at distance d
+// from its end is shorter by about theta^2 d / (2 l) of l). A body edge along a straight stretch
+// of the seam is such a run wherever the outline is drawn to a precision: rounded, the stretch's
+// points lie a little off the edge; so is one along a nearly straight stretch (the flat side of a
+// superellipse).
 constexpr double kSliver = 1e-3;
 
 bool hugsTheSeam(const Points2& outline, const std::vector<int>& rowOf, int i, int j) {
   const int N = int(rowOf.size());
   for (const auto& [from, to] : {std::pair{i, j}, std::pair{j, i}}) {
-    if ((from + 2) % N != to) continue;
     const Eigen::Vector2d p = outline.row(rowOf[std::size_t(from)]),
-                          q = outline.row(rowOf[std::size_t(to)]),
-                          m = outline.row(rowOf[std::size_t((from + 1) % N)]);
+                          q = outline.row(rowOf[std::size_t(to)]);
     const Eigen::Vector2d u = (q - p).normalized();
-    if (std::abs(u.x() * (m - p).y() - u.y() * (m - p).x()) < kSliver * (q - p).norm()) return true;
+    const double off = kSliver * (q - p).norm();
+    bool within = (from + 1) % N != to;
+    for (int m = (from + 1) % N; within && m != to; m = (m + 1) % N) {
+      const Eigen::Vector2d d = outline.row(rowOf[std::size_t(m)]).transpose() - p;
+      within = std::abs(u.x() * d.y() - u.y() * d.x()) < off && u.dot(d) > 0.0 &&
+               u.dot(d) < (q - p).norm();
+    }
+    if (within) return true;
   }
   return false;
+}
+
+// Lines that leave a place of the seam within kSliver (radians) of another line or of the seam
+// there bound a face of the body whose corner there is under the validator's degenerate angle:
+// a needle (two body edges from one seam point to neighbouring points of a straight side nearly
+// in line with them) that no mesh draws without a triangle that thin. Of the two, the gentler
+// fold is not followed (a line beside the seam is not followed): its needle is narrower than
+// kSliver times its length, and the triangles across it read the fold as those across a fold
+// that hugs the seam do.
+void withoutNeedles(PieceLines& out, const Points2& outline) {
+  const int N = int(outline.rows());
+  std::vector<bool> kept(out.lines.size(), true);
+  for (bool dropped = true; dropped;) {
+    dropped = false;
+    std::vector<std::vector<std::pair<double, int>>> at(static_cast<std::size_t>(N));
+    for (std::size_t l = 0; l < out.lines.size(); ++l)
+      if (kept[l])
+        for (const auto& [v, w] : {std::pair{out.lines[l].from, out.lines[l].to},
+                                   std::pair{out.lines[l].to, out.lines[l].from}}) {
+          const Eigen::Vector2d p = outline.row(v), next = outline.row((v + 1) % N);
+          const Eigen::Vector2d u = next - p, d = outline.row(w).transpose() - p;
+          at[std::size_t(v)].emplace_back(std::atan2(u.x() * d.y() - u.y() * d.x(), u.dot(d)),
+                                          int(l));
+        }
+    for (int v = 0; v < N && !dropped; ++v) {
+      std::vector<std::pair<double, int>>& here = at[std::size_t(v)];
+      if (here.empty()) continue;
+      const Eigen::Vector2d p = outline.row(v), next = outline.row((v + 1) % N),
+                            prev = outline.row((v + N - 1) % N);
+      const Eigen::Vector2d u = next - p, d = prev - p;
+      here.emplace_back(0.0, -1);  // the seam both ways
+      here.emplace_back(std::atan2(u.x() * d.y() - u.y() * d.x(), u.dot(d)), -1);
+      std::sort(here.begin(), here.end());
+      for (std::size_t k = 0; k + 1 < here.size() && !dropped; ++k) {
+        if (here[k + 1].first - here[k].first >= kSliver) continue;
+        const int a = here[k].second, b = here[k + 1].second;
+        if (a < 0 && b < 0) continue;
+        const int gentler = a < 0                                                   ? b
+                            : b < 0                                                 ? a
+                            : out.folds[std::size_t(a)] < out.folds[std::size_t(b)] ? a
+                                                                                    : b;
+        kept[std::size_t(gentler)] = false;
+        dropped = true;
+      }
+    }
+  }
+  PieceLines left;
+  for (std::size_t l = 0; l < out.lines.size(); ++l) {
+    if (!kept[l]) continue;
+    left.lines.push_back(std::move(out.lines[l]));
+    left.folds.push_back(out.folds[l]);
+    left.places.push_back(out.places[l]);
+    left.edges.push_back(out.edges[l]);
+    left.along.push_back(out.along[l]);
+  }
+  out = std::move(left);
 }
 
 PieceLines pieceLines(const std::vector<const exact::BodyEdge*>& followed, int piece,
@@ -117,7 +181,8 @@ PieceLines pieceLines(const std::vector<const exact::BodyEdge*>& followed, int p
     for (const exact::EdgeRun& run : body->runs) {
       if (run.piece != piece) continue;
       const int i = seam.indexOf(run.from), j = seam.indexOf(run.to);
-      // Merged into one place, or along the seam between neighbouring places: nothing to follow.
+      // Merged into one place, or along the seam between neighbouring places: nothing to
+      // follow.
       if (i == j || (i + 1) % N == j || (j + 1) % N == i) continue;
       InteriorLine line;
       line.from = rowOf[std::size_t(i)];
@@ -139,10 +204,12 @@ PieceLines pieceLines(const std::vector<const exact::BodyEdge*>& followed, int p
       out.edges.push_back(body);
       out.along.emplace_back(run.fromLength, run.toLength);
     }
+  withoutNeedles(out, outline);
   return out;
 }
 
-// The point a distance `along` from the first end of a body edge: on its straight segment in 3D.
+// The point a distance `along` from the first end of a body edge: on its straight segment in
+// 3D.
 Eigen::Vector3d onEdge(const exact::ExactGluing& g, const exact::BodyEdge& edge, double along) {
   const Eigen::Vector3d p = g.vertices.row(g.vertexOfSeam[std::size_t(edge.from)]).transpose();
   const Eigen::Vector3d q = g.vertices.row(g.vertexOfSeam[std::size_t(edge.to)]).transpose();
@@ -174,14 +241,14 @@ std::vector<std::optional<Eigen::Vector3d>> seamOnBody(
 // size across) lie in a line for the fit.
 constexpr double kAnchorSpread = 1e-10;
 
-// Each piece's triangles on the body. The followed folds cut the piece into regions that each lie
-// in one plane of the body; a region's vertices on its border whose place the body tells (cone
-// points, points of the folds it follows) give the rigid motion of its plane (least squares,
-// Kabsch), and every other vertex of the region is moved by it. Every triangle is so an isometric
-// copy of its flat one to rounding, and triangles on a fold share its points. Sets the rows of
-// `out` not set yet that a region places; leaves the others (a region whose anchors lie in a line).
-// The regions of a piece between its constrained edges (followed folds, the seam): each region's
-// vertices, sorted.
+// Each piece's triangles on the body. The followed folds cut the piece into regions that each
+// lie in one plane of the body; a region's vertices on its border whose place the body tells
+// (cone points, points of the folds it follows) give the rigid motion of its plane (least
+// squares, Kabsch), and every other vertex of the region is moved by it. Every triangle is so
+// an isometric copy of its flat one to rounding, and triangles on a fold share its points. Sets
+// the rows of `out` not set yet that a region places; leaves the others (a region whose anchors
+// lie in a line). The regions of a piece between its constrained edges (followed folds, the
+// seam): each region's vertices, sorted.
 std::vector<std::vector<int>> regionsBetween(const Faces& F,
                                              const std::vector<std::vector<int>>& constrained) {
   const Eigen::Index nF = F.rows();
@@ -189,7 +256,8 @@ std::vector<std::vector<int>> regionsBetween(const Faces& F,
   for (const std::vector<int>& line : constrained)
     for (std::size_t k = 0; k + 1 < line.size(); ++k)
       walls.insert(std::minmax(line[k], line[k + 1]));
-  // Each face's three sides, sorted by their ends: a side's two faces are neighbours in the list.
+  // Each face's three sides, sorted by their ends: a side's two faces are neighbours in the
+  // list.
   std::vector<std::pair<std::pair<int, int>, Eigen::Index>> sides;
   sides.reserve(std::size_t(3 * nF));
   for (Eigen::Index f = 0; f < nF; ++f)
@@ -312,8 +380,8 @@ bool placeBothOnFaces(const exact::ExactGluing& g, Piece* pieces[2],
   return true;
 }
 
-// Every mesh edge on the body is a chord of a path as long as the flat edge, so never longer than
-// it: the largest excess over the flat length, relative (a misplaced vertex shows as one).
+// Every mesh edge on the body is a chord of a path as long as the flat edge, so never longer
+// than it: the largest excess over the flat length, relative (a misplaced vertex shows as one).
 double longestStretch(const Piece& piece) {
   double longest = 0.0;
   for (Eigen::Index f = 0; f < piece.F.rows(); ++f)
@@ -337,6 +405,12 @@ Result<DForm> exactDForm(exact::SeamPolygons polygons, double targetEdge,
   if (!glued.isOk()) return glued.status();
   exact::ExactGluing& g = glued.value();
   used.doublyCovered = g.doublyCovered;
+  used.precisionMm = exact::seamPrecision(g.seam);
+  if (g.doublyCovered) {
+    used.pouch = g.pouch == exact::ExactGluing::Pouch::Thin ? "thin" : "congruent";
+    used.flatDeviationMm = g.flatDeviation;
+    used.thicknessMm = g.thickness;
+  }
   used.conePoints = g.doublyCovered ? 0 : g.triangulation.vertexCount();
   used.newtonSteps = g.embedding.iterations;
   used.maxCurvature = g.embedding.maxCurvature;
@@ -419,8 +493,8 @@ Result<DForm> exactDForm(exact::SeamPolygons polygons, double targetEdge,
     model.b.shape.row(model.b.seam[k]) = model.a.shape.row(model.a.seam[k]);
   // A longer edge means a vertex was placed off its spot, and the result is not used (auto then
   // makes the shape with the paper model). 1e-4: the seam polygons were moved by up to ~1e-6 of
-  // an edge to equal chords, and placing a vertex rounds; a misplaced vertex is off by a good part
-  // of an edge (seen: 174 %).
+  // an edge to equal chords, and placing a vertex rounds; a misplaced vertex is off by a good
+  // part of an edge (seen: 174 %).
   for (int p = 0; p < 2; ++p)
     if (const double longest = longestStretch(*pieces[p]); longest > 1e-4)
       return Status(ErrorCode::SolveFailed,

@@ -62,13 +62,21 @@ json modelJson(const ModelUsed& used, const DForm& model) {
                        {"length_mm", numberOrNull(c.lengthMm)}});
   json out = {{"name", used.name}, {"reason", used.reason}};
   if (used.name == "exact")
-    out.update({{"cone_points", used.conePoints},
-                {"newton_steps", used.newtonSteps},
-                {"max_curvature_rad", numberOrNull(used.maxCurvature)},
-                {"chord_move_mm", numberOrNull(used.chordMoveMm)},
-                {"doubly_covered", used.doublyCovered},
-                {"found_creases", creases},
-                {"folds", foldsJson(used, model)}});
+    out.update(
+        {{"cone_points", used.conePoints},
+         {"newton_steps", used.newtonSteps},
+         {"max_curvature_rad", numberOrNull(used.maxCurvature)},
+         {"chord_move_mm", numberOrNull(used.chordMoveMm)},
+         {"doubly_covered", used.doublyCovered},
+         {"precision_mm", numberOrNull(used.precisionMm)},
+         {"pouch", used.pouch.empty()
+                       ? json(nullptr)
+                       : json{{"case", used.pouch},
+                              {"deviation_mm", numberOrNull(used.flatDeviationMm)},
+                              {"thickness_mm", used.pouch == "thin" ? numberOrNull(used.thicknessMm)
+                                                                    : json(nullptr)}}},
+         {"found_creases", creases},
+         {"folds", foldsJson(used, model)}});
   if (used.name == "ruled") {
     json states = json::array();
     for (const RuledStateSummary& state : used.states)

@@ -126,8 +126,9 @@ class Session {
   /// (or `optimises` says so, or the last solve of the same `design` did), the answer is a
   /// preview at kPreviewResolution with "preview" and "refining" true, and the worker streams the
   /// full solve ("progress" and "result" events). `design` names what decides the model: the
-  /// pieces and every setting but the starts. `cancel`, when given, stops the solve when set
-  /// (its client went away), as newer input does.
+  /// pieces and every setting, the starts included (the glued metric's convexity depends on where
+  /// the seam starts, so every new position asks the exact engine first). `cancel`, when given,
+  /// stops the solve when set (its client went away), as newer input does.
   nlohmann::json solveLive(const SolveAt& solve, int resolution, bool optimises, long seq,
                            const std::string& design,
                            std::shared_ptr<std::atomic<bool>> cancel = nullptr);
@@ -169,7 +170,8 @@ class Session {
   /// fair, and a strip's back-to-back solves would otherwise hold a drag for seconds).
   std::atomic<int> liveWaiting_{0};
   std::unique_lock<std::mutex> lockAfterLive();
-  std::string optimisedDesign_;  ///< the last design whose solve optimised (under solveMutex_)
+  /// The last design (position included) whose solve optimised (under solveMutex_).
+  std::string optimisedDesign_;
   Latest live_, strip_;
   std::shared_ptr<EventStream> events_ = std::make_shared<EventStream>();
 

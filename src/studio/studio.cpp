@@ -85,11 +85,13 @@ json pieceSummary(const PieceInput& piece) {
   return out;
 }
 
-// What decides whether a forward solve optimises: the pieces and every setting but the starts.
+// What decides whether a forward solve optimises: the pieces and every setting, the starts (the
+// studio's fractions) included, for the glued metric's convexity depends on where the seam starts.
 std::string forwardDesign(const PieceInput& a, const PieceInput& b, const Job& job) {
   const std::hash<std::string> hash;
+  const ForwardSettings& s = std::get<ForwardJob>(job.run);
   return std::to_string(hash(a.text)) + "/" + std::to_string(hash(b.text)) + "/" +
-         studio::designSettings(job);
+         studio::designSettings(job) + "/" + json{s.startA.fraction, s.startB.fraction}.dump();
 }
 
 // The shape first; its figures and the gate's verdict when the session asks for them (after the

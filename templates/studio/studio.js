@@ -6,7 +6,9 @@
 (function () {
   var TOKEN = document.querySelector('meta[name="dform-token"]').content;
   var $ = function (id) { return document.getElementById(id); };
-  var studio = window.studio = { latencies: [], breakdown: [], shown: null, errors: [] };
+  // answers and verdicts: every shape shown (its model, preview or not, seam points, start of B)
+  // and every verdict shown, for the browser test.
+  var studio = window.studio = { latencies: [], breakdown: [], shown: null, errors: [], answers: [], verdicts: [] };
   var session = null, kinds = [];
   var state = {
     mode: "forward",
@@ -310,6 +312,7 @@
     var asked = askedSettings[r.seq] || Object.assign({}, settings());
     Object.keys(askedSettings).forEach(function (k) { if (+k < r.seq) delete askedSettings[k]; });
     var pieces = decodePieces(r);
+    studio.answers.push({ seq: r.seq, model: r.model.name, preview: !!r.preview, seam: r.pieces[0].seam.length, start_b: r.start_b });
     var extra = [];
     if (r.target) extra.push({ points: decodeF64(r.target), colour: [0.1, 0.5, 0.2], loop: true });
     view3d.setModel(pieces, extra);
@@ -363,6 +366,7 @@
   function showVerdict(r, verdict) {
     var gate = verdict && verdict.gate, status = $("status");
     if (verdict) { r.figures = verdict.figures; r.gate = gate; }
+    if (gate) studio.verdicts.push({ seq: r.seq, preview: !!r.preview, passed: gate.passed });
     status.className = "status " + (gate ? (gate.passed ? "pass" : "fail") : verdict && verdict.error ? "error" : "");
     status.textContent = (verdict && verdict.error ? verdict.error : !gate ? "measuring, checking the gate…"
                           : gate.passed ? "gate passed" : "gate failed: " + gate.failed + " check(s)") +

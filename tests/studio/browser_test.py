@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """dform studio in a real browser (headless Chromium): the page loads without console errors;
 dragging a start handle changes the shape, and the shape is the command line's for that start;
+dragging B's start round a square at 60 Hz is answered by the exact model at every position;
 flip and the alternative-starts strip work; a bad SVG shows its error and the next good one
 solves; Save job + `dform run` reproduces the figures; Export's pattern.svg is the CLI's, byte
 for byte; the export dialog's material, numbers and hinge lists are the settings table's and reach
@@ -69,6 +70,30 @@ def drag_handle(s, piece, steps):
     actions.release().perform()
     s.settle()
     return before
+
+
+def drag_round(s, piece, moves, pause):
+    """Drags piece's start handle once round its outline, one real pointer move every `pause`
+    seconds (1/60: a 60 Hz pointer)."""
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.by import By
+    points = s.js(f"""
+        var v = window.studio.views[{'ab'.index(piece)}], out = [], h = v.handle.getBoundingClientRect();
+        var m = v.svg.getScreenCTM();
+        for (var k = 1; k <= {moves}; ++k) {{
+          var p = v.loop.at(v.fraction + k / {moves}), q = v.svg.createSVGPoint();
+          q.x = p[0]; q.y = -p[1]; q = q.matrixTransform(m);
+          out.push([Math.round(q.x - (h.left + h.width / 2)), Math.round(q.y - (h.top + h.height / 2))]);
+        }}
+        return out;""")
+    actions = ActionChains(s.driver, duration=0).click_and_hold(
+        s.driver.find_element(By.CSS_SELECTOR, f"#svg-{piece} circle.handle"))
+    last = [0, 0]
+    for x, y in points:
+        actions.move_by_offset(x - last[0], y - last[1]).pause(pause)
+        last = [x, y]
+    actions.release().perform()
+    s.settle()
 
 
 def main():
@@ -142,6 +167,28 @@ def main():
         s.settle()
         check(s.js("return document.getElementById('error-a').textContent") == "", "the good outline clears the error")
         check("circle.svg" in s.js("return document.getElementById('name-a').textContent"), "the good outline solved")
+
+        # Circle + square, B's start dragged round the whole square at 60 Hz: across its four
+        # corners every position is answered by the exact model at the page's resolution (no
+        # preview), and every verdict shown passes.
+        seq = s.js("return window.studio.frameSeq")
+        s.driver.find_element("id", "file-b").send_keys(os.path.join(samples, "forward", "square.svg"))
+        s.wait(lambda: s.js("return window.studio.frameSeq") > seq, 60, "the square's shape")
+        s.settle()
+        first = s.js("return [window.studio.answers.length, window.studio.verdicts.length]")
+        resolution = s.js("return window.studio.shown.settings.resolution")
+        drag_round(s, "b", 480, 1 / 60)
+        s.wait(lambda: s.js("return !!window.studio.shown.result.gate"), 120, "the last position's verdict")
+        answers = s.js("return window.studio.answers")[first[0]:]
+        verdicts = s.js("return window.studio.verdicts")[first[1]:]
+        starts = sorted(a["start_b"] % 1.0 for a in answers)
+        gap = max([b - a for a, b in zip(starts, starts[1:])] + [starts[0] + 1.0 - starts[-1]]) if starts else 1.0
+        not_exact = [a for a in answers if a["model"] != "exact" or a["preview"] or a["seam"] != resolution]
+        check(len(answers) >= 8 and gap < 0.1,
+              f"the drag round the square was answered all along it ({len(answers)} positions, largest gap {gap:.3f})")
+        check(not not_exact, f"every position the exact model's at {resolution} seam points, none a preview {not_exact[:3]}")
+        check(verdicts and all(v["passed"] for v in verdicts),
+              f"every verdict shown passed ({sum(not v['passed'] for v in verdicts)} of {len(verdicts)} failed)")
 
         s.driver.find_element("id", "save-job").click()
         s.wait(lambda: s.js("return !!window.studio.lastDownload"), 30, "the saved job")

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -318,6 +319,49 @@ TEST(StudioServer, NewestInputWinsAndStaleRefinementsNeverArrive) {
   EXPECT_TRUE(result["figures"].contains("L_error"));  // and its figures
   for (const json& e : events.seen())
     EXPECT_NE(e.value("seq", 0) == 1 && e["type"] == "result", true) << e;
+}
+
+// Whether the glued metric is convex depends on where the seam starts: a square against a square
+// whose bottom side is notched (190 degrees at the notch) is convex only where a corner of B meets
+// the notch. A position that needs the optimiser leaves the next one, which the exact engine
+// glues, answered by the exact engine at full resolution, not as a preview.
+TEST(StudioServer, EveryPositionAsksTheExactEngineFirst) {
+  StudioClient c;
+  const std::string session = c.session();
+  const double notch = 50.0 * std::tan(5.0 * 3.14159265358979323846 / 180.0);
+  const double side = (2.0 * std::hypot(50.0, notch) + 300.0) / 4.0;
+  char a[160], b[160];
+  std::snprintf(a, sizeof a, "{\"points\": [[50,%.12f],[100,0],[100,100],[0,100],[0,0]]}", notch);
+  std::snprintf(b, sizeof b, "{\"points\": [[0,0],[%.12f,0],[%.12f,%.12f],[0,%.12f]]}", side, side,
+                side, side);
+  for (const auto& [piece, text] : {std::pair{"a", a}, std::pair{"b", b}}) {
+    auto r = c.post("/api/outline", {{"session", session},
+                                     {"piece", piece},
+                                     {"name", std::string(piece) + ".json"},
+                                     {"text", text}});
+    ASSERT_EQ(r.first, 200) << r.second;
+  }
+  json job = {{"session", session}, {"resolution", 60}, {"start_a", 0.0}};
+  // B's side against the notch: 370 degrees there, the optimiser's preview.
+  job["seq"] = 1;
+  job["start_b"] = 0.125;
+  auto notched = c.post("/api/solve", job);
+  ASSERT_EQ(notched.first, 200) << notched.second;
+  EXPECT_TRUE(notched.second["preview"].get<bool>()) << notched.second;
+  // B's corner in the notch: convex, the exact body at the page's resolution.
+  job["seq"] = 2;
+  job["start_b"] = 0.0;
+  auto corner = c.post("/api/solve", job);
+  ASSERT_EQ(corner.first, 200) << corner.second;
+  EXPECT_EQ(corner.second["model"]["name"], "exact") << corner.second;
+  EXPECT_FALSE(corner.second["preview"].get<bool>());
+  EXPECT_EQ(corner.second["pieces"][0]["seam"].size(), 60u);
+  // Back at the notched position: the optimiser again.
+  job["seq"] = 3;
+  job["start_b"] = 0.125;
+  auto again = c.post("/api/solve", job);
+  ASSERT_EQ(again.first, 200) << again.second;
+  EXPECT_TRUE(again.second["preview"].get<bool>()) << again.second;
 }
 
 TEST(StudioServer, LatestTicketCancelsTheOneBefore) {

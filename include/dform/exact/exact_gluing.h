@@ -25,7 +25,10 @@ struct SeamPolygons {
 
 /// Moves both polygons as little as possible (least-norm Gauss-Newton) so that chord k of each
 /// has the mean of the two lengths, to rounding: the metric glues exactly only when the two sides
-/// of every chord are equally long. A stretch of seam points where both pieces are straight to
+/// of every chord are equally long. Each polygon stays convex where it is: a point on a straight
+/// line through its neighbours (to within kFlatCurvature) stays on one, and a point that turns
+/// forwards does not come to turn backwards (it is kept straight instead), so that a metric
+/// convex as drawn stays convex. A stretch of seam points where both pieces are straight to
 /// within kSamplingExcess and whose angle sums exceed 2 pi while the points around it turn
 /// forwards by more is made straight on both sides (a sampling artefact, exact_gluing.cpp).
 /// Returns the largest move, mm.
@@ -50,6 +53,15 @@ constexpr double kFlatCurvature = 1e-9;
 
 SeamAngles seamAngles(const SeamPolygons& seam);
 
+/// mm: the precision the outlines are known to, as the readers state it (io's flattenTolerance:
+/// curves are flattened to within 1e-4 mm).
+constexpr double kOutlinePrecision = 1e-4;
+
+/// mm: the precision a seam is glued to: kOutlinePrecision, or a millionth of the pieces' size
+/// (the larger bounding-box diagonal) where that is coarser. Pieces congruent to within it are
+/// congruent, and no feature of the body smaller than it is drawn.
+double seamPrecision(const SeamPolygons& seam);
+
 /// Seams longer than this are not glued exactly (neither as a run's model nor for a figure): the
 /// engine's time grows about as n^1.5 (1000 seam points take ~0.3 s), and such seams come from the
 /// relaxation-only runs.
@@ -62,6 +74,15 @@ struct ExactGluing {
   /// The pieces are congruent and zipped point to point: the body is piece A doubly covered, and
   /// flatRotation * b + flatShift maps piece B's plane onto A's.
   bool doublyCovered = false;
+  /// Why the body is the doubly covered piece: the pieces are congruent to within seamPrecision,
+  /// or the body glued came out thinner than sqrt(precision x size / 2) (pressed flat, no length
+  /// of it changes by more than the precision).
+  enum class Pouch { None, Congruent, Thin };
+  Pouch pouch = Pouch::None;
+  /// mm: the largest distance between a point of A and its partner of B laid onto A by the best
+  /// flatRotation and flatShift (infinite where no reflection fits).
+  double flatDeviation = 0;
+  double thickness = 0;  ///< mm: the glued body's thickness, where it came out thin
   Eigen::Matrix2d flatRotation = Eigen::Matrix2d::Identity();
   Eigen::Vector2d flatShift = Eigen::Vector2d::Zero();
   IntrinsicTriangulation triangulation;  ///< of the cone points: the body's faces

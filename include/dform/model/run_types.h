@@ -55,6 +55,12 @@ struct ModelUsed {
   double maxCurvature = 0;  ///< exact: largest |curvature| left at a cone point (radians)
   double chordMoveMm = 0;   ///< exact: the most a seam point moved to make paired chords equal
   bool doublyCovered = false;  ///< exact: the pieces fold flat onto each other
+  /// exact, doubly covered: why ("congruent": the pieces are congruent to within the precision;
+  /// "thin": the body glued came out too thin to be anything but flat; exact/exact_gluing.h)
+  std::string pouch;
+  double flatDeviationMm = 0;  ///< exact, doubly covered: farthest partner of B laid onto A, mm
+  double thicknessMm = 0;      ///< exact, "thin": the glued body's thickness, mm
+  double precisionMm = 0;      ///< exact: the precision the seam was glued to, mm
   /// general: relative first-order residual at the answer; ruled: of its bending energy where
   /// the lengths leave freedom (0 on a closed surface)
   double stationarity = 0;
