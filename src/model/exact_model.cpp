@@ -171,6 +171,47 @@ void withoutNeedles(PieceLines& out, const Points2& outline) {
   out = std::move(left);
 }
 
+// A seam place turning by less than this (radians) makes, with its two neighbours, a triangle
+// whose smallest angle is about half that: within a factor of 5 of the validator's degenerate
+// angle (1e-3).
+constexpr double kNearlyStraight = 1e-2;
+
+// How far apart the points inside the run from place i to place j are, mm: `edge`, or, where the
+// run cuts off a nearly straight stretch of seam (a place in it turning by under kNearlyStraight:
+// a fold near the flattest point of a superellipse, or across the rim of a disc glued to a
+// square's corner at n = 1000) lying closer to it than half of `edge` (no lattice point of the
+// mesher fits between them), that stretch's distance from the run but no less than its places'
+// spacing. With the run's two ends alone the mesher could only join the stretch's places to each
+// other, in triangles of three nearly collinear places whose angles go to zero where the seam is
+// straightest; with points across from them, the smallest angle there is the run's angle with
+// the seam at its ends (kept above kSliver by withoutNeedles).
+double runSpacing(const Points2& outline, const std::vector<int>& rowOf, int i, int j,
+                  double edge) {
+  const int N = int(rowOf.size());
+  const auto at = [&](int m) -> Eigen::Vector2d { return outline.row(rowOf[std::size_t(m)]); };
+  const Eigen::Vector2d p = at(i), u = (at(j) - p).normalized();
+  double spacing = edge;
+  for (const auto& [from, to] : {std::pair{i, j}, std::pair{j, i}}) {
+    double farthest = 0.0, seamLength = (at((from + 1) % N) - at(from)).norm();
+    double leastTurn = kPi;
+    int places = 0;
+    for (int m = (from + 1) % N; m != to; m = (m + 1) % N) {
+      const Eigen::Vector2d d = at(m) - p, back = at(m) - at((m + N - 1) % N),
+                            ahead = at((m + 1) % N) - at(m);
+      farthest = std::max(farthest, std::abs(u.x() * d.y() - u.y() * d.x()));
+      leastTurn = std::min(
+          leastTurn,
+          std::abs(std::atan2(back.x() * ahead.y() - back.y() * ahead.x(), back.dot(ahead))));
+      seamLength += ahead.norm();
+      ++places;
+    }
+    if (places == 0 || leastTurn >= kNearlyStraight) continue;
+    const double across = std::max(farthest, seamLength / double(places + 1));
+    if (across < 0.5 * edge) spacing = std::min(spacing, across);
+  }
+  return spacing;
+}
+
 PieceLines pieceLines(const std::vector<const exact::BodyEdge*>& followed, int piece,
                       const ConformingSeam& seam, const std::vector<int>& rowOf,
                       const Points2& outline, double edge) {
@@ -196,7 +237,8 @@ PieceLines pieceLines(const std::vector<const exact::BodyEdge*>& followed, int p
       seen[key] = out.lines.size();
       Points2 ends(2, 2);
       ends << outline.row(line.from), outline.row(line.to);
-      const int segments = std::max(1, int(std::lround(openLength(ends) / edge)));
+      const double spacing = runSpacing(outline, rowOf, i, j, edge);
+      const int segments = std::max(1, int(std::lround(openLength(ends) / spacing)));
       line.interior = resampleOpen(ends, segments).middleRows(1, segments - 1);
       out.lines.push_back(std::move(line));
       out.folds.push_back(body->fold);

@@ -76,7 +76,8 @@ std::size_t family(const std::string& name) {
 
 // Cases the sweeps found short of the exact model: congruent rounded squares written with 5
 // decimals, zipped unflipped from starts an eighth of a loop apart at n = 100, and circle +
-// square at n = 1000, the engine's limit.
+// square at n = 1000, the engine's limit, and superellipses at n = 1000 from start 0 (unrounded and
+// with 5 decimals: 44 degenerate triangles).
 TEST(ExactEverywhere, CasesTheSweepsFound) {
   std::vector<Case> cases;
   for (int decimals : {5, 9, 3})
@@ -93,6 +94,13 @@ TEST(ExactEverywhere, CasesTheSweepsFound) {
     c.family = family("circle + square");
     c.resolution = 1000;
     c.startB = startB;
+    cases.push_back(c);
+  }
+  for (int decimals : {kExact, 5}) {
+    Case c;
+    c.family = family("superellipses 3 + 2.5:1.2");
+    c.decimals = decimals;
+    c.resolution = 1000;
     cases.push_back(c);
   }
   const std::vector<std::string> failures = convex::sweep(cases);
