@@ -86,18 +86,25 @@ std::string ruledModelRefusal(const ForwardSettings& job, const SeamLayout& layo
     return "the seam has " + std::to_string(job.resolution) +
            " points, more than the ruled engine's " + std::to_string(ruled::kMaxRuledSeam);
   if (asked || (layout.pieces[0].freeOutline && layout.pieces[1].freeOutline)) return "";
+  const auto [point, degrees] = negativelyCurvedSeamPoint(job, layout);
+  if (point >= 0)
+    return "a piece zipped along its outline meets a seam point of negative curvature (point " +
+           std::to_string(point) +
+           format(
+               ", %.3f degrees): the ruled engine makes no state there without folding the "
+               "sheet back",
+               degrees);
+  return "";
+}
+
+std::pair<int, double> negativelyCurvedSeamPoint(const ForwardSettings& job,
+                                                 const SeamLayout& layout) {
   exact::SeamPolygons seam = seamPolygons(layout.pieces, layout.startFraction, layout.direction,
                                           seamFractions(job.resolution, layout.seamCorners));
   exact::equalizeChords(seam);
   const exact::SeamAngles angles = exact::seamAngles(seam);
-  if (angles.firstNonConvex >= 0)
-    return "a piece zipped along its outline meets a seam point of negative curvature (point " +
-           std::to_string(angles.firstNonConvex) +
-           format(
-               ", %.3f degrees): the ruled engine makes no state there without folding the "
-               "sheet back",
-               (angles.a[angles.firstNonConvex] + angles.b[angles.firstNonConvex]) / kDegree);
-  return "";
+  const int k = angles.firstNonConvex;
+  return {k, k < 0 ? 0.0 : (angles.a[k] + angles.b[k]) / kDegree};
 }
 
 Status solveRuledModel(const ForwardSettings& job, const SeamLayout& layout, SolvedDForm& run,

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "dform/core/messages.h"
@@ -19,6 +20,11 @@ namespace dform::forward_detail {
 /// more than 360 degrees), where the engine finds no state or one folded back on itself
 /// (docs/ruled.md, "Limits").
 std::string ruledModelRefusal(const ForwardSettings& job, const SeamLayout& layout, bool asked);
+
+/// The first seam point where the two pieces' angles sum to more than 360 degrees (after
+/// equalising chords) and that sum, or -1 where the glued metric has none.
+std::pair<int, double> negativelyCurvedSeamPoint(const ForwardSettings& job,
+                                                 const SeamLayout& layout);
 
 /// The ruled engine's start interior edges on a sheet with a free brim, as multiples of the seam
 /// edge. There its start needs only the boundary points' places: on the anti sample the paper

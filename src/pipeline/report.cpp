@@ -88,6 +88,7 @@ json modelJson(const ModelUsed& used, const DForm& model) {
                 {"stationarity", numberOrNull(used.stationarity)},
                 {"flips", used.flips},
                 {"flips_stationary", used.flipsStationary},
+                {"interior_vertices", used.interiorVertices},
                 {"states", states},
                 {"found_creases", creases},
                 {"folds", foldsJson(used, model)}});

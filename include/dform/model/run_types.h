@@ -68,10 +68,13 @@ struct ModelUsed {
   std::vector<FoundCrease> creases;
   /// exact and ruled: every fold through a piece (the paper model knows none)
   std::vector<BodyFold> folds;
-  double bendingEnergy = 0;      ///< ruled: the answer's bending energy (dimensionless)
-  double lengthError = 0;        ///< ruled: largest relative edge-length error of its surface
-  int flips = 0;                 ///< ruled: flips after the start's triangulation
-  bool flipsStationary = false;  ///< ruled: no flip lowers its objective
+  double bendingEnergy = 0;  ///< ruled: the answer's bending energy (dimensionless)
+  double lengthError = 0;    ///< ruled: largest relative edge-length error of its surface
+  int flips = 0;             ///< ruled: flips after the start's triangulation
+  /// ruled: vertices inside the pieces whose flat places were unknowns too (0: the surface's
+  /// vertices are the boundary points)
+  int interiorVertices = 0;
+  bool flipsStationary = false;           ///< ruled: no flip lowers its objective
   std::vector<RuledStateSummary> states;  ///< ruled: every distinct state, least bending first
 };
 
