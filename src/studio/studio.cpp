@@ -38,8 +38,9 @@ namespace {
 
 const std::vector<std::string> kOutlineExtensions = {".svg", ".json"};
 const std::vector<std::string> kCurveExtensions = {".obj", ".json"};
-const char* const kAssets[] = {"index.html", "studio.js", "studio.css",  "view3d.js",
-                               "pieces.js",  "strip.js",  "downloads.js"};
+const char* const kAssets[] = {"index.html", "studio.js", "studio.css",   "view3d.js",
+                               "pieces.js",  "strip.js",  "downloads.js", "overlay.js",
+                               "picking.js", "preview.js"};
 
 // JSON answers. The charset parameter also keeps cpp-httplib from compressing them (it
 // compresses a bare "application/json" for a browser that accepts gzip or brotli): on loopback
@@ -130,9 +131,11 @@ studio::SolveAt forwardSolve(const PieceInput& a, const PieceInput& b,
                                 Result<Metrics> metrics = measureDForm(*run, s, "the pieces");
                                 if (!metrics.isOk()) return {{"error", metrics.status().message()}};
                                 return verdictUnlessStopped([&] {
-                                  return studio::verdictJson(
-                                      metrics.value(),
-                                      runGate(run->model, gate, metrics.value(), nullptr, nullptr));
+                                  const GateReport report =
+                                      runGate(run->model, gate, metrics.value(), nullptr, nullptr);
+                                  json v = studio::verdictJson(metrics.value(), report);
+                                  v["overlay"] = studio::overlayJson(run->model, report);
+                                  return v;
                                 });
                               },
                               sparseExact};
@@ -153,9 +156,11 @@ studio::SolveAt inverseSolve(const CurveInput& curve, const InverseSettings& set
     out["warnings"] = studio::warnings(sink.messages());
     return studio::Solved{out, [run, gate] {
                             return verdictUnlessStopped([&] {
-                              return studio::verdictJson(run->metrics,
-                                                         runGate(run->model, gate, run->metrics,
-                                                                 &run->target, &run->curveMatch));
+                              const GateReport report = runGate(run->model, gate, run->metrics,
+                                                                &run->target, &run->curveMatch);
+                              json v = studio::verdictJson(run->metrics, report);
+                              v["overlay"] = studio::overlayJson(run->model, report);
+                              return v;
                             });
                           }};
   };
@@ -528,6 +533,13 @@ void Studio::Impl::solveRoutes(httplib::Server& server) {
     if (!zip.value().missing.empty())
       res.set_header("X-Dform-Missing", studio::percentEncoded(zip.value().missing));
     sendZip(res, zip.value().zip, "dform-export.zip");
+  });
+  // The export's layout before the export: the same run, its pages and sheets instead of a zip.
+  api(server, "/api/preview", [jobFiles](const json& body, Session& s, httplib::Response& res) {
+    Result<studio::ExportedFiles> files =
+        studio::exportedFiles(jobFiles(body, s), studio::Server::clientGone().get());
+    if (!files.isOk()) throw RequestError(files.status().message());
+    reply(res, 200, studio::printPreview(files.value()));
   });
 }
 

@@ -72,8 +72,18 @@ std::string designSettings(const Job& job);
 /// "gate"}, the gate's name, passed, and every check.
 nlohmann::json verdictJson(const Metrics& metrics, const GateReport& gate);
 
+/// What the page draws on the shape beside the figures: per piece ("pieces": A, B) its edges
+/// ("edges": base64 of 32-bit vertex pairs) with their strain ("strain": base64 of doubles, one
+/// an edge, EdgeStrain) and its curvature ("curvature": base64 of doubles, one a vertex,
+/// curvatureMap); "failing": where each failing check of `gate` fails (locateFailures: "check",
+/// "kind" edges/vertices/seam_points, "items" per piece); "unlocated": the failing checks that
+/// have no sites on the shape.
+nlohmann::json overlayJson(const DForm& model, const GateReport& gate);
+
 /// An outline as read, for drawing and the start handles: outer loop, holes, creases (flat
-/// [x0, y0, x1, y1, ...] arrays, mm, at most `maxPoints` points a loop), perimeters, bounds.
+/// [x0, y0, x1, y1, ...] arrays, mm, at most `maxPoints` points a loop), perimeters, bounds, and
+/// the corners a start snaps to ("corners", "hole_corners": the arc-length fractions of each
+/// loop's vertices that turn by kCornerTurnRadians or more, cornerFractions).
 nlohmann::json shapeJson(const Shape2& shape, int maxPoints = 4000);
 
 /// A curve as read: its points (flat [x, y, z, ...], at most `maxPoints`) and length.
