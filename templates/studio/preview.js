@@ -17,6 +17,7 @@ function Preview(page) {
   this.schedule = function (delay) {
     clearTimeout(timer);
     $("preview-state").textContent = $("export-preview").textContent = "waiting for the design to settle…";
+    $("preview-pages").classList.add("stale");  // the last layout is another design's
     timer = setTimeout(function () { timer = null; run(); }, delay == null ? 600 : delay);
   };
   // No layout asked for or under way (tests wait for it).
@@ -49,15 +50,22 @@ function Preview(page) {
     $("export-preview").textContent = "Preview: " + $("preview-state").textContent + ($("preview-missing").textContent ? ". " + $("preview-missing").textContent : "");
     var box = $("preview-pages");
     box.innerHTML = "";
+    box.classList.toggle("stale", !!timer || again);
     if (!p.pages) return;
     box.appendChild(plan(sheets, pages));
     (p.svg || []).forEach(function (text, k) {
       var img = document.createElement("img");
       img.className = "preview-sheet";
       img.alt = "sheet " + (k + 1);
-      img.src = "data:image/svg+xml;charset=utf-8," + encodeURIComponent(text);
+      img.src = "data:image/svg+xml;charset=utf-8," + encodeURIComponent(thin(text));
       box.appendChild(img);
     });
+  }
+
+  // A sheet's SVG with every line one screen pixel wide: a cutter's hairlines (0.01 mm) vanish at
+  // the preview's scale, and a print's 0.35 mm lines would too.
+  function thin(svg) {
+    return svg.replace(/<svg\b[^>]*>/, "$&<style>* { vector-effect: non-scaling-stroke; stroke-width: 1px !important; }</style>");
   }
 
   // The sheets (grey) and each page's window on them (numbered rectangles), canvas mm, y down.

@@ -250,14 +250,13 @@
   // the first frame of a newer seq: tests/bench/studio_latency.py counts it there.
   studio.moves = []; studio.frames = [];
   // A drag's pointer event may stand for several moves the browser coalesced (`coalesced`: their
-  // events, the event's own last): each is a move.
+  // events, the event's own last): each is a move, and only the last one's position is sent.
   function solve(eventTime, coalesced) {
     var seq = nextSeq++;
     inputTime[seq] = eventTime != null ? eventTime : performance.now();
     if (eventTime != null) {
-      (coalesced && coalesced.length ? coalesced : [{ timeStamp: eventTime }]).forEach(function (m) {
-        studio.moves.push({ seq: seq, time: m.timeStamp });
-      });
+      var all = coalesced && coalesced.length ? coalesced : [{ timeStamp: eventTime }];
+      all.forEach(function (m, k) { studio.moves.push({ seq: seq, time: m.timeStamp, sent: k === all.length - 1 }); });
     }
     pending = seq;
     if (!inFlight) send();
@@ -478,6 +477,7 @@
   function enterMode() {
     syncControls();
     clearShape();
+    schedulePreview();
     if (state.mode === "forward") {
       [0, 1].forEach(function (i) {
         $("name-" + "ab"[i]).textContent = summaries[i].name + " — perimeter " + summaries[i].perimeter.toFixed(1) + " mm";
@@ -505,7 +505,7 @@
         state.curve = { name: c.name };
         $("curve-error").textContent = "";
         $("curve-name").textContent = c.name + " — " + c.length.toFixed(1) + " mm";
-        solve();
+        solve(); schedulePreview();
       }).catch(function (e) { $("curve-error").textContent = e.message; studio.errors.push(e.message); });
     };
     reader.readAsText(file);

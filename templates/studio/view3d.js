@@ -31,9 +31,13 @@ function View3D(canvas, options) {
     "uniform float lit, tinted;",
     "varying vec3 viewPosition, vertexTint;",
     "void main() {",
-    "  vec3 n = normalize(cross(dFdx(viewPosition), dFdy(viewPosition)));",
-    "  float light = abs(dot(n, normalize(vec3(-0.6, 0.7, 0.45))));",
-    "  gl_FragColor = vec4(mix(colour, vertexTint, tinted) * mix(1.0, 0.2 + 0.8 * light, lit), 1.0);",
+    "  float shade = 1.0;",
+    // Lines and points have no plane (their derivatives' cross product is zero): unlit.
+    "  if (lit > 0.5) {",
+    "    vec3 n = normalize(cross(dFdx(viewPosition), dFdy(viewPosition)));",
+    "    shade = 0.2 + 0.8 * abs(dot(n, normalize(vec3(-0.6, 0.7, 0.45))));",
+    "  }",
+    "  gl_FragColor = vec4(mix(colour, vertexTint, tinted) * shade, 1.0);",
     "}"].join("\n");
   // Both shaders compiled and linked into one program; a compiler's log becomes the error.
   var program = gl.createProgram();
