@@ -1,5 +1,6 @@
 // The studio's parts without a server: the stored zip (read back by Python's zipfile), the
-// request guard, upload names, and the parametric outlines (read by io as the studio reads them).
+// request guard, upload names, the parametric outlines (read by io as the studio reads them) and
+// the corners a start snaps to.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +11,7 @@
 #include "dform/io/outline_reader.h"
 #include "studio/guard.h"
 #include "studio/outlines.h"
+#include "studio/wire.h"
 #include "studio/zip.h"
 
 namespace dform {
@@ -126,6 +128,21 @@ TEST(StudioOutlines, EveryKindReadsAtEveryExtreme) {
   EXPECT_NEAR(perimeter("rounded_rectangle", {{"width", 200}, {"height", 100}, {"radius", 20}}),
               2 * (160 + 60) + 2 * pi * 20, 1e-2);
   EXPECT_EQ(studio::parametricOutline("heart", {}), "");
+}
+
+// The corners an outline's answer lists (where a dragged start snaps): a regular polygon's and a
+// Reuleaux polygon's vertices, evenly spaced in arc length from the first; a smooth ellipse none.
+TEST(StudioWire, TheCornersAreTheOutlinesSharpTurns) {
+  const auto corners = [](const std::string& kind, std::map<std::string, double> values) {
+    const Shape2 shape = parseOutline(studio::parametricOutline(kind, values), "x.json").value();
+    return studio::shapeJson(shape)["corners"].get<std::vector<double>>();
+  };
+  for (const auto& [kind, n] : {std::pair<std::string, int>{"polygon", 6}, {"reuleaux", 3}}) {
+    const std::vector<double> c = corners(kind, {{"sides", n}, {"radius", 100}});
+    ASSERT_EQ(c.size(), std::size_t(n)) << kind;
+    for (int k = 0; k < n; ++k) EXPECT_NEAR(c[std::size_t(k)], double(k) / n, 1e-3) << kind;
+  }
+  EXPECT_TRUE(corners("ellipse", {{"a", 110}, {"b", 80}}).empty());
 }
 
 }  // namespace
