@@ -161,7 +161,9 @@ Result<ExportedZip> exportedResult(const Files& jobFiles, const std::atomic<bool
   return ExportedZip{storedZip(exported.value().files), exported.value().missing};
 }
 
-json printPreview(const ExportedFiles& exported) {
+json printPreview(const Result<ExportedFiles>& run) {
+  if (!run.isOk()) return {{"error", run.status().message()}};
+  const ExportedFiles& exported = run.value();
   const auto file = [&](const std::string& name) -> const std::string* {
     for (const auto& [n, content] : exported.files)
       if (n == name) return &content;
@@ -182,6 +184,14 @@ json printPreview(const ExportedFiles& exported) {
   for (const char* key : {"scale", "profile", "failed_gate"})
     if (pattern.contains(key)) out[key] = pattern.at(key);
   return out;
+}
+
+json previewOf(const std::function<Files()>& jobFiles, const std::atomic<bool>* cancel) {
+  try {
+    return printPreview(exportedFiles(jobFiles(), cancel));
+  } catch (const RequestError& e) {
+    return {{"error", e.what()}};
+  }
 }
 
 }  // namespace dform::studio

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
@@ -55,7 +56,14 @@ Result<ExportedZip> exportedResult(const std::vector<std::pair<std::string, std:
 /// The print preview of an export: its pattern.json's "pages" (each page or tile: kind, size,
 /// origin and window on the canvas) and "sheets", each sheet's SVG ("svg", in the sheets' order),
 /// its "scale", "profile" and "failed_gate", and "missing" (ExportedZip's). Without cutting
-/// files, "missing" alone.
-nlohmann::json printPreview(const ExportedFiles& exported);
+/// files, "missing" alone; where the run failed, its "error".
+nlohmann::json printPreview(const Result<ExportedFiles>& run);
+
+/// printPreview of the export of the job `jobFiles()` makes (exportedFiles); a setting Export
+/// refuses (jobFiles' RequestError, a 400 there) is the answer's "error" too: the page asks for a
+/// preview as the designer types.
+nlohmann::json previewOf(
+    const std::function<std::vector<std::pair<std::string, std::string>>()>& jobFiles,
+    const std::atomic<bool>* cancel);
 
 }  // namespace dform::studio

@@ -131,11 +131,9 @@ studio::SolveAt forwardSolve(const PieceInput& a, const PieceInput& b,
                                 Result<Metrics> metrics = measureDForm(*run, s, "the pieces");
                                 if (!metrics.isOk()) return {{"error", metrics.status().message()}};
                                 return verdictUnlessStopped([&] {
-                                  const GateReport report =
-                                      runGate(run->model, gate, metrics.value(), nullptr, nullptr);
-                                  json v = studio::verdictJson(metrics.value(), report);
-                                  v["overlay"] = studio::overlayJson(run->model, report);
-                                  return v;
+                                  return studio::verdictJson(
+                                      run->model, metrics.value(),
+                                      runGate(run->model, gate, metrics.value(), nullptr, nullptr));
                                 });
                               },
                               sparseExact};
@@ -156,11 +154,9 @@ studio::SolveAt inverseSolve(const CurveInput& curve, const InverseSettings& set
     out["warnings"] = studio::warnings(sink.messages());
     return studio::Solved{out, [run, gate] {
                             return verdictUnlessStopped([&] {
-                              const GateReport report = runGate(run->model, gate, run->metrics,
-                                                                &run->target, &run->curveMatch);
-                              json v = studio::verdictJson(run->metrics, report);
-                              v["overlay"] = studio::overlayJson(run->model, report);
-                              return v;
+                              return studio::verdictJson(run->model, run->metrics,
+                                                         runGate(run->model, gate, run->metrics,
+                                                                 &run->target, &run->curveMatch));
                             });
                           }};
   };
@@ -534,12 +530,10 @@ void Studio::Impl::solveRoutes(httplib::Server& server) {
       res.set_header("X-Dform-Missing", studio::percentEncoded(zip.value().missing));
     sendZip(res, zip.value().zip, "dform-export.zip");
   });
-  // The export's layout before the export: the same run, its pages and sheets instead of a zip.
+  // The export's layout: the same run, its pages instead of a zip (previewOf).
   api(server, "/api/preview", [jobFiles](const json& body, Session& s, httplib::Response& res) {
-    Result<studio::ExportedFiles> files =
-        studio::exportedFiles(jobFiles(body, s), studio::Server::clientGone().get());
-    if (!files.isOk()) throw RequestError(files.status().message());
-    reply(res, 200, studio::printPreview(files.value()));
+    reply(res, 200,
+          studio::previewOf([&] { return jobFiles(body, s); }, studio::Server::clientGone().get()));
   });
 }
 

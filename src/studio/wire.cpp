@@ -223,8 +223,10 @@ std::string designSettings(const Job& job) {
   return settings.dump();
 }
 
-json verdictJson(const Metrics& metrics, const GateReport& gate) {
-  return {{"figures", figuresJson(metrics)}, {"gate", gateJson(gate)}};
+json verdictJson(const DForm& model, const Metrics& metrics, const GateReport& gate) {
+  return {{"figures", figuresJson(metrics)},
+          {"gate", gateJson(gate)},
+          {"overlay", overlayJson(model, gate)}};
 }
 
 json overlayJson(const DForm& model, const GateReport& gate) {

@@ -68,9 +68,10 @@ nlohmann::json exportChoices();
 /// export's (a session reuses a solve whose design text is the same).
 std::string designSettings(const Job& job);
 
-/// A run's figures (as report.json's "metrics") and the gate's verdict on them: {"figures",
-/// "gate"}, the gate's name, passed, and every check.
-nlohmann::json verdictJson(const Metrics& metrics, const GateReport& gate);
+/// A run's figures (as report.json's "metrics"), the gate's verdict on them and what the page
+/// draws on `model` with them: {"figures", "gate" (the gate's name, passed, and every check),
+/// "overlay" (overlayJson)}.
+nlohmann::json verdictJson(const DForm& model, const Metrics& metrics, const GateReport& gate);
 
 /// What the page draws on the shape beside the figures: per piece ("pieces": A, B) its edges
 /// ("edges": base64 of 32-bit vertex pairs) with their strain ("strain": base64 of doubles, one

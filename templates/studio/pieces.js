@@ -61,16 +61,19 @@ function PieceView(svg, label, onStart, onRelease) {
   this.loop = null;
   this.fraction = 0;
   var self = this, dragging = false;
-  // The start under the pointer: the nearest point of the boundary, or the corner (the server's
-  // list) within 10 px of the pointer, unless Alt is held.
+  // The start under the pointer: the nearest point of the boundary, or the snap target within
+  // 10 px of the pointer (a corner, the server's list; or one of the property snapTargets():
+  // [{fraction, name}]), unless Alt is held.
   function fractionAt(e) {
     var ctm = self.svg.getScreenCTM(), p = self.svg.createSVGPoint();
     p.x = e.clientX; p.y = e.clientY;
     var q = p.matrixTransform(ctm.inverse()), reach = 10 / Math.abs(ctm.a);
+    var targets = self.corners.map(function (c) { return { fraction: c, name: "corner" }; })
+      .concat(self.snapTargets ? self.snapTargets() : []);
     self.snapped = null;
-    if (!e.altKey) self.corners.forEach(function (c) {
-      var at = self.loop.at(c), d = Math.hypot(at[0] - q.x, at[1] + q.y);
-      if (d <= reach) { reach = d; self.snapped = c; }
+    if (!e.altKey) targets.forEach(function (t) {
+      var at = self.loop.at(t.fraction), d = Math.hypot(at[0] - q.x, at[1] + q.y);
+      if (d <= reach) { reach = d; self.snapped = t.fraction; self.snapName = t.name; }
     });
     return self.snapped != null ? self.snapped : self.loop.nearest(q.x, -q.y);
   }
@@ -251,7 +254,7 @@ PieceView.prototype.renderHandle = function () {
   this.handleLabel.setAttribute("x", p[0] + (right ? -10 : 10) * this.unit);
   this.handleLabel.setAttribute("y", -p[1] + (top ? 18 : -10) * this.unit);
   this.handleLabel.setAttribute("text-anchor", right ? "end" : "start");
-  this.handleLabel.textContent = this.label + " start " + this.fraction.toFixed(3) + (this.snapped != null ? " (corner)" : "");
+  this.handleLabel.textContent = this.label + " start " + this.fraction.toFixed(3) + (this.snapped != null ? " (" + this.snapName + ")" : "");
   this.handle.classList.toggle("snapped", this.snapped != null);
   while (this.ticks.firstChild) this.ticks.removeChild(this.ticks.firstChild);
   this.renderTicks();

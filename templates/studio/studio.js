@@ -458,6 +458,16 @@
     syncControls(); refreshPieces(); solve();
   }, $("strip-status"));
   studio.strip = strip;
+  // B's start snaps to the strip's distinct shapes: for each card, the first of its starts turned
+  // over as B is now.
+  views[1].snapTargets = function () {
+    var out = [];
+    strip.cards.forEach(function (c) {
+      var same = [c].concat(c.also).filter(function (m) { return !m.error && m.flip === settings().flip; })[0];
+      if (same) out.push({ fraction: same.start_b, name: "alternative" + (c.also.length ? " ×" + (c.also.length + 1) : "") });
+    });
+    return out;
+  };
   var stripTimer = null, stripSeq = 0, STRIP_STARTS = 16;
   function scheduleStrip() {
     schedulePreview();

@@ -13,6 +13,7 @@ the export made with the same settings, and a sheet too small shows Export's ref
 largest scale that fits before Export is clicked. The axes: three, from the shape's lowest corner, labelled at their tips, hidden when unticked.
 Snapping to a corner: A's handle dragged to within a few pixels of a hexagon's corner starts the
 seam at the corner exactly (the server's corner, solved there); with Alt held it does not snap.
+B's handle dragged 5 px past a card of the strip of alternative starts snaps to the card's start.
 
     browser_shape_test.py DFORM SAMPLES_DIR      (exit 77 when Chromium or Selenium is absent)
 """
@@ -213,6 +214,34 @@ def drag_to(s, piece, target, alt=False):
     s.settle()
 
 
+def snapping_to_alternatives(s):
+    """B's start dragged to 5 px along its outline from a card of the strip snaps to the card's."""
+    s.wait(lambda: s.js("return document.getElementById('strip-cards').getAttribute('data-state')") == "done", 300,
+           "the strip")
+    s.settle()
+    current = s.js("return window.studio.shown.settings.start_b")
+    flip = s.js("return window.studio.shown.settings.flip")
+    # Each card's first start turned over as B is now (a group holds both ways of the same shape).
+    groups = s.js("return window.studio.strip.cards.map(function (c) { return [c].concat(c.also).map(function (m) {"
+                  " return [m.start_b, m.flip, !!m.error]; }); })")
+    starts = [next(m[0] for m in g if m[1] == flip and not m[2]) for g in groups
+              if any(m[1] == flip and not m[2] for m in g)]
+    card = max(starts, key=lambda f: min(abs(f - current), 1 - abs(f - current)))
+    x, y, along = s.js("""var v = window.studio.views[1], m = v.svg.getScreenCTM(), d = 5 / Math.abs(m.a) / v.loop.length;
+        var q = v.loop.at(arguments[0] + d), p = v.svg.createSVGPoint(); p.x = q[0]; p.y = -q[1];
+        var c = p.matrixTransform(m); return [c.x, c.y, d * v.loop.length];""", card)
+    drag_to(s, "b", (x, y))
+    got = s.js("return window.studio.shown.settings.start_b")
+    label = s.js("return window.studio.views[1].handleLabel.textContent")
+    check(got == card and "(alternative" in label,
+          f"B dragged {along:.1f} mm past a card's start snaps to it ({got} vs {card}; {label})")
+    drag_to(s, "b", (x, y), alt=True)
+    length = s.js("return window.studio.views[1].loop.length")
+    got = s.js("return window.studio.shown.settings.start_b")
+    off = min(abs(got - card), 1 - abs(got - card)) * length
+    check(abs(off - along) < 1.5, f"with Alt held it stays where the pointer is ({off:.2f} mm from the card's start)")
+
+
 def snapping(s):
     s.js("var k = document.getElementById('kind-a'); k.value = 'polygon'; k.dispatchEvent(new Event('change'))")
     s.wait(lambda: s.js("return window.studio.views[0].corners.length") == 6, 30, "the hexagon")
@@ -361,6 +390,7 @@ def main():
         guarded("measure", measure, s)
         guarded("axes", axes, s)
         guarded("print preview", print_preview, s)
+        guarded("snapping to the strip's alternatives", snapping_to_alternatives, s)
         guarded("snapping to a corner", snapping, s)
         check(s.console_errors() == [], "no console errors")
     finally:
