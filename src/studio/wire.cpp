@@ -11,6 +11,7 @@
 #include "dform/pipeline/report.h"
 #include "dform/pipeline/run.h"
 #include "dform/pipeline/settings.h"
+#include "symmetry.h"
 
 namespace dform::studio {
 
@@ -304,6 +305,7 @@ json shapeJson(const Shape2& shape, int maxPoints) {
   return {{"outer", flatPoints(p, maxPoints)},
           {"perimeter", loopLength(p)},
           {"corners", cornerFractions(p, kCornerTurnRadians)},
+          {"axes", symmetryFractions(p)},
           {"holes", holes},
           {"hole_corners", holeCorners},
           {"hole_perimeters", holeLengths},

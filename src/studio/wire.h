@@ -84,7 +84,8 @@ nlohmann::json overlayJson(const DForm& model, const GateReport& gate);
 /// An outline as read, for drawing and the start handles: outer loop, holes, creases (flat
 /// [x0, y0, x1, y1, ...] arrays, mm, at most `maxPoints` points a loop), perimeters, bounds, and
 /// the corners a start snaps to ("corners", "hole_corners": the arc-length fractions of each
-/// loop's vertices that turn by kCornerTurnRadians or more, cornerFractions).
+/// loop's vertices that turn by kCornerTurnRadians or more, cornerFractions) and where the outer
+/// loop's mirror axes cross it ("axes", symmetryFractions).
 nlohmann::json shapeJson(const Shape2& shape, int maxPoints = 4000);
 
 /// A curve as read: its points (flat [x, y, z, ...], at most `maxPoints`) and length.

@@ -61,19 +61,24 @@ function PieceView(svg, label, onStart, onRelease) {
   this.loop = null;
   this.fraction = 0;
   var self = this, dragging = false;
-  // The start under the pointer: the nearest point of the boundary, or the snap target within
-  // 10 px of the pointer (a corner, the server's list; or one of the property snapTargets():
-  // [{fraction, name}]), unless Alt is held.
+  // The start under the pointer: the nearest point of the boundary, or the nearest snap target
+  // within 10 px of the pointer of the first kind that has one: a corner, one of the property
+  // snapTargets() ([{fraction, name}]), where a mirror axis crosses the outline (corners and
+  // axes: the server's lists). Alt held: no snapping.
   function fractionAt(e) {
     var ctm = self.svg.getScreenCTM(), p = self.svg.createSVGPoint();
     p.x = e.clientX; p.y = e.clientY;
     var q = p.matrixTransform(ctm.inverse()), reach = 10 / Math.abs(ctm.a);
-    var targets = self.corners.map(function (c) { return { fraction: c, name: "corner" }; })
-      .concat(self.snapTargets ? self.snapTargets() : []);
+    var kinds = [self.corners.map(function (c) { return { fraction: c, name: "corner" }; }),
+                 self.snapTargets ? self.snapTargets() : [],
+                 self.axes.map(function (c) { return { fraction: c, name: "symmetry axis" }; })];
     self.snapped = null;
-    if (!e.altKey) targets.forEach(function (t) {
-      var at = self.loop.at(t.fraction), d = Math.hypot(at[0] - q.x, at[1] + q.y);
-      if (d <= reach) { reach = d; self.snapped = t.fraction; self.snapName = t.name; }
+    if (!e.altKey) kinds.some(function (targets) {
+      targets.forEach(function (t) {
+        var at = self.loop.at(t.fraction), d = Math.hypot(at[0] - q.x, at[1] + q.y);
+        if (d <= reach) { reach = d; self.snapped = t.fraction; self.snapName = t.name; }
+      });
+      return self.snapped != null;
     });
     return self.snapped != null ? self.snapped : self.loop.nearest(q.x, -q.y);
   }
@@ -98,6 +103,7 @@ PieceView.prototype.setShape = function (shape, join) {
   var hole = join === "inner" && shape.holes.length === 1;
   this.loop = new Loop(hole ? shape.holes[0] : shape.outer);
   this.corners = (hole ? (shape.hole_corners || [])[0] : shape.corners) || [];
+  this.axes = (hole ? [] : shape.axes) || [];
   this.snapped = null;
   var pad = 0.08 * Math.max(shape.max[0] - shape.min[0], shape.max[1] - shape.min[1]);
   this.svg.setAttribute("viewBox", [shape.min[0] - pad, -shape.max[1] - pad, shape.max[0] - shape.min[0] + 2 * pad,

@@ -13,7 +13,8 @@ the export made with the same settings, and a sheet too small shows Export's ref
 largest scale that fits before Export is clicked. The axes: three, from the shape's lowest corner, labelled at their tips, hidden when unticked.
 Snapping to a corner: A's handle dragged to within a few pixels of a hexagon's corner starts the
 seam at the corner exactly (the server's corner, solved there); with Alt held it does not snap.
-B's handle dragged 5 px past a card of the strip of alternative starts snaps to the card's start.
+B's handle dragged 5 px past a card of the strip of alternative starts snaps to the card's start;
+A's (an ellipse) 5 px past where a mirror axis crosses it, to the crossing.
 
     browser_shape_test.py DFORM SAMPLES_DIR      (exit 77 when Chromium or Selenium is absent)
 """
@@ -242,6 +243,23 @@ def snapping_to_alternatives(s):
     check(abs(off - along) < 1.5, f"with Alt held it stays where the pointer is ({off:.2f} mm from the card's start)")
 
 
+def snapping_to_axes(s):
+    """A's start (an ellipse: no corners) dragged 5 px along its outline past where a mirror axis
+    crosses it snaps to the crossing."""
+    s.settle()
+    axes = s.js("return window.studio.views[0].axes")
+    start = s.js("return window.studio.shown.settings.start_a")
+    check(len(axes) == 4, f"the ellipse's two mirror axes cross it four times ({axes})")
+    axis = max(axes, key=lambda f: min(abs(f - start), 1 - abs(f - start)))
+    x, y = s.js("""var v = window.studio.views[0], m = v.svg.getScreenCTM(), d = 5 / Math.abs(m.a) / v.loop.length;
+        var q = v.loop.at(arguments[0] + d), p = v.svg.createSVGPoint(); p.x = q[0]; p.y = -q[1];
+        var c = p.matrixTransform(m); return [c.x, c.y];""", axis)
+    drag_to(s, "a", (x, y))
+    got = s.js("return window.studio.shown.settings.start_a")
+    label = s.js("return window.studio.views[0].handleLabel.textContent")
+    check(got == axis and "(symmetry axis)" in label, f"A snaps to the axis's crossing ({got} vs {axis}; {label})")
+
+
 def snapping(s):
     s.js("var k = document.getElementById('kind-a'); k.value = 'polygon'; k.dispatchEvent(new Event('change'))")
     s.wait(lambda: s.js("return window.studio.views[0].corners.length") == 6, 30, "the hexagon")
@@ -391,6 +409,7 @@ def main():
         guarded("axes", axes, s)
         guarded("print preview", print_preview, s)
         guarded("snapping to the strip's alternatives", snapping_to_alternatives, s)
+        guarded("snapping to a symmetry axis", snapping_to_axes, s)
         guarded("snapping to a corner", snapping, s)
         check(s.console_errors() == [], "no console errors")
     finally:
