@@ -113,7 +113,7 @@ Files inverseJobFiles(const CurveInput& curve, const Job& job) {
   return {{"job.json", withInputs(job, {{"curve", curve.name}})}, {curve.name, curve.text}};
 }
 
-Result<ExportedZip> exportedResult(const Files& jobFiles, const std::atomic<bool>* cancel) {
+Result<ExportedFiles> exportedFiles(const Files& jobFiles, const std::atomic<bool>* cancel) {
   Result<fs::path> folder = temporaryFolder();
   if (!folder.isOk()) return folder.status();
   const fs::path dir = folder.value();
@@ -152,7 +152,46 @@ Result<ExportedZip> exportedResult(const Files& jobFiles, const std::atomic<bool
   Files files = filesUnder(output.outDir);
   for (auto& [name, content] : files)
     if (namesPaths(name)) content = withoutFolder(content, dir);
-  return ExportedZip{storedZip(files), missingFiles(written.value(), settings.value())};
+  return ExportedFiles{std::move(files), missingFiles(written.value(), settings.value())};
+}
+
+Result<ExportedZip> exportedResult(const Files& jobFiles, const std::atomic<bool>* cancel) {
+  Result<ExportedFiles> exported = exportedFiles(jobFiles, cancel);
+  if (!exported.isOk()) return exported.status();
+  return ExportedZip{storedZip(exported.value().files), exported.value().missing};
+}
+
+json printPreview(const Result<ExportedFiles>& run) {
+  if (!run.isOk()) return {{"error", run.status().message()}};
+  const ExportedFiles& exported = run.value();
+  const auto file = [&](const std::string& name) -> const std::string* {
+    for (const auto& [n, content] : exported.files)
+      if (n == name) return &content;
+    return nullptr;
+  };
+  json out = {{"missing", exported.missing}};
+  const std::string* sidecar = file("pattern.json");
+  if (!sidecar) return out;
+  const json pattern = json::parse(*sidecar);
+  out["pages"] = pattern.at("pages");
+  out["sheets"] = pattern.at("sheets");
+  json svgs = json::array();
+  for (const json& sheet : pattern.at("sheets")) {
+    const std::string* svg = file(sheet.at("file").get<std::string>());
+    svgs.push_back(svg ? *svg : std::string());
+  }
+  out["svg"] = svgs;
+  for (const char* key : {"scale", "profile", "failed_gate"})
+    if (pattern.contains(key)) out[key] = pattern.at(key);
+  return out;
+}
+
+json previewOf(const std::function<Files()>& jobFiles, const std::atomic<bool>* cancel) {
+  try {
+    return printPreview(exportedFiles(jobFiles(), cancel));
+  } catch (const RequestError& e) {
+    return {{"error", e.what()}};
+  }
 }
 
 }  // namespace dform::studio

@@ -5,6 +5,8 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
@@ -32,12 +34,36 @@ struct ExportedZip {
   std::string missing;
 };
 
+/// An export's files (name, content) and, as ExportedZip's, what it lacks.
+struct ExportedFiles {
+  std::vector<std::pair<std::string, std::string>> files;
+  std::string missing;
+};
+
 /// Runs the saved job (`jobFiles` as forwardJobFiles lays them out) with runAndWrite, as its
-/// export settings say, into a fresh temporary folder and returns the zip of the result folder's
-/// files; the folder is removed, and no file of the zip nor message names it (report.json names
-/// its inputs as the saved job does, beside it). The run's error, in the studio's words, when
-/// nothing was written. `cancel`, when set meanwhile, stops the run (Interrupted).
+/// export settings say, into a fresh temporary folder and returns the result folder's files; the
+/// folder is removed, and no file nor message names it (report.json names its inputs as the
+/// saved job does, beside it). The run's error, in the studio's words, when nothing was written.
+/// `cancel`, when set meanwhile, stops the run (Interrupted).
+Result<ExportedFiles> exportedFiles(
+    const std::vector<std::pair<std::string, std::string>>& jobFiles,
+    const std::atomic<bool>* cancel = nullptr);
+
+/// exportedFiles as a zip.
 Result<ExportedZip> exportedResult(const std::vector<std::pair<std::string, std::string>>& jobFiles,
                                    const std::atomic<bool>* cancel = nullptr);
+
+/// The print preview of an export: its pattern.json's "pages" (each page or tile: kind, size,
+/// origin and window on the canvas) and "sheets", each sheet's SVG ("svg", in the sheets' order),
+/// its "scale", "profile" and "failed_gate", and "missing" (ExportedZip's). Without cutting
+/// files, "missing" alone; where the run failed, its "error".
+nlohmann::json printPreview(const Result<ExportedFiles>& run);
+
+/// printPreview of the export of the job `jobFiles()` makes (exportedFiles); a setting Export
+/// refuses (jobFiles' RequestError, a 400 there) is the answer's "error" too: the page asks for a
+/// preview as the designer types.
+nlohmann::json previewOf(
+    const std::function<std::vector<std::pair<std::string, std::string>>()>& jobFiles,
+    const std::atomic<bool>* cancel);
 
 }  // namespace dform::studio

@@ -264,6 +264,7 @@ void Session::startStrip(std::vector<std::pair<json, SolveAt>> starts, long seq)
           if (result.isOk()) {
             event["result"] = result.value().result;
             event["result"].update(result.value().verdict());
+            event["result"].erase("overlay");  // a card shows no overlay
           } else {
             event["error"] = result.status().message();
           }

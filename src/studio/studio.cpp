@@ -38,8 +38,9 @@ namespace {
 
 const std::vector<std::string> kOutlineExtensions = {".svg", ".json"};
 const std::vector<std::string> kCurveExtensions = {".obj", ".json"};
-const char* const kAssets[] = {"index.html", "studio.js", "studio.css",  "view3d.js",
-                               "pieces.js",  "strip.js",  "downloads.js"};
+const char* const kAssets[] = {"index.html", "studio.js", "studio.css",   "view3d.js",
+                               "pieces.js",  "strip.js",  "downloads.js", "overlay.js",
+                               "picking.js", "preview.js"};
 
 // JSON answers. The charset parameter also keeps cpp-httplib from compressing them (it
 // compresses a bare "application/json" for a browser that accepts gzip or brotli): on loopback
@@ -131,7 +132,7 @@ studio::SolveAt forwardSolve(const PieceInput& a, const PieceInput& b,
                                 if (!metrics.isOk()) return {{"error", metrics.status().message()}};
                                 return verdictUnlessStopped([&] {
                                   return studio::verdictJson(
-                                      metrics.value(),
+                                      run->model, metrics.value(),
                                       runGate(run->model, gate, metrics.value(), nullptr, nullptr));
                                 });
                               },
@@ -153,7 +154,7 @@ studio::SolveAt inverseSolve(const CurveInput& curve, const InverseSettings& set
     out["warnings"] = studio::warnings(sink.messages());
     return studio::Solved{out, [run, gate] {
                             return verdictUnlessStopped([&] {
-                              return studio::verdictJson(run->metrics,
+                              return studio::verdictJson(run->model, run->metrics,
                                                          runGate(run->model, gate, run->metrics,
                                                                  &run->target, &run->curveMatch));
                             });
@@ -528,6 +529,11 @@ void Studio::Impl::solveRoutes(httplib::Server& server) {
     if (!zip.value().missing.empty())
       res.set_header("X-Dform-Missing", studio::percentEncoded(zip.value().missing));
     sendZip(res, zip.value().zip, "dform-export.zip");
+  });
+  // The export's layout: the same run, its pages instead of a zip (previewOf).
+  api(server, "/api/preview", [jobFiles](const json& body, Session& s, httplib::Response& res) {
+    reply(res, 200,
+          studio::previewOf([&] { return jobFiles(body, s); }, studio::Server::clientGone().get()));
   });
 }
 

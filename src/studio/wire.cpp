@@ -7,9 +7,11 @@
 #include <map>
 #include <vector>
 
+#include "dform/core/polyline.h"
 #include "dform/pipeline/report.h"
 #include "dform/pipeline/run.h"
 #include "dform/pipeline/settings.h"
+#include "symmetry.h"
 
 namespace dform::studio {
 
@@ -222,8 +224,38 @@ std::string designSettings(const Job& job) {
   return settings.dump();
 }
 
-json verdictJson(const Metrics& metrics, const GateReport& gate) {
-  return {{"figures", figuresJson(metrics)}, {"gate", gateJson(gate)}};
+json verdictJson(const DForm& model, const Metrics& metrics, const GateReport& gate) {
+  return {{"figures", figuresJson(metrics)},
+          {"gate", gateJson(gate)},
+          {"overlay", overlayJson(model, gate)}};
+}
+
+json overlayJson(const DForm& model, const GateReport& gate) {
+  json pieces = json::array();
+  for (const Piece* p : {&model.a, &model.b}) {
+    std::vector<std::uint32_t> ends;
+    std::vector<double> strain;
+    for (const EdgeStrain& e : edgeStrains(*p)) {
+      ends.insert(ends.end(), {std::uint32_t(e.from), std::uint32_t(e.to)});
+      strain.push_back(e.strain);
+    }
+    const Eigen::VectorXd curvature = curvatureMap(*p);
+    pieces.push_back(
+        {{"edges", indicesBase64(ends)},
+         {"strain", base64(strain.data(), strain.size() * sizeof(double))},
+         {"curvature", base64(curvature.data(), std::size_t(curvature.size()) * sizeof(double))}});
+  }
+  static const char* kinds[] = {"edges", "vertices", "seam_points"};
+  json failing = json::array(), unlocated = json::array();
+  const std::vector<FailureSites> sites = locateFailures(model, gate);
+  for (const FailureSites& f : sites)
+    failing.push_back({{"check", f.check}, {"kind", kinds[int(f.kind)]}, {"items", f.items}});
+  for (const CheckResult& c : gate.checks)
+    if (c.verdict == CheckResult::Verdict::Fail &&
+        std::none_of(sites.begin(), sites.end(),
+                     [&](const FailureSites& f) { return f.check == c.name; }))
+      unlocated.push_back(c.name);
+  return {{"pieces", pieces}, {"failing", failing}, {"unlocated", unlocated}};
 }
 
 json forwardResultJson(const SolvedDForm& run) {
@@ -262,15 +294,20 @@ json inverseResultJson(const InverseRun& run) {
 
 json shapeJson(const Shape2& shape, int maxPoints) {
   json holes = json::array(), holeLengths = json::array(), creases = json::array();
+  json holeCorners = json::array();
   for (const Outline2& h : shape.holes) {
     holes.push_back(flatPoints(h.points, maxPoints));
     holeLengths.push_back(loopLength(h.points));
+    holeCorners.push_back(cornerFractions(h.points, kCornerTurnRadians));
   }
   for (const CreaseLine& c : shape.creases) creases.push_back(flatPoints(c.points, maxPoints));
   const Points2& p = shape.outer.points;
   return {{"outer", flatPoints(p, maxPoints)},
           {"perimeter", loopLength(p)},
+          {"corners", cornerFractions(p, kCornerTurnRadians)},
+          {"axes", symmetryFractions(p)},
           {"holes", holes},
+          {"hole_corners", holeCorners},
           {"hole_perimeters", holeLengths},
           {"creases", creases},
           {"min", {p.col(0).minCoeff(), p.col(1).minCoeff()}},

@@ -68,12 +68,24 @@ nlohmann::json exportChoices();
 /// export's (a session reuses a solve whose design text is the same).
 std::string designSettings(const Job& job);
 
-/// A run's figures (as report.json's "metrics") and the gate's verdict on them: {"figures",
-/// "gate"}, the gate's name, passed, and every check.
-nlohmann::json verdictJson(const Metrics& metrics, const GateReport& gate);
+/// A run's figures (as report.json's "metrics"), the gate's verdict on them and what the page
+/// draws on `model` with them: {"figures", "gate" (the gate's name, passed, and every check),
+/// "overlay" (overlayJson)}.
+nlohmann::json verdictJson(const DForm& model, const Metrics& metrics, const GateReport& gate);
+
+/// What the page draws on the shape beside the figures: per piece ("pieces": A, B) its edges
+/// ("edges": base64 of 32-bit vertex pairs) with their strain ("strain": base64 of doubles, one
+/// an edge, EdgeStrain) and its curvature ("curvature": base64 of doubles, one a vertex,
+/// curvatureMap); "failing": where each failing check of `gate` fails (locateFailures: "check",
+/// "kind" edges/vertices/seam_points, "items" per piece); "unlocated": the failing checks that
+/// have no sites on the shape.
+nlohmann::json overlayJson(const DForm& model, const GateReport& gate);
 
 /// An outline as read, for drawing and the start handles: outer loop, holes, creases (flat
-/// [x0, y0, x1, y1, ...] arrays, mm, at most `maxPoints` points a loop), perimeters, bounds.
+/// [x0, y0, x1, y1, ...] arrays, mm, at most `maxPoints` points a loop), perimeters, bounds, and
+/// the corners a start snaps to ("corners", "hole_corners": the arc-length fractions of each
+/// loop's vertices that turn by kCornerTurnRadians or more, cornerFractions) and where the outer
+/// loop's mirror axes cross it ("axes", symmetryFractions).
 nlohmann::json shapeJson(const Shape2& shape, int maxPoints = 4000);
 
 /// A curve as read: its points (flat [x, y, z, ...], at most `maxPoints`) and length.

@@ -36,17 +36,10 @@ CheckResult gaussCheck(const DForm& model, const GateLimits& limits) {
   int counted = 0;
   std::string where;
   for (const Piece* p : {&model.a, &model.b}) {
-    const detail::EdgeTopology topology = detail::edgeTopology(p->F);
-    const std::vector<bool> onBoundary = detail::boundaryOrCreaseVertices(*p, topology);
-    std::vector<bool> nearSeam = onBoundary;
-    for (const auto& e : topology.edges)
-      if (onBoundary[e[0]] || onBoundary[e[1]]) nearSeam[e[0]] = nearSeam[e[1]] = true;
+    const std::vector<bool> away = detail::awayFromSeam(*p, detail::edgeTopology(p->F));
     const Eigen::VectorXd defect = detail::angleDefects(p->shape, p->F);
-    std::vector<bool> used(nearSeam.size(), false);  // vertices of some face
-    for (int f = 0; f < p->F.rows(); ++f)
-      for (int k = 0; k < 3; ++k) used[p->F(f, k)] = true;
     for (Eigen::Index v = 0; v < defect.size(); ++v) {
-      if (nearSeam[v] || !used[v]) continue;
+      if (!away[v]) continue;
       ++counted;
       if (std::abs(defect(v)) > worst || where.empty()) {
         worst = std::max(worst, std::abs(defect(v)));

@@ -68,6 +68,17 @@ std::vector<bool> boundaryOrCreaseVertices(const Piece& piece, const EdgeTopolog
   return marked;
 }
 
+std::vector<bool> awayFromSeam(const Piece& piece, const EdgeTopology& topology) {
+  const std::vector<bool> onBoundary = boundaryOrCreaseVertices(piece, topology);
+  std::vector<bool> nearSeam = onBoundary;
+  for (const auto& e : topology.edges)
+    if (onBoundary[e[0]] || onBoundary[e[1]]) nearSeam[e[0]] = nearSeam[e[1]] = true;
+  std::vector<bool> away(nearSeam.size(), false);
+  for (int f = 0; f < piece.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) away[piece.F(f, k)] = !nearSeam[piece.F(f, k)];
+  return away;
+}
+
 std::vector<bool> creaseEdges(const Piece& piece, const EdgeTopology& topology) {
   std::vector<bool> onCrease(topology.edges.size(), false);
   for (const std::vector<int>& crease : piece.creases)

@@ -25,6 +25,10 @@ int edgeIndex(const EdgeTopology& topology, int i, int j);
 /// (the places where the sheet may turn, so the angle defect there is not curvature).
 std::vector<bool> boundaryOrCreaseVertices(const Piece& piece, const EdgeTopology& topology);
 
+/// Per vertex of the piece: whether the gate's curvature check looks at it, i.e. it is a vertex of
+/// some face and neither lies on the boundary, the seam or a crease nor shares an edge with one.
+std::vector<bool> awayFromSeam(const Piece& piece, const EdgeTopology& topology);
+
 /// Per edge of topology.edges: whether it lies along one of the piece's creases.
 std::vector<bool> creaseEdges(const Piece& piece, const EdgeTopology& topology);
 

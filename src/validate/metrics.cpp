@@ -15,6 +15,12 @@ namespace dform {
 
 namespace {
 
+// An edge's strain from its flat length L and 3D length Lh (EdgeStrain). A zero-length flat edge
+// is reported by the degenerate count; its strain is infinite unless the 3D edge is zero too.
+double strainOf(double L, double Lh) {
+  return L > 0.0 ? (Lh - L) / L : (Lh > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
+}
+
 // Adds one piece's edges to the L_error sums and the L_max maximum. Each undirected edge counts
 // once; L is its flat length, Lh its 3D length.
 void addEdgeLengths(const Piece& p, const detail::EdgeTopology& topology, double& sumSqDiff,
@@ -24,10 +30,7 @@ void addEdgeLengths(const Piece& p, const detail::EdgeTopology& topology, double
     const double Lh = (p.shape.row(e[0]) - p.shape.row(e[1])).norm();
     sumSqDiff += (Lh - L) * (Lh - L);
     sumSqFlat += L * L;
-    // A zero-length flat edge is reported by the degenerate count; its relative error is
-    // infinite unless the 3D edge is zero too.
-    const double rel =
-        L > 0.0 ? std::abs(Lh - L) / L : (Lh > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
+    const double rel = std::abs(strainOf(L, Lh));
     if (std::isnan(rel) || rel > maxRel) maxRel = rel;  // std::max would skip a NaN; once NaN, kept
   }
 }
@@ -61,6 +64,15 @@ Points3 seamShape(const Piece& p) {
 }
 
 }  // namespace
+
+std::vector<EdgeStrain> edgeStrains(const Piece& piece) {
+  std::vector<EdgeStrain> out;
+  for (const auto& e : detail::edgeTopology(piece.F).edges)
+    out.push_back({e[0], e[1],
+                   strainOf((piece.flat.row(e[0]) - piece.flat.row(e[1])).norm(),
+                            (piece.shape.row(e[0]) - piece.shape.row(e[1])).norm())});
+  return out;
+}
 
 Eigen::VectorXd curvatureMap(const Piece& piece) {
   return interiorDefects(piece, detail::edgeTopology(piece.F)).unaryExpr([](double d) {

@@ -35,19 +35,35 @@ function Downloads(page) {
     exportLists.forEach(function (k) { $(k).value = e[k] != null ? JSON.stringify(e[k]) : ""; });
     $("export-anyway").checked = !!e.export_anyway;
   }
-  function readExportDialog() {
+  // The export settings as the dialog has them.
+  function dialogExport() {
     var e = Object.assign({}, page.settings().export || {});
     exportFields.forEach(function (k) { e[k] = $(k).value === "" ? null : $(k).value; });
     exportLists.forEach(function (k) { e[k] = $(k).value === "" ? null : JSON.parse($(k).value); });
     e.export_anyway = $("export-anyway").checked;
-    page.settings().export = e;
+    return e;
   }
+  function readExportDialog() { page.settings().export = dialogExport(); }
+  // A request's body for the print preview: the design with the dialog's export settings while
+  // it is open (what Download zip would send), else the design's.
+  this.previewBody = function () {
+    var body = page.body();
+    if ($("export-dialog").open) body.export = dialogExport();
+    return body;
+  };
+  // Each change of the dialog's fields asks for a new preview (`onChange`).
+  this.onDialogChange = function (onChange) {
+    exportFields.concat(exportLists, ["export-anyway"]).forEach(function (k) {
+      $(k).addEventListener("input", onChange); $(k).addEventListener("change", onChange);
+    });
+  };
   $("save-job").onclick = function () {
     page.api("/api/job", page.body(), true).then(function (b) { page.studio.lastDownload = b; download(b, "dform-job.zip"); })
       .catch(function (e) { page.showError(e.message); });
   };
   $("export").onclick = function () {
     fillExportDialog(); $("export-state").textContent = ""; $("export-partial").hidden = true; $("export-dialog").showModal();
+    if (page.onOpen) page.onOpen();
   };
   $("export-cancel").onclick = function () { $("export-dialog").close(); };
   $("export-go").onclick = function (e) {

@@ -51,7 +51,9 @@ function pathOf(points, closed) {
   return d + (closed ? "Z" : "");
 }
 
-// One piece's panel. onStart(fraction, event) is called as the handle is dragged.
+// One piece's panel. onStart(fraction, event) is called as the handle is dragged; the property
+// onHover(k), when set, as the pointer comes near seam point k of the result (within 12 px) or
+// leaves it (null).
 function PieceView(svg, label, onStart, onRelease) {
   this.svg = svg;
   this.label = label;
@@ -59,11 +61,26 @@ function PieceView(svg, label, onStart, onRelease) {
   this.loop = null;
   this.fraction = 0;
   var self = this, dragging = false;
+  // The start under the pointer: the nearest point of the boundary, or the nearest snap target
+  // within 10 px of the pointer of the first kind that has one: a corner, one of the property
+  // snapTargets() ([{fraction, name}]), where a mirror axis crosses the outline (corners and
+  // axes: the server's lists). Alt held: no snapping.
   function fractionAt(e) {
-    var m = self.svg.getScreenCTM().inverse(), p = self.svg.createSVGPoint();
+    var ctm = self.svg.getScreenCTM(), p = self.svg.createSVGPoint();
     p.x = e.clientX; p.y = e.clientY;
-    var q = p.matrixTransform(m);
-    return self.loop.nearest(q.x, -q.y);
+    var q = p.matrixTransform(ctm.inverse()), reach = 10 / Math.abs(ctm.a);
+    var kinds = [self.corners.map(function (c) { return { fraction: c, name: "corner" }; }),
+                 self.snapTargets ? self.snapTargets() : [],
+                 self.axes.map(function (c) { return { fraction: c, name: "symmetry axis" }; })];
+    self.snapped = null;
+    if (!e.altKey) kinds.some(function (targets) {
+      targets.forEach(function (t) {
+        var at = self.loop.at(t.fraction), d = Math.hypot(at[0] - q.x, at[1] + q.y);
+        if (d <= reach) { reach = d; self.snapped = t.fraction; self.snapName = t.name; }
+      });
+      return self.snapped != null;
+    });
+    return self.snapped != null ? self.snapped : self.loop.nearest(q.x, -q.y);
   }
   svg.addEventListener("pointerdown", function (e) {
     if (!self.loop || self.fixed || !e.target.classList.contains("handle-target")) return;
@@ -72,18 +89,22 @@ function PieceView(svg, label, onStart, onRelease) {
     e.preventDefault();
   });
   svg.addEventListener("pointermove", function (e) {
-    if (!dragging) return;
+    if (!dragging) { if (self.onHover) self.onHover(self.seamPointNear(e.clientX, e.clientY, 12)); return; }
     self.setFraction(fractionAt(e));
     onStart(self.fraction, e);
   });
+  svg.addEventListener("pointerleave", function () { if (!dragging && self.onHover) self.onHover(null); });
   svg.addEventListener("pointerup", function () { if (dragging) { dragging = false; onRelease(); } });
 }
 
 // shape: the server's summary of the outline; join: "outer" or "inner"
 PieceView.prototype.setShape = function (shape, join) {
   this.shape = shape;
-  var boundary = join === "inner" && shape.holes.length === 1 ? shape.holes[0] : shape.outer;
-  this.loop = new Loop(boundary);
+  var hole = join === "inner" && shape.holes.length === 1;
+  this.loop = new Loop(hole ? shape.holes[0] : shape.outer);
+  this.corners = (hole ? (shape.hole_corners || [])[0] : shape.corners) || [];
+  this.axes = (hole ? [] : shape.axes) || [];
+  this.snapped = null;
   var pad = 0.08 * Math.max(shape.max[0] - shape.min[0], shape.max[1] - shape.min[1]);
   this.svg.setAttribute("viewBox", [shape.min[0] - pad, -shape.max[1] - pad, shape.max[0] - shape.min[0] + 2 * pad,
                                     shape.max[1] - shape.min[1] + 2 * pad].join(" "));
@@ -107,7 +128,11 @@ PieceView.prototype.setSolvedPiece = function (piece) {
   this.render();
 };
 
-PieceView.prototype.setFraction = function (f) { this.fraction = f; this.renderHandle(); };
+PieceView.prototype.setFraction = function (f) {
+  if (f !== this.snapped) this.snapped = null;
+  this.fraction = f;
+  this.renderHandle();
+};
 
 // No result for the outline (the design's solve failed): the outline as read, nothing solved on it.
 PieceView.prototype.clearResult = function () {
@@ -135,6 +160,39 @@ PieceView.prototype.setResult = function (piece, direction, breakPoint, place) {
     this.renderTicks();
   }
   this.renderFound();
+};
+
+// Seam point k of the result where the panel draws it (mm, y up), or null.
+PieceView.prototype.seamPoint = function (k) {
+  var r = this.result, v = r && r.piece.seam[k];
+  if (v == null) return null;
+  return [r.piece.flat[2 * v] * r.scale[0] + r.offset[0], r.piece.flat[2 * v + 1] * r.scale[1] + r.offset[1]];
+};
+
+// The result's seam point nearest the screen point (clientX, clientY) within `pixels`, or null.
+PieceView.prototype.seamPointNear = function (clientX, clientY, pixels) {
+  if (!this.result) return null;
+  var m = this.svg.getScreenCTM(), p = this.svg.createSVGPoint();
+  p.x = clientX; p.y = clientY;
+  var q = p.matrixTransform(m.inverse()), best = null, bestD = pixels / Math.abs(m.a);
+  for (var k = 0; k < this.result.piece.seam.length; ++k) {
+    var s = this.seamPoint(k), d = Math.hypot(s[0] - q.x, s[1] + q.y);
+    if (d <= bestD) { bestD = d; best = k; }
+  }
+  return best;
+};
+
+// Seam point k marked on the panel (its partner carries the same k), or no mark (null).
+PieceView.prototype.highlight = function (k) {
+  this.picked = k;
+  this.renderPicked();
+};
+PieceView.prototype.renderPicked = function () {
+  if (this.pickedNode) { this.pickedNode.remove(); this.pickedNode = null; }
+  var p = this.picked == null ? null : this.seamPoint(this.picked);
+  if (!p || !this.found) return;
+  this.pickedNode = svgNode("circle", { cx: p[0], cy: -p[1], r: 5 * this.unit, class: "picked", "stroke-width": 2 * this.unit }, this.found);
+  this.pickedNode.setAttribute("data-seam-point", this.picked);
 };
 
 PieceView.prototype.render = function () {
@@ -187,6 +245,8 @@ PieceView.prototype.renderFound = function () {
     svgNode("circle", { cx: flat[2 * v] * r.scale[0] + r.offset[0], cy: -(flat[2 * v + 1] * r.scale[1] + r.offset[1]),
                         r: 6 * u, class: "break-point", "stroke-width": 2 * u }, svg);
   }
+  this.pickedNode = null;
+  this.renderPicked();
 };
 
 PieceView.prototype.renderHandle = function () {
@@ -200,7 +260,8 @@ PieceView.prototype.renderHandle = function () {
   this.handleLabel.setAttribute("x", p[0] + (right ? -10 : 10) * this.unit);
   this.handleLabel.setAttribute("y", -p[1] + (top ? 18 : -10) * this.unit);
   this.handleLabel.setAttribute("text-anchor", right ? "end" : "start");
-  this.handleLabel.textContent = this.label + " start " + this.fraction.toFixed(3);
+  this.handleLabel.textContent = this.label + " start " + this.fraction.toFixed(3) + (this.snapped != null ? " (" + this.snapName + ")" : "");
+  this.handle.classList.toggle("snapped", this.snapped != null);
   while (this.ticks.firstChild) this.ticks.removeChild(this.ticks.firstChild);
   this.renderTicks();
 };

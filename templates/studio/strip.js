@@ -79,7 +79,7 @@ Strip.prototype.add = function (event) {
     card.height = f.height; card.volume = f.volume; card.curvature = event.result.figures.angle_defect_max_rad || 0;
     card.model = event.result.model.name;
     card.passed = event.result.gate.passed;
-    if (!this.view) this.view = new View3D(this.canvas);
+    if (!this.view) this.view = new View3D(this.canvas, { axes: false });
     this.view.setModel(pieces);
     card.picture = this.canvas.toDataURL("image/png");
   }

@@ -202,7 +202,7 @@
     return new PieceView($("svg-" + "ab"[i]), "AB"[i], function (f, e) {
       settings()[i ? "start_b" : "start_a"] = f;
       showStartField(i);
-      solve(e.timeStamp);
+      solve(e.timeStamp, e.getCoalescedEvents ? e.getCoalescedEvents() : []);
     }, function () { scheduleStrip(); });
   });
   studio.views = views;
@@ -245,9 +245,19 @@
       ? "A " + summaries[0].perimeter.toFixed(1) + " mm, B " + summaries[1].perimeter.toFixed(1) + " mm" : "";
   }
 
-  function solve(eventTime) {
+  // studio.moves: every drag move (its seq and pointer event time); studio.frames: every shape's
+  // frame (its seq and time). A move whose shape was never drawn (a newer move's was) is shown by
+  // the first frame of a newer seq: tests/bench/studio_latency.py counts it there.
+  studio.moves = []; studio.frames = [];
+  // A drag's pointer event may stand for several moves the browser coalesced (`coalesced`: their
+  // events, the event's own last): each is a move, and only the last one's position is sent.
+  function solve(eventTime, coalesced) {
     var seq = nextSeq++;
     inputTime[seq] = eventTime != null ? eventTime : performance.now();
+    if (eventTime != null) {
+      var all = coalesced && coalesced.length ? coalesced : [{ timeStamp: eventTime }];
+      all.forEach(function (m, k) { studio.moves.push({ seq: seq, time: m.timeStamp, sent: k === all.length - 1 }); });
+    }
     pending = seq;
     if (!inFlight) send();
   }
@@ -272,6 +282,8 @@
   function clearShape() {
     studio.shown = null;
     view3d.setModel([]);
+    overlay.show(null);
+    picking.reset();
     views.forEach(function (v) { v.clearResult(); });
     ["model", "reason", "warnings", "checks", "figures"].forEach(function (id) { $(id).textContent = ""; });
     $("status").className = "status";
@@ -316,6 +328,8 @@
     var extra = [];
     if (r.target) extra.push({ points: decodeF64(r.target), colour: [0.1, 0.5, 0.2], loop: true });
     view3d.setModel(pieces, extra);
+    r.decoded = pieces;
+    overlay.show(null);  // the new shape's comes with its figures
     var brk = /at seam point (\d+)/.exec(r.model.reason);
     if (state.mode === "inverse") [0, 1].forEach(function (i) {
       views[i].setSolvedPiece(pieces[i]);
@@ -337,8 +351,10 @@
     var time = inputTime[r.seq];
     delete inputTime[r.seq];
     studio.shown = { seq: r.seq, result: r, pieces: pieces, settings: asked };
+    picking.reset();
     var drawn = performance.now();
     requestAnimationFrame(function () {
+      studio.frames.push({ seq: r.seq, time: performance.now(), preview: !!r.preview });
       if (time != null && !r.preview) {
         studio.latencies.push(performance.now() - time);
         if (r.arrival) studio.breakdown.push(breakdown(r, time, drawn, performance.now()));
@@ -365,7 +381,8 @@
   // with a refined result or as an event after the shape; none yet: still measuring.
   function showVerdict(r, verdict) {
     var gate = verdict && verdict.gate, status = $("status");
-    if (verdict) { r.figures = verdict.figures; r.gate = gate; }
+    if (verdict) { r.figures = verdict.figures; r.gate = gate; if (verdict.overlay) r.overlay = verdict.overlay; }
+    overlay.show(r.decoded, gate ? r.overlay : null, r.figures);
     if (gate) studio.verdicts.push({ seq: r.seq, preview: !!r.preview, passed: gate.passed });
     status.className = "status " + (gate ? (gate.passed ? "pass" : "fail") : verdict && verdict.error ? "error" : "");
     status.textContent = (verdict && verdict.error ? verdict.error : !gate ? "measuring, checking the gate…"
@@ -374,7 +391,9 @@
     $("checks").innerHTML = "";
     (gate ? gate.checks : []).forEach(function (c) {
       var li = document.createElement("li");
-      li.className = c.verdict; li.textContent = c.name + ": " + c.verdict + (c.verdict === "fail" ? " — " + c.detail : "");
+      var sites = c.verdict === "fail" ? overlay.sites(c.name) : null;
+      li.className = c.verdict; li.textContent = c.name + ": " + c.verdict + (c.verdict === "fail" ? " — " + c.detail +
+        (sites == null ? " (not located on the shape)" : " (" + sites + " marked on the shape)") : "");
       $("checks").appendChild(li);
     });
     studio.gate = gate;
@@ -439,8 +458,19 @@
     syncControls(); refreshPieces(); solve();
   }, $("strip-status"));
   studio.strip = strip;
+  // B's start snaps to the strip's distinct shapes: for each card, the first of its starts turned
+  // over as B is now.
+  views[1].snapTargets = function () {
+    var out = [];
+    strip.cards.forEach(function (c) {
+      var same = [c].concat(c.also).filter(function (m) { return !m.error && m.flip === settings().flip; })[0];
+      if (same) out.push({ fraction: same.start_b, name: "alternative" + (c.also.length ? " ×" + (c.also.length + 1) : "") });
+    });
+    return out;
+  };
   var stripTimer = null, stripSeq = 0, STRIP_STARTS = 16;
   function scheduleStrip() {
+    schedulePreview();
     if (state.mode !== "forward") return;
     clearTimeout(stripTimer);
     strip.cancel();
@@ -457,6 +487,7 @@
   function enterMode() {
     syncControls();
     clearShape();
+    schedulePreview();
     if (state.mode === "forward") {
       [0, 1].forEach(function (i) {
         $("name-" + "ab"[i]).textContent = summaries[i].name + " — perimeter " + summaries[i].perimeter.toFixed(1) + " mm";
@@ -484,7 +515,7 @@
         state.curve = { name: c.name };
         $("curve-error").textContent = "";
         $("curve-name").textContent = c.name + " — " + c.length.toFixed(1) + " mm";
-        solve();
+        solve(); schedulePreview();
       }).catch(function (e) { $("curve-error").textContent = e.message; studio.errors.push(e.message); });
     };
     reader.readAsText(file);
@@ -495,10 +526,23 @@
 
   // ---- downloads --------------------------------------------------------------------------------
   var downloads = new Downloads({ api: api, settings: settings, remember: remember, showError: showError, studio: studio,
-                  body: function () { return Object.assign({ mode: state.mode }, settings()); } });
+                  body: function () { return Object.assign({ mode: state.mode }, settings()); },
+                  onOpen: function () { preview.schedule(0); } });
+  // The print preview while its panel or the Export dialog is open: a new layout once the design
+  // or the dialog's settings settle (each is a whole export run on the server).
+  var preview = studio.preview = new Preview({ api: api, body: downloads.previewBody, studio: studio });
+  function previewWanted() { return $("preview").open || $("export-dialog").open; }
+  function schedulePreview(delay) { if (previewWanted()) preview.schedule(delay); }
+  $("preview").addEventListener("toggle", function () { schedulePreview(0); });
+  downloads.onDialogChange(function () { schedulePreview(300); });
 
   // ---- start ------------------------------------------------------------------------------------
   var view3d = studio.view3d = new View3D($("view3d"));
+  var overlay = studio.overlay = new Overlay(view3d, $("overlay-legend"));
+  $("overlay").onchange = function () { overlay.setMode($("overlay").value); };
+  $("mark-failures").onchange = function () { overlay.setFailures($("mark-failures").checked); };
+  var picking = studio.picking = new Picking({ views: views, view3d: view3d, shown: function () { return studio.shown; },
+                                               button: $("measure"), readout: $("measure-readout") });
   window.addEventListener("resize", function () { view3d.draw(); });
   // The scale bar: a round length in mm and its width on screen at the view's scale.
   view3d.onScale(function (scale) {
@@ -506,6 +550,7 @@
     $("scale-bar-text").textContent = scale.barMm + " mm";
   });
   $("reset-view").onclick = function () { view3d.resetView(); };
+  $("axes").onchange = function () { view3d.setAxes($("axes").checked); };
   $("fixed-scale").onchange = function () { view3d.setFixedScale($("fixed-scale").checked); };
   api("/api/session", {}).then(function (s) {
     session = s.session; kinds = studio.kinds = s.kinds; studio.session = session; studio.previewResolution = s.preview_resolution;

@@ -1,67 +1,83 @@
 #!/usr/bin/env python3
 """dform studio's live-drag latency in a real browser (docs/benchmarks.md, "Studio"): headless
-Chromium drags piece B's start handle of the shipped ellipse pair (resolution 100) through 100
-positions along its outline, one real pointer move every PAUSE seconds, and the page records,
-for every shape it shows, the time from the pointer event (event.timeStamp) to the animation
-frame after the new shape was drawn (a shape that answers several moves counts from the newest
-it answers). The drag starts once the page's first strip of alternative starts is done. Prints
-the median, the 95th percentile and how many of the positions got a frame of their own.
+Chromium drags piece B's start handle (resolution 100) through POSITIONS positions along half its
+outline, one real pointer move every PAUSE seconds (1/60: a 60 Hz pointer), once with Chromium's
+--disable-gpu and once with its GPU process (WebGL on SwiftShader either way), after the page's
+first strip of alternative starts is done. Every move is counted: its latency is the time from
+its pointer event (event.timeStamp) to the first animation frame after a shape for it, or for a
+newer move, was drawn (a move that never got a frame of its own counts at the next frame's time).
+Prints, per flag, the median, the 95th percentile and how many moves got a frame of their own.
 
-    studio_latency.py BUILD/dform SAMPLES_DIR [--pause 0.15] [--positions 100]
+    studio_latency.py BUILD/dform SAMPLES_DIR [--pair ellipses|circle-square] [--gpu both|off|on]
+                      [--pause 0.016667] [--positions 100]
 
 With --paper: the non-convex sample pair (the paper model) dragged for positions x pause seconds;
 prints how long after letting go the page showed the last position's preview and its refined
 shape.
     studio_latency.py BUILD/dform SAMPLES_DIR --paper --positions 50 --pause 0.1
 """
-import time
 import argparse
 import os
 import statistics
 import sys
+import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "studio"))
 import studio_browser  # noqa: E402
 
+PAIRS = {"ellipses": ("ellipses-a.svg", "ellipses-b.svg"), "circle-square": ("circle.svg", "square.svg"),
+         "paper": ("nonconvex-a.svg", "nonconvex-b.svg")}
 
-def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("dform")
-    parser.add_argument("samples")
-    parser.add_argument("--pause", type=float, default=0.15)
-    parser.add_argument("--positions", type=int, default=100)
-    parser.add_argument("--paper", action="store_true")
-    args = parser.parse_args()
-    missing = studio_browser.chromium_missing()
-    if missing:
-        print("cannot run: " + missing)
-        return 1
+
+def every_move(moves, frames):
+    """Per move (seq, time, sent: its position was the one sent, not one the browser coalesced
+    into a later pointer event): the time to the first frame of its seq or a newer one, or None
+    when no frame came; and whether the move's own shape was drawn."""
+    out = []
+    for m in moves:
+        later = [f for f in frames if f["seq"] >= m["seq"]]
+        first = min(later, key=lambda f: f["time"]) if later else None
+        out.append((first["time"] - m["time"] if first else None, m["sent"] and any(f["seq"] == m["seq"] for f in frames)))
+    return out
+
+
+def percentile(values, q):
+    values = sorted(values)
+    return values[min(len(values) - 1, int(round(q * (len(values) - 1))))]
+
+
+def drag(s, args):
+    """Drags B's handle along half its outline; returns the pointer actions, not yet performed."""
     from selenium.webdriver.common.action_chains import ActionChains
     from selenium.webdriver.common.by import By
+    n = args.positions
+    points = s.js(f"""
+        var v = window.studio.views[1], out = [], h = v.handle.getBoundingClientRect(), m = v.svg.getScreenCTM();
+        for (var k = 1; k <= {n}; ++k) {{
+          var p = v.loop.at(v.fraction + 0.5 * k / {n}), q = v.svg.createSVGPoint();
+          q.x = p[0]; q.y = -p[1]; q = q.matrixTransform(m);
+          out.push([Math.round(q.x - (h.left + h.width / 2)), Math.round(q.y - (h.top + h.height / 2))]);
+        }}
+        return out;""")
+    actions = ActionChains(s.driver, duration=0).click_and_hold(s.driver.find_element(By.CSS_SELECTOR, "#svg-b circle.handle"))
+    last = [0, 0]
+    for x, y in points:
+        actions.move_by_offset(x - last[0], y - last[1]).pause(args.pause)
+        last = [x, y]
+    return actions.release()
+
+
+def run(args, pair, gpu):
     forward = os.path.join(args.samples, "forward")
-    pair = ("nonconvex-a.svg", "nonconvex-b.svg") if args.paper else ("ellipses-a.svg", "ellipses-b.svg")
-    s = studio_browser.Studio(args.dform, [os.path.join(forward, name) for name in pair])
+    s = studio_browser.Studio(args.dform, [os.path.join(forward, name) for name in PAIRS[pair]], gpu=gpu)
+    flag = "GPU process (SwiftShader)" if gpu else "--disable-gpu"
     try:
         s.settle()
         # The page's first strip of alternative starts is solved in the background: wait for it,
         # so that the drag is measured, not the drag competing with 32 other solves.
         s.wait(lambda: s.js("return document.getElementById('strip-cards').getAttribute('data-state')") == "done", 600)
-        s.js("window.studio.latencies = []; window.studio.breakdown = []")
-        n = args.positions
-        points = s.js(f"""
-            var v = window.studio.views[1], out = [], h = v.handle.getBoundingClientRect(), m = v.svg.getScreenCTM();
-            for (var k = 1; k <= {n}; ++k) {{
-              var p = v.loop.at(v.fraction + 0.5 * k / {n}), q = v.svg.createSVGPoint();
-              q.x = p[0]; q.y = -p[1]; q = q.matrixTransform(m);
-              out.push([Math.round(q.x - (h.left + h.width / 2)), Math.round(q.y - (h.top + h.height / 2))]);
-            }}
-            return out;""")
-        actions = ActionChains(s.driver, duration=0).click_and_hold(s.driver.find_element(By.CSS_SELECTOR, "#svg-b circle.handle"))
-        last = [0, 0]
-        for x, y in points:
-            actions.move_by_offset(x - last[0], y - last[1]).pause(args.pause)
-            last = [x, y]
-        actions.release()
+        s.js("window.studio.moves = []; window.studio.frames = []; window.studio.breakdown = []")
+        actions = drag(s, args)
         if args.paper:
             actions.perform()
             released = time.time()
@@ -70,25 +86,55 @@ def main():
             s.wait(lambda: s.js(showing), 300, "the last position")
             preview = time.time() - released
             s.wait(lambda: s.js(showing + " && !s.shown.result.preview && !s.shown.result.refining"), 300, "its refined shape")
-            print(f"released after {args.positions} moves x {args.pause} s: the last position's first shape after {preview:.2f} s, "
-                  f"refined after {time.time() - released:.2f} s")
-            return 0
+            print(f"{flag}: released after {args.positions} moves x {args.pause} s: the last position's first shape after "
+                  f"{preview:.2f} s, refined after {time.time() - released:.2f} s")
+            return
         actions.perform()
         s.settle()
-        latencies = s.js("return window.studio.latencies")
+        moves, frames = s.js("return window.studio.moves"), s.js("return window.studio.frames")
         breakdown = s.js("return window.studio.breakdown")
         errors = s.console_errors()
     finally:
         s.close()
-    latencies.sort()
-    p95 = latencies[min(len(latencies) - 1, int(round(0.95 * (len(latencies) - 1))))]
-    print(f"frames {len(latencies)} of {args.positions} positions; latency median {statistics.median(latencies):.1f} ms, "
-          f"p95 {p95:.1f} ms, min {latencies[0]:.1f} ms, max {latencies[-1]:.1f} ms; console errors {len(errors)}")
-    # The median of each part of a frame (ms): queued behind the solve in flight, the request's
-    # round trip (the server's time in it, the solve's in that), the answer's body and parsing,
-    # showing it, and the wait for the frame.
+    counted = every_move(moves, frames)
+    latencies = [t for t, _ in counted if t is not None]
+    own = sum(1 for _, mine in counted if mine)
+    if not latencies:
+        print(f"{pair}, {flag}: no frame for any of {len(moves)} moves")
+        return
+    times = sorted(m["time"] for m in moves)
+    apart = statistics.median(b - a for a, b in zip(times, times[1:])) if len(times) > 1 else float("nan")
+    print(f"{pair}, {flag}: {len(moves)} moves at {1 / args.pause:.0f} Hz (as the page got them: {apart:.1f} ms apart, "
+          f"median), {own} with a frame of their own, "
+          f"{len(moves) - len(latencies)} without any frame; latency of every move median {statistics.median(latencies):.1f} ms, "
+          f"p95 {percentile(latencies, 0.95):.1f} ms, min {min(latencies):.1f} ms, max {max(latencies):.1f} ms; "
+          f"console errors {len(errors)}")
+    # The median of each part of a drawn shape's frame (ms): queued behind the solve in flight, the
+    # request's round trip (the server's time in it, the solve's in that), the answer's body and
+    # parsing, showing it, and the wait for the frame.
     parts = [key for key in (breakdown[0] if breakdown else {}) if all(b.get(key) is not None for b in breakdown)]
-    print("breakdown (medians, ms): " + ", ".join(f"{key} {statistics.median(b[key] for b in breakdown):.1f}" for key in parts))
+    print("  breakdown of the drawn shapes (medians, ms): " +
+          ", ".join(f"{key} {statistics.median(b[key] for b in breakdown):.1f}" for key in parts))
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("dform")
+    parser.add_argument("samples")
+    parser.add_argument("--pause", type=float, default=1 / 60)
+    parser.add_argument("--positions", type=int, default=100)
+    parser.add_argument("--pair", choices=("ellipses", "circle-square"), default="ellipses")
+    parser.add_argument("--gpu", choices=("both", "off", "on"), default="both",
+                        help="off: --disable-gpu; on: Chromium's GPU process; both: one run each")
+    parser.add_argument("--paper", action="store_true")
+    args = parser.parse_args()
+    missing = studio_browser.chromium_missing()
+    if missing:
+        print("cannot run: " + missing)
+        return 1
+    print(f"load average {open('/proc/loadavg').read().split()[0:3]}", flush=True)
+    for gpu in {"both": (False, True), "off": (False,), "on": (True,)}[args.gpu]:
+        run(args, "paper" if args.paper else args.pair, gpu)
     return 0
 
 

@@ -13,7 +13,6 @@ the inverse mode shows nothing of the forward design.
     browser_feedback_test.py DFORM SAMPLES_DIR      (exit 77 when Chromium or Selenium is absent)
 """
 import io
-import json
 import os
 import sys
 import tempfile
@@ -49,14 +48,8 @@ def words_of_the_page(message):
 
 
 def failed_export(dform, samples, work):
-    """A job whose paper model (isometry weighted 0.001, three iterations) fails the default gate."""
-    job = os.path.join(work, "failing.json")
-    with open(job, "w") as f:
-        json.dump({"mode": "forward", "piece_a": os.path.join(samples, "forward", "ellipses-a.svg"),
-                   "piece_b": os.path.join(samples, "forward", "ellipses-b.svg"),
-                   "fit_perimeter": True, "model": "paper", "resolution": 40,
-                   "weights": {"isometry": 0.001}, "solver": {"max_iterations": 3}}, f)
-    s = studio_browser.Studio(dform, [job])
+    """A job whose paper model fails the default gate (studio_browser.failing_job)."""
+    s = studio_browser.Studio(dform, [studio_browser.failing_job(samples, work)])
     try:
         s.settle(300)
         s.driver.find_element("id", "export").click()

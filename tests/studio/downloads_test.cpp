@@ -330,6 +330,42 @@ TEST_F(StudioDownloads, AnExportThatFailsNamesNoServerFolder) {
       << zip.status().message();
 }
 
+// The print preview is the export's layout: the pages, tiles and sheets of the pattern.json the
+// same request's export holds, and each sheet's SVG; what the export would refuse, said instead.
+TEST_F(StudioDownloads, ThePrintPreviewIsTheExportsLayout) {
+  test::StudioClient c;
+  const json request = {{"session", c.session()},
+                        {"export", {{"profile", "print"}, {"page", "A4"}, {"scale", 1}}}};
+  auto preview = c.post("/api/preview", request);
+  ASSERT_EQ(preview.first, 200) << preview.second;
+  auto exported = c.raw().Post("/api/export", c.headers(), request.dump(), "application/json");
+  ASSERT_EQ(exported->status, 200) << exported->body;
+  unzip(exported->body, dir / "export");
+  const json pattern = json::parse(readAll(dir / "export" / "pattern.json"));
+  EXPECT_GT(preview.second["pages"].size(), 1u) << "the ellipses at true size tile A4";
+  EXPECT_EQ(preview.second["pages"], pattern["pages"]);
+  EXPECT_EQ(preview.second["sheets"], pattern["sheets"]);
+  ASSERT_EQ(preview.second["svg"].size(), pattern["sheets"].size());
+  for (std::size_t k = 0; k < pattern["sheets"].size(); ++k)
+    EXPECT_EQ(preview.second["svg"][k].get<std::string>(),
+              readAll(dir / "export" / pattern["sheets"][k]["file"].get<std::string>()));
+  EXPECT_EQ(preview.second["missing"], "");
+
+  auto small = c.post("/api/preview", {{"session", c.session()},
+                                       {"export", {{"profile", "laser"}, {"sheet", "100x100mm"}}}});
+  ASSERT_EQ(small.first, 200) << small.second;
+  EXPECT_FALSE(small.second.contains("pages"));
+  EXPECT_NE(small.second["missing"].get<std::string>().find("the largest scale that fits is"),
+            std::string::npos)
+      << small.second;
+  // A setting Export refuses (400 there) is the preview's answer (the page asks as one types).
+  const json foreign = {{"session", c.session()}, {"export", {{"profile", "../../etc/passwd"}}}};
+  auto refused = c.post("/api/export", foreign), bad = c.post("/api/preview", foreign);
+  EXPECT_EQ(refused.first, 400);
+  EXPECT_EQ(bad.first, 200);
+  EXPECT_EQ(bad.second["error"], refused.second["error"]) << bad.second;
+}
+
 TEST(ScopedStop, StopsTheRunsOfItsThreadOnly) {
   std::atomic<bool> flag{false};
   EXPECT_FALSE(interruptRequested());

@@ -1,5 +1,6 @@
 // The studio's parts without a server: the stored zip (read back by Python's zipfile), the
-// request guard, upload names, and the parametric outlines (read by io as the studio reads them).
+// request guard, upload names, the parametric outlines (read by io as the studio reads them) and
+// the corners a start snaps to.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,15 +8,18 @@
 #include <filesystem>
 #include <fstream>
 
+#include "dform/core/polyline.h"
 #include "dform/io/outline_reader.h"
 #include "studio/guard.h"
 #include "studio/outlines.h"
+#include "studio/wire.h"
 #include "studio/zip.h"
 
 namespace dform {
 namespace {
 
 namespace fs = std::filesystem;
+using nlohmann::json;
 
 TEST(StudioZip, PythonReadsTheArchiveBack) {
   const std::string binary("\x00\x01\xff\r\n", 5);
@@ -126,6 +130,46 @@ TEST(StudioOutlines, EveryKindReadsAtEveryExtreme) {
   EXPECT_NEAR(perimeter("rounded_rectangle", {{"width", 200}, {"height", 100}, {"radius", 20}}),
               2 * (160 + 60) + 2 * pi * 20, 1e-2);
   EXPECT_EQ(studio::parametricOutline("heart", {}), "");
+}
+
+// The corners an outline's answer lists (where a dragged start snaps): a regular polygon's and a
+// Reuleaux polygon's vertices, evenly spaced in arc length from the first; a smooth ellipse none.
+TEST(StudioWire, TheCornersAreTheOutlinesSharpTurns) {
+  const auto corners = [](const std::string& kind, std::map<std::string, double> values) {
+    const Shape2 shape = parseOutline(studio::parametricOutline(kind, values), "x.json").value();
+    return studio::shapeJson(shape)["corners"].get<std::vector<double>>();
+  };
+  for (const auto& [kind, n] : {std::pair<std::string, int>{"polygon", 6}, {"reuleaux", 3}}) {
+    const std::vector<double> c = corners(kind, {{"sides", n}, {"radius", 100}});
+    ASSERT_EQ(c.size(), std::size_t(n)) << kind;
+    for (int k = 0; k < n; ++k) EXPECT_NEAR(c[std::size_t(k)], double(k) / n, 1e-3) << kind;
+  }
+  EXPECT_TRUE(corners("ellipse", {{"a", 110}, {"b", 80}}).empty());
+}
+
+// Where the mirror axes cross an outline (where a dragged start snaps too): an ellipse's two axes
+// at its four vertices, a hexagon's six at its corners and sides' middles, each point on its axis;
+// a circle (every line through its centre) and a lopsided outline none.
+TEST(StudioWire, TheAxesAreWhereMirrorAxesCrossTheOutline) {
+  const auto axes = [](const std::string& kind, std::map<std::string, double> values) {
+    const Shape2 shape = parseOutline(studio::parametricOutline(kind, values), "x.json").value();
+    const json j = studio::shapeJson(shape);
+    return std::make_pair(j["axes"].get<std::vector<double>>(), shape.outer.points);
+  };
+  const auto [ellipse, e] = axes("ellipse", {{"a", 110}, {"b", 80}});
+  ASSERT_EQ(ellipse.size(), 4u);
+  for (const double f : ellipse) {
+    const Eigen::Vector2d p = resampleAtFractions(e, {f}).row(0).transpose();
+    EXPECT_LT(std::min(std::abs(p.x()), std::abs(p.y())), 0.05) << f << ": " << p.transpose();
+  }
+  const auto [hexagon, h] = axes("polygon", {{"sides", 6}, {"radius", 100}});
+  ASSERT_EQ(hexagon.size(), 12u);
+  for (int k = 0; k < 12; ++k) EXPECT_NEAR(hexagon[std::size_t(k)], k / 12.0, 1e-3);
+  EXPECT_TRUE(axes("ellipse", {{"a", 100}, {"b", 100}}).first.empty());
+  // A triangle with three different sides: no mirror.
+  const Shape2 lopsided =
+      parseOutline(R"({"points": [[0, 0], [100, 0], [30, 60]], "units": "mm"})", "t.json").value();
+  EXPECT_TRUE(studio::shapeJson(lopsided)["axes"].empty());
 }
 
 }  // namespace

@@ -66,7 +66,8 @@ def skipped():
 class Studio:
     """`dform studio ARGS --no-browser --port 0` and a Chromium window on its page."""
 
-    def __init__(self, dform, args, width=1500, height=950):
+    def __init__(self, dform, args, width=1500, height=950, gpu=False):
+        """gpu: run Chromium's GPU process (WebGL on SwiftShader there) instead of --disable-gpu."""
         from selenium import webdriver
         from selenium.webdriver.chrome.service import Service
         self.dform = dform
@@ -81,7 +82,7 @@ class Studio:
         self.profile = tempfile.mkdtemp(prefix="dform-studio-chromium-")
         options = webdriver.ChromeOptions()
         options.binary_location = shutil.which("chromium")
-        for flag in ("--headless=new", "--no-sandbox", "--disable-gpu", "--use-angle=swiftshader",
+        for flag in ("--headless=new", "--no-sandbox", *(() if gpu else ("--disable-gpu",)), "--use-angle=swiftshader",
                      "--enable-unsafe-swiftshader", "--disable-quic", "--no-first-run",
                      "--disable-background-networking", "--disable-component-update", "--disable-sync",
                      f"--window-size={width},{height}", f"--user-data-dir={self.profile}"):
@@ -131,6 +132,19 @@ class Studio:
             except subprocess.TimeoutExpired:
                 self.process.kill()
             shutil.rmtree(self.profile, ignore_errors=True)
+
+
+def failing_job(samples, work):
+    """A job file in `work` whose paper model (isometry weighted 0.001, three iterations) fails the
+    default gate (L_error among its checks); its path."""
+    import json
+    job = os.path.join(work, "failing.json")
+    with open(job, "w") as f:
+        json.dump({"mode": "forward", "piece_a": os.path.join(samples, "forward", "ellipses-a.svg"),
+                   "piece_b": os.path.join(samples, "forward", "ellipses-b.svg"),
+                   "fit_perimeter": True, "model": "paper", "resolution": 40,
+                   "weights": {"isometry": 0.001}, "solver": {"max_iterations": 3}}, f)
+    return job
 
 
 def unzip(data, folder):

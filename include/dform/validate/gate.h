@@ -2,6 +2,7 @@
 // (templates/gates/*.json). Definitions and limits: docs/validation.md.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -86,5 +87,22 @@ struct GateReport {
 /// measures a model read back from files, then calls this).
 GateReport runGate(const DForm& model, const GateLimits& limits, const Metrics& metrics,
                    const Curve3* target, const CurveMatch* curve);
+
+/// Where a failing check of a gate's report fails on the shape, for drawing it there: the edges of
+/// L_max (|strain| over its limit) and of L_error (edges whose own |strain| is over that RMS
+/// limit), the vertices of gauss_max_rad (those the check looks at with |angle defect| over its
+/// limit), the seam points of seam_gap_mm (partners farther apart than its limit).
+struct FailureSites {
+  enum class Kind { Edges, Vertices, SeamPoints };
+  std::string check;  ///< the check's name
+  Kind kind = Kind::Edges;
+  /// Per piece (A, B): vertex pairs (Edges: two entries an edge), vertex indices (Vertices); seam
+  /// indices (SeamPoints), the same for both pieces.
+  std::array<std::vector<int>, 2> items;
+};
+
+/// The sites of each check of `report` that failed on `model` and is one of the four above, in
+/// the report's order; a failing check of another kind has none (it is not located on the shape).
+std::vector<FailureSites> locateFailures(const DForm& model, const GateReport& report);
 
 }  // namespace dform

@@ -53,6 +53,17 @@ struct ReferenceSeam {
 /// pieces). Pure: reads the meshes, never a solver.
 Metrics computeMetrics(const DForm& model, const ReferenceSeam& exactBody);
 
+/// One undirected mesh edge of a piece (vertices `from` < `to`) and its strain (L3 - L2) / L2: its
+/// 3D length L3 against its flat length L2, signed (positive where the 3D edge is longer; infinite
+/// for a zero flat edge whose 3D edge is not). L_max is the largest |strain| over both pieces.
+struct EdgeStrain {
+  int from = 0, to = 0;
+  double strain = 0;
+};
+
+/// Every edge of a piece's faces once, with its strain.
+std::vector<EdgeStrain> edgeStrains(const Piece& piece);
+
 /// The discrete Gaussian curvature of a piece's 3D shape: per vertex, its angle defect
 /// (radians) at interior vertices and 0 on the seam, the boundary and the creases, where the sheet
 /// may turn.
