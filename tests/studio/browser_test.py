@@ -232,8 +232,9 @@ def main():
         check(saved.get("numbers") == "both" and saved.get("hinge") is False,
               f"Save job keeps the dialog's numbers and hinge ({saved})")
 
-        # A pair whose glued metric is not convex: a preview at once, then the refined paper model
-        # streamed, with the seam point that breaks convexity marked on the pieces.
+        # A pair whose glued metric is not convex: a preview at once, then the refined shape (the
+        # ruled engine's: the paper model's shape made exact) streamed, with the seam point that
+        # breaks convexity marked on the pieces.
         seq = s.js("return window.studio.frameSeq")
         s.driver.find_element("id", "file-a").send_keys(os.path.join(samples, "forward", "nonconvex-a.svg"))
         s.wait(lambda: s.js("return window.studio.frameSeq") > seq, 60, "the first non-convex shape")
@@ -243,8 +244,8 @@ def main():
         preview = s.js("return window.studio.shown.result.preview")
         s.settle(300)
         result = s.js("return window.studio.shown.result")
-        check(preview and not result["preview"] and result["model"]["name"] == "paper",
-              "a non-convex pair shows a preview, then the refined paper model")
+        check(preview and not result["preview"] and result["model"]["name"] == "ruled",
+              f"a non-convex pair shows a preview, then the refined ruled shape ({result['model']['name']})")
         check(len(result["pieces"][0]["seam"]) == 100, "the refined shape has the page's resolution")
         check("seam point" in result["model"]["reason"] and
               len(s.driver.find_elements("css selector", "#svg-a circle.break-point")) == 1,
