@@ -2,7 +2,10 @@
 """The man page and the bash completion of dform, made from the command's own --help texts, so
 that neither can describe options the command does not have.
 
-    help_pages.py DFORM OUT_DIR    writes OUT_DIR/dform.1.gz and OUT_DIR/dform.bash
+    help_pages.py DFORM OUT_DIR DATADIR    writes OUT_DIR/dform.1.gz and OUT_DIR/dform.bash
+
+DATADIR is the installed share folder (/usr/share for the Debian packages), where the page's FILES
+section finds the templates, the completion and the installed docs.
 
 dform --help lists the subcommands; each `dform SUB --help` gives its usage, positionals and
 options (CLI11's layout: a section title ending in ':', then one entry per line, the name padded
@@ -50,7 +53,45 @@ def roff(text):
     return text.replace("\\", "\\e").replace("-", "\\-").replace("'", "\\(aq")
 
 
-def man_page(dform, version, commands):
+EXAMPLES = [
+    ("Make the D-Form of two outlines, with its report, pattern and previews:",
+     "dform forward piece-a.svg piece-b.svg -o out/"),
+    ("The two flat pieces whose seam follows a closed 3D curve:",
+     "dform inverse seam.obj -o out/"),
+    ("Every starting pair of two outlines, with a gallery to compare them:",
+     "dform sweep a.svg b.svg --starts 16 -o sweep/"),
+    ("Export a saved result again for a 600 x 400 mm laser sheet:",
+     "dform export out/ --profile laser --sheet 600x400mm"),
+    ("Check a saved result against the strict gate, the verdict as one JSON object:",
+     "dform validate out/ --gate strict --json"),
+    ("Design in the browser, starting from two outlines:",
+     "dform studio piece-a.svg piece-b.svg"),
+]
+
+
+def files_section(datadir):
+    """The installed files the page names: templates, completion, the docs of each package."""
+    doc = datadir + "/doc"
+    entries = [
+        (datadir + "/dform/templates/",
+         "export profiles (profiles/), quality-gate presets (gates/), the report page (report/), "
+         "report.json's schema (schema/) and the studio's page (studio/); $DFORM_TEMPLATES "
+         "names another such folder"),
+        (datadir + "/bash-completion/completions/dform", "the bash completion"),
+        (doc + "/dform/", "the user documentation: README.md, cli.md (every command, its options "
+         "and outputs), export.md, report.md, validation.md, studio.md and the others"),
+        (doc + "/libdform-dev/",
+         "the C++ library (package libdform-dev): api.md and the API reference, html/index.html"),
+        (doc + "/python3-dform/",
+         "the Python module (package python3-dform): python.md and the reference, dform.html"),
+    ]
+    lines = [".SH FILES"]
+    for path, what in entries:
+        lines += [".TP", "\\fI" + roff(path) + "\\fR", roff(what) + "."]
+    return lines
+
+
+def man_page(dform, version, commands, datadir):
     top, intro = sections(help_text(dform))
     date = datetime.date.fromtimestamp(os.stat(dform).st_mtime).isoformat()
     lines = [f'.TH DFORM 1 "{date}" "dform {version}" "User Commands"', ".SH NAME",
@@ -69,9 +110,20 @@ def man_page(dform, version, commands):
                 lines += [".TP", "\\fB" + roff(entry) + "\\fR", roff(description)]
     lines += [".SH EXIT STATUS", "0 success; 1 internal error; 2 usage; 3 unreadable input; "
               "4 invalid input; 5 solve failed; 6 output failed; 7 quality gate failed; "
-              "130 interrupted (143 on SIGTERM).", ".SH SEE ALSO",
-              "The documentation in the source tree: README.md and docs/ (docs/cli.md for every "
-              "command)."]
+              "130 interrupted (143 on SIGTERM).",
+              ".SH ENVIRONMENT", ".TP", "\\fBDFORM_TEMPLATES\\fR",
+              roff("the templates folder to use instead of the installed one (it must hold gates/, "
+                   "profiles/ and report/; anything else is an error, exit 3)."),
+              ".TP", "\\fBXDG_RUNTIME_DIR\\fR",
+              roff("where dform studio keeps the private page that opens the browser (else the "
+                   "temporary folder, $TMPDIR or /tmp)."),
+              ".SH EXAMPLES"]
+    for what, command in EXAMPLES:
+        lines += [".PP", roff(what), ".PP", ".RS", "\\fB" + roff(command) + "\\fR", ".RE"]
+    lines += files_section(datadir)
+    lines += [".SH SEE ALSO", "The files under " + roff(datadir + "/doc/dform/") +
+              " (cli.md for every command), and \\fBdform\\fR \\fISUBCOMMAND\\fR "
+              "\\fB\\-\\-help\\fR."]
     return "\n".join(lines) + "\n"
 
 
@@ -121,7 +173,7 @@ complete -o filenames -F _dform dform
 
 
 def main():
-    dform, out = sys.argv[1], sys.argv[2]
+    dform, out, datadir = sys.argv[1:4]
     version = subprocess.run([dform, "--version"], check=True, capture_output=True,
                              text=True).stdout.split()[-1]
     top, _ = sections(help_text(dform))
@@ -131,7 +183,7 @@ def main():
         found, _ = sections(text)
         commands[name] = (found, [l for l in text.splitlines() if l.startswith("Usage:")])
     with gzip.GzipFile(os.path.join(out, "dform.1.gz"), "wb", mtime=0) as f:
-        f.write(man_page(dform, version, commands).encode())
+        f.write(man_page(dform, version, commands, datadir).encode())
     with open(os.path.join(out, "dform.bash"), "w", encoding="utf-8") as f:
         f.write(completion(top, commands))
 

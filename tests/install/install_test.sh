@@ -58,7 +58,7 @@ if grep -q 'dform_warnings' <<< "$targets"; then fail "dformTargets.cmake export
 # has a core/types.h of its own ahead of dform's headers on the include path.
 mkdir "$work/example"
 cp -r "$source/tests/install/consumer/CMakeLists.txt" "$source/tests/install/consumer/collide.cpp" \
-  "$source/tests/install/consumer/include" "$work/example/"
+  "$source/tests/install/consumer/where.cpp" "$source/tests/install/consumer/include" "$work/example/"
 cppBlock() {  # the Nth ```cpp block of docs/api.md
   awk -v want="$1" '/^```cpp$/ {n++; inside = (n == want); next} /^```$/ {inside = 0} inside' \
     "$source/docs/api.md"
@@ -105,4 +105,7 @@ made=$("$work/consumer/memory") || fail "the in-memory example failed"
 [ "$(grep -c '^v ' "$work/piece-a.obj")" -gt 3 ] && grep -q '^f ' "$work/piece-a.obj" &&
   grep -qx 'g seam' "$work/piece-a.obj" || fail "the file example wrote no OBJ piece: $(head -c 200 "$work/piece-a.obj")"
 "$work/consumer/collide" || fail "the consumer with its own core/types.h failed"
+where=$(DFORM_TEMPLATES="$work/moved/share/dform/templates" "$work/consumer/where") ||
+  fail "the consumer finds no templates folder"
+[ "$where" = "$work/moved/share/dform/templates" ] || fail "DFORM_TEMPLATES is not the folder read: $where"
 echo "install test: installed, found, built and ran a separate project ($made)"
