@@ -3,7 +3,8 @@ compiled dform._dform by CMake (the target dform_python only, Release), the temp
 data. CMake configures a build folder of its own under build-pip/ (or $DFORM_PIP_BUILD_BASE, where
 setuptools' own build and egg-info go too), or, when DFORM_CMAKE_BUILD_DIR names an existing dform
 CMake build (absolute or relative to this folder), builds the target there and takes the module
-from it. The version is the CMake project's."""
+from it. The version is the CMake project's. pip shows a build's own output only with -v, so the
+build's progress also goes to the terminal pip runs in, as one line updated at each step."""
 import os
 import re
 import shutil
@@ -26,9 +27,40 @@ def project_version():
     return found.group(1)
 
 
-def run(command):
+# A step of the build as Make ("[ 42%] Building CXX object ...") or Ninja ("[12/80] ...") shows it.
+STEP = re.compile(r"\[\s*(?:(\d+)%|(\d+)/(\d+))\] (.*)")
+
+
+def progress_stream():
+    """Where the build's progress goes: the terminal pip runs in (pip shows a build's own output
+    only with -v), else nowhere but the build's output."""
+    try:
+        return open("/dev/tty", "w", encoding="utf-8")
+    except OSError:
+        return None
+
+
+def run(command, progress=None):
+    """Runs command, its output passed on line by line; with `progress`, each step CMake
+    counts ("[ 42%] Building CXX object ...") is also shown there as one updated line."""
     print("dform: " + " ".join(command), flush=True)
-    subprocess.run(command, check=True)
+    with subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                          errors="replace") as process:
+        for line in process.stdout:
+            sys.stdout.write(line)
+            sys.stdout.flush()
+            step = STEP.match(line)
+            if progress and step:
+                done = (int(step.group(1)) if step.group(1) else
+                        100 * int(step.group(2)) // max(1, int(step.group(3))))
+                progress.write("\rdform: building the C++ module, %3d %% %-60.60s"
+                               % (done, step.group(4)))
+                progress.flush()
+    if progress:
+        progress.write("\n")
+        progress.flush()
+    if process.returncode != 0:
+        raise subprocess.CalledProcessError(process.returncode, command)
 
 
 class CMakeBuild(build_ext):
@@ -47,7 +79,13 @@ class CMakeBuild(build_ext):
                  "-DDFORM_BUILD_TESTS=OFF", "-DDFORM_BUILD_BENCH=OFF",
                  "-DDFORM_PYTHON3=" + os.path.realpath(sys.executable)])
         jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL") or str(os.cpu_count() or 1)
-        run(["cmake", "--build", build_dir, "--target", "dform_python", "--parallel", jobs])
+        progress = progress_stream()
+        try:
+            run(["cmake", "--build", build_dir, "--target", "dform_python", "--parallel", jobs],
+                progress)
+        finally:
+            if progress:
+                progress.close()
         built = os.path.join(build_dir, "python", "dform",
                              "_dform" + sysconfig.get_config_var("EXT_SUFFIX"))
         if not os.path.isfile(built):
