@@ -1,5 +1,6 @@
 #include "run_steps.h"
 
+#include <dlfcn.h>
 #include <signal.h>
 
 #include <cmath>
@@ -60,13 +61,25 @@ Result<std::string> templatesDir() {
                   std::string("DFORM_TEMPLATES=") + env +
                       " is not a dform templates folder (it has no gates/, profiles/ or report/)");
   }
-  // The running program's own prefix first (an installed or relocated dform, the Debian
-  // package), then the source tree it was built from, then the configured install prefix.
+  // The folder `templates` beside the file that holds this code when that is a shared object (a
+  // pip-installed Python module carries it), then the running program's own prefix (an
+  // installed or relocated dform, the Debian package), then the source tree it was built from
+  // when the program or module runs from the build folder (never for an installed copy: a
+  // packager's tree is no place to look), then the configured install prefix.
+  std::vector<fs::path> candidates;
   std::error_code ec;
   const fs::path program = fs::read_symlink("/proc/self/exe", ec);
-  std::vector<fs::path> candidates;
-  if (!ec) candidates.push_back(program.parent_path().parent_path() / "share/dform/templates");
-  candidates.push_back(DFORM_TEMPLATES_DIR);
+  fs::path code = program;
+  Dl_info self{};
+  if (dladdr(reinterpret_cast<void*>(&templatesDir), &self) != 0 && self.dli_fname &&
+      fs::path(self.dli_fname).extension() == ".so") {
+    code = fs::absolute(self.dli_fname, ec);
+    candidates.push_back(code.parent_path() / "templates");
+  }
+  if (!program.empty())
+    candidates.push_back(program.parent_path().parent_path() / "share/dform/templates");
+  const std::string build = DFORM_BUILD_DIR "/";
+  if (code.string().rfind(build, 0) == 0) candidates.push_back(DFORM_TEMPLATES_DIR);
   candidates.push_back(DFORM_INSTALLED_TEMPLATES_DIR);
   for (const fs::path& dir : candidates)
     if (isTemplatesFolder(dir)) return dir.string();

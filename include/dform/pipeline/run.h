@@ -24,10 +24,12 @@
 namespace dform {
 
 /// The templates folder (export profiles, gate presets, the report page and the studio's page):
-/// $DFORM_TEMPLATES, else share/dform/templates under the running program's prefix (an installed
-/// or moved dform), else the source tree's templates/, else the one `cmake --install` put under
-/// the configured prefix. A folder counts when it has gates/, profiles/ and report/.
-/// InputUnreadable when $DFORM_TEMPLATES is set to anything else, or no folder is found.
+/// $DFORM_TEMPLATES, else `templates` beside the shared object that holds this library (the
+/// Python module of a pip-installed package), else share/dform/templates under the running
+/// program's prefix (an installed or moved dform), else, for a program or module in the build
+/// folder, the source tree's templates/, else the one `cmake --install` put under the configured
+/// prefix. A folder counts when it has gates/, profiles/ and report/. InputUnreadable when
+/// $DFORM_TEMPLATES is set to anything else, or no folder is found.
 Result<std::string> templatesDir();
 
 /// The export profiles a run can name (templates/profiles/*.json), sorted; none without a
