@@ -340,7 +340,8 @@ PYBIND11_MODULE(_dform, m) {
   using py::arg;
   m.doc() = "D-Forms: two flat pieces zipped along their boundaries, and the 3D shape they make";
   m.attr("__version__") = DFORM_VERSION;
-  static py::exception<std::runtime_error> error(m, "Error");
+  // A RuntimeError, as the stubs (dform/__init__.pyi) and docs/python.md say.
+  static py::exception<std::runtime_error> error(m, "Error", PyExc_RuntimeError);
   error.attr("__module__") = "dform";
   errorType = error.ptr();
 

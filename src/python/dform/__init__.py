@@ -3,22 +3,21 @@
 dform.forward (two outlines -> their D-Form) and dform.inverse (a closed 3D seam curve -> the two
 flat pieces) return a Result: numpy arrays and dicts that print, compare and pickle (for
 multiprocessing and joblib), and a result folder written as the command line writes it
-(docs/python.md). The solves run in the compiled dform._dform.
+(help(dform.forward), help(dform.Result.export); python.md in the docs of the Debian package
+python3-dform). Every problem raises dform.Error, a RuntimeError whose exit_code is the command
+line's. The solves run in the compiled dform._dform.
 """
 import copy as _copy
+import inspect as _inspect
 import math as _math
-import os as _os
 
 import numpy as _np
 
-# An installed package carries the templates (export profiles, gates, report) beside it; a build
-# tree or the Debian package finds them as the command does ($DFORM_TEMPLATES, share/dform).
-_TEMPLATES = _os.path.join(_os.path.dirname(__file__), "templates")
-if "DFORM_TEMPLATES" not in _os.environ and _os.path.isdir(_TEMPLATES):
-    _os.environ["DFORM_TEMPLATES"] = _TEMPLATES
-
-from . import _dform  # noqa: E402  (after the templates are known)
-from ._dform import Error, __version__, read_curve, read_outline  # noqa: E402
+# The templates (export profiles, gates, report) are found by the compiled module as the command
+# finds them, the folder `templates` beside the module first (a pip-installed package carries
+# it); the environment is left as it was, so programs started from Python inherit no setting.
+from . import _dform
+from ._dform import Error, __version__, read_curve, read_outline
 
 __all__ = ["Error", "Result", "__version__", "forward", "inverse", "read_curve", "read_outline"]
 
@@ -66,11 +65,12 @@ class Result:
     target = property(lambda self: self._data["target"],
                       doc="inverse: the resampled curve (n, 3) the seam follows, else None")
 
-    def export(self, out_dir, **options):
+    def export(self, out_dir, **settings):
+        settings = _given(Result.export, (self, out_dir), settings)
         if self._run is None:
             name, args, kwargs = self._call
             self._run = getattr(_dform, name)(*args, **kwargs)
-        return self._run.export(out_dir, **options)
+        return self._run.export(out_dir, **settings)
 
     def __getstate__(self):
         return {"data": self._data, "call": self._call}
@@ -99,14 +99,47 @@ class Result:
             kind, self.model, pieces, "; " + ", ".join(shown) if shown else "")
 
 
-def forward(outline_a, outline_b, **options):
+def forward(outline_a, outline_b, **settings):
+    options = _given(forward, (outline_a, outline_b), settings)
     call = ("forward", _copy.deepcopy((outline_a, outline_b)), _copy.deepcopy(options))
     return Result(_dform.forward(outline_a, outline_b, **options), call)
 
 
-def inverse(curve, **options):
+def inverse(curve, **settings):
+    options = _given(inverse, (curve,), settings)
     call = ("inverse", _copy.deepcopy((curve,)), _copy.deepcopy(options))
     return Result(_dform.inverse(curve, **options), call)
+
+
+def _given(function, arguments, keywords):
+    """The keywords of a call checked against `function`'s signature (a mistyped one is Python's
+    TypeError naming it), those left at None (not given: the setting's own rule) dropped."""
+    try:
+        _inspect.signature(function).bind(*arguments, **keywords)
+    except TypeError as refused:
+        raise TypeError("{}() {}".format(function.__name__, refused)) from None
+    return {k: v for k, v in keywords.items() if v is not None}
+
+
+def _signature(function, inputs, named):
+    """The signature of `function` ("forward", "inverse", "export"): its inputs, the keywords
+    `named` (name, default) that are no settings, then one keyword per row of the settings table
+    (dform._dform.setting_rows) with the table's default, or None where the setting has no
+    default of its own (row["unset"] says what then), and `weights`, a dict of term weights."""
+    keyword = _inspect.Parameter.KEYWORD_ONLY
+    parameters = [_inspect.Parameter(name, _inspect.Parameter.POSITIONAL_OR_KEYWORD)
+                  for name in inputs]
+    parameters += [_inspect.Parameter(name, keyword, default=default) for name, default in named]
+    weights = False
+    for row in _dform.setting_rows(function):
+        if row["weight"]:
+            weights = True
+        elif row["keyword"] not in [p.name for p in parameters]:
+            default = None if row["unset"] else row["default"]
+            parameters.append(_inspect.Parameter(row["keyword"], keyword, default=default))
+    if weights:
+        parameters.append(_inspect.Parameter("weights", keyword, default=None))
+    return _inspect.Signature(parameters)
 
 
 def _settings_doc(function):
@@ -126,14 +159,33 @@ def _settings_doc(function):
     return "\n".join(lines)
 
 
-forward.__doc__ = """Two flat outlines (n, 2) in mm -> the D-Form they make (docs/python.md).
-    holes_a, holes_b, creases_a, creases_b: lists of (n, 2) arrays; name_a, name_b: the pieces'
-    names (default "piece A", "piece B"). The settings, as keyword arguments:
+# Each function's keywords are named in its signature (inspect.signature, help(), an IDE) and
+# listed in its docstring, both read from the settings table the command line and job files use.
+forward.__signature__ = _signature("forward", ("outline_a", "outline_b"), (
+    ("holes_a", ()), ("holes_b", ()), ("creases_a", ()), ("creases_b", ()),
+    ("name_a", "piece A"), ("name_b", "piece B")))
+inverse.__signature__ = _signature("inverse", ("curve",), (("name", "curve"),))
+Result.export.__signature__ = _signature("export", ("self", "out_dir"), ())
+forward.__doc__ = """Two flat outlines -> the D-Form they make, as a Result (`dform forward`).
+
+    outline_a, outline_b: arrays (n, 2) of the pieces' outlines in mm, either orientation. A bad
+    array, an outline that crosses itself or perimeters that differ (see fit_perimeter) raise
+    dform.Error with the command's exit code (2 usage, 4 invalid input, 5 the solve failed); a
+    mistyped keyword is a TypeError naming it. Keywords:
+    holes_a, holes_b: holes inside each piece, a list of (k, 2) arrays in mm; default none
+    creases_a, creases_b: fold lines from boundary to boundary, a list of (k, 2) arrays in mm
+    name_a, name_b: the pieces' names in messages and report.json; default "piece A", "piece B"
 """ + _settings_doc("forward")
-inverse.__doc__ = """A closed 3D seam curve (n, 3) in mm -> the two flat pieces that make it.
-    name: the curve's name (default "curve"). The settings, as keyword arguments:
+inverse.__doc__ = """A closed 3D seam curve -> the two flat pieces that make it, as a Result.
+
+    curve: an array (n, 3) of points in mm, closed (the last point joins the first). A bad array
+    or a curve the pieces cannot follow raises dform.Error with the command's exit code; a
+    mistyped keyword is a TypeError naming it. Keywords:
+    name: the curve's name in messages and report.json; default "curve"
 """ + _settings_doc("inverse")
-Result.export.__doc__ = """Writes the result folder as `dform forward` does: meshes, report.json,
-    report.html and, when the gate passes, the cutting files; returns the gate's verdict and
-    checks. The export settings, as keyword arguments:
+Result.export.__doc__ = """Writes the result folder out_dir as `dform forward -o` does, as one
+    transaction: meshes, report.json, report.html and, unless the gate fails, the cutting files.
+    Returns {"folder", "gate_passed" (None with gate "none"), "checks" (name, value, limit,
+    verdict, detail each), "cutting_files" (whether they were written) and, when the export
+    failed, "export_error"}. A bad value raises dform.Error (exit_code 2). Keywords:
 """ + _settings_doc("export")
