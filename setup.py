@@ -77,6 +77,8 @@ class CMakeBuild(build_ext):
             build_dir = os.path.join(os.path.abspath(self.build_temp), "cmake")
             run(["cmake", "-S", ROOT, "-B", build_dir, "-DCMAKE_BUILD_TYPE=Release",
                  "-DDFORM_BUILD_TESTS=OFF", "-DDFORM_BUILD_BENCH=OFF",
+                 # no line tables: a wheel has no separate debug symbols to keep them in
+                 "-DDFORM_DEBUG_INFO=OFF",
                  "-DDFORM_PYTHON3=" + os.path.realpath(sys.executable)])
         jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL") or str(os.cpu_count() or 1)
         progress = progress_stream()

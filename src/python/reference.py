@@ -22,7 +22,7 @@ def main():
     page = pydoc.HTMLDoc().page("dform " + dform.__version__, pydoc.HTMLDoc().docmodule(dform))
     # The file links: '<a href="file:/...">index</a><br><a href="file:/...">/.../dform/__init__.py</a>'.
     page = re.sub(r'<a href="file:[^"]*">[^<]*</a>(<br>)?', "", page)
-    if "file:" in page or parent in page:
+    if "href=\"file:" in page or parent in page:
         sys.exit("reference.py: the page still names a file of the build: %s" % parent)
     with open(out, "w", encoding="utf-8") as f:
         f.write(page)

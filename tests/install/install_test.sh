@@ -47,7 +47,9 @@ done
 
 # The package config names its dependencies by imported target (found again where it is used),
 # never by a library path of this machine, and exports no build-only target.
-targets=$(cat "$work"/prefix/lib*/cmake/dform/dformTargets*.cmake)
+# Under lib/ or, configured for /usr, the multiarch lib/<triplet>/.
+targets=$(find "$work/prefix" -path "*/cmake/dform/dformTargets*.cmake" -exec cat {} +)
+[ -n "$targets" ] || fail "no dformTargets.cmake under $work/prefix"
 libpath=$(grep -Eo '/usr/lib[^";]*\.(so|a)' <<< "$targets" | head -1 || true)
 [ -z "$libpath" ] || fail "dformTargets.cmake names a library path: $libpath"
 if grep -q 'dform_warnings' <<< "$targets"; then fail "dformTargets.cmake exports the build-only dform_warnings"; fi

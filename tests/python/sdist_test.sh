@@ -33,7 +33,11 @@ tar -xzOf "$sdist" "dform-$version/PKG-INFO" | grep -qx 'License: GPL-3.0-or-lat
 ! "$work/venv/bin/python" -c 'import dform' 2> /dev/null || fail "the clean environment already has a dform"
 mkdir "$work/elsewhere"
 cd "$work/elsewhere"
-CMAKE_BUILD_PARALLEL_LEVEL=2 "$work/venv/bin/python" -m pip install --no-build-isolation --no-index \
+# pip unpacks the sdist under $work/tmp (a new name each time); ccache, with paths under $work taken
+# relative to the build folder, finds a previous run's objects again.
+mkdir "$work/tmp"
+TMPDIR="$work/tmp" CCACHE_BASEDIR="$work" CCACHE_NOHASHDIR=true CMAKE_BUILD_PARALLEL_LEVEL=2 \
+  "$work/venv/bin/python" -m pip install --no-build-isolation --no-index \
   --no-cache-dir --disable-pip-version-check "$sdist" > "$work/pip.log" 2>&1 ||
   fail "pip install of the sdist failed: $(tail -5 "$work/pip.log")"
 package=$("$work/venv/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["platlib"])')/dform

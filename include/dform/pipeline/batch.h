@@ -17,7 +17,7 @@ namespace dform {
 struct BatchJob {
   int index = 0;       ///< its place in the batch's list, from 0
   std::string path;    ///< the job file, as listed (relative paths of a list file: from its folder)
-  std::string name;    ///< OUT/<name>/
+  std::string name;    ///< `OUT/<name>/`
   std::string sha256;  ///< the JobFacts sha256 of the job when the batch listed it
   double size = 1;     ///< its share of the batch's work (JobFacts size)
 };
@@ -74,7 +74,7 @@ struct BatchRow {
   std::string status;   ///< "done", "gate-failed" (result written), "failed" (no result)
   int exitCode = 0;     ///< as `dform run` of the job would exit
   std::string message;  ///< the error, for a job that failed
-  SweepRow figures;     ///< measured on OUT/<name>/ when a result was written
+  SweepRow figures;     ///< measured on `OUT/<name>/` when a result was written
   double seconds = 0;
 };
 

@@ -1,9 +1,9 @@
 // Prints the templates folder the installed dform libraries read (export profiles, gate presets,
 // the report page), as a program linked to them finds it: scripts/check-package runs it from /
 // without DFORM_TEMPLATES and expects the one the Debian package installs.
-#include <cstdio>
-
 #include <dform/pipeline/run.h>
+
+#include <cstdio>
 
 int main() {
   const dform::Result<std::string> found = dform::templatesDir();
