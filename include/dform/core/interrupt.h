@@ -33,6 +33,7 @@ inline bool interruptRequested() {
 /// are not covered (their callers poll on this thread: runWhilePolling). Scopes nest.
 class ScopedStop {
  public:
+  /// Makes `flag` (when not null) this thread's stop flag until the scope ends.
   explicit ScopedStop(const std::atomic<bool>* flag) : outer_(detail::threadStop) {
     if (flag) detail::threadStop = flag;
   }
@@ -50,7 +51,9 @@ class ScopedStop {
 /// ever used. Only ever thrown while a stop is requested.
 class Interrupted : public std::exception {
  public:
+  /// A stop during `stage` (a static string).
   explicit Interrupted(const char* stage) : stage_(stage) {}
+  /// "interrupted"
   const char* what() const noexcept override { return "interrupted"; }
   /// The stage that was stopped, as a run's message names it ("the meshing", "the solve").
   const char* stage() const { return stage_; }

@@ -12,6 +12,8 @@
 
 namespace dform {
 
+/// An advisory lock file held by this process (see the file's comment): exclusive or shared,
+/// released by release() or the destructor.
 class LockFile {
  public:
   LockFile() = default;
@@ -36,6 +38,7 @@ class LockFile {
   /// Releases the lock now (the destructor's work); nothing when none is held.
   void release();
 
+  /// Whether this object holds a lock now.
   bool held() const { return fd_ >= 0; }
 
  private:

@@ -21,6 +21,8 @@
 
 namespace dform {
 
+/// A result folder replaced as one transaction (see the file's comment): begin() locks it and opens
+/// a staging folder, the result is written there, commit() swaps it in.
 class ResultFolder {
  public:
   ResultFolder() = default;
@@ -76,9 +78,13 @@ class ResultFolder {
   /// file made since under a name (and an inode number) that was freed is not taken for the one
   /// found. A folder's contents are compared one by one instead.
   struct Identity {
+    /// The device the entry lies on (st_dev).
     dev_t device = 0;
+    /// Its inode number on that device (st_ino).
     ino_t inode = 0;
-    long long changedSeconds = 0, changedNanoseconds = 0;
+    long long changedSeconds = 0;      ///< its status change time (st_ctim), seconds; 0: a folder
+    long long changedNanoseconds = 0;  ///< the nanoseconds of that time
+    /// The same device, inode and change time.
     bool operator==(const Identity& o) const {
       return device == o.device && inode == o.inode && changedSeconds == o.changedSeconds &&
              changedNanoseconds == o.changedNanoseconds;

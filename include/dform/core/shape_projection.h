@@ -16,6 +16,7 @@ namespace dform {
 /// the viewer by `elevationDeg`.
 class ShapeCamera {
  public:
+  /// The camera turned by `azimuthDeg` about z, then tilted by `elevationDeg` (degrees).
   ShapeCamera(double azimuthDeg, double elevationDeg);
   /// A model point on the screen: x right, y up, z the depth (away from the viewer).
   Eigen::Vector3d screen(const Eigen::Vector3d& p) const;
@@ -30,11 +31,17 @@ class ShapeCamera {
 /// y up) and their depths, mean depth and Lambert shade in [0.35, 1] (a light from the upper left,
 /// both sides lit).
 struct SeenFace {
+  /// 0 for piece A, 1 for piece B.
   int piece = 0;
+  /// The face's index in its piece (a solved face it stands for when clustered).
   int face = 0;
+  /// The corners on the screen in mm: x right, y up.
   std::array<Eigen::Vector2d, 3> corners;
+  /// Each corner's depth in mm, away from the viewer.
   std::array<double, 3> cornerDepths{};
+  /// The mean of the corners' depths, the painter's sort key.
   double depth = 0;
+  /// Lambert shade in [0.35, 1].
   double shade = 1;
 };
 
@@ -51,10 +58,14 @@ double drawingCell(double area, Eigen::Index faces);
 /// Points (rows, 2D or 3D) merged on a grid of `cell` (0: each its own): each point's cluster
 /// and each cluster's mean, clusters numbered by first appearance (the same on every machine).
 struct PointClusters {
+  /// Each point's cluster, by the point's row.
   std::vector<int> of;
+  /// Each cluster's mean point, one row per cluster.
   Eigen::MatrixXd mean;
+  /// The grid cell the points were merged on (0: none merged).
   double cell = 0;
 };
+/// The clusters of `points` on a grid of `cell` (mm; 0 keeps each point its own).
 PointClusters clusterPoints(const Eigen::MatrixXd& points, double cell);
 
 /// Both pieces' 3D vertices (A's, then B's) merged together as a picture draws them: on the
@@ -65,7 +76,10 @@ PointClusters drawnShapeClusters(const DForm& model);
 /// on the same three clusters. Without merging (cell 0) every face is.
 class ClusteredFaces {
  public:
+  /// Faces drawn on clusters of the grid `cell` (0: unmerged, every face drawn).
   explicit ClusteredFaces(double cell) : merged_(cell > 0) {}
+  /// Whether a face on these three clusters is drawn; remembers it, so a second face on the same
+  /// clusters is not.
   bool draws(std::array<int, 3> clusters);
 
  private:

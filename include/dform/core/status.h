@@ -26,13 +26,19 @@ enum class ErrorCode {
   Internal,         ///< a bug
 };
 
+/// The outcome of a step that returns no value: ok, or an ErrorCode with a message naming the file
+/// or setting and the problem. [[nodiscard]]: a dropped Status is a lost error.
 class [[nodiscard]] Status {
  public:
   Status() = default;
+  /// An error of kind `code` (not Ok) with its message.
   Status(ErrorCode code, std::string message) : code_(code), message_(std::move(message)) {}
 
+  /// Success: code Ok, no message.
   static Status ok() { return {}; }
+  /// Whether this is success.
   bool isOk() const { return code_ == ErrorCode::Ok; }
+  /// The kind of error (Ok on success), which decides the exit code.
   ErrorCode code() const { return code_; }
   /// The message, each setting it mentions named by its job-file key ("fit_perimeter").
   std::string message() const { return plainSettings(message_); }
@@ -53,9 +59,11 @@ class [[nodiscard]] Status {
 /// isOk() first. what() names the error the Result held.
 class BadResultAccess : public std::logic_error {
  public:
+  /// The error `status` the Result held.
   explicit BadResultAccess(Status status)
       : std::logic_error("the value of a failed result was read: " + status.message()),
         status_(std::move(status)) {}
+  /// The error the Result held.
   const Status& status() const { return status_; }
 
  private:
@@ -69,16 +77,23 @@ class BadResultAccess : public std::logic_error {
 template <typename T>
 class [[nodiscard]] Result {
  public:
+  /// A success holding `value`.
   Result(T value) : value_(std::move(value)) {}  // NOLINT: implicit by design
-  Result(Status status)                          // NOLINT: implicit by design
+  /// An error: `status`, or an Internal error when `status` is ok.
+  Result(Status status)  // NOLINT: implicit by design
       : status_(status.isOk() ? Status(ErrorCode::Internal,
                                        "a result was made from an ok status, without a value")
                               : std::move(status)) {}
 
+  /// Whether a value is held.
   bool isOk() const { return status_.isOk(); }
+  /// Ok with a value, else the error.
   const Status& status() const { return status_; }
+  /// The value; throws BadResultAccess on an error.
   const T& value() const& { return checked(), *value_; }
+  /// The value; throws BadResultAccess on an error.
   T& value() & { return checked(), *value_; }
+  /// The value, moved out; throws BadResultAccess on an error.
   T&& value() && { return checked(), std::move(*value_); }
 
  private:

@@ -30,6 +30,7 @@ RadialCurvatures radialCurvatures(const IntrinsicTriangulation& tri, const Eigen
 /// every edge). False when an edge that must flip cannot (the radii are outside the domain).
 bool makeRegular(IntrinsicTriangulation& tri, const Eigen::VectorXd& r);
 
+/// When embedConvex stops: the curvature it aims for, the one it accepts, and its step budget.
 struct AlexandrovOptions {
   /// Largest |kappa_i| accepted, radians. A curvature error kappa moves a vertex by about
   /// kappa times the body's size, so 1e-12 keeps the shape exact to ~1e-10 of its size.
@@ -41,9 +42,12 @@ struct AlexandrovOptions {
   int maxIterations = 200;  ///< Levenberg-Marquardt steps on the radii
 };
 
+/// What embedConvex reached: the radii, the 3D vertices and how well they fit the metric.
 struct AlexandrovResult {
+  /// Whether the curvatures reached AlexandrovOptions::acceptedCurvature.
   bool converged = false;
   std::string message;  ///< why not, when it did not converge
+  /// Levenberg-Marquardt steps taken.
   int iterations = 0;
   double maxCurvature = 0;    ///< max |kappa_i| reached, radians
   Eigen::VectorXd radii;      ///< final r, mm

@@ -8,9 +8,12 @@
 
 namespace dform::exact {
 
+/// How far two point sets with the same rows lie apart after the best rigid fit, relative to the
+/// reference's size.
 struct AlignedDistance {
   double rmsRel = 0;  ///< root mean square distance / the reference's bounding-box diagonal
   double maxRel = 0;  ///< largest distance / the same diagonal
+  /// The reference's bounding-box diagonal, mm: what rmsRel and maxRel are relative to.
   double diagonalMm = 0;
 };
 

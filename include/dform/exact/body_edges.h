@@ -17,24 +17,28 @@ namespace dform::exact {
 /// along the chord from seam point `chord` to `chord` + 1 (the same place on both pieces: paired
 /// chords are equally long).
 struct SeamPlace {
-  int chord = 0;
-  double t = 0;
+  int chord = 0;  ///< the seam point the place is at or after
+  double t = 0;   ///< the fraction along the chord to the next seam point, in [0, 1)
+  /// Whether the place is seam point `chord` itself.
   bool isSeamPoint() const { return t == 0.0; }
 };
 
 /// One straight run of a body edge through the inside of a piece, from one place on its seam to
 /// another.
 struct EdgeRun {
-  int piece = 0;  ///< 0 for A, 1 for B
-  SeamPlace from, to;
-  double fromLength = 0, toLength = 0;  ///< how far along the edge its ends are, mm
+  int piece = 0;          ///< 0 for A, 1 for B
+  SeamPlace from;         ///< where the run enters the piece
+  SeamPlace to;           ///< where it leaves
+  double fromLength = 0;  ///< how far along the body edge the run's start is, mm
+  double toLength = 0;    ///< how far along the body edge the run's end is, mm
 };
 
 /// An edge of the body with its fold and its course through the pieces.
 struct BodyEdge {
-  int from = 0, to = 0;  ///< the seam points at its ends
-  double fold = 0;       ///< the angle between its two faces' normals, radians (0: coplanar)
-  double length = 0;     ///< its length, mm
+  int from = 0;       ///< the seam point it starts at
+  int to = 0;         ///< the seam point it ends at
+  double fold = 0;    ///< the angle between its two faces' normals, radians (0: coplanar)
+  double length = 0;  ///< its length, mm
   /// Its runs through the pieces' insides, in order from `from`. Empty when the edge runs along
   /// the seam (a chord, or several in line across flat seam points).
   std::vector<EdgeRun> runs;

@@ -19,8 +19,8 @@ namespace dform::exact {
 /// `b` (clockwise round piece B, in B's own plane), and the chord from k to k + 1 of one to that
 /// of the other. Both in mm.
 struct SeamPolygons {
-  Points2 a;
-  Points2 b;
+  Points2 a;  ///< piece A's side, counter-clockwise
+  Points2 b;  ///< piece B's side, clockwise, in B's own plane
 };
 
 /// Moves both polygons as little as possible (least-norm Gauss-Newton) so that chord k of each
@@ -40,7 +40,8 @@ constexpr double kSamplingExcess = 0.5 * kDegree;
 
 /// The glued metric's angles at the seam points.
 struct SeamAngles {
-  Eigen::VectorXd a, b;  ///< interior angle of each piece at each seam point, radians
+  Eigen::VectorXd a;  ///< piece A's interior angle at each seam point, radians
+  Eigen::VectorXd b;  ///< piece B's interior angle at each seam point, radians
   /// 2 pi - (a + b): the cone point's curvature; negative where the metric is not convex.
   Eigen::VectorXd curvature;
   int firstNonConvex = -1;  ///< the first seam point whose angle sum exceeds 2 pi + tolerance
@@ -70,7 +71,7 @@ constexpr int kMaxExactSeam = 1000;
 /// The glued surface embedded in 3D.
 struct ExactGluing {
   SeamPolygons seam;  ///< the polygons glued (after equalizeChords)
-  SeamAngles angles;
+  SeamAngles angles;  ///< the glued metric's angles and curvatures at the seam points
   /// The pieces are congruent and zipped point to point: the body is piece A doubly covered, and
   /// flatRotation * b + flatShift maps piece B's plane onto A's.
   bool doublyCovered = false;
@@ -78,22 +79,24 @@ struct ExactGluing {
   /// or the body glued came out thinner than sqrt(precision x size / 2) (pressed flat, no length
   /// of it changes by more than the precision).
   enum class Pouch { None, Congruent, Thin };
-  Pouch pouch = Pouch::None;
+  Pouch pouch = Pouch::None;  ///< None where the body is not doubly covered
   /// mm: the largest distance between a point of A and its partner of B laid onto A by the best
   /// flatRotation and flatShift (infinite where no reflection fits).
   double flatDeviation = 0;
   double thickness = 0;  ///< mm: the glued body's thickness, where it came out thin
+  /// The rotation (or reflection) of the best fit of piece B's plane onto A's.
   Eigen::Matrix2d flatRotation = Eigen::Matrix2d::Identity();
-  Eigen::Vector2d flatShift = Eigen::Vector2d::Zero();
-  IntrinsicTriangulation triangulation;  ///< of the cone points: the body's faces
-  std::vector<int> vertexOfSeam;         ///< seam point -> triangulation vertex, -1 if flat
-  std::vector<int> seamOfVertex;         ///< triangulation vertex -> seam point
-  Eigen::MatrixX3d vertices;             ///< 3D position of each triangulation vertex, mm
-  AlexandrovResult embedding;
+  Eigen::Vector2d flatShift = Eigen::Vector2d::Zero();  ///< that fit's translation, mm
+  IntrinsicTriangulation triangulation;                 ///< of the cone points: the body's faces
+  std::vector<int> vertexOfSeam;  ///< seam point -> triangulation vertex, -1 if flat
+  std::vector<int> seamOfVertex;  ///< triangulation vertex -> seam point
+  Eigen::MatrixX3d vertices;      ///< 3D position of each triangulation vertex, mm
+  AlexandrovResult embedding;     ///< how the 3D embedding converged (radii, curvature, edge error)
 };
 
+/// How glueExact embeds the glued metric.
 struct ExactOptions {
-  AlexandrovOptions embedding;
+  AlexandrovOptions embedding;  ///< the embedding's tolerances and step budget
 };
 
 /// Glues the two polygons (equal chords, as left by equalizeChords) and embeds the result.

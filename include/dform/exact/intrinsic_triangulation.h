@@ -12,7 +12,9 @@ namespace dform::exact {
 
 /// A point of the surface: a triangle and barycentric coordinates of its three corners.
 struct SurfacePoint {
+  /// The triangle the point lies in (-1: none).
   int face = -1;
+  /// Barycentric coordinates of its three corners, summing to 1.
   Eigen::Vector3d bary = Eigen::Vector3d::Zero();
 };
 
@@ -30,18 +32,31 @@ class IntrinsicTriangulation {
                          const Eigen::MatrixX3d& signposts, std::vector<double> coneAngles,
                          const std::vector<int>& groups = {});
 
+  /// The number of vertices, removed ones included.
   int vertexCount() const { return int(coneAngle_.size()); }
+  /// The number of face slots (faceAlive says which are in use).
   int faceCount() const { return int(tail_.size()) / 3; }
+  /// Three per face slot.
   int halfedgeCount() const { return int(tail_.size()); }
 
+  /// The halfedge after h in its face (counter-clockwise).
   static int next(int h) { return 3 * (h / 3) + (h % 3 + 1) % 3; }
+  /// The halfedge before h in its face.
   static int prev(int h) { return 3 * (h / 3) + (h % 3 + 2) % 3; }
+  /// The halfedge of the same edge in the neighbouring face, running the other way.
   int twin(int h) const { return twin_[h]; }
+  /// The vertex h starts at.
   int tail(int h) const { return tail_[h]; }
+  /// The vertex h ends at.
   int head(int h) const { return tail_[next(h)]; }
+  /// The length of h's edge, in the surface's unit (mm).
   double length(int h) const { return length_[h]; }
+  /// h's direction at its tail: an angle in [0, coneAngle) counter-clockwise in the input surface,
+  /// radians.
   double signpost(int h) const { return signpost_[h]; }
+  /// The total angle around v, radians (2 pi where the surface is flat).
   double coneAngle(int v) const { return coneAngle_[v]; }
+  /// Whether face slot f is in use (a merge in removeFlatVertex frees slots).
   bool faceAlive(int f) const { return tail_[3 * f] >= 0; }
 
   /// The interior angle of h's face at h's tail.

@@ -94,21 +94,25 @@ std::vector<std::string> jointNames();
 
 /// A sheet material (--material): its thickness and the joint it is usually made with.
 struct MaterialPreset {
-  std::string name;        ///< "paper", "card", "polypropylene", "plywood"
-  double thicknessMm = 0;  ///< nominal thickness (mm)
-  Joint joint = Joint::Glue;
-  double holeSpacingMm = 15, holeDiameterMm = 2, holeEdgeMm = 3;  ///< for holes and lace
+  std::string name;           ///< "paper", "card", "polypropylene", "plywood"
+  double thicknessMm = 0;     ///< nominal thickness (mm)
+  Joint joint = Joint::Glue;  ///< the joint a sheet of it is usually made with
+  double holeSpacingMm = 15;  ///< holes and lace: largest distance between neighbouring holes (mm)
+  double holeDiameterMm = 2;  ///< holes and lace: the holes' diameter (mm)
+  double holeEdgeMm = 3;      ///< holes and lace: seam to hole centre (mm)
   /// Kerf-bending (living-hinge) cuts where the shape bends, by default: a sheet too stiff to
   /// bend to the D-Form without them.
   bool hinge = false;
   /// The hinge's rows of cuts: no closer than this (mm, centre to centre: the links between rows
   /// about as wide as the sheet is thick, and a kerf), each row bending by at most
   /// hingeRowDeg degrees; so the tightest radius the hinge allows is hingeRowMm / hingeRowDeg.
-  double hingeRowMm = 0, hingeRowDeg = 0;
+  double hingeRowMm = 0;
+  double hingeRowDeg = 0;  ///< the most one row of hinge cuts bends (degrees)
 };
 
 /// The preset called `name`, or nullopt; materialNames lists them ("paper, card, ...").
 std::optional<MaterialPreset> materialNamed(const std::string& name);
+/// Every preset's name, comma-separated, for messages ("paper, card, polypropylene, plywood").
 std::string materialNames();
 /// Every preset's name, in materialNames' order.
 std::vector<std::string> materialPresetNames();
@@ -129,28 +133,28 @@ constexpr double kMinSlotLengthMm = 2;      ///< a tongue's width (mm), to spaci
 /// The presets of sheets too stiff to bend without a hinge ("plywood").
 std::string rigidMaterials();
 
-/// A machine profile, read from templates/profiles/<name>.json (see docs/export.md). Every field
+/// A machine profile, read from `templates/profiles/<name>.json` (see docs/export.md). Every field
 /// has a default; a profile file may leave any field out.
 struct Profile {
-  std::string name = "laser";  ///< the profile's name
-  std::string source;          ///< the file it was read from, for messages
-  std::string description;     ///< one line for people
-  ProfileKind kind = ProfileKind::Laser;
-  std::string cutColor = "#FF0000";      ///< cut operation colour, #RRGGBB
-  std::string scoreColor = "#0000FF";    ///< score / fold / tick colour, #RRGGBB
-  std::string engraveColor = "#000000";  ///< labels colour, #RRGGBB
-  double cutWidthMm = 0.025;             ///< stroke width of cut lines (mm)
-  double scoreWidthMm = 0.025;           ///< stroke width of score lines and ticks (mm)
-  double engraveWidthMm = 0.025;         ///< stroke width of single-stroke labels (mm)
-  FoldStyle fold = FoldStyle::Score;
-  double perforationCutMm = 1.0;  ///< perforated fold: length of each cut (mm)
-  double perforationGapMm = 1.0;  ///< perforated fold: length of each bridge (mm)
-  double dashMm = 3.0;            ///< dashed fold: dash and gap length (mm)
-  double marginMm = 5.0;          ///< clear margin at the sheet/page edges and between pieces (mm)
-  std::string page;   ///< "" = the sheet from ExportOptions; a page name (pageSizeMm) otherwise
-  bool tile = false;  ///< page profiles: tile a pattern larger than a page
-  double tileOverlapMm = 10.0;  ///< overlap between neighbouring tiles (mm)
-  Registration registration = Registration::None;
+  std::string name = "laser";             ///< the profile's name
+  std::string source;                     ///< the file it was read from, for messages
+  std::string description;                ///< one line for people
+  ProfileKind kind = ProfileKind::Laser;  ///< what the profile's machine does: cut, print, or both
+  std::string cutColor = "#FF0000";       ///< cut operation colour, #RRGGBB
+  std::string scoreColor = "#0000FF";     ///< score / fold / tick colour, #RRGGBB
+  std::string engraveColor = "#000000";   ///< labels colour, #RRGGBB
+  double cutWidthMm = 0.025;              ///< stroke width of cut lines (mm)
+  double scoreWidthMm = 0.025;            ///< stroke width of score lines and ticks (mm)
+  double engraveWidthMm = 0.025;          ///< stroke width of single-stroke labels (mm)
+  FoldStyle fold = FoldStyle::Score;  ///< how fold lines are drawn (score, perforated, dashed...)
+  double perforationCutMm = 1.0;      ///< perforated fold: length of each cut (mm)
+  double perforationGapMm = 1.0;      ///< perforated fold: length of each bridge (mm)
+  double dashMm = 3.0;                ///< dashed fold: dash and gap length (mm)
+  double marginMm = 5.0;  ///< clear margin at the sheet/page edges and between pieces (mm)
+  std::string page;       ///< "" = the sheet from ExportOptions; a page name (pageSizeMm) otherwise
+  bool tile = false;      ///< page profiles: tile a pattern larger than a page
+  double tileOverlapMm = 10.0;                     ///< overlap between neighbouring tiles (mm)
+  Registration registration = Registration::None;  ///< the cutter's marks, for print-and-cut
   /// Silhouette: clear space (mm) between the artwork and the marks' inner edges (the square's
   /// far side, 15 mm from the edges), so the artwork keeps 15 mm + this from every page edge.
   double registrationClearMm = 5.0;
@@ -217,6 +221,8 @@ struct FoldToScore {
   bool crease = false;  ///< a found crease (drawn as the piece's crease line, never scored)
 };
 
+/// What an export makes and how: the profile, the sheet or page, the glue tabs, ticks, joint,
+/// hinge and scale, and the folds to score. Lengths in mm, angles in degrees.
 struct ExportOptions {
   std::string profile = "laser";    ///< profile name or path to a profile .json
   std::string templatesDir;         ///< folder holding profiles/ (the CLI passes the install path)
@@ -247,7 +253,9 @@ struct ExportOptions {
   /// Joint holes (mm): the largest distance between neighbouring holes (or slots) on a piece along
   /// the seam, the holes' diameter and the distance from the seam to their centres (slots': to
   /// their middle line); unset: the material's, else 15, 2 and 3.
-  std::optional<double> holeSpacingMm, holeDiameterMm, holeEdgeMm;
+  std::optional<double> holeSpacingMm;
+  std::optional<double> holeDiameterMm;  ///< the joint holes' diameter (mm); see holeSpacingMm
+  std::optional<double> holeEdgeMm;      ///< seam to the holes' centres (mm); see holeSpacingMm
   /// --slot-length: a tongue's width along the seam (mm), its slot that and a clearance; unset:
   /// half the hole spacing. A tongue and its slot sit where a hole pair would.
   std::optional<double> slotLengthMm;
@@ -289,19 +297,22 @@ Status checkExportOptions(const ExportOptions& options);
 /// profile that cannot be read.
 Status checkProfileOptions(const ExportOptions& options);
 
+/// What an export wrote: its files, notes and warnings, the canvas, and the layout's checks.
 struct ExportSummary {
   std::vector<std::string> files;     ///< every file written, full paths
   std::vector<std::string> messages;  ///< notes for the user (dropped tabs, perimeter mismatch)
   /// What the pattern cannot do as asked: a hinge's folds bending more tightly than the material
   std::vector<std::string> warnings;
-  std::string profile;                         ///< the profile's name
-  double perimeterA = 0, perimeterB = 0;       ///< flat seam lengths (mm)
-  double sheetWidthMm = 0, sheetHeightMm = 0;  ///< the pattern canvas (mm)
-  int ticks = 0;                               ///< tick pairs
-  int tabs = 0;                                ///< glue tabs on both pieces
-  int creases = 0;                             ///< crease fold lines on both pieces
-  int jointHoles = 0;                          ///< joint holes on both pieces
-  int jointSlots = 0;                          ///< tongue and slot pairs (--joint slots)
+  std::string profile;       ///< the profile's name
+  double perimeterA = 0;     ///< piece A's flat seam length (mm)
+  double perimeterB = 0;     ///< piece B's flat seam length (mm)
+  double sheetWidthMm = 0;   ///< the pattern canvas's width (mm)
+  double sheetHeightMm = 0;  ///< the pattern canvas's height (mm)
+  int ticks = 0;             ///< tick pairs
+  int tabs = 0;              ///< glue tabs on both pieces
+  int creases = 0;           ///< crease fold lines on both pieces
+  int jointHoles = 0;        ///< joint holes on both pieces
+  int jointSlots = 0;        ///< tongue and slot pairs (--joint slots)
   int pages = 0;      ///< pattern pages (more than 1 when tiled or one piece per page); the PDF has
                       ///< the assembly page after them
   int triangles = 0;  ///< triangles in the STL (both pieces)
@@ -324,6 +335,7 @@ struct LayoutFindings {
   /// glue tab or a sliver the cutter would cut free of its piece
   int extraCutLoops = 0;
   std::string example;  ///< the first problem found, in words; empty when none
+  /// The number of problems of every kind together; 0 for a pattern that can be cut as laid out.
   int problems() const {
     return outsideSheet + overlappingTabs + tabsOverPieces + overlappingPieces + labelsOutside +
            overlappingLabels + titleOverlaps + extraCutLoops;
@@ -355,7 +367,7 @@ LaidOutExport markFailedGate(const LaidOutExport& laidOut);
 struct PreparedExport {
   std::vector<std::pair<std::string, std::string>> files;  ///< file name -> content
   ExportSummary summary;                                   ///< `files` still empty
-  LayoutFindings layout;
+  LayoutFindings layout;                                   ///< the layout's checks of the pattern
   std::vector<SeamTick> ticks;  ///< the pattern's numbered ticks on the 3D seam
 };
 
@@ -387,10 +399,10 @@ Result<ExportSummary> exportAll(const DForm& model, const ExportOptions& options
 /// One D-Form of a nest (layOutNest): its model, the job its pieces are labelled with, how many
 /// copies of it to cut, and its body's folds (for score lines).
 struct NestItem {
-  const DForm* model = nullptr;
-  std::string jobName;
-  int copies = 1;
-  std::vector<FoldToScore> folds;
+  const DForm* model = nullptr;    ///< the solved D-Form, owned by the caller
+  std::string jobName;             ///< the job's name, printed on its pieces
+  int copies = 1;                  ///< how many copies of it to cut, at least 1
+  std::vector<FoldToScore> folds;  ///< its body's folds, for score lines; empty when none
 };
 
 /// Every piece of `items` (each D-Form `copies` times) on as few sheets of the options' sheet (a

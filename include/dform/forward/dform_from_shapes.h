@@ -32,16 +32,20 @@ bool parseModelChoice(const std::string& text, ModelChoice& model);
 
 /// A solved forward job: the model, which model made it and how the solve went.
 struct SolvedDForm {
-  DForm model;
-  ModelUsed modelUsed;
+  DForm model;                    ///< the solved pieces, mm
+  ModelUsed modelUsed;            ///< which model made the shape, and why that one
   LocalGlobalSummary relaxation;  ///< the local-global start of the solve
   SolverSummary summary;          ///< the Levenberg-Marquardt solve
   int constraintRounds = 0;       ///< multiplier rounds that closed the seam and fixed the outlines
-  Timings timings;
-  double perimeterA = 0, perimeterB = 0;          ///< the joined boundaries' lengths as read, mm
-  std::string sha256A, sha256B;                   ///< SHA-256 of each input file's bytes as read
-  double scaleB = 1.0;                            ///< applied by fitPerimeter
-  double startFractionA = 0, startFractionB = 0;  ///< resolved starting pair
+  Timings timings;                ///< how long each stage took, seconds
+  double perimeterA = 0;          ///< piece A's joined boundary's length as read, mm
+  double perimeterB = 0;          ///< piece B's joined boundary's length as read, mm
+  std::string sha256A;            ///< SHA-256 of piece A's input file's bytes as read
+  std::string sha256B;            ///< SHA-256 of piece B's input file's bytes as read
+  double scaleB = 1.0;            ///< the scale fitPerimeter applied to piece B (1 without it)
+  /// The resolved starting pair: arc-length fractions along A's and B's joined boundaries.
+  double startFractionA = 0;
+  double startFractionB = 0;  ///< see startFractionA
 };
 
 /// The D-Form of two shapes in memory (mm, counter-clockwise loops, as io's readOutline gives

@@ -8,6 +8,7 @@
 
 namespace dform {
 
+/// What solveDForm made: the solved pieces and how the relaxation and the solve went.
 struct ForwardResult {
   DForm model;                    ///< solved pieces in mm
   LocalGlobalSummary relaxation;  ///< the local-global start

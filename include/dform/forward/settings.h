@@ -18,9 +18,10 @@ namespace dform {
 /// Where a piece's seam starts: an arc-length fraction from the outline's first point, or the
 /// outline point nearest to a given point (mm, page frame, y up).
 struct StartPoint {
+  /// true: start at the outline point nearest to `point`; false: at `fraction`.
   bool nearestToPoint = false;
-  double fraction = 0.0;
-  Eigen::Vector2d point = Eigen::Vector2d::Zero();
+  double fraction = 0.0;  ///< arc-length fraction in [0, 1) from the outline's first point
+  Eigen::Vector2d point = Eigen::Vector2d::Zero();  ///< mm, page frame, y up
 };
 
 /// Which boundary of a piece is zipped (paper section 6.4): its outline, as in a classic D-Form,
@@ -39,9 +40,9 @@ enum class ModelChoice { Auto, Exact, Ruled, Paper, General };
 
 /// A model choice's name (job files, the command line, Python, the studio) and what it does.
 struct ModelChoiceInfo {
-  ModelChoice choice;
-  const char* name;
-  const char* help;
+  ModelChoice choice;  ///< the choice
+  const char* name;    ///< its name ("auto", "exact", ...)
+  const char* help;    ///< one line saying what it does, for --help and the docstrings
 };
 
 /// Every model choice in the order --help lists them: the settings table's choices of the model
@@ -51,9 +52,10 @@ const std::vector<ModelChoiceInfo>& modelChoices();
 /// A value of the join (which boundary of A, then of B, is zipped) as job files name it
 /// ("outer,inner") and what it makes.
 struct JoinChoiceInfo {
-  std::string name;
-  JoinedBoundary a, b;
-  const char* help;
+  std::string name;  ///< "outer,outer", "inner,inner", "outer,inner" or "inner,outer"
+  JoinedBoundary a;  ///< piece A's zipped boundary
+  JoinedBoundary b;  ///< piece B's zipped boundary
+  const char* help;  ///< what the join makes (a classic, anti or demi D-Form)
 };
 
 /// Every join: the settings table's choices of the join.
@@ -66,9 +68,12 @@ constexpr double kMinInteriorEdgeFactor = 0.25, kMaxInteriorEdgeFactor = 8.0;
 /// Everything a forward run needs besides the two pieces: the model, which boundaries are
 /// zipped, the starting pair, the mesh and the solve.
 struct ForwardSettings {
-  ModelChoice model = ModelChoice::Auto;
-  JoinedBoundary joinA = JoinedBoundary::Outer, joinB = JoinedBoundary::Outer;
-  StartPoint startA, startB;  ///< the starting pair (paper Definition 3), on the joined boundaries
+  ModelChoice model = ModelChoice::Auto;         ///< which model makes the 3D shape
+  JoinedBoundary joinA = JoinedBoundary::Outer;  ///< piece A's zipped boundary
+  JoinedBoundary joinB = JoinedBoundary::Outer;  ///< piece B's zipped boundary
+  /// The starting pair (paper Definition 3), on the joined boundaries: A's point, then B's.
+  StartPoint startA;
+  StartPoint startB;                    ///< see startA
   int resolution = kDefaultResolution;  ///< seam vertices per piece
   bool flip = false;                    ///< zip B turned over (its mirror image) instead
   bool fitPerimeter = false;            ///< scale B uniformly to A's perimeter

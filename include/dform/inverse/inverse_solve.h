@@ -9,6 +9,7 @@
 
 namespace dform {
 
+/// What solveInverse made: the solved pieces and how the relaxation and the solve went.
 struct InverseResult {
   DForm model;                    ///< solved pieces in mm
   LocalGlobalSummary relaxation;  ///< the local-global start

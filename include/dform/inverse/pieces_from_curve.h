@@ -18,16 +18,16 @@ namespace dform {
 
 /// A solved inverse job: the pieces, which model made them and how the solve went.
 struct SolvedPieces {
-  DForm model;
+  DForm model;  ///< the solved pieces, mm
   /// exact: the curve lies on its convex hull and the pieces are the hull's two sides unfolded,
   /// zipped by the exact engine; paper: the optimisation from the pre-D-Form.
   ModelUsed modelUsed;
-  Curve3 target;  ///< the resampled curve the seam follows (mm)
-  PreDForm pre;   ///< how the start was built (on-hull or not)
-  LocalGlobalSummary relaxation;
-  SolverSummary summary;
-  double curveLength = 0;  ///< length of the curve as read (mm)
-  Timings timings;
+  Curve3 target;                  ///< the resampled curve the seam follows (mm)
+  PreDForm pre;                   ///< how the start was built (on-hull or not)
+  LocalGlobalSummary relaxation;  ///< paper: the local-global start of the solve
+  SolverSummary summary;          ///< paper: the Levenberg-Marquardt solve
+  double curveLength = 0;         ///< length of the curve as read (mm)
+  Timings timings;                ///< how long each stage took, seconds
 };
 
 /// The pieces for `curve` (mm, closed, in memory): initialised (pre-D-Form; the exact model where

@@ -10,6 +10,7 @@
 
 namespace dform {
 
+/// How the pre-D-Form (the start of an inverse solve) is built from the curve.
 struct InverseInitOptions {
   /// Weight of a fold between a filled triangle and its neighbour, against the filled area
   /// measured in units of the hull's surface area (dimensionless): 1 makes a fold straight back
@@ -56,11 +57,12 @@ struct InverseInit {
   /// are the vertices at curve point C.row(i); a's seam runs counter-clockwise around its flat
   /// outline, b's clockwise. The first n vertices of each piece are its seam vertices.
   DForm model;
-  PreDForm pre;
+  PreDForm pre;  ///< the pre-D-Form the pieces were unfolded from: its two discs on the curve
   /// The pre-D-Form pieces unfolded: V row i is curve point i laid flat, F = pre.discA or
   /// pre.discB (counter-clockwise flat), boundary counter-clockwise (B: 0, n-1, ..., 1).
-  FlatMesh preFlatA, preFlatB;
-  Faces preDFormF;  ///< pre.discA then pre.discB: the closed pre-D-Form on the rows of C
+  FlatMesh preFlatA;
+  FlatMesh preFlatB;  ///< see preFlatA
+  Faces preDFormF;    ///< pre.discA then pre.discB: the closed pre-D-Form on the rows of C
 };
 
 /// Paper 5.1 end to end: buildPreDForm, unfold both discs (edge lengths kept exactly), check each

@@ -8,6 +8,8 @@
 
 namespace dform {
 
+/// How readCurve reads a curve file: whether it is closed, how Beziers are flattened, and the
+/// limits that refuse a file too large to be a seam.
 struct CurveReadOptions {
   bool forceClosed = false;        ///< treat an open polyline as closed (`--closed`)
   double flattenTolerance = 0.01;  ///< mm; largest chord deviation when Beziers are flattened

@@ -13,10 +13,10 @@ namespace dform {
 
 /// File names inside a result folder.
 struct ModelFileNames {
-  static constexpr const char* aFlat = "piece-a-flat.obj";
-  static constexpr const char* a3d = "piece-a-3d.obj";
-  static constexpr const char* bFlat = "piece-b-flat.obj";
-  static constexpr const char* b3d = "piece-b-3d.obj";
+  static constexpr const char* aFlat = "piece-a-flat.obj";        ///< piece A as it is cut
+  static constexpr const char* a3d = "piece-a-3d.obj";            ///< piece A bent in 3D
+  static constexpr const char* bFlat = "piece-b-flat.obj";        ///< piece B as it is cut
+  static constexpr const char* b3d = "piece-b-3d.obj";            ///< piece B bent in 3D
   static constexpr const char* targetCurve = "target-curve.obj";  ///< inverse results only
 };
 

@@ -9,6 +9,8 @@
 
 namespace dform {
 
+/// How readOutline reads an outline file: how curves are flattened and the limits that refuse a
+/// file too large to be a piece.
 struct OutlineReadOptions {
   /// mm; largest chord deviation when curves are flattened. Fine enough that the seam's samples
   /// never share a flattened chord up to the exact engine's 1000 (chords of 0.2 mm on a 40 mm

@@ -8,6 +8,7 @@
 
 namespace dform {
 
+/// The convex hull of a 3D point set, and how far each point lies from its surface.
 struct ConvexHull3 {
   Faces F;                   ///< #H by 3 indices into the input points, outward-facing
   std::vector<bool> onHull;  ///< per input point: is it a vertex of the hull

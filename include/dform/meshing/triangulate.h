@@ -8,6 +8,7 @@
 
 namespace dform {
 
+/// How fine and how well-shaped triangulateDomain's triangles are.
 struct TriangulateOptions {
   double targetEdgeLength = 1.0;  ///< interior edge length to aim for (same unit as the input)
   double minAngleDegrees = 25.0;  ///< smallest triangle angle to aim for (boundary corners aside)
@@ -17,9 +18,9 @@ struct TriangulateOptions {
 /// and `to` index the fixed points (the outline's rows first, then each hole's in turn) and
 /// `interior` holds the line's points in between, in order (#I by 2, possibly none).
 struct InteriorLine {
-  int from = 0;
-  int to = 0;
-  Points2 interior;
+  int from = 0;      ///< the fixed point the line starts at
+  int to = 0;        ///< the fixed point it ends at
+  Points2 interior;  ///< its points in between, #I by 2
 };
 
 /// Constrained Delaunay triangulation with refinement of the polygon `boundary` (#B by 2,

@@ -25,6 +25,7 @@
 
 namespace dform {
 
+/// How solveInextensible runs: the sheet's stiffness, its continuation and when it stops.
 struct InextensibleOptions {
   double stiffness = 1e9;  ///< k: stretching over bending, unit sqrt(area) (see above)
   int continuation = 1;    ///< k starts at stiffness / 10^continuation, x10 per stage
@@ -33,6 +34,7 @@ struct InextensibleOptions {
   int maxSteps = 200;  ///< Newton steps over all stages
 };
 
+/// How solveInextensible's Newton solve went.
 struct InextensibleSummary {
   bool converged = false;       ///< the last stage reached the tolerance
   int steps = 0;                ///< Newton steps over all stages
@@ -40,13 +42,14 @@ struct InextensibleSummary {
   double stationarity = 0;      ///< |grad E| / (|grad E_bend| + |k grad E_stretch|) at the answer
   double bendingEnergy = 0;     ///< E_bend at the answer (dimensionless)
   double stretchingEnergy = 0;  ///< k E_stretch at the answer (unit sqrt(area))
-  double seconds = 0;
-  std::string message;  ///< why it stopped
+  double seconds = 0;           ///< wall time of the solve, seconds
+  std::string message;          ///< why it stopped
 };
 
+/// The general engine's answer: the relaxed D-Form and how its solve went.
 struct InextensibleResult {
-  DForm model;  ///< the start's flat pieces, their 3D shape solved (mm)
-  InextensibleSummary summary;
+  DForm model;                  ///< the start's flat pieces, their 3D shape solved (mm)
+  InextensibleSummary summary;  ///< how the solve went
 };
 
 /// The sheet's energy E_bend + k E_stretch at `model`'s 3D shape (dimensionless; what

@@ -19,6 +19,8 @@ namespace dform {
 /// product, a dihedral turn beyond 90 degrees). Creases may fold sharply, as drawn.
 class FoldGuard {
  public:
+  /// The guard of pieces `a` and `b` (their faces, seams and creases) whose unknowns `layout`
+  /// places in the solver's vector.
   FoldGuard(const VariableLayout& layout, const Piece& a, const Piece& b);
 
   /// Flat triangles turned over plus 3D neighbour pairs folded, at x.

@@ -20,13 +20,15 @@ namespace dform {
 /// Edges whose 3D length should equal their flat length: offsets of the two ends' 3D positions
 /// (3 values each) and flat positions (2 values each) in the unknown vector, and a weight.
 struct EdgeLengthPairs {
-  std::vector<std::array<int, 2>> x, u;
-  std::vector<double> weight;
+  std::vector<std::array<int, 2>> x;  ///< each edge's ends: offsets of their 3D positions
+  std::vector<std::array<int, 2>> u;  ///< each edge's ends: offsets of their flat positions
+  std::vector<double> weight;         ///< each edge's weight in the energy
   /// Unknowns per vertex: offsets are vertex * stride + coordinate. No term may couple two
   /// different coordinates (the local-global step solves each coordinate on its own).
   int stride = 5;
 };
 
+/// How relaxLocalGlobal runs: its budget, when it stops, its acceleration and its callback.
 struct LocalGlobalOptions {
   /// 0 switches the relaxation off. Its steps cost a few back-substitutions each, so it may run
   /// long: a large shape change (an anti D-Form's brims swinging out) is far cheaper here than in
@@ -52,13 +54,14 @@ struct LocalGlobalOptions {
   std::function<bool(const IterationSummary&)> callback;
 };
 
+/// How the local-global relaxation went.
 struct LocalGlobalSummary {
-  int iterations = 0;
+  int iterations = 0;        ///< local-global steps taken
   int andersonRejected = 0;  ///< accelerated steps that did not lower the energy and were refused
-  double initialEnergy = 0;
-  double finalEnergy = 0;
-  double seconds = 0;
-  bool stopped = false;  ///< the callback asked to stop
+  double initialEnergy = 0;  ///< the edge-length energy at the start (solver units)
+  double finalEnergy = 0;    ///< the energy where it stopped
+  double seconds = 0;        ///< wall time, seconds
+  bool stopped = false;      ///< the callback asked to stop
 
   /// Appends a later relaxation of the same problem (after a multiplier update, say).
   void append(const LocalGlobalSummary& later) {

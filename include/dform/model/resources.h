@@ -26,8 +26,8 @@ std::size_t estimatedPeakBytes(double vertices, double extraBytes = 0.0);
 /// What a run is estimated to hold at its peak: vertices of both pieces and bytes beside them
 /// (the inverse's pre-D-Form tables); both grow with the square of the resolution.
 struct MemoryEstimate {
-  double vertices = 0;
-  double extraBytes = 0;
+  double vertices = 0;    ///< both pieces' vertices together
+  double extraBytes = 0;  ///< bytes held beside the meshes (the inverse's pre-D-Form tables)
 };
 
 /// A run's estimate at any resolution: the formula the run itself is checked with, so that the

@@ -21,8 +21,11 @@ namespace dform {
 /// counter-clockwise), and each piece's drawn creases as straight lines between two of its
 /// boundary samples (seam or free outline: their ends, mm).
 struct RuledPieces {
-  exact::SeamPolygons seam;
+  exact::SeamPolygons seam;  ///< the seam's two sides, chords equal (mm)
+  /// Per piece (A, B): its free outline's samples, counter-clockwise (mm), where it is zipped
+  /// along a hole; nullopt where it is zipped along its outline.
   std::array<std::optional<Points2>, 2> freeOutline;
+  /// Per piece (A, B): each drawn crease as the straight line between its two ends (mm).
   std::array<std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>, 2> creases;
 };
 

@@ -13,7 +13,10 @@ namespace dform {
 
 /// Seconds spent in each stage.
 struct Timings {
-  double read = 0, mesh = 0, solve = 0, total = 0;
+  double read = 0;   ///< reading the input files
+  double mesh = 0;   ///< meshing the pieces
+  double solve = 0;  ///< solving the shape
+  double total = 0;  ///< the whole run, the above and what lies between
 };
 
 /// Folds of the exact D-Form through a piece that nobody drew: each is returned as one of the
@@ -22,28 +25,30 @@ struct FoundCrease {
   int piece = 0;        ///< 0 for A, 1 for B
   int crease = 0;       ///< its index in that piece's creases
   double angleDeg = 0;  ///< its fold angle (0 = flat)
-  double lengthMm = 0;
+  double lengthMm = 0;  ///< its length in the flat piece, mm
 };
 
 /// A fold of the exact D-Form through a piece: a straight run of one of the body's edges between
 /// two places on the piece's seam, with the angle between the two faces that meet along it.
 /// Folds steeper than the found-crease angle are the piece's creases; gentler ones are listed too.
 struct BodyFold {
-  int piece = 0;                 ///< 0 for A, 1 for B
-  int from = 0, to = 0;          ///< the mesh vertices (rows of the piece's flat) at its ends
-  int fromSeamPoint = -1;        ///< the seam point at `from`, -1 where it crosses a chord
-  int toSeamPoint = -1;          ///< likewise at `to`
-  int edgeFrom = 0, edgeTo = 0;  ///< the seam points the body edge joins (its ends on the body)
-  double radians = 0;            ///< fold angle: between the two faces' normals (0 = flat)
-  int crease = -1;               ///< its index in the piece's creases, -1 for a gentle fold
+  int piece = 0;           ///< 0 for A, 1 for B
+  int from = 0;            ///< the mesh vertex (row of the piece's flat) at one end
+  int to = 0;              ///< the mesh vertex at the other end
+  int fromSeamPoint = -1;  ///< the seam point at `from`, -1 where it crosses a chord
+  int toSeamPoint = -1;    ///< likewise at `to`
+  int edgeFrom = 0;        ///< the seam point the body edge starts at (on the body)
+  int edgeTo = 0;          ///< the seam point the body edge ends at
+  double radians = 0;      ///< fold angle: between the two faces' normals (0 = flat)
+  int crease = -1;         ///< its index in the piece's creases, -1 for a gentle fold
 };
 
 /// A state of the sheet the ruled engine found: the start it came from, its bending energy and
 /// its largest fold (of a chord that is no drawn crease).
 struct RuledStateSummary {
-  std::string start;
-  double bendingEnergy = 0;
-  double largestFoldDeg = 0;
+  std::string start;          ///< the name of the start it came from
+  double bendingEnergy = 0;   ///< its bending energy (dimensionless)
+  double largestFoldDeg = 0;  ///< its largest fold of a chord that is no drawn crease, degrees
 };
 
 /// Which model ran, and why the other did not.
@@ -65,7 +70,7 @@ struct ModelUsed {
   /// the lengths leave freedom (0 on a closed surface)
   double stationarity = 0;
   double stiffness = 0;  ///< general: stretching over bending stiffness (model/inextensible.h)
-  std::vector<FoundCrease> creases;
+  std::vector<FoundCrease> creases;  ///< exact: the folds it found and made the pieces' creases
   /// exact and ruled: every fold through a piece (the paper model knows none)
   std::vector<BodyFold> folds;
   double bendingEnergy = 0;  ///< ruled: the answer's bending energy (dimensionless)
@@ -81,10 +86,10 @@ struct ModelUsed {
 /// A level of a coarse-to-fine solve begins: `level` of `levels` (from 1), with at most
 /// `relaxationSteps` local-global steps and `solverIterations` Levenberg-Marquardt iterations.
 struct LevelStart {
-  int level = 1;
-  int levels = 1;
-  int relaxationSteps = 0;
-  int solverIterations = 0;
+  int level = 1;             ///< this level, from 1 (coarsest)
+  int levels = 1;            ///< how many levels the solve has
+  int relaxationSteps = 0;   ///< the level's cap on local-global steps
+  int solverIterations = 0;  ///< the level's cap on Levenberg-Marquardt iterations
 };
 
 /// Hooks for a caller that shows progress or can be interrupted.

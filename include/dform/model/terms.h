@@ -18,11 +18,15 @@ namespace dform {
 /// the vector, unused, so that every vertex keeps the [x y z u v] stride.
 class VariableLayout {
  public:
-  static constexpr int kPerVertex = 5;
+  static constexpr int kPerVertex = 5;  ///< unknowns per vertex: x y z u v
+  /// Pieces of `verticesA` and `verticesB` vertices, each with a 3D position of its own.
   VariableLayout(int verticesA, int verticesB) : nA_(verticesA), nB_(verticesB) {}
+  /// The same with a shared seam: B's vertex seamB[k] takes the 3D position of A's seamA[k].
   VariableLayout(int verticesA, int verticesB, const std::vector<int>& seamA,
                  const std::vector<int>& seamB);
+  /// The length of the unknown vector.
   int numVariables() const { return kPerVertex * (nA_ + nB_); }
+  /// Vertex i of `piece` (0 for A, 1 for B) numbered across both pieces, A's first.
   int vertex(int piece, int i) const { return piece == 0 ? i : nA_ + i; }
   int x(int piece, int i) const {  ///< 3D, 3 values
     return piece == 1 && !sharedWithA_.empty() && sharedWithA_[i] >= 0
@@ -30,7 +34,9 @@ class VariableLayout {
                : kPerVertex * vertex(piece, i);
   }
   int u(int piece, int i) const { return kPerVertex * vertex(piece, i) + 3; }  ///< flat, 2 values
+  /// The number of vertices of `piece` (0 for A, 1 for B).
   int verticesOf(int piece) const { return piece == 0 ? nA_ : nB_; }
+  /// Whether B's seam vertices share A's 3D positions (the seam closed by construction).
   bool sharesSeam() const { return !sharedWithA_.empty(); }
 
  private:
@@ -88,13 +94,14 @@ std::unique_ptr<ResidualTerm> makeSeamSmoothnessTerm(const VariableLayout& layou
 /// What every term of an objective is built from (forward and inverse alike), in the solver's
 /// unit: the tables of model/term_table.h make each term from these alone.
 struct TermInputs {
-  const VariableLayout& layout;
+  const VariableLayout& layout;  ///< where each vertex's unknowns lie
   const Piece& a;                ///< flat rest mesh, seam and creases of piece A
   const Piece& b;                ///< the same of piece B
   const EdgeLengthPairs& edges;  ///< every edge of both pieces (the isometry term)
   /// Drawn vertices of each piece that the boundary-fix term holds at their flat positions
   /// (forward modelling; none in inverse modelling, whose flat boundaries are free).
-  std::vector<int> anchoredA, anchoredB;
+  std::vector<int> anchoredA;
+  std::vector<int> anchoredB;  ///< the same of piece B
 };
 
 }  // namespace dform

@@ -31,8 +31,8 @@ struct BatchJob {
 /// - size: its share of the batch's work, for the time left: the square of its resolution
 ///   (forward or inverse; vertices grow with it), 1 when the job file cannot be read or parsed.
 struct JobFacts {
-  std::string sha256;
-  double size = 1;
+  std::string sha256;  ///< of the job file and its inputs (see above); empty when unreadable
+  double size = 1;     ///< its share of the batch's work (see above)
 };
 JobFacts readJobFacts(const std::string& jobPath);
 
@@ -45,8 +45,8 @@ double estimateSecondsLeft(double elapsed, double doneSize, double remainingSize
 /// job file sha256 (JobFacts) in list order. Shards run from the same list and the same files agree
 /// on it.
 struct JobList {
-  int count = -1;  ///< -1: not recorded
-  std::string sha256;
+  int count = -1;      ///< -1: not recorded
+  std::string sha256;  ///< of every job's name and JobFacts sha256, in list order
 };
 JobList jobListOf(const std::vector<BatchJob>& jobs);
 
@@ -70,18 +70,18 @@ bool parseShard(const std::string& text, int& shard, int& shards);
 
 /// A finished job: what happened and what its saved result measures.
 struct BatchRow {
-  BatchJob job;
+  BatchJob job;         ///< the job as the batch listed it
   std::string status;   ///< "done", "gate-failed" (result written), "failed" (no result)
-  int exitCode = 0;     ///< as `dform run` of the job would exit
+  int exitCode = 0;     ///< as `dform run` of the job would exit (pipeline/exit_code.h)
   std::string message;  ///< the error, for a job that failed
   SweepRow figures;     ///< measured on `OUT/<name>/` when a result was written
-  double seconds = 0;
+  double seconds = 0;   ///< the job's wall time, seconds
 };
 
 /// What one job's run gives: the exit code `dform run` would give and the error, if any.
 struct JobOutcome {
-  int exitCode = 0;
-  std::string message;
+  int exitCode = 0;     ///< the exit code `dform run` of the job would give
+  std::string message;  ///< the error, for a job that failed; else empty
 };
 
 /// Runs one job into `dir`; called from several threads at once.
@@ -91,11 +91,13 @@ using BatchRunner = std::function<JobOutcome(const std::string& jobPath, const s
 /// estimateSecondsLeft over the jobs' sizes (NaN: unknown).
 using BatchProgress = std::function<void(int done, int failed, int total, double secondsLeft)>;
 
+/// Which slice of a batch runs, whether finished jobs are skipped, and how many run at once.
 struct BatchOptions {
-  int shard = 1, shards = 1;  ///< run only this slice
-  bool resume = false;        ///< skip jobs the manifest has as finished with their result in
-                              ///< place and the same JobFacts sha256 as now
-  int threads = 0;            ///< jobs at once; 0: the machine's cores
+  int shard = 1;        ///< run only this slice: shard `shard` (from 1) ...
+  int shards = 1;       ///< ... of this many
+  bool resume = false;  ///< skip jobs the manifest has as finished with their result in
+                        ///< place and the same JobFacts sha256 as now
+  int threads = 0;      ///< jobs at once; 0: the machine's cores
 };
 
 /// The manifest's file name in OUT: batch.json, or batch-shard-I-of-N.json for a shard (so that
@@ -121,11 +123,12 @@ Result<std::vector<BatchRow>> runBatch(const std::vector<BatchJob>& jobs,
 /// no row in any manifest: how many, and the first kMissingNamed of them in list order (by name
 /// where a manifest lists it, else "#K", K its place in the list from 0).
 constexpr int kMissingNamed = 5;
+/// The shards' manifests of one batch merged (mergeBatch; see kMissingNamed).
 struct MergedBatch {
-  std::vector<BatchRow> rows;
-  int jobCount = 0;
-  int missingCount = 0;
-  std::vector<std::string> firstMissing;
+  std::vector<BatchRow> rows;             ///< every finished job's row, in list order
+  int jobCount = 0;                       ///< the jobs the list has (-1: not recorded)
+  int missingCount = 0;                   ///< jobs with no row in any manifest
+  std::vector<std::string> firstMissing;  ///< the first kMissingNamed of them
 };
 
 /// The missing jobs for a message: "a, b, #7, d, e and 3 more".

@@ -13,12 +13,13 @@ namespace dform {
 
 /// A forward job: the settings and the two outline files (SVG or JSON points).
 struct ForwardJob : ForwardSettings {
-  std::string pieceA, pieceB;
+  std::string pieceA;  ///< piece A's outline file
+  std::string pieceB;  ///< piece B's outline file
 };
 
 /// A forward run's result: the solved D-Form and its figures.
 struct ForwardRun : SolvedDForm {
-  Metrics metrics;
+  Metrics metrics;  ///< the figures measured on the solved D-Form (report.json's "metrics")
 };
 
 /// Reads the two files, then makes and measures their D-Form as makeDForm does. Errors name the

@@ -19,7 +19,7 @@ struct InverseJob : InverseSettings {
 
 /// An inverse run's result: the solved pieces, their figures and how near the seam is to the curve.
 struct InverseRun : SolvedPieces {
-  Metrics metrics;
+  Metrics metrics;        ///< the figures measured on the solved pieces (report.json's "metrics")
   CurveMatch curveMatch;  ///< D_error and the largest seam-to-curve distance
 };
 

@@ -29,13 +29,16 @@ struct ExportSettings {
 /// A forward or an inverse job and how its result is written. A job is a forward job unless made
 /// from an InverseJob; a stage that needs the mode's own fields visits `run`.
 struct Job {
-  std::variant<ForwardJob, InverseJob> run;
-  ExportSettings exporting;
+  std::variant<ForwardJob, InverseJob> run;  ///< the mode's inputs and settings
+  ExportSettings exporting;                  ///< how its result is gated, exported and released
 
   Job() = default;
+  /// A forward job with the default export settings.
   Job(ForwardJob job) : run(std::move(job)) {}  // NOLINT: implicit, as a job file reads
+  /// An inverse job with the default export settings.
   Job(InverseJob job) : run(std::move(job)) {}  // NOLINT: implicit, as a job file reads
 
+  /// Whether `run` holds a ForwardJob.
   bool isForward() const { return std::holds_alternative<ForwardJob>(run); }
   /// The mode's name in job files and reports: "forward" or "inverse".
   const char* modeName() const { return isForward() ? "forward" : "inverse"; }

@@ -48,10 +48,10 @@ Result<GateLimits> loadGate(const std::string& nameOrPath);
 /// gate), the export's options completed (the templates folder, the profile read) and what is
 /// released.
 struct RunSettings {
-  std::optional<GateLimits> limits;
-  std::shared_ptr<const ExportOptions> exporting;
-  bool cuttingFiles = true;   ///< ExportSettings::cuttingFiles
-  bool exportAnyway = false;  ///< ExportSettings::exportAnyway
+  std::optional<GateLimits> limits;                ///< the gate's limits; none for the gate "none"
+  std::shared_ptr<const ExportOptions> exporting;  ///< the export's options, profile read
+  bool cuttingFiles = true;                        ///< ExportSettings::cuttingFiles
+  bool exportAnyway = false;                       ///< ExportSettings::exportAnyway
 };
 
 /// Checks `settings` (each in its range, the export's options against each other) and reads its
@@ -62,11 +62,11 @@ Result<RunSettings> checkOutput(const ExportSettings& settings);
 /// What a result written into its folder shows afterwards. `exported` is the export's error
 /// when the result was saved without its cutting files.
 struct WrittenResult {
-  Metrics metrics;
-  std::optional<CurveMatch> curve;
-  Timings timings;
-  std::optional<GateReport> gate;
-  Status exported = Status::ok();
+  Metrics metrics;                  ///< the figures report.json records
+  std::optional<CurveMatch> curve;  ///< inverse: how near the seam is to the curve; else none
+  Timings timings;                  ///< how long each stage took, seconds
+  std::optional<GateReport> gate;   ///< the gate's verdict and checks; none for the gate "none"
+  Status exported = Status::ok();   ///< ok, or why the cutting files were not written
 };
 
 /// Solves `job`, gates it, lays out its pattern and writes the whole result into output.outDir

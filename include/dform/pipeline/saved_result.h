@@ -34,9 +34,9 @@ Result<std::string> exportSavedResult(const std::string& dir, const ExportSettin
 /// What `dform validate DIR` found: the gate run on the meshes, and report.json compared with
 /// the figures measured again.
 struct SavedCheck {
-  std::string gateName;
-  bool judged = true;  ///< false for the gate "none": the checks measured, their verdicts moot
-  GateReport gate;
+  std::string gateName;  ///< the gate run: a preset's name or a gate file
+  bool judged = true;    ///< false for the gate "none": the checks measured, their verdicts moot
+  GateReport gate;       ///< the gate's checks on the meshes
   /// report.json missing or unreadable (InputUnreadable) or malformed; ok when it was compared.
   Status report = Status::ok();
   std::vector<std::string> differences;  ///< report.json's entries that disagree with the meshes

@@ -45,32 +45,33 @@ enum class SettingType {
 
 /// One value of a Choice row and what it means.
 struct SettingChoice {
-  std::string name;
-  std::string help;
+  std::string name;  ///< as job files, the command line and Python write it
+  std::string help;  ///< what it means, one line
 };
 
 struct SettingAccess;  ///< how a row reads and writes its member of a Job (settings.cpp)
 
 /// One user setting.
 struct SettingRow {
-  Setting id;
+  Setting id;           ///< which setting (core/setting.h), as messages name it
   std::string key;      ///< in job files: "resolution", "weights.smooth_3d", "export.kerf"
   std::string flag;     ///< on the command line: "--resolution"; "--weight" for every weight
   std::string keyword;  ///< in Python: "resolution"; a weight is an entry of the dict "weights"
-  SettingScope scope = SettingScope::Forward;
-  SettingType type = SettingType::Number;
+  SettingScope scope = SettingScope::Forward;  ///< which mode and stage reads it
+  SettingType type = SettingType::Number;      ///< the form of its value
   std::string unit;  ///< "mm", "degrees"; empty for a count, a ratio or a name
   std::string help;  ///< one line, without the default or the range (those are columns)
   double min = -std::numeric_limits<double>::infinity();  ///< Integer, Number: the range
-  double max = std::numeric_limits<double>::infinity();
-  bool minExcluded = false, maxExcluded = false;  ///< an open end of the range
-  std::vector<SettingChoice> choices;             ///< Choice rows
+  double max = std::numeric_limits<double>::infinity();   ///< see min
+  bool minExcluded = false;                               ///< min itself is out of range
+  bool maxExcluded = false;                               ///< max itself is out of range
+  std::vector<SettingChoice> choices;                     ///< Choice rows
   bool flagValue = true;  ///< Flag rows: what the command line's flag sets (--no-title: false)
   std::string nearFlag;   ///< Start rows: the flag of the point form, "--start-a-near X,Y"
   std::string offFlag;    ///< optional Flag rows: a flag setting the other value, "--no-hinge"
   /// An optional setting: what it is when not set ("the profile's"); empty: always set.
   std::string unset;
-  const SettingAccess* access = nullptr;
+  const SettingAccess* access = nullptr;  ///< how it reads and writes its member of a Job
 
   /// The weight's term name ("smooth_3d") of a Weight row, else empty.
   std::string weightName() const;

@@ -14,6 +14,7 @@
 
 namespace dform {
 
+/// Which starting pairs a sweep runs and how many at once.
 struct SweepOptions {
   int starts = 8;          ///< starting pairs along B: start_b = k / starts, k = 0 .. starts-1
   bool bothFlips = false;  ///< also every start with B turned over
@@ -22,9 +23,9 @@ struct SweepOptions {
 
 /// One start of the sweep: its job and the subfolder its result goes into.
 struct SweepStart {
-  Job job;
-  double startB = 0;
-  bool flip = false;
+  Job job;                ///< the base job with this start and flip
+  double startB = 0;      ///< piece B's start: an arc-length fraction in [0, 1)
+  bool flip = false;      ///< piece B turned over
   std::string subfolder;  ///< "start-03" or "start-03-flip" (zero-padded to the count's width)
 };
 
@@ -34,9 +35,9 @@ std::vector<SweepStart> sweepStarts(const Job& base, const SweepOptions& options
 
 /// One gallery card, one sweep.json row: a start and what its saved result measures.
 struct SweepRow {
-  double startB = 0;
-  bool flip = false;
-  std::string subfolder;
+  double startB = 0;        ///< piece B's start: an arc-length fraction in [0, 1)
+  bool flip = false;        ///< piece B turned over
+  std::string subfolder;    ///< the result's subfolder of the sweep's folder
   std::string label;        ///< the card's first line: "start B 0.1250 flipped", a job's name
   bool solved = false;      ///< the run wrote a result (else `reason` says why not)
   std::string model;        ///< "exact" or "paper", as report.json records it

@@ -14,11 +14,11 @@ namespace dform {
 /// pattern's and assembly sheet's SVG and the pattern's ticks on the seam (empty: none was
 /// exported).
 struct ReportSources {
-  std::string reportJson;
-  std::string reportPath;  ///< where report.json is (or will be), named in errors
-  std::string patternSvg;
-  std::string assemblySvg;
-  std::vector<SeamTick> seamTicks;
+  std::string reportJson;           ///< report.json's text
+  std::string reportPath;           ///< where report.json is (or will be), named in errors
+  std::string patternSvg;           ///< pattern.svg's text; empty when no pattern was exported
+  std::string assemblySvg;          ///< assembly.svg's text; empty when no pattern was exported
+  std::vector<SeamTick> seamTicks;  ///< the pattern's numbered ticks on the 3D seam
 };
 
 /// report.html's text, rendered through the Mustache template

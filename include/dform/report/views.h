@@ -8,6 +8,8 @@
 
 namespace dform {
 
+/// How a picture of the 3D shape is taken: the camera's angles (degrees), its width and its
+/// colours.
 struct View {
   double azimuthDeg = 30;    ///< rotation about the vertical (model z) axis
   double elevationDeg = 25;  ///< tilt towards the viewer
@@ -18,8 +20,8 @@ struct View {
 /// Both pieces' curvature maps (angle defect per vertex, radians) and the colour scale they share:
 /// the largest |angle defect| away from the seam, and at least 1e-3 rad.
 struct CurvatureMaps {
-  Eigen::VectorXd piece[2];
-  double scale = 1.0;
+  Eigen::VectorXd piece[2];  ///< each piece's angle defect per vertex, radians (A, B)
+  double scale = 1.0;        ///< the |defect| the colour scale saturates at, radians
 };
 
 /// The maps of `model`, measured once for every picture of a page.
@@ -38,9 +40,10 @@ std::string shapeSvg(const DForm& model, const View& view, const CurvatureMaps* 
 /// A fold of the body through a flat piece (report.json's model.folds): a straight line between
 /// two points of the piece's seam, in its flat coordinates, mm.
 struct FlatFold {
-  int piece = 0;  ///< 0 for A, 1 for B
-  Eigen::Vector2d from, to;
-  bool crease = false;  ///< a found crease rather than a gentle fold
+  int piece = 0;         ///< 0 for A, 1 for B
+  Eigen::Vector2d from;  ///< one end, on the piece's seam (mm)
+  Eigen::Vector2d to;    ///< the other end (mm)
+  bool crease = false;   ///< a found crease rather than a gentle fold
 };
 
 /// Both flat pieces side by side at the same scale, coloured by their 3D curvature, every boundary

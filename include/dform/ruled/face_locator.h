@@ -9,6 +9,8 @@
 
 namespace dform::ruled {
 
+/// Finds the triangle of a flat mesh that holds a point (for mapping a piece's points onto the
+/// ruled engine's triangulation).
 class FaceLocator {
  public:
   /// `V` #V by 2 and `F` #F by 3 counter-clockwise triangles; both must outlive the locator.

@@ -18,13 +18,14 @@ constexpr int kMaxRuledSeam = 1000;
 
 /// A start: where each surface vertex is (#V by 3, mm), with the name reports give it.
 struct RuledStart {
-  std::string name;
-  Points3 X;
+  std::string name;  ///< its name in reports ("paper", "convex hull", ...)
+  Points3 X;         ///< each surface vertex's 3D position, #V by 3, mm
 };
 
+/// How solveRuled runs: its solve, its flip search and when two states are one.
 struct RuledOptions {
-  SolveOptions solve;
-  FlipSearchOptions flips;
+  SolveOptions solve;       ///< the solve of the lengths (and of the bending energy where free)
+  FlipSearchOptions flips;  ///< the flip search after each start's solve
   /// Two states whose seams lie within this fraction of the seam's bounding-box diagonal of each
   /// other (after the best rigid motion) are one state.
   double sameState = 1e-6;
@@ -32,7 +33,7 @@ struct RuledOptions {
 
 /// A solved state: the surface and how it was reached.
 struct RuledState {
-  RuledSurface surface;
+  RuledSurface surface;          ///< the solved surface: triangulations and 3D positions
   std::string start;             ///< the name of the start it came from
   double bendingEnergy = 0;      ///< sum over chords of 3 l^2 / (A1 + A2) theta^2
   double maxLengthError = 0;     ///< relative, over every edge
@@ -42,6 +43,7 @@ struct RuledState {
   bool flipsStationary = false;  ///< no flip lowers the objective (bending, or convexity)
 };
 
+/// What solveRuled found: its distinct states and the starts that gave none.
 struct RuledResult {
   std::vector<RuledState> states;  ///< distinct, least bending first
   /// Per start that gave no state: its name and why.

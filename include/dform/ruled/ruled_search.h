@@ -26,19 +26,21 @@ int flipToConvexHeld(RuledSurface& surface, const std::array<bool, 2>& use = {tr
 /// (the new chord's length then differs from its flat one; the estimate a flip search ranks by).
 double flipBendingChange(const RuledSurface& surface, int piece, int h);
 
+/// How a flip search runs: its budget of flips and candidates, and the solve after each flip.
 struct FlipSearchOptions {
-  int maxFlips = 2000;
+  int maxFlips = 2000;  ///< the most flips made before the search stops
   /// Candidates tried per step, best estimate first (the estimate is the energy with the
   /// positions held; each tried candidate is solved again).
   int candidatesPerStep = 8;
-  SolveOptions solve;
+  SolveOptions solve;  ///< the solve after each flip tried
 };
 
+/// How a flip search went.
 struct FlipSearchSummary {
-  int flips = 0;
+  int flips = 0;            ///< flips made
   int tried = 0;            ///< candidate flips solved again
   bool stationary = false;  ///< no flip lowers the objective
-  std::string message;
+  std::string message;      ///< why it stopped
 };
 
 /// Lawson's flips to convexity on a closed surface: the chord folded most backwards is flipped

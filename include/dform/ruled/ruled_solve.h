@@ -9,6 +9,7 @@
 
 namespace dform::ruled {
 
+/// When the ruled engine's solve stops: its tolerances, its step budget and its first damping.
 struct SolveOptions {
   /// Largest | |x_i - x_j| - length | accepted, relative to the mean edge length. Lengths are
   /// known to ~1e-16 of themselves; rounding of the solve's last step leaves ~1e-15.
@@ -23,13 +24,14 @@ struct SolveOptions {
   double initialDamping = 2e-3;
 };
 
+/// How a solve of the ruled engine went.
 struct SolveSummary {
-  bool converged = false;
-  int iterations = 0;
+  bool converged = false;     ///< both tolerances of SolveOptions met
+  int iterations = 0;         ///< Levenberg-Marquardt or SQP steps taken
   double maxLengthError = 0;  ///< relative, as maxLengthError()
   double stationarity = 0;    ///< as SolveOptions::stationarityTolerance measures it
-  double bendingEnergy = 0;
-  std::string message;  ///< why not converged
+  double bendingEnergy = 0;   ///< sum over chords of 3 l^2 / (A1 + A2) theta^2 at the answer
+  std::string message;        ///< why not converged
 };
 
 /// Levenberg-Marquardt on the edge lengths (steps -J^T (J J^T + mu I)^-1 r: least-norm Newton

@@ -25,14 +25,17 @@ class PieceTriangulation {
   PieceTriangulation(Points2 flat, const Faces& faces,
                      const std::vector<std::pair<int, int>>& fixed = {});
 
-  const Points2& flat() const { return flat_; }
-  int faceCount() const { return int(tail_.size()) / 3; }
-  int halfedgeCount() const { return int(tail_.size()); }
+  const Points2& flat() const { return flat_; }            ///< the piece's points, #P by 2, mm
+  int faceCount() const { return int(tail_.size()) / 3; }  ///< the number of triangles
+  int halfedgeCount() const { return int(tail_.size()); }  ///< three per triangle
+  /// The halfedge after h in its face (counter-clockwise).
   static int next(int h) { return 3 * (h / 3) + (h % 3 + 1) % 3; }
+  /// The halfedge before h in its face.
   static int prev(int h) { return 3 * (h / 3) + (h % 3 + 2) % 3; }
-  int tail(int h) const { return tail_[std::size_t(h)]; }
-  int head(int h) const { return tail_[std::size_t(next(h))]; }
-  int twin(int h) const { return twin_[std::size_t(h)]; }  ///< -1 on the boundary
+  int tail(int h) const { return tail_[std::size_t(h)]; }        ///< the row h starts at
+  int head(int h) const { return tail_[std::size_t(next(h))]; }  ///< the row h ends at
+  int twin(int h) const { return twin_[std::size_t(h)]; }        ///< -1 on the boundary
+  /// Whether h's edge is a drawn crease, which flips never remove.
   bool fixed(int h) const { return fixed_[std::size_t(h)]; }
   /// The vertex facing h in its face.
   int opposite(int h) const { return tail_[std::size_t(prev(h))]; }
@@ -40,6 +43,7 @@ class PieceTriangulation {
   double length(int h) const;
   /// Flat area of face f, mm^2.
   double area(int f) const;
+  /// The triangles as rows of flat(), #F by 3, counter-clockwise.
   Faces faces() const;
 
   /// Whether the interior edge of h can be replaced by the other diagonal of its two triangles:
@@ -66,33 +70,38 @@ enum class EdgeKind {
 
 /// A distance held between two surface vertices that no face joins (a seam pair being zipped).
 struct Tie {
-  int i = 0, j = 0;
+  int i = 0;          ///< one surface vertex
+  int j = 0;          ///< the other
   double length = 0;  ///< mm
 };
 
+/// An edge of the glued surface: where it lies, its ends, its flat length, its kind, and for an
+/// interior edge the two vertices facing it and its bending weight.
 struct SurfaceEdge {
-  int piece = 0;
+  int piece = 0;      ///< 0 for A, 1 for B (a seam chord: A)
   int halfedge = 0;   ///< one of its halfedges in the piece (the one with twin < it or -1)
-  int i = 0, j = 0;   ///< surface vertices at its ends
+  int i = 0;          ///< the surface vertex at its start
+  int j = 0;          ///< the surface vertex at its end
   double length = 0;  ///< flat length, mm (a seam chord: the mean of its two sides)
-  EdgeKind kind = EdgeKind::Chord;
-  int k = -1, l = -1;  ///< for interior edges: the vertices facing it (k left of i->j)
-  double weight = 0;   ///< bending weight 3 length^2 / (A_k + A_l), dimensionless
+  EdgeKind kind = EdgeKind::Chord;  ///< what it is on the surface
+  int k = -1;         ///< interior edges: the vertex facing it on the left of i->j (-1 for others)
+  int l = -1;         ///< interior edges: the vertex facing it on the right
+  double weight = 0;  ///< bending weight 3 length^2 / (A_k + A_l), dimensionless
 };
 
 /// Both pieces glued: their triangulations, which surface vertex each row is, the 3D positions.
 /// Seam point k is row seamRows[p][k] of piece p and the same surface vertex on both pieces.
 struct RuledSurface {
-  std::array<PieceTriangulation, 2> pieces;
+  std::array<PieceTriangulation, 2> pieces;  ///< A's and B's triangulations
   std::array<std::vector<int>, 2> vertexOf;  ///< per piece: row -> surface vertex
   std::array<std::vector<int>, 2> seamRows;  ///< per piece: its rows along the seam, in order
   /// Per piece: the rows of its free outline, counter-clockwise (empty for a piece zipped along
   /// its outline).
   std::array<std::vector<int>, 2> freeRows;
-  std::vector<Tie> ties;
-  Points3 X;  ///< #V by 3, mm
+  std::vector<Tie> ties;  ///< distances held while zipping; empty on a zipped surface
+  Points3 X;              ///< #V by 3, mm
 
-  int vertexCount() const { return int(X.rows()); }
+  int vertexCount() const { return int(X.rows()); }  ///< the number of surface vertices
   /// Every edge once: a seam chord (the boundary of both pieces between two shared vertices) is
   /// listed once, from piece A.
   std::vector<SurfaceEdge> edges() const;

@@ -14,8 +14,9 @@ namespace dform {
 /// Sparsity pattern of a Jacobian in compressed rows: row i's nonzeros are at columns
 /// cols[rowStart[i]] .. cols[rowStart[i+1]-1], in the order their values are written.
 struct JacobianPattern {
-  std::vector<int> rowStart{0};
-  std::vector<int> cols;
+  std::vector<int> rowStart{0};  ///< where each row's columns start in `cols`, then the end
+  std::vector<int> cols;         ///< the nonzeros' columns, row after row
+  /// The number of rows.
   int rows() const { return int(rowStart.size()) - 1; }
 };
 
@@ -43,6 +44,7 @@ class ResidualTerm {
 /// Residuals r(x) = M x - b for a constant sparse M (#rows by #variables).
 class LinearResidual : public ResidualTerm {
  public:
+  /// The residuals M x - b; b has M's number of rows.
   LinearResidual(Eigen::SparseMatrix<double, Eigen::RowMajor> M, Eigen::VectorXd b);
   JacobianPattern pattern() const override;
   int numResiduals() const override { return int(M_.rows()); }
@@ -53,7 +55,9 @@ class LinearResidual : public ResidualTerm {
     std::fill(rvv, rvv + M_.rows(), 0.0);
   }
 
+  /// M.
   const Eigen::SparseMatrix<double, Eigen::RowMajor>& matrix() const { return M_; }
+  /// b, the value M x is driven towards.
   const Eigen::VectorXd& target() const { return b_; }
   /// Moves the target b (same size); the Jacobian is unchanged, so a solver built on the problem
   /// stays valid. Used for multiplier updates of constraint-like terms.
@@ -67,15 +71,18 @@ class LinearResidual : public ResidualTerm {
 /// The objective: named, weighted terms over `numVariables` unknowns.
 class Problem {
  public:
+  /// An objective without terms over `numVariables` unknowns.
   explicit Problem(int numVariables) : numVariables_(numVariables) {}
 
   /// Adds w * ||r(x)||^2 to the objective. Weights must be non-negative.
   void addTerm(std::string name, double weight, std::unique_ptr<ResidualTerm> term);
 
-  int numVariables() const { return numVariables_; }
-  int numTerms() const { return int(terms_.size()); }
+  int numVariables() const { return numVariables_; }   ///< the length of x
+  int numTerms() const { return int(terms_.size()); }  ///< the terms added, in order
+  /// Term t's name, as summaries and reports list it.
   const std::string& termName(int t) const { return terms_[t].name; }
-  double termWeight(int t) const { return terms_[t].weight; }
+  double termWeight(int t) const { return terms_[t].weight; }  ///< term t's weight w_t
+  /// Term t's residuals.
   const ResidualTerm& term(int t) const { return *terms_[t].residual; }
 
   /// Per-term costs w_t * ||r_t(x)||^2 at x.
@@ -90,7 +97,7 @@ class Problem {
   /// (a mesh vertex's coordinates): the factorisation's ordering then orders whole blocks, which
   /// takes a fraction of the time. A hint only; the solution does not depend on it beyond rounding.
   void setBlockSize(int size);
-  int blockSize() const { return blockSize_; }
+  int blockSize() const { return blockSize_; }  ///< the hint of setBlockSize, 1 when not given
 
  private:
   struct Entry {

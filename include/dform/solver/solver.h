@@ -16,8 +16,9 @@
 
 namespace dform {
 
+/// One Levenberg-Marquardt iteration as it went: what the callback sees and the summary keeps.
 struct IterationSummary {
-  int iteration = 0;
+  int iteration = 0;              ///< its number, from 0
   double cost = 0;                ///< f(x) after this iteration
   std::vector<double> termCosts;  ///< w_t ||r_t||^2 after this iteration, per term
   double costChange = 0;          ///< f before - f after (0 for a rejected step)
@@ -39,10 +40,13 @@ enum class Termination {
   UserAbort,      ///< the callback asked to stop; x holds the best point found
 };
 
+/// The termination's name as reports write it ("converged", "no_convergence", "failure",
+/// "user_abort").
 const char* terminationName(Termination t);
 
+/// How the least-squares solve runs and when it stops (in the spirit of Ceres' Solver::Options).
 struct SolverOptions {
-  int maxIterations = 100;
+  int maxIterations = 100;  ///< the iteration cap (Termination::NoConvergence when reached)
   /// Converged when (f_old - f_new) < functionTolerance * f_old for an accepted step.
   double functionTolerance = 1e-6;
   /// Converged when max |J^T r| < gradientTolerance.
@@ -67,6 +71,7 @@ struct SolverOptions {
   /// and the damping rises by 1 / t (refusing it instead raised the damping 64-fold in three
   /// refusals, and the anti D-Form's solve crawled).
   bool geodesicAcceleration = true;
+  /// The largest 2 |a| / |v| a step is taken at full length with (see geodesicAcceleration).
   double maxAccelerationRatio = 0.75;
   /// Called after every iteration; return false to stop the solve (Termination::UserAbort).
   std::function<bool(const IterationSummary&)> callback;
@@ -75,23 +80,28 @@ struct SolverOptions {
   /// cost: more damping, a shorter step next.
   std::function<bool(const Eigen::VectorXd& from, const Eigen::VectorXd& to)> acceptStep;
 
+  /// Whether every option is in its range; false with `why` (when not null) naming the first
+  /// that is not.
   bool isValid(std::string* why) const;
 };
 
+/// How a solve went (in the spirit of Ceres' Solver::Summary). Costs are f = sum of w_t ||r_t||^2
+/// in the problem's own unit; -1 where the solve never evaluated them.
 struct SolverSummary {
-  Termination termination = Termination::Failure;
+  Termination termination = Termination::Failure;  ///< why it stopped
+  /// The same in words, with the figure that decided.
   std::string message = "solve was not called";
-  std::vector<std::string> termNames;
-  double initialCost = -1;
-  double finalCost = -1;
-  std::vector<double> initialTermCosts;
-  std::vector<double> finalTermCosts;
-  std::vector<IterationSummary> iterations;
-  int numVariables = 0;
-  int numResiduals = 0;
-  int factorisations = 0;
-  double setupSeconds = 0;  ///< pattern analysis and symbolic factorisation
-  double totalSeconds = 0;
+  std::vector<std::string> termNames;        ///< the problem's terms, in order
+  double initialCost = -1;                   ///< f at the start
+  double finalCost = -1;                     ///< f at the answer
+  std::vector<double> initialTermCosts;      ///< each term's w_t ||r_t||^2 at the start
+  std::vector<double> finalTermCosts;        ///< each term's at the answer
+  std::vector<IterationSummary> iterations;  ///< every iteration, in order
+  int numVariables = 0;                      ///< the length of x
+  int numResiduals = 0;                      ///< the number of residuals of all terms
+  int factorisations = 0;                    ///< numeric Cholesky factorisations computed
+  double setupSeconds = 0;                   ///< pattern analysis and symbolic factorisation
+  double totalSeconds = 0;                   ///< wall time of set-up and every iteration
 
   /// Appends a later solve of the same problem (iterations renumbered, times and counts added).
   void append(SolverSummary later);
@@ -110,6 +120,7 @@ struct SolverSummary {
 /// example after a LinearResidual's target moved, and reuses all of it.
 class LeastSquaresSolver {
  public:
+  /// A solver of `problem` (which must outlive it) with `options`; does the set-up.
   LeastSquaresSolver(const Problem& problem, SolverOptions options);
   ~LeastSquaresSolver();
   LeastSquaresSolver(const LeastSquaresSolver&) = delete;
@@ -126,9 +137,9 @@ class LeastSquaresSolver {
 /// A LinearResidual term of a problem, r = M x - b0, to be driven to zero as a constraint: met
 /// when every block of blockSize residuals (e.g. one 3D point) has norm <= tolerance.
 struct Constraint {
-  LinearResidual* term;
-  int blockSize;
-  double tolerance;
+  LinearResidual* term;  ///< the problem's term to drive to zero
+  int blockSize;         ///< residuals per block (3 for a 3D point)
+  double tolerance;      ///< the largest norm of a block that counts as met (problem's unit)
 };
 
 /// Augmented-Lagrangian rounds: while a constraint is not met, each unmet term's target moves by

@@ -25,8 +25,11 @@ namespace dform {
 /// batch's other jobs).
 std::mutex& cholmodAnalysisMutex();
 
+/// A sparse Cholesky factorisation by supernodes (dense blocks of columns), analysed once for a
+/// pattern and factorised again for each matrix of that pattern and each shift.
 class SupernodalCholesky {
  public:
+  /// A symmetric matrix given by its lower triangle.
   using SparseLower = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
   /// Analyses the pattern of `pattern`'s lower triangle (fill-reducing ordering, supernodes).
@@ -50,7 +53,7 @@ class SupernodalCholesky {
   /// Floating-point operations of one factorisation and nonzeros of L, as the analysis counts
   /// them (they set how many CG iterations a factorisation is worth).
   double factorFlops() const { return factorFlops_; }
-  double factorNonZeros() const { return factorNonZeros_; }
+  double factorNonZeros() const { return factorNonZeros_; }  ///< see factorFlops
 
  private:
   // The supernodes: columns first[s] .. first[s + 1] - 1 of L; their rows rows[rowStart[s] ..

@@ -12,10 +12,11 @@
 
 namespace dform {
 
+/// How the studio serves: its port, the design it starts from, its limits and its token.
 struct StudioOptions {
-  int port = 0;  ///< TCP port on 127.0.0.1 (and ::1); 0: any free one
-  std::string pieceA,
-      pieceB;           ///< outline files the first design starts from (empty: built-in ellipses)
+  int port = 0;         ///< TCP port on 127.0.0.1 (and ::1); 0: any free one
+  std::string pieceA;   ///< piece A's outline file the first design starts from (empty: built-in)
+  std::string pieceB;   ///< piece B's outline file (empty: the built-in ellipses)
   std::string jobFile;  ///< a forward job file to start from instead (its outlines and settings)
   std::size_t maxUploadBytes = std::size_t(8)
                                << 20;  ///< largest request body (an outline, a curve)
@@ -33,8 +34,8 @@ class Studio {
   Studio(const Studio&) = delete;
   Studio& operator=(const Studio&) = delete;
 
-  int port() const;
-  const std::string& token() const;
+  int port() const;                  ///< the port it listens on
+  const std::string& token() const;  ///< the run's token every request must carry
   /// The page's address with the token: http://127.0.0.1:PORT/?token=TOKEN
   std::string url() const;
   /// Stops serving: open event streams end, running solves are cancelled, threads joined.

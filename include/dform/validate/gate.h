@@ -47,15 +47,18 @@ Result<GateLimits> parseGateJson(const std::string& text, const std::string& sou
 /// which parseGateJson reads back to the same limits: what a report records of the gate it judged.
 std::string gateLimitsJson(const GateLimits& limits);
 
+/// One check of a gate: the figure measured, the limit it was held to and the verdict.
 struct CheckResult {
+  /// Passed (value <= limit), failed, or could not be measured (never a pass).
   enum class Verdict { Pass, Fail, NotRun };
-  std::string name;  ///< the check's name, the gate file's field where it has one
-  double value = 0;  ///< the measured figure (NaN when not run)
-  double limit = 0;  ///< the limit it was held to
-  Verdict verdict = Verdict::NotRun;
+  std::string name;                   ///< the check's name, the gate file's field where it has one
+  double value = 0;                   ///< the measured figure (NaN when not run)
+  double limit = 0;                   ///< the limit it was held to
+  Verdict verdict = Verdict::NotRun;  ///< the check's outcome
   std::string detail;  ///< one line: what was measured, where it failed, or why it did not run
 };
 
+/// "pass", "fail" or "not run", as report.json writes a verdict.
 const char* verdictName(CheckResult::Verdict verdict);
 
 /// A check judged like the gate's own: it passes when value <= limit, and NaN never passes. For
@@ -65,17 +68,18 @@ CheckResult judgeCheck(std::string name, double value, double limit, std::string
 /// A check that could not run, with the reason; it is not a pass.
 CheckResult notRunCheck(std::string name, double limit, std::string reason);
 
+/// A gate's judgement of a result: its limits, every check, and the figures they came from.
 struct GateReport {
-  std::string name;   ///< the gate's name (GateLimits::name)
-  GateLimits limits;  ///< the limits it judged by
-  std::vector<CheckResult> checks;
+  std::string name;                 ///< the gate's name (GateLimits::name)
+  GateLimits limits;                ///< the limits it judged by
+  std::vector<CheckResult> checks;  ///< every check of the gate, in the gate's order
   Metrics metrics;                  ///< the figures the checks were computed from
   std::optional<CurveMatch> curve;  ///< inverse mode: the seam-to-curve figures
   /// No check failed. A check that did not run is not a pass: it stays in `checks` with its
   /// reason for the report, and `notRun()` counts them.
   bool passed() const;
-  int failed() const;
-  int notRun() const;
+  int failed() const;  ///< the number of checks that failed
+  int notRun() const;  ///< the number of checks that could not run
   /// The check of that name, or nullptr.
   const CheckResult* find(const std::string& name) const;
 };

@@ -9,6 +9,9 @@
 
 namespace dform {
 
+/// The figures of a solved D-Form that report.json records under "metrics" and the gate judges:
+/// how isometric the pieces stay, how closed the seam is, how curved and how well-formed the
+/// meshes are, and how near the exact D-Form the seam lies.
 struct Metrics {
   double lengthError = 0;     ///< |L3 - L2| / |L2| over all edges of both pieces (fraction)
   double lengthErrorMax = 0;  ///< max_i |L3_i - L2_i| / L2_i (fraction)
@@ -28,8 +31,9 @@ struct Metrics {
   /// bounding-box diagonal. NaN when there is no exact D-Form to compare with; exactNote then
   /// says why.
   double exactDistanceRmsRel = std::numeric_limits<double>::quiet_NaN();
+  /// The largest distance of the comparison above, over the same diagonal (fraction; NaN too).
   double exactDistanceMaxRel = std::numeric_limits<double>::quiet_NaN();
-  std::string exactNote;
+  std::string exactNote;  ///< what the seam was compared with, or why it was not
 };
 
 /// A 3D seam that a result's figures compare it with (row k for seam point k), made by the
@@ -44,9 +48,9 @@ struct ReferenceSeam {
     NotConvex,     ///< the glued metric is not convex: no convex D-Form exists
     EngineFailed,  ///< the exact engine or the optimisation failed on it
   };
-  Points3 points;
-  std::string note;  ///< what made the reference, or why there is none
-  Missing missing = Missing::None;
+  Points3 points;                   ///< the reference seam, #n by 3, mm; no rows when there is none
+  std::string note;                 ///< what made the reference, or why there is none
+  Missing missing = Missing::None;  ///< why there is none, None when `points` holds it
 };
 
 /// Figures of `model`, its seam compared with `exactBody` (the exact D-Form of the same flat
@@ -96,15 +100,16 @@ std::vector<CreaseFold> creaseFolds(const Piece& piece);
 /// Inverse mode: D_error (paper Eq. 7, fraction) and the largest seam-to-curve distance (mm),
 /// where curve.points.row(i) is the target of a.seam[i] and b.seam[i].
 struct CurveMatch {
-  double curveError = 0;
-  double curveDistanceMaxMm = 0;
+  double curveError = 0;          ///< D_error: mean seam-to-curve distance / curve length
+  double curveDistanceMaxMm = 0;  ///< the largest seam-to-curve distance, mm
   /// The round trip: the flat pieces zipped again (their exact D-Form, or the optimisation where
   /// their metric is not convex; the reference the caller gives) against the target curve after
   /// rigid alignment, over the curve's bounding-box diagonal; roundtripNote says which zipped
   /// them. NaN when neither could (the note says why).
   double roundtripRmsRel = std::numeric_limits<double>::quiet_NaN();
+  /// The round trip's largest distance over the same diagonal (fraction; NaN too).
   double roundtripMaxRel = std::numeric_limits<double>::quiet_NaN();
-  std::string roundtripNote;
+  std::string roundtripNote;  ///< what zipped the pieces again, or why nothing could
 };
 CurveMatch computeCurveMatch(const DForm& model, const Curve3& target,
                              const ReferenceSeam& zippedAgain);
