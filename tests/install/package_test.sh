@@ -7,10 +7,13 @@
 # (relro, bindnow, fortified calls), the static libraries without debug sections, and, unpacked
 # into a scratch root without the source tree's help, the command running a D-Form from / with
 # its own templates, its man page naming files the packages hold, and the Python module importing.
-# lintian and installing them for real (as root) are scripts/check-package, which CI runs.
-#   package_test.sh BUILD_DIR SOURCE_DIR        (exit 77, skipped: the build's prefix is not /usr)
+# lintian and installing them for real (as root) are scripts/check-package, which CI runs and
+# which runs this script on the packages it made.
+#   package_test.sh BUILD_DIR SOURCE_DIR [DEBS]   (exit 77, skipped: the build's prefix is not /usr)
+# DEBS: a folder holding the packages of this build already (scripts/make-packages' output);
+# without it the script makes them with cpack.
 set -euo pipefail
-build=$1 source=$2
+build=$1 source=$2 made=${3:-}
 fail() { echo "package test: $*" >&2; exit 1; }
 prefix=$(sed -n 's/^CMAKE_INSTALL_PREFIX:PATH=//p' "$build/CMakeCache.txt")
 if [ "$prefix" != /usr ]; then
@@ -26,10 +29,14 @@ multiarch=$(dpkg-architecture -qDEB_HOST_MULTIARCH)
 python=$(/usr/bin/python3 -c 'import sys; print("%d.%d %d.%d" % (sys.version_info[:2] + (sys.version_info[0], sys.version_info[1] + 1)))')
 read -r python_version python_next <<< "$python"
 
-if grep -q '^docs:' "$build/Makefile"; then cmake --build "$build" --target docs > /dev/null; fi
-(cd "$build" && cpack -G DEB -B "$work/cpack") > "$work/cpack.log" 2>&1 ||
-  fail "cpack failed: $(tail -3 "$work/cpack.log")"
-debs=$work/cpack
+if [ -n "$made" ]; then
+  debs=$(cd "$made" && pwd)
+else
+  if grep -q '^docs:' "$build/Makefile"; then cmake --build "$build" --target docs > /dev/null; fi
+  (cd "$build" && cpack -G DEB -B "$work/cpack") > "$work/cpack.log" 2>&1 ||
+    fail "cpack failed: $(tail -3 "$work/cpack.log")"
+  debs=$work/cpack
+fi
 for package in dform libdform-dev python3-dform; do
   [ -f "$debs/${package}_${version}_$arch.deb" ] || fail "cpack made no ${package}_${version}_$arch.deb: $(ls "$debs")"
 done
