@@ -41,10 +41,11 @@ endforeach()
 
 # The docs each package installs beside its copyright (the man page names them).
 set(docs ${PROJECT_SOURCE_DIR}/docs)
-install(FILES ${PROJECT_SOURCE_DIR}/README.md ${docs}/cli.md ${docs}/io.md ${docs}/export.md
-              ${docs}/report.md ${docs}/validation.md ${docs}/variants.md ${docs}/exact.md
-              ${docs}/inverse.md ${docs}/meshing.md ${docs}/sweep.md ${docs}/batch.md
-              ${docs}/studio.md ${docs}/samples.md
+install(FILES ${PROJECT_SOURCE_DIR}/README.md ${docs}/cli.md ${docs}/cli-output.schema.json
+              ${docs}/io.md ${docs}/export.md ${docs}/report.md ${docs}/validation.md
+              ${docs}/variants.md ${docs}/exact.md ${docs}/ruled.md ${docs}/inverse.md
+              ${docs}/meshing.md ${docs}/sweep.md ${docs}/batch.md ${docs}/studio.md
+              ${docs}/samples.md
         DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/dform COMPONENT cli)
 install(DIRECTORY ${docs}/images DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/dform COMPONENT cli)
 install(FILES ${docs}/api.md DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/libdform-dev COMPONENT dev)

@@ -80,6 +80,8 @@ def files_section(datadir):
         (datadir + "/bash-completion/completions/dform", "the bash completion"),
         (doc + "/dform/", "the user documentation: README.md, cli.md (every command, its options "
          "and outputs), export.md, report.md, validation.md, studio.md and the others"),
+        (doc + "/dform/cli-output.schema.json",
+         "the JSON Schema of the one object every command prints with --json"),
         (doc + "/libdform-dev/",
          "the C++ library (package libdform-dev): api.md and the API reference, html/index.html"),
         (doc + "/python3-dform/",
