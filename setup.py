@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Builds the Python package dform (pyproject.toml): the Python part from src/python/dform, the
 compiled dform._dform by CMake (the target dform_python only, Release), the templates as package
 data. CMake configures a build folder of its own under build-pip/ (or $DFORM_PIP_BUILD_BASE, where

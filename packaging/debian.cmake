@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The Debian packages (docs/packaging.md), made by `cpack` in a build folder configured with
 # -DCMAKE_INSTALL_PREFIX=/usr (scripts/make-packages does both and runs lintian):
 #   dform          the command, its man page and bash completion, the templates, the user docs

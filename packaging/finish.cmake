@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Run by cpack (CPACK_POST_BUILD_SCRIPTS, packaging/debian.cmake) once the packages are made: each
 # -dbgsym package (.ddeb) is made again as debhelper makes one. CPackDeb writes its md5sums with
 # the staging folder's absolute paths and gives it no documentation; here md5sums lists its files

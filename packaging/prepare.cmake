@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Run by cpack (CPACK_PRE_BUILD_SCRIPTS, packaging/debian.cmake) on the staged files of every
 # package before it is packed: what debhelper's dh_strip does to static libraries (their debug
 # sections and compiler notes removed, the archive made deterministic). CPackDeb itself splits the

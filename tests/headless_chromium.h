@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Headless Chromium for the tests that open a page dform wrote (Debian's `chromium`).
 #pragma once
 

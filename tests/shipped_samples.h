@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The shipped samples as a user runs them: the forward job files and the inverse curves (OBJ or
 // JSON) under samples/, as "forward/<file>" and "inverse/<file>", sorted. For the tests that run
 // every one of them (DFORM_SAMPLES_DIR is set by dform_add_test).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Opening the studio's page in the user's browser without showing its token to other users: a
 // command line is visible to every local user (ps, /proc), so xdg-open is given a file that only
 // this user can read, which sends the browser on to the address with its token.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The CLI's subcommands, each returning the process exit code (README "Exit codes").
 #pragma once
 

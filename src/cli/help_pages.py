@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The man page and the bash completion of dform, made from the command's own --help texts, so
 that neither can describe options the command does not have.
 

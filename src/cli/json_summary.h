@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // --json: the one JSON object a command prints on stdout, whatever happens (docs/cli.md,
 // "Machine-readable output"; docs/cli-output.schema.json). The command's outcome fields and the
 // first error it reports are gathered while it runs; finish() prints them with the exit code, so

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // dform: forward and inverse D-Form modelling, export and validation from the command line.
 // Thin: parses options into jobs, calls the pipeline, prints. Exit codes: README "Exit codes".
 #include <CLI/CLI.hpp>

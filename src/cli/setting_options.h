@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The settings table's rows as command-line options (pipeline/settings.h): each row's flag (and a
 // start's point form, and one repeatable --weight NAME=VALUE for a mode's weights) with its help,
 // range and default from the row. The values given are set on a job after the parse, in the

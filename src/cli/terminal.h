@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What the CLI shows on the terminal: messages, a one-line progress display, errors.
 #pragma once
 

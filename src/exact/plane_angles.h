@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Angles in a flat piece's plane, shared by the gluing and the tracing of the body's edges.
 #pragma once
 

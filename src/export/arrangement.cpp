@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Arranging the pieces on sheets: each piece's turn (the smallest bounding box, or a quarter turn
 // more), both on one sheet side by side or stacked where they fit, else each on its own (a print
 // page turned to landscape, or tiled); then a piece placed on its sheet.

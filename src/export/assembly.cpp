@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The assembly page: how the two cut pieces become the D-Form. A person gluing paper wants to see
 // the shape they are making with the tick numbers where they end up, where to start and which
 // way to zip on each piece, and a few numbered steps; the page is drawn once, as a Drawing, and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // PDF pages and PNG previews of the pattern through Cairo. Cairo draws in points (PDF) or pixels
 // (PNG); the drawing is in mm, so each page is scaled by 72/25.4 or dpi/25.4. Cairo 1.16 drops
 // strokes of width 0, so every width is explicit; PNG previews draw hairlines one pixel wide.

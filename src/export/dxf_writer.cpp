@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The cutting DXF, written through dxflib (Debian's libdxflib-dev): R2000 (AC1015), millimetres
 // ($INSUNITS 4), one LWPOLYLINE per drawn polyline (closed flag on closed cut paths), on the layers
 // CUT, SCORE and ENGRAVE (REGMARKS for a print-and-cut sheet's marks, FAILED-GATE for the stamp of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // exportAll: the pattern laid out once, stamped FAILED GATE when asked (an overlay: nothing moves),
 // every output rendered to memory, then each file written atomically, so that a failed run leaves
 // no half-written file.

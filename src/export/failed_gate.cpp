@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The FAILED GATE stamp: an overlay laid on a pattern that is already laid out. It moves nothing:
 // the text goes into the free band above (or below) what each sheet, page, tile and the assembly
 // page already show, in a colour of its own that no profile cuts or scores with.

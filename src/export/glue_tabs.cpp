@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The glue tabs: along the seam, on one piece or alternating, each a trapezoid folded on the
 // piece's outline, narrowed, split or left out where it would overlap its piece or a neighbour.
 #include "pattern_parts.h"

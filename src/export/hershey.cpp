@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Hershey single-stroke fonts (.jhf from Debian's hershey-fonts-data), read at run time. A glyph
 // line is: 5-character number, 3-character vertex count, then that many coordinate pairs, each a
 // character offset from 'R'; the first pair is the glyph's left and right extent and " R" lifts

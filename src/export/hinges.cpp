@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Kerf-bending (living-hinge) cuts for a rigid sheet: rows of bridged slits parallel to the body's
 // folds, where the solved shape bends. A piece's folds of at least kHingeMinDeg group into
 // families of parallel neighbours (the exact body's folds through a piece come in such families);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Internals of the export module, shared by its .cpp files only: the pattern as a drawing (layers
 // of polylines in sheet millimetres, y down as in SVG), the stroke font, and the writers.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Joints for sheet materials along the seam, at matching seam points of both pieces.
 // With --joint holes, hole k of A and hole k of B mark one point of the 3D seam (the seam pair
 // index and fraction, as the ticks do): a cable tie, rivet or stitch through the pair closes the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The fabrication part of the quality gate, measured on the laid-out pattern rather than trusted
 // from its construction: everything on the sheet, glue tabs clear of each other and of both
 // pieces, the pieces clear of each other, labels inside their piece and clear of each other. A

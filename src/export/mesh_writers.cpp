@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // 3D previews: binary STL (millimetres, as slicers assume) and glTF 2.0 through tinygltf (metres,
 // +Y up, as the specification requires). The model's 3D frame is taken as +Z up (docs/export.md),
 // so glTF gets (x, z, -y) / 1000, a rotation that keeps the triangles' winding.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A nest: the pieces of several D-Forms (and copies of them) on as few sheets as hold them. Each
 // D-Form's pattern is laid out as usual on a sheet large enough for both pieces, once with the
 // pieces at their smallest-box turn and once a quarter turn further (so that every label is

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Packing a nest's parts on sheets: rectangles (each part's extent at either of its two turns) on
 // as few sheets as hold them. Several greedy packings are made (MaxRects, Jylänki 2010, with three
 // rules for the free rectangle, and shelves), each with the parts in three orders, and the one on

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Packing a nest's parts (rectangles, each at either of two turns) on as few sheets as hold them
 // (nest_pack.cpp). Internal to the export module.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The flat pattern: ticks and tabs along the seam (seam_marks.cpp, glue_tabs.cpp), cut paths
 // (outline with tabs merged, holes, kerf offset), then fitted to the sheet (sheet_fit.cpp),
 // arranged on it (arrangement.cpp), drawn (pattern_drawing.cpp), its title block and marks

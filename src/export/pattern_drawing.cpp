@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Drawing the laid-out pattern: the drawing's layers per profile kind, the label helpers (text,
 // readable directions, boxes clear of the material's edges and creases), perforated and dashed fold
 // lines, each piece's ticks, name and crease letters, the creases, and the cut paths with their

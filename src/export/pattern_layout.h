@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Internals of the pattern build shared by its stage files: the flat pieces as every stage reads
 // them, their cut paths (pattern.cpp), the sheet or page and what fits on it (sheet_fit.cpp), the
 // arrangement of the pieces on sheets (arrangement.cpp), the drawing of pieces, creases and cuts

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Internals of the pattern builder, shared by its files (pattern_layout.h lists the layout's),
 // seam_marks.cpp (the ticks across the seam) and glue_tabs.cpp (the tabs along it): a piece's
 // seam parameterised by arc length, the flat-frame-to-sheet placement, the drawing's layers and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What Cairo cannot write into pattern.pdf, added as incremental updates (PDF 32000-1 §7.5.6):
 // objects appended after Cairo's bytes, each update with its own cross-reference section and a
 // trailer pointing back to the previous one, so Cairo's bytes stay as they are. The catalog asks

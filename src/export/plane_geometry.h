@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Plane geometry on sheet polylines shared by the pattern builder and its layout check: polygon
 // overlap through Clipper (integer grid), point in a region, distance to an outline (the single
 // polygon and segment tests are core's, core/polyline.h). A region is a set of closed polygons

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Machine profiles: templates/profiles/<name>.json, read strictly (an unknown or mistyped field is
 // an error naming the file and the field, so that a typo never silently falls back to a default).
 #include <algorithm>

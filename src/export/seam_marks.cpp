@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The seam marks: numbered ticks at matching seam points on both pieces, across each piece's
 // outline, the start tick longer with an arrow along the zip direction; a tick stops short of a
 // joint hole or slot in its way.

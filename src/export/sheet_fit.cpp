@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Fitting the pattern to its sheet or page: the region a sheet's pieces and title lines may use,
 // where the title block goes, the tiles of a print piece too large for a page, the messages of a
 // piece that does not fit, and the check that each bare outline fits before anything is drawn.

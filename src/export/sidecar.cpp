@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // pattern.json: the pattern's geometry in sheet millimetres (y down, the SVG's user units), for
 // tests, the report and anyone who wants to check a cut file without parsing SVG.
 #include <nlohmann/json.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The cutting SVG, written by hand: millimetre page (1 user unit = 1 mm), one Inkscape layer per
 // operation, an id on every path, inline hex styles repeated as presentation attributes (VisiCut
 // ignores CSS classes; early LaserGRBL read only style=""). Paths use absolute M/L/Z only.

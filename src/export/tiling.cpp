@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The pattern's pages: one per sheet, and for a print piece larger than its page a page map then
 // its tiles, each a window of the piece's sheet with a frame, alignment crosses in the overlaps, a
 // header naming the tile and a calibration bar.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Each sheet's furniture: the title lines (title, note, crease and tab legends, the scale in
 // words) or, where they find no room, the mark (the job's name beside the bar), the 50 mm
 // calibration bar, Silhouette registration marks in its corners; and the drawing's title and

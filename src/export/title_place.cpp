@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Where each sheet's title block goes: in the free rectangles of its art region, around the
 // pieces already placed, the full block at the largest text height that fits, else the mark every
 // cut sheet carries (the job's name and the 50 mm bar), small if need be. The block never costs a

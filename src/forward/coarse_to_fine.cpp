@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "dform/forward/coarse_to_fine.h"
 
 #include <array>

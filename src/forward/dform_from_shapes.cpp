@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "dform/forward/dform_from_shapes.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The ruled engine in a forward run (internal to src/forward): the surface of rigid flat
 // triangles built from the seam layout, solved from the paper model's shape (and its mirror
 // image where the sheet has a free brim), the least bending state meshed as the run's model.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Where the seam goes on the two pieces: which boundary of each is zipped, where the seam starts
 // and which way it runs, and where its vertices go along it (internal to src/forward, but for
 // seamFractions).

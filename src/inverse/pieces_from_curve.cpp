@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "dform/inverse/pieces_from_curve.h"
 
 #include <Eigen/Geometry>

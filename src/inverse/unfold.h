@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Laying a pre-D-Form piece flat and mapping flat points back onto it (paper 5.1).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Internal: fitting drawn crease lines to the piece they are drawn on (part of readOutline), and
 // checking creases given with their piece (part of checkOutline).
 #pragma once

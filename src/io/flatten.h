@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Internal: flattening curves into polylines with a guaranteed chord deviation. Shared by the SVG
 // outline reader (2D) and the Bezier seam-curve reader (3D).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Internal helpers shared by the io readers and writers: number formatting for messages and files,
 // unit names. Not part of the public io API.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // io-internal: JSON helpers shared by the outline and curve readers (nlohmann-json stays private).
 #pragma once
 

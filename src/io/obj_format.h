@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Internal: a small Wavefront OBJ reader for what dform exchanges (vertices, faces, polylines),
 // shared by the seam-curve reader and the result-model reader.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "dform/io/outline_reader.h"
 
 #include <Eigen/Eigenvalues>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The only translation unit that includes svgpp (expensive to compile). svgpp walks the document,
 // resolves element transforms, lengths and basic shapes into absolute path commands; this file
 // records them per element and flattens them in millimetres once the element's transform is known.

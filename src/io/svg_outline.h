@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Internal: the SVG part of readOutline. svgpp is confined to svg_outline.cpp because one
 // translation unit that includes it costs ~17 s to compile.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Internal: the outermost <svg> element's viewport (width, height, viewBox, preserveAspectRatio)
 // as a map from user units to page millimetres, and the attribute and length readers it needs.
 // Kept apart from svg_outline.cpp, the one translation unit that includes svgpp.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The CGAL side of the meshing module. cgal_meshing.cpp is the one translation unit that includes
 // CGAL (slow to compile, leaks -frounding-math); the rest of the module calls it through this
 // std/Eigen-only header. Not part of the public API.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Every use of CGAL in dform: the constrained Delaunay triangulation behind triangulateDomain and
 // the 3D convex hull. Exact predicates, inexact constructions throughout.
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>

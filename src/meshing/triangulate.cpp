@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Meshing a flat domain with its boundary kept exactly: interior points come from a hexagonal
 // lattice kept clear of the boundary, a constrained Delaunay triangulation joins them to the fixed
 // boundary points, and a few rounds of interior-only smoothing and re-triangulation even out the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // gallery.html: the sweep's shapes side by side, one card per row of sweep.json.
 #include <cstdio>
 #include <string>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Pipeline-internal: the JSON values its files share (report.json, sweep.json, batch manifests).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The shapes a result's figures compare it with, made from its flat pieces: their exact D-Form
 // (Alexandrov's convex body of the glued metric, src/exact) and, for an inverse result's round
 // trip, the pieces zipped again. validate measures and judges; these are solved here and handed

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The steps runs and saved results share (pipeline-internal): export options checked, a pattern
 // laid out (its layout judged by the caller) and rendered, the result folder's names and its
 // interruptible commit.

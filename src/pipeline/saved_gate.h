@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What an export reads of a saved result besides its meshes (pipeline-internal): its job name, the
 // body's folds and the target curve, and its gate's verdict (report.json's where it still holds,
 // else measured again). `dform export DIR` and a nest of results share them.

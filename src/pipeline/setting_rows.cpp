@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The settings table's rows: each setting's names, type, range or choices, unit, help, and how it
 // reads and writes its member of a Job (pipeline/settings.h, setting_rows.h).
 #include "setting_rows.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Pipeline-internal: how the settings table's rows read and write a Job, and the rows made once
 // (setting_rows.cpp) for settings.cpp's lookups and checks.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The settings table's lookups, its values as JSON and the one range check (pipeline/settings.h);
 // the rows themselves are in setting_rows.cpp.
 #include "dform/pipeline/settings.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Pipeline-internal: the settings table's values as JSON, for the job-file reader and writer.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The compiled part `dform._dform` of the Python package `dform` (docs/python.md; dform/__init__.py
 // wraps its runs into picklable results): forward and inverse runs from numpy arrays, their meshes
 // and figures back as numpy arrays and dicts, and the whole result folder written as the command

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The dist-info folder of the Python package dform as cmake --install and the Debian package
 python3-dform install it beside the package, so that importlib.metadata and pip see the installed
 dform with its version, licence and requirements (the same metadata pyproject.toml gives pip).

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The Python reference of dform: one HTML page made by pydoc from the package's docstrings (the
 module's, Result's and every function's, the keywords and what each sets among them), installed
 with the Debian package python3-dform and by cmake --install as

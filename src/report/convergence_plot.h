@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The solver's convergence plot for report.html: each objective term and the total against the
 // iteration, on a logarithmic scale, as inline SVG.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Small helpers shared by the report's SVG pictures (inline SVG, pixel units).
 #pragma once
 

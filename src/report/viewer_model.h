@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The model report.html's interactive 3D view draws (templates/report/viewer.js), as JSON.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Checks a residual term's analytic Jacobian against central finite differences (as Ceres'
 // GradientChecker does), for tests and for debugging new terms.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The studio's downloads: a saved job (job.json with every setting and the outlines or curve it
 // names, which `dform run job.json` reproduces, export included) and an export (the files
 // `dform run` writes for that job, made by the pipeline's runAndWrite in a temporary folder),

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The studio's request guard (docs/studio.md, "Security"): a request is served only when it is
 // addressed to the loopback host the studio listens on (no DNS rebinding), comes from no other
 // origin (no cross-site requests) and carries the run's token.

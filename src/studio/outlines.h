@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The studio's built-in parametric outlines (docs/studio.md, "Outlines"): each is written as a
 // JSON point list (docs/io.md) and then read like an uploaded file, so a saved job holds the very
 // text the studio solved.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The studio's HTTP server: cpp-httplib's request parsing and routing, behind a connection budget
 // of its own that no client can use up (docs/studio.md, "Connections").
 //

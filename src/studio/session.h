@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // One browser tab's design: its outlines (or seam curve), its solves and its event stream. Newest
 // input wins: a solve cancels the one before it. An exact solve answers with the shape meshed
 // sparsely, a paper-model solve with a coarse preview, and a worker streams the result as the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What the studio's API sends and receives, as JSON text (docs/studio.md, "API"): settings read
 // from a request, results written compactly (vertex arrays as base64 of little-endian doubles,
 // faces as base64 of 32-bit indices), outlines and curves summarised for drawing.

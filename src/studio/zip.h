@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A zip archive of stored (uncompressed) files, for the studio's downloads. Debian 12 offers
 // libzip, but the studio only bundles a result folder's few files for the browser: the format's
 // stored subset (local headers, central directory, CRC-32) is a few dozen lines and needs no

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "cgal_checks.h"
 
 #include <CGAL/Convex_hull_traits_adapter_2.h>

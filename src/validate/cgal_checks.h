@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Internal to dform_validate: the checks that need CGAL (exact predicates), behind Eigen/std
 // types. cgal_checks.cpp is the module's only CGAL translation unit.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Gate files: {"version": 1, "name": "...", "description": "...", "limits": {...}}. Every limit
 // may be left out to keep its default (GateLimits); nothing unknown is accepted, so that a typo
 // never silently keeps a default.

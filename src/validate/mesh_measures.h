@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Internal to dform_validate: elementary measures of one triangle mesh (topology, angles, angle
 // defects, flipped and degenerate triangles, overlaps in the plane). Eigen and std only.
 #pragma once

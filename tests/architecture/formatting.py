@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The C++ sources of src/, include/ and tests/ are formatted as .clang-format says (Google style, 100
 columns): lists every file clang-format would change and exits 1, else 0. Fix with
 `clang-format -i FILE`.

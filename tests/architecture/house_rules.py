@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
-"""Two house rules of src/ and include/ (docs/conventions.md): no source file over 600 lines, and comments that
-say what the code does and why, now, never its history: no run times of past runs ("took 14 s",
-"was 36 ms"), no issue numbers, no "the third stop" or "session 2". Lists every breach and exits
-1, else 0.
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Three house rules of src/ and include/ (docs/conventions.md): every source file opens with
+its licence, `// SPDX-License-Identifier: GPL-3.0-or-later` (docs/packaging.md); no source file
+over 600 lines; and comments that say what the code does and why, now, never its history: no run
+times of past runs ("took 14 s", "was 36 ms"), no issue numbers, no "the third stop" or "session
+2". Lists every breach and exits 1, else 0.
 
     house_rules.py SRC_DIR [INCLUDE_DIR...]
     house_rules.py --self-test   (a planted long file and history comment must be found)
@@ -13,6 +15,7 @@ import sys
 import tempfile
 
 MAX_LINES = 600
+LICENCE = "// SPDX-License-Identifier: GPL-3.0-or-later\n"
 
 # Run history in a comment: a past timing, an issue number, a stop or session of the work.
 HISTORY = [
@@ -58,6 +61,8 @@ def breaches(src):
             shown = os.path.relpath(path, src)
             with open(path, encoding="utf-8") as f:
                 text = f.read()
+            if not text.startswith(LICENCE):
+                found.append(f"{shown}:1: no licence line '{LICENCE.strip()}' opening the file")
             lines = text.count("\n")
             if lines > MAX_LINES:
                 found.append(f"{shown}: {lines} lines, over the {MAX_LINES} a source file may have")
@@ -74,8 +79,8 @@ def self_test():
         os.makedirs(os.path.join(src, "core"))
         clean = os.path.join(src, "core", "clean.cpp")
         with open(clean, "w") as f:
-            f.write("// Stops the run when the flag is set: the loop polls it once a step.\n"
-                    "int stop = 0;  // was set by the signal handler\n" + "int x;\n" * (MAX_LINES - 2))
+            f.write(LICENCE + "// Stops the run when the flag is set: the loop polls it once a step.\n"
+                    "int stop = 0;  // was set by the signal handler\n" + "int x;\n" * (MAX_LINES - 3))
         if breaches(src):
             print("self-test: a clean tree was flagged:", breaches(src))
             return 1
@@ -89,9 +94,17 @@ def self_test():
         for k, line in enumerate(planted):
             path = os.path.join(src, "core", f"planted{k}.h")
             with open(path, "w") as f:
-                f.write(line)
+                f.write(LICENCE + line)
             if len(breaches(src)) != 1:
                 print("self-test: a planted history comment was not found:", line.strip())
+                return 1
+            os.remove(path)
+        for opening in ("", "// SPDX-License-Identifier: MIT\n", "// A file.\n" + LICENCE):
+            path = os.path.join(src, "core", "unlicensed.h")
+            with open(path, "w") as f:
+                f.write(opening + "int w;\n")
+            if len(breaches(src)) != 1:
+                print("self-test: a file without its licence line first was not found:", repr(opening))
                 return 1
             os.remove(path)
         with open(clean, "a") as f:

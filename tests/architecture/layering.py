@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The modules of src/ depend one way (docs/architecture.md): each may include only the modules
 below it, and the command line links the pipeline alone. A module's public headers are in
 include/dform/<module>/ (beside src/), included as an installed project reads them,

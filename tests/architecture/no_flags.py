@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Library code never words a command-line flag (docs/conventions.md): a message about a setting
 names it by mention() (core/setting.h) and each shell words it its own way. Lists every string
 literal of src/ and include/ outside src/cli/ that holds a flag ("--resolution", "--no-export")

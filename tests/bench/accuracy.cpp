@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The curve of distance from the exact D-Form against solve time that docs/benchmarks.md records:
 // the paper model on the ellipse pair at each 3D smoothing weight w_3D, measured by the figure the
 // gate's exact_distance_rel check judges (metrics.h: the 3D seam against the exact D-Form's

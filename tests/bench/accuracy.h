@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The bench's accuracy mode: how close the paper model comes to the exact D-Form of the same seam
 // points, and in what solve time, as the 3D smoothing weight falls, against the goal of 5e-5 of
 // the seam's bounding-box diagonal in at most 0.3 s on the ~1k-vertex ellipses.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Benchmark of the forward pipeline and the exporter. For each case it runs the whole job
 // `repeats` times and prints the median of each stage's wall time, the vertex count and the
 // figures, as a Markdown table for docs/benchmarks.md. Method and machine: docs/benchmarks.md.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The CLI's tables of docs/benchmarks.md: runs `dform` as a user does and prints each table in
 Markdown, figures from the runs' report.json, times as stated in each table's heading.
 

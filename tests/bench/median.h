@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The figure a bench row reports for a time: the median of its repeats, so that a neighbour's
 // load on the shared machine shows up as spread, not as the figure.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The bench's SVG plots (--scale, --accuracy): panels side by side, each with series of points
 // against a linear x axis and a linear or logarithmic y axis.
 #pragma once

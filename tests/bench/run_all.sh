@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Runs every benchmark of docs/benchmarks.md on one build and writes their raw output to OUT
 # (machine, commit, load average before and after each), and the two plots to docs/images/.
 #

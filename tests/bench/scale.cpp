@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Scaling of forward and inverse runs with the mesh size: each case runs in a child process of
 // its own, so that its peak memory (the child's maximum resident set, from wait4) and its wall
 // time are its alone. Prints a Markdown table and writes an SVG plot of time and memory against

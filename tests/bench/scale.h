@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The bench's scaling mode: forward and inverse runs at about 1k, 10k, 50k and 100k vertices.
 #pragma once
 

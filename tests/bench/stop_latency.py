@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """How long a run takes to stop after Ctrl-C (docs/benchmarks.md, "Stopping a run"): starts a
 forward run (the shipped ellipse pair, paper model) and an inverse run (the shipped saddle) at
 resolution 1500, sends SIGINT after each delay, and measures the time from the signal to the

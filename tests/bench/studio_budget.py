@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """dform studio under greedy clients (docs/benchmarks.md, "Studio under load"):
 
 1. a normal request with the token (POST /api/session) while 200 connections without the token

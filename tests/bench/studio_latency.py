@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """dform studio's live-drag latency in a real browser (docs/benchmarks.md, "Studio"): headless
 Chromium drags piece B's start handle (resolution 100) through POSITIONS positions along half its
 outline, one real pointer move every PAUSE seconds (1/60: a 60 Hz pointer), once with Chromium's

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `dform batch` as a cluster runs it (build/dform in real processes): shards merged equal the
 // whole batch, and a resumed batch finishes what was left and redoes nothing already finished.
 #include <gtest/gtest.h>

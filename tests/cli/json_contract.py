@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """--json on every command: exactly one JSON object on stdout, valid against
 docs/cli-output.schema.json, for success, a usage error, an input error and a failed gate.
 

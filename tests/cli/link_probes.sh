@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # What another user of a shared project folder can plant or do beside a run: a symbolic link at
 # every lock and temporary path of forward, inverse, run, sweep, batch and export (the link's
 # target is never written, the run exits 6 with one line), a run into a folder that a sweep or a

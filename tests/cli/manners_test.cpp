@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The command line's manners: "-" for standard input, repeatable options that leave the file
 // arguments alone, --quiet that prints nothing but errors, --json that prints one object and
 // nothing else, one name and unit per figure in the summary, the gate table, --json and

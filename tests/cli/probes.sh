@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Replays hostile probes against build/dform: each must end with its documented
 # exit code and one escaped line on stderr naming the file or option, and leave an output folder
 # that holds exactly the old result or exactly the new one (it validates; or it is byte for byte

@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Sweeps, batches and every subcommand under the probes a shared cluster's users make: a user's
 # file in a sweep's start folder, an export into a start folder while the sweep runs, names that
 # are not UTF-8, that hold control characters or are megabytes long, two batches on one folder,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The settings table walked row by row (pipeline/settings.h): every setting has its command-line
 // flag (listed by --help and taken by the command), its job-file key and its Python keyword
 // (tests/python/test_settings.py takes each); each accepts its default, refuses a value out of its

@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # samples/batch/slurm-array.sh under simulated Slurm arrays (its variables set as Slurm sets them,
 # build/dform as DFORM): 0-based, 1-based, stepped and evenly spaced arrays each run every job of
 # the list exactly once across their tasks, and the merge takes them all; ids that are not evenly

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Ctrl-C ends a run at resolution 1500 within a second, forward and inverse, wherever it lands.
 
 Each run (the shipped ellipse pair with the paper model; the shipped saddle) writes into a folder

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `dform sweep` as a user runs it (build/dform in a real process): every start a complete result
 // that validates, sweep.json and gallery.html agreeing row for row, and each result the same as
 // the single `dform forward --start-b` run it stands for.

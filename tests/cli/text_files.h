@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Scratch folders and reading what a dform process wrote, for the CLI tests that run it.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // SHA-256 against the FIPS 180-2 test vectors.
 #include "dform/core/file_hash.h"
 

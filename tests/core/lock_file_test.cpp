@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Lock files and atomic writes beside other people's files: nothing is written through a
 // symbolic link, nothing this process did not create is truncated or written.
 #include "dform/core/lock_file.h"

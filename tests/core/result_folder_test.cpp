@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A result folder replaced beside other people: its staging and old paths never followed, and
 // nothing that appears in it while a run works is ever deleted.
 #include "dform/core/result_folder.h"

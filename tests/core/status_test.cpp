@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Result<T>: a value, or the Status that says why there is none; reading the value of an error is
 // a checked failure in every build, as std::expected's.
 #include "dform/core/status.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The exact engine against answers known without it: Platonic and flat bodies, derivatives by
 // finite differences, invariance under rigid motions and relabelling, discretisation.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Test shapes for the exact engine: sampled polygons and ellipses, in mm.
 #pragma once
 

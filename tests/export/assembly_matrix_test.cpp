@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The labels of every shipped sample under every shipped profile, at true size, on small pieces
 // (20 %) and on a dense seam (a tick every 3 mm): on the assembly page no two labels (the title,
 // the steps, the thumbnails' names and start numbers, the 3D view's tick numbers and its note)

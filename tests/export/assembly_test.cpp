@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The assembly page, read back from assembly.svg and pattern.pdf: the pieces' thumbnails are the
 // cut pieces scaled, with the start on tick 0 and the zip running to tick 1; the 3D view's tick
 // dots lie on its seam in seam order; the steps are numbered, keep off the pictures and say how

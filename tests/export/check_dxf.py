@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Reads an export folder's DXF files back with ezdxf (python3-ezdxf) and checks them against the
 SVG beside each and pattern.json. Run by tests/export/dxf_test.cpp.
 

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Measures the kerf offset of an export folder's cut loops in pattern.dxf with ezdxf
 (python3-ezdxf). Run by tests/export/joints_test.cpp.
 

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Measures how far apart a nest's pieces are cut, with ezdxf (python3-ezdxf), in its sheets' DXF
 files. Run by tests/export/nest_test.cpp.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // pattern.dxf read back with ezdxf (python3-ezdxf) by check_dxf.py: units, layers, closed cut
 // polylines, perimeters against the SVG and the solved seam, extents, y up; and the checker
 // itself fails a DXF drawn 2 % too large or not flipped. A pattern on two sheets, each with its own

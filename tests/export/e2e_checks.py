@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """What the end-to-end export tests (score_folds_test.py, hinge_test.py) share: failed checks
 collected and printed, and build/dform run with its output captured."""
 import subprocess

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // export_demo: writes the synthetic D-Form's pattern for every profile, and the variants' (an anti
 // D-Form, a demi D-Form, creased pieces), and renders the docs pictures
 // (scripts/render-docs-export), or times exportAll (docs/export.md).

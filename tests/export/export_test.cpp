@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The flat pattern, read back from the written files: SVG scale and layers, perimeters, tick
 // correspondence, tabs, colours and strokes, PDF pages and their rendering, errors.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The FAILED GATE stamp is an overlay: a pattern laid out once and marked afterwards keeps every
 // path where it was, and the stamp is on every sheet, page, tile and assembly page, clear of the
 // pieces, in a colour no profile cuts or scores with.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Inputs that once crashed the export-profile fuzz target (tests/fuzz/regressions/profile/): each
 // now gives a proper Status. What each one found is in docs/hardening.md.
 #include "dform/export/exporter.h"

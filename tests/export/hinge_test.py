@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Kerf-bending hinges end to end: the ellipses and circle + square in plywood (exact model,
 resolution 100) and the shipped squaricle job (the ruled engine's creases), where the hinge is on
 by default. Against report.json's model.folds (the body's fold lines, in each piece's flat mm)

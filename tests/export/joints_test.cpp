@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Joints for sheet materials: matched hole pairs and lacing holes along the seam, the kerf offset
 // of the cut paths, and the material presets. The holes are read back from pattern.json and the
 // written files and checked against the 3D shape, not against the arc lengths that placed them.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The shop floor's matrix: every shipped sample laid out under every shipped profile on its papers
 // (page profiles: A4, Letter and A3; sheet profiles: 600 x 400 and 300 x 200 mm), with the title
 // and without, with each joint. Over all of it: the title never costs a page or a sheet, every

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The layout check (the gate's pattern_layout): silent on the patterns the exporter lays out,
 // and each kind of defect, planted in a built pattern, is counted by its own figure alone.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The 14 shipped samples of the shop floor's matrix: the forward job files and inverse curves
 // (shipped_samples.h) and the two forward pairs the README solves from their SVGs (the ellipses,
 // and circle + square), each solved by build/dform as a user would. For the tests built with

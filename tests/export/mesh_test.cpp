@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // 3D previews read back: binary STL (count, size, bounding box, outward normals) and glTF
 // (tinygltf load: meshes, units, +Y up; the Khronos validator when node has it).
 #include <gtest/gtest.h>

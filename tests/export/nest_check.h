@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What the nest tests measure on a laid-out nest: the share of the used sheets' area within the
 // pieces' boxes, the sheets a plain greedy shelf packing of the same pieces takes (the yardstick a
 // nest must meet), and the pieces' distance apart in the written sheets' DXF files (check_nest.py).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The 14 shipped samples (matrix_samples.h), one copy each, nested on 600 x 400 mm laser sheets:
 // no more sheets than a greedy shelf packing of the same pieces, at least 60 % of the used
 // sheets' area within the pieces' boxes, and every two pieces kerf + 1 mm apart in the sheets'

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Nests: the pieces of several D-Forms, and copies, on as few sheets as hold them. Read back: every
 // piece on a sheet and labelled with its D-Form, the layout clean, the cut loops of any two pieces
 // kerf + 1 mm apart in the sheets' DXF files (ezdxf, check_nest.py), pattern.json's parts.

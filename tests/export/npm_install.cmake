@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Installs the Khronos glTF validator into PREFIX with NPM; never fails the build (offline builds
 # skip the validation test instead).
 file(MAKE_DIRECTORY ${PREFIX})

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tick numbers where the glue hides them: on the glue tab over a tick (`numbers: tabs`, the print
 // profiles'), on the face (`face`), or both. Read back from the laid-out pattern: a number on a tab
 // writes its tick's number, lies inside that tab 0.3 mm clear of its edges, and the layout check

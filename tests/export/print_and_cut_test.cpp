@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Professional print-and-cut: the RIP profile's cut line is the CutContour spot colour in
 // pattern.pdf (a Separation colour space, named nowhere else, stroking each piece's cut loop and
 // nothing else), its SVG cut layer named so; the Cricut profile's print as a 300 dpi PNG (the

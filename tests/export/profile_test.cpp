@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Profiles: every shipped template loads; every kind of bad profile file is an error that names
 // the file and the field.
 #include <gtest/gtest.h>

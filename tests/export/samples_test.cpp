@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Every shipped sample, solved by the command line as a user would, exported with every shipped
 // profile on A4 and on Letter (page profiles: --page; laser profiles: a sheet of that size) and
 // read back: exit 0 (the layout check included), every piece on one sheet, the page count the

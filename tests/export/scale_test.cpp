@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Very large pieces: the export's work grows with the pattern's ticks, tabs and labels, not with
 // the square of their number, and a pattern too large for its sheet, page or tiling fails before
 // a single tick or tab is made. Work is counted (fab::BuildWork), never timed.

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """--score-folds end to end: circle + square (exact model, resolution 100: 4 creases at ~66.7 deg
 and gentle folds under 6 deg) exported with --score-folds DEG puts exactly the gentle folds of
 report.json's model.folds with angle_deg >= DEG (the creases are drawn as crease lines already,

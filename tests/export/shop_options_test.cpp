@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The shop-floor options: page names in any case, a kerf refused where scissors cut, slots refused
 // on a sheet too stiff to fold its tongues back, a hinge only on a rigid sheet, and a tiled
 // pattern's message naming the scale and the page that print it untiled.

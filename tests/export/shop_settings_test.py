@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The hinge and the tick numbers reach the export from the command line and from a job file, as
 the settings table (pipeline/settings.h) reads them, and report.json keeps them:
 

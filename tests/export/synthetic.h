@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A small synthetic D-Form for the export tests (the solver is written elsewhere): an ellipse (A)
 // and a circle (B) of equal polygon perimeter, ring-meshed, bent into two caps meeting at a
 // planar seam. Not isometric (the exporter does not care); seams, orientations and counts are

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Helpers for the export tests: their options, an export read back, a built pattern; readers for
 // our SVG (paths with absolute M/L/Z, in layers), pattern.json, binary STL; and running the
 // command-line checkers (qpdf, pdfinfo, pdftoppm, node).

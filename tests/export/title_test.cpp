@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The title block never costs a sheet: pieces that fit a sheet together share it with the title
 // or without, the title going where there is room (smaller if need be) and, where the full block
 // finds none, the mark every cut sheet carries (the job's name over the 50 mm bar) in its place.

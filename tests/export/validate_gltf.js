@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Validates a .glb/.gltf with the Khronos glTF validator: prints the issue summary as JSON and
 // exits 0 when there are no errors, 1 when there are, 2 when it could not run.
 'use strict';

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The pattern of the D-Form variants, read back from the written files: anti and demi D-Forms
 // (a seam that is a hole's loop, free outer outlines) and creased pieces.
 #include <gtest/gtest.h>

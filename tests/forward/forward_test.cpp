@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Forward modelling end to end on small inputs: the start, the local-global stage, the solve.
 #include "dform/forward/forward.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The general engine's sheet: its energy against closed forms, and its answer stationary by
 // central differences of that energy (independent of the engine's own gradient).
 #include "dform/model/inextensible.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "forward/seam_layout.h"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // forwardTerms: the forward objective's one table of terms and weights.
 #include "dform/model/term_table.h"
 

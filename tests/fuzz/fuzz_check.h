@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Properties every fuzz target checks besides "no crash, no leak, no undefined behaviour": a
 // reader's error is a Status whose message is one printable line naming the source, as the CLI
 // prints it ("dform: error: <file>: <problem>"). A violation aborts, which libFuzzer reports.

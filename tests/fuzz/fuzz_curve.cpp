@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Fuzzes the seam-curve reader (OBJ or JSON, by DFORM_FUZZ_SOURCE's extension), both as the file
 // says and forced closed (`--closed`). A curve it accepts must be what the inverse run relies on.
 #include "dform/io/curve_reader.h"

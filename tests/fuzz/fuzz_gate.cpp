@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Fuzzes the gate-file reader. Limits it accepts must be usable: finite and non-negative.
 #include <cmath>
 

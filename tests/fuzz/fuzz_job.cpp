@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Fuzzes the job-file reader. A job it accepts must be valid and survive the trip through
 // report.json unchanged (jobToJson, then read again), since that is how a run is repeated.
 #include "dform/pipeline/job_file.h"

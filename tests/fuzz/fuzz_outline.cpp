@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Fuzzes the flat-outline reader (SVG or JSON, by DFORM_FUZZ_SOURCE's extension) from parsing to
 // shape assembly. A shape it accepts must be what the pipeline relies on.
 #include <cmath>

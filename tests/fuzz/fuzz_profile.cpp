@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Fuzzes the export-profile reader. A profile it accepts must be one the exporter can draw with.
 #include <cmath>
 

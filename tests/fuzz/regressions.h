@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Regression tests for the inputs that once crashed a fuzz target. Each lives in
 // tests/fuzz/regressions/<target>/ (which the fuzz targets also take as seeds), and the module
 // whose reader it crashed lists it with the outcome it must now have: no crash, and a proper

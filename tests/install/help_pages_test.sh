@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The man page and the bash completion made from dform's --help texts (src/cli/help_pages.py):
 # the page renders and has a section for every subcommand and an entry for each of a
 # subcommand's options; the completion completes subcommands, options, profile names and the

@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Installs the built dform into a temporary prefix and builds and runs a separate project that
 # finds it with find_package(dform): the package's targets, public headers (and none of the
 # internal ones), dependencies and templates work without the source tree's include path. The

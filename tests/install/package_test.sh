@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The Debian packages of this build (cpack, packaging/debian.cmake) as a user and a Debian
 # administrator would find them: three packages and their -dbgsym packages, each one's control
 # data (dependencies, the Python versions, py3compile and py3clean), its files (multiarch library

@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # One version everywhere (docs/releasing.md): CMakeLists.txt's project version is the newest entry
 # of the Debian changelog and the first version section of CHANGELOG.md, `dform --version`
 # prints it, and where the repository has a tag vX.Y.Z (git, when the source is a clone), that

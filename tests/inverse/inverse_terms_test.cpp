@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // inverseTerms: the inverse objective's one table of terms and weights.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Helpers for the inverse-initialisation tests: sample seams and synthetic curves.
 #pragma once
 

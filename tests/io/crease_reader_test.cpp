@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Crease lines: how they are marked in SVG and JSON, clipped to the piece, snapped onto its
 // boundary, and every way a crease can be drawn wrong.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Seam curves: OBJ polylines (index forms, closing), JSON points and closed cubic Beziers, and
 // every bad input.
 #include "dform/io/curve_reader.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Inputs that once crashed the io fuzz targets (tests/fuzz/regressions/): each now gives a proper
 // Status. What each one found is in docs/hardening.md.
 #include "dform/io/curve_reader.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // JSON outlines: object and bare-array forms, units, holes, and malformed files.
 #include <gtest/gtest.h>
 

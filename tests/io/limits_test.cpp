@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Point limits (OutlineReadOptions::maxPoints, CurveReadOptions::maxPoints): a file with more
 // points than the limit is refused with one line saying so, as soon as the reader knows, and a
 // file at the limit is read. Small limits here stand for the default million.

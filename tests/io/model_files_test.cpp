@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Result models on disk: exact write/read round trip and consistency checks on reading.
 #include "dform/io/model_files.h"
 

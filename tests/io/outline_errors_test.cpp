@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Every bad outline input gives the documented ErrorCode and a one-line message naming the file.
 #include <gtest/gtest.h>
 

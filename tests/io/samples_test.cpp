@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The forward-mode samples: every pair reads as one piece each whose joined boundaries (outlines,
 // or holes for the anti and demi D-Forms) have equal lengths (a D-Form zips two boundaries of
 // equal length), the "nonconvex" ones really are non-convex, and the Squaricle disc has its four

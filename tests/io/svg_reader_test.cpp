@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // SVG outlines: units and viewports, transforms, curve flattening against exact lengths,
 // orientation and the y-flip, holes, hidden and <defs> content.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Helpers for the io tests: a scratch folder per test, and checks on Status messages.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The exact model's meshes follow the body's folds: every triangle lies in one face of the body
 // and maps onto it isometrically, so the figures of an exact result are rounding, at every
 // resolution, and no triangle of a piece straddles a fold.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // relaxThenSolve: the relaxation, then Levenberg-Marquardt or the relaxation's multiplier rounds,
 // as forward and inverse modelling both run it.
 #include "dform/model/relax_then_solve.h"

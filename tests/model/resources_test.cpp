@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The memory check that stops a run too large for the machine before it meshes anything.
 #include "dform/model/resources.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Checks that hold for every table of terms and weights (model/term_table.h): the forward tests
 // run them on forwardTerms, the inverse tests on inverseTerms.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Every term of the objective against finite differences, and the helpers around them.
 #include "dform/model/terms.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Small two-piece inputs for the forward tests.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The batch's time left: remaining jobs weighed by their size (resolution², as their vertex
 // count grows), not counted.
 #include <gtest/gtest.h>

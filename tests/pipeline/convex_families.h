@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The convex pairs the project ships (samples/forward) or builds (the studio's parametric
 // outlines), written as outline files rounded to a number of decimals, and the exact model's run
 // of one (pair, start, flip, resolution, rounding) judged: solved by the exact model, passed by

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The exact model at every start and every rounding: every convex pair the project ships or
 // builds, swept over starts, flips, resolutions 40-1000 and roundings to 3, 5 and 9 decimals, is
 // solved by the exact model, passes the default gate and has no mesh edge shorter than 1e-6 of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Forward runs on the exact engine: the model choice, the start where it was drawn, the creases
 // the exact D-Form finds, and the figures of the object against the paper model's.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A run's pattern is laid out once: the layout the gate judges is the one written, and a run that
 // fails its gate (on the layout alone, or on a figure) gets the FAILED GATE stamp as an overlay on
 // that layout, not a second layout. `dform export` of a saved result likewise.

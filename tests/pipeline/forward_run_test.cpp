@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Forward runs on the samples: the figures the issue asks for, and the run's options.
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Inputs that once crashed the job-file fuzz target (tests/fuzz/regressions/job/): each now gives
 // a proper Status. What each one found is in docs/hardening.md.
 #include "dform/pipeline/job_file.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `dform export` of a saved result reuses the gate report.json records where it still holds (the
 // meshes are the bytes the run wrote, the same dform and the same limits), and measures again
 // where anything of that changed, or when asked (`regate`). A changed mesh that fails the gate is

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The in-memory entries (makeDForm, makePieces): shapes and curves that never were files give the
 // same D-Form as the files that hold them, and their messages name the pieces without a path.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Inverse runs on the samples: the figures the issue asks for, and bad curves.
 #include <gtest/gtest.h>
 

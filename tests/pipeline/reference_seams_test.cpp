@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The references a result's figures are measured against (pipeline/reference_seams.h): the exact
 // body where the glued metric is convex, and for each reason there is none, that reason as a
 // value the round trip chooses its way by.

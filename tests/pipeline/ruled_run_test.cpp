@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Forward runs on the ruled engine: the exact body reached from the paper model's shape on convex
 // pairs (the referee), drawn creases, anti D-Forms, a seam point of negative curvature made exact
 // with vertices inside the pieces, and the same answer every run.

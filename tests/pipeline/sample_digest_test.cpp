@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Every shipped sample's outputs against a stored digest, so that a change meant to move code
 // without changing what it computes is seen to change nothing: each sample runs as a user runs it
 // (`dform run JOB` or `dform inverse CURVE`, default gate, default export), and its report

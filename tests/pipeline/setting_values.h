@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Values of the settings table's rows for tests that walk it (pipeline/settings.h): one in each
 // row's range or choices other than its default, and one each row must refuse.
 #pragma once

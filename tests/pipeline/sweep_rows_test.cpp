@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A sweep's and a batch's rows: the figures measured from a saved result of known shape, the
 // gallery's links and text, the starts that were not written.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // D-Form variants end to end (paper section 6.4 and Fig. 14): anti and demi D-Forms zipped along
 // holes, and the Squaricle folded along drawn creases. Run at 40 seam vertices to keep the suite
 // quick; the figures the issue asks for hold there already.

@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The Python package as a user installs it: `pip install --no-build-isolation .` into a virtual
 # environment with Debian's packages (numpy, pytest, mypy), offline, reusing the CMake build (it
 # builds the target dform_python there, nothing else), then the Python tests run against the

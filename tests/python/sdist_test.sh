@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The Python package's sdist as a user gets it: `python3 -m build --sdist --no-isolation` from the
 # source tree, then `pip install dform-VERSION.tar.gz` into a clean virtual environment (Debian's
 # numpy and pytest from the system, nothing else, offline), which compiles the module from the

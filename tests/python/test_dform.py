@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The Python module `dform` (docs/python.md): numpy in and out, the same D-Form as the command
 line makes of the same outlines, every bad input a dform.Error with the documented exit code, and
 a result folder that `dform validate` accepts. Run by ctest (python_module) with PYTHONPATH set to

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The package's interface as help(), an IDE and a program see it: forward, inverse and
 Result.export have explicit keyword signatures (inspect.signature) whose names and defaults are
 the compiled module's, a docstring naming every keyword, a mistyped keyword is a TypeError naming

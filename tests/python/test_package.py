@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The package dform as a library: its version is the CMake project's, results print, compare and
 pickle (multiprocessing), the pieces are numpy arrays, the package under test is the one meant
 (DFORM_PACKAGE_DIR: the build tree or an installed copy), and every command-line option a message

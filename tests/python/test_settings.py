@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The settings table from Python (dform._dform.setting_rows, pipeline/settings.h): every row of
 dform.forward, dform.inverse and Result.export is a keyword argument that takes its default and
 refuses a value out of its range or choices with a dform.Error (exit code 2) naming the keyword,

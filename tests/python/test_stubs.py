@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The type stubs (dform/__init__.pyi) against the package under test: mypy's stubtest checks
 every public name, signature and type where mypy is installed (scripts/install-deps installs
 python3-mypy); without it, the stubs must name exactly the package's public names."""

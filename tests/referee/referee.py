@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The referee: a near-inextensible elastic sheet computed by Surface Evolver from a dform result.
 
     referee.py solve DIR -o OUT [--subdivide K] [--mirror] [--schedule NAME]

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Makes every referee sheet of tests/referee/README.md and the files under tests/referee/data/.
 
     tests/referee/run_all.py [--dform build/dform] [--work out/referee] [--only JOB ...]

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The referee's sheet: two dform pieces read from a result folder, glued into one surface.
 
 A dform result folder holds piece-a-flat.obj / piece-a-3d.obj and piece-b-flat.obj / piece-b-3d.obj

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Prints the figures of tests/referee/data/ as the Markdown tables of tests/referee/README.md.
 
     tests/referee/table.py [--data tests/referee/data]

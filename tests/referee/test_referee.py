@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Checks of the referee's definitions on small made-up sheets (python3 -m pytest tests/referee).
 
 The Evolver check runs only where `evolver` is installed (scripts/install-deps --referee)."""

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What renderReportHtml needs besides the model, for tests that render report.html of a test model.
 #pragma once
 

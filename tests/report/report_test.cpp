@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // report.html's pictures, read back as numbers: the 3D view's projection and scale, the
 // curvature colours, and the convergence plot's log axis.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // report.html's interactive 3D view in headless Chromium (SwiftShader WebGL): the script runs
 // without a console error, and its first view, screenshot, matches a reference this test rasterises
 // itself from the model with the still pictures' camera: the same silhouette, A and B where they

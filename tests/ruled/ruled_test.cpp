@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The ruled engine's pieces: the dihedral angle and its gradient, flips of a piece's
 // triangulation, the held-positions estimate of a flip's bending change, the Levenberg-Marquardt
 // and KKT solves on small surfaces.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """dform studio's controls in headless Chromium, with real keys: Ctrl+Shift+Z redoes; Ctrl+Z in a
 number box is the box's own (the design stays); counts move in whole steps (Reuleaux sides in odd
 steps); every slider shows its unit and has a number box; the starts are typed in mm and nudged

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """dform studio in headless Chromium: failures shown where the designer looks, and one state.
 
 Export of a design that fails the gate, or whose pattern does not fit the sheet, keeps the dialog

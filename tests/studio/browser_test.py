@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """dform studio in a real browser (headless Chromium): the page loads without console errors;
 dragging a start handle changes the shape, and the shape is the command line's for that start;
 dragging B's start round a square at 60 Hz is answered by the exact model at every position;

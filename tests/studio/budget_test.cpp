@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The studio's connection budget (src/studio/server.h) at its limits and one past them:
 // connections that send nothing or dribble their request, event streams left open, bodies past
 // the limit (chunked or not), and a client that goes away while its request runs. Each test only

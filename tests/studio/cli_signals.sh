@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # dform studio from the command line: it prints its address with the token, starts without a
 # browser to open (no xdg-open on the PATH) and stops with 130 on SIGINT and 143 on SIGTERM; with
 # one, xdg-open is given a page only this user can read, never the token on its command line.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The studio's downloads against the command line: a saved job that `dform run` reproduces (the
 // same figures), and an export whose files are the ones `dform run` writes for that job.
 #include "studio/downloads.h"

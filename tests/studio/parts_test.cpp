@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The studio's parts without a server: the stored zip (read back by Python's zipfile), the
 // request guard, upload names, the parametric outlines (read by io as the studio reads them) and
 // the corners a start snaps to.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The screenshots of docs/studio.md, taken from the real page in headless Chromium:
 
     screenshots.py BUILD/dform SAMPLES_DIR OUT_DIR

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The studio's server over loopback: the token, Host and Origin guard, malformed requests, upload
 // limits, independent sessions, results equal to the pipeline's in memory, and newest-input-wins.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // 1000 random and malformed requests over loopback (bounded: each with a short timeout) leave
 // the studio serving; under the sanitizer build this also finds memory errors on those paths.
 #include <arpa/inet.h>

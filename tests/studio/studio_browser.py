@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """dform studio in headless Chromium, for the browser tests, the latency benchmark and the
 screenshots of docs/studio.md: starts `dform studio --no-browser` on a free port, opens its page
 with Debian's chromium-driver through python3-selenium, and stops both.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A studio on a free loopback port for a test, and a client that talks to it as the page does.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The convex hull of a seam: a closed triangle mesh facing outward whatever the points' order,
 // where many points lie on its faces and some are given twice; nothing for coplanar points.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Inputs that once crashed the gate-file fuzz target (tests/fuzz/regressions/gate/): each now
 // gives a proper Status. What each one found is in docs/hardening.md.
 #include "dform/validate/gate.h"

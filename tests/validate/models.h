@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Test models with known answers: exact developments of polyhedral surfaces, so that every figure
 // the tests expect is exact up to round-off.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Which pairs of triangles cross: sheets meeting at an angle, or lying on each other the same
 // way up, cross; sheets lying face to face (facing opposite ways, within kFaceToFaceTolerance of
 // the soup's size) touch.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Process-wide allocator settings for dform's executables (never called by library code).
 #pragma once
 

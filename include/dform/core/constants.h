@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Constants that more than one module uses: pi and the seam resolution a run takes unless told.
 #pragma once
 

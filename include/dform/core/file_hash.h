@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Content hashes of input files, so that a report says exactly which bytes a result came from.
 // The readers hash the bytes they parse: a file is never opened a second time to hash it (it
 // could have changed meanwhile, or be a FIFO that gives its bytes once).

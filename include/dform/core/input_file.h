@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Reading a user's file whole, with a size limit. Every reader of input files goes through it, so
 // that no file (a huge one, a FIFO, one that grows while it is read) can exhaust memory.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The process's request to stop a run. Signals are process-wide, so the flag is too: the command
 // line's SIGINT/SIGTERM handler sets it (an application embedding dform sets it to cancel a run),
 // and the long loops and file reads of every stage poll it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // An advisory lock file (flock) that keeps a second dform process off a folder: exclusive for a
 // run that writes the folder alone, shared for processes that may work side by side (the shards
 // of one batch, readers of a result) but not beside an exclusive holder. A lock file whose holder

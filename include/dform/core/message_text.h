@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Text from a user's file in a Status message. Messages are one printable line (the CLI prints
 // "dform: error: <file>: <problem>"), but a key, a token or a parser's excerpt can hold anything:
 // control characters, a megabyte of text, bytes that are not UTF-8.

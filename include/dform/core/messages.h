@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The one channel through which library code talks to people. Library code never prints: it emits
 // here; the CLI shows the messages on a terminal and the report keeps them.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The boundary loops of a piece: its seam and its free boundaries, and which of them is the outer
 // outline. Whether the seam is the outer outline (a classic piece, the disc of a demi D-Form) or a
 // hole (an anti D-Form's pieces, the annulus of a demi D-Form) follows from the flat geometry.

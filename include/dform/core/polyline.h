@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Elementary geometry of polylines: closed ones (outlines and seam curves), where the last point
 // joins the first and is not repeated, and open ones (crease lines).
 #pragma once

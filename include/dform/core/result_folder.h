@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A result folder replaced as one transaction. The new result is written into a fresh hidden
 // folder beside it, then swapped in by one rename: a run that fails, is interrupted or is killed
 // part way leaves the folder exactly as it was, and files of the earlier result that the new one

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The user settings by name. Each setting that job files, the command line, Python and the studio
 // set has one value of `Setting` here and its job-file key; the rest of its row (its flag, keyword,
 // type, default, range, unit and help) is the pipeline's settings table (pipeline/settings.h).

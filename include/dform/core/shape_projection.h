@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // An orthographic picture of a solved D-Form: the camera, the faces of both pieces in painter's
 // order with their Lambert shade, and the pieces' colours. The report draws it as SVG, the export
 // as the assembly page; both draw the same picture.

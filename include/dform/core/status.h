@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Errors from bad user input. A broken invariant is a bug (assert); a solve that does not converge
 // is a result with its summary; everything the user can fix is a Status naming the file and
 // problem. A message about a setting names it by mention() (core/setting.h), which each shell

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Value types shared by every stage of dform. Points are rows; lengths are millimetres at every
 // module boundary (the solver may normalise internally and scales back).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Alexandrov's theorem made constructive (Bobenko and Izmestiev, "Alexandrov's theorem, weighted
 // Delaunay triangulations, and mixed volumes", 2008): a sphere with a convex flat-cone metric is
 // the surface of one convex polyhedron. An apex inside is joined to every cone point by a radial

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // How far one seam is from another of the same points once rigid motion is taken out: the
 // measure of "the shape on the screen against the shape on the table".
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The edges of the exact body, drawn in the flat pieces. Each edge of the body's triangulation is a
 // geodesic of the glued surface between two cone points: straight in a flat piece, and where it
 // crosses the seam it goes on straight in the other piece (the two sides of a seam chord are

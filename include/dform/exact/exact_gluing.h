@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The exact D-Form of two flat pieces: the unique convex body whose surface is the two pieces
 // glued along their seam (Alexandrov; for convex pieces, Demaine and Price: the convex hull of the
 // seam). Only the seam points are cone points of the glued metric; interior points are flat and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A triangulation of a closed flat-cone surface known only by its edge lengths (an intrinsic
 // triangulation), with edge flips, removal of flat vertices and geodesic tracing. Directions at a
 // vertex are "signposts": angles in [0, cone angle) measured counter-clockwise in the input

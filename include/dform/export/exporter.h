@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Fabrication export of a solved D-Form: cut-ready flat patterns (SVG written by our own writer,
 // DXF through dxflib, PDF through Cairo) with seam tick marks and glue tabs, and 3D previews
 // (binary STL, glTF 2.0).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Zipping two meshed pieces as a forward run zips drawn ones: coarse to fine.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A D-Form from two flat shapes (forward modelling end to end, in memory): the seam laid out on
 // both pieces, then the exact D-Form where it applies, else the paper's optimisation coarse to
 // fine. Measuring the result is validate's (pipeline/forward_pipeline.h makeDForm does both).

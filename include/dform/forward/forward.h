@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Forward modelling (paper section 4): two triangulated flat pieces in, the D-Form they make out.
 #pragma once
 

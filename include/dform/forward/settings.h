@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A forward run's settings: one flat struct of the knobs a user sets (CLI flags, job files,
 // Python keywords, the studio), each with its default. The solve (solveForward,
 // solveMeshedCoarseToFine) reads its fields from the same struct.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Inverse modelling's optimisation (paper 5.2, Eq. 6): from the pre-D-Form start, find flat pieces
 // and their 3D shapes whose seam runs along the target curve, with the flat boundaries free.
 #pragma once

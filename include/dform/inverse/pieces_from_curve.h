@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The two flat pieces whose D-Form has a given 3D seam (inverse modelling end to end, in memory):
 // the pre-D-Form start, the exact pieces where the curve lies on its convex hull, else the
 // optimisation coarse to fine. Measuring the result is validate's (pipeline/inverse_pipeline.h

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Initialisation of inverse modelling (paper 5.1): the pre-D-Form on the seam curve, cut into two
 // discs, unfolded, remeshed and mapped back onto the discs. Design: docs/inverse.md.
 #pragma once

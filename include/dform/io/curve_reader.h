@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Reading closed 3D seam curves (OBJ polyline, JSON points or closed cubic Bezier) into mm.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A solved D-Form on disk: one OBJ per piece and per form (flat and 3D), each holding the seam as
 // an `l` polyline in seam order (group `seam`), then the free boundary loops (group `boundary`)
 // and the creases (group `crease`), so a saved result can be exported or validated again.

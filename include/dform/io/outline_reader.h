@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Reading flat outlines (SVG or a JSON list of 2D points) into millimetres.
 #pragma once
 

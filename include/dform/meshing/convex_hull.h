@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The 3D convex hull of a point set (for the inverse pre-D-Form).
 #pragma once
 

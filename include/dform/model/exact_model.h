@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A D-Form made by the exact engine (src/exact), meshed as the paper model's pieces are: shared by
 // forward runs and by inverse runs whose curve lies on its convex hull.
 #pragma once

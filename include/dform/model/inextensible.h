@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The general engine: the D-Form as a thin sheet that resists bending and, far more, stretching.
 // Its 3D shape is a stationary point of
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The injectivity safeguard of the forward solve: a step is refused when it turns a flat triangle
 // over or folds two 3D neighbours onto each other, so that no fold is left to luck (a rounding
 // difference, a long Levenberg-Marquardt step).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A fast approximate minimiser of the D-Form objective, used to start Levenberg-Marquardt close to
 // its minimum: local-global iterations (projective dynamics, Bouaziz et al. 2014) with Anderson
 // acceleration (Peng et al. 2018). The isometry term is replaced by its projective form: each

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The D-Form solve forward and inverse modelling share once each has set up its objective: the
 // local-global relaxation from the start, then Levenberg-Marquardt on the exact objective, and the
 // constraints met by augmented-Lagrangian rounds (enforceByMultipliers).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Whether a run fits the machine: its memory, estimated before any meshing, against what the
 // machine can give. A run that does not fit stops at once with a message saying what would,
 // instead of being killed by the system part way through.

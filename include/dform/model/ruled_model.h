@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A D-Form made by the ruled engine (src/ruled), meshed as the other models' pieces are: each
 // piece's mesh follows the surface's folded chords, and every vertex is placed on the flat
 // triangle of the surface it lies in, so every mesh triangle is an isometric copy of its flat one.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What the forward and inverse runs share about running: timing, message formatting, the levels
 // of a coarse-to-fine solve and when one is left to the relaxation alone, and the caller's hooks
 // (progress, a request to stop).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What a run of either kind reports besides its shape (the time each stage took, which model made
 // it) and the hooks its caller passes in (progress, a request to stop).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The one table per objective of its terms and their weights: forward modelling's (forwardTerms)
 // and inverse modelling's (inverseTerms). The settings table's weight rows (pipeline/settings.h:
 // job files, the command line, Python, the studio, the range check), report.json's term names

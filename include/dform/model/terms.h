@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The D-Form objective's terms (paper Eq. 1-6) over the unknowns of two pieces. Used by forward
 // and inverse modelling alike.
 #pragma once

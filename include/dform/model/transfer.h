@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Carrying a solved shape from one triangulation of a flat piece to another (coarse to fine).
 #pragma once
 

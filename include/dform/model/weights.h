@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The weights of the two D-Form objectives, one member per term: each has its row in the
 // objective's table (model/term_table.h), which names it for job files, --weight and report.json.
 #pragma once

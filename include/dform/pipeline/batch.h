@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Batches: many job files, each run into OUT/<job name>/, with a manifest (batch.json)
 // rewritten atomically as jobs finish, so that a batch can be resumed, sharded over a cluster's
 // scheduler (GNU parallel, a Slurm array) and its shards' manifests merged (docs/batch.md).

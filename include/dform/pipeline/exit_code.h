@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The documented exit codes (README "Exit codes"): the one place that maps an error kind to the
 // code the command returns, a batch manifest records and Python's dform.Error carries.
 #pragma once

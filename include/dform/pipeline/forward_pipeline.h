@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The forward run end to end: two outline files in, a solved and measured D-Form out.
 #pragma once
 

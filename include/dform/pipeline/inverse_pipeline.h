@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The inverse run end to end: a 3D seam curve in, the two flat pieces that make it out.
 #pragma once
 

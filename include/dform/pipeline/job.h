@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A job: what one run solves (a forward or an inverse job, each with its inputs and its settings)
 // and how it writes its result (the pattern and previews, and the gate that judges them), as a
 // job file records it (pipeline/job_file.h, docs/cli.md). Its settings are the rows of the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Job files: a run's inputs and settings as JSON, so that a result can be reproduced exactly
 // (`dform run job.json -o out/`). Each setting is read and written through its row of the
 // settings table (pipeline/settings.h); schema: docs/cli.md.

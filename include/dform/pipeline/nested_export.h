@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Several saved results exported together: their pieces (and copies) nested on as few sheets as
 // hold them, for a laser shop's sheet (`dform export DIR... --nest -o OUT`).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // report.json: what a run read, how it solved, and every figure (schema: docs/report.md).
 #pragma once
 

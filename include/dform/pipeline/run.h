@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // One result from a job to its folder, and many at once (a sweep's starts, a batch's jobs): the
 // run's policy (solve, gate, lay out, release or hold back the cutting files, write as one
 // transaction) in one place, so that a front end only parses, prints and maps errors to exit

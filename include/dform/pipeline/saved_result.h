@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A saved result folder exported again or validated: both read the meshes and run the gate on
 // them again instead of trusting report.json.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The settings table: one row per user setting of forward, inverse and export runs, with its
 // job-file key, command-line flag, Python keyword, type, range or choices, unit and help; its
 // default is its value in a new job (the settings structs' member initialisers). Every shell

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Design sweeps: one forward job solved from N starting pairs evenly spaced along piece
 // B (and with B turned over), each into a subfolder of its own, gathered into sweep.json and
 // gallery.html. The sweep folder is written as one transaction (core/result_folder.h).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // report.html: a self-contained page (no external files or scripts) that shows a result's
 // verdict, figures, pictures of the shape and its curvature, the flat pattern and the solve.
 #pragma once

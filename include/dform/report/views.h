@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Pictures of a D-Form drawn by dform itself, as SVG: the 3D shape from a viewpoint (shaded, or
 // coloured by Gaussian curvature) and the flat pieces coloured by curvature. For report.html.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Finding the triangle of a flat triangulation that holds a point: triangles bucketed in square
 // cells of about one triangle each, so that a query looks at one cell.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The ruled engine end to end on a surface of rigid flat triangles: from each start shape, the
 // rulings chosen and the 3D positions solved, giving a state whose every edge is as long as it
 // is flat; the distinct states sorted by bending energy.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Choosing the rulings: which chords of the pieces are the surface's edges. Flips of a chord
 // (the other diagonal of its two triangles) change the choice; each step below is deterministic
 // (candidates in a fixed order, ties by index).

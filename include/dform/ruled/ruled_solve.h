@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Solving a ruled surface for its 3D positions: every edge as long as it is flat, and where the
 // lengths leave freedom (free brims), the least bending energy.
 #pragma once

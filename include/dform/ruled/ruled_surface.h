@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A D-Form made of rigid flat triangles: the unknowns are the 3D positions of the pieces'
 // boundary points only (seam points, free brim points, crease ends), and every face is a
 // triangle of a flat piece whose corners are such points. Each face is so an isometric copy of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The Gram matrix M^T M of a sparse matrix, assembled so that a stop can be asked for meanwhile:
 // on a fine mesh one product takes seconds.
 #pragma once

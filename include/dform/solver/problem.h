@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A sparse nonlinear least-squares problem: minimise f(x) = sum_t w_t * ||r_t(x)||^2 over x.
 // The solver knows nothing of D-Forms: callers build residual terms over a flat variable vector.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Levenberg-Marquardt for sparse nonlinear least squares, in the spirit of Ceres' Solver::Options
 // and Solver::Summary. Each step solves (J^T J + mu I) dx = -J^T r. J^T J is scattered into a
 // pattern fixed at set-up (linear terms are assembled once), CHOLMOD's symbolic analysis is done

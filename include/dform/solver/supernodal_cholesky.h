@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A sparse Cholesky factorisation L L^T = P (A + mu I) P^T whose rounding is the same on every
 // x86-64 machine and thread count, at the speed of a supernodal factor.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // dform studio: a local web application to design a D-Form live (docs/studio.md). An HTTP server
 // bound to the loopback interface serves one page (templates/studio/) and a JSON API over the
 // pipeline's in-memory entry points; every request must carry the run's random token and a

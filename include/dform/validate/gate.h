@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The quality gate: every check of a solved D-Form against a limit read from a gate file
 // (templates/gates/*.json). Definitions and limits: docs/validation.md.
 #pragma once

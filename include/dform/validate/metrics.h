@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Quality figures of a D-Form (paper section 6.3 and Table 2), computed from the meshes alone.
 #pragma once
 

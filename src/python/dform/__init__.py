@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """D-Forms: two flat pieces zipped along their boundaries, and the 3D shape they make.
 
 dform.forward (two outlines -> their D-Form) and dform.inverse (a closed 3D seam curve -> the two

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Type stubs of the package dform (docs/python.md); tests/python/test_stubs.py checks them against
 # the module with mypy's stubtest, and their keyword arguments against the settings table's rows.
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, TypedDict, Union

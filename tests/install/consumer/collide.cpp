@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Uses this project's core/types.h and dform's headers in one translation unit.
 #include <dform/core/types.h>
 #include <dform/pipeline/run.h>

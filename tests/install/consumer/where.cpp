@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Prints the templates folder the installed dform libraries read (export profiles, gate presets,
 // the report page), as a program linked to them finds it: scripts/check-package runs it from /
 // without DFORM_TEMPLATES and expects the one the Debian package installs.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // This project's own core/types.h, ahead of dform's headers on every include path of the
 // project: dform's headers include theirs as "dform/core/types.h", so this one never stands in
 // for it (were it found in its place, dform::DForm would not be declared).
