@@ -20,7 +20,7 @@ sdist=$work/dist/dform-$version.tar.gz
 [ -f "$sdist" ] || fail "no dform-$version.tar.gz: $(ls "$work/dist")"
 contents=$(tar -tzf "$sdist" | sed "s|^dform-$version/||")
 for file in CMakeLists.txt LICENSE README.md setup.py pyproject.toml MANIFEST.in src/CMakeLists.txt \
-  src/pipeline/run.cpp src/python/dform_module.cpp src/python/dform/__init__.py \
+  src/pipeline/run.cpp include/dform/pipeline/run.h src/python/dform_module.cpp src/python/dform/__init__.py \
   src/python/dform/__init__.pyi templates/gates/default.json packaging/debian.cmake PKG-INFO; do
   grep -qx -- "$file" <<< "$contents" || fail "the sdist has no $file"
 done
