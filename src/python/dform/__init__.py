@@ -125,21 +125,18 @@ def _given(function, arguments, keywords):
 def _signature(function, inputs, named):
     """The signature of `function` ("forward", "inverse", "export"): its inputs, the keywords
     `named` (name, default) that are no settings, then one keyword per row of the settings table
-    (dform._dform.setting_rows) with the table's default, or None where the setting has no
-    default of its own (row["unset"] says what then), and `weights`, a dict of term weights."""
+    (dform._dform.setting_rows), in the table's order, with the table's default, or None where
+    the setting has no default of its own (row["unset"] says what then); the weights' rows are
+    one keyword, `weights`, a dict of term weights (default None: each term's own)."""
     keyword = _inspect.Parameter.KEYWORD_ONLY
     parameters = [_inspect.Parameter(name, _inspect.Parameter.POSITIONAL_OR_KEYWORD)
                   for name in inputs]
     parameters += [_inspect.Parameter(name, keyword, default=default) for name, default in named]
-    weights = False
     for row in _dform.setting_rows(function):
-        if row["weight"]:
-            weights = True
-        elif row["keyword"] not in [p.name for p in parameters]:
-            default = None if row["unset"] else row["default"]
-            parameters.append(_inspect.Parameter(row["keyword"], keyword, default=default))
-    if weights:
-        parameters.append(_inspect.Parameter("weights", keyword, default=None))
+        name = "weights" if row["weight"] else row["keyword"]
+        if name not in [p.name for p in parameters]:
+            default = None if row["weight"] or row["unset"] else row["default"]
+            parameters.append(_inspect.Parameter(name, keyword, default=default))
     return _inspect.Signature(parameters)
 
 
@@ -184,9 +181,12 @@ inverse.__doc__ = """A closed 3D seam curve -> the two flat pieces that make it,
     mistyped keyword is a TypeError naming it. Keywords:
     name: the curve's name in messages and report.json; default "curve"
 """ + _settings_doc("inverse")
-Result.export.__doc__ = """Writes the result folder out_dir as `dform forward -o` does, as one
-    transaction: meshes, report.json, report.html and, unless the gate fails, the cutting files.
+Result.export.__doc__ = """Writes the result folder as `dform forward -o` does, as one transaction.
+
+    It holds the meshes, report.json, report.html and, unless the gate fails, the cutting files.
     Returns {"folder", "gate_passed" (None with gate "none"), "checks" (name, value, limit,
     verdict, detail each), "cutting_files" (whether they were written) and, when the export
-    failed, "export_error"}. A bad value raises dform.Error (exit_code 2). Keywords:
+    failed, "export_error"}. A bad value raises dform.Error (exit_code 2); a mistyped keyword is a
+    TypeError naming it.
+    out_dir: the result folder, created or replaced whole
 """ + _settings_doc("export")
