@@ -118,7 +118,8 @@ copyright=$root/usr/share/doc/dform/copyright
 head -1 "$copyright" | grep -qx 'Format: https://www.debian.org/doc/packaging-manuals/copyright-format/1.0/' ||
   fail "the copyright file is not machine-readable (DEP-5)"
 grep -qx 'License: GPL-3+' "$copyright" || fail "the copyright file does not license the files GPL-3+"
-zcat "$root/usr/share/doc/dform/changelog.gz" | head -1 | grep -q "^dform ($version) " ||
+newest=$(zcat "$root/usr/share/doc/dform/changelog.gz")  # whole: head would cut zcat's pipe
+grep -q "^dform ($version) " <<< "${newest%%$'\n'*}" ||
   fail "changelog.gz's newest entry is not $version"
 grep -qx 'License: GPL-3.0-or-later' "$root/usr/lib/python3/dist-packages/dform-$version.dist-info/METADATA" ||
   fail "the dist-info's METADATA has no licence"

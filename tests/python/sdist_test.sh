@@ -27,8 +27,10 @@ done
 if grep -Eq '^(build|build-pip|out)[^/]*/|__pycache__|\.pyc$|\.so$|egg-info/' <<< "$contents"; then
   fail "the sdist holds build output: $(grep -E '^(build|build-pip|out)[^/]*/|__pycache__|\.pyc$|\.so$|egg-info/' <<< "$contents" | head -3)"
 fi
-tar -xzOf "$sdist" "dform-$version/PKG-INFO" | grep -qx 'License: GPL-3.0-or-later' ||
-  fail "the sdist's PKG-INFO has no licence"
+# Read whole before grep -q, which stops at the first match (and would end tar with SIGPIPE,
+# a failure under pipefail).
+info=$(tar -xzOf "$sdist" "dform-$version/PKG-INFO")
+grep -qx 'License: GPL-3.0-or-later' <<< "$info" || fail "the sdist's PKG-INFO has no licence"
 
 "$python" -m venv --system-site-packages "$work/venv" || fail "python3 -m venv failed (python3-venv)"
 ! "$work/venv/bin/python" -c 'import dform' 2> /dev/null || fail "the clean environment already has a dform"
