@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "dform/ruled/isometric_mesh.h"
 
 #include <Eigen/Sparse>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The mirror symmetries of an outline, for snapping a start to where an axis crosses it.
 #pragma once
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """dform studio's shape as a designer reads it, in headless Chromium with real pointer input.
 
 The overlay: the strain of every edge and the curvature at every vertex coloured from the figures

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Edge strain (the L per edge the studio draws) and where the gate's failing checks fail.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A D-Form of rigid flat triangles whose vertices inside the pieces are unknowns in the flat as
 // well as in 3D: a shape that stretches (the paper model's) made one that does not, for sheets
 // where the boundary points alone cannot carry the fold (docs/ruled.md, "Vertices inside the
@@ -9,6 +10,7 @@
 
 namespace dform::ruled {
 
+/// When isometricMesh stops: the edge-length error it aims for and its step budget.
 struct IsometricMeshOptions {
   /// The largest relative edge-length error of the answer.
   double tolerance = 1e-12;
@@ -16,6 +18,7 @@ struct IsometricMeshOptions {
   int maxSteps = 60;
 };
 
+/// What isometricMesh made: the exact shape and how far it moved from the start.
 struct IsometricMesh {
   DForm model;                   ///< the answer: every edge as long in 3D as it is flat
   double lengthError = 0;        ///< largest relative edge-length error, over both pieces

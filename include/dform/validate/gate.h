@@ -98,9 +98,10 @@ GateReport runGate(const DForm& model, const GateLimits& limits, const Metrics& 
 /// limit), the vertices of gauss_max_rad (those the check looks at with |angle defect| over its
 /// limit), the seam points of seam_gap_mm (partners farther apart than its limit).
 struct FailureSites {
+  /// What `items` lists: mesh edges, mesh vertices, or seam points.
   enum class Kind { Edges, Vertices, SeamPoints };
-  std::string check;  ///< the check's name
-  Kind kind = Kind::Edges;
+  std::string check;        ///< the check's name
+  Kind kind = Kind::Edges;  ///< what the check's sites are
   /// Per piece (A, B): vertex pairs (Edges: two entries an edge), vertex indices (Vertices); seam
   /// indices (SeamPoints), the same for both pieces.
   std::array<std::vector<int>, 2> items;

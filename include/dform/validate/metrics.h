@@ -62,8 +62,9 @@ Metrics computeMetrics(const DForm& model, const ReferenceSeam& exactBody);
 /// 3D length L3 against its flat length L2, signed (positive where the 3D edge is longer; infinite
 /// for a zero flat edge whose 3D edge is not). L_max is the largest |strain| over both pieces.
 struct EdgeStrain {
-  int from = 0, to = 0;
-  double strain = 0;
+  int from = 0;       ///< the edge's lower vertex index in the piece
+  int to = 0;         ///< its higher vertex index
+  double strain = 0;  ///< (L3 - L2) / L2, signed
 };
 
 /// Every edge of a piece's faces once, with its strain.
