@@ -159,8 +159,12 @@ TEST(SeamLayout, StraightSidesEndAtSeamCornersOnceWhereThePiecesEndTogether) {
       }
     // Zipped 0.3 of an edge one way, the sides' ends meet across a gap at two places; 0.2 the
     // other way, they overlap there (each place counted from both ends).
-    if (startB < 0.0) EXPECT_EQ(overlapping, 4);
-    if (startB > 0.0 && startB < 0.5) EXPECT_EQ(overlapping, 0);
+    if (startB < 0.0) {
+      EXPECT_EQ(overlapping, 4);
+    }
+    if (startB > 0.0 && startB < 0.5) {
+      EXPECT_EQ(overlapping, 0);
+    }
   }
 }
 
