@@ -22,6 +22,8 @@ endif()
 # changelog.gz as dh_installchangelogs and dh_compress make it: gzip -9n (no name or time), so
 # the same changelog gives the same bytes.
 set(packaging_dir ${PROJECT_BINARY_DIR}/packaging)
+# Made here: a build without the Python module (the sanitizer's) makes nothing else in it first.
+file(MAKE_DIRECTORY ${packaging_dir})
 add_custom_command(OUTPUT ${packaging_dir}/changelog.gz
   COMMAND gzip -9nc ${DFORM_DEBIAN_DIR}/changelog > ${packaging_dir}/changelog.gz
   DEPENDS ${DFORM_DEBIAN_DIR}/changelog
