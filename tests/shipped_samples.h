@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The shipped samples as a user runs them: the forward job files and the inverse curves (OBJ or
 // JSON) under samples/, as "forward/<file>" and "inverse/<file>", sorted. For the tests that run
-// every one of them (DFORM_SAMPLES_DIR is set by dform_add_test).
+// every one of them, and the paths of sample files (DFORM_SAMPLES_DIR is set by dform_add_test).
 #pragma once
 
 #include <algorithm>
@@ -10,6 +10,15 @@
 #include <vector>
 
 namespace dform::test {
+
+/// The path of a file under samples/, e.g. samplePath("forward/circle.svg").
+inline std::string samplePath(const std::string& name) {
+  return std::string(DFORM_SAMPLES_DIR) + "/" + name;
+}
+/// The path of a file under samples/forward/.
+inline std::string forwardSample(const std::string& name) { return samplePath("forward/" + name); }
+/// The path of a file under samples/inverse/.
+inline std::string inverseSample(const std::string& name) { return samplePath("inverse/" + name); }
 
 inline std::vector<std::string> shippedSamples() {
   std::vector<std::string> samples;

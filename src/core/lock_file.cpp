@@ -14,7 +14,7 @@ namespace dform {
 
 namespace {
 
-Status outputFailed(const std::string& message) { return {ErrorCode::OutputFailed, message}; }
+Status lockFailed(const std::string& message) { return {ErrorCode::OutputFailed, message}; }
 
 // Whether `fd` is still the file at `path` itself (a holder that released it may have removed
 // it, or something else may stand at the path now).
@@ -40,7 +40,7 @@ std::string busy(const std::string& what, const std::string& holder, const std::
 }
 
 // Why a path in the way of a lock cannot be used: a link or something that is not a file.
-std::string inTheWay(const std::string& what, const std::string& path) {
+std::string lockInTheWay(const std::string& what, const std::string& path) {
   struct stat status {};
   const bool link = ::lstat(path.c_str(), &status) == 0 && S_ISLNK(status.st_mode);
   return what + ": " + path + (link ? " is a symbolic link" : " is not a regular file") +
@@ -94,22 +94,22 @@ Status LockFile::take(const std::string& path, bool exclusive, const std::string
     if (fd < 0) {
       const int error = errno;
       if (error == ENOENT) continue;  // removed by its holder between the two opens
-      if (error == ELOOP) return outputFailed(inTheWay(what, path));
+      if (error == ELOOP) return lockFailed(lockInTheWay(what, path));
       if (mayGoWithout && (error == EACCES || error == EROFS || error == EPERM))
         return Status::ok();
-      return outputFailed(what + ": cannot create " + path + " (" + std::strerror(error) + ")");
+      return lockFailed(what + ": cannot create " + path + " (" + std::strerror(error) + ")");
     }
     struct stat status {};
     if (::fstat(fd, &status) != 0 || !S_ISREG(status.st_mode)) {
       ::close(fd);
-      return outputFailed(inTheWay(what, path));
+      return lockFailed(lockInTheWay(what, path));
     }
     if (::flock(fd, (exclusive ? LOCK_EX : LOCK_SH) | LOCK_NB) != 0) {
       const int error = errno;
       const std::string pid = holderPid(fd);
       ::close(fd);
-      if (error == EWOULDBLOCK) return outputFailed(busy(what, holder, pid));
-      return outputFailed(what + ": cannot lock " + path + " (" + std::strerror(error) + ")");
+      if (error == EWOULDBLOCK) return lockFailed(busy(what, holder, pid));
+      return lockFailed(what + ": cannot lock " + path + " (" + std::strerror(error) + ")");
     }
     if (!isFileAt(fd, path)) {
       ::close(fd);
@@ -125,10 +125,10 @@ Status LockFile::take(const std::string& path, bool exclusive, const std::string
     if (exclusive && created) {
       const std::string pid = std::to_string(::getpid());
       if (::pwrite(fd_, pid.data(), pid.size(), 0) != ssize_t(pid.size()))
-        return outputFailed(what + ": cannot write " + path + " (" + std::strerror(errno) + ")");
+        return lockFailed(what + ": cannot write " + path + " (" + std::strerror(errno) + ")");
     }
   }
-  if (fd_ < 0) return outputFailed(what + ": cannot lock " + path);
+  if (fd_ < 0) return lockFailed(what + ": cannot lock " + path);
   return Status::ok();
 }
 
@@ -147,11 +147,10 @@ Status checkNoEnclosingRun(const std::string& dir, const std::string& what) {
     const std::string pid = busyNow ? holderPid(fd) : "";
     ::close(fd);
     if (busyNow)
-      return outputFailed(what + ": " + folder.string() +
-                          " is being replaced by another dform run" +
-                          (pid.empty() ? "" : " (process " + pid + ")") +
-                          ", which would swap this folder away; nothing was written (run "
-                          "again when it has finished, or choose a folder outside it)");
+      return lockFailed(what + ": " + folder.string() + " is being replaced by another dform run" +
+                        (pid.empty() ? "" : " (process " + pid + ")") +
+                        ", which would swap this folder away; nothing was written (run "
+                        "again when it has finished, or choose a folder outside it)");
   }
   return Status::ok();
 }

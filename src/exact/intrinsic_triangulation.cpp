@@ -7,14 +7,13 @@
 #include <deque>
 
 #include "dform/core/constants.h"
+#include "plane_angles.h"
 
 namespace dform::exact {
 
 namespace {
 
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
+using plane::cross;
 
 // The third corner of a counter-clockwise triangle (p, q, r) given p, q and |q r|, |r p|.
 Eigen::Vector2d thirdCorner(const Eigen::Vector2d& p, const Eigen::Vector2d& q, double qr,

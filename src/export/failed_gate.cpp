@@ -15,7 +15,7 @@ constexpr double kStampMaxH = 4.0;      // the stamp's capital height at most (m
 constexpr double kStampMinH = 1.5;      // and at least, where the free band is thinner
 constexpr double kStampWidthMm = 0.35;  // its stroke: visible, whatever the profile's hairline
 
-std::string upper(std::string s) {
+std::string upperCase(std::string s) {
   for (char& c : s) c = char(std::toupper(static_cast<unsigned char>(c)));
   return s;
 }
@@ -25,8 +25,8 @@ std::string upper(std::string s) {
 // uses it for an operation, another (a machine must never take the stamp for a cut or a score).
 std::string stampColor(const Profile& p) {
   for (const char* color : {"#FF9933", "#999999", "#E0C060", "#66CCCC"})
-    if (color != upper(p.cutColor) && color != upper(p.scoreColor) &&
-        color != upper(p.engraveColor))
+    if (color != upperCase(p.cutColor) && color != upperCase(p.scoreColor) &&
+        color != upperCase(p.engraveColor))
       return color;
   return "#FF9933";  // unreachable: three operations cannot take four colours
 }

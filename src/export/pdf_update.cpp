@@ -89,7 +89,7 @@ std::vector<long> pageObjects(const std::string& pdf) {
   return pages;
 }
 
-std::string num(double x) {
+std::string pdfNumber(double x) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.4f", x);
   return buf;
@@ -103,7 +103,7 @@ std::string spotStream(const Layer& layer, const PageView& page, const std::stri
   const double k = kPointsPerMm;
   auto point = [&](const Vec2& q) {
     const Vec2 p = q - page.origin;
-    return num(p.x() * k) + " " + num((page.height - p.y()) * k);
+    return pdfNumber(p.x() * k) + " " + pdfNumber((page.height - p.y()) * k);
   };
   std::string paths;
   for (const Path& path : layer.paths) {
@@ -117,10 +117,10 @@ std::string spotStream(const Layer& layer, const PageView& page, const std::stri
   if (paths.empty()) return std::string();
   // Cairo's stream ran inside "q" (the page's first stream): back to the page's own state, then
   // the page's window clipped as Cairo clips it.
-  return "Q\nq\n" + num(page.clipX0 * k) + " " + num((page.height - page.clipY1) * k) + " " +
-         num((page.clipX1 - page.clipX0) * k) + " " + num((page.clipY1 - page.clipY0) * k) +
-         " re W n\n/" + name + " CS 1 SCN\n" + num(layer.widthMm * k) + " w 1 J 1 j\n" + paths +
-         "Q\n";
+  return "Q\nq\n" + pdfNumber(page.clipX0 * k) + " " + pdfNumber((page.height - page.clipY1) * k) +
+         " " + pdfNumber((page.clipX1 - page.clipX0) * k) + " " +
+         pdfNumber((page.clipY1 - page.clipY0) * k) + " re W n\n/" + name + " CS 1 SCN\n" +
+         pdfNumber(layer.widthMm * k) + " w 1 J 1 j\n" + paths + "Q\n";
 }
 
 std::string stream(const std::string& content) {

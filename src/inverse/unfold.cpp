@@ -14,7 +14,7 @@
 namespace dform {
 namespace {
 
-Status invalid(std::string message) { return {ErrorCode::InputInvalid, std::move(message)}; }
+Status invalidCurve(std::string message) { return {ErrorCode::InputInvalid, std::move(message)}; }
 
 double cross2(const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
   return u.x() * v.y() - u.y() * v.x();
@@ -36,24 +36,25 @@ Eigen::Vector2d placeLeft(const Eigen::Vector2d& p, const Eigen::Vector2d& q, do
 Result<Points2> unfoldDisc(const Points3& V, const Faces& F) {
   const Eigen::Index nV = V.rows(), nF = F.rows();
   if (nV < 3 || nF != nV - 2)
-    return invalid("cannot unfold: a disc without interior vertices on " + std::to_string(nV) +
-                   " vertices has " + std::to_string(std::max<Eigen::Index>(nV - 2, 0)) +
-                   " triangles, not " + std::to_string(nF));
+    return invalidCurve("cannot unfold: a disc without interior vertices on " + std::to_string(nV) +
+                        " vertices has " + std::to_string(std::max<Eigen::Index>(nV - 2, 0)) +
+                        " triangles, not " + std::to_string(nF));
   std::map<std::pair<int, int>, int> faceOfEdge;  // directed edge -> face
   std::vector<bool> used(std::size_t(nV), false);
   for (Eigen::Index f = 0; f < nF; ++f)
     for (int c = 0; c < 3; ++c) {
       const int u = F(f, c), v = F(f, (c + 1) % 3);
       if (u < 0 || u >= nV || v < 0 || v >= nV || u == v)
-        return invalid("cannot unfold: triangle " + std::to_string(f) + " has a bad vertex index");
+        return invalidCurve("cannot unfold: triangle " + std::to_string(f) +
+                            " has a bad vertex index");
       if (!faceOfEdge.emplace(std::make_pair(u, v), int(f)).second)
-        return invalid("cannot unfold: edge " + std::to_string(u) + "-" + std::to_string(v) +
-                       " is used twice the same way (faces not consistently oriented)");
+        return invalidCurve("cannot unfold: edge " + std::to_string(u) + "-" + std::to_string(v) +
+                            " is used twice the same way (faces not consistently oriented)");
       used[std::size_t(u)] = true;
     }
   for (Eigen::Index v = 0; v < nV; ++v)
     if (!used[std::size_t(v)])
-      return invalid("cannot unfold: vertex " + std::to_string(v) + " is unused");
+      return invalidCurve("cannot unfold: vertex " + std::to_string(v) + " is unused");
 
   auto edgeLength = [&](int u, int v) { return (V.row(u) - V.row(v)).norm(); };
   Points2 flat = Points2::Zero(nV, 2);
@@ -79,7 +80,8 @@ Result<Points2> unfoldDisc(const Points3& V, const Faces& F) {
       // In a disc whose vertices all lie on the boundary, each vertex's faces form one path of the
       // dual tree, so a vertex reached again through the tree was already placed from this side.
       if (w < 0 || placed[std::size_t(w)])
-        return invalid("cannot unfold: the triangles do not form a disc without interior vertices");
+        return invalidCurve(
+            "cannot unfold: the triangles do not form a disc without interior vertices");
       // g runs v -> u -> w counter-clockwise, so w lies to the left of v -> u.
       flat.row(w) = placeLeft(flat.row(v), flat.row(u), edgeLength(v, w), edgeLength(u, w));
       placed[std::size_t(w)] = true;
@@ -89,7 +91,7 @@ Result<Points2> unfoldDisc(const Points3& V, const Faces& F) {
     }
   }
   if (visitedCount != nF)
-    return invalid("cannot unfold: the triangles are not connected across edges");
+    return invalidCurve("cannot unfold: the triangles are not connected across edges");
   return flat;
 }
 
@@ -98,9 +100,9 @@ Status checkSheet(const Points2& outline, const std::string& pieceName) {
   if (!crossing) return Status::ok();
   const int n = int(outline.rows());
   auto edge = [n](int i) { return std::to_string(i + 1) + "-" + std::to_string((i + 1) % n + 1); };
-  return invalid("piece " + pieceName + " unfolds onto itself near curve points " +
-                 edge(crossing->first) + " and " + edge(crossing->second) +
-                 ": it cannot be cut from one sheet");
+  return invalidCurve("piece " + pieceName + " unfolds onto itself near curve points " +
+                      edge(crossing->first) + " and " + edge(crossing->second) +
+                      ": it cannot be cut from one sheet");
 }
 
 Points3 mapBarycentric(const Points2& flat, const Points3& shape, const Faces& F,

@@ -37,7 +37,7 @@ using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
 using Cdt =
     CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::No_constraint_intersection_tag>;
 
-Status invalid(std::string message) { return {ErrorCode::InputInvalid, std::move(message)}; }
+Status invalidDomain(std::string message) { return {ErrorCode::InputInvalid, std::move(message)}; }
 
 // A failed allocation is not bad input nor a bug: the run needs more memory than it can get
 // (the memory check before meshing could not foresee it), a usage matter like a resolution too
@@ -103,7 +103,7 @@ Result<Faces> constrainedDelaunay(const Points2& P, const std::vector<Loop>& loo
     v->info() = int(i);
     hint = v->face();
   }
-  if (int(cdt.number_of_vertices()) != n) return invalid("two points of the domain coincide");
+  if (int(cdt.number_of_vertices()) != n) return invalidDomain("two points of the domain coincide");
   for (auto v : cdt.finite_vertex_handles()) vertex[std::size_t(v->info())] = v;
 
   std::vector<std::pair<int, int>> edges;  // every constraint, loops' first
@@ -127,12 +127,12 @@ Result<Faces> constrainedDelaunay(const Points2& P, const std::vector<Loop>& loo
   } catch (const std::bad_alloc&) {
     return outOfMemory("meshing");
   } catch (const std::exception&) {
-    return invalid(kTouching);
+    return invalidDomain(kTouching);
   }
   // The guarantee the solver relies on: no constraint edge was split, no vertex was added.
-  if (int(cdt.number_of_vertices()) != n) return invalid(kTouching);
+  if (int(cdt.number_of_vertices()) != n) return invalidDomain(kTouching);
   for (const auto& [a, b] : edges)
-    if (!cdt.is_edge(vertex[a], vertex[b])) return invalid(kTouching);
+    if (!cdt.is_edge(vertex[a], vertex[b])) return invalidDomain(kTouching);
 
   markNestingLevels(cdt, [&](int a, int b) {
     return std::binary_search(chainEdges.begin(), chainEdges.end(),
@@ -143,7 +143,7 @@ Result<Faces> constrainedDelaunay(const Points2& P, const std::vector<Loop>& loo
     int i = 0;
     cdt.is_edge(vertex[edges[e].first], vertex[edges[e].second], face, i);
     if (face->info() % 2 == 0 || face->neighbor(i)->info() % 2 == 0)
-      return invalid("a crease line leaves the piece");
+      return invalidDomain("a crease line leaves the piece");
   }
   std::vector<std::array<int, 3>> inside;
   inside.reserve(cdt.number_of_faces());
@@ -160,8 +160,9 @@ Result<Faces> constrainedDelaunay(const Points2& P, const std::vector<Loop>& loo
 
 Result<ConvexHull3> convexHull3(const Points3& P) {
   const Eigen::Index n = P.rows();
-  if (!P.allFinite()) return invalid("the curve has a non-finite coordinate");
-  if (n < 4) return invalid("the curve has fewer than 4 points: its convex hull has no inside");
+  if (!P.allFinite()) return invalidDomain("the curve has a non-finite coordinate");
+  if (n < 4)
+    return invalidDomain("the curve has fewer than 4 points: its convex hull has no inside");
 
   std::vector<K::Point_3> points;
   points.reserve(n);
@@ -174,7 +175,7 @@ Result<ConvexHull3> convexHull3(const Points3& P) {
     if (!CGAL::collinear(points[0], points[second], points[third])) break;
   for (fourth = third + 1; fourth < n; ++fourth)
     if (!CGAL::coplanar(points[0], points[second], points[third], points[fourth])) break;
-  const Status planar = invalid("the curve is planar: its convex hull has no inside");
+  const Status planar = invalidDomain("the curve is planar: its convex hull has no inside");
   if (fourth >= n) return planar;
 
   std::vector<K::Point_3> hullPoints;

@@ -25,7 +25,7 @@ namespace {
 
 using namespace dform;
 
-struct Case {
+struct ScaleCase {
   bool forward;
   int resolution;
 };
@@ -36,7 +36,7 @@ struct Measured {
 };
 
 // Runs the case in this process and writes "vertices solve run L_error L_max" to fd.
-void runCase(const Case& c, int fd) {
+void runCase(const ScaleCase& c, int fd) {
   MessageSink sink;
   long vertices = 0;
   double solve = 0, run = 0, lError = 0, lMax = 0;
@@ -64,7 +64,7 @@ void runCase(const Case& c, int fd) {
   if (write(fd, line, std::size_t(n)) != n) _exit(1);
 }
 
-bool measure(const Case& c, Measured& out) {
+bool measure(const ScaleCase& c, Measured& out) {
   int fds[2];
   if (pipe(fds) != 0) return false;
   const auto start = std::chrono::steady_clock::now();
@@ -92,7 +92,7 @@ bool measure(const Case& c, Measured& out) {
 }
 
 // Two panels, seconds and MB against thousands of vertices, forward and inverse series.
-bool writeScalePlot(const std::string& path, const std::vector<Case>& cases,
+bool writeScalePlot(const std::string& path, const std::vector<ScaleCase>& cases,
                     const std::vector<Measured>& rows) {
   double maxV = 0, maxT = 20, maxM = 0;
   for (const Measured& m : rows)
@@ -123,14 +123,14 @@ bool writeScalePlot(const std::string& path, const std::vector<Case>& cases,
 int runScale(int repeats, const std::string& plotPath) {
   // Resolutions for about 1k, 10k, 50k and 100k vertices (both pieces): the ellipses give
   // 0.17 n^2 vertices, the saddle 0.17 n^2 too.
-  const std::vector<Case> cases = {{true, 75},  {true, 240},  {true, 530},  {true, 750},
-                                   {false, 75}, {false, 240}, {false, 540}, {false, 760}};
+  const std::vector<ScaleCase> cases = {{true, 75},  {true, 240},  {true, 530},  {true, 750},
+                                        {false, 75}, {false, 240}, {false, 540}, {false, 760}};
   std::printf(
       "| run | resolution | vertices | solve s | run s | process wall s | peak MB | L_error %% | "
       "L_max %% |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|\n");
   std::vector<Measured> rows;
-  for (const Case& c : cases) {
+  for (const ScaleCase& c : cases) {
     std::vector<double> solve, run, wall, peak;
     Measured m;
     for (int r = 0; r < repeats; ++r) {

@@ -21,16 +21,16 @@ using test::readText;
 using test::writeText;
 
 // A fresh folder for one test, with a "victim" file another user cares about.
-struct Folder {
+struct LockFolder {
   fs::path dir, victim;
-  explicit Folder(const std::string& name)
+  explicit LockFolder(const std::string& name)
       : dir(fs::temp_directory_path() / ("dform_lock_" + name + "_" + std::to_string(::getpid()))),
         victim(dir / "victim.txt") {
     fs::remove_all(dir);
     fs::create_directories(dir);
     writeText(victim, "someone's thesis\n");
   }
-  ~Folder() { fs::remove_all(dir); }
+  ~LockFolder() { fs::remove_all(dir); }
 };
 
 void expectOneLine(const Status& s, const std::string& mention) {
@@ -40,7 +40,7 @@ void expectOneLine(const Status& s, const std::string& mention) {
 }
 
 TEST(LockFile, ASymbolicLinkAtTheLockPathIsRefusedAndItsTargetLeftAlone) {
-  Folder f("link");
+  LockFolder f("link");
   const fs::path lock = f.dir / ".out.dform-lock";
   fs::create_symlink(f.victim, lock);
   for (const bool exclusive : {true, false}) {
@@ -62,7 +62,7 @@ TEST(LockFile, ASymbolicLinkAtTheLockPathIsRefusedAndItsTargetLeftAlone) {
 }
 
 TEST(LockFile, AFileItDidNotCreateIsNeverWritten) {
-  Folder f("foreign");
+  LockFolder f("foreign");
   const fs::path lock = f.dir / ".out.dform-lock";
   // Another name of the victim (a hard link), as a stale lock file would stand there.
   fs::create_hard_link(f.victim, lock);
@@ -87,7 +87,7 @@ TEST(LockFile, AFileItDidNotCreateIsNeverWritten) {
 }
 
 TEST(LockFile, SomethingThatIsNotAFileAtTheLockPathIsRefused) {
-  Folder f("fifo");
+  LockFolder f("fifo");
   const fs::path lock = f.dir / ".out.dform-lock";
   ASSERT_EQ(::mkfifo(lock.c_str(), 0644), 0);  // a FIFO would block a plain open
   LockFile held;
@@ -98,7 +98,7 @@ TEST(LockFile, SomethingThatIsNotAFileAtTheLockPathIsRefused) {
 }
 
 TEST(LockFile, ASecondHolderIsToldWhichProcessHoldsIt) {
-  Folder f("busy");
+  LockFolder f("busy");
   const fs::path lock = f.dir / ".out.dform-lock";
   LockFile first, second, reader;
   ASSERT_TRUE(first.acquire(lock.string(), true, "out").isOk());
@@ -115,7 +115,7 @@ TEST(LockFile, ASecondHolderIsToldWhichProcessHoldsIt) {
 }
 
 TEST(LockFile, ARunInsideAFolderAnotherRunReplacesIsRefused) {
-  Folder f("enclosing");
+  LockFolder f("enclosing");
   fs::create_directories(f.dir / "W" / "deeper");
   EXPECT_TRUE(checkNoEnclosingRun((f.dir / "W" / "mine").string(), "W/mine").isOk());
   LockFile sweep;
@@ -132,7 +132,7 @@ TEST(LockFile, ARunInsideAFolderAnotherRunReplacesIsRefused) {
 }
 
 TEST(AtomicFile, ALinkAtTheTemporaryPathIsRefusedAndItsTargetLeftAlone) {
-  Folder f("atomic");
+  LockFolder f("atomic");
   const fs::path out = f.dir / "batch.json";
   const fs::path temporary = f.dir / ("batch.json.tmp." + std::to_string(::getpid()));
   fs::create_symlink(f.victim, temporary);

@@ -26,7 +26,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 // The bar: printed or cut dimensions within 0.1 mm of the solved ones.
-constexpr double kMmTol = 0.1;
 
 ClipperLib::Path clip(const Polyline& p) {
   ClipperLib::Path out;

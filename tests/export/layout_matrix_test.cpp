@@ -140,12 +140,12 @@ Counts measure(const fab::PatternBuild& built, const ExportOptions& o,
   return counts;
 }
 
-struct Paper {
+struct PaperSize {
   std::string page;  // a page profile's --page, or empty
   double w = 0, h = 0;
 };
 
-std::vector<Paper> papersFor(const Profile& profile) {
+std::vector<PaperSize> papersFor(const Profile& profile) {
   if (!profile.page.empty()) return {{"A4"}, {"Letter"}, {"A3"}};
   return {{"", 600, 400}, {"", 300, 200}};
 }
@@ -164,7 +164,7 @@ TEST_P(SampleMatrix, TitleCostsNoPageAndEveryCutPageHasTheBarTheNameAndClearNumb
   for (const std::string& profileName : listProfiles(DFORM_TEMPLATES_DIR)) {
     const Result<Profile> profile = loadProfile(profileName, DFORM_TEMPLATES_DIR);
     ASSERT_TRUE(profile.isOk());
-    for (const Paper& paper : papersFor(profile.value()))
+    for (const PaperSize& paper : papersFor(profile.value()))
       for (Joint joint : {Joint::Glue, Joint::Holes, Joint::Lace, Joint::Slots}) {
         Counts byTitle[2];
         for (bool title : {true, false}) {

@@ -18,7 +18,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-ExportOptions options() {
+ExportOptions meshOptions() {
   ExportOptions o;
   o.templatesDir = DFORM_TEMPLATES_DIR;
   o.jobName = "mesh-test";
@@ -41,7 +41,7 @@ T get(const std::string& s, size_t at) {
 
 TEST(ExportMesh, StlHasEveryTriangleOutwardInMillimetres) {
   const DForm model = ellipseCircleDForm();
-  const std::string stl = readText(exportModel("stl", model, options()) + "/dform.stl");
+  const std::string stl = readText(exportModel("stl", model, meshOptions()) + "/dform.stl");
   const uint32_t n = get<uint32_t>(stl, 80);
   EXPECT_EQ(n, uint32_t(model.a.F.rows() + model.b.F.rows()));
   EXPECT_EQ(stl.size(), 84 + 50 * size_t(n));
@@ -74,7 +74,7 @@ TEST(ExportMesh, StlHasEveryTriangleOutwardInMillimetres) {
 
 TEST(ExportMesh, GltfHasBothPiecesTheSeamAndMetresYUp) {
   const DForm model = ellipseCircleDForm();
-  ExportOptions o = options();
+  ExportOptions o = meshOptions();
   o.curvatureA = fakeCurvature(model.a);
   o.curvatureB = fakeCurvature(model.b);
   const std::string dir = exportModel("gltf", model, o);
@@ -133,7 +133,7 @@ void colourByCurvatureMap(const DForm& model, ExportOptions& o) {
 TEST(ExportMesh, PiecesHaveTheirOwnColourAndTheCurvatureMapTheReportsScale) {
   const DForm model = ellipseCircleDForm();
   for (bool curvature : {false, true}) {
-    ExportOptions o = options();
+    ExportOptions o = meshOptions();
     if (curvature) colourByCurvatureMap(model, o);
     const std::string dir = exportModel(curvature ? "colours-map" : "colours", model, o);
     tinygltf::Model m;
@@ -156,13 +156,13 @@ TEST(ExportMesh, PiecesHaveTheirOwnColourAndTheCurvatureMapTheReportsScale) {
 
 TEST(ExportMesh, GlbPassesTheKhronosValidator) {
   const DForm model = ellipseCircleDForm();
-  ExportOptions o = options();
+  ExportOptions o = meshOptions();
   colourByCurvatureMap(model, o);
   validate(exportModel("validate-glb", model, o) + "/dform.glb", int(2 * model.a.F.rows()));
 }
 
 TEST(ExportMesh, TextGltfPassesTheKhronosValidator) {
-  ExportOptions o = options();
+  ExportOptions o = meshOptions();
   o.gltfBinary = false;
   const DForm model = ellipseCircleDForm();
   colourByCurvatureMap(model, o);
@@ -171,7 +171,7 @@ TEST(ExportMesh, TextGltfPassesTheKhronosValidator) {
 
 TEST(ExportMesh, CurvatureOfTheWrongSizeIsAUsageError) {
   const DForm model = ellipseCircleDForm();
-  ExportOptions o = options();
+  ExportOptions o = meshOptions();
   o.curvatureA = {1.0, 2.0};
   o.curvatureB = fakeCurvature(model.b);
   auto r = exportAll(model, o, freshDir("bad-curvature"));

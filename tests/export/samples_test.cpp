@@ -30,8 +30,6 @@ namespace fs = std::filesystem;
 using fab::Box;
 using nlohmann::json;
 
-constexpr double kMmTol = 0.1;  // the bar for cut and printed lengths
-
 std::string dform() { return DFORM_EXE; }
 
 json readJson(const std::string& path) { return json::parse(std::ifstream(path)); }

@@ -15,6 +15,9 @@
 
 namespace dform::test {
 
+/// The bar for cut and printed lengths, mm.
+inline constexpr double kMmTol = 0.1;
+
 using Vec2 = Eigen::Vector2d;
 using Polyline = std::vector<Vec2>;
 

@@ -23,7 +23,6 @@ namespace {
 using nlohmann::json;
 
 // The bar: printed or cut dimensions within 0.1 mm of the solved ones.
-constexpr double kMmTol = 0.1;
 
 double area(const Polyline& p) {
   Points2 P(Eigen::Index(p.size()), 2);

@@ -21,7 +21,7 @@ std::string page(const std::string& body) {
 
 const char* kSquare = "<rect x='10' y='10' width='80' height='80'/>";  // page frame: 10..90
 
-Shape2 readOk(const std::string& path) {
+Shape2 readCreasedOk(const std::string& path) {
   Result<Shape2> shape = readOutline(path);
   EXPECT_TRUE(shape.isOk()) << shape.status().message();
   return shape.isOk() ? shape.value() : Shape2{};
@@ -35,7 +35,7 @@ TEST(CreaseReader, ClassMarksACreaseAndItsEndsStayOnTheOutline) {
   test::ScratchDir dir;
   const std::string path = dir.write(
       "a.svg", page(std::string(kSquare) + "<path class='fold crease' d='M 10 50 L 90 50'/>"));
-  const Shape2 shape = readOk(path);
+  const Shape2 shape = readCreasedOk(path);
   ASSERT_EQ(shape.creases.size(), 1u);
   EXPECT_EQ(shape.creases[0].points.rows(), 2);
   EXPECT_NEAR((end(shape.creases[0], false) - Eigen::RowVector2d(10, 50)).norm(), 0.0, 1e-12);
@@ -51,7 +51,7 @@ TEST(CreaseReader, InkscapeLayerLabelledCreasesHoldsCurvedCreases) {
   const std::string body = std::string(kSquare) +
                            "<g inkscape:groupmode='layer' inkscape:label='Creases'>"
                            "<path d='M 50 10 A 40 40 0 0 1 10 50'/></g>";
-  const Shape2 shape = readOk(dir.write("a.svg", page(body)));
+  const Shape2 shape = readCreasedOk(dir.write("a.svg", page(body)));
   ASSERT_EQ(shape.creases.size(), 1u);
   EXPECT_GT(shape.creases[0].points.rows(), 10);  // flattened
   EXPECT_NEAR(openLength(shape.creases[0].points), 0.5 * M_PI * 40.0, 0.05);
@@ -72,7 +72,7 @@ TEST(CreaseReader, LineDrawnAcrossTheOutlineIsClippedToThePiece) {
   const std::string path = dir.write(
       "a.svg",
       page(std::string(kSquare) + "<line class='crease' x1='0' y1='30' x2='100' y2='70'/>"));
-  const Shape2 shape = readOk(path);
+  const Shape2 shape = readCreasedOk(path);
   ASSERT_EQ(shape.creases.size(), 1u);
   // y' = 70 - 0.4 x crosses x = 10 at y' = 66 and x = 90 at y' = 34.
   EXPECT_NEAR((end(shape.creases[0], false) - Eigen::RowVector2d(10, 66)).norm(), 0.0, 1e-9);
@@ -84,7 +84,7 @@ TEST(CreaseReader, EndsShortOfTheOutlineBySubMillimetreSnapOntoIt) {
   const std::string path = dir.write(
       "a.svg",
       page(std::string(kSquare) + "<line class='crease' x1='10.6' y1='50' x2='89.3' y2='50'/>"));
-  const Shape2 shape = readOk(path);
+  const Shape2 shape = readCreasedOk(path);
   ASSERT_EQ(shape.creases.size(), 1u);
   EXPECT_NEAR((end(shape.creases[0], false) - Eigen::RowVector2d(10, 50)).norm(), 0.0, 1e-12);
   EXPECT_NEAR((end(shape.creases[0], true) - Eigen::RowVector2d(90, 50)).norm(), 0.0, 1e-12);
@@ -94,7 +94,7 @@ TEST(CreaseReader, ACreaseAcrossAHoleBecomesTwoCreases) {
   test::ScratchDir dir;
   const std::string body = std::string(kSquare) + "<circle cx='50' cy='50' r='15'/>" +
                            "<line class='crease' x1='10' y1='50' x2='90' y2='50'/>";
-  const Shape2 shape = readOk(dir.write("a.svg", page(body)));
+  const Shape2 shape = readCreasedOk(dir.write("a.svg", page(body)));
   ASSERT_EQ(shape.holes.size(), 1u);
   ASSERT_EQ(shape.creases.size(), 2u);
   // Each part runs from the outline to the hole: 25 mm long, within the flattening tolerance.
@@ -109,7 +109,7 @@ TEST(CreaseReader, JsonCreasesInTheirUnits) {
   const std::string path = dir.write(
       "a.json",
       R"({"units": "cm", "points": [[0,0],[8,0],[8,8],[0,8]], "creases": [[[0,0],[8,8]]]})");
-  const Shape2 shape = readOk(path);
+  const Shape2 shape = readCreasedOk(path);
   ASSERT_EQ(shape.creases.size(), 1u);
   EXPECT_NEAR(openLength(shape.creases[0].points), 80.0 * std::sqrt(2.0), 1e-9);
 }
@@ -119,7 +119,7 @@ TEST(CreaseReader, CreasesMayShareAnEndOnTheBoundary) {
   const std::string body = std::string(kSquare) +
                            "<g class='crease'><line x1='10' y1='10' x2='90' y2='50'/>"
                            "<line x1='10' y1='90' x2='90' y2='50'/></g>";
-  EXPECT_EQ(readOk(dir.write("a.svg", page(body))).creases.size(), 2u);
+  EXPECT_EQ(readCreasedOk(dir.write("a.svg", page(body))).creases.size(), 2u);
 }
 
 TEST(CreaseReader, BadCreasesAreNamedErrors) {

@@ -11,10 +11,10 @@
 #include <string>
 #include <utility>
 
+#include "dform/core/constants.h"
+
 namespace dform {
 namespace {
-
-const double kPi = std::acos(-1.0);
 
 // Closed 2-manifold with outward faces, Euler characteristic 2; returns the enclosed volume.
 double checkClosedOutward(const ConvexHull3& hull, const Points3& P) {

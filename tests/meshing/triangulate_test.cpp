@@ -13,12 +13,11 @@
 #include <string>
 #include <utility>
 
+#include "dform/core/constants.h"
 #include "dform/core/polyline.h"
 
 namespace dform {
 namespace {
-
-const double kPi = std::acos(-1.0);
 
 // A closed outline sampled densely from a polar or parametric function, then resampled uniformly.
 template <typename Curve>

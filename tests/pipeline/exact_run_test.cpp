@@ -11,25 +11,23 @@
 #include "dform/pipeline/forward_pipeline.h"
 #include "dform/validate/gate.h"
 #include "pipeline/reference_seams.h"
+#include "shipped_samples.h"
 
 namespace dform {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string sample(const std::string& name) {
-  return std::string(DFORM_SAMPLES_DIR) + "/forward/" + name;
-}
-
 Result<ForwardRun> run(const ForwardJob& job) {
   MessageSink sink;
   return runForward(job, sink);
 }
 
-ForwardJob job(const std::string& a, const std::string& b, ModelChoice model = ModelChoice::Auto) {
+ForwardJob exactJob(const std::string& a, const std::string& b,
+                    ModelChoice model = ModelChoice::Auto) {
   ForwardJob j;
-  j.pieceA = sample(a);
-  j.pieceB = sample(b);
+  j.pieceA = test::forwardSample(a);
+  j.pieceB = test::forwardSample(b);
   j.model = model;
   return j;
 }
@@ -79,7 +77,7 @@ TEST(ExactRun, TheSeamStartsWhereThePathWasDrawnInEitherDirection) {
 }
 
 TEST(ExactRun, AutoTakesTheExactModelForConvexPiecesAndThePaperModelIsMeasuredAgainstIt) {
-  Result<ForwardRun> exact = run(job("ellipses-a.svg", "ellipses-b.svg"));
+  Result<ForwardRun> exact = run(exactJob("ellipses-a.svg", "ellipses-b.svg"));
   ASSERT_TRUE(exact.isOk()) << exact.status().message();
   EXPECT_EQ(exact.value().modelUsed.name, "exact");
   const Metrics& e = exact.value().metrics;
@@ -90,7 +88,7 @@ TEST(ExactRun, AutoTakesTheExactModelForConvexPiecesAndThePaperModelIsMeasuredAg
   EXPECT_NEAR(e.seamLengthAMm, exact.value().perimeterA, 2e-3 * exact.value().perimeterA);
   EXPECT_LT(exact.value().modelUsed.chordMoveMm, 0.01);
 
-  Result<ForwardRun> paper = run(job("ellipses-a.svg", "ellipses-b.svg", ModelChoice::Paper));
+  Result<ForwardRun> paper = run(exactJob("ellipses-a.svg", "ellipses-b.svg", ModelChoice::Paper));
   ASSERT_TRUE(paper.isOk()) << paper.status().message();
   EXPECT_EQ(paper.value().modelUsed.name, "paper");
   const Metrics& p = paper.value().metrics;
@@ -109,7 +107,7 @@ TEST(ExactRun, TheGeneralEngineConvergesToTheExactBodyOnAConvexPair) {
   // strain well below the paper model's, and its seam several times closer to the exact body's
   // (measured at n = 40: 4.2e-5 of the diagonal RMS against the paper model's 5.1e-4; a sheet 100
   // times softer, k = 1e7, stays 1.7e-4 away).
-  ForwardJob j = job("ellipses-a.svg", "ellipses-b.svg", ModelChoice::General);
+  ForwardJob j = exactJob("ellipses-a.svg", "ellipses-b.svg", ModelChoice::General);
   j.resolution = 40;
   Result<ForwardRun> general = run(j);
   ASSERT_TRUE(general.isOk()) << general.status().message();
@@ -128,7 +126,7 @@ TEST(ExactRun, TheGeneralEngineConvergesToTheExactBodyOnAConvexPair) {
 }
 
 TEST(ExactRun, TheCircleAndTheSquareCreaseBetweenTheSquaresCorners) {
-  Result<ForwardRun> r = run(job("circle.svg", "square.svg"));
+  Result<ForwardRun> r = run(exactJob("circle.svg", "square.svg"));
   ASSERT_TRUE(r.isOk()) << r.status().message();
   const ModelUsed& used = r.value().modelUsed;
   ASSERT_EQ(used.name, "exact");
@@ -148,7 +146,7 @@ TEST(ExactRun, TheCircleAndTheSquareCreaseBetweenTheSquaresCorners) {
 // Non-convex pieces: the exact model refuses them naming the seam point; auto's answer is the
 // ruled engine's (the paper model's shape made exact, RuledRun).
 TEST(ExactRun, NonConvexPiecesGoPastTheExactModelNamingTheSeamPoint) {
-  Result<ForwardRun> r = run(job("nonconvex-a.svg", "nonconvex-b.svg"));
+  Result<ForwardRun> r = run(exactJob("nonconvex-a.svg", "nonconvex-b.svg"));
   ASSERT_TRUE(r.isOk()) << r.status().message();
   EXPECT_EQ(r.value().modelUsed.name, "ruled");
   EXPECT_NE(r.value().modelUsed.reason.find("seam point"), std::string::npos)
@@ -158,14 +156,14 @@ TEST(ExactRun, NonConvexPiecesGoPastTheExactModelNamingTheSeamPoint) {
   EXPECT_TRUE(std::isnan(r.value().metrics.exactDistanceRmsRel));
   EXPECT_FALSE(r.value().metrics.exactNote.empty());
 
-  ForwardJob exactOnly = job("nonconvex-a.svg", "nonconvex-b.svg", ModelChoice::Exact);
+  ForwardJob exactOnly = exactJob("nonconvex-a.svg", "nonconvex-b.svg", ModelChoice::Exact);
   Result<ForwardRun> refused = run(exactOnly);
   ASSERT_FALSE(refused.isOk());
   EXPECT_EQ(refused.status().code(), ErrorCode::InputInvalid);
 }
 
 TEST(ExactRun, AnExactModelOfAnAntiDFormIsRefusedWithTheReason) {
-  ForwardJob j = job("anti-a.svg", "anti-b.svg", ModelChoice::Exact);
+  ForwardJob j = exactJob("anti-a.svg", "anti-b.svg", ModelChoice::Exact);
   j.joinA = j.joinB = JoinedBoundary::Inner;
   Result<ForwardRun> r = run(j);
   ASSERT_FALSE(r.isOk());
@@ -174,7 +172,7 @@ TEST(ExactRun, AnExactModelOfAnAntiDFormIsRefusedWithTheReason) {
 }
 
 TEST(ExactRun, TheExactModelPassesTheStrictGateWithItsOwnFigures) {
-  Result<ForwardRun> r = run(job("ellipses-a.svg", "ellipses-b.svg"));
+  Result<ForwardRun> r = run(exactJob("ellipses-a.svg", "ellipses-b.svg"));
   ASSERT_TRUE(r.isOk());
   GateLimits strict;
   strict.lengthError = 0.0018;

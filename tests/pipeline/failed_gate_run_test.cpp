@@ -16,15 +16,14 @@
 #include "dform/pipeline/run.h"
 #include "dform/pipeline/saved_result.h"
 #include "export/internal.h"
+#include "shipped_samples.h"
 
 namespace dform {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string sample(const std::string& name) { return std::string(DFORM_SAMPLES_DIR) + "/" + name; }
-
-std::string text(const fs::path& path) {
+std::string fileText(const fs::path& path) {
   std::ostringstream s;
   s << std::ifstream(path, std::ios::binary).rdbuf();
   return s.str();
@@ -49,8 +48,8 @@ class FailedGateRun : public testing::Test {
     dir_ = fs::temp_directory_path() / ("dform-failed-gate-run-" + std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
-    job_.pieceA = sample("forward/ellipses-a.svg");
-    job_.pieceB = sample("forward/ellipses-b.svg");
+    job_.pieceA = test::samplePath("forward/ellipses-a.svg");
+    job_.pieceB = test::samplePath("forward/ellipses-b.svg");
     job_.resolution = 30;
     ASSERT_NO_FATAL_FAILURE(solve());
   }
@@ -93,7 +92,7 @@ class FailedGateRun : public testing::Test {
     fs::create_directories(plain);
     const Result<ExportSummary> exported = exportAll(run_.model, options, plain.string());
     EXPECT_TRUE(exported.isOk()) << exported.status().message();
-    return text(plain / "pattern.svg");
+    return fileText(plain / "pattern.svg");
   }
 
   fs::path dir_;
@@ -124,9 +123,9 @@ TEST_F(FailedGateRun, AFailedLayoutIsLaidOutOnceAndStampedAsItIs) {
 
   // Written stamped, and but for the stamp the pattern an unmarked export lays out.
   const fs::path out = dir_ / "layout";
-  const std::string svg = text(out / "pattern.svg");
+  const std::string svg = fileText(out / "pattern.svg");
   EXPECT_NE(svg.find("inkscape:label=\"FailedGate\""), std::string::npos);
-  EXPECT_TRUE(nlohmann::json::parse(text(out / "pattern.json"))["failed_gate"].get<bool>());
+  EXPECT_TRUE(nlohmann::json::parse(fileText(out / "pattern.json"))["failed_gate"].get<bool>());
   const std::string plain = unmarked("layout-plain", output);
   EXPECT_EQ(plain.find("FailedGate"), std::string::npos);
   EXPECT_EQ(unstampedLines(svg), unstampedLines(plain));
@@ -142,7 +141,7 @@ TEST_F(FailedGateRun, AFailedLayoutIsLaidOutOnceAndStampedAsItIs) {
       exportSavedResult(out.string(), again, {(dir_ / "again").string()}, sink, never);
   ASSERT_TRUE(exported.isOk()) << exported.status().message();
   EXPECT_EQ(fab::patternsLaidOut() - before, 1);
-  const std::string reexported = text(dir_ / "again" / "pattern.svg");
+  const std::string reexported = fileText(dir_ / "again" / "pattern.svg");
   EXPECT_NE(reexported.find("inkscape:label=\"FailedGate\""), std::string::npos);
   EXPECT_NE(reexported.find("id=\"A-cut\""), std::string::npos);
 }
@@ -162,7 +161,7 @@ TEST_F(FailedGateRun, AFigureThatFailsStampsTheLayoutTheGateJudged) {
   EXPECT_FALSE(written.gate->passed());
   EXPECT_EQ(written.gate->find("pattern_layout")->verdict, CheckResult::Verdict::Pass);
   EXPECT_EQ(layouts, 1);
-  const std::string svg = text(dir_ / "figure" / "pattern.svg");
+  const std::string svg = fileText(dir_ / "figure" / "pattern.svg");
   EXPECT_NE(svg.find("inkscape:label=\"FailedGate\""), std::string::npos);
   EXPECT_EQ(unstampedLines(svg), unstampedLines(unmarked("figure-plain", output)));
 
@@ -171,7 +170,7 @@ TEST_F(FailedGateRun, AFigureThatFailsStampsTheLayoutTheGateJudged) {
   ASSERT_TRUE(passed.gate.has_value());
   EXPECT_TRUE(passed.gate->passed());
   EXPECT_EQ(layouts, 1);
-  EXPECT_EQ(text(dir_ / "passed" / "pattern.svg"), unmarked("passed-plain", ExportSettings{}));
+  EXPECT_EQ(fileText(dir_ / "passed" / "pattern.svg"), unmarked("passed-plain", ExportSettings{}));
 }
 
 }  // namespace

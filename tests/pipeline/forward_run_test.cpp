@@ -16,13 +16,10 @@
 #include "dform/pipeline/forward_pipeline.h"
 #include "dform/validate/gate.h"
 #include "pipeline/reference_seams.h"
+#include "shipped_samples.h"
 
 namespace dform {
 namespace {
-
-std::string sample(const std::string& name) {
-  return std::string(DFORM_SAMPLES_DIR) + "/forward/" + name;
-}
 
 ForwardRun runOk(const ForwardJob& job) {
   MessageSink sink;
@@ -34,8 +31,8 @@ ForwardRun runOk(const ForwardJob& job) {
 ForwardJob job(const std::string& a, const std::string& b, int resolution = 60,
                double startB = 0.0) {
   ForwardJob j;
-  j.pieceA = sample(a);
-  j.pieceB = sample(b);
+  j.pieceA = test::forwardSample(a);
+  j.pieceB = test::forwardSample(b);
   j.resolution = resolution;
   j.startB.fraction = startB;
   return j;

@@ -10,11 +10,10 @@
 #include "dform/io/outline_reader.h"
 #include "dform/pipeline/forward_pipeline.h"
 #include "dform/pipeline/inverse_pipeline.h"
+#include "shipped_samples.h"
 
 namespace dform {
 namespace {
-
-std::string sample(const std::string& name) { return std::string(DFORM_SAMPLES_DIR) + "/" + name; }
 
 // An ellipse with semi-axes a and b, counter-clockwise, n points.
 Shape2 ellipse(double a, double b, int n) {
@@ -29,8 +28,8 @@ Shape2 ellipse(double a, double b, int n) {
 
 TEST(InMemory, ShapesGiveTheDFormTheirFilesGive) {
   ForwardJob job;
-  job.pieceA = sample("forward/ellipses-a.svg");
-  job.pieceB = sample("forward/ellipses-b.svg");
+  job.pieceA = test::samplePath("forward/ellipses-a.svg");
+  job.pieceB = test::samplePath("forward/ellipses-b.svg");
   job.resolution = 60;
   MessageSink fileSink, memorySink;
   const Result<ForwardRun> fromFiles = runForward(job, fileSink);
@@ -76,7 +75,7 @@ TEST(InMemory, PiecesWithoutAFileAreNamedByTheirRole) {
 
 TEST(InMemory, ACurveGivesThePiecesItsFileGives) {
   InverseJob job;
-  job.curve = sample("inverse/tennis-ball.obj");
+  job.curve = test::samplePath("inverse/tennis-ball.obj");
   job.resolution = 60;
   MessageSink fileSink, memorySink;
   const Result<InverseRun> fromFile = runInverse(job, fileSink);
@@ -181,7 +180,7 @@ TEST(InMemory, AShapeReadFromAFilePassesItsCheckUnchanged) {
   // A shape with drawn creases (the Squaricle's disc) and one with a hole (the anti D-Form's).
   for (const char* name : {"forward/squaricle-disc.svg", "forward/anti-b.svg"}) {
     SCOPED_TRACE(name);
-    const Result<Shape2> read = readOutline(sample(name));
+    const Result<Shape2> read = readOutline(test::samplePath(name));
     ASSERT_TRUE(read.isOk()) << read.status().message();
     const Result<Shape2> checked = checkOutline(read.value(), name);
     ASSERT_TRUE(checked.isOk()) << checked.status().message();

@@ -15,13 +15,10 @@
 #include "dform/pipeline/inverse_pipeline.h"
 #include "dform/validate/gate.h"
 #include "pipeline/reference_seams.h"
+#include "shipped_samples.h"
 
 namespace dform {
 namespace {
-
-std::string sample(const std::string& name) {
-  return std::string(DFORM_SAMPLES_DIR) + "/inverse/" + name;
-}
 
 class InverseSamples : public ::testing::TestWithParam<const char*> {};
 
@@ -40,7 +37,7 @@ std::pair<double, double> measuredFigures(const std::string& curve) {
 
 TEST_P(InverseSamples, ReachThePapersFigures) {
   InverseJob job;
-  job.curve = sample(GetParam());
+  job.curve = test::inverseSample(GetParam());
   job.resolution = 60;
   MessageSink sink;
   const Result<InverseRun> result = runInverse(job, sink);
@@ -92,7 +89,7 @@ INSTANTIATE_TEST_SUITE_P(Samples, InverseSamples,
 TEST(InverseRun, ALongCurveIsSolvedCoarseToFineAndMeetsTheSameBars) {
   // 250 points: the pre-D-Form is built on 83 of them, the result refined to 250.
   InverseJob job;
-  job.curve = sample("saddle.obj");
+  job.curve = test::inverseSample("saddle.obj");
   job.resolution = 250;
   MessageSink sink;
   const Result<InverseRun> result = runInverse(job, sink);
@@ -211,7 +208,8 @@ void expectSameGate(const GateReport& once, const GateReport& again) {
 TEST(InverseRun, TheGateOnTheRunsFiguresIsTheGateMeasuredAgain) {
   MessageSink sink;
   InverseJob inverse;
-  inverse.curve = sample("pushed-in.obj");  // the paper model and a round trip by optimisation
+  inverse.curve =
+      test::inverseSample("pushed-in.obj");  // the paper model and a round trip by optimisation
   inverse.resolution = 40;
   const Result<InverseRun> ran = runInverse(inverse, sink);
   ASSERT_TRUE(ran.isOk()) << ran.status().message();

@@ -9,16 +9,16 @@
 #include "dform/exact/exact_gluing.h"
 #include "dform/io/outline_reader.h"
 #include "dform/pipeline/forward_pipeline.h"
+#include "shipped_samples.h"
 
 namespace dform {
 namespace {
 
 using Missing = ReferenceSeam::Missing;
 
-std::string sample(const std::string& name) { return std::string(DFORM_SAMPLES_DIR) + "/" + name; }
-
 DForm solvedPair(const std::string& a, const std::string& b, ModelChoice model) {
-  Result<Shape2> shapeA = readOutline(sample(a)), shapeB = readOutline(sample(b));
+  Result<Shape2> shapeA = readOutline(test::samplePath(a)),
+                 shapeB = readOutline(test::samplePath(b));
   EXPECT_TRUE(shapeA.isOk() && shapeB.isOk());
   ForwardSettings settings;
   settings.model = model;

@@ -10,21 +10,18 @@
 #include "dform/pipeline/job_file.h"
 #include "dform/ruled/isometric_mesh.h"
 #include "dform/validate/gate.h"
+#include "shipped_samples.h"
 
 namespace dform {
 namespace {
 
-std::string sample(const std::string& name) {
-  return std::string(DFORM_SAMPLES_DIR) + "/forward/" + name;
-}
-
-Result<ForwardRun> run(const ForwardJob& job) {
+Result<ForwardRun> runRuled(const ForwardJob& job) {
   MessageSink sink;
   return runForward(job, sink);
 }
 
 ForwardJob sampleJob(const std::string& name) {
-  Result<Job> job = readJobFile(sample(name));
+  Result<Job> job = readJobFile(test::forwardSample(name));
   EXPECT_TRUE(job.isOk()) << job.status().message();
   return std::get<ForwardJob>(job.value().run);
 }
@@ -32,8 +29,8 @@ ForwardJob sampleJob(const std::string& name) {
 // A job of two shipped outlines.
 ForwardJob pairJob(const std::string& a, const std::string& b, ModelChoice model, int resolution) {
   ForwardJob j;
-  j.pieceA = sample(a);
-  j.pieceB = sample(b);
+  j.pieceA = test::forwardSample(a);
+  j.pieceB = test::forwardSample(b);
   j.model = model;
   j.resolution = resolution;
   return j;
@@ -44,7 +41,7 @@ TEST(RuledRun, ReachesTheExactBodyFromThePaperModelsShapeOnConvexPairs) {
   // shape the ruled engine must land on it, its seam within 1e-9 of the diagonal.
   for (const auto& [a, b] :
        {std::pair{"ellipses-a.svg", "ellipses-b.svg"}, std::pair{"circle.svg", "square.svg"}}) {
-    Result<ForwardRun> r = run(pairJob(a, b, ModelChoice::Ruled, 60));
+    Result<ForwardRun> r = runRuled(pairJob(a, b, ModelChoice::Ruled, 60));
     ASSERT_TRUE(r.isOk()) << a << ": " << r.status().message();
     const ForwardRun& ruled = r.value();
     EXPECT_EQ(ruled.modelUsed.name, "ruled");
@@ -60,7 +57,7 @@ TEST(RuledRun, ReachesTheExactBodyFromThePaperModelsShapeOnConvexPairs) {
 TEST(RuledRun, TheCreasedSquaricleIsItsExactBodyFoldedAlongTheDrawnCreases) {
   // Auto: the exact model refuses drawn creases; the ruled engine keeps them as edges that fold
   // freely, and the creases lie on the body's folds, so its answer is the exact body.
-  Result<ForwardRun> r = run(sampleJob("squaricle.json"));
+  Result<ForwardRun> r = runRuled(sampleJob("squaricle.json"));
   ASSERT_TRUE(r.isOk()) << r.status().message();
   const ForwardRun& run = r.value();
   EXPECT_EQ(run.modelUsed.name, "ruled") << run.modelUsed.reason;
@@ -76,7 +73,7 @@ TEST(RuledRun, ANegativelyCurvedSeamPointIsMadeExactWithVerticesInsideThePieces)
   for (ModelChoice choice : {ModelChoice::Auto, ModelChoice::Ruled}) {
     ForwardJob j = sampleJob("nonconvex-shifted.json");
     j.model = choice;
-    Result<ForwardRun> r = run(j);
+    Result<ForwardRun> r = runRuled(j);
     ASSERT_TRUE(r.isOk()) << r.status().message();
     const ForwardRun& nonconvex = r.value();
     EXPECT_EQ(nonconvex.modelUsed.name, "ruled") << nonconvex.modelUsed.reason;
@@ -105,7 +102,7 @@ TEST(RuledRun, ANegativelyCurvedSeamPointIsMadeExactWithVerticesInsideThePieces)
 // is the exact body, and a shape made exact from the paper model's would be another one.
 TEST(RuledRun, AskedForWhereItFindsNoStateItSaysWhy) {
   Result<ForwardRun> r =
-      run(pairJob("squaricle-disc.svg", "squaricle-square.svg", ModelChoice::Ruled, 30));
+      runRuled(pairJob("squaricle-disc.svg", "squaricle-square.svg", ModelChoice::Ruled, 30));
   ASSERT_FALSE(r.isOk());
   EXPECT_EQ(r.status().code(), ErrorCode::SolveFailed);
   EXPECT_NE(r.status().message().find("the ruled model: the ruled engine found no state"),
@@ -119,7 +116,7 @@ TEST(RuledRun, AskedForWhereItFindsNoStateItSaysWhy) {
 // over, the same answer twice; too few steps is a failure that says so.
 TEST(IsometricMesh, MeetsEveryEdgeLengthAndKeepsThePattern) {
   Result<ForwardRun> paper =
-      run(pairJob("ellipses-a.svg", "ellipses-b.svg", ModelChoice::Paper, 40));
+      runRuled(pairJob("ellipses-a.svg", "ellipses-b.svg", ModelChoice::Paper, 40));
   ASSERT_TRUE(paper.isOk()) << paper.status().message();
   const DForm& start = paper.value().model;
   ASSERT_GT(paper.value().metrics.lengthErrorMax, 1e-4);  // the paper model stretches
@@ -181,7 +178,7 @@ TEST(IsometricMesh, MeetsEveryEdgeLengthAndKeepsThePattern) {
 TEST(RuledRun, GivesTheSameShapeEveryRun) {
   ForwardJob j = sampleJob("squaricle.json");
   j.resolution = 60;
-  Result<ForwardRun> first = run(j), second = run(j);
+  Result<ForwardRun> first = runRuled(j), second = runRuled(j);
   ASSERT_TRUE(first.isOk() && second.isOk());
   ASSERT_EQ(first.value().modelUsed.name, "ruled");
   EXPECT_TRUE(first.value().model.a.shape == second.value().model.a.shape);
@@ -189,7 +186,7 @@ TEST(RuledRun, GivesTheSameShapeEveryRun) {
 }
 
 TEST(RuledRun, AntiSampleMeetsEveryLengthAtAStationaryLeastBendingState) {
-  Result<ForwardRun> r = run(sampleJob("anti.json"));
+  Result<ForwardRun> r = runRuled(sampleJob("anti.json"));
   ASSERT_TRUE(r.isOk()) << r.status().message();
   const ForwardRun& anti = r.value();
   ASSERT_EQ(anti.modelUsed.name, "ruled") << anti.modelUsed.reason;

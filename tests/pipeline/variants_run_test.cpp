@@ -15,18 +15,15 @@
 #include "dform/validate/gate.h"
 #include "dform/validate/metrics.h"
 #include "pipeline/reference_seams.h"
+#include "shipped_samples.h"
 
 namespace dform {
 namespace {
 
-std::string sample(const std::string& name) {
-  return std::string(DFORM_SAMPLES_DIR) + "/forward/" + name;
-}
-
 ForwardJob variantJob(const char* a, const char* b, JoinedBoundary joinA, JoinedBoundary joinB) {
   ForwardJob job;
-  job.pieceA = sample(a);
-  job.pieceB = sample(b);
+  job.pieceA = test::forwardSample(a);
+  job.pieceB = test::forwardSample(b);
   job.joinA = joinA;
   job.joinB = joinB;
   job.weights = defaultWeights(joinA, joinB);
@@ -108,8 +105,8 @@ TEST(Variants, AntiDFormZipsTheTwoHolesAndLeavesTheOutlinesFree) {
       variantJob("anti-a.svg", "anti-b.svg", JoinedBoundary::Inner, JoinedBoundary::Inner), sink);
   expectBars(run, 0.03);
   // The holes' tightest bends: 25^2 / 50 mm at the ends of their long axes.
-  expectJoined(run.model.a, sample("anti-a.svg"), true, 12.5);
-  expectJoined(run.model.b, sample("anti-b.svg"), true, 12.5);
+  expectJoined(run.model.a, test::forwardSample("anti-a.svg"), true, 12.5);
+  expectJoined(run.model.b, test::forwardSample("anti-b.svg"), true, 12.5);
   EXPECT_TRUE(
       said(sink, "outline 502.655 mm, hole 242.211 mm; joining its hole, its outline stays free"));
   // The brims swing out of the plane: no flat washer pair.
@@ -125,9 +122,9 @@ TEST(Variants, DemiDFormZipsADiscIntoAHole) {
       variantJob("demi-disc.svg", "demi-ring.svg", JoinedBoundary::Outer, JoinedBoundary::Inner),
       sink);
   expectBars(run, 0.05);
-  expectJoined(run.model.a, sample("demi-disc.svg"), false, 43.4);
-  expectJoined(run.model.b, sample("demi-ring.svg"), true, 30.0 * 30.0 / 55.0);
-  EXPECT_TRUE(said(sink, "piece A (" + sample("demi-disc.svg") + "): outline 272.8"));
+  expectJoined(run.model.a, test::forwardSample("demi-disc.svg"), false, 43.4);
+  expectJoined(run.model.b, test::forwardSample("demi-ring.svg"), true, 30.0 * 30.0 / 55.0);
+  EXPECT_TRUE(said(sink, "piece A (" + test::forwardSample("demi-disc.svg") + "): outline 272.8"));
   // The disc is 14 % larger than the hole's area: it bulges out of the ring's plane.
   const double bulge = run.model.a.shape.col(2).maxCoeff() - run.model.a.shape.col(2).minCoeff();
   EXPECT_GT(bulge, 5.0);

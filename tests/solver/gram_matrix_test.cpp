@@ -13,7 +13,7 @@ namespace dform {
 namespace {
 
 // A random sparse matrix wide enough for several of gramMatrix's column blocks.
-Eigen::SparseMatrix<double> randomSparse(int rows, int cols, int perRow, unsigned seed) {
+Eigen::SparseMatrix<double> randomGramSparse(int rows, int cols, int perRow, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> value(-1.0, 1.0);
   std::vector<Eigen::Triplet<double>> entries;
@@ -30,7 +30,7 @@ TEST(GramMatrix, IsEigensProductBitForBit) {
   // be the same sum in the same order, the pattern the same, whatever the number of blocks.
   for (const int cols : {7, 131072, 300001}) {
     SCOPED_TRACE(cols);
-    const Eigen::SparseMatrix<double> M = randomSparse(120000, cols, 4, unsigned(cols));
+    const Eigen::SparseMatrix<double> M = randomGramSparse(120000, cols, 4, unsigned(cols));
     Eigen::SparseMatrix<double> expected(M.transpose() * M);
     expected.makeCompressed();
     const Eigen::SparseMatrix<double> gram = gramMatrix(M);
@@ -47,7 +47,7 @@ TEST(GramMatrix, IsEigensProductBitForBit) {
 }
 
 TEST(GramMatrix, AStopRequestedThrowsInterrupted) {
-  const Eigen::SparseMatrix<double> M = randomSparse(1000, 300001, 2, 1);
+  const Eigen::SparseMatrix<double> M = randomGramSparse(1000, 300001, 2, 1);
   interruptFlag() = true;
   EXPECT_THROW(gramMatrix(M), Interrupted);
   interruptFlag() = false;
