@@ -115,6 +115,17 @@ TEST(ConvexHull3, PlanarAndDegenerateCurvesAreInvalid) {
   }
   expectPlanar(flat, "the curve is planar: its convex hull has no inside");
   expectPlanar(tilted, "the curve is planar");
+  // The same, its angles rounded through long double: a sliver on which CGAL's quickhull with
+  // inexact constructions failed an assertion (and wrote out of bounds where CGAL's checks are
+  // off).
+  Points3 sliver(n, 3);
+  for (int i = 0; i < n; ++i) {
+    const double t = double(2.0L * EIGEN_PI * i / n);
+    sliver.row(i) =
+        (Eigen::Vector3d(7, -3, 11) + 30 * std::cos(t) * u + 20 * std::sin(t) * v).transpose();
+  }
+  ASSERT_NE(sliver, tilted);
+  expectPlanar(sliver, "the curve is planar");
   expectPlanar(line, "the curve is planar");
   expectPlanar(Points3::Zero(10, 3), "the curve is planar");
   expectPlanar(Points3::Identity(3, 3), "fewer than 4 points");
