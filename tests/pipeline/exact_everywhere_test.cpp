@@ -104,6 +104,24 @@ TEST(ExactEverywhere, CasesTheSweepsFound) {
     c.resolution = 1000;
     cases.push_back(c);
   }
+  // The full sweep at n = 1000: 4 degenerate triangles on the superellipses, a mesh vertex off
+  // the body (an edge 0.017 % long) on the rounded squares of radii 40 and 8.
+  for (double startB : {0.1, 0.4}) {
+    Case c;
+    c.family = family("superellipses 3 + 2.5:1.2");
+    c.resolution = 1000;
+    c.startB = startB;
+    c.flip = startB > 0.2;
+    cases.push_back(c);
+  }
+  for (double startB : {0.3, 0.8}) {
+    Case c;
+    c.family = family("rounded squares, radii 40 and 8");
+    c.decimals = startB > 0.5 ? 3 : kExact;
+    c.resolution = 1000;
+    c.startB = startB;
+    cases.push_back(c);
+  }
   const std::vector<std::string> failures = convex::sweep(cases);
   for (const std::string& failure : failures) ADD_FAILURE() << failure;
 }
