@@ -16,6 +16,7 @@
 #include "dform/core/interrupt.h"
 #include "dform/exact/exact_gluing.h"
 #include "dform/ruled/ruled_surface.h"
+#include "pattern_ldlt.h"
 
 namespace dform::ruled {
 namespace {
@@ -162,15 +163,9 @@ class Solver {
     J.setFromTriplets(entries.begin(), entries.end());
     Eigen::SparseMatrix<double> normal = J * J.transpose();
     for (Eigen::Index k = 0; k < normal.rows(); ++k) normal.coeffRef(k, k) += kRegularisation;
-    // Every step's normal matrix has the first one's pattern (the same edges and unknowns): its
-    // ordering and symbolic factorisation are computed once.
-    if (!analysed_) {
-      factor_.analyzePattern(normal);
-      analysed_ = true;
-    }
-    factor_.factorize(normal);
-    if (factor_.info() != Eigen::Success) return -1;
-    const Eigen::VectorXd delta = -(J.transpose() * factor_.solve(r));
+    // Every step's normal matrix has the first one's pattern (the same edges and unknowns).
+    if (!factor_.factorize(normal)) return -1;
+    const Eigen::VectorXd delta = -(J.transpose() * factor_.solver().solve(r));
     const double before = r.squaredNorm();
     const Eigen::MatrixX3d X = X_;
     const Points2 flat[2] = {*flat_[0], *flat_[1]};
@@ -206,8 +201,7 @@ class Solver {
   std::vector<MeshEdge> edges_;
   Points2* flat_[2];
   Eigen::MatrixX3d X_;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factor_;
-  bool analysed_ = false;
+  PatternLDLT factor_;
 };
 
 // The bending energy over the interior edges of both pieces, with the flat areas as rest, and the

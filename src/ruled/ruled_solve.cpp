@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "pattern_ldlt.h"
+
 namespace dform::ruled {
 
 namespace {
@@ -100,12 +102,12 @@ Points3 moved(const Points3& Y, const Eigen::VectorXd& step, double t) {
 // which the energy's own rounding decides its direction, so that a flat sheet, whose gradient
 // is rounding, counts as stationary).
 double stationarity(const Eigen::VectorXd& g, const SparseMatrix& J, double floor,
-                    Eigen::VectorXd* multipliers = nullptr) {
+                    PatternLDLT& ldlt, Eigen::VectorXd* multipliers = nullptr) {
   SparseMatrix JJt = J * J.transpose();
   // Flat hinges make J J^T singular; 1e-14 of its unit diagonal only picks one solution.
   for (Eigen::Index k = 0; k < JJt.rows(); ++k) JJt.coeffRef(k, k) += 1e-14;
-  const Eigen::SimplicialLDLT<SparseMatrix> solver(JJt);
-  const Eigen::VectorXd lambda = solver.solve(-(J * g));
+  ldlt.factorize(JJt);
+  const Eigen::VectorXd lambda = ldlt.solver().solve(-(J * g));
   if (multipliers) *multipliers = lambda;
   const double size = g.lpNorm<Eigen::Infinity>() + floor;
   if (!(size > 0.0)) return 0.0;
@@ -133,17 +135,16 @@ void addConstraintCurvature(const Scaled& s, const Points3& Y, const Eigen::Vect
   }
 }
 
-// Levenberg-Marquardt in the solve's units; returns the iterations taken.
-int levenbergMarquardt(const Scaled& s, Points3& Y, const SolveOptions& options, bool& converged,
-                       std::string& message) {
+// Levenberg-Marquardt in the solve's units, factorising J J^T + mu I with `ldlt`; returns the
+// iterations taken.
+int levenbergMarquardt(const Scaled& s, Points3& Y, const SolveOptions& options, PatternLDLT& ldlt,
+                       bool& converged, std::string& message) {
   Eigen::VectorXd r = s.residual(Y);
   double cost = 0.5 * r.squaredNorm();
   // Nielsen's damping update (Madsen, Nielsen and Tingleff, "Methods for non-linear least
   // squares problems", 2004), starting at 1e-3 of J J^T's diagonal (whose entries are 2: each row
   // of J holds two unit vectors).
   double mu = options.initialDamping, growth = 2.0;
-  Eigen::SimplicialLDLT<SparseMatrix> solver;
-  bool analysed = false;
   int iteration = 0;
   for (; iteration < options.maxIterations; ++iteration) {
     if (r.lpNorm<Eigen::Infinity>() <= options.lengthTolerance) {
@@ -153,16 +154,11 @@ int levenbergMarquardt(const Scaled& s, Points3& Y, const SolveOptions& options,
     const SparseMatrix J = s.jacobian(Y);
     SparseMatrix A = J * J.transpose();
     for (Eigen::Index k = 0; k < A.rows(); ++k) A.coeffRef(k, k) += mu;
-    if (!analysed) {
-      solver.analyzePattern(A);
-      analysed = true;
-    }
-    solver.factorize(A);
-    if (solver.info() != Eigen::Success) {
+    if (!ldlt.factorize(A)) {
       message = "the lengths' normal equations could not be factorised";
       return iteration;
     }
-    const Eigen::VectorXd dx = -(J.transpose() * solver.solve(r));
+    const Eigen::VectorXd dx = -(J.transpose() * ldlt.solver().solve(r));
     const Points3 trial = moved(Y, dx, 1.0);
     const Eigen::VectorXd rTrial = s.residual(trial);
     const double costTrial = 0.5 * rTrial.squaredNorm();
@@ -197,7 +193,8 @@ SolveSummary solveLengths(RuledSurface& surface, const SolveOptions& options,
   SolveSummary summary;
   Scaled s(surface, lengths);
   Points3 Y = s.Y;
-  summary.iterations = levenbergMarquardt(s, Y, options, summary.converged, summary.message);
+  PatternLDLT ldlt;
+  summary.iterations = levenbergMarquardt(s, Y, options, ldlt, summary.converged, summary.message);
   surface.X = Y * s.scale;
   summary.maxLengthError = (s.residual(Y).array().abs() / s.lengths.array()).maxCoeff();
   summary.bendingEnergy = s.bending(Y);
@@ -230,9 +227,12 @@ SolveSummary minimiseBending(RuledSurface& surface, const SolveOptions& options,
   SolveOptions restore = options;
   restore.maxIterations = 20;
   restore.initialDamping = 1e-10;
+  // J J^T (the multipliers, the steps back onto the lengths) and the KKT matrix each keep one
+  // pattern through the run.
+  PatternLDLT lengthsLDLT, kkt;
   for (summary.iterations = 0; summary.iterations < options.maxIterations; ++summary.iterations) {
     const SparseMatrix J = s.jacobian(Y);
-    summary.stationarity = stationarity(g, J, gradientFloor, &lambda);
+    summary.stationarity = stationarity(g, J, gradientFloor, lengthsLDLT, &lambda);
     // Stationary, or flat: every fold below 1e-10 rad leaves nothing to lower (the energy's
     // minimum, 0, to rounding of the angles).
     const bool flat = energy <= 1e-20 * gradientFloor / 2e-8;
@@ -251,7 +251,6 @@ SolveSummary minimiseBending(RuledSurface& surface, const SolveOptions& options,
         base.emplace_back(n + it.row(), it.col(), it.value());
         base.emplace_back(it.col(), n + it.row(), it.value());
       }
-    Eigen::SimplicialLDLT<SparseMatrix> solver;
     SparseMatrix exactRows(n + m, n + m);
     bool factorised = false;
     for (int attempt = 0; attempt < 40 && !factorised; ++attempt) {
@@ -261,8 +260,7 @@ SolveSummary minimiseBending(RuledSurface& surface, const SolveOptions& options,
       for (Eigen::Index e = 0; e < m; ++e) entries.emplace_back(n + e, n + e, -gamma);
       SparseMatrix K(n + m, n + m);
       K.setFromTriplets(entries.begin(), entries.end());
-      solver.compute(K);
-      factorised = solver.info() == Eigen::Success && (solver.vectorD().array() < 0.0).count() == m;
+      factorised = kkt.factorize(K) && (kkt.solver().vectorD().array() < 0.0).count() == m;
       if (!factorised) delta = std::max(1e-8, 10.0 * delta);
     }
     if (!factorised) {
@@ -271,9 +269,9 @@ SolveSummary minimiseBending(RuledSurface& surface, const SolveOptions& options,
     }
     Eigen::VectorXd rhs(n + m);
     rhs << -g, -s.residual(Y);
-    Eigen::VectorXd step = solver.solve(rhs);
+    Eigen::VectorXd step = kkt.solver().solve(rhs);
     for (int refinement = 0; refinement < 3; ++refinement)
-      step += solver.solve(rhs - exactRows * step);
+      step += kkt.solver().solve(rhs - exactRows * step);
     // The step along the constraints, then back onto them (the lengths are met to the
     // tolerance at every accepted state): a lower energy there is accepted.
     bool accepted = false;
@@ -281,7 +279,7 @@ SolveSummary minimiseBending(RuledSurface& surface, const SolveOptions& options,
       Points3 trial = moved(Y, step.head(n), t);
       bool feasible = false;
       std::string unused;
-      levenbergMarquardt(s, trial, restore, feasible, unused);
+      levenbergMarquardt(s, trial, restore, lengthsLDLT, feasible, unused);
       if (!feasible) continue;
       const double trialEnergy = s.bending(trial);
       if (trialEnergy < energy) {
