@@ -150,6 +150,14 @@ Status solveRuledModel(const ForwardSettings& job, const SeamLayout& layout, Sol
     sink.warning(
         "the sheet can also sit another way: from " + solved.states[s].start +
         format(", bending energy %.6g (report.json model.states)", solved.states[s].bendingEnergy));
+  run.otherStates.clear();
+  for (std::size_t s = 1; s < solved.states.size(); ++s) {
+    ModelUsed unused;
+    Result<DForm> other =
+        ruledDForm(solved.states[s].surface,
+                   job.interiorEdgeFactor * run.perimeterA / job.resolution, layout.paths, unused);
+    run.otherStates.push_back(other.isOk() ? std::move(other).value() : DForm{});
+  }
   run.model = std::move(meshed).value();
   run.modelUsed = std::move(used);
   return Status::ok();

@@ -283,6 +283,7 @@
     studio.shown = null;
     view3d.setModel([]);
     overlay.show(null);
+    states.set([]);
     picking.reset();
     views.forEach(function (v) { v.clearResult(); });
     ["model", "reason", "warnings", "checks", "figures"].forEach(function (id) { $(id).textContent = ""; });
@@ -330,6 +331,7 @@
     view3d.setModel(pieces, extra);
     r.decoded = pieces;
     overlay.show(null);  // the new shape's comes with its figures
+    states.set(r.states, pieces, function (p) { return decodePieces({ pieces: p }); });
     var brk = /at seam point (\d+)/.exec(r.model.reason);
     if (state.mode === "inverse") [0, 1].forEach(function (i) {
       views[i].setSolvedPiece(pieces[i]);
@@ -382,7 +384,8 @@
   function showVerdict(r, verdict) {
     var gate = verdict && verdict.gate, status = $("status");
     if (verdict) { r.figures = verdict.figures; r.gate = gate; if (verdict.overlay) r.overlay = verdict.overlay; }
-    overlay.show(r.decoded, gate ? r.overlay : null, r.figures);
+    // Another of the ruled engine's states on screen: the answer's overlay waits for the answer.
+    overlay.show(r.decoded, gate && states.shown === 0 ? r.overlay : null, r.figures);
     if (gate) studio.verdicts.push({ seq: r.seq, preview: !!r.preview, passed: gate.passed });
     status.className = "status " + (gate ? (gate.passed ? "pass" : "fail") : verdict && verdict.error ? "error" : "");
     status.textContent = (verdict && verdict.error ? verdict.error : !gate ? "measuring, checking the gate…"
@@ -541,6 +544,14 @@
   var overlay = studio.overlay = new Overlay(view3d, $("overlay-legend"));
   $("overlay").onchange = function () { overlay.setMode($("overlay").value); };
   $("mark-failures").onchange = function () { overlay.setFailures($("mark-failures").checked); };
+  // The ruled engine's other states: one shown in 3D without the answer's overlay (its strain and
+  // failures are the answer's); the answer again with it.
+  var states = studio.states = new States($("states"), $("state-cards"), $("state-thumbnail"), $("states-note"),
+    function (pieces, i) {
+      var r = studio.shown && studio.shown.result;
+      view3d.setModel(pieces);
+      if (i === 0 && r) overlay.show(r.decoded, r.gate ? r.overlay : null, r.figures); else overlay.show(null);
+    });
   var picking = studio.picking = new Picking({ views: views, view3d: view3d, shown: function () { return studio.shown; },
                                                button: $("measure"), readout: $("measure-readout") });
   window.addEventListener("resize", function () { view3d.draw(); });

@@ -88,7 +88,9 @@ function View3D(canvas, options) {
 
   // pieces: [{shape: Float64Array (#V*3), faces: Uint32Array, seam: [..], creases: [[..]]}],
   // extra: optional [{points: Float64Array (#P*3), colour, loop}] (a target curve)
+  var model = [];
   this.setModel = function (pieces, extra) {
+    model = pieces;
     var lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
     pieces.forEach(function (piece, i) {
       var p = new Float32Array(piece.shape);
@@ -406,6 +408,7 @@ function View3D(canvas, options) {
     self.draw();
   }, { passive: false });
   this.camera = camera;
+  this.model = function () { return model; };  // the pieces on screen
   this.partCount = function () { return parts.length; };
 }
 // The colour of the gate's failures drawn on the shape (magenta-black, apart from every map).

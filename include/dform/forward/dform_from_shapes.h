@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "dform/core/messages.h"
 #include "dform/core/status.h"
@@ -47,6 +48,9 @@ struct SolvedDForm {
   /// The resolved starting pair: arc-length fractions along A's and B's joined boundaries.
   double startFractionA = 0;
   double startFractionB = 0;  ///< see startFractionA
+  /// The ruled engine's other states (modelUsed.states after the first, in that order), each
+  /// meshed as the answer is; a state that could not be meshed has no faces.
+  std::vector<DForm> otherStates;
 };
 
 /// The D-Form of two shapes in memory (mm, counter-clockwise loops, as io's readOutline gives
