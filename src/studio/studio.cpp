@@ -39,9 +39,9 @@ namespace {
 
 const std::vector<std::string> kOutlineExtensions = {".svg", ".json"};
 const std::vector<std::string> kCurveExtensions = {".obj", ".json"};
-const char* const kAssets[] = {"index.html", "studio.js", "studio.css",   "view3d.js",
-                               "pieces.js",  "strip.js",  "downloads.js", "overlay.js",
-                               "picking.js", "preview.js",   "states.js"};
+const char* const kAssets[] = {"index.html", "studio.js",  "studio.css",   "view3d.js",
+                               "pieces.js",  "strip.js",   "downloads.js", "overlay.js",
+                               "picking.js", "preview.js", "states.js"};
 
 // JSON answers. The charset parameter also keeps cpp-httplib from compressing them (it
 // compresses a bare "application/json" for a browser that accepts gzip or brotli): on loopback
