@@ -145,6 +145,24 @@ double loopLength(const Points2& p) {
   return length;
 }
 
+// The ruled engine's states, least bending first: each one's start, bending energy and largest
+// fold, and the shape of each but the answer (null where it could not be meshed).
+json statesJson(const SolvedDForm& run) {
+  json states = json::array();
+  const std::vector<RuledStateSummary>& found = run.modelUsed.states;
+  for (std::size_t s = 0; s < found.size(); ++s) {
+    const DForm* shape =
+        s > 0 && s - 1 < run.otherStates.size() ? &run.otherStates[s - 1] : nullptr;
+    states.push_back({{"start", found[s].start},
+                      {"bending_energy", numberOrNull(found[s].bendingEnergy)},
+                      {"largest_fold_deg", numberOrNull(found[s].largestFoldDeg)},
+                      {"pieces", shape && shape->a.F.rows() > 0 && shape->b.F.rows() > 0
+                                     ? json{pieceJson(shape->a), pieceJson(shape->b)}
+                                     : json(nullptr)}});
+  }
+  return states;
+}
+
 }  // namespace
 
 static_assert(sizeof(double) == 8, "the page reads vertices as 64-bit doubles");
@@ -257,24 +275,6 @@ json overlayJson(const DForm& model, const GateReport& gate) {
                      [&](const FailureSites& f) { return f.check == c.name; }))
       unlocated.push_back(c.name);
   return {{"pieces", pieces}, {"failing", failing}, {"unlocated", unlocated}};
-}
-
-// The ruled engine's states, least bending first: each one's start, bending energy and largest
-// fold, and the shape of each but the answer (null where it could not be meshed).
-json statesJson(const SolvedDForm& run) {
-  json states = json::array();
-  const std::vector<RuledStateSummary>& found = run.modelUsed.states;
-  for (std::size_t s = 0; s < found.size(); ++s) {
-    const DForm* shape =
-        s > 0 && s - 1 < run.otherStates.size() ? &run.otherStates[s - 1] : nullptr;
-    states.push_back({{"start", found[s].start},
-                      {"bending_energy", numberOrNull(found[s].bendingEnergy)},
-                      {"largest_fold_deg", numberOrNull(found[s].largestFoldDeg)},
-                      {"pieces", shape && shape->a.F.rows() > 0 && shape->b.F.rows() > 0
-                                     ? json{pieceJson(shape->a), pieceJson(shape->b)}
-                                     : json(nullptr)}});
-  }
-  return states;
 }
 
 json forwardResultJson(const SolvedDForm& run) {
