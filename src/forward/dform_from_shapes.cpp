@@ -20,6 +20,7 @@
 #include "dform/model/run_control.h"
 #include "dform/model/transfer.h"
 #include "dform/ruled/isometric_mesh.h"
+#include "isometric_states.h"
 #include "ruled_forward.h"
 #include "seam_layout.h"
 
@@ -348,63 +349,89 @@ Status solvePaperModel(const ForwardSettings& job, const SeamLayout& layout, Sol
   return Status::ok();
 }
 
-// makeDForm, which turns a failed allocation into the resolution that fits; `estimateAt` is
-// the formula the memory check held the run to.
 // Where the boundary points alone cannot carry the fold (a seam point of negative curvature), the
-// paper model's shape made one that does not stretch: its vertices inside
-// the pieces become unknowns in the flat as well (ruled::isometricMesh). On the job's mesh first,
-// then on a mesh of twice its interior edge: the lengths met on one mesh can fold a triangle over
-// on another (the non-convex sample at n = 200: two triangles folded over on the job's mesh, none
-// on the coarser one).
+// states of the sheet made of rigid flat triangles whose vertices inside the pieces are unknowns
+// in the flat as well (isometricStates): the paper model's shape at coarse resolutions made exact
+// and carried up to the job's. The least bending state is the answer, the others are listed.
 Status solveIsometricModel(const ForwardSettings& job, const SeamLayout& layout, SolvedDForm& run,
                            MessageSink& sink, const RunHooks& hooks) {
-  std::string why;
-  double previous = 0.0;
-  for (double times : {1.0, 2.0}) {
-    ForwardSettings meshJob = job;
-    meshJob.interiorEdgeFactor = std::min(kMaxInteriorEdgeFactor, job.interiorEdgeFactor * times);
-    if (meshJob.interiorEdgeFactor == previous) continue;
-    previous = meshJob.interiorEdgeFactor;
+  IsometricLevels levels;
+  levels.paperShape = [&](int resolution) -> Result<DForm> {
+    ForwardSettings at = job;
+    at.resolution = resolution;
     SolvedDForm start = run;
-    MessageSink startMessages;
-    if (times > 1.0 && !solvePaperModel(meshJob, layout, start, startMessages, hooks).isOk())
-      continue;
-    if (detail::stopRequested(hooks)) return interruptedDuring("the solve");
-    Result<ruled::IsometricMesh> made = ruled::isometricMesh(start.model);
-    if (!made.isOk()) {
-      why += (why.empty() ? "" : "; ") + format("interior edge %g: ", meshJob.interiorEdgeFactor) +
-             made.status().message();
-      continue;
-    }
-    const ruled::IsometricMesh& mesh = made.value();
-    const std::string paperReason = run.modelUsed.reason;
-    run = std::move(start);
-    run.model = mesh.model;
-    ModelUsed& used = run.modelUsed;
-    used.name = "ruled";
-    used.reason = paperReason + format(
-                                    "; the paper model's shape on a mesh of interior edge %g, "
-                                    "its %d vertices inside the pieces freed in the flat too, "
-                                    "meets every edge length",
-                                    meshJob.interiorEdgeFactor, mesh.interiorVertices);
-    used.lengthError = mesh.lengthError;
-    used.bendingEnergy = mesh.bendingEnergy;
-    used.chordMoveMm = mesh.chordMoveMm;
-    used.interiorVertices = mesh.interiorVertices;
-    used.stationarity = std::numeric_limits<double>::quiet_NaN();  // the bending is not minimised
-    used.flips = 0;
-    used.flipsStationary = false;
-    used.states = {{"the paper model's shape", mesh.bendingEnergy, mesh.largestFold / kDegree}};
-    sink.info(
-        format("ruled engine: the paper model's shape made exact in %d steps (largest edge "
-               "error %.2g, vertices inside the pieces moved up to %.3g mm in the flat), "
-               "bending energy %.6g",
-               mesh.steps, mesh.lengthError, mesh.largestFlatMoveMm, mesh.bendingEnergy));
-    return Status::ok();
+    MessageSink quiet;
+    if (Status s = solvePaperModel(at, layout, start, quiet, hooks); !s.isOk()) return s;
+    return std::move(start.model);
+  };
+  levels.mesh = [&](int resolution, double interiorEdgeFactor) {
+    ForwardSettings at = job;
+    at.interiorEdgeFactor = interiorEdgeFactor;
+    return meshLevel(at, layout, resolution, run.perimeterA, hooks);
+  };
+  levels.stop = [&hooks] { return detail::stopRequested(hooks); };
+  const IsometricStates found = isometricStates(job.resolution, job.interiorEdgeFactor, levels);
+  if (detail::stopRequested(hooks)) return interruptedDuring("the solve");
+  if (found.states.empty()) {
+    std::string why;
+    for (const auto& [start, reason] : found.failures)
+      why += (why.empty() ? "" : "; ") + ("from " + start + ": " + reason);
+    return Status(ErrorCode::SolveFailed, why);
   }
-  return Status(ErrorCode::SolveFailed, why);
+  const IsometricState& best = found.states.front();
+  const ruled::IsometricMesh& mesh = best.exact;
+  const std::string paperReason = run.modelUsed.reason;
+  run.model = mesh.model;
+  ModelUsed& used = run.modelUsed;
+  used.name = "ruled";
+  used.reason = paperReason + format(
+                                  "; the paper model's shape carried to a mesh of interior edge "
+                                  "%g, its %d vertices inside the pieces freed in the flat too, "
+                                  "meets every edge length",
+                                  best.interiorEdgeFactor, mesh.interiorVertices);
+  used.lengthError = mesh.lengthError;
+  used.bendingEnergy = mesh.bendingEnergy;
+  used.chordMoveMm = mesh.chordMoveMm;
+  used.interiorVertices = mesh.interiorVertices;
+  used.stationarity = std::numeric_limits<double>::quiet_NaN();  // the bending is not minimised
+  used.flips = 0;
+  used.flipsStationary = false;
+  used.states.clear();
+  run.otherStates.clear();
+  for (const IsometricState& state : found.states) {
+    used.states.push_back({state.start, state.exact.bendingEnergy,
+                           state.exact.largestFold / kDegree, state.rankingEnergy});
+    if (&state != &best) run.otherStates.push_back(state.exact.model);
+  }
+  sink.info(format("ruled engine: %zu state(s); the answer, from ", found.states.size()) +
+            best.start +
+            format(", made exact in %d steps (largest edge error %.2g, vertices inside the "
+                   "pieces moved up to %.3g mm in the flat), bending energy %.6g",
+                   best.steps, mesh.lengthError, mesh.largestFlatMoveMm, mesh.bendingEnergy));
+  for (std::size_t s = 1; s < found.states.size(); ++s)
+    sink.warning("the sheet can also sit another way: from " + found.states[s].start +
+                 format(", bending energy %.6g (report.json model.states)",
+                        found.states[s].exact.bendingEnergy));
+  return Status::ok();
 }
 
+// Auto's answer where the boundary points alone cannot carry the fold: the states with vertices
+// inside the pieces, which start from coarse paper model shapes, so the job's own paper model is
+// solved only where they fail (and its shape is then the answer, saying why).
+Status solveIsometricOrPaper(const ForwardSettings& job, const SeamLayout& layout, SolvedDForm& run,
+                             MessageSink& sink, const RunHooks& hooks) {
+  const auto solveStart = Clock::now();
+  Status s = solveIsometricModel(job, layout, run, sink, hooks);
+  run.timings.solve += secondsSince(solveStart);
+  if (s.isOk() || s.code() == ErrorCode::Interrupted) return s;
+  sink.info("ruled engine, from the paper model's shapes: " + s.message() +
+            "; the paper model's shape is kept");
+  run.modelUsed.reason += "; from the paper model's shapes: " + s.message();
+  return solvePaperModel(job, layout, run, sink, hooks);
+}
+
+// The run behind solveDForm and makeDForm (which turns a failed allocation into the resolution
+// that fits); `estimateAt` is the formula the memory check held the run to.
 Result<SolvedDForm> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSettings& job,
                                 MessageSink& sink, const RunHooks& hooks,
                                 MemoryAtResolution& estimateAt) {
@@ -468,6 +495,12 @@ Result<SolvedDForm> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSet
   // positions, which the job's mesh gives more truly (circle + square from its mid side: the
   // exact body from the job's mesh, a state 1.9e-3 of the diagonal from it from the coarser one).
   const bool brim = layout.pieces[0].freeOutline || layout.pieces[1].freeOutline;
+  if (job.model == ModelChoice::Auto && !ruled &&
+      negativelyCurvedSeamPoint(job, layout).first >= 0) {
+    if (Status s = solveIsometricOrPaper(job, layout, run, sink, hooks); !s.isOk()) return s;
+    run.timings.total = secondsSince(start);
+    return run;
+  }
   ForwardSettings paperJob = job;
   if (ruled && brim)
     paperJob.interiorEdgeFactor = std::max(job.interiorEdgeFactor, kRuledStartInteriorEdge);
@@ -524,16 +557,14 @@ Result<SolvedDForm> solveShapes(Shape2& shapeA, Shape2& shapeB, const ForwardSet
   // A convex metric's answer is its exact body, which the boundary points carry: there a shape
   // made exact from the paper model's would be another shape (the creased squaricle at n = 40:
   // 2.3e-3 of the diagonal from its body).
-  if (run.modelUsed.name == "paper" && (job.model == ModelChoice::Auto || ruledAsked) &&
+  if (run.modelUsed.name == "paper" && ruledAsked &&
       negativelyCurvedSeamPoint(job, layout).first >= 0) {
     const auto solveStart = Clock::now();
     Status s = solveIsometricModel(job, layout, run, sink, hooks);
     run.timings.solve += secondsSince(solveStart);
     if (!s.isOk()) {
-      ruledFailure += "; from the paper model's shape: " + s.message();
-      sink.info("ruled engine, from the paper model's shape: " + s.message() +
-                "; the paper model's shape is kept");
-      run.modelUsed.reason += "; from the paper model's shape: " + s.message();
+      ruledFailure += "; from the paper model's shapes: " + s.message();
+      run.modelUsed.reason += "; from the paper model's shapes: " + s.message();
     }
   }
   if (ruledAsked && run.modelUsed.name != "ruled")

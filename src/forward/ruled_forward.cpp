@@ -141,7 +141,8 @@ Status solveRuledModel(const ForwardSettings& job, const SeamLayout& layout, Sol
   used.flipsStationary = best.flipsStationary;
   used.stationarity = best.stationarity;
   for (const ruled::RuledState& state : solved.states)
-    used.states.push_back({state.start, state.bendingEnergy, state.largestFold / kDegree});
+    used.states.push_back(
+        {state.start, state.bendingEnergy, state.largestFold / kDegree, state.bendingEnergy});
   sink.info(format("ruled engine: %zu state(s); the answer, from ", solved.states.size()) +
             best.start +
             format(", has bending energy %.6g, edge lengths met to %.2g, %d flips",

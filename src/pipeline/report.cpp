@@ -83,7 +83,8 @@ json modelJson(const ModelUsed& used, const DForm& model) {
     for (const RuledStateSummary& state : used.states)
       states.push_back({{"start", state.start},
                         {"bending_energy", numberOrNull(state.bendingEnergy)},
-                        {"largest_fold_deg", numberOrNull(state.largestFoldDeg)}});
+                        {"largest_fold_deg", numberOrNull(state.largestFoldDeg)},
+                        {"ranking_energy", numberOrNull(state.rankingEnergy)}});
     out.update({{"bending_energy", numberOrNull(used.bendingEnergy)},
                 {"length_error", numberOrNull(used.lengthError)},
                 {"stationarity", numberOrNull(used.stationarity)},

@@ -156,6 +156,7 @@ json statesJson(const SolvedDForm& run) {
     states.push_back({{"start", found[s].start},
                       {"bending_energy", numberOrNull(found[s].bendingEnergy)},
                       {"largest_fold_deg", numberOrNull(found[s].largestFoldDeg)},
+                      {"ranking_energy", numberOrNull(found[s].rankingEnergy)},
                       {"pieces", shape && shape->a.F.rows() > 0 && shape->b.F.rows() > 0
                                      ? json{pieceJson(shape->a), pieceJson(shape->b)}
                                      : json(nullptr)}});

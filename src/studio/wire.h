@@ -41,8 +41,8 @@ Job jobFrom(const nlohmann::json& request, const Job& base);
 
 /// A solved forward run's shape for the page: model and why, both pieces, the starts and scale
 /// (its figures follow with the gate's verdict: verdictJson), and "states": the ruled engine's
-/// states least bending first ({start, bending_energy, largest_fold_deg, pieces}, pieces null for
-/// the first, which is the answer; none from another model).
+/// states least ranking energy first ({start, bending_energy, largest_fold_deg, ranking_energy,
+/// pieces}, pieces null for the first, which is the answer; none from another model).
 nlohmann::json forwardResultJson(const SolvedDForm& run);
 
 /// A solved inverse run: as forwardResultJson, plus its figures, the curve match and the on-hull

@@ -1,7 +1,8 @@
 // dform studio's strip of states: where the ruled engine found that the card can sit more than
-// one way, a card per state (its shape, bending energy and largest fold), least bending first,
-// the first being the answer. Clicking one shows that state in the 3D view; the figures and the
-// gate stay the answer's, and the page says which state is on screen.
+// one way, a card per state (its shape, bending energy and largest fold), least ranking energy
+// first (the bending energy the engine orders them by), the first being the answer. Clicking one
+// shows that state in the 3D view; the figures and the gate stay the answer's, and the page says
+// which state is on screen.
 "use strict";
 
 // onShow(pieces, index): draw that state's pieces.

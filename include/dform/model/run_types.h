@@ -44,12 +44,16 @@ struct BodyFold {
   int crease = -1;         ///< its index in the piece's creases, -1 for a gentle fold
 };
 
-/// A state of the sheet the ruled engine found: the start it came from, its bending energy and
-/// its largest fold (of a chord that is no drawn crease).
+/// A state of the sheet the ruled engine found: the start it came from, its bending energy, the
+/// energy the states are ordered by and its largest fold (of a chord that is no drawn crease).
 struct RuledStateSummary {
   std::string start;          ///< the name of the start it came from
   double bendingEnergy = 0;   ///< its bending energy (dimensionless)
   double largestFoldDeg = 0;  ///< its largest fold of a chord that is no drawn crease, degrees
+  /// The bending energy the states are ordered by, least first: bendingEnergy itself where the
+  /// states are surfaces of boundary points; where they have vertices inside the pieces, their
+  /// bending energy at the ranking resolution (docs/ruled.md)
+  double rankingEnergy = 0;
 };
 
 /// Which model ran, and why the other did not.

@@ -1,0 +1,144 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "isometric_states.h"
+
+#include <algorithm>
+
+#include "dform/core/constants.h"
+#include "dform/exact/aligned_distance.h"
+#include "dform/forward/settings.h"
+#include "dform/model/run_control.h"
+#include "dform/model/transfer.h"
+
+namespace dform::forward_detail {
+
+namespace {
+
+// A state's seam points, in seam order.
+Points3 seamOf(const DForm& m) {
+  Points3 out(Eigen::Index(m.a.seam.size()), 3);
+  for (std::size_t k = 0; k < m.a.seam.size(); ++k)
+    out.row(Eigen::Index(k)) = m.a.shape.row(m.a.seam[k]);
+  return out;
+}
+
+// The distance between two states' seams, one of them mirrored or not (a mirror image is the
+// same shape seen from its other side, with the same energy), over the seam's diagonal.
+double seamDistance(const DForm& a, const DForm& b) {
+  const Points3 P = seamOf(a), Q = seamOf(b);
+  Points3 mirrored = Q;
+  mirrored.col(2) *= -1.0;
+  return std::min(exact::alignedDistance(P, Q).maxRel, exact::alignedDistance(P, mirrored).maxRel);
+}
+
+// The resolutions a state made at `from` passes through on its way to `to`, `to` last: up, each
+// twice the one below; down, `to` at once.
+std::vector<int> ladder(int from, int to) {
+  std::vector<int> levels{from};
+  while (2 * levels.back() < to) levels.push_back(2 * levels.back());
+  if (levels.back() != to) levels.push_back(to);
+  return levels;
+}
+
+// `below` (an exact state, or the paper model's shape) carried to `resolution`: both pieces meshed
+// there, started from it and made exact; on the given interior edge, then on twice it. Where
+// `below` is already at `resolution` on that interior edge it is made exact as it is.
+Result<IsometricState> carry(const DForm& below, double belowFactor, int resolution,
+                             double interiorEdgeFactor, const IsometricLevels& levels) {
+  std::string why;
+  for (double times : {1.0, 2.0}) {
+    const double factor = std::min(kMaxInteriorEdgeFactor, interiorEdgeFactor * times);
+    if (times > 1.0 && factor == interiorEdgeFactor) break;
+    DForm start;
+    if (int(below.a.seam.size()) == resolution && factor == belowFactor) {
+      start = below;
+    } else {
+      Result<std::array<Piece, 2>> meshed = levels.mesh(resolution, factor);
+      if (!meshed.isOk()) return meshed.status();
+      start.a = std::move(meshed.value()[0]);
+      start.b = std::move(meshed.value()[1]);
+      startFromCoarser(below, start.a, start.b);
+    }
+    Result<ruled::IsometricMesh> made = ruled::isometricMesh(start);
+    if (made.isOk()) return IsometricState{"", std::move(made).value(), factor, 0};
+    why += (why.empty() ? "" : "; ") +
+           detail::format("%d seam points, interior edge %g: ", resolution, factor) +
+           made.status().message();
+  }
+  return Status(ErrorCode::SolveFailed, why);
+}
+
+// `start` (on a mesh of `startFactor`) carried through the resolutions `ladder`, made exact at
+// each on meshes of `interiorEdgeFactor` (or twice it).
+Result<IsometricState> carried(DForm start, double startFactor, const std::vector<int>& ladder,
+                               double interiorEdgeFactor, const IsometricLevels& levels) {
+  IsometricState state;
+  int steps = 0;
+  for (int n : ladder) {
+    if (levels.stop()) return Status(ErrorCode::Interrupted, "the run was stopped");
+    Result<IsometricState> level = carry(start, startFactor, n, interiorEdgeFactor, levels);
+    if (!level.isOk()) return level.status();
+    steps += level.value().exact.steps;
+    start = level.value().exact.model;
+    startFactor = level.value().interiorEdgeFactor;
+    state = std::move(level).value();
+  }
+  state.steps = steps;
+  return state;
+}
+
+}  // namespace
+
+IsometricStates isometricStates(int resolution, double interiorEdgeFactor,
+                                const IsometricLevels& levels, double sameState) {
+  // Each start's state made at the ranking resolution, then carried to the job's.
+  const int ranking = kIsometricStartResolutions.back();
+  IsometricStates found;
+  auto distinct = [&](const IsometricState& state) {
+    return std::none_of(found.states.begin(), found.states.end(), [&](const IsometricState& o) {
+      return seamDistance(o.exact.model, state.exact.model) <= sameState;
+    });
+  };
+  for (int from : kIsometricStartResolutions) {
+    const std::string name = detail::format("the paper model's shape at %d seam points", from);
+    if (levels.stop()) return found;
+    Result<DForm> paper = levels.paperShape(from);
+    if (!paper.isOk()) {
+      found.failures.emplace_back(name, paper.status().message());
+      continue;
+    }
+    Result<IsometricState> state = carried(std::move(paper).value(), interiorEdgeFactor,
+                                           ladder(from, ranking), interiorEdgeFactor, levels);
+    if (!state.isOk()) {
+      found.failures.emplace_back(name, state.status().message());
+      continue;
+    }
+    state.value().start = name;
+    state.value().rankingEnergy = state.value().exact.bendingEnergy;
+    if (distinct(state.value())) found.states.push_back(std::move(state).value());
+  }
+  std::stable_sort(found.states.begin(), found.states.end(),
+                   [](const IsometricState& a, const IsometricState& b) {
+                     return a.rankingEnergy < b.rankingEnergy;
+                   });
+  if (resolution == ranking) return found;
+  std::vector<IsometricState> atRanking = std::move(found.states);
+  found.states.clear();
+  for (IsometricState& state : atRanking) {
+    if (levels.stop()) return found;
+    std::vector<int> rest = ladder(ranking, resolution);
+    rest.erase(rest.begin());  // the state is exact at the ranking resolution
+    Result<IsometricState> carriedState =
+        carried(state.exact.model, state.interiorEdgeFactor, rest, interiorEdgeFactor, levels);
+    if (!carriedState.isOk()) {
+      found.failures.emplace_back(state.start, carriedState.status().message());
+      continue;
+    }
+    carriedState.value().start = state.start;
+    carriedState.value().rankingEnergy = state.rankingEnergy;
+    carriedState.value().steps += state.steps;
+    if (distinct(carriedState.value())) found.states.push_back(std::move(carriedState).value());
+  }
+  return found;
+}
+
+}  // namespace dform::forward_detail

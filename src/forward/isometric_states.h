@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The ruled engine's states with vertices inside the pieces (internal to src/forward): the paper
+// model's shape at a few coarse resolutions made exact (ruled::isometricMesh), each carried up to
+// the job's resolution level by level, so that every resolution finds the same states
+// (docs/ruled.md, "Vertices inside the pieces").
+#pragma once
+
+#include <array>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "dform/core/status.h"
+#include "dform/core/types.h"
+#include "dform/ruled/isometric_mesh.h"
+
+namespace dform::forward_detail {
+
+/// The seam resolutions whose paper model shapes start the states (each at most the job's). The
+/// paper model settles in one of two states of the non-convex sample depending on its resolution
+/// (50 and 200 in one, 100 and 400 in the other: docs/ruled.md), so one start is not enough.
+constexpr std::array<int, 2> kIsometricStartResolutions{50, 100};
+
+/// What the states are made from: the job's own ways of solving and meshing.
+struct IsometricLevels {
+  /// The paper model's solved shape at this many seam points, on the job's mesh.
+  std::function<Result<DForm>(int resolution)> paperShape;
+  /// Both pieces meshed at this many seam points with this interior edge (a multiple of the seam
+  /// edge), their shapes empty.
+  std::function<Result<std::array<Piece, 2>>(int resolution, double interiorEdgeFactor)> mesh;
+  /// Whether the caller asked the run to stop.
+  std::function<bool()> stop;
+};
+
+/// A state of the sheet at the job's resolution.
+struct IsometricState {
+  std::string start;              ///< its start, as reports name it
+  ruled::IsometricMesh exact;     ///< the state: every edge as long in 3D as it is flat
+  double interiorEdgeFactor = 0;  ///< the interior edge of its mesh (a multiple of the seam edge)
+  int steps = 0;                  ///< Gauss-Newton steps over every level
+  /// Its bending energy at the ranking resolution (the last start's), by which states are ordered
+  double rankingEnergy = 0;
+};
+
+/// Every distinct state found, least bending at the ranking resolution first, and the starts
+/// that gave none.
+struct IsometricStates {
+  std::vector<IsometricState> states;
+  std::vector<std::pair<std::string, std::string>> failures;  ///< per failed start: name, why
+};
+
+/// The states at `resolution` seam points on meshes of `interiorEdgeFactor` (or twice it where
+/// the lengths met on that mesh fold a triangle over). From each start resolution, the paper
+/// model's shape is made exact, then carried up: at each level (twice the one below, the job's
+/// last) both pieces are meshed afresh, started from the exact state below (barycentric in its
+/// flat triangles, which are rigid, so the start stretches only where a fine edge crosses a
+/// fold) and made exact again. States whose seams lie within `sameState` of the seam's diagonal
+/// of each other (after the best rigid motion, mirror images included) are one.
+IsometricStates isometricStates(int resolution, double interiorEdgeFactor,
+                                const IsometricLevels& levels, double sameState = 1e-6);
+
+}  // namespace dform::forward_detail
