@@ -5,6 +5,7 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <map>
 #include <set>
 #include <string>
@@ -16,7 +17,7 @@
 #include "dform/core/interrupt.h"
 #include "dform/exact/exact_gluing.h"
 #include "dform/ruled/ruled_surface.h"
-#include "pattern_ldlt.h"
+#include "dform/solver/supernodal_cholesky.h"
 
 namespace dform::ruled {
 namespace {
@@ -161,11 +162,12 @@ class Solver {
     }
     Eigen::SparseMatrix<double> J(Eigen::Index(edges_.size()), unknowns);
     J.setFromTriplets(entries.begin(), entries.end());
-    Eigen::SparseMatrix<double> normal = J * J.transpose();
-    for (Eigen::Index k = 0; k < normal.rows(); ++k) normal.coeffRef(k, k) += kRegularisation;
+    const SupernodalCholesky::SparseLower normal =
+        Eigen::SparseMatrix<double>(J * J.transpose()).triangularView<Eigen::Lower>();
     // Every step's normal matrix has the first one's pattern (the same edges and unknowns).
-    if (!factor_.factorize(normal)) return -1;
-    const Eigen::VectorXd delta = -(J.transpose() * factor_.solver().solve(r));
+    if (!factor_) factor_ = std::make_unique<SupernodalCholesky>(normal);
+    if (!factor_->factorize(normal, kRegularisation)) return -1;
+    const Eigen::VectorXd delta = -(J.transpose() * factor_->solve(r));
     const double before = r.squaredNorm();
     const Eigen::MatrixX3d X = X_;
     const Points2 flat[2] = {*flat_[0], *flat_[1]};
@@ -201,7 +203,7 @@ class Solver {
   std::vector<MeshEdge> edges_;
   Points2* flat_[2];
   Eigen::MatrixX3d X_;
-  PatternLDLT factor_;
+  std::unique_ptr<SupernodalCholesky> factor_;  // analysed at the first step
 };
 
 // The bending energy over the interior edges of both pieces, with the flat areas as rest, and the

@@ -34,7 +34,7 @@ ALLOWED = {
     "io": {"core"},
     "meshing": {"core"},
     "exact": {"core"},
-    "ruled": {"core", "exact"},
+    "ruled": {"core", "solver", "exact"},
     "model": {"core", "solver", "meshing", "exact", "ruled"},
     "forward": {"core", "solver", "meshing", "exact", "ruled", "model"},
     "inverse": {"core", "solver", "meshing", "exact", "model"},
