@@ -405,13 +405,17 @@ Status solveIsometricModel(const ForwardSettings& job, const SeamLayout& layout,
   }
   sink.info(format("ruled engine: %zu state(s); the answer, from ", found.states.size()) +
             best.start +
-            format(", made exact in %d steps (largest edge error %.2g, vertices inside the "
-                   "pieces moved up to %.3g mm in the flat), bending energy %.6g",
-                   best.steps, mesh.lengthError, mesh.largestFlatMoveMm, mesh.bendingEnergy));
+            format(", made exact in %d steps on a mesh of interior edge %g (largest edge error "
+                   "%.2g, vertices inside the pieces moved up to %.3g mm in the flat), bending "
+                   "energy %.6g",
+                   best.steps, best.interiorEdgeFactor, mesh.lengthError, mesh.largestFlatMoveMm,
+                   mesh.bendingEnergy));
   for (std::size_t s = 1; s < found.states.size(); ++s)
     sink.warning("the sheet can also sit another way: from " + found.states[s].start +
                  format(", bending energy %.6g (report.json model.states)",
                         found.states[s].exact.bendingEnergy));
+  for (const auto& [start, why] : found.failures)
+    sink.info("ruled engine: from " + start + ", no state: " + why);
   return Status::ok();
 }
 

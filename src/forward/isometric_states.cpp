@@ -13,6 +13,9 @@ namespace dform::forward_detail {
 
 namespace {
 
+// The stages of the continuation in the lengths tried where a start cannot be made exact at once.
+constexpr int kContinuationStages = 4;
+
 // A state's seam points, in seam order.
 Points3 seamOf(const DForm& m) {
   Points3 out(Eigen::Index(m.a.seam.size()), 3);
@@ -40,8 +43,9 @@ std::vector<int> ladder(int from, int to) {
 }
 
 // `below` (an exact state, or the paper model's shape) carried to `resolution`: both pieces meshed
-// there, started from it and made exact; on the given interior edge, then on twice it. Where
-// `below` is already at `resolution` on that interior edge it is made exact as it is.
+// there, started from it and made exact; on the given interior edge, then on twice it, each
+// first at once and then by a continuation in the lengths. Where `below` is already at
+// `resolution` on that interior edge it is made exact as it is.
 Result<IsometricState> carry(const DForm& below, double belowFactor, int resolution,
                              double interiorEdgeFactor, const IsometricLevels& levels) {
   std::string why;
@@ -58,11 +62,16 @@ Result<IsometricState> carry(const DForm& below, double belowFactor, int resolut
       start.b = std::move(meshed.value()[1]);
       startFromCoarser(below, start.a, start.b);
     }
-    Result<ruled::IsometricMesh> made = ruled::isometricMesh(start);
-    if (made.isOk()) return IsometricState{"", std::move(made).value(), factor, 0};
-    why += (why.empty() ? "" : "; ") +
-           detail::format("%d seam points, interior edge %g: ", resolution, factor) +
-           made.status().message();
+    for (int stages : {1, kContinuationStages}) {
+      ruled::IsometricMeshOptions options;
+      options.stages = stages;
+      Result<ruled::IsometricMesh> made = ruled::isometricMesh(start, options);
+      if (made.isOk()) return IsometricState{"", std::move(made).value(), factor, 0, 0.0};
+      why += (why.empty() ? "" : "; ") +
+             detail::format("%d seam points, interior edge %g, %d stage(s): ", resolution, factor,
+                            stages) +
+             made.status().message();
+    }
   }
   return Status(ErrorCode::SolveFailed, why);
 }

@@ -5,8 +5,8 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
-#include <memory>
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 #include <tuple>
@@ -33,6 +33,8 @@ constexpr double kLargestFold = 0.5 * kPi;
 // flat star, whose vertex may move off its plane to first order for free) without moving the
 // step (the rows' scale is 1).
 constexpr double kRegularisation = 1e-12;
+// The length error each stage but the last of a continuation is solved to.
+constexpr double kStageTolerance = 1e-6;
 
 // An edge of either piece: its ends as 3D unknowns (shared across the seam) and in its piece.
 struct MeshEdge {
@@ -102,36 +104,90 @@ double signedArea(const Points2& V, int a, int b, int c) {
   return 0.5 * (x.x() * y.y() - x.y() * y.x());
 }
 
+// An interior edge i-j of a piece and the corners k, l of its two triangles, as 3D unknowns.
+struct Hinge {
+  int i = 0, j = 0, k = 0, l = 0;
+};
+
+std::vector<Hinge> hingesOf(const DForm& m, const Unknowns& u) {
+  std::vector<Hinge> hinges;
+  for (int p = 0; p < 2; ++p) {
+    const Faces& F = p == 0 ? m.a.F : m.b.F;
+    std::map<std::pair<int, int>, int> opposite;
+    for (int f = 0; f < F.rows(); ++f)
+      for (int c = 0; c < 3; ++c) opposite[{F(f, c), F(f, (c + 1) % 3)}] = F(f, (c + 2) % 3);
+    const std::vector<int>& g = u.global[p];
+    for (const auto& [edge, k] : opposite) {
+      const auto [i, j] = edge;
+      const auto other = opposite.find({j, i});
+      if (i > j || other == opposite.end()) continue;
+      hinges.push_back(
+          {g[std::size_t(i)], g[std::size_t(j)], g[std::size_t(k)], g[std::size_t(other->second)]});
+    }
+  }
+  return hinges;
+}
+
 class Solver {
  public:
   Solver(DForm& m, const Unknowns& u, std::vector<MeshEdge> edges)
-      : m_(m), u_(u), edges_(std::move(edges)), flat_{&m.a.flat, &m.b.flat} {
+      : m_(m),
+        u_(u),
+        edges_(std::move(edges)),
+        hinges_(hingesOf(m, u)),
+        flat_{&m.a.flat, &m.b.flat} {
     X_.resize(u.count3d, 3);
     for (int p = 0; p < 2; ++p) {
       const Piece& piece = p == 0 ? m.a : m.b;
       for (Eigen::Index v = 0; v < piece.shape.rows(); ++v)
         X_.row(u.global[p][std::size_t(v)]) = piece.shape.row(v);
     }
+    foldGuard_ = largestFold() <= kLargestFold;
+    startSquared_.reserve(edges_.size());
+    for (const MeshEdge& e : edges_)
+      startSquared_.push_back((X_.row(e.gi) - X_.row(e.gj)).squaredNorm());
   }
 
-  // Residual k: (|X_i - X_j|^2 - |u_i - u_j|^2) / (2 rest): the length error to first order.
+  // The lengths aimed for: the start's 3D lengths blended into the flat ones, squared,
+  // (1 - blend) l_start^2 + blend l_flat^2 (blend 1: the flat lengths themselves).
+  void setBlend(double blend) { blend_ = blend; }
+
+  // The largest |dihedral| over the interior edges.
+  double largestFold() const {
+    double largest = 0.0;
+    for (const Hinge& h : hinges_) {
+      const double theta = std::abs(dihedral(X_.row(h.i), X_.row(h.j), X_.row(h.k), X_.row(h.l)));
+      if (!(theta <= largest)) largest = theta;  // a NaN is the largest
+    }
+    return largest;
+  }
+
+  // Edge k's squared length aimed for.
+  double aimedSquared(std::size_t k) const {
+    const MeshEdge& e = edges_[k];
+    const double flat = (flat_[e.piece]->row(e.i) - flat_[e.piece]->row(e.j)).squaredNorm();
+    return blend_ == 1.0 ? flat : (1.0 - blend_) * startSquared_[k] + blend_ * flat;
+  }
+
+  // Residual k: (|X_i - X_j|^2 - aimed^2) / (2 rest): the length error to first order.
   Eigen::VectorXd residual() const {
     Eigen::VectorXd r(Eigen::Index(edges_.size()));
     for (std::size_t k = 0; k < edges_.size(); ++k) {
       const MeshEdge& e = edges_[k];
       const double l3 = (X_.row(e.gi) - X_.row(e.gj)).squaredNorm();
-      const double l2 = (flat_[e.piece]->row(e.i) - flat_[e.piece]->row(e.j)).squaredNorm();
-      r[Eigen::Index(k)] = (l3 - l2) / (2.0 * e.rest);
+      r[Eigen::Index(k)] = (l3 - aimedSquared(k)) / (2.0 * e.rest);
     }
     return r;
   }
 
+  // The largest relative error of an edge's length against the length aimed for.
   double worstLengthError() const {
     double worst = 0.0;
-    for (const MeshEdge& e : edges_) {
+    for (std::size_t k = 0; k < edges_.size(); ++k) {
+      const MeshEdge& e = edges_[k];
       const double l3 = (X_.row(e.gi) - X_.row(e.gj)).norm();
-      const double l2 = (flat_[e.piece]->row(e.i) - flat_[e.piece]->row(e.j)).norm();
-      const double error = std::abs(l3 - l2) / l2;
+      const double aimed = std::sqrt(aimedSquared(k));
+      const double error = std::abs(l3 - aimed) / aimed;
       if (!(error <= worst)) worst = error;  // a NaN is the worst
     }
     return worst;
@@ -156,8 +212,8 @@ class Solver {
           (flat_[e.piece]->row(e.i) - flat_[e.piece]->row(e.j)).transpose() / e.rest;
       const int fi = u_.free[e.piece][std::size_t(e.i)], fj = u_.free[e.piece][std::size_t(e.j)];
       for (int c = 0; c < 2; ++c) {
-        if (fi >= 0) entries.emplace_back(row, 3 * u_.count3d + 2 * fi + c, -w[c]);
-        if (fj >= 0) entries.emplace_back(row, 3 * u_.count3d + 2 * fj + c, w[c]);
+        if (fi >= 0) entries.emplace_back(row, 3 * u_.count3d + 2 * fi + c, -blend_ * w[c]);
+        if (fj >= 0) entries.emplace_back(row, 3 * u_.count3d + 2 * fj + c, blend_ * w[c]);
       }
     }
     Eigen::SparseMatrix<double> J(Eigen::Index(edges_.size()), unknowns);
@@ -181,7 +237,11 @@ class Solver {
             flat_[p]->row(Eigen::Index(v)) =
                 flat[p].row(Eigen::Index(v)) +
                 t * delta.segment<2>(3 * u_.count3d + 2 * f).transpose();
-      if (residual().squaredNorm() < before) return halvings;
+      // From a start with no triangle folded over its neighbour, no step folds one over: the
+      // least-norm step from a start far from the lengths (a finer mesh carried from an exact
+      // coarse one, its edges across the folds short) can otherwise meet them with a fold.
+      if (residual().squaredNorm() < before && (!foldGuard_ || largestFold() <= kLargestFold))
+        return halvings;
     }
     X_ = X;
     *flat_[0] = flat[0];
@@ -201,6 +261,10 @@ class Solver {
   DForm& m_;
   const Unknowns& u_;
   std::vector<MeshEdge> edges_;
+  std::vector<Hinge> hinges_;
+  std::vector<double> startSquared_;  // each edge's squared 3D length at the start
+  double blend_ = 1.0;
+  bool foldGuard_ = false;  // the start folds no triangle over: the steps keep it so
   Points2* flat_[2];
   Eigen::MatrixX3d X_;
   std::unique_ptr<SupernodalCholesky> factor_;  // analysed at the first step
@@ -257,21 +321,28 @@ Result<IsometricMesh> isometricMesh(const DForm& start, const IsometricMeshOptio
   const Unknowns unknowns = numberUnknowns(m);
   out.interiorVertices = unknowns.countFlat;
   Solver solver(m, unknowns, meshEdges(m, unknowns));
-  int stalled = 0;
-  while (solver.worstLengthError() > options.tolerance) {
-    if (out.steps == options.maxSteps)
-      return Status(ErrorCode::SolveFailed,
-                    "the edge lengths were not met in " + std::to_string(options.maxSteps) +
-                        " steps (largest error " + std::to_string(solver.worstLengthError()) + ")");
-    throwIfInterrupted("the solve");
-    const int halvings = solver.step();
-    ++out.steps;
-    stalled = halvings < 0 || halvings >= kStallHalvings ? stalled + 1 : 0;
-    if (halvings < 0 || stalled == kStallSteps)
-      return Status(ErrorCode::SolveFailed,
-                    "the edge lengths stop at a relative error of " +
-                        std::to_string(solver.worstLengthError()) +
-                        " (a vertex that cannot lie flat among its neighbours)");
+  const int stages = std::max(1, options.stages);
+  for (int stage = 1; stage <= stages; ++stage) {
+    solver.setBlend(double(stage) / stages);
+    const double tolerance = stage == stages ? options.tolerance : kStageTolerance;
+    int stalled = 0, steps = 0;
+    while (solver.worstLengthError() > tolerance) {
+      if (steps == options.maxSteps)
+        return Status(ErrorCode::SolveFailed, "the edge lengths were not met in " +
+                                                  std::to_string(options.maxSteps) +
+                                                  " steps (largest error " +
+                                                  std::to_string(solver.worstLengthError()) + ")");
+      throwIfInterrupted("the solve");
+      const int halvings = solver.step();
+      ++steps;
+      stalled = halvings < 0 || halvings >= kStallHalvings ? stalled + 1 : 0;
+      if (halvings < 0 || stalled == kStallSteps)
+        return Status(ErrorCode::SolveFailed,
+                      "the edge lengths stop at a relative error of " +
+                          std::to_string(solver.worstLengthError()) +
+                          " (a vertex that cannot lie flat among its neighbours)");
+    }
+    out.steps += steps;
   }
   out.lengthError = solver.worstLengthError();
   solver.writeShapes();

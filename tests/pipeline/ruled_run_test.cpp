@@ -210,6 +210,33 @@ TEST(IsometricMesh, MeetsEveryEdgeLengthAndKeepsThePattern) {
   EXPECT_FALSE(ruled::isometricMesh(unequal).isOk());
 }
 
+// A continuation in the lengths (stages aiming for the start's 3D lengths blended into the flat
+// ones) ends where every edge has its flat length, by another path than the one-stage solve: a
+// state of its own, as exact, after more steps.
+TEST(IsometricMesh, AContinuationInTheLengthsEndsOnTheFlatLengths) {
+  Result<ForwardRun> paper =
+      runRuled(pairJob("ellipses-a.svg", "ellipses-b.svg", ModelChoice::Paper, 40));
+  ASSERT_TRUE(paper.isOk()) << paper.status().message();
+  const DForm& start = paper.value().model;
+  ruled::IsometricMeshOptions staged;
+  staged.stages = 4;
+  Result<ruled::IsometricMesh> once = ruled::isometricMesh(start);
+  Result<ruled::IsometricMesh> made = ruled::isometricMesh(start, staged);
+  ASSERT_TRUE(once.isOk() && made.isOk()) << made.status().message();
+  const DForm& m = made.value().model;
+  for (const Piece* piece : {&m.a, &m.b})
+    for (int f = 0; f < piece->F.rows(); ++f)
+      for (int c = 0; c < 3; ++c) {
+        const int i = piece->F(f, c), k = piece->F(f, (c + 1) % 3);
+        const double flat = (piece->flat.row(i) - piece->flat.row(k)).norm();
+        const double bent = (piece->shape.row(i) - piece->shape.row(k)).norm();
+        EXPECT_LE(std::abs(bent - flat), 1e-12 * flat) << piece->name << " edge " << i << "-" << k;
+      }
+  EXPECT_LE(made.value().lengthError, 1e-12);
+  EXPECT_GT(made.value().steps, once.value().steps);
+  EXPECT_GT((m.a.shape - once.value().model.a.shape).cwiseAbs().maxCoeff(), 1e-9);
+}
+
 TEST(RuledRun, GivesTheSameShapeEveryRun) {
   ForwardJob j = sampleJob("squaricle.json");
   j.resolution = 60;

@@ -14,8 +14,12 @@ namespace dform::ruled {
 struct IsometricMeshOptions {
   /// The largest relative edge-length error of the answer.
   double tolerance = 1e-12;
-  /// Gauss-Newton steps at most.
+  /// Gauss-Newton steps at most (per stage).
   int maxSteps = 60;
+  /// Stages of a continuation in the lengths: stage s of S aims for the start's 3D lengths
+  /// blended into the flat ones by s / S (squared), each but the last solved to 1e-6. One stage
+  /// aims for the flat lengths at once; more take smaller steps from a start far from them.
+  int stages = 1;
 };
 
 /// What isometricMesh made: the exact shape and how far it moved from the start.
