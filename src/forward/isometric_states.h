@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The ruled engine's states with vertices inside the pieces (internal to src/forward): the paper
-// model's shape at a few coarse resolutions made exact (ruled::isometricMesh), each carried up to
-// the job's resolution level by level, so that every resolution finds the same states
-// (docs/ruled.md, "Vertices inside the pieces").
+// model's shape at a few coarse resolutions made exact (ruled::isometricMesh), ranked at one
+// resolution and carried to the job's level by level, so that every resolution finds the same
+// states in the same order (docs/ruled.md, "Vertices inside the pieces").
 #pragma once
 
 #include <array>
@@ -17,10 +17,18 @@
 
 namespace dform::forward_detail {
 
-/// The seam resolutions whose paper model shapes start the states (each at most the job's). The
-/// paper model settles in one of two states of the non-convex sample depending on its resolution
-/// (50 and 200 in one, 100 and 400 in the other: docs/ruled.md), so one start is not enough.
+/// The seam resolutions whose paper model shapes start the states; the last is the ranking
+/// resolution. The paper model settles in one of two states of the non-convex sample depending on
+/// its resolution (50 and 200 in one, 100 and 400 in the other: docs/ruled.md), so one start is not
+/// enough.
 constexpr std::array<int, 2> kIsometricStartResolutions{50, 100};
+
+/// Two states whose seams lie within this fraction of the seam's diagonal of each other (largest
+/// distance, after the best rigid motion, mirror images included) are one. Exact shapes of rigid
+/// triangles with free inner vertices form a continuum: one state reached from two starts differs
+/// by about its discretisation (the non-convex sample's answer at 50 and 100 seam points: 2.6e-3),
+/// while distinct states lie far apart (the non-convex sample's two: 3.8e-2; demi's: 5.3e-2).
+constexpr double kSameIsometricState = 5e-3;
 
 /// What the states are made from: the job's own ways of solving and meshing.
 struct IsometricLevels {
@@ -51,13 +59,16 @@ struct IsometricStates {
 };
 
 /// The states at `resolution` seam points on meshes of `interiorEdgeFactor` (or twice it where
-/// the lengths met on that mesh fold a triangle over). From each start resolution, the paper
-/// model's shape is made exact, then carried up: at each level (twice the one below, the job's
-/// last) both pieces are meshed afresh, started from the exact state below (barycentric in its
-/// flat triangles, which are rigid, so the start stretches only where a fine edge crosses a
-/// fold) and made exact again. States whose seams lie within `sameState` of the seam's diagonal
-/// of each other (after the best rigid motion, mirror images included) are one.
+/// that fails). The paper model's shape at each start resolution is made exact and carried to the
+/// ranking resolution (kIsometricStartResolutions.back()); the distinct states are ordered by
+/// their bending energy there and each is carried on to `resolution`. Carrying a state one level
+/// (twice the one below, the target last; straight down where the target is coarser) meshes both
+/// pieces afresh, starts them from the exact state below (barycentric in its flat triangles,
+/// which are rigid, so the start stretches only where a fine edge crosses a fold) and makes them
+/// exact again: at once, else by stages (IsometricMeshOptions::stages), then the same on twice
+/// the interior edge. States within `sameState` of each other are one.
 IsometricStates isometricStates(int resolution, double interiorEdgeFactor,
-                                const IsometricLevels& levels, double sameState = 1e-6);
+                                const IsometricLevels& levels,
+                                double sameState = kSameIsometricState);
 
 }  // namespace dform::forward_detail

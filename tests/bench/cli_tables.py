@@ -4,7 +4,7 @@
 Markdown, figures from the runs' report.json, times as stated in each table's heading.
 
     cli_tables.py BUILD/dform SAMPLES_DIR [--repeats 3]
-                  [--only exact,samples,inverse,sweep,general,ruled,export]
+                  [--only exact,samples,inverse,sweep,general,ruled,isometric,export]
 
 Every run writes into a temporary folder that is removed at the end. A table's times are the
 median of --repeats runs where its heading says so, else one run's.
@@ -226,6 +226,39 @@ def ruled_table(r, repeats):
             "passed" if report["gate"]["passed"] else "failed", f"{wall:.2f}", f"{rss:.0f}")
 
 
+def isometric_table(r, repeats):
+    """The states with vertices inside the pieces (auto) against resolution: the non-convex and
+    demi samples at n = 100, 200, 400 (times the median of REPEATS runs) and the non-convex at 800
+    (one run)."""
+    print(f"\n### states with vertices inside the pieces (auto; times the median of {repeats} "
+          "runs, n = 800 one run)\n")
+    row("case", "n", "L_max", "states: ranking energy", "answer's bending energy", "gate", "run s",
+        "solve s", "peak MB")
+    row(*["---"] * 9)
+    nonconvex = [r.sample("forward", "nonconvex-a.svg"), r.sample("forward", "nonconvex-b.svg"),
+                 "--start-b", "0.3"]
+    demi = [r.sample("forward", "demi-disc.svg"), r.sample("forward", "demi-ring.svg"),
+            "--join", "outer,inner", "--start-a", "0.003", "--start-b", "0.003"]
+    cases = [("non-convex", nonconvex, n, repeats) for n in (100, 200, 400)]
+    cases += [("non-convex", nonconvex, 800, 1)]
+    cases += [("demi", demi, n, repeats) for n in (100, 200, 400)]
+    for name, pair, n, times in cases:
+        runs = [r.run(["forward", *pair, "--resolution", str(n), "--no-export"])
+                for _ in range(times)]
+        report, code = runs[0][0], runs[0][1]
+        wall = statistics.median(run[2] for run in runs)
+        rss = statistics.median(run[3] for run in runs)
+        if report is None:
+            row(name, n, "", "", "", f"exit {code}", f"{wall:.2f}", "", f"{rss:.0f}")
+            continue
+        model, m = report["model"], report["metrics"]
+        solve = statistics.median(run[0]["timings"]["solve"] for run in runs if run[0])
+        ranking = ", ".join(f"{s['ranking_energy']:.4g}" for s in model.get("states", []))
+        row(name, n, f"{m['L_max']:.2g}", ranking, f"{model.get('bending_energy', 0):.4g}",
+            "passed" if report["gate"]["passed"] else "failed", f"{wall:.2f}", f"{solve:.2f}",
+            f"{rss:.0f}")
+
+
 def saved_export_table(r, repeats):
     """`dform export DIR -o OUT` of a saved ellipses result at resolution 1000 (laser profile):
     its gate reused from report.json (the meshes unchanged), and measured again (--regate)."""
@@ -258,7 +291,8 @@ def main():
     parser.add_argument("dform")
     parser.add_argument("samples")
     parser.add_argument("--repeats", type=int, default=3)
-    parser.add_argument("--only", default="exact,samples,inverse,sweep,general,ruled,export")
+    parser.add_argument("--only",
+                        default="exact,samples,inverse,sweep,general,ruled,isometric,export")
     args = parser.parse_args()
     tables = {"exact": lambda r: exact_tables(r, args.repeats),
               "samples": lambda r: samples_table(r, args.repeats),
@@ -266,6 +300,7 @@ def main():
               "sweep": lambda r: sweep_table(r, args.repeats),
               "general": general_tables,
               "ruled": lambda r: ruled_table(r, args.repeats),
+              "isometric": lambda r: isometric_table(r, args.repeats),
               "export": lambda r: saved_export_table(r, args.repeats)}
     with tempfile.TemporaryDirectory() as work:
         runner = Runner(os.path.abspath(args.dform), os.path.abspath(args.samples), work)
