@@ -33,8 +33,8 @@ double seamDistance(const DForm& a, const DForm& b) {
   return std::min(exact::alignedDistance(P, Q).maxRel, exact::alignedDistance(P, mirrored).maxRel);
 }
 
-// The resolutions a state made at `from` passes through on its way to `to`, `to` last: up, each
-// twice the one below; down, `to` at once.
+// The resolutions a state made at `from` passes through on its way to the finer `to`: each twice
+// the one below, `to` last.
 std::vector<int> ladder(int from, int to) {
   std::vector<int> levels{from};
   while (2 * levels.back() < to) levels.push_back(2 * levels.back());
@@ -99,15 +99,21 @@ Result<IsometricState> carried(DForm start, double startFactor, const std::vecto
 
 IsometricStates isometricStates(int resolution, double interiorEdgeFactor,
                                 const IsometricLevels& levels, double sameState) {
-  // Each start's state made at the ranking resolution, then carried to the job's.
-  const int ranking = kIsometricStartResolutions.back();
+  // Each start's state made at the ranking resolution, then carried to the job's. A job coarser
+  // than a start resolution (the studio's previews, at 36 seam points) starts at its own instead:
+  // a start finer than the job costs more than the job.
+  const int ranking = std::min(kIsometricStartResolutions.back(), resolution);
+  std::vector<int> starts;
+  for (int n : kIsometricStartResolutions)
+    if (std::find(starts.begin(), starts.end(), std::min(n, resolution)) == starts.end())
+      starts.push_back(std::min(n, resolution));
   IsometricStates found;
   auto distinct = [&](const IsometricState& state) {
     return std::none_of(found.states.begin(), found.states.end(), [&](const IsometricState& o) {
       return seamDistance(o.exact.model, state.exact.model) <= sameState;
     });
   };
-  for (int from : kIsometricStartResolutions) {
+  for (int from : starts) {
     const std::string name = detail::format("the paper model's shape at %d seam points", from);
     if (levels.stop()) return found;
     Result<DForm> paper = levels.paperShape(from);

@@ -17,16 +17,16 @@
 
 namespace dform::forward_detail {
 
-/// The seam resolutions whose paper model shapes start the states; the last is the ranking
-/// resolution. The paper model settles in one of two states of the non-convex sample depending on
-/// its resolution (50 and 200 in one, 100 and 400 in the other: docs/ruled.md), so one start is not
-/// enough.
+/// The seam resolutions whose paper model shapes start the states (each at most the job's); the
+/// last is the ranking resolution. The paper model settles in one of two states of the non-convex
+/// sample depending on its resolution (50 and 200 in one, 100 and 400 in the other: docs/ruled.md),
+/// so one start is not enough.
 constexpr std::array<int, 2> kIsometricStartResolutions{50, 100};
 
 /// Two states whose seams lie within this fraction of the seam's diagonal of each other (largest
 /// distance, after the best rigid motion, mirror images included) are one. Exact shapes of rigid
 /// triangles with free inner vertices form a continuum: one state reached from two starts differs
-/// by about its discretisation (the non-convex sample's answer at 50 and 100 seam points: 2.6e-3),
+/// by about its discretisation (the non-convex sample's answer at 100 and 200 seam points: 1.3e-3),
 /// while distinct states lie far apart (the non-convex sample's two: 3.8e-2; demi's: 5.3e-2).
 constexpr double kSameIsometricState = 5e-3;
 
@@ -60,9 +60,9 @@ struct IsometricStates {
 
 /// The states at `resolution` seam points on meshes of `interiorEdgeFactor` (or twice it where
 /// that fails). The paper model's shape at each start resolution is made exact and carried to the
-/// ranking resolution (kIsometricStartResolutions.back()); the distinct states are ordered by
-/// their bending energy there and each is carried on to `resolution`. Carrying a state one level
-/// (twice the one below, the target last; straight down where the target is coarser) meshes both
+/// ranking resolution (kIsometricStartResolutions.back(), or the job's where coarser); the
+/// distinct states are ordered by their bending energy there and each is carried on to
+/// `resolution`. Carrying a state one level (twice the one below, the target last) meshes both
 /// pieces afresh, starts them from the exact state below (barycentric in its flat triangles,
 /// which are rigid, so the start stretches only where a fine edge crosses a fold) and makes them
 /// exact again: at once, else by stages (IsometricMeshOptions::stages), then the same on twice
