@@ -2,6 +2,7 @@
 #include "isometric_states.h"
 
 #include <algorithm>
+#include <optional>
 
 #include "dform/core/constants.h"
 #include "dform/exact/aligned_distance.h"
@@ -42,38 +43,61 @@ std::vector<int> ladder(int from, int to) {
   return levels;
 }
 
-// `below` (an exact state, or the paper model's shape) carried to `resolution`: both pieces meshed
-// there, started from it and made exact; on the given interior edge, then on twice it, each
-// first at once and then by a continuation in the lengths. Where `below` is already at
-// `resolution` on that interior edge it is made exact as it is.
+// `below` (an exact state, or the paper model's shape, on a mesh of `belowFactor`) carried to
+// `resolution` on a mesh of interior edge `factor`: both pieces meshed there, started from it and
+// made exact, first at once and then by a continuation in the lengths. Where `below` is already
+// at `resolution` on that mesh it is made exact as it is. A failure is added to `why`.
+std::optional<IsometricState> carryOnto(const DForm& below, double belowFactor, int resolution,
+                                        double factor, const IsometricLevels& levels,
+                                        std::string& why) {
+  DForm start;
+  if (int(below.a.seam.size()) == resolution && factor == belowFactor) {
+    start = below;
+  } else {
+    Result<std::array<Piece, 2>> meshed = levels.mesh(resolution, factor);
+    if (!meshed.isOk()) {
+      why += (why.empty() ? "" : "; ") + meshed.status().message();
+      return std::nullopt;
+    }
+    start.a = std::move(meshed.value()[0]);
+    start.b = std::move(meshed.value()[1]);
+    startFromCoarser(below, start.a, start.b);
+  }
+  for (int stages : {1, kContinuationStages}) {
+    ruled::IsometricMeshOptions options;
+    options.stages = stages;
+    Result<ruled::IsometricMesh> made = ruled::isometricMesh(start, options);
+    if (made.isOk()) return IsometricState{"", std::move(made).value(), factor, 0, 0.0};
+    why += (why.empty() ? "" : "; ") +
+           detail::format("%d seam points, interior edge %g, %d stage(s): ", resolution, factor,
+                          stages) +
+           made.status().message();
+  }
+  return std::nullopt;
+}
+
+// `below` carried to `resolution` on the given interior edge (carryOnto). Where that fails, on
+// twice it, and from there onto the given one again: the seam points stay and only the pieces'
+// insides are refined, a smaller step than from the level below (the non-convex sample at 800
+// seam points stalls from 400 and is made so). Where only twice the interior edge holds a state,
+// that state.
 Result<IsometricState> carry(const DForm& below, double belowFactor, int resolution,
                              double interiorEdgeFactor, const IsometricLevels& levels) {
   std::string why;
-  for (double times : {1.0, 2.0}) {
-    const double factor = std::min(kMaxInteriorEdgeFactor, interiorEdgeFactor * times);
-    if (times > 1.0 && factor == interiorEdgeFactor) break;
-    DForm start;
-    if (int(below.a.seam.size()) == resolution && factor == belowFactor) {
-      start = below;
-    } else {
-      Result<std::array<Piece, 2>> meshed = levels.mesh(resolution, factor);
-      if (!meshed.isOk()) return meshed.status();
-      start.a = std::move(meshed.value()[0]);
-      start.b = std::move(meshed.value()[1]);
-      startFromCoarser(below, start.a, start.b);
-    }
-    for (int stages : {1, kContinuationStages}) {
-      ruled::IsometricMeshOptions options;
-      options.stages = stages;
-      Result<ruled::IsometricMesh> made = ruled::isometricMesh(start, options);
-      if (made.isOk()) return IsometricState{"", std::move(made).value(), factor, 0, 0.0};
-      why += (why.empty() ? "" : "; ") +
-             detail::format("%d seam points, interior edge %g, %d stage(s): ", resolution, factor,
-                            stages) +
-             made.status().message();
-    }
-  }
-  return Status(ErrorCode::SolveFailed, why);
+  if (std::optional<IsometricState> state =
+          carryOnto(below, belowFactor, resolution, interiorEdgeFactor, levels, why))
+    return std::move(*state);
+  const double coarser = std::min(kMaxInteriorEdgeFactor, 2.0 * interiorEdgeFactor);
+  if (coarser == interiorEdgeFactor) return Status(ErrorCode::SolveFailed, why);
+  std::optional<IsometricState> coarse =
+      carryOnto(below, belowFactor, resolution, coarser, levels, why);
+  if (!coarse) return Status(ErrorCode::SolveFailed, why);
+  if (levels.stop()) return std::move(*coarse);
+  std::optional<IsometricState> refined =
+      carryOnto(coarse->exact.model, coarser, resolution, interiorEdgeFactor, levels, why);
+  if (!refined) return std::move(*coarse);
+  refined->exact.steps += coarse->exact.steps;
+  return std::move(*refined);
 }
 
 // `start` (on a mesh of `startFactor`) carried through the resolutions `ladder`, made exact at

@@ -65,8 +65,9 @@ struct IsometricStates {
 /// `resolution`. Carrying a state one level (twice the one below, the target last) meshes both
 /// pieces afresh, starts them from the exact state below (barycentric in its flat triangles,
 /// which are rigid, so the start stretches only where a fine edge crosses a fold) and makes them
-/// exact again: at once, else by stages (IsometricMeshOptions::stages), then the same on twice
-/// the interior edge. States within `sameState` of each other are one.
+/// exact again: at once, else by stages (IsometricMeshOptions::stages), else on twice the interior
+/// edge and from there onto the given one again (where that fails too, the state on twice it).
+/// States within `sameState` of each other are one.
 IsometricStates isometricStates(int resolution, double interiorEdgeFactor,
                                 const IsometricLevels& levels,
                                 double sameState = kSameIsometricState);

@@ -11,6 +11,7 @@
 #include "dform/pipeline/job_file.h"
 #include "dform/ruled/isometric_mesh.h"
 #include "dform/validate/gate.h"
+#include "forward/isometric_states.h"
 #include "shipped_samples.h"
 
 namespace dform {
@@ -132,6 +133,52 @@ TEST(RuledRun, TheNonConvexSampleHasTheSameStatesAtEveryResolution) {
     seam200.row(k) = m200.a.shape.row(m200.a.seam[std::size_t(2 * k)]);
   }
   EXPECT_LE(exact::alignedDistance(seam100, seam200).maxRel, 5e-3);
+}
+
+// Where a level cannot be made exact on the job's interior edge, its state is made on twice it and
+// carried onto the job's from there (the seam points stay and only the insides are refined: the
+// non-convex sample at 800 seam points, which stalls when carried from 400, is made so). A mesh
+// of the job's interior edge refused once stands in for the stall: the state is on the job's
+// interior edge all the same, exact. Refused every time: the state on twice it.
+TEST(IsometricStates, ALevelThatStallsIsMadeOnACoarserInteriorAndRefinedFromThere) {
+  auto solved = [](int resolution, double interiorEdgeFactor) {
+    ForwardJob job = pairJob("ellipses-a.svg", "ellipses-b.svg", ModelChoice::Paper, resolution);
+    job.interiorEdgeFactor = interiorEdgeFactor;
+    return runRuled(job);
+  };
+  for (const int refusals : {1, 1000}) {
+    std::vector<std::pair<int, double>> asked;
+    int refused = 0;
+    forward_detail::IsometricLevels levels;
+    levels.paperShape = [&](int resolution) -> Result<DForm> {
+      Result<ForwardRun> r = solved(resolution, 1.0);
+      if (!r.isOk()) return r.status();
+      return r.value().model;
+    };
+    levels.mesh = [&](int resolution, double interiorEdgeFactor) -> Result<std::array<Piece, 2>> {
+      asked.emplace_back(resolution, interiorEdgeFactor);
+      if (interiorEdgeFactor == 1.0 && refused++ < refusals)
+        return Status(ErrorCode::SolveFailed, "refused by the test");
+      Result<ForwardRun> r = solved(resolution, interiorEdgeFactor);
+      if (!r.isOk()) return r.status();
+      return std::array<Piece, 2>{r.value().model.a, r.value().model.b};
+    };
+    levels.stop = [] { return false; };
+    // Starts at 50 and 80 seam points; the one from 50 is carried to 80, the one from 80 is
+    // made exact on its own mesh. A convex metric: one state.
+    const forward_detail::IsometricStates found = forward_detail::isometricStates(80, 1.0, levels);
+    ASSERT_EQ(found.states.size(), 1u) << refusals;
+    const forward_detail::IsometricState& state = found.states.front();
+    EXPECT_EQ(state.start, "the paper model's shape at 50 seam points");
+    const std::vector<std::pair<int, double>> expected{{80, 1.0}, {80, 2.0}, {80, 1.0}};
+    EXPECT_EQ(asked, expected) << refusals;
+    const double factor = refusals == 1 ? 1.0 : 2.0;
+    EXPECT_EQ(state.interiorEdgeFactor, factor);
+    const Result<ForwardRun> onThatMesh = solved(80, factor);
+    ASSERT_TRUE(onThatMesh.isOk());
+    EXPECT_EQ(state.exact.model.b.flat.rows(), onThatMesh.value().model.b.flat.rows());
+    EXPECT_LE(state.exact.lengthError, 1e-12);
+  }
 }
 
 // Asked for where its boundary points find no state on a convex metric (the squaricle's pieces,
