@@ -2,6 +2,8 @@
 #include "isometric_states.h"
 
 #include <algorithm>
+#include <cmath>
+#include <map>
 #include <optional>
 
 #include "dform/core/constants.h"
@@ -43,13 +45,93 @@ std::vector<int> ladder(int from, int to) {
   return levels;
 }
 
+// Where the coarser state's vertices inside the pieces are kept in a finer mesh: the nearest
+// finer vertex within this fraction of the finer mesh's mean edge moves onto each.
+constexpr double kKeptVertexReach = 0.6;
+// A kept vertex thins none of its triangles below this fraction of its area (nor turns one over).
+constexpr double kKeptVertexThinnest = 0.1;
+
+// A piece's vertices on its outline (seam and free boundaries).
+std::vector<bool> onOutline(const Piece& piece) {
+  std::vector<bool> outline(std::size_t(piece.flat.rows()), false);
+  for (int v : piece.seam) outline[std::size_t(v)] = true;
+  for (const std::vector<int>& loop : piece.freeBoundaries)
+    for (int v : loop) outline[std::size_t(v)] = true;
+  return outline;
+}
+
+double doubleArea(const Points2& V, const Faces& F, Eigen::Index f) {
+  const Eigen::Vector2d x = V.row(F(f, 1)) - V.row(F(f, 0)), y = V.row(F(f, 2)) - V.row(F(f, 0));
+  return x.x() * y.y() - x.y() * y.x();
+}
+
+// `fine`'s vertices inside the piece moved onto `coarse`'s (kKeptVertexReach, kKeptVertexThinnest),
+// each coarse vertex in turn taking the nearest fine one not yet moved.
+void keepVerticesOf(const Piece& coarse, Piece& fine) {
+  const std::vector<bool> coarseOutline = onOutline(coarse), fineOutline = onOutline(fine);
+  double edges = 0.0;
+  for (Eigen::Index f = 0; f < fine.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c)
+      edges += (fine.flat.row(fine.F(f, c)) - fine.flat.row(fine.F(f, (c + 1) % 3))).norm();
+  const double reach =
+      kKeptVertexReach * edges / double(std::max<Eigen::Index>(1, 3 * fine.F.rows()));
+  // The fine vertices inside the piece bucketed in cells of side `reach`: a vertex within reach
+  // of a point lies in its cell or the eight around it.
+  const Eigen::RowVector2d lo = fine.flat.colwise().minCoeff();
+  auto cellOf = [&](const Eigen::RowVector2d& q) {
+    return std::pair<long, long>{long(std::floor((q.x() - lo.x()) / reach)),
+                                 long(std::floor((q.y() - lo.y()) / reach))};
+  };
+  std::map<std::pair<long, long>, std::vector<int>> cells;
+  for (Eigen::Index v = 0; v < fine.flat.rows(); ++v)
+    if (!fineOutline[std::size_t(v)]) cells[cellOf(fine.flat.row(v))].push_back(int(v));
+  std::vector<std::vector<int>> triangles(std::size_t(fine.flat.rows()));
+  for (Eigen::Index f = 0; f < fine.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) triangles[std::size_t(fine.F(f, c))].push_back(int(f));
+  std::vector<bool> moved(std::size_t(fine.flat.rows()), false);
+  for (Eigen::Index v = 0; v < coarse.flat.rows(); ++v) {
+    if (coarseOutline[std::size_t(v)]) continue;
+    const Eigen::RowVector2d target = coarse.flat.row(v);
+    const auto [cx, cy] = cellOf(target);
+    int nearest = -1;
+    double distance = reach;
+    for (long y = cy - 1; y <= cy + 1; ++y)
+      for (long x = cx - 1; x <= cx + 1; ++x) {
+        const auto cell = cells.find({x, y});
+        if (cell == cells.end()) continue;
+        for (int w : cell->second) {
+          const double d = (fine.flat.row(w) - target).norm();
+          if (!moved[std::size_t(w)] && (d < distance || (d == distance && w < nearest)))
+            distance = d, nearest = w;
+        }
+      }
+    if (nearest < 0) continue;
+    const Eigen::RowVector2d was = fine.flat.row(nearest);
+    std::vector<double> before;
+    for (int f : triangles[std::size_t(nearest)])
+      before.push_back(doubleArea(fine.flat, fine.F, f));
+    fine.flat.row(nearest) = target;
+    bool kept = true;
+    for (std::size_t t = 0; t < before.size() && kept; ++t) {
+      const double after = doubleArea(fine.flat, fine.F, triangles[std::size_t(nearest)][t]);
+      kept =
+          after * before[t] > 0.0 && std::abs(after) >= kKeptVertexThinnest * std::abs(before[t]);
+    }
+    if (kept)
+      moved[std::size_t(nearest)] = true;
+    else
+      fine.flat.row(nearest) = was;
+  }
+}
+
 // `below` (an exact state, or the paper model's shape, on a mesh of `belowFactor`) carried to
-// `resolution` on a mesh of interior edge `factor`: both pieces meshed there, started from it and
-// made exact, first at once and then by a continuation in the lengths. Where `below` is already
-// at `resolution` on that mesh it is made exact as it is. A failure is added to `why`.
+// `resolution` on a mesh of interior edge `factor`: both pieces meshed there (with `below`'s
+// vertices inside the pieces kept where asked: keepVerticesOf), started from it and made exact,
+// first at once and then by a continuation in the lengths. Where `below` is already at
+// `resolution` on that mesh it is made exact as it is. A failure is added to `why`.
 std::optional<IsometricState> carryOnto(const DForm& below, double belowFactor, int resolution,
-                                        double factor, const IsometricLevels& levels,
-                                        std::string& why) {
+                                        double factor, bool keepVertices,
+                                        const IsometricLevels& levels, std::string& why) {
   DForm start;
   if (int(below.a.seam.size()) == resolution && factor == belowFactor) {
     start = below;
@@ -61,6 +143,10 @@ std::optional<IsometricState> carryOnto(const DForm& below, double belowFactor, 
     }
     start.a = std::move(meshed.value()[0]);
     start.b = std::move(meshed.value()[1]);
+    if (keepVertices) {
+      keepVerticesOf(below.a, start.a);
+      keepVerticesOf(below.b, start.b);
+    }
     startFromCoarser(below, start.a, start.b);
   }
   for (int stages : {1, kContinuationStages}) {
@@ -69,32 +155,36 @@ std::optional<IsometricState> carryOnto(const DForm& below, double belowFactor, 
     Result<ruled::IsometricMesh> made = ruled::isometricMesh(start, options);
     if (made.isOk()) return IsometricState{"", std::move(made).value(), factor, 0, 0.0};
     why += (why.empty() ? "" : "; ") +
-           detail::format("%d seam points, interior edge %g, %d stage(s): ", resolution, factor,
-                          stages) +
+           detail::format("%d seam points, interior edge %g%s, %d stage(s): ", resolution, factor,
+                          keepVertices ? " keeping the coarser vertices" : "", stages) +
            made.status().message();
   }
   return std::nullopt;
 }
 
-// `below` carried to `resolution` on the given interior edge (carryOnto). Where that fails, on
-// twice it, and from there onto the given one again: the seam points stay and only the pieces'
+// `below` carried to `resolution` on the given interior edge (carryOnto). Where that fails, the
+// same keeping `below`'s vertices inside the pieces: where the state below folds at a vertex inside
+// a piece (folds meeting there, as in the non-convex sample's dent), the finer mesh then has a
+// vertex at that place to fold at (the non-convex sample's answer stalls from 100 to 150 seam
+// points without, whose seam points are not 100's). Where that fails too, on twice the interior
+// edge, and from there onto the given one again: the seam points stay and only the pieces'
 // insides are refined, a smaller step than from the level below (the non-convex sample at 800
-// seam points stalls from 400 and is made so). Where only twice the interior edge holds a state,
-// that state.
+// seam points is made so). Where only twice the interior edge holds a state, that state.
 Result<IsometricState> carry(const DForm& below, double belowFactor, int resolution,
                              double interiorEdgeFactor, const IsometricLevels& levels) {
   std::string why;
-  if (std::optional<IsometricState> state =
-          carryOnto(below, belowFactor, resolution, interiorEdgeFactor, levels, why))
-    return std::move(*state);
+  for (bool keepVertices : {false, true})
+    if (std::optional<IsometricState> state = carryOnto(
+            below, belowFactor, resolution, interiorEdgeFactor, keepVertices, levels, why))
+      return std::move(*state);
   const double coarser = std::min(kMaxInteriorEdgeFactor, 2.0 * interiorEdgeFactor);
   if (coarser == interiorEdgeFactor) return Status(ErrorCode::SolveFailed, why);
   std::optional<IsometricState> coarse =
-      carryOnto(below, belowFactor, resolution, coarser, levels, why);
+      carryOnto(below, belowFactor, resolution, coarser, false, levels, why);
   if (!coarse) return Status(ErrorCode::SolveFailed, why);
   if (levels.stop()) return std::move(*coarse);
   std::optional<IsometricState> refined =
-      carryOnto(coarse->exact.model, coarser, resolution, interiorEdgeFactor, levels, why);
+      carryOnto(coarse->exact.model, coarser, resolution, interiorEdgeFactor, false, levels, why);
   if (!refined) return std::move(*coarse);
   refined->exact.steps += coarse->exact.steps;
   return std::move(*refined);

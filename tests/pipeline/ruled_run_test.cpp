@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
 
 #include "dform/exact/aligned_distance.h"
 #include "dform/pipeline/forward_pipeline.h"
@@ -135,19 +136,45 @@ TEST(RuledRun, TheNonConvexSampleHasTheSameStatesAtEveryResolution) {
   EXPECT_LE(exact::alignedDistance(seam100, seam200).maxRel, 5e-3);
 }
 
-// Where a level cannot be made exact on the job's interior edge, its state is made on twice it and
-// carried onto the job's from there (the seam points stay and only the insides are refined: the
-// non-convex sample at 800 seam points, which stalls when carried from 400, is made so). A mesh
-// of the job's interior edge refused once stands in for the stall: the state is on the job's
-// interior edge all the same, exact. Refused every time: the state on twice it.
+// At 150 seam points, whose seam points are not 100's, the answer carried from 100 stalls at the
+// dent in piece B (folds meeting at a vertex inside the piece) unless the finer mesh keeps the
+// vertices of the state below: kept, the same two states as at 100 are found, in the same order,
+// and the answer is the one at 100 (the old carry found one state, the other, from 50).
+TEST(RuledRun, TheNonConvexSampleKeepsItsStatesAtAResolutionThatIsNotADoubling) {
+  ForwardJob coarse = sampleJob("nonconvex-shifted.json");
+  ForwardJob odd = coarse;
+  odd.resolution = 150;
+  Result<ForwardRun> r100 = runRuled(coarse), r150 = runRuled(odd);
+  ASSERT_TRUE(r100.isOk() && r150.isOk());
+  const ModelUsed& at100 = r100.value().modelUsed;
+  const ModelUsed& at150 = r150.value().modelUsed;
+  ASSERT_EQ(at150.states.size(), 2u);
+  for (std::size_t s = 0; s < 2; ++s) {
+    EXPECT_EQ(at150.states[s].start, at100.states[s].start);
+    EXPECT_EQ(at150.states[s].rankingEnergy, at100.states[s].rankingEnergy);
+  }
+  EXPECT_LE(r150.value().metrics.lengthErrorMax, 1e-8);
+  EXPECT_EQ(r150.value().metrics.flipped2d + r150.value().metrics.flipped3d, 0);
+}
+
+// Where a level cannot be made exact on the job's mesh, the same is tried keeping the vertices of
+// the state below, then on twice the interior edge and carried onto the job's from there (the seam
+// points stay and only the insides are refined: the non-convex sample at 800 seam points, which
+// stalls when carried from 400, is made so). Meshes of the job's interior edge refused by a
+// stand-in for the stall: once, the state keeps the vertices below; twice, it is refined from
+// twice the interior edge; every time, it is the state on twice it. Each is exact.
 TEST(IsometricStates, ALevelThatStallsIsMadeOnACoarserInteriorAndRefinedFromThere) {
   auto solved = [](int resolution, double interiorEdgeFactor) {
     ForwardJob job = pairJob("ellipses-a.svg", "ellipses-b.svg", ModelChoice::Paper, resolution);
     job.interiorEdgeFactor = interiorEdgeFactor;
     return runRuled(job);
   };
-  for (const int refusals : {1, 1000}) {
-    std::vector<std::pair<int, double>> asked;
+  using Asked = std::vector<std::pair<int, double>>;
+  const Asked keeping{{80, 1.0}, {80, 1.0}}, refining{{80, 1.0}, {80, 1.0}, {80, 2.0}, {80, 1.0}};
+  for (const auto& [refusals, expected, factor] :
+       {std::tuple{1, keeping, 1.0}, std::tuple{2, refining, 1.0},
+        std::tuple{1000, refining, 2.0}}) {
+    Asked asked;
     int refused = 0;
     forward_detail::IsometricLevels levels;
     levels.paperShape = [&](int resolution) -> Result<DForm> {
@@ -170,10 +197,8 @@ TEST(IsometricStates, ALevelThatStallsIsMadeOnACoarserInteriorAndRefinedFromTher
     ASSERT_EQ(found.states.size(), 1u) << refusals;
     const forward_detail::IsometricState& state = found.states.front();
     EXPECT_EQ(state.start, "the paper model's shape at 50 seam points");
-    const std::vector<std::pair<int, double>> expected{{80, 1.0}, {80, 2.0}, {80, 1.0}};
     EXPECT_EQ(asked, expected) << refusals;
-    const double factor = refusals == 1 ? 1.0 : 2.0;
-    EXPECT_EQ(state.interiorEdgeFactor, factor);
+    EXPECT_EQ(state.interiorEdgeFactor, factor) << refusals;
     const Result<ForwardRun> onThatMesh = solved(80, factor);
     ASSERT_TRUE(onThatMesh.isOk());
     EXPECT_EQ(state.exact.model.b.flat.rows(), onThatMesh.value().model.b.flat.rows());
