@@ -162,32 +162,39 @@ std::optional<IsometricState> carryOnto(const DForm& below, double belowFactor, 
   return std::nullopt;
 }
 
-// `below` carried to `resolution` on the given interior edge (carryOnto). Where that fails, the
-// same keeping `below`'s vertices inside the pieces: where the state below folds at a vertex inside
-// a piece (folds meeting there, as in the non-convex sample's dent), the finer mesh then has a
-// vertex at that place to fold at (the non-convex sample's answer stalls from 100 to 150 seam
-// points without, whose seam points are not 100's). Where that fails too, on twice the interior
-// edge, and from there onto the given one again: the seam points stay and only the pieces'
-// insides are refined, a smaller step than from the level below (the non-convex sample at 800
-// seam points is made so). Where only twice the interior edge holds a state, that state.
+// `below` carried to `resolution` on the given interior edge (carryOnto). Where that fails, on
+// twice the interior edge and from there onto the given one again: the seam points stay and only
+// the pieces' insides are refined, a smaller step than from the level below (the non-convex
+// answer at 800 seam points, and the demi sample's other state at 400, are made so). Where that
+// fails, on the given interior edge keeping `below`'s vertices inside the pieces: where the state
+// below folds at a vertex inside a piece (folds meeting there, as in the non-convex sample's
+// dent), the finer mesh then has a vertex at that place to fold at (the non-convex answer from 100
+// to 150 seam points, whose seam points are not 100's, is made so). Where only twice the interior
+// edge holds a state, that state.
 Result<IsometricState> carry(const DForm& below, double belowFactor, int resolution,
                              double interiorEdgeFactor, const IsometricLevels& levels) {
   std::string why;
-  for (bool keepVertices : {false, true})
-    if (std::optional<IsometricState> state = carryOnto(
-            below, belowFactor, resolution, interiorEdgeFactor, keepVertices, levels, why))
-      return std::move(*state);
+  if (std::optional<IsometricState> state =
+          carryOnto(below, belowFactor, resolution, interiorEdgeFactor, false, levels, why))
+    return std::move(*state);
   const double coarser = std::min(kMaxInteriorEdgeFactor, 2.0 * interiorEdgeFactor);
-  if (coarser == interiorEdgeFactor) return Status(ErrorCode::SolveFailed, why);
-  std::optional<IsometricState> coarse =
-      carryOnto(below, belowFactor, resolution, coarser, false, levels, why);
-  if (!coarse) return Status(ErrorCode::SolveFailed, why);
-  if (levels.stop()) return std::move(*coarse);
-  std::optional<IsometricState> refined =
-      carryOnto(coarse->exact.model, coarser, resolution, interiorEdgeFactor, false, levels, why);
-  if (!refined) return std::move(*coarse);
-  refined->exact.steps += coarse->exact.steps;
-  return std::move(*refined);
+  std::optional<IsometricState> coarse;
+  if (coarser != interiorEdgeFactor)
+    coarse = carryOnto(below, belowFactor, resolution, coarser, false, levels, why);
+  if (coarse) {
+    if (levels.stop()) return std::move(*coarse);
+    if (std::optional<IsometricState> refined = carryOnto(coarse->exact.model, coarser, resolution,
+                                                          interiorEdgeFactor, false, levels, why)) {
+      refined->exact.steps += coarse->exact.steps;
+      return std::move(*refined);
+    }
+  }
+  if (levels.stop()) return Status(ErrorCode::Interrupted, "the run was stopped");
+  if (std::optional<IsometricState> kept =
+          carryOnto(below, belowFactor, resolution, interiorEdgeFactor, true, levels, why))
+    return std::move(*kept);
+  if (coarse) return std::move(*coarse);
+  return Status(ErrorCode::SolveFailed, why);
 }
 
 // `start` (on a mesh of `startFactor`) carried through the resolutions `ladder`, made exact at

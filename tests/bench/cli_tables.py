@@ -228,10 +228,11 @@ def ruled_table(r, repeats):
 
 def isometric_table(r, repeats):
     """The states with vertices inside the pieces (auto) against resolution: the non-convex and
-    demi samples at n = 100, 200, 400 (times the median of REPEATS runs) and the non-convex at 800
-    (one run)."""
+    demi samples at n = 100, 200, 400 and the non-convex at 150, a resolution that is not a
+    doubling of 100 (times the median of REPEATS runs), and the non-convex at 800 and 1000 (one
+    run each)."""
     print(f"\n### states with vertices inside the pieces (auto; times the median of {repeats} "
-          "runs, n = 800 one run)\n")
+          "runs, n = 800 and 1000 one run)\n")
     row("case", "n", "L_max", "states: ranking energy", "answer's bending energy", "gate", "run s",
         "solve s", "peak MB")
     row(*["---"] * 9)
@@ -239,8 +240,8 @@ def isometric_table(r, repeats):
                  "--start-b", "0.3"]
     demi = [r.sample("forward", "demi-disc.svg"), r.sample("forward", "demi-ring.svg"),
             "--join", "outer,inner", "--start-a", "0.003", "--start-b", "0.003"]
-    cases = [("non-convex", nonconvex, n, repeats) for n in (100, 200, 400)]
-    cases += [("non-convex", nonconvex, 800, 1)]
+    cases = [("non-convex", nonconvex, n, repeats) for n in (100, 150, 200, 400)]
+    cases += [("non-convex", nonconvex, n, 1) for n in (800, 1000)]
     cases += [("demi", demi, n, repeats) for n in (100, 200, 400)]
     for name, pair, n, times in cases:
         runs = [r.run(["forward", *pair, "--resolution", str(n), "--no-export"])
