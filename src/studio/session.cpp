@@ -180,7 +180,7 @@ void Session::queueRefinement(const SolveAt& solve, int resolution, const Latest
         RunHooks progress;
         progress.interrupted = ticket.cancel.get();
         progress.onIteration = [&](const char* stage, const IterationSummary& it) {
-          if (Clock::now() - last < std::chrono::milliseconds(50)) return;
+          if (Clock::now() - last < kProgressInterval) return;
           last = Clock::now();
           events_->push({{"type", "progress"},
                          {"seq", seq},

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <deque>
 #include <functional>
@@ -147,6 +148,9 @@ class Session {
   /// The nice value of the session's worker thread (measuring, the gate, refinements, the strip):
   /// on a busy machine it yields to the live solves and the page.
   static constexpr int kWorkerNice = 5;
+  /// The least time between a refinement's progress events: each one repaints the page, which
+  /// costs a software-rendered browser a frame's worth of a core that the refinement needs.
+  static constexpr std::chrono::milliseconds kProgressInterval{250};
 
  private:
   void work();

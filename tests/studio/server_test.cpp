@@ -514,6 +514,49 @@ TEST(StudioSession, ARefinementOutlivesTheRequestThatAskedForIt) {
   EXPECT_NE(events.find("\"seq\":7"), std::string::npos) << events;
 }
 
+// A refinement reports its progress at most four times a second, however often its solver
+// iterates: each event repaints the page. The stub iterates every 2 ms for a second.
+TEST(StudioSession, ARefinementsProgressComesAtMostFourTimesASecond) {
+  studio::PieceInput a{"a.json", "", test::startEllipse(120, 70, "a.json")};
+  studio::PieceInput b{"b.json", "", test::startEllipse(110, 82.305579, "b.json")};
+  studio::Session session(a, b);
+  const auto iterating = std::chrono::seconds(1);
+  const studio::SolveAt solve = [&](int resolution, studio::Interior interior,
+                                    const RunHooks& hooks) -> Result<studio::Solved> {
+    if (interior == studio::Interior::Job) {
+      const auto until = std::chrono::steady_clock::now() + iterating;
+      for (int k = 0; std::chrono::steady_clock::now() < until; ++k) {
+        IterationSummary it;
+        it.iteration = k;
+        hooks.onIteration("stub", it);
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      }
+    }
+    studio::Solved solved;
+    solved.result = {{"resolution", resolution}};
+    solved.verdict = [] { return json{{"gate", {{"passed", true}}}}; };
+    solved.sparse = interior == studio::Interior::Sparse;
+    return solved;
+  };
+  const auto asked = std::chrono::steady_clock::now();
+  const json answer = session.solveLive(solve, 100, false, 3, "design", nullptr);
+  ASSERT_TRUE(answer["refining"].get<bool>()) << answer;
+  long position = 0;
+  std::string events;
+  for (int k = 0; k < 200 && events.find("\"type\":\"result\"") == std::string::npos; ++k)
+    events += session.events().waitAfter(position, std::chrono::milliseconds(100));
+  const auto elapsed = std::chrono::steady_clock::now() - asked;
+  ASSERT_NE(events.find("\"type\":\"result\""), std::string::npos) << events;
+  long progress = 0;
+  for (std::size_t at = events.find("\"type\":\"progress\""); at != std::string::npos;
+       at = events.find("\"type\":\"progress\"", at + 1))
+    ++progress;
+  // Every event came between the request and the result, each a quarter second after the one
+  // before (the first a quarter second after the refinement began).
+  EXPECT_GE(progress, 1) << events;
+  EXPECT_LE(progress, elapsed / std::chrono::milliseconds(250)) << events;
+}
+
 TEST(StudioSession, TheWorkerYieldsToTheLiveSolves) {
   const auto workers = [] {
     const std::vector<int> nice = threadNiceValues();
