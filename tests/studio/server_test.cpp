@@ -485,6 +485,25 @@ std::vector<int> threadNiceValues() {
   return out;
 }
 
+// What a stand-in solver answers: the resolution asked for, a passing verdict, and whether it
+// was asked to mesh sparsely (then the session refines it).
+studio::Solved stubSolved(int resolution, studio::Interior interior) {
+  studio::Solved solved;
+  solved.result = {{"resolution", resolution}};
+  solved.verdict = [] { return json{{"gate", {{"passed", true}}}}; };
+  solved.sparse = interior == studio::Interior::Sparse;
+  return solved;
+}
+
+// The session's events up to its first result, waiting at most `tries` tenths of a second.
+std::string eventsUntilResult(studio::Session& session, int tries) {
+  long position = 0;
+  std::string events;
+  for (int k = 0; k < tries && events.find("\"type\":\"result\"") == std::string::npos; ++k)
+    events += session.events().waitAfter(position, std::chrono::milliseconds(100));
+  return events;
+}
+
 // The page asks for a shape and its client closes the connection once it has the answer; the
 // refinement the answer promises ("refining": true) still arrives as an event. The solve at the
 // job's mesh waits for the client to have gone, so the order is the same on every machine.
@@ -497,19 +516,12 @@ TEST(StudioSession, ARefinementOutlivesTheRequestThatAskedForIt) {
                                        const RunHooks&) -> Result<studio::Solved> {
     for (int k = 0; k < 2000 && interior == studio::Interior::Job && !gone->load(); ++k)
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    studio::Solved solved;
-    solved.result = {{"resolution", resolution}};
-    solved.verdict = [] { return json{{"gate", {{"passed", true}}}}; };
-    solved.sparse = interior == studio::Interior::Sparse;
-    return solved;
+    return stubSolved(resolution, interior);
   };
   const json answer = session.solveLive(solve, 100, false, 7, "design", gone);
   EXPECT_TRUE(answer["refining"].get<bool>()) << answer;
   gone->store(true);
-  long position = 0;
-  std::string events;
-  for (int k = 0; k < 100 && events.find("\"result\"") == std::string::npos; ++k)
-    events += session.events().waitAfter(position, std::chrono::milliseconds(100));
+  const std::string events = eventsUntilResult(session, 100);
   EXPECT_NE(events.find("\"type\":\"result\""), std::string::npos) << events;
   EXPECT_NE(events.find("\"seq\":7"), std::string::npos) << events;
 }
@@ -532,19 +544,12 @@ TEST(StudioSession, ARefinementsProgressComesAtMostFourTimesASecond) {
         std::this_thread::sleep_for(std::chrono::milliseconds(2));
       }
     }
-    studio::Solved solved;
-    solved.result = {{"resolution", resolution}};
-    solved.verdict = [] { return json{{"gate", {{"passed", true}}}}; };
-    solved.sparse = interior == studio::Interior::Sparse;
-    return solved;
+    return stubSolved(resolution, interior);
   };
   const auto asked = std::chrono::steady_clock::now();
   const json answer = session.solveLive(solve, 100, false, 3, "design", nullptr);
   ASSERT_TRUE(answer["refining"].get<bool>()) << answer;
-  long position = 0;
-  std::string events;
-  for (int k = 0; k < 200 && events.find("\"type\":\"result\"") == std::string::npos; ++k)
-    events += session.events().waitAfter(position, std::chrono::milliseconds(100));
+  const std::string events = eventsUntilResult(session, 200);
   const auto elapsed = std::chrono::steady_clock::now() - asked;
   ASSERT_NE(events.find("\"type\":\"result\""), std::string::npos) << events;
   long progress = 0;
