@@ -199,6 +199,7 @@ void Session::queueRefinement(const SolveAt& solve, int resolution, const Latest
 
 json Session::solveLive(const SolveAt& solve, int resolution, bool optimises, long seq,
                         const std::string& design, std::shared_ptr<std::atomic<bool>> cancel) {
+  lastLive_ = Clock::now();
   const Latest::Ticket ticket = live_.next(std::move(cancel));
   ++liveWaiting_;
   std::unique_lock<std::mutex> lock(solveMutex_);
@@ -294,8 +295,9 @@ void Session::queue(std::function<void()> task, Task kind) {
   workReady_.notify_one();
 }
 
-// The worker: the newest shape's gate first, then the newest refinement, then the strip's starts
-// one at a time, so that neither waits for a whole strip. Its thread runs at a lower priority
+// The worker: the newest shape's gate first, then the newest refinement once the live requests
+// have paused (kRefinementQuiet), then the strip's starts one at a time, so that neither waits
+// for a whole strip. Its thread runs at a lower priority
 // (Linux: a thread's own nice value) than the live solves, answered on the server's threads, and
 // the browser drawing them: on a busy machine a shape's measuring must not delay the next shape.
 void Session::work() {
@@ -311,6 +313,11 @@ void Session::work() {
         task = std::move(*gate_);
         gate_.reset();
       } else if (refinement_) {
+        const auto due = lastLive_.load() + kRefinementQuiet;
+        if (Clock::now() < due) {
+          workReady_.wait_until(lock, due);
+          continue;
+        }
         task = std::move(*refinement_);
         refinement_.reset();
       } else {

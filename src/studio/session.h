@@ -151,6 +151,10 @@ class Session {
   /// The least time between a refinement's progress events: each one repaints the page, which
   /// costs a software-rendered browser a frame's worth of a core that the refinement needs.
   static constexpr std::chrono::milliseconds kProgressInterval{250};
+  /// How long after the last live request a refinement may start: during a drag every new
+  /// position cancels the refinement of the one before, and one begun in between costs the page
+  /// (on two cores) the CPU it draws the live shapes with.
+  static constexpr std::chrono::milliseconds kRefinementQuiet{80};
 
  private:
   void work();
@@ -174,6 +178,9 @@ class Session {
   /// Live solves waiting for solveMutex_: the worker's tasks let them go first (a mutex is not
   /// fair, and a strip's back-to-back solves would otherwise hold a drag for seconds).
   std::atomic<int> liveWaiting_{0};
+  /// When the last live request came (steady clock): the worker holds refinements until
+  /// kRefinementQuiet after it.
+  std::atomic<std::chrono::steady_clock::time_point> lastLive_{};
   std::unique_lock<std::mutex> lockAfterLive();
   /// The last design (position included) whose solve optimised (under solveMutex_).
   std::string optimisedDesign_;

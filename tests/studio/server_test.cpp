@@ -12,10 +12,12 @@
 #include <fstream>
 #include <future>
 #include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
 #include <thread>
+#include <vector>
 
 #include "dform/io/outline_reader.h"
 #include "dform/pipeline/forward_pipeline.h"
@@ -560,6 +562,52 @@ TEST(StudioSession, ARefinementsProgressComesAtMostFourTimesASecond) {
   // before (the first a quarter second after the refinement began).
   EXPECT_GE(progress, 1) << events;
   EXPECT_LE(progress, elapsed / std::chrono::milliseconds(250)) << events;
+}
+
+// During a drag every position cancels the refinement of the one before: the worker starts a
+// refinement only once the live requests have paused for kRefinementQuiet, so a drag costs the
+// page no CPU for refinements it will never see. The stub's refinement returns at once; asked
+// for 25 positions 10 ms apart, the old worker ran one after nearly every position.
+TEST(StudioSession, ARefinementWaitsForTheLiveRequestsToPause) {
+  studio::PieceInput a{"a.json", "", test::startEllipse(120, 70, "a.json")};
+  studio::PieceInput b{"b.json", "", test::startEllipse(110, 82.305579, "b.json")};
+  studio::Session session(a, b);
+  using Clock = std::chrono::steady_clock;
+  std::mutex mutex;
+  std::vector<Clock::time_point> refinements;
+  const studio::SolveAt solve = [&](int resolution, studio::Interior interior,
+                                    const RunHooks&) -> Result<studio::Solved> {
+    if (interior == studio::Interior::Job) {
+      const std::lock_guard<std::mutex> lock(mutex);
+      refinements.push_back(Clock::now());
+    }
+    return stubSolved(resolution, interior);
+  };
+  const Clock::time_point asked = Clock::now();
+  ASSERT_TRUE(session.solveLive(solve, 100, false, 1, "design", nullptr)["refining"].get<bool>());
+  ASSERT_NE(eventsUntilResult(session, 50).find("\"type\":\"result\""), std::string::npos);
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    ASSERT_EQ(refinements.size(), 1u);
+    EXPECT_GE(refinements[0] - asked, studio::Session::kRefinementQuiet);
+    refinements.clear();
+  }
+  for (long seq = 2; seq <= 26; ++seq) {
+    session.solveLive(solve, 100, false, seq, "design", nullptr);
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  for (int k = 0; k < 100; ++k) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex);
+      if (!refinements.empty() &&
+          Clock::now() - refinements.back() > std::chrono::milliseconds(300))
+        break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  const std::lock_guard<std::mutex> lock(mutex);
+  EXPECT_GE(refinements.size(), 1u);  // the last position's
+  EXPECT_LE(refinements.size(), 3u);  // a pause of the test's own thread may let another start
 }
 
 TEST(StudioSession, TheWorkerYieldsToTheLiveSolves) {
