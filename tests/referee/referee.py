@@ -4,6 +4,7 @@
 
     referee.py solve DIR -o OUT [--subdivide K] [--mirror] [--schedule NAME]
     referee.py compare SEAM1.json SEAM2.json [--mirror]
+    referee.py bending DIR... --on REF
 
 `solve` reads the four piece OBJs of dform result folder DIR (made by `dform forward ... --model
 paper|general|exact`), glues the pieces into one sheet (sheet.py), optionally splits every
@@ -18,6 +19,10 @@ the Hessian's negative eigenvalue count, time), then prints the summary.
 `compare` prints the distance between two seams of the same sampling after the best rigid motion
 (Kabsch; with --mirror the best motion or motion plus reflection), over the first one's bounding box
 diagonal: RMS and max.
+
+`bending` prints each result folder's hinge energy (sheet.bending) on its own mesh and on the
+pieces' meshes of result folder REF, its surface resampled onto them (sheet.resample): results of
+different models, meshed differently, compared on one mesh.
 """
 import argparse
 import json
@@ -244,6 +249,19 @@ def compare(args):
     print(json.dumps({"rms_over_diagonal": rms, "max_over_diagonal": worst}))
 
 
+def bending_on(args):
+    """Each result folder's hinge energy on its own mesh and resampled onto the reference's."""
+    reference = [sh.read_piece(args.on, p) for p in "ab"]
+    for folder in args.folders:
+        pieces = [sh.read_piece(folder, p) for p in "ab"]
+        own = sh.Sheet(*pieces)
+        common = sh.Sheet(*(sh.resample(piece, ref) for piece, ref in zip(pieces, reference)))
+        print(json.dumps({"folder": folder, "reference": args.on,
+                          "reference_vertices": len(common.x),
+                          "hinge_own_mesh": sh.bending(own, own.x)["hinge"],
+                          "hinge_on_reference": sh.bending(common, common.x)["hinge"]}))
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     sub = parser.add_subparsers(dest="command", required=True)
@@ -264,6 +282,10 @@ def main():
     c.add_argument("second")
     c.add_argument("--mirror", action="store_true")
     c.set_defaults(run=compare)
+    b = sub.add_parser("bending", help="hinge energies of result folders on one reference mesh")
+    b.add_argument("folders", nargs="+")
+    b.add_argument("--on", required=True, help="a result folder whose pieces' meshes are the reference")
+    b.set_defaults(run=bending_on)
     args = parser.parse_args()
     args.run(args)
 

@@ -99,6 +99,56 @@ def subdivide(piece):
                  [loop(b, True) for b in piece.boundaries], [loop(c, False) for c in piece.creases])
 
 
+def resample(piece, reference):
+    """`reference` (a Piece: its flat mesh, seam, boundaries and creases) carrying `piece`'s
+    surface: each reference vertex takes the 3D point of `piece` at the same flat place (the
+    barycentric combination of the corners of `piece`'s flat triangle holding it; the nearest
+    triangle's, clamped to it, where the place lies just outside `piece`'s outline, as on a curved
+    outline sampled at other points). Results meshed differently, resampled onto one reference,
+    are compared on one mesh: a fold then counts the same whichever mesh made it."""
+    corners = piece.flat[piece.faces]
+    origin, side1, side2 = corners[:, 0], corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]
+    det = side1[:, 0] * side2[:, 1] - side1[:, 1] * side2[:, 0]
+    shape = np.empty((len(reference.flat), 3))
+    for i, q in enumerate(reference.flat):
+        d = q - origin
+        v = (d[:, 0] * side2[:, 1] - d[:, 1] * side2[:, 0]) / det
+        w = (side1[:, 0] * d[:, 1] - side1[:, 1] * d[:, 0]) / det
+        weights = np.stack([1.0 - v - w, v, w], 1)
+        inside = weights.min(1)
+        f = int(np.argmax(inside))
+        if inside[f] < -1e-9:  # outside every triangle: the nearest one's closest point
+            near = np.argsort(np.linalg.norm(corners.mean(1) - q, axis=1))[:32]
+            f = int(near[np.argmin([np.linalg.norm(q - closest_point(q, corners[t])) for t in near])])
+            weights[f] = barycentric(closest_point(q, corners[f]), corners[f])
+        shape[i] = weights[f] @ piece.shape[piece.faces[f]]
+    return Piece(reference.flat, shape, reference.faces, reference.seam, reference.boundaries,
+                 reference.creases)
+
+
+def barycentric(q, triangle):
+    """Barycentric coordinates of flat point q in a flat triangle (3 x 2)."""
+    a, b, c = triangle
+    m = np.array([[b[0] - a[0], c[0] - a[0]], [b[1] - a[1], c[1] - a[1]]])
+    v, w = np.linalg.solve(m, q - a)
+    return np.array([1.0 - v - w, v, w])
+
+
+def closest_point(q, triangle):
+    """The point of a flat triangle (3 x 2, its inside included) nearest to q."""
+    weights = barycentric(q, triangle)
+    if weights.min() >= 0:
+        return q
+    best = None
+    for k in range(3):
+        a, b = triangle[k], triangle[(k + 1) % 3]
+        t = min(1.0, max(0.0, float(np.dot(q - a, b - a) / np.dot(b - a, b - a))))
+        p = a + t * (b - a)
+        if best is None or np.linalg.norm(q - p) < np.linalg.norm(q - best):
+            best = p
+    return best
+
+
 class Sheet:
     """Both pieces as one surface. `x` is n x 3 (the start or the solved shape); `faces` m x 3 with
     `face_piece` (0 for A, 1 for B) and `face_flat` (m x 3 x 2, each corner's flat position);

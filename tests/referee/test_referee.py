@@ -92,6 +92,64 @@ def test_hinge_angle_of_a_folded_diagonal():
     assert abs(bend["dihedral_hooke"] - 2 * (1 - math.cos(expected)) * math.sqrt(2)) < 1e-12
 
 
+def folded_grid(n, fold, margin=0.0):
+    """A 100 mm square split into n x n cells (two triangles each), folded by `fold` rad along
+    x = 50 (a grid line for even n), zipped to its turned-over copy (as square_pair); `margin`
+    grows the flat square by that much on every side (the fold stays at x = 50)."""
+    ticks = np.linspace(-margin, 100.0 + margin, n + 1)
+    flat = np.array([[x, y] for y in ticks for x in ticks])
+    shape = np.zeros((len(flat), 3))
+    for i, (x, y) in enumerate(flat):
+        t = max(0.0, x - 50.0)
+        shape[i] = [min(x, 50.0) + t * math.cos(fold), y, t * math.sin(fold)]
+    at = lambda i, j: j * (n + 1) + i  # noqa: E731
+    faces = []
+    for j in range(n):
+        for i in range(n):
+            faces += [[at(i, j), at(i + 1, j), at(i + 1, j + 1)], [at(i, j), at(i + 1, j + 1), at(i, j + 1)]]
+    loop = ([at(i, 0) for i in range(n)] + [at(n, j) for j in range(n)] +
+            [at(i, n) for i in range(n, 0, -1)] + [at(0, j) for j in range(n, 0, -1)])
+    a = sh.Piece(flat, shape, faces, loop, [], [])
+    b = sh.Piece(flat * [1, -1], shape.copy(), [[f[0], f[2], f[1]] for f in faces], loop, [], [])
+    return a, b
+
+
+def hinge_of(a, b):
+    s = sh.Sheet(a, b)
+    return sh.bending(s, s.x)["hinge"]
+
+
+def test_a_fold_counts_the_same_on_one_reference_mesh_whichever_mesh_made_it():
+    fold = 0.6
+    coarse, fine, reference = folded_grid(8, fold), folded_grid(16, fold), folded_grid(4, 0.0)
+    # On its own mesh a fold counts once per edge along it: each of the n fold edges of a piece
+    # has |e|^2 / (A1 + A2) = 1, so the hinge energy is 2 n fold^2 and doubles with the mesh.
+    assert abs(hinge_of(*coarse) - 2 * 8 * fold ** 2) < 1e-9
+    assert abs(hinge_of(*fine) - 2 * 16 * fold ** 2) < 1e-9
+    on_reference = [hinge_of(*(sh.resample(p, r) for p, r in zip(model, reference)))
+                    for model in (coarse, fine)]
+    assert abs(on_reference[0] - 2 * 4 * fold ** 2) < 1e-9
+    assert abs(on_reference[1] - on_reference[0]) < 1e-9
+
+
+def test_resampling_onto_its_own_mesh_gives_its_own_surface():
+    a, _ = folded_grid(6, 0.4)
+    again = sh.resample(a, a)
+    assert np.max(np.abs(again.shape - a.shape)) < 1e-12
+    assert again.faces.tolist() == a.faces.tolist() and again.seam == a.seam
+
+
+def test_a_reference_point_just_outside_takes_the_nearest_point_of_the_surface():
+    model, _ = folded_grid(8, 0.4)
+    wider, _ = folded_grid(8, 0.0, margin=0.01)
+    placed = sh.resample(model, wider)
+    # the corner (-0.01, -0.01) lands on the model's corner, (100.01, 50) on its folded edge at y=50
+    corner = int(np.argmin(np.linalg.norm(wider.flat - [-0.01, -0.01], axis=1)))
+    assert np.allclose(placed.shape[corner], [0, 0, 0], atol=1e-12)
+    right = int(np.argmin(np.linalg.norm(wider.flat - [100.01, 50.0], axis=1)))
+    assert np.allclose(placed.shape[right], [50 + 50 * math.cos(0.4), 50.0, 50 * math.sin(0.4)], atol=1e-12)
+
+
 def test_seam_distance_ignores_rigid_motions_not_reflections():
     rng = np.random.default_rng(1)
     p = rng.normal(size=(30, 3))
