@@ -297,9 +297,9 @@ void Session::queue(std::function<void()> task, Task kind) {
 
 // The worker: the newest shape's gate first, then the newest refinement once the live requests
 // have paused (kRefinementQuiet), then the strip's starts one at a time, so that neither waits
-// for a whole strip. Its thread runs at a lower priority
-// (Linux: a thread's own nice value) than the live solves, answered on the server's threads, and
-// the browser drawing them: on a busy machine a shape's measuring must not delay the next shape.
+// for a whole strip. Its thread runs at a lower priority (Linux: a thread's own nice value) than
+// the live solves, answered on the server's threads, and the browser drawing them: on a busy
+// machine a shape's measuring must not delay the next shape.
 void Session::work() {
   setpriority(PRIO_PROCESS, id_t(syscall(SYS_gettid)), kWorkerNice);  // best effort: not fatal
   for (;;) {
