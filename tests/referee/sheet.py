@@ -119,8 +119,10 @@ def resample(piece, reference):
         f = int(np.argmax(inside))
         if inside[f] < -1e-9:  # outside every triangle: the nearest one's closest point
             near = np.argsort(np.linalg.norm(corners.mean(1) - q, axis=1))[:32]
-            f = int(near[np.argmin([np.linalg.norm(q - closest_point(q, corners[t])) for t in near])])
-            weights[f] = barycentric(closest_point(q, corners[f]), corners[f])
+            points = [closest_point(q, corners[t]) for t in near]
+            k = int(np.argmin([np.linalg.norm(q - p) for p in points]))
+            f = int(near[k])
+            weights[f] = barycentric(points[k], corners[f])
         shape[i] = weights[f] @ piece.shape[piece.faces[f]]
     return Piece(reference.flat, shape, reference.faces, reference.seam, reference.boundaries,
                  reference.creases)
