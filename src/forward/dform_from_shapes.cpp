@@ -356,12 +356,16 @@ Status solvePaperModel(const ForwardSettings& job, const SeamLayout& layout, Sol
 Status solveIsometricModel(const ForwardSettings& job, const SeamLayout& layout, SolvedDForm& run,
                            MessageSink& sink, const RunHooks& hooks) {
   IsometricLevels levels;
-  levels.paperShape = [&](int resolution) -> Result<DForm> {
+  RunHooks unreported;
+  unreported.interrupted = hooks.interrupted;
+  levels.paperShape = [&](int resolution, bool reportsProgress) -> Result<DForm> {
     ForwardSettings at = job;
     at.resolution = resolution;
     SolvedDForm start = run;
     MessageSink quiet;
-    if (Status s = solvePaperModel(at, layout, start, quiet, hooks); !s.isOk()) return s;
+    if (Status s = solvePaperModel(at, layout, start, quiet, reportsProgress ? hooks : unreported);
+        !s.isOk())
+      return s;
     return std::move(start.model);
   };
   levels.mesh = [&](int resolution, double interiorEdgeFactor) {

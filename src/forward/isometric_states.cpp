@@ -3,10 +3,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <map>
 #include <optional>
+#include <system_error>
 
 #include "dform/core/constants.h"
+#include "dform/core/interrupt.h"
 #include "dform/exact/aligned_distance.h"
 #include "dform/forward/settings.h"
 #include "dform/model/run_control.h"
@@ -216,6 +219,16 @@ Result<IsometricState> carried(DForm start, double startFactor, const std::vecto
   return state;
 }
 
+// The state `levels.paperShape(from)` leads to at the ranking resolution.
+Result<IsometricState> stateFrom(int from, int ranking, bool reportsProgress,
+                                 double interiorEdgeFactor, const IsometricLevels& levels) {
+  if (levels.stop()) return Status(ErrorCode::Interrupted, "the run was stopped");
+  Result<DForm> paper = levels.paperShape(from, reportsProgress);
+  if (!paper.isOk()) return paper.status();
+  return carried(std::move(paper).value(), interiorEdgeFactor, ladder(from, ranking),
+                 interiorEdgeFactor, levels);
+}
+
 }  // namespace
 
 IsometricStates isometricStates(int resolution, double interiorEdgeFactor,
@@ -234,16 +247,30 @@ IsometricStates isometricStates(int resolution, double interiorEdgeFactor,
       return seamDistance(o.exact.model, state.exact.model) <= sameState;
     });
   };
-  for (int from : starts) {
-    const std::string name = detail::format("the paper model's shape at %d seam points", from);
-    if (levels.stop()) return found;
-    Result<DForm> paper = levels.paperShape(from);
-    if (!paper.isOk()) {
-      found.failures.emplace_back(name, paper.status().message());
-      continue;
+  // The starts do not depend on each other: every one but the last is made on a thread of its own
+  // (which heeds this thread's stop flag, and reports no progress) while this thread makes the
+  // last. Their states are then taken in the starts' order, so the answer is the one a single
+  // thread gives. Where no thread can be started, a start is made here in its turn.
+  const std::atomic<bool>* stopFlag = detail::threadStop;
+  std::vector<std::future<Result<IsometricState>>> beside;
+  for (std::size_t s = 0; s + 1 < starts.size(); ++s) {
+    try {
+      beside.push_back(std::async(std::launch::async, [&, from = starts[s], stopFlag] {
+        const ScopedStop stop(stopFlag);
+        return stateFrom(from, ranking, false, interiorEdgeFactor, levels);
+      }));
+    } catch (const std::system_error&) {
+      break;
     }
-    Result<IsometricState> state = carried(std::move(paper).value(), interiorEdgeFactor,
-                                           ladder(from, ranking), interiorEdgeFactor, levels);
+  }
+  std::vector<std::optional<Result<IsometricState>>> made(starts.size());
+  for (std::size_t s = beside.size(); s < starts.size(); ++s)
+    made[s] = stateFrom(starts[s], ranking, true, interiorEdgeFactor, levels);
+  for (std::size_t s = 0; s < beside.size(); ++s) made[s] = beside[s].get();
+  for (std::size_t s = 0; s < starts.size(); ++s) {
+    const std::string name = detail::format("the paper model's shape at %d seam points", starts[s]);
+    if (levels.stop()) return found;
+    Result<IsometricState>& state = *made[s];
     if (!state.isOk()) {
       found.failures.emplace_back(name, state.status().message());
       continue;

@@ -32,8 +32,9 @@ constexpr double kSameIsometricState = 5e-3;
 
 /// What the states are made from: the job's own ways of solving and meshing.
 struct IsometricLevels {
-  /// The paper model's solved shape at this many seam points, on the job's mesh.
-  std::function<Result<DForm>(int resolution)> paperShape;
+  /// The paper model's solved shape at this many seam points, on the job's mesh; its iterations
+  /// go to the run's progress hooks only where `reportsProgress` (one start at a time does).
+  std::function<Result<DForm>(int resolution, bool reportsProgress)> paperShape;
   /// Both pieces meshed at this many seam points with this interior edge (a multiple of the seam
   /// edge), their shapes empty.
   std::function<Result<std::array<Piece, 2>>(int resolution, double interiorEdgeFactor)> mesh;
@@ -60,7 +61,8 @@ struct IsometricStates {
 
 /// The states at `resolution` seam points on meshes of `interiorEdgeFactor` (or twice it where
 /// that fails). The paper model's shape at each start resolution is made exact and carried to the
-/// ranking resolution (kIsometricStartResolutions.back(), or the job's where coarser); the
+/// ranking resolution (kIsometricStartResolutions.back(), or the job's where coarser), each start
+/// on a thread of its own (the levels' functions are called from several threads at once); the
 /// distinct states are ordered by their bending energy there and each is carried on to
 /// `resolution`. Carrying a state one level (twice the one below, the target last) meshes both
 /// pieces afresh, starts them from the exact state below (barycentric in its flat triangles,

@@ -4,7 +4,10 @@
 // with vertices inside the pieces, and the same answer every run.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <mutex>
+#include <thread>
 #include <tuple>
 
 #include "dform/exact/aligned_distance.h"
@@ -177,13 +180,15 @@ TEST(IsometricStates, ALevelThatStallsIsMadeOnACoarserInteriorAndRefinedFromTher
         std::tuple{1000, keeping, 2.0}}) {
     Asked asked;
     int refused = 0;
+    std::mutex asking;  // the starts run side by side
     forward_detail::IsometricLevels levels;
-    levels.paperShape = [&](int resolution) -> Result<DForm> {
+    levels.paperShape = [&](int resolution, bool) -> Result<DForm> {
       Result<ForwardRun> r = solved(resolution, 1.0);
       if (!r.isOk()) return r.status();
       return r.value().model;
     };
     levels.mesh = [&](int resolution, double interiorEdgeFactor) -> Result<std::array<Piece, 2>> {
+      const std::lock_guard<std::mutex> lock(asking);
       asked.emplace_back(resolution, interiorEdgeFactor);
       if (interiorEdgeFactor == 1.0 && refused++ < refusals)
         return Status(ErrorCode::SolveFailed, "refused by the test");
@@ -205,6 +210,58 @@ TEST(IsometricStates, ALevelThatStallsIsMadeOnACoarserInteriorAndRefinedFromTher
     EXPECT_EQ(state.exact.model.b.flat.rows(), onThatMesh.value().model.b.flat.rows());
     EXPECT_LE(state.exact.lengthError, 1e-12);
   }
+}
+
+// The starts are made side by side: every start but the last on a thread of its own, which
+// reports no progress, the last on the caller's thread, reporting it; the states are listed as one
+// thread would list them. Stopped, no start is made and nothing is found.
+TEST(IsometricStates, TheStartsAreMadeSideBySideAndListedInOneOrder) {
+  struct Call {
+    int resolution;
+    bool reportsProgress;
+    std::thread::id thread;
+  };
+  std::vector<Call> calls;
+  std::mutex calling;
+  bool stopped = false;
+  forward_detail::IsometricLevels levels;
+  levels.paperShape = [&](int resolution, bool reportsProgress) -> Result<DForm> {
+    {
+      const std::lock_guard<std::mutex> lock(calling);
+      calls.push_back({resolution, reportsProgress, std::this_thread::get_id()});
+    }
+    Result<ForwardRun> r =
+        runRuled(pairJob("nonconvex-a.svg", "nonconvex-b.svg", ModelChoice::Paper, resolution));
+    if (!r.isOk()) return r.status();
+    return r.value().model;
+  };
+  levels.mesh = [](int, double) -> Result<std::array<Piece, 2>> {
+    return Status(ErrorCode::SolveFailed, "not meshed by the test");
+  };
+  levels.stop = [&] { return stopped; };
+  const forward_detail::IsometricStates found = forward_detail::isometricStates(60, 1.0, levels);
+  ASSERT_EQ(calls.size(), 2u);
+  std::sort(calls.begin(), calls.end(),
+            [](const Call& a, const Call& b) { return a.resolution < b.resolution; });
+  EXPECT_EQ(calls[0].resolution, 50);
+  EXPECT_FALSE(calls[0].reportsProgress);
+  EXPECT_NE(calls[0].thread, std::this_thread::get_id());
+  EXPECT_EQ(calls[1].resolution, 60);
+  EXPECT_TRUE(calls[1].reportsProgress);
+  EXPECT_EQ(calls[1].thread, std::this_thread::get_id());
+  // The start at 50 cannot be carried to 60 here (no mesh), so it is listed as a failure; the
+  // one at 60 is made exact on its own mesh.
+  ASSERT_EQ(found.failures.size(), 1u);
+  EXPECT_EQ(found.failures[0].first, "the paper model's shape at 50 seam points");
+  ASSERT_EQ(found.states.size(), 1u);
+  EXPECT_EQ(found.states[0].start, "the paper model's shape at 60 seam points");
+  EXPECT_LE(found.states[0].exact.lengthError, 1e-12);
+
+  calls.clear();
+  stopped = true;
+  const forward_detail::IsometricStates none = forward_detail::isometricStates(60, 1.0, levels);
+  EXPECT_TRUE(none.states.empty());
+  EXPECT_TRUE(calls.empty());
 }
 
 // Asked for where its boundary points find no state on a convex metric (the squaricle's pieces,
