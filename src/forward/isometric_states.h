@@ -61,8 +61,9 @@ struct IsometricStates {
 
 /// The states at `resolution` seam points on meshes of `interiorEdgeFactor` (or twice it where
 /// that fails). The paper model's shape at each start resolution is made exact and carried to the
-/// ranking resolution (kIsometricStartResolutions.back(), or the job's where coarser), each start
-/// on a thread of its own (the levels' functions are called from several threads at once); the
+/// ranking resolution (kIsometricStartResolutions.back(), or the job's where coarser), the starts
+/// side by side: all but the last on threads of their own, the last on the caller's (so the
+/// levels' functions are called from several threads at once); the
 /// distinct states are ordered by their bending energy there and each is carried on to
 /// `resolution`. Carrying a state one level (twice the one below, the target last) meshes both
 /// pieces afresh, starts them from the exact state below (barycentric in its flat triangles,
