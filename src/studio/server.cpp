@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <list>
@@ -206,6 +207,27 @@ long headLength(int fd, std::size_t maxBytes) {
   const std::size_t end = peeked.find("\r\n\r\n");
   if (end != std::string::npos) return long(end + 4);
   return std::size_t(n) >= maxBytes ? long(n) : 0;
+}
+
+// The head without its Accept-Encoding lines. cpp-httplib compresses a text answer (the page,
+// its scripts and styles) for a client that accepts brotli or gzip; between two processes on one
+// machine that only costs time (docs/studio.md, "Connections").
+void acceptNoContentCoding(std::string& head) {
+  static const std::string name = "accept-encoding:";
+  const auto sameLetter = [](char lower, char c) {
+    return lower == std::tolower(static_cast<unsigned char>(c));
+  };
+  std::size_t lineEnd = head.find("\r\n");  // the request line stays
+  while (lineEnd != std::string::npos) {
+    const std::size_t start = lineEnd + 2;
+    const std::size_t end = head.find("\r\n", start);
+    if (end == std::string::npos || end == start) return;  // no more header lines
+    if (end - start >= name.size() &&
+        std::equal(name.begin(), name.end(), head.begin() + long(start), sameLetter))
+      head.erase(start, end + 2 - start);
+    else
+      lineEnd = end;
+  }
 }
 
 }  // namespace
@@ -478,6 +500,7 @@ void Server::answer(std::unique_ptr<Connection> c) {
   while ((got = ::recv(c->fd, c->head.data(), c->headBytes, MSG_WAITALL)) < 0 && errno == EINTR) {
   }
   c->head.resize(got > 0 ? std::size_t(got) : 0);
+  acceptNoContentCoding(c->head);
   c->headUsed = 0;
   c->budget = 0;
   c->bodyLimit = limits_.maxBodyBytes + kFramingBytes;

@@ -83,6 +83,29 @@ TEST(StudioServer, RefusesRequestsWithoutTheToken) {
   EXPECT_EQ(script->status, 200);
 }
 
+// cpp-httplib would compress them with brotli for a client that accepts it: between two
+// processes on one machine, time lost.
+TEST(StudioServer, SendsThePageAndItsAssetsUncompressed) {
+  StudioClient c;
+  const std::string cookie =
+      "dform_studio_" + std::to_string(c.studio().port()) + "=" + c.studio().token();
+  c.raw().set_decompress(false);  // the body as sent
+  const std::pair<std::string, std::string> assets[] = {
+      {"/?token=" + c.studio().token(), "<!doctype html>"},
+      {"/studio.js", "// dform studio's page"},
+      {"/studio.css", "/* dform studio"}};
+  for (const auto& [path, opening] : assets)
+    for (const char* name : {"Accept-Encoding", "accept-encoding", "ACCEPT-ENCODING"}) {
+      auto got = c.raw().Get(
+          path.c_str(),
+          {{"Cookie", cookie}, {name, "gzip, deflate, br"}, {"X-After-The-Header", "kept"}});
+      ASSERT_TRUE(got) << path;
+      EXPECT_EQ(got->status, 200) << path;
+      EXPECT_EQ(got->get_header_value("Content-Encoding"), "") << path << ", " << name;
+      EXPECT_EQ(got->body.rfind(opening, 0), 0u) << path << ": " << got->body.substr(0, 40);
+    }
+}
+
 TEST(StudioServer, RefusesForeignOriginAndHost) {
   StudioClient c;
   const std::string port = std::to_string(c.studio().port());
