@@ -371,36 +371,39 @@ int mergeBatchCommand(const std::string& dir, bool allowPartial, bool quiet) {
   return 0;
 }
 
-int exportSaved(const std::string& dir, const ExportSettings& settings, const SavedExport& how,
-                bool quiet, const std::atomic<bool>& interrupted) {
-  Terminal terminal(quiet);
-  MessageSink sink(terminal.listener());
-  const Result<std::string> into = exportSavedResult(dir, settings, how, sink, interrupted);
+namespace {
+
+// An export's outcome: the folder it wrote, as the JSON summary or one line ("<done> <profile>
+// into <folder>"), or its failure.
+int exportDone(const Result<std::string>& into, const char* done, const ExportSettings& settings,
+               bool quiet) {
   if (!into.isOk()) return fail(into.status());
   if (json_summary::enabled())
     json_summary::add({{"profile", settings.pattern.profile},
                        {"output", into.value()},
                        {"files", folderFiles(into.value())}});
   else if (!quiet)
-    std::fprintf(stdout, "exported %s into %s\n", settings.pattern.profile.c_str(),
+    std::fprintf(stdout, "%s %s into %s\n", done, settings.pattern.profile.c_str(),
                  into.value().c_str());
   return 0;
+}
+
+}  // namespace
+
+int exportSaved(const std::string& dir, const ExportSettings& settings, const SavedExport& how,
+                bool quiet, const std::atomic<bool>& interrupted) {
+  Terminal terminal(quiet);
+  MessageSink sink(terminal.listener());
+  return exportDone(exportSavedResult(dir, settings, how, sink, interrupted), "exported", settings,
+                    quiet);
 }
 
 int exportNested(const std::vector<std::string>& dirs, int copies, const ExportSettings& settings,
                  const SavedExport& how, bool quiet, const std::atomic<bool>& interrupted) {
   Terminal terminal(quiet);
   MessageSink sink(terminal.listener());
-  const Result<std::string> into = exportNest(dirs, copies, settings, how, sink, interrupted);
-  if (!into.isOk()) return fail(into.status());
-  if (json_summary::enabled())
-    json_summary::add({{"profile", settings.pattern.profile},
-                       {"output", into.value()},
-                       {"files", folderFiles(into.value())}});
-  else if (!quiet)
-    std::fprintf(stdout, "nested %s into %s\n", settings.pattern.profile.c_str(),
-                 into.value().c_str());
-  return 0;
+  return exportDone(exportNest(dirs, copies, settings, how, sink, interrupted), "nested", settings,
+                    quiet);
 }
 
 int validateSaved(const std::string& dir, const std::string& gateName, const Printing& printing) {
