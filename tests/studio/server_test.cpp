@@ -77,9 +77,7 @@ TEST(StudioServer, RefusesRequestsWithoutTheToken) {
   EXPECT_EQ(good->status, 200);
   EXPECT_NE(good->body.find(c.studio().token()), std::string::npos);
   EXPECT_NE(good->get_header_value("Set-Cookie").find("HttpOnly"), std::string::npos);
-  httplib::Headers cookie = {
-      {"Cookie", "dform_studio_" + std::to_string(c.studio().port()) + "=" + c.studio().token()}};
-  auto script = c.raw().Get("/studio.js", cookie);
+  auto script = c.raw().Get("/studio.js", {{"Cookie", c.cookie()}});
   EXPECT_EQ(script->status, 200);
 }
 
@@ -87,8 +85,6 @@ TEST(StudioServer, RefusesRequestsWithoutTheToken) {
 // processes on one machine, time lost.
 TEST(StudioServer, SendsThePageAndItsAssetsUncompressed) {
   StudioClient c;
-  const std::string cookie =
-      "dform_studio_" + std::to_string(c.studio().port()) + "=" + c.studio().token();
   c.raw().set_decompress(false);  // the body as sent
   const std::pair<std::string, std::string> assets[] = {
       {"/?token=" + c.studio().token(), "<!doctype html>"},
@@ -97,7 +93,7 @@ TEST(StudioServer, SendsThePageAndItsAssetsUncompressed) {
   for (const auto& [path, opening] : assets)
     for (const char* name : {"Accept-Encoding", "accept-encoding", "ACCEPT-ENCODING"}) {
       // The token's cookie is sent after the dropped line: a script answered 200 kept it.
-      auto got = c.raw().Get(path.c_str(), {{name, "gzip, deflate, br"}, {"Cookie", cookie}});
+      auto got = c.raw().Get(path.c_str(), {{name, "gzip, deflate, br"}, {"Cookie", c.cookie()}});
       ASSERT_TRUE(got) << path;
       EXPECT_EQ(got->status, 200) << path;
       EXPECT_EQ(got->get_header_value("Content-Encoding"), "") << path << ", " << name;

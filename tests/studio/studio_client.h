@@ -36,6 +36,10 @@ class StudioClient {
   Studio& studio() { return *studio_; }
   httplib::Client& raw() { return *client_; }
   httplib::Headers headers() const { return {{"X-Dform-Token", studio_->token()}}; }
+  /// The token's cookie as the page sets it (the page and its assets are asked with it).
+  std::string cookie() const {
+    return "dform_studio_" + std::to_string(studio_->port()) + "=" + studio_->token();
+  }
 
   std::pair<int, nlohmann::json> post(const std::string& path, const nlohmann::json& body) {
     auto r = client_->Post(path.c_str(), headers(), body.dump(), "application/json");
