@@ -63,14 +63,14 @@ struct IsometricStates {
 /// that fails). The paper model's shape at each start resolution is made exact and carried to the
 /// ranking resolution (kIsometricStartResolutions.back(), or the job's where coarser), the starts
 /// side by side: all but the last on threads of their own, the last on the caller's (so the
-/// levels' functions are called from several threads at once); the
-/// distinct states are ordered by their bending energy there and each is carried on to
-/// `resolution`. Carrying a state one level (twice the one below, the target last) meshes both
-/// pieces afresh, starts them from the exact state below (barycentric in its flat triangles,
-/// which are rigid, so the start stretches only where a fine edge crosses a fold) and makes them
-/// exact again: at once, else by stages (IsometricMeshOptions::stages), else on twice the interior
-/// edge and from there onto the given one again (where that fails too, the state on twice it).
-/// States within `sameState` of each other are one.
+/// levels' functions are called from several threads at once); the distinct states are ordered
+/// by their bending energy there and each is carried on to `resolution`. Carrying a state one level
+/// (twice the one below, the target last) meshes both pieces afresh, starts them from the exact
+/// state below (barycentric in its flat triangles, which are rigid, so the start stretches only
+/// where a fine edge crosses a fold) and makes them exact again: at once, else by stages
+/// (IsometricMeshOptions::stages), else on twice the interior edge and from there onto the given
+/// one again (where that fails too, the state on twice it). States within `sameState` of each other
+/// are one.
 IsometricStates isometricStates(int resolution, double interiorEdgeFactor,
                                 const IsometricLevels& levels,
                                 double sameState = kSameIsometricState);
