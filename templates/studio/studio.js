@@ -271,9 +271,11 @@
     var sent = performance.now();
     api(path, body).then(function (r) {
       if (r.arrival) r.arrival.sent = sent;
+      // The next position goes to the server before this answer is drawn: its solve overlaps the
+      // drawing.
       inFlight = false;
-      if (!r.superseded) show(r);
       send();
+      if (!r.superseded) show(r);
     }).catch(function (e) { inFlight = false; solveFailed(seq, e.message); send(); });
   }
 

@@ -3,10 +3,30 @@
 // refilled in place while the mesh keeps its size, so a live drag uploads vertices only.
 "use strict";
 
+// Whether this browser's WebGL draws on the CPU (SwiftShader, Mesa's llvmpipe, Windows' basic
+// render driver): asked once, of a context made for the question and then let go.
+var softwareWebGL = (function () {
+  var answer = null;
+  return function () {
+    if (answer !== null) return answer;
+    var gl = document.createElement("canvas").getContext("webgl");
+    var info = gl && gl.getExtension("WEBGL_debug_renderer_info");
+    var renderer = info ? String(gl.getParameter(info.UNMASKED_RENDERER_WEBGL)) : "";
+    answer = /swiftshader|llvmpipe|softpipe|basic render driver/i.test(renderer);
+    var lose = gl && gl.getExtension("WEBGL_lose_context");
+    if (lose) lose.loseContext();
+    return answer;
+  };
+})();
+
 // options: {axes: false} for a view without axes (the strip's thumbnails).
 function View3D(canvas, options) {
-  var gl = canvas.getContext("webgl", { antialias: true, preserveDrawingBuffer: true });
+  // Multisampling on a software rasteriser multiplies each frame's fragment work by its samples
+  // (on SwiftShader, 4 samples of this view cost its every frame about 18 ms of CPU more, taken
+  // from the solve of the next shape): there the view draws without it.
+  var gl = canvas.getContext("webgl", { antialias: !softwareWebGL(), preserveDrawingBuffer: true });
   if (!gl) throw new Error("this browser has no WebGL");
+  this.antialiased = gl.getContextAttributes().antialias;
   if (!gl.getExtension("OES_element_index_uint")) throw new Error("WebGL lacks 32-bit indices");
   // Faceted shading from the screen-space derivatives of the view position (each triangle its
   // own plane, as the sheet is between mesh vertices): no normals to compute or upload per frame.

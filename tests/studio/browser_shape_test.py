@@ -291,6 +291,17 @@ def snapping(s):
     check(0.3 < off < 15, f"with Alt held it starts where the pointer is ({off:.2f} mm from the corner)")
 
 
+def multisampling(s):
+    """The harness's WebGL is SwiftShader's, a software rasteriser: the 3D view draws without
+    multisampling there (its context's own attributes say so)."""
+    renderer = s.js("var gl = document.createElement('canvas').getContext('webgl'),"
+                    " e = gl.getExtension('WEBGL_debug_renderer_info'); return gl.getParameter(e.UNMASKED_RENDERER_WEBGL)")
+    check("SwiftShader" in renderer, f"the harness's WebGL is SwiftShader ({renderer})")
+    attributes = s.js("return document.getElementById('view3d').getContext('webgl').getContextAttributes()")
+    check(attributes["antialias"] is False and s.js("return window.studio.view3d.antialiased") is False,
+          f"the 3D view draws without multisampling on it ({attributes})")
+
+
 def preview_settled(s, timeout=180):
     s.wait(lambda: s.js("var p = window.studio.preview; return p.idle() && !!p.shown"), timeout, "the print preview")
     return s.js("return window.studio.preview.shown")
@@ -408,6 +419,7 @@ def main():
         guarded("linked picking", linked_picking, s)
         guarded("measure", measure, s)
         guarded("axes", axes, s)
+        guarded("multisampling", multisampling, s)
         guarded("print preview", print_preview, s)
         guarded("snapping to the strip's alternatives", snapping_to_alternatives, s)
         guarded("snapping to a symmetry axis", snapping_to_axes, s)
