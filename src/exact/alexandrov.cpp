@@ -2,7 +2,6 @@
 #include "dform/exact/alexandrov.h"
 
 #include <Eigen/Dense>
-#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -10,6 +9,7 @@
 #include <unsupported/Eigen/AutoDiff>
 
 #include "dform/core/constants.h"
+#include "dform/core/pattern_ldlt.h"
 
 namespace dform::exact {
 
@@ -188,8 +188,11 @@ Eigen::MatrixX3d refineVertices(const IntrinsicTriangulation& tri, const Eigen::
   for (int h = 0; h < tri.halfedgeCount(); ++h)
     if (tri.tail(h) < tri.head(h)) edges.push_back(h);
   double worst = maxEdgeError(tri, V);
+  PatternLDLT ldlt;  // one pattern, the edges' and the radii's, at every step
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(std::size_t(4 * 9 * edges.size() + 9 * n + 3 * n));
   for (int step = 0; step < 4 && worst > 1e-13; ++step) {
-    std::vector<Eigen::Triplet<double>> entries;
+    entries.clear();
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(3 * n);
     // One residual row: gradient u at vertex i and -u at vertex j (j < 0: the apex, fixed).
     auto add = [&](int i, int j, const Eigen::Vector3d& u, double residual) {
@@ -221,9 +224,8 @@ Eigen::MatrixX3d refineVertices(const IntrinsicTriangulation& tri, const Eigen::
     for (int k = 0; k < 3 * n; ++k) entries.emplace_back(k, k, damping);
     Eigen::SparseMatrix<double> JtJ(3 * n, 3 * n);
     JtJ.setFromTriplets(entries.begin(), entries.end());
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(JtJ);
-    if (solver.info() != Eigen::Success) break;
-    const Eigen::VectorXd delta = solver.solve(rhs);
+    if (!ldlt.factorize(std::move(JtJ))) break;
+    const Eigen::VectorXd delta = ldlt.solver().solve(rhs);
     Eigen::MatrixX3d moved = V;
     for (int i = 0; i < n; ++i) moved.row(i) += delta.segment<3>(3 * i).transpose();
     const double error = maxEdgeError(tri, moved);
@@ -339,6 +341,8 @@ AlexandrovResult embedConvex(IntrinsicTriangulation& tri, const AlexandrovOption
   // step in t adapts to how far Newton can go while every tetrahedron stays valid.
   const Eigen::VectorXd kappaStart = current.kappa;
   double t = 1.0, dt = 0.25;
+  // Flips change the pattern only now and then: its ordering is kept while it stays.
+  PatternLDLT ldlt;
   auto newtonTo = [&](double target, double tolerance, int maxSteps) {
     for (int step = 0; step < maxSteps; ++step) {
       const Eigen::VectorXd residual = current.kappa - target * kappaStart;
@@ -351,9 +355,9 @@ AlexandrovResult embedConvex(IntrinsicTriangulation& tri, const AlexandrovOption
       Eigen::SparseMatrix<double> damped = JtJ;
       const double mu = 1e-12 * JtJ.diagonal().sum() / double(JtJ.rows());
       for (int i = 0; i < damped.rows(); ++i) damped.coeffRef(i, i) += mu;
-      const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(damped);
+      ldlt.factorize(std::move(damped));
       const Eigen::VectorXd delta =
-          -solver.solve(Eigen::VectorXd(current.jacobian.transpose() * residual));
+          -ldlt.solver().solve(Eigen::VectorXd(current.jacobian.transpose() * residual));
       if (!delta.allFinite()) return false;
       bool moved = false;
       for (double alpha = 1.0; alpha > 1.0 / 1024 && !moved; alpha /= 2) {

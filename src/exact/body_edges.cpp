@@ -2,12 +2,12 @@
 #include "dform/exact/body_edges.h"
 
 #include <Eigen/Geometry>
-#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 
+#include "dform/core/pattern_ldlt.h"
 #include "plane_angles.h"
 
 namespace dform::exact {
@@ -273,8 +273,12 @@ double fitBodyToEdges(ExactGluing& g, std::vector<BodyEdge>& edges) {
   const Eigen::Index unknowns = 3 * g.vertices.rows();
   const Eigen::MatrixX3d start = g.vertices;
   double residual = 0.0;
+  // The normal matrix's pattern is the edges' at every iteration: ordered once.
+  PatternLDLT ldlt;
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(36 * edges.size() + std::size_t(unknowns));
   for (int iteration = 0; iteration < 4; ++iteration) {
-    std::vector<Eigen::Triplet<double>> entries;
+    entries.clear();
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(unknowns);
     residual = 0.0;
     for (const BodyEdge& edge : edges) {
@@ -302,9 +306,8 @@ double fitBodyToEdges(ExactGluing& g, std::vector<BodyEdge>& edges) {
     for (Eigen::Index k = 0; k < unknowns; ++k) entries.emplace_back(k, k, kRigidDamping);
     Eigen::SparseMatrix<double> normal(unknowns, unknowns);
     normal.setFromTriplets(entries.begin(), entries.end());
-    const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(normal);
-    if (solver.info() != Eigen::Success) break;
-    const Eigen::VectorXd step = solver.solve(rhs);
+    if (!ldlt.factorize(std::move(normal))) break;
+    const Eigen::VectorXd step = ldlt.solver().solve(rhs);
     if (!step.allFinite()) break;
     for (Eigen::Index v = 0; v < g.vertices.rows(); ++v)
       g.vertices.row(v) += step.segment<3>(3 * v).transpose();

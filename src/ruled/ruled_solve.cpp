@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "pattern_ldlt.h"
+#include "dform/core/pattern_ldlt.h"
 
 namespace dform::ruled {
 

@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <vector>
 
-namespace dform::ruled {
+namespace dform {
 
 /// Factorises matrices as a fresh Eigen::SimplicialLDLT would, to the bit, but orders and
 /// analyses a pattern only when it differs from the last one factorised (the same nonzero
@@ -44,4 +44,4 @@ class PatternLDLT {
   std::vector<int> outer_, inner_;
 };
 
-}  // namespace dform::ruled
+}  // namespace dform

@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // PatternLDLT: the factors of a fresh SimplicialLDLT to the bit while the pattern stays, and a new
 // ordering when it changes.
-#include "ruled/pattern_ldlt.h"
+#include "dform/core/pattern_ldlt.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/SparseCore>
 #include <vector>
 
-namespace dform::ruled {
+namespace dform {
 namespace {
 
 using Matrix = Eigen::SparseMatrix<double>;
@@ -67,4 +67,4 @@ TEST(PatternLDLT, ReportsAFailedFactorisation) {
 }
 
 }  // namespace
-}  // namespace dform::ruled
+}  // namespace dform
