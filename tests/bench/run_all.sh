@@ -38,6 +38,9 @@ load "cli tables"
 load "stop latency"
 "$python" "$root/tests/bench/studio_latency.py" "$build/dform" "$root/samples" >"$out/studio.txt" 2>&1
 load "studio latency"
+"$python" "$root/tests/bench/studio_latency.py" "$build/dform" "$root/samples" --instant \
+  >"$out/studio-instant.txt" 2>&1
+load "studio latency, instant answers"
 "$python" "$root/tests/bench/studio_latency.py" "$build/dform" "$root/samples" --paper \
   --positions 50 --pause 0.1 >"$out/studio-paper.txt" 2>&1
 load "studio latency, paper model"

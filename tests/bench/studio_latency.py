@@ -7,10 +7,15 @@ outline, one real pointer move every PAUSE seconds (1/60: a 60 Hz pointer), once
 first strip of alternative starts is done. Every move is counted: its latency is the time from
 its pointer event (event.timeStamp) to the first animation frame after a shape for it, or for a
 newer move, was drawn (a move that never got a frame of its own counts at the next frame's time).
-Prints, per flag, the median, the 95th percentile and how many moves got a frame of their own.
+Prints, per flag, the median, the 95th percentile and how many moves got a frame of their own,
+each process's CPU time over the drag (Chromium's by kind, the server's) and where a drawn
+shape's time went.
 
     studio_latency.py BUILD/dform SAMPLES_DIR [--pair ellipses|circle-square] [--gpu both|off|on]
-                      [--pause 0.016667] [--positions 100]
+                      [--pause 0.016667] [--positions 100] [--instant]
+
+With --instant the page's own part alone: every position is answered at once, in the page, with the
+answer to the first one (its seq changed), so the server solves nothing during the drag.
 
 With --paper: the non-convex sample pair (the paper model) dragged for positions x pause seconds;
 prints how long after letting go the page showed the last position's preview and its refined
@@ -68,6 +73,60 @@ def drag(s, args):
     return actions.release()
 
 
+def cpu_seconds(server_pid):
+    """CPU seconds (user + system) so far of each kind of process the drag runs: Chromium's by its
+    --type (the browser itself without one), the studio's server, chromedriver."""
+    import glob
+    import re
+    tick = os.sysconf("SC_CLK_TCK")
+    out = {}
+    for stat in glob.glob("/proc/[0-9]*/stat"):
+        try:
+            text = open(stat).read()
+            command = open(stat[:-4] + "cmdline").read()
+        except OSError:
+            continue
+        name = text[text.index("(") + 1:text.rindex(")")]
+        fields = text[text.rindex(")") + 2:].split()
+        if int(stat.split("/")[2]) == server_pid:
+            kind = "server"
+        elif name == "chromium":
+            kind = re.search(r"--type=([a-z-]+)", command)
+            kind = "Chromium " + (kind.group(1) if kind else "browser")
+        elif name == "chromedriver":
+            kind = "chromedriver"
+        else:
+            continue
+        out[kind] = out.get(kind, 0.0) + (int(fields[11]) + int(fields[12])) / tick
+    return out
+
+
+def answer_instantly(s):
+    """Replaces the page's fetch of /api/solve: the next answer is kept, and every later request is
+    answered with it at once (its seq the request's, nothing left to refine)."""
+    s.js("""
+      var fetchFromServer = window.fetch, kept = null;
+      window.fetch = function (path, options) {
+        if (path !== "/api/solve") return fetchFromServer.apply(this, arguments);
+        var seq = JSON.parse(options.body).seq;
+        if (kept) {
+          var answer = Object.assign({}, kept.answer, { seq: seq, refining: false });
+          return Promise.resolve({ ok: true, status: 200, json: function () { return Promise.resolve(answer); },
+                                   headers: { get: function (h) { return h === "Server-Timing" ? kept.timing : null; } } });
+        }
+        return fetchFromServer.apply(this, arguments).then(function (res) {
+          return res.clone().json().then(function (answer) {
+            kept = { answer: answer, timing: res.headers.get("Server-Timing") };
+            return res;
+          });
+        });
+      };""")
+    s.js("window.studio.setStart(1, window.studio.views[1].fraction)")
+    s.settle()
+    if not s.js("return window.studio.shown && window.studio.shown.result.seq > 0"):
+        raise RuntimeError("no answer to keep")
+
+
 def run(args, pair, gpu):
     forward = os.path.join(args.samples, "forward")
     s = studio_browser.Studio(args.dform, [os.path.join(forward, name) for name in PAIRS[pair]], gpu=gpu)
@@ -77,6 +136,8 @@ def run(args, pair, gpu):
         # The page's first strip of alternative starts is solved in the background: wait for it,
         # so that the drag is measured, not the drag competing with 32 other solves.
         s.wait(lambda: s.js("return document.getElementById('strip-cards').getAttribute('data-state')") == "done", 600)
+        if args.instant:
+            answer_instantly(s)
         s.js("window.studio.moves = []; window.studio.frames = []; window.studio.breakdown = []")
         actions = drag(s, args)
         if args.paper:
@@ -90,8 +151,10 @@ def run(args, pair, gpu):
             print(f"{flag}: released after {args.positions} moves x {args.pause} s: the last position's first shape after "
                   f"{preview:.2f} s, refined after {time.time() - released:.2f} s")
             return
+        before, began = cpu_seconds(s.process.pid), time.time()
         actions.perform()
         s.settle()
+        after, wall = cpu_seconds(s.process.pid), time.time() - began
         moves, frames = s.js("return window.studio.moves"), s.js("return window.studio.frames")
         breakdown = s.js("return window.studio.breakdown")
         errors = s.console_errors()
@@ -105,15 +168,22 @@ def run(args, pair, gpu):
         return
     times = sorted(m["time"] for m in moves)
     apart = statistics.median(b - a for a, b in zip(times, times[1:])) if len(times) > 1 else float("nan")
+    if args.instant:
+        flag += ", every answer at once in the page (--instant)"
     print(f"{pair}, {flag}: {len(moves)} moves at {1 / args.pause:.0f} Hz (as the page got them: {apart:.1f} ms apart, "
           f"median), {own} with a frame of their own, "
           f"{len(moves) - len(latencies)} without any frame; latency of every move median {statistics.median(latencies):.1f} ms, "
           f"p95 {percentile(latencies, 0.95):.1f} ms, min {min(latencies):.1f} ms, max {max(latencies):.1f} ms; "
           f"console errors {len(errors)}")
+    used = sorted(((after[k] - before.get(k, 0.0), k) for k in after), reverse=True)
+    print(f"  CPU during the drag ({wall:.2f} s, 2 cores = {2 * wall:.2f} s): " +
+          ", ".join(f"{k} {seconds:.2f} s" for seconds, k in used if seconds >= 0.01))
     # The median of each part of a drawn shape's frame (ms): queued behind the solve in flight, the
     # request's round trip (the server's time in it, the solve's in that), the answer's body and
     # parsing, showing it, and the wait for the frame.
     parts = [key for key in (breakdown[0] if breakdown else {}) if all(b.get(key) is not None for b in breakdown)]
+    if args.instant:  # the server's parts are the kept answer's
+        parts = [key for key in parts if key not in ("answer", "made", "server", "server_handle", "solve")]
     print("  breakdown of the drawn shapes (medians, ms): " +
           ", ".join(f"{key} {statistics.median(b[key] for b in breakdown):.1f}" for key in parts))
 
@@ -128,6 +198,8 @@ def main():
     parser.add_argument("--gpu", choices=("both", "off", "on"), default="both",
                         help="off: --disable-gpu; on: Chromium's GPU process; both: one run each")
     parser.add_argument("--paper", action="store_true")
+    parser.add_argument("--instant", action="store_true",
+                        help="answer every position in the page with the first answer: the page's own part")
     args = parser.parse_args()
     missing = studio_browser.chromium_missing()
     if missing:
