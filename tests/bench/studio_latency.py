@@ -17,13 +17,15 @@ shape's time went.
 With --instant the page's own part alone: every position is answered at once, in the page, with the
 answer to the first one (its seq changed), so the server solves nothing during the drag.
 
-With --paper: the non-convex sample pair (the paper model) dragged for positions x pause seconds;
-prints how long after letting go the page showed the last position's preview and its refined
-shape.
+With --paper: the non-convex sample pair (the ruled engine; each position first drawn as a preview
+at 36 seam points) dragged for positions x pause seconds; prints how long after letting go the
+page showed the last position's preview and its refined shape.
     studio_latency.py BUILD/dform SAMPLES_DIR --paper --positions 50 --pause 0.1
 """
 import argparse
+import glob
 import os
+import re
 import statistics
 import sys
 import time
@@ -76,8 +78,6 @@ def drag(s, args):
 def cpu_seconds(server_pid):
     """CPU seconds (user + system) so far of each kind of process the drag runs: Chromium's by its
     --type (the browser itself without one), the studio's server, chromedriver."""
-    import glob
-    import re
     tick = os.sysconf("SC_CLK_TCK")
     out = {}
     for stat in glob.glob("/proc/[0-9]*/stat"):
