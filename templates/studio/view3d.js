@@ -26,7 +26,6 @@ function View3D(canvas, options) {
   // from the solve of the next shape): there the view draws without it.
   var gl = canvas.getContext("webgl", { antialias: !softwareWebGL(), preserveDrawingBuffer: true });
   if (!gl) throw new Error("this browser has no WebGL");
-  this.antialiased = gl.getContextAttributes().antialias;
   if (!gl.getExtension("OES_element_index_uint")) throw new Error("WebGL lacks 32-bit indices");
   // Faceted shading from the screen-space derivatives of the view position (each triangle its
   // own plane, as the sheet is between mesh vertices): no normals to compute or upload per frame.
