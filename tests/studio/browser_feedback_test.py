@@ -3,7 +3,7 @@
 """dform studio in headless Chromium: failures shown where the designer looks, and one state.
 
 Export of a design that fails the gate, or whose pattern does not fit the sheet, keeps the dialog
-open and says why and what to do in the page's words (its fields' labels, no command-line flag, no
+open (its buttons where they were when it opened, whatever the preview then says) and says why and what to do in the page's words (its fields' labels, no command-line flag, no
 server path); the zip without the cutting files is offered as what it is; ticking "export even if
 the gate fails" gives the cutting files. A refused outline's message goes with the next change of
 the design; a solve that fails takes the last shape, model and figures off the screen, and they
@@ -38,6 +38,12 @@ def export_answer(s):
     return text(s, "export-state"), s.js("return !!window.studio.lastDownload")
 
 
+def button_place(s):
+    """Where the export dialog's buttons are on the screen: a click on its way finds its button."""
+    return s.js("return ['export-cancel', 'export-go'].map(function (id) {"
+                " var r = document.getElementById(id).getBoundingClientRect(); return [r.x, r.y]; })")
+
+
 def zip_names(s):
     archive = zipfile.ZipFile(io.BytesIO(s.download()))
     return {n: archive.read(n) for n in archive.namelist()}
@@ -54,6 +60,10 @@ def failed_export(dform, samples, work):
     try:
         s.settle(300)
         s.driver.find_element("id", "export").click()
+        opened = button_place(s)
+        s.wait(lambda: s.js("var p = window.studio.preview; return p.idle() && !!p.shown"), 300, "the print preview")
+        check(button_place(s) == opened and len(text(s, "export-preview")) > 200,
+              f"the preview's long answer moves no button of the dialog ({opened}, {button_place(s)})")
         message, downloaded = export_answer(s)
         check(not downloaded and s.js("return document.getElementById('export-dialog').open"),
               "a failed gate's export keeps the dialog open and downloads nothing unasked")
