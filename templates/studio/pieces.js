@@ -139,9 +139,14 @@ PieceView.prototype.setSolvedPiece = function (piece) {
   this.render();
 };
 
+// The handle and the ticks are drawn again only when they would change (an answer for B's drag
+// leaves A's start where it was).
 PieceView.prototype.setFraction = function (f) {
   if (f !== this.snapped) this.snapped = null;
   this.fraction = f;
+  var drawn = this.drawnHandle;
+  if (drawn && drawn.handle === this.handle && drawn.fraction === f && drawn.snapped === this.snapped &&
+      drawn.snapName === this.snapName) return;
   this.renderHandle();
 };
 
@@ -277,4 +282,5 @@ PieceView.prototype.renderHandle = function () {
   this.handle.classList.toggle("snapped", this.snapped != null);
   while (this.ticks.firstChild) this.ticks.removeChild(this.ticks.firstChild);
   this.renderTicks();
+  this.drawnHandle = { handle: this.handle, fraction: this.fraction, snapped: this.snapped, snapName: this.snapName };
 };

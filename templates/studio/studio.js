@@ -6,6 +6,10 @@
 (function () {
   var TOKEN = document.querySelector('meta[name="dform-token"]').content;
   var $ = function (id) { return document.getElementById(id); };
+  // An element's text or class set only where it changes: a drag's answers repeat most of the
+  // panel's words, and each write costs a layout and a repaint of the panel.
+  function setText(el, text) { if (el.textContent !== text) el.textContent = text; }
+  function setClass(el, name) { if (el.className !== name) el.className = name; }
   // answers and verdicts: every shape shown (its model, preview or not, seam points, start of B)
   // and every verdict shown, for the browser test.
   var studio = window.studio = { latencies: [], breakdown: [], shown: null, errors: [], answers: [], verdicts: [] };
@@ -389,18 +393,15 @@
     // Another of the ruled engine's states on screen: the answer's overlay waits for the answer.
     overlay.show(r.decoded, gate && states.shown === 0 ? r.overlay : null, r.figures);
     if (gate) studio.verdicts.push({ seq: r.seq, preview: !!r.preview, passed: gate.passed });
-    status.className = "status " + (gate ? (gate.passed ? "pass" : "fail") : verdict && verdict.error ? "error" : "");
-    status.textContent = (verdict && verdict.error ? verdict.error : !gate ? "measuring, checking the gate…"
-                          : gate.passed ? "gate passed" : "gate failed: " + gate.failed + " check(s)") +
-      (r.preview ? " — preview at " + studio.previewResolution + " seam points, refining…" : "");
-    $("checks").innerHTML = "";
-    (gate ? gate.checks : []).forEach(function (c) {
-      var li = document.createElement("li");
+    setClass(status, "status " + (gate ? (gate.passed ? "pass" : "fail") : verdict && verdict.error ? "error" : ""));
+    setText(status, (verdict && verdict.error ? verdict.error : !gate ? "measuring, checking the gate…"
+                     : gate.passed ? "gate passed" : "gate failed: " + gate.failed + " check(s)") +
+      (r.preview ? " — preview at " + studio.previewResolution + " seam points, refining…" : ""));
+    setRows($("checks"), "li", (gate ? gate.checks : []).map(function (c) {
       var sites = c.verdict === "fail" ? overlay.sites(c.name) : null;
-      li.className = c.verdict; li.textContent = c.name + ": " + c.verdict + (c.verdict === "fail" ? " — " + c.detail +
-        (sites == null ? " (not located on the shape)" : " (" + sites + " marked on the shape)") : "");
-      $("checks").appendChild(li);
-    });
+      return [{ className: c.verdict, text: c.name + ": " + c.verdict + (c.verdict === "fail" ? " — " + c.detail +
+        (sites == null ? " (not located on the shape)" : " (" + sites + " marked on the shape)") : "") }];
+    }));
     studio.gate = gate;
     showFigures(r, r.figures || {});  // an inverse answer has its figures before its verdict
   }
@@ -416,11 +417,24 @@
     if (r.curve_match) rows.push(["D_error", number(r.curve_match.D_error)], ["round trip max", number(r.curve_match.roundtrip_max_rel)],
                                  ["on hull", r.on_hull.on_hull ? "yes" : "no: " + r.on_hull.summary]);
     rows.push(["solve", (1000 * r.timings.total).toFixed(0) + " ms"]);
-    $("figures").innerHTML = "";
-    rows.forEach(function (row) {
-      var tr = document.createElement("tr");
-      row.forEach(function (cell) { var td = document.createElement("td"); td.textContent = cell; tr.appendChild(td); });
-      $("figures").appendChild(tr);
+    setRows($("figures"), "tr", rows.map(function (row) {
+      return row.map(function (cell) { return { text: cell }; });
+    }));
+  }
+
+  // A list's rows (each an array of cells {text, className}: a <tr> of <td>s, or an <li> of one
+  // cell) made as `rows` says, each row and cell kept where it stays the same.
+  function setRows(list, tag, rows) {
+    while (list.children.length > rows.length) list.lastChild.remove();
+    rows.forEach(function (cells, k) {
+      var row = list.children[k];
+      if (!row) row = list.appendChild(document.createElement(tag));
+      if (tag === "li") { setClass(row, cells[0].className || ""); setText(row, cells[0].text); return; }
+      while (row.children.length > cells.length) row.lastChild.remove();
+      cells.forEach(function (cell, j) {
+        var td = row.children[j] || row.appendChild(document.createElement("td"));
+        setText(td, cell.text);
+      });
     });
   }
 
@@ -429,9 +443,9 @@
   function facts(r) {
     showVerdict(r, r.gate ? { figures: r.figures, gate: r.gate } : earlyVerdicts[r.seq]);
     earlyVerdicts = {};
-    $("model").textContent = r.model.name + (r.model.found_creases.length ? ", " + r.model.found_creases.length + " found crease(s)" : "");
-    $("reason").textContent = r.model.reason;
-    $("warnings").textContent = (r.warnings || []).join("\n");
+    setText($("model"), r.model.name + (r.model.found_creases.length ? ", " + r.model.found_creases.length + " found crease(s)" : ""));
+    setText($("reason"), r.model.reason);
+    setText($("warnings"), (r.warnings || []).join("\n"));
   }
 
   // ---- settings ---------------------------------------------------------------------------------

@@ -111,7 +111,15 @@ def main():
         check(s.js("return document.getElementById('model').textContent") == "exact", "the exact model is shown")
 
         first = s.js("return Array.from(window.studio.shown.pieces[0].shape)")
+        # What B's drag leaves as it was is not drawn again: A's ticks and handle, the model's name.
+        s.js("window.redrawn = 0; ['#svg-a-marks .ticks', '#svg-a-marks .handle', '#svg-a-marks .handle-label', '#model']"
+             " .forEach(function (css) { new MutationObserver(function (m) { window.redrawn += m.length; })"
+             " .observe(document.querySelector(css), { subtree: true, childList: true, attributes: true, characterData: true }); });")
+        answers_before = len(s.js("return window.studio.answers"))
         before = drag_handle(s, "b", 12)
+        redrawn, answers = s.js("return window.redrawn"), len(s.js("return window.studio.answers")) - answers_before
+        check(answers >= 2 and redrawn == 0,
+              f"B's drag ({answers} answers) redraws neither A's ticks and handle nor the model's name ({redrawn} changes)")
         after = s.js("return window.studio.shown.settings")
         shape = s.js("return Array.from(window.studio.shown.pieces[0].shape)")
         check(abs(after["start_b"] - before) > 0.05, f"dragging B's handle moved its start ({before} -> {after['start_b']})")
