@@ -98,7 +98,11 @@
   $("help-open").onclick = function () { $("help").showModal(); };
 
   // ---- outlines ---------------------------------------------------------------------------------
+  // The outlines last asked for, loaded or on their way (the strip's design: a slider's release
+  // may come before its outline is back).
+  var askedPieces = [null, null];
   function loadPiece(i, source, record) {
+    askedPieces[i] = source;
     var request = source.text != null
       ? api("/api/outline", { piece: "ab"[i], name: source.name, text: source.text })
       : api("/api/parametric", { piece: "ab"[i], kind: source.kind, values: source.values });
@@ -110,6 +114,7 @@
       $("name-" + "ab"[i]).textContent = summary.name + " — perimeter " + summary.perimeter.toFixed(1) + " mm";
       return summary;
     }).catch(function (e) {
+      if (askedPieces[i] === source) askedPieces[i] = state.pieces[i];
       $("error-" + "ab"[i]).textContent = e.message;
       studio.errors.push(e.message);
       throw e;
@@ -487,18 +492,30 @@
     });
     return out;
   };
-  var stripTimer = null, stripSeq = 0, STRIP_STARTS = 16;
+  // The strip solves every start of B, turned over and not, for the design's outlines and
+  // settings: B's start, its flip and the export's settings change nothing in it, and a strip
+  // made or under way for the same design (`stripDesign`) stays.
+  var stripTimer = null, stripSeq = 0, STRIP_STARTS = 16, stripDesign = null;
   function scheduleStrip() {
     schedulePreview();
     if (state.mode !== "forward") return;
+    var solved = Object.assign({}, settings());
+    delete solved.start_b; delete solved.flip; delete solved.export;
+    var design = JSON.stringify([askedPieces, solved]);
+    if (design === stripDesign) return;
+    stripDesign = design;
     clearTimeout(stripTimer);
     strip.cancel();
     stripTimer = setTimeout(function () {
       var seq = ++stripSeq;
       strip.reset(seq, 2 * STRIP_STARTS);
-      api("/api/strip", Object.assign({ seq: seq, starts: STRIP_STARTS, both_flips: true }, settings())).catch(function (e) { showError(e.message); });
+      api("/api/strip", Object.assign({ seq: seq, starts: STRIP_STARTS, both_flips: true }, settings())).catch(function (e) {
+        stripDesign = null;  // asked again at the next change
+        showError(e.message);
+      });
     }, 300);
   }
+  function cancelStrip() { clearTimeout(stripTimer); strip.cancel(); stripDesign = null; }
 
   // ---- inverse ----------------------------------------------------------------------------------
   // The page as the mode has it: nothing of the other mode's design stays on screen (its shape,
@@ -514,7 +531,7 @@
       $("status").textContent = "solving…";
       refreshPieces(); scheduleStrip();
     } else {
-      clearTimeout(stripTimer); strip.cancel();
+      cancelStrip();
       views.forEach(function (v) { v.clear(); });
       [0, 1].forEach(function (i) { $("name-" + "ab"[i]).textContent = state.curve ? "" : "piece " + "AB"[i] + ": open a seam curve below"; });
       $("status").textContent = state.curve ? "solving…" : "open or drop a closed 3D seam curve";
@@ -588,7 +605,7 @@
     downloads.fillLists(s.choices);
     [0, 1].forEach(function (i) {
       summaries[i] = s.pieces[i];
-      state.pieces[i] = { name: s.pieces[i].name, text: s.pieces[i].text };
+      state.pieces[i] = askedPieces[i] = { name: s.pieces[i].name, text: s.pieces[i].text };
       delete s.pieces[i].text;
       fillKinds(i);
       $("name-" + "ab"[i]).textContent = s.pieces[i].name + " — perimeter " + s.pieces[i].perimeter.toFixed(1) + " mm";

@@ -3,13 +3,15 @@
 """dform studio in headless Chromium: failures shown where the designer looks, and one state.
 
 Export of a design that fails the gate, or whose pattern does not fit the sheet, keeps the dialog
-open (its buttons where they were when it opened, whatever the preview then says) and says why and what to do in the page's words (its fields' labels, no command-line flag, no
-server path); the zip without the cutting files is offered as what it is; ticking "export even if
-the gate fails" gives the cutting files. A refused outline's message goes with the next change of
-the design; a solve that fails takes the last shape, model and figures off the screen, and they
-come back when the cause goes (undo); with B flipped the handle and the figures name the same
-start; the strip says it is computing and marks its groups provisional until every start is in;
-the inverse mode shows nothing of the forward design.
+open (its buttons where they were when it opened, whatever the preview then says) and says why
+and what to do in the page's words (its fields' labels, no command-line flag, no server path);
+the zip without the cutting files is offered as what it is; ticking "export even if the gate
+fails" gives the cutting files. A refused outline's message goes with the next change of the
+design; a solve that fails takes the last shape, model and figures off the screen, and they come
+back when the cause goes (undo); with B flipped the handle and the figures name the same start;
+the strip says it is computing and marks its groups provisional until every start is in, and B's
+start and flip (its own variables) leave it as it is; the inverse mode shows nothing of the
+forward design.
 
     browser_feedback_test.py DFORM SAMPLES_DIR      (exit 77 when Chromium or Selenium is absent)
 """
@@ -153,7 +155,7 @@ def strip_computing(s):
                     getComputedStyle(c).backgroundImage,
                     Array.from(c.querySelectorAll('.card span')).map(function (e) { return e.textContent; })]);
         }).observe(c, { attributes: true, childList: true, subtree: true });""")
-    s.driver.find_element("id", "flip").click()
+    s.driver.find_element("id", "fit").click()  # the built-in ellipses' perimeters are equal
     s.wait(lambda: s.js("return document.getElementById('strip-cards').getAttribute('data-state')") == "done", 300,
            "the strip")
     seen = {"computing": False, "final_group_early": False, "status": ""}
@@ -171,7 +173,31 @@ def strip_computing(s):
                  ".map(function (e) { return e.textContent; })")
     check(any("×" in t for t in final) and not any("so far" in t for t in final),
           "the finished strip's groups are final")
+    s.driver.find_element("id", "fit").click()  # back on, for the parts after this one
+    s.wait(lambda: s.js("return document.getElementById('strip-cards').getAttribute('data-state')") == "done", 300,
+           "the strip")
     s.settle()
+
+    # B's start and flip are the strip's own variables: changing them leaves it as it is; A's
+    # start makes it anew.
+    seq, logged = s.js("return window.studio.strip.seq"), len(s.js("return window.stripLog"))
+    s.driver.find_element("id", "flip").click()
+    s.settle()
+    s.js("window.studio.setStart(1, 0.3)")
+    s.settle()
+    time.sleep(0.5)  # past the strip's 300 ms debounce
+    kept = s.js("return [window.studio.strip.seq, document.getElementById('strip-cards').getAttribute('data-state'),"
+                " window.stripLog.length]")
+    check(kept == [seq, "done", logged], f"B's flip and start leave the strip as it was ({kept}, {seq}, {logged})")
+    s.js("window.studio.setStart(0, 0.1)")
+    time.sleep(0.5)
+    renewed = s.js("return [window.studio.strip.seq, window.stripLog.length]")
+    check(renewed[0] > seq and renewed[1] > logged, f"A's start makes the strip anew ({renewed}, {seq}, {logged})")
+    for _ in range(2):  # A's start and B's as they were (B stays unflipped)
+        s.driver.find_element("id", "undo").click()
+    s.settle()
+    s.wait(lambda: s.js("return document.getElementById('strip-cards').getAttribute('data-state')") == "done", 300,
+           "the strip")
 
 
 def failed_solve(s, samples):

@@ -158,9 +158,10 @@ def main():
         # A setting change schedules a new run; the old run's end, arriving in the debounce, must not
         # mark the strip done while its cards are about to be replaced.
         old_seq = s.js("return window.studio.strip.seq")
-        state = s.js("document.getElementById('flip').click(); window.studio.strip.done({seq: arguments[0]});"
+        state = s.js("document.getElementById('fit').click(); window.studio.strip.done({seq: arguments[0]});"
                      " return document.getElementById('strip-cards').getAttribute('data-state')", old_seq)
         check(state == "scheduled", f"the finished run's end leaves the newly scheduled strip alone ({state})")
+        s.driver.find_element("id", "fit").click()
         s.settle()
 
         bad = os.path.join(work, "bad.svg")
