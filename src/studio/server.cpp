@@ -62,6 +62,7 @@ struct Connection {
   std::string head;            ///< the request line and headers, read at once when admitted
   std::size_t headUsed = 0;    ///< of `head`, what the parser has taken
   std::size_t headBytes = 0;   ///< how long the head is (found by peeking before admitting)
+  bool partialHead = false;    ///< waiting with part of its head: its low-water mark is raised
   std::size_t budget = 0;      ///< bytes past the head the request may still read
   std::size_t bodyLimit = 0;   ///< what admitBody() lets it read
   bool bodyAdmitted = false, tooLarge = false, closeAfter = false;
@@ -69,8 +70,13 @@ struct Connection {
   std::function<bool(std::string&)> pump;  ///< set: an event stream
   std::string outbox;                      ///< an event stream's bytes not yet sent
   Clock::time_point lastSent;
+  // Shut down before it is closed: a worker's connection may be in the accepting thread's poll
+  // set, which holds the socket open past close() until that poll returns (up to a stream tick),
+  // and its client would wait that long for the end of an answer that closes the connection.
   ~Connection() {
-    if (fd >= 0) ::close(fd);
+    if (fd < 0) return;
+    ::shutdown(fd, SHUT_RDWR);
+    ::close(fd);
   }
 };
 
@@ -193,20 +199,31 @@ int boundPort(int fd) {
                                 : ntohs(reinterpret_cast<sockaddr_in6*>(&a)->sin6_port);
 }
 
-// How long the request line and headers waiting on `fd` are: 0 while they have not all arrived,
-// -1 when the client has closed the connection (or it failed). At `maxBytes` without their end
-// the request is admitted as it is, for the parser to refuse.
-long headLength(int fd, std::size_t maxBytes) {
+// How long the request line and headers waiting on `fd` are: 0 while they have not all arrived
+// (`buffered`: the bytes of them that have), -1 when the client has closed the connection (or it
+// failed). At `maxBytes` without their end the request is admitted as it is, for the parser to
+// refuse.
+long headLength(int fd, std::size_t maxBytes, std::size_t& buffered) {
   std::string peeked(maxBytes, '\0');
   ssize_t n;
   while ((n = ::recv(fd, peeked.data(), maxBytes, MSG_PEEK | MSG_DONTWAIT)) < 0 && errno == EINTR) {
   }
+  buffered = n > 0 ? std::size_t(n) : 0;
   if (n == 0) return -1;
   if (n < 0) return errno == EAGAIN || errno == EWOULDBLOCK ? 0 : -1;
   peeked.resize(std::size_t(n));
   const std::size_t end = peeked.find("\r\n\r\n");
   if (end != std::string::npos) return long(end + 4);
   return std::size_t(n) >= maxBytes ? long(n) : 0;
+}
+
+// The bytes the socket must hold before poll() calls it readable. Bytes left unread keep a
+// socket readable, so a head that arrived in part is polled again only once more of it comes
+// (a low-water mark past what is there), not at every turn of the loop; a worker reads with
+// the usual mark of 1.
+void setLowWater(int fd, std::size_t bytes) {
+  const int mark = int(bytes);
+  ::setsockopt(fd, SOL_SOCKET, SO_RCVLOWAT, &mark, sizeof mark);
 }
 
 // The head without its Accept-Encoding lines. cpp-httplib compresses a text answer (the page,
@@ -353,13 +370,23 @@ struct Server::Loop {
     }
   }
 
-  // Waiting connections: admitted once their head is whole, dropped when they close or their time
-  // is up. (The poll list's waiting part is in the list's order.)
+  // Waiting connections: admitted once their head is whole, dropped when they close (a client
+  // that stopped sending in the middle of its head never finishes it) or their time is up. (The
+  // poll list's waiting part is in the list's order.)
   void admitWaiting() {
     std::size_t k = firstWaiting;
     for (auto it = waiting.begin(); it != waiting.end() && k < firstStream; ++k) {
-      const long head = polled[k].revents ? headLength((*it)->fd, s.limits_.maxHeaderBytes) : 0;
+      const short revents = polled[k].revents;
+      std::size_t buffered = 0;
+      long head = revents ? headLength((*it)->fd, s.limits_.maxHeaderBytes, buffered) : 0;
+      if (head == 0 && (revents & (POLLRDHUP | POLLHUP | POLLERR))) head = -1;
+      if (head == 0 && buffered > 0) {
+        setLowWater((*it)->fd, buffered + 1);
+        (*it)->partialHead = true;
+      }
       if (head > 0) {
+        if ((*it)->partialHead) setLowWater((*it)->fd, 1);
+        (*it)->partialHead = false;
         (*it)->headBytes = std::size_t(head);
         {
           const std::lock_guard<std::mutex> lock(s.mutex_);
@@ -460,6 +487,7 @@ struct Server::Loop {
   void run() {
     while (!s.stopping_) {
       poll();
+      ++s.turnCount_;
       if (s.stopping_) break;
       watchBusy();
       admitWaiting();

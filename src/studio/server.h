@@ -86,6 +86,9 @@ class Server {
   /// Connections waiting for their request, and open event streams, now (for tests).
   std::size_t waiting() const { return waitingCount_.load(); }
   std::size_t streams() const { return streamCount_.load(); }
+  /// How many times the accepting thread has woken so far (for tests: a connection that waits
+  /// for the rest of its request wakes it only when more arrives).
+  std::size_t turns() const { return turnCount_.load(); }
 
  private:
   struct Loop;  ///< the accepting thread's connections and steps (server.cpp)
@@ -108,7 +111,7 @@ class Server {
   std::deque<std::unique_ptr<Connection>> admitted_;   ///< headers whole, for a worker
   std::vector<std::unique_ptr<Connection>> returned_;  ///< from workers: idle or streams
   std::vector<Connection*> busy_;                      ///< being answered by a worker
-  std::atomic<std::size_t> waitingCount_{0}, streamCount_{0};
+  std::atomic<std::size_t> waitingCount_{0}, streamCount_{0}, turnCount_{0};
 };
 
 }  // namespace dform::studio

@@ -166,6 +166,58 @@ TEST(StudioBudget, AConnectionThatSendsNothingIsDroppedAtItsDeadline) {
   EXPECT_TRUE(f.pageAnswered());
 }
 
+// A head that came in part waits without waking the server until more of it comes (its unread
+// bytes keep the socket readable: the server used to poll it again at once, a core busy for as
+// long as it waited), and is answered once it is whole.
+TEST(StudioBudget, AHeadSentInPartsWaitsWithoutWakingTheServerAndIsAnsweredWhole) {
+  Fixture f(small());
+  Socket c(f.port);
+  ASSERT_TRUE(c.send("GET / HTTP/1.1\r\nHost: 127"));
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));  // the part has been seen
+  const std::size_t before = f.server.turns();
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000));
+  // The streams' tick (500 ms) wakes it twice a second; a busy loop, hundreds of thousands.
+  EXPECT_LE(f.server.turns() - before, 6u);
+  ASSERT_TRUE(c.send(".0.0.1\r\n"));
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  ASSERT_TRUE(c.send("\r\n"));
+  EXPECT_NE(c.receive(30, "page").find("200 OK"), std::string::npos);
+  // Its connection reads as any other afterwards: a second request on it is answered at once.
+  ASSERT_TRUE(c.send(get("/")));
+  EXPECT_NE(c.receive(30, "page").find("200 OK"), std::string::npos);
+}
+
+// An answer that closes its connection (the client asked "Connection: close") ends at once: a
+// connection in the accepting thread's poll set was held open past its close() until the poll
+// returned, here the streams' 10 s tick.
+TEST(StudioBudget, AnAnswerThatClosesItsConnectionEndsAtOnce) {
+  ServerLimits limits = small();
+  limits.streamTick = std::chrono::milliseconds(10000);
+  Fixture f(limits);
+  for (int k = 0; k < 3; ++k) {
+    Socket c(f.port);
+    ASSERT_TRUE(c.send(get("/", "Connection: close\r\n")));
+    const auto asked = Clock::now();
+    EXPECT_NE(c.receive(30, "page").find("200 OK"), std::string::npos);
+    EXPECT_TRUE(c.closedByServer(30));
+    EXPECT_LT(Clock::now() - asked, std::chrono::seconds(5)) << "request " << k;
+  }
+}
+
+// A client that stops sending in the middle of its head can never finish it: its connection is
+// closed at once, not left until its deadline.
+TEST(StudioBudget, AHeadCutOffByItsClientClosesTheConnection) {
+  ServerLimits limits = small();
+  limits.requestDeadline = std::chrono::milliseconds(60000);
+  Fixture f(limits);
+  Socket c(f.port);
+  ASSERT_TRUE(c.send("GET / HTTP/1.1\r\nHost: 127"));
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  ::shutdown(c.fd, SHUT_WR);
+  EXPECT_TRUE(c.closedByServer(10));
+  EXPECT_TRUE(f.pageAnswered());
+}
+
 TEST(StudioBudget, EventStreamsHoldNoWorkerAndTheOldestIsClosedPastTheCap) {
   Fixture f(small());  // 2 workers, 4 streams
   std::vector<std::unique_ptr<Socket>> streams;
