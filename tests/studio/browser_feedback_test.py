@@ -185,12 +185,15 @@ def strip_computing(s):
     s.settle()
     s.js("window.studio.setStart(1, 0.3)")
     s.settle()
-    time.sleep(0.5)  # past the strip's 300 ms debounce
+    time.sleep(1.0)  # past the strip's 300 ms debounce
     kept = s.js("return [window.studio.strip.seq, document.getElementById('strip-cards').getAttribute('data-state'),"
                 " window.stripLog.length]")
     check(kept == [seq, "done", logged], f"B's flip and start leave the strip as it was ({kept}, {seq}, {logged})")
     s.js("window.studio.setStart(0, 0.1)")
-    time.sleep(0.5)
+    try:
+        s.wait(lambda: s.js("return window.studio.strip.seq") > seq, 30, "A's start's strip")
+    except TimeoutError:
+        pass  # said by the check below
     renewed = s.js("return [window.studio.strip.seq, window.stripLog.length]")
     check(renewed[0] > seq and renewed[1] > logged, f"A's start makes the strip anew ({renewed}, {seq}, {logged})")
     for _ in range(2):  # A's start and B's as they were (B stays unflipped)
