@@ -16,6 +16,7 @@ namespace dform {
 /// once instead of at every step.
 class PatternLDLT {
  public:
+  /// The matrices it factorises: Eigen's column-major sparse matrices of doubles.
   using Matrix = Eigen::SparseMatrix<double>;
 
   /// Factorises A (its lower triangle is read); false where that failed.
