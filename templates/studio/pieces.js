@@ -97,10 +97,14 @@ function PieceView(svg, label, onStart, onRelease) {
     svg.setPointerCapture(e.pointerId);
     e.preventDefault();
   });
+  // A drag takes each move as the browser gets it (pointerrawupdate, where there is one) rather
+  // than once a frame: the position goes to the solver up to a frame sooner.
+  var raw = "onpointerrawupdate" in window;
+  function dragTo(e) { self.setFraction(fractionAt(e)); onStart(self.fraction, e); }
+  if (raw) svg.addEventListener("pointerrawupdate", function (e) { if (dragging) dragTo(e); });
   svg.addEventListener("pointermove", function (e) {
     if (!dragging) { if (self.onHover) self.onHover(self.seamPointNear(e.clientX, e.clientY, 12)); return; }
-    self.setFraction(fractionAt(e));
-    onStart(self.fraction, e);
+    if (!raw) dragTo(e);
   });
   svg.addEventListener("pointerleave", function () { if (!dragging && self.onHover) self.onHover(null); });
   svg.addEventListener("pointerup", function () { if (dragging) { dragging = false; onRelease(); } });

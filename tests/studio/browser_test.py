@@ -2,6 +2,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """dform studio in a real browser (headless Chromium): the page loads without console errors;
 dragging a start handle changes the shape, and the shape is the command line's for that start;
+a raw pointer update during a drag moves the handle and is solved at once;
 dragging B's start round a square at 60 Hz is answered by the exact model at every position;
 flip and the alternative-starts strip work; a bad SVG shows its error and the next good one
 solves; Save job + `dform run` reproduces the figures; Export's pattern.svg is the CLI's, byte
@@ -136,6 +137,33 @@ def main():
         diagonal = math.dist(lo, hi)
         worst = max(math.dist(cli[i], shape[3 * i:3 * i + 3]) for i in seam) if len(cli) * 3 == len(shape) else math.inf
         check(worst <= 1e-9 * diagonal, f"seam vertices equal the CLI's for the same start (largest distance {worst:.3g} mm)")
+
+        # A drag takes each move as the browser gets it (pointerrawupdate), not once a frame: a raw
+        # update moves the handle and asks for its shape at once; the frame's pointermove after it
+        # asks nothing more. (Alt held: no snapping, so the handle goes where the pointer is.)
+        from selenium.webdriver.common.action_chains import ActionChains
+        from selenium.webdriver.common.by import By
+        ActionChains(s.driver, duration=0).click_and_hold(
+            s.driver.find_element(By.CSS_SELECTOR, "#svg-b-marks circle.handle")).perform()
+        raw = s.js("""
+            var v = window.studio.views[1], m = v.svg.getScreenCTM(), moves = window.studio.moves.length;
+            function send(type, f) {
+              var p = v.loop.at(f), q = v.svg.createSVGPoint();
+              q.x = p[0]; q.y = -p[1]; q = q.matrixTransform(m);
+              v.svg.dispatchEvent(new PointerEvent(type, { clientX: q.x, clientY: q.y, pointerId: 1,
+                                                           isPrimary: true, altKey: true, bubbles: true }));
+              return [window.studio.moves.length - moves, v.fraction];
+            }
+            var target = (v.fraction + 0.1) % 1;
+            return { target: target, raw: send("pointerrawupdate", target),
+                     move: send("pointermove", (v.fraction + 0.2) % 1) };""")
+        ActionChains(s.driver, duration=0).release().perform()
+        s.settle()
+        check(raw["raw"][0] == 1 and abs(raw["raw"][1] - raw["target"]) < 1e-3,
+              f"a raw pointer update during a drag moves B's handle and asks for its shape ({raw})")
+        check(raw["move"] == raw["raw"], f"the frame's pointermove after it changes nothing ({raw})")
+        shown = s.js("return window.studio.shown.settings.start_b")
+        check(abs(shown - raw["raw"][1]) < 1e-12, f"the raw update's start is the one solved ({shown})")
 
         flat_before = s.js("return window.studio.shown.result.pieces[1].flat")
         s.driver.find_element("id", "flip").click()
