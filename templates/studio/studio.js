@@ -207,6 +207,7 @@
   // ---- the pieces and the live drag -------------------------------------------------------------
   var pending = null, inFlight = false, nextSeq = 1, shownSeq = 0, inputTime = {}, askedSettings = {};
   studio.idle = function () { return pending == null && !inFlight; };
+  studio.inputsWaiting = function () { return Object.keys(inputTime).length; };
   var views = [0, 1].map(function (i) {
     return new PieceView($("svg-" + "ab"[i]), "AB"[i], function (f, e) {
       settings()[i ? "start_b" : "start_a"] = f;
@@ -362,7 +363,8 @@
     }
     facts(r);
     var time = inputTime[r.seq];
-    delete inputTime[r.seq];
+    // Positions the drag moved past before they were sent (one a raw pointer update) are never shown.
+    Object.keys(inputTime).forEach(function (k) { if (+k <= r.seq) delete inputTime[k]; });
     studio.shown = { seq: r.seq, result: r, pieces: pieces, settings: asked };
     picking.reset();
     var drawn = performance.now();

@@ -219,6 +219,8 @@ def main():
         s.wait(lambda: s.js("return !!window.studio.shown.result.gate"), 120, "the last position's verdict")
         answers = s.js("return window.studio.answers")[first[0]:]
         verdicts = s.js("return window.studio.verdicts")[first[1]:]
+        waiting = s.js("return window.studio.inputsWaiting()")
+        check(waiting == 0, f"the page keeps no input time of a position the drag moved past ({waiting} kept)")
         starts = sorted(a["start_b"] % 1.0 for a in answers)
         gap = max([b - a for a, b in zip(starts, starts[1:])] + [starts[0] + 1.0 - starts[-1]]) if starts else 1.0
         not_exact = [a for a in answers if a["model"] != "exact" or a["preview"] or a["seam"] != resolution]
