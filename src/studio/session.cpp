@@ -5,6 +5,7 @@
 #include <sys/syscall.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 
 #include "dform/core/interrupt.h"
@@ -199,7 +200,11 @@ void Session::queueRefinement(const SolveAt& solve, int resolution, const Latest
 
 json Session::solveLive(const SolveAt& solve, int resolution, bool optimises, long seq,
                         const std::string& design, std::shared_ptr<std::atomic<bool>> cancel) {
-  lastLive_ = Clock::now();
+  {
+    const std::lock_guard<std::mutex> lock(liveTimesMutex_);
+    newestLive_ = std::max(newestLive_, seq);
+    if (seq > settled_) lastLive_ = Clock::now();
+  }
   const Latest::Ticket ticket = live_.next(std::move(cancel));
   ++liveWaiting_;
   std::unique_lock<std::mutex> lock(solveMutex_);
@@ -240,6 +245,23 @@ json Session::solveLive(const SolveAt& solve, int resolution, bool optimises, lo
     queueRefinement(solve, resolution, ticket, seq);
   }
   return out;
+}
+
+void Session::settle(long seq) {
+  {
+    const std::lock_guard<std::mutex> lock(liveTimesMutex_);
+    if (seq < newestLive_) return;
+    settled_ = std::max(settled_, seq);
+    lastLive_ = Clock::time_point{};
+  }
+  // Through the worker's mutex: a worker that read the old due time is waiting by now.
+  { const std::lock_guard<std::mutex> lock(workMutex_); }
+  workReady_.notify_one();
+}
+
+Clock::time_point Session::refinementDue() const {
+  const std::lock_guard<std::mutex> lock(liveTimesMutex_);
+  return lastLive_ + kRefinementQuiet;
 }
 
 void Session::startStrip(std::vector<std::pair<json, SolveAt>> starts, long seq) {
@@ -313,7 +335,7 @@ void Session::work() {
         task = std::move(*gate_);
         gate_.reset();
       } else if (refinement_) {
-        const auto due = lastLive_.load() + kRefinementQuiet;
+        const auto due = refinementDue();
         if (Clock::now() < due) {
           workReady_.wait_until(lock, due);
           continue;

@@ -10,6 +10,7 @@
 #include <condition_variable>
 #include <deque>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -135,6 +136,15 @@ class Session {
                            const std::string& design,
                            std::shared_ptr<std::atomic<bool>> cancel = nullptr);
 
+  /// The page's input has settled at its request `seq` (a drag was released there): the
+  /// refinement of that request starts without waiting kRefinementQuiet, whether its live request
+  /// was answered already or is still on its way. A live request numbered above `seq` holds
+  /// refinements again; a settle older than the newest live request changes nothing.
+  void settle(long seq);
+  /// When the worker may start the refinement waiting for it (steady clock): kRefinementQuiet
+  /// after the last live request, or at once once the input has settled.
+  std::chrono::steady_clock::time_point refinementDue() const;
+
   /// Solves each of `starts` (queued to the worker, one "strip" event each, then "strip_done"),
   /// cancelling the strip asked for before.
   void startStrip(std::vector<std::pair<nlohmann::json, SolveAt>> starts, long seq);
@@ -178,9 +188,12 @@ class Session {
   /// Live solves waiting for solveMutex_: the worker's tasks let them go first (a mutex is not
   /// fair, and a strip's back-to-back solves would otherwise hold a drag for seconds).
   std::atomic<int> liveWaiting_{0};
-  /// When the last live request came (steady clock): the worker holds refinements until
-  /// kRefinementQuiet after it.
-  std::atomic<std::chrono::steady_clock::time_point> lastLive_{};
+  /// When the last live request came (steady clock; none: the epoch), the newest live request's
+  /// seq and the newest settled one (refinementDue).
+  mutable std::mutex liveTimesMutex_;
+  std::chrono::steady_clock::time_point lastLive_{};
+  long newestLive_ = std::numeric_limits<long>::min();
+  long settled_ = std::numeric_limits<long>::min();
   std::unique_lock<std::mutex> lockAfterLive();
   /// The last design (position included) whose solve optimised (under solveMutex_).
   std::string optimisedDesign_;

@@ -31,8 +31,11 @@ namespace dform {
 namespace fs = std::filesystem;
 using nlohmann::json;
 using studio::CurveInput;
+using studio::pieceIndex;
 using studio::PieceInput;
 using studio::RequestError;
+using studio::requiredText;
+using studio::sequence;
 using studio::Session;
 
 namespace {
@@ -161,24 +164,6 @@ studio::SolveAt inverseSolve(const CurveInput& curve, const InverseSettings& set
                             });
                           }};
   };
-}
-
-std::string requiredText(const json& body, const char* key) {
-  if (!body.contains(key) || !body.at(key).is_string())
-    throw RequestError(std::string(key) + ": must be a string");
-  return body.at(key).get<std::string>();
-}
-
-int pieceIndex(const json& body) {
-  const std::string piece = requiredText(body, "piece");
-  if (piece != "a" && piece != "b") throw RequestError("piece: must be \"a\" or \"b\"");
-  return piece == "a" ? 0 : 1;
-}
-
-long sequence(const json& body) {
-  if (!body.contains("seq")) return 0;
-  if (!body.at("seq").is_number_integer()) throw RequestError("seq: must be a whole number");
-  return body.at("seq").get<long>();
 }
 
 void sendZip(httplib::Response& res, const std::string& zip, const std::string& fileName) {
@@ -463,6 +448,10 @@ void Studio::Impl::solveRoutes(httplib::Server& server) {
           s.solveLive(forwardSolve(a, b, settings, gate), settings.resolution,
                       settings.model == ModelChoice::Paper, sequence(body),
                       forwardDesign(a, b, job), studio::Server::clientGone()));
+  });
+  api(server, "/api/settle", [](const json& body, Session& s, httplib::Response& res) {
+    s.settle(sequence(body, true));
+    reply(res, 200, {{"seq", sequence(body)}});
   });
   api(server, "/api/strip", [this](const json& body, Session& s, httplib::Response& res) {
     const Job job = studio::jobFrom(body, startForward);

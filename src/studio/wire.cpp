@@ -168,6 +168,25 @@ json statesJson(const SolvedDForm& run) {
 
 static_assert(sizeof(double) == 8, "the page reads vertices as 64-bit doubles");
 
+std::string requiredText(const json& request, const char* key) {
+  if (!request.contains(key) || !request.at(key).is_string())
+    throw RequestError(std::string(key) + ": must be a string");
+  return request.at(key).get<std::string>();
+}
+
+int pieceIndex(const json& request) {
+  const std::string piece = requiredText(request, "piece");
+  if (piece != "a" && piece != "b") throw RequestError("piece: must be \"a\" or \"b\"");
+  return piece == "a" ? 0 : 1;
+}
+
+long sequence(const json& request, bool required) {
+  if (!request.contains("seq") && !required) return 0;
+  if (!request.contains("seq") || !request.at("seq").is_number_integer())
+    throw RequestError("seq: must be a whole number");
+  return request.at("seq").get<long>();
+}
+
 Job jobFrom(const json& request, const Job& base) {
   if (!request.is_object()) throw RequestError("the request must be a JSON object");
   Job job = base;

@@ -20,6 +20,16 @@ struct RequestError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A request's text field `key`; RequestError where it is missing or not a string.
+std::string requiredText(const nlohmann::json& request, const char* key);
+
+/// A request's "piece": 0 for "a", 1 for "b"; RequestError otherwise.
+int pieceIndex(const nlohmann::json& request);
+
+/// A request's "seq", the page's number for the input it asks about (0 where it has none, unless
+/// `required`); RequestError where it is not a whole number.
+long sequence(const nlohmann::json& request, bool required = false);
+
 /// Base64 (RFC 4648, with padding) of `size` bytes.
 std::string base64(const void* data, std::size_t size);
 

@@ -213,7 +213,7 @@
       settings()[i ? "start_b" : "start_a"] = f;
       showStartField(i);
       solve(e.timeStamp, e.getCoalescedEvents ? e.getCoalescedEvents() : []);
-    }, function () { scheduleStrip(); });
+    }, function () { settle(); scheduleStrip(); });
   });
   studio.views = views;
   // Each start as a length (mm) along its boundary from the outline's first point, the way the
@@ -270,6 +270,13 @@
     }
     pending = seq;
     if (!inFlight) send();
+  }
+
+  // A released drag: its last position is final, and the server refines it at once instead of
+  // waiting for the pause that tells a drag's positions apart. A failed settle costs only that
+  // wait (and the next solve shows why the server refused).
+  function settle() {
+    if (nextSeq > 1) api("/api/settle", { seq: nextSeq - 1 }).catch(function () {});
   }
 
   function send() {

@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """dform studio in a real browser (headless Chromium): the page loads without console errors;
 dragging a start handle changes the shape, and the shape is the command line's for that start;
-a raw pointer update during a drag moves the handle and is solved at once;
+a raw pointer update during a drag moves the handle and is solved at once, and the release
+settles the last position (refined without waiting for a pause);
 dragging B's start round a square at 60 Hz is answered by the exact model at every position;
 flip and the alternative-starts strip work; a bad SVG shows its error and the next good one
 solves; Save job + `dform run` reproduces the figures; Export's pattern.svg is the CLI's, byte
@@ -143,6 +144,11 @@ def main():
         # asks nothing more. (Alt held: no snapping, so the handle goes where the pointer is.)
         from selenium.webdriver.common.action_chains import ActionChains
         from selenium.webdriver.common.by import By
+        s.js("""window.settles = []; var fetched = window.fetch;
+                window.fetch = function (path, init) {
+                  if (path === "/api/settle") window.settles.push(JSON.parse(init.body).seq);
+                  return fetched.apply(this, arguments);
+                };""")
         ActionChains(s.driver, duration=0).click_and_hold(
             s.driver.find_element(By.CSS_SELECTOR, "#svg-b-marks circle.handle")).perform()
         raw = s.js("""
@@ -164,6 +170,9 @@ def main():
         check(raw["move"] == raw["raw"], f"the frame's pointermove after it changes nothing ({raw})")
         shown = s.js("return window.studio.shown.settings.start_b")
         check(abs(shown - raw["raw"][1]) < 1e-12, f"the raw update's start is the one solved ({shown})")
+        # The release tells the server the drag's last position is final (refined without a pause).
+        settles, last = s.js("return [window.settles, window.studio.moves[window.studio.moves.length - 1].seq]")
+        check(settles == [last], f"the release settles the drag's last position ({settles}, last asked {last})")
 
         flat_before = s.js("return window.studio.shown.result.pieces[1].flat")
         s.driver.find_element("id", "flip").click()

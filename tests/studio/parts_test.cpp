@@ -135,6 +135,20 @@ TEST(StudioOutlines, EveryKindReadsAtEveryExtreme) {
 
 // The corners an outline's answer lists (where a dragged start snaps): a regular polygon's and a
 // Reuleaux polygon's vertices, evenly spaced in arc length from the first; a smooth ellipse none.
+// A request's seq: 0 where it has none (most requests may omit it), required by those that
+// name an input (/api/settle), and a whole number wherever it is given.
+TEST(StudioWire, ARequestsSeqIsAWholeNumber) {
+  using nlohmann::json;
+  EXPECT_EQ(studio::sequence(json{{"seq", 12}}), 12);
+  EXPECT_EQ(studio::sequence(json{{"seq", 12}}, true), 12);
+  EXPECT_EQ(studio::sequence(json::object()), 0);
+  EXPECT_THROW(studio::sequence(json::object(), true), studio::RequestError);
+  for (const json& bad : {json(2.5), json("3"), json(nullptr), json::array({1})}) {
+    EXPECT_THROW(studio::sequence(json{{"seq", bad}}), studio::RequestError) << bad;
+    EXPECT_THROW(studio::sequence(json{{"seq", bad}}, true), studio::RequestError) << bad;
+  }
+}
+
 TEST(StudioWire, TheCornersAreTheOutlinesSharpTurns) {
   const auto corners = [](const std::string& kind, std::map<std::string, double> values) {
     const Shape2 shape = parseOutline(studio::parametricOutline(kind, values), "x.json").value();

@@ -138,6 +138,14 @@ TEST(StudioServer, MalformedRequestsGetJsonErrorsAndTheServerKeepsServing) {
     EXPECT_EQ(r.first, 400) << bad;
     EXPECT_TRUE(r.second.contains("error")) << bad;
   }
+  for (const json& bad : {json{}, json{{"seq", "last"}}, json{{"seq", 1.5}}}) {
+    json body = bad;
+    body["session"] = session;
+    const auto r = c.post("/api/settle", body);
+    EXPECT_EQ(r.first, 400) << bad;
+    EXPECT_EQ(r.second.value("error", ""), "seq: must be a whole number") << bad;
+  }
+  EXPECT_EQ(c.post("/api/settle", {{"session", session}, {"seq", 1}}).first, 200);
   auto unknown = c.raw().Get("/no/such/page", c.headers());
   EXPECT_EQ(unknown->status, 404);
   EXPECT_TRUE(json::parse(unknown->body).contains("error"));
@@ -626,6 +634,49 @@ TEST(StudioSession, ARefinementWaitsForTheLiveRequestsToPause) {
   const std::lock_guard<std::mutex> lock(mutex);
   EXPECT_GE(refinements.size(), 1u);  // the last position's
   EXPECT_LE(refinements.size(), 3u);  // a pause of the test's own thread may let another start
+}
+
+// A released drag settles the page's input: the last position's refinement starts at once, not
+// kRefinementQuiet after its live request, whether that request was answered before the release
+// or is still on its way; a settle older than the newest request, or a newer request after it,
+// keeps the wait.
+TEST(StudioSession, ASettledInputIsRefinedWithoutTheQuietWait) {
+  studio::PieceInput a{"a.json", "", test::startEllipse(120, 70, "a.json")};
+  studio::PieceInput b{"b.json", "", test::startEllipse(110, 82.305579, "b.json")};
+  studio::Session session(a, b);
+  const studio::SolveAt solve = [](int resolution, studio::Interior interior,
+                                   const RunHooks&) -> Result<studio::Solved> {
+    return stubSolved(resolution, interior);
+  };
+  using Clock = std::chrono::steady_clock;
+  const auto waits = [&](Clock::time_point asked) {
+    return session.refinementDue() >= asked + studio::Session::kRefinementQuiet;
+  };
+  Clock::time_point asked = Clock::now();
+  session.solveLive(solve, 100, false, 1, "design", nullptr);
+  EXPECT_TRUE(waits(asked));
+  session.settle(1);  // released after its answer
+  EXPECT_LE(session.refinementDue(), Clock::now());
+
+  asked = Clock::now();
+  session.solveLive(solve, 100, false, 2, "design", nullptr);
+  EXPECT_TRUE(waits(asked));
+  session.settle(1);  // older than the newest request
+  EXPECT_TRUE(waits(asked));
+
+  session.settle(3);  // released while its request is on its way
+  EXPECT_LE(session.refinementDue(), Clock::now());
+  session.solveLive(solve, 100, false, 3, "design", nullptr);
+  EXPECT_LE(session.refinementDue(), Clock::now());
+  long position = 0;
+  std::string events;
+  for (int k = 0; k < 50 && events.find("\"seq\":3") == std::string::npos; ++k)
+    events += session.events().waitAfter(position, std::chrono::milliseconds(100));
+  EXPECT_NE(events.find("\"seq\":3"), std::string::npos) << events;  // its refinement
+
+  asked = Clock::now();
+  session.solveLive(solve, 100, false, 4, "design", nullptr);  // a new drag
+  EXPECT_TRUE(waits(asked));
 }
 
 TEST(StudioSession, TheWorkerYieldsToTheLiveSolves) {

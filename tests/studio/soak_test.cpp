@@ -7,6 +7,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <iterator>
 #include <random>
 
 #include "studio_client.h"
@@ -50,8 +51,9 @@ TEST(StudioSoak, ThousandRandomAndMalformedRequestsLeaveItServing) {
     return s;
   };
   const char* paths[] = {
-      "/api/solve", "/api/outline", "/api/parametric", "/api/strip", "/api/curve", "/api/inverse",
-      "/api/job",   "/api/session", "/api/events",     "/",          "/studio.js", "/x"};
+      "/api/solve", "/api/outline", "/api/parametric", "/api/strip",  "/api/curve", "/api/inverse",
+      "/api/job",   "/api/session", "/api/events",     "/api/settle", "/",          "/studio.js",
+      "/x"};
   const json bodies[] = {
       {{"session", session}, {"seq", 1}, {"start_b", 0.2}, {"resolution", 24}},
       {{"session", session},
@@ -86,7 +88,7 @@ TEST(StudioSoak, ThousandRandomAndMalformedRequestsLeaveItServing) {
     }
     httplib::Headers headers = pick(4) ? c.headers() : httplib::Headers{};
     if (pick(6) == 0) headers.emplace("Origin", "http://evil.example");
-    const std::string path = paths[pick(12)];
+    const std::string path = paths[pick(int(std::size(paths)))];
     std::string body = kind == 1 ? junk(pick(300)) : bodies[pick(10)].dump();
     if (kind == 2 && !body.empty()) body.resize(std::size_t(pick(int(body.size()))));  // cut short
     if (path == "/api/events" || path == "/" || path == "/studio.js" || path == "/x") {
