@@ -44,4 +44,7 @@ load "studio latency, instant answers"
 "$python" "$root/tests/bench/studio_latency.py" "$build/dform" "$root/samples" --paper \
   --positions 50 --pause 0.1 >"$out/studio-paper.txt" 2>&1
 load "studio latency, paper model"
+"$python" "$root/tests/bench/studio_latency.py" "$build/dform" "$root/samples" --paper \
+  --positions 120 --pause 0.0167 >"$out/studio-paper-60hz.txt" 2>&1
+load "studio latency, paper model at 60 Hz"
 echo "done: $out"
