@@ -15,22 +15,32 @@ function States(section, container, thumbnailCanvas, note, onShow) {
   this.view = null;
   this.list = [];
   this.shown = 0;
+  this.generation = 0;  // of the list: pictures made for an older one are dropped
 }
 
 // r.states as the server sends them ([] from a model other than ruled); `answer`: the answer's
-// decoded pieces; decode(piecesJson) decodes another state's.
+// decoded pieces; decode(piecesJson) decodes another state's. The cards come at once and their
+// pictures after the answer's frame: drawing and encoding them (software WebGL, PNG) took about
+// 185 ms, which the refined shape waited for.
 States.prototype.set = function (states, answer, decode) {
+  var self = this, generation = ++this.generation;
   this.list = (states || []).map(function (s, i) {
     return { start: s.start, bending: s.bending_energy, fold: s.largest_fold_deg,
              pieces: i === 0 ? answer : s.pieces ? decode(s.pieces) : null };
   });
   this.shown = 0;
-  this.pictures();
   this.render();
+  if (this.list.length < 2) return;
+  requestAnimationFrame(function () {
+    setTimeout(function () {
+      if (generation !== self.generation) return;
+      self.pictures();
+      self.render();
+    }, 0);
+  });
 };
 
 States.prototype.pictures = function () {
-  if (this.list.length < 2) return;
   if (!this.view) this.view = new View3D(this.canvas, { axes: false });
   var view = this.view, canvas = this.canvas;
   this.list.forEach(function (s) {

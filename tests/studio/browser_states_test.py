@@ -15,6 +15,7 @@ import os
 import subprocess
 import sys
 import tempfile
+import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import studio_browser  # noqa: E402
@@ -41,6 +42,9 @@ def anti_states(dform, samples, work):
     try:
         s.settle(300)
         s.wait(lambda: s.js("return window.studio.states.list.length") == len(listed), 30, "the states")
+        # The cards' pictures are drawn after the answer's frame.
+        s.wait(lambda: s.js("return document.querySelectorAll('#state-cards .card img').length") == len(listed), 30,
+               "the states' pictures")
         shown = s.js("return [!document.getElementById('states').hidden,"
                      " document.querySelectorAll('#state-cards .card').length,"
                      " window.studio.states.list.map(function (x) { return x.bending; }),"
@@ -50,6 +54,22 @@ def anti_states(dform, samples, work):
         check(all(abs(a - b) <= 1e-9 * abs(b) for a, b in zip(shown[2], listed)) and shown[2] == sorted(shown[2]),
               f"their bending energies are the report's, least first ({shown[2]} against {listed})")
         check(shown[3], "each state has its shape and its picture")
+        # set() makes the cards at once and their pictures after the frame; a newer list drops the
+        # pictures due for the one before (two sets, one drawing).
+        quick = s.js("""var st = window.studio.states, list = st.list, drawn = 0, pictures = st.pictures;
+            st.pictures = function () { ++drawn; return pictures.apply(this, arguments); };
+            window.picturesDrawn = function () { return drawn; };
+            var again = list.map(function (x) { return { start: x.start, bending_energy: x.bending,
+                                                         largest_fold_deg: x.fold, pieces: x.pieces }; });
+            st.set(again, list[0].pieces, function (p) { return p; });
+            st.set(again, list[0].pieces, function (p) { return p; });
+            return [document.querySelectorAll('#state-cards .card').length,
+                    document.querySelectorAll('#state-cards .card img').length, drawn];""")
+        check(quick == [2, 0, 0], f"the cards come at once, their pictures later ({quick})")
+        s.wait(lambda: s.js("return document.querySelectorAll('#state-cards .card img').length") == 2, 30,
+               "the pictures again")
+        time.sleep(0.2)
+        check(s.js("return window.picturesDrawn()") == 1, "drawn once for the newest list")
         s.js("window.studio.overlay.setMode('strain')")
         s.wait(lambda: s.js("return !!window.studio.overlay.data"), 120, "the answer's figures")
         s.driver.find_element("css selector", "#state-cards .card[data-index='1']").click()
