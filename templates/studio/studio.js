@@ -623,6 +623,7 @@
     var events = new EventSource("/api/events?session=" + session + "&token=" + TOKEN);
     events.onmessage = function (m) {
       var e = JSON.parse(m.data);
+      e.arrival = { parsed: performance.now() };  // the bench times the page's part from here
       if (e.type === "progress" && e.seq === shownSeq) $("status").textContent = "refining: " + e.stage + " step " + e.iteration;
       if (e.type === "result" && e.seq >= shownSeq && pending == null && !inFlight) show(e);
       // The shown shape's own verdict only: not a newer shape's, nor its preview's once refined.

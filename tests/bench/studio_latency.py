@@ -18,8 +18,9 @@ With --instant the page's own part alone: every position is answered at once, in
 answer to the first one (its seq changed), so the server solves nothing during the drag.
 
 With --paper: the non-convex sample pair (the ruled engine; each position first drawn as a preview
-at 36 seam points) dragged for positions x pause seconds; prints how long after letting go the
-page showed the last position's preview and its refined shape.
+at 36 seam points) dragged for positions x pause seconds; prints how long after letting go (the
+pointerup's time) the frames came that drew the last position's preview and its refined shape
+(0 where the preview was drawn before the release).
     studio_latency.py BUILD/dform SAMPLES_DIR --paper --positions 50 --pause 0.1
 """
 import argparse
@@ -141,15 +142,22 @@ def run(args, pair, gpu):
         s.js("window.studio.moves = []; window.studio.frames = []; window.studio.breakdown = []")
         actions = drag(s, args)
         if args.paper:
+            # Timed in the page's clock, from the pointerup to the frames that drew the last position
+            # (studio.frames): polling from here would also count the page's work after the frame.
+            s.js("window.releasedAt = null; document.addEventListener('pointerup',"
+                 " function (e) { if (window.releasedAt == null) window.releasedAt = e.timeStamp; }, true)")
             actions.perform()
-            released = time.time()
             last = s.js("return window.studio.views[1].fraction")
             showing = "var s = window.studio; return s.frameSeq === s.shown.seq && Math.abs(s.shown.settings.start_b - %r) < 1e-12" % last
-            s.wait(lambda: s.js(showing), 300, "the last position")
-            preview = time.time() - released
             s.wait(lambda: s.js(showing + " && !s.shown.result.preview && !s.shown.result.refining"), 300, "its refined shape")
+            seq, released, frames, came = s.js("var s = window.studio; return [s.shown.seq, window.releasedAt,"
+                                               " s.frames, s.shown.result.arrival.parsed]")
+            drawn = [f for f in frames if f["seq"] == seq]
+            preview = max(0.0, (drawn[0]["time"] - released) / 1000)
+            refined = next(f for f in drawn if not f["preview"])["time"]
             print(f"{flag}: released after {args.positions} moves x {args.pause} s: the last position's first shape after "
-                  f"{preview:.2f} s, refined after {time.time() - released:.2f} s")
+                  f"{preview:.2f} s, refined after {(refined - released) / 1000:.2f} s (its frame "
+                  f"{refined - came:.0f} ms after it came)")
             return
         before, began = cpu_seconds(s.process.pid), time.time()
         actions.perform()
