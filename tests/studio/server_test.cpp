@@ -523,11 +523,13 @@ studio::Solved stubSolved(int resolution, studio::Interior interior) {
   return solved;
 }
 
-// The session's events up to its first result, waiting at most `tries` tenths of a second.
-std::string eventsUntilResult(studio::Session& session, int tries) {
+// The session's events up to the first holding `text` (by default its first result), waiting at
+// most `tries` tenths of a second.
+std::string eventsUntilResult(studio::Session& session, int tries,
+                              const std::string& text = "\"type\":\"result\"") {
   long position = 0;
   std::string events;
-  for (int k = 0; k < tries && events.find("\"type\":\"result\"") == std::string::npos; ++k)
+  for (int k = 0; k < tries && events.find(text) == std::string::npos; ++k)
     events += session.events().waitAfter(position, std::chrono::milliseconds(100));
   return events;
 }
@@ -668,10 +670,7 @@ TEST(StudioSession, ASettledInputIsRefinedWithoutTheQuietWait) {
   EXPECT_LE(session.refinementDue(), Clock::now());
   session.solveLive(solve, 100, false, 3, "design", nullptr);
   EXPECT_LE(session.refinementDue(), Clock::now());
-  long position = 0;
-  std::string events;
-  for (int k = 0; k < 50 && events.find("\"seq\":3") == std::string::npos; ++k)
-    events += session.events().waitAfter(position, std::chrono::milliseconds(100));
+  const std::string events = eventsUntilResult(session, 50, "\"seq\":3");
   EXPECT_NE(events.find("\"seq\":3"), std::string::npos) << events;  // its refinement
 
   asked = Clock::now();
