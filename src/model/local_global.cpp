@@ -8,7 +8,6 @@
 #include <cassert>
 #include <chrono>
 #include <cmath>
-#include <deque>
 #include <memory>
 
 #include "dform/core/interrupt.h"
@@ -310,32 +309,49 @@ class LocalGlobal {
 // instead left one secant after every refusal, whose extrapolation (100-200 times the residual
 // on the Squaricle) was refused in turn: 79-93 % of the steps of the bench's 2.6k-vertex rows,
 // against 26-42 % with the history kept.
+// The differences are kept as the columns of two matrices, oldest first, and the QR works in one
+// decomposition's storage: sized once, none of them is allocated again per step. (Allocated per
+// step, the non-convex sample's 50-seam-point relaxation spent half its time in the kernel,
+// mapping fresh pages.)
 class Anderson {
  public:
-  explicit Anderson(int depth) : depth_(depth) {}
+  Anderson(int depth, Eigen::Index unknowns)
+      : depth_(depth),
+        dG_(unknowns, depth),
+        dF_(unknowns, depth),
+        previousG_(unknowns),
+        previousF_(unknowns),
+        qr_(unknowns, depth) {}
 
   // Records G(x) = g with residual f and returns the accelerated next iterate.
   Eigen::VectorXd next(const Eigen::VectorXd& g, const Eigen::VectorXd& f) {
     if (havePrevious_) {
-      dG_.push_back(g - previousG_);
-      dF_.push_back(f - previousF_);
-      if (int(dF_.size()) > depth_) dG_.pop_front(), dF_.pop_front();
+      if (used_ == depth_) {
+        for (int i = 0; i + 1 < depth_; ++i) {
+          dG_.col(i) = dG_.col(i + 1);
+          dF_.col(i) = dF_.col(i + 1);
+        }
+        --used_;
+      }
+      dG_.col(used_) = g - previousG_;
+      dF_.col(used_) = f - previousF_;
+      ++used_;
     }
     previousG_ = g;
     previousF_ = f;
     havePrevious_ = true;
-    if (dF_.empty()) return g;
-    const int m = int(dF_.size());
-    Eigen::MatrixXd F(f.size(), m), G(g.size(), m);
-    for (int i = 0; i < m; ++i) F.col(i) = dF_[i], G.col(i) = dG_[i];
-    const Eigen::VectorXd gamma = F.colPivHouseholderQr().solve(f);
-    return g - G * gamma;
+    if (used_ == 0) return g;
+    qr_.compute(dF_.leftCols(used_));
+    const Eigen::VectorXd gamma = qr_.solve(f);
+    return g - dG_.leftCols(used_) * gamma;
   }
 
  private:
   int depth_;
-  std::deque<Eigen::VectorXd> dG_, dF_;
+  int used_ = 0;  // the differences recorded: the first `used_` columns of dG_ and dF_
+  Eigen::MatrixXd dG_, dF_;
   Eigen::VectorXd previousG_, previousF_;
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr_;
   bool havePrevious_ = false;
 };
 
@@ -371,7 +387,7 @@ LocalGlobalSummary LocalGlobalRelaxation::relax(const LocalGlobalOptions& option
   const Eigen::VectorXd constant = lg.targetRhs();
   throwIfInterrupted("the solve");
 
-  Anderson anderson(options.andersonDepth);
+  Anderson anderson(options.andersonDepth, x.size());
   Projections candidateProj, longerProj;
   // On a fine mesh one iteration takes seconds (each solve, energy and extrapolation a fraction of
   // one): a stop asked for meanwhile throws Interrupted between them, besides the callback's stop.
