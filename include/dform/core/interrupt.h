@@ -5,9 +5,12 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <exception>
 #include <functional>
+#include <future>
 #include <string>
+#include <system_error>
 
 #include "dform/core/status.h"
 
@@ -87,5 +90,51 @@ constexpr int kPollInterval = 4096;
 /// everything it touches; the process is stopping meanwhile. Without a thread to be had (a
 /// process or memory limit) `work` runs here.
 bool runWhilePolling(std::function<void()> work);
+
+/// A computation run on a thread of its own while the caller works on (the ruled engine's starts
+/// and its ways round a mesh, Levenberg-Marquardt's set-up during the relaxation), where asked and
+/// where a thread can be started; otherwise it runs on the caller's thread when get() asks for
+/// it, so the result never depends on which. The thread heeds the process's stop, and stops when
+/// the caller's run is stopped while the caller waits in get() (interruptRequested() on the
+/// caller's thread, or `stopAsked`), and when its result is no longer wanted: a Beside destroyed
+/// before get() stops it and waits for it. `work` must not outlive what it captures: the
+/// destructor waits for the thread.
+template <typename T>
+class Beside {
+ public:
+  /// Starts `work` on a thread when `onThread`.
+  Beside(
+      bool onThread, std::function<T()> work,
+      std::function<bool()> stopAsked = [] { return false; })
+      : work_(std::move(work)), stopAsked_(std::move(stopAsked)) {
+    if (!onThread) return;
+    try {
+      future_ = std::async(std::launch::async, [this] {
+        const ScopedStop stop(&unwanted_);
+        return work_();
+      });
+    } catch (const std::system_error&) {
+    }
+  }
+  /// Stops the thread, unless it has finished, and waits for it (future_ is destroyed next).
+  ~Beside() { unwanted_ = true; }
+  Beside(const Beside&) = delete;
+  Beside& operator=(const Beside&) = delete;
+
+  /// The result, once only; rethrows what `work` threw (Interrupted, std::bad_alloc).
+  T get() {
+    if (!future_.valid()) return work_();
+    // 20 ms: runWhilePolling's pace, far below what a person notices.
+    while (future_.wait_for(std::chrono::milliseconds(20)) != std::future_status::ready)
+      if (interruptRequested() || stopAsked_()) unwanted_ = true;
+    return future_.get();
+  }
+
+ private:
+  std::atomic<bool> unwanted_{false};
+  std::function<T()> work_;
+  std::function<bool()> stopAsked_;
+  std::future<T> future_;
+};
 
 }  // namespace dform
