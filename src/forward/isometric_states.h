@@ -40,6 +40,10 @@ struct IsometricLevels {
   std::function<Result<std::array<Piece, 2>>(int resolution, double interiorEdgeFactor)> mesh;
   /// Whether the caller asked the run to stop.
   std::function<bool()> stop;
+  /// Whether the starts, and the ways round a mesh that cannot be made exact at once, are made on
+  /// threads of their own side by side; false: all on the caller's thread, one after another.
+  /// Either way the same states, in the same order.
+  bool sideBySide = true;
 };
 
 /// A state of the sheet at the job's resolution.

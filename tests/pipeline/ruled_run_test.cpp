@@ -264,6 +264,76 @@ TEST(IsometricStates, TheStartsAreMadeSideBySideAndListedInOneOrder) {
   EXPECT_TRUE(calls.empty());
 }
 
+// Where the job's mesh cannot be made exact at once, the continuation on it and the way round it
+// (twice the interior edge, then back) are made side by side, the starts too; on one thread,
+// one after another, the same states come, bit for bit, in the same order, with the same
+// failures. The non-convex pair zipped from B's start at 0.5 is such a case at 100 seam points:
+// the coarser mesh is made on a thread beside the caller's.
+TEST(IsometricStates, SideBySideGivesWhatOneThreadGives) {
+  auto job = [](int resolution, double interiorEdgeFactor, bool solve) {
+    ForwardJob j = pairJob("nonconvex-a.svg", "nonconvex-b.svg", ModelChoice::Paper, resolution);
+    j.startB.fraction = 0.5;
+    j.interiorEdgeFactor = interiorEdgeFactor;
+    if (!solve) j.relaxation.maxIterations = j.solver.maxIterations = 0;  // the mesh alone
+    return j;
+  };
+  struct Asked {
+    double interiorEdgeFactor;
+    std::thread::id thread;
+  };
+  auto found = [&](bool sideBySide, std::vector<Asked>& asked) {
+    std::mutex asking;  // the levels' functions are called from several threads
+    forward_detail::IsometricLevels levels;
+    levels.paperShape = [&](int resolution, bool) -> Result<DForm> {
+      Result<ForwardRun> r = runRuled(job(resolution, 1.0, true));
+      if (!r.isOk()) return r.status();
+      return r.value().model;
+    };
+    levels.mesh = [&](int resolution, double interiorEdgeFactor) -> Result<std::array<Piece, 2>> {
+      {
+        const std::lock_guard<std::mutex> lock(asking);
+        asked.push_back({interiorEdgeFactor, std::this_thread::get_id()});
+      }
+      Result<ForwardRun> r = runRuled(job(resolution, interiorEdgeFactor, false));
+      if (!r.isOk()) return r.status();
+      return std::array<Piece, 2>{r.value().model.a, r.value().model.b};
+    };
+    levels.stop = [] { return false; };
+    levels.sideBySide = sideBySide;
+    return forward_detail::isometricStates(100, 1.0, levels);
+  };
+  std::vector<Asked> besideAsked, oneAsked;
+  const forward_detail::IsometricStates beside = found(true, besideAsked),
+                                        one = found(false, oneAsked);
+  auto coarserMeshThreads = [](const std::vector<Asked>& asked) {
+    std::vector<std::thread::id> threads;
+    for (const Asked& a : asked)
+      if (a.interiorEdgeFactor == 2.0) threads.push_back(a.thread);
+    return threads;
+  };
+  const std::vector<std::thread::id> besideThreads = coarserMeshThreads(besideAsked);
+  ASSERT_EQ(besideThreads.size(), 1u) << "the start at 100 is made via the coarser mesh";
+  EXPECT_NE(besideThreads[0], std::this_thread::get_id());
+  EXPECT_EQ(coarserMeshThreads(oneAsked), std::vector<std::thread::id>{std::this_thread::get_id()});
+  for (const Asked& a : oneAsked) EXPECT_EQ(a.thread, std::this_thread::get_id());
+
+  ASSERT_EQ(beside.states.size(), 2u);
+  ASSERT_EQ(one.states.size(), beside.states.size());
+  EXPECT_EQ(one.failures, beside.failures);
+  for (std::size_t s = 0; s < one.states.size(); ++s) {
+    const forward_detail::IsometricState &a = beside.states[s], &b = one.states[s];
+    EXPECT_EQ(a.start, b.start) << s;
+    EXPECT_EQ(a.interiorEdgeFactor, b.interiorEdgeFactor) << s;
+    EXPECT_EQ(a.steps, b.steps) << s;
+    EXPECT_EQ(a.exact.bendingEnergy, b.exact.bendingEnergy) << s;
+    EXPECT_EQ(a.exact.model.a.shape, b.exact.model.a.shape) << s;
+    EXPECT_EQ(a.exact.model.b.shape, b.exact.model.b.shape) << s;
+    EXPECT_EQ(a.exact.model.b.flat, b.exact.model.b.flat) << s;
+  }
+  EXPECT_EQ(one.states[1].start, "the paper model's shape at 100 seam points");
+  EXPECT_EQ(one.states[1].interiorEdgeFactor, 1.0);
+}
+
 // Asked for where its boundary points find no state on a convex metric (the squaricle's pieces,
 // creased, zipped from their starts at n = 30), the ruled model fails saying why: there the answer
 // is the exact body, and a shape made exact from the paper model's would be another one.
