@@ -20,7 +20,8 @@ answer to the first one (its seq changed), so the server solves nothing during t
 With --paper: the non-convex sample pair (the ruled engine; each position first drawn as a preview
 at 36 seam points) dragged for positions x pause seconds; prints how long after letting go (the
 pointerup's time) the frames came that drew the last position's preview and its refined shape
-(0 where the preview was drawn before the release).
+(0 where the preview was drawn before the release), and every move's latency to its first shape
+(as above) with how many came within 150 ms.
     studio_latency.py BUILD/dform SAMPLES_DIR --paper --positions 50 --pause 0.1
 """
 import argparse
@@ -150,14 +151,17 @@ def run(args, pair, gpu):
             last = s.js("return window.studio.views[1].fraction")
             showing = "var s = window.studio; return s.frameSeq === s.shown.seq && Math.abs(s.shown.settings.start_b - %r) < 1e-12" % last
             s.wait(lambda: s.js(showing + " && !s.shown.result.preview && !s.shown.result.refining"), 300, "its refined shape")
-            seq, released, frames, came = s.js("var s = window.studio; return [s.shown.seq, window.releasedAt,"
-                                               " s.frames, s.shown.result.arrival.parsed]")
+            seq, released, frames, came, moves = s.js("var s = window.studio; return [s.shown.seq, window.releasedAt,"
+                                                      " s.frames, s.shown.result.arrival.parsed, s.moves]")
             drawn = [f for f in frames if f["seq"] == seq]
             preview = max(0.0, (drawn[0]["time"] - released) / 1000)
             refined = next(f for f in drawn if not f["preview"])["time"]
+            latencies = [t for t, _ in every_move(moves, frames) if t is not None]
             print(f"{flag}: released after {args.positions} moves x {args.pause} s: the last position's first shape after "
                   f"{preview:.2f} s, refined after {(refined - released) / 1000:.2f} s (its frame "
-                  f"{refined - came:.0f} ms after it came)")
+                  f"{refined - came:.0f} ms after it came); every move's first shape: median "
+                  f"{statistics.median(latencies):.0f} ms, p95 {percentile(latencies, 0.95):.0f} ms, max "
+                  f"{max(latencies):.0f} ms, {sum(1 for t in latencies if t <= 150)} of {len(moves)} within 150 ms")
             return
         before, began = cpu_seconds(s.process.pid), time.time()
         actions.perform()
