@@ -6,6 +6,7 @@
 //   dform_bench [--repeats N] [--smoke] [--export]
 //   dform_bench --scale [--repeats N] [--plot FILE.svg]      (scale.cpp)
 //   dform_bench --accuracy [--repeats N] [--plot FILE.svg]   (accuracy.cpp)
+//   dform_bench --starts [--repeats N]                       (starts.cpp)
 //
 // --export times only the export: each forward case is solved once and exported N times; then a
 // long seam, two flat 2.5 m squares (a 10 m seam, synthetic: tests/validate/models.h).
@@ -30,6 +31,7 @@
 #include "median.h"
 #include "models.h"
 #include "scale.h"
+#include "starts.h"
 
 namespace {
 
@@ -147,7 +149,7 @@ int benchExport(const std::vector<Case>& cases, int repeats, const std::filesyst
 int main(int argc, char** argv) {
   keepFreedMemory();  // as build/dform does
   int repeats = 7;
-  bool smoke = false, exportOnly = false, scale = false, accuracy = false;
+  bool smoke = false, exportOnly = false, scale = false, accuracy = false, starts = false;
   std::string plot;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--smoke")) {
@@ -159,6 +161,8 @@ int main(int argc, char** argv) {
       scale = true;
     } else if (!std::strcmp(argv[i], "--accuracy")) {
       accuracy = true;
+    } else if (!std::strcmp(argv[i], "--starts")) {
+      starts = true;
     } else if (!std::strcmp(argv[i], "--plot") && i + 1 < argc) {
       plot = argv[++i];
     } else if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc) {
@@ -167,12 +171,13 @@ int main(int argc, char** argv) {
       std::fprintf(stderr,
                    "usage: dform_bench [--repeats N] [--smoke] [--export] | --scale [--repeats N] "
                    "[--plot FILE.svg]"
-                   " | --accuracy [--repeats N] [--plot FILE.svg]\n");
+                   " | --accuracy [--repeats N] [--plot FILE.svg] | --starts [--repeats N]\n");
       return 2;
     }
   }
   if (scale) return runScale(repeats, plot);
   if (accuracy) return runAccuracy(repeats, plot, false);
+  if (starts) return runStarts(repeats);
   std::vector<Case> cases = {
       {"ellipses", "ellipses-a.svg", "ellipses-b.svg", 50, 0.0},
       {"ellipses", "ellipses-a.svg", "ellipses-b.svg", 75, 0.0},

@@ -47,4 +47,6 @@ load "studio latency, paper model"
 "$python" "$root/tests/bench/studio_latency.py" "$build/dform" "$root/samples" --paper \
   --positions 120 --pause 0.0167 >"$out/studio-paper-60hz.txt" 2>&1
 load "studio latency, paper model at 60 Hz"
+"$bench" --starts --repeats 3 >"$out/starts.txt" 2>&1
+load "solve of the non-convex pair from 40 starts"
 echo "done: $out"
