@@ -279,7 +279,7 @@ void Session::startStrip(std::vector<std::pair<json, SolveAt>> starts, long seq)
           if (!strip_.current(ticket)) return;
           RunHooks hooks;
           hooks.interrupted = ticket.cancel.get();
-          Result<Solved> result = solveStoppable(solve, kPreviewResolution, Interior::Job, hooks);
+          Result<Solved> result = solveStoppable(solve, kStripResolution, Interior::Job, hooks);
           if (!strip_.current(ticket)) return;
           json event = card;
           event["type"] = "strip";

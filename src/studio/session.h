@@ -153,8 +153,13 @@ class Session {
   /// The events, for a stream that must not keep the session (its solves and worker) alive.
   std::shared_ptr<EventStream> eventStream() const { return events_; }
 
-  /// Seam vertices of a preview, and of the alternative-starts strip's cards.
-  static constexpr int kPreviewResolution = 36;
+  /// Seam vertices of a live preview, as at the paper model's coarsest level: few enough that a
+  /// drag gets a shape within 150 ms of every move. At 36 the non-convex sample's preview
+  /// took up to 280 ms where its shape is about to change, its relaxation drifting along a soft
+  /// mode (docs/benchmarks.md, "Studio").
+  static constexpr int kPreviewResolution = 24;
+  /// Seam vertices of the alternative-starts strip's cards (solved in the background).
+  static constexpr int kStripResolution = 36;
   /// The nice value of the session's worker thread (measuring, the gate, refinements, the strip):
   /// on a busy machine it yields to the live solves and the page.
   static constexpr int kWorkerNice = 5;

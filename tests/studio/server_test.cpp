@@ -335,6 +335,7 @@ TEST(StudioServer, NewestInputWinsAndStaleRefinementsNeverArrive) {
   ASSERT_EQ(first.first, 200) << first.second;
   EXPECT_TRUE(first.second["preview"].get<bool>()) << first.second;
   EXPECT_TRUE(first.second["refining"].get<bool>());
+  EXPECT_EQ(first.second["pieces"][0]["seam"].size(), 24u) << "a preview at 24 seam points";
   paper["seq"] = 2;
   paper["start_b"] = 0.2;
   auto second = c.post("/api/solve", paper);
@@ -391,6 +392,23 @@ TEST(StudioServer, EveryPositionAsksTheExactEngineFirst) {
   auto again = c.post("/api/solve", job);
   ASSERT_EQ(again.first, 200) << again.second;
   EXPECT_TRUE(again.second["preview"].get<bool>()) << again.second;
+}
+
+// The strip's cards are thumbnails solved in the background at 36 seam points, finer than a
+// drag's previews; the paper model's too.
+TEST(StudioServer, StripCardsAreSolvedAt36SeamPoints) {
+  StudioClient c;
+  const std::string session = c.session();
+  test::EventReader events(c, session);
+  auto strip = c.post(
+      "/api/strip",
+      {{"session", session}, {"seq", 1}, {"model", "paper"}, {"starts", 1}, {"both_flips", false}});
+  ASSERT_EQ(strip.first, 200) << strip.second;
+  const json card = events.waitFor("strip", std::chrono::seconds(120));
+  ASSERT_FALSE(card.is_null()) << "no card streamed";
+  ASSERT_TRUE(card.contains("result")) << card;
+  EXPECT_EQ(card["result"]["pieces"][0]["seam"].size(), 36u) << card["result"]["model"];
+  EXPECT_EQ(card["result"]["model"]["name"], "paper");
 }
 
 TEST(StudioServer, LatestTicketCancelsTheOneBefore) {
