@@ -177,12 +177,12 @@ void Session::queueRefinement(const SolveAt& solve, int resolution, const Latest
   queue(
       [this, solve, resolution, ticket = live_.follow(live), seq] {
         if (!live_.current(ticket)) return;
-        auto last = Clock::now();
+        auto due = Clock::now() + kProgressDelay;
         RunHooks progress;
         progress.interrupted = ticket.cancel.get();
         progress.onIteration = [&](const char* stage, const IterationSummary& it) {
-          if (Clock::now() - last < kProgressInterval) return;
-          last = Clock::now();
+          if (Clock::now() < due) return;
+          due = Clock::now() + kProgressInterval;
           events_->push({{"type", "progress"},
                          {"seq", seq},
                          {"stage", stage},

@@ -574,13 +574,13 @@ TEST(StudioSession, ARefinementOutlivesTheRequestThatAskedForIt) {
   EXPECT_NE(events.find("\"seq\":7"), std::string::npos) << events;
 }
 
-// A refinement reports its progress at most four times a second, however often its solver
-// iterates: each event repaints the page. The stub iterates every 2 ms for a second.
-TEST(StudioSession, ARefinementsProgressComesAtMostFourTimesASecond) {
+// The progress events of a refinement whose solver iterates every 2 ms for `iterating`, counted
+// with the time from the request to the result.
+std::pair<long, std::chrono::steady_clock::duration> progressEvents(
+    std::chrono::milliseconds iterating) {
   studio::PieceInput a{"a.json", "", test::startEllipse(120, 70, "a.json")};
   studio::PieceInput b{"b.json", "", test::startEllipse(110, 82.305579, "b.json")};
   studio::Session session(a, b);
-  const auto iterating = std::chrono::seconds(1);
   const studio::SolveAt solve = [&](int resolution, studio::Interior interior,
                                     const RunHooks& hooks) -> Result<studio::Solved> {
     if (interior == studio::Interior::Job) {
@@ -596,18 +596,31 @@ TEST(StudioSession, ARefinementsProgressComesAtMostFourTimesASecond) {
   };
   const auto asked = std::chrono::steady_clock::now();
   const json answer = session.solveLive(solve, 100, false, 3, "design", nullptr);
-  ASSERT_TRUE(answer["refining"].get<bool>()) << answer;
+  EXPECT_TRUE(answer["refining"].get<bool>()) << answer;
   const std::string events = eventsUntilResult(session, 200);
   const auto elapsed = std::chrono::steady_clock::now() - asked;
-  ASSERT_NE(events.find("\"type\":\"result\""), std::string::npos) << events;
+  EXPECT_NE(events.find("\"type\":\"result\""), std::string::npos) << events;
   long progress = 0;
   for (std::size_t at = events.find("\"type\":\"progress\""); at != std::string::npos;
        at = events.find("\"type\":\"progress\"", at + 1))
     ++progress;
-  // Every event came between the request and the result, each a quarter second after the one
-  // before (the first a quarter second after the refinement began).
-  EXPECT_GE(progress, 1) << events;
-  EXPECT_LE(progress, elapsed / std::chrono::milliseconds(250)) << events;
+  return {progress, elapsed};
+}
+
+// A refinement reports its progress once it has run a second, then at most four times a second,
+// however often its solver iterates: each event repaints the page.
+TEST(StudioSession, ARefinementsProgressComesAfterASecondAtMostFourTimesASecond) {
+  const auto [progress, elapsed] = progressEvents(std::chrono::milliseconds(2000));
+  // Every event came between the request and the result, the first a second after the
+  // refinement began, each later one a quarter second after the one before.
+  EXPECT_GE(progress, 1);
+  EXPECT_LE(progress, (elapsed - std::chrono::seconds(1)) / std::chrono::milliseconds(250) + 1);
+}
+
+// A refinement shorter than a second shows the preview's "refining..." until its result: no
+// progress event repaints the page meanwhile.
+TEST(StudioSession, AShortRefinementSendsNoProgress) {
+  EXPECT_EQ(progressEvents(std::chrono::milliseconds(500)).first, 0);
 }
 
 // During a drag every position cancels the refinement of the one before: the worker starts a
