@@ -153,10 +153,11 @@ class Session {
   /// The events, for a stream that must not keep the session (its solves and worker) alive.
   std::shared_ptr<EventStream> eventStream() const { return events_; }
 
-  /// Seam vertices of a live preview, as at the paper model's coarsest level: few enough that a
-  /// drag gets a shape within 150 ms of every move. At 36 the non-convex sample's preview
-  /// took up to 280 ms where its shape is about to change, its relaxation drifting along a soft
-  /// mode (docs/benchmarks.md, "Studio").
+  /// Seam vertices of a live preview (where the paper model or the ruled engine makes the shape),
+  /// as at the paper model's coarsest level: few enough that a drag gets a shape within 150 ms of
+  /// every move. At 36 the non-convex sample's preview is several times slower where its shape is
+  /// about to change, the paper model's relaxation drifting along a soft mode (docs/benchmarks.md,
+  /// "Studio").
   static constexpr int kPreviewResolution = 24;
   /// Seam vertices of the alternative-starts strip's cards (solved in the background).
   static constexpr int kStripResolution = 36;
@@ -167,8 +168,8 @@ class Session {
   /// costs a software-rendered browser a frame's worth of a core that the refinement needs.
   static constexpr std::chrono::milliseconds kProgressInterval{250};
   /// A refinement's first progress event comes once it has run this long: one that ends sooner
-  /// shows the preview's "refining…" until its result, and repaints nothing meanwhile (with
-  /// Chromium's GPU process the non-convex pair's refined shape came 0.1-0.15 s sooner).
+  /// shows the preview's "refining…" until its result, and takes no core from the refinement to
+  /// repaint the page meanwhile (docs/benchmarks.md, "Studio").
   static constexpr std::chrono::milliseconds kProgressDelay{1000};
   /// How long after the last live request a refinement may start: during a drag every new
   /// position cancels the refinement of the one before, and one begun in between costs the page

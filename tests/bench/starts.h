@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The bench's starts mode: the paper model's solve of the non-convex sample pair from B's start at
-// 40 places, at the studio's preview and strip resolutions.
+// The bench's starts mode: the non-convex sample pair's solve from B's start at 40 places, at the
+// studio's preview and strip resolutions.
 #pragma once
 
 /// Solves each start `repeats` times in this process (as the studio's server does), prints the
